@@ -1,0 +1,13 @@
+// Registration of the adahrs subcommands; each lives in its own <name>_command.cc.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace adahrs::apps {
+
+/// Adds every subcommand to `app`.
+void RegisterCommands(CLI::App& app);
+
+void RegisterVersionCommand(CLI::App& app);
+
+}  // namespace adahrs::apps

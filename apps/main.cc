@@ -1,0 +1,23 @@
+// The adahrs command: one CLI11 subcommand per job. Each subcommand only parses its options,
+// calls a library and prints; the work lives in the libraries.
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "apps/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"adahrs: ADAHRS calibration HIL simulator and production calibration pipeline"};
+  app.require_subcommand(1);
+  adahrs::apps::RegisterCommands(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "adahrs: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

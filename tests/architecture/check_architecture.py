@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Our own check of the layering rules (the same rules as shared/tools/check-architecture).
+
+1. One-way folder dependencies: apps -> calib -> hil -> firmware_model / sensor_sim, and
+   rig_sim -> hil + sensor_sim + firmware_model. calib never includes rig_sim.
+2. firmware_model/target/ is target-clean for the 16-bit dsPIC: no floating point, heap,
+   exceptions or STL containers.
+Prints every violation as file:line and exits 1 if there is any.
+"""
+import pathlib
+import re
+import sys
+
+FORBID = {
+    "sensor_sim": ["firmware_model", "rig_sim", "hil", "calib", "apps"],
+    "firmware_model": ["sensor_sim", "rig_sim", "hil", "calib", "apps"],
+    "hil": ["rig_sim", "calib", "apps"],
+    "calib": ["rig_sim", "apps"],
+    "rig_sim": ["calib", "apps"],
+}
+SOURCE_SUFFIXES = {".h", ".hpp", ".cc", ".cpp"}
+INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([./]*)([A-Za-z_]+)/')
+TARGET_BANNED = re.compile(
+    r"\b(float|double|new|delete|malloc|free|throw|try|catch)\b"
+    r"|std::(vector|string|map|function|shared_ptr|unique_ptr)"
+    r"|#\s*include\s*<(iostream|Eigen|vector|string|map|memory)")
+
+
+def sources(folder):
+    return sorted(p for p in folder.rglob("*") if p.suffix in SOURCE_SUFFIXES and p.is_file())
+
+
+def strip_comment(line):
+    return line.split("//", 1)[0]
+
+
+def main(root):
+    root = pathlib.Path(root)
+    violations = []
+    for folder, forbidden in FORBID.items():
+        for path in sources(root / folder):
+            for number, line in enumerate(path.read_text().splitlines(), 1):
+                match = INCLUDE.match(line)
+                if match and match.group(2) in forbidden:
+                    violations.append(f"{path.relative_to(root)}:{number}: {folder}/ must not "
+                                      f"include {match.group(2)}/")
+    for path in sources(root / "firmware_model" / "target"):
+        in_block_comment = False
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            stripped = line.strip()
+            if in_block_comment:
+                if "*/" in stripped:
+                    in_block_comment = False
+                continue
+            if stripped.startswith("/*"):
+                in_block_comment = "*/" not in stripped
+                continue
+            if stripped.startswith("*"):
+                continue
+            code = strip_comment(line)
+            if TARGET_BANNED.search(code):
+                violations.append(f"{path.relative_to(root)}:{number}: firmware_model/target/ must "
+                                  f"stay target-clean: {stripped}")
+    for v in violations:
+        print(v)
+    if violations:
+        print(f"architecture: {len(violations)} violation(s)")
+        return 1
+    print("architecture: one-way dependencies hold; firmware_model/target is target-clean")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else "."))
