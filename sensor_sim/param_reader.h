@@ -4,6 +4,7 @@
 // ParamError naming the source file, the JSON path and the allowed range. Nothing is defaulted.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <set>
@@ -54,6 +55,26 @@ class ParamReader {
     }
     for (size_t i = 0; i < std::size(out); ++i) {
       out[i] = CheckNumber(array[i], where + "[" + std::to_string(i) + "]", min, max, unit);
+    }
+  }
+
+  /// A fixed-size array of fixed-length arrays (rows) of finite numbers in [min, max].
+  template <typename Row, size_t kRows>
+  void NumberMatrix(std::string_view key, double min, double max, std::string_view unit,
+                    std::array<Row, kRows>& out) const {
+    const nlohmann::json& rows = Require(key);
+    const std::string where = PathOf(key);
+    if (!rows.is_array() || rows.size() != kRows) {
+      Fail(where, "expected an array of " + std::to_string(kRows) + " rows");
+    }
+    for (size_t r = 0; r < kRows; ++r) {
+      const std::string row_where = where + "[" + std::to_string(r) + "]";
+      if (!rows[r].is_array() || rows[r].size() != std::size(out[r])) {
+        Fail(row_where, "expected an array of " + std::to_string(std::size(out[r])) + " numbers");
+      }
+      for (size_t c = 0; c < std::size(out[r]); ++c) {
+        out[r][c] = CheckNumber(rows[r][c], row_where + "[" + std::to_string(c) + "]", min, max, unit);
+      }
     }
   }
 

@@ -1,0 +1,115 @@
+#include "sensor_sim/im3_geometry.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "sensor_sim/random.h"
+#include "sensor_sim/units.h"
+
+namespace adahrs::sensor_sim {
+namespace {
+
+// Rows are the package axes expressed in B (see the header's table).
+Eigen::Matrix3d Rows(const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
+  Eigen::Matrix3d r;
+  r.row(0) = x.transpose();
+  r.row(1) = y.transpose();
+  r.row(2) = x.cross(y).transpose();
+  return r;
+}
+
+Eigen::Matrix3d SmallRotation(const Eigen::Vector3d& theta_deg) {
+  const double angle_rad = DegToRad(theta_deg.norm());
+  if (angle_rad == 0.0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle_rad, theta_deg.normalized()).toRotationMatrix();
+}
+
+void CheckIndex(int index, const char* what) {
+  if (index < 0 || index > 2) {
+    throw std::out_of_range(std::string("Im3Geometry: ") + what + " index " +
+                            std::to_string(index) + " not in 0..2");
+  }
+}
+
+nlohmann::json VectorJson(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+Eigen::Matrix3d Im3Geometry::NominalR_CB(int chip) {
+  CheckIndex(chip, "accelerometer chip");
+  const Eigen::Vector3d x = Eigen::Vector3d::UnitX(), y = Eigen::Vector3d::UnitY(),
+                        z = Eigen::Vector3d::UnitZ();
+  switch (chip) {
+    case 0:
+      return Rows(-z, -x);
+    case 1:
+      return Rows(y, z);
+    default:
+      return Rows(x, -y);
+  }
+}
+
+Eigen::Matrix3d Im3Geometry::NominalR_GB(int gyro) {
+  CheckIndex(gyro, "gyro");
+  const Eigen::Vector3d x = Eigen::Vector3d::UnitX(), y = Eigen::Vector3d::UnitY(),
+                        z = Eigen::Vector3d::UnitZ();
+  // Package z_G along the sensed body axis; x_G, y_G complete a right-handed frame.
+  switch (gyro) {
+    case 0:
+      return Rows(y, z);  // z_G = y × z = +x_B
+    case 1:
+      return Rows(z, x);  // z_G = z × x = +y_B
+    default:
+      return Rows(x, y);  // z_G = +z_B
+  }
+}
+
+Eigen::Matrix3d Im3Geometry::R_CB(int chip) const {
+  const Eigen::Matrix3d nominal = NominalR_CB(chip);
+  return misalignment ? Eigen::Matrix3d(nominal * SmallRotation(accel_misalignment_deg[chip]))
+                      : nominal;
+}
+
+Eigen::Matrix3d Im3Geometry::R_GB(int gyro) const {
+  const Eigen::Matrix3d nominal = NominalR_GB(gyro);
+  return misalignment ? Eigen::Matrix3d(nominal * SmallRotation(gyro_misalignment_deg[gyro]))
+                      : nominal;
+}
+
+Im3Geometry Im3Geometry::Draw(uint64_t seed) {
+  Rng rng(seed);
+  Im3Geometry g;
+  for (auto* set : {&g.accel_misalignment_deg, &g.gyro_misalignment_deg}) {
+    for (Eigen::Vector3d& theta : *set) {
+      for (int k = 0; k < 3; ++k) theta[k] = rng.Tolerance(0.0, 1.0);
+    }
+  }
+  return g;
+}
+
+nlohmann::json Im3Geometry::ToJson() const {
+  nlohmann::json accel = nlohmann::json::array(), gyro = nlohmann::json::array();
+  for (const auto& v : accel_misalignment_deg) accel.push_back(VectorJson(v));
+  for (const auto& v : gyro_misalignment_deg) gyro.push_back(VectorJson(v));
+  return {{"accel_misalignment_deg", accel},
+          {"gyro_misalignment_deg", gyro},
+          {"effects", {{"misalignment", misalignment}}}};
+}
+
+Im3Geometry Im3Geometry::FromJson(const ParamReader& reader) {
+  Im3Geometry g;
+  std::array<std::array<double, 3>, 3> accel{}, gyro{};
+  reader.NumberMatrix("accel_misalignment_deg", -5.0, 5.0, "deg", accel);
+  reader.NumberMatrix("gyro_misalignment_deg", -5.0, 5.0, "deg", gyro);
+  for (int i = 0; i < 3; ++i) {
+    g.accel_misalignment_deg[i] = Eigen::Vector3d(accel[i][0], accel[i][1], accel[i][2]);
+    g.gyro_misalignment_deg[i] = Eigen::Vector3d(gyro[i][0], gyro[i][1], gyro[i][2]);
+  }
+  const ParamReader effects = reader.Child("effects");
+  g.misalignment = effects.Flag("misalignment");
+  effects.ExpectAllKeysUsed();
+  reader.ExpectAllKeysUsed();
+  return g;
+}
+
+}  // namespace adahrs::sensor_sim

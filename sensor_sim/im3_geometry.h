@@ -1,0 +1,71 @@
+// Geometry of the IM³ inertial cube: where each sensor package sits relative to the unit case.
+//
+// Frames (docs/frames-and-units.md): B unit case (axes as marked), C_k accelerometer chip k's package
+// frame (x_C, y_C sensitive axes, z_C package normal), G_k gyro k's package frame (z_G sensitive).
+// A vector is taken from B into a package frame by R_CB (f_C = R_CB · f_B).
+//
+// Nominal mounting (reference-method.md "The unit"): three dual-axis ADXL210E chips give six channels
+// az1 ax1 ay1 az2 ax2 ay2, every body axis sensed twice with opposite polarity, with the reference's
+// signs (az1 −, ax1 −, ay1 +, az2 +, ax2 +, ay2 −):
+//   chip 0: x_C = −z_B (az1), y_C = −x_B (ax1)      chip 1: x_C = +y_B (ay1), y_C = +z_B (az2)
+//   chip 2: x_C = +x_B (ax2), y_C = −y_B (ay2)
+// and gyros gx gy gz with z_G along +x_B, +y_B, +z_B.
+// Each package carries its own small mounting misalignment, a rotation vector θ (body frame) with
+// R_CB = R_CB,nominal · Rot(θ); drawn within ±1° per component (ADXL210E alignment ±1°, physics.md
+// §1.1, R; the same tolerance is assumed for the gyro packages, E).
+// Left out: lever arms (the cube is ~20 mm; centripetal terms on the rate table are modelled by the
+// rig, not here), flexure of the boards, misalignment of the cube within the case.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+
+#include "sensor_sim/param_reader.h"
+
+namespace adahrs::sensor_sim {
+
+/// The six accelerometer channels in the order the unit reports them.
+enum class AccelChannel : int { kAz1 = 0, kAx1, kAy1, kAz2, kAx2, kAy2 };
+inline constexpr std::array<const char*, 6> kAccelChannelNames = {"az1", "ax1", "ay1",
+                                                                  "az2", "ax2", "ay2"};
+inline constexpr std::array<const char*, 3> kGyroChannelNames = {"gx", "gy", "gz"};
+
+/// Chip and sensitive axis (0 = x_C, 1 = y_C) of each accelerometer channel.
+struct ChipAxis {
+  int chip;
+  int axis;
+};
+inline constexpr std::array<ChipAxis, 6> kAccelChannelChipAxis = {
+    ChipAxis{0, 0}, ChipAxis{0, 1}, ChipAxis{1, 0}, ChipAxis{1, 1}, ChipAxis{2, 0}, ChipAxis{2, 1}};
+
+struct Im3Geometry {
+  /// Mounting misalignment of each accelerometer chip: small-rotation vector in B, degrees.
+  std::array<Eigen::Vector3d, 3> accel_misalignment_deg{
+      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  /// Mounting misalignment of each gyro package: small-rotation vector in B, degrees.
+  std::array<Eigen::Vector3d, 3> gyro_misalignment_deg{
+      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  /// Whether misalignment is applied (a named effect: off gives the nominal mounting).
+  bool misalignment = true;
+
+  static Im3Geometry Typical() { return Im3Geometry{}; }
+  /// Misalignments drawn within ±1° per component, deterministic per seed.
+  static Im3Geometry Draw(uint64_t seed);
+  nlohmann::json ToJson() const;
+  static Im3Geometry FromJson(const ParamReader& reader);
+  bool operator==(const Im3Geometry&) const = default;
+
+  /// R_CB of accelerometer chip `chip` (0..2), misalignment included when switched on.
+  Eigen::Matrix3d R_CB(int chip) const;
+  /// R_GB of gyro `gyro` (0..2), misalignment included when switched on.
+  Eigen::Matrix3d R_GB(int gyro) const;
+
+  /// Nominal R_CB and R_GB (no misalignment).
+  static Eigen::Matrix3d NominalR_CB(int chip);
+  static Eigen::Matrix3d NominalR_GB(int gyro);
+};
+
+}  // namespace adahrs::sensor_sim
