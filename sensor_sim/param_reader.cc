@@ -100,6 +100,14 @@ ParamReader ParamReader::Child(std::string_view key) const {
   return ParamReader(Require(key), source_, PathOf(key));
 }
 
+ParamReader ParamReader::Element(std::string_view key, size_t index, size_t count) const {
+  const nlohmann::json& array = Require(key);
+  if (!array.is_array() || array.size() != count) {
+    Fail(PathOf(key), "expected an array of " + std::to_string(count) + " objects");
+  }
+  return ParamReader(array[index], source_, PathOf(key) + "[" + std::to_string(index) + "]");
+}
+
 void ParamReader::ExpectAllKeysUsed() const {
   for (auto it = object_->begin(); it != object_->end(); ++it) {
     if (!used_->count(it.key())) {

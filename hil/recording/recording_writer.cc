@@ -1,0 +1,83 @@
+#include "hil/recording/recording_writer.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace adahrs::hil {
+namespace {
+
+std::FILE* OpenCsv(const std::filesystem::path& path, std::string_view header) {
+  const bool is_new = !std::filesystem::exists(path) || std::filesystem::file_size(path) == 0;
+  std::FILE* f = std::fopen(path.c_str(), "a");
+  if (f == nullptr) {
+    throw std::runtime_error(path.string() + ": cannot open for appending: " +
+                             std::strerror(errno));
+  }
+  if (is_new) std::fprintf(f, "%.*s\n", static_cast<int>(header.size()), header.data());
+  return f;
+}
+
+void Check(int rc, const std::filesystem::path& path, const char* what) {
+  if (rc < 0) throw std::runtime_error(path.string() + ": " + what + ": " + std::strerror(errno));
+}
+
+}  // namespace
+
+RecordingWriter::RecordingWriter(const std::filesystem::path& run_dir) : run_dir_(run_dir) {
+  std::filesystem::create_directories(run_dir_);
+  imu_ = OpenCsv(run_dir_ / kImuCsvName, kImuCsvHeader);
+  try {
+    ads_ = OpenCsv(run_dir_ / kAdsCsvName, kAdsCsvHeader);
+  } catch (...) {
+    std::fclose(imu_);
+    throw;
+  }
+}
+
+RecordingWriter::~RecordingWriter() {
+  std::fclose(imu_);
+  std::fclose(ads_);
+}
+
+void RecordingWriter::WriteMeta(nlohmann::json meta) const {
+  meta["format_version"] = kRecordingFormatVersion;
+  const std::filesystem::path final_path = run_dir_ / kMetaJsonName;
+  const std::filesystem::path tmp_path = run_dir_ / (std::string(kMetaJsonName) + ".tmp");
+  {
+    std::ofstream out(tmp_path);
+    out << meta.dump(2) << "\n";
+    if (!out) throw std::runtime_error(tmp_path.string() + ": write failed");
+  }
+  std::filesystem::rename(tmp_path, final_path);
+}
+
+void RecordingWriter::Append(const ImuRecordRow& r) {
+  std::fprintf(imu_, "%.4f,%s,%u,%d,%u,%d,%.3f,%.4f", r.t_s, r.unit.c_str(), r.seq, r.step,
+               static_cast<unsigned>(r.tag), r.orientation, r.chamber_c, r.table_rate_dps);
+  for (uint16_t ticks : r.accel_ticks) std::fprintf(imu_, ",%u", static_cast<unsigned>(ticks));
+  for (int32_t cnt : r.gyro_cnt) std::fprintf(imu_, ",%d", cnt);
+  for (uint16_t cnt : r.temp_cnt) std::fprintf(imu_, ",%u", static_cast<unsigned>(cnt));
+  std::fputc('\n', imu_);
+  ++imu_rows_;
+}
+
+void RecordingWriter::Append(const AdsRecordRow& r) {
+  std::fprintf(ads_, "%.4f,%s,%u,%d,%u,%.3f,%.2f,%.2f,%d,%d,%d,%d,%d\n", r.t_s, r.unit.c_str(),
+               r.seq, r.step, static_cast<unsigned>(r.tag), r.chamber_c, r.ps_ref_pa,
+               r.qc_ref_pa, r.ps_counts, r.pt_counts, r.ps_temp_counts, r.pt_temp_counts,
+               r.oat_counts);
+  ++ads_rows_;
+}
+
+void RecordingWriter::Flush(bool durable) {
+  for (auto [file, name] : {std::pair{imu_, kImuCsvName}, std::pair{ads_, kAdsCsvName}}) {
+    Check(std::fflush(file) == 0 ? 0 : -1, run_dir_ / name, "flush failed");
+    if (durable) Check(::fsync(::fileno(file)), run_dir_ / name, "fsync failed");
+  }
+}
+
+}  // namespace adahrs::hil

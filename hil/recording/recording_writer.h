@@ -1,0 +1,44 @@
+// Writes a run directory in the recording format (recording_format.h). Rows are appended to the
+// CSVs as they arrive; Flush(durable=true) flushes and fsyncs both files, which the executor does at
+// every step boundary so that a crash loses nothing that was logged before it.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "hil/recording/recording_format.h"
+
+namespace adahrs::hil {
+
+class RecordingWriter {
+ public:
+  /// Creates `run_dir` (and parents) and opens imu.csv and ads.csv for appending, writing the
+  /// header line into each new file. Throws std::runtime_error naming the path on failure.
+  explicit RecordingWriter(const std::filesystem::path& run_dir);
+  ~RecordingWriter();
+  RecordingWriter(const RecordingWriter&) = delete;
+  RecordingWriter& operator=(const RecordingWriter&) = delete;
+
+  /// Writes meta.json atomically (temporary file + rename); `meta` gets format_version added.
+  void WriteMeta(nlohmann::json meta) const;
+  void Append(const ImuRecordRow& row);
+  void Append(const AdsRecordRow& row);
+  /// Flushes buffered rows; with `durable`, also fsyncs the files.
+  void Flush(bool durable);
+
+  const std::filesystem::path& run_dir() const { return run_dir_; }
+  uint64_t imu_rows() const { return imu_rows_; }
+  uint64_t ads_rows() const { return ads_rows_; }
+
+ private:
+  std::filesystem::path run_dir_;
+  std::FILE* imu_ = nullptr;
+  std::FILE* ads_ = nullptr;
+  uint64_t imu_rows_ = 0;
+  uint64_t ads_rows_ = 0;
+};
+
+}  // namespace adahrs::hil
