@@ -1,0 +1,37 @@
+// A virtual device behind one serial port of the rig: an instrument or a unit.
+//
+// The rig advances simulated time in fixed world frames (10 ms). Each frame, in a fixed order,
+// it hands every device the bytes its client sent since the last frame (Receive), advances the
+// device's physics by one frame (Advance, reading and writing the shared RigEnvironment), and takes
+// the bytes the device has released for its client by that time (TakeOutput). The same simulated
+// timeline results at any time scale: wall time only decides how fast frames are taken.
+// The device never touches a file descriptor; transports (hil/) move the bytes.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rig_sim/rig_environment.h"
+
+namespace adahrs::rig_sim {
+
+class SerialDevice {
+ public:
+  virtual ~SerialDevice() = default;
+
+  /// The role this device plays in the manifest ("rate_table", "chamber", "imu1", …).
+  virtual const std::string& role() const = 0;
+
+  /// Bytes that arrived from the client, at simulated time `now_s`.
+  virtual void Receive(std::span<const uint8_t> bytes, double now_s) = 0;
+
+  /// Advances the device's physics and timers by `dt_s` to `now_s`.
+  virtual void Advance(double now_s, double dt_s, RigEnvironment& env) = 0;
+
+  /// Appends to `out` the bytes released for the client by `now_s`.
+  virtual void TakeOutput(double now_s, std::vector<uint8_t>& out) = 0;
+};
+
+}  // namespace adahrs::rig_sim
