@@ -1,0 +1,317 @@
+#include "sensor_sim/adxl210e.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "sensor_sim/units.h"
+
+namespace adahrs::sensor_sim {
+namespace {
+
+constexpr double kReferenceTemp_c = 25.0;
+constexpr double kNominalSupply_v = 5.0;
+constexpr double kFullScale_g = 10.0;                 // ±10 g range (physics.md §1.1, V)
+constexpr double kT2PerRset_s_per_ohm = 1.0 / 125e6;  // T2 = RSET / 125 MΩ (physics.md §1.1, V)
+constexpr double kRatioPerPct = 0.01;
+constexpr double kRatioPerPpm = 1e-6;
+constexpr double kGPerMg = 1e-3;
+constexpr double kGPerUg = 1e-6;
+// Headroom kept for T2 drift with temperature and jitter when checking that T2 fits.
+constexpr double kT2Margin = 1.25;
+// exp(−Δ/τ) must stay a normal double (e^−700 ≈ 1e−304).
+constexpr double kMaxFramePerTau = 700.0;
+
+std::string Describe(const char* what, double value) {
+  std::ostringstream s;
+  s << what << " = " << value;
+  return s.str();
+}
+
+nlohmann::json AxisToJson(const Adxl210eAxisParams& p) {
+  return {{"zero_g_duty_ratio", p.zero_g_duty_ratio},
+          {"sensitivity_pct_per_g", p.sensitivity_pct_per_g},
+          {"zero_g_tc1_mg_per_c", p.zero_g_tc1_mg_per_c},
+          {"zero_g_tc2_mg_per_c2", p.zero_g_tc2_mg_per_c2},
+          {"zero_g_tc3_mg_per_c3", p.zero_g_tc3_mg_per_c3},
+          {"sensitivity_tc1_ppm_per_c", p.sensitivity_tc1_ppm_per_c},
+          {"sensitivity_tc2_ppm_per_c2", p.sensitivity_tc2_ppm_per_c2},
+          {"sensitivity_tc3_ppm_per_c3", p.sensitivity_tc3_ppm_per_c3},
+          {"zero_g_supply_pct_per_v", p.zero_g_supply_pct_per_v},
+          {"nonlinearity_pct_fs", p.nonlinearity_pct_fs},
+          {"cross_other_ratio", p.cross_other_ratio},
+          {"cross_z_ratio", p.cross_z_ratio},
+          {"noise_density_ug_per_rthz", p.noise_density_ug_per_rthz},
+          {"filter_r_ohm", p.filter_r_ohm},
+          {"filter_c_f", p.filter_c_f}};
+}
+
+// Allowed ranges are physical plausibility limits, several times the datasheet spreads
+// (docs/models/adxl210e.md), not acceptance limits.
+Adxl210eAxisParams AxisFromJson(const ParamReader& r) {
+  Adxl210eAxisParams p;
+  p.zero_g_duty_ratio = r.Number("zero_g_duty_ratio", 0.2, 0.8, "ratio");
+  p.sensitivity_pct_per_g = r.Number("sensitivity_pct_per_g", 2.0, 6.0, "%/g");
+  p.zero_g_tc1_mg_per_c = r.Number("zero_g_tc1_mg_per_c", -20.0, 20.0, "mg/degC");
+  p.zero_g_tc2_mg_per_c2 = r.Number("zero_g_tc2_mg_per_c2", -0.5, 0.5, "mg/degC^2");
+  p.zero_g_tc3_mg_per_c3 = r.Number("zero_g_tc3_mg_per_c3", -0.01, 0.01, "mg/degC^3");
+  p.sensitivity_tc1_ppm_per_c = r.Number("sensitivity_tc1_ppm_per_c", -2000.0, 2000.0, "ppm/degC");
+  p.sensitivity_tc2_ppm_per_c2 = r.Number("sensitivity_tc2_ppm_per_c2", -20.0, 20.0, "ppm/degC^2");
+  p.sensitivity_tc3_ppm_per_c3 = r.Number("sensitivity_tc3_ppm_per_c3", -0.5, 0.5, "ppm/degC^3");
+  p.zero_g_supply_pct_per_v = r.Number("zero_g_supply_pct_per_v", -10.0, 10.0, "%/V");
+  p.nonlinearity_pct_fs = r.Number("nonlinearity_pct_fs", -2.0, 2.0, "% of 10 g");
+  p.cross_other_ratio = r.Number("cross_other_ratio", -0.1, 0.1, "g/g");
+  p.cross_z_ratio = r.Number("cross_z_ratio", -0.1, 0.1, "g/g");
+  p.noise_density_ug_per_rthz = r.Number("noise_density_ug_per_rthz", 0.0, 2000.0, "ug/sqrt(Hz)");
+  p.filter_r_ohm = r.Number("filter_r_ohm", 20e3, 45e3, "ohm");
+  p.filter_c_f = r.Number("filter_c_f", 1e-9, 10e-6, "F");
+  r.ExpectAllKeysUsed();
+  return p;
+}
+
+}  // namespace
+
+Adxl210eEffects Adxl210eEffects::Nominal() {
+  Adxl210eEffects e;
+  e.sensitivity_tempco = false;
+  e.nonlinearity = false;
+  e.supply_sensitivity = false;
+  e.t2_tempco = false;
+  e.t2_jitter = false;
+  return e;
+}
+
+Adxl210eParams Adxl210eParams::Typical() { return Adxl210eParams{}; }
+
+Adxl210eParams Adxl210eParams::Draw(uint64_t seed) {
+  // Convention (docs/models/adxl210e.md): a datasheet min/max or "tolerance" is the 3σ bound of
+  // Rng::Tolerance; a datasheet "typ" spread is one σ, so its tolerance argument is 3× the figure.
+  Rng rng(seed);
+  Adxl210eParams p;
+  const double filter_r_lot_ohm = rng.Tolerance(32e3, 4.8e3);  // ±15 %, R
+  auto draw_axis = [&](Adxl210eAxisParams& a) {
+    a.zero_g_duty_ratio = rng.Tolerance(0.5, 0.08);              // ±2 g at 4 %/g, R
+    a.sensitivity_pct_per_g = rng.Tolerance(4.0, 0.8);           // 3.2 … 4.8 %/g, R
+    a.zero_g_tc1_mg_per_c = rng.Tolerance(0.0, 6.0);             // ±2 mg/°C typ, R
+    a.zero_g_tc2_mg_per_c2 = rng.Tolerance(0.0, 0.015);          // E
+    a.zero_g_tc3_mg_per_c3 = rng.Tolerance(0.0, 1.5e-4);         // E
+    a.sensitivity_tc1_ppm_per_c = rng.Tolerance(0.0, 240.0);     // ±0.5 % over 60 °C typ, R
+    a.sensitivity_tc2_ppm_per_c2 = rng.Tolerance(0.0, 0.9);      // E
+    a.sensitivity_tc3_ppm_per_c3 = rng.Tolerance(0.0, 0.015);    // E
+    a.zero_g_supply_pct_per_v = rng.Tolerance(1.0, 3.0);         // 1 %/V typ, 4 %/V max, R
+    a.nonlinearity_pct_fs = rng.Tolerance(0.0, 0.6);             // 0.2 % FS typ, R
+    a.cross_other_ratio = rng.Tolerance(0.0, 0.06);              // ±2 % typ, R
+    a.cross_z_ratio = rng.Tolerance(0.0, 0.06);                  // ±2 % typ, R
+    a.noise_density_ug_per_rthz = rng.Tolerance(200.0, 60.0);    // E spread about the V typ
+    a.filter_r_ohm = filter_r_lot_ohm * rng.Tolerance(1.0, 0.01);  // on-die match ±1 %, E
+    a.filter_c_f = rng.Tolerance(0.1e-6, 0.01e-6);               // ±10 % capacitor, E
+  };
+  draw_axis(p.x);
+  draw_axis(p.y);
+  p.xy_nonorthogonality_deg = rng.Tolerance(0.0, 0.03);  // 0.01° typ, R
+  p.rset_ohm = rng.Tolerance(125e3, 1.25e3);             // 1 % resistor, E
+  p.t2_oscillator_error_ratio = rng.Tolerance(0.0, 0.3);  // ±30 %, R
+  p.t2_tc_ppm_per_c = rng.Tolerance(0.0, 300.0);         // E
+  p.t2_jitter_ppm = rng.Tolerance(20.0, 15.0);           // E
+  return p;
+}
+
+nlohmann::json Adxl210eParams::ToJson() const {
+  return {{"x", AxisToJson(x)},
+          {"y", AxisToJson(y)},
+          {"xy_nonorthogonality_deg", xy_nonorthogonality_deg},
+          {"rset_ohm", rset_ohm},
+          {"t2_oscillator_error_ratio", t2_oscillator_error_ratio},
+          {"t2_tc_ppm_per_c", t2_tc_ppm_per_c},
+          {"t2_jitter_ppm", t2_jitter_ppm},
+          {"timer_clock_hz", timer_clock_hz},
+          {"effects",
+           {{"noise", effects.noise},
+            {"zero_g_tempco", effects.zero_g_tempco},
+            {"sensitivity_tempco", effects.sensitivity_tempco},
+            {"nonlinearity", effects.nonlinearity},
+            {"cross_axis", effects.cross_axis},
+            {"supply_sensitivity", effects.supply_sensitivity},
+            {"t2_tempco", effects.t2_tempco},
+            {"t2_jitter", effects.t2_jitter},
+            {"capture_quantization", effects.capture_quantization},
+            {"filter", effects.filter}}}};
+}
+
+Adxl210eParams Adxl210eParams::FromJson(const ParamReader& reader) {
+  Adxl210eParams p;
+  p.x = AxisFromJson(reader.Child("x"));
+  p.y = AxisFromJson(reader.Child("y"));
+  p.xy_nonorthogonality_deg = reader.Number("xy_nonorthogonality_deg", -1.0, 1.0, "deg");
+  // T2 adjustable 0.5 … 10 ms (physics.md §1.1, V) → RSET 62.5 kΩ … 1.25 MΩ.
+  p.rset_ohm = reader.Number("rset_ohm", 62.5e3, 1.25e6, "ohm");
+  p.t2_oscillator_error_ratio = reader.Number("t2_oscillator_error_ratio", -0.5, 0.5, "ratio");
+  p.t2_tc_ppm_per_c = reader.Number("t2_tc_ppm_per_c", -2000.0, 2000.0, "ppm/degC");
+  p.t2_jitter_ppm = reader.Number("t2_jitter_ppm", 0.0, 1000.0, "ppm");
+  p.timer_clock_hz = reader.Number("timer_clock_hz", 1e5, 40e6, "Hz");  // dsPIC ≤ 40 MIPS
+  const ParamReader e = reader.Child("effects");
+  p.effects.noise = e.Flag("noise");
+  p.effects.zero_g_tempco = e.Flag("zero_g_tempco");
+  p.effects.sensitivity_tempco = e.Flag("sensitivity_tempco");
+  p.effects.nonlinearity = e.Flag("nonlinearity");
+  p.effects.cross_axis = e.Flag("cross_axis");
+  p.effects.supply_sensitivity = e.Flag("supply_sensitivity");
+  p.effects.t2_tempco = e.Flag("t2_tempco");
+  p.effects.t2_jitter = e.Flag("t2_jitter");
+  p.effects.capture_quantization = e.Flag("capture_quantization");
+  p.effects.filter = e.Flag("filter");
+  e.ExpectAllKeysUsed();
+  reader.ExpectAllKeysUsed();
+  return p;
+}
+
+Adxl210e::Axis Adxl210e::MakeAxis(const Adxl210eAxisParams& p, double frame_period_s) {
+  Axis a;
+  a.tau_s = p.filter_r_ohm * p.filter_c_f;
+  if (frame_period_s / a.tau_s > kMaxFramePerTau) {
+    throw std::invalid_argument("Adxl210e: filter time constant too short for the frame (" +
+                                Describe("tau_s", a.tau_s) + ", " +
+                                Describe("frame_period_s", frame_period_s) + ")");
+  }
+  a.frame_decay = std::exp(-frame_period_s / a.tau_s);
+  // One-sided density N through 1/(1 + sτ): σ² = ∫ N²/(1 + (2πfτ)²) df = N²/(4τ).
+  a.noise_rms_g = p.noise_density_ug_per_rthz * kGPerUg / std::sqrt(4.0 * a.tau_s);
+  a.zero_g_duty_ratio = p.zero_g_duty_ratio;
+  a.sensitivity_ratio_per_g = p.sensitivity_pct_per_g * kRatioPerPct;
+  const double mg_to_duty = a.sensitivity_ratio_per_g * kGPerMg;
+  a.zero_g_tc_ratio[0] = p.zero_g_tc1_mg_per_c * mg_to_duty;
+  a.zero_g_tc_ratio[1] = p.zero_g_tc2_mg_per_c2 * mg_to_duty;
+  a.zero_g_tc_ratio[2] = p.zero_g_tc3_mg_per_c3 * mg_to_duty;
+  a.sensitivity_tc[0] = p.sensitivity_tc1_ppm_per_c * kRatioPerPpm;
+  a.sensitivity_tc[1] = p.sensitivity_tc2_ppm_per_c2 * kRatioPerPpm;
+  a.sensitivity_tc[2] = p.sensitivity_tc3_ppm_per_c3 * kRatioPerPpm;
+  a.supply_ratio_per_v = p.zero_g_supply_pct_per_v * kRatioPerPct;
+  // k2·a² deviates from its least-squares line over [−FS, FS] by at most (2/3)·k2·FS² (at ±FS;
+  // the line is the mean FS²/3), so k2 = 1.5·nonlinearity/FS makes that maximum nl·FS.
+  a.quadratic_per_g = 1.5 * p.nonlinearity_pct_fs * kRatioPerPct / kFullScale_g;
+  return a;
+}
+
+Adxl210e::Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double frame_period_s)
+    : effects_(params.effects),
+      x_(MakeAxis(params.x, frame_period_s)),
+      y_(MakeAxis(params.y, frame_period_s)),
+      cross_xy_ratio_(params.effects.cross_axis ? params.x.cross_other_ratio : 0.0),
+      cross_xz_ratio_(params.effects.cross_axis ? params.x.cross_z_ratio : 0.0),
+      cross_yx_ratio_(params.effects.cross_axis
+                          ? params.y.cross_other_ratio +
+                                std::sin(DegToRad(params.xy_nonorthogonality_deg))
+                          : 0.0),
+      cross_yz_ratio_(params.effects.cross_axis ? params.y.cross_z_ratio : 0.0),
+      tick_s_(1.0 / params.timer_clock_hz),
+      t2_25_cnt_(params.rset_ohm * kT2PerRset_s_per_ohm * (1.0 + params.t2_oscillator_error_ratio) *
+                 params.timer_clock_hz),
+      t2_tc_per_c_(params.effects.t2_tempco ? params.t2_tc_ppm_per_c * kRatioPerPpm : 0.0),
+      t2_jitter_ratio_(params.effects.t2_jitter ? params.t2_jitter_ppm * kRatioPerPpm : 0.0),
+      dcm_(0.0, 0.0, 0.0),
+      noise_rng_(Rng::Derive(noise_seed, 0)),
+      jitter_rng_(Rng::Derive(noise_seed, 1)) {
+  if (!(frame_period_s > 0.0) || !std::isfinite(frame_period_s)) {
+    throw std::invalid_argument("Adxl210e: " + Describe("frame_period_s", frame_period_s) +
+                                " must be positive");
+  }
+  const double frame_cnt = frame_period_s * params.timer_clock_hz;
+  if (kT2Margin * t2_25_cnt_ > frame_cnt / 2.0) {
+    throw std::invalid_argument("Adxl210e: T2 must fit twice in a frame with 25 % margin (" +
+                                Describe("t2_cnt", t2_25_cnt_) + ", " +
+                                Describe("frame_cnt", frame_cnt) + ")");
+  }
+  if (kT2Margin * t2_25_cnt_ >= 65536.0) {
+    throw std::invalid_argument("Adxl210e: T2 must fit the 16-bit timer with 25 % margin (" +
+                                Describe("t2_cnt", t2_25_cnt_) + "); use a timer prescaler");
+  }
+  Rng phase_rng(Rng::Derive(noise_seed, 2));
+  const double initial_end_cnt = -phase_rng.Uniform() * t2_25_cnt_;
+  dcm_ = DutyCycleModulator(frame_cnt, initial_end_cnt, phase_rng.Uniform());
+}
+
+double Adxl210e::FilteredAccel(Axis& axis, double a_in_g, double sample_s, double z) {
+  if (!effects_.filter && !effects_.noise) return a_in_g;
+  // Input u held over the frame; sample instant s after the frame start. Exact one-pole solution:
+  //   y(s) = u + (y(0) − u)·e^{−s/τ},   y(Δ) = u + (y(s) − u)·e^{−(Δ−s)/τ}.
+  // Noise between consecutive sample instants s' (previous frame) and s (this frame), gap
+  // Δ − s' + s:  n ← φ·n + σ·√(1 − φ²)·z with φ = e^{−(Δ−s')/τ}·e^{−s/τ} (exact AR(1) step).
+  const double decay_to_sample = std::exp(-sample_s / axis.tau_s);
+  double signal_g = a_in_g;
+  if (effects_.filter) {
+    signal_g = a_in_g + (axis.filter_g - a_in_g) * decay_to_sample;
+    axis.filter_g = a_in_g + (signal_g - a_in_g) * (axis.frame_decay / decay_to_sample);
+  }
+  if (effects_.noise) {
+    const double phi = axis.decay_to_frame_end * decay_to_sample;
+    axis.noise_g = phi * axis.noise_g + axis.noise_rms_g * std::sqrt(1.0 - phi * phi) * z;
+    signal_g += axis.noise_g;
+  }
+  axis.decay_to_frame_end = axis.frame_decay / decay_to_sample;
+  return signal_g;
+}
+
+double Adxl210e::Duty(const Axis& axis, double a_g, double dtemp_c, double dsupply_v) const {
+  const double dtemp2 = dtemp_c * dtemp_c;
+  const double dtemp3 = dtemp2 * dtemp_c;
+  double zero_g = axis.zero_g_duty_ratio;
+  if (effects_.zero_g_tempco) {
+    zero_g += axis.zero_g_tc_ratio[0] * dtemp_c + axis.zero_g_tc_ratio[1] * dtemp2 +
+              axis.zero_g_tc_ratio[2] * dtemp3;
+  }
+  if (effects_.supply_sensitivity) zero_g += axis.supply_ratio_per_v * dsupply_v;
+  double sensitivity = axis.sensitivity_ratio_per_g;
+  if (effects_.sensitivity_tempco) {
+    sensitivity *= 1.0 + axis.sensitivity_tc[0] * dtemp_c + axis.sensitivity_tc[1] * dtemp2 +
+                   axis.sensitivity_tc[2] * dtemp3;
+  }
+  const double a_nl_g = effects_.nonlinearity ? a_g + axis.quadratic_per_g * a_g * a_g : a_g;
+  return std::clamp(zero_g + sensitivity * a_nl_g, 0.0, 1.0);
+}
+
+Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
+  const double dtemp_c = input.die_temp_c - kReferenceTemp_c;
+  const double dsupply_v = input.supply_v - kNominalSupply_v;
+
+  const double t2_cnt = t2_25_cnt_ * (1.0 + t2_tc_per_c_ * dtemp_c);
+  double z_walk = 0.0;
+  double z_period = 0.0;
+  if (t2_jitter_ratio_ > 0.0) {
+    z_walk = jitter_rng_.Normal();
+    z_period = jitter_rng_.Normal();
+  }
+  const DcmPeriod period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_walk, z_period);
+  const double sample_s = period.start_cnt * tick_s_;
+
+  // Cross-axis matrix applied to f_C (identity when the effect is off: the ratios are zero).
+  const double a_in_x_g = input.f_x_g + cross_xy_ratio_ * input.f_y_g + cross_xz_ratio_ * input.f_z_g;
+  const double a_in_y_g = input.f_y_g + cross_yx_ratio_ * input.f_x_g + cross_yz_ratio_ * input.f_z_g;
+  if (!started_) {
+    x_.filter_g = a_in_x_g;
+    y_.filter_g = a_in_y_g;
+    started_ = true;
+  }
+  double z_x = 0.0;
+  double z_y = 0.0;
+  if (effects_.noise) {
+    z_x = noise_rng_.Normal();
+    z_y = noise_rng_.Normal();
+  }
+  const double a_x_g = FilteredAccel(x_, a_in_x_g, sample_s, z_x);
+  const double a_y_g = FilteredAccel(y_, a_in_y_g, sample_s, z_y);
+
+  const bool quantize = effects_.capture_quantization;
+  const double end_cnt = period.start_cnt + period.length_cnt;
+  const uint16_t t2_capture_cnt =
+      CaptureIntervalCnt(period.grid_phase_cnt, period.start_cnt, end_cnt, quantize);
+  auto capture = [&](double duty_ratio) {
+    const double fall_cnt = period.start_cnt + duty_ratio * period.length_cnt;
+    return Adxl210eCapture{
+        CaptureIntervalCnt(period.grid_phase_cnt, period.start_cnt, fall_cnt, quantize),
+        t2_capture_cnt};
+  };
+  return {capture(Duty(x_, a_x_g, dtemp_c, dsupply_v)), capture(Duty(y_, a_y_g, dtemp_c, dsupply_v))};
+}
+
+}  // namespace adahrs::sensor_sim

@@ -1,0 +1,170 @@
+// One ADXL210E dual-axis ±10 g accelerometer chip with duty-cycle outputs, read by a dsPIC's
+// input capture once per firmware frame (physics.md §1; equations and sources in
+// docs/models/adxl210e.md).
+//
+// Frame: the chip package frame C (docs/frames-and-units.md): x_C and y_C are the sensitive axes,
+// z_C the package normal. Inputs are specific force in g (1 g = 9.80665 m/s²), die temperature in
+// °C and supply in V, held constant over each frame. Package alignment to the unit (±1°, R) is NOT
+// modelled here: the unit's geometry (im3_geometry.h) rotates f_B into C before calling Step.
+//
+// Per axis (i = x, y), with ΔT = T − 25 °C and ΔV = Vs − 5 V:
+//   a_in  = f_i + c_io·f_o + c_iz·f_z        (+ sin(δ_xy)·f_x on Y)      [cross_axis]
+//   a_f   = one-pole low-pass of a_in, τ = R_filt·C_filt (32 kΩ on chip)    [filter]
+//           + Ornstein-Uhlenbeck noise: white density N through the same pole   [noise]
+//   D0    = D0_25 + S_25·(b1·ΔT + b2·ΔT² + b3·ΔT³)[zero_g_tempco] + k_V·ΔV[supply_sensitivity]
+//   S     = S_25·(1 + s1·ΔT + s2·ΔT² + s3·ΔT³)                               [sensitivity_tempco]
+//   D     = D0 + S·(a_f + k2·a_f²)                                            [nonlinearity]
+// and for the chip: T2 = RSET/125 MΩ·(1 + δ_osc)·(1 + α·ΔT)[t2_tempco] with period jitter
+// [t2_jitter]; T1 = D·T2. The DCM samples a_f at the rising edge that starts a period; the frame
+// reports the last complete period (duty_cycle_modulator.h) with edges floored to the timer tick
+// grid [capture_quantization]. A duty outside [0, 1] is clipped (a duty cycle cannot leave it).
+//
+// Noise is exact at any sample spacing: the sampled one-pole filtered white noise is an AR(1)
+// sequence with stationary variance N²/(4τ) = N²·(π/2)·f−3dB, advanced with the exact transition
+// between consecutive DCM sample instants. The `filter` switch removes the signal lag only; the
+// noise keeps the RC bandwidth (unfiltered white noise has no finite sample variance).
+//
+// Left out: the sensor's own resonance (10…14 kHz, R) and its output clipping beyond ±FS, the
+// self-test step, turn-on transient (the filter starts settled on the first input), vibration
+// inside a frame (the input is one value per frame, so DCM aliasing of vibration above 1/(2·T2)
+// is not represented), supply dependence of T2 and of the sensitivity, thermal lag (the caller
+// supplies the die temperature), timer-clock error (cancels in T1/T2).
+#pragma once
+
+#include <cstdint>
+
+#include <nlohmann/json.hpp>
+
+#include "sensor_sim/duty_cycle_modulator.h"
+#include "sensor_sim/param_reader.h"
+#include "sensor_sim/random.h"
+
+namespace adahrs::sensor_sim {
+
+struct Adxl210eInput {
+  double f_x_g;       ///< specific force along the chip's X sensitive axis (x_C), g
+  double f_y_g;       ///< along the chip's Y sensitive axis (y_C), g
+  double f_z_g;       ///< along the package normal (z_C); reaches the output only via cross-axis
+  double die_temp_c;  ///< die temperature, °C
+  double supply_v;    ///< supply voltage, V (nominal 5 V)
+};
+
+/// dsPIC input-capture differences for one duty-cycle period, timer ticks modulo 2^16.
+struct Adxl210eCapture {
+  uint16_t t1_cnt;  ///< rising to falling edge
+  uint16_t t2_cnt;  ///< rising to next rising edge
+};
+
+struct Adxl210eOutput {
+  Adxl210eCapture x;
+  Adxl210eCapture y;
+};
+
+/// Separately switchable physical terms.
+struct Adxl210eEffects {
+  bool noise = true;                 ///< white noise density through the filter pole
+  bool zero_g_tempco = true;         ///< zero-g duty vs die temperature (up to 3rd order)
+  bool sensitivity_tempco = true;    ///< sensitivity vs die temperature (up to 3rd order)
+  bool nonlinearity = true;          ///< quadratic term giving the BFSL nonlinearity
+  bool cross_axis = true;            ///< transverse sensitivity and X-Y non-orthogonality
+  bool supply_sensitivity = true;    ///< zero-g duty vs supply voltage
+  bool t2_tempco = true;             ///< oscillator period vs die temperature
+  bool t2_jitter = true;             ///< period-to-period jitter of T2
+  bool capture_quantization = true;  ///< edges floored to the tick grid (off: interval rounded)
+  bool filter = true;                ///< the XFILT/YFILT one-pole low-pass on the signal
+
+  /// What the reference calibration assumes: offset tempco and cross-axis (it compensates them),
+  /// noise, filter and capture quantisation (always present in a real reading); off: sensitivity
+  /// tempco, nonlinearity, supply, T2 tempco and jitter.
+  static Adxl210eEffects Nominal();
+  /// Every term on (the truth model).
+  static Adxl210eEffects All() { return {}; }
+  bool operator==(const Adxl210eEffects&) const = default;
+};
+
+/// One sensitive axis' parameters. "Other" is the chip's other in-plane axis (Y for X, X for Y).
+struct Adxl210eAxisParams {
+  double zero_g_duty_ratio = 0.5;           ///< D0 at 25 °C and 5 V
+  double sensitivity_pct_per_g = 4.0;       ///< S at 25 °C, duty % per g
+  double zero_g_tc1_mg_per_c = 0.0;         ///< b1, as acceleration at S_25
+  double zero_g_tc2_mg_per_c2 = 0.0;        ///< b2
+  double zero_g_tc3_mg_per_c3 = 0.0;        ///< b3
+  double sensitivity_tc1_ppm_per_c = 0.0;   ///< s1
+  double sensitivity_tc2_ppm_per_c2 = 0.0;  ///< s2
+  double sensitivity_tc3_ppm_per_c3 = 0.0;  ///< s3
+  double zero_g_supply_pct_per_v = 1.0;     ///< k_V, duty % per V
+  double nonlinearity_pct_fs = 0.2;         ///< signed BFSL deviation over ±10 g, % of 10 g
+  double cross_other_ratio = 0.0;           ///< c_io, output g per g along the other axis
+  double cross_z_ratio = 0.0;               ///< c_iz, output g per g along z_C
+  double noise_density_ug_per_rthz = 200.0; ///< N, one-sided, µg/√Hz
+  double filter_r_ohm = 32e3;               ///< on-chip filter resistor
+  double filter_c_f = 0.1e-6;               ///< external filter capacitor
+  bool operator==(const Adxl210eAxisParams&) const = default;
+};
+
+struct Adxl210eParams {
+  Adxl210eAxisParams x;
+  Adxl210eAxisParams y;
+  double xy_nonorthogonality_deg = 0.0;  ///< δ_xy: y_C tilted towards x_C
+  double rset_ohm = 125e3;               ///< RSET, sets T2 = RSET/125 MΩ
+  double t2_oscillator_error_ratio = 0.0;///< δ_osc: oscillator tolerance for a given RSET
+  double t2_tc_ppm_per_c = 0.0;          ///< α
+  double t2_jitter_ppm = 20.0;           ///< rms error of one period, ppm of T2
+  double timer_clock_hz = 29.4912e6;     ///< capture timer tick rate (Fcy / prescaler)
+  Adxl210eEffects effects;
+
+  /// The datasheet typical part: every signed term at 0, D0 50 %, S 4 %/g, supply 1 %/V,
+  /// nonlinearity 0.2 % FS, 200 µg/√Hz, 32 kΩ, 0.1 µF, RSET 125 kΩ, Fcy 29.4912 MHz.
+  static Adxl210eParams Typical();
+  /// One chip drawn from the datasheet distributions (docs/models/adxl210e.md), fixed per seed.
+  static Adxl210eParams Draw(uint64_t seed);
+  nlohmann::json ToJson() const;
+  static Adxl210eParams FromJson(const ParamReader& reader);
+  bool operator==(const Adxl210eParams&) const = default;
+};
+
+class Adxl210e {
+ public:
+  /// `noise_seed` fixes noise, jitter and the initial DCM phase; `frame_period_s` is the firmware
+  /// frame (0.01 at 100 Hz). Throws std::invalid_argument when T2 does not fit twice in a frame
+  /// with 25 % margin, or does not fit the 16-bit timer with the same margin.
+  Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double frame_period_s);
+
+  /// Advances one frame with `input` held over it and returns both axes' captures.
+  Adxl210eOutput Step(const Adxl210eInput& input);
+
+ private:
+  // Per-axis constants (precomputed) and filter state.
+  struct Axis {
+    double tau_s;
+    double frame_decay;        // exp(−Δ/τ)
+    double noise_rms_g;        // N/√(4τ), stationary rms of the filtered noise
+    double zero_g_duty_ratio;
+    double sensitivity_ratio_per_g;
+    double zero_g_tc_ratio[3];   // D0 change per °C^k, duty ratio
+    double sensitivity_tc[3];    // relative S change per °C^k
+    double supply_ratio_per_v;
+    double quadratic_per_g;      // k2
+    double filter_g = 0.0;       // a_f signal at the frame start
+    double noise_g = 0.0;        // noise at the previous sample instant
+    double decay_to_frame_end = 0.0;  // exp(−(Δ − s_prev)/τ)
+  };
+  static Axis MakeAxis(const Adxl210eAxisParams& p, double frame_period_s);
+  double FilteredAccel(Axis& axis, double a_in_g, double sample_s, double z);
+  double Duty(const Axis& axis, double a_g, double dtemp_c, double dsupply_v) const;
+
+  Adxl210eEffects effects_;
+  Axis x_;
+  Axis y_;
+  double cross_xy_ratio_, cross_xz_ratio_, cross_yx_ratio_, cross_yz_ratio_;
+  double tick_s_;
+  double t2_25_cnt_;
+  double t2_tc_per_c_;
+  double t2_jitter_ratio_;
+  DutyCycleModulator dcm_;
+  Rng noise_rng_;
+  Rng jitter_rng_;
+  bool started_ = false;
+};
+
+}  // namespace adahrs::sensor_sim

@@ -1,0 +1,61 @@
+// Edge timing of a free-running duty-cycle modulator (DCM) seen through a microcontroller's input
+// capture, one report per firmware frame.
+//
+// What is modelled (physics.md §1.3, D): the DCM starts a period with a rising edge every T2 and
+// falls T1 = D·T2 later; a free-running 16-bit timer timestamps every edge, floored to its tick
+// grid. Once per frame the firmware reports the last period that completed inside the frame:
+// T2 = r_{j+1} − r_j (rising to rising) and T1 = f_j − r_j (rising to falling), both modulo 2^16.
+// The DCM phase is continuous across frames, so the edges' position on the tick grid moves from
+// frame to frame: the quantisation error is not the same every frame, and it becomes periodic
+// (a limit cycle) when T2 is near a rational number of ticks (physics.md §6 row 14).
+//
+// Time here is in timer ticks ("_cnt") relative to the start of the current frame.
+//
+// Period jitter: each period lasts T2·(1 + j·z) with z standard normal and independent per period.
+// The periods between the end of the previously reported period and the start of this frame's
+// reported one are summed in one draw (a sum of m independent normal errors is exactly normal with
+// variance m·j²·T2²); the reported period has its own draw. Approximation: which period is "the
+// last complete one" is decided from the nominal period; only when jitter pushes its end past the
+// frame end is the period before reported instead (an ordering effect of order j, about 1e-5).
+//
+// Left out: the synchronisation delay of the capture input (a constant that cancels in both
+// differences), capture FIFO overflow and missed interrupts, timer-clock error (it scales T1 and T2
+// alike and cancels in the ratio).
+#pragma once
+
+#include <cstdint>
+
+namespace adahrs::sensor_sim {
+
+/// The period a frame reports, in ticks from the start of the frame, and where the frame start
+/// lies on the timer's tick grid.
+struct DcmPeriod {
+  double start_cnt;       ///< rising edge r_j, ticks after the frame start (≥ 0)
+  double length_cnt;      ///< r_{j+1} − r_j, ticks
+  double grid_phase_cnt;  ///< fractional tick phase of the frame start, in [0, 1)
+};
+
+class DutyCycleModulator {
+ public:
+  /// `frame_cnt`: frame length in ticks. `initial_end_cnt` in (−T2, 0]: the last rising edge
+  /// before the first frame. `initial_grid_phase_cnt` in [0, 1): tick phase of the first frame start.
+  DutyCycleModulator(double frame_cnt, double initial_end_cnt, double initial_grid_phase_cnt);
+
+  /// Advances one frame with the (mean) period `period_cnt` and returns the last complete period.
+  /// `jitter_rms_cnt` is the rms error of one period (j·T2); `z_walk` and `z_period` are standard
+  /// normal draws (ignored when the jitter is zero). Precondition: period_cnt ≤ frame_cnt / 2, so
+  /// the reported period starts inside the frame.
+  DcmPeriod NextFrame(double period_cnt, double jitter_rms_cnt, double z_walk, double z_period);
+
+ private:
+  double frame_cnt_;
+  double last_end_cnt_;    // rising edge that ended the last reported period, from frame start
+  double grid_phase_cnt_;  // tick phase of the current frame start
+};
+
+/// The timer difference a capture unit reports for edges at `from_cnt` and `to_cnt` (ticks after a
+/// frame start whose tick phase is `grid_phase_cnt`), modulo 2^16. With `quantize`, each edge is
+/// floored to the tick grid; without, the exact interval is rounded to the nearest tick.
+uint16_t CaptureIntervalCnt(double grid_phase_cnt, double from_cnt, double to_cnt, bool quantize);
+
+}  // namespace adahrs::sensor_sim
