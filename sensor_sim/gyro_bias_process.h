@@ -1,0 +1,92 @@
+// Slow stochastic gyro bias: bias instability (a flicker, 1/f, floor in the Allan deviation) and
+// rate random walk. Output in deg/s, referred to the gyro input; one value per frame.
+//
+// Bias instability: flicker noise has no finite-state exact form, so it is approximated by the sum
+// of kBiasInstabilityPoles first-order Gauss-Markov processes with correlation times one decade
+// apart (5, 50, 500, 5000 s) and equal variance sigma^2 each. Equal variance per decade of
+// correlation time gives a PSD falling as 1/f between the corners, hence an Allan deviation that is
+// flat within +-4 % for tau in [10 s, 5000 s] (the ADXRS645 sibling quotes its floor over 1 min to
+// 1 h; physics.md §2.1). sigma is chosen in the constructor so that the analytic Allan deviation of
+// the sum, averaged in log(tau) over that band, equals `bias_instability_dps` (the floor value read
+// off an Allan plot). The analytic Allan variance of one Gauss-Markov process of variance q^2 and
+// correlation time T (IEEE Std 952 Annex C; El-Sheimy et al. 2008) is
+//   AVAR(tau) = (2 q^2 T / tau) · [1 - (T / (2 tau)) (3 - 4 e^{-tau/T} + e^{-2 tau/T})].
+// Each process is advanced exactly (x <- phi x + q sqrt(1 - phi^2) n) every T/50 (at least every
+// frame) and held in between: the hold only changes the spectrum above 50/(2 pi T), where white
+// rate noise dominates by orders of magnitude, and it costs ~0.1 Gaussian draws per frame.
+//
+// Rate random walk: b <- b + K sqrt(h) n every h = 1 s (100 frames at 100 Hz), held in between;
+// AVAR(tau) = K^2 tau / 3 for tau >> 1 s. Starts at zero at construction.
+//
+// Left out: bias-temperature coupling (see null tempco in adxrs150.h), turn-on bias repeatability.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "sensor_sim/random.h"
+
+namespace adahrs::sensor_sim {
+
+class GyroBiasProcess {
+ public:
+  static constexpr int kBiasInstabilityPoles = 4;
+  static constexpr std::array<double, kBiasInstabilityPoles> kCorrelationTimes_s = {5.0, 50.0,
+                                                                                    500.0, 5000.0};
+  /// Band of tau over which `bias_instability_dps` is the mean Allan-deviation floor.
+  static constexpr double kFloorBandMin_s = 10.0;
+  static constexpr double kFloorBandMax_s = 5000.0;
+
+  /// `bias_instability_dps` the Allan floor (0 or `bias_instability_on` false: none);
+  /// `rate_random_walk_dps_per_rts` K in deg/s/sqrt(s). Streams are derived from `seed`.
+  GyroBiasProcess(double bias_instability_dps, bool bias_instability_on,
+                  double rate_random_walk_dps_per_rts, bool rate_random_walk_on,
+                  double frame_period_s, uint64_t seed);
+
+  /// Advances one frame and returns the bias for that frame, deg/s.
+  double Step() {
+    if (bias_instability_on_) {
+      for (Pole& pole : poles_) {
+        if (--pole.frames_to_update == 0) {
+          pole.frames_to_update = pole.update_interval_frames;
+          pole.bias_dps = pole.phi * pole.bias_dps + pole.innovation_dps * bi_rng_.Normal();
+        }
+      }
+    }
+    if (rate_random_walk_on_ && --rrw_frames_to_update_ == 0) {
+      rrw_frames_to_update_ = rrw_update_interval_frames_;
+      rrw_bias_dps_ += rrw_step_dps_ * rrw_rng_.Normal();
+    }
+    double sum_dps = rrw_bias_dps_;
+    for (const Pole& pole : poles_) sum_dps += pole.bias_dps;
+    return sum_dps;
+  }
+
+  /// Analytic Allan deviation, deg/s, of the bias-instability part alone (for docs and tests).
+  double BiasInstabilityAdev(double tau_s) const;
+
+  /// Standard deviation of each Gauss-Markov process, deg/s.
+  double pole_sigma_dps() const { return pole_sigma_dps_; }
+
+ private:
+  struct Pole {
+    double bias_dps = 0.0;
+    double phi = 0.0;
+    double innovation_dps = 0.0;
+    int64_t update_interval_frames = 1;
+    int64_t frames_to_update = 1;
+  };
+
+  std::array<Pole, kBiasInstabilityPoles> poles_;
+  double pole_sigma_dps_ = 0.0;
+  bool bias_instability_on_;
+  bool rate_random_walk_on_;
+  double rrw_bias_dps_ = 0.0;
+  double rrw_step_dps_ = 0.0;
+  int64_t rrw_update_interval_frames_ = 1;
+  int64_t rrw_frames_to_update_ = 1;
+  Rng bi_rng_;
+  Rng rrw_rng_;
+};
+
+}  // namespace adahrs::sensor_sim

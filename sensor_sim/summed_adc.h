@@ -1,0 +1,55 @@
+// A unipolar ADC channel whose output per frame is the SUM of several conversions, as the unit
+// reads its gyros (external 19-bit ADC, 0..5 V, 16 conversions per 100 Hz frame, int32 sum) and
+// their TEMP pins (dsPIC 12-bit ADC, 0..5 V, 16 conversions, uint16 sum up to 65520)
+// (reference-method.md "Scales implied"; docs/models/adxrs150.md).
+//
+// Model of one frame, given the mean input voltage v over the frame's conversions (the caller adds
+// all analog noise and this channel's MeanNoiseVariance_v2() to v before calling SumCounts):
+//   lsb_v = full_scale_v / 2^bits;  c = v / lsb_v  (clipped to the code range [0, 2^bits - 1])
+//   quantisation on, no dither (noise off): every conversion gives the same code round(c), so
+//     sum = n · round(c)        (the staircase of n codes a noiseless input really shows);
+//   quantisation on, dithered (noise on): the per-conversion rounding errors are independent and
+//     uniform (Widrow's quantisation theorem holds because the input noise spans many LSB, see the
+//     model doc), so their sum has variance n/12 LSB^2; it is represented by adding (n - 1)/12 to
+//     the variance of the mean and rounding the sum once (the final rounding supplies the last 1/12);
+//   quantisation off: sum = round(n · c), the ideal sum at the output type's 1-count resolution.
+// ADC noise: `noise_lsb_rms` per conversion, independent between conversions (variance of the mean
+// noise_lsb_rms^2 / n). Left out: differential/integral nonlinearity, reference error and drift,
+// partially clipped frames (the clip applies to the frame mean).
+#pragma once
+
+#include <cstdint>
+
+namespace adahrs::sensor_sim {
+
+class SummedAdc {
+ public:
+  /// `bits` of resolution over [0, full_scale_v], `conversions` summed per frame, ADC noise
+  /// `noise_lsb_rms` per conversion (used only if `noise_on`).
+  SummedAdc(int bits, double full_scale_v, int conversions, double noise_lsb_rms, bool noise_on,
+            bool quantization_on);
+
+  /// Variance, in V^2, that the converter adds to the mean input of one frame (ADC noise and, when
+  /// dithered, the quantisation noise beyond the final rounding). Zero when noise is off.
+  double MeanNoiseVariance_v2() const { return mean_noise_variance_v2_; }
+
+  /// The frame's summed counts for mean input voltage `mean_v` (noise already added).
+  int64_t SumCounts(double mean_v) const;
+
+  /// Counts of the sum per volt of mean input: conversions · 2^bits / full_scale_v.
+  double SumCountsPerVolt() const { return sum_counts_per_v_; }
+  /// Largest possible sum: conversions · (2^bits - 1).
+  int64_t MaxSumCounts() const { return max_sum_cnt_; }
+
+ private:
+  double codes_per_v_;
+  double sum_counts_per_v_;
+  double max_code_;
+  int64_t max_sum_cnt_;
+  int conversions_;
+  bool coherent_rounding_;
+  bool quantization_on_;
+  double mean_noise_variance_v2_;
+};
+
+}  // namespace adahrs::sensor_sim
