@@ -30,13 +30,23 @@ Adxrs150::Adxrs150(const Adxrs150Params& params, uint64_t noise_seed, double fra
     : params_(params),
       s25_v_per_dps_(params.sensitivity_mv_per_dps * kVoltsPerMillivolt),
       noise_on_(params.effects.noise),
-      rate_adc_(kRateAdcBits, kAdcFullScale_v, kConversionsPerFrame, params.rate_adc_noise_lsb,
-                params.effects.noise, params.effects.adc_quantization),
-      temp_adc_(kTempAdcBits, kAdcFullScale_v, kConversionsPerFrame, params.temp_adc_noise_lsb,
-                params.effects.noise, params.effects.adc_quantization),
-      bias_(params.bias_instability_dph * kDpsPerDph, params.effects.bias_instability,
+      rate_adc_(kRateAdcBits,
+                kAdcFullScale_v,
+                kConversionsPerFrame,
+                params.rate_adc_noise_lsb,
+                params.effects.noise,
+                params.effects.adc_quantization),
+      temp_adc_(kTempAdcBits,
+                kAdcFullScale_v,
+                kConversionsPerFrame,
+                params.temp_adc_noise_lsb,
+                params.effects.noise,
+                params.effects.adc_quantization),
+      bias_(params.bias_instability_dph * kDpsPerDph,
+            params.effects.bias_instability,
             params.rate_random_walk_dph_per_rth * kDpsPerRtsPerDphPerRth,
-            params.effects.rate_random_walk, frame_period_s,
+            params.effects.rate_random_walk,
+            frame_period_s,
             Rng::Derive(noise_seed, kBiasProcessStream)),
       rate_rng_(Rng::Derive(noise_seed, kRateNoiseStream)),
       temp_rng_(Rng::Derive(noise_seed, kTempNoiseStream)) {
@@ -87,8 +97,7 @@ Adxrs150::Adxrs150(const Adxrs150Params& params, uint64_t noise_seed, double fra
   double beta_sum = 0.0;
   for (int j = 1; j <= n; ++j) beta_sum += std::pow(a_step, j);
   beta_ = beta_sum / n;
-  const double density_v_per_rthz =
-      e.noise ? params.rate_noise_dps_per_rthz * s25_v_per_dps_ : 0.0;
+  const double density_v_per_rthz = e.noise ? params.rate_noise_dps_per_rthz * s25_v_per_dps_ : 0.0;
   const double stationary_var_v2 = density_v_per_rthz * density_v_per_rthz / (4.0 * tau_s);
   stationary_sigma_v_ = std::sqrt(stationary_var_v2);
   const double e_var_v2 = stationary_var_v2 * (1.0 - a_step * a_step);
@@ -140,21 +149,16 @@ Adxrs150Output Adxrs150::Step(const Adxrs150Input& in) {
   const double mean_v = beta_ * filter_state_v_ + (1.0 - beta_) * u_v + l21_v_ * z1 + l22_v_ * z2;
   filter_state_v_ = a16_ * filter_state_v_ + (1.0 - a16_) * u_v + l11_v_ * z1;
 
-  const double temp_v =
-      ratio * (params_.temp_out_v_at_298k +
-               temp_out_v_per_k_ * (CToK(in.die_temp_c) - kTempOutReference_k)) +
-      temp_noise_sigma_v_ * z_temp;
+  const double temp_v = ratio * (params_.temp_out_v_at_298k +
+                                 temp_out_v_per_k_ * (CToK(in.die_temp_c) - kTempOutReference_k)) +
+                        temp_noise_sigma_v_ * z_temp;
   return Adxrs150Output{static_cast<int32_t>(rate_adc_.SumCounts(mean_v)),
                         static_cast<uint16_t>(temp_adc_.SumCounts(temp_v))};
 }
 
-double Adxrs150::RateCountsPerDps() const {
-  return s25_v_per_dps_ * rate_adc_.SumCountsPerVolt();
-}
+double Adxrs150::RateCountsPerDps() const { return s25_v_per_dps_ * rate_adc_.SumCountsPerVolt(); }
 
-double Adxrs150::NullCounts() const {
-  return params_.null_v * rate_adc_.SumCountsPerVolt();
-}
+double Adxrs150::NullCounts() const { return params_.null_v * rate_adc_.SumCountsPerVolt(); }
 
 double Adxrs150::OutputFilterCutoff_hz() const {
   return 1.0 / (2.0 * kPi * params_.output_filter_r_kohm * kOhmsPerKiloohm *

@@ -10,7 +10,7 @@
 //   dT    = T_die - 25 degC
 //   w_nl  = w + d(w),  d = 150 deg/s · [A·1.5(u^2 - 1/3) + B·2.5(u^3 - 3u/5)] / 100,  u = w/150
 //           [nonlinearity]; both shapes are orthogonal to the least-squares line over +-150 deg/s,
-//           so sensitivity and null keep their best-fit meaning and the max deviation is |A|+|B| % FS
+//           so sensitivity and null keep their best-fit meaning; max deviation = (|A|+|B|) % FS
 //   b     = n1 dT + n2 dT^2 + n3 dT^3 [null_tempco] + G·f_g [g_sensitivity]
 //           + k_vs (Vs - 5 V) [supply_sensitivity] + b_BI(t) [bias_instability] + b_RW(t)
 //           [rate_random_walk]                                                        (deg/s)
@@ -56,9 +56,9 @@ class Adxrs150 {
  public:
   static constexpr double kFullScale_dps = 150.0;  // V [RS150P]
   static constexpr double kReferenceTemp_c = 25.0;
-  static constexpr double kNominalSupply_v = 5.0;  // V [RS150P]
+  static constexpr double kNominalSupply_v = 5.0;        // V [RS150P]
   static constexpr double kTempOutReference_k = 298.15;  // R, "2.50 V at 298 K"
-  static constexpr int kConversionsPerFrame = 16;  // reference-method.md
+  static constexpr int kConversionsPerFrame = 16;        // reference-method.md
   static constexpr int kRateAdcBits = 19;
   static constexpr int kTempAdcBits = 12;
   static constexpr double kAdcFullScale_v = 5.0;

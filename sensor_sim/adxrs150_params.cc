@@ -6,39 +6,39 @@ namespace adahrs::sensor_sim {
 namespace {
 
 // Datasheet-level numbers, physics.md §2.1 (tags as there) and §6 rows 1-3, 13.
-constexpr double kSensitivityTypical_mv_per_dps = 12.5;     // V [FRC]
-constexpr double kSensitivityTolerance_mv_per_dps = 1.25;   // R, 11.25..13.75
-constexpr double kNullTypical_v = 2.50;                     // R
-constexpr double kNullTolerance_v = 0.45;                   // R, +-0.3..0.45 V: upper end
-constexpr double kNullTc1Typical_dps_per_c = 0.1;           // E, 0.05..0.2 deg/s/degC
-constexpr double kNullTc1Tolerance_dps_per_c = 0.2;         // E
-constexpr double kNullTc2Tolerance_dps_per_c2 = 1.0e-3;     // E, <= 3.6 deg/s at +-60 degC
-constexpr double kNullTc3Tolerance_dps_per_c3 = 1.0e-5;     // E, <= 2.2 deg/s at +-60 degC
-constexpr double kSensTc1Typical_ppm_per_c = 300.0;         // R/E, ~ +-3 % over the range
-constexpr double kSensTc1Tolerance_ppm_per_c = 500.0;       // R/E, <= 3 % at +-60 degC
-constexpr double kSensTc2Tolerance_ppm_per_c2 = 5.0;        // E, <= 1.8 % at +-60 degC
-constexpr double kNonlinearityTypical_pct_fs = 0.1;         // R
-constexpr double kNonlinearityTolerance_pct_fs = 0.05;      // E
-constexpr double kGSensitivityTypical_dps_per_g = 0.2;      // R, any axis
-constexpr double kGSensitivityTolerance_dps_per_g = 0.3;    // E
-constexpr double kNullSupplyTypical_dps_per_v = 1.0;        // R
-constexpr double kNullSupplyTolerance_dps_per_v = 1.5;      // E
-constexpr double kRateNoiseTypical_dps_per_rthz = 0.05;     // V [RS150P]
-constexpr double kRateNoiseTolerance_dps_per_rthz = 0.01;   // E
-constexpr double kFilterRTypical_kohm = 180.0;              // R (V for ADXRS645)
-constexpr double kFilterRTolerance_kohm = 1.8;              // V for ADXRS645 (trimmed +-1 %)
-constexpr double kFilterCTypical_nf = 22.0;                 // 40 Hz with 180 kOhm, physics.md
-constexpr double kFilterCTolerance_nf = 2.2;                // E, +-10 % capacitor
-constexpr double kBiasInstabilityTypical_dph = 75.0;        // E, 50..100 deg/h
-constexpr double kBiasInstabilityTolerance_dph = 25.0;      // E
-constexpr double kRrwTypical_dph_per_rth = 20.0;            // E
-constexpr double kRrwTolerance_dph_per_rth = 10.0;          // E
-constexpr double kRateAdcNoise_lsb = 1.0;                   // E, 19-bit converter
-constexpr double kTempOutTypical_v = 2.50;                  // R, at 298 K
-constexpr double kTempOutTolerance_v = 0.1;                 // E ("modest absolute accuracy")
-constexpr double kTempSlopeTypical_mv_per_k = 8.4;          // R
-constexpr double kTempSlopeTolerance_mv_per_k = 0.4;        // E
-constexpr double kTempAdcNoise_lsb = 0.5;                   // E, dsPIC 12-bit ADC
+constexpr double kSensitivityTypical_mv_per_dps = 12.5;    // V [FRC]
+constexpr double kSensitivityTolerance_mv_per_dps = 1.25;  // R, 11.25..13.75
+constexpr double kNullTypical_v = 2.50;                    // R
+constexpr double kNullTolerance_v = 0.45;                  // R, +-0.3..0.45 V: upper end
+constexpr double kNullTc1Typical_dps_per_c = 0.1;          // E, 0.05..0.2 deg/s/degC
+constexpr double kNullTc1Tolerance_dps_per_c = 0.2;        // E
+constexpr double kNullTc2Tolerance_dps_per_c2 = 1.0e-3;    // E, <= 3.6 deg/s at +-60 degC
+constexpr double kNullTc3Tolerance_dps_per_c3 = 1.0e-5;    // E, <= 2.2 deg/s at +-60 degC
+constexpr double kSensTc1Typical_ppm_per_c = 300.0;        // R/E, ~ +-3 % over the range
+constexpr double kSensTc1Tolerance_ppm_per_c = 500.0;      // R/E, <= 3 % at +-60 degC
+constexpr double kSensTc2Tolerance_ppm_per_c2 = 5.0;       // E, <= 1.8 % at +-60 degC
+constexpr double kNonlinearityTypical_pct_fs = 0.1;        // R
+constexpr double kNonlinearityTolerance_pct_fs = 0.05;     // E
+constexpr double kGSensitivityTypical_dps_per_g = 0.2;     // R, any axis
+constexpr double kGSensitivityTolerance_dps_per_g = 0.3;   // E
+constexpr double kNullSupplyTypical_dps_per_v = 1.0;       // R
+constexpr double kNullSupplyTolerance_dps_per_v = 1.5;     // E
+constexpr double kRateNoiseTypical_dps_per_rthz = 0.05;    // V [RS150P]
+constexpr double kRateNoiseTolerance_dps_per_rthz = 0.01;  // E
+constexpr double kFilterRTypical_kohm = 180.0;             // R (V for ADXRS645)
+constexpr double kFilterRTolerance_kohm = 1.8;             // V for ADXRS645 (trimmed +-1 %)
+constexpr double kFilterCTypical_nf = 22.0;                // 40 Hz with 180 kOhm, physics.md
+constexpr double kFilterCTolerance_nf = 2.2;               // E, +-10 % capacitor
+constexpr double kBiasInstabilityTypical_dph = 75.0;       // E, 50..100 deg/h
+constexpr double kBiasInstabilityTolerance_dph = 25.0;     // E
+constexpr double kRrwTypical_dph_per_rth = 20.0;           // E
+constexpr double kRrwTolerance_dph_per_rth = 10.0;         // E
+constexpr double kRateAdcNoise_lsb = 1.0;                  // E, 19-bit converter
+constexpr double kTempOutTypical_v = 2.50;                 // R, at 298 K
+constexpr double kTempOutTolerance_v = 0.1;                // E ("modest absolute accuracy")
+constexpr double kTempSlopeTypical_mv_per_k = 8.4;         // R
+constexpr double kTempSlopeTolerance_mv_per_k = 0.4;       // E
+constexpr double kTempAdcNoise_lsb = 0.5;                  // E, dsPIC 12-bit ADC
 
 double RandomSign(Rng& rng) { return rng.Uniform() < 0.5 ? -1.0 : 1.0; }
 
@@ -63,7 +63,8 @@ Adxrs150Params Adxrs150Params::Typical() {
   p.sensitivity_tc2_ppm_per_c2 = 0.0;
   p.nonlinearity_quadratic_pct_fs = kNonlinearityTypical_pct_fs / 2.0;
   p.nonlinearity_cubic_pct_fs = kNonlinearityTypical_pct_fs / 2.0;
-  p.g_sensitivity_dps_per_g = {kGSensitivityTypical_dps_per_g, kGSensitivityTypical_dps_per_g,
+  p.g_sensitivity_dps_per_g = {kGSensitivityTypical_dps_per_g,
+                               kGSensitivityTypical_dps_per_g,
                                kGSensitivityTypical_dps_per_g};
   p.null_supply_dps_per_v = kNullSupplyTypical_dps_per_v;
   p.rate_noise_dps_per_rthz = kRateNoiseTypical_dps_per_rthz;
@@ -97,7 +98,8 @@ Adxrs150Params Adxrs150Params::Draw(uint64_t seed) {
   const double cubic_share = rng.Uniform();
   p.nonlinearity_quadratic_pct_fs = RandomSign(rng) * (1.0 - cubic_share) * total_pct_fs;
   p.nonlinearity_cubic_pct_fs = RandomSign(rng) * cubic_share * total_pct_fs;
-  for (double& g : p.g_sensitivity_dps_per_g) g = rng.Tolerance(0.0, kGSensitivityTolerance_dps_per_g);
+  for (double& g : p.g_sensitivity_dps_per_g)
+    g = rng.Tolerance(0.0, kGSensitivityTolerance_dps_per_g);
   p.null_supply_dps_per_v = rng.Tolerance(0.0, kNullSupplyTolerance_dps_per_v);
   p.rate_noise_dps_per_rthz =
       rng.Tolerance(kRateNoiseTypical_dps_per_rthz, kRateNoiseTolerance_dps_per_rthz);
@@ -105,7 +107,8 @@ Adxrs150Params Adxrs150Params::Draw(uint64_t seed) {
   p.output_filter_c_nf = rng.Tolerance(kFilterCTypical_nf, kFilterCTolerance_nf);
   p.bias_instability_dph =
       rng.Tolerance(kBiasInstabilityTypical_dph, kBiasInstabilityTolerance_dph);
-  p.rate_random_walk_dph_per_rth = rng.Tolerance(kRrwTypical_dph_per_rth, kRrwTolerance_dph_per_rth);
+  p.rate_random_walk_dph_per_rth =
+      rng.Tolerance(kRrwTypical_dph_per_rth, kRrwTolerance_dph_per_rth);
   p.temp_out_v_at_298k = rng.Tolerance(kTempOutTypical_v, kTempOutTolerance_v);
   p.temp_out_mv_per_k = rng.Tolerance(kTempSlopeTypical_mv_per_k, kTempSlopeTolerance_mv_per_k);
   return p;

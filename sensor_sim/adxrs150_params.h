@@ -20,15 +20,15 @@ namespace adahrs::sensor_sim {
 
 /// One switch per separately modelled physical term of the ADXRS150 model.
 struct Adxrs150Effects {
-  bool noise = true;               ///< white rate noise + rate and TEMP ADC noise
-  bool bias_instability = true;    ///< 1/f bias floor (Gauss-Markov sum), gyro_bias_process.h
-  bool rate_random_walk = false;   ///< random walk of the bias
-  bool null_tempco = true;         ///< null drift, cubic in (T - 25 degC)
-  bool sensitivity_tempco = false; ///< sensitivity drift, quadratic in (T - 25 degC)
-  bool nonlinearity = true;        ///< scale-factor nonlinearity (quadratic + cubic shapes)
-  bool g_sensitivity = false;      ///< rate offset linear in specific force (3-vector)
-  bool supply_sensitivity = false; ///< null vs supply; with output_ratiometric, ratiometry
-  bool adc_quantization = true;    ///< per-conversion rounding of both ADCs
+  bool noise = true;                ///< white rate noise + rate and TEMP ADC noise
+  bool bias_instability = true;     ///< 1/f bias floor (Gauss-Markov sum), gyro_bias_process.h
+  bool rate_random_walk = false;    ///< random walk of the bias
+  bool null_tempco = true;          ///< null drift, cubic in (T - 25 degC)
+  bool sensitivity_tempco = false;  ///< sensitivity drift, quadratic in (T - 25 degC)
+  bool nonlinearity = true;         ///< scale-factor nonlinearity (quadratic + cubic shapes)
+  bool g_sensitivity = false;       ///< rate offset linear in specific force (3-vector)
+  bool supply_sensitivity = false;  ///< null vs supply; with output_ratiometric, ratiometry
+  bool adc_quantization = true;     ///< per-conversion rounding of both ADCs
 
   /// What the reference calibration (2007 thesis) assumes: its thermal null fit, offset/scale,
   /// scale-factor nonlinearity, run-time bias-drift filter; noise on. Off: sensitivity tempco (its
@@ -42,27 +42,27 @@ struct Adxrs150Effects {
 
 /// One unit's parameters. Each quantity carries its unit in its name.
 struct Adxrs150Params {
-  double sensitivity_mv_per_dps;       ///< at 25 degC, 5 V
-  double null_v;                       ///< zero-rate output at 25 degC, 5 V
-  bool output_ratiometric;             ///< rate, null and TEMP scale with supply_v / 5 V
-  double null_tc1_dps_per_c;           ///< null drift, 1st order in (T - 25)
-  double null_tc2_dps_per_c2;          ///< 2nd order
-  double null_tc3_dps_per_c3;          ///< 3rd order
-  double sensitivity_tc1_ppm_per_c;    ///< sensitivity drift, 1st order
-  double sensitivity_tc2_ppm_per_c2;   ///< 2nd order
+  double sensitivity_mv_per_dps;         ///< at 25 degC, 5 V
+  double null_v;                         ///< zero-rate output at 25 degC, 5 V
+  bool output_ratiometric;               ///< rate, null and TEMP scale with supply_v / 5 V
+  double null_tc1_dps_per_c;             ///< null drift, 1st order in (T - 25)
+  double null_tc2_dps_per_c2;            ///< 2nd order
+  double null_tc3_dps_per_c3;            ///< 3rd order
+  double sensitivity_tc1_ppm_per_c;      ///< sensitivity drift, 1st order
+  double sensitivity_tc2_ppm_per_c2;     ///< 2nd order
   double nonlinearity_quadratic_pct_fs;  ///< amplitude of the quadratic shape, % of 150 deg/s
   double nonlinearity_cubic_pct_fs;      ///< amplitude of the cubic shape, % of 150 deg/s
   std::array<double, 3> g_sensitivity_dps_per_g;  ///< along package x, y, z
-  double null_supply_dps_per_v;        ///< null change per volt of supply above 5 V
-  double rate_noise_dps_per_rthz;      ///< one-sided white rate noise density
-  double output_filter_r_kohm;         ///< on-chip R_OUT
-  double output_filter_c_nf;           ///< external C_OUT
-  double bias_instability_dph;         ///< Allan-deviation floor, deg/h
-  double rate_random_walk_dph_per_rth; ///< K, deg/h/sqrt(h)
-  double rate_adc_noise_lsb;           ///< 19-bit ADC noise per conversion, LSB rms
-  double temp_out_v_at_298k;           ///< TEMP pin at 298.15 K
-  double temp_out_mv_per_k;            ///< TEMP pin slope
-  double temp_adc_noise_lsb;           ///< dsPIC 12-bit ADC noise per conversion, LSB rms
+  double null_supply_dps_per_v;                   ///< null change per volt of supply above 5 V
+  double rate_noise_dps_per_rthz;                 ///< one-sided white rate noise density
+  double output_filter_r_kohm;                    ///< on-chip R_OUT
+  double output_filter_c_nf;                      ///< external C_OUT
+  double bias_instability_dph;                    ///< Allan-deviation floor, deg/h
+  double rate_random_walk_dph_per_rth;            ///< K, deg/h/sqrt(h)
+  double rate_adc_noise_lsb;                      ///< 19-bit ADC noise per conversion, LSB rms
+  double temp_out_v_at_298k;                      ///< TEMP pin at 298.15 K
+  double temp_out_mv_per_k;                       ///< TEMP pin slope
+  double temp_adc_noise_lsb;                      ///< dsPIC 12-bit ADC noise per conv., LSB rms
   Adxrs150Effects effects;
 
   /// The datasheet typical part (effects Nominal()).

@@ -48,15 +48,16 @@ void Fft(std::vector<std::complex<double>>& x) {
 
 }  // namespace
 
-AllanPoint OverlappingAllanDeviationAt(const std::vector<double>& samples, double dt_s,
+AllanPoint OverlappingAllanDeviationAt(const std::vector<double>& samples,
+                                       double dt_s,
                                        size_t cluster_size) {
   CheckDt(dt_s, "OverlappingAllanDeviationAt");
   const size_t n = samples.size();
   const size_t m = cluster_size;
   if (m < 1 || n < 2 * m + 1) {
     std::ostringstream s;
-    s << "OverlappingAllanDeviationAt: cluster size " << m << " needs 1 <= m <= (N-1)/2 with N = "
-      << n << " samples";
+    s << "OverlappingAllanDeviationAt: cluster size " << m
+      << " needs 1 <= m <= (N-1)/2 with N = " << n << " samples";
     Invalid(s.str());
   }
   // theta[k] = dt · sum of the first k samples (the integrated quantity, e.g. angle).
@@ -74,7 +75,8 @@ AllanPoint OverlappingAllanDeviationAt(const std::vector<double>& samples, doubl
   return AllanPoint{tau_s, std::sqrt(avar), m, 1.0 / std::sqrt(2.0 * (clusters - 1.0))};
 }
 
-std::vector<AllanPoint> OverlappingAllanDeviation(const std::vector<double>& samples, double dt_s,
+std::vector<AllanPoint> OverlappingAllanDeviation(const std::vector<double>& samples,
+                                                  double dt_s,
                                                   int points_per_decade) {
   CheckDt(dt_s, "OverlappingAllanDeviation");
   if (points_per_decade < 1) {
@@ -99,7 +101,8 @@ std::vector<AllanPoint> OverlappingAllanDeviation(const std::vector<double>& sam
   return curve;
 }
 
-std::vector<PsdPoint> WelchPsd(const std::vector<double>& samples, double dt_s,
+std::vector<PsdPoint> WelchPsd(const std::vector<double>& samples,
+                               double dt_s,
                                size_t segment_length) {
   CheckDt(dt_s, "WelchPsd");
   const size_t l = segment_length;
@@ -134,13 +137,15 @@ std::vector<PsdPoint> WelchPsd(const std::vector<double>& samples, double dt_s,
   const double df_hz = 1.0 / (static_cast<double>(l) * dt_s);
   for (size_t k = 1; k <= l / 2; ++k) {
     const double one_sided = (k == l / 2) ? 1.0 : 2.0;  // the Nyquist bin has no mirror image
-    psd.push_back(PsdPoint{static_cast<double>(k) * df_hz, one_sided * accumulated[k] * dt_s /
-                                                                (window_power * segments)});
+    psd.push_back(PsdPoint{static_cast<double>(k) * df_hz,
+                           one_sided * accumulated[k] * dt_s / (window_power * segments)});
   }
   return psd;
 }
 
-double LowFrequencyPsd(const std::vector<double>& samples, double dt_s, size_t segment_length,
+double LowFrequencyPsd(const std::vector<double>& samples,
+                       double dt_s,
+                       size_t segment_length,
                        double f_max_hz) {
   const std::vector<PsdPoint> psd = WelchPsd(samples, dt_s, segment_length);
   double sum = 0.0;

@@ -34,23 +34,29 @@ struct PsdPoint {
 
 /// Overlapping Allan deviation at one cluster size m (1 <= m <= (N-1)/2); throws
 /// std::invalid_argument naming the offending values otherwise or if dt_s is not positive.
-AllanPoint OverlappingAllanDeviationAt(const std::vector<double>& samples, double dt_s,
+AllanPoint OverlappingAllanDeviationAt(const std::vector<double>& samples,
+                                       double dt_s,
                                        size_t cluster_size);
 
 /// Overlapping Allan deviation at cluster sizes spaced about `points_per_decade` per decade,
 /// from m = 1 up to m = N/10 (so every point averages at least ~10 independent clusters).
-std::vector<AllanPoint> OverlappingAllanDeviation(const std::vector<double>& samples, double dt_s,
+std::vector<AllanPoint> OverlappingAllanDeviation(const std::vector<double>& samples,
+                                                  double dt_s,
                                                   int points_per_decade = 10);
 
 /// Welch one-sided PSD: Hann-windowed segments of `segment_length` samples (a power of two,
 /// >= 8) with 50 % overlap, each segment's mean removed; bins 1 .. segment_length/2 (DC omitted).
 /// Throws std::invalid_argument if the record is shorter than one segment.
-std::vector<PsdPoint> WelchPsd(const std::vector<double>& samples, double dt_s,
+std::vector<PsdPoint> WelchPsd(const std::vector<double>& samples,
+                               double dt_s,
                                size_t segment_length);
 
 /// Mean of the Welch one-sided PSD over the bins with 0 < f <= f_max_hz: the low-frequency level
-/// of a spectrum that is flat there (e.g. white noise density squared). Throws if no bin is in range.
-double LowFrequencyPsd(const std::vector<double>& samples, double dt_s, size_t segment_length,
+/// of a spectrum that is flat there (e.g. white noise density squared). Throws if no bin is in
+/// range.
+double LowFrequencyPsd(const std::vector<double>& samples,
+                       double dt_s,
+                       size_t segment_length,
                        double f_max_hz);
 
 }  // namespace adahrs::sensor_sim

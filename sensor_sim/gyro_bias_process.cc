@@ -19,8 +19,7 @@ constexpr uint64_t kRateRandomWalkStream = 1;
 // Allan variance of a Gauss-Markov process with unit variance and correlation time t_s.
 double UnitGaussMarkovAvar(double tau_s, double t_s) {
   const double x = tau_s / t_s;
-  return (2.0 * t_s / tau_s) *
-         (1.0 - (3.0 - 4.0 * std::exp(-x) + std::exp(-2.0 * x)) / (2.0 * x));
+  return (2.0 * t_s / tau_s) * (1.0 - (3.0 - 4.0 * std::exp(-x) + std::exp(-2.0 * x)) / (2.0 * x));
 }
 
 double UnitPolesAdev(double tau_s) {
@@ -47,9 +46,12 @@ int64_t FramesFor(double interval_s, double frame_period_s) {
 
 }  // namespace
 
-GyroBiasProcess::GyroBiasProcess(double bias_instability_dps, bool bias_instability_on,
-                                 double rate_random_walk_dps_per_rts, bool rate_random_walk_on,
-                                 double frame_period_s, uint64_t seed)
+GyroBiasProcess::GyroBiasProcess(double bias_instability_dps,
+                                 bool bias_instability_on,
+                                 double rate_random_walk_dps_per_rts,
+                                 bool rate_random_walk_on,
+                                 double frame_period_s,
+                                 uint64_t seed)
     : bias_instability_on_(bias_instability_on && bias_instability_dps > 0.0),
       rate_random_walk_on_(rate_random_walk_on && rate_random_walk_dps_per_rts > 0.0),
       bi_rng_(Rng::Derive(seed, kBiasInstabilityStream)),

@@ -31,17 +31,20 @@ namespace adahrs::sensor_sim {
 class GyroBiasProcess {
  public:
   static constexpr int kBiasInstabilityPoles = 4;
-  static constexpr std::array<double, kBiasInstabilityPoles> kCorrelationTimes_s = {5.0, 50.0,
-                                                                                    500.0, 5000.0};
+  static constexpr std::array<double, kBiasInstabilityPoles> kCorrelationTimes_s = {
+      5.0, 50.0, 500.0, 5000.0};
   /// Band of tau over which `bias_instability_dps` is the mean Allan-deviation floor.
   static constexpr double kFloorBandMin_s = 10.0;
   static constexpr double kFloorBandMax_s = 5000.0;
 
   /// `bias_instability_dps` the Allan floor (0 or `bias_instability_on` false: none);
   /// `rate_random_walk_dps_per_rts` K in deg/s/sqrt(s). Streams are derived from `seed`.
-  GyroBiasProcess(double bias_instability_dps, bool bias_instability_on,
-                  double rate_random_walk_dps_per_rts, bool rate_random_walk_on,
-                  double frame_period_s, uint64_t seed);
+  GyroBiasProcess(double bias_instability_dps,
+                  bool bias_instability_on,
+                  double rate_random_walk_dps_per_rts,
+                  bool rate_random_walk_on,
+                  double frame_period_s,
+                  uint64_t seed);
 
   /// Advances one frame and returns the bias for that frame, deg/s.
   double Step() {

@@ -9,8 +9,12 @@ namespace {
 constexpr double kUniformRoundingVariance_lsb2 = 1.0 / 12.0;
 }  // namespace
 
-SummedAdc::SummedAdc(int bits, double full_scale_v, int conversions, double noise_lsb_rms,
-                     bool noise_on, bool quantization_on)
+SummedAdc::SummedAdc(int bits,
+                     double full_scale_v,
+                     int conversions,
+                     double noise_lsb_rms,
+                     bool noise_on,
+                     bool quantization_on)
     : codes_per_v_(std::ldexp(1.0, bits) / full_scale_v),
       sum_counts_per_v_(conversions * codes_per_v_),
       max_code_(std::ldexp(1.0, bits) - 1.0),

@@ -11,7 +11,8 @@
 //   quantisation on, dithered (noise on): the per-conversion rounding errors are independent and
 //     uniform (Widrow's quantisation theorem holds because the input noise spans many LSB, see the
 //     model doc), so their sum has variance n/12 LSB^2; it is represented by adding (n - 1)/12 to
-//     the variance of the mean and rounding the sum once (the final rounding supplies the last 1/12);
+//     the variance of the mean and rounding the sum once (the final rounding supplies the last
+//     1/12);
 //   quantisation off: sum = round(n · c), the ideal sum at the output type's 1-count resolution.
 // ADC noise: `noise_lsb_rms` per conversion, independent between conversions (variance of the mean
 // noise_lsb_rms^2 / n). Left out: differential/integral nonlinearity, reference error and drift,
@@ -26,7 +27,11 @@ class SummedAdc {
  public:
   /// `bits` of resolution over [0, full_scale_v], `conversions` summed per frame, ADC noise
   /// `noise_lsb_rms` per conversion (used only if `noise_on`).
-  SummedAdc(int bits, double full_scale_v, int conversions, double noise_lsb_rms, bool noise_on,
+  SummedAdc(int bits,
+            double full_scale_v,
+            int conversions,
+            double noise_lsb_rms,
+            bool noise_on,
             bool quantization_on);
 
   /// Variance, in V^2, that the converter adds to the mean input of one frame (ADC noise and, when

@@ -1,12 +1,12 @@
 #include "sensor_sim/adxrs150.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "sensor_sim/allan.h"
 
@@ -65,6 +65,7 @@ TEST(Adxrs150, TypicalCountsPerDpsIsTheThesisScale) {
   // Requirement 0.01 % (2.1 counts/(deg/s)); the measurement resolves 1 count / 200 deg/s.
   EXPECT_NEAR(slope, expected_cnt_per_dps, 1e-4 * expected_cnt_per_dps);
   EXPECT_NEAR(MeanRate(gyro, Still(0.0), 1), 2.5 * kRateSumCountsPerV, 0.5);
+  EXPECT_DOUBLE_EQ(gyro.NullCounts(), 2.5 * kRateSumCountsPerV);
 }
 
 TEST(Adxrs150, DrawnSensitivitiesStayInsideDatasheetLimits) {
@@ -84,7 +85,8 @@ TEST(Adxrs150, DrawnSensitivitiesStayInsideDatasheetLimits) {
     sum2 += ratio * ratio;
   }
   // +-10 % is drawn as 3 sigma (truncated): sigma 3.33 %; the truncation lowers it by ~1.5 %. The
-  // sample std of 300 units has a ~4 % relative standard error, so [3.0, 3.6] % is a > 3-sigma band.
+  // sample std of 300 units has a ~4 % relative standard error, so [3.0, 3.6] % is a > 3-sigma
+  // band.
   const double mean = sum / kUnits;
   const double std_pct = 100.0 * std::sqrt(sum2 / kUnits - mean * mean);
   EXPECT_NEAR(mean, 1.0, 0.01);
@@ -148,12 +150,15 @@ TEST(Adxrs150, NonlinearityIsTheConfiguredPercentOfFullScale) {
     double quadratic, cubic, expected;
   };
   // Datasheet 0.1 % FS (R) in several shapes, and a larger value.
-  for (const Case& k : {Case{0.1, 0.0, 0.1}, Case{0.0, -0.1, 0.1}, Case{0.06, -0.04, 0.1},
-                        Case{-0.03, 0.05, 0.08}, Case{0.2, 0.3, 0.5}}) {
+  for (const Case& k : {Case{0.1, 0.0, 0.1},
+                        Case{0.0, -0.1, 0.1},
+                        Case{0.06, -0.04, 0.1},
+                        Case{-0.03, 0.05, 0.08},
+                        Case{0.2, 0.3, 0.5}}) {
     // A 3001-point grid moves the discrete best-fit line from the continuous one by < 0.1 % of
     // the deviation; the 1-count rounding is 3e-5 % FS. Tolerance 1 % of the value.
-    EXPECT_NEAR(MeasuredNonlinearityPctFs(k.quadratic, k.cubic, true), k.expected,
-                0.01 * k.expected)
+    EXPECT_NEAR(
+        MeasuredNonlinearityPctFs(k.quadratic, k.cubic, true), k.expected, 0.01 * k.expected)
         << k.quadratic << " " << k.cubic;
   }
   // Off: straight to the 1-count rounding (1 count = 3.2e-5 % FS).
@@ -171,13 +176,15 @@ TEST(Adxrs150, WhiteRateNoiseMatchesDatasheetDensity) {
   for (size_t m : {20u, 100u, 500u}) {  // 0.2, 1, 5 s: white region (filter pole at 4 ms)
     const AllanPoint p = OverlappingAllanDeviationAt(rate_dps, kFrame_s, m);
     // Requirement 10 %; statistical 1-sigma at 5 s is 2.6 %.
-    EXPECT_NEAR(p.adev, kDensity / std::sqrt(2.0 * p.tau_s), 0.10 * kDensity / std::sqrt(2.0 * p.tau_s))
+    EXPECT_NEAR(
+        p.adev, kDensity / std::sqrt(2.0 * p.tau_s), 0.10 * kDensity / std::sqrt(2.0 * p.tau_s))
         << "tau " << p.tau_s;
   }
   // One-sided low-frequency PSD of the per-frame rate = density^2 (filter and frame averaging have
   // unit DC gain; aliasing adds < 0.3 %). Below 2 Hz the 40 Hz pole and the 10 ms average take
   // < 0.4 %. Welch over 175 segments x 82 bins: ~1 % standard error. Requirement 10 %.
-  EXPECT_NEAR(LowFrequencyPsd(rate_dps, kFrame_s, 4096, 2.0), kDensity * kDensity,
+  EXPECT_NEAR(LowFrequencyPsd(rate_dps, kFrame_s, 4096, 2.0),
+              kDensity * kDensity,
               0.10 * kDensity * kDensity);
 }
 
@@ -186,18 +193,18 @@ TEST(Adxrs150, BiasInstabilityFloorHasConfiguredMagnitude) {
   e.noise = e.adc_quantization = e.bias_instability = true;
   Adxrs150Params p = TypicalWith(e);
   constexpr double kDensity = 0.05;
-  const double floor_dps = p.bias_instability_dph / 3600.0;  // 75 deg/h (E)
+  const double floor_dps = p.bias_instability_dph / 3600.0;       // 75 deg/h (E)
   const std::vector<double> on = StaticRecordDps(p, 7, 3000000);  // 8.3 h
   p.effects.bias_instability = false;
   const std::vector<double> off = StaticRecordDps(p, 7, 3000000);
   for (size_t m : {3000u, 10000u, 30000u}) {  // 30, 100, 300 s
     const AllanPoint with = OverlappingAllanDeviationAt(on, kFrame_s, m);
     const double white_dps = kDensity / std::sqrt(2.0 * with.tau_s);
-    // Expected: the floor and the white part in quadrature. Tolerance 25 %: the floor's +-4 %
+    // Expected: the floor and the white part in quadrature. Tolerance 15 %: the floor's +-4 %
     // ripple (gyro_bias_process.h) plus the estimator's scatter for flicker noise with 100..1000
-    // clusters (~10 % 1-sigma at 300 s).
+    // clusters (seeds 7, 8, 9 measured within 7 % at 10..1000 s).
     const double expected = std::hypot(floor_dps, white_dps);
-    EXPECT_NEAR(with.adev, expected, 0.25 * expected) << "tau " << with.tau_s;
+    EXPECT_NEAR(with.adev, expected, 0.15 * expected) << "tau " << with.tau_s;
     // Without it only white noise remains, 4..10x below the floor.
     const AllanPoint without = OverlappingAllanDeviationAt(off, kFrame_s, m);
     EXPECT_NEAR(without.adev, white_dps, 0.25 * white_dps) << "tau " << with.tau_s;
@@ -211,7 +218,7 @@ TEST(Adxrs150, RateRandomWalkGrowsAsSqrtTauOverThree) {
   p.rate_random_walk_dph_per_rth = 600.0;  // large, so 1-count rounding is negligible
   const double k_dps_per_rts = 600.0 / 3600.0 / 60.0;
   const std::vector<double> rate_dps = StaticRecordDps(p, 3, 1000000);  // 10^4 s
-  for (size_t m : {1000u, 10000u}) {  // 10, 100 s
+  for (size_t m : {1000u, 10000u}) {                                    // 10, 100 s
     const AllanPoint a = OverlappingAllanDeviationAt(rate_dps, kFrame_s, m);
     const double expected = k_dps_per_rts * std::sqrt(a.tau_s / 3.0);
     // Random-walk Allan estimates scatter more than white ones; 100 clusters: ~15 % 1-sigma.
@@ -229,7 +236,8 @@ TEST(Adxrs150, FlippingGravityChangesMeanByTwiceGSensitivity) {
     Adxrs150Input up = Still(), down = Still();
     (axis == 0 ? up.f_x_g : axis == 1 ? up.f_y_g : up.f_z_g) = 1.0;
     (axis == 0 ? down.f_x_g : axis == 1 ? down.f_y_g : down.f_z_g) = -1.0;
-    const double delta_dps = (MeanRate(gyro, up, 1) - MeanRate(gyro, down, 1)) / gyro.RateCountsPerDps();
+    const double delta_dps =
+        (MeanRate(gyro, up, 1) - MeanRate(gyro, down, 1)) / gyro.RateCountsPerDps();
     EXPECT_NEAR(delta_dps, 2.0 * 0.2, 1.0 / 20971.52) << "axis " << axis;  // 1 count
   }
 }
@@ -243,7 +251,8 @@ TEST(Adxrs150, TempCountsFollowTheTempPinTransfer) {
   EXPECT_NEAR((c_hot - c_cold) / 125.0, 8.4e-3 * kTempSumCountsPerV, 1.0 / 125.0);
 
   // Nominal (noise and quantisation on): the mean over 1000 frames is unbiased; per-frame
-  // sigma ~2.3 counts (0.5 LSB ADC noise + quantisation on 16 conversions), so 0.3 counts > 4 sigma.
+  // sigma ~2.3 counts (0.5 LSB ADC noise + quantisation on 16 conversions), so 0.3 counts > 4
+  // sigma.
   Adxrs150 noisy(Adxrs150Params::Typical(), 9, kFrame_s);
   double sum = 0.0;
   for (int i = 0; i < 1000; ++i) sum += noisy.Step(Still(0.0, 25.0)).temp_cnt;
@@ -256,14 +265,15 @@ TEST(Adxrs150, SupplyShiftsNullAbsoluteOrRatiometric) {
   Adxrs150Params p = TypicalWith(e);  // 1 deg/s/V (R)
   Adxrs150 absolute(p, 1, kFrame_s);
   const Adxrs150Input high{0.0, 0.0, 0.0, 0.0, 25.0, 5.25};
-  EXPECT_NEAR((MeanRate(absolute, high, 1) - MeanRate(absolute, Still(), 1)) /
-                  absolute.RateCountsPerDps(),
-              0.25, 1.0 / 20971.52);
+  EXPECT_NEAR(
+      (MeanRate(absolute, high, 1) - MeanRate(absolute, Still(), 1)) / absolute.RateCountsPerDps(),
+      0.25,
+      1.0 / 20971.52);
   p.output_ratiometric = true;
   Adxrs150 ratiometric(p, 1, kFrame_s);
   // Null and offset scale with 5.25/5: (2.5 V + 12.5 mV · 0.25) · 1.05.
-  EXPECT_NEAR(MeanRate(ratiometric, high, 1), (2.5 + 12.5e-3 * 0.25) * 1.05 * kRateSumCountsPerV,
-              0.5);
+  EXPECT_NEAR(
+      MeanRate(ratiometric, high, 1), (2.5 + 12.5e-3 * 0.25) * 1.05 * kRateSumCountsPerV, 0.5);
   EXPECT_NEAR(ratiometric.Step(high).temp_cnt, 2.5 * 1.05 * kTempSumCountsPerV, 0.5);
 }
 
@@ -295,34 +305,53 @@ struct EffectCase {
 std::vector<EffectCase> EffectCases() {
   const double stochastic = std::nan("");
   return {
-      {"null_tempco", &Adxrs150Effects::null_tempco,
+      {"null_tempco",
+       &Adxrs150Effects::null_tempco,
        [](Adxrs150Params& p) {
          p.null_tc1_dps_per_c += 0.05;
          p.null_tc2_dps_per_c2 += 1e-4;
          p.null_tc3_dps_per_c3 += 1e-6;
        },
-       Still(0.0, 65.0), 0.05 * 40 + 1e-4 * 1600 + 1e-6 * 64000},
-      {"sensitivity_tempco", &Adxrs150Effects::sensitivity_tempco,
+       Still(0.0, 65.0),
+       0.05 * 40 + 1e-4 * 1600 + 1e-6 * 64000},
+      {"sensitivity_tempco",
+       &Adxrs150Effects::sensitivity_tempco,
        [](Adxrs150Params& p) {
          p.sensitivity_tc1_ppm_per_c += 200.0;
          p.sensitivity_tc2_ppm_per_c2 += 2.0;
        },
-       Still(100.0, 65.0), 100.0 * (200e-6 * 40 + 2e-6 * 1600)},
-      {"nonlinearity", &Adxrs150Effects::nonlinearity,
-       [](Adxrs150Params& p) { p.nonlinearity_quadratic_pct_fs += 0.1; }, Still(150.0),
+       Still(100.0, 65.0),
+       100.0 * (200e-6 * 40 + 2e-6 * 1600)},
+      {"nonlinearity",
+       &Adxrs150Effects::nonlinearity,
+       [](Adxrs150Params& p) { p.nonlinearity_quadratic_pct_fs += 0.1; },
+       Still(150.0),
        0.1e-2 * 150.0},
-      {"g_sensitivity", &Adxrs150Effects::g_sensitivity,
+      {"g_sensitivity",
+       &Adxrs150Effects::g_sensitivity,
        [](Adxrs150Params& p) { p.g_sensitivity_dps_per_g[2] += 0.1; },
-       Adxrs150Input{0.0, 0.0, 0.0, 1.0, 25.0, 5.0}, 0.1},
-      {"supply_sensitivity", &Adxrs150Effects::supply_sensitivity,
+       Adxrs150Input{0.0, 0.0, 0.0, 1.0, 25.0, 5.0},
+       0.1},
+      {"supply_sensitivity",
+       &Adxrs150Effects::supply_sensitivity,
        [](Adxrs150Params& p) { p.null_supply_dps_per_v += 1.0; },
-       Adxrs150Input{0.0, 0.0, 0.0, 0.0, 25.0, 5.25}, 0.25},
-      {"noise", &Adxrs150Effects::noise, [](Adxrs150Params& p) { p.rate_noise_dps_per_rthz *= 2; },
-       Still(), stochastic},
-      {"bias_instability", &Adxrs150Effects::bias_instability,
-       [](Adxrs150Params& p) { p.bias_instability_dph *= 2; }, Still(), stochastic},
-      {"rate_random_walk", &Adxrs150Effects::rate_random_walk,
-       [](Adxrs150Params& p) { p.rate_random_walk_dph_per_rth *= 2; }, Still(), stochastic},
+       Adxrs150Input{0.0, 0.0, 0.0, 0.0, 25.0, 5.25},
+       0.25},
+      {"noise",
+       &Adxrs150Effects::noise,
+       [](Adxrs150Params& p) { p.rate_noise_dps_per_rthz *= 2; },
+       Still(),
+       stochastic},
+      {"bias_instability",
+       &Adxrs150Effects::bias_instability,
+       [](Adxrs150Params& p) { p.bias_instability_dph *= 2; },
+       Still(),
+       stochastic},
+      {"rate_random_walk",
+       &Adxrs150Effects::rate_random_walk,
+       [](Adxrs150Params& p) { p.rate_random_walk_dph_per_rth *= 2; },
+       Still(),
+       stochastic},
   };
 }
 
@@ -441,13 +470,15 @@ TEST(Adxrs150, BadParameterFilesNameFilePathAndRange) {
   nlohmann::json out_of_range = good;
   out_of_range["sensitivity_mv_per_dps"] = 30.0;
   EXPECT_THAT(FromJsonError(out_of_range),
-              AllOf(HasSubstr("$.sensitivity_mv_per_dps"), HasSubstr("value 30 out of range"),
+              AllOf(HasSubstr("$.sensitivity_mv_per_dps"),
+                    HasSubstr("value 30 out of range"),
                     HasSubstr("[1, 20] mV/(deg/s)")));
 
   nlohmann::json nan_string = good;
   nan_string["bias_instability_dph"] = "NaN";
   EXPECT_THAT(FromJsonError(nan_string),
-              AllOf(HasSubstr("$.bias_instability_dph"), HasSubstr("expected a number"),
+              AllOf(HasSubstr("$.bias_instability_dph"),
+                    HasSubstr("expected a number"),
                     HasSubstr("[0, 3600] deg/h")));
 
   nlohmann::json short_array = good;

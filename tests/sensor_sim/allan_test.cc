@@ -1,13 +1,13 @@
 #include "sensor_sim/allan.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "sensor_sim/random.h"
 #include "sensor_sim/units.h"
@@ -57,7 +57,8 @@ TEST(Allan, RampGivesExactValue) {
   for (size_t i = 0; i < x.size(); ++i) x[i] = kSlope * kDt_s * static_cast<double>(i);
   for (size_t m : {1u, 7u, 100u}) {
     const double tau_s = m * kDt_s;
-    EXPECT_NEAR(OverlappingAllanDeviationAt(x, kDt_s, m).adev, kSlope * tau_s / std::sqrt(2.0),
+    EXPECT_NEAR(OverlappingAllanDeviationAt(x, kDt_s, m).adev,
+                kSlope * tau_s / std::sqrt(2.0),
                 1e-9 * kSlope * tau_s);
   }
 }
@@ -81,15 +82,16 @@ TEST(Allan, WelchAndAllanAgreeOnOneSidedDensityConvention) {
   const std::vector<double> x = WhiteNoise(400000, kDensity / std::sqrt(2.0 * kDt_s), 5);
   // 4096-sample segments, 195 segments with 50 % overlap; over 0..5 Hz 204 bins are averaged, so
   // the relative standard error is ~1/sqrt(195 · 204 · 0.5) < 1 %; 4 % is a > 4-sigma band.
-  EXPECT_NEAR(LowFrequencyPsd(x, kDt_s, 4096, 5.0), kDensity * kDensity,
-              0.04 * kDensity * kDensity);
+  EXPECT_NEAR(
+      LowFrequencyPsd(x, kDt_s, 4096, 5.0), kDensity * kDensity, 0.04 * kDensity * kDensity);
   const AllanPoint p = OverlappingAllanDeviationAt(x, kDt_s, 100);
   const double expected = kDensity / std::sqrt(2.0 * p.tau_s);
   EXPECT_NEAR(p.adev, expected, 4.0 * p.relative_error * expected);
 }
 
 // Parseval: the one-sided PSD integrates to the variance; for a sinusoid of amplitude A that is
-// A^2 / 2. The Hann window spreads the line over 3 bins but keeps the total (normalised by sum w^2).
+// A^2 / 2. The Hann window spreads the line over 3 bins but keeps the total (normalised by sum
+// w^2).
 TEST(Allan, WelchIntegratesToSinusoidPower) {
   constexpr double kAmplitude = 3.0;
   constexpr double kDt_s = 0.001;
