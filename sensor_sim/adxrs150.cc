@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "sensor_sim/units.h"
 
@@ -50,6 +52,10 @@ Adxrs150::Adxrs150(const Adxrs150Params& params, uint64_t noise_seed, double fra
             Rng::Derive(noise_seed, kBiasProcessStream)),
       rate_rng_(Rng::Derive(noise_seed, kRateNoiseStream)),
       temp_rng_(Rng::Derive(noise_seed, kTempNoiseStream)) {
+  if (!(frame_period_s > 0.0) || !std::isfinite(frame_period_s)) {
+    throw std::invalid_argument("Adxrs150: frame_period_s must be positive and finite, got " +
+                                std::to_string(frame_period_s));
+  }
   const Adxrs150Effects& e = params.effects;
   const bool tc = e.null_tempco;
   null_tc_dps_[0] = tc ? params.null_tc1_dps_per_c : 0.0;
@@ -143,7 +149,7 @@ Adxrs150Output Adxrs150::Step(const Adxrs150Input& in) {
   }
   if (!started_) {
     // Start in steady state for the first input, with the stationary filter noise.
-    filter_state_v_ = u_v + stationary_sigma_v_ * rate_rng_.Normal();
+    filter_state_v_ = u_v + (noise_on_ ? stationary_sigma_v_ * rate_rng_.Normal() : 0.0);
     started_ = true;
   }
   const double mean_v = beta_ * filter_state_v_ + (1.0 - beta_) * u_v + l21_v_ * z1 + l22_v_ * z2;

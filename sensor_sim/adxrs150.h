@@ -64,7 +64,9 @@ class Adxrs150 {
   static constexpr double kAdcFullScale_v = 5.0;
 
   /// `frame_period_s` is the unit's frame period (0.01 s at 100 Hz). Noise streams are derived
-  /// from `noise_seed`; the same params, seed and inputs give the same outputs.
+  /// from `noise_seed`; the same params, seed and inputs give the same outputs. Throws
+  /// std::invalid_argument if `frame_period_s` is not positive. `params` are taken as valid (read
+  /// them with FromJson for range checks).
   Adxrs150(const Adxrs150Params& params, uint64_t noise_seed, double frame_period_s);
 
   /// Advances one frame and returns its raw outputs. No allocation.

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -425,6 +426,15 @@ TEST(Adxrs150, DeterministicPerSeed) {
   EXPECT_LT(same, 5);
   EXPECT_EQ(Adxrs150Params::Draw(5).ToJson(), Adxrs150Params::Draw(5).ToJson());
   EXPECT_NE(Adxrs150Params::Draw(5).ToJson(), Adxrs150Params::Draw(6).ToJson());
+}
+
+TEST(Adxrs150, RefusesNonPositiveFramePeriod) {
+  try {
+    Adxrs150 gyro(Adxrs150Params::Typical(), 1, 0.0);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("frame_period_s"), HasSubstr("got 0")));
+  }
 }
 
 TEST(Adxrs150, JsonRoundTripIsExact) {
