@@ -115,3 +115,49 @@ TEST(CompensatorSweep, AdsWithinBudgetOverEnvelope) {
 
 }  // namespace
 }  // namespace adahrs::firmware_model
+
+namespace adahrs::firmware_model {
+namespace {
+
+// The instruction mix of one frame. Structural truth: a fully calibrated IMU frame does
+// 2 x 9 thermal + 6 accel-scale + 3 x 3 gyro + 2 x 9 matrix = 51 Q31 multiplies (one MPY and two
+// MUL.SU each) and 2 DIV.UD per accelerometer channel; an ADS frame 2 x (3 + 2 + 1 + 3) = 18.
+TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
+  const ImuExport imu = ExportImuConstants(testing::RealisticImu(1));
+  sensor_sim::Rng rng(5);
+  const ImuRawFrame raw = testing::SynthesiseImu(testing::RealisticImu(1), {0.0, 0.0, 1.0},
+                                                 {10.0, 0.0, 0.0}, 25.0, &rng);
+  DspEngine engine;
+  ImuCompensatedFrame frame{};
+  ImuCompensate(&engine, imu.constants, ImuCompensationMode::kFullyCalibrated, raw, &frame);
+  EXPECT_EQ(engine.op_count(DspOp::kMpy), 51u);
+  EXPECT_EQ(engine.op_count(DspOp::kMulSU), 102u);
+  EXPECT_EQ(engine.op_count(DspOp::kDivUD), 12u);
+  std::printf("IMU fully calibrated frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at "
+              "100 Hz)\n",
+              engine.instructions(), engine.cycles(), 100.0 * engine.cycles() * 100.0 / 30e6);
+  for (uint8_t op = 0; op < static_cast<uint8_t>(DspOp::kCount); ++op) {
+    const DspOp o = static_cast<DspOp>(op);
+    if (engine.op_count(o) > 0) {
+      std::printf("  %-12s x%4u  %2u cy  = %5u\n", DspOpName(o), engine.op_count(o),
+                  DspOpCycles(o), engine.op_count(o) * DspOpCycles(o));
+    }
+  }
+  for (uint8_t m = 0; m < 3; ++m) {
+    DspEngine e;
+    ImuCompensate(&e, imu.constants, static_cast<ImuCompensationMode>(m), raw, &frame);
+    std::printf("IMU mode %u: %u cycles\n", m, e.cycles());
+  }
+  const AdsExport ads = ExportAdsConstants(testing::RealisticAds());
+  DspEngine ads_engine;
+  AdsCompensatedFrame ads_frame{};
+  AdsCompensate(&ads_engine, ads.constants, AdsCompensationMode::kSurface,
+                testing::SynthesiseAds(5000.0, 200.0, 25.0), &ads_frame);
+  EXPECT_EQ(ads_engine.op_count(DspOp::kMpy), 18u);
+  std::printf("ADS surface frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at 100 Hz)\n",
+              ads_engine.instructions(), ads_engine.cycles(),
+              100.0 * ads_engine.cycles() * 100.0 / 30e6);
+}
+
+}  // namespace
+}  // namespace adahrs::firmware_model
