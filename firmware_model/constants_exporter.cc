@@ -230,26 +230,29 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
         }
       }
     }
-    double bound = 0;
-    int max_inner = kMinExponent;
-    for (int k = 0; k < 4; ++k) {
-      std::vector<Real> c;
-      for (int n = 0; n <= 3 - k; ++n) c.push_back(norm_c[k][n]);
-      const QuantisedPoly b = QuantisePoly(c, out_e - 24, out_e + 8, fmt::format("{} b{}(y)", what, k));
-      q->b[k] = b.poly;
-      bound += b.bound;
-      max_inner = std::max(max_inner, static_cast<int>(b.poly.work_exponent));
-    }
-    // Outer exponent: smallest E >= every b_k's with sum_k 2^(E_k) <= 2^E, within 16 of out_e.
-    for (int e = max_inner; e <= out_e + kMaxAlignShift; ++e) {
-      q->outer_work_exponent = static_cast<int8_t>(e);
+    // Outer exponent E: the smallest (from the output exponent - 16 up) for which every b_k,
+    // quantised with a working exponent within 16 of E, satisfies sum_k 2^(E_k) <= 2^E.
+    for (int e = out_e - kMaxAlignShift; e <= out_e + kMaxAlignShift; ++e) {
+      double bound = 0;
       Real sum = 0;
       bool aligned = true;
-      for (const PolyQ31& b : q->b) {
-        sum += std::ldexp(Real{1}, b.work_exponent);
-        aligned = aligned && e - b.work_exponent <= kMaxAlignShift;
+      for (int k = 0; k < 4; ++k) {
+        std::vector<Real> c;
+        for (int n = 0; n <= 3 - k; ++n) c.push_back(norm_c[k][n]);
+        Real sum_abs = 0;
+        for (Real v : c) sum_abs += std::fabs(v);
+        if (sum_abs >= std::ldexp(Real{1}, e)) {
+          aligned = false;
+          break;
+        }
+        const QuantisedPoly b =
+            QuantisePoly(c, e - kMaxAlignShift, e, fmt::format("{} b{}(y)", what, k));
+        q->b[k] = b.poly;
+        bound += b.bound;
+        sum += std::ldexp(Real{1}, b.poly.work_exponent);
       }
-      if (aligned && sum <= std::ldexp(Real{1}, e) && e - out_e >= -kMaxAlignShift) {
+      if (aligned && sum <= std::ldexp(Real{1}, e)) {
+        q->outer_work_exponent = static_cast<int8_t>(e);
         return bound + 4 * 3 * Lsb(e) + Lsb(out_e);
       }
     }
