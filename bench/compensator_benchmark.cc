@@ -1,0 +1,67 @@
+// Host nanoseconds per compensated frame of the fixed-point model (engine emulation included),
+// IMU fully calibrated and ADS surface. Constants: an identity-like exported set built inline
+// (the tests' realistic fixtures live under tests/). Machine: see docs/firmware-compensator.md.
+#include <benchmark/benchmark.h>
+
+#include "firmware_model/constants_exporter.h"
+#include "firmware_model/target/ads_compensator.h"
+#include "firmware_model/target/imu_compensator.h"
+
+namespace adahrs::firmware_model {
+namespace {
+
+ImuCalibrationConstants BenchImu() {
+  ImuCalibrationConstants c;
+  const double inv_scale_g_per_duty[6] = {-25.35, -25.08, 25.26, 25.93, 25.57, -25.71};
+  for (int ch = 0; ch < 9; ++ch) {
+    c.thermal[ch].temp_sensor = ch < 6 ? ch % 3 : ch - 6;
+    c.thermal[ch].k = {ch < 6 ? 0.001 : 4.2e6, ch < 6 ? 1e-8 : 2.0, ch < 6 ? 1e-14 : 1e-6};
+  }
+  for (int ch = 0; ch < 6; ++ch) c.accel[ch] = {0.002, 1.0 / inv_scale_g_per_duty[ch]};
+  for (int g = 0; g < 3; ++g) c.gyro[g] = {0.0, {0.01, 4.77e-5, 1e-14, 1e-20}};
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      c.ca_mps2_per_g[r][k] = r == k ? 9.80665 : 0.1;
+      c.cg[r][k] = r == k ? 1.0 : 0.01;
+    }
+  }
+  return c;
+}
+
+void BM_ImuFullyCalibratedFrame(benchmark::State& state) {
+  const ImuConstants constants = ExportImuConstants(BenchImu()).constants;
+  ImuRawFrame raw{};
+  for (int ch = 0; ch < 6; ++ch) {
+    raw.t1_cnt[ch] = static_cast<uint16_t>(30000 + 100 * ch);
+    raw.t2_cnt[ch] = 60000;
+  }
+  for (int g = 0; g < 3; ++g) raw.gyro_cnt[g] = 4200000 + 100000 * g;
+  for (uint16_t& t : raw.temp_cnt) t = 32768;
+  ImuCompensatedFrame out{};
+  for (auto _ : state) {
+    DspEngine engine;
+    ImuCompensate(&engine, constants, ImuCompensationMode::kFullyCalibrated, raw, &out);
+    benchmark::DoNotOptimize(out);
+  }
+}
+BENCHMARK(BM_ImuFullyCalibratedFrame);
+
+void BM_AdsSurfaceFrame(benchmark::State& state) {
+  AdsCalibrationConstants c;
+  c.altitude_ft = {{1000.0, -0.2, 1e-4, 1e-9, 0, 0, 0, 0, 0, 0}, 30000, 200000, 5e6, 8e6};
+  c.airspeed_kt = {{30.0, 0.01, 0, -1e-9, 0, 0, 0, 0, 0, 0}, 30000, 100000, 5e6, 8e6};
+  const AdsConstants constants = ExportAdsConstants(c).constants;
+  const AdsRawFrame raw{150000, 50000, 6700000, 6800000, 0};
+  AdsCompensatedFrame out{};
+  for (auto _ : state) {
+    DspEngine engine;
+    AdsCompensate(&engine, constants, AdsCompensationMode::kSurface, raw, &out);
+    benchmark::DoNotOptimize(out);
+  }
+}
+BENCHMARK(BM_AdsSurfaceFrame);
+
+}  // namespace
+}  // namespace adahrs::firmware_model
+
+BENCHMARK_MAIN();

@@ -1,0 +1,141 @@
+#include "firmware_model/calibration_constants.h"
+
+#include <set>
+#include <stdexcept>
+
+namespace adahrs::firmware_model {
+namespace {
+
+using nlohmann::json;
+
+// Reads object `j` at `path`: every key must be in `keys`, and every key in `keys` present.
+void ExpectKeys(const json& j, const std::string& path, const std::set<std::string>& keys) {
+  if (!j.is_object()) throw std::runtime_error(path + ": expected an object");
+  for (const auto& [key, value] : j.items()) {
+    if (!keys.count(key)) throw std::runtime_error(path + "." + key + ": unexpected key");
+  }
+  for (const std::string& key : keys) {
+    if (!j.contains(key)) throw std::runtime_error(path + "." + key + ": missing");
+  }
+}
+
+double Number(const json& j, const std::string& path) {
+  if (!j.is_number()) throw std::runtime_error(path + ": expected a number");
+  return j.get<double>();
+}
+
+template <size_t N>
+std::array<double, N> Numbers(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != N) {
+    throw std::runtime_error(path + ": expected an array of " + std::to_string(N) + " numbers");
+  }
+  std::array<double, N> out{};
+  for (size_t i = 0; i < N; ++i) out[i] = Number(j[i], path + "[" + std::to_string(i) + "]");
+  return out;
+}
+
+std::array<std::array<double, 3>, 3> Matrix(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 3) throw std::runtime_error(path + ": expected 3 rows");
+  std::array<std::array<double, 3>, 3> m{};
+  for (size_t r = 0; r < 3; ++r) m[r] = Numbers<3>(j[r], path + "[" + std::to_string(r) + "]");
+  return m;
+}
+
+const json& Array(const json& j, const std::string& path, size_t n) {
+  if (!j.is_array() || j.size() != n) {
+    throw std::runtime_error(path + ": expected an array of " + std::to_string(n));
+  }
+  return j;
+}
+
+json SurfaceToJson(const SurfaceFit& s) {
+  return json{{"coeff_a_to_j", s.coeff},    {"x_min_code", s.x_min_code},
+              {"x_max_code", s.x_max_code}, {"y_min_code", s.y_min_code},
+              {"y_max_code", s.y_max_code}};
+}
+
+SurfaceFit SurfaceFromJson(const json& j, const std::string& path) {
+  ExpectKeys(j, path, {"coeff_a_to_j", "x_min_code", "x_max_code", "y_min_code", "y_max_code"});
+  SurfaceFit s;
+  s.coeff = Numbers<10>(j["coeff_a_to_j"], path + ".coeff_a_to_j");
+  s.x_min_code = Number(j["x_min_code"], path + ".x_min_code");
+  s.x_max_code = Number(j["x_max_code"], path + ".x_max_code");
+  s.y_min_code = Number(j["y_min_code"], path + ".y_min_code");
+  s.y_max_code = Number(j["y_max_code"], path + ".y_max_code");
+  if (!(s.x_min_code < s.x_max_code) || !(s.y_min_code < s.y_max_code)) {
+    throw std::runtime_error(path + ": empty code box");
+  }
+  return s;
+}
+
+}  // namespace
+
+json ToJson(const ImuCalibrationConstants& c) {
+  json thermal = json::array();
+  for (const ThermalFit& t : c.thermal) {
+    thermal.push_back({{"temp_sensor", t.temp_sensor}, {"k", t.k}});
+  }
+  json accel = json::array();
+  for (const AccelScaleFit& a : c.accel) {
+    accel.push_back({{"offset_duty", a.offset_duty}, {"scale_duty_per_g", a.scale_duty_per_g}});
+  }
+  json gyro = json::array();
+  for (const GyroCubicFit& g : c.gyro) gyro.push_back({{"null_cnt", g.null_cnt}, {"l", g.l}});
+  return json{{"thermal", thermal},
+              {"accel", accel},
+              {"gyro", gyro},
+              {"ca_mps2_per_g", c.ca_mps2_per_g},
+              {"cg", c.cg}};
+}
+
+ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j) {
+  ExpectKeys(j, "imu", {"thermal", "accel", "gyro", "ca_mps2_per_g", "cg"});
+  ImuCalibrationConstants c;
+  const json& thermal = Array(j["thermal"], "imu.thermal", 9);
+  for (size_t i = 0; i < 9; ++i) {
+    const std::string path = "imu.thermal[" + std::to_string(i) + "]";
+    ExpectKeys(thermal[i], path, {"temp_sensor", "k"});
+    const double sensor = Number(thermal[i]["temp_sensor"], path + ".temp_sensor");
+    if (sensor != 0.0 && sensor != 1.0 && sensor != 2.0) {
+      throw std::runtime_error(path + ".temp_sensor: must be 0, 1 or 2, got " +
+                               std::to_string(sensor));
+    }
+    c.thermal[i].temp_sensor = static_cast<int>(sensor);
+    c.thermal[i].k = Numbers<3>(thermal[i]["k"], path + ".k");
+  }
+  const json& accel = Array(j["accel"], "imu.accel", 6);
+  for (size_t i = 0; i < 6; ++i) {
+    const std::string path = "imu.accel[" + std::to_string(i) + "]";
+    ExpectKeys(accel[i], path, {"offset_duty", "scale_duty_per_g"});
+    c.accel[i].offset_duty = Number(accel[i]["offset_duty"], path + ".offset_duty");
+    c.accel[i].scale_duty_per_g = Number(accel[i]["scale_duty_per_g"], path + ".scale_duty_per_g");
+    if (c.accel[i].scale_duty_per_g == 0.0) {
+      throw std::runtime_error(path + ".scale_duty_per_g: must not be zero");
+    }
+  }
+  const json& gyro = Array(j["gyro"], "imu.gyro", 3);
+  for (size_t i = 0; i < 3; ++i) {
+    const std::string path = "imu.gyro[" + std::to_string(i) + "]";
+    ExpectKeys(gyro[i], path, {"null_cnt", "l"});
+    c.gyro[i].null_cnt = Number(gyro[i]["null_cnt"], path + ".null_cnt");
+    c.gyro[i].l = Numbers<4>(gyro[i]["l"], path + ".l");
+  }
+  c.ca_mps2_per_g = Matrix(j["ca_mps2_per_g"], "imu.ca_mps2_per_g");
+  c.cg = Matrix(j["cg"], "imu.cg");
+  return c;
+}
+
+json ToJson(const AdsCalibrationConstants& c) {
+  return json{{"altitude_ft", SurfaceToJson(c.altitude_ft)},
+              {"airspeed_kt", SurfaceToJson(c.airspeed_kt)}};
+}
+
+AdsCalibrationConstants AdsCalibrationConstantsFromJson(const json& j) {
+  ExpectKeys(j, "ads", {"altitude_ft", "airspeed_kt"});
+  AdsCalibrationConstants c;
+  c.altitude_ft = SurfaceFromJson(j["altitude_ft"], "ads.altitude_ft");
+  c.airspeed_kt = SurfaceFromJson(j["airspeed_kt"], "ads.airspeed_kt");
+  return c;
+}
+
+}  // namespace adahrs::firmware_model

@@ -1,0 +1,69 @@
+// The calibration pipeline's double-precision constants for one IM3 and one ADS unit, in the raw
+// units of the reference method (reference-method.md steps 2-6), with a JSON round trip. The
+// calibration solvers produce these; constants_exporter.h turns them into target blocks.
+//
+// IMU, per channel (order az1 ax1 ay1 az2 ax2 ay2 gx gy gz, imu_constants.h):
+//   thermal (Eq. 4-5): xi(t) = k[0] + k[1] t + k[2] t^2, t = temperature counts of sensor
+//     `temp_sensor`, xi in the channel's U units (duty for accelerometers, counts for gyros)
+//   accelerometer (Eq. 12 as the reference summary states it): Ca_g = (T - offset_duty) /
+//     scale_duty_per_g, S ~ +-0.04 duty per g (1/S ~ +-25 g per duty, Table 16)
+//   gyro (Eq. 23): rate_dps = l[0] + l[1] d + l[2] d^2 + l[3] d^3, d = T - null_cnt
+//   cross axis (Eq. 26, 29): A_mps2 = ca_mps2_per_g Ca_g (Ca per axis = mean of its two channels),
+//     G_dps = cg G_dps
+// ADS, per output: z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y,
+//   x = pressure code, y = bridge-voltage code (thesis section 2.9, Table 25), with the code box
+//   the surface was fitted over (the exporter normalises to it).
+// Not modelled: uncertainty of the constants, fit residual statistics (the solvers report those).
+#pragma once
+
+#include <array>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace adahrs::firmware_model {
+
+struct ThermalFit {
+  int temp_sensor = 0;           ///< 0..2
+  std::array<double, 3> k = {};  ///< U units per count^i
+};
+
+struct AccelScaleFit {
+  double offset_duty = 0.0;
+  double scale_duty_per_g = 0.04;
+};
+
+struct GyroCubicFit {
+  double null_cnt = 0.0;
+  std::array<double, 4> l = {};  ///< deg/s per count^i
+};
+
+struct ImuCalibrationConstants {
+  std::array<ThermalFit, 9> thermal;
+  std::array<AccelScaleFit, 6> accel;
+  std::array<GyroCubicFit, 3> gyro;
+  std::array<std::array<double, 3>, 3> ca_mps2_per_g = {};
+  std::array<std::array<double, 3>, 3> cg = {};
+};
+
+struct SurfaceFit {
+  std::array<double, 10> coeff = {};  ///< a..j in the reference's letter order
+  double x_min_code = 0.0;
+  double x_max_code = 0.0;
+  double y_min_code = 0.0;
+  double y_max_code = 0.0;
+};
+
+struct AdsCalibrationConstants {
+  SurfaceFit altitude_ft;
+  SurfaceFit airspeed_kt;
+};
+
+/// JSON forms; the readers throw std::runtime_error naming the JSON path of a missing, mistyped
+/// or unexpected key.
+nlohmann::json ToJson(const ImuCalibrationConstants& constants);
+nlohmann::json ToJson(const AdsCalibrationConstants& constants);
+ImuCalibrationConstants ImuCalibrationConstantsFromJson(const nlohmann::json& json);
+AdsCalibrationConstants AdsCalibrationConstantsFromJson(const nlohmann::json& json);
+
+}  // namespace adahrs::firmware_model

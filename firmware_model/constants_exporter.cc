@@ -1,0 +1,282 @@
+#include "firmware_model/constants_exporter.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+// fmt header-only: firmware_model links no formatting library (firmware_model/CMakeLists.txt).
+#define FMT_HEADER_ONLY
+#include <fmt/format.h>
+
+namespace adahrs::firmware_model {
+namespace {
+
+using Real = long double;
+
+double Lsb(int exponent) { return std::ldexp(1.0, exponent - 31); }
+
+// Smallest e >= min_e with |v| < 2^e (mantissa rounded to nearest stays below 2^31).
+CoeffQ31 Quantise(Real v, int min_e, const std::string& what) {
+  int e = min_e;
+  if (v != 0) {
+    int ex = 0;
+    std::frexp(static_cast<double>(v), &ex);
+    e = std::max(ex, min_e);
+  }
+  Real m = std::nearbyint(std::ldexp(v, 31 - e));
+  if (std::fabs(m) >= std::ldexp(Real{1}, 31)) {
+    ++e;
+    m = std::nearbyint(std::ldexp(v, 31 - e));
+  }
+  if (e > kMaxExponent || e < kMinExponent) {
+    throw std::invalid_argument(fmt::format("{}: value {:.6g} needs exponent {} outside {}..{}",
+                                            what, static_cast<double>(v), e, kMinExponent,
+                                            kMaxExponent));
+  }
+  return CoeffQ31{static_cast<int32_t>(m), static_cast<int8_t>(e)};
+}
+
+Real Value(const CoeffQ31& c) { return std::ldexp(static_cast<Real>(c.mantissa_q31), c.exponent - 31); }
+
+Real Binomial(int n, int k) {
+  Real r = 1;
+  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+  return r;
+}
+
+// Coefficients of p(v) = sum k_j (v - v0)^j in x with v = centre + 2^shift x.
+std::vector<Real> Renormalise(const std::vector<Real>& k, Real centre_minus_v0, int shift) {
+  const int n = static_cast<int>(k.size());
+  std::vector<Real> c(n, 0);
+  for (int m = 0; m < n; ++m) {
+    for (int j = m; j < n; ++j) {
+      c[m] += k[j] * Binomial(j, m) * std::pow(centre_minus_v0, j - m) *
+              std::ldexp(Real{1}, shift * m);
+    }
+  }
+  return c;
+}
+
+struct QuantisedPoly {
+  PolyQ31 poly;
+  double bound;  // worst-case |error| at |x| <= 1, output units
+};
+
+// Quantises c (degree = size - 1) with the smallest working exponent in [min_work, max_work] that
+// satisfies the target's overflow rule after rounding.
+QuantisedPoly QuantisePoly(const std::vector<Real>& c, int min_work, int max_work,
+                           const std::string& what) {
+  Real sum_abs = 0;
+  for (Real v : c) sum_abs += std::fabs(v);
+  int work = min_work;
+  while (work <= max_work && std::ldexp(Real{1}, work) <= sum_abs) ++work;
+  const uint8_t degree = static_cast<uint8_t>(c.size() - 1);
+  for (; work <= max_work; ++work) {
+    QuantisedPoly q{};
+    q.poly.work_exponent = static_cast<int8_t>(work);
+    for (auto& coeff : q.poly.coeff) coeff = CoeffQ31{0, q.poly.work_exponent};
+    double coeff_error = 0;
+    for (size_t i = 0; i < c.size(); ++i) {
+      q.poly.coeff[i] = Quantise(c[i], work - kMaxAlignShift, what);
+      coeff_error += static_cast<double>(std::fabs(Value(q.poly.coeff[i]) - c[i]));
+    }
+    if (ValidatePoly(q.poly, degree) == ConstantsStatus::kOk) {
+      q.bound = coeff_error + 4.0 * (degree + 1) * Lsb(work);
+      return q;
+    }
+  }
+  throw std::invalid_argument(fmt::format(
+      "{}: sum of |coefficients| {:.6g} over the normalised span does not fit below 2^{}", what,
+      static_cast<double>(sum_abs), max_work));
+}
+
+}  // namespace
+
+ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
+  ImuExport out{};
+  ImuConstantsInit(&out.constants);
+  ImuConstants& q = out.constants;
+  std::array<double, 9> thermal_bound{};  // in U units
+  for (int ch = 0; ch < kImuChannels; ++ch) {
+    const std::string what = fmt::format("thermal block 0x{:02X} (channel {})", ch + 1, ch);
+    const ThermalFit& f = in.thermal[ch];
+    if (f.temp_sensor < 0 || f.temp_sensor >= kTempSensors) {
+      throw std::invalid_argument(what + ": temp_sensor must be 0..2");
+    }
+    ThermalConstantsQ31& t = q.thermal[ch];
+    t.temp_sensor = static_cast<uint8_t>(f.temp_sensor);
+    t.temp_norm = InputNormQ31{32768, 16};
+    const int u_e = ch < kAccelChannels ? kDutyExponent : kGyroCountExponent;
+    const auto c = Renormalise({f.k[0], f.k[1], f.k[2]}, 32768, 16);
+    const QuantisedPoly poly = QuantisePoly(c, u_e - kMaxAlignShift, u_e, what);
+    t.drift = poly.poly;
+    thermal_bound[ch] = poly.bound + 2 * Lsb(u_e);
+  }
+  double accel_g = 0;
+  for (int ch = 0; ch < kAccelChannels; ++ch) {
+    const std::string what = fmt::format("accelerometer block 0x0A (channel {})", ch);
+    const AccelScaleFit& a = in.accel[ch];
+    if (std::fabs(a.offset_duty) >= 0.5 || a.scale_duty_per_g == 0) {
+      throw std::invalid_argument(fmt::format("{}: offset {} duty or scale {} duty/g unusable",
+                                              what, a.offset_duty, a.scale_duty_per_g));
+    }
+    const Real inv_scale = Real{1} / a.scale_duty_per_g;
+    q.accel[ch].offset_duty_q31 =
+        static_cast<int32_t>(std::nearbyint(std::ldexp(a.offset_duty, 31)));
+    q.accel[ch].inv_scale_g = Quantise(inv_scale, kAccelGExponent - kMaxAlignShift, what);
+    if (std::fabs(inv_scale) * 0.5 >= 16.0) {
+      throw std::invalid_argument(fmt::format("{}: |1/S| = {:.4g} g/duty overflows +-16 g", what,
+                                              static_cast<double>(inv_scale)));
+    }
+    const double bound = (thermal_bound[ch] + Lsb(kDutyExponent)) * std::fabs(1 / a.scale_duty_per_g) +
+                         0.5 * static_cast<double>(std::fabs(Value(q.accel[ch].inv_scale_g) - inv_scale)) +
+                         4 * Lsb(kAccelGExponent);
+    accel_g = std::max(accel_g, bound);
+  }
+  double rate_dps = 0;
+  for (int g = 0; g < kGyroChannels; ++g) {
+    const std::string what = fmt::format("gyro block 0x{:02X}", kImuBlockGyroCubicFirst + g);
+    const GyroCubicFit& f = in.gyro[g];
+    GyroCubicConstantsQ31& gq = q.gyro[g];
+    const Real centre_q = std::nearbyint(std::ldexp(static_cast<Real>(f.null_cnt), 8));
+    if (std::fabs(centre_q) >= std::ldexp(Real{1}, 31)) {
+      throw std::invalid_argument(fmt::format("{}: null {} counts outside +-2^23", what, f.null_cnt));
+    }
+    gq.count_norm = InputNormQ31{static_cast<int32_t>(centre_q), 22};
+    const Real centre_cnt = std::ldexp(centre_q, -8);
+    const auto c = Renormalise({f.l[0], f.l[1], f.l[2], f.l[3]}, centre_cnt - f.null_cnt, 22);
+    const QuantisedPoly poly = QuantisePoly(c, kRateExponent, kRateExponent, what);
+    gq.rate = poly.poly;
+    // d(rate)/d(count) over the span bounds how a thermal error in counts shows in deg/s.
+    const Real span = std::ldexp(Real{1}, 22);
+    const double slope = static_cast<double>(std::fabs(f.l[1]) + 2 * std::fabs(f.l[2]) * span +
+                                             3 * std::fabs(f.l[3]) * span * span);
+    rate_dps = std::max(rate_dps, poly.bound + thermal_bound[kAccelChannels + g] * slope);
+  }
+  auto export_matrix = [&](const std::array<std::array<double, 3>, 3>& m, CoeffQ31 out_m[3][3],
+                           int out_e, double rated, double in_bound, const std::string& what) {
+    double worst = 0;
+    for (int r = 0; r < 3; ++r) {
+      double row_abs = 0;
+      double row_err = 0;
+      for (int c = 0; c < 3; ++c) {
+        out_m[r][c] = Quantise(m[r][c], out_e - kMaxAlignShift, what);
+        row_abs += std::fabs(m[r][c]);
+        row_err += static_cast<double>(std::fabs(Value(out_m[r][c]) - m[r][c]));
+      }
+      if (row_abs * rated >= std::ldexp(1.0, out_e)) {
+        throw std::invalid_argument(fmt::format(
+            "{}: row {} sum |C| = {:.6g} times the rated input {} overflows +-2^{}", what, r,
+            row_abs, rated, out_e));
+      }
+      worst = std::max(worst, row_err * rated + row_abs * in_bound + 6 * Lsb(out_e));
+    }
+    return worst;
+  };
+  const double ca_bound = export_matrix(in.ca_mps2_per_g, q.ca, kAccelMps2Exponent, kRatedAccel_g,
+                                        accel_g, "CA block 0x0E");
+  const double cg_bound =
+      export_matrix(in.cg, q.cg, kRateExponent, kRatedRate_dps, rate_dps, "CG block 0x0F");
+  // Every block must pass the target's own validation, so host and target agree on what is valid.
+  ImuConstants check{};
+  ImuConstantsInit(&check);
+  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockCg; ++id) {
+    int16_t words[kImuMaxBlockWords];
+    uint8_t count = 0;
+    ImuConstantsReadBlock(&q, id, words, kImuMaxBlockWords, &count);
+    const ConstantsStatus status = ImuConstantsWriteBlock(&check, id, words, count);
+    if (status != ConstantsStatus::kOk) {
+      throw std::invalid_argument(fmt::format("IMU block 0x{:02X}: target validation refuses it "
+                                              "(status {})", id, static_cast<int>(status)));
+    }
+  }
+  out.report = ImuExportReport{accel_g, rate_dps, ca_bound, cg_bound};
+  return out;
+}
+
+AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
+  AdsExport out{};
+  AdsConstantsInit(&out.constants);
+  auto export_surface = [](const SurfaceFit& s, int out_e, const std::string& what,
+                           SurfaceQ31* q) {
+    auto norm = [&](double lo, double hi, const char* axis) {
+      const double centre = std::nearbyint(0.5 * (lo + hi));
+      const double half = std::max(hi - centre, centre - lo);
+      int shift = 0;
+      while (std::ldexp(1.0, shift) <= half) ++shift;
+      if (shift > 31 || std::fabs(centre) >= std::ldexp(1.0, 31)) {
+        throw std::invalid_argument(fmt::format("{}: {} code box [{}, {}] too wide", what, axis, lo, hi));
+      }
+      return InputNormQ31{static_cast<int32_t>(centre), static_cast<uint8_t>(shift)};
+    };
+    q->x_norm = norm(s.x_min_code, s.x_max_code, "x");
+    q->y_norm = norm(s.y_min_code, s.y_max_code, "y");
+    // Raw coefficient of x^p y^q, letter order a..j.
+    constexpr int kP[10] = {0, 1, 0, 2, 0, 1, 3, 0, 1, 2};
+    constexpr int kQ[10] = {0, 0, 1, 0, 2, 1, 0, 3, 2, 1};
+    Real raw[4][4] = {};
+    for (int t = 0; t < 10; ++t) raw[kP[t]][kQ[t]] = s.coeff[t];
+    const Real cx = q->x_norm.centre, cy = q->y_norm.centre;
+    const Real hx = std::ldexp(Real{1}, q->x_norm.shift), hy = std::ldexp(Real{1}, q->y_norm.shift);
+    Real norm_c[4][4] = {};  // coefficient of X^m Y^n
+    for (int m = 0; m < 4; ++m) {
+      for (int n = 0; m + n < 4; ++n) {
+        for (int p = m; p < 4; ++p) {
+          for (int r = n; p + r < 4; ++r) {
+            norm_c[m][n] += raw[p][r] * Binomial(p, m) * std::pow(cx, p - m) * std::pow(hx, m) *
+                            Binomial(r, n) * std::pow(cy, r - n) * std::pow(hy, n);
+          }
+        }
+      }
+    }
+    // Outer exponent E: the smallest (from the output exponent - 16 up) for which every b_k,
+    // quantised with a working exponent within 16 of E, satisfies sum_k 2^(E_k) <= 2^E.
+    for (int e = out_e - kMaxAlignShift; e <= out_e + kMaxAlignShift; ++e) {
+      double bound = 0;
+      Real sum = 0;
+      bool aligned = true;
+      for (int k = 0; k < 4; ++k) {
+        std::vector<Real> c;
+        for (int n = 0; n <= 3 - k; ++n) c.push_back(norm_c[k][n]);
+        Real sum_abs = 0;
+        for (Real v : c) sum_abs += std::fabs(v);
+        if (sum_abs >= std::ldexp(Real{1}, e)) {
+          aligned = false;
+          break;
+        }
+        const QuantisedPoly b =
+            QuantisePoly(c, e - kMaxAlignShift, e, fmt::format("{} b{}(y)", what, k));
+        q->b[k] = b.poly;
+        bound += b.bound;
+        sum += std::ldexp(Real{1}, b.poly.work_exponent);
+      }
+      if (aligned && sum <= std::ldexp(Real{1}, e)) {
+        q->outer_work_exponent = static_cast<int8_t>(e);
+        return bound + 4 * 3 * Lsb(e) + Lsb(out_e);
+      }
+    }
+    throw std::invalid_argument(fmt::format(
+        "{}: the surface's partial sums need more than 2^{} (output format 2^{})", what,
+        out_e + kMaxAlignShift, out_e));
+  };
+  out.report.altitude_ft = export_surface(in.altitude_ft, kAltitudeExponent,
+                                          "altitude block 0x21", &out.constants.altitude);
+  out.report.airspeed_kt = export_surface(in.airspeed_kt, kAirspeedExponent,
+                                          "airspeed block 0x22", &out.constants.airspeed);
+  AdsConstants check{};
+  AdsConstantsInit(&check);
+  for (uint8_t id : {uint8_t{kAdsBlockAltitude}, uint8_t{kAdsBlockAirspeed}}) {
+    int16_t words[kAdsMaxBlockWords];
+    uint8_t count = 0;
+    AdsConstantsReadBlock(&out.constants, id, words, kAdsMaxBlockWords, &count);
+    const ConstantsStatus status = AdsConstantsWriteBlock(&check, id, words, count);
+    if (status != ConstantsStatus::kOk) {
+      throw std::invalid_argument(fmt::format("ADS block 0x{:02X}: target validation refuses it "
+                                              "(status {})", id, static_cast<int>(status)));
+    }
+  }
+  return out;
+}
+
+}  // namespace adahrs::firmware_model

@@ -1,0 +1,104 @@
+#include "firmware_model/reference_compensator.h"
+
+#include <cmath>
+
+#include "firmware_model/target/ads_constants.h"
+#include "firmware_model/target/imu_constants.h"
+
+namespace adahrs::firmware_model {
+namespace {
+
+constexpr int kPairOfAxis[3][2] = {{1, 4}, {2, 5}, {0, 3}};  // x, y, z: (ch1, ch2)
+
+double Scale(int8_t exponent) { return std::ldexp(1.0, exponent - 31); }
+
+}  // namespace
+
+std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensationMode mode,
+                                   const ImuRawFrame& raw) {
+  std::array<double, 9> u{};
+  for (int i = 0; i < 6; ++i) {
+    u[i] = static_cast<double>(raw.t1_cnt[i]) / static_cast<double>(raw.t2_cnt[i]) - 0.5;
+  }
+  for (int g = 0; g < 3; ++g) u[6 + g] = static_cast<double>(raw.gyro_cnt[g]);
+  if (mode == ImuCompensationMode::kRaw) return u;
+
+  std::array<double, 9> t{};
+  for (int i = 0; i < 9; ++i) {
+    const ThermalFit& f = c.thermal[i];
+    const double temp_cnt = raw.temp_cnt[f.temp_sensor];
+    t[i] = u[i] - (f.k[0] + f.k[1] * temp_cnt + f.k[2] * temp_cnt * temp_cnt);
+  }
+  if (mode == ImuCompensationMode::kThermal) return t;
+
+  std::array<double, 9> cal{};
+  for (int i = 0; i < 6; ++i) {
+    cal[i] = (t[i] - c.accel[i].offset_duty) / c.accel[i].scale_duty_per_g;
+  }
+  for (int g = 0; g < 3; ++g) {
+    const double d = t[6 + g] - c.gyro[g].null_cnt;
+    const auto& l = c.gyro[g].l;
+    cal[6 + g] = l[0] + l[1] * d + l[2] * d * d + l[3] * d * d * d;
+  }
+  if (mode == ImuCompensationMode::kSensorCalibrated) return cal;
+
+  std::array<double, 9> out{};
+  std::array<double, 3> ca_g{};
+  for (int axis = 0; axis < 3; ++axis) {
+    const double ch1 = cal[kPairOfAxis[axis][0]];
+    const double ch2 = cal[kPairOfAxis[axis][1]];
+    ca_g[axis] = 0.5 * (ch1 + ch2);
+    out[6 + axis] = 0.5 * (ch1 - ch2);
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      out[r] += c.ca_mps2_per_g[r][k] * ca_g[k];
+      out[3 + r] += c.cg[r][k] * cal[6 + k];
+    }
+  }
+  return out;
+}
+
+double EvaluateSurfaceFit(const SurfaceFit& s, double x, double y) {
+  const auto& k = s.coeff;
+  return k[0] + k[1] * x + k[2] * y + k[3] * x * x + k[4] * y * y + k[5] * x * y +
+         k[6] * x * x * x + k[7] * y * y * y + k[8] * x * y * y + k[9] * x * x * y;
+}
+
+std::array<double, 2> AdsReference(const AdsCalibrationConstants& c, AdsCompensationMode mode,
+                                   const AdsRawFrame& raw) {
+  if (mode == AdsCompensationMode::kRaw) {
+    return {static_cast<double>(raw.ps_code), static_cast<double>(raw.pt_code)};
+  }
+  return {EvaluateSurfaceFit(c.altitude_ft, raw.ps_code, raw.ps_bridge_code),
+          EvaluateSurfaceFit(c.airspeed_kt, raw.pt_code, raw.pt_bridge_code)};
+}
+
+std::array<double, 9> ImuFrameToDouble(ImuCompensationMode mode, const ImuCompensatedFrame& f) {
+  std::array<int8_t, 9> e{};
+  switch (mode) {
+    case ImuCompensationMode::kRaw:
+    case ImuCompensationMode::kThermal:
+      e = {0, 0, 0, 0, 0, 0, kGyroCountExponent, kGyroCountExponent, kGyroCountExponent};
+      break;
+    case ImuCompensationMode::kSensorCalibrated:
+      e = {kAccelGExponent, kAccelGExponent, kAccelGExponent, kAccelGExponent, kAccelGExponent,
+           kAccelGExponent, kRateExponent,   kRateExponent,   kRateExponent};
+      break;
+    case ImuCompensationMode::kFullyCalibrated:
+      e = {kAccelMps2Exponent, kAccelMps2Exponent, kAccelMps2Exponent, kRateExponent,
+           kRateExponent,      kRateExponent,      kAccelGExponent,    kAccelGExponent,
+           kAccelGExponent};
+      break;
+  }
+  std::array<double, 9> out{};
+  for (int i = 0; i < 9; ++i) out[i] = f.value[i] * Scale(e[i]);
+  return out;
+}
+
+std::array<double, 2> AdsFrameToDouble(AdsCompensationMode mode, const AdsCompensatedFrame& f) {
+  if (mode == AdsCompensationMode::kRaw) return {1.0 * f.value[0], 1.0 * f.value[1]};
+  return {f.value[0] * Scale(kAltitudeExponent), f.value[1] * Scale(kAirspeedExponent)};
+}
+
+}  // namespace adahrs::firmware_model

@@ -1,0 +1,29 @@
+// Double-precision implementation of the same compensation equations as the target compensator,
+// straight from the pipeline's constants in raw units (calibration_constants.h). Used only to
+// validate the fixed-point model; outputs are in the units of compensated_frame.h (duty, counts,
+// g, deg/s, m/s^2, ft, kt) as doubles. Not modelled: any quantisation (that is the point).
+#pragma once
+
+#include <array>
+
+#include "firmware_model/calibration_constants.h"
+#include "firmware_model/target/compensated_frame.h"
+
+namespace adahrs::firmware_model {
+
+/// The nine IMU outputs of `mode`, in the physical units of compensated_frame.h.
+std::array<double, 9> ImuReference(const ImuCalibrationConstants& constants,
+                                   ImuCompensationMode mode, const ImuRawFrame& raw);
+
+/// Altitude (ft) and airspeed (kt) from the surfaces; in kRaw mode the ps and pt codes.
+std::array<double, 2> AdsReference(const AdsCalibrationConstants& constants,
+                                   AdsCompensationMode mode, const AdsRawFrame& raw);
+
+/// Evaluates one 10-term surface at raw codes (x, y).
+double EvaluateSurfaceFit(const SurfaceFit& surface, double x_code, double y_code);
+
+/// Converts a fixed-point frame to the same physical units (value = word * 2^(exponent - 31)).
+std::array<double, 9> ImuFrameToDouble(ImuCompensationMode mode, const ImuCompensatedFrame& frame);
+std::array<double, 2> AdsFrameToDouble(AdsCompensationMode mode, const AdsCompensatedFrame& frame);
+
+}  // namespace adahrs::firmware_model

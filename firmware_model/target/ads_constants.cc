@@ -1,0 +1,119 @@
+#include "firmware_model/target/ads_constants.h"
+
+namespace adahrs::firmware_model {
+namespace {
+
+// Letter index (a = 0 .. j = 9) of coefficient k of b_i(y), per ads_constants.h:
+// b0 = a + c y + e y^2 + h y^3, b1 = b + f y + i y^2, b2 = d + j y, b3 = g.
+constexpr uint8_t kLetterOf[4][4] = {{0, 2, 4, 7}, {1, 5, 8, 0}, {3, 9, 0, 0}, {6, 0, 0, 0}};
+
+uint8_t InnerDegree(uint8_t i) { return static_cast<uint8_t>(3 - i); }
+
+void ZeroSurface(SurfaceQ31* s, int8_t out_exponent) {
+  s->x_norm = InputNormQ31{0, 23};
+  s->y_norm = InputNormQ31{0, 23};
+  s->outer_work_exponent = out_exponent;
+  for (PolyQ31& b : s->b) {
+    b.work_exponent = static_cast<int8_t>(out_exponent - 2);
+    for (CoeffQ31& c : b.coeff) c = CoeffQ31{0, b.work_exponent};
+  }
+}
+
+// Outer Horner bound: with |b_k| < 2^E_k, every partial sum is below sum_k 2^E_k; require that
+// sum <= 2^E_outer. Exponents are already range-checked, so E_outer - E_k is in 0..16.
+ConstantsStatus ValidateOuter(const SurfaceQ31& s, int8_t out_exponent) {
+  const int32_t bring = s.outer_work_exponent - out_exponent;
+  if (s.outer_work_exponent < kMinExponent || s.outer_work_exponent > kMaxExponent ||
+      bring < -kMaxAlignShift || bring > kMaxAlignShift) {
+    return ConstantsStatus::kOutOfRange;
+  }
+  int64_t sum = 0;  // in units of 2^(E_outer - 16)
+  for (const PolyQ31& b : s.b) {
+    const int32_t align = s.outer_work_exponent - b.work_exponent;
+    if (align < 0 || align > kMaxAlignShift) return ConstantsStatus::kOutOfRange;
+    sum += static_cast<int64_t>(1) << (kMaxAlignShift - align);
+  }
+  if (sum > (static_cast<int64_t>(1) << kMaxAlignShift)) return ConstantsStatus::kWouldOverflow;
+  return ConstantsStatus::kOk;
+}
+
+ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, SurfaceQ31* out) {
+  SurfaceQ31 decoded{};
+  ConstantsStatus s = NormFromWords(words, 31, &decoded.x_norm);
+  if (s != ConstantsStatus::kOk) return s;
+  s = NormFromWords(words + kNormWords, 31, &decoded.y_norm);
+  if (s != ConstantsStatus::kOk) return s;
+  const int16_t* w = words + 2 * kNormWords;
+  for (uint8_t i = 0; i < 5; ++i) {
+    if (w[i] < kMinExponent || w[i] > kMaxExponent) return ConstantsStatus::kOutOfRange;
+  }
+  decoded.outer_work_exponent = static_cast<int8_t>(w[0]);
+  const int16_t* coeff_words = w + 5;
+  for (uint8_t i = 0; i < 4; ++i) {
+    PolyQ31& b = decoded.b[i];
+    b.work_exponent = static_cast<int8_t>(w[1 + i]);
+    for (uint8_t k = 0; k <= kMaxPolyDegree; ++k) b.coeff[k] = CoeffQ31{0, b.work_exponent};
+    for (uint8_t k = 0; k <= InnerDegree(i); ++k) {
+      s = CoeffFromWords(coeff_words + kCoeffWords * kLetterOf[i][k], &b.coeff[k]);
+      if (s != ConstantsStatus::kOk) return s;
+    }
+    s = ValidatePoly(b, InnerDegree(i));
+    if (s != ConstantsStatus::kOk) return s;
+  }
+  s = ValidateOuter(decoded, out_exponent);
+  if (s != ConstantsStatus::kOk) return s;
+  *out = decoded;
+  return ConstantsStatus::kOk;
+}
+
+void SurfaceToWords(const SurfaceQ31& s, int16_t* words) {
+  NormToWords(s.x_norm, words);
+  NormToWords(s.y_norm, words + kNormWords);
+  int16_t* w = words + 2 * kNormWords;
+  w[0] = s.outer_work_exponent;
+  for (uint8_t i = 0; i < 4; ++i) {
+    w[1 + i] = s.b[i].work_exponent;
+    for (uint8_t k = 0; k <= InnerDegree(i); ++k) {
+      CoeffToWords(s.b[i].coeff[k], w + 5 + kCoeffWords * kLetterOf[i][k]);
+    }
+  }
+}
+
+}  // namespace
+
+void AdsConstantsInit(AdsConstants* constants) {
+  ZeroSurface(&constants->altitude, kAltitudeExponent);
+  ZeroSurface(&constants->airspeed, kAirspeedExponent);
+}
+
+uint8_t AdsConstantsBlockLength(uint8_t block_id) {
+  return (block_id == kAdsBlockAltitude || block_id == kAdsBlockAirspeed) ? kAdsSurfaceBlockWords
+                                                                          : 0;
+}
+
+ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants, uint8_t block_id,
+                                       const int16_t* words, uint8_t count) {
+  if (constants == nullptr || words == nullptr) return ConstantsStatus::kNullArgument;
+  const uint8_t length = AdsConstantsBlockLength(block_id);
+  if (length == 0) return ConstantsStatus::kUnknownBlock;
+  if (count != length) return ConstantsStatus::kWrongLength;
+  if (block_id == kAdsBlockAltitude) {
+    return SurfaceFromWords(words, kAltitudeExponent, &constants->altitude);
+  }
+  return SurfaceFromWords(words, kAirspeedExponent, &constants->airspeed);
+}
+
+ConstantsStatus AdsConstantsReadBlock(const AdsConstants* constants, uint8_t block_id,
+                                      int16_t* words, uint8_t capacity, uint8_t* count) {
+  if (constants == nullptr || words == nullptr || count == nullptr) {
+    return ConstantsStatus::kNullArgument;
+  }
+  const uint8_t length = AdsConstantsBlockLength(block_id);
+  if (length == 0) return ConstantsStatus::kUnknownBlock;
+  if (capacity < length) return ConstantsStatus::kWrongLength;
+  SurfaceToWords(block_id == kAdsBlockAltitude ? constants->altitude : constants->airspeed, words);
+  *count = length;
+  return ConstantsStatus::kOk;
+}
+
+}  // namespace adahrs::firmware_model

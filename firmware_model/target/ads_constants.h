@@ -1,0 +1,73 @@
+// The ADS unit's calibration constants in target (fixed-point) form and their block-wise access
+// over the maintenance port (issue 3; reference-method.md step 6, thesis section 2.9).
+//
+// Each output is the reference's 10-term bivariate cubic surface
+//   z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y
+// in normalised pressure counts x and normalised temperature (bridge-voltage) counts y:
+//   altitude: x from the static-port code ps, y from the static bridge-voltage code
+//   airspeed: x from the pitot (differential) code pt, y from the pitot bridge-voltage code
+// Inputs are 24-bit ADS1254 codes held in int32 (raw integers, exponent 31), normalised as
+// x = (code - centre) * 2^-shift, shift <= 31 (fixed_coeff.h).
+// Evaluation is nested Horner, first in y then in x:
+//   b0(y) = a + c y + e y^2 + h y^3,  b1(y) = b + f y + i y^2,  b2(y) = d + j y,  b3 = g
+//   z = ((b3 x + b2) x + b1) x + b0
+// Each b_k is a PolyQ31 with its own working exponent; the outer Horner runs at the surface's
+// working exponent (>= every b_k's) and its result is brought to the output exponent with
+// saturation: altitude in ft at kAltitudeExponent (|alt| < 65,536 ft), airspeed in kt at
+// kAirspeedExponent (|cas| < 512 kt).
+//
+// Blocks:
+//   0x21 altitude surface, 0x22 airspeed surface, 41 words each:
+//     [InputNormQ31 x][InputNormQ31 y][outer work exponent][b0..b3 work exponents]
+//     [CoeffQ31 a, b, c, d, e, f, g, h, i, j]   (the reference's letter order)
+// A write validates the whole block first and changes nothing unless it returns kOk. Overflow
+// rule: each b_k must satisfy the PolyQ31 bound; the outer Horner must satisfy
+// sum_k 2^(E_k) <= 2^E_outer (with |b_k| < 2^E_k this bounds every partial sum for |x| <= 1).
+// Not modelled: Mach and TAS (need OAT; computed downstream), hysteresis, OAT calibration.
+#pragma once
+
+#include <cstdint>
+
+#include "firmware_model/target/fixed_coeff.h"
+
+namespace adahrs::firmware_model {
+
+inline constexpr int8_t kAltitudeExponent = 16;  ///< altitude in ft, |alt| < 65,536 ft
+inline constexpr int8_t kAirspeedExponent = 9;   ///< airspeed in kt, |cas| < 512 kt
+inline constexpr uint8_t kSurfaceTerms = 10;
+
+struct SurfaceQ31 {
+  InputNormQ31 x_norm;      ///< pressure code normalisation
+  InputNormQ31 y_norm;      ///< temperature code normalisation
+  int8_t outer_work_exponent;
+  PolyQ31 b[4];             ///< b_k(y), degree 3 - k
+};
+
+struct AdsConstants {
+  SurfaceQ31 altitude;  ///< ft
+  SurfaceQ31 airspeed;  ///< kt
+};
+
+enum AdsBlockId : uint8_t {
+  kAdsBlockAltitude = 0x21,
+  kAdsBlockAirspeed = 0x22,
+};
+
+inline constexpr uint8_t kAdsSurfaceBlockWords = 2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords;
+inline constexpr uint8_t kAdsMaxBlockWords = kAdsSurfaceBlockWords;
+
+/// Uncalibrated state: all-zero surfaces (outputs read zero), centres 0, shifts 23.
+void AdsConstantsInit(AdsConstants* constants);
+
+/// Words in block `block_id`, or 0 if the block is unknown.
+uint8_t AdsConstantsBlockLength(uint8_t block_id);
+
+/// Replaces block `block_id` from `count` words; on any status but kOk nothing changes.
+ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants, uint8_t block_id,
+                                       const int16_t* words, uint8_t count);
+
+/// Writes block `block_id` into `words` (capacity `capacity`), its length into `*count`.
+ConstantsStatus AdsConstantsReadBlock(const AdsConstants* constants, uint8_t block_id,
+                                      int16_t* words, uint8_t capacity, uint8_t* count);
+
+}  // namespace adahrs::firmware_model

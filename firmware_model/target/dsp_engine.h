@@ -1,0 +1,158 @@
+// Bit-exact host model of the dsPIC30F/33F DSP engine and the few MCU instructions the
+// compensator needs, with an instruction and cycle counter (physics.md sections 5.1-5.2).
+//
+// Modelled: two 40-bit accumulators A and B (int64 kept sign-extended to 40 bits); the 17x17
+// multiplier in fractional (product shifted left 1) or integer mode, signed or unsigned (CORCON IF
+// and US); MPY / MAC / MSC; LAC / SAC / SAC.R with the -8..+7 shift; SFTAC (-16..16, positive =
+// right); ADD / SUB / NEG accumulators; ADD of a 16-bit word to an accumulator; MOV to and from
+// ACCxL/ACCxH/ACCxU (memory-mapped on the 30F/33F); accumulator saturation per SATA/SATB with
+// ACCSAT choosing bit-39 super saturation (9.31) or bit-31 normal saturation (1.31), or none
+// (40-bit wrap, SA/SB set on catastrophic overflow); sticky SA/SB and live OA/OB flags; SATDW data
+// write saturation with the sign from bit 39; conventional or convergent rounding (RND);
+// MUL.SS/SU/UU into a W-register pair; DIVF, DIV.SD and DIV.UD (truncated quotient and remainder,
+// 19 cycles each with the REPEAT #17); and MOV, SUB/SUBB, LSR/RRC, compare-and-branch charges.
+// Cycle costs (physics.md 5.1, Programmer's Reference Manual DS70157): every instruction here is
+// 1 cycle except DIVx (19 incl. REPEAT), a taken branch (2), CALL (2) and RETURN (3).
+// Assumptions (R): a left SFTAC/LAC shift saturates on the exact shifted value; a division whose
+// quotient does not fit, or by zero, sets the math-error flag (the chip traps) and returns a
+// saturated quotient. Not modelled: the X/Y prefetch AGUs and W13 write-back of MAC-class
+// instructions (the compensator loads operands with explicit MOVs, which costs more, not less),
+// the pipeline, interrupts, DO/REPEAT hardware beyond their cycle charge, OA/OB traps.
+#pragma once
+
+#include <cstdint>
+
+namespace adahrs::firmware_model {
+
+enum class Acc : uint8_t { kA = 0, kB = 1 };
+
+/// The other accumulator.
+constexpr Acc Other(Acc acc) { return acc == Acc::kA ? Acc::kB : Acc::kA; }
+
+/// Instruction classes counted by the engine (one entry of the cycle table each).
+enum class DspOp : uint8_t {
+  kMpy, kMac, kMsc, kLac, kSac, kSacR, kSftac, kAddAcc, kSubAcc, kNegAcc, kAddWordAcc, kClrAcc,
+  kMovAccWord, kMulSS, kMulSU, kMulUU, kDivF, kDivSD, kDivUD, kMov, kAlu, kBranch, kCall, kReturn,
+  kCount
+};
+
+/// Documented cycle cost of one instruction of class `op`.
+uint8_t DspOpCycles(DspOp op);
+/// Mnemonic of `op` for cycle tables.
+const char* DspOpName(DspOp op);
+
+/// CORCON bits that the arithmetic depends on.
+struct DspConfig {
+  bool integer_mode = false;        ///< IF: 1 = integer, 0 = fractional (product << 1)
+  bool unsigned_mode = false;       ///< US: operands of MPY/MAC unsigned
+  bool saturate_a = true;           ///< SATA
+  bool saturate_b = true;           ///< SATB
+  bool super_saturation = false;    ///< ACCSAT: 1 = bit-39 (9.31), 0 = bit-31 (1.31)
+  bool saturate_writes = true;      ///< SATDW
+  bool convergent_rounding = true;  ///< RND: 0 = convergent (reset default), 1 = conventional
+};
+
+struct DivResult {
+  int32_t quotient;
+  int32_t remainder;
+};
+
+class DspEngine {
+ public:
+  DspEngine() = default;
+  explicit DspEngine(const DspConfig& config) : config_(config) {}
+
+  const DspConfig& config() const { return config_; }
+  void set_config(const DspConfig& config) { config_ = config; }
+
+  // ---- DSP instructions (1 cycle each). Shifts: positive = right, negative = left.
+  /// MPY a*b -> acc.
+  void Mpy(Acc acc, int16_t a, int16_t b);
+  /// MAC acc += a*b.
+  void Mac(Acc acc, int16_t a, int16_t b);
+  /// MSC acc -= a*b.
+  void Msc(Acc acc, int16_t a, int16_t b);
+  /// LAC: word into bits 31..16, sign-extended, low word cleared, then shifted by -8..+7.
+  void Lac(Acc acc, int16_t word, int8_t shift);
+  /// SAC: stores bits 31..16 of (acc shifted by -8..+7), truncated, with SATDW.
+  int16_t Sac(Acc acc, int8_t shift);
+  /// SAC.R: as Sac but rounded per RND.
+  int16_t SacR(Acc acc, int8_t shift);
+  /// SFTAC by -16..16.
+  void Sftac(Acc acc, int8_t shift);
+  /// ADD Acc: dst += other.
+  void AddAcc(Acc dst);
+  /// SUB Acc: dst -= other.
+  void SubAcc(Acc dst);
+  /// NEG Acc.
+  void NegAcc(Acc acc);
+  /// ADD Ws,#shift,Acc: word aligned like LAC, added to acc.
+  void AddWordAcc(Acc acc, int16_t word, int8_t shift);
+  /// CLR Acc.
+  void ClrAcc(Acc acc);
+
+  // ---- MOV to/from the memory-mapped accumulator words (1 cycle each, no saturation).
+  void MovToAccLow(Acc acc, uint16_t word);
+  void MovToAccHigh(Acc acc, int16_t word);  ///< writes bits 31..16 and sign-extends into ACCxU
+  uint16_t MovFromAccLow(Acc acc);
+  int16_t MovFromAccHigh(Acc acc);
+  int16_t MovFromAccUpper(Acc acc);  ///< bits 39..32, sign-extended
+
+  // ---- MCU multiply and divide.
+  int32_t MulSS(int16_t a, int16_t b);
+  int32_t MulSU(int16_t a, uint16_t b);
+  uint32_t MulUU(uint16_t a, uint16_t b);
+  /// DIVF: fractional num/den, needs |num| < |den|; quotient Q15, remainder.
+  DivResult DivF(int16_t num, int16_t den);
+  /// DIV.SD: signed 32/16, quotient must fit int16.
+  DivResult DivSD(int32_t num, int16_t den);
+  /// DIV.UD: unsigned 32/16, quotient must fit uint16.
+  DivResult DivUD(uint32_t num, uint16_t den);
+
+  // ---- Charges for plain MCU instructions whose result the caller computes itself.
+  void ChargeMov(uint8_t count = 1) { Charge(DspOp::kMov, count); }
+  void ChargeAlu(uint8_t count = 1) { Charge(DspOp::kAlu, count); }
+  void ChargeBranch(uint8_t count = 1) { Charge(DspOp::kBranch, count); }
+  /// CALL + RETURN of one subroutine.
+  void ChargeCallReturn() {
+    Charge(DspOp::kCall, 1);
+    Charge(DspOp::kReturn, 1);
+  }
+
+  // ---- State.
+  int64_t acc(Acc acc) const { return acc_[Index(acc)]; }
+  /// Sets an accumulator directly (test set-up; no cycles).
+  void set_acc(Acc acc, int64_t value40) { acc_[Index(acc)] = value40; }
+  bool sa() const { return sa_; }
+  bool sb() const { return sb_; }
+  bool oa() const { return Overflowed31(acc_[0]); }
+  bool ob() const { return Overflowed31(acc_[1]); }
+  bool math_error() const { return math_error_; }
+  /// Reads and clears SA/SB (a BTSC on SR plus a BCLR: charged 2 cycles).
+  bool TestAndClearSaturation();
+
+  uint32_t cycles() const { return cycles_; }
+  uint32_t instructions() const { return instructions_; }
+  uint32_t op_count(DspOp op) const { return op_counts_[static_cast<uint8_t>(op)]; }
+  void ResetCounters();
+
+ private:
+  static constexpr uint8_t Index(Acc acc) { return static_cast<uint8_t>(acc); }
+  static bool Overflowed31(int64_t v) { return v > INT64_C(0x7FFFFFFF) || v < -INT64_C(0x80000000); }
+  void Charge(DspOp op, uint8_t count);
+  int64_t Product(int16_t a, int16_t b) const;
+  /// Applies the saturation mode of `acc` to an exact result and stores it.
+  void Write(Acc acc, int64_t exact);
+  int16_t Store(Acc acc, int8_t shift, bool round);
+
+  DspConfig config_{};
+  int64_t acc_[2] = {0, 0};
+  bool sa_ = false;
+  bool sb_ = false;
+  bool math_error_ = false;
+  uint32_t cycles_ = 0;
+  uint32_t instructions_ = 0;
+  uint32_t op_counts_[static_cast<uint8_t>(DspOp::kCount)] = {};
+};
+
+}  // namespace adahrs::firmware_model

@@ -1,0 +1,189 @@
+#include "firmware_model/target/imu_compensator.h"
+
+#include "firmware_model/target/q31_kernels.h"
+
+namespace adahrs::firmware_model {
+namespace {
+
+constexpr int32_t kHalfDutyQ31 = INT32_C(0x40000000);  // 0.5 at exponent 0
+// Accelerometer channels of body axes x, y, z: (ch1, ch2) in az1 ax1 ay1 az2 ax2 ay2 order.
+constexpr uint8_t kPairOfAxis[3][2] = {{1, 4}, {2, 5}, {0, 3}};
+
+// U = T1/T2 - 0.5 at exponent 0, floor(U 2^31); kFlagBadDuty and +full scale if t1 >= t2.
+int32_t DutyQ31(DspEngine* engine, uint16_t t1, uint16_t t2, uint16_t* flags) {
+  engine->ChargeMov(2);     // t1, t2 into W registers
+  engine->ChargeAlu(1);     // CP t1, t2
+  engine->ChargeBranch(1);  // BRA GEU to the error path (charged as taken: worst case)
+  if (t1 >= t2) {
+    *flags |= kFlagBadDuty;
+    return INT32_MAX;
+  }
+  engine->ChargeMov(2);  // dividend t1:0 into the W pair
+  const DivResult high = engine->DivUD(static_cast<uint32_t>(t1) << 16, t2);
+  engine->ChargeMov(2);  // dividend remainder:0
+  const DivResult low = engine->DivUD(static_cast<uint32_t>(high.remainder) << 16, t2);
+  const uint32_t ratio_u32 = (static_cast<uint32_t>(high.quotient) << 16) |
+                             static_cast<uint32_t>(low.quotient);
+  engine->ChargeAlu(3);  // LSR high, RRC low, SUB #0x4000 from high
+  return static_cast<int32_t>(ratio_u32 >> 1) - kHalfDutyQ31;
+}
+
+// U = counts at exponent 23 (counts << 8), saturating.
+int32_t GyroCountsQ31(DspEngine* engine, int32_t counts) {
+  LoadQ31(engine, Acc::kA, counts);
+  ShiftAcc(engine, Acc::kA, -(31 - kGyroCountExponent));
+  return ReadQ31(engine, Acc::kA);
+}
+
+// T = U - xi(tau), both at u_exponent.
+int32_t ThermalQ31(DspEngine* engine, const ThermalConstantsQ31& c, int8_t u_exponent, int32_t u,
+                   const uint16_t temp_cnt[kTempSensors], uint16_t* flags) {
+  engine->ChargeCallReturn();
+  const int32_t tau = NormaliseQ31(engine, temp_cnt[c.temp_sensor], kTempCountExponent, c.temp_norm);
+  if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
+  HornerQ31(engine, Acc::kA, c.drift, 2, tau);
+  engine->Sftac(Acc::kA, static_cast<int8_t>(u_exponent - c.drift.work_exponent));
+  LoadQ31(engine, Acc::kB, u);
+  engine->SubAcc(Acc::kB);
+  return ReadQ31(engine, Acc::kB);
+}
+
+// Ca = (T - O) * (1/S) in g.
+int32_t AccelCalibratedQ31(DspEngine* engine, const AccelScaleConstantsQ31& c, int32_t t) {
+  LoadQ31(engine, Acc::kA, t);
+  LoadQ31(engine, Acc::kB, c.offset_duty_q31);
+  engine->SubAcc(Acc::kA);
+  const int32_t d = ReadQ31(engine, Acc::kA);
+  MulQ31(engine, Acc::kA, d, c.inv_scale_g.mantissa_q31);
+  engine->Sftac(Acc::kA, static_cast<int8_t>(kAccelGExponent - c.inv_scale_g.exponent));
+  return ReadQ31(engine, Acc::kA);
+}
+
+// Eq. 23 in deg/s.
+int32_t GyroCalibratedQ31(DspEngine* engine, const GyroCubicConstantsQ31& c, int32_t t,
+                          uint16_t* flags) {
+  engine->ChargeCallReturn();
+  const int32_t x = NormaliseQ31(engine, t, kGyroCountExponent, c.count_norm);
+  if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
+  return HornerQ31(engine, Acc::kA, c.rate, 3, x);
+}
+
+// (a + b)/2 or (a - b)/2 without intermediate overflow: both halved first (floor each).
+int32_t HalfSumQ31(DspEngine* engine, int32_t a, int32_t b, bool difference) {
+  LoadQ31(engine, Acc::kA, a);
+  engine->Sftac(Acc::kA, 1);
+  LoadQ31(engine, Acc::kB, b);
+  engine->Sftac(Acc::kB, 1);
+  if (difference) {
+    engine->SubAcc(Acc::kA);
+  } else {
+    engine->AddAcc(Acc::kA);
+  }
+  return ReadQ31(engine, Acc::kA);
+}
+
+// y = M v, M entries at their own exponents, v at in_exponent, y at out_exponent. Each term is a
+// MulQ31 aligned by one SFTAC, added to the running sum held in a W pair.
+void MatrixVectorQ31(DspEngine* engine, const CoeffQ31 m[3][3], const int32_t v[3],
+                     int8_t in_exponent, int8_t out_exponent, int32_t y[3]) {
+  engine->ChargeCallReturn();
+  for (uint8_t r = 0; r < 3; ++r) {
+    int32_t sum = 0;
+    for (uint8_t c = 0; c < 3; ++c) {
+      MulQ31(engine, Acc::kA, m[r][c].mantissa_q31, v[c]);
+      engine->Sftac(Acc::kA, static_cast<int8_t>(out_exponent - m[r][c].exponent - in_exponent));
+      if (c > 0) {
+        LoadQ31(engine, Acc::kB, sum);
+        engine->AddAcc(Acc::kA);
+      }
+      sum = ReadQ31(engine, Acc::kA);
+    }
+    y[r] = sum;
+  }
+}
+
+}  // namespace
+
+DspConfig CompensatorDspConfig() {
+  DspConfig config;
+  config.integer_mode = false;
+  config.unsigned_mode = false;
+  config.saturate_a = true;
+  config.saturate_b = true;
+  config.super_saturation = false;
+  config.saturate_writes = true;
+  config.convergent_rounding = true;
+  return config;
+}
+
+void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensationMode mode,
+                   const ImuRawFrame& raw, ImuCompensatedFrame* out) {
+  engine->ChargeCallReturn();
+  engine->set_config(CompensatorDspConfig());
+  engine->ChargeMov(1);  // CORCON write
+  engine->TestAndClearSaturation();
+  uint16_t flags = 0;
+
+  int32_t u[kImuChannels];
+  for (uint8_t c = 0; c < kAccelChannels; ++c) {
+    u[c] = DutyQ31(engine, raw.t1_cnt[c], raw.t2_cnt[c], &flags);
+  }
+  for (uint8_t g = 0; g < kGyroChannels; ++g) {
+    u[kAccelChannels + g] = GyroCountsQ31(engine, raw.gyro_cnt[g]);
+  }
+  if (engine->TestAndClearSaturation()) flags |= kFlagInputSaturated;
+  if (mode == ImuCompensationMode::kRaw) {
+    for (uint8_t c = 0; c < kImuChannels; ++c) out->value[c] = u[c];
+    out->flags = flags;
+    return;
+  }
+
+  int32_t t[kImuChannels];
+  for (uint8_t c = 0; c < kImuChannels; ++c) {
+    const int8_t u_exponent = c < kAccelChannels ? kDutyExponent : kGyroCountExponent;
+    t[c] = ThermalQ31(engine, constants.thermal[c], u_exponent, u[c], raw.temp_cnt, &flags);
+  }
+  if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
+  if (mode == ImuCompensationMode::kThermal) {
+    for (uint8_t c = 0; c < kImuChannels; ++c) out->value[c] = t[c];
+    out->flags = flags;
+    return;
+  }
+
+  int32_t cal[kImuChannels];
+  for (uint8_t c = 0; c < kAccelChannels; ++c) {
+    cal[c] = AccelCalibratedQ31(engine, constants.accel[c], t[c]);
+  }
+  for (uint8_t g = 0; g < kGyroChannels; ++g) {
+    const uint8_t c = static_cast<uint8_t>(kAccelChannels + g);
+    cal[c] = GyroCalibratedQ31(engine, constants.gyro[g], t[c], &flags);
+  }
+  if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
+  if (mode == ImuCompensationMode::kSensorCalibrated) {
+    for (uint8_t c = 0; c < kImuChannels; ++c) out->value[c] = cal[c];
+    out->flags = flags;
+    return;
+  }
+
+  int32_t ca_g[3];
+  int32_t half_difference_g[3];
+  for (uint8_t axis = 0; axis < 3; ++axis) {
+    const int32_t ch1 = cal[kPairOfAxis[axis][0]];
+    const int32_t ch2 = cal[kPairOfAxis[axis][1]];
+    ca_g[axis] = HalfSumQ31(engine, ch1, ch2, false);
+    half_difference_g[axis] = HalfSumQ31(engine, ch1, ch2, true);
+  }
+  int32_t a_mps2[3];
+  int32_t g_dps[3];
+  MatrixVectorQ31(engine, constants.ca, ca_g, kAccelGExponent, kAccelMps2Exponent, a_mps2);
+  MatrixVectorQ31(engine, constants.cg, cal + kAccelChannels, kRateExponent, kRateExponent, g_dps);
+  if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
+  for (uint8_t i = 0; i < 3; ++i) {
+    out->value[i] = a_mps2[i];
+    out->value[3 + i] = g_dps[i];
+    out->value[6 + i] = half_difference_g[i];
+  }
+  out->flags = flags;
+}
+
+}  // namespace adahrs::firmware_model

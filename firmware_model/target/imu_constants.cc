@@ -1,0 +1,197 @@
+#include "firmware_model/target/imu_constants.h"
+
+namespace adahrs::firmware_model {
+namespace {
+
+constexpr CoeffQ31 kZeroCoeff{0, 0};
+// 1.0 at exponent 1: mantissa 2^30.
+constexpr CoeffQ31 kOneCoeff{INT32_C(0x40000000), 1};
+
+void ZeroPoly(PolyQ31* poly, int8_t work_exponent) {
+  poly->work_exponent = work_exponent;
+  for (CoeffQ31& c : poly->coeff) c = CoeffQ31{0, work_exponent};
+}
+
+void IdentityMatrix(CoeffQ31 m[3][3]) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m[r][c] = (r == c) ? kOneCoeff : kZeroCoeff;
+  }
+}
+
+// Row sums of |C| times the rated input must stay below the output full scale 2^out_exponent:
+// sum_j |m_j| 2^(e_j - 31) * rated < 2^out_exponent. Exponents are validated to -40..40 first.
+ConstantsStatus ValidateMatrix(const CoeffQ31 m[3][3], int32_t rated, int8_t out_exponent) {
+  for (int r = 0; r < 3; ++r) {
+    // Accumulate |m| * rated * 2^(e - out_exponent + 16) in Q31 units scaled by 2^16.
+    int64_t sum = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int32_t e = m[r][c].exponent;
+      const int32_t shift = e - out_exponent + 16;
+      if (e < kMinExponent || e > kMaxExponent || shift < 0 || shift > 20) {
+        return ConstantsStatus::kOutOfRange;
+      }
+      const int64_t abs_m = m[r][c].mantissa_q31 < 0 ? -static_cast<int64_t>(m[r][c].mantissa_q31)
+                                                     : m[r][c].mantissa_q31;
+      sum += (abs_m * rated) << shift;
+    }
+    if (sum >= (static_cast<int64_t>(1) << (31 + 16))) return ConstantsStatus::kWouldOverflow;
+  }
+  return ConstantsStatus::kOk;
+}
+
+ConstantsStatus MatrixFromWords(const int16_t* words, int32_t rated, int8_t out_exponent,
+                                CoeffQ31 out[3][3]) {
+  CoeffQ31 decoded[3][3];
+  for (int k = 0; k < 9; ++k) {
+    const ConstantsStatus s = CoeffFromWords(words + kCoeffWords * k, &decoded[k / 3][k % 3]);
+    if (s != ConstantsStatus::kOk) return s;
+  }
+  const ConstantsStatus s = ValidateMatrix(decoded, rated, out_exponent);
+  if (s != ConstantsStatus::kOk) return s;
+  for (int k = 0; k < 9; ++k) out[k / 3][k % 3] = decoded[k / 3][k % 3];
+  return ConstantsStatus::kOk;
+}
+
+void MatrixToWords(const CoeffQ31 m[3][3], int16_t* words) {
+  for (int k = 0; k < 9; ++k) CoeffToWords(m[k / 3][k % 3], words + kCoeffWords * k);
+}
+
+ConstantsStatus ThermalFromWords(const int16_t* words, uint8_t channel, ThermalConstantsQ31* out) {
+  if (words[0] < 0 || words[0] >= kTempSensors) return ConstantsStatus::kOutOfRange;
+  ThermalConstantsQ31 decoded{};
+  decoded.temp_sensor = static_cast<uint8_t>(words[0]);
+  ConstantsStatus s = NormFromWords(words + 1, 16, &decoded.temp_norm);
+  if (s != ConstantsStatus::kOk) return s;
+  s = PolyFromWords(words + 1 + kNormWords, 2, &decoded.drift);
+  if (s != ConstantsStatus::kOk) return s;
+  // xi is subtracted from U at U's exponent; it may be evaluated at most 16 bits finer or coarser.
+  const int8_t u_exponent = channel < kAccelChannels ? kDutyExponent : kGyroCountExponent;
+  const int32_t bring = decoded.drift.work_exponent - u_exponent;
+  if (bring < -kMaxAlignShift || bring > kMaxAlignShift) return ConstantsStatus::kOutOfRange;
+  *out = decoded;
+  return ConstantsStatus::kOk;
+}
+
+ConstantsStatus AccelFromWords(const int16_t* words, AccelScaleConstantsQ31 out[kAccelChannels]) {
+  AccelScaleConstantsQ31 decoded[kAccelChannels];
+  for (uint8_t c = 0; c < kAccelChannels; ++c) {
+    const int16_t* w = words + c * (2 + kCoeffWords);
+    const uint32_t bits = (static_cast<uint32_t>(static_cast<uint16_t>(w[0])) << 16) |
+                          static_cast<uint32_t>(static_cast<uint16_t>(w[1]));
+    decoded[c].offset_duty_q31 = static_cast<int32_t>(bits);
+    const ConstantsStatus s = CoeffFromWords(w + 2, &decoded[c].inv_scale_g);
+    if (s != ConstantsStatus::kOk) return s;
+    // (T - O) is a duty at exponent 0; the product (T - O) * (1/S) is at exponent e and is brought
+    // to the g format by one SFTAC of (kAccelGExponent - e) bits.
+    const int32_t bring = decoded[c].inv_scale_g.exponent + kDutyExponent - kAccelGExponent;
+    if (bring < -kMaxAlignShift || bring > kMaxAlignShift) return ConstantsStatus::kOutOfRange;
+    // Rated duty span: |T - O| <= 0.5 duty, so |1/S| * 0.5 < 16 g, i.e. |1/S| < 32 g per duty.
+    const int64_t abs_m = decoded[c].inv_scale_g.mantissa_q31 < 0
+                              ? -static_cast<int64_t>(decoded[c].inv_scale_g.mantissa_q31)
+                              : decoded[c].inv_scale_g.mantissa_q31;
+    const int32_t e = decoded[c].inv_scale_g.exponent;
+    // |1/S| = abs_m * 2^(e - 31) < 32  <=>  abs_m * 2^e < 2^36 (e <= 36 here is implied by bring).
+    if (e >= 0 ? (abs_m << e) >= (static_cast<int64_t>(1) << 36)
+               : abs_m >= (static_cast<int64_t>(1) << (36 - e))) {
+      return ConstantsStatus::kWouldOverflow;
+    }
+  }
+  for (uint8_t c = 0; c < kAccelChannels; ++c) out[c] = decoded[c];
+  return ConstantsStatus::kOk;
+}
+
+ConstantsStatus GyroFromWords(const int16_t* words, GyroCubicConstantsQ31* out) {
+  GyroCubicConstantsQ31 decoded{};
+  ConstantsStatus s = NormFromWords(words, kGyroCountExponent, &decoded.count_norm);
+  if (s != ConstantsStatus::kOk) return s;
+  s = PolyFromWords(words + kNormWords, 3, &decoded.rate);
+  if (s != ConstantsStatus::kOk) return s;
+  if (decoded.rate.work_exponent != kRateExponent) return ConstantsStatus::kOutOfRange;
+  *out = decoded;
+  return ConstantsStatus::kOk;
+}
+
+}  // namespace
+
+void ImuConstantsInit(ImuConstants* constants) {
+  for (uint8_t c = 0; c < kImuChannels; ++c) {
+    ThermalConstantsQ31& t = constants->thermal[c];
+    t.temp_sensor = static_cast<uint8_t>(c < kAccelChannels ? c % kTempSensors
+                                                            : c - kAccelChannels);
+    t.temp_norm = InputNormQ31{INT32_C(32768), 16};
+    ZeroPoly(&t.drift, c < kAccelChannels ? kDutyExponent : kGyroCountExponent);
+  }
+  for (AccelScaleConstantsQ31& a : constants->accel) a = AccelScaleConstantsQ31{0, {0, 5}};
+  for (GyroCubicConstantsQ31& g : constants->gyro) {
+    g.count_norm = InputNormQ31{0, kGyroCountExponent};
+    ZeroPoly(&g.rate, kRateExponent);
+  }
+  IdentityMatrix(constants->ca);
+  IdentityMatrix(constants->cg);
+}
+
+uint8_t ImuConstantsBlockLength(uint8_t block_id) {
+  if (block_id >= kImuBlockThermalFirst && block_id <= kImuBlockThermalLast) {
+    return kImuThermalBlockWords;
+  }
+  if (block_id == kImuBlockAccelOffsetScale) return kImuAccelBlockWords;
+  if (block_id >= kImuBlockGyroCubicFirst && block_id <= kImuBlockGyroCubicLast) {
+    return kImuGyroBlockWords;
+  }
+  if (block_id == kImuBlockCa || block_id == kImuBlockCg) return kImuMatrixBlockWords;
+  return 0;
+}
+
+ConstantsStatus ImuConstantsWriteBlock(ImuConstants* constants, uint8_t block_id,
+                                       const int16_t* words, uint8_t count) {
+  if (constants == nullptr || words == nullptr) return ConstantsStatus::kNullArgument;
+  const uint8_t length = ImuConstantsBlockLength(block_id);
+  if (length == 0) return ConstantsStatus::kUnknownBlock;
+  if (count != length) return ConstantsStatus::kWrongLength;
+  if (block_id <= kImuBlockThermalLast) {
+    const uint8_t channel = static_cast<uint8_t>(block_id - kImuBlockThermalFirst);
+    return ThermalFromWords(words, channel, &constants->thermal[channel]);
+  }
+  if (block_id == kImuBlockAccelOffsetScale) return AccelFromWords(words, constants->accel);
+  if (block_id <= kImuBlockGyroCubicLast) {
+    return GyroFromWords(words, &constants->gyro[block_id - kImuBlockGyroCubicFirst]);
+  }
+  if (block_id == kImuBlockCa) {
+    return MatrixFromWords(words, kRatedAccel_g, kAccelMps2Exponent, constants->ca);
+  }
+  return MatrixFromWords(words, kRatedRate_dps, kRateExponent, constants->cg);
+}
+
+ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants, uint8_t block_id,
+                                      int16_t* words, uint8_t capacity, uint8_t* count) {
+  if (constants == nullptr || words == nullptr || count == nullptr) {
+    return ConstantsStatus::kNullArgument;
+  }
+  const uint8_t length = ImuConstantsBlockLength(block_id);
+  if (length == 0) return ConstantsStatus::kUnknownBlock;
+  if (capacity < length) return ConstantsStatus::kWrongLength;
+  if (block_id <= kImuBlockThermalLast) {
+    const ThermalConstantsQ31& t = constants->thermal[block_id - kImuBlockThermalFirst];
+    words[0] = t.temp_sensor;
+    NormToWords(t.temp_norm, words + 1);
+    PolyToWords(t.drift, 2, words + 1 + kNormWords);
+  } else if (block_id == kImuBlockAccelOffsetScale) {
+    for (uint8_t c = 0; c < kAccelChannels; ++c) {
+      int16_t* w = words + c * (2 + kCoeffWords);
+      const uint32_t bits = static_cast<uint32_t>(constants->accel[c].offset_duty_q31);
+      w[0] = static_cast<int16_t>(bits >> 16);
+      w[1] = static_cast<int16_t>(bits & 0xFFFFu);
+      CoeffToWords(constants->accel[c].inv_scale_g, w + 2);
+    }
+  } else if (block_id <= kImuBlockGyroCubicLast) {
+    const GyroCubicConstantsQ31& g = constants->gyro[block_id - kImuBlockGyroCubicFirst];
+    NormToWords(g.count_norm, words);
+    PolyToWords(g.rate, 3, words + kNormWords);
+  } else {
+    MatrixToWords(block_id == kImuBlockCa ? constants->ca : constants->cg, words);
+  }
+  *count = length;
+  return ConstantsStatus::kOk;
+}
+
+}  // namespace adahrs::firmware_model

@@ -1,0 +1,119 @@
+// The IM3 unit's calibration constants in target (fixed-point) form, and the block-wise access the
+// maintenance port uses to write and read them (issue 3; reference-method.md, Chapter 2 steps 2-5).
+//
+// Channels, in this order everywhere (reference-method.md, "The unit"):
+//   0 az1, 1 ax1, 2 ay1, 3 az2, 4 ax2, 5 ay2   ADXL210E duty-cycle channels, two per body axis with
+//                                            opposite polarity
+//   6 gx, 7 gy, 8 gz                          ADXRS150 rate channels
+// Temperature sensors: 0, 1, 2 are the gyro on-chip sensors of gx, gy, gz (16 summed 12-bit
+// conversions each); every channel names the sensor that drives its thermal compensation.
+//
+// Stages and the formats of their values (value = mantissa * 2^(exponent - 31), fixed_coeff.h):
+//   U   raw channel value: accel duty T1/T2 - 0.5 at exponent kDutyExponent (0), gyro counts at
+//       kGyroCountExponent (23, i.e. counts * 2^8)
+//   xi  thermal drift (Eq. 4-5): xi(tau) = k0 + k1 tau + k2 tau^2, tau = normalised temperature
+//       counts; evaluated at the poly's working exponent, then brought to U's exponent
+//   T   = U - xi, same format as U
+//   Ca  accel, Eq. 12 as the reference summary states it: (T - O) / S, stored as offset O (duty,
+//       exponent 0) and the reciprocal scale 1/S (g per duty, ~ +-25), result in g at kAccelGExponent
+//   Cg  gyro, Eq. 23: l0 + l1 x + l2 x^2 + l3 x^3, x = (T - centre) * 2^-shift, result in deg/s at
+//       kRateExponent
+//   A = CA * mean-pair(Ca) (Eq. 26, m/s^2), G = CG * Cg (Eq. 29, deg/s); see compensated_frame.h.
+//
+// Blocks (id: content, length in int16 words; layouts in fixed_coeff.h):
+//   0x01..0x09 thermal, channel id-1: [temperature sensor 0..2][InputNormQ31 tau (shift <= 16)]
+//              [PolyQ31 degree 2 (xi)]                                           14 words
+//   0x0A       accelerometer offsets and scales: 6 x ([offset duty Q31 hi][lo][CoeffQ31 1/S])
+//                                                                                30 words
+//   0x0B..0x0D gyro x, y, z cubic: [InputNormQ31 on T (shift <= 23)][PolyQ31 degree 3, working
+//              exponent must equal kRateExponent]                                  16 words
+//   0x0E       CA, row-major 3x3 CoeffQ31 (m/s^2 per g)                             27 words
+//   0x0F       CG, row-major 3x3 CoeffQ31 (deg/s per deg/s)                         27 words
+// A write validates the whole block first and changes nothing unless it returns kOk.
+// Not modelled: the gyro scale factor's temperature dependence (the reference leaves it as future
+// work), run-time bias estimation, and any constants version or CRC (the maintenance handler's).
+#pragma once
+
+#include <cstdint>
+
+#include "firmware_model/target/fixed_coeff.h"
+
+namespace adahrs::firmware_model {
+
+inline constexpr uint8_t kAccelChannels = 6;
+inline constexpr uint8_t kGyroChannels = 3;
+inline constexpr uint8_t kImuChannels = kAccelChannels + kGyroChannels;
+inline constexpr uint8_t kTempSensors = 3;
+
+/// Exponents of the stage formats (value = mantissa * 2^(exponent - 31)).
+inline constexpr int8_t kDutyExponent = 0;        ///< duty, |U| < 1
+inline constexpr int8_t kGyroCountExponent = 23;  ///< gyro counts, |U| < 2^23 (LSB 1/256 count)
+inline constexpr int8_t kTempCountExponent = 31;  ///< temperature counts, raw integer
+inline constexpr int8_t kAccelGExponent = 4;      ///< specific force in g, |Ca| < 16 g
+inline constexpr int8_t kAccelMps2Exponent = 8;   ///< specific force in m/s^2, |A| < 256 m/s^2
+inline constexpr int8_t kRateExponent = 8;        ///< angular rate in deg/s, |G| < 256 deg/s
+
+/// Rated input envelope used by the overflow check of the cross-axis matrices (Table 5).
+inline constexpr int32_t kRatedAccel_g = 10;
+inline constexpr int32_t kRatedRate_dps = 150;
+
+struct ThermalConstantsQ31 {
+  uint8_t temp_sensor;     ///< 0..2: which temperature count drives this channel
+  InputNormQ31 temp_norm;  ///< tau = (t_cnt - centre) * 2^-shift, shift <= 16
+  PolyQ31 drift;           ///< xi(tau), degree 2, in the channel's U units
+};
+
+struct AccelScaleConstantsQ31 {
+  int32_t offset_duty_q31;  ///< O, duty at exponent 0
+  CoeffQ31 inv_scale_g;     ///< 1/S, g per duty unit
+};
+
+struct GyroCubicConstantsQ31 {
+  InputNormQ31 count_norm;  ///< x = (T - centre) * 2^-shift, centre at kGyroCountExponent
+  PolyQ31 rate;             ///< Eq. 23 in x, deg/s, work_exponent == kRateExponent
+};
+
+struct ImuConstants {
+  ThermalConstantsQ31 thermal[kImuChannels];
+  AccelScaleConstantsQ31 accel[kAccelChannels];
+  GyroCubicConstantsQ31 gyro[kGyroChannels];
+  CoeffQ31 ca[3][3];  ///< CA, A_mps2 = CA * Ca_g
+  CoeffQ31 cg[3][3];  ///< CG, G_dps = CG * Cg_dps
+};
+
+/// Block ids of the IMU constant set.
+enum ImuBlockId : uint8_t {
+  kImuBlockThermalFirst = 0x01,  ///< 0x01..0x09: thermal, channel = id - 0x01
+  kImuBlockThermalLast = 0x09,
+  kImuBlockAccelOffsetScale = 0x0A,
+  kImuBlockGyroCubicFirst = 0x0B,  ///< 0x0B..0x0D: gyro x, y, z
+  kImuBlockGyroCubicLast = 0x0D,
+  kImuBlockCa = 0x0E,
+  kImuBlockCg = 0x0F,
+};
+
+inline constexpr uint8_t kImuThermalBlockWords = 1 + kNormWords + PolyWords(2);
+inline constexpr uint8_t kImuAccelBlockWords = kAccelChannels * (2 + kCoeffWords);
+inline constexpr uint8_t kImuGyroBlockWords = kNormWords + PolyWords(3);
+inline constexpr uint8_t kImuMatrixBlockWords = 9 * kCoeffWords;
+/// Longest IMU block, for callers sizing a buffer.
+inline constexpr uint8_t kImuMaxBlockWords = kImuAccelBlockWords;
+
+/// Puts the set into its uncalibrated state: zero drift, zero offsets, zero scales, zero gyro
+/// polynomials, identity matrices (so every calibrated output of an unconfigured unit reads zero).
+void ImuConstantsInit(ImuConstants* constants);
+
+/// Words in block `block_id`, or 0 if the block is unknown.
+uint8_t ImuConstantsBlockLength(uint8_t block_id);
+
+/// Replaces block `block_id` from `count` words. Returns kOk, or the first reason for refusal; on
+/// refusal `constants` is unchanged.
+ConstantsStatus ImuConstantsWriteBlock(ImuConstants* constants, uint8_t block_id,
+                                       const int16_t* words, uint8_t count);
+
+/// Writes block `block_id` into `words` (capacity `capacity`) and its length into `*count`.
+/// Returns kUnknownBlock, or kWrongLength if the capacity is too small (nothing written).
+ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants, uint8_t block_id,
+                                      int16_t* words, uint8_t capacity, uint8_t* count);
+
+}  // namespace adahrs::firmware_model

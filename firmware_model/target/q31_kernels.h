@@ -1,0 +1,39 @@
+// Double-word (Q31) kernels built only from DspEngine instructions, so that every cycle they cost
+// is counted (physics.md 5.3: "The 32-bit (Q31) variants need three partial products per multiply.
+// On the 30F the mixed-sign lo x hi terms go through MUL.SU into W registers").
+//
+// MulQ31(a, b) derivation. Split a = ah*2^16 + al (ah signed, al unsigned), b likewise. Then
+//   a*b / 2^31 = 2*ah*bh + (ah*bl + al*bh) / 2^15 + al*bl / 2^31.
+// The engine computes 2*ah*bh exactly with a fractional MPY, each mixed term with MUL.SU into a
+// W pair, loads it into an accumulator (LAC high + MOV ACCxL), shifts it right 15 (floor), and adds.
+// The al*bl term (< 2 LSB) is dropped. Result: acc = 2 ah bh + floor(ah bl / 2^15) +
+// floor(al bh / 2^15), within [-3, 0] LSB of floor(a b / 2^31); the only saturation is
+// (-1)*(-1) -> 0x7FFFFFFF under 1.31 saturation. Cost: 11 cycles (2 MUL.SU, 2 LAC, 2 MOV ACCxL,
+// 2 SFTAC, 1 MPY, 2 ADD). The engine must be in fractional mode with 1.31 saturation.
+//
+// Horner at a working exponent E (fixed_coeff.h): y_n = c_n; y_k = y_{k+1} x + c_k, every c_k
+// aligned to E by a right shift (E - e_k) (one SFTAC with the shift in a W register), each step
+// 17 cycles: MulQ31 11, load c_k 2, SFTAC 1, ADD 1, read y 2.
+#pragma once
+
+#include <cstdint>
+
+#include "firmware_model/target/dsp_engine.h"
+#include "firmware_model/target/fixed_coeff.h"
+
+namespace adahrs::firmware_model {
+
+/// acc = v (LAC high word, MOV low word to ACCxL): 2 cycles.
+void LoadQ31(DspEngine* engine, Acc acc, int32_t v);
+/// Reads ACCxH:ACCxL as int32 (2 cycles); exact while the accumulator is within 1.31.
+int32_t ReadQ31(DspEngine* engine, Acc acc);
+/// Shifts acc by `shift` (positive right), using as many SFTACs (+-16 each) as needed, at least one.
+void ShiftAcc(DspEngine* engine, Acc acc, int32_t shift);
+/// acc = a*b in Q31 (see derivation above); uses the other accumulator as scratch.
+void MulQ31(DspEngine* engine, Acc acc, int32_t a_q31, int32_t b_q31);
+/// x = (v - centre) * 2^(v_exponent - shift) in Q31, saturating (SA set) if |x| >= 1: 9-10 cycles.
+int32_t NormaliseQ31(DspEngine* engine, int32_t v, int8_t v_exponent, const InputNormQ31& norm);
+/// p(x) by Horner at poly.work_exponent; result (Q31 at that exponent) in `acc` and returned.
+int32_t HornerQ31(DspEngine* engine, Acc acc, const PolyQ31& poly, uint8_t degree, int32_t x_q31);
+
+}  // namespace adahrs::firmware_model

@@ -1,0 +1,163 @@
+// Envelope sweeps of the fixed-point compensators against the double reference (issue 3 "Done
+// when"): temperature -40..85 C, rates +-150 deg/s, +-10 g, altitude -1,000..50,000 ft, airspeed
+// 30..450 kt, with realistic constants. Budgets (10 % of the accuracy budget, asserted): 0.1 mg,
+// 0.0015 deg/s, 1.5 ft, 0.1 kt; thermal mode: 0.1 mg at 25 g/duty = 4e-6 duty, 0.0015 deg/s at
+// 20,972 counts per deg/s = 31 counts. Cycle budget: <= 2,000 per IMU frame, <= 1,500 per ADS frame.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "firmware_model/constants_exporter.h"
+#include "firmware_model/reference_compensator.h"
+#include "firmware_model/target/ads_compensator.h"
+#include "firmware_model/target/imu_compensator.h"
+#include "tests/firmware_model/realistic_constants.h"
+
+namespace adahrs::firmware_model {
+namespace {
+
+using testing::RealisticAds;
+using testing::RealisticImu;
+using testing::SynthesiseAds;
+using testing::SynthesiseImu;
+
+constexpr double kBudgetAccel_g = 1e-4;
+constexpr double kBudgetAccel_mps2 = 1e-4 * 9.80665;
+constexpr double kBudgetRate_dps = 0.0015;
+constexpr double kBudgetDuty = 1e-4 / 25.0;
+constexpr double kBudgetGyroCounts = 0.0015 * 20972.0;
+
+TEST(CompensatorSweep, ImuWithinBudgetOverEnvelope) {
+  constexpr ImuCompensationMode kModes[] = {ImuCompensationMode::kRaw, ImuCompensationMode::kThermal,
+                                            ImuCompensationMode::kSensorCalibrated,
+                                            ImuCompensationMode::kFullyCalibrated};
+  double worst[4][9] = {};
+  uint32_t max_cycles = 0;
+  for (uint64_t unit = 0; unit < 4; ++unit) {
+    const ImuCalibrationConstants cal = RealisticImu(1000 + unit);
+    const ImuExport exported = ExportImuConstants(cal);
+    sensor_sim::Rng rng(sensor_sim::Rng::Derive(77, unit));
+    for (int i = 0; i < 1500; ++i) {
+      // Corners of the envelope first, then uniform draws inside it.
+      const double temp_c = i < 2 ? (i == 0 ? -40.0 : 85.0) : rng.Uniform(-40.0, 85.0);
+      std::array<double, 3> f_B_g{}, w_dps{};
+      for (int a = 0; a < 3; ++a) {
+        f_B_g[a] = i < 2 ? (i == 0 ? 10.0 : -10.0) : rng.Uniform(-10.0, 10.0);
+        w_dps[a] = i < 2 ? (i == 0 ? -150.0 : 150.0) : rng.Uniform(-150.0, 150.0);
+      }
+      const ImuRawFrame raw = SynthesiseImu(cal, f_B_g, w_dps, temp_c, &rng);
+      for (int m = 0; m < 4; ++m) {
+        DspEngine engine;
+        ImuCompensatedFrame frame{};
+        ImuCompensate(&engine, exported.constants, kModes[m], raw, &frame);
+        ASSERT_EQ(frame.flags, 0) << "mode " << m << " frame " << i;
+        if (kModes[m] == ImuCompensationMode::kFullyCalibrated) {
+          max_cycles = std::max(max_cycles, engine.cycles());
+        }
+        const auto fixed = ImuFrameToDouble(kModes[m], frame);
+        const auto ref = ImuReference(cal, kModes[m], raw);
+        for (int k = 0; k < 9; ++k) worst[m][k] = std::max(worst[m][k], std::fabs(fixed[k] - ref[k]));
+      }
+    }
+  }
+  auto max_of = [&](int m, int from, int to) {
+    return *std::max_element(worst[m] + from, worst[m] + to);
+  };
+  std::printf("IMU worst |fixed - double|: raw duty %.3g, raw counts %.3g; thermal duty %.3g, "
+              "counts %.3g; sensor accel %.3g g, rate %.3g dps; full A %.3g m/s^2, G %.3g dps, "
+              "half-diff %.3g g; max cycles %u\n",
+              max_of(0, 0, 6), max_of(0, 6, 9), max_of(1, 0, 6), max_of(1, 6, 9), max_of(2, 0, 6),
+              max_of(2, 6, 9), max_of(3, 0, 3), max_of(3, 3, 6), max_of(3, 6, 9), max_cycles);
+  // Raw: the duty is floor(U 2^31), so within one Q31 LSB; gyro counts are exact.
+  EXPECT_LE(max_of(0, 0, 6), std::ldexp(1.0, -31));
+  EXPECT_EQ(max_of(0, 6, 9), 0.0);
+  EXPECT_LE(max_of(1, 0, 6), kBudgetDuty);
+  EXPECT_LE(max_of(1, 6, 9), kBudgetGyroCounts);
+  EXPECT_LE(max_of(2, 0, 6), kBudgetAccel_g);
+  EXPECT_LE(max_of(2, 6, 9), kBudgetRate_dps);
+  EXPECT_LE(max_of(3, 0, 3), kBudgetAccel_mps2);
+  EXPECT_LE(max_of(3, 3, 6), kBudgetRate_dps);
+  EXPECT_LE(max_of(3, 6, 9), kBudgetAccel_g);
+  EXPECT_LE(max_cycles, 2000u);
+}
+
+TEST(CompensatorSweep, AdsWithinBudgetOverEnvelope) {
+  const AdsCalibrationConstants cal = RealisticAds();
+  const AdsExport exported = ExportAdsConstants(cal);
+  sensor_sim::Rng rng(4242);
+  double worst_alt_ft = 0, worst_cas_kt = 0;
+  uint32_t max_cycles = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double alt_ft = i < 2 ? (i == 0 ? -1000.0 : 50000.0) : rng.Uniform(-1000.0, 50000.0);
+    const double cas_kt = i < 2 ? (i == 0 ? 30.0 : 450.0) : rng.Uniform(30.0, 450.0);
+    const double temp_c = i < 2 ? (i == 0 ? -40.0 : 85.0) : rng.Uniform(-40.0, 85.0);
+    const AdsRawFrame raw = SynthesiseAds(alt_ft, cas_kt, temp_c);
+    DspEngine engine;
+    AdsCompensatedFrame frame{};
+    AdsCompensate(&engine, exported.constants, AdsCompensationMode::kSurface, raw, &frame);
+    ASSERT_EQ(frame.flags, 0) << "frame " << i;
+    max_cycles = std::max(max_cycles, engine.cycles());
+    const auto fixed = AdsFrameToDouble(AdsCompensationMode::kSurface, frame);
+    const auto ref = AdsReference(cal, AdsCompensationMode::kSurface, raw);
+    worst_alt_ft = std::max(worst_alt_ft, std::fabs(fixed[0] - ref[0]));
+    worst_cas_kt = std::max(worst_cas_kt, std::fabs(fixed[1] - ref[1]));
+  }
+  std::printf("ADS worst |fixed - double|: altitude %.3g ft, airspeed %.3g kt; exporter bounds "
+              "%.3g ft, %.3g kt; max cycles %u\n",
+              worst_alt_ft, worst_cas_kt, exported.report.altitude_ft, exported.report.airspeed_kt,
+              max_cycles);
+  EXPECT_LE(worst_alt_ft, 1.5);
+  EXPECT_LE(worst_cas_kt, 0.1);
+  EXPECT_LE(max_cycles, 1500u);
+}
+
+}  // namespace
+}  // namespace adahrs::firmware_model
+
+namespace adahrs::firmware_model {
+namespace {
+
+// The instruction mix of one frame. Structural truth: a fully calibrated IMU frame does
+// 2 x 9 thermal + 6 accel-scale + 3 x 3 gyro + 2 x 9 matrix = 51 Q31 multiplies (one MPY and two
+// MUL.SU each) and 2 DIV.UD per accelerometer channel; an ADS frame 2 x (3 + 2 + 1 + 3) = 18.
+TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
+  const ImuExport imu = ExportImuConstants(testing::RealisticImu(1));
+  sensor_sim::Rng rng(5);
+  const ImuRawFrame raw = testing::SynthesiseImu(testing::RealisticImu(1), {0.0, 0.0, 1.0},
+                                                 {10.0, 0.0, 0.0}, 25.0, &rng);
+  DspEngine engine;
+  ImuCompensatedFrame frame{};
+  ImuCompensate(&engine, imu.constants, ImuCompensationMode::kFullyCalibrated, raw, &frame);
+  EXPECT_EQ(engine.op_count(DspOp::kMpy), 51u);
+  EXPECT_EQ(engine.op_count(DspOp::kMulSU), 102u);
+  EXPECT_EQ(engine.op_count(DspOp::kDivUD), 12u);
+  std::printf("IMU fully calibrated frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at "
+              "100 Hz)\n",
+              engine.instructions(), engine.cycles(), 100.0 * engine.cycles() * 100.0 / 30e6);
+  for (uint8_t op = 0; op < static_cast<uint8_t>(DspOp::kCount); ++op) {
+    const DspOp o = static_cast<DspOp>(op);
+    if (engine.op_count(o) > 0) {
+      std::printf("  %-12s x%4u  %2u cy  = %5u\n", DspOpName(o), engine.op_count(o),
+                  DspOpCycles(o), engine.op_count(o) * DspOpCycles(o));
+    }
+  }
+  for (uint8_t m = 0; m < 3; ++m) {
+    DspEngine e;
+    ImuCompensate(&e, imu.constants, static_cast<ImuCompensationMode>(m), raw, &frame);
+    std::printf("IMU mode %u: %u cycles\n", m, e.cycles());
+  }
+  const AdsExport ads = ExportAdsConstants(testing::RealisticAds());
+  DspEngine ads_engine;
+  AdsCompensatedFrame ads_frame{};
+  AdsCompensate(&ads_engine, ads.constants, AdsCompensationMode::kSurface,
+                testing::SynthesiseAds(5000.0, 200.0, 25.0), &ads_frame);
+  EXPECT_EQ(ads_engine.op_count(DspOp::kMpy), 18u);
+  std::printf("ADS surface frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at 100 Hz)\n",
+              ads_engine.instructions(), ads_engine.cycles(),
+              100.0 * ads_engine.cycles() * 100.0 / 30e6);
+}
+
+}  // namespace
+}  // namespace adahrs::firmware_model

@@ -1,0 +1,137 @@
+// Block-wise constant access as the maintenance handler uses it: round trip of every block, each
+// refusal reason, and that a refused write changes nothing.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "firmware_model/constants_exporter.h"
+#include "firmware_model/target/ads_constants.h"
+#include "firmware_model/target/imu_constants.h"
+#include "tests/firmware_model/realistic_constants.h"
+
+namespace adahrs::firmware_model {
+namespace {
+
+TEST(ConstantsBlocks, ImuRoundTripEveryBlock) {
+  const ImuConstants source = ExportImuConstants(testing::RealisticImu(5)).constants;
+  ImuConstants target;
+  ImuConstantsInit(&target);
+  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockCg; ++id) {
+    int16_t words[kImuMaxBlockWords];
+    uint8_t count = 0;
+    ASSERT_EQ(ImuConstantsReadBlock(&source, id, words, kImuMaxBlockWords, &count),
+              ConstantsStatus::kOk);
+    EXPECT_EQ(count, ImuConstantsBlockLength(id));
+    ASSERT_EQ(ImuConstantsWriteBlock(&target, id, words, count), ConstantsStatus::kOk) << int(id);
+  }
+  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockCg; ++id) {
+    int16_t a[kImuMaxBlockWords], b[kImuMaxBlockWords];
+    uint8_t na = 0, nb = 0;
+    ImuConstantsReadBlock(&source, id, a, kImuMaxBlockWords, &na);
+    ImuConstantsReadBlock(&target, id, b, kImuMaxBlockWords, &nb);
+    ASSERT_EQ(na, nb);
+    EXPECT_EQ(std::memcmp(a, b, na * sizeof(int16_t)), 0) << int(id);
+  }
+}
+
+TEST(ConstantsBlocks, ImuRefusalsLeaveStateUnchanged) {
+  ImuConstants c = ExportImuConstants(testing::RealisticImu(6)).constants;
+  const ImuConstants before = c;
+  int16_t words[kImuMaxBlockWords];
+  uint8_t count = 0;
+  ImuConstantsReadBlock(&c, kImuBlockGyroCubicFirst, words, kImuMaxBlockWords, &count);
+  EXPECT_EQ(ImuConstantsWriteBlock(&c, 0x40, words, count), ConstantsStatus::kUnknownBlock);
+  EXPECT_EQ(ImuConstantsWriteBlock(&c, kImuBlockGyroCubicFirst, words, count - 1),
+            ConstantsStatus::kWrongLength);
+  int16_t bad[kImuMaxBlockWords];
+  std::memcpy(bad, words, sizeof(bad));
+  bad[2] = 24;  // normalisation shift beyond the gyro count format (23)
+  EXPECT_EQ(ImuConstantsWriteBlock(&c, kImuBlockGyroCubicFirst, bad, count),
+            ConstantsStatus::kOutOfRange);
+  std::memcpy(bad, words, sizeof(bad));
+  // l1 (words 7..9 after norm and work exponent) set to 0x7FFF_FFFF at the working exponent:
+  // with l0..l3 already using most of +-256 deg/s, the sum of |c| exceeds 2^8.
+  bad[3 + 1 + 3] = 0x7FFF;
+  bad[3 + 1 + 4] = -1;
+  bad[3 + 1 + 5] = kRateExponent;
+  EXPECT_EQ(ImuConstantsWriteBlock(&c, kImuBlockGyroCubicFirst, bad, count),
+            ConstantsStatus::kWouldOverflow);
+  EXPECT_EQ(ImuConstantsWriteBlock(&c, kImuBlockGyroCubicFirst, nullptr, count),
+            ConstantsStatus::kNullArgument);
+  // A CA row of 30 m/s^2 per g overflows +-256 m/s^2 at the rated 10 g.
+  ImuConstantsReadBlock(&c, kImuBlockCa, words, kImuMaxBlockWords, &count);
+  words[0] = 0x7800;  // mantissa 0x7800_0000 = 0.9375 at exponent 5: 30
+  words[1] = 0;
+  words[2] = 5;
+  EXPECT_EQ(ImuConstantsWriteBlock(&c, kImuBlockCa, words, count), ConstantsStatus::kWouldOverflow);
+  // Accelerometer block: a later channel's bad exponent refuses the whole block.
+  ImuConstantsReadBlock(&c, kImuBlockAccelOffsetScale, words, kImuMaxBlockWords, &count);
+  words[5 * 5 + 4] = 41;
+  EXPECT_EQ(ImuConstantsWriteBlock(&c, kImuBlockAccelOffsetScale, words, count),
+            ConstantsStatus::kOutOfRange);
+  EXPECT_EQ(std::memcmp(&c, &before, sizeof(c)), 0);
+  // Reading into too small a buffer writes nothing.
+  EXPECT_EQ(ImuConstantsReadBlock(&c, kImuBlockCa, words, 10, &count), ConstantsStatus::kWrongLength);
+}
+
+TEST(ConstantsBlocks, AdsRoundTripAndRefusals) {
+  const AdsConstants source = ExportAdsConstants(testing::RealisticAds()).constants;
+  AdsConstants target;
+  AdsConstantsInit(&target);
+  const AdsConstants before = target;
+  int16_t words[kAdsMaxBlockWords];
+  uint8_t count = 0;
+  ASSERT_EQ(AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count),
+            ConstantsStatus::kOk);
+  EXPECT_EQ(count, 41);
+  int16_t bad[kAdsMaxBlockWords];
+  std::memcpy(bad, words, sizeof(bad));
+  bad[6] = static_cast<int16_t>(bad[6] - 3);  // outer exponent below the b_k bound
+  const ConstantsStatus refused = AdsConstantsWriteBlock(&target, kAdsBlockAltitude, bad, count);
+  EXPECT_TRUE(refused == ConstantsStatus::kWouldOverflow || refused == ConstantsStatus::kOutOfRange);
+  EXPECT_EQ(AdsConstantsWriteBlock(&target, 0x01, words, count), ConstantsStatus::kUnknownBlock);
+  EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
+  ASSERT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAltitude, words, count), ConstantsStatus::kOk);
+  int16_t back[kAdsMaxBlockWords];
+  AdsConstantsReadBlock(&target, kAdsBlockAltitude, back, kAdsMaxBlockWords, &count);
+  EXPECT_EQ(std::memcmp(words, back, count * sizeof(int16_t)), 0);
+}
+
+TEST(ConstantsExporter, RefusesUnrepresentableSetsWithReason) {
+  ImuCalibrationConstants imu = testing::RealisticImu(7);
+  imu.gyro[1].l[1] = 1e-3;  // 1e-3 deg/s per count: +-4.2e6 counts would be +-4,200 deg/s
+  try {
+    ExportImuConstants(imu);
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("gyro block 0x0C"));
+  }
+  imu = testing::RealisticImu(7);
+  imu.cg[2][0] = 5.0;
+  try {
+    ExportImuConstants(imu);
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("CG block 0x0F: row 2"));
+  }
+}
+
+TEST(CalibrationConstants, JsonRoundTripAndPathInErrors) {
+  const ImuCalibrationConstants imu = testing::RealisticImu(8);
+  const ImuCalibrationConstants back = ImuCalibrationConstantsFromJson(ToJson(imu));
+  EXPECT_EQ(ToJson(back), ToJson(imu));
+  const AdsCalibrationConstants ads = testing::RealisticAds();
+  EXPECT_EQ(ToJson(AdsCalibrationConstantsFromJson(ToJson(ads))), ToJson(ads));
+  nlohmann::json j = ToJson(imu);
+  j["gyro"][2].erase("null_cnt");
+  try {
+    ImuCalibrationConstantsFromJson(j);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("imu.gyro[2].null_cnt: missing"));
+  }
+}
+
+}  // namespace
+}  // namespace adahrs::firmware_model

@@ -1,0 +1,197 @@
+// Test fixtures: calibration constants of realistic magnitude (reference-method.md "Scales implied
+// by the reference tables") and raw frames synthesised from physical truth over the envelope.
+// Magnitudes: accelerometer 1/S = +-25.08..25.93 g per duty with the reference's channel signs,
+// offsets ~ +-0.01 duty; thermal drift tens of mg and a few deg/s over -40..85 C; gyro null ~4.2e6
+// counts, l1 = 4.68..4.84e-5 deg/s per count, l2 ~ 1e-13, l3 ~ 1e-20; cross-axis off-diagonals ~0.01.
+// Temperature counts: ADXRS150 TEMP 2.50 V at 25 C, 8.4 mV/K (physics.md 2.1), 16 x 12-bit at 5 V:
+// 13,107 counts per volt.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "firmware_model/calibration_constants.h"
+#include "firmware_model/target/compensated_frame.h"
+#include "sensor_sim/random.h"
+
+namespace adahrs::firmware_model::testing {
+
+inline constexpr double kGyroCountsPerDps = 20972.0;
+inline constexpr double kAccelReciprocalScale_g_per_duty[6] = {-25.35, -25.08, 25.26,
+                                                              25.93,  25.57,  -25.71};
+// Body axis of each accelerometer channel az1 ax1 ay1 az2 ax2 ay2.
+inline constexpr int kAxisOfChannel[6] = {2, 0, 1, 2, 0, 1};
+
+inline double TempCounts(double temp_c) { return 13107.0 * (2.50 + 0.0084 * (temp_c - 25.0)); }
+
+/// A realistic IMU calibration drawn with `seed`.
+inline ImuCalibrationConstants RealisticImu(uint64_t seed) {
+  sensor_sim::Rng rng(seed);
+  ImuCalibrationConstants c;
+  const double t25 = TempCounts(25.0);
+  const double counts_per_c = TempCounts(26.0) - t25;
+  for (int ch = 0; ch < 9; ++ch) {
+    ThermalFit& f = c.thermal[ch];
+    f.temp_sensor = ch < 6 ? ch % 3 : ch - 6;
+    // Drift xi(t) = x0 + s1 dT + s2 dT^2, dT = (t - t25) counts: ~ +-40 mg (accel, as duty) or
+    // +-3 deg/s (gyro, counts) at the envelope edge 60 C away.
+    const double edge = 60.0 * counts_per_c;
+    const double full = ch < 6 ? 0.040 / 25.0 : 3.0 * kGyroCountsPerDps;
+    const double x0 = ch < 6 ? rng.Uniform(-0.01, 0.01) : 4.2e6 + rng.Uniform(-5e4, 5e4);
+    const double s1 = rng.Uniform(-1.0, 1.0) * full / edge;
+    const double s2 = rng.Uniform(-0.5, 0.5) * full / (edge * edge);
+    f.k = {x0 - s1 * t25 + s2 * t25 * t25, s1 - 2 * s2 * t25, s2};
+  }
+  for (int ch = 0; ch < 6; ++ch) {
+    c.accel[ch].offset_duty = rng.Uniform(-0.004, 0.004);
+    c.accel[ch].scale_duty_per_g = 1.0 / kAccelReciprocalScale_g_per_duty[ch];
+  }
+  for (int g = 0; g < 3; ++g) {
+    c.gyro[g].null_cnt = rng.Uniform(-300.0, 300.0);
+    c.gyro[g].l = {rng.Uniform(-0.05, 0.05), rng.Uniform(4.68e-5, 4.84e-5),
+                   rng.Uniform(-1e-13, 1e-13), rng.Uniform(-2e-20, 2e-20)};
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      const double off = rng.Uniform(-0.015, 0.015);
+      c.ca_mps2_per_g[r][k] = 9.80665 * ((r == k ? 1.0 + rng.Uniform(-0.01, 0.01) : 0.0) + off);
+      c.cg[r][k] = (r == k ? 1.0 + rng.Uniform(-0.01, 0.01) : 0.0) + rng.Uniform(-0.015, 0.015);
+    }
+  }
+  return c;
+}
+
+/// Raw frame for specific force f_B_g (body x, y, z), rate w_dps, temperature temp_c, with the
+/// sensors behaving as the constants `c` describe (so the calibrated output is near the truth).
+inline ImuRawFrame SynthesiseImu(const ImuCalibrationConstants& c, const std::array<double, 3>& f_B_g,
+                                 const std::array<double, 3>& w_dps, double temp_c,
+                                 sensor_sim::Rng* rng) {
+  ImuRawFrame raw{};
+  for (int s = 0; s < 3; ++s) {
+    raw.temp_cnt[s] = static_cast<uint16_t>(std::lround(TempCounts(temp_c) + rng->Uniform(-20, 20)));
+  }
+  for (int ch = 0; ch < 9; ++ch) {
+    const ThermalFit& f = c.thermal[ch];
+    const double t = raw.temp_cnt[f.temp_sensor];
+    const double xi = f.k[0] + f.k[1] * t + f.k[2] * t * t;
+    if (ch < 6) {
+      const double u = xi + c.accel[ch].offset_duty +
+                       c.accel[ch].scale_duty_per_g * f_B_g[kAxisOfChannel[ch]];
+      const double t2 = std::floor(rng->Uniform(20000.0, 65000.0));
+      raw.t2_cnt[ch] = static_cast<uint16_t>(t2);
+      raw.t1_cnt[ch] = static_cast<uint16_t>(std::lround((0.5 + u) * t2));
+    } else {
+      const int g = ch - 6;
+      raw.gyro_cnt[g] = static_cast<int32_t>(
+          std::lround(xi + c.gyro[g].null_cnt + w_dps[g] * kGyroCountsPerDps));
+    }
+  }
+  return raw;
+}
+
+// ---- ADS: ISA truth (physics.md 4.1) and an ADS1254 code model of the model-1230 bridges.
+inline double IsaPressure_pa(double alt_ft) {
+  const double h_m = alt_ft * 0.3048;
+  const double p11_pa = 101325.0 * std::pow(1.0 - 2.25577e-5 * 11000.0, 5.25588);
+  return h_m <= 11000.0 ? 101325.0 * std::pow(1.0 - 2.25577e-5 * h_m, 5.25588)
+                        : p11_pa * std::exp(-(h_m - 11000.0) / 6341.62);
+}
+inline double ImpactPressure_pa(double cas_kt) {
+  const double m = cas_kt / 661.4788;
+  return 101325.0 * (std::pow(1.0 + 0.2 * m * m, 3.5) - 1.0);
+}
+// 100 mV full-scale output over 15 psi into a 5 V FSR 24-bit ADC: 167,772 codes per 103,421 Pa,
+// with a -0.05 %/C span tempco; bridge voltage ~2 V at 25 C after a divider, +0.26 %/C.
+inline double PressureCode(double p_pa, double temp_c) {
+  return 30000.0 + 1.62222 * p_pa * (1.0 - 5e-4 * (temp_c - 25.0)) + 40.0 * (temp_c - 25.0);
+}
+inline double BridgeCode(double temp_c) {
+  return 6710886.0 * (1.0 + 0.0026 * (temp_c - 25.0));
+}
+
+// Least-squares fit of the 10-term surface to samples (x, y, z), in normalised variables
+// (X = (x - cx)/hx) solved by normal equations in long double, returned in raw-code form.
+inline SurfaceFit FitSurface(const std::vector<std::array<double, 3>>& xyz) {
+  SurfaceFit s;
+  s.x_min_code = s.y_min_code = 1e300;
+  s.x_max_code = s.y_max_code = -1e300;
+  for (const auto& p : xyz) {
+    s.x_min_code = std::min(s.x_min_code, p[0]);
+    s.x_max_code = std::max(s.x_max_code, p[0]);
+    s.y_min_code = std::min(s.y_min_code, p[1]);
+    s.y_max_code = std::max(s.y_max_code, p[1]);
+  }
+  const long double cx = 0.5L * (s.x_min_code + s.x_max_code), hx = 0.5L * (s.x_max_code - s.x_min_code);
+  const long double cy = 0.5L * (s.y_min_code + s.y_max_code), hy = 0.5L * (s.y_max_code - s.y_min_code);
+  constexpr int kP[10] = {0, 1, 0, 2, 0, 1, 3, 0, 1, 2};
+  constexpr int kQ[10] = {0, 0, 1, 0, 2, 1, 0, 3, 2, 1};
+  long double n[10][11] = {};
+  for (const auto& p : xyz) {
+    const long double X = (p[0] - cx) / hx, Y = (p[1] - cy) / hy;
+    long double phi[10];
+    for (int t = 0; t < 10; ++t) phi[t] = std::pow(X, kP[t]) * std::pow(Y, kQ[t]);
+    for (int r = 0; r < 10; ++r) {
+      for (int c = 0; c < 10; ++c) n[r][c] += phi[r] * phi[c];
+      n[r][10] += phi[r] * p[2];
+    }
+  }
+  for (int col = 0; col < 10; ++col) {  // Gauss-Jordan with partial pivoting
+    int piv = col;
+    for (int r = col + 1; r < 10; ++r) {
+      if (std::fabs(n[r][col]) > std::fabs(n[piv][col])) piv = r;
+    }
+    for (int c = 0; c < 11; ++c) std::swap(n[col][c], n[piv][c]);
+    for (int r = 0; r < 10; ++r) {
+      if (r == col) continue;
+      const long double f = n[r][col] / n[col][col];
+      for (int c = col; c < 11; ++c) n[r][c] -= f * n[col][c];
+    }
+  }
+  long double norm_coeff[4][4] = {};
+  for (int t = 0; t < 10; ++t) norm_coeff[kP[t]][kQ[t]] = n[t][10] / n[t][t];
+  auto binom = [](int a, int b) {
+    long double r = 1;
+    for (int i = 1; i <= b; ++i) r = r * (a - b + i) / i;
+    return r;
+  };
+  for (int t = 0; t < 10; ++t) {  // raw coefficient of x^p y^q
+    long double sum = 0;
+    for (int m = kP[t]; m < 4; ++m) {
+      for (int q = kQ[t]; m + q < 4; ++q) {
+        sum += norm_coeff[m][q] * binom(m, kP[t]) * std::pow(-cx, m - kP[t]) / std::pow(hx, m) *
+               binom(q, kQ[t]) * std::pow(-cy, q - kQ[t]) / std::pow(hy, q);
+      }
+    }
+    s.coeff[t] = static_cast<double>(sum);
+  }
+  return s;
+}
+
+/// ADS constants fitted by least squares on ISA data over the envelope.
+inline AdsCalibrationConstants RealisticAds() {
+  std::vector<std::array<double, 3>> alt, cas;
+  for (double temp_c = -40.0; temp_c <= 85.0; temp_c += 12.5) {
+    for (double alt_ft = -1000.0; alt_ft <= 50000.0; alt_ft += 1000.0) {
+      alt.push_back({PressureCode(IsaPressure_pa(alt_ft), temp_c), BridgeCode(temp_c), alt_ft});
+    }
+    for (double cas_kt = 30.0; cas_kt <= 450.0; cas_kt += 10.0) {
+      cas.push_back({PressureCode(ImpactPressure_pa(cas_kt), temp_c), BridgeCode(temp_c), cas_kt});
+    }
+  }
+  return AdsCalibrationConstants{FitSurface(alt), FitSurface(cas)};
+}
+
+inline AdsRawFrame SynthesiseAds(double alt_ft, double cas_kt, double temp_c) {
+  AdsRawFrame raw{};
+  raw.ps_code = static_cast<int32_t>(std::lround(PressureCode(IsaPressure_pa(alt_ft), temp_c)));
+  raw.pt_code = static_cast<int32_t>(std::lround(PressureCode(ImpactPressure_pa(cas_kt), temp_c)));
+  raw.ps_bridge_code = static_cast<int32_t>(std::lround(BridgeCode(temp_c)));
+  raw.pt_bridge_code = static_cast<int32_t>(std::lround(BridgeCode(temp_c) * 1.01));
+  raw.oat_code = 0;
+  return raw;
+}
+
+}  // namespace adahrs::firmware_model::testing
