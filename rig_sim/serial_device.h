@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +33,19 @@ class SerialDevice {
 
   /// Appends to `out` the bytes released for the client by `now_s`.
   virtual void TakeOutput(double now_s, std::vector<uint8_t>& out) = 0;
+
+  /// The device's physical fault modes (e.g. "cannot_reach_set_point", "never_stable");
+  /// byte-level faults (silence, garbage, dropped or corrupted bytes) are applied by the rig
+  /// around any device and are not listed here.
+  virtual std::vector<std::string> PhysicalFaults() const { return {}; }
+
+  /// Switches a physical fault on or off; throws std::invalid_argument naming the device and
+  /// the fault when the device has no such fault.
+  virtual void SetPhysicalFault(const std::string& fault, bool on);
 };
+
+inline void SerialDevice::SetPhysicalFault(const std::string& fault, bool) {
+  throw std::invalid_argument(role() + ": no physical fault named '" + fault + "'");
+}
 
 }  // namespace adahrs::rig_sim
