@@ -1,0 +1,156 @@
+#include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange under g++ 12
+
+#include "rig_sim/device_host.h"
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/posix/stream_descriptor.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <future>
+#include <stdexcept>
+
+namespace adahrs::rig_sim {
+
+namespace asio = boost::asio;
+
+struct DeviceHost::Impl {
+  asio::io_context io;
+  asio::steady_timer timer{io};
+  std::chrono::steady_clock::time_point wall_start;
+  bool stopping = false;
+};
+
+struct DeviceHost::Port {
+  Port(asio::io_context& io, std::unique_ptr<SerialDevice> d, hil::PtyPair p)
+      : device(std::move(d)), pty(std::move(p)), stream(io, ::dup(pty.master_fd())) {}
+  std::unique_ptr<SerialDevice> device;
+  hil::PtyPair pty;
+  asio::posix::stream_descriptor stream;
+  std::array<uint8_t, 4096> read_buffer{};
+  std::vector<uint8_t> pending_in;
+  std::vector<uint8_t> out;
+};
+
+DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
+    : impl_(std::make_unique<Impl>()), time_scale_(time_scale), env_(initial),
+      env_snapshot_(initial) {
+  if (!(time_scale >= 0.01)) {
+    throw std::invalid_argument("time scale " + std::to_string(time_scale) + " below 0.01");
+  }
+}
+
+DeviceHost::~DeviceHost() { Stop(); }
+
+std::string DeviceHost::Add(std::unique_ptr<SerialDevice> device) {
+  if (started_) throw std::logic_error("DeviceHost::Add after Start");
+  auto port = std::make_unique<Port>(impl_->io, std::move(device), hil::PtyPair::Open());
+  port->stream.non_blocking(true);
+  std::string path = port->pty.slave_path();
+  ports_.push_back(std::move(port));
+  return path;
+}
+
+void DeviceHost::ArmRead(Port& port) {
+  port.stream.async_read_some(asio::buffer(port.read_buffer),
+                              [this, &port](const boost::system::error_code& ec, size_t n) {
+                                if (impl_->stopping) return;
+                                if (!ec) {
+                                  port.pending_in.insert(port.pending_in.end(),
+                                                         port.read_buffer.begin(),
+                                                         port.read_buffer.begin() + n);
+                                }
+                                // EIO and friends are transient on a pty between client sessions.
+                                ArmRead(port);
+                              });
+}
+
+void DeviceHost::RunFrame() {
+  const double now_s = static_cast<double>(frames_done_.load() + 1) * kWorldFrame_s;
+  env_.time_s = now_s;
+  for (auto& port : ports_) {
+    if (!port->pending_in.empty()) {
+      port->device->Receive(port->pending_in, now_s);
+      port->pending_in.clear();
+    }
+    port->device->Advance(now_s, kWorldFrame_s, env_);
+  }
+  for (auto& port : ports_) {
+    port->out.clear();
+    port->device->TakeOutput(now_s, port->out);
+    if (port->out.empty()) continue;
+    boost::system::error_code ec;
+    const size_t written = port->stream.write_some(asio::buffer(port->out), ec);
+    bytes_lost_ += port->out.size() - (ec ? 0 : written);
+  }
+  frames_done_.fetch_add(1);
+}
+
+void DeviceHost::OnTick() {
+  if (impl_->stopping) return;
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                      impl_->wall_start).count();
+  const auto target = static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s);
+  // Bound the work per tick so reads and control actions interleave with frames.
+  for (int i = 0; i < 200 && frames_done_.load() < target; ++i) RunFrame();
+  const uint64_t done = frames_done_.load();
+  if (target > done && target - done > max_frames_behind_.load()) {
+    max_frames_behind_.store(target - done);
+  }
+  {
+    std::lock_guard<std::mutex> lock(env_mutex_);
+    env_snapshot_ = env_;
+  }
+  const auto wall_per_frame = std::chrono::duration<double>(kWorldFrame_s / time_scale_);
+  impl_->timer.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::min(wall_per_frame, std::chrono::duration<double>(0.002))));
+  impl_->timer.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) OnTick();
+  });
+}
+
+void DeviceHost::Start() {
+  if (started_) return;
+  started_ = true;
+  for (auto& port : ports_) ArmRead(*port);
+  impl_->wall_start = std::chrono::steady_clock::now();
+  asio::post(impl_->io, [this] { OnTick(); });
+  thread_ = std::thread([this] { impl_->io.run(); });
+}
+
+void DeviceHost::Stop() {
+  if (!started_ || !thread_.joinable()) return;
+  asio::post(impl_->io, [this] {
+    impl_->stopping = true;
+    impl_->timer.cancel();
+    for (auto& port : ports_) port->stream.cancel();
+  });
+  thread_.join();
+}
+
+void DeviceHost::Run(
+    const std::function<void(std::vector<SerialDevice*>&, RigEnvironment&)>& action) {
+  std::vector<SerialDevice*> devices;
+  for (auto& port : ports_) devices.push_back(port->device.get());
+  if (!started_ || !thread_.joinable()) {
+    action(devices, env_);
+    return;
+  }
+  std::promise<void> done;
+  asio::post(impl_->io, [&] {
+    try {
+      action(devices, env_);
+      done.set_value();
+    } catch (...) {
+      done.set_exception(std::current_exception());
+    }
+  });
+  done.get_future().get();
+}
+
+RigEnvironment DeviceHost::environment() const {
+  std::lock_guard<std::mutex> lock(env_mutex_);
+  return env_snapshot_;
+}
+
+}  // namespace adahrs::rig_sim

@@ -1,0 +1,81 @@
+// Serves a set of virtual devices (rig_sim::SerialDevice) on pseudo-terminals, advancing the
+// rig's world in fixed 10 ms frames on a clock that runs `time_scale` times faster than the wall.
+//
+// One background thread runs a Boost.Asio io_context: an async read on every pty master collects
+// the client's bytes; a timer takes as many world frames as the scaled clock allows. In each frame,
+// in the order devices were added: Receive(bytes collected so far, frame time), Advance(one frame,
+// shared RigEnvironment), TakeOutput(bytes released by the frame time) → written to the master.
+// The simulated timeline is therefore independent of the time scale and of wall-clock jitter;
+// only the moment a client's bytes are noticed is quantised to the frame (10 ms simulated).
+// If the host cannot keep up it falls behind rather than skipping frames, and says so
+// (frames_behind()). Bytes written while no client reads are lost when the pty buffer is full,
+// as on a real line (counted in bytes_lost()).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hil/transport/pty.h"
+#include "rig_sim/rig_environment.h"
+#include "rig_sim/serial_device.h"
+
+namespace adahrs::rig_sim {
+
+inline constexpr double kWorldFrame_s = 0.01;
+
+class DeviceHost {
+ public:
+  /// `time_scale` ≥ 0.01: simulated seconds per wall second.
+  explicit DeviceHost(double time_scale, RigEnvironment initial = {});
+  ~DeviceHost();
+  DeviceHost(const DeviceHost&) = delete;
+  DeviceHost& operator=(const DeviceHost&) = delete;
+
+  /// Opens a pty for `device` and returns its slave path. Only before Start().
+  std::string Add(std::unique_ptr<SerialDevice> device);
+
+  /// Starts the background thread; the simulated clock starts at 0.
+  void Start();
+  /// Stops the thread (idempotent); devices stay as they were.
+  void Stop();
+
+  /// Runs `action` on the host thread between frames, with the devices and environment, and
+  /// waits for it (for fault switching and inspection without data races).
+  void Run(const std::function<void(std::vector<SerialDevice*>&, RigEnvironment&)>& action);
+
+  /// Simulated time of the last completed frame.
+  double now_s() const { return frames_done_.load() * kWorldFrame_s; }
+  /// A copy of the environment after the last completed frame.
+  RigEnvironment environment() const;
+  /// Frames the host was behind the scaled clock at the worst moment so far.
+  uint64_t max_frames_behind() const { return max_frames_behind_.load(); }
+  uint64_t bytes_lost() const { return bytes_lost_.load(); }
+  double time_scale() const { return time_scale_; }
+
+ private:
+  struct Port;
+  void ArmRead(Port& port);
+  void OnTick();
+  void RunFrame();
+
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<std::unique_ptr<Port>> ports_;
+  double time_scale_;
+  RigEnvironment env_;
+  mutable std::mutex env_mutex_;
+  RigEnvironment env_snapshot_;
+  std::atomic<uint64_t> frames_done_{0};
+  std::atomic<uint64_t> max_frames_behind_{0};
+  std::atomic<uint64_t> bytes_lost_{0};
+  std::thread thread_;
+  bool started_ = false;
+};
+
+}  // namespace adahrs::rig_sim
