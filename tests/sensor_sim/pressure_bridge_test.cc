@@ -286,8 +286,9 @@ TEST(PressureBridge, DeterministicPerSeedAndKind) {
 }
 
 TEST(PressureBridge, DrawnPartsStayInsideTheDocumentedRanges) {
-  // Over many draws, FSO stays within 75…100 mV·(R_B/5 kΩ) scaled, i.e. S within 15.5…20.5 mV/V,
-  // nonlinearity within 0.05…0.25 % FSO and R_B within 4…6 kΩ (physics.md §3.1).
+  // Draw() must respect its own documented 3-sigma limits (docs/models/pressure-bridge.md):
+  // S 18 ± 2.5 mV/V (FSO 77.5…102.5 mV at V_B = 5 V, cf. 75…100 mV in physics.md §3.1),
+  // NL 0.15 ± 0.1 % FSO (§3.1: 0.1…0.25), R_B 5 ± 1 kΩ (§3.1: 4…6 kΩ).
   for (uint64_t seed = 0; seed < 300; ++seed) {
     const PressureBridgeParams p = PressureBridgeParams::Draw(kStatic, seed);
     EXPECT_GE(p.sensitivity_mv_per_v, 15.5);
