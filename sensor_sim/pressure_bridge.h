@@ -137,6 +137,9 @@ class PressureBridge {
   /// Power dissipated in the bridge at the last Step (before the first: at the reference
   /// temperature and zero pressure), W; 0 when the self_heating effect is off.
   double SelfHeatingW() const { return self_heating_w_; }
+  /// Steady-state die rise above the case from that power, SelfHeatingW()·self_heating_c_per_w,
+  /// °C: what a die thermal model (die_thermal.h `self_heating_c`) needs.
+  double SelfHeatingRiseC() const { return self_heating_w_ * params_.self_heating_c_per_w; }
   const PressureBridgeParams& params() const { return params_; }
 
  private:

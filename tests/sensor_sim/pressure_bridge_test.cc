@@ -212,6 +212,8 @@ TEST(PressureBridge, SelfHeatingPower) {
   });
   PressureBridge bridge(p, 1);
   EXPECT_NEAR(bridge.SelfHeatingW(), 5e-3, 1e-15);
+  // 5 mW · 150 °C/W = 0.75 °C (physics.md §3.2: 1…2 °C at 9 mW, E).
+  EXPECT_NEAR(bridge.SelfHeatingRiseC(), 0.75, 1e-12);
   bridge.Step({0.0, 45.0});
   EXPECT_NEAR(bridge.SelfHeatingW(), 1e-3 * Once(p, 0.0, 45.0).bridge_v, 1e-15);
   PressureBridge cold(TypicalWith([](PressureBridgeEffects& e) { e.bridge_tcr = true; }), 1);
