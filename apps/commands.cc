@@ -4,6 +4,7 @@ namespace adahrs::apps {
 
 void RegisterCommands(CLI::App& app) {
   RegisterVersionCommand(app);
+  RegisterSimulateCommand(app);
 }
 
 }  // namespace adahrs::apps

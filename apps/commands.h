@@ -9,5 +9,6 @@ namespace adahrs::apps {
 void RegisterCommands(CLI::App& app);
 
 void RegisterVersionCommand(CLI::App& app);
+void RegisterSimulateCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

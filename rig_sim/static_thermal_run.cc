@@ -1,0 +1,188 @@
+#include "rig_sim/static_thermal_run.h"
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "hil/recording/recording_writer.h"
+#include "rig_sim/fixture_orientation.h"
+#include "sensor_sim/ads_unit.h"
+#include "sensor_sim/gravity.h"
+#include "sensor_sim/imu_unit.h"
+#include "sensor_sim/random.h"
+#include "sensor_sim/units.h"
+
+namespace adahrs::rig_sim {
+namespace {
+
+constexpr double kFramePeriod_s = 0.01;
+
+void WriteTruth(const std::filesystem::path& dir, const std::string& serial, const char* kind,
+                uint64_t seed, sensor_sim::ModelProfile profile, const nlohmann::json& params) {
+  std::filesystem::create_directories(dir);
+  std::ofstream out(dir / (serial + ".json"));
+  out << nlohmann::json{{"serial", serial},
+                        {"kind", kind},
+                        {"seed", seed},
+                        {"model_profile", sensor_sim::ToString(profile)},
+                        {"params", params}}
+             .dump(2)
+      << "\n";
+  if (!out) throw std::runtime_error((dir / (serial + ".json")).string() + ": write failed");
+}
+
+// The programmed set point walks from `from_c` toward the step's target at its ramp rate.
+double SetPoint(double from_c, const ThermalProfileStep& step, double t_in_step_s) {
+  const double span_c = step.target_c - from_c;
+  const double moved_c = step.ramp_c_per_min / 60.0 * t_in_step_s;
+  return std::abs(span_c) <= moved_c ? step.target_c : from_c + std::copysign(moved_c, span_c);
+}
+
+}  // namespace
+
+StaticThermalRunConfig StaticThermalRunConfig::Demo() {
+  StaticThermalRunConfig c;
+  c.log_every = 10;
+  c.steps = {{-20.0, 2.0, 1200.0}, {65.0, 2.0, 1200.0}, {25.0, 2.0, 600.0}};
+  return c;
+}
+
+StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
+                                         const std::filesystem::path& run_dir,
+                                         const std::function<void(int, double)>& on_step) {
+  if (config.imu_units < 0 || config.imu_units > 4) {
+    throw std::invalid_argument(fmt::format("imu_units {} not in 0..4", config.imu_units));
+  }
+  if (config.ads_units < 0 || config.ads_units > 4) {
+    throw std::invalid_argument(fmt::format("ads_units {} not in 0..4", config.ads_units));
+  }
+  if (config.steps.empty()) throw std::invalid_argument("the thermal profile has no steps");
+  if (config.log_every < 1) throw std::invalid_argument("log_every must be at least 1");
+
+  const double g_local_mps2 = sensor_sim::NormalGravityMps2(config.latitude_deg, config.height_m);
+  const Eigen::Vector3d f_B_g =
+      UpAxis_B(config.orientation) * (g_local_mps2 / sensor_sim::kStandardGravity_mps2);
+
+  std::vector<sensor_sim::ImuUnit> imus;
+  std::vector<sensor_sim::AdsUnit> adss;
+  nlohmann::json units = nlohmann::json::array();
+  for (int i = 0; i < config.imu_units; ++i) {
+    const std::string serial = fmt::format("IMU-{:04d}", i + 1);
+    const uint64_t seed = sensor_sim::Rng::Derive(config.seed, 1000 + i);
+    const auto params = sensor_sim::ImuUnitParams::Draw(serial, seed, config.profile);
+    WriteTruth(run_dir / "truth", serial, "imu", seed, config.profile, params.ToJson());
+    imus.emplace_back(params, sensor_sim::Rng::Derive(seed, 1), config.start_c);
+    units.push_back({{"serial", serial}, {"kind", "imu"}, {"firmware_version", "simulated"}});
+  }
+  for (int i = 0; i < config.ads_units; ++i) {
+    const std::string serial = fmt::format("ADS-{:04d}", i + 1);
+    const uint64_t seed = sensor_sim::Rng::Derive(config.seed, 2000 + i);
+    const auto params = sensor_sim::AdsUnitParams::Draw(serial, seed, config.profile);
+    WriteTruth(run_dir / "truth", serial, "ads", seed, config.profile, params.ToJson());
+    adss.emplace_back(params, sensor_sim::Rng::Derive(seed, 1), config.start_c);
+    units.push_back({{"serial", serial}, {"kind", "ads"}, {"firmware_version", "simulated"}});
+  }
+
+  nlohmann::json steps = nlohmann::json::array();
+  for (size_t i = 0; i < config.steps.size(); ++i) {
+    const auto& s = config.steps[i];
+    steps.push_back({{"type", "target_temperature"},
+                     {"tag", i + 1},
+                     {"target_c", s.target_c},
+                     {"ramp_c_per_min", s.ramp_c_per_min},
+                     {"soak_s", s.soak_s},
+                     {"band_c", config.soak_band_c}});
+  }
+  hil::RecordingWriter writer(run_dir);
+  writer.WriteMeta({{"station",
+                     {{"name", "simulated static thermal bench"},
+                      {"latitude_deg", config.latitude_deg},
+                      {"height_m", config.height_m},
+                      {"local_gravity_mps2", g_local_mps2},
+                      {"time_scale", 0}}},
+                    {"sequence", {{"name", "static thermal run"}, {"steps", steps}}},
+                    {"units", units},
+                    {"orientation", config.orientation},
+                    {"model_profile", sensor_sim::ToString(config.profile)},
+                    {"sample_rate_hz", 1.0 / kFramePeriod_s},
+                    {"time_base", "seconds since the batch was powered on"},
+                    {"log_every", config.log_every}});
+
+  ChamberAir chamber(config.chamber, config.start_c);
+  StaticThermalRunSummary summary;
+  sensor_sim::ImuStimulus imu_in;
+  imu_in.f_B_g = f_B_g;
+  sensor_sim::AdsStimulus ads_in;
+  ads_in.ps_pa = config.ads_ps_pa;
+  ads_in.qc_pa = config.ads_qc_pa;
+  hil::ImuRecordRow imu_row;
+  imu_row.orientation = config.orientation;
+  hil::AdsRecordRow ads_row;
+  ads_row.ps_ref_pa = config.ads_ps_pa;
+  ads_row.qc_ref_pa = config.ads_qc_pa;
+
+  double from_c = config.start_c;
+  uint64_t frame = 0;
+  for (size_t step = 0; step < config.steps.size(); ++step) {
+    const ThermalProfileStep& s = config.steps[step];
+    const auto tag = static_cast<uint8_t>(step + 1);
+    double t_in_step_s = 0.0, soaked_s = 0.0;
+    while (soaked_s < s.soak_s) {
+      const double air_c = chamber.Step(SetPoint(from_c, s, t_in_step_s), kFramePeriod_s);
+      t_in_step_s += kFramePeriod_s;
+      if (std::abs(air_c - s.target_c) <= config.soak_band_c) soaked_s += kFramePeriod_s;
+      const double t_s = static_cast<double>(++frame) * kFramePeriod_s;
+      const bool log = frame % static_cast<uint64_t>(config.log_every) == 0;
+      imu_in.air_temp_c = air_c;
+      ads_in.air_temp_c = air_c;
+      ads_in.oat_c = air_c;
+      for (size_t u = 0; u < imus.size(); ++u) {
+        const sensor_sim::ImuRawFrame raw = imus[u].Step(imu_in);
+        if (!log) continue;
+        imu_row.t_s = t_s;
+        imu_row.unit = imus[u].params().serial;
+        imu_row.seq = static_cast<uint32_t>(frame & 0xFFFF);
+        imu_row.step = static_cast<int>(step);
+        imu_row.tag = tag;
+        imu_row.chamber_c = air_c;
+        for (int ch = 0; ch < 6; ++ch) {
+          imu_row.accel_ticks[2 * ch] = raw.accel[ch].t1_cnt;
+          imu_row.accel_ticks[2 * ch + 1] = raw.accel[ch].t2_cnt;
+        }
+        imu_row.gyro_cnt = raw.gyro_cnt;
+        imu_row.temp_cnt = raw.temp_cnt;
+        writer.Append(imu_row);
+      }
+      for (size_t u = 0; u < adss.size(); ++u) {
+        const sensor_sim::AdsRawFrame raw = adss[u].Step(ads_in);
+        if (!log) continue;
+        ads_row.t_s = t_s;
+        ads_row.unit = adss[u].params().serial;
+        ads_row.seq = static_cast<uint32_t>(frame & 0xFFFF);
+        ads_row.step = static_cast<int>(step);
+        ads_row.tag = tag;
+        ads_row.chamber_c = air_c;
+        ads_row.ps_counts = raw.ps_cnt;
+        ads_row.pt_counts = raw.pt_cnt;
+        ads_row.ps_temp_counts = raw.ps_temp_cnt;
+        ads_row.pt_temp_counts = raw.pt_temp_cnt;
+        ads_row.oat_counts = raw.oat_cnt;
+        writer.Append(ads_row);
+      }
+    }
+    from_c = s.target_c;
+    writer.Flush(true);
+    if (on_step) on_step(static_cast<int>(step), static_cast<double>(frame) * kFramePeriod_s);
+  }
+  summary.frames = frame;
+  summary.duration_s = static_cast<double>(frame) * kFramePeriod_s;
+  summary.imu_rows = writer.imu_rows();
+  summary.ads_rows = writer.ads_rows();
+  return summary;
+}
+
+}  // namespace adahrs::rig_sim
