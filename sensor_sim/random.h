@@ -1,12 +1,15 @@
 // Deterministic random numbers for the simulator: xoshiro256++ (Blackman & Vigna, 2019) seeded
-// through splitmix64, with Gaussian draws by the Marsaglia polar method. Same seed, same stream,
-// on every platform: nothing here depends on the standard library's distribution implementations.
+// through splitmix64, with Gaussian draws by the ziggurat method (Marsaglia & Tsang, 2000, 128
+// layers) taking the layer index and the value from separate bits of one 64-bit draw, which avoids
+// the correlation Doornik (2005) found in the original. Same seed, same stream, on every platform:
+// nothing here depends on the standard library's distribution implementations.
 // Streams for independent purposes (one unit's parameter draw, one sensor's noise) are derived
 // with `Rng::Derive(seed, stream_id)` so adding a stream never shifts another.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 namespace adahrs::sensor_sim {
 
@@ -43,20 +46,27 @@ class Rng {
 
   /// Standard normal N(0, 1).
   double Normal() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
+    const ZigguratTables& t = Tables();
+    for (;;) {
+      const uint64_t bits = NextU64();
+      const int layer = static_cast<int>(bits & 127);
+      const auto hz = static_cast<int32_t>(bits >> 32);
+      const double x = hz * t.w[layer];
+      if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) return x;  // inside the layer's box
+      if (layer == 0) {
+        // The tail beyond r, by Marsaglia's exponential rejection.
+        double tail, y;
+        do {
+          tail = -std::log(1.0 - Uniform()) / kZigguratR;
+          y = -std::log(1.0 - Uniform());
+        } while (y + y < tail * tail);
+        return hz > 0 ? kZigguratR + tail : -kZigguratR - tail;
+      }
+      // The wedge between the box and the density.
+      if (t.f[layer] + Uniform() * (t.f[layer - 1] - t.f[layer]) < std::exp(-0.5 * x * x)) {
+        return x;
+      }
     }
-    double u, v, s;
-    do {
-      u = 2.0 * Uniform() - 1.0;
-      v = 2.0 * Uniform() - 1.0;
-      s = u * u + v * v;
-    } while (s >= 1.0 || s == 0.0);
-    const double m = std::sqrt(-2.0 * std::log(s) / s);
-    spare_ = v * m;
-    has_spare_ = true;
-    return u * m;
   }
 
   /// A per-unit draw of a datasheet quantity given as nominal ± tolerance: normal with the
@@ -79,9 +89,39 @@ class Rng {
     return z ^ (z >> 31);
   }
 
+  // Ziggurat of 128 layers of equal area v under exp(−x²/2); r is the start of the tail.
+  static constexpr double kZigguratR = 3.442619855899;
+  static constexpr double kZigguratV = 9.91256303526217e-3;
+  struct ZigguratTables {
+    int64_t k[128];
+    double w[128];
+    double f[128];
+  };
+  static const ZigguratTables& Tables() {
+    static const ZigguratTables tables = [] {
+      ZigguratTables t{};
+      constexpr double m = 2147483648.0;  // 2^31: hz is a signed 32-bit integer
+      double d = kZigguratR, prev = kZigguratR;
+      const double q = kZigguratV / std::exp(-0.5 * d * d);
+      t.k[0] = static_cast<int64_t>((d / q) * m);
+      t.k[1] = 0;
+      t.w[0] = q / m;
+      t.w[127] = d / m;
+      t.f[0] = 1.0;
+      t.f[127] = std::exp(-0.5 * d * d);
+      for (int i = 126; i >= 1; --i) {
+        d = std::sqrt(-2.0 * std::log(kZigguratV / d + std::exp(-0.5 * d * d)));
+        t.k[i + 1] = static_cast<int64_t>((d / prev) * m);
+        prev = d;
+        t.f[i] = std::exp(-0.5 * d * d);
+        t.w[i] = d / m;
+      }
+      return t;
+    }();
+    return tables;
+  }
+
   uint64_t state_[4];
-  double spare_ = 0.0;
-  bool has_spare_ = false;
 };
 
 }  // namespace adahrs::sensor_sim
