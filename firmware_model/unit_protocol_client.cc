@@ -148,12 +148,12 @@ std::vector<uint8_t> UnitProtocolClient::Request(uint8_t command, std::span<cons
   return BuildFrame(static_cast<uint8_t>(PacketType::kMaintenanceRequest), sequence, 0, payload);
 }
 
-std::vector<uint8_t> UnitProtocolClient::SetImuMode(ImuMode mode) {
+std::vector<uint8_t> UnitProtocolClient::SetImuMode(ImuCompensationMode mode) {
   const std::array<uint8_t, 1> arguments = {static_cast<uint8_t>(mode)};
   return Request(static_cast<uint8_t>(MaintenanceCommand::kSetMode), arguments);
 }
 
-std::vector<uint8_t> UnitProtocolClient::SetAdsMode(AdsMode mode) {
+std::vector<uint8_t> UnitProtocolClient::SetAdsMode(AdsCompensationMode mode) {
   const std::array<uint8_t, 1> arguments = {static_cast<uint8_t>(mode)};
   return Request(static_cast<uint8_t>(MaintenanceCommand::kSetMode), arguments);
 }
@@ -268,7 +268,7 @@ ImuDataPayload ParseImuData(const Frame& frame) {
   ImuDataPayload data;
   if (!DecodeImuPayload(frame.payload, frame.payload_length, &data)) {
     throw ProtocolError("IMU data payload of " + std::to_string(frame.payload_length) +
-                        " bytes is malformed (length must be 43 in raw mode, 79 otherwise, with a "
+                        " bytes is malformed (length must be 43 in raw mode, 81 otherwise, with a "
                         "mode byte 0..3): " + HexTrace({frame.payload, frame.payload_length}));
   }
   return data;
@@ -279,7 +279,7 @@ AdsDataPayload ParseAdsData(const Frame& frame) {
   AdsDataPayload data;
   if (!DecodeAdsPayload(frame.payload, frame.payload_length, &data)) {
     throw ProtocolError("ADS data payload of " + std::to_string(frame.payload_length) +
-                        " bytes is malformed (length must be 21 in raw mode, 29 otherwise, with a "
+                        " bytes is malformed (length must be 21 in raw mode, 31 otherwise, with a "
                         "mode byte 0..1): " + HexTrace({frame.payload, frame.payload_length}));
   }
   return data;

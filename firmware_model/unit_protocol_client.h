@@ -53,8 +53,8 @@ class StreamReader {
 /// Builds maintenance requests with a wrapping sequence counter (first request has sequence 0).
 class UnitProtocolClient {
  public:
-  std::vector<uint8_t> SetImuMode(ImuMode mode);
-  std::vector<uint8_t> SetAdsMode(AdsMode mode);
+  std::vector<uint8_t> SetImuMode(ImuCompensationMode mode);
+  std::vector<uint8_t> SetAdsMode(AdsCompensationMode mode);
   std::vector<uint8_t> SetTag(uint8_t tag);
   /// Throws ProtocolError if the block does not fit one request (more than 123 words).
   std::vector<uint8_t> WriteBlock(uint8_t block_id, std::span<const int16_t> words);
@@ -93,7 +93,7 @@ struct IdentifyInfo {
   bool constants_valid;        ///< a valid committed image was loaded at power-on or committed since
   uint16_t constants_version;  ///< commits so far, 0 if none
   uint16_t constants_crc;      ///< CRC of the committed image, 0 if none
-  uint8_t mode;                ///< ImuMode or AdsMode value, per unit_kind
+  uint8_t mode;                ///< ImuCompensationMode or AdsCompensationMode value, per unit_kind
   uint8_t tag;
 };
 

@@ -1,4 +1,5 @@
 #include "firmware_model/target/data_payloads.h"
+#include "firmware_model/target/imu_constants.h"
 
 #include "firmware_model/target/byte_order.h"
 #include "firmware_model/target/packet_codec.h"
@@ -6,125 +7,131 @@
 namespace adahrs::firmware_model {
 namespace {
 
-bool IsImuMode(uint8_t mode) {
-  return mode <= static_cast<uint8_t>(ImuMode::kFullyCalibrated);
-}
-
-bool IsAdsMode(uint8_t mode) {
-  return mode <= static_cast<uint8_t>(AdsMode::kSurface);
-}
-
 // Field offsets (docs/unit-protocol.md §4.2 and §5.2).
 constexpr uint8_t kImuGyroOffset = 24;
 constexpr uint8_t kImuTempOffset = 36;
 constexpr uint8_t kImuModeOffset = 42;
-constexpr uint8_t kImuCompensatedOffset = 43;
+constexpr uint8_t kImuValuesOffset = 43;
+constexpr uint8_t kImuFlagsOffset = 79;
 constexpr uint8_t kAdsModeOffset = 20;
-constexpr uint8_t kAdsCompensatedOffset = 21;
+constexpr uint8_t kAdsValuesOffset = 21;
+constexpr uint8_t kAdsFlagsOffset = 29;
 
 }  // namespace
 
-uint8_t ImuPayloadBytes(ImuMode mode) {
-  return mode == ImuMode::kRaw ? kImuRawPayloadBytes : kImuCompensatedPayloadBytes;
+bool IsImuModeByte(uint8_t mode) {
+  return mode <= static_cast<uint8_t>(ImuCompensationMode::kFullyCalibrated);
 }
 
-uint8_t AdsPayloadBytes(AdsMode mode) {
-  return mode == AdsMode::kRaw ? kAdsRawPayloadBytes : kAdsCompensatedPayloadBytes;
+bool IsAdsModeByte(uint8_t mode) {
+  return mode <= static_cast<uint8_t>(AdsCompensationMode::kSurface);
+}
+
+uint8_t ImuPayloadBytes(ImuCompensationMode mode) {
+  return mode == ImuCompensationMode::kRaw ? kImuRawPayloadBytes : kImuCompensatedPayloadBytes;
+}
+
+uint8_t AdsPayloadBytes(AdsCompensationMode mode) {
+  return mode == AdsCompensationMode::kRaw ? kAdsRawPayloadBytes : kAdsCompensatedPayloadBytes;
 }
 
 uint8_t EncodeImuPayload(const ImuDataPayload& data, uint8_t* out, uint8_t capacity) {
-  if (!IsImuMode(static_cast<uint8_t>(data.mode))) {
+  if (!IsImuModeByte(static_cast<uint8_t>(data.mode))) {
     return 0;
   }
   const uint8_t length = ImuPayloadBytes(data.mode);
   if (capacity < length) {
     return 0;
   }
-  for (uint8_t i = 0; i < kImuAccelChannels; ++i) {
-    PutU16Le(out + 4 * i, data.accel[i].t1_cnt);
-    PutU16Le(out + 4 * i + 2, data.accel[i].t2_cnt);
+  for (uint8_t i = 0; i < kAccelChannels; ++i) {
+    PutU16Le(out + 4 * i, data.raw.t1_cnt[i]);
+    PutU16Le(out + 4 * i + 2, data.raw.t2_cnt[i]);
   }
-  for (uint8_t i = 0; i < kImuGyroChannels; ++i) {
-    PutI32Le(out + kImuGyroOffset + 4 * i, data.gyro_cnt[i]);
+  for (uint8_t i = 0; i < kGyroChannels; ++i) {
+    PutI32Le(out + kImuGyroOffset + 4 * i, data.raw.gyro_cnt[i]);
   }
-  for (uint8_t i = 0; i < kImuTempChannels; ++i) {
-    PutU16Le(out + kImuTempOffset + 2 * i, data.temp_cnt[i]);
+  for (uint8_t i = 0; i < kTempSensors; ++i) {
+    PutU16Le(out + kImuTempOffset + 2 * i, data.raw.temp_cnt[i]);
   }
   out[kImuModeOffset] = static_cast<uint8_t>(data.mode);
-  if (data.mode != ImuMode::kRaw) {
-    for (uint8_t i = 0; i < kImuCompensatedValues; ++i) {
-      PutI32Le(out + kImuCompensatedOffset + 4 * i, data.compensated_lsb[i]);
+  if (data.mode != ImuCompensationMode::kRaw) {
+    for (uint8_t i = 0; i < kImuOutputValues; ++i) {
+      PutI32Le(out + kImuValuesOffset + 4 * i, data.compensated.value[i]);
     }
+    PutU16Le(out + kImuFlagsOffset, data.compensated.flags);
   }
   return length;
 }
 
 uint8_t EncodeAdsPayload(const AdsDataPayload& data, uint8_t* out, uint8_t capacity) {
-  if (!IsAdsMode(static_cast<uint8_t>(data.mode))) {
+  if (!IsAdsModeByte(static_cast<uint8_t>(data.mode))) {
     return 0;
   }
   const uint8_t length = AdsPayloadBytes(data.mode);
   if (capacity < length) {
     return 0;
   }
-  PutI32Le(out, data.ps_cnt);
-  PutI32Le(out + 4, data.pt_cnt);
-  PutI32Le(out + 8, data.ps_bridge_cnt);
-  PutI32Le(out + 12, data.pt_bridge_cnt);
-  PutI32Le(out + 16, data.oat_cnt);
+  PutI32Le(out, data.raw.ps_code);
+  PutI32Le(out + 4, data.raw.pt_code);
+  PutI32Le(out + 8, data.raw.ps_bridge_code);
+  PutI32Le(out + 12, data.raw.pt_bridge_code);
+  PutI32Le(out + 16, data.raw.oat_code);
   out[kAdsModeOffset] = static_cast<uint8_t>(data.mode);
-  if (data.mode != AdsMode::kRaw) {
-    for (uint8_t i = 0; i < kAdsCompensatedValues; ++i) {
-      PutI32Le(out + kAdsCompensatedOffset + 4 * i, data.compensated_lsb[i]);
+  if (data.mode != AdsCompensationMode::kRaw) {
+    for (uint8_t i = 0; i < kAdsOutputValues; ++i) {
+      PutI32Le(out + kAdsValuesOffset + 4 * i, data.compensated.value[i]);
     }
+    PutU16Le(out + kAdsFlagsOffset, data.compensated.flags);
   }
   return length;
 }
 
 bool DecodeImuPayload(const uint8_t* payload, uint8_t length, ImuDataPayload* data) {
-  if (length < kImuRawPayloadBytes || !IsImuMode(payload[kImuModeOffset])) {
+  if (length < kImuRawPayloadBytes || !IsImuModeByte(payload[kImuModeOffset])) {
     return false;
   }
-  const ImuMode mode = static_cast<ImuMode>(payload[kImuModeOffset]);
+  const auto mode = static_cast<ImuCompensationMode>(payload[kImuModeOffset]);
   if (length != ImuPayloadBytes(mode)) {
     return false;
   }
-  for (uint8_t i = 0; i < kImuAccelChannels; ++i) {
-    data->accel[i].t1_cnt = GetU16Le(payload + 4 * i);
-    data->accel[i].t2_cnt = GetU16Le(payload + 4 * i + 2);
+  for (uint8_t i = 0; i < kAccelChannels; ++i) {
+    data->raw.t1_cnt[i] = GetU16Le(payload + 4 * i);
+    data->raw.t2_cnt[i] = GetU16Le(payload + 4 * i + 2);
   }
-  for (uint8_t i = 0; i < kImuGyroChannels; ++i) {
-    data->gyro_cnt[i] = GetI32Le(payload + kImuGyroOffset + 4 * i);
+  for (uint8_t i = 0; i < kGyroChannels; ++i) {
+    data->raw.gyro_cnt[i] = GetI32Le(payload + kImuGyroOffset + 4 * i);
   }
-  for (uint8_t i = 0; i < kImuTempChannels; ++i) {
-    data->temp_cnt[i] = GetU16Le(payload + kImuTempOffset + 2 * i);
+  for (uint8_t i = 0; i < kTempSensors; ++i) {
+    data->raw.temp_cnt[i] = GetU16Le(payload + kImuTempOffset + 2 * i);
   }
   data->mode = mode;
-  for (uint8_t i = 0; i < kImuCompensatedValues; ++i) {
-    data->compensated_lsb[i] =
-        mode == ImuMode::kRaw ? 0 : GetI32Le(payload + kImuCompensatedOffset + 4 * i);
+  const bool has_values = mode != ImuCompensationMode::kRaw;
+  for (uint8_t i = 0; i < kImuOutputValues; ++i) {
+    data->compensated.value[i] = has_values ? GetI32Le(payload + kImuValuesOffset + 4 * i) : 0;
   }
+  data->compensated.flags = has_values ? GetU16Le(payload + kImuFlagsOffset) : uint16_t{0};
   return true;
 }
 
 bool DecodeAdsPayload(const uint8_t* payload, uint8_t length, AdsDataPayload* data) {
-  if (length < kAdsRawPayloadBytes || !IsAdsMode(payload[kAdsModeOffset])) {
+  if (length < kAdsRawPayloadBytes || !IsAdsModeByte(payload[kAdsModeOffset])) {
     return false;
   }
-  const AdsMode mode = static_cast<AdsMode>(payload[kAdsModeOffset]);
+  const auto mode = static_cast<AdsCompensationMode>(payload[kAdsModeOffset]);
   if (length != AdsPayloadBytes(mode)) {
     return false;
   }
-  data->ps_cnt = GetI32Le(payload);
-  data->pt_cnt = GetI32Le(payload + 4);
-  data->ps_bridge_cnt = GetI32Le(payload + 8);
-  data->pt_bridge_cnt = GetI32Le(payload + 12);
-  data->oat_cnt = GetI32Le(payload + 16);
+  data->raw.ps_code = GetI32Le(payload);
+  data->raw.pt_code = GetI32Le(payload + 4);
+  data->raw.ps_bridge_code = GetI32Le(payload + 8);
+  data->raw.pt_bridge_code = GetI32Le(payload + 12);
+  data->raw.oat_code = GetI32Le(payload + 16);
   data->mode = mode;
-  for (uint8_t i = 0; i < kAdsCompensatedValues; ++i) {
-    data->compensated_lsb[i] =
-        mode == AdsMode::kRaw ? 0 : GetI32Le(payload + kAdsCompensatedOffset + 4 * i);
+  const bool has_values = mode != AdsCompensationMode::kRaw;
+  for (uint8_t i = 0; i < kAdsOutputValues; ++i) {
+    data->compensated.value[i] = has_values ? GetI32Le(payload + kAdsValuesOffset + 4 * i) : 0;
   }
+  data->compensated.flags = has_values ? GetU16Le(payload + kAdsFlagsOffset) : uint16_t{0};
   return true;
 }
 

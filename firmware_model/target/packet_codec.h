@@ -31,7 +31,7 @@ struct Frame {
 bool IsKnownPacketType(uint8_t type);
 
 /// True if `payload_length` is allowed for packet type `type` (§2.2): an IMU data payload is
-/// 43 (raw) or 79 (compensated) bytes, an ADS payload 21 or 29, a request 1..250, a response
+/// 43 (raw) or 81 (compensated) bytes, an ADS payload 21 or 31, a request 1..250, a response
 /// 2..250. False for an unknown type.
 bool IsPayloadLengthValid(uint8_t type, uint8_t payload_length);
 

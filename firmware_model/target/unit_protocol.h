@@ -10,6 +10,8 @@
 
 #include <cstdint>
 
+#include "firmware_model/target/compensated_frame.h"
+
 namespace adahrs::firmware_model {
 
 /// First and second sync byte (§2).
@@ -31,19 +33,8 @@ enum class PacketType : uint8_t {
   kMaintenanceResponse = 0x21, ///< unit -> PC, ACK or NAK of one request (§6)
 };
 
-/// Output modes of an IMU unit (§4.1); the value is the mode byte on the wire.
-enum class ImuMode : uint8_t {
-  kRaw = 0x00,                ///< captures and counts only
-  kThermal = 0x01,            ///< thermally compensated (reference method Eq. 4-5)
-  kSensorCalibrated = 0x02,   ///< offset/scale (Eq. 12) and gyro cubic (Eq. 23)
-  kFullyCalibrated = 0x03,    ///< plus cross-axis matrices (Eq. 26, 29)
-};
-
-/// Output modes of an ADS unit (§5.1).
-enum class AdsMode : uint8_t {
-  kRaw = 0x00,      ///< ADC codes only
-  kSurface = 0x01,  ///< plus surface-fit altitude and airspeed
-};
+// Output modes: ImuCompensationMode and AdsCompensationMode (compensated_frame.h); their values
+// are the mode byte on the wire (§4.1, §5.1).
 
 /// Which product a unit is; selects the mode set and the constant blocks (§6.3).
 enum class UnitKind : uint8_t {
@@ -52,18 +43,13 @@ enum class UnitKind : uint8_t {
 };
 
 /// IMU data payload (§4): 6 x (T1, T2) uint16, 3 gyro int32, 3 temperature uint16, mode byte,
-/// then 9 int32 compensated values unless the mode is raw.
-inline constexpr uint8_t kImuAccelChannels = 6;  // az1 ax1 ay1 az2 ax2 ay2
-inline constexpr uint8_t kImuGyroChannels = 3;   // gx gy gz
-inline constexpr uint8_t kImuTempChannels = 3;   // tx ty tz
-inline constexpr uint8_t kImuCompensatedValues = 9;
+/// then, unless the mode is raw, 9 int32 compensated values and a uint16 of status flags.
 inline constexpr uint8_t kImuRawPayloadBytes = 6 * 2 * 2 + 3 * 4 + 3 * 2 + 1;
-inline constexpr uint8_t kImuCompensatedPayloadBytes = kImuRawPayloadBytes + 9 * 4;
-/// ADS data payload (§5): ps, pt, ps_temp, pt_temp, oat int32, mode byte, then 2 int32
-/// (altitude, airspeed) unless the mode is raw.
-inline constexpr uint8_t kAdsCompensatedValues = 2;
+inline constexpr uint8_t kImuCompensatedPayloadBytes = kImuRawPayloadBytes + 9 * 4 + 2;
+/// ADS data payload (§5): ps, pt, ps bridge, pt bridge, oat int32, mode byte, then, unless the
+/// mode is raw, 2 int32 (altitude, airspeed) and a uint16 of status flags.
 inline constexpr uint8_t kAdsRawPayloadBytes = 5 * 4 + 1;
-inline constexpr uint8_t kAdsCompensatedPayloadBytes = kAdsRawPayloadBytes + 2 * 4;
+inline constexpr uint8_t kAdsCompensatedPayloadBytes = kAdsRawPayloadBytes + 2 * 4 + 2;
 
 /// Maintenance commands (§6.2): first payload byte of a request, echoed in the response.
 enum class MaintenanceCommand : uint8_t {
