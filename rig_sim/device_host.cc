@@ -75,15 +75,23 @@ void DeviceHost::RunFrame() {
     }
     port->device->Advance(now_s, kWorldFrame_s, env_);
   }
+  for (auto& port : ports_) port->device->TakeOutput(now_s, port->out);
+  frames_done_.fetch_add(1);
+}
+
+void DeviceHost::WriteOutputs() {
   for (auto& port : ports_) {
-    port->out.clear();
-    port->device->TakeOutput(now_s, port->out);
     if (port->out.empty()) continue;
     boost::system::error_code ec;
     const size_t written = port->stream.write_some(asio::buffer(port->out), ec);
-    bytes_lost_ += port->out.size() - (ec ? 0 : written);
+    port->out.erase(port->out.begin(),
+                    port->out.begin() + static_cast<std::ptrdiff_t>(ec ? 0 : written));
+    if (port->out.size() > kMaxBacklogBytes) {
+      // The client is not reading: what does not fit the backlog is lost, newest bytes first.
+      bytes_lost_ += port->out.size() - kMaxBacklogBytes;
+      port->out.resize(kMaxBacklogBytes);
+    }
   }
-  frames_done_.fetch_add(1);
 }
 
 void DeviceHost::OnTick() {
@@ -93,6 +101,7 @@ void DeviceHost::OnTick() {
   const auto target = static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s);
   // Bound the work per tick so reads and control actions interleave with frames.
   for (int i = 0; i < 200 && frames_done_.load() < target; ++i) RunFrame();
+  WriteOutputs();
   const uint64_t done = frames_done_.load();
   if (target > done && target - done > max_frames_behind_.load()) {
     max_frames_behind_.store(target - done);

@@ -8,8 +8,11 @@
 // The simulated timeline is therefore independent of the time scale and of wall-clock jitter;
 // only the moment a client's bytes are noticed is quantised to the frame (10 ms simulated).
 // If the host cannot keep up it falls behind rather than skipping frames, and says so
-// (frames_behind()). Bytes written while no client reads are lost when the pty buffer is full,
-// as on a real line (counted in bytes_lost()).
+// (frames_behind()). The bytes a tick's frames release are written to the master once per tick
+// (one write per port however many frames the tick took: at high time scales a tick runs up to
+// 200 frames); what the pty does not take waits in a per-port backlog of kMaxBacklogBytes (the
+// PC's receive buffer), and bytes beyond it are lost, as on a real line whose client does not
+// read (counted in bytes_lost()).
 #pragma once
 
 #include <atomic>
@@ -28,6 +31,8 @@
 namespace adahrs::rig_sim {
 
 inline constexpr double kWorldFrame_s = 0.01;
+/// Bytes per port held for a client that is not reading fast enough before bytes are lost.
+inline constexpr size_t kMaxBacklogBytes = 64 * 1024;
 
 class DeviceHost {
  public:
@@ -63,6 +68,7 @@ class DeviceHost {
   void ArmRead(Port& port);
   void OnTick();
   void RunFrame();
+  void WriteOutputs();
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -1,0 +1,47 @@
+// One ADS unit (the ADAHRS air-data board) on its serial port, as the rig serves it: the unit's
+// physics (sensor_sim::AdsUnit) under the rig's conditions and the unit's firmware (maintenance
+// port, fixed-point surface compensator, data packets) on the simulated clock; port behaviour in
+// unit_device.h.
+//
+// Stimulus per sample, from RigEnvironment: ps_pa and qc_pa as the air data test set delivers
+// them to the ports, ads_chamber_air_c around the board and at the OAT probe (the probe sits in
+// the bench chamber with the unit).
+// Firmware per sample: the handler's mode; in surface mode AdsCompensate with the handler's RAM
+// constants; the packet carries the handler's next sequence number and current TAG (§5).
+// Left out: pneumatic lag between the test set and the ports (the ADTS model slews), leaks.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "rig_sim/unit_device.h"
+#include "sensor_sim/ads_unit.h"
+
+namespace adahrs::rig_sim {
+
+struct AdsUnitDeviceConfig {
+  std::string role = "ads1";
+  uint32_t serial_number = 1;        ///< reported by IDENTIFY
+  sensor_sim::AdsUnitParams params;  ///< the unit's drawn parameters (its truth)
+  uint64_t noise_seed = 1;
+  int baud = 115200;
+  double initial_air_c = 25.0;       ///< die temperatures at power-on
+};
+
+class AdsUnitDevice : public UnitDevice {
+ public:
+  /// Throws std::invalid_argument naming the value if the line rate is invalid.
+  explicit AdsUnitDevice(const AdsUnitDeviceConfig& config);
+
+  const sensor_sim::AdsUnit& unit() const { return unit_; }
+
+ protected:
+  uint16_t Acquire(double sample_s, const RigEnvironment& env, bool encode,
+                   firmware_model::MaintenanceHandler& handler, uint8_t* frame,
+                   uint16_t capacity) override;
+
+ private:
+  sensor_sim::AdsUnit unit_;
+};
+
+}  // namespace adahrs::rig_sim
