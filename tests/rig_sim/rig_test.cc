@@ -1,0 +1,258 @@
+// The whole rig in-process, reached only through its pseudo-terminals, as a client would.
+#include "rig_sim/rig.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "firmware_model/target/imu_constants.h"
+#include "firmware_model/unit_protocol_client.h"
+#include "tests/rig_sim/pty_client.h"
+
+namespace adahrs::rig_sim {
+namespace {
+
+namespace fm = firmware_model;
+using testing::PtyClient;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+std::filesystem::path TempRunDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("adahrs_rig_test_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+// One IMU and one ADS, no instruments: enough for port behaviour and cheap on 2 cores.
+RigConfig SmallConfig(double time_scale) {
+  nlohmann::json j = DefaultRigConfig();
+  j["time_scale"] = time_scale;
+  j["units"]["imu"] = {j["units"]["imu"][0]};
+  j["instruments"] = nlohmann::json::object();
+  return RigConfig::FromJson(j, "small rig");
+}
+
+struct Stream {
+  std::vector<fm::Frame> data;
+  std::vector<fm::MaintenanceResponse> responses;
+  fm::DecoderCounters counters{};
+  uint64_t lost = 0;
+};
+
+Stream Decode(const std::vector<uint8_t>& bytes) {
+  fm::StreamReader reader;
+  fm::SequenceTracker tracker;
+  Stream s;
+  for (const fm::Frame& f : reader.Push(bytes)) {
+    if (f.type == static_cast<uint8_t>(fm::PacketType::kMaintenanceResponse)) {
+      s.responses.push_back(fm::ParseMaintenanceResponse(f));
+    } else {
+      s.data.push_back(f);
+      tracker.Observe(f.sequence);
+    }
+  }
+  s.counters = reader.counters();
+  s.lost = tracker.lost_total();
+  return s;
+}
+
+TEST(Rig, WritesManifestLinksAndTruthAndStreamsUnitsOnPtys) {
+  const auto dir = TempRunDir("manifest");
+  nlohmann::json j = DefaultRigConfig();
+  j["time_scale"] = 20.0;
+  Rig rig(RigConfig::FromJson(j, "default"), dir);
+  rig.Start(dir / "manifest.json");
+
+  std::ifstream in(dir / "manifest.json");
+  const nlohmann::json manifest = nlohmann::json::parse(in);
+  EXPECT_EQ(manifest["format"], "adahrs-rig-manifest");
+  EXPECT_EQ(manifest["version"], kManifestVersion);
+  for (const std::string role : {"imu1", "imu2", "imu3", "imu4", "ads1", "control"}) {
+    const std::string path = manifest["ports"][role];
+    EXPECT_THAT(path, StartsWith("/dev/pts/")) << role;
+    EXPECT_EQ(std::filesystem::read_symlink(dir / "ports" / role), path) << role;
+    EXPECT_EQ(manifest["links"][role], (dir / "ports" / role).string());
+  }
+  for (const std::string serial : {"IMU-0001", "IMU-0004", "ADS-0001"}) {
+    std::ifstream truth(dir / "truth" / (serial + ".json"));
+    ASSERT_TRUE(truth.good()) << serial;
+    EXPECT_EQ(nlohmann::json::parse(truth)["serial"], serial);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "manifest.json.tmp"));
+
+  // Through the stable link, as a station file would name it: 100 Hz packets at 20x.
+  PtyClient imu4((dir / "ports" / "imu4").string());
+  imu4.Drain();
+  std::vector<uint8_t> bytes;
+  imu4.ReadFor(1.0, bytes);
+  const Stream s = Decode(bytes);
+  // ≈ 2,000 packets in 1 s wall at 20x; the bound allows a loaded 2-core machine half speed.
+  EXPECT_GT(s.data.size(), 1000u);
+  EXPECT_EQ(s.lost, 0u);
+  EXPECT_EQ(s.counters.bad_crc, 0u);
+
+  PtyClient control(manifest["ports"]["control"].get<std::string>());
+  EXPECT_THAT(control.Command("time"), StartsWith("OK "));
+  EXPECT_THAT(control.Command("status"),
+              HasSubstr("roles=imu1,imu2,imu3,imu4,ads1,control faults=none"));
+  EXPECT_EQ(control.Command("orientation imu2 12"), "OK imu2 12");
+  EXPECT_EQ(rig.host().environment().imu_orientation[1], 12);
+  EXPECT_EQ(control.Command("orientation ads1 12"), "ERR ads1 is not an IMU unit");
+  EXPECT_THAT(control.Command("fault imu9 silent on"), StartsWith("ERR no role 'imu9'"));
+  EXPECT_EQ(control.Command("faults imu1"), "OK silent garbage drop_rate corrupt_rate unplugged reset");
+  EXPECT_THAT(control.Command("launch"), StartsWith("ERR unknown command"));
+  rig.Stop();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Rig, MaintenanceCommandsOverThePty) {
+  const auto dir = TempRunDir("maintenance");
+  Rig rig(SmallConfig(10.0), dir);
+  rig.Start(dir / "manifest.json");
+  PtyClient port(rig.ports().at("imu1"));
+  fm::UnitProtocolClient client;
+  // Sends a request and returns the response (data packets around it are skipped).
+  auto ask = [&](const std::vector<uint8_t>& request) {
+    port.Drain();
+    port.Write(request);
+    std::vector<uint8_t> bytes;
+    for (int i = 0; i < 100; ++i) {
+      port.ReadFor(0.02, bytes);
+      const Stream s = Decode(bytes);
+      if (!s.responses.empty()) return s.responses.front();
+    }
+    ADD_FAILURE() << "no response";
+    return fm::MaintenanceResponse{};
+  };
+  const fm::IdentifyInfo id = fm::ParseIdentify(ask(client.Identify()));
+  EXPECT_EQ(id.unit_kind, fm::UnitKind::kImu);
+  EXPECT_EQ(id.serial_number, 1u);
+  EXPECT_EQ(ask(client.SetTag(77)).result, fm::ResultCode::kAck);
+  EXPECT_EQ(ask(client.SetImuMode(fm::ImuCompensationMode::kThermal)).result,
+            fm::ResultCode::kNoValidConstants);
+  std::vector<uint8_t> bytes;
+  port.ReadFor(0.2, bytes);
+  const Stream tagged = Decode(bytes);
+  ASSERT_FALSE(tagged.data.empty());
+  EXPECT_EQ(tagged.data.back().tag, 77);
+  EXPECT_EQ(fm::ParseReadBlock(ask(client.ReadBlock(fm::kImuBlockCa))).words.size(),
+            fm::kImuMatrixBlockWords);
+  EXPECT_EQ(ask(client.Reset()).result, fm::ResultCode::kAck);
+  bytes.clear();
+  port.ReadFor(0.2, bytes);
+  EXPECT_EQ(Decode(bytes).data.back().tag, 0);
+  rig.Stop();
+  std::filesystem::remove_all(dir);
+}
+
+// The first `count` packets of imu1 from the start of the rig, read through the pty.
+std::vector<uint8_t> FirstPackets(double time_scale, size_t count) {
+  const auto dir = TempRunDir("timeline");
+  Rig rig(SmallConfig(time_scale), dir);
+  PtyClient port(rig.ports().at("imu1"));
+  rig.Start(dir / "manifest.json");
+  std::vector<uint8_t> bytes;
+  const size_t packet_bytes = 51;  // raw IMU packet (docs/unit-protocol.md §4.2: 43 + 8)
+  EXPECT_TRUE(port.ReadAtLeast(count * packet_bytes, 10.0, bytes));
+  rig.Stop();
+  std::filesystem::remove_all(dir);
+  bytes.resize(std::min(bytes.size(), count * packet_bytes));
+  return bytes;
+}
+
+TEST(Rig, SameSimulatedTimelineAtTimeScaleOneAndTwoHundred) {
+  // 100 packets = 1 s simulated: 1 s wall at 1x, 5 ms at 200x. Sample k's packet holds the
+  // physics at t = k · 10 ms with the noise stream of that instant: byte-identical streams mean the
+  // same sequence numbers, TAGs and values at the same simulated times.
+  const std::vector<uint8_t> real_time = FirstPackets(1.0, 100);
+  const std::vector<uint8_t> fast = FirstPackets(200.0, 100);
+  ASSERT_EQ(real_time.size(), 5100u);
+  EXPECT_EQ(real_time, fast);
+  const Stream s = Decode(fast);
+  ASSERT_EQ(s.data.size(), 100u);
+  EXPECT_EQ(s.data.back().sequence, 99);
+}
+
+TEST(Rig, ByteAndPhysicalFaultsAreSeenByTheClient) {
+  const auto dir = TempRunDir("faults");
+  Rig rig(SmallConfig(50.0), dir);
+  rig.Start(dir / "manifest.json");
+  PtyClient control(rig.ports().at("control"));
+  PtyClient port(rig.ports().at("imu1"));
+  // Reads 0.3 s wall (15 s simulated, ~1,500 packets) after `command` took effect.
+  auto observe = [&](const std::string& command) {
+    if (!command.empty()) {
+      EXPECT_THAT(control.Command(command), StartsWith("OK")) << command;
+    }
+    port.Drain();
+    std::vector<uint8_t> bytes;
+    port.ReadFor(0.3, bytes);
+    return bytes;
+  };
+  const Stream clean = Decode(observe(""));
+  EXPECT_GT(clean.data.size(), 500u);
+  EXPECT_EQ(clean.counters.bad_crc, 0u);
+
+  EXPECT_TRUE(observe("fault imu1 silent on").empty());
+  EXPECT_GT(Decode(observe("fault imu1 silent off")).data.size(), 500u);
+
+  const std::vector<uint8_t> garbage = observe("fault imu1 garbage on");
+  EXPECT_GT(garbage.size(), 10000u);  // bytes keep coming …
+  EXPECT_EQ(Decode(garbage).data.size(), 0u);  // … but no frame survives
+  observe("fault imu1 garbage off");
+
+  // 1 % of bytes dropped: a 51-byte packet survives with probability 0.99^51 = 60 %.
+  const Stream dropped = Decode(observe("fault imu1 drop_rate 0.01"));
+  EXPECT_GT(dropped.lost, 100u);
+  observe("fault imu1 drop_rate 0");
+  // 1 % of bytes with a flipped bit: ~40 % of the packets fail their CRC.
+  const Stream corrupted = Decode(observe("fault imu1 corrupt_rate 0.01"));
+  EXPECT_GT(corrupted.counters.bad_crc, 100u);
+  EXPECT_GT(corrupted.lost, 100u);
+  EXPECT_THAT(control.Command("status"), HasSubstr("faults=imu1:corrupt_rate=0.01"));
+  observe("fault imu1 corrupt_rate 0");
+
+  EXPECT_TRUE(observe("fault imu1 unplugged on").empty());
+  const Stream replugged = Decode(observe("fault imu1 unplugged off"));
+  ASSERT_FALSE(replugged.data.empty());
+
+  EXPECT_TRUE(observe("fault imu1 reset on").empty());
+  const Stream powered = Decode(observe("fault imu1 reset off"));
+  ASSERT_FALSE(powered.data.empty());
+  // Power-on restarts the sequence at 0: 0.3 s wall at 50x is < 2,560 packets, so the stream
+  // holds the first packets after power-on (sequence 0, 1, …) unless the drain came late.
+  EXPECT_EQ(powered.lost, 0u);
+  EXPECT_EQ(powered.data.front().tag, 0);
+  EXPECT_THAT(control.Command("fault imu1 on_fire on"), HasSubstr("no fault 'on_fire'"));
+  rig.Stop();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Rig, StartFaultsFromTheConfigAreAppliedAndCheckedAgainstTheDevices) {
+  const auto dir = TempRunDir("startfaults");
+  nlohmann::json j = DefaultRigConfig();
+  j["units"]["imu"] = {j["units"]["imu"][0]};
+  j["faults"] = {{{"role", "imu1"}, {"fault", "silent"}, {"on", true}}};
+  {
+    Rig rig(RigConfig::FromJson(j, "rig.json"), dir);
+    EXPECT_THAT(rig.Control("status"), HasSubstr("faults=imu1:silent=on"));
+  }
+  j["faults"] = {{{"role", "imu1"}, {"fault", "melting"}, {"on", true}}};
+  try {
+    Rig rig(RigConfig::FromJson(j, "rig.json"), dir);
+    FAIL();
+  } catch (const sensor_sim::ParamError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("rig.json: $.faults[0]: imu1: no fault 'melting'"));
+  }
+  j["faults"] = {{{"role", "rate_table9"}, {"fault", "silent"}, {"on", true}}};
+  EXPECT_THROW(Rig(RigConfig::FromJson(j, "rig.json"), dir), sensor_sim::ParamError);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace adahrs::rig_sim
