@@ -6,6 +6,7 @@
 #include <boost/asio/posix/stream_descriptor.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <stdexcept>
@@ -18,6 +19,8 @@ struct DeviceHost::Impl {
   asio::io_context io;
   asio::steady_timer timer{io};
   std::chrono::steady_clock::time_point wall_start;
+  std::chrono::steady_clock::time_point last_tick;
+  std::chrono::steady_clock::duration paused{0};  // wall time the clock stood still
   bool stopping = false;
 };
 
@@ -30,10 +33,17 @@ struct DeviceHost::Port {
   std::array<uint8_t, 4096> read_buffer{};
   std::vector<uint8_t> pending_in;
   std::vector<uint8_t> out;
+  // Last wall instant the client took bytes (or had nothing waiting): a client counts as
+  // reading while this is recent.
+  std::chrono::steady_clock::time_point last_progress;
 };
 
 DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
-    : impl_(std::make_unique<Impl>()), time_scale_(time_scale), env_(initial),
+    : impl_(std::make_unique<Impl>()),
+      time_scale_(time_scale),
+      backlog_limit_bytes_(static_cast<size_t>(
+          static_cast<double>(kMinBacklogBytes) * std::clamp(time_scale / 100.0, 1.0, 16.0))),
+      env_(initial),
       env_snapshot_(initial) {
   if (!(time_scale >= 0.01)) {
     throw std::invalid_argument("time scale " + std::to_string(time_scale) + " below 0.01");
@@ -80,27 +90,54 @@ void DeviceHost::RunFrame() {
 }
 
 void DeviceHost::WriteOutputs() {
+  const auto now = std::chrono::steady_clock::now();
   for (auto& port : ports_) {
-    if (port->out.empty()) continue;
+    if (port->out.empty()) {
+      port->last_progress = now;
+      continue;
+    }
     boost::system::error_code ec;
     const size_t written = port->stream.write_some(asio::buffer(port->out), ec);
-    port->out.erase(port->out.begin(),
-                    port->out.begin() + static_cast<std::ptrdiff_t>(ec ? 0 : written));
-    if (port->out.size() > kMaxBacklogBytes) {
-      // The client is not reading: what does not fit the backlog is lost, newest bytes first.
-      bytes_lost_ += port->out.size() - kMaxBacklogBytes;
-      port->out.resize(kMaxBacklogBytes);
+    if (!ec && written > 0) {
+      port->out.erase(port->out.begin(), port->out.begin() + static_cast<std::ptrdiff_t>(written));
+      port->last_progress = now;
+    }
+    if (port->out.size() > backlog_limit_bytes_) {
+      // Nobody is reading: what does not fit the backlog is lost, newest bytes first.
+      bytes_lost_ += port->out.size() - backlog_limit_bytes_;
+      port->out.resize(backlog_limit_bytes_);
     }
   }
 }
 
+bool DeviceHost::WaitingForAClient() const {
+  const auto now = std::chrono::steady_clock::now();
+  for (const auto& port : ports_) {
+    if (port->out.size() > backlog_limit_bytes_ / 2 &&
+        now - port->last_progress < std::chrono::duration<double>(kClientStallLimit_s)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 void DeviceHost::OnTick() {
   if (impl_->stopping) return;
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                      impl_->wall_start).count();
+  const auto now = std::chrono::steady_clock::now();
+  WriteOutputs();
+  if (WaitingForAClient()) {
+    // The simulated clock stands still until the client has read its backlog down.
+    impl_->paused += now - impl_->last_tick;
+    paused_wall_s_.store(std::chrono::duration<double>(impl_->paused).count());
+  }
+  impl_->last_tick = now;
+  const double wall_s =
+      std::chrono::duration<double>(now - impl_->wall_start - impl_->paused).count();
   const auto target = static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s);
   // Bound the work per tick so reads and control actions interleave with frames.
-  for (int i = 0; i < 200 && frames_done_.load() < target; ++i) RunFrame();
+  for (int i = 0; i < 200 && frames_done_.load() < target && !WaitingForAClient(); ++i) {
+    RunFrame();
+  }
   WriteOutputs();
   const uint64_t done = frames_done_.load();
   if (target > done && target - done > max_frames_behind_.load()) {
@@ -109,6 +146,12 @@ void DeviceHost::OnTick() {
   {
     std::lock_guard<std::mutex> lock(env_mutex_);
     env_snapshot_ = env_;
+  }
+  if (frames_done_.load() < target && !WaitingForAClient()) {
+    // Behind the clock: continue at once (reads and posted actions still interleave) instead of
+    // sleeping on the timer, whose wake-up latency on a loaded machine would set the pace.
+    asio::post(impl_->io, [this] { OnTick(); });
+    return;
   }
   const auto wall_per_frame = std::chrono::duration<double>(kWorldFrame_s / time_scale_);
   impl_->timer.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -123,6 +166,8 @@ void DeviceHost::Start() {
   started_ = true;
   for (auto& port : ports_) ArmRead(*port);
   impl_->wall_start = std::chrono::steady_clock::now();
+  impl_->last_tick = impl_->wall_start;
+  for (auto& port : ports_) port->last_progress = impl_->wall_start;
   asio::post(impl_->io, [this] { OnTick(); });
   thread_ = std::thread([this] { impl_->io.run(); });
 }

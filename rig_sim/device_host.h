@@ -10,9 +10,15 @@
 // If the host cannot keep up it falls behind rather than skipping frames, and says so
 // (frames_behind()). The bytes a tick's frames release are written to the master once per tick
 // (one write per port however many frames the tick took: at high time scales a tick runs up to
-// 200 frames); what the pty does not take waits in a per-port backlog of kMaxBacklogBytes (the
-// PC's receive buffer), and bytes beyond it are lost, as on a real line whose client does not
-// read (counted in bytes_lost()).
+// 200 frames); what the pty does not take waits in a per-port backlog (the PC's receive buffer),
+// and bytes beyond it are lost, as on a real line whose client does not read (bytes_lost()).
+// The backlog is kMinBacklogBytes (≈ 12 s of a raw IMU stream at 1x) scaled by time_scale/100
+// above 100x, up to 16 times (1 MiB).
+// Flow control of the simulation (not of the modelled line): while a client that is reading
+// (it took bytes within the last kClientStallLimit_s of wall time) has more than half the backlog
+// waiting, the simulated clock stands still (paused_wall_s()). A client slowed by a busy machine
+// therefore loses nothing and the simulated timeline is unchanged, only its wall-clock mapping;
+// a port nobody reads stops counting after kClientStallLimit_s and loses bytes as above.
 #pragma once
 
 #include <atomic>
@@ -31,8 +37,11 @@
 namespace adahrs::rig_sim {
 
 inline constexpr double kWorldFrame_s = 0.01;
-/// Bytes per port held for a client that is not reading fast enough before bytes are lost.
-inline constexpr size_t kMaxBacklogBytes = 64 * 1024;
+/// Bytes per port held for a client that is not reading fast enough before bytes are lost,
+/// at time scales up to 100 (scaled up in proportion above, at most 16 times).
+inline constexpr size_t kMinBacklogBytes = 64 * 1024;
+/// Wall time without reading after which a port's client no longer holds the clock back.
+inline constexpr double kClientStallLimit_s = 0.5;
 
 class DeviceHost {
  public:
@@ -61,7 +70,11 @@ class DeviceHost {
   /// Frames the host was behind the scaled clock at the worst moment so far.
   uint64_t max_frames_behind() const { return max_frames_behind_.load(); }
   uint64_t bytes_lost() const { return bytes_lost_.load(); }
+  /// Wall time the clock stood still waiting for slow clients.
+  double paused_wall_s() const { return paused_wall_s_.load(); }
   double time_scale() const { return time_scale_; }
+  /// Bytes per port held for a slow client before bytes are lost.
+  size_t backlog_limit_bytes() const { return backlog_limit_bytes_; }
 
  private:
   struct Port;
@@ -69,17 +82,20 @@ class DeviceHost {
   void OnTick();
   void RunFrame();
   void WriteOutputs();
+  bool WaitingForAClient() const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<std::unique_ptr<Port>> ports_;
   double time_scale_;
+  size_t backlog_limit_bytes_;
   RigEnvironment env_;
   mutable std::mutex env_mutex_;
   RigEnvironment env_snapshot_;
   std::atomic<uint64_t> frames_done_{0};
   std::atomic<uint64_t> max_frames_behind_{0};
   std::atomic<uint64_t> bytes_lost_{0};
+  std::atomic<double> paused_wall_s_{0.0};
   std::thread thread_;
   bool started_ = false;
 };

@@ -68,6 +68,8 @@ class PtyClient {
     return ReadLine(5.0);
   }
 
+  int fd() const { return fd_; }
+
   /// Discards whatever is waiting.
   void Drain() { ::tcflush(fd_, TCIFLUSH); }
 
