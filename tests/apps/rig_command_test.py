@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""`adahrs rig` as an outside program sees it: starts, writes the manifest with symlinks, answers
+on the ports (a pyserial client decodes the unit stream with the independent peer decoder and gets
+an IDENTIFY answer; the control port switches a fault), and stops cleanly on SIGTERM.
+
+Usage: rig_command_test.py ADAHRS_BINARY
+"""
+import json
+import os
+import pathlib
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+import serial
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "firmware_model"))
+import unit_protocol_peer as peer  # noqa: E402
+
+IDENTIFY = 0x06
+
+
+def fail(message):
+    print("FAIL:", message)
+    sys.exit(1)
+
+
+def request_frame(sequence, payload):
+    body = bytes([len(payload), peer.REQUEST, sequence, 0]) + bytes(payload)
+    crc = peer.crc16_ccitt_false(body)
+    return peer.SYNC + body + bytes([crc & 0xFF, crc >> 8])
+
+
+def read_for(port, seconds):
+    data = bytearray()
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        data += port.read(65536)
+    return bytes(data)
+
+
+def control(port, line):
+    port.write((line + "\n").encode())
+    reply = port.readline().decode().strip()
+    print(f"control: {line} -> {reply}")
+    return reply
+
+
+def main(adahrs):
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        # A config of our own: the built-in one with two IMUs, the second in orientation 12.
+        default = json.loads(subprocess.run([adahrs, "rig", "--print-default-config"], check=True,
+                                            capture_output=True, text=True).stdout)
+        default["units"]["imu"] = default["units"]["imu"][:2]
+        default["units"]["imu"][1]["orientation"] = 12
+        default["units"]["imu"][0]["serial_number"] = 4711
+        config = tmp / "rig.json"
+        config.write_text(json.dumps(default))
+
+        # A bad key is refused with the file and JSON path before anything starts.
+        bad = dict(default, station=dict(default["station"], latitude=1.0))
+        (tmp / "bad.json").write_text(json.dumps(bad))
+        refused = subprocess.run([adahrs, "rig", "--config", str(tmp / "bad.json"), "--manifest",
+                                  str(tmp / "bad_manifest.json")], capture_output=True, text=True)
+        if refused.returncode == 0 or "$.station.latitude" not in refused.stderr:
+            fail(f"bad config not refused properly: {refused.returncode} {refused.stderr!r}")
+
+        manifest_path = tmp / "out" / "manifest.json"
+        run_dir = tmp / "run"
+        rig = subprocess.Popen([adahrs, "rig", "--config", str(config), "--manifest",
+                                str(manifest_path), "--time-scale", "20", "--run-dir",
+                                str(run_dir)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True)
+        try:
+            deadline = time.monotonic() + 15
+            while not manifest_path.exists():
+                if rig.poll() is not None or time.monotonic() > deadline:
+                    fail(f"no manifest; rig exit {rig.poll()}: {rig.stderr.read()}")
+                time.sleep(0.05)
+            manifest = json.loads(manifest_path.read_text())
+            roles = set(manifest["ports"])
+            if roles != {"imu1", "imu2", "ads1", "control"}:
+                fail(f"roles {sorted(roles)}")
+            for role, device in manifest["ports"].items():
+                link = run_dir / "ports" / role
+                if os.readlink(link) != device or manifest["links"][role] != str(link):
+                    fail(f"link {link} -> {os.readlink(link)}, port {device}")
+            if not (run_dir / "truth" / "IMU-4711.json").exists():
+                fail("no truth file for IMU-4711")
+
+            # The unit through its stable link, as a station file would name it.
+            with serial.Serial(str(run_dir / "ports" / "imu1"), 115200, timeout=0.05) as imu:
+                imu.reset_input_buffer()
+                decoded = peer.decode_stream(read_for(imu, 1.0))
+                frames = [f for f in decoded["frames"] if f["type"] == peer.IMU]
+                # 1 s wall at 20x is 2,000 packets; half of it proves the stream on a busy machine.
+                if len(frames) < 1000:
+                    fail(f"only {len(frames)} IMU packets in 1 s at 20x")
+                gaps = sum((b["sequence"] - a["sequence"] - 1) % 256
+                           for a, b in zip(frames, frames[1:]))
+                if gaps or decoded["errors"]["bad_crc"]:
+                    fail(f"{gaps} packets lost, errors {decoded['errors']}")
+                print(f"imu1: {len(frames)} packets decoded, none lost")
+
+                imu.write(request_frame(0x33, [IDENTIFY]))
+                response = None
+                for _ in range(50):
+                    for f in peer.decode_stream(read_for(imu, 0.05))["frames"]:
+                        if f["type"] == peer.RESPONSE and f["sequence"] == 0x33:
+                            response = f["payload"]
+                    if response:
+                        break
+                if not response or response[:2] != [IDENTIFY, 0]:
+                    fail(f"IDENTIFY answered {response}")
+                serial_number = int.from_bytes(bytes(response[3:7]), "little")
+                if response[2] != 0x01 or serial_number != 4711:
+                    fail(f"IDENTIFY kind {response[2]} serial {serial_number}")
+                print("imu1: IDENTIFY ACK, IMU serial 4711")
+
+                with serial.Serial(manifest["ports"]["control"], 115200, timeout=5) as ctl:
+                    if not control(ctl, "time").startswith("OK "):
+                        fail("time")
+                    if control(ctl, "fault imu1 silent on") != "OK imu1 silent on":
+                        fail("fault on")
+                    time.sleep(0.1)
+                    imu.reset_input_buffer()
+                    if read_for(imu, 0.3):
+                        fail("silent unit still sends")
+                    control(ctl, "fault imu1 silent off")
+                    if not read_for(imu, 0.3):
+                        fail("unit does not resume")
+                    if not control(ctl, "fault imu1 garbage maybe").startswith("ERR "):
+                        fail("bad fault value accepted")
+
+            rig.send_signal(signal.SIGTERM)
+            out, err = rig.communicate(timeout=10)
+        except BaseException:
+            rig.kill()
+            rig.wait()
+            raise
+        if rig.returncode != 0 or "rig stopped by signal 15" not in out:
+            fail(f"exit {rig.returncode}; stdout {out!r}; stderr {err!r}")
+        print("rig stopped cleanly on SIGTERM")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1]))
