@@ -100,6 +100,15 @@ ParamReader ParamReader::Child(std::string_view key) const {
   return ParamReader(Require(key), source_, PathOf(key));
 }
 
+size_t ParamReader::ArrayLength(std::string_view key, size_t min, size_t max) const {
+  const nlohmann::json& array = Require(key);
+  if (!array.is_array() || array.size() < min || array.size() > max) {
+    Fail(PathOf(key), "expected an array of " + std::to_string(min) + " to " +
+                          std::to_string(max) + " items");
+  }
+  return array.size();
+}
+
 ParamReader ParamReader::Element(std::string_view key, size_t index, size_t count) const {
   const nlohmann::json& array = Require(key);
   if (!array.is_array() || array.size() != count) {

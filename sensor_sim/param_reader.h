@@ -42,6 +42,8 @@ class ParamReader {
   std::string String(std::string_view key) const;
   /// A nested object.
   ParamReader Child(std::string_view key) const;
+  /// The length of the array held under `key`, which must hold between `min` and `max` items.
+  size_t ArrayLength(std::string_view key, size_t min, size_t max) const;
   /// Element `index` of an array of exactly `count` objects held under `key`.
   ParamReader Element(std::string_view key, size_t index, size_t count) const;
   /// Whether a key is present (for documented optional blocks only).

@@ -1,0 +1,49 @@
+#include "hil/clock.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+namespace adahrs::hil {
+
+std::chrono::milliseconds Clock::WallTimeout(double duration_s) const {
+  const double wall_ms = duration_s / time_scale() * 1000.0;
+  return std::chrono::milliseconds(std::max<long long>(1, static_cast<long long>(wall_ms)));
+}
+
+WallClock::WallClock() : start_(std::chrono::steady_clock::now()) {}
+
+double WallClock::NowS() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void WallClock::SleepS(double duration_s) const {
+  if (duration_s > 0) std::this_thread::sleep_for(std::chrono::duration<double>(duration_s));
+}
+
+ScaledClock::ScaledClock(double time_scale)
+    : start_(std::chrono::steady_clock::now()), time_scale_(time_scale) {
+  if (!(time_scale >= 0.01 && time_scale <= 1e6)) {
+    throw std::invalid_argument("time scale " + std::to_string(time_scale) +
+                                " outside [0.01, 1e6]");
+  }
+}
+
+double ScaledClock::NowS() const {
+  return time_scale_ *
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void ScaledClock::SleepS(double duration_s) const {
+  if (duration_s > 0) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(duration_s / time_scale_));
+  }
+}
+
+std::unique_ptr<Clock> MakeClock(double time_scale) {
+  if (time_scale == 1.0) return std::make_unique<WallClock>();
+  return std::make_unique<ScaledClock>(time_scale);
+}
+
+}  // namespace adahrs::hil

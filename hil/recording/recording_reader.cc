@@ -1,0 +1,172 @@
+#include "hil/recording/recording_reader.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace adahrs::hil {
+namespace {
+
+std::vector<std::string> SplitHeader(std::string_view header) {
+  std::vector<std::string> names;
+  size_t start = 0;
+  while (start <= header.size()) {
+    const size_t comma = header.find(',', start);
+    const size_t end = comma == std::string_view::npos ? header.size() : comma;
+    names.emplace_back(header.substr(start, end - start));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return names;
+}
+
+// One CSV file being parsed: knows its path, the current line and the column names, so every
+// error can say where it happened.
+class CsvCursor {
+ public:
+  CsvCursor(const std::filesystem::path& path, std::string_view header)
+      : path_(path), names_(SplitHeader(header)), in_(path) {
+    if (!in_) throw RecordingError(path_.string() + ": cannot open for reading");
+    std::string first;
+    if (!std::getline(in_, first)) throw RecordingError(path_.string() + ": empty file, no header");
+    line_ = 1;
+    if (first != header) {
+      throw RecordingError(path_.string() + ":1: header is not the recording format's (version " +
+                           std::to_string(kRecordingFormatVersion) + "): expected '" +
+                           std::string(header) + "'");
+    }
+  }
+
+  // Reads the next row's cells; false at the end. A last line without its newline is truncated.
+  bool Next(bool allow_truncated_tail, int& truncated) {
+    std::string text;
+    while (std::getline(in_, text)) {
+      ++line_;
+      const bool complete = !in_.eof();
+      cells_.clear();
+      size_t start = 0;
+      for (;;) {
+        const size_t comma = text.find(',', start);
+        cells_.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
+      if (!complete || cells_.size() != names_.size()) {
+        if (!complete && allow_truncated_tail) {
+          ++truncated;
+          return false;
+        }
+        throw RecordingError(Where() + (complete ? "" : " (last line, no newline: truncated?)") +
+                             ": " + std::to_string(cells_.size()) + " columns, expected " +
+                             std::to_string(names_.size()));
+      }
+      return true;
+    }
+    return false;
+  }
+
+  double Real(size_t column) const {
+    double v = 0.0;
+    const std::string& cell = cells_[column];
+    const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+    if (ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v)) {
+      throw RecordingError(Where(column) + ": '" + cell + "' is not a finite number");
+    }
+    return v;
+  }
+
+  template <typename Int>
+  Int Integer(size_t column) const {
+    long long v = 0;
+    const std::string& cell = cells_[column];
+    const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+    if (ec != std::errc() || end != cell.data() + cell.size() ||
+        v < static_cast<long long>(std::numeric_limits<Int>::min()) ||
+        v > static_cast<long long>(std::numeric_limits<Int>::max())) {
+      throw RecordingError(Where(column) + ": '" + cell + "' is not an integer in [" +
+                           std::to_string(std::numeric_limits<Int>::min()) + ", " +
+                           std::to_string(std::numeric_limits<Int>::max()) + "]");
+    }
+    return static_cast<Int>(v);
+  }
+
+  const std::string& Text(size_t column) const {
+    if (cells_[column].empty()) throw RecordingError(Where(column) + ": empty");
+    return cells_[column];
+  }
+
+ private:
+  std::string Where() const { return path_.string() + ":" + std::to_string(line_); }
+  std::string Where(size_t column) const {
+    return Where() + ": column " + std::to_string(column + 1) + " (" + names_[column] + ")";
+  }
+
+  std::filesystem::path path_;
+  std::vector<std::string> names_;
+  std::ifstream in_;
+  std::vector<std::string> cells_;
+  long line_ = 0;
+};
+
+}  // namespace
+
+Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions& options) {
+  Recording rec;
+  const std::filesystem::path meta_path = run_dir / kMetaJsonName;
+  std::ifstream meta_in(meta_path);
+  if (!meta_in) throw RecordingError(meta_path.string() + ": cannot open for reading");
+  try {
+    rec.meta = nlohmann::json::parse(meta_in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw RecordingError(meta_path.string() + ": not valid JSON at byte " + std::to_string(e.byte));
+  }
+  if (!rec.meta.contains("format_version") || !rec.meta["format_version"].is_number_integer()) {
+    throw RecordingError(meta_path.string() + ": $.format_version missing");
+  }
+  const int version = rec.meta["format_version"].get<int>();
+  if (version != kRecordingFormatVersion) {
+    throw RecordingError(meta_path.string() + ": $.format_version is " + std::to_string(version) +
+                         "; this software reads version " +
+                         std::to_string(kRecordingFormatVersion));
+  }
+
+  CsvCursor imu(run_dir / kImuCsvName, kImuCsvHeader);
+  while (imu.Next(options.allow_truncated_tail, rec.truncated_lines)) {
+    ImuRecordRow r;
+    r.t_s = imu.Real(0);
+    r.unit = imu.Text(1);
+    r.seq = imu.Integer<uint32_t>(2);
+    r.step = imu.Integer<int>(3);
+    r.tag = imu.Integer<uint8_t>(4);
+    r.orientation = imu.Integer<int>(5);
+    r.chamber_c = imu.Real(6);
+    r.table_rate_dps = imu.Real(7);
+    for (size_t i = 0; i < 12; ++i) r.accel_ticks[i] = imu.Integer<uint16_t>(8 + i);
+    for (size_t i = 0; i < 3; ++i) r.gyro_cnt[i] = imu.Integer<int32_t>(20 + i);
+    for (size_t i = 0; i < 3; ++i) r.temp_cnt[i] = imu.Integer<uint16_t>(23 + i);
+    rec.imu.push_back(std::move(r));
+  }
+  CsvCursor ads(run_dir / kAdsCsvName, kAdsCsvHeader);
+  while (ads.Next(options.allow_truncated_tail, rec.truncated_lines)) {
+    AdsRecordRow r;
+    r.t_s = ads.Real(0);
+    r.unit = ads.Text(1);
+    r.seq = ads.Integer<uint32_t>(2);
+    r.step = ads.Integer<int>(3);
+    r.tag = ads.Integer<uint8_t>(4);
+    r.chamber_c = ads.Real(5);
+    r.ps_ref_pa = ads.Real(6);
+    r.qc_ref_pa = ads.Real(7);
+    r.ps_counts = ads.Integer<int32_t>(8);
+    r.pt_counts = ads.Integer<int32_t>(9);
+    r.ps_temp_counts = ads.Integer<int32_t>(10);
+    r.pt_temp_counts = ads.Integer<int32_t>(11);
+    r.oat_counts = ads.Integer<int32_t>(12);
+    rec.ads.push_back(std::move(r));
+  }
+  return rec;
+}
+
+}  // namespace adahrs::hil

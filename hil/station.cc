@@ -1,0 +1,168 @@
+#include "hil/station.h"
+
+#include <set>
+
+#include "sensor_sim/gravity.h"
+
+namespace adahrs::hil {
+namespace {
+
+using sensor_sim::ParamReader;
+
+struct InstrumentRole {
+  const char* role;
+  InstrumentType type;
+  unsigned default_baud;
+};
+// The instrument each role holds (reference-method.md: Aero 812 via ATL, Watlow F4 via Modbus on the
+// IMU rig, Watlow 942 on the ADS bench, Druck ADTS via GPIB through a Prologix-style adapter).
+constexpr InstrumentRole kRoles[] = {
+    {"rate_table", InstrumentType::kAerosmithAtl, 9600},
+    {"imu_chamber", InstrumentType::kWatlowF4, 9600},
+    {"ads_chamber", InstrumentType::kWatlow942, 9600},
+    {"adts", InstrumentType::kDruckAdtsPrologix, 115200},
+};
+
+const char* TypeName(InstrumentType type) {
+  switch (type) {
+    case InstrumentType::kAerosmithAtl: return "aerosmith_atl";
+    case InstrumentType::kWatlowF4: return "watlow_f4";
+    case InstrumentType::kWatlow942: return "watlow_942";
+    case InstrumentType::kDruckAdtsPrologix: return "druck_adts_prologix";
+  }
+  return "?";
+}
+
+SerialSettings ReadPort(const ParamReader& r) {
+  SerialSettings s;
+  s.path = r.String("path");
+  if (s.path.empty()) r.Fail(r.path() + ".path", "empty device path");
+  s.baud = static_cast<unsigned>(r.Integer("baud", 300, 4000000));
+  s.data_bits = static_cast<unsigned>(r.Integer("data_bits", 7, 8));
+  const std::string parity = r.String("parity");
+  if (parity != "N" && parity != "E" && parity != "O") {
+    r.Fail(r.path() + ".parity", "expected \"N\", \"E\" or \"O\", got \"" + parity + "\"");
+  }
+  s.parity = parity[0];
+  s.stop_bits = static_cast<unsigned>(r.Integer("stop_bits", 1, 2));
+  const std::string flow = r.String("flow");
+  if (flow == "none") s.flow = SerialSettings::Flow::kNone;
+  else if (flow == "xonxoff") s.flow = SerialSettings::Flow::kSoftware;
+  else if (flow == "rtscts") s.flow = SerialSettings::Flow::kHardware;
+  else r.Fail(r.path() + ".flow", "expected \"none\", \"xonxoff\" or \"rtscts\", got \"" + flow + "\"");
+  r.ExpectAllKeysUsed();
+  return s;
+}
+
+nlohmann::json PortJson(const SerialSettings& s) {
+  const char* flow = s.flow == SerialSettings::Flow::kSoftware   ? "xonxoff"
+                     : s.flow == SerialSettings::Flow::kHardware ? "rtscts"
+                                                                 : "none";
+  return {{"path", s.path},          {"baud", s.baud},        {"data_bits", s.data_bits},
+          {"parity", std::string(1, s.parity)}, {"stop_bits", s.stop_bits}, {"flow", flow}};
+}
+
+}  // namespace
+
+std::string ToString(InstrumentType type) { return TypeName(type); }
+std::string ToString(UnitKind kind) { return kind == UnitKind::kImu ? "imu" : "ads"; }
+
+Station Station::Load(const std::string& file_path) {
+  const nlohmann::json j = ParamReader::LoadFile(file_path);
+  return FromJson(ParamReader(j, file_path));
+}
+
+Station Station::FromJson(const ParamReader& r) {
+  Station st;
+  st.name = r.String("name");
+  st.time_scale = r.Number("time_scale", 0.01, 1e6, "clock s per wall s");
+  const ParamReader site = r.Child("site");
+  st.latitude_deg = site.Number("latitude_deg", -90.0, 90.0, "deg");
+  st.height_m = site.Number("height_m", -500.0, 5000.0, "m");
+  site.ExpectAllKeysUsed();
+  st.local_gravity_mps2 = sensor_sim::NormalGravityMps2(st.latitude_deg, st.height_m);
+
+  std::set<std::string> paths;
+  const auto claim_path = [&](const ParamReader& where, const std::string& path) {
+    if (!paths.insert(path).second) {
+      where.Fail(where.path() + ".port.path", "port " + path + " is already used by another role");
+    }
+  };
+  const ParamReader instruments = r.Child("instruments");
+  for (const InstrumentRole& role : kRoles) {
+    if (!instruments.Has(role.role)) continue;
+    const ParamReader ir = instruments.Child(role.role);
+    InstrumentEntry e;
+    e.role = role.role;
+    e.type = role.type;
+    const std::string type = ir.String("type");
+    if (type != TypeName(role.type)) {
+      ir.Fail(ir.path() + ".type", "role " + e.role + " holds a " + TypeName(role.type) +
+                                       ", not \"" + type + "\"");
+    }
+    e.port = ReadPort(ir.Child("port"));
+    claim_path(ir, e.port.path);
+    e.address = static_cast<int>(ir.Integer("address", 0, 247));
+    e.timeout_ms = static_cast<int>(ir.Integer("timeout_ms", 10, 60000));
+    e.retries = static_cast<int>(ir.Integer("retries", 0, 10));
+    ir.ExpectAllKeysUsed();
+    st.instruments.push_back(e);
+  }
+  instruments.ExpectAllKeysUsed();
+
+  const size_t n_units = r.ArrayLength("units", 0, 8);
+  std::set<std::string> roles;
+  int imus = 0;
+  for (size_t i = 0; i < n_units; ++i) {
+    const ParamReader ur = r.Element("units", i, n_units);
+    UnitEntry u;
+    u.role = ur.String("role");
+    if (!roles.insert(u.role).second) ur.Fail(ur.path() + ".role", "duplicate role " + u.role);
+    const std::string kind = ur.String("kind");
+    if (kind == "imu") u.kind = UnitKind::kImu;
+    else if (kind == "ads") u.kind = UnitKind::kAds;
+    else ur.Fail(ur.path() + ".kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
+    if (u.kind == UnitKind::kImu && ++imus > 4) {
+      ur.Fail(ur.path(), "a batch holds at most 4 IMU units (the fixture has 4 slots)");
+    }
+    u.port = ReadPort(ur.Child("port"));
+    claim_path(ur, u.port.path);
+    u.slot = static_cast<int>(ur.Integer("slot", 1, 4));
+    u.timeout_ms = static_cast<int>(ur.Integer("timeout_ms", 10, 60000));
+    ur.ExpectAllKeysUsed();
+    st.units.push_back(u);
+  }
+  r.ExpectAllKeysUsed();
+  return st;
+}
+
+nlohmann::json Station::ToJson() const {
+  nlohmann::json instruments = nlohmann::json::object();
+  for (const InstrumentEntry& e : this->instruments) {
+    instruments[e.role] = {{"type", TypeName(e.type)},   {"port", PortJson(e.port)},
+                           {"address", e.address},       {"timeout_ms", e.timeout_ms},
+                           {"retries", e.retries}};
+  }
+  nlohmann::json units = nlohmann::json::array();
+  for (const UnitEntry& u : this->units) {
+    units.push_back({{"role", u.role},
+                     {"kind", ToString(u.kind)},
+                     {"port", PortJson(u.port)},
+                     {"slot", u.slot},
+                     {"timeout_ms", u.timeout_ms}});
+  }
+  return {{"name", name},
+          {"time_scale", time_scale},
+          {"site", {{"latitude_deg", latitude_deg}, {"height_m", height_m}}},
+          {"instruments", instruments},
+          {"units", units}};
+}
+
+const InstrumentEntry* Station::Instrument(const std::string& role) const {
+  for (const InstrumentEntry& e : instruments) {
+    if (e.role == role) return &e;
+  }
+  return nullptr;
+}
+
+}  // namespace adahrs::hil

@@ -1,0 +1,114 @@
+#include "hil/recording/recording_reader.h"
+
+#include <unistd.h>
+
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "hil/recording/recording_writer.h"
+
+namespace adahrs::hil {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+class RecordingReaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("adahrs_reader_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    RecordingWriter w(dir_);
+    for (uint32_t i = 0; i < 3; ++i) {
+      ImuRecordRow r;
+      r.t_s = 0.01 * (i + 1);
+      r.unit = "IMU-0001";
+      r.seq = i;
+      r.tag = 7;
+      r.orientation = 21;
+      r.chamber_c = -40.0;
+      r.accel_ticks.fill(static_cast<uint16_t>(30000 + i));
+      r.gyro_cnt = {4194304, -3, 8388607};
+      r.temp_cnt = {1, 2, 65520};
+      w.Append(r);
+    }
+    AdsRecordRow a;
+    a.unit = "ADS-0001";
+    a.ps_ref_pa = 69681.64;
+    a.ps_counts = -8388608;
+    w.Append(a);
+    w.WriteMeta({{"sample_rate_hz", 100}});
+    w.Flush(true);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  void ReplaceInFile(const char* name, const std::string& from, const std::string& to) {
+    const auto path = dir_ / name;
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find(from), from.size(), to);
+    std::ofstream(path) << text;
+  }
+
+  std::string ErrorOf(const ReadOptions& options = {}) {
+    try {
+      ReadRecording(dir_, options);
+    } catch (const RecordingError& e) {
+      return e.what();
+    }
+    return "accepted";
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(RecordingReaderTest, ReadsBackWhatTheWriterWrote) {
+  const Recording rec = ReadRecording(dir_);
+  ASSERT_EQ(rec.imu.size(), 3u);
+  EXPECT_EQ(rec.imu[2].seq, 2u);
+  EXPECT_EQ(rec.imu[2].accel_ticks[11], 30002);
+  EXPECT_EQ(rec.imu[0].gyro_cnt[1], -3);
+  EXPECT_EQ(rec.imu[0].temp_cnt[2], 65520);
+  EXPECT_EQ(rec.imu[0].orientation, 21);
+  EXPECT_DOUBLE_EQ(rec.imu[1].chamber_c, -40.0);
+  ASSERT_EQ(rec.ads.size(), 1u);
+  EXPECT_EQ(rec.ads[0].ps_counts, -8388608);
+  EXPECT_DOUBLE_EQ(rec.ads[0].ps_ref_pa, 69681.64);
+  EXPECT_EQ(rec.meta["sample_rate_hz"], 100);
+}
+
+TEST_F(RecordingReaderTest, BadCellNamesFileLineAndColumn) {
+  ReplaceInFile("imu.csv", ",4194304,-3,", ",4194304,nan,");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:2"), HasSubstr("column 22 (gy)"), HasSubstr("'nan'")));
+}
+
+TEST_F(RecordingReaderTest, OutOfRangeTicksAreRefused) {
+  ReplaceInFile("imu.csv", ",30001,", ",70000,");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:3"), HasSubstr("az1_t1"), HasSubstr("[0, 65535]")));
+}
+
+TEST_F(RecordingReaderTest, TruncatedTailIsReportedOrCountedOnRequest) {
+  const auto path = dir_ / "imu.csv";
+  std::ofstream(path, std::ios::app) << "0.04,IMU-0001,3,0,7";  // a crash mid-row
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:5"), HasSubstr("truncated")));
+  const Recording rec = ReadRecording(dir_, {.allow_truncated_tail = true});
+  EXPECT_EQ(rec.imu.size(), 3u);
+  EXPECT_EQ(rec.truncated_lines, 1);
+}
+
+TEST_F(RecordingReaderTest, WrongFormatVersionIsRefused) {
+  ReplaceInFile("meta.json", "\"format_version\": 1", "\"format_version\": 2");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("meta.json"), HasSubstr("format_version is 2")));
+}
+
+TEST_F(RecordingReaderTest, ForeignHeaderIsRefused) {
+  ReplaceInFile("ads.csv", "ps_ref_pa", "ps_ref_hpa");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("ads.csv:1"), HasSubstr("header")));
+}
+
+}  // namespace
+}  // namespace adahrs::hil

@@ -1,0 +1,88 @@
+#include "hil/transport/serial_port.h"
+
+#include <unistd.h>
+
+#include <string>
+#include <thread>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "hil/transport/pty.h"
+
+namespace adahrs::hil {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using namespace std::chrono_literals;
+
+std::string ReadMaster(int fd, size_t count) {
+  std::string out;
+  char buf[256];
+  for (int i = 0; i < 200 && out.size() < count; ++i) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n > 0) out.append(buf, static_cast<size_t>(n));
+    else std::this_thread::sleep_for(1ms);
+  }
+  return out;
+}
+
+TEST(SerialPort, TalksThroughAPtyBothWays) {
+  PtyPair pty = PtyPair::Open();
+  SerialPort port({pty.slave_path(), 9600}, "rate_table");
+  port.Write("JOG 100\r\n", 500ms);
+  EXPECT_EQ(ReadMaster(pty.master_fd(), 9), "JOG 100\r\n");
+  const std::string reply = "\r\n>\r\nextra";
+  ASSERT_EQ(::write(pty.master_fd(), reply.data(), reply.size()), ssize_t(reply.size()));
+  EXPECT_EQ(port.ReadUntil(">\r\n", 1000ms), "\r\n>\r\n");
+  // Bytes after the terminator are kept for the next read.
+  EXPECT_EQ(port.ReadExactly(5, 1000ms), std::vector<uint8_t>({'e', 'x', 't', 'r', 'a'}));
+}
+
+TEST(SerialPort, TimeoutNamesRolePortAndWhatArrived) {
+  PtyPair pty = PtyPair::Open();
+  SerialPort port({pty.slave_path(), 9600}, "chamber");
+  ASSERT_EQ(::write(pty.master_fd(), "\x01\x03", 2), 2);
+  try {
+    port.ReadUntil("\r\n", 100ms);
+    FAIL();
+  } catch (const TransportTimeout& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("chamber"), HasSubstr(pty.slave_path()),
+                                HasSubstr("0D 0A"), HasSubstr("01 03"), HasSubstr("100 ms")));
+  }
+  uint8_t buf[8];
+  EXPECT_EQ(port.ReadSome(buf, 50ms), 0u);  // a poll with nothing pending is not an error
+}
+
+TEST(SerialPort, TraceSeesEveryByte) {
+  PtyPair pty = PtyPair::Open();
+  SerialPort port({pty.slave_path(), 115200}, "imu1");
+  std::string sent, received;
+  port.SetTrace([&](TraceDirection d, std::span<const uint8_t> bytes) {
+    (d == TraceDirection::kSent ? sent : received).append(bytes.begin(), bytes.end());
+  });
+  port.Write("ab", 500ms);
+  ASSERT_EQ(::write(pty.master_fd(), "xyz", 3), 3);
+  port.ReadExactly(3, 1000ms);
+  EXPECT_EQ(sent, "ab");
+  EXPECT_EQ(received, "xyz");
+}
+
+TEST(SerialPort, MissingDeviceIsAClearError) {
+  try {
+    SerialPort port({"/dev/does-not-exist-adahrs", 9600}, "adts");
+    FAIL();
+  } catch (const TransportError& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("adts"), HasSubstr("/dev/does-not-exist-adahrs"),
+                                HasSubstr("cannot open")));
+  }
+}
+
+TEST(SerialPort, HexBytesTruncatesLongDumps) {
+  std::vector<uint8_t> bytes(100, 0xAB);
+  EXPECT_THAT(HexBytes(bytes, 4), AllOf(HasSubstr("AB AB AB AB"), HasSubstr("100 bytes")));
+}
+
+}  // namespace
+}  // namespace adahrs::hil

@@ -1,0 +1,78 @@
+#include "hil/station.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace adahrs::hil {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+const std::string kExample = std::string(ADAHRS_SOURCE_DIR) + "/docs/examples/station-virtual-rig.json";
+
+nlohmann::json Example() { return sensor_sim::ParamReader::LoadFile(kExample); }
+
+std::string ErrorOf(const nlohmann::json& j) {
+  try {
+    Station::FromJson(sensor_sim::ParamReader(j, "station.json"));
+  } catch (const sensor_sim::ParamError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(Station, TheDocumentedExampleLoads) {
+  const Station st = Station::Load(kExample);
+  EXPECT_EQ(st.time_scale, 100.0);
+  ASSERT_NE(st.Instrument("imu_chamber"), nullptr);
+  EXPECT_EQ(st.Instrument("imu_chamber")->type, InstrumentType::kWatlowF4);
+  EXPECT_EQ(st.Instrument("imu_chamber")->address, 1);
+  EXPECT_EQ(st.Instrument("adts"), nullptr);
+  ASSERT_EQ(st.units.size(), 2u);
+  EXPECT_EQ(st.units[1].port.baud, 115200u);
+  // WGS-84 normal gravity at 34.7° N, 190 m, by hand: Somigliana
+  // 9.7803253359·(1 + 0.00193185265·sin²φ)/√(1 − 0.00669438·sin²φ) = 9.797079 with sin²φ = 0.324082,
+  // free air −3.086e-6·190 = −0.000586: 9.796493 m/s².
+  EXPECT_NEAR(st.local_gravity_mps2, 9.796493, 1e-5);
+}
+
+TEST(Station, RoundTripsThroughJson) {
+  const Station st = Station::Load(kExample);
+  const nlohmann::json j = st.ToJson();
+  EXPECT_EQ(Station::FromJson(sensor_sim::ParamReader(j, "again")).ToJson(), j);
+}
+
+TEST(Station, RefusesWhatARealLabWouldGetWrong) {
+  nlohmann::json j = Example();
+  j["units"][1]["port"]["parity"] = "X";
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1].port.parity"), HasSubstr("\"N\", \"E\" or \"O\"")));
+
+  j = Example();
+  j["units"][1]["port"]["path"] = j["units"][0]["port"]["path"];
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1]"), HasSubstr("already used")));
+
+  j = Example();
+  j["instruments"]["imu_chamber"]["type"] = "watlow_942";
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.instruments.imu_chamber.type"), HasSubstr("watlow_f4")));
+
+  j = Example();
+  j["instruments"]["rate_tabel"] = j["instruments"]["rate_table"];
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.instruments.rate_tabel"), HasSubstr("unknown key")));
+
+  j = Example();
+  for (int i = 0; i < 3; ++i) {
+    nlohmann::json u = j["units"][0];
+    u["role"] = "imu" + std::to_string(3 + i);
+    u["port"]["path"] = "/dev/x" + std::to_string(i);
+    j["units"].push_back(u);
+  }
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[4]"), HasSubstr("at most 4 IMU")));
+
+  j = Example();
+  j["time_scale"] = 0;
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.time_scale"), HasSubstr("out of range")));
+}
+
+}  // namespace
+}  // namespace adahrs::hil
