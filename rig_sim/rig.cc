@@ -84,7 +84,8 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     unit.initial_air_c = config.initial_air_c;
     WriteTruth(run_dir_ / "truth", unit.params.serial, "imu", slot.seed, config.model_profile,
                unit.params.ToJson());
-    units_.push_back({{"role", unit.role}, {"kind", "imu"}, {"serial", unit.params.serial},
+    units_.push_back({{"role", unit.role}, {"kind", "imu"}, {"slot", i + 1},
+                      {"orientation", slot.orientation}, {"serial", unit.params.serial},
                       {"serial_number", slot.serial_number}, {"baud", slot.baud},
                       {"truth", "truth/" + unit.params.serial + ".json"}});
     AddDevice(std::make_unique<ImuUnitDevice>(unit), "imu", unit.slot, fault_stream++);
@@ -101,7 +102,8 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     unit.initial_air_c = config.initial_air_c;
     WriteTruth(run_dir_ / "truth", unit.params.serial, "ads", slot.seed, config.model_profile,
                unit.params.ToJson());
-    units_.push_back({{"role", unit.role}, {"kind", "ads"}, {"serial", unit.params.serial},
+    units_.push_back({{"role", unit.role}, {"kind", "ads"}, {"slot", i + 1},
+                      {"serial", unit.params.serial},
                       {"serial_number", slot.serial_number}, {"baud", slot.baud},
                       {"truth", "truth/" + unit.params.serial + ".json"}});
     AddDevice(std::make_unique<AdsUnitDevice>(unit), "ads", -1, fault_stream++);

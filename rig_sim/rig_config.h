@@ -31,7 +31,7 @@ namespace adahrs::rig_sim {
 
 /// One kind of virtual instrument the rig can serve: its config key, factory and defaults.
 struct InstrumentKind {
-  std::string name;  ///< key under "instruments"
+  std::string name;  ///< key under "instruments", the station file's `type` (docs/station.md)
   std::function<std::unique_ptr<SerialDevice>(const sensor_sim::ParamReader&)> make;
   std::function<nlohmann::json()> default_config;
   std::string doc_page;  ///< docs/rig/<instrument>.md
