@@ -102,8 +102,12 @@ void DeviceHost::WriteOutputs() {
       port->out.erase(port->out.begin(), port->out.begin() + static_cast<std::ptrdiff_t>(written));
       port->last_progress = now;
     }
-    if (port->out.size() > backlog_limit_bytes_) {
-      // Nobody is reading: what does not fit the backlog is lost, newest bytes first.
+    if (now - port->last_progress > std::chrono::duration<double>(kClientStallLimit_s)) {
+      // Nobody is reading: the bytes go nowhere, as on a line with no listener, so a client
+      // that opens the port later (and flushes the kernel's buffer) reads current data.
+      bytes_lost_ += port->out.size();
+      port->out.clear();
+    } else if (port->out.size() > backlog_limit_bytes_) {
       bytes_lost_ += port->out.size() - backlog_limit_bytes_;
       port->out.resize(backlog_limit_bytes_);
     }

@@ -18,7 +18,9 @@
 // (it took bytes within the last kClientStallLimit_s of wall time) has more than half the backlog
 // waiting, the simulated clock stands still (paused_wall_s()). A client slowed by a busy machine
 // therefore loses nothing and the simulated timeline is unchanged, only its wall-clock mapping;
-// a port nobody reads stops counting after kClientStallLimit_s and loses bytes as above.
+// a port nobody reads stops counting after kClientStallLimit_s and its output is discarded until
+// a client reads again (so a client that opens the port late and flushes the kernel's buffer, as
+// pyserial's reset_input_buffer does, reads current data, not a stale backlog).
 #pragma once
 
 #include <atomic>

@@ -9,8 +9,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "firmware_model/constants_exporter.h"
 #include "firmware_model/target/imu_constants.h"
 #include "firmware_model/unit_protocol_client.h"
+#include "tests/firmware_model/realistic_constants.h"
 #include "tests/rig_sim/pty_client.h"
 
 namespace adahrs::rig_sim {
@@ -142,10 +144,29 @@ TEST(Rig, MaintenanceCommandsOverThePty) {
   EXPECT_EQ(tagged.data.back().tag, 77);
   EXPECT_EQ(fm::ParseReadBlock(ask(client.ReadBlock(fm::kImuBlockCa))).words.size(),
             fm::kImuMatrixBlockWords);
+  // A full constant set written block by block, committed, then a compensated mode.
+  const fm::ImuConstants constants =
+      fm::ExportImuConstants(fm::testing::RealisticImu(8)).constants;
+  for (uint8_t block = fm::kImuBlockThermalFirst; block <= fm::kImuBlockCg; ++block) {
+    int16_t words[fm::kImuMaxBlockWords];
+    uint8_t count = 0;
+    fm::ImuConstantsReadBlock(&constants, block, words, fm::kImuMaxBlockWords, &count);
+    ASSERT_EQ(ask(client.WriteBlock(block, {words, count})).result, fm::ResultCode::kAck);
+  }
+  EXPECT_EQ(fm::ParseCommit(ask(client.Commit())).constants_version, 1);
+  EXPECT_EQ(ask(client.SetImuMode(fm::ImuCompensationMode::kSensorCalibrated)).result,
+            fm::ResultCode::kAck);
+  bytes.clear();
+  port.ReadFor(0.2, bytes);
+  EXPECT_EQ(fm::ParseImuData(Decode(bytes).data.back()).mode,
+            fm::ImuCompensationMode::kSensorCalibrated);
   EXPECT_EQ(ask(client.Reset()).result, fm::ResultCode::kAck);
   bytes.clear();
   port.ReadFor(0.2, bytes);
   EXPECT_EQ(Decode(bytes).data.back().tag, 0);
+  EXPECT_EQ(fm::ParseImuData(Decode(bytes).data.back()).mode, fm::ImuCompensationMode::kRaw);
+  // The committed set survived the power cycle: the calibrated mode is accepted again.
+  EXPECT_TRUE(fm::ParseIdentify(ask(client.Identify())).constants_valid);
   rig.Stop();
   std::filesystem::remove_all(dir);
 }
