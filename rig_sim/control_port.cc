@@ -18,7 +18,7 @@ std::vector<std::string> Words(std::string_view line) {
   return words;
 }
 
-double ParseRate(const std::string& text) {
+double ParseNumber(const std::string& text) {
   size_t used = 0;
   double rate = 0.0;
   try {
@@ -48,7 +48,7 @@ void RigControl::SetFault(const std::string& role, const std::string& fault,
                           const std::string& value) {
   ByteFaultDevice& device = *Target(role).device;
   if (ByteFaultDevice::IsRate(fault)) {
-    const double rate = ParseRate(value);
+    const double rate = ParseNumber(value);
     device.SetRate(fault, rate);
     if (rate > 0.0) {
       active_faults_[role + ":" + fault] = value;
@@ -127,7 +127,7 @@ std::string RigControl::Execute(std::string_view line, double now_s, RigEnvironm
       if (target.imu_slot < 0) return "ERR " + w[1] + " is not an IMU unit";
       int& code = env.imu_orientation[static_cast<size_t>(target.imu_slot)];
       if (w.size() == 3) {
-        const double requested = ParseRate(w[2]);
+        const double requested = ParseNumber(w[2]);
         if (requested != static_cast<int>(requested) ||
             !IsValidOrientation(static_cast<int>(requested))) {
           return "ERR " + w[2] + " is not a fixture code (11 12 21 22 31 32)";
