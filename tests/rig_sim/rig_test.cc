@@ -215,26 +215,31 @@ TEST(Rig, ByteAndPhysicalFaultsAreSeenByTheClient) {
     port.ReadFor(0.3, bytes);
     return bytes;
   };
+  // 0.3 s wall at 50x is ~1,500 packets; the bounds below allow a loaded machine a fifth of that
+  // and compare fault effects with what was received.
   const Stream clean = Decode(observe(""));
-  EXPECT_GT(clean.data.size(), 500u);
+  EXPECT_GT(clean.data.size(), 300u);
   EXPECT_EQ(clean.counters.bad_crc, 0u);
 
   EXPECT_TRUE(observe("fault imu1 silent on").empty());
-  EXPECT_GT(Decode(observe("fault imu1 silent off")).data.size(), 500u);
+  EXPECT_GT(Decode(observe("fault imu1 silent off")).data.size(), 300u);
 
   const std::vector<uint8_t> garbage = observe("fault imu1 garbage on");
-  EXPECT_GT(garbage.size(), 10000u);  // bytes keep coming …
+  EXPECT_GT(garbage.size(), 300u * 51u);  // bytes keep coming …
   EXPECT_EQ(Decode(garbage).data.size(), 0u);  // … but no frame survives
   observe("fault imu1 garbage off");
 
-  // 1 % of bytes dropped: a 51-byte packet survives with probability 0.99^51 = 60 %.
+  // 1 % of bytes dropped: a 51-byte packet survives with probability 0.99^51 = 60 %, so about
+  // 0.67 packets are lost per packet received; a quarter of that is a safe lower bound.
   const Stream dropped = Decode(observe("fault imu1 drop_rate 0.01"));
-  EXPECT_GT(dropped.lost, 100u);
+  EXPECT_GT(dropped.data.size(), 100u);
+  EXPECT_GT(dropped.lost, dropped.data.size() / 4);
   observe("fault imu1 drop_rate 0");
-  // 1 % of bytes with a flipped bit: ~40 % of the packets fail their CRC.
+  // 1 % of bytes with a flipped bit: ~40 % of the packets fail their CRC (0.67 per good one).
   const Stream corrupted = Decode(observe("fault imu1 corrupt_rate 0.01"));
-  EXPECT_GT(corrupted.counters.bad_crc, 100u);
-  EXPECT_GT(corrupted.lost, 100u);
+  EXPECT_GT(corrupted.data.size(), 100u);
+  EXPECT_GT(corrupted.counters.bad_crc, corrupted.data.size() / 4);
+  EXPECT_GT(corrupted.lost, corrupted.data.size() / 4);
   EXPECT_THAT(control.Command("status"), HasSubstr("faults=imu1:corrupt_rate=0.01"));
   observe("fault imu1 corrupt_rate 0");
 
