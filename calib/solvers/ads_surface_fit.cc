@@ -1,10 +1,32 @@
 #include "calib/solvers/ads_surface_fit.h"
 
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+
 namespace adahrs::calib {
 
 SurfaceEstimate FitReferenceSurface(const std::string& context,
                                     const std::vector<SurfaceSample>& samples,
                                     const LeastSquaresOptions& options) {
+  constexpr int kMinTemperatures = 4;
+  std::set<long long> temperatures_dc;  // chamber temperatures to 0.1 degC
+  for (const SurfaceSample& s : samples) temperatures_dc.insert(std::llround(10.0 * s.chamber_c));
+  if (static_cast<int>(temperatures_dc.size()) < kMinTemperatures) {
+    throw DegenerateDesignError(fmt::format(
+        "{}: design refused: {} chamber temperature(s), the cubic's y, y^2, y^3 terms need at "
+        "least {} (too few temperatures)",
+        context, temperatures_dc.size(), kMinTemperatures));
+  }
+  std::set<double> references;
+  for (const SurfaceSample& s : samples) references.insert(s.z);
+  if (static_cast<int>(references.size()) < kMinTemperatures) {
+    throw DegenerateDesignError(fmt::format(
+        "{}: design refused: {} distinct reference value(s), the cubic's x, x^2, x^3 terms need "
+        "at least 4 (too few altitudes or airspeeds)",
+        context, references.size()));
+  }
   PolynomialObservations obs;
   for (const SurfaceSample& s : samples) {
     obs.x.push_back(s.x_code);

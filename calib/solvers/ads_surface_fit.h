@@ -10,8 +10,11 @@
 // points where the tolerance is tight. Standard errors from the residual variance; the residuals
 // here are mostly model error (the cubic cannot follow the bridge's temperature behaviour), so they
 // describe the fit's spread, not noise.
-// Refused: fewer than 11 points, or a degenerate design, e.g. every point at one temperature (the
-// message names the y terms that cannot be told apart).
+// Refused: fewer than 4 distinct chamber temperatures (the y, y^2, y^3 terms need four; the
+// bridge-voltage code alone cannot show it, since pressure and noise move it slightly even at one
+// temperature and normalisation would stretch that into a spurious regressor), fewer than 4
+// distinct reference values (likewise for x, x^2, x^3: the pressure code moves with temperature), fewer than 11
+// points, or a degenerate design (the message names the near-null combination of terms).
 // Not modelled: pressure or thermal hysteresis (a single-valued surface cannot), weighting by the
 // tolerance tables (an improved strategy, issue 6).
 #pragma once
@@ -30,6 +33,7 @@ struct SurfaceSample {
   double x_code = 0.0;  ///< pressure code
   double y_code = 0.0;  ///< bridge-voltage (temperature) code
   double z = 0.0;       ///< reference value: altitude ft or airspeed kt
+  double chamber_c = 0.0;  ///< the step's chamber temperature (reference instrument), degC
 };
 
 struct SurfaceEstimate {
