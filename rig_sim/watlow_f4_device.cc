@@ -63,12 +63,9 @@ void WatlowF4Device::EndFrameOnSilence(double now_s) {
     const hil::modbus::DecodedRequest decoded = hil::modbus::DecodeRequest(rx_);
     if (decoded.status == DecodeStatus::kIllegalFunction &&
         decoded.request.address == config_.modbus_address) {
-      hil::modbus::Response response;
-      response.address = decoded.request.address;
-      response.function = decoded.request.function;
-      response.is_exception = true;
-      response.exception = hil::modbus::ExceptionCode::kIllegalFunction;
-      Reply(response, now_s);
+      Reply(hil::modbus::ExceptionResponse(decoded.request.address, decoded.request.function,
+                                           hil::modbus::ExceptionCode::kIllegalFunction),
+            now_s);
     }
   }
   rx_.clear();
@@ -96,12 +93,9 @@ void WatlowF4Device::ParseBuffer(double now_s) {
     if (decoded.status == DecodeStatus::kOk) {
       Serve(decoded.request, now_s);
     } else if (decoded.status == DecodeStatus::kIllegalDataValue && address != 0) {
-      hil::modbus::Response response;
-      response.address = address;
-      response.function = decoded.request.function;
-      response.is_exception = true;
-      response.exception = hil::modbus::ExceptionCode::kIllegalDataValue;
-      Reply(response, now_s);
+      Reply(hil::modbus::ExceptionResponse(address, decoded.request.function,
+                                           hil::modbus::ExceptionCode::kIllegalDataValue),
+            now_s);
     }
   }
 }

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace adahrs::hil::modbus {
 namespace {
@@ -28,6 +29,45 @@ void CheckCount(uint8_t function, size_t count) {
 }
 
 }  // namespace
+
+Request ReadRequest(uint8_t address, uint16_t start_register, uint16_t count) {
+  Request request;
+  request.address = address;
+  request.function = kReadHoldingRegisters;
+  request.start_register = start_register;
+  request.count = count;
+  return request;
+}
+
+Request WriteSingleRequest(uint8_t address, uint16_t reg, uint16_t value) {
+  Request request;
+  request.address = address;
+  request.function = kWriteSingleRegister;
+  request.start_register = reg;
+  request.count = 1;
+  request.values = {value};
+  return request;
+}
+
+Request WriteMultipleRequest(uint8_t address, uint16_t start_register,
+                             std::vector<uint16_t> values) {
+  Request request;
+  request.address = address;
+  request.function = kWriteMultipleRegisters;
+  request.start_register = start_register;
+  request.count = static_cast<uint16_t>(values.size());
+  request.values = std::move(values);
+  return request;
+}
+
+Response ExceptionResponse(uint8_t address, uint8_t function, ExceptionCode code) {
+  Response response;
+  response.address = address;
+  response.function = function;
+  response.is_exception = true;
+  response.exception = code;
+  return response;
+}
 
 uint16_t Crc16(std::span<const uint8_t> bytes) {
   uint16_t crc = 0xFFFF;

@@ -58,6 +58,13 @@ struct Response {
   std::vector<uint16_t> values;
 };
 
+/// Requests built field by field for the three function codes.
+Request ReadRequest(uint8_t address, uint16_t start_register, uint16_t count);
+Request WriteSingleRequest(uint8_t address, uint16_t reg, uint16_t value);
+Request WriteMultipleRequest(uint8_t address, uint16_t start_register, std::vector<uint16_t> values);
+/// An exception reply to `function` from `address`.
+Response ExceptionResponse(uint8_t address, uint8_t function, ExceptionCode code);
+
 /// CRC-16/MODBUS of `bytes` (check value of "123456789" is 0x4B37).
 uint16_t Crc16(std::span<const uint8_t> bytes);
 
