@@ -75,6 +75,10 @@ constexpr StepRegisterRange kStepRanges[] = {
     {4060, 0, 3},
 };
 
+// A step whose remaining time is below this has ended: sums of 0.1 s ticks fall short of a whole
+// duration by rounding (~1e-10 s over hours), which must not cost a whole extra tick.
+constexpr double kStepEnd_s = 1e-6;
+
 bool IsNameCharacter(uint16_t value) {
   return value == ' ' || (value >= 'A' && value <= 'Z') || (value >= '0' && value <= '9');
 }
@@ -496,7 +500,7 @@ void WatlowF4::Tick(double dt_s, double pv_c) {
     const double advance_s = std::min(left_s, StepRemainingS());
     step_elapsed_s_ += advance_s;
     left_s -= advance_s;
-    if (StepRemainingS() <= 0.0) {
+    if (StepRemainingS() <= kStepEnd_s) {
       profile_set_point_c_ = ramp_target_c_;
       EnterStep(profile_, step_ + 1);
     } else {
