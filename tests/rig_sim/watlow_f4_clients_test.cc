@@ -5,8 +5,8 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
-#include <regex>
 #include <string>
 #include <thread>
 
@@ -39,9 +39,14 @@ std::string RunCommand(const std::string& command) {
 
 // mbpoll prints a read register as "[100]: \t250"; returns the value or -1.
 long MbpollValue(const std::string& output, int reg) {
-  std::smatch match;
-  const std::regex line("\\[" + std::to_string(reg) + "\\]:\\s*(-?[0-9]+)");
-  return std::regex_search(output, match, line) ? std::stol(match[1]) : -1;
+  char label[16];
+  const int label_length = std::snprintf(label, sizeof label, "[%d]:", reg);
+  const size_t at = output.find(label);
+  if (at == std::string::npos) return -1;
+  char* end = nullptr;
+  const char* start = output.c_str() + at + label_length;
+  const long value = std::strtol(start, &end, 10);
+  return end == start ? -1 : value;
 }
 
 TEST(WatlowF4Clients, LibmodbusReadsPvWritesTheSetPointAndSeesException03) {
