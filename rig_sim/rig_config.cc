@@ -5,6 +5,7 @@
 #include <array>
 #include <set>
 
+#include "rig_sim/watlow_f4_device.h"
 #include "sensor_sim/gravity.h"
 
 namespace adahrs::rig_sim {
@@ -12,7 +13,10 @@ namespace adahrs::rig_sim {
 using sensor_sim::ParamReader;
 
 const std::vector<InstrumentKind>& InstrumentKinds() {
-  static const std::vector<InstrumentKind> kinds = {};
+  // Keys are the station file's instrument types (docs/station.md).
+  static const std::vector<InstrumentKind> kinds = {
+      {"watlow_f4", MakeWatlowF4Device, DefaultWatlowF4Config, "docs/rig/watlow-f4.md"},
+  };
   return kinds;
 }
 

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/target/imu_constants.h"
 #include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/modbus_rtu.h"
 #include "tests/firmware_model/realistic_constants.h"
 #include "tests/rig_sim/pty_client.h"
 
@@ -101,7 +103,7 @@ TEST(Rig, WritesManifestLinksAndTruthAndStreamsUnitsOnPtys) {
   PtyClient control(manifest["ports"]["control"].get<std::string>());
   EXPECT_THAT(control.Command("time"), StartsWith("OK "));
   EXPECT_THAT(control.Command("status"),
-              HasSubstr("roles=imu1,imu2,imu3,imu4,ads1,control faults=none"));
+              HasSubstr("roles=imu_chamber,imu1,imu2,imu3,imu4,ads1,control faults=none"));
   EXPECT_EQ(control.Command("orientation imu2 12"), "OK imu2 12");
   EXPECT_EQ(rig.host().environment().imu_orientation[1], 12);
   EXPECT_EQ(control.Command("orientation ads1 12"), "ERR ads1 is not an IMU unit");
@@ -277,6 +279,45 @@ TEST(Rig, StartFaultsFromTheConfigAreAppliedAndCheckedAgainstTheDevices) {
   }
   j["faults"] = {{{"role", "rate_table9"}, {"fault", "silent"}, {"on", true}}};
   EXPECT_THROW(Rig(RigConfig::FromJson(j, "rig.json"), dir), sensor_sim::ParamError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Rig, TheChamberBehindItsModbusPortWarmsTheUnits) {
+  // A client writes the F4's set point (register 300, tenths of °C: protocols.md §2) over the
+  // imu_chamber pty; the chamber air it drives is the IMU's air, so the unit's gyro temperature
+  // counts rise (ADXRS150 TEMP +8.4 mV/K, physics.md 2.1).
+  const auto dir = TempRunDir("chamber");
+  nlohmann::json j = DefaultRigConfig();
+  j["time_scale"] = 500.0;
+  j["units"]["imu"] = {j["units"]["imu"][0]};
+  j["units"]["ads"] = nlohmann::json::array();
+  Rig rig(RigConfig::FromJson(j, "rig with chamber"), dir);
+  rig.Start(dir / "manifest.json");
+  PtyClient imu(rig.ports().at("imu1"));
+  auto temp_counts = [&] {
+    imu.Drain();
+    std::vector<uint8_t> bytes;
+    imu.ReadFor(0.05, bytes);
+    const Stream s = Decode(bytes);
+    EXPECT_FALSE(s.data.empty());
+    return s.data.empty() ? 0 : fm::ParseImuData(s.data.back()).raw.temp_cnt[2];
+  };
+  const int before = temp_counts();
+  PtyClient chamber(rig.ports().at("imu_chamber"));
+  chamber.Write(hil::modbus::EncodeRequest(hil::modbus::WriteSingleRequest(1, 300, 600)));
+  std::vector<uint8_t> reply;
+  ASSERT_TRUE(chamber.ReadAtLeast(8, 5.0, reply));  // FC 06 echoes the request (8 bytes)
+  EXPECT_EQ(reply, hil::modbus::EncodeRequest(hil::modbus::WriteSingleRequest(1, 300, 600)));
+  double air_c = 25.0;
+  for (int i = 0; i < 200 && air_c < 40.0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    air_c = rig.host().environment().imu_chamber_air_c;
+  }
+  EXPECT_GE(air_c, 40.0);
+  // 15 K warmer air: the die follows with its thermal lag; a few K already move the 16 × 12-bit
+  // sum by hundreds of counts (8.4 mV/K · 13,107 counts/V ≈ 110 counts/K).
+  EXPECT_GT(temp_counts(), before + 200);
+  rig.Stop();
   std::filesystem::remove_all(dir);
 }
 
