@@ -86,7 +86,7 @@ inline constexpr double kExp2Table[kExpTableSize] = {
 
 inline constexpr double kSixtyFourOverLn2 = 0x1.71547652b82fep+6;  // 64/ln2
 inline constexpr double kLn2Over64Head = 0x1.62e42fefa0000p-7;     // ln2/64, top 36 bits
-inline constexpr double kLn2Over64Tail = -0x1.cf79abc9e3b3ap-46;   // ln2/64 − head
+inline constexpr double kLn2Over64Tail = 0x1.cf79abc9e3b3ap-46;    // ln2/64 − head
 }  // namespace fast_math_internal
 
 /// e^x within 1 ulp for |x| ≤ kBoundedExpMaxArg (see the file comment).
