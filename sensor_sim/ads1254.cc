@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sensor_sim/fast_math.h"
+
 namespace adahrs::sensor_sim {
 namespace {
 
@@ -98,8 +100,10 @@ int32_t Ads1254::Convert(double input_v) {
   const double v_clipped = std::clamp(input_v, -true_vref_v_, true_vref_v_);
   double v = input_v + inl_peak_v_ - inl_per_v2_ * v_clipped * v_clipped;
   if (noise_v_rms_ > 0.0) v += noise_v_rms_ * rng_.Normal();
-  const double code = std::nearbyint(v * codes_per_v_);
-  return static_cast<int32_t>(std::clamp(code, double(kMinCode), double(kMaxCode)));
+  // Clipping before rounding gives the same code as after (the limits are integers and rounding is
+  // monotonic) and keeps the argument inside RoundHalfEven's exact range (it equals nearbyint).
+  return static_cast<int32_t>(
+      RoundHalfEven(std::clamp(v * codes_per_v_, double(kMinCode), double(kMaxCode))));
 }
 
 }  // namespace adahrs::sensor_sim

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sensor_sim/fast_math.h"
 #include "sensor_sim/units.h"
 
 namespace adahrs::sensor_sim {
@@ -20,8 +21,8 @@ constexpr double kGPerMg = 1e-3;
 constexpr double kGPerUg = 1e-6;
 // Headroom kept for T2 drift with temperature and jitter when checking that T2 fits.
 constexpr double kT2Margin = 1.25;
-// exp(−Δ/τ) must stay a normal double (e^−700 ≈ 1e−304).
-constexpr double kMaxFramePerTau = 700.0;
+// exp(−Δ/τ) must stay a normal double (e^−700 ≈ 1e−304); it is also the range of BoundedExp.
+constexpr double kMaxFramePerTau = kBoundedExpMaxArg;
 
 std::string Describe(const char* what, double value) {
   std::ostringstream s;
@@ -166,7 +167,8 @@ Adxl210eParams Adxl210eParams::FromJson(const ParamReader& reader) {
   return p;
 }
 
-Adxl210e::Axis Adxl210e::MakeAxis(const Adxl210eAxisParams& p, double frame_period_s) {
+Adxl210e::Axis Adxl210e::MakeAxis(const Adxl210eAxisParams& p, double frame_period_s,
+                                   double timer_clock_hz) {
   Axis a;
   a.tau_s = p.filter_r_ohm * p.filter_c_f;
   if (frame_period_s / a.tau_s > kMaxFramePerTau) {
@@ -175,6 +177,7 @@ Adxl210e::Axis Adxl210e::MakeAxis(const Adxl210eAxisParams& p, double frame_peri
                                 Describe("frame_period_s", frame_period_s) + ")");
   }
   a.frame_decay = std::exp(-frame_period_s / a.tau_s);
+  a.exponent_per_tick = -1.0 / (timer_clock_hz * a.tau_s);
   // One-sided density N through 1/(1 + sτ): σ² = ∫ N²/(1 + (2πfτ)²) df = N²/(4τ).
   a.noise_rms_g = p.noise_density_ug_per_rthz * kGPerUg / std::sqrt(4.0 * a.tau_s);
   a.zero_g_duty_ratio = p.zero_g_duty_ratio;
@@ -195,8 +198,8 @@ Adxl210e::Axis Adxl210e::MakeAxis(const Adxl210eAxisParams& p, double frame_peri
 
 Adxl210e::Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double frame_period_s)
     : effects_(params.effects),
-      x_(MakeAxis(params.x, frame_period_s)),
-      y_(MakeAxis(params.y, frame_period_s)),
+      x_(MakeAxis(params.x, frame_period_s, params.timer_clock_hz)),
+      y_(MakeAxis(params.y, frame_period_s, params.timer_clock_hz)),
       cross_xy_ratio_(params.effects.cross_axis ? params.x.cross_other_ratio : 0.0),
       cross_xz_ratio_(params.effects.cross_axis ? params.x.cross_z_ratio : 0.0),
       cross_yx_ratio_(params.effects.cross_axis
@@ -204,7 +207,6 @@ Adxl210e::Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double fra
                                 std::sin(DegToRad(params.xy_nonorthogonality_deg))
                           : 0.0),
       cross_yz_ratio_(params.effects.cross_axis ? params.y.cross_z_ratio : 0.0),
-      tick_s_(1.0 / params.timer_clock_hz),
       t2_25_cnt_(params.rset_ohm * kT2PerRset_s_per_ohm * (1.0 + params.t2_oscillator_error_ratio) *
                  params.timer_clock_hz),
       t2_tc_per_c_(params.effects.t2_tempco ? params.t2_tc_ppm_per_c * kRatioPerPpm : 0.0),
@@ -231,28 +233,34 @@ Adxl210e::Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double fra
   dcm_ = DutyCycleModulator(frame_cnt, initial_end_cnt, phase_rng.Uniform());
 }
 
-double Adxl210e::FilteredAccel(Axis& axis, double a_in_g, double sample_s, double z) {
+inline double Adxl210e::FilteredAccel(Axis& axis, double a_in_g, double sample_cnt, double z) {
   if (!effects_.filter && !effects_.noise) return a_in_g;
   // Input u held over the frame; sample instant s after the frame start. Exact one-pole solution:
   //   y(s) = u + (y(0) − u)·e^{−s/τ},   y(Δ) = u + (y(s) − u)·e^{−(Δ−s)/τ}.
   // Noise between consecutive sample instants s' (previous frame) and s (this frame), gap
   // Δ − s' + s:  n ← φ·n + σ·√(1 − φ²)·z with φ = e^{−(Δ−s')/τ}·e^{−s/τ} (exact AR(1) step).
-  const double decay_to_sample = std::exp(-sample_s / axis.tau_s);
+  // s = sample_cnt·t_tick, so s/τ = sample_cnt·t_tick/τ with t_tick/τ precomputed (a multiply
+  // instead of a divide on the frame's critical path; the argument differs from −(s)/τ by a
+  // rounding, ~1e-16 relative). 0 ≤ s ≤ Δ and Δ/τ ≤ kMaxFramePerTau = kBoundedExpMaxArg (checked
+  // in MakeAxis), so the argument is inside BoundedExp's range, where it is within 1 ulp of
+  // std::exp (fast_math.h).
+  const double decay_to_sample = BoundedExp(sample_cnt * axis.exponent_per_tick);
+  const double decay_to_frame_end = axis.frame_decay / decay_to_sample;
   double signal_g = a_in_g;
   if (effects_.filter) {
     signal_g = a_in_g + (axis.filter_g - a_in_g) * decay_to_sample;
-    axis.filter_g = a_in_g + (signal_g - a_in_g) * (axis.frame_decay / decay_to_sample);
+    axis.filter_g = a_in_g + (signal_g - a_in_g) * decay_to_frame_end;
   }
   if (effects_.noise) {
     const double phi = axis.decay_to_frame_end * decay_to_sample;
     axis.noise_g = phi * axis.noise_g + axis.noise_rms_g * std::sqrt(1.0 - phi * phi) * z;
     signal_g += axis.noise_g;
   }
-  axis.decay_to_frame_end = axis.frame_decay / decay_to_sample;
+  axis.decay_to_frame_end = decay_to_frame_end;
   return signal_g;
 }
 
-double Adxl210e::Duty(const Axis& axis, double a_g, double dtemp_c, double dsupply_v) const {
+inline double Adxl210e::Duty(const Axis& axis, double a_g, double dtemp_c, double dsupply_v) const {
   const double dtemp2 = dtemp_c * dtemp_c;
   const double dtemp3 = dtemp2 * dtemp_c;
   double zero_g = axis.zero_g_duty_ratio;
@@ -282,7 +290,6 @@ Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
     z_period = jitter_rng_.Normal();
   }
   const DcmPeriod period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_walk, z_period);
-  const double sample_s = period.start_cnt * tick_s_;
 
   // Cross-axis matrix applied to f_C (identity when the effect is off: the ratios are zero).
   const double a_in_x_g = input.f_x_g + cross_xy_ratio_ * input.f_y_g + cross_xz_ratio_ * input.f_z_g;
@@ -298,8 +305,8 @@ Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
     z_x = noise_rng_.Normal();
     z_y = noise_rng_.Normal();
   }
-  const double a_x_g = FilteredAccel(x_, a_in_x_g, sample_s, z_x);
-  const double a_y_g = FilteredAccel(y_, a_in_y_g, sample_s, z_y);
+  const double a_x_g = FilteredAccel(x_, a_in_x_g, period.start_cnt, z_x);
+  const double a_y_g = FilteredAccel(y_, a_in_y_g, period.start_cnt, z_y);
 
   const bool quantize = effects_.capture_quantization;
   const double end_cnt = period.start_cnt + period.length_cnt;

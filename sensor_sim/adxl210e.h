@@ -138,6 +138,7 @@ class Adxl210e {
   struct Axis {
     double tau_s;
     double frame_decay;        // exp(−Δ/τ)
+    double exponent_per_tick;  // −t_tick/τ: e^{−s/τ} = exp(s_cnt · exponent_per_tick)
     double noise_rms_g;        // N/√(4τ), stationary rms of the filtered noise
     double zero_g_duty_ratio;
     double sensitivity_ratio_per_g;
@@ -149,15 +150,14 @@ class Adxl210e {
     double noise_g = 0.0;        // noise at the previous sample instant
     double decay_to_frame_end = 0.0;  // exp(−(Δ − s_prev)/τ)
   };
-  static Axis MakeAxis(const Adxl210eAxisParams& p, double frame_period_s);
-  double FilteredAccel(Axis& axis, double a_in_g, double sample_s, double z);
-  double Duty(const Axis& axis, double a_g, double dtemp_c, double dsupply_v) const;
+  static Axis MakeAxis(const Adxl210eAxisParams& p, double frame_period_s, double timer_clock_hz);
+  inline double FilteredAccel(Axis& axis, double a_in_g, double sample_cnt, double z);
+  inline double Duty(const Axis& axis, double a_g, double dtemp_c, double dsupply_v) const;
 
   Adxl210eEffects effects_;
   Axis x_;
   Axis y_;
   double cross_xy_ratio_, cross_xz_ratio_, cross_yx_ratio_, cross_yz_ratio_;
-  double tick_s_;
   double t2_25_cnt_;
   double t2_tc_per_c_;
   double t2_jitter_ratio_;

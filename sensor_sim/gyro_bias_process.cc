@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -77,6 +78,46 @@ GyroBiasProcess::GyroBiasProcess(double bias_instability_dps,
     const double h_s = static_cast<double>(rrw_update_interval_frames_) * frame_period_s;
     rrw_step_dps_ = rate_random_walk_dps_per_rts * std::sqrt(h_s);
   }
+  ScheduleNextUpdate();
+  bias_dps_ = SumDps();
+}
+
+void GyroBiasProcess::ApplyDueUpdates() {
+  const int64_t elapsed_frames = frames_between_updates_;
+  if (bias_instability_on_) {
+    for (Pole& pole : poles_) {
+      pole.frames_to_update -= elapsed_frames;
+      if (pole.frames_to_update == 0) {
+        pole.frames_to_update = pole.update_interval_frames;
+        pole.bias_dps = pole.phi * pole.bias_dps + pole.innovation_dps * bi_rng_.Normal();
+      }
+    }
+  }
+  if (rate_random_walk_on_) {
+    rrw_frames_to_update_ -= elapsed_frames;
+    if (rrw_frames_to_update_ == 0) {
+      rrw_frames_to_update_ = rrw_update_interval_frames_;
+      rrw_bias_dps_ += rrw_step_dps_ * rrw_rng_.Normal();
+    }
+  }
+  ScheduleNextUpdate();
+  bias_dps_ = SumDps();
+}
+
+void GyroBiasProcess::ScheduleNextUpdate() {
+  int64_t next = std::numeric_limits<int64_t>::max();  // nothing enabled: never
+  if (bias_instability_on_) {
+    for (const Pole& pole : poles_) next = std::min(next, pole.frames_to_update);
+  }
+  if (rate_random_walk_on_) next = std::min(next, rrw_frames_to_update_);
+  frames_between_updates_ = next;
+  frames_to_next_update_ = next;
+}
+
+double GyroBiasProcess::SumDps() const {
+  double sum_dps = rrw_bias_dps_;
+  for (const Pole& pole : poles_) sum_dps += pole.bias_dps;
+  return sum_dps;
 }
 
 double GyroBiasProcess::BiasInstabilityAdev(double tau_s) const {

@@ -48,21 +48,11 @@ class GyroBiasProcess {
 
   /// Advances one frame and returns the bias for that frame, deg/s.
   double Step() {
-    if (bias_instability_on_) {
-      for (Pole& pole : poles_) {
-        if (--pole.frames_to_update == 0) {
-          pole.frames_to_update = pole.update_interval_frames;
-          pole.bias_dps = pole.phi * pole.bias_dps + pole.innovation_dps * bi_rng_.Normal();
-        }
-      }
-    }
-    if (rate_random_walk_on_ && --rrw_frames_to_update_ == 0) {
-      rrw_frames_to_update_ = rrw_update_interval_frames_;
-      rrw_bias_dps_ += rrw_step_dps_ * rrw_rng_.Normal();
-    }
-    double sum_dps = rrw_bias_dps_;
-    for (const Pole& pole : poles_) sum_dps += pole.bias_dps;
-    return sum_dps;
+    // The bias changes only on frames where a pole or the walk is updated (at most every 10th
+    // frame at 100 Hz); on the others it is the sum cached at the last update.
+    if (--frames_to_next_update_ > 0) return bias_dps_;
+    ApplyDueUpdates();
+    return bias_dps_;
   }
 
   /// Analytic Allan deviation, deg/s, of the bias-instability part alone (for docs and tests).
@@ -80,6 +70,14 @@ class GyroBiasProcess {
     int64_t frames_to_update = 1;
   };
 
+  // Advances every countdown by the frames since the last update, applies the updates that are
+  // due (poles in order, then the walk: the same draws as updating frame by frame), schedules the
+  // next one and refreshes bias_dps_.
+  void ApplyDueUpdates();
+  // The next update: the smallest countdown of an enabled process.
+  void ScheduleNextUpdate();
+  double SumDps() const;
+
   std::array<Pole, kBiasInstabilityPoles> poles_;
   double pole_sigma_dps_ = 0.0;
   bool bias_instability_on_;
@@ -88,6 +86,9 @@ class GyroBiasProcess {
   double rrw_step_dps_ = 0.0;
   int64_t rrw_update_interval_frames_ = 1;
   int64_t rrw_frames_to_update_ = 1;
+  int64_t frames_between_updates_ = 1;  // from the last update to the next one
+  int64_t frames_to_next_update_ = 1;
+  double bias_dps_ = 0.0;               // sum of the poles and the walk since the last update
   Rng bi_rng_;
   Rng rrw_rng_;
 };

@@ -1,6 +1,5 @@
 #include "sensor_sim/summed_adc.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace adahrs::sensor_sim {
@@ -32,12 +31,6 @@ SummedAdc::SummedAdc(int bits,
     if (quantization_on) variance_lsb2 += (n - 1.0) * kUniformRoundingVariance_lsb2 / (n * n);
     mean_noise_variance_v2_ = variance_lsb2 * lsb_v * lsb_v;
   }
-}
-
-int64_t SummedAdc::SumCounts(double mean_v) const {
-  const double code = std::clamp(mean_v * codes_per_v_, 0.0, max_code_);
-  if (coherent_rounding_) return conversions_ * std::llround(code);
-  return std::llround(code * conversions_);
 }
 
 }  // namespace adahrs::sensor_sim

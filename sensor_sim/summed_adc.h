@@ -19,7 +19,10 @@
 // partially clipped frames (the clip applies to the frame mean).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+
+#include "sensor_sim/fast_math.h"
 
 namespace adahrs::sensor_sim {
 
@@ -38,8 +41,14 @@ class SummedAdc {
   /// dithered, the quantisation noise beyond the final rounding). Zero when noise is off.
   double MeanNoiseVariance_v2() const { return mean_noise_variance_v2_; }
 
-  /// The frame's summed counts for mean input voltage `mean_v` (noise already added).
-  int64_t SumCounts(double mean_v) const;
+  /// The frame's summed counts for mean input voltage `mean_v` (noise already added). Inline: it
+  /// runs for every gyro channel every frame. The clipped code is at most 2^bits·conversions, far
+  /// inside RoundHalfAwayToInt64's exact range, where it equals std::llround.
+  int64_t SumCounts(double mean_v) const {
+    const double code = std::clamp(mean_v * codes_per_v_, 0.0, max_code_);
+    if (coherent_rounding_) return conversions_ * RoundHalfAwayToInt64(code);
+    return RoundHalfAwayToInt64(code * conversions_);
+  }
 
   /// Counts of the sum per volt of mean input: conversions · 2^bits / full_scale_v.
   double SumCountsPerVolt() const { return sum_counts_per_v_; }
