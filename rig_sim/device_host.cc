@@ -19,8 +19,6 @@ struct DeviceHost::Impl {
   asio::io_context io;
   asio::steady_timer timer{io};
   std::chrono::steady_clock::time_point wall_start;
-  std::chrono::steady_clock::time_point last_tick;
-  std::chrono::steady_clock::duration paused{0};  // wall time the clock stood still
   bool stopping = false;
 };
 
@@ -33,8 +31,7 @@ struct DeviceHost::Port {
   std::array<uint8_t, 4096> read_buffer{};
   std::vector<uint8_t> pending_in;
   std::vector<uint8_t> out;
-  // Last wall instant the client took bytes (or had nothing waiting): a client counts as
-  // reading while this is recent.
+  // Last wall instant the client took bytes: a client counts as reading while this is recent.
   std::chrono::steady_clock::time_point last_progress;
 };
 
@@ -42,7 +39,7 @@ DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
     : impl_(std::make_unique<Impl>()),
       time_scale_(time_scale),
       backlog_limit_bytes_(static_cast<size_t>(
-          static_cast<double>(kMinBacklogBytes) * std::clamp(time_scale / 100.0, 1.0, 16.0))),
+          static_cast<double>(kMinBacklogBytes) * std::clamp(time_scale / 5.0, 1.0, 512.0))),
       env_(initial),
       env_snapshot_(initial) {
   if (!(time_scale >= 0.01)) {
@@ -92,10 +89,7 @@ void DeviceHost::RunFrame() {
 void DeviceHost::WriteOutputs() {
   const auto now = std::chrono::steady_clock::now();
   for (auto& port : ports_) {
-    if (port->out.empty()) {
-      port->last_progress = now;
-      continue;
-    }
+    if (port->out.empty()) continue;
     boost::system::error_code ec;
     const size_t written = port->stream.write_some(asio::buffer(port->out), ec);
     if (!ec && written > 0) {
@@ -114,34 +108,13 @@ void DeviceHost::WriteOutputs() {
   }
 }
 
-bool DeviceHost::WaitingForAClient() const {
-  const auto now = std::chrono::steady_clock::now();
-  for (const auto& port : ports_) {
-    if (port->out.size() > backlog_limit_bytes_ / 2 &&
-        now - port->last_progress < std::chrono::duration<double>(kClientStallLimit_s)) {
-      return true;
-    }
-  }
-  return false;
-}
-
 void DeviceHost::OnTick() {
   if (impl_->stopping) return;
   const auto now = std::chrono::steady_clock::now();
-  WriteOutputs();
-  if (WaitingForAClient()) {
-    // The simulated clock stands still until the client has read its backlog down.
-    impl_->paused += now - impl_->last_tick;
-    paused_wall_s_.store(std::chrono::duration<double>(impl_->paused).count());
-  }
-  impl_->last_tick = now;
-  const double wall_s =
-      std::chrono::duration<double>(now - impl_->wall_start - impl_->paused).count();
+  const double wall_s = std::chrono::duration<double>(now - impl_->wall_start).count();
   const auto target = static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s);
   // Bound the work per tick so reads and control actions interleave with frames.
-  for (int i = 0; i < 200 && frames_done_.load() < target && !WaitingForAClient(); ++i) {
-    RunFrame();
-  }
+  for (int i = 0; i < 200 && frames_done_.load() < target; ++i) RunFrame();
   WriteOutputs();
   const uint64_t done = frames_done_.load();
   if (target > done && target - done > max_frames_behind_.load()) {
@@ -151,7 +124,7 @@ void DeviceHost::OnTick() {
     std::lock_guard<std::mutex> lock(env_mutex_);
     env_snapshot_ = env_;
   }
-  if (frames_done_.load() < target && !WaitingForAClient()) {
+  if (frames_done_.load() < target) {
     // Behind the clock: continue at once (reads and posted actions still interleave) instead of
     // sleeping on the timer, whose wake-up latency on a loaded machine would set the pace.
     asio::post(impl_->io, [this] { OnTick(); });
@@ -169,10 +142,12 @@ void DeviceHost::Start() {
   if (started_) return;
   started_ = true;
   for (auto& port : ports_) ArmRead(*port);
-  impl_->wall_start = std::chrono::steady_clock::now();
-  impl_->last_tick = impl_->wall_start;
-  for (auto& port : ports_) port->last_progress = impl_->wall_start;
-  asio::post(impl_->io, [this] { OnTick(); });
+  asio::post(impl_->io, [this] {
+    // The clock starts when the frame thread runs, not when it was asked to.
+    impl_->wall_start = std::chrono::steady_clock::now();
+    for (auto& port : ports_) port->last_progress = impl_->wall_start;
+    OnTick();
+  });
   thread_ = std::thread([this] { impl_->io.run(); });
 }
 

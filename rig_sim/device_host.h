@@ -12,15 +12,12 @@
 // (one write per port however many frames the tick took: at high time scales a tick runs up to
 // 200 frames); what the pty does not take waits in a per-port backlog (the PC's receive buffer),
 // and bytes beyond it are lost, as on a real line whose client does not read (bytes_lost()).
-// The backlog is kMinBacklogBytes (≈ 12 s of a raw IMU stream at 1x) scaled by time_scale/100
-// above 100x, up to 16 times (1 MiB).
-// Flow control of the simulation (not of the modelled line): while a client that is reading
-// (it took bytes within the last kClientStallLimit_s of wall time) has more than half the backlog
-// waiting, the simulated clock stands still (paused_wall_s()). A client slowed by a busy machine
-// therefore loses nothing and the simulated timeline is unchanged, only its wall-clock mapping;
-// a port nobody reads stops counting after kClientStallLimit_s and its output is discarded until
-// a client reads again (so a client that opens the port late and flushes the kernel's buffer, as
-// pyserial's reset_input_buffer does, reads current data, not a stale backlog).
+// The backlog is kMinBacklogBytes (≈ 12 s of a raw IMU stream at 1x) scaled by time_scale/5
+// above 5x, up to 512 times (32 MiB; at 1000x, 12.8 MiB ≈ 2.5 s of wall time of an IMU stream), so a
+// reading client descheduled for a second on a busy machine loses nothing. A port whose client has
+// taken no bytes for kClientStallLimit_s of wall time counts as unread: its output is discarded
+// until a client reads again, as on a line with no listener, so a client that opens the port late
+// and flushes the kernel's buffer (pyserial's reset_input_buffer) reads current data.
 #pragma once
 
 #include <atomic>
@@ -40,10 +37,10 @@ namespace adahrs::rig_sim {
 
 inline constexpr double kWorldFrame_s = 0.01;
 /// Bytes per port held for a client that is not reading fast enough before bytes are lost,
-/// at time scales up to 100 (scaled up in proportion above, at most 16 times).
+/// at time scales up to 5 (scaled up in proportion above, at most 512 times).
 inline constexpr size_t kMinBacklogBytes = 64 * 1024;
-/// Wall time without reading after which a port's client no longer holds the clock back.
-inline constexpr double kClientStallLimit_s = 0.5;
+/// Wall time without reading after which a port counts as unread and its output is discarded.
+inline constexpr double kClientStallLimit_s = 2.0;
 
 class DeviceHost {
  public:
@@ -72,8 +69,6 @@ class DeviceHost {
   /// Frames the host was behind the scaled clock at the worst moment so far.
   uint64_t max_frames_behind() const { return max_frames_behind_.load(); }
   uint64_t bytes_lost() const { return bytes_lost_.load(); }
-  /// Wall time the clock stood still waiting for slow clients.
-  double paused_wall_s() const { return paused_wall_s_.load(); }
   double time_scale() const { return time_scale_; }
   /// Bytes per port held for a slow client before bytes are lost.
   size_t backlog_limit_bytes() const { return backlog_limit_bytes_; }
@@ -84,7 +79,6 @@ class DeviceHost {
   void OnTick();
   void RunFrame();
   void WriteOutputs();
-  bool WaitingForAClient() const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -97,7 +91,6 @@ class DeviceHost {
   std::atomic<uint64_t> frames_done_{0};
   std::atomic<uint64_t> max_frames_behind_{0};
   std::atomic<uint64_t> bytes_lost_{0};
-  std::atomic<double> paused_wall_s_{0.0};
   std::thread thread_;
   bool started_ = false;
 };

@@ -66,7 +66,6 @@ struct ThroughputResult {
   uint64_t lost = 0;              ///< sequence gaps over all ports
   uint64_t bad_frames = 0;        ///< CRC, length or type errors over all ports
   uint64_t host_bytes_lost = 0;   ///< bytes the host could not hand to the ptys
-  double paused_wall_s = 0.0;     ///< wall time the clock waited for the client
 };
 
 inline ThroughputResult MeasureThroughput(double time_scale, double simulated_s) {
@@ -126,7 +125,6 @@ inline ThroughputResult MeasureThroughput(double time_scale, double simulated_s)
     result.bad_frames += walkers[i].bad_frames;
   }
   result.host_bytes_lost = rig.host().bytes_lost();
-  result.paused_wall_s = rig.host().paused_wall_s();
   std::filesystem::remove_all(dir);
   return result;
 }
