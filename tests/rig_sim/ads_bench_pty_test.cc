@@ -35,7 +35,7 @@ TEST(AdsBenchPty, PyvisaStylePrologixSessionGetsAdtsAnswers) {
             "Prologix GPIB-USB Controller version 6.107\n"
             "DRUCK,ADTS405,0000000,V1.00\n"
             "ON\n"
-            "0\n");
+            "|ALT| < 5 ft: True\n");
 }
 
 TEST(AdsBenchPty, PyserialXonXoffSessionSpeaks942) {
