@@ -87,11 +87,22 @@ F4ProfileStep ReadF4Step(const ParamReader& r) {
   return step;
 }
 
-// The number of elements of the array under `key`, or a ParamError naming it.
+// The number of elements of the array under `key`, or a ParamError naming it. ParamReader has
+// no array-size accessor and records a key as used only when an accessor requires it; for an
+// empty array there is no element to read, so the key is required through Child(), whose
+// "expected a JSON object" complaint about the array is expected here and dropped.
 size_t ArraySize(const nlohmann::json& object, const ParamReader& r, std::string_view key) {
   const auto it = object.find(std::string(key));
   if (it == object.end()) r.Fail(r.path() + "." + std::string(key), "missing key");
   if (!it->is_array()) r.Fail(r.path() + "." + std::string(key), "expected an array");
+  if (it->empty()) {
+    try {
+      r.Child(key);
+    } catch (const ParamError&) {
+    }
+  } else {
+    r.Element(key, 0, it->size());
+  }
   return it->size();
 }
 
