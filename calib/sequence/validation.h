@@ -29,8 +29,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "calib/sequence/sequence.h"
 #include "calib/sequence/sequence_limits.h"
 
