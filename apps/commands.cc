@@ -5,6 +5,7 @@ namespace adahrs::apps {
 void RegisterCommands(CLI::App& app) {
   RegisterVersionCommand(app);
   RegisterSimulateCommand(app);
+  RegisterSequenceCommand(app);
 }
 
 }  // namespace adahrs::apps
