@@ -44,12 +44,15 @@ RateTable::RateTable(const RateTableParams& params, double initial_angle_deg)
       angle_smooth_deg_(initial_angle_deg) {
   Require(params.max_rate_dps > 0.0, "max_rate_dps", params.max_rate_dps);
   Require(params.max_accel_dps2 > 0.0, "max_accel_dps2", params.max_accel_dps2);
-  Require(params.accel_dps2 > 0.0 && params.accel_dps2 <= params.max_accel_dps2, "accel_dps2",
+  Require(params.accel_dps2 > 0.0 && params.accel_dps2 <= params.max_accel_dps2,
+          "accel_dps2",
           params.accel_dps2);
   Require(params.rate_loop_tau_s > 0.0, "rate_loop_tau_s", params.rate_loop_tau_s);
   Require(params.move_rate_dps > 0.0 && params.move_rate_dps <= params.max_rate_dps,
-          "move_rate_dps", params.move_rate_dps);
-  Require(params.rate_ripple_ratio >= 0.0 && params.rate_ripple_ratio < 0.01, "rate_ripple_ratio",
+          "move_rate_dps",
+          params.move_rate_dps);
+  Require(params.rate_ripple_ratio >= 0.0 && params.rate_ripple_ratio < 0.01,
+          "rate_ripple_ratio",
           params.rate_ripple_ratio);
   Require(params.at_rate_band_dps > 0.0, "at_rate_band_dps", params.at_rate_band_dps);
   Require(params.in_position_band_deg > 0.0, "in_position_band_deg", params.in_position_band_deg);
@@ -86,8 +89,8 @@ void RateTable::FollowSegment(double r0_dps, double slope_dps2, double dt_s) {
   const double tau_s = params_.rate_loop_tau_s;
   const double decay = std::exp(-dt_s / tau_s);
   const double c_dps = rate_smooth_dps_ - r0_dps + slope_dps2 * tau_s;
-  angle_smooth_deg_ += r0_dps * dt_s + 0.5 * slope_dps2 * dt_s * dt_s -
-                       slope_dps2 * tau_s * dt_s + c_dps * tau_s * (1.0 - decay);
+  angle_smooth_deg_ += r0_dps * dt_s + 0.5 * slope_dps2 * dt_s * dt_s - slope_dps2 * tau_s * dt_s +
+                       c_dps * tau_s * (1.0 - decay);
   rate_smooth_dps_ = r0_dps + slope_dps2 * dt_s - slope_dps2 * tau_s + c_dps * decay;
 }
 
@@ -104,7 +107,7 @@ void RateTable::Tick() {
         if (std::fabs(rate_smooth_dps_) < kRestRate_dps) rate_smooth_dps_ = 0.0;
       }
       ref_rate_dps_ = rate_smooth_dps_;
-      ref_angle_deg_ = angle_smooth_deg_;
+      ref_angle_deg_ = LeadAngle();
       break;
     }
     case Mode::kRate: {
@@ -125,11 +128,11 @@ void RateTable::Tick() {
       if (ref_rate_dps_ == 0.0 && std::fabs(rate_smooth_dps_) < kRestRate_dps) {
         rate_smooth_dps_ = 0.0;
       }
-      if (braking_ && ref_rate_dps_ == 0.0) {
+      if (braking_ && ref_rate_dps_ == 0.0 && rate_smooth_dps_ == 0.0) {
         braking_ = false;
         mode_ = Mode::kCoast;
       }
-      ref_angle_deg_ = angle_smooth_deg_;
+      ref_angle_deg_ = LeadAngle();
       break;
     }
     case Mode::kPosition: {
@@ -140,8 +143,8 @@ void RateTable::Tick() {
                                          std::fabs(error_deg) / dt_s});
       const double r0_dps = ref_rate_dps_;
       const double r1_dps =
-          r0_dps + std::clamp(Sign(error_deg) * speed_dps - r0_dps, -accel_dps2 * dt_s,
-                              accel_dps2 * dt_s);
+          r0_dps +
+          std::clamp(Sign(error_deg) * speed_dps - r0_dps, -accel_dps2 * dt_s, accel_dps2 * dt_s);
       FollowSegment(r0_dps, (r1_dps - r0_dps) / dt_s, dt_s);
       ref_angle_deg_ += 0.5 * (r0_dps + r1_dps) * dt_s;
       ref_rate_dps_ = r1_dps;
@@ -167,8 +170,7 @@ void RateTable::Tick() {
       FollowSegment(r1_dps, 0.0, dt_s - (t1_s - t0_s));
       sine_elapsed_s_ = t1_s;
       ref_rate_dps_ = r1_dps;
-      ref_angle_deg_ =
-          sine_start_deg_ + sine_amplitude_deg_ * (1.0 - std::cos(omega_radps * t1_s));
+      ref_angle_deg_ = sine_start_deg_ + sine_amplitude_deg_ * (1.0 - std::cos(omega_radps * t1_s));
       if (t1_s >= sine_duration_s_) {
         // After the last cycle the controller holds the start position.
         mode_ = Mode::kPosition;
@@ -179,6 +181,10 @@ void RateTable::Tick() {
       break;
     }
   }
+}
+
+double RateTable::LeadAngle() const {
+  return angle_smooth_deg_ + params_.rate_loop_tau_s * rate_smooth_dps_;
 }
 
 RateTableRefusal RateTable::Jog(double rate_dps) {
@@ -205,7 +211,7 @@ RateTableRefusal RateTable::MoveTo(double angle_deg) {
   double delta_deg = Wrap360(angle_deg) - Wrap360(angle_smooth_deg_);
   if (delta_deg > 0.5 * kDegPerRev) delta_deg -= kDegPerRev;
   if (delta_deg <= -0.5 * kDegPerRev) delta_deg += kDegPerRev;
-  if (mode_ != Mode::kPosition) ref_angle_deg_ = angle_smooth_deg_;
+  if (mode_ != Mode::kPosition) ref_angle_deg_ = LeadAngle();
   target_angle_deg_ = angle_smooth_deg_ + delta_deg;
   mode_ = Mode::kPosition;
   commanded_rate_dps_ = 0.0;
@@ -250,7 +256,7 @@ RateTableRefusal RateTable::StartSine(double amplitude_deg, double frequency_hz,
   }
   mode_ = Mode::kSine;
   commanded_rate_dps_ = 0.0;
-  sine_start_deg_ = angle_smooth_deg_;
+  sine_start_deg_ = LeadAngle();
   sine_amplitude_deg_ = amplitude_deg;
   sine_frequency_hz_ = frequency_hz;
   sine_duration_s_ = cycles / frequency_hz;
@@ -294,8 +300,8 @@ RateTableStatus RateTable::status() const {
   s.moving = std::fabs(rate_dps) > params_.at_rate_band_dps;
   s.at_rate = servo_on_ && mode_ == Mode::kRate && ref_rate_dps_ == commanded_rate_dps_ &&
               std::fabs(rate_dps - commanded_rate_dps_) <= params_.at_rate_band_dps;
-  s.in_position = servo_on_ && mode_ == Mode::kPosition &&
-                  ref_angle_deg_ == target_angle_deg_ && !s.moving &&
+  s.in_position = servo_on_ && mode_ == Mode::kPosition && ref_angle_deg_ == target_angle_deg_ &&
+                  !s.moving &&
                   std::fabs(angle_smooth_deg_ - target_angle_deg_) <= params_.in_position_band_deg;
   return s;
 }

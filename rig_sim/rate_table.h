@@ -17,14 +17,18 @@
 // which is what the tests check. Modes:
 //   rate (JOG, STO)      r slews toward the commanded rate at a;
 //   position (P, HOM)    r follows the braking curve of the reference angle,
-//                        v = sign(e)·min(v_move, √(2·a·|e|)), e = target − reference angle, slewed at
-//                        a; targets are reached the shortest way round; a rest-to-rest move ends
-//                        exactly at the target because ∫(r − y)dt = tau·(y_end − y_start) = 0;
-//   sine (SGO)           reference angle θ0 + A·(1 − cos 2πf·τ) for N cycles, starting and ending at
+//                        v = sign(e)·min(v_move, √(2·a·|e|)), e = target − reference angle, slewed
+//                        at a; targets are reached the shortest way round. The loop conserves
+//                        (reference angle) − (θ + tau·y), because ∫(r − y)dt = tau·(y_end −
+//                        y_start), so a move whose reference starts at the lead angle θ + tau·y
+//                        ends, at rest, exactly at the target even when it starts while turning;
+//   sine (SGO)           reference angle θ0 + A·(1 − cos 2πf·τ) for N cycles, starting and ending
+//   at
 //                        rest (peak rate 2πf·A, peak acceleration (2πf)²·A, both checked);
 //   servo off (SRV 0)    no torque: the platter coasts down, y' = −y/coast_tau_s;
 //   interlock open       the drive brakes at max_accel_dps2 to rest and the servo drops out; motion
-//                        commands are refused until the interlock closes and the servo is re-enabled.
+//                        commands are refused until the interlock closes and the servo is
+//                        re-enabled.
 // Rate ripple: the controller servoes its encoder angle θe; the platter's true angle differs by
 // the encoder's once-per-revolution error, θ = θe + k·sin θe (radians, k = rate_ripple_ratio), so
 // the true rate carries a ripple proportional to rate, ω = θe'·(1 + k·cos θe), and the
@@ -115,6 +119,8 @@ class RateTable {
   // Follows a linear reference r0 + s·t for `dt_s` (the exact lag solution above).
   void FollowSegment(double r0_dps, double slope_dps2, double dt_s);
   bool Quiescent() const;
+  // θ + tau·y: where the platter comes to rest if the reference stops here now (see above).
+  double LeadAngle() const;
 
   RateTableParams params_;
   long long ticks_ = 0;
@@ -126,7 +132,7 @@ class RateTable {
   double accel_dps2_;
   double commanded_rate_dps_ = 0.0;
   double ref_rate_dps_ = 0.0;
-  double ref_angle_deg_;       // unwrapped
+  double ref_angle_deg_;           // unwrapped
   double target_angle_deg_ = 0.0;  // unwrapped
   double sine_start_deg_ = 0.0;
   double sine_amplitude_deg_ = 0.0;

@@ -25,13 +25,20 @@ struct Operation {
   bool has_value;       // a form may reply with a value
 };
 constexpr Operation kOperations[] = {
-    {"rate", true, true},           {"stop", false, false},
-    {"home", false, false},         {"acceleration", true, true},
-    {"servo", true, true},          {"setting", true, true},
-    {"acknowledge", false, false},  {"position", false, true},
-    {"move", true, false},          {"sine_amplitude", true, true},
-    {"sine_frequency", true, true}, {"sine_cycles", true, true},
-    {"sine_start", false, false},   {"measured_rate", false, true},
+    {"rate", true, true},
+    {"stop", false, false},
+    {"home", false, false},
+    {"acceleration", true, true},
+    {"servo", true, true},
+    {"setting", true, true},
+    {"acknowledge", false, false},
+    {"position", false, true},
+    {"move", true, false},
+    {"sine_amplitude", true, true},
+    {"sine_frequency", true, true},
+    {"sine_cycles", true, true},
+    {"sine_start", false, false},
+    {"measured_rate", false, true},
     {"status", false, true},
 };
 
@@ -52,8 +59,8 @@ constexpr int kStatusInterlockOpen = 1 << 4;
 void CheckBindings(const hil::AtlCommandTable& commands, const std::string& source) {
   for (size_t i = 0; i < commands.commands().size(); ++i) {
     const hil::AtlCommandSpec& spec = commands.commands()[i];
-    const std::string where = source + ": $.commands[" + std::to_string(i) + "] (" +
-                              spec.mnemonic + "): ";
+    const std::string where =
+        source + ": $.commands[" + std::to_string(i) + "] (" + spec.mnemonic + "): ";
     const Operation* op = FindOperation(spec.operation);
     if (op == nullptr) {
       throw ParamError(where + "the rate table has no operation \"" + spec.operation + "\"");
@@ -152,10 +159,7 @@ void RateTableDevice::Execute(const hil::AtlLine& line, double at_s) {
     data = Perform(parsed, line.text);
   } else {
     std::optional<std::pair<double, double>> limits;
-    if (parsed.status == AtlParseStatus::kOutOfRange && parsed.spec->operation == "rate") {
-      limits = std::make_pair(std::max(parsed.spec->action->min, -config_.physics.max_rate_dps),
-                              std::min(parsed.spec->action->max, config_.physics.max_rate_dps));
-    }
+    if (parsed.status == AtlParseStatus::kOutOfRange) limits = EnforcedLimits(parsed);
     data = hil::FormatAtlError(
         hil::AtlErrorTemplateFor(commands_, parsed.status), parsed, line.text, limits);
   }
@@ -168,19 +172,15 @@ std::string RateTableDevice::Perform(const AtlParsed& parsed, const std::string&
   const std::string& op = spec.operation;
   const double x = parsed.argument;
   RateTableRefusal refusal = RateTableRefusal::kNone;
-  std::optional<std::pair<double, double>> limits;
   if (!parsed.query) {
     if (op == "rate") {
       refusal = table_.Jog(x);
-      limits = std::make_pair(std::max(form.min, -config_.physics.max_rate_dps),
-                              std::min(form.max, config_.physics.max_rate_dps));
     } else if (op == "stop") {
       refusal = table_.Stop();
     } else if (op == "home") {
       refusal = table_.MoveTo(0.0);
     } else if (op == "acceleration") {
       refusal = table_.SetAcceleration(x);
-      limits = std::make_pair(form.min, std::min(form.max, config_.physics.max_accel_dps2));
     } else if (op == "servo") {
       refusal = table_.SetServo(x != 0.0);
     } else if (op == "setting") {
@@ -194,8 +194,8 @@ std::string RateTableDevice::Perform(const AtlParsed& parsed, const std::string&
     } else if (op == "sine_cycles") {
       sine_cycles_ = x;
     } else if (op == "sine_start") {
-      refusal = table_.StartSine(
-          sine_amplitude_deg_, sine_frequency_hz_, static_cast<int>(sine_cycles_));
+      refusal =
+          table_.StartSine(sine_amplitude_deg_, sine_frequency_hz_, static_cast<int>(sine_cycles_));
     }
   }
   switch (refusal) {
@@ -206,9 +206,24 @@ std::string RateTableDevice::Perform(const AtlParsed& parsed, const std::string&
     case RateTableRefusal::kInterlockOpen:
       return hil::FormatAtlError(commands_.errors().interlock_open, parsed, line_text);
     case RateTableRefusal::kBeyondLimit:
-      return hil::FormatAtlError(commands_.errors().out_of_range, parsed, line_text, limits);
+      return hil::FormatAtlError(
+          commands_.errors().out_of_range, parsed, line_text, EnforcedLimits(parsed));
   }
   return form.reply.empty() ? std::string() : hil::FormatAtlValue(form, Value(op, spec.mnemonic));
+}
+
+std::optional<std::pair<double, double>> RateTableDevice::EnforcedLimits(
+    const AtlParsed& parsed) const {
+  if (parsed.spec == nullptr || parsed.query) return std::nullopt;
+  const AtlForm& form = *parsed.spec->action;
+  if (parsed.spec->operation == "rate") {
+    return std::make_pair(std::max(form.min, -config_.physics.max_rate_dps),
+                          std::min(form.max, config_.physics.max_rate_dps));
+  }
+  if (parsed.spec->operation == "acceleration") {
+    return std::make_pair(form.min, std::min(form.max, config_.physics.max_accel_dps2));
+  }
+  return std::nullopt;
 }
 
 double RateTableDevice::Value(const std::string& operation, const std::string& mnemonic) const {

@@ -22,11 +22,11 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "hil/codecs/atl_codec.h"
 #include "hil/codecs/atl_command_table.h"
@@ -75,6 +75,9 @@ class RateTableDevice : public SerialDevice {
   // The reply data for a parsed, well-formed command (an error text when the table refuses it).
   std::string Perform(const hil::AtlParsed& parsed, const std::string& line_text);
   double Value(const std::string& operation, const std::string& mnemonic) const;
+  // The limits the controller enforces for a command: the table's, narrowed by the drive's
+  // configured limits for rate and acceleration; nullopt when the form takes no number.
+  std::optional<std::pair<double, double>> EnforcedLimits(const hil::AtlParsed& parsed) const;
   void Send(std::string_view bytes, double ready_s);
 
   RateTableDeviceConfig config_;
@@ -84,8 +87,8 @@ class RateTableDevice : public SerialDevice {
   double byte_time_s_;
   std::deque<PendingLine> pending_;
   std::deque<std::pair<double, uint8_t>> output_;  // (release time, byte)
-  double line_free_s_ = 0.0;                        // when the transmitter is next idle
-  std::map<std::string, double> settings_;          // stored values of "setting" commands
+  double line_free_s_ = 0.0;                       // when the transmitter is next idle
+  std::map<std::string, double> settings_;         // stored values of "setting" commands
   double sine_amplitude_deg_ = 0.0;
   double sine_frequency_hz_ = 1.0;
   double sine_cycles_ = 1.0;

@@ -43,7 +43,8 @@ std::string PrintLimit(double x) {
 }
 
 void ReplaceAll(std::string& text, std::string_view key, std::string_view value) {
-  for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size())) {
+  for (size_t at = text.find(key); at != std::string::npos;
+       at = text.find(key, at + value.size())) {
     text.replace(at, key.size(), value);
   }
 }
@@ -163,8 +164,10 @@ const std::string& AtlErrorTemplateFor(const AtlCommandTable& table, AtlParseSta
   return table.errors().unknown_command;
 }
 
-std::string EncodeAtlCommand(const AtlCommandTable& table, std::string_view mnemonic,
-                             std::optional<double> argument, bool query) {
+std::string EncodeAtlCommand(const AtlCommandTable& table,
+                             std::string_view mnemonic,
+                             std::optional<double> argument,
+                             bool query) {
   const std::string name(mnemonic);
   const AtlCommandSpec* spec = table.Find(name);
   if (spec == nullptr) throw std::invalid_argument("ATL: no command " + name + " in the table");

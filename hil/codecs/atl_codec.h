@@ -60,9 +60,9 @@ struct AtlParsed {
   AtlParseStatus status = AtlParseStatus::kUnknownCommand;
   const AtlCommandSpec* spec = nullptr;  ///< set when the mnemonic and form exist
   bool query = false;
-  double argument = 0.0;                 ///< when the form takes one and status is kOk/kOutOfRange
-  std::string mnemonic;                  ///< as read (upper-cased), for messages
-  std::string argument_text;             ///< as read, for messages
+  double argument = 0.0;      ///< when the form takes one and status is kOk/kOutOfRange
+  std::string mnemonic;       ///< as read (upper-cased), for messages
+  std::string argument_text;  ///< as read, for messages
 };
 
 /// Checks one line against the table.
@@ -87,8 +87,10 @@ const std::string& AtlErrorTemplateFor(const AtlCommandTable& table, AtlParseSta
 
 /// Client side: the bytes of `mnemonic [argument]` or `mnemonic?`, ended by the table's line end.
 /// Throws std::invalid_argument naming the command and the limit when the table would refuse it.
-std::string EncodeAtlCommand(const AtlCommandTable& table, std::string_view mnemonic,
-                             std::optional<double> argument = std::nullopt, bool query = false);
+std::string EncodeAtlCommand(const AtlCommandTable& table,
+                             std::string_view mnemonic,
+                             std::optional<double> argument = std::nullopt,
+                             bool query = false);
 
 /// Client side: collects reply bytes and returns each complete reply's data (the text before
 /// line_end + prompt + line_end).

@@ -17,12 +17,11 @@
 // `{value}` throws ParamError naming the file and JSON path.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace adahrs::hil {
 
@@ -31,7 +30,7 @@ enum class AtlArgument { kNone, kInteger, kReal };
 /// One form of a command: the bare form `MNE [arg]` (an action) or the query form `MNE?`.
 struct AtlForm {
   AtlArgument argument = AtlArgument::kNone;
-  double min = 0.0;        ///< argument limits (inclusive), in `unit`
+  double min = 0.0;  ///< argument limits (inclusive), in `unit`
   double max = 0.0;
   std::string unit;        ///< as printed in messages ("deg/s")
   std::string reply;       ///< data template with {value}; empty: the form returns no data

@@ -1,9 +1,9 @@
 #include "hil/codecs/atl_codec.h"
 
-#include <string>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <string>
 
 namespace adahrs::hil {
 namespace {
@@ -72,7 +72,7 @@ TEST(ParseAtlLine, ActionsQueriesAndArgumentSpellings) {
 TEST(ParseAtlLine, RefusalsAreTyped) {
   EXPECT_EQ(Parse("XYZ").status, AtlParseStatus::kUnknownCommand);
   EXPECT_EQ(Parse("123").status, AtlParseStatus::kUnknownCommand);
-  EXPECT_EQ(Parse("RAT").status, AtlParseStatus::kUnknownCommand);  // query-only
+  EXPECT_EQ(Parse("RAT").status, AtlParseStatus::kUnknownCommand);   // query-only
   EXPECT_EQ(Parse("STO?").status, AtlParseStatus::kUnknownCommand);  // no query form
   EXPECT_EQ(Parse("JOG").status, AtlParseStatus::kBadArgument);
   EXPECT_EQ(Parse("JOG 12.5").status, AtlParseStatus::kBadArgument);  // integer argument (DRV)
@@ -101,10 +101,12 @@ TEST(AtlReplies, FramingValuesAndErrorTemplates) {
   const AtlParsed p = Parse("JOG 500");
   EXPECT_EQ(FormatAtlError(Table().errors().out_of_range, p, "JOG 500"),
             "?OUT OF RANGE JOG 500 LIMITS -360 360 deg/s");
-  EXPECT_EQ(FormatAtlError(Table().errors().out_of_range, p, "JOG 500", std::make_pair(-200.0, 200.0)),
-            "?OUT OF RANGE JOG 500 LIMITS -200 200 deg/s");
+  EXPECT_EQ(
+      FormatAtlError(Table().errors().out_of_range, p, "JOG 500", std::make_pair(-200.0, 200.0)),
+      "?OUT OF RANGE JOG 500 LIMITS -200 200 deg/s");
   EXPECT_EQ(FormatAtlError("{line}|{mnemonic}|{min}", Parse("STO"), "STO"), "STO|STO|");
-  EXPECT_EQ(AtlErrorTemplateFor(Table(), AtlParseStatus::kBadArgument), Table().errors().bad_argument);
+  EXPECT_EQ(AtlErrorTemplateFor(Table(), AtlParseStatus::kBadArgument),
+            Table().errors().bad_argument);
 }
 
 TEST(EncodeAtlCommand, FormatsWhatTheParserAcceptsAndRefusesWhatItWouldRefuse) {

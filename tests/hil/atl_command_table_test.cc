@@ -1,9 +1,9 @@
 #include "hil/codecs/atl_command_table.h"
 
-#include <string>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "sensor_sim/param_reader.h"
 
@@ -29,8 +29,22 @@ void ExpectRefused(const nlohmann::json& table, const std::vector<std::string>& 
 TEST(AtlCommandTable, DefaultTableHoldsTheMnemonicsOfProtocolsSection12) {
   const AtlCommandTable table = AtlCommandTable::Load(kDefaultTable);
   // protocols.md §1.2: the fourteen mnemonics seen in third-party clients, plus our two queries.
-  for (const char* m : {"HOM", "STO", "JOG", "ACL", "SRV", "CLU", "CAL", "REX", "PPO", "SGO", "AMP",
-                        "FRQ", "CYC", "P", "RAT", "STA"}) {
+  for (const char* m : {"HOM",
+                        "STO",
+                        "JOG",
+                        "ACL",
+                        "SRV",
+                        "CLU",
+                        "CAL",
+                        "REX",
+                        "PPO",
+                        "SGO",
+                        "AMP",
+                        "FRQ",
+                        "CYC",
+                        "P",
+                        "RAT",
+                        "STA"}) {
     EXPECT_NE(table.Find(m), nullptr) << m;
   }
   EXPECT_EQ(table.commands().size(), 16u);
@@ -69,7 +83,8 @@ TEST(AtlCommandTable, AMisspeltKeyIsRefusedWithFileAndPath) {
 TEST(AtlCommandTable, BadEntriesAreRefusedNamingTheRuleBroken) {
   nlohmann::json t = DefaultJson();
   t["commands"][0]["action"]["argument"] = "float";
-  ExpectRefused(t, {"$.commands[0].action.argument", "\"float\" is not one of none, integer, real"});
+  ExpectRefused(t,
+                {"$.commands[0].action.argument", "\"float\" is not one of none, integer, real"});
   t = DefaultJson();
   t["commands"][0]["action"]["min"] = 400;
   ExpectRefused(t, {"$.commands[0].action.max", "max is below min"});
