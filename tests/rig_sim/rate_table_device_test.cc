@@ -11,6 +11,7 @@
 #include "hil/codecs/atl_codec.h"
 #include "rig_sim/device_host.h"
 #include "sensor_sim/random.h"
+#include "sensor_sim/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -162,7 +163,7 @@ TEST(RateTableDevice, PositionMoveEndsAtTheCommandedAngle) {
   EXPECT_EQ(bench.Ask("PPO?\r\n"), "90.0000\r\n>\r\n");
   EXPECT_EQ(std::stoi(bench.Ask("STA?\r\n")), 1 | 4);  // servo on, in position
   // The world sees the true angle: the encoder error k·sin θ = 1e-5 rad·1 = 5.7e-4 deg at 90°.
-  EXPECT_NEAR(bench.env.table_angle_deg, 90.0 + 1e-5 * 180.0 / M_PI, 1e-9);
+  EXPECT_NEAR(bench.env.table_angle_deg, 90.0 + sensor_sim::RadToDeg(1e-5), 1e-9);
   EXPECT_EQ(bench.Ask("HOM\r\n"), "\r\n>\r\n");
   bench.RunFor(3.0);
   EXPECT_EQ(bench.Ask("PPO\r\n"), "0.0000\r\n>\r\n");

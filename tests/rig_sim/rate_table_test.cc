@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sensor_sim/random.h"
+#include "sensor_sim/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -233,8 +234,8 @@ TEST(RateTable, SineMotionStaysInsideItsEnvelopeAndReturnsToTheStart) {
   EXPECT_GT(lo, 30.0 - 0.05);
   EXPECT_LT(hi, 32.0 + 1e-9);
   EXPECT_GT(hi, 31.9);
-  EXPECT_LT(peak_dps, 2 * M_PI);
-  EXPECT_GT(peak_dps, 0.95 * 2 * M_PI);
+  EXPECT_LT(peak_dps, 2 * sensor_sim::kPi);
+  EXPECT_GT(peak_dps, 0.95 * 2 * sensor_sim::kPi);
   const double t_s = TimeUntil(table, 5.0, [&] { return table.status().in_position; });
   EXPECT_GT(t_s, 2.0);
   EXPECT_NEAR(table.measured_angle_deg(), 30.0, p.in_position_band_deg);
