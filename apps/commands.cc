@@ -6,6 +6,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterVersionCommand(app);
   RegisterSimulateCommand(app);
   RegisterRigCommand(app);
+  RegisterSequenceCommand(app);
 }
 
 }  // namespace adahrs::apps

@@ -11,5 +11,6 @@ void RegisterCommands(CLI::App& app);
 void RegisterVersionCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);
 void RegisterRigCommand(CLI::App& app);
+void RegisterSequenceCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

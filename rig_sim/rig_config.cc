@@ -5,6 +5,9 @@
 #include <array>
 #include <set>
 
+#include "rig_sim/prologix_adts_device.h"
+#include "rig_sim/rate_table_device.h"
+#include "rig_sim/watlow_942_device.h"
 #include "rig_sim/watlow_f4_device.h"
 #include "sensor_sim/gravity.h"
 
@@ -15,7 +18,11 @@ using sensor_sim::ParamReader;
 const std::vector<InstrumentKind>& InstrumentKinds() {
   // Keys are the station file's instrument types (docs/station.md).
   static const std::vector<InstrumentKind> kinds = {
+      {"aerosmith_atl", MakeRateTableDevice, DefaultRateTableConfig, "docs/rig/rate-table.md"},
       {"watlow_f4", MakeWatlowF4Device, DefaultWatlowF4Config, "docs/rig/watlow-f4.md"},
+      {"watlow_942", MakeWatlow942Device, DefaultWatlow942Config, "docs/rig/watlow-942.md"},
+      {"druck_adts_prologix", MakePrologixAdtsDevice, DefaultPrologixAdtsConfig,
+       "docs/rig/adts.md"},
   };
   return kinds;
 }

@@ -103,7 +103,7 @@ TEST(Rig, WritesManifestLinksAndTruthAndStreamsUnitsOnPtys) {
   PtyClient control(manifest["ports"]["control"].get<std::string>());
   EXPECT_THAT(control.Command("time"), StartsWith("OK "));
   EXPECT_THAT(control.Command("status"),
-              HasSubstr("roles=imu_chamber,imu1,imu2,imu3,imu4,ads1,control faults=none"));
+              HasSubstr("imu1,imu2,imu3,imu4,ads1,control faults=none"));
   EXPECT_EQ(control.Command("orientation imu2 12"), "OK imu2 12");
   EXPECT_EQ(rig.host().environment().imu_orientation[1], 12);
   EXPECT_EQ(control.Command("orientation ads1 12"), "ERR ads1 is not an IMU unit");

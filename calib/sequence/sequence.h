@@ -1,0 +1,176 @@
+// The calibration sequence language: what a production calibration, burn-in or acceptance run
+// does, as an ordered list of steps (shared/reference-method.md "Calibration sequence steps",
+// Table 9 of the reference thesis, and its ADS steps of §3.3). A sequence is pure data: it is
+// loaded from and saved to JSON (sequence_json.h), refused when invalid (validation.h) and
+// expanded into the primitive actions an executor runs (execution_plan.h). Nothing here talks to
+// an instrument. The language is described for its users in docs/sequences.md.
+//
+// Step kinds, with units in every field name:
+//   accel               OA of Table 9: mount in fixture orientation 11…32, acquire N packets.
+//   gyro                OG of Table 9: mount, then equidistant table rates rate_min…rate_max by
+//                       rate_increment (°/s), acquire N packets at each.
+//   target_temperature  TT of Table 9: chamber to target_c, wait until inside ±band_c, soak soak_s.
+//   cross_axis          CA: orientations 11, 21, 31; 1 g along each axis at rest and the table at
+//                       rate_dps about each axis; N packets each (thesis Eq. 24–29, Fig. 46).
+//   thermal_profile     a ramping-controller profile (Watlow F4 steps: ramp time, ramp rate, soak,
+//                       jump, end; protocols.md §2.4), downloaded, then run while logging.
+//   altitude, airspeed  air data test set aims (ft, kt CAS) with their slew rates.
+//   log                 acquire ADS packets: N packets or a duration.
+//   prompt              an operator action; answered by the virtual fixture in simulated runs.
+// TAG: every step carries a one-byte TAG (1…255) written into every packet acquired in it
+// (docs/recording-format.md). A step may state it; steps that do not get the smallest TAG not
+// yet used, in step order (EffectiveTags()).
+// Orientation codes: two digits, axis made vertical (1 x_B, 2 y_B, 3 z_B) and sense (1 up,
+// 2 down), as rig_sim/fixture_orientation.h defines them for the rig.
+// Not represented: the chamber's guaranteed-soak flag per profile step, event outputs and
+// wait-for inputs of F4 steps, autostart steps; the executor's interlock thresholds (they belong
+// to the station, not the sequence).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace adahrs::calib {
+
+/// What the batch under test is: decides which step kinds a sequence may hold.
+enum class UnitKind { kImu, kAds };
+
+/// The six fixture orientation codes, in the reference's order (reference-method.md §3).
+inline constexpr int kOrientationCodes[] = {11, 12, 21, 22, 31, 32};
+/// Orientations with x_B, y_B, z_B up: the cross-axis step's three (thesis Eq. 24–29).
+inline constexpr int kCrossAxisOrientations[] = {11, 21, 31};
+
+/// True for 11, 12, 21, 22, 31, 32.
+bool IsOrientationCode(int code);
+
+struct AccelStep {
+  int orientation = 0;
+  int64_t packets = 0;
+  bool operator==(const AccelStep&) const = default;
+};
+
+struct GyroStep {
+  int orientation = 0;
+  int64_t packets = 0;  ///< acquired at each rate
+  double rate_min_dps = 0.0;
+  double rate_max_dps = 0.0;
+  double rate_increment_dps = 0.0;
+  double table_accel_dps2 = 0.0;  ///< angular acceleration of the table between rates
+  bool operator==(const GyroStep&) const = default;
+};
+
+struct TargetTemperatureStep {
+  double target_c = 0.0;
+  double band_c = 0.0;  ///< half-width of the band the chamber value must stay inside
+  double soak_s = 0.0;  ///< time inside the band before the step ends
+  bool operator==(const TargetTemperatureStep&) const = default;
+};
+
+struct CrossAxisStep {
+  int64_t packets = 0;  ///< acquired at rest and at rate, in each of 11, 21, 31
+  double rate_dps = 0.0;
+  double table_accel_dps2 = 0.0;
+  bool operator==(const CrossAxisStep&) const = default;
+};
+
+/// Ramp from the current set point to target_c in duration_s (F4 step type 1).
+struct F4RampTime {
+  double target_c = 0.0;
+  double duration_s = 0.0;
+  bool operator==(const F4RampTime&) const = default;
+};
+/// Ramp from the current set point to target_c at rate_c_per_min (F4 step type 2).
+struct F4RampRate {
+  double target_c = 0.0;
+  double rate_c_per_min = 0.0;
+  bool operator==(const F4RampRate&) const = default;
+};
+/// Hold the current set point for duration_s (F4 step type 3).
+struct F4Soak {
+  double duration_s = 0.0;
+  bool operator==(const F4Soak&) const = default;
+};
+/// Go back to profile step to_step (1-based) `count` more times, then go on (F4 step type 4).
+struct F4Jump {
+  int to_step = 0;
+  int count = 0;
+  bool operator==(const F4Jump&) const = default;
+};
+/// What the chamber does after the profile (F4 step type 5, register 4060).
+enum class F4EndAction { kHold, kControlOff, kAllOff, kIdle };
+struct F4End {
+  F4EndAction action = F4EndAction::kHold;
+  double idle_c = 0.0;  ///< set point after the profile, for kIdle only
+  bool operator==(const F4End&) const = default;
+};
+using F4ProfileStep = std::variant<F4RampTime, F4RampRate, F4Soak, F4Jump, F4End>;
+
+struct ThermalProfileStep {
+  std::string profile_name;  ///< up to 10 of A–Z, 0–9, space (protocols.md §2.2)
+  std::vector<F4ProfileStep> steps;
+  bool operator==(const ThermalProfileStep&) const = default;
+};
+
+struct AltitudeStep {
+  double alt_ft = 0.0;  ///< pressure altitude aim
+  double rate_ft_per_min = 0.0;
+  bool operator==(const AltitudeStep&) const = default;
+};
+
+struct AirspeedStep {
+  double cas_kt = 0.0;  ///< calibrated airspeed aim
+  double rate_kt_per_min = 0.0;
+  bool operator==(const AirspeedStep&) const = default;
+};
+
+/// Exactly one of packets and duration_s is set.
+struct LogStep {
+  std::optional<int64_t> packets;
+  std::optional<double> duration_s;
+  bool operator==(const LogStep&) const = default;
+};
+
+struct PromptStep {
+  std::string text;
+  bool operator==(const PromptStep&) const = default;
+};
+
+using StepBody = std::variant<AccelStep, GyroStep, TargetTemperatureStep, CrossAxisStep,
+                              ThermalProfileStep, AltitudeStep, AirspeedStep, LogStep, PromptStep>;
+
+struct Step {
+  std::optional<int> tag;  ///< as written in the file; EffectiveTags() gives the one used
+  StepBody body;
+  bool operator==(const Step&) const = default;
+};
+
+struct Sequence {
+  static constexpr int kFormatVersion = 1;
+  std::string name;
+  std::string description;
+  UnitKind unit_kind = UnitKind::kImu;
+  std::vector<Step> steps;
+  bool operator==(const Sequence&) const = default;
+};
+
+/// The JSON name of a step kind ("accel", "gyro", ...).
+const char* StepKindName(const StepBody& body);
+/// The JSON name of an F4 step type ("ramp_time", ...).
+const char* F4StepTypeName(const F4ProfileStep& step);
+const char* F4EndActionName(F4EndAction action);
+const char* UnitKindName(UnitKind kind);
+
+/// The equidistant rate commands of a gyro step: rate_min + i·rate_increment for
+/// i = 0…round((rate_max − rate_min)/rate_increment). Throws std::invalid_argument when the
+/// increment is not positive (validation refuses such steps first).
+std::vector<double> GyroRates_dps(const GyroStep& step);
+
+/// The TAG of every step: the explicit one, or the smallest of 1…255 not used before it (and not
+/// stated explicitly by any step). Throws std::invalid_argument naming the step when TAGs are
+/// duplicated or run out; validation reports the same problems as data.
+std::vector<uint8_t> EffectiveTags(const Sequence& sequence);
+
+}  // namespace adahrs::calib

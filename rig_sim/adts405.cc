@@ -1,0 +1,458 @@
+#include "rig_sim/adts405.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "sensor_sim/air_data.h"
+#include "sensor_sim/atmosphere.h"
+#include "sensor_sim/units.h"
+
+namespace adahrs::rig_sim {
+
+using hil::ScpiCommand;
+using hil::ScpiHeadersMatch;
+namespace ss = sensor_sim;
+
+namespace {
+
+// Operation status bits of the ADTS 405 (protocols.md §4.4, DRV ADTSStatus.cs).
+constexpr int kStableAtAim = 1 << 1;
+constexpr int kSafeAtGround = 1 << 2;
+constexpr int kRamping = 1 << 3;
+constexpr int kPsAtSetPoint = 1 << 8;
+constexpr int kPsRamping = 1 << 9;
+constexpr int kPtAtSetPoint = 1 << 10;
+constexpr int kPtRamping = 1 << 11;
+
+// IEEE 488.2 standard event status bits and status byte bits.
+constexpr int kEsrExecutionError = 1 << 4;
+constexpr int kEsrCommandError = 1 << 5;
+constexpr int kEsrQueryError = 1 << 2;
+constexpr int kStbErrorQueue = 1 << 2;
+constexpr int kStbEventSummary = 1 << 5;
+
+constexpr int kReplyDigits = 8;
+constexpr size_t kMaxErrors = 10;
+constexpr size_t kMaxUnrecognised = 100;
+
+// Pressure units of UNIT:PRES (protocols.md §4.3) with their size in Pa: conventional mmHg
+// 133.322387415 Pa, kgf/cm² 98066.5 Pa (exact), inH2O at 4 °C 249.082 Pa and at 60 °F 248.84 Pa
+// (NIST SP 811 appendix B.8); mbar/hPa/Pa and psi/inHg by definition (sensor_sim/units.h).
+// `INH2O20`, `MMH2O4` and `%FS` are not emulated (refused with −224).
+constexpr std::array<std::pair<std::string_view, double>, 9> kPressureUnits{{
+    {"MBAR", 100.0},
+    {"HPA", 100.0},
+    {"PA", 1.0},
+    {"INHG", ss::kPaPerInHg},
+    {"MMHG", 133.322387415},
+    {"PSI", ss::kPaPerPsi},
+    {"KGCM2", 98066.5},
+    {"INH2O4", 249.082},
+    {"INH2O60F", 248.84},
+}};
+
+// Speed units of the provisional UNIT:SPE (protocols.md §4.5), in knots per unit.
+constexpr double kKmPerNauticalMile = 1.852;
+constexpr double kMetersPerStatuteMile = 1609.344;
+constexpr double kMetersPerNauticalMile = 1852.0;
+
+// Qc/Ps at Mach 1 in subsonic flow: (1 + 0.2)^3.5 − 1 (protocols.md §5).
+const double kSonicQcOverPs = std::pow(1.2, 3.5) - 1.0;
+
+std::string Upper(std::string_view s) {
+  std::string u(s);
+  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return u;
+}
+
+double CasKt(double qc_pa) {
+  return qc_pa >= 0.0 ? ss::CalibratedAirspeedKt(qc_pa) : -ss::CalibratedAirspeedKt(-qc_pa);
+}
+
+double KtPerSpeedUnit(const std::string& unit) {
+  if (unit == "KMH") return 1.0 / kKmPerNauticalMile;
+  if (unit == "MPH") return kMetersPerStatuteMile / kMetersPerNauticalMile;
+  return 1.0;
+}
+
+}  // namespace
+
+Adts405::Adts405(const Adts405Params& params)
+    : params_(params),
+      rng_(params.seed),
+      ps_pa_(params.ground_ps_pa),
+      ps_{params.ground_ps_pa, Rate::kAltitude, params.initial_alt_rate_ft_per_min / 60.0},
+      qc_{0.0, Rate::kAirspeed, params.initial_cas_rate_kt_per_min / 60.0} {
+  UpdateCondition();
+  event_ = 0;
+}
+
+void Adts405::PushError(int code) {
+  if (errors_.size() < kMaxErrors) errors_.push_back(code);
+  if (code <= -100 && code > -200) esr_ |= kEsrCommandError;
+  if (code <= -200 && code > -300) esr_ |= kEsrExecutionError;
+  if (code <= -400 && code > -500) esr_ |= kEsrQueryError;
+}
+
+int Adts405::StatusByte() const {
+  return (errors_.empty() ? 0 : kStbErrorQueue) | (esr_ ? kStbEventSummary : 0);
+}
+
+std::optional<std::string> Adts405::Execute(std::string_view message) {
+  std::string response;
+  bool any = false;
+  for (const std::string& text : hil::SplitScpiProgram(message)) {
+    const hil::ScpiParsed parsed = hil::ParseScpiCommand(text);
+    if (!parsed.command) {
+      PushError(parsed.error);
+      continue;
+    }
+    if (auto reply = ExecuteOne(*parsed.command, text)) {
+      response += (any ? ";" : "") + *reply;
+      any = true;
+    }
+  }
+  if (!any) return std::nullopt;
+  return response;
+}
+
+std::optional<std::string> Adts405::ExecuteOne(const ScpiCommand& c, const std::string& text) {
+  const size_t argc = c.args.size();
+  auto want_args = [&](size_t n) {
+    if (argc == n) return true;
+    PushError(argc < n ? hil::kScpiMissingParameter : hil::kScpiParameterNotAllowed);
+    return false;
+  };
+  auto is = [&](std::initializer_list<std::string_view> patterns) {
+    return ScpiHeadersMatch(c, std::vector<std::string_view>(patterns));
+  };
+  if (c.common) {
+    const std::string& h = c.headers[0];
+    if (h == "IDN" && c.query && want_args(0)) return params_.idn;
+    if (h == "OPC" && c.query && want_args(0)) return "1";
+    if (h == "ESR" && c.query && want_args(0)) return std::to_string(std::exchange(esr_, 0));
+    if (h == "STB" && c.query && want_args(0)) return std::to_string(StatusByte());
+    if (h == "CLS" && !c.query && want_args(0)) {
+      errors_.clear();
+      esr_ = 0;
+      event_ = 0;
+      return std::nullopt;
+    }
+    if (h == "RST" && !c.query && want_args(0)) {
+      control_ = Control::kOff;
+      pressure_unit_ = "MBAR";
+      speed_unit_ = "KTS";
+      altitude_in_m_ = false;
+      ps_ = {ps_pa_, Rate::kAltitude, params_.initial_alt_rate_ft_per_min / 60.0};
+      qc_ = {qc_pa_, Rate::kAirspeed, params_.initial_cas_rate_kt_per_min / 60.0};
+      return std::nullopt;
+    }
+    if (h == "IDN" || h == "OPC" || h == "ESR" || h == "STB" || h == "CLS" || h == "RST") return std::nullopt;
+  } else if (is({"SOURce", "STATe"})) {
+    if (c.query) {
+      if (!want_args(0)) return std::nullopt;
+      return control_ == Control::kOn ? "ON" : control_ == Control::kOff ? "OFF" : "HOLD";
+    }
+    if (!want_args(1)) return std::nullopt;
+    const std::string state = Upper(c.args[0]);
+    if (state == "ON" || state == "1") {
+      control_ = Control::kOn;
+    } else if (state == "OFF" || state == "0") {
+      control_ = Control::kOff;
+    } else if (state == "HOLD") {
+      control_ = Control::kHold;
+    } else {
+      PushError(hil::kScpiIllegalParameterValue);
+    }
+    return std::nullopt;
+  } else if (is({"SOURce", "PRESsure"})) {
+    if (c.query) return want_args(1) ? Aim(Upper(c.args[0])) : std::nullopt;
+    if (want_args(2)) SetAim(c.args);
+    return std::nullopt;
+  } else if (is({"SOURce", "RATE"})) {
+    if (c.query) return want_args(1) ? RateQuery(Upper(c.args[0])) : std::nullopt;
+    if (want_args(2)) SetRate(c.args);
+    return std::nullopt;
+  } else if (is({"SOURce", "GTGRound"})) {
+    if (!want_args(0)) return std::nullopt;
+    if (c.query) return (condition_ & kSafeAtGround) ? "1" : "0";
+    if (control_ != Control::kOn) {
+      PushError(hil::kScpiSettingsConflict);  // go-to-ground needs control mode (§4.3)
+    } else {
+      ps_.aim_pa = params_.ground_ps_pa;
+      qc_.aim_pa = 0.0;
+    }
+    return std::nullopt;
+  } else if (is({"MEASure", "PRESsure"}) && c.query) {
+    return want_args(1) ? Measure(Upper(c.args[0])) : std::nullopt;
+  } else if (is({"STATus", "OPERation", "EVENt"}) && c.query) {
+    if (!want_args(0)) return std::nullopt;
+    if (!params_.oper_event_latched) return std::to_string(condition_);
+    return std::to_string(std::exchange(event_, 0));
+  } else if ((is({"STATus", "OPERation", "CONDition"}) ||
+              (c.headers.size() == 3 && is({"STATus", "OPERation", "CON"}))) && c.query) {
+    return want_args(0) ? std::optional(std::to_string(condition_)) : std::nullopt;
+  } else if (is({"UNIT", "PRESsure"})) {
+    if (c.query) return want_args(0) ? std::optional(pressure_unit_) : std::nullopt;
+    if (!want_args(1)) return std::nullopt;
+    const std::string unit = Upper(c.args[0]);
+    const bool known = std::any_of(kPressureUnits.begin(), kPressureUnits.end(),
+                                   [&](const auto& u) { return u.first == unit; });
+    if (known) {
+      pressure_unit_ = unit;
+    } else {
+      PushError(hil::kScpiIllegalParameterValue);
+    }
+    return std::nullopt;
+  } else if (is({"UNIT", "ALTitude"})) {
+    if (c.query) return want_args(0) ? std::optional<std::string>(altitude_in_m_ ? "M" : "FT") : std::nullopt;
+    if (!want_args(1)) return std::nullopt;
+    const std::string unit = Upper(c.args[0]);
+    if (unit == "FT" || unit == "M") {
+      altitude_in_m_ = unit == "M";
+    } else {
+      PushError(hil::kScpiIllegalParameterValue);
+    }
+    return std::nullopt;
+  } else if (is({"UNIT", "SPEed"})) {
+    if (c.query) return want_args(0) ? std::optional(speed_unit_) : std::nullopt;
+    if (!want_args(1)) return std::nullopt;
+    const std::string unit = Upper(c.args[0]);
+    if (unit == "KTS" || unit == "KMH" || unit == "MPH") {
+      speed_unit_ = unit;
+    } else {
+      PushError(hil::kScpiIllegalParameterValue);
+    }
+    return std::nullopt;
+  } else if (is({"SYSTem", "ERRor"}) && c.query) {
+    if (!want_args(0)) return std::nullopt;
+    const int code = errors_.empty() ? hil::kScpiNoError : errors_.front();
+    if (!errors_.empty()) errors_.pop_front();
+    return std::to_string(code) + ",\"" + std::string(hil::ScpiErrorMessage(code)) + "\"";
+  }
+  PushError(hil::kScpiUndefinedHeader);
+  if (unrecognised_.size() == kMaxUnrecognised) unrecognised_.pop_front();
+  unrecognised_.push_back(text);
+  return std::nullopt;
+}
+
+std::optional<double> Adts405::PressureUnitToPa(double value) const {
+  for (const auto& [name, pa] : kPressureUnits) {
+    if (name == pressure_unit_) return value * pa;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> Adts405::Measure(std::string_view p) {
+  const double ps = ps_pa();
+  const double qc = qc_pa();
+  const double pa_per_unit = *PressureUnitToPa(1.0);
+  double value;
+  if (p == "PS") {
+    value = ps / pa_per_unit;
+  } else if (p == "QC") {
+    value = qc / pa_per_unit;
+  } else if (p == "PT") {
+    value = (ps + qc) / pa_per_unit;
+  } else if (p == "ALT") {
+    const double alt_ft = ss::IsaPressureAltitudeFt(ps);
+    value = altitude_in_m_ ? ss::FtToM(alt_ft) : alt_ft;
+  } else if (p == "CAS") {
+    value = CasKt(qc) / KtPerSpeedUnit(speed_unit_);
+  } else if (p == "EPR") {
+    value = (ps + qc) / ps;
+  } else if (p == "MACH" || p == "TAS") {
+    if (std::max(qc, 0.0) / ps > kSonicQcOverPs) {
+      PushError(hil::kScpiDataOutOfRange);  // supersonic: not modelled
+      return std::nullopt;
+    }
+    const double mach = ss::MachNumber(std::max(qc, 0.0), ps);
+    const double static_k = ss::IsaTemperatureK(ss::IsaPressureAltitudeM(ps));
+    value = p == "MACH" ? mach
+                        : ss::MpsToKt(ss::TrueAirspeedMps(mach, static_k)) / KtPerSpeedUnit(speed_unit_);
+  } else {
+    PushError(hil::kScpiIllegalParameterValue);
+    return std::nullopt;
+  }
+  return hil::FormatScpiNumber(value, kReplyDigits);
+}
+
+std::optional<std::string> Adts405::Aim(std::string_view p) {
+  const double pa_per_unit = *PressureUnitToPa(1.0);
+  double value;
+  if (p == "PS") {
+    value = ps_.aim_pa / pa_per_unit;
+  } else if (p == "QC") {
+    value = qc_.aim_pa / pa_per_unit;
+  } else if (p == "PT") {
+    value = (ps_.aim_pa + qc_.aim_pa) / pa_per_unit;
+  } else if (p == "ALT") {
+    const double alt_ft = ss::IsaPressureAltitudeFt(ps_.aim_pa);
+    value = altitude_in_m_ ? ss::FtToM(alt_ft) : alt_ft;
+  } else if (p == "CAS") {
+    value = CasKt(qc_.aim_pa) / KtPerSpeedUnit(speed_unit_);
+  } else {
+    PushError(hil::kScpiIllegalParameterValue);
+    return std::nullopt;
+  }
+  return hil::FormatScpiNumber(value, kReplyDigits);
+}
+
+void Adts405::SetAim(const std::vector<std::string>& args) {
+  const std::string p = Upper(args[0]);
+  const std::optional<double> value = hil::ParseScpiNumber(args[1]);
+  if (!value) {
+    PushError(hil::kScpiDataTypeError);
+    return;
+  }
+  double ps_aim = ps_.aim_pa;
+  double qc_aim = qc_.aim_pa;
+  const double pa = *PressureUnitToPa(*value);
+  if (p == "ALT") {
+    const double alt_ft = altitude_in_m_ ? ss::MToFt(*value) : *value;
+    if (alt_ft < ss::MToFt(ss::kIsaMinAltitude_m) || alt_ft > ss::MToFt(ss::kIsaMaxAltitude_m)) {
+      PushError(hil::kScpiDataOutOfRange);
+      return;
+    }
+    ps_aim = ss::IsaStaticPressurePaFromFt(alt_ft);
+  } else if (p == "CAS") {
+    const double cas_kt = *value * KtPerSpeedUnit(speed_unit_);
+    if (cas_kt < 0.0 || cas_kt > ss::MpsToKt(ss::SeaLevelSpeedOfSoundMps())) {
+      PushError(hil::kScpiDataOutOfRange);
+      return;
+    }
+    qc_aim = ss::ImpactPressurePaFromKt(cas_kt);
+  } else if (p == "PS") {
+    ps_aim = pa;
+  } else if (p == "PT") {
+    qc_aim = pa - ps_aim;
+  } else if (p == "QC") {
+    qc_aim = pa;
+  } else {
+    PushError(hil::kScpiIllegalParameterValue);  // TAS, MACH, EPR aims are not emulated
+    return;
+  }
+  const bool in_limits = ps_aim >= params_.ps_min_pa && ps_aim <= params_.ps_max_pa && qc_aim >= 0.0 &&
+                         qc_aim <= params_.qc_max_pa && qc_aim / ps_aim <= kSonicQcOverPs;
+  if (!in_limits) {
+    PushError(hil::kScpiDataOutOfRange);
+    return;
+  }
+  ps_.aim_pa = ps_aim;
+  qc_.aim_pa = qc_aim;
+}
+
+void Adts405::SetRate(const std::vector<std::string>& args) {
+  const std::string p = Upper(args[0]);
+  const std::optional<double> value = hil::ParseScpiNumber(args[1]);
+  if (!value) {
+    PushError(hil::kScpiDataTypeError);
+    return;
+  }
+  double per_min = *value;
+  double max_per_min;
+  Rate kind;
+  if (p == "ALT") {
+    per_min = altitude_in_m_ ? ss::MToFt(per_min) : per_min;
+    max_per_min = params_.max_alt_rate_ft_per_min;
+    kind = Rate::kAltitude;
+  } else if (p == "CAS") {
+    per_min *= KtPerSpeedUnit(speed_unit_);
+    max_per_min = params_.max_cas_rate_kt_per_min;
+    kind = Rate::kAirspeed;
+  } else if (p == "PS" || p == "PT" || p == "QC") {
+    per_min = *PressureUnitToPa(per_min);
+    max_per_min = params_.max_pressure_rate_pa_per_min;
+    kind = Rate::kPressure;
+  } else {
+    PushError(hil::kScpiIllegalParameterValue);
+    return;
+  }
+  if (!(per_min > 0.0) || per_min > max_per_min) {
+    PushError(hil::kScpiDataOutOfRange);
+    return;
+  }
+  Channel& channel = (p == "ALT" || p == "PS") ? ps_ : qc_;
+  channel.rate_kind = kind;
+  channel.rate_per_s = per_min / 60.0;
+}
+
+std::optional<std::string> Adts405::RateQuery(std::string_view p) {
+  const bool ps_side = p == "ALT" || p == "PS";
+  const Channel& channel = ps_side ? ps_ : qc_;
+  const Rate wanted = p == "ALT" ? Rate::kAltitude : p == "CAS" ? Rate::kAirspeed : Rate::kPressure;
+  if (!(ps_side || p == "CAS" || p == "PT" || p == "QC")) {
+    PushError(hil::kScpiIllegalParameterValue);
+    return std::nullopt;
+  }
+  if (channel.rate_kind != wanted) {
+    PushError(hil::kScpiSettingsConflict);  // the rate was set in another quantity
+    return std::nullopt;
+  }
+  double per_min = channel.rate_per_s * 60.0;
+  if (wanted == Rate::kAltitude && altitude_in_m_) per_min = ss::FtToM(per_min);
+  if (wanted == Rate::kAirspeed) per_min /= KtPerSpeedUnit(speed_unit_);
+  if (wanted == Rate::kPressure) per_min /= *PressureUnitToPa(1.0);
+  return hil::FormatScpiNumber(per_min, kReplyDigits);
+}
+
+void Adts405::AdvanceTo(double now_s) {
+  const auto target_ticks = static_cast<int64_t>(std::floor(now_s / kTick_s + 1e-6));
+  while (ticks_ < target_ticks) {
+    ++ticks_;
+    Tick();
+  }
+}
+
+void Adts405::Slew(Channel& channel, double& value_pa, bool is_ps) {
+  const double step = channel.rate_per_s * kTick_s;
+  if (channel.rate_kind == Rate::kPressure) {
+    const double error = channel.aim_pa - value_pa;
+    value_pa = std::abs(error) <= step ? channel.aim_pa : value_pa + std::copysign(step, error);
+    return;
+  }
+  // Linear in altitude (ft) or in calibrated airspeed (kt), mapped back to pressure.
+  const bool altitude = channel.rate_kind == Rate::kAltitude && is_ps;
+  auto to_x = [&](double pa) { return altitude ? ss::IsaPressureAltitudeFt(pa) : ss::CalibratedAirspeedKt(pa); };
+  auto to_pa = [&](double x) { return altitude ? ss::IsaStaticPressurePaFromFt(x) : ss::ImpactPressurePaFromKt(x); };
+  const double error = to_x(channel.aim_pa) - to_x(value_pa);
+  value_pa = std::abs(error) <= step ? channel.aim_pa : to_pa(to_x(value_pa) + std::copysign(step, error));
+}
+
+void Adts405::Tick() {
+  if (control_ == Control::kOn) {
+    Slew(ps_, ps_pa_, true);
+    Slew(qc_, qc_pa_, false);
+  }
+  // First-order Gauss-Markov noise, exact discretisation: x ← a·x + σ·sqrt(1 − a²)·n.
+  const double a = std::exp(-kTick_s / params_.noise_tau_s);
+  const double drive = std::sqrt(1.0 - a * a);
+  ps_noise_pa_ = a * ps_noise_pa_ + params_.ps_stability_pa / 3.0 * drive * rng_.Normal();
+  qc_noise_pa_ = a * qc_noise_pa_ + params_.qc_stability_pa / 3.0 * drive * rng_.Normal();
+  UpdateCondition();
+}
+
+void Adts405::UpdateCondition() {
+  int cond = 0;
+  if (control_ == Control::kOn) {
+    cond |= ps_pa_ == ps_.aim_pa ? kPsAtSetPoint : kPsRamping;
+    cond |= qc_pa_ == qc_.aim_pa ? kPtAtSetPoint : kPtRamping;
+    if (cond & (kPsRamping | kPtRamping)) cond |= kRamping;
+  }
+  if (std::abs(ps_pa_ - params_.ground_ps_pa) < params_.ground_band_pa && std::abs(qc_pa_) < params_.ground_band_pa) {
+    cond |= kSafeAtGround;
+  }
+  const double now_s = static_cast<double>(ticks_) * kTick_s;
+  if ((cond & kPsAtSetPoint) && (cond & kPtAtSetPoint)) {
+    if (both_at_set_point_since_s_ < 0.0) both_at_set_point_since_s_ = now_s;
+    if (!never_stable_ && now_s - both_at_set_point_since_s_ >= params_.stable_delay_s - 1e-9) cond |= kStableAtAim;
+  } else {
+    both_at_set_point_since_s_ = -1.0;
+  }
+  event_ |= cond & ~condition_;
+  condition_ = cond;
+}
+
+}  // namespace adahrs::rig_sim

@@ -1,0 +1,121 @@
+// The virtual Druck ADTS 405 air data test set: its SCPI command set as the ADTS 405 programs use
+// it (shared/protocols.md §4.2-4.4, DRV) and the physics of its two pressure controllers (§4.7,
+// DOC ADTS 405 Mk2 manual ch. 8). GPIB transport (the Prologix adapter) is
+// rig_sim/prologix_adts_device.h; this class sees program messages only.
+//
+// Physics. Two channels: static Ps and impact Qc = Pt − Ps (Pa). In control (`SOUR:STAT ON`) each
+// channel moves from its value towards its aim at the commanded rate, linearly in the quantity the
+// rate was given in: altitude (ft/min, ISA, sensor_sim/atmosphere.h) or pressure (per min) for Ps;
+// calibrated airspeed (kt/min, sensor_sim/air_data.h) or pressure for Qc. It reaches the aim
+// without overshoot (§4.7). On top, the controller's stability noise: a first-order Gauss-Markov
+// process per channel (τ = noise_tau_s) whose ±3σ is the DOC stability figure (±0.038 mbar Ps,
+// ±0.045 mbar Qc). `SOUR:STAT OFF` (measure) and `HOLD` stop the slewing; the sealed system keeps
+// its pressures. Status (§4.4, DRV): bit 8 Ps / bit 10 Pt at set point in control; bit 9 / 11
+// ramping; bit 3 ramping (either channel, INF); bit 2 safe at ground; bit 1 stable at aim,
+// raised `stable_delay_s` (15 s) after bits 8 and 10 are both set.
+// Limits: aims outside [ps_min_pa, ps_max_pa] / [0, qc_max_pa], supersonic aims and rates above
+// the DOC maxima (100 000 ft/min, 2 000 kt/min, pressure max_pressure_rate_pa_per_min) are refused
+// with SCPI error −222 in the error queue (`SYST:ERR?`, INF: the 405's error format is UNKNOWN),
+// never clamped.
+// Left out: leaks and auto leak recovery, limit sets, the dynamic (sinusoidal) test, EPR/TAS/Mach
+// aims (measured only), the supersonic branch (qc_max_pa ≤ qc at 661.5 kt), the ADTS's own
+// measurement uncertainty, volume effects on the rates, QFE/QNH.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hil/codecs/scpi.h"
+#include "sensor_sim/random.h"
+
+namespace adahrs::rig_sim {
+
+struct Adts405Params {
+  double ps_min_pa = 7500.0;        ///< ≈ 60 000 ft
+  double ps_max_pa = 135500.0;      ///< the 1355 mbar Ps range (§4.7)
+  double qc_max_pa = 90000.0;       ///< subsonic (< 90 476 Pa = qc at a0)
+  double max_alt_rate_ft_per_min = 100000.0;       ///< §4.7
+  double max_cas_rate_kt_per_min = 2000.0;         ///< §4.7
+  double max_pressure_rate_pa_per_min = 1.0e6;     ///< 10 000 mbar/min (§4.7)
+  double initial_alt_rate_ft_per_min = 6000.0;     ///< smooth-control figure (§4.7)
+  double initial_cas_rate_kt_per_min = 200.0;
+  double ps_stability_pa = 3.8;     ///< ±0.038 mbar (§4.7), taken as 3σ
+  double qc_stability_pa = 4.5;     ///< ±0.045 mbar (§4.7), taken as 3σ
+  double noise_tau_s = 1.0;
+  double ground_ps_pa = 101325.0;   ///< the lab's barometric pressure (vent)
+  double ground_band_pa = 50.0;     ///< |Ps − ground| and |Qc| below this: safe at ground
+  double stable_delay_s = 15.0;     ///< §4.4
+  bool oper_event_latched = true;   ///< STAT:OPER:EVEN? as a latched SCPI event register
+  std::string idn = "DRUCK,ADTS405,0000000,V1.00";
+  uint64_t seed = 405;
+};
+
+class Adts405 {
+ public:
+  static constexpr double kTick_s = 0.01;
+  enum class Control { kOff, kOn, kHold };
+
+  explicit Adts405(const Adts405Params& params);
+
+  /// Executes one program message (terminator removed) at the current time. Returns the response
+  /// message (without terminator) when it held queries, else nullopt.
+  std::optional<std::string> Execute(std::string_view message);
+  /// Advances the controllers in 10 ms ticks up to `now_s`.
+  void AdvanceTo(double now_s);
+
+  /// IEEE 488.2 status byte: bit 2 error queue not empty, bit 5 event status (ESR) summary.
+  int StatusByte() const;
+  /// The pressures delivered to the ports (with the controller noise while controlling).
+  double ps_pa() const { return ps_pa_ + (control_ == Control::kOff ? 0.0 : ps_noise_pa_); }
+  double qc_pa() const { return qc_pa_ + (control_ == Control::kOff ? 0.0 : qc_noise_pa_); }
+  int condition() const { return condition_; }
+  /// Commands not recognised, verbatim (the last 100), to capture a real client's traffic.
+  const std::deque<std::string>& unrecognised() const { return unrecognised_; }
+  /// Physical fault: the stable-at-aim bit never rises.
+  void SetNeverStable(bool on) { never_stable_ = on; }
+  /// Queues a SCPI error (also used by the transport for −410 query interrupted).
+  void PushError(int code);
+
+ private:
+  enum class Rate { kAltitude, kAirspeed, kPressure };
+  struct Channel {
+    double aim_pa;
+    Rate rate_kind;
+    double rate_per_s;  // ft/s, kt/s or Pa/s
+  };
+
+  std::optional<std::string> ExecuteOne(const hil::ScpiCommand& command, const std::string& text);
+  std::optional<std::string> Measure(std::string_view parameter);
+  std::optional<std::string> Aim(std::string_view parameter);
+  void SetAim(const std::vector<std::string>& args);
+  void SetRate(const std::vector<std::string>& args);
+  std::optional<std::string> RateQuery(std::string_view parameter);
+  void Tick();
+  void Slew(Channel& channel, double& value_pa, bool is_ps);
+  void UpdateCondition();
+  std::optional<double> PressureUnitToPa(double value) const;
+
+  Adts405Params params_;
+  sensor_sim::Rng rng_;
+  Control control_ = Control::kOff;
+  double ps_pa_, qc_pa_ = 0.0;
+  double ps_noise_pa_ = 0.0, qc_noise_pa_ = 0.0;
+  Channel ps_, qc_;
+  std::string pressure_unit_ = "MBAR";
+  bool altitude_in_m_ = false;
+  std::string speed_unit_ = "KTS";
+  int condition_ = 0;
+  int event_ = 0;
+  int esr_ = 0;
+  double both_at_set_point_since_s_ = -1.0;
+  bool never_stable_ = false;
+  std::deque<int> errors_;
+  std::deque<std::string> unrecognised_;
+  int64_t ticks_ = 0;
+};
+
+}  // namespace adahrs::rig_sim
