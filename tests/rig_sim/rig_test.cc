@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -320,6 +321,44 @@ TEST(Rig, TheChamberBehindItsModbusPortWarmsTheUnits) {
   // 15 K warmer air: the die follows with its thermal lag; a few K already move the 16 × 12-bit
   // sum by hundreds of counts (8.4 mV/K · 13,107 counts/V ≈ 110 counts/K).
   EXPECT_GT(temp_counts(), before + 200);
+  rig.Stop();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Rig, TheRateTableTurnsTheUnitsOnIt) {
+  // JOG 100 over the rate_table pty (ATL, docs/rig/rate-table.md); the IMU in orientation 31 has
+  // z_B up, so its z gyro sees +100 °/s: ~2.1e6 counts (ADXRS150 12.5 mV/°/s, 16 summed 19-bit
+  // conversions, tests/firmware_model/realistic_constants.h: 20,972 counts per °/s), while x and y
+  // see only their misalignment (≤ ~2 %, 4e4 counts) and noise.
+  const auto dir = TempRunDir("table");
+  nlohmann::json j = DefaultRigConfig();
+  j["time_scale"] = 100.0;
+  j["units"]["imu"] = {j["units"]["imu"][0]};
+  j["units"]["ads"] = nlohmann::json::array();
+  Rig rig(RigConfig::FromJson(j, "rig with table"), dir);
+  rig.Start(dir / "manifest.json");
+  PtyClient imu(rig.ports().at("imu1"));
+  auto gyro_counts = [&] {
+    std::vector<uint8_t> bytes;
+    imu.ReadFor(0.3, bytes);
+    const Stream s = Decode(bytes);
+    EXPECT_FALSE(s.data.empty());
+    return s.data.empty() ? fm::ImuDataPayload{} : fm::ParseImuData(s.data.back());
+  };
+  const fm::ImuDataPayload at_rest = gyro_counts();
+  PtyClient table(rig.ports().at("rate_table"));
+  table.WriteText("SRV 1\r");
+  table.WriteText("JOG 100\r");
+  double rate_dps = 0.0;
+  for (int i = 0; i < 200 && std::abs(rate_dps - 100.0) > 0.5; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    rate_dps = rig.host().environment().table_rate_dps;
+  }
+  EXPECT_NEAR(rate_dps, 100.0, 0.5);
+  const fm::ImuDataPayload turning = gyro_counts();
+  EXPECT_GT(turning.raw.gyro_cnt[2] - at_rest.raw.gyro_cnt[2], 1500000);
+  EXPECT_LT(std::abs(turning.raw.gyro_cnt[0] - at_rest.raw.gyro_cnt[0]), 200000);
+  EXPECT_LT(std::abs(turning.raw.gyro_cnt[1] - at_rest.raw.gyro_cnt[1]), 200000);
   rig.Stop();
   std::filesystem::remove_all(dir);
 }
