@@ -35,6 +35,10 @@ void WriteTruth(const std::filesystem::path& dir, const std::string& serial, con
   if (!out) throw std::runtime_error((dir / (serial + ".json")).string() + ": write failed");
 }
 
+// The sequence counter a unit would put in this frame's packet: the unit protocol's counter is one
+// byte and wraps 255 → 0 (docs/unit-protocol.md), so recordings made here read like real ones.
+uint32_t UnitSequence(uint64_t frame) { return static_cast<uint8_t>(frame); }
+
 // The programmed set point walks from `from_c` toward the step's target at its ramp rate.
 double SetPoint(double from_c, const ThermalProfileStep& step, double t_in_step_s) {
   const double span_c = step.target_c - from_c;
@@ -145,7 +149,7 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
         if (!log) continue;
         imu_row.t_s = t_s;
         imu_row.unit = imus[u].params().serial;
-        imu_row.seq = static_cast<uint32_t>(frame & 0xFFFF);
+        imu_row.seq = UnitSequence(frame);
         imu_row.step = static_cast<int>(step);
         imu_row.tag = tag;
         imu_row.chamber_c = air_c;
@@ -162,7 +166,7 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
         if (!log) continue;
         ads_row.t_s = t_s;
         ads_row.unit = adss[u].params().serial;
-        ads_row.seq = static_cast<uint32_t>(frame & 0xFFFF);
+        ads_row.seq = UnitSequence(frame);
         ads_row.step = static_cast<int>(step);
         ads_row.tag = tag;
         ads_row.chamber_c = air_c;
