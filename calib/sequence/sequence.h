@@ -33,6 +33,8 @@
 #include <variant>
 #include <vector>
 
+#include "hil/instruments/f4_profile.h"
+
 namespace adahrs::calib {
 
 /// What the batch under test is: decides which step kinds a sequence may hold.
@@ -76,37 +78,15 @@ struct CrossAxisStep {
   bool operator==(const CrossAxisStep&) const = default;
 };
 
-/// Ramp from the current set point to target_c in duration_s (F4 step type 1).
-struct F4RampTime {
-  double target_c = 0.0;
-  double duration_s = 0.0;
-  bool operator==(const F4RampTime&) const = default;
-};
-/// Ramp from the current set point to target_c at rate_c_per_min (F4 step type 2).
-struct F4RampRate {
-  double target_c = 0.0;
-  double rate_c_per_min = 0.0;
-  bool operator==(const F4RampRate&) const = default;
-};
-/// Hold the current set point for duration_s (F4 step type 3).
-struct F4Soak {
-  double duration_s = 0.0;
-  bool operator==(const F4Soak&) const = default;
-};
-/// Go back to profile step to_step (1-based) `count` more times, then go on (F4 step type 4).
-struct F4Jump {
-  int to_step = 0;
-  int count = 0;
-  bool operator==(const F4Jump&) const = default;
-};
-/// What the chamber does after the profile (F4 step type 5, register 4060).
-enum class F4EndAction { kHold, kControlOff, kAllOff, kIdle };
-struct F4End {
-  F4EndAction action = F4EndAction::kHold;
-  double idle_c = 0.0;  ///< set point after the profile, for kIdle only
-  bool operator==(const F4End&) const = default;
-};
-using F4ProfileStep = std::variant<F4RampTime, F4RampRate, F4Soak, F4Jump, F4End>;
+// The F4 profile step types are the instrument's own data model (hil/instruments/f4_profile.h);
+// the sequence language uses them as they are.
+using hil::F4End;
+using hil::F4EndAction;
+using hil::F4Jump;
+using hil::F4ProfileStep;
+using hil::F4RampRate;
+using hil::F4RampTime;
+using hil::F4Soak;
 
 struct ThermalProfileStep {
   std::string profile_name;  ///< up to 10 of A–Z, 0–9, space (protocols.md §2.2)
