@@ -3,6 +3,7 @@
 #include <cmath>
 #include <ctime>
 #include <fstream>
+#include <limits>
 
 #include "sensor_sim/param_reader.h"
 
@@ -153,6 +154,32 @@ json AdsStandardErrorsJson(const firmware_model::AdsCalibrationConstants& se) {
     }
   }
   return j;
+}
+
+firmware_model::ImuCalibrationConstants ImuStandardErrors(const ConstantsFile& file) {
+  if (!file.imu) throw ConstantsFileError(file.serial + ": not an IMU constants file");
+  const json& j = file.standard_errors;
+  auto number = [](const json& x) {
+    return x.is_number() ? x.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  firmware_model::ImuCalibrationConstants se = *file.imu;
+  for (size_t ch = 0; ch < 9; ++ch) {
+    for (size_t i = 0; i < 3; ++i) se.thermal[ch].k[i] = number(j["thermal"][ch]["k"][i]);
+  }
+  for (size_t ch = 0; ch < 6; ++ch) {
+    se.accel[ch] = {number(j["accel"][ch]["offset_duty"]), number(j["accel"][ch]["scale_duty_per_g"])};
+  }
+  for (size_t g = 0; g < 3; ++g) {
+    se.gyro[g].null_cnt = number(j["gyro"][g]["null_cnt"]);
+    for (size_t i = 0; i < 4; ++i) se.gyro[g].l[i] = number(j["gyro"][g]["l"][i]);
+  }
+  for (size_t r = 0; r < 3; ++r) {
+    for (size_t k = 0; k < 3; ++k) {
+      se.ca_mps2_per_g[r][k] = number(j["ca_mps2_per_g"][r][k]);
+      se.cg[r][k] = number(j["cg"][r][k]);
+    }
+  }
+  return se;
 }
 
 json ToJson(const ConstantsFile& file) {

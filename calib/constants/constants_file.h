@@ -70,6 +70,10 @@ nlohmann::json ImuStandardErrorsJson(const firmware_model::ImuCalibrationConstan
 /// Likewise for ADS; the code box (a property of the data, not an estimate) is null.
 nlohmann::json AdsStandardErrorsJson(const firmware_model::AdsCalibrationConstants& se);
 
+/// The standard errors of an IMU file as a constants struct (null -> NaN; temp_sensor copied
+/// from the constants). Throws ConstantsFileError when the file is not an IMU's.
+firmware_model::ImuCalibrationConstants ImuStandardErrors(const ConstantsFile& file);
+
 /// The file's JSON; throws ConstantsFileError if the file is inconsistent (kind without its
 /// constants, standard errors of another shape, a negative standard error).
 nlohmann::json ToJson(const ConstantsFile& file);
