@@ -8,6 +8,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterRigCommand(app);
   RegisterSequenceCommand(app);
   RegisterPortsCommand(app);
+  RegisterRunCommand(app);
 }
 
 }  // namespace adahrs::apps

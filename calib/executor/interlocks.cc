@@ -1,0 +1,91 @@
+#include "calib/executor/interlocks.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "calib/sequence/sequence.h"
+#include "sensor_sim/im3_geometry.h"
+
+namespace adahrs::calib {
+namespace {
+
+constexpr double kDutyPerG = 0.04;              // ADXL210E nominal 4 %/g
+constexpr double kGyroCountsPerDps = 20971.52;  // 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
+constexpr double kMinGravityAlongUp_g = 0.5;
+constexpr double kMinGyroResponse = 0.5;
+constexpr double kMaxGyroResponse = 1.5;
+constexpr const char* kAxisNames[] = {"x_B", "y_B", "z_B"};
+
+std::string AxisText(int orientation) {
+  return fmt::format("{}{}", orientation % 10 == 1 ? "+" : "-", kAxisNames[orientation / 10 - 1]);
+}
+
+}  // namespace
+
+Eigen::Vector3d UpAxis_B(int orientation) {
+  if (!IsOrientationCode(orientation)) {
+    throw std::invalid_argument(fmt::format("{} is not a fixture orientation code", orientation));
+  }
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();
+  up[orientation / 10 - 1] = orientation % 10 == 1 ? 1.0 : -1.0;
+  return up;
+}
+
+Eigen::Vector3d NominalSpecificForce_B_g(const RawAverage& average) {
+  // g_k = r_k . f_B with r_k = ±e_i; each axis has two channels, so f_i = Σ r_k,i g_k / Σ r_k,i².
+  Eigen::Vector3d weighted = Eigen::Vector3d::Zero(), count = Eigen::Vector3d::Zero();
+  for (int ch = 0; ch < 6; ++ch) {
+    const auto [chip, axis] = sensor_sim::kAccelChannelChipAxis[ch];
+    const Eigen::Vector3d r_B = sensor_sim::Im3Geometry::NominalR_CB(chip).row(axis).transpose();
+    const double g_k = average.duty_offset[ch] / kDutyPerG;
+    weighted += r_B * g_k;
+    count += r_B.cwiseAbs2();
+  }
+  return weighted.cwiseQuotient(count);
+}
+
+InterlockVerdict GravityVerdict(const RawAverage& average, int orientation) {
+  const Eigen::Vector3d f_B_g = NominalSpecificForce_B_g(average);
+  int best = 0;
+  double best_dot = -1e9;
+  for (int code : kOrientationCodes) {
+    const double dot = f_B_g.dot(UpAxis_B(code));
+    if (dot > best_dot) {
+      best_dot = dot;
+      best = code;
+    }
+  }
+  const double along_up_g = f_B_g.dot(UpAxis_B(orientation));
+  InterlockVerdict v;
+  v.ok = best == orientation && along_up_g >= kMinGravityAlongUp_g;
+  v.detail = fmt::format(
+      "measured f_B = ({:.2f}, {:.2f}, {:.2f}) g over {} packets: looks like orientation {} ({} up); "
+      "commanded {} ({} up), {:.2f} g along it",
+      f_B_g.x(), f_B_g.y(), f_B_g.z(), average.packets, best, AxisText(best), orientation,
+      AxisText(orientation), along_up_g);
+  return v;
+}
+
+InterlockVerdict GyroAxisVerdict(const RawAverage& rest, const RawAverage& jog, int orientation,
+                               double jog_rate_dps) {
+  const Eigen::Vector3d up = UpAxis_B(orientation);
+  Eigen::Vector3d response_dps;
+  for (int i = 0; i < 3; ++i) response_dps[i] = (jog.gyro_cnt[i] - rest.gyro_cnt[i]) / kGyroCountsPerDps;
+  const Eigen::Vector3d expected_dps = jog_rate_dps * up;
+  Eigen::Index moved = 0;
+  response_dps.cwiseAbs().maxCoeff(&moved);
+  const int axis = orientation / 10 - 1;
+  const double ratio = response_dps[axis] / expected_dps[axis];
+  InterlockVerdict v;
+  v.ok = moved == axis && ratio >= kMinGyroResponse && ratio <= kMaxGyroResponse;
+  v.detail = fmt::format(
+      "table jog {:.0f} deg/s: gyro change (gx, gy, gz) = ({:.1f}, {:.1f}, {:.1f}) deg/s nominal; "
+      "expected {:.0f} deg/s on g{} ({} up, orientation {})",
+      jog_rate_dps, response_dps.x(), response_dps.y(), response_dps.z(), expected_dps[axis],
+      "xyz"[axis], AxisText(orientation), orientation);
+  return v;
+}
+
+}  // namespace adahrs::calib

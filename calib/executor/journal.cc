@@ -1,0 +1,71 @@
+#include "calib/executor/journal.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace adahrs::calib {
+namespace {
+
+[[noreturn]] void Fail(const std::filesystem::path& path, const std::string& what) {
+  throw JournalError(path.string() + ": " + what + ": " + std::strerror(errno));
+}
+
+}  // namespace
+
+Journal::Journal(const std::filesystem::path& run_dir) : path_(run_dir / kJournalName) {
+  file_ = std::fopen(path_.c_str(), "a");
+  if (file_ == nullptr) Fail(path_, "cannot open for appending");
+}
+
+Journal::~Journal() { std::fclose(file_); }
+
+void Journal::Append(const nlohmann::json& event) {
+  const std::string line = event.dump() + "\n";
+  if (std::fwrite(line.data(), 1, line.size(), file_) != line.size()) Fail(path_, "write failed");
+}
+
+void Journal::Sync() {
+  if (std::fflush(file_) != 0) Fail(path_, "flush failed");
+  if (::fsync(::fileno(file_)) != 0) Fail(path_, "fsync failed");
+}
+
+JournalContents ReadJournal(const std::filesystem::path& run_dir) {
+  const std::filesystem::path path = run_dir / kJournalName;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw JournalError(path.string() + ": cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  JournalContents contents;
+  size_t start = 0;
+  int line = 0;
+  while (start < text.size()) {
+    ++line;
+    const size_t end = text.find('\n', start);
+    if (end == std::string::npos) {
+      contents.torn_lines = 1;  // no newline: the write was cut short
+      break;
+    }
+    const std::string_view item(text.data() + start, end - start);
+    start = end + 1;
+    nlohmann::json event;
+    try {
+      event = nlohmann::json::parse(item);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw JournalError(path.string() + ":" + std::to_string(line) + ": not JSON (byte " +
+                         std::to_string(e.byte) + ")");
+    }
+    if (!event.is_object() || !event.contains("event") || !event["event"].is_string()) {
+      throw JournalError(path.string() + ":" + std::to_string(line) +
+                         ": not an object with a string \"event\"");
+    }
+    contents.events.push_back(std::move(event));
+  }
+  return contents;
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,249 @@
+#include "calib/executor/run_session.h"
+
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "calib/executor/journal.h"
+#include "calib/executor/offset_clock.h"
+#include "calib/executor/resume_point.h"
+#include "calib/executor/run_meta.h"
+#include "calib/executor/unit_logger.h"
+#include "calib/sequence/sequence_json.h"
+#include "calib/sequence/validation.h"
+#include "hil/drivers/station_instruments.h"
+#include "hil/drivers/unit_serial.h"
+#include "hil/recording/recording_format.h"
+#include "hil/recording/recording_writer.h"
+#include "hil/recording/torn_tail.h"
+
+namespace adahrs::calib {
+namespace {
+
+constexpr const char* kTimeBase =
+    "pipeline clock seconds since the run started (simulated seconds on a scaled rig)";
+
+std::string UtcNow() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+hil::UnitKind StationKind(UnitKind kind) {
+  return kind == UnitKind::kImu ? hil::UnitKind::kImu : hil::UnitKind::kAds;
+}
+
+PlanTiming TimingFor(const hil::Station& station) {
+  PlanTiming timing;
+  if (station.op.type == hil::OperatorType::kVirtualFixture) timing.operator_prompt_s = 0.0;
+  return timing;
+}
+
+// The t_s of the last complete row of a CSV (0 when it has none).
+double LastRowTime(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  std::string line, last;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    if (!line.empty()) last = line;
+  }
+  if (last.empty()) return 0.0;
+  return std::stod(last.substr(0, last.find(',')));
+}
+
+// Everything a run needs once the station, the sequence and the run directory are decided.
+struct Session {
+  hil::Station station;
+  Sequence sequence;
+  ExecutionPlan plan;
+  std::filesystem::path run_dir;
+  std::string sequence_file;
+};
+
+RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nlohmann::json> old_meta,
+                   size_t first_step, std::optional<double> repeated_from_s,
+                   std::vector<nlohmann::json> resume_events, ProgressSink& progress,
+                   const std::atomic<bool>& stop, const ExecutorOptions& options) {
+  hil::StationInstruments instruments = hil::OpenStation(s.station, clock);
+  const bool imu_batch = s.sequence.unit_kind == UnitKind::kImu;
+  std::vector<hil::UnitLink*> links;
+  for (const auto& link : instruments.units) {
+    if (link->entry().kind == StationKind(s.sequence.unit_kind)) links.push_back(link.get());
+  }
+  if (links.empty() || (imu_batch && links.size() > 4)) {
+    throw RunError(fmt::format("station '{}' has {} {} units; a batch is 1 to {} of them",
+                               s.station.name, links.size(), UnitKindName(s.sequence.unit_kind),
+                               imu_batch ? "4" : "any number"));
+  }
+
+  nlohmann::json units = nlohmann::json::array();
+  std::vector<std::string> serials;
+  for (hil::UnitLink* link : links) {
+    const firmware_model::IdentifyInfo id = link->Identify();
+    const std::string serial = hil::UnitSerialText(link->entry().kind, id.serial_number);
+    serials.push_back(serial);
+    units.push_back({{"role", link->entry().role},
+                     {"kind", imu_batch ? "imu" : "ads"},
+                     {"serial", serial},
+                     {"serial_number", id.serial_number},
+                     {"firmware", fmt::format("{}.{}.{}", id.firmware_major, id.firmware_minor,
+                                              id.firmware_patch)},
+                     {"slot", link->entry().slot},
+                     {"constants_version", id.constants_version},
+                     {"mode", id.mode}});
+  }
+  BatchInstruments batch{instruments.rate_table.get(),
+                         imu_batch ? instruments.imu_chamber.get() : instruments.ads_chamber.get(),
+                         instruments.adts.get(), instruments.op.get()};
+  if (!imu_batch) batch.rate_table = nullptr;
+  if (imu_batch) batch.adts = nullptr;
+  nlohmann::json identities = nlohmann::json::array();
+  const auto identify = [&](const char* role, auto* instrument) {
+    if (instrument == nullptr) return;
+    const hil::InstrumentIdentity id = instrument->Identify();
+    identities.push_back({{"role", role}, {"model", id.model}, {"detail", id.detail}});
+  };
+  identify("rate_table", batch.rate_table);
+  identify(imu_batch ? "imu_chamber" : "ads_chamber", batch.chamber);
+  identify("adts", batch.adts);
+
+  nlohmann::json meta;
+  if (old_meta) {
+    meta = *old_meta;
+    for (size_t u = 0; u < serials.size(); ++u) {
+      const auto& old_units = meta["units"];
+      if (old_units.size() != serials.size() || old_units[u]["serial"] != serials[u]) {
+        throw RunError(fmt::format(
+            "{}: the batch differs from the interrupted run's: {} is now {}, was {}",
+            (s.run_dir / hil::kMetaJsonName).string(), links[u]->entry().role, serials[u],
+            u < old_units.size() ? old_units[u]["serial"].dump() : "absent"));
+      }
+    }
+  } else {
+    meta = {{"run_id", s.run_dir.filename().string() + "-" + UtcNow()},
+            {"started_utc", UtcNow()},
+            {"station", s.station.ToJson()},
+            {"sequence", SequenceToJson(s.sequence)},
+            {"sequence_file", s.sequence_file},
+            {"time_base", kTimeBase},
+            {"sample_rate_hz", 100},
+            {"local_gravity_mps2", s.station.local_gravity_mps2},
+            {"units", units},
+            {"rejected_intervals", nlohmann::json::array()}};
+  }
+  meta["instruments"] = identities;
+  meta["status"] = kStatusRunning;
+
+  hil::RecordingWriter writer(s.run_dir);
+  SharedRecording recording(writer);
+  RunMeta run_meta(meta, recording);
+  run_meta.Write();
+  Journal journal(s.run_dir);
+  journal.Append({{"event", old_meta ? "run_resumed" : "run_started"}, {"t_s", clock.NowS()},
+                  {"utc", UtcNow()}, {"first_step", first_step}});
+  for (nlohmann::json& e : resume_events) {
+    e["t_s"] = clock.NowS();
+    journal.Append(e);
+  }
+  journal.Sync();
+
+  RunAnnotations annotations;
+  std::vector<std::unique_ptr<UnitLogger>> loggers;
+  std::vector<UnitLogger*> logger_ptrs;
+  for (size_t u = 0; u < links.size(); ++u) {
+    loggers.push_back(std::make_unique<UnitLogger>(*links[u], serials[u], recording, annotations));
+    logger_ptrs.push_back(loggers.back().get());
+    loggers.back()->Start();
+  }
+  Executor executor(s.sequence, s.plan, batch, logger_ptrs, clock, annotations, recording, journal,
+                    run_meta, progress, stop, options);
+  const auto summary = [&] {
+    RunSummary out{s.run_dir, run_meta.json()["status"].get<std::string>(), 0, 0};
+    for (auto& l : loggers) {
+      l->Stop();
+      out.rows += l->rows();
+      out.lost += l->lost();
+    }
+    recording.Flush(true);
+    return out;
+  };
+  try {
+    executor.Run(first_step, repeated_from_s);
+  } catch (...) {
+    summary();
+    throw;
+  }
+  return summary();
+}
+
+}  // namespace
+
+RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
+                    const std::atomic<bool>& stop) {
+  const SequenceLimits limits;
+  Session s;
+  s.station = hil::Station::Load(options.station_file);
+  s.sequence = LoadValidSequence(options.sequence_file, limits);
+  s.plan = ExpandSequence(s.sequence, limits, TimingFor(s.station));
+  s.run_dir = options.run_dir;
+  s.sequence_file = options.sequence_file;
+  if (std::filesystem::exists(s.run_dir / hil::kMetaJsonName)) {
+    throw RunError(fmt::format("{} already holds a run; resume it with adahrs run --resume {}",
+                               s.run_dir.string(), s.run_dir.string()));
+  }
+  std::filesystem::create_directories(s.run_dir);
+  const std::unique_ptr<hil::Clock> clock = hil::MakeClock(s.station.time_scale);
+  RunSummary summary = Execute(s, *clock, std::nullopt, 0, std::nullopt, {}, progress, stop,
+                               options.executor);
+  return summary;
+}
+
+RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progress,
+                     const std::atomic<bool>& stop, const ExecutorOptions& options) {
+  const std::filesystem::path meta_path = run_dir / hil::kMetaJsonName;
+  const nlohmann::json meta = sensor_sim::ParamReader::LoadFile(meta_path.string());
+  if (!meta.contains("format_version") || meta["format_version"] != hil::kRecordingFormatVersion ||
+      !meta.contains("station") || !meta.contains("sequence")) {
+    throw RunError(meta_path.string() + ": not an executor run of recording format version " +
+                   std::to_string(hil::kRecordingFormatVersion) + " ($.station, $.sequence)");
+  }
+  const SequenceLimits limits;
+  Session s;
+  s.station = hil::Station::FromJson(
+      sensor_sim::ParamReader(meta["station"], meta_path.string(), "$.station"));
+  s.sequence = SequenceFromJson(meta["sequence"], meta_path.string() + " $.sequence");
+  s.plan = ExpandSequence(s.sequence, limits, TimingFor(s.station));
+  s.run_dir = run_dir;
+
+  std::vector<nlohmann::json> events;
+  for (const std::filesystem::path& file :
+       {run_dir / hil::kImuCsvName, run_dir / hil::kAdsCsvName, run_dir / kJournalName}) {
+    if (const auto torn = hil::SetAsideTornTail(file)) {
+      events.push_back({{"event", "torn_tail_set_aside"}, {"file", file.filename().string()},
+                        {"moved_to", torn->filename().string()}});
+      progress.Note(fmt::format("torn last line of {} moved to {}", file.string(), torn->string()));
+    }
+  }
+  const ResumePoint point = FindResumePoint(ReadJournal(run_dir), s.sequence.steps.size());
+  if (point.run_completed || point.first_incomplete_step >= s.sequence.steps.size()) {
+    throw RunError(run_dir.string() + ": the run is complete; nothing to resume");
+  }
+  // The clock continues one packet period after the latest time on record.
+  const double last_t_s = std::max({point.last_t_s, LastRowTime(run_dir / hil::kImuCsvName),
+                                    LastRowTime(run_dir / hil::kAdsCsvName)});
+  const std::unique_ptr<hil::Clock> base = hil::MakeClock(s.station.time_scale);
+  const OffsetClock clock(*base, last_t_s + 1.0 / options.packet_rate_hz);
+  progress.Note(fmt::format("resuming {} at step {} of {}, clock from t = {:.2f} s", run_dir.string(),
+                            point.first_incomplete_step + 1, s.sequence.steps.size(), clock.NowS()));
+  return Execute(s, clock, meta, point.first_incomplete_step, point.interrupted_step_started_s,
+                 std::move(events), progress, stop, options);
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,45 @@
+// A run from the files to the end: `adahrs run --station FILE --sequence FILE --run-dir DIR`
+// (StartRun) and `adahrs run --resume DIR` (ResumeRun). Loads and validates the station and the
+// sequence (refused before anything moves), opens the station (hil::OpenStation), identifies the
+// batch's units and the instruments, writes meta.json (format v2) and the journal, starts one
+// UnitLogger per unit and runs the Executor.
+// Resume reads meta.json (station and sequence as the run started them) and the journal, sets
+// aside torn CSV and journal tails (journaled), continues the pipeline clock after the latest
+// recorded t_s, refuses a batch whose unit serials differ from the recorded ones, and restarts at
+// the first step not completed.
+// Left out: printing (the ProgressSink does), signal handling (the app sets `stop`).
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <string>
+
+#include "calib/executor/executor.h"
+#include "calib/executor/progress.h"
+
+namespace adahrs::calib {
+
+struct NewRunOptions {
+  std::string station_file;
+  std::string sequence_file;
+  std::filesystem::path run_dir;
+  ExecutorOptions executor;
+};
+
+struct RunSummary {
+  std::filesystem::path run_dir;
+  std::string status;      ///< meta.json status at the end
+  uint64_t rows = 0;       ///< rows recorded by this session
+  uint64_t lost = 0;       ///< packets lost in this session, all units
+};
+
+/// Starts a new run in `options.run_dir` (which must not hold a run already). Throws
+/// SequenceError / ParamError before anything moves, RunError or RunInterrupted after.
+RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
+                    const std::atomic<bool>& stop);
+
+/// Resumes the run in `run_dir` from its first step not completed.
+RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progress,
+                     const std::atomic<bool>& stop, const ExecutorOptions& options = {});
+
+}  // namespace adahrs::calib

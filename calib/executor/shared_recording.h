@@ -1,0 +1,36 @@
+// The run's RecordingWriter shared by the unit logger threads (rows) and the executor thread
+// (meta.json, durable flushes at step boundaries): one mutex around the writer.
+// Left out: any buffering of its own; the writer's stdio buffers suffice.
+#pragma once
+
+#include <mutex>
+#include <span>
+
+#include "hil/recording/recording_writer.h"
+
+namespace adahrs::calib {
+
+class SharedRecording {
+ public:
+  explicit SharedRecording(hil::RecordingWriter& writer) : writer_(writer) {}
+
+  template <typename Row>
+  void Append(std::span<const Row> rows) {
+    std::lock_guard lock(mutex_);
+    for (const Row& row : rows) writer_.Append(row);
+  }
+  void Flush(bool durable) {
+    std::lock_guard lock(mutex_);
+    writer_.Flush(durable);
+  }
+  void WriteMeta(const nlohmann::json& meta) {
+    std::lock_guard lock(mutex_);
+    writer_.WriteMeta(meta);
+  }
+
+ private:
+  std::mutex mutex_;
+  hil::RecordingWriter& writer_;
+};
+
+}  // namespace adahrs::calib
