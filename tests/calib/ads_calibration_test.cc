@@ -121,6 +121,15 @@ TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecifica
                 serial.c_str(), low_temp_worst_ft, warm_worst_ft, eval.altitude.pass,
                 eval.altitude.fail, eval.altitude.unreachable,
                 eval.altitude.worst_ratio_no_history);
+    for (const auto* q : {&eval.altitude, &eval.airspeed}) {
+      for (const AdsTolerancePointResult& r : q->points) {
+        std::printf("  %s %g: tolerance %g, worst without history %.1f (%g degC), with history "
+                    "%.1f, loop half-width %.1f: %s\n",
+                    q->quantity.c_str(), r.at, r.tolerance, r.worst_no_history,
+                    r.worst_no_history_temp_c, r.worst_with_history, r.max_loop_half_width,
+                    ToString(r.verdict));
+      }
+    }
     EXPECT_GT(low_temp_worst_ft, AltitudeToleranceFt(0.0));
     fs::remove_all(run);
   }
