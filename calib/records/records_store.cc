@@ -1,10 +1,8 @@
 #include "calib/records/records_store.h"
 
-#include <chrono>
-
-#include <fmt/chrono.h>
 #include <fmt/format.h>
 
+#include "calib/constants/constants_file.h"
 #include "calib/records/records_schema.h"
 
 namespace adahrs::calib {
@@ -19,11 +17,6 @@ std::string KindOfSerial(const std::filesystem::path& file, const std::string& s
 }
 
 }  // namespace
-
-std::string UtcNowIso8601() {
-  return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}",
-                     std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now()));
-}
 
 RecordsStore::RecordsStore(const std::filesystem::path& file) : database_(file, true) {
   MigrateRecordsSchema(database_);

@@ -153,7 +153,4 @@ class RecordsStore {
   SqliteDatabase database_;
 };
 
-/// Current UTC time as ISO 8601 ("2024-05-01T12:00:00Z").
-std::string UtcNowIso8601();
-
 }  // namespace adahrs::calib
