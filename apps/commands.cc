@@ -7,6 +7,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterSimulateCommand(app);
   RegisterRigCommand(app);
   RegisterSequenceCommand(app);
+  RegisterRecordsCommand(app);
 }
 
 }  // namespace adahrs::apps

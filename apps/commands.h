@@ -12,5 +12,6 @@ void RegisterVersionCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);
 void RegisterRigCommand(CLI::App& app);
 void RegisterSequenceCommand(CLI::App& app);
+void RegisterRecordsCommand(CLI::App& app);
 
 }  // namespace adahrs::apps
