@@ -66,6 +66,9 @@ nlohmann::json PortJson(const SerialSettings& s) {
 
 std::string ToString(InstrumentType type) { return TypeName(type); }
 std::string ToString(UnitKind kind) { return kind == UnitKind::kImu ? "imu" : "ads"; }
+std::string ToString(OperatorType type) {
+  return type == OperatorType::kVirtualFixture ? "virtual_fixture" : "console";
+}
 
 Station Station::Load(const std::string& file_path) {
   const nlohmann::json j = ParamReader::LoadFile(file_path);
@@ -132,6 +135,19 @@ Station Station::FromJson(const ParamReader& r) {
     ur.ExpectAllKeysUsed();
     st.units.push_back(u);
   }
+  if (r.Has("operator")) {
+    const ParamReader orr = r.Child("operator");
+    const std::string type = orr.String("type");
+    if (type == "virtual_fixture") {
+      st.op.type = OperatorType::kVirtualFixture;
+      st.op.port = ReadPort(orr.Child("port"));
+      claim_path(orr, st.op.port.path);
+    } else if (type != "console") {
+      orr.Fail(orr.path() + ".type",
+               "expected \"console\" or \"virtual_fixture\", got \"" + type + "\"");
+    }
+    orr.ExpectAllKeysUsed();
+  }
   r.ExpectAllKeysUsed();
   return st;
 }
@@ -151,11 +167,14 @@ nlohmann::json Station::ToJson() const {
                      {"slot", u.slot},
                      {"timeout_ms", u.timeout_ms}});
   }
+  nlohmann::json op_json = {{"type", ToString(op.type)}};
+  if (op.type == OperatorType::kVirtualFixture) op_json["port"] = PortJson(op.port);
   return {{"name", name},
           {"time_scale", time_scale},
           {"site", {{"latitude_deg", latitude_deg}, {"height_m", height_m}}},
           {"instruments", instruments},
-          {"units", units}};
+          {"units", units},
+          {"operator", op_json}};
 }
 
 const InstrumentEntry* Station::Instrument(const std::string& role) const {

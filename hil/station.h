@@ -35,6 +35,17 @@ struct UnitEntry {
   int timeout_ms = 500;
 };
 
+/// Who mounts the units and answers prompts (docs/station.md "operator").
+enum class OperatorType {
+  kConsole,         ///< a person at the PC's console: text on stdout, Enter on stdin
+  kVirtualFixture,  ///< the virtual rig's control port (`orientation <imu role> <code>`)
+};
+
+struct OperatorEntry {
+  OperatorType type = OperatorType::kConsole;
+  SerialSettings port;  ///< kVirtualFixture only: the rig's control port
+};
+
 struct Station {
   std::string name;
   double time_scale = 1.0;       ///< clock seconds per wall second (1 on a real lab)
@@ -43,6 +54,7 @@ struct Station {
   double local_gravity_mps2 = 0.0;  ///< WGS-84 normal gravity at latitude and height
   std::vector<InstrumentEntry> instruments;
   std::vector<UnitEntry> units;
+  OperatorEntry op;  ///< the console when the file has no "operator" entry
 
   /// Loads and validates a station file; throws sensor_sim::ParamError naming file and path.
   static Station Load(const std::string& file_path);
@@ -55,5 +67,6 @@ struct Station {
 
 std::string ToString(InstrumentType type);
 std::string ToString(UnitKind kind);
+std::string ToString(OperatorType type);
 
 }  // namespace adahrs::hil

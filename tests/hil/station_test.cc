@@ -37,6 +37,29 @@ TEST(Station, TheDocumentedExampleLoads) {
   EXPECT_NEAR(st.local_gravity_mps2, 9.796493, 1e-5);
 }
 
+TEST(Station, OperatorIsTheVirtualFixtureOrTheConsole) {
+  const Station st = Station::Load(kExample);
+  EXPECT_EQ(st.op.type, OperatorType::kVirtualFixture);
+  EXPECT_EQ(st.op.port.path, "runs/rig/ports/control");
+
+  nlohmann::json j = Example();
+  j.erase("operator");
+  EXPECT_EQ(Station::FromJson(sensor_sim::ParamReader(j, "station.json")).op.type,
+            OperatorType::kConsole);
+  j["operator"] = {{"type", "console"}};
+  EXPECT_EQ(Station::FromJson(sensor_sim::ParamReader(j, "station.json")).op.type,
+            OperatorType::kConsole);
+
+  j["operator"] = {{"type", "person"}};
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.operator.type"), HasSubstr("virtual_fixture")));
+  j = Example();
+  j["operator"]["port"]["path"] = j["units"][0]["port"]["path"];
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.operator"), HasSubstr("already used")));
+  j = Example();
+  j["operator"].erase("port");
+  EXPECT_THAT(ErrorOf(j), HasSubstr("$.operator"));
+}
+
 TEST(Station, RoundTripsThroughJson) {
   const Station st = Station::Load(kExample);
   const nlohmann::json j = st.ToJson();

@@ -1,0 +1,238 @@
+#include "hil/drivers/unit_link.h"
+
+#include <algorithm>
+#include <array>
+
+#include <fmt/format.h>
+
+namespace adahrs::hil {
+namespace {
+
+namespace fm = firmware_model;
+using Kind = InstrumentError::Kind;
+
+constexpr size_t kReadChunkBytes = 4096;
+// The shortest wait of a read (a zero wait would cancel the read before Asio performs it).
+constexpr std::chrono::milliseconds kDrainWait{1};
+
+std::unique_ptr<SerialPort> OpenPort(const UnitEntry& entry) {
+  try {
+    return std::make_unique<SerialPort>(entry.port, entry.role);
+  } catch (const TransportError& e) {
+    throw InstrumentError(Kind::kNoReply, entry.role, entry.port.path, "open", "", e.what());
+  }
+}
+
+std::string ResponseText(const fm::MaintenanceResponse& response) {
+  return fmt::format("command 0x{:02x} seq {} {}{}", static_cast<int>(response.command),
+                     response.sequence, fm::ResultCodeName(response.result),
+                     response.data.empty() ? "" : " data " + fm::HexTrace(response.data));
+}
+
+}  // namespace
+
+UnitLink::UnitLink(const UnitEntry& entry, const Clock& clock)
+    : entry_(entry), clock_(clock), port_(OpenPort(entry)) {}
+
+std::chrono::milliseconds UnitLink::ReplyTimeout() const {
+  return std::max(kMinWallReplyTimeout, clock_.WallTimeout(entry_.timeout_ms / 1000.0));
+}
+
+void UnitLink::Fail(Kind kind, const std::string& command, const std::string& reply,
+                    const std::string& detail) const {
+  throw InstrumentError(kind, entry_.role, entry_.port.path, command, reply, detail);
+}
+
+void UnitLink::Accept(const fm::Frame& frame, double t_s,
+                      std::vector<fm::MaintenanceResponse>* responses) {
+  const auto type = static_cast<fm::PacketType>(frame.type);
+  const fm::PacketType expected =
+      entry_.kind == UnitKind::kImu ? fm::PacketType::kImuData : fm::PacketType::kAdsData;
+  if (type == fm::PacketType::kMaintenanceResponse) {
+    if (responses == nullptr) return;  // an answer to a request that already gave up
+    try {
+      responses->push_back(fm::ParseMaintenanceResponse(frame));
+    } catch (const fm::ProtocolError& e) {
+      Fail(Kind::kBadReply, "maintenance response",
+           fm::HexTrace(std::span<const uint8_t>(frame.payload, frame.payload_length)), e.what());
+    }
+    return;
+  }
+  if (type != expected) {
+    Fail(Kind::kWrongIdentity, "data packet",
+         fmt::format("packet type 0x{:02x}", static_cast<int>(frame.type)),
+         fmt::format("the station holds an {} unit here", ToString(entry_.kind)));
+  }
+  ReceivedPacket packet;
+  packet.seq = frame.sequence;
+  packet.tag = frame.tag;
+  packet.t_s = t_s;
+  try {
+    if (entry_.kind == UnitKind::kImu) {
+      packet.data = fm::ParseImuData(frame);
+    } else {
+      packet.data = fm::ParseAdsData(frame);
+    }
+  } catch (const fm::ProtocolError& e) {
+    Fail(Kind::kBadReply, "data packet",
+         fm::HexTrace(std::span<const uint8_t>(frame.payload, frame.payload_length)), e.what());
+  }
+  tracker_.Observe(packet.seq);
+  queue_.push_back(std::move(packet));
+}
+
+size_t UnitLink::ReadInto(std::chrono::milliseconds timeout,
+                          std::vector<fm::MaintenanceResponse>* responses) {
+  std::array<uint8_t, kReadChunkBytes> chunk{};
+  size_t n = 0;
+  try {
+    n = port_->ReadSome(chunk, timeout);
+  } catch (const TransportError& e) {
+    Fail(Kind::kNoReply, "read", "", e.what());
+  }
+  if (n == 0) return 0;
+  const double t_s = clock_.NowS();
+  for (const fm::Frame& frame : reader_.Push(std::span<const uint8_t>(chunk.data(), n))) {
+    Accept(frame, t_s, responses);
+  }
+  return n;
+}
+
+fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
+                                           fm::MaintenanceCommand command,
+                                           const BuildRequest& build) {
+  const std::chrono::milliseconds timeout = ReplyTimeout();
+  std::vector<uint8_t> sequences;
+  for (int attempt = 0; attempt < kUnitRequestAttempts; ++attempt) {
+    std::vector<uint8_t> request;
+    try {
+      request = build();
+    } catch (const fm::ProtocolError& e) {
+      Fail(Kind::kRefused, command_text, "", e.what());
+    }
+    sequences.push_back(client_.last_sequence());
+    try {
+      port_->Write(request, timeout);
+    } catch (const TransportError& e) {
+      Fail(Kind::kNoReply, command_text, "", e.what());
+    }
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    for (;;) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+          deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0) break;
+      std::vector<fm::MaintenanceResponse> responses;
+      ReadInto(left, &responses);
+      for (const fm::MaintenanceResponse& response : responses) {
+        // Responses to other requests (answers that came after their request gave up) are stale.
+        if (response.command != command ||
+            std::find(sequences.begin(), sequences.end(), response.sequence) == sequences.end()) {
+          continue;
+        }
+        if (response.result != fm::ResultCode::kAck) {
+          Fail(Kind::kRefused, command_text, ResponseText(response),
+               fm::ResultCodeName(response.result));
+        }
+        return response;
+      }
+    }
+  }
+  Fail(Kind::kNoReply, command_text, "",
+       fmt::format("{} attempts of {} ms wall each", kUnitRequestAttempts, timeout.count()));
+}
+
+fm::IdentifyInfo UnitLink::Identify() {
+  const fm::MaintenanceResponse response = Transact(
+      "IDENTIFY", fm::MaintenanceCommand::kIdentify, [this] { return client_.Identify(); });
+  fm::IdentifyInfo info{};
+  try {
+    info = fm::ParseIdentify(response);
+  } catch (const fm::ProtocolError& e) {
+    Fail(Kind::kBadReply, "IDENTIFY", ResponseText(response), e.what());
+  }
+  const fm::UnitKind expected =
+      entry_.kind == UnitKind::kImu ? fm::UnitKind::kImu : fm::UnitKind::kAds;
+  if (info.unit_kind != expected) {
+    Fail(Kind::kWrongIdentity, "IDENTIFY", ResponseText(response),
+         fmt::format("the station holds an {} unit on this port, the unit says kind {}",
+                     ToString(entry_.kind), static_cast<int>(info.unit_kind)));
+  }
+  return info;
+}
+
+void UnitLink::SetTag(uint8_t tag) {
+  Transact(fmt::format("SET_TAG {}", tag), fm::MaintenanceCommand::kSetTag,
+           [this, tag] { return client_.SetTag(tag); });
+}
+
+void UnitLink::SetImuMode(fm::ImuCompensationMode mode) {
+  Transact(fmt::format("SET_MODE {}", static_cast<int>(mode)), fm::MaintenanceCommand::kSetMode,
+           [this, mode] { return client_.SetImuMode(mode); });
+}
+
+void UnitLink::SetAdsMode(fm::AdsCompensationMode mode) {
+  Transact(fmt::format("SET_MODE {}", static_cast<int>(mode)), fm::MaintenanceCommand::kSetMode,
+           [this, mode] { return client_.SetAdsMode(mode); });
+}
+
+void UnitLink::WriteBlock(uint8_t block_id, std::span<const int16_t> words) {
+  Transact(fmt::format("WRITE_BLOCK {} ({} words)", block_id, words.size()),
+           fm::MaintenanceCommand::kWriteBlock,
+           [this, block_id, words] { return client_.WriteBlock(block_id, words); });
+}
+
+std::vector<int16_t> UnitLink::ReadBlock(uint8_t block_id) {
+  const std::string text = fmt::format("READ_BLOCK {}", block_id);
+  const fm::MaintenanceResponse response =
+      Transact(text, fm::MaintenanceCommand::kReadBlock,
+               [this, block_id] { return client_.ReadBlock(block_id); });
+  try {
+    fm::BlockReadback readback = fm::ParseReadBlock(response);
+    if (readback.block_id != block_id) {
+      Fail(Kind::kBadReply, text, ResponseText(response),
+           fmt::format("answers block {}", readback.block_id));
+    }
+    return std::move(readback.words);
+  } catch (const fm::ProtocolError& e) {
+    Fail(Kind::kBadReply, text, ResponseText(response), e.what());
+  }
+}
+
+fm::CommitInfo UnitLink::Commit() {
+  const fm::MaintenanceResponse response = Transact(
+      "COMMIT", fm::MaintenanceCommand::kCommit, [this] { return client_.Commit(); });
+  try {
+    return fm::ParseCommit(response);
+  } catch (const fm::ProtocolError& e) {
+    Fail(Kind::kBadReply, "COMMIT", ResponseText(response), e.what());
+  }
+}
+
+fm::UnitCounters UnitLink::ReadCounters() {
+  const fm::MaintenanceResponse response =
+      Transact("READ_COUNTERS", fm::MaintenanceCommand::kReadCounters,
+               [this] { return client_.ReadCounters(); });
+  try {
+    return fm::ParseCounters(response);
+  } catch (const fm::ProtocolError& e) {
+    Fail(Kind::kBadReply, "READ_COUNTERS", ResponseText(response), e.what());
+  }
+}
+
+std::vector<ReceivedPacket> UnitLink::Poll(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    // With packets in hand only what is already waiting is taken; otherwise wait for the first.
+    const std::chrono::milliseconds wait =
+        queue_.empty() ? std::max(left, kDrainWait) : kDrainWait;
+    if (ReadInto(wait, nullptr) == kReadChunkBytes) continue;  // a full chunk: more is waiting
+    if (!queue_.empty() || left <= kDrainWait) break;
+  }
+  std::vector<ReceivedPacket> out;
+  out.swap(queue_);
+  return out;
+}
+
+}  // namespace adahrs::hil

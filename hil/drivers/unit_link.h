@@ -1,0 +1,108 @@
+// The PC's link to one unit (IMU or ADS) on its serial port (docs/unit-protocol.md): maintenance
+// requests answered by one response each, and the unit's 100 Hz data packets, which keep
+// streaming on the same line while a request waits. Every data packet that arrives, before,
+// during or after a request, is kept for the next Poll(): nothing is dropped on the PC side, and
+// losses on the line show as gaps of the 8-bit sequence counter (lost_packets()).
+//
+// Requests: each attempt is a new frame with a new request sequence; a response is accepted when
+// it echoes the command and the sequence of any attempt of the same request (a late answer to an
+// earlier attempt is as good as the last). An attempt waits the station's `timeout_ms` of clock
+// time (converted to wall time by the Clock, never below kMinWallReplyTimeout so that the PC's
+// own scheduling cannot fake a silent unit on a fast rig); after kUnitRequestAttempts unanswered
+// attempts the request throws InstrumentError kNoReply. A NAK throws kRefused with its reason; a
+// response that does not parse, or a data packet of the other unit kind, throws kBadReply /
+// kWrongIdentity. Each error names the unit role, the port, the command and the reply.
+// Retrying COMMIT whose ACK was lost commits twice (constants_version counts both): harmless for
+// the image, visible in the version.
+// Packet times are clock seconds at arrival (all packets read in one chunk share one time).
+// Not thread-safe: one thread uses a link at a time.
+// Left out: RESET (the executor never power-cycles a unit mid-run), baud-rate detection.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "firmware_model/unit_protocol_client.h"
+#include "hil/clock.h"
+#include "hil/instruments/instrument_error.h"
+#include "hil/station.h"
+#include "hil/transport/serial_port.h"
+
+namespace adahrs::hil {
+
+/// Attempts of one maintenance request before kNoReply (the first try and two retries).
+inline constexpr int kUnitRequestAttempts = 3;
+/// Floor of one attempt's wall-clock wait, whatever the time scale.
+inline constexpr std::chrono::milliseconds kMinWallReplyTimeout{100};
+
+/// One data packet as received.
+struct ReceivedPacket {
+  uint8_t seq = 0;   ///< the unit's 8-bit data sequence counter
+  uint8_t tag = 0;   ///< the step TAG the unit held when it sent the packet
+  double t_s = 0.0;  ///< clock time of arrival, s
+  std::variant<firmware_model::ImuDataPayload, firmware_model::AdsDataPayload> data;
+};
+
+class UnitLink {
+ public:
+  /// Opens the unit's port; throws InstrumentError (kNoReply) naming role and port if it cannot.
+  UnitLink(const UnitEntry& entry, const Clock& clock);
+  UnitLink(const UnitLink&) = delete;
+  UnitLink& operator=(const UnitLink&) = delete;
+
+  const UnitEntry& entry() const { return entry_; }
+
+  /// IDENTIFY; throws kWrongIdentity when the unit is of the other kind than the station says.
+  firmware_model::IdentifyInfo Identify();
+  void SetTag(uint8_t tag);
+  void SetImuMode(firmware_model::ImuCompensationMode mode);
+  void SetAdsMode(firmware_model::AdsCompensationMode mode);
+  void WriteBlock(uint8_t block_id, std::span<const int16_t> words);
+  std::vector<int16_t> ReadBlock(uint8_t block_id);
+  firmware_model::CommitInfo Commit();
+  firmware_model::UnitCounters ReadCounters();
+
+  /// Data packets received since the last call (including those that arrived while a
+  /// maintenance request waited for its response: nothing is dropped), waiting up to `timeout`
+  /// (wall clock) for the first.
+  std::vector<ReceivedPacket> Poll(std::chrono::milliseconds timeout);
+
+  /// Packets missing from the sequence counter since the link was opened.
+  uint64_t lost_packets() const { return tracker_.lost_total(); }
+
+  /// Frames the link's decoder refused (bad CRC, length, type) since it was opened.
+  const firmware_model::DecoderCounters& decoder_counters() const { return reader_.counters(); }
+
+  /// Every byte sent and received goes to `sink` (nullptr: off).
+  void SetTrace(TraceSink sink) { port_->SetTrace(std::move(sink)); }
+
+ private:
+  using BuildRequest = std::function<std::vector<uint8_t>()>;
+  firmware_model::MaintenanceResponse Transact(const std::string& command_text,
+                                               firmware_model::MaintenanceCommand command,
+                                               const BuildRequest& build);
+  // Reads what arrives within `timeout` into the packet queue; responses go to `responses`.
+  size_t ReadInto(std::chrono::milliseconds timeout,
+                  std::vector<firmware_model::MaintenanceResponse>* responses);
+  void Accept(const firmware_model::Frame& frame, double t_s,
+              std::vector<firmware_model::MaintenanceResponse>* responses);
+  [[noreturn]] void Fail(InstrumentError::Kind kind, const std::string& command, const std::string& reply,
+                         const std::string& detail) const;
+  std::chrono::milliseconds ReplyTimeout() const;
+
+  UnitEntry entry_;
+  const Clock& clock_;
+  std::unique_ptr<SerialPort> port_;
+  firmware_model::UnitProtocolClient client_;
+  firmware_model::StreamReader reader_;
+  firmware_model::SequenceTracker tracker_;
+  std::vector<ReceivedPacket> queue_;
+};
+
+}  // namespace adahrs::hil
