@@ -1,32 +1,52 @@
 // The recording format (a contract, docs/recording-format.md): a run directory with meta.json and
 // one CSV per unit kind, one row per received packet. Production recordings from real rigs use it
-// and the analysis tools read it; a change of columns is a change of kFormatVersion.
+// and the analysis tools read it; a change of columns is a change of kRecordingFormatVersion.
+//
+// Version 2 (written) = version 1's columns followed by the compensated columns, which are always
+// in the header and EMPTY in raw mode. Version 1 (still read) has no compensated columns.
+// Compensated values are in the engineering units of the unit's mode (compensated_values.h):
+//   IMU mode 1 (thermal): comp0..5 duty T/T2 - 0.5, comp6..8 gyro counts;
+//   IMU mode 2 (sensor calibrated): comp0..5 g per accel channel, comp6..8 deg/s per gyro;
+//   IMU mode 3 (fully calibrated): comp0..2 A x,y,z m/s^2, comp3..5 G x,y,z deg/s,
+//                                  comp6..8 pair disagreement x,y,z g;
+//   ADS mode 1 (surface): alt_ft, cas_kt.
+// Left out: the time base and every run-level fact, which live in meta.json.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
 namespace adahrs::hil {
 
-inline constexpr int kRecordingFormatVersion = 1;
+inline constexpr int kRecordingFormatVersion = 2;
+/// The oldest version ReadRecording still accepts.
+inline constexpr int kOldestReadableFormatVersion = 1;
 inline constexpr std::string_view kImuCsvName = "imu.csv";
 inline constexpr std::string_view kAdsCsvName = "ads.csv";
 inline constexpr std::string_view kMetaJsonName = "meta.json";
 
-inline constexpr std::string_view kImuCsvHeader =
+inline constexpr std::string_view kImuCsvHeaderV1 =
     "t_s,unit,seq,step,tag,orientation,chamber_c,table_rate_dps,"
     "az1_t1,az1_t2,ax1_t1,ax1_t2,ay1_t1,ay1_t2,az2_t1,az2_t2,ax2_t1,ax2_t2,ay2_t1,ay2_t2,"
     "gx,gy,gz,tx,ty,tz";
-inline constexpr std::string_view kAdsCsvHeader =
+inline constexpr std::string_view kAdsCsvHeaderV1 =
     "t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,ps_temp_counts,"
     "pt_temp_counts,oat_counts";
+inline constexpr std::string_view kImuCsvHeader =
+    "t_s,unit,seq,step,tag,orientation,chamber_c,table_rate_dps,"
+    "az1_t1,az1_t2,ax1_t1,ax1_t2,ay1_t1,ay1_t2,az2_t1,az2_t2,ax2_t1,ax2_t2,ay2_t1,ay2_t2,"
+    "gx,gy,gz,tx,ty,tz,mode,comp0,comp1,comp2,comp3,comp4,comp5,comp6,comp7,comp8,comp_flags";
+inline constexpr std::string_view kAdsCsvHeader =
+    "t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,ps_temp_counts,"
+    "pt_temp_counts,oat_counts,mode,alt_ft,cas_kt,comp_flags";
 
 /// One received IMU packet with the instrument readings current when it arrived.
 struct ImuRecordRow {
   double t_s = 0.0;             ///< time on the run's time base (meta.json), seconds
-  std::string unit;             ///< unit serial number
+  std::string unit;             ///< unit serial text, "IMU-0001"
   uint32_t seq = 0;             ///< packet sequence counter as sent by the unit
   int step = 0;                 ///< index of the sequence step
   uint8_t tag = 0;              ///< the step's one-byte TAG carried by the packet
@@ -36,12 +56,16 @@ struct ImuRecordRow {
   std::array<uint16_t, 12> accel_ticks{};  ///< az1_t1, az1_t2, ax1_t1, … ay2_t2
   std::array<int32_t, 3> gyro_cnt{};       ///< gx gy gz
   std::array<uint16_t, 3> temp_cnt{};      ///< tx ty tz
+  uint8_t mode = 0;                        ///< the unit's mode byte (0 raw)
+  /// Compensated values in the mode's engineering units; absent in raw mode and in version 1.
+  std::optional<std::array<double, 9>> comp;
+  uint32_t comp_flags = 0;  ///< compensation status flags (compensated_frame.h), 0 when absent
 };
 
 /// One received ADS packet with the instrument readings current when it arrived.
 struct AdsRecordRow {
   double t_s = 0.0;
-  std::string unit;
+  std::string unit;  ///< unit serial text, "ADS-0001"
   uint32_t seq = 0;
   int step = 0;
   uint8_t tag = 0;
@@ -53,6 +77,10 @@ struct AdsRecordRow {
   int32_t ps_temp_counts = 0;
   int32_t pt_temp_counts = 0;
   int32_t oat_counts = 0;
+  uint8_t mode = 0;               ///< the unit's mode byte (0 raw)
+  std::optional<double> alt_ft;   ///< surface-mode pressure altitude; absent in raw mode
+  std::optional<double> cas_kt;   ///< surface-mode calibrated airspeed; absent in raw mode
+  uint32_t comp_flags = 0;        ///< compensation status flags, 0 when absent
 };
 
 }  // namespace adahrs::hil

@@ -26,7 +26,7 @@ std::vector<std::string> SplitHeader(std::string_view header) {
 // error can say where it happened.
 class CsvCursor {
  public:
-  CsvCursor(const std::filesystem::path& path, std::string_view header)
+  CsvCursor(const std::filesystem::path& path, std::string_view header, int version)
       : path_(path), names_(SplitHeader(header)), in_(path) {
     if (!in_) throw RecordingError(path_.string() + ": cannot open for reading");
     std::string first;
@@ -34,7 +34,7 @@ class CsvCursor {
     line_ = 1;
     if (first != header) {
       throw RecordingError(path_.string() + ":1: header is not the recording format's (version " +
-                           std::to_string(kRecordingFormatVersion) + "): expected '" +
+                           std::to_string(version) + ", as meta.json says): expected '" +
                            std::string(header) + "'");
     }
   }
@@ -92,6 +92,21 @@ class CsvCursor {
     return static_cast<Int>(v);
   }
 
+  bool Empty(size_t column) const { return cells_[column].empty(); }
+
+  // The compensated cells [first, last] of a version-2 row: all empty in raw mode (false), all
+  // present otherwise (true); a mixture is an error naming the first offending column.
+  bool CompensatedPresent(size_t first, size_t last, unsigned mode) const {
+    for (size_t c = first; c <= last; ++c) {
+      if (Empty(c) != (mode == 0)) {
+        throw RecordingError(Where(c) + (mode == 0 ? ": not empty, but mode is 0 (raw)"
+                                                   : ": empty, but mode is " +
+                                                         std::to_string(mode) + " (compensated)"));
+      }
+    }
+    return mode != 0;
+  }
+
   const std::string& Text(size_t column) const {
     if (cells_[column].empty()) throw RecordingError(Where(column) + ": empty");
     return cells_[column];
@@ -112,6 +127,49 @@ class CsvCursor {
 
 }  // namespace
 
+namespace {
+
+double MetaNumber(const nlohmann::json& item, const char* key, const std::string& where) {
+  if (!item.contains(key) || !item[key].is_number()) {
+    throw RecordingError(where + "." + key + " missing or not a number");
+  }
+  return item[key].get<double>();
+}
+
+std::vector<RejectedInterval> ReadRejectedIntervals(const nlohmann::json& meta,
+                                                    const std::string& meta_path) {
+  std::vector<RejectedInterval> intervals;
+  if (!meta.contains("rejected_intervals")) return intervals;
+  const nlohmann::json& list = meta["rejected_intervals"];
+  if (!list.is_array()) {
+    throw RecordingError(meta_path + ": $.rejected_intervals is not an array");
+  }
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string where = meta_path + ": $.rejected_intervals[" + std::to_string(i) + "]";
+    const nlohmann::json& item = list[i];
+    if (!item.is_object()) throw RecordingError(where + " is not an object");
+    RejectedInterval r;
+    if (!item.contains("step") || !item["step"].is_number_integer()) {
+      throw RecordingError(where + ".step missing or not an integer");
+    }
+    r.step = item["step"].get<int>();
+    r.t_start_s = MetaNumber(item, "t_start_s", where);
+    r.t_end_s = MetaNumber(item, "t_end_s", where);
+    if (!(r.t_end_s >= r.t_start_s)) {
+      throw RecordingError(where + ": t_end_s " + std::to_string(r.t_end_s) +
+                           " is before t_start_s " + std::to_string(r.t_start_s));
+    }
+    if (!item.contains("reason") || !item["reason"].is_string()) {
+      throw RecordingError(where + ".reason missing or not a string");
+    }
+    r.reason = item["reason"].get<std::string>();
+    intervals.push_back(std::move(r));
+  }
+  return intervals;
+}
+
+}  // namespace
+
 Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions& options) {
   Recording rec;
   const std::filesystem::path meta_path = run_dir / kMetaJsonName;
@@ -126,13 +184,17 @@ Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions&
     throw RecordingError(meta_path.string() + ": $.format_version missing");
   }
   const int version = rec.meta["format_version"].get<int>();
-  if (version != kRecordingFormatVersion) {
+  if (version < kOldestReadableFormatVersion || version > kRecordingFormatVersion) {
     throw RecordingError(meta_path.string() + ": $.format_version is " + std::to_string(version) +
-                         "; this software reads version " +
+                         "; this software reads versions " +
+                         std::to_string(kOldestReadableFormatVersion) + " to " +
                          std::to_string(kRecordingFormatVersion));
   }
+  rec.format_version = version;
+  rec.rejected_intervals = ReadRejectedIntervals(rec.meta, meta_path.string());
+  const bool v2 = version >= 2;
 
-  CsvCursor imu(run_dir / kImuCsvName, kImuCsvHeader);
+  CsvCursor imu(run_dir / kImuCsvName, v2 ? kImuCsvHeader : kImuCsvHeaderV1, version);
   while (imu.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     ImuRecordRow r;
     r.t_s = imu.Real(0);
@@ -146,9 +208,18 @@ Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions&
     for (size_t i = 0; i < 12; ++i) r.accel_ticks[i] = imu.Integer<uint16_t>(8 + i);
     for (size_t i = 0; i < 3; ++i) r.gyro_cnt[i] = imu.Integer<int32_t>(20 + i);
     for (size_t i = 0; i < 3; ++i) r.temp_cnt[i] = imu.Integer<uint16_t>(23 + i);
+    if (v2) {
+      r.mode = imu.Integer<uint8_t>(26);
+      if (imu.CompensatedPresent(27, 36, r.mode)) {
+        std::array<double, 9> comp{};
+        for (size_t i = 0; i < 9; ++i) comp[i] = imu.Real(27 + i);
+        r.comp = comp;
+        r.comp_flags = imu.Integer<uint32_t>(36);
+      }
+    }
     rec.imu.push_back(std::move(r));
   }
-  CsvCursor ads(run_dir / kAdsCsvName, kAdsCsvHeader);
+  CsvCursor ads(run_dir / kAdsCsvName, v2 ? kAdsCsvHeader : kAdsCsvHeaderV1, version);
   while (ads.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     AdsRecordRow r;
     r.t_s = ads.Real(0);
@@ -164,9 +235,24 @@ Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions&
     r.ps_temp_counts = ads.Integer<int32_t>(10);
     r.pt_temp_counts = ads.Integer<int32_t>(11);
     r.oat_counts = ads.Integer<int32_t>(12);
+    if (v2) {
+      r.mode = ads.Integer<uint8_t>(13);
+      if (ads.CompensatedPresent(14, 16, r.mode)) {
+        r.alt_ft = ads.Real(14);
+        r.cas_kt = ads.Real(15);
+        r.comp_flags = ads.Integer<uint32_t>(16);
+      }
+    }
     rec.ads.push_back(std::move(r));
   }
   return rec;
+}
+
+bool IsRejected(const Recording& recording, double t_s) {
+  for (const RejectedInterval& r : recording.rejected_intervals) {
+    if (t_s >= r.t_start_s && t_s <= r.t_end_s) return true;
+  }
+  return false;
 }
 
 }  // namespace adahrs::hil

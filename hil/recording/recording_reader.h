@@ -5,6 +5,10 @@
 // its type's range — each error names the file, the 1-based line and the column name.
 // A truncated last line (a crash while writing) is reported as such, not silently dropped:
 // `ReadOptions::allow_truncated_tail` accepts it and counts it, as a resumed run needs.
+// Reads format versions 1 and 2 (recording_format.h); version 1 rows have no compensated values.
+// In version 2 the compensated cells are all empty exactly when the row's mode is 0 (raw).
+// meta.json's optional "rejected_intervals" (rows that are NOT calibration data) are parsed
+// strictly too; the rest of meta.json is handed over as JSON.
 #pragma once
 
 #include <filesystem>
@@ -27,8 +31,19 @@ struct ReadOptions {
   bool allow_truncated_tail = false;
 };
 
+/// A span of the run whose rows are not calibration data (a failed interlock, the first attempt of
+/// a step repeated after a resume), from meta.json's "rejected_intervals".
+struct RejectedInterval {
+  int step = 0;            ///< index of the sequence step the interval belongs to
+  double t_start_s = 0.0;  ///< first rejected time on the run's time base, inclusive
+  double t_end_s = 0.0;    ///< last rejected time, inclusive
+  std::string reason;
+};
+
 struct Recording {
   nlohmann::json meta;
+  int format_version = 0;
+  std::vector<RejectedInterval> rejected_intervals;
   std::vector<ImuRecordRow> imu;
   std::vector<AdsRecordRow> ads;
   int truncated_lines = 0;  ///< incomplete last lines skipped (only with allow_truncated_tail)
@@ -36,5 +51,9 @@ struct Recording {
 
 /// Reads meta.json, imu.csv and ads.csv of `run_dir`.
 Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions& options = {});
+
+/// True when `t_s` lies inside one of the recording's rejected intervals (its rows there are not
+/// calibration data).
+bool IsRejected(const Recording& recording, double t_s);
 
 }  // namespace adahrs::hil

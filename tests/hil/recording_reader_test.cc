@@ -101,8 +101,95 @@ TEST_F(RecordingReaderTest, TruncatedTailIsReportedOrCountedOnRequest) {
 }
 
 TEST_F(RecordingReaderTest, WrongFormatVersionIsRefused) {
-  ReplaceInFile("meta.json", "\"format_version\": 1", "\"format_version\": 2");
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("meta.json"), HasSubstr("format_version is 2")));
+  ReplaceInFile("meta.json", "\"format_version\": 2", "\"format_version\": 3");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("meta.json"), HasSubstr("format_version is 3")));
+}
+
+TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
+  const Recording rec = ReadRecording(dir_);
+  EXPECT_EQ(rec.format_version, 2);
+  EXPECT_EQ(rec.imu[0].mode, 0);
+  EXPECT_FALSE(rec.imu[0].comp.has_value());
+  EXPECT_FALSE(rec.ads[0].alt_ft.has_value());
+}
+
+TEST_F(RecordingReaderTest, CompensatedRowReadsBackExactly) {
+  {
+    RecordingWriter w(dir_);
+    ImuRecordRow r;
+    r.unit = "IMU-0001";
+    r.mode = 3;
+    r.comp = std::array<double, 9>{9.80665, -0.1, 0.2, 150.0, -3.5, 0.0, 1e-6, -2e-6, 0.0};
+    r.comp_flags = 1;
+    w.Append(r);
+  }
+  const Recording rec = ReadRecording(dir_);
+  ASSERT_EQ(rec.imu.size(), 4u);
+  ASSERT_TRUE(rec.imu[3].comp.has_value());
+  EXPECT_EQ(rec.imu[3].mode, 3);
+  EXPECT_EQ((*rec.imu[3].comp)[0], 9.80665);  // shortest round-trip text: exact
+  EXPECT_EQ((*rec.imu[3].comp)[6], 1e-6);
+  EXPECT_EQ(rec.imu[3].comp_flags, 1u);
+}
+
+TEST_F(RecordingReaderTest, CompensatedCellsMustMatchTheMode) {
+  ReplaceInFile("imu.csv", ",65520,0,,,", ",65520,2,,,");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:2"), HasSubstr("(comp0)"), HasSubstr("mode is 2")));
+}
+
+TEST_F(RecordingReaderTest, RawModeWithAValueIsRefused) {
+  ReplaceInFile("ads.csv", ",0,,,", ",0,12.5,,");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("ads.csv:2"), HasSubstr("(alt_ft)"), HasSubstr("raw")));
+}
+
+// A version-1 directory as the simulator wrote it before version 2 (literal text, the v1 header
+// of docs/recording-format.md) is still read, without compensated values.
+TEST_F(RecordingReaderTest, VersionOneRecordingIsStillRead) {
+  std::filesystem::remove_all(dir_);
+  std::filesystem::create_directories(dir_);
+  std::ofstream(dir_ / "meta.json") << R"({"format_version": 1, "sample_rate_hz": 100})";
+  std::ofstream(dir_ / "imu.csv")
+      << kImuCsvHeaderV1 << "\n"
+      << "0.0100,IMU-0001,7,3,4,21,25.000,0.0000,1,2,3,4,5,6,7,8,9,10,11,12,4194304,-5,6,7,8,9\n";
+  std::ofstream(dir_ / "ads.csv")
+      << kAdsCsvHeaderV1 << "\n"
+      << "0.0100,ADS-0001,9,1,2,20.000,101325.00,0.00,-8388608,1,2,3,4\n";
+  const Recording rec = ReadRecording(dir_);
+  EXPECT_EQ(rec.format_version, 1);
+  ASSERT_EQ(rec.imu.size(), 1u);
+  EXPECT_EQ(rec.imu[0].seq, 7u);
+  EXPECT_EQ(rec.imu[0].accel_ticks[11], 12);
+  EXPECT_EQ(rec.imu[0].temp_cnt[2], 9);
+  EXPECT_EQ(rec.imu[0].mode, 0);
+  EXPECT_FALSE(rec.imu[0].comp.has_value());
+  ASSERT_EQ(rec.ads.size(), 1u);
+  EXPECT_EQ(rec.ads[0].ps_counts, -8388608);
+  EXPECT_EQ(rec.ads[0].oat_counts, 4);
+}
+
+TEST_F(RecordingReaderTest, VersionOneMetaWithVersionTwoHeaderIsRefused) {
+  ReplaceInFile("meta.json", "\"format_version\": 2", "\"format_version\": 1");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:1"), HasSubstr("version 1")));
+}
+
+TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {
+  RecordingWriter w(dir_);
+  w.WriteMeta({{"rejected_intervals",
+                {{{"step", 2}, {"t_start_s", 0.015}, {"t_end_s", 0.02}, {"reason", "interlock"}}}}});
+  const Recording rec = ReadRecording(dir_);
+  ASSERT_EQ(rec.rejected_intervals.size(), 1u);
+  EXPECT_EQ(rec.rejected_intervals[0].step, 2);
+  EXPECT_EQ(rec.rejected_intervals[0].reason, "interlock");
+  EXPECT_FALSE(IsRejected(rec, rec.imu[0].t_s));  // 0.01
+  EXPECT_TRUE(IsRejected(rec, rec.imu[1].t_s));   // 0.02, the inclusive end
+  EXPECT_FALSE(IsRejected(rec, rec.imu[2].t_s));  // 0.03
+}
+
+TEST_F(RecordingReaderTest, MalformedRejectedIntervalNamesItsPath) {
+  RecordingWriter w(dir_);
+  w.WriteMeta({{"rejected_intervals",
+                {{{"step", 2}, {"t_start_s", 5.0}, {"t_end_s", 4.0}, {"reason", "x"}}}}});
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("$.rejected_intervals[0]"), HasSubstr("before t_start_s")));
 }
 
 TEST_F(RecordingReaderTest, ForeignHeaderIsRefused) {

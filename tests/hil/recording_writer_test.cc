@@ -1,5 +1,6 @@
 #include "hil/recording/recording_writer.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -29,8 +30,11 @@ std::filesystem::path FreshDir(const std::string& name) {
 // so the two cannot drift apart.
 TEST(RecordingWriter, HeadersMatchTheDocumentedContract) {
   const std::string doc = ReadAll(std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/recording-format.md");
-  EXPECT_NE(doc.find("`" + std::string(kImuCsvHeader) + "`"), std::string::npos);
-  EXPECT_NE(doc.find("`" + std::string(kAdsCsvHeader) + "`"), std::string::npos);
+  for (std::string_view header : {kImuCsvHeader, kAdsCsvHeader, kImuCsvHeaderV1, kAdsCsvHeaderV1}) {
+    std::string quoted(1, '`');
+    quoted.append(header).push_back('`');
+    EXPECT_NE(doc.find(quoted), std::string::npos) << header;
+  }
 }
 
 TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
@@ -64,12 +68,54 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
   const std::string imu = ReadAll(dir / "imu.csv");
   EXPECT_EQ(imu, std::string(kImuCsvHeader) + "\n" +
                      "1.2500,IMU-0001,65535,2,200,31,-20.500,150.0000,29000,29001,29002,29003,29004,"
-                     "29005,29006,29007,29008,29009,29010,29011,4194304,-1,7340032,40000,41000,42000\n");
+                     "29005,29006,29007,29008,29009,29010,29011,4194304,-1,7340032,40000,41000,42000,"
+                     "0,,,,,,,,,,\n");
   const std::string ads = ReadAll(dir / "ads.csv");
   EXPECT_EQ(std::count(ads.begin(), ads.end(), '\n'), 2);
   EXPECT_NE(ads.find(",-8388608,"), std::string::npos);
   const auto meta = nlohmann::json::parse(ReadAll(dir / "meta.json"));
   EXPECT_EQ(meta["format_version"], kRecordingFormatVersion);
+  std::filesystem::remove_all(dir);
+}
+
+// Compensated values are written in the shortest text that reads back to the same double, so a
+// value of the Q31 grid (here 2^-27 g, the mode-2 accel LSB) survives the CSV exactly.
+TEST(RecordingWriter, CompensatedCellsFollowTheMode) {
+  const auto dir = FreshDir("rec_comp");
+  {
+    RecordingWriter w(dir);
+    ImuRecordRow row;
+    row.unit = "IMU-0002";
+    row.mode = 2;
+    row.comp = std::array<double, 9>{1.0, -0.5, std::ldexp(1.0, -27), 0, 0, 0, 150.0, -150.0, 0.25};
+    row.comp_flags = 2;
+    w.Append(row);
+    AdsRecordRow ads;
+    ads.unit = "ADS-0001";
+    ads.mode = 1;
+    ads.alt_ft = 35000.5;
+    ads.cas_kt = 250.125;
+    w.Append(ads);
+    w.Flush(false);
+  }
+  const std::string imu = ReadAll(dir / "imu.csv");
+  EXPECT_NE(imu.find(",2,1,-0.5,7.450580596923828e-09,0,0,0,150,-150,0.25,2\n"), std::string::npos)
+      << imu;
+  const std::string ads = ReadAll(dir / "ads.csv");
+  EXPECT_NE(ads.find(",1,35000.5,250.125,0\n"), std::string::npos) << ads;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RecordingWriter, RefusesToAppendToAnotherVersionsFile) {
+  const auto dir = FreshDir("rec_v1");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "imu.csv") << kImuCsvHeaderV1 << "\n";
+  try {
+    RecordingWriter w(dir);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("imu.csv:1: cannot append"), std::string::npos) << e.what();
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -4,32 +4,16 @@
 
 #include <filesystem>
 #include <map>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "hil/recording/recording_reader.h"
 #include "sensor_sim/imu_unit.h"
 #include "sensor_sim/param_reader.h"
 
 namespace adahrs::rig_sim {
 namespace {
-
-std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 TEST(StaticThermalRun, WritesARecordingWhoseTemperatureCountsFollowTheChamber) {
   const auto dir = std::filesystem::temp_directory_path() /
@@ -42,25 +26,26 @@ TEST(StaticThermalRun, WritesARecordingWhoseTemperatureCountsFollowTheChamber) {
   config.steps = {{45.0, 5.0, 600.0}, {25.0, 5.0, 60.0}};
   const StaticThermalRunSummary summary = RunStaticThermal(config, dir);
 
-  const auto imu = ReadCsv(dir / "imu.csv");
-  const auto ads = ReadCsv(dir / "ads.csv");
+  const hil::Recording rec = hil::ReadRecording(dir);  // the strict reader checks every cell
+  const auto& imu = rec.imu;
   ASSERT_GT(imu.size(), 100u);
-  EXPECT_EQ(imu.size() - 1, summary.imu_rows);
-  EXPECT_EQ(ads.size() - 1, summary.ads_rows);
+  EXPECT_EQ(imu.size(), summary.imu_rows);
+  EXPECT_EQ(rec.ads.size(), summary.ads_rows);
   EXPECT_EQ(summary.imu_rows, 2 * summary.ads_rows);
-  for (const auto& row : imu) EXPECT_EQ(row.size(), 26u);
   // The chamber must have reached 45 °C ± band during step 0; the gyro TEMP counts of each unit
   // rise from the start to the end of step 0 (8.4 mV/K: ~110 counts/°C, and the die lags).
   double max_chamber_c = -100;
   std::map<std::string, std::pair<double, double>> first_last_tx;
-  for (size_t i = 1; i < imu.size(); ++i) {
-    if (imu[i][3] != "0") continue;
-    max_chamber_c = std::max(max_chamber_c, std::stod(imu[i][6]));
-    auto& fl = first_last_tx[imu[i][1]];
-    if (fl.first == 0) fl.first = std::stod(imu[i][23]);
-    fl.second = std::stod(imu[i][23]);
-    EXPECT_EQ(imu[i][4], "1");   // tag of step 0
-    EXPECT_EQ(imu[i][5], "31");  // orientation
+  for (const hil::ImuRecordRow& row : imu) {
+    if (row.step != 0) continue;
+    max_chamber_c = std::max(max_chamber_c, row.chamber_c);
+    auto& fl = first_last_tx[row.unit];
+    if (fl.first == 0) fl.first = row.temp_cnt[0];
+    fl.second = row.temp_cnt[0];
+    EXPECT_EQ(row.tag, 1);           // tag of step 0
+    EXPECT_EQ(row.orientation, 31);
+    EXPECT_EQ(row.mode, 0);          // raw: no compensated values
+    EXPECT_FALSE(row.comp.has_value());
   }
   EXPECT_NEAR(max_chamber_c, 45.0, 0.3 + 1e-6);
   ASSERT_EQ(first_last_tx.size(), 2u);
