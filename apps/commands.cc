@@ -8,6 +8,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterRigCommand(app);
   RegisterSequenceCommand(app);
   RegisterRecordsCommand(app);
+  RegisterDownloadCommand(app);
 }
 
 }  // namespace adahrs::apps
