@@ -9,6 +9,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterSequenceCommand(app);
   RegisterRecordsCommand(app);
   RegisterDownloadCommand(app);
+  RegisterReportCommand(app);
 }
 
 }  // namespace adahrs::apps

@@ -14,5 +14,6 @@ void RegisterRigCommand(CLI::App& app);
 void RegisterSequenceCommand(CLI::App& app);
 void RegisterRecordsCommand(CLI::App& app);
 void RegisterDownloadCommand(CLI::App& app);
+void RegisterReportCommand(CLI::App& app);
 
 }  // namespace adahrs::apps
