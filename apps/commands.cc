@@ -10,6 +10,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterRecordsCommand(app);
   RegisterDownloadCommand(app);
   RegisterReportCommand(app);
+  RegisterPortsCommand(app);
 }
 
 }  // namespace adahrs::apps

@@ -15,5 +15,6 @@ void RegisterSequenceCommand(CLI::App& app);
 void RegisterRecordsCommand(CLI::App& app);
 void RegisterDownloadCommand(CLI::App& app);
 void RegisterReportCommand(CLI::App& app);
+void RegisterPortsCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

@@ -35,7 +35,7 @@ UnitLink::UnitLink(const UnitEntry& entry, const Clock& clock)
     : entry_(entry), clock_(clock), port_(OpenPort(entry)) {}
 
 std::chrono::milliseconds UnitLink::ReplyTimeout() const {
-  return std::max(kMinWallReplyTimeout, clock_.WallTimeout(entry_.timeout_ms / 1000.0));
+  return WallReplyTimeout(clock_, entry_.timeout_ms);
 }
 
 void UnitLink::Fail(Kind kind, const std::string& command, const std::string& reply,

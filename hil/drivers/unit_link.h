@@ -30,6 +30,7 @@
 
 #include "firmware_model/unit_protocol_client.h"
 #include "hil/clock.h"
+#include "hil/drivers/instrument_port.h"
 #include "hil/instruments/instrument_error.h"
 #include "hil/station.h"
 #include "hil/transport/serial_port.h"
@@ -38,8 +39,6 @@ namespace adahrs::hil {
 
 /// Attempts of one maintenance request before kNoReply (the first try and two retries).
 inline constexpr int kUnitRequestAttempts = 3;
-/// Floor of one attempt's wall-clock wait, whatever the time scale.
-inline constexpr std::chrono::milliseconds kMinWallReplyTimeout{100};
 
 /// One data packet as received.
 struct ReceivedPacket {

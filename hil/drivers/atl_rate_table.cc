@@ -1,0 +1,87 @@
+#include "hil/drivers/atl_rate_table.h"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "hil/codecs/atl_codec.h"
+#include "hil/drivers/atl_client_table.h"
+
+namespace adahrs::hil {
+namespace {
+
+using Kind = InstrumentError::Kind;
+
+std::string CommandText(const std::string& mnemonic, std::optional<double> argument, bool query) {
+  if (query) return mnemonic + "?";
+  return argument ? fmt::format("{} {:g}", mnemonic, *argument) : mnemonic;
+}
+
+}  // namespace
+
+AtlRateTable::AtlRateTable(const InstrumentEntry& entry, const Clock& clock)
+    : port_(entry, clock) {}
+
+std::string AtlRateTable::Command(const std::string& mnemonic, std::optional<double> argument,
+                                  bool query) {
+  const AtlCommandTable& table = AtlClientCommandTable();
+  const std::string text = CommandText(mnemonic, argument, query);
+  std::string request;
+  try {
+    request = EncodeAtlCommand(table, mnemonic, argument, query);
+  } catch (const std::invalid_argument& e) {
+    port_.Fail(Kind::kRefused, text, "", std::string("not sent: ") + e.what());
+  }
+  const AtlFraming& framing = table.framing();
+  const std::string terminator = framing.line_end + framing.prompt + framing.line_end;
+  const std::string reply = port_.Exchange(text, request, terminator);
+  const std::string data = reply.substr(0, reply.size() - terminator.size());
+  if (!data.empty() && data.front() == '?') port_.Fail(Kind::kRefused, text, data, "");
+  return data;
+}
+
+double AtlRateTable::QueryNumber(const std::string& mnemonic) {
+  const std::string data = Command(mnemonic, std::nullopt, true);
+  try {
+    size_t used = 0;
+    const double value = std::stod(data, &used);
+    if (used == data.size()) return value;
+  } catch (const std::exception&) {
+  }
+  port_.Fail(Kind::kBadReply, mnemonic + "?", PrintableReply(data), "expected a number");
+}
+
+int AtlRateTable::Status() {
+  const double word = QueryNumber("STA");
+  if (word < 0 || word != static_cast<int>(word)) {
+    port_.Fail(Kind::kBadReply, "STA?", fmt::format("{:g}", word), "expected a status word");
+  }
+  return static_cast<int>(word);
+}
+
+InstrumentIdentity AtlRateTable::Identify() {
+  return {"Aerosmith ATL rate table",
+          fmt::format("status word {} (no identification query in ATL)", Status())};
+}
+
+void AtlRateTable::CommandRate(double rate_dps, double accel_dps2) {
+  Command("ACL", accel_dps2, false);
+  Command("JOG", rate_dps, false);
+}
+
+double AtlRateTable::ReadRateDps() { return QueryNumber("RAT"); }
+
+bool AtlRateTable::AtRate() {
+  const int status = Status();
+  if (status & (1 << kAtlStatusInterlockOpenBit)) {
+    port_.Fail(Kind::kFault, "STA?", std::to_string(status), "interlock open: the table is stopped");
+  }
+  return (status & (1 << kAtlStatusAtRateBit)) != 0;
+}
+
+void AtlRateTable::Stop(double accel_dps2) {
+  Command("ACL", accel_dps2, false);
+  Command("STO", std::nullopt, false);
+}
+
+}  // namespace adahrs::hil

@@ -1,0 +1,91 @@
+#include "hil/drivers/instrument_port.h"
+
+#include <algorithm>
+#include <array>
+
+#include <fmt/format.h>
+
+namespace adahrs::hil {
+
+std::chrono::milliseconds WallReplyTimeout(const Clock& clock, int timeout_ms) {
+  return std::max(kMinWallReplyTimeout, clock.WallTimeout(timeout_ms / 1000.0));
+}
+
+std::string PrintableReply(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '\r': out += "<CR>"; break;
+      case '\n': out += "<LF>"; break;
+      case 0x11: out += "<XON>"; break;
+      case 0x13: out += "<XOFF>"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) {
+          out += fmt::format("<{:02X}>", static_cast<unsigned char>(c));
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out;
+}
+
+namespace {
+
+std::unique_ptr<SerialPort> OpenInstrumentPort(const InstrumentEntry& entry) {
+  try {
+    return std::make_unique<SerialPort>(entry.port, entry.role);
+  } catch (const TransportError& e) {
+    throw InstrumentError(InstrumentError::Kind::kNoReply, entry.role, entry.port.path, "open",
+                          "", e.what());
+  }
+}
+
+}  // namespace
+
+InstrumentPort::InstrumentPort(const InstrumentEntry& entry, const Clock& clock)
+    : entry_(entry), clock_(clock), port_(OpenInstrumentPort(entry)) {}
+
+void InstrumentPort::Fail(InstrumentError::Kind kind, const std::string& command,
+                          const std::string& reply, const std::string& detail) const {
+  throw InstrumentError(kind, entry_.role, entry_.port.path, command, reply, detail);
+}
+
+void InstrumentPort::Send(const std::string& command, std::string_view request) {
+  try {
+    port_->Write(request, reply_timeout());
+  } catch (const TransportError& e) {
+    Fail(InstrumentError::Kind::kNoReply, command, "", e.what());
+  }
+}
+
+std::string InstrumentPort::Exchange(const std::string& command, std::string_view request,
+                                     std::string_view terminator) {
+  std::string received;
+  const int attempts = entry_.retries + 1;
+  for (int attempt = 0; attempt < attempts; ++attempt) {
+    port_->DiscardInput();
+    Send(command, request);
+    received.clear();
+    const auto deadline = std::chrono::steady_clock::now() + reply_timeout();
+    std::array<uint8_t, 256> chunk{};
+    for (;;) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+          deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0) break;
+      size_t n = 0;
+      try {
+        n = port_->ReadSome(chunk, left);
+      } catch (const TransportError& e) {
+        Fail(InstrumentError::Kind::kNoReply, command, PrintableReply(received), e.what());
+      }
+      received.append(reinterpret_cast<const char*>(chunk.data()), n);
+      const size_t at = received.find(terminator);
+      if (at != std::string::npos) return received.substr(0, at + terminator.size());
+    }
+  }
+  Fail(InstrumentError::Kind::kNoReply, command, PrintableReply(received),
+       fmt::format("{} attempts of {} ms wall each", attempts, reply_timeout().count()));
+}
+
+}  // namespace adahrs::hil

@@ -1,0 +1,59 @@
+// The serial line of one instrument role as its driver uses it: opened from the station entry,
+// with the entry's reply timeout and bounded retries, and every failure turned into an
+// InstrumentError naming the role, the port, the command and what came back.
+// Timeouts: the station's `timeout_ms` is clock time (the instrument's own reply delay runs on the
+// rig's simulated clock); the wall-clock wait is that divided by the time scale, never below
+// kMinWallReplyTimeout, so that the PC's own scheduling cannot make a fast rig look silent.
+// Used by the line-oriented drivers (ATL, Watlow 942, Prologix); Modbus has libmodbus's own port.
+// Left out: reopening a port that disappeared (a USB adapter unplugged): that stops the run.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "hil/clock.h"
+#include "hil/instruments/instrument_error.h"
+#include "hil/station.h"
+#include "hil/transport/serial_port.h"
+
+namespace adahrs::hil {
+
+/// Floor of one reply's wall-clock wait, whatever the time scale.
+inline constexpr std::chrono::milliseconds kMinWallReplyTimeout{100};
+
+/// The wall-clock wait for a reply promised within `timeout_ms` of clock time.
+std::chrono::milliseconds WallReplyTimeout(const Clock& clock, int timeout_ms);
+
+class InstrumentPort {
+ public:
+  /// Opens the entry's port; throws InstrumentError kNoReply (command "open") if it cannot.
+  InstrumentPort(const InstrumentEntry& entry, const Clock& clock);
+
+  const InstrumentEntry& entry() const { return entry_; }
+  SerialPort& port() { return *port_; }
+  std::chrono::milliseconds reply_timeout() const { return WallReplyTimeout(clock_, entry_.timeout_ms); }
+
+  /// Writes `request`; throws kNoReply naming `command` if the write cannot complete.
+  void Send(const std::string& command, std::string_view request);
+
+  /// Sends `request` (input discarded first) and returns what arrives up to and including
+  /// `terminator`; an attempt that times out is repeated, up to the entry's `retries` times, then
+  /// throws kNoReply with whatever partial reply arrived.
+  std::string Exchange(const std::string& command, std::string_view request,
+                       std::string_view terminator);
+
+  [[noreturn]] void Fail(InstrumentError::Kind kind, const std::string& command,
+                         const std::string& reply, const std::string& detail) const;
+
+ private:
+  InstrumentEntry entry_;
+  const Clock& clock_;
+  std::unique_ptr<SerialPort> port_;
+};
+
+/// `text` with control characters shown as <CR>, <LF>, <XON>… (for error messages).
+std::string PrintableReply(std::string_view text);
+
+}  // namespace adahrs::hil
