@@ -12,6 +12,9 @@ void RegisterVersionCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);
 void RegisterRigCommand(CLI::App& app);
 void RegisterSequenceCommand(CLI::App& app);
+void RegisterRecordsCommand(CLI::App& app);
+void RegisterDownloadCommand(CLI::App& app);
+void RegisterReportCommand(CLI::App& app);
 void RegisterPortsCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
 
