@@ -12,6 +12,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterReportCommand(app);
   RegisterPortsCommand(app);
   RegisterRunCommand(app);
+  RegisterDemoCommand(app);
 }
 
 }  // namespace adahrs::apps

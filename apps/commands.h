@@ -17,5 +17,6 @@ void RegisterDownloadCommand(CLI::App& app);
 void RegisterReportCommand(CLI::App& app);
 void RegisterPortsCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
+void RegisterDemoCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

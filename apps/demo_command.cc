@@ -1,0 +1,191 @@
+// adahrs demo [--out DIR] [--time-scale K] [--quick]: the product's main job on the virtual lab
+// (docs/demo.md). Starts the rig as a separate process (this binary's `rig` subcommand), writes
+// the IMU-bench and ADS-bench station files for its ports, runs the calibration campaign
+// (calib/campaign/campaign.h) with the rig's truth for the evaluation, prints a summary per unit,
+// and always stops the rig. Thin: the rig process and the stations are rig_sim's, the chain is
+// calib's; this file picks the files, prints, and handles SIGINT (exit 130).
+#include <signal.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "apps/commands.h"
+#include "calib/campaign/campaign.h"
+#include "calib/campaign/quick_sequences.h"
+#include "rig_sim/rig_bench_stations.h"
+#include "rig_sim/rig_child_process.h"
+#include "rig_sim/rig_config.h"
+
+namespace adahrs::apps {
+namespace {
+
+std::atomic<bool> g_demo_stop{false};
+extern "C" void OnDemoSigint(int) { g_demo_stop = true; }
+
+// Wall seconds between two progress lines of one bench.
+constexpr double kProgressLineIntervalS = 5.0;
+
+struct DemoOptions {
+  std::string out = "runs/demo";
+  double time_scale = 600.0;
+  bool quick = false;
+  std::string sequences = ADAHRS_SEQUENCE_DIR;
+};
+
+class ConsoleObserver : public calib::CampaignObserver {
+ public:
+  class BenchSink : public calib::ProgressSink {
+   public:
+    BenchSink(std::string name, std::mutex& mutex) : name_(std::move(name)), mutex_(mutex) {}
+    void Report(const calib::ProgressReport& r) override {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_ < std::chrono::duration<double>(kProgressLineIntervalS)) return;
+      last_ = now;
+      uint64_t lost = 0;
+      for (const calib::UnitProgress& u : r.units) lost += u.lost;
+      std::lock_guard lock(mutex_);
+      std::cout << fmt::format("  [{}] t={:.0f} s step {}/{} {} | {} | ETA {:.0f} s | lost {}\n",
+                               name_, r.t_s, r.step + 1, r.step_count, r.step_kind, r.action_text,
+                               r.eta_s, lost)
+                << std::flush;
+    }
+    void Note(const std::string& text) override {
+      std::lock_guard lock(mutex_);
+      std::cout << fmt::format("  [{}] note: {}\n", name_, text) << std::flush;
+    }
+
+   private:
+    std::string name_;
+    std::mutex& mutex_;
+    std::chrono::steady_clock::time_point last_{};
+  };
+
+  void Stage(const std::string& text) override {
+    std::lock_guard lock(mutex_);
+    std::cout << text << "\n" << std::flush;
+  }
+  calib::ProgressSink& Bench(const std::string& bench) override {
+    std::lock_guard lock(mutex_);
+    auto& sink = sinks_[bench];
+    if (!sink) sink = std::make_unique<BenchSink>(bench, mutex_);
+    return *sink;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::unique_ptr<BenchSink>> sinks_;
+};
+
+void PrintSummary(const calib::CampaignResult& result, double wall_s) {
+  std::cout << fmt::format("\ndemo finished in {:.0f} s wall\n", wall_s);
+  for (const calib::UnitOutcome& u : result.units) {
+    std::cout << fmt::format("{} {}: constants version {} (records v{}, {} strategy, {} blocks "
+                             "verified)\n",
+                             u.role, u.serial, u.download.unit_constants_version,
+                             u.download.records_version, u.strategy, u.download.blocks);
+    std::cout << "  acceptance verdict: not judged (see below)\n";
+    for (const calib::EvaluatedQuantity& q : u.evaluation) {
+      std::cout << fmt::format("  evaluated worst {}: {:.4g} {} (spec {:g}) -> {}\n", q.quantity,
+                               q.worst, q.unit, q.tolerance, q.verdict);
+    }
+    std::cout << "  report: " << u.report.string() << "\n";
+  }
+  for (const calib::EvaluatedQuantity& q : result.reference_evaluation) {
+    std::cout << fmt::format("reference strategy, {} worst {}: {:.4g} {} -> {}\n", q.serial,
+                             q.quantity, q.worst, q.unit, q.verdict);
+  }
+  for (const std::string& s : result.not_run) std::cout << "not run: " << s << "\n";
+  std::cout << "records: " << result.records_file.string() << " (adahrs units show SERIAL --db "
+            << result.records_file.string() << ")\n";
+}
+
+int RunDemo(const DemoOptions& options) {
+  struct sigaction action {};
+  action.sa_handler = OnDemoSigint;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  const auto start = std::chrono::steady_clock::now();
+  const std::filesystem::path out = std::filesystem::absolute(options.out);
+  if (std::filesystem::exists(out) && !std::filesystem::is_empty(out)) {
+    throw std::runtime_error(out.string() + " is not empty: give a new --out directory");
+  }
+  const std::filesystem::path rig_dir = out / "rig";
+  std::filesystem::create_directories(rig_dir);
+  const nlohmann::json rig_json = rig_sim::DefaultRigConfig();
+  std::ofstream(rig_dir / "rig.json") << rig_json.dump(2) << "\n";
+  const rig_sim::RigConfig rig_config = rig_sim::RigConfig::FromJson(rig_json, "built-in rig config");
+
+  std::cout << fmt::format("starting the virtual rig at {:g}x in {}\n", options.time_scale,
+                           rig_dir.string());
+  rig_sim::RigChildProcess rig(
+      {"/proc/self/exe", rig_dir, rig_dir / "rig.json", options.time_scale, 30.0});
+  const auto station_file = [&](rig_sim::RigBench bench, const char* name) {
+    const std::filesystem::path path = out / name;
+    rig_sim::WriteStationFile(rig_sim::BenchStation(bench, rig.manifest(), rig_config, path.string()),
+                              path);
+    return path.string();
+  };
+  calib::CampaignOptions campaign;
+  campaign.out_dir = out;
+  campaign.imu_station_file = station_file(rig_sim::RigBench::kImu, "station-imu.json");
+  campaign.ads_station_file = station_file(rig_sim::RigBench::kAds, "station-ads.json");
+  const std::filesystem::path dir = options.sequences;
+  campaign.sequences = {(dir / "imu_thermal_calibration_trial.json").string(),
+                        (dir / "imu_sensor_calibration.json").string(),
+                        (dir / "ads_calibration.json").string(),
+                        (dir / "imu_acceptance.json").string(),
+                        (dir / "ads_acceptance.json").string()};
+  if (options.quick) {
+    campaign.sequences = calib::WriteQuickSequences(campaign.sequences, out / "sequences");
+  }
+  campaign.truth_dir = rig.truth_dir();
+  campaign.software_version = ADAHRS_VERSION;
+  ConsoleObserver observer;
+  try {
+    const calib::CampaignResult result = calib::RunCampaign(campaign, observer, g_demo_stop);
+    rig.Stop();
+    PrintSummary(result, std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                             .count());
+    return 0;
+  } catch (const calib::RunInterrupted& e) {
+    std::cerr << "adahrs demo: interrupted (" << e.what() << "); the rig is stopped\n";
+    return 130;
+  } catch (const std::exception& e) {
+    if (const std::optional<std::string> exit = rig.ExitDescription()) {
+      throw std::runtime_error(std::string(e.what()) + " (the rig " + *exit + ")");
+    }
+    throw;
+  }
+}
+
+}  // namespace
+
+void RegisterDemoCommand(CLI::App& app) {
+  CLI::App* demo = app.add_subcommand(
+      "demo", "The main job on the virtual lab: rig, calibration, fits, download, acceptance, "
+              "evaluation, reports, records (docs/demo.md)");
+  auto options = std::make_shared<DemoOptions>();
+  demo->add_option("--out", options->out, "Demo directory (must be new or empty)")
+      ->capture_default_str();
+  demo->add_option("--time-scale", options->time_scale, "Rig speed, simulated s per wall s")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 900.0));
+  demo->add_flag("--quick", options->quick, "Shorter sequences (docs/demo.md says what is trimmed)");
+  demo->add_option("--sequences", options->sequences, "Directory of the reference sequences")
+      ->capture_default_str();
+  demo->callback([options] {
+    const int status = RunDemo(*options);
+    if (status != 0) std::exit(status);
+  });
+}
+
+}  // namespace adahrs::apps

@@ -1,0 +1,146 @@
+#include "calib/campaign/campaign.h"
+
+#include <fmt/format.h>
+
+#include "calib/campaign/bench_runs.h"
+#include "calib/campaign/campaign_fits.h"
+#include "calib/records/records_sources.h"
+#include "calib/records/records_store.h"
+#include "calib/report/run_report.h"
+#include "calib/sequence/sequence_json.h"
+#include "hil/station.h"
+
+namespace adahrs::calib {
+namespace {
+
+constexpr const char* kImuBench = "IMU bench";
+constexpr const char* kAdsBench = "ADS bench";
+
+std::filesystem::path RunDir(const CampaignOptions& o, const std::string& sequence_file) {
+  return o.out_dir / "runs" / ParseSequenceFile(sequence_file).sequence.name;
+}
+
+std::vector<std::vector<RunSummary>> RunBenches(const CampaignOptions& o, CampaignObserver& observer,
+                                                const std::vector<std::string>& imu_sequences,
+                                                const std::vector<std::string>& ads_sequences,
+                                                const std::atomic<bool>& stop) {
+  BenchPlan imu{kImuBench, o.imu_station_file, {}, &observer.Bench(kImuBench)};
+  for (const std::string& s : imu_sequences) imu.runs.push_back({s, RunDir(o, s)});
+  BenchPlan ads{kAdsBench, o.ads_station_file, {}, &observer.Bench(kAdsBench)};
+  for (const std::string& s : ads_sequences) ads.runs.push_back({s, RunDir(o, s)});
+  return RunBenchesConcurrently({imu, ads}, o.executor, stop);
+}
+
+std::string RunsText(const std::vector<std::vector<RunSummary>>& benches) {
+  std::string text;
+  for (const auto& bench : benches) {
+    for (const RunSummary& s : bench) {
+      text += fmt::format("\n  {}: {}, {} rows, {} packets lost", s.run_dir.string(), s.status,
+                          s.rows, s.lost);
+    }
+  }
+  return text;
+}
+
+}  // namespace
+
+CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
+                           const std::atomic<bool>& stop) {
+  CampaignResult result;
+  const CampaignSequences& seq = o.sequences;
+  const hil::Station imu_station = hil::Station::Load(o.imu_station_file);
+  const hil::Station ads_station = hil::Station::Load(o.ads_station_file);
+  result.records_file = o.out_dir / "records.sqlite";
+  RecordsStore records(result.records_file);
+
+  observer.Stage("1/7 calibration runs: IMU thermal + sensor calibration on the IMU bench, ADS "
+                 "calibration on the ADS bench, concurrently");
+  const auto calibration =
+      RunBenches(o, observer, {seq.imu_thermal, seq.imu_sensor}, {seq.ads_calibration}, stop);
+  observer.Stage("calibration runs done:" + RunsText(calibration));
+  const std::filesystem::path thermal_run = RunDir(o, seq.imu_thermal);
+  const std::filesystem::path sensor_run = RunDir(o, seq.imu_sensor);
+  const std::filesystem::path ads_run = RunDir(o, seq.ads_calibration);
+
+  observer.Stage("2/7 fits: IMU reference and improved (joint) strategies, ADS reference");
+  const std::filesystem::path imu_reference_dir = o.out_dir / "fits" / "imu-reference";
+  const std::filesystem::path imu_joint_dir = o.out_dir / "fits" / "imu-joint";
+  const std::filesystem::path ads_reference_dir = o.out_dir / "fits" / "ads-reference";
+  const auto imu_reference = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Reference(),
+                                                 imu_reference_dir, o.software_version);
+  const auto imu_joint = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Improved(),
+                                             imu_joint_dir, o.software_version);
+  const auto ads_reference = FitAdsReferenceIntoDirectory(ads_run, ads_reference_dir,
+                                                          o.software_version);
+  result.not_run.push_back(
+      "improved ADS strategies: not in this build (the ADS reference cubic is downloaded)");
+  for (const auto* fits : {&imu_reference, &imu_joint, &ads_reference}) {
+    for (const WrittenConstants& w : *fits) records.AddConstants(ConstantsRecordFromFile(w.path));
+  }
+  observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS", imu_joint.size(),
+                             ads_reference.size()));
+
+  observer.Stage("3/7 download: improved IMU constants and reference ADS constants into every "
+                 "unit, read back bit for bit, committed");
+  const std::vector<UnitDownload> imu_downloads =
+      DownloadStation(imu_station, imu_joint_dir, records);
+  const std::vector<UnitDownload> ads_downloads =
+      DownloadStation(ads_station, ads_reference_dir, records);
+
+  observer.Stage("4/7 acceptance runs in the calibrated modes, both benches concurrently");
+  const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
+  observer.Stage("acceptance runs done:" + RunsText(acceptance));
+  result.not_run.push_back(
+      "acceptance verdicts against the specification: no acceptance library in this build (the "
+      "acceptance recordings are in runs/, with their compensated columns)");
+
+  std::vector<EvaluatedQuantity> imu_eval, ads_eval;
+  if (o.truth_dir) {
+    observer.Stage("5/7 evaluation against the rig's truth: every fit through the firmware "
+                   "compensator on the envelope grid");
+    result.reference_evaluation = EvaluateAgainstTruth(imu_reference, *o.truth_dir,
+                                                       imu_station.local_gravity_mps2,
+                                                       imu_reference_dir);
+    imu_eval = EvaluateAgainstTruth(imu_joint, *o.truth_dir, imu_station.local_gravity_mps2,
+                                    imu_joint_dir);
+    ads_eval = EvaluateAgainstTruth(ads_reference, *o.truth_dir, ads_station.local_gravity_mps2,
+                                    ads_reference_dir);
+  } else {
+    result.not_run.push_back("evaluation against truth: no truth directory (not a simulated rig)");
+  }
+
+  observer.Stage("6/7 report.html per run");
+  const std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports = {
+      {thermal_run, imu_joint_dir},
+      {sensor_run, imu_joint_dir},
+      {ads_run, ads_reference_dir},
+      {RunDir(o, seq.imu_acceptance), imu_joint_dir},
+      {RunDir(o, seq.ads_acceptance), ads_reference_dir}};
+  for (const auto& [run, fit] : reports) {
+    WriteRunReport(run, fit, run / "report.html");
+    result.run_dirs.push_back(run);
+  }
+
+  observer.Stage("7/7 production records: runs, constants versions, downloads -> " +
+                 result.records_file.string());
+  for (const std::filesystem::path& run : result.run_dirs) {
+    records.AddRun(RunRecordFromDirectory(run));
+  }
+
+  const auto outcomes = [&](const std::vector<UnitDownload>& downloads, const std::string& strategy,
+                            const std::vector<EvaluatedQuantity>& eval,
+                            const std::filesystem::path& report) {
+    for (const UnitDownload& d : downloads) {
+      UnitOutcome u{d.role, d.serial, strategy, d, {}, report};
+      for (const EvaluatedQuantity& q : eval) {
+        if (q.serial == d.serial) u.evaluation.push_back(q);
+      }
+      result.units.push_back(std::move(u));
+    }
+  };
+  outcomes(imu_downloads, "joint", imu_eval, RunDir(o, seq.imu_acceptance) / "report.html");
+  outcomes(ads_downloads, "reference", ads_eval, RunDir(o, seq.ads_acceptance) / "report.html");
+  return result;
+}
+
+}  // namespace adahrs::calib

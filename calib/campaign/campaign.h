@@ -1,0 +1,83 @@
+// A calibration campaign: the production chain over two benches, each stage a call into its own
+// library, each stage's output a directory under `out_dir` (docs/demo.md):
+//   1. calibration runs, IMU bench and ADS bench concurrently (bench_runs.h):
+//      IMU thermal calibration then IMU sensor calibration; ADS calibration;   -> runs/<sequence>/
+//   2. fits (campaign_fits.h): IMU reference and improved (joint) strategies, ADS reference
+//                                                                -> fits/<kind>-<strategy>/
+//   3. download of the chosen constants (improved IMU, reference ADS) into every unit, read-back
+//      verified, recorded (station_download.h)
+//   4. acceptance runs in the calibrated modes, both benches concurrently      -> runs/<sequence>/
+//   5. evaluation against the simulator's truth when `truth_dir` is given (truth_evaluation.h),
+//      for every fit                                     -> fits/<…>/evaluation.json
+//   6. report.html per run (run_report.h) with the fit of its unit kind
+//   7. production records: every run, every constants file, every download -> records.sqlite
+// Stages this build has no library for are listed in CampaignResult::not_run with the reason,
+// never faked: acceptance verdicts against the specification, improved ADS strategies.
+// Errors of a stage pass through with its own context (run, step, unit, file); a stop request
+// (SIGINT) stops the benches safely and throws RunInterrupted.
+// Left out: resuming a campaign (each run resumes with `adahrs run --resume`), choosing the
+// downloaded strategy by evaluation (the improved one is downloaded by design).
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calib/campaign/station_download.h"
+#include "calib/campaign/truth_evaluation.h"
+#include "calib/executor/executor.h"
+#include "calib/executor/progress.h"
+
+namespace adahrs::calib {
+
+struct CampaignSequences {
+  std::string imu_thermal;
+  std::string imu_sensor;
+  std::string ads_calibration;
+  std::string imu_acceptance;
+  std::string ads_acceptance;
+};
+
+struct CampaignOptions {
+  std::filesystem::path out_dir;
+  std::string imu_station_file;
+  std::string ads_station_file;
+  CampaignSequences sequences;
+  std::optional<std::filesystem::path> truth_dir;  ///< simulated rigs only
+  std::string software_version;
+  ExecutorOptions executor;
+};
+
+/// What the campaign tells its user while it runs (thread-safe: benches report concurrently).
+class CampaignObserver {
+ public:
+  virtual ~CampaignObserver() = default;
+  /// A stage starts or ends: one line.
+  virtual void Stage(const std::string& text) = 0;
+  /// The executor's progress sink for the bench named `bench` ("IMU bench", "ADS bench").
+  virtual ProgressSink& Bench(const std::string& bench) = 0;
+};
+
+struct UnitOutcome {
+  std::string role;
+  std::string serial;
+  std::string strategy;            ///< of the downloaded constants
+  UnitDownload download;
+  std::vector<EvaluatedQuantity> evaluation;  ///< of the downloaded constants (empty: no truth)
+  std::filesystem::path report;    ///< the acceptance run's report.html
+};
+
+struct CampaignResult {
+  std::vector<UnitOutcome> units;
+  std::vector<std::filesystem::path> run_dirs;
+  std::vector<EvaluatedQuantity> reference_evaluation;  ///< IMU reference strategy, for comparison
+  std::vector<std::string> not_run;  ///< stages without a library in this build, with the reason
+  std::filesystem::path records_file;
+};
+
+CampaignResult RunCampaign(const CampaignOptions& options, CampaignObserver& observer,
+                           const std::atomic<bool>& stop);
+
+}  // namespace adahrs::calib

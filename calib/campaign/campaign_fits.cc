@@ -1,0 +1,59 @@
+#include "calib/campaign/campaign_fits.h"
+
+#include "calib/ads_calibration/ads_calibration_points.h"
+#include "calib/ads_calibration/reference_ads_strategy.h"
+#include "calib/constants/recording_checksum.h"
+#include "hil/recording/recording_reader.h"
+
+namespace adahrs::calib {
+namespace {
+
+WrittenConstants Write(const std::filesystem::path& fit_dir, ConstantsFile file) {
+  std::filesystem::create_directories(fit_dir);
+  const std::filesystem::path path = fit_dir / (file.serial + ".json");
+  WriteConstantsFile(path, file);
+  return {path, std::move(file)};
+}
+
+}  // namespace
+
+std::vector<WrittenConstants> FitImuIntoDirectory(const std::vector<std::filesystem::path>& run_dirs,
+                                                  const ImuStrategy& strategy,
+                                                  const std::filesystem::path& fit_dir,
+                                                  const std::string& software_version) {
+  std::vector<WrittenConstants> written;
+  for (ConstantsFile& file : FitImuRuns(run_dirs, strategy, software_version)) {
+    written.push_back(Write(fit_dir, std::move(file)));
+  }
+  return written;
+}
+
+std::vector<WrittenConstants> FitAdsReferenceIntoDirectory(const std::filesystem::path& run_dir,
+                                                           const std::filesystem::path& fit_dir,
+                                                           const std::string& software_version) {
+  const hil::Recording recording = hil::ReadRecording(run_dir);
+  const std::string source = (run_dir / "ads.csv").string();
+  const RecordingReference reference{run_dir.string(), RecordingSha256(run_dir)};
+  const std::string sequence_name = recording.meta.at("sequence").at("name").get<std::string>();
+  std::vector<WrittenConstants> written;
+  for (const nlohmann::json& unit : recording.meta.at("units")) {
+    if (unit.at("kind") != "ads") continue;
+    const std::string serial = unit.at("serial");
+    const AdsFitResult fit =
+        FitReferenceAdsStrategy(serial, SelectAdsCalibrationPoints(recording, serial, source));
+    ConstantsFile file;
+    file.serial = serial;
+    file.kind = hil::UnitKind::kAds;
+    file.strategy = fit.strategy;
+    file.created_utc = UtcNowIso8601();
+    file.software_version = software_version;
+    file.ads = fit.constants;
+    file.standard_errors = fit.standard_errors;
+    file.provenance = {{reference}, {sequence_name}};
+    file.diagnostics = fit.diagnostics;
+    written.push_back(Write(fit_dir, std::move(file)));
+  }
+  return written;
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,39 @@
+// The fitting stage of a calibration campaign: recordings in, one constants.json per unit out
+// (contract C3, constants_file.h), written to `<fit_dir>/<serial>.json`.
+//   IMU: FitImuRuns (imu_strategy.h) over the thermal and sensor-calibration runs together, with
+//        the strategy given (the reference method or the improved joint fit);
+//   ADS: the reference 10-term cubic surface (reference_ads_strategy.h) on the calibration points
+//        of each ADS unit of the run (ads_calibration_points.h); provenance is the run's
+//        RecordingSha256 and its sequence name.
+// Errors pass through from the strategies (ImuInputError, DegenerateDesignError, RecordingError,
+// each naming the run, step, unit, line or column).
+// Left out: choosing between strategies (the campaign decides which fit it downloads), improved
+// ADS strategies (not in this build).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "calib/constants/constants_file.h"
+#include "calib/imu_calibration/imu_strategy.h"
+
+namespace adahrs::calib {
+
+struct WrittenConstants {
+  std::filesystem::path path;
+  ConstantsFile file;
+};
+
+/// Fits every IMU of `run_dirs` with `strategy` and writes the files into `fit_dir`.
+std::vector<WrittenConstants> FitImuIntoDirectory(const std::vector<std::filesystem::path>& run_dirs,
+                                                  const ImuStrategy& strategy,
+                                                  const std::filesystem::path& fit_dir,
+                                                  const std::string& software_version);
+
+/// Fits every ADS unit of `run_dir` with the reference strategy and writes the files into `fit_dir`.
+std::vector<WrittenConstants> FitAdsReferenceIntoDirectory(const std::filesystem::path& run_dir,
+                                                           const std::filesystem::path& fit_dir,
+                                                           const std::string& software_version);
+
+}  // namespace adahrs::calib

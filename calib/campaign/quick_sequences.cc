@@ -1,0 +1,42 @@
+#include "calib/campaign/quick_sequences.h"
+
+#include <algorithm>
+#include <fstream>
+#include <stdexcept>
+
+#include "calib/sequence/sequence_json.h"
+#include "sensor_sim/param_reader.h"
+
+namespace adahrs::calib {
+namespace {
+
+std::string WriteQuick(const std::string& file, const std::filesystem::path& dir) {
+  nlohmann::json document = sensor_sim::ParamReader::LoadFile(file);
+  for (nlohmann::json& step : document.at("steps")) {
+    if (step.contains("soak_s")) {
+      step["soak_s"] = std::min(step["soak_s"].get<double>(), kQuickSoakS);
+    }
+    if (step.contains("packets")) {
+      step["packets"] = std::min(step["packets"].get<int>(), kQuickPackets);
+    }
+  }
+  const std::string name = document.at("name").get<std::string>() + "_quick";
+  document["name"] = name;
+  const std::filesystem::path path = dir / (name + ".json");
+  SequenceFromJson(document, path.string());  // throws SequenceError if the variant is not valid
+  std::filesystem::create_directories(dir);
+  std::ofstream out(path);
+  out << document.dump(2) << "\n";
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  return path.string();
+}
+
+}  // namespace
+
+CampaignSequences WriteQuickSequences(const CampaignSequences& s, const std::filesystem::path& dir) {
+  return {WriteQuick(s.imu_thermal, dir), WriteQuick(s.imu_sensor, dir),
+          WriteQuick(s.ads_calibration, dir), WriteQuick(s.imu_acceptance, dir),
+          WriteQuick(s.ads_acceptance, dir)};
+}
+
+}  // namespace adahrs::calib

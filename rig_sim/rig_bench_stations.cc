@@ -1,0 +1,90 @@
+#include "rig_sim/rig_bench_stations.h"
+
+#include <fstream>
+#include <stdexcept>
+
+namespace adahrs::rig_sim {
+namespace {
+
+// Per-reply timeouts at time scale 1 (the drivers scale them): generous for a loaded 2-core host.
+constexpr int kInstrumentTimeoutMs = 1000;
+constexpr int kInstrumentRetries = 2;
+constexpr int kUnitTimeoutMs = 500;
+// The Prologix GPIB-USB adapter's virtual serial port; other instruments at their config's
+// `baud`, 9600 when it has none (docs/rig/adts.md, docs/rig/).
+constexpr unsigned kPrologixBaud = 115200;
+constexpr unsigned kInstrumentBaud = 9600;
+constexpr unsigned kControlBaud = 115200;
+
+nlohmann::json Port(const std::string& path, unsigned baud, const char* flow) {
+  return {{"path", path}, {"baud", baud},    {"data_bits", 8},
+          {"parity", "N"}, {"stop_bits", 1}, {"flow", flow}};
+}
+
+bool OnBench(RigBench bench, const std::string& kind) {
+  if (bench == RigBench::kImu) return kind == "aerosmith_atl" || kind == "watlow_f4";
+  return kind == "watlow_942" || kind == "druck_adts_prologix";
+}
+
+}  // namespace
+
+hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const RigConfig& config,
+                          const std::string& source) {
+  const nlohmann::json& links = manifest.at("links");
+  nlohmann::json instruments = nlohmann::json::object();
+  for (const nlohmann::json& instrument : manifest.at("instruments")) {
+    const std::string role = instrument.at("role");
+    const std::string kind = instrument.at("kind");
+    if (!OnBench(bench, kind)) continue;
+    const nlohmann::json& section = config.instruments.at(kind);
+    int address = 0;
+    unsigned baud = section.value("baud", kInstrumentBaud);
+    const char* flow = "none";
+    if (kind == "watlow_f4") address = section.at("modbus_address").get<int>();
+    if (kind == "druck_adts_prologix") {
+      address = section.at("gpib_address").get<int>();
+      baud = kPrologixBaud;
+    }
+    if (kind == "watlow_942") flow = "xonxoff";
+    instruments[role] = {{"type", kind},
+                         {"port", Port(links.at(role).get<std::string>(), baud, flow)},
+                         {"address", address},
+                         {"timeout_ms", kInstrumentTimeoutMs},
+                         {"retries", kInstrumentRetries}};
+  }
+  const std::string unit_kind = bench == RigBench::kImu ? "imu" : "ads";
+  nlohmann::json units = nlohmann::json::array();
+  for (const nlohmann::json& unit : manifest.at("units")) {
+    if (unit.at("kind") != unit_kind) continue;
+    const std::string role = unit.at("role");
+    units.push_back({{"role", role},
+                     {"kind", unit_kind},
+                     {"slot", unit.at("slot")},
+                     {"timeout_ms", kUnitTimeoutMs},
+                     {"port", Port(links.at(role).get<std::string>(),
+                                   unit.at("baud").get<unsigned>(), "none")}});
+  }
+  const nlohmann::json station = {
+      {"name", config.station.name + (bench == RigBench::kImu ? " IMU bench" : " ADS bench")},
+      {"time_scale", manifest.at("time_scale")},
+      {"site",
+       {{"latitude_deg", manifest.at("station").at("latitude_deg")},
+        {"height_m", manifest.at("station").at("height_m")}}},
+      {"instruments", instruments},
+      {"units", units},
+      {"operator",
+       {{"type", "virtual_fixture"},
+        {"port", Port(links.at("control").get<std::string>(), kControlBaud, "none")}}}};
+  return hil::Station::FromJson(sensor_sim::ParamReader(station, source));
+}
+
+hil::Station WriteStationFile(const hil::Station& station, const std::filesystem::path& path) {
+  {
+    std::ofstream out(path);
+    out << station.ToJson().dump(2) << "\n";
+    if (!out) throw std::runtime_error(path.string() + ": cannot write the station file");
+  }
+  return hil::Station::Load(path.string());
+}
+
+}  // namespace adahrs::rig_sim
