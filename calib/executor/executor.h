@@ -21,10 +21,12 @@
 
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "calib/executor/interlocks.h"
 #include "calib/executor/journal.h"
 #include "calib/executor/progress.h"
 #include "calib/executor/run_annotations.h"
@@ -93,6 +95,8 @@ class Executor {
   void MakeSafe();
 
   void Mount(int orientation);
+  void StartAcquisitions(uint8_t tag, int64_t quota);
+  void EndAcquisitions();
   void Acquire(const PlannedAction& a, int64_t packets);
   void LogFor(const PlannedAction& a, double duration_s);
   void RunProfile(const PlannedAction& a, const std::string& name);
@@ -113,6 +117,7 @@ class Executor {
   void RefreshReadings();
   void Report(bool force);
   std::string Where() const;
+  std::string ChamberRole() const;
 
   hil::RateTable& Table();
   hil::Chamber& Chamber();
@@ -132,6 +137,7 @@ class Executor {
   const std::atomic<bool>& stop_;
   ExecutorOptions options_;
 
+  std::vector<std::optional<GravityReference>> gravity_references_;  // per unit
   size_t current_action_ = 0;
   double action_started_s_ = 0.0;
   double last_refresh_s_ = -1e300;

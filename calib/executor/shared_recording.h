@@ -19,9 +19,13 @@ class SharedRecording {
     std::lock_guard lock(mutex_);
     for (const Row& row : rows) writer_.Append(row);
   }
+  /// Flushes under the lock; with `durable`, fsyncs after releasing it (rows keep coming).
   void Flush(bool durable) {
-    std::lock_guard lock(mutex_);
-    writer_.Flush(durable);
+    {
+      std::lock_guard lock(mutex_);
+      writer_.Flush(false);
+    }
+    if (durable) writer_.SyncFlushed();
   }
   void WriteMeta(const nlohmann::json& meta) {
     std::lock_guard lock(mutex_);

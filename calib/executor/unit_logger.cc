@@ -38,22 +38,16 @@ void UnitLogger::Stop() {
   FailPendingRequests();
 }
 
-void UnitLogger::Call(const std::function<void(hil::UnitLink&)>& request) {
-  std::future<void> done;
-  {
-    std::lock_guard lock(mutex_);
-    if (error_) std::rethrow_exception(error_);
-    if (!running_) {
-      throw std::logic_error(role_ + ": unit logger is not running; request refused");
-    }
-    requests_.push_back({request, {}});
-    done = requests_.back().done.get_future();
-  }
-  done.get();
+std::future<void> UnitLogger::Submit(std::function<void(hil::UnitLink&)> request) {
+  std::lock_guard lock(mutex_);
+  if (error_) std::rethrow_exception(error_);
+  if (!running_) throw std::logic_error(role_ + ": unit logger is not running; request refused");
+  requests_.push_back({std::move(request), {}});
+  return requests_.back().done.get_future();
 }
 
-void UnitLogger::StartAcquisition(uint8_t tag, int64_t quota) {
-  Call([this, tag, quota](hil::UnitLink& link) {
+std::future<void> UnitLogger::StartAcquisition(uint8_t tag, int64_t quota) {
+  return Submit([this, tag, quota](hil::UnitLink& link) {
     {
       std::lock_guard lock(mutex_);
       armed_ = true;
@@ -65,8 +59,8 @@ void UnitLogger::StartAcquisition(uint8_t tag, int64_t quota) {
   });
 }
 
-void UnitLogger::EndAcquisition() {
-  Call([](hil::UnitLink& link) { link.SetTag(0); });
+std::future<void> UnitLogger::EndAcquisition() {
+  return Submit([](hil::UnitLink& link) { link.SetTag(0); });
 }
 
 void UnitLogger::BeginAverage(int64_t skip, int64_t packets) {

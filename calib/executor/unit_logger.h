@@ -58,15 +58,18 @@ class UnitLogger {
   /// Stops and joins the thread (idempotent); pending requests fail.
   void Stop();
 
-  /// Runs `request` on the logger thread between polls and waits for it; rethrows what it threw.
-  /// Throws the thread's own error if it has stopped.
-  void Call(const std::function<void(hil::UnitLink&)>& request);
+  /// Queues `request` to run on the logger thread between polls; the future rethrows what it
+  /// threw. Throws the thread's own error if it has stopped.
+  std::future<void> Submit(std::function<void(hil::UnitLink&)> request);
+  /// Submit() and wait.
+  void Call(std::function<void(hil::UnitLink&)> request) { Submit(std::move(request)).get(); }
 
   /// Sets the unit's TAG to `tag` and counts the packets that carry it from zero, recording at
-  /// most `quota` of them with the TAG (quota < 0: no limit). Throws what the link throws.
-  void StartAcquisition(uint8_t tag, int64_t quota);
+  /// most `quota` of them with the TAG (quota < 0: no limit). The future throws what the link
+  /// threw.
+  std::future<void> StartAcquisition(uint8_t tag, int64_t quota);
   /// Sets the unit's TAG back to 0; packets still carrying the old TAG count until the quota.
-  void EndAcquisition();
+  std::future<void> EndAcquisition();
   /// Packets counted since StartAcquisition().
   int64_t acquired() const { return acquired_.load(); }
 
