@@ -269,13 +269,14 @@ void Executor::RunProfile(const PlannedAction& a, const std::string& name) {
 }
 
 std::vector<RawAverage> Executor::AverageAll(const PlannedAction& a) {
-  const auto skip = static_cast<int64_t>(std::lround(options_.interlock_skip_s * options_.packet_rate_hz));
   const auto count =
       static_cast<int64_t>(std::lround(options_.interlock_sample_s * options_.packet_rate_hz));
-  for (UnitLogger* l : loggers_) l->BeginAverage(skip, count);
+  std::vector<std::future<void>> requests;
+  for (UnitLogger* l : loggers_) requests.push_back(l->BeginAverage(count));
+  WaitAll(std::move(requests));
   std::vector<std::optional<RawAverage>> averages(loggers_.size());
   WaitFor(
-      fmt::format("{} packets from every unit for the interlock", skip + count),
+      fmt::format("{} packets from every unit for the interlock", count),
       a.estimate_s,
       [&] {
         bool all = true;

@@ -56,7 +56,6 @@ struct ExecutorOptions {
   double timeout_factor = 3.0;       ///< wait timeout = factor × estimate + margin
   double timeout_margin_s = 60.0;
   int interlock_attempts = 3;        ///< interlock tries (with a prompt between) before aborting
-  double interlock_skip_s = 1.0;     ///< packets skipped before an interlock average (in transit)
   double interlock_sample_s = 1.0;   ///< packets averaged by an interlock check
   double packet_rate_hz = 100.0;
   double jog_accel_dps2 = 100.0;     ///< table acceleration of the gyro interlock's jog

@@ -63,11 +63,16 @@ std::future<void> UnitLogger::EndAcquisition() {
   return Submit([](hil::UnitLink& link) { link.SetTag(0); });
 }
 
-void UnitLogger::BeginAverage(int64_t skip, int64_t packets) {
-  std::lock_guard lock(mutex_);
-  average_skip_ = skip;
-  average_wanted_ = packets;
-  sum_ = RawAverage{};
+std::future<void> UnitLogger::BeginAverage(int64_t packets) {
+  return Submit([this, packets](hil::UnitLink& link) {
+    // The response comes after every packet sent before the unit handled the request: record
+    // those first, then average what follows.
+    link.ReadCounters();
+    Record(link.Poll(std::chrono::milliseconds(0)));
+    std::lock_guard lock(mutex_);
+    average_wanted_ = packets;
+    sum_ = RawAverage{};
+  });
 }
 
 std::optional<RawAverage> UnitLogger::TakeAverage() {
@@ -141,10 +146,6 @@ uint8_t UnitLogger::RowTag(uint8_t packet_tag) {
 
 void UnitLogger::Accumulate(const firmware_model::ImuDataPayload& data) {
   if (average_wanted_ <= 0 || sum_.packets >= average_wanted_) return;
-  if (average_skip_ > 0) {
-    --average_skip_;
-    return;
-  }
   for (int ch = 0; ch < 6; ++ch) {
     if (data.raw.t2_cnt[ch] == 0) continue;  // no period captured: duty undefined
     sum_.duty_offset[ch] += static_cast<double>(data.raw.t1_cnt[ch]) / data.raw.t2_cnt[ch] - 0.5;

@@ -12,8 +12,9 @@
 // logger thread as requests, so packets that arrived while a request waited for its response are
 // recorded before the next request changes the accounting. Loss comes from the link's 8-bit
 // sequence counter. Raw averages (duty T1/T2 - 0.5 per accelerometer channel, gyro counts) over
-// N packets after skipping some (those still in transit from before a fixture move or a table
-// change) feed the interlocks (interlocks.h).
+// N packets feed the interlocks (interlocks.h); they start after a READ_COUNTERS round trip, so
+// every packet still in transit from before the request (from before a fixture move or a table
+// change: a fast rig's output backlog can hold seconds of packets) is left out.
 // Left out: retrying a failed poll (a transport error stops the thread; CheckHealthy rethrows it).
 #pragma once
 
@@ -73,8 +74,9 @@ class UnitLogger {
   /// Packets counted since StartAcquisition().
   int64_t acquired() const { return acquired_.load(); }
 
-  /// Averages the raw values of `packets` IMU packets after skipping the next `skip`.
-  void BeginAverage(int64_t skip, int64_t packets);
+  /// Averages the raw values of the `packets` IMU packets that follow a READ_COUNTERS round trip
+  /// (queued like a request); the future throws what the link threw.
+  std::future<void> BeginAverage(int64_t packets);
   /// The average once complete, else nullopt.
   std::optional<RawAverage> TakeAverage();
 
@@ -116,7 +118,6 @@ class UnitLogger {
   int64_t quota_ = -1;
   std::atomic<int64_t> acquired_{0};
 
-  int64_t average_skip_ = 0;
   int64_t average_wanted_ = 0;
   RawAverage sum_;
 
