@@ -17,6 +17,7 @@
 #include "calib/sequence/validation.h"
 #include "hil/drivers/station_instruments.h"
 #include "hil/drivers/unit_serial.h"
+#include "hil/instruments/instrument_error.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_writer.h"
 #include "hil/recording/torn_tail.h"
@@ -106,9 +107,24 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
   if (!imu_batch) batch.rate_table = nullptr;
   if (imu_batch) batch.adts = nullptr;
   nlohmann::json identities = nlohmann::json::array();
+  // The first exchanges on a line can meet what a crashed predecessor left behind (replies to
+  // its last requests, delivered when the port is opened again): a garbled reply to the
+  // identification is retried, kIdentifyAttempts in all, half a clock second apart (each failed
+  // exchange makes the driver flush its input); anything else stops the run.
+  constexpr int kIdentifyAttempts = 3;
   const auto identify = [&](const char* role, auto* instrument) {
     if (instrument == nullptr) return;
-    const hil::InstrumentIdentity id = instrument->Identify();
+    hil::InstrumentIdentity id;
+    for (int attempt = 1;; ++attempt) {
+      try {
+        id = instrument->Identify();
+        break;
+      } catch (const hil::InstrumentError& e) {
+        if (e.kind() != hil::InstrumentError::Kind::kBadReply || attempt == kIdentifyAttempts) throw;
+        progress.Note(fmt::format("{}: garbled reply ({}); identifying again", role, e.what()));
+        clock.SleepS(0.5);
+      }
+    }
     identities.push_back({{"role", role}, {"model", id.model}, {"detail", id.detail}});
   };
   identify("rate_table", batch.rate_table);
