@@ -15,17 +15,20 @@ struct Overloaded : Ts... {
   using Ts::operator()...;
 };
 
-// Waits for every unit's request; the first failure is rethrown after all have finished.
-void WaitAll(std::vector<std::future<void>> requests) {
-  std::exception_ptr first;
-  for (std::future<void>& r : requests) {
+// Waits for every unit's request (one per logger, in order); throws a RunError naming every
+// unit whose request failed, after all have finished.
+void WaitAll(std::vector<std::future<void>> requests, const std::vector<UnitLogger*>& loggers,
+             const std::string& where) {
+  std::string failures;
+  for (size_t u = 0; u < requests.size(); ++u) {
     try {
-      r.get();
-    } catch (...) {
-      if (!first) first = std::current_exception();
+      requests[u].get();
+    } catch (const std::exception& e) {
+      failures += fmt::format("{}unit {} ({}): {}", failures.empty() ? "" : "; ",
+                              loggers[u]->role(), loggers[u]->serial(), e.what());
     }
   }
-  if (first) std::rethrow_exception(first);
+  if (!failures.empty()) throw RunError(where + ": " + failures);
 }
 
 std::string JoinRoles(const std::vector<std::string>& items) {
@@ -209,13 +212,13 @@ void Executor::MakeSafe() {
 void Executor::StartAcquisitions(uint8_t tag, int64_t quota) {
   std::vector<std::future<void>> requests;
   for (UnitLogger* l : loggers_) requests.push_back(l->StartAcquisition(tag, quota));
-  WaitAll(std::move(requests));
+  WaitAll(std::move(requests), loggers_, Where());
 }
 
 void Executor::EndAcquisitions() {
   std::vector<std::future<void>> requests;
   for (UnitLogger* l : loggers_) requests.push_back(l->EndAcquisition());
-  WaitAll(std::move(requests));
+  WaitAll(std::move(requests), loggers_, Where());
 }
 
 void Executor::Mount(int orientation) {
@@ -273,7 +276,7 @@ std::vector<RawAverage> Executor::AverageAll(const PlannedAction& a) {
       static_cast<int64_t>(std::lround(options_.interlock_sample_s * options_.packet_rate_hz));
   std::vector<std::future<void>> requests;
   for (UnitLogger* l : loggers_) requests.push_back(l->BeginAverage(count));
-  WaitAll(std::move(requests));
+  WaitAll(std::move(requests), loggers_, Where());
   std::vector<std::optional<RawAverage>> averages(loggers_.size());
   WaitFor(
       fmt::format("{} packets from every unit for the interlock", count),

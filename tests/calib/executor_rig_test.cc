@@ -76,26 +76,6 @@ TEST(ExecutorRig, ShortImuSequenceRecordsExactlyTheAcquisitionsOfFourUnits) {
   EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
 }
 
-// An operator that mounts as asked, then (the test's disturbance) turns imu2 upside down in
-// orientation 32, every time, through the rig's control port.
-class MisMountingOperator : public hil::Operator {
- public:
-  MisMountingOperator(std::unique_ptr<hil::Operator> inner, const adahrs::testing::RigProcess& rig,
-                      std::string command)
-      : inner_(std::move(inner)), rig_(rig), command_(std::move(command)) {}
-  void Mount(const std::vector<std::string>& roles, int code) override {
-    inner_->Mount(roles, code);
-    if (code == 32) reply_ = rig_.Control(command_);
-  }
-  void Prompt(const std::string& text) override { inner_->Prompt(text); }
-  std::string reply_;
-
- private:
-  std::unique_ptr<hil::Operator> inner_;
-  const adahrs::testing::RigProcess& rig_;
-  std::string command_;
-};
-
 TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
   adahrs::testing::RigProcess rig(kTimeScale);
   TempDir dir("interlock");
@@ -103,12 +83,9 @@ TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
   options.station_file = rig.WriteStation();
   options.sequence_file = testing::WriteSequence(dir.path(), "imu", kShortImuSteps);
   options.run_dir = dir.path() / "run";
-  MisMountingOperator* op = nullptr;
-  options.wrap_operator = [&](std::unique_ptr<hil::Operator> inner) {
-    auto wrapped = std::make_unique<MisMountingOperator>(std::move(inner), rig, "orientation imu2 31");
-    op = wrapped.get();
-    return wrapped;
-  };
+  // The disturbance: after every mount in 32, imu2 is turned back to 31 (the wrong way up).
+  std::string reply;
+  options.wrap_operator = testing::DisturbingOperator::Wrapper(rig, 32, "orientation imu2 31", reply);
   RecordingProgress progress;
   std::atomic<bool> stop{false};
   try {
@@ -119,7 +96,7 @@ TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
                                 HasSubstr("imu2 (IMU-0002)")));
     EXPECT_THAT(e.what(), ::testing::Not(HasSubstr("imu1")));
   }
-  EXPECT_EQ(op->reply_, "OK imu2 31");
+  EXPECT_EQ(reply, "OK imu2 31");
   const hil::Recording rec = hil::ReadRecording(options.run_dir);
   EXPECT_EQ(rec.meta["status"], "aborted");
   ASSERT_EQ(rec.rejected_intervals.size(), 3u);  // every attempt

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/executor/progress.h"
+#include "hil/instruments/instruments.h"
 #include "hil/recording/recording_reader.h"
 #include "tests/support/rig_process.h"
 
@@ -48,6 +50,36 @@ inline std::string WriteSequence(const std::filesystem::path& dir, const std::st
                              .dump(2);
   return path.string();
 }
+
+/// The station's operator plus a disturbance: after mounting orientation `code`, it sends
+/// `command` on the rig's control port (every time) and keeps the reply in `reply`, which the
+/// test owns (the operator dies with the run).
+class DisturbingOperator : public hil::Operator {
+ public:
+  DisturbingOperator(std::unique_ptr<hil::Operator> inner, const adahrs::testing::RigProcess& rig,
+                     int code, std::string command, std::string& reply)
+      : inner_(std::move(inner)), rig_(rig), code_(code), command_(std::move(command)), reply_(reply) {}
+  void Mount(const std::vector<std::string>& roles, int code) override {
+    inner_->Mount(roles, code);
+    if (code == code_) reply_ = rig_.Control(command_);
+  }
+  void Prompt(const std::string& text) override { inner_->Prompt(text); }
+
+  /// A NewRunOptions::wrap_operator that installs this disturbance.
+  static auto Wrapper(const adahrs::testing::RigProcess& rig, int code, std::string command,
+                      std::string& reply) {
+    return [&rig, code, command, &reply](std::unique_ptr<hil::Operator> inner) -> std::unique_ptr<hil::Operator> {
+      return std::make_unique<DisturbingOperator>(std::move(inner), rig, code, command, reply);
+    };
+  }
+
+ private:
+  std::unique_ptr<hil::Operator> inner_;
+  const adahrs::testing::RigProcess& rig_;
+  int code_;
+  std::string command_;
+  std::string& reply_;
+};
 
 class RecordingProgress : public ProgressSink {
  public:
