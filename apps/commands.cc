@@ -8,6 +8,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterRigCommand(app);
   RegisterSequenceCommand(app);
   RegisterRunCommand(app);
+  RegisterPortsCommand(app);
 }
 
 }  // namespace adahrs::apps

@@ -13,5 +13,6 @@ void RegisterSimulateCommand(CLI::App& app);
 void RegisterRigCommand(CLI::App& app);
 void RegisterSequenceCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
+void RegisterPortsCommand(CLI::App& app);
 
 }  // namespace adahrs::apps
