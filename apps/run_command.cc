@@ -52,11 +52,14 @@ int RunAndReport(const RunArgs& a) {
   sigaction(SIGINT, &action, nullptr);
   ConsoleProgress progress;
   const std::string dir = a.resume.empty() ? a.run_dir : a.resume;
+  calib::NewRunOptions options;
+  options.station_file = a.station;
+  options.sequence_file = a.sequence;
+  options.run_dir = a.run_dir;
   try {
-    const calib::RunSummary summary =
-        a.resume.empty()
-            ? calib::StartRun({a.station, a.sequence, a.run_dir, {}}, progress, g_stop_requested)
-            : calib::ResumeRun(a.resume, progress, g_stop_requested);
+    const calib::RunSummary summary = a.resume.empty()
+                                          ? calib::StartRun(options, progress, g_stop_requested)
+                                          : calib::ResumeRun(a.resume, progress, g_stop_requested);
     std::cout << fmt::format("run {}: {}; {} rows recorded, {} packets lost\n",
                              summary.run_dir.string(), summary.status, summary.rows, summary.lost);
     return 0;

@@ -15,6 +15,22 @@ struct Overloaded : Ts... {
   using Ts::operator()...;
 };
 
+// Waits for every unit's request (one per logger, in order); throws a RunError naming every
+// unit whose request failed, after all have finished.
+void WaitAll(std::vector<std::future<void>> requests, const std::vector<UnitLogger*>& loggers,
+             const std::string& where) {
+  std::string failures;
+  for (size_t u = 0; u < requests.size(); ++u) {
+    try {
+      requests[u].get();
+    } catch (const std::exception& e) {
+      failures += fmt::format("{}unit {} ({}): {}", failures.empty() ? "" : "; ",
+                              loggers[u]->role(), loggers[u]->serial(), e.what());
+    }
+  }
+  if (!failures.empty()) throw RunError(where + ": " + failures);
+}
+
 std::string JoinRoles(const std::vector<std::string>& items) {
   std::string out;
   for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
@@ -41,6 +57,7 @@ Executor::Executor(const Sequence& sequence, const ExecutionPlan& plan,
       stop_(stop),
       options_(options) {
   for (const UnitLogger* l : loggers_) roles_.push_back(l->role());
+  gravity_references_.resize(loggers_.size());
 }
 
 void Executor::Run(size_t first_step, std::optional<double> resumed_from_s) {
@@ -50,7 +67,7 @@ void Executor::Run(size_t first_step, std::optional<double> resumed_from_s) {
   }
   current_action_ = first_action;
   try {
-    for (UnitLogger* l : loggers_) l->EndAcquisition();
+    EndAcquisitions();
     if (resumed_from_s) {
       const double now_s = clock_.NowS();
       meta_.AddRejectedInterval(first_step, *resumed_from_s, now_s, "repeated partial step");
@@ -185,11 +202,23 @@ void Executor::MakeSafe() {
   if (instruments_.chamber != nullptr) attempt("chamber hold", [&] { instruments_.chamber->Hold(); });
   if (instruments_.adts != nullptr) attempt("ADTS to ground", [&] { instruments_.adts->GoToGround(); });
   for (UnitLogger* l : loggers_) {
-    attempt(l->role().c_str(), [&] { l->EndAcquisition(); });
+    attempt(l->role().c_str(), [&] { l->EndAcquisition().get(); });
   }
   attempt("recording flush", [&] { recording_.Flush(true); });
   journal_.Append({{"event", "rig_safe"}, {"t_s", clock_.NowS()}});
   journal_.Sync();
+}
+
+void Executor::StartAcquisitions(uint8_t tag, int64_t quota) {
+  std::vector<std::future<void>> requests;
+  for (UnitLogger* l : loggers_) requests.push_back(l->StartAcquisition(tag, quota));
+  WaitAll(std::move(requests), loggers_, Where());
+}
+
+void Executor::EndAcquisitions() {
+  std::vector<std::future<void>> requests;
+  for (UnitLogger* l : loggers_) requests.push_back(l->EndAcquisition());
+  WaitAll(std::move(requests), loggers_, Where());
 }
 
 void Executor::Mount(int orientation) {
@@ -198,7 +227,7 @@ void Executor::Mount(int orientation) {
 }
 
 void Executor::Acquire(const PlannedAction& a, int64_t packets) {
-  for (UnitLogger* l : loggers_) l->StartAcquisition(a.tag, packets);
+  StartAcquisitions(a.tag, packets);
   WaitFor(
       fmt::format("{} packets tagged {} from every unit", packets, a.tag), a.estimate_s,
       [&] {
@@ -216,40 +245,41 @@ void Executor::Acquire(const PlannedAction& a, int64_t packets) {
         }
         return "unit " + JoinRoles(short_units);
       });
-  for (UnitLogger* l : loggers_) l->EndAcquisition();
+  EndAcquisitions();
 }
 
 void Executor::LogFor(const PlannedAction& a, double duration_s) {
-  for (UnitLogger* l : loggers_) l->StartAcquisition(a.tag, -1);
+  StartAcquisitions(a.tag, -1);
   const double end_s = clock_.NowS() + duration_s;
   WaitFor(
       fmt::format("logging for {:.1f} s", duration_s), a.estimate_s,
       [&] { return clock_.NowS() >= end_s; }, [] { return std::string("clock"); });
-  for (UnitLogger* l : loggers_) l->EndAcquisition();
+  EndAcquisitions();
 }
 
 void Executor::RunProfile(const PlannedAction& a, const std::string& name) {
-  for (UnitLogger* l : loggers_) l->StartAcquisition(a.tag, -1);
+  StartAcquisitions(a.tag, -1);
   Chamber().StartProfile(name);
   double pv_c = 0.0;
   WaitFor(
-      fmt::format("chamber profile '{}' to end", name), a.estimate_s,
+      fmt::format("{} profile '{}' to end", ChamberRole(), name), a.estimate_s,
       [&] {
         pv_c = annotations_.Get().chamber_c;
         return !Chamber().ProfileRunning();
       },
-      [&] { return fmt::format("chamber still running the profile, process value {:.2f} degC", pv_c); });
-  for (UnitLogger* l : loggers_) l->EndAcquisition();
+      [&] { return fmt::format("{} still running the profile, process value {:.2f} degC", ChamberRole(), pv_c); });
+  EndAcquisitions();
 }
 
 std::vector<RawAverage> Executor::AverageAll(const PlannedAction& a) {
-  const auto skip = static_cast<int64_t>(std::lround(options_.interlock_skip_s * options_.packet_rate_hz));
   const auto count =
       static_cast<int64_t>(std::lround(options_.interlock_sample_s * options_.packet_rate_hz));
-  for (UnitLogger* l : loggers_) l->BeginAverage(skip, count);
+  std::vector<std::future<void>> requests;
+  for (UnitLogger* l : loggers_) requests.push_back(l->BeginAverage(count));
+  WaitAll(std::move(requests), loggers_, Where());
   std::vector<std::optional<RawAverage>> averages(loggers_.size());
   WaitFor(
-      fmt::format("{} packets from every unit for the interlock", skip + count),
+      fmt::format("{} packets from every unit for the interlock", count),
       a.estimate_s,
       [&] {
         bool all = true;
@@ -277,10 +307,17 @@ void Executor::GravityInterlock(const PlannedAction& a, int orientation) {
     const std::vector<RawAverage> averages = AverageAll(a);
     std::vector<std::string> failures;
     for (size_t u = 0; u < loggers_.size(); ++u) {
-      const InterlockVerdict v = GravityVerdict(averages[u], orientation);
+      const auto& reference = gravity_references_[u];
+      const InterlockVerdict v =
+          GravityVerdict(averages[u], orientation, reference ? &*reference : nullptr);
       if (!v.ok) failures.push_back(fmt::format("{} ({}): {}", loggers_[u]->role(), loggers_[u]->serial(), v.detail));
     }
-    if (failures.empty()) return;
+    if (failures.empty()) {
+      for (size_t u = 0; u < loggers_.size(); ++u) {
+        gravity_references_[u] = GravityReference{averages[u], orientation};
+      }
+      return;
+    }
     InterlockFailed(a, "gravity", t_start_s, failures, attempt, orientation);
   }
 }
@@ -325,21 +362,21 @@ void Executor::InterlockFailed(const PlannedAction& a, const std::string& kind, 
 void Executor::WaitTableAt(double rate_dps, double estimate_s) {
   double last_dps = 0.0;
   WaitFor(
-      fmt::format("rate table at {:.2f} deg/s", rate_dps), estimate_s,
+      fmt::format("rate_table at {:.2f} deg/s", rate_dps), estimate_s,
       [&] {
         last_dps = Table().ReadRateDps();
         annotations_.Update([&](RowAnnotations& r) { r.table_rate_dps = last_dps; });
         return std::abs(last_dps - rate_dps) <= options_.table_rate_tolerance_dps &&
                (rate_dps == 0.0 || Table().AtRate());
       },
-      [&] { return fmt::format("rate table reports {:.3f} deg/s", last_dps); });
+      [&] { return fmt::format("rate_table reports {:.3f} deg/s", last_dps); });
 }
 
 void Executor::WaitChamberInBand(double target_c, double band_c, double soak_s, double estimate_s) {
   double pv_c = 0.0;
   double inside_since_s = -1.0;  // clock time the value entered the band, < 0 when outside
   WaitFor(
-      fmt::format("chamber inside {:.2f} +- {:.2f} degC for {:.0f} s", target_c, band_c, soak_s),
+      fmt::format("{} inside {:.2f} +- {:.2f} degC for {:.0f} s", ChamberRole(), target_c, band_c, soak_s),
       estimate_s,
       [&] {
         pv_c = Chamber().ReadProcessC();
@@ -352,13 +389,13 @@ void Executor::WaitChamberInBand(double target_c, double band_c, double soak_s, 
         if (inside_since_s < 0.0) inside_since_s = now_s;
         return now_s - inside_since_s >= soak_s;
       },
-      [&] { return fmt::format("chamber process value {:.2f} degC", pv_c); });
+      [&] { return fmt::format("{} process value {:.2f} degC", ChamberRole(), pv_c); });
 }
 
 void Executor::WaitAdtsStable(double estimate_s) {
   hil::AirDataReading last;
   WaitFor(
-      "air data test set stable", estimate_s,
+      "adts (air data test set) stable", estimate_s,
       [&] {
         last = Adts().Read();
         annotations_.Update([&](RowAnnotations& r) {
@@ -367,7 +404,7 @@ void Executor::WaitAdtsStable(double estimate_s) {
         });
         return Adts().Stable();
       },
-      [&] { return fmt::format("ADTS reads ps {:.1f} Pa, qc {:.1f} Pa, not stable", last.ps_pa, last.qc_pa); });
+      [&] { return fmt::format("adts reads ps {:.1f} Pa, qc {:.1f} Pa, not stable", last.ps_pa, last.qc_pa); });
 }
 
 template <typename Done, typename State>
@@ -441,6 +478,10 @@ void Executor::Report(bool force) {
   progress_.Report(r);
 }
 
+std::string Executor::ChamberRole() const {
+  return sequence_.unit_kind == UnitKind::kImu ? "imu_chamber" : "ads_chamber";
+}
+
 std::string Executor::Where() const {
   if (current_action_ >= plan_.actions.size()) return "after the last step";
   const PlannedAction& a = plan_.actions[current_action_];
@@ -454,7 +495,7 @@ hil::RateTable& Executor::Table() {
 }
 
 hil::Chamber& Executor::Chamber() {
-  if (instruments_.chamber == nullptr) throw RunError(Where() + ": the station has no chamber for this batch");
+  if (instruments_.chamber == nullptr) throw RunError(Where() + ": the station has no " + ChamberRole());
   return *instruments_.chamber;
 }
 

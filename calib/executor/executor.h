@@ -21,10 +21,12 @@
 
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "calib/executor/interlocks.h"
 #include "calib/executor/journal.h"
 #include "calib/executor/progress.h"
 #include "calib/executor/run_annotations.h"
@@ -54,7 +56,6 @@ struct ExecutorOptions {
   double timeout_factor = 3.0;       ///< wait timeout = factor × estimate + margin
   double timeout_margin_s = 60.0;
   int interlock_attempts = 3;        ///< interlock tries (with a prompt between) before aborting
-  double interlock_skip_s = 1.0;     ///< packets skipped before an interlock average (in transit)
   double interlock_sample_s = 1.0;   ///< packets averaged by an interlock check
   double packet_rate_hz = 100.0;
   double jog_accel_dps2 = 100.0;     ///< table acceleration of the gyro interlock's jog
@@ -93,6 +94,8 @@ class Executor {
   void MakeSafe();
 
   void Mount(int orientation);
+  void StartAcquisitions(uint8_t tag, int64_t quota);
+  void EndAcquisitions();
   void Acquire(const PlannedAction& a, int64_t packets);
   void LogFor(const PlannedAction& a, double duration_s);
   void RunProfile(const PlannedAction& a, const std::string& name);
@@ -113,6 +116,7 @@ class Executor {
   void RefreshReadings();
   void Report(bool force);
   std::string Where() const;
+  std::string ChamberRole() const;
 
   hil::RateTable& Table();
   hil::Chamber& Chamber();
@@ -132,6 +136,7 @@ class Executor {
   const std::atomic<bool>& stop_;
   ExecutorOptions options_;
 
+  std::vector<std::optional<GravityReference>> gravity_references_;  // per unit
   size_t current_action_ = 0;
   double action_started_s_ = 0.0;
   double last_refresh_s_ = -1e300;

@@ -13,7 +13,8 @@ namespace {
 
 constexpr double kDutyPerG = 0.04;              // ADXL210E nominal 4 %/g
 constexpr double kGyroCountsPerDps = 20971.52;  // 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
-constexpr double kMinGravityAlongUp_g = 0.5;
+constexpr double kRelativeTolerance_g = 0.5;
+constexpr double kFirstCheckMargin_g = 1.0;
 constexpr double kMinGyroResponse = 0.5;
 constexpr double kMaxGyroResponse = 1.5;
 constexpr const char* kAxisNames[] = {"x_B", "y_B", "z_B"};
@@ -46,8 +47,23 @@ Eigen::Vector3d NominalSpecificForce_B_g(const RawAverage& average) {
   return weighted.cwiseQuotient(count);
 }
 
-InterlockVerdict GravityVerdict(const RawAverage& average, int orientation) {
+InterlockVerdict GravityVerdict(const RawAverage& average, int orientation,
+                                const GravityReference* reference) {
   const Eigen::Vector3d f_B_g = NominalSpecificForce_B_g(average);
+  InterlockVerdict v;
+  if (reference != nullptr) {
+    const Eigen::Vector3d change_g = f_B_g - NominalSpecificForce_B_g(reference->average);
+    const Eigen::Vector3d expected_g = UpAxis_B(orientation) - UpAxis_B(reference->orientation);
+    const double worst_g = (change_g - expected_g).cwiseAbs().maxCoeff();
+    v.ok = worst_g <= kRelativeTolerance_g;
+    v.detail = fmt::format(
+        "f_B changed by ({:.2f}, {:.2f}, {:.2f}) g since orientation {}, expected ({:.0f}, {:.0f}, "
+        "{:.0f}) g for orientation {} ({} up): off by {:.2f} g (tolerance {:.1f} g)",
+        change_g.x(), change_g.y(), change_g.z(), reference->orientation, expected_g.x(),
+        expected_g.y(), expected_g.z(), orientation, AxisText(orientation), worst_g,
+        kRelativeTolerance_g);
+    return v;
+  }
   int best = 0;
   double best_dot = -1e9;
   for (int code : kOrientationCodes) {
@@ -58,13 +74,12 @@ InterlockVerdict GravityVerdict(const RawAverage& average, int orientation) {
     }
   }
   const double along_up_g = f_B_g.dot(UpAxis_B(orientation));
-  InterlockVerdict v;
-  v.ok = best == orientation && along_up_g >= kMinGravityAlongUp_g;
+  v.ok = best_dot - along_up_g <= kFirstCheckMargin_g;
   v.detail = fmt::format(
-      "measured f_B = ({:.2f}, {:.2f}, {:.2f}) g over {} packets: looks like orientation {} ({} up); "
-      "commanded {} ({} up), {:.2f} g along it",
-      f_B_g.x(), f_B_g.y(), f_B_g.z(), average.packets, best, AxisText(best), orientation,
-      AxisText(orientation), along_up_g);
+      "measured f_B = ({:.2f}, {:.2f}, {:.2f}) g over {} packets: {:.2f} g along the commanded "
+      "orientation {} ({} up), {:.2f} g along orientation {} ({} up)",
+      f_B_g.x(), f_B_g.y(), f_B_g.z(), average.packets, along_up_g, orientation,
+      AxisText(orientation), best_dot, best, AxisText(best));
   return v;
 }
 

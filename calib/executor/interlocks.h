@@ -11,9 +11,14 @@
 //  - ADXRS150: about 20,971.52 counts per deg/s (16 summed 19-bit conversions of 12.5 mV/(deg/s),
 //    sensor_sim/adxrs150.h); the table rate w (positive counter-clockwise seen from above)
 //    appears as +w about the up-pointing body axis, and gyros gx gy gz look along +x +y +z.
-// The zero-g duty of an uncalibrated ADXL210E spreads by up to +-2 g (3 sigma), so the gravity
-// check classifies rather than compares: it passes when, of the six fixture orientations, the
-// commanded one explains the measured f_B best and at least half of 1 g lies along its up axis.
+// The zero-g duty of an uncalibrated ADXL210E spreads by up to +-2 g (3 sigma; the rig's drawn
+// units show 0.5 g offsets), so an absolute f_B cannot be compared with the expected +1 g:
+//  - relative check (the unit passed a check before in this run, in orientation o_ref with f_ref):
+//    the change f_B - f_ref must equal up(o) - up(o_ref) within kRelativeTolerance_g = 0.5 g in
+//    every component. Offsets cancel; any wrong mount changes some component by >= 1 g.
+//  - first check of a unit (no reference): only a gross error is caught — it fails when another
+//    orientation explains f_B better than the commanded one by more than kFirstCheckMargin_g = 1 g
+//    (a unit mounted upside down: 2 g worse, minus offsets).
 // The gyro check uses the change from rest to jog, which no null offset affects.
 // Left out: fixture levelling error, misalignment (a few degrees change nothing here).
 #pragma once
@@ -38,8 +43,15 @@ Eigen::Vector3d UpAxis_B(int orientation);
 /// Body specific force in g from mean raw duties, by the nominal ADXL210E scale and channel map.
 Eigen::Vector3d NominalSpecificForce_B_g(const RawAverage& average);
 
-/// The gravity interlock for one unit in `orientation`.
-InterlockVerdict GravityVerdict(const RawAverage& average, int orientation);
+/// A unit's last passed gravity check: what the relative check compares with.
+struct GravityReference {
+  RawAverage average;
+  int orientation = 0;
+};
+
+/// The gravity interlock for one unit in `orientation`, relative to `reference` when given.
+InterlockVerdict GravityVerdict(const RawAverage& average, int orientation,
+                                const GravityReference* reference);
 
 /// The gyro-axis interlock for one unit: `rest` and `jog` averaged at rest and at `jog_rate_dps`.
 /// Passes when the gyro of the up axis changed most, in the expected direction, by 50…150 % of

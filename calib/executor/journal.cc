@@ -25,7 +25,9 @@ Journal::~Journal() { std::fclose(file_); }
 
 void Journal::Append(const nlohmann::json& event) {
   const std::string line = event.dump() + "\n";
-  if (std::fwrite(line.data(), 1, line.size(), file_) != line.size()) Fail(path_, "write failed");
+  if (std::fwrite(line.data(), 1, line.size(), file_) != line.size() || std::fflush(file_) != 0) {
+    Fail(path_, "write failed");
+  }
 }
 
 void Journal::Sync() {

@@ -2,8 +2,9 @@
 // each with "event" and the pipeline clock time "t_s" (docs/executor.md lists the events: run
 // started/resumed, action started/completed with its index, step completed, interlock failures,
 // torn rows set aside, aborts and interruptions, run completed). It is what a resume reads to
-// find where the run stopped. Lines are written whole with one write; Sync() flushes and fsyncs,
-// which the executor does at every step boundary and before it ends.
+// find where the run stopped. Every line is flushed to the kernel as it is appended (a killed
+// process loses nothing); Sync() also fsyncs (a power loss loses nothing), which the executor
+// does at every step boundary and before it ends.
 // Reading tolerates a torn last line (a crash mid-write): it is counted, not parsed. A bad line
 // anywhere else is an error naming the file and the line.
 // Left out: rotation, concurrent writers (one executor owns a run directory).
@@ -35,7 +36,7 @@ class Journal {
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
 
-  /// Appends `event` (an object that has "event") as one line; buffered until Sync().
+  /// Appends `event` (an object that has "event") as one line and flushes it to the kernel.
   void Append(const nlohmann::json& event);
   /// Flushes and fsyncs the journal: everything appended so far survives a crash.
   void Sync();

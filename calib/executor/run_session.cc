@@ -17,6 +17,7 @@
 #include "calib/sequence/validation.h"
 #include "hil/drivers/station_instruments.h"
 #include "hil/drivers/unit_serial.h"
+#include "hil/instruments/instrument_error.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_writer.h"
 #include "hil/recording/torn_tail.h"
@@ -70,8 +71,9 @@ struct Session {
 RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nlohmann::json> old_meta,
                    size_t first_step, std::optional<double> repeated_from_s,
                    std::vector<nlohmann::json> resume_events, ProgressSink& progress,
-                   const std::atomic<bool>& stop, const ExecutorOptions& options) {
+                   const std::atomic<bool>& stop, const NewRunOptions& options) {
   hil::StationInstruments instruments = hil::OpenStation(s.station, clock);
+  if (options.wrap_operator) instruments.op = options.wrap_operator(std::move(instruments.op));
   const bool imu_batch = s.sequence.unit_kind == UnitKind::kImu;
   std::vector<hil::UnitLink*> links;
   for (const auto& link : instruments.units) {
@@ -105,9 +107,24 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
   if (!imu_batch) batch.rate_table = nullptr;
   if (imu_batch) batch.adts = nullptr;
   nlohmann::json identities = nlohmann::json::array();
+  // The first exchanges on a line can meet what a crashed predecessor left behind (replies to
+  // its last requests, delivered when the port is opened again): a garbled reply to the
+  // identification is retried, kIdentifyAttempts in all, half a clock second apart (each failed
+  // exchange makes the driver flush its input); anything else stops the run.
+  constexpr int kIdentifyAttempts = 3;
   const auto identify = [&](const char* role, auto* instrument) {
     if (instrument == nullptr) return;
-    const hil::InstrumentIdentity id = instrument->Identify();
+    hil::InstrumentIdentity id;
+    for (int attempt = 1;; ++attempt) {
+      try {
+        id = instrument->Identify();
+        break;
+      } catch (const hil::InstrumentError& e) {
+        if (e.kind() != hil::InstrumentError::Kind::kBadReply || attempt == kIdentifyAttempts) throw;
+        progress.Note(fmt::format("{}: garbled reply ({}); identifying again", role, e.what()));
+        clock.SleepS(0.5);
+      }
+    }
     identities.push_back({{"role", role}, {"model", id.model}, {"detail", id.detail}});
   };
   identify("rate_table", batch.rate_table);
@@ -163,7 +180,7 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
     loggers.back()->Start();
   }
   Executor executor(s.sequence, s.plan, batch, logger_ptrs, clock, annotations, recording, journal,
-                    run_meta, progress, stop, options);
+                    run_meta, progress, stop, options.executor);
   const auto summary = [&] {
     RunSummary out{s.run_dir, run_meta.json()["status"].get<std::string>(), 0, 0};
     for (auto& l : loggers) {
@@ -200,13 +217,11 @@ RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
   }
   std::filesystem::create_directories(s.run_dir);
   const std::unique_ptr<hil::Clock> clock = hil::MakeClock(s.station.time_scale);
-  RunSummary summary = Execute(s, *clock, std::nullopt, 0, std::nullopt, {}, progress, stop,
-                               options.executor);
-  return summary;
+  return Execute(s, *clock, std::nullopt, 0, std::nullopt, {}, progress, stop, options);
 }
 
 RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progress,
-                     const std::atomic<bool>& stop, const ExecutorOptions& options) {
+                     const std::atomic<bool>& stop, const NewRunOptions& options) {
   const std::filesystem::path meta_path = run_dir / hil::kMetaJsonName;
   const nlohmann::json meta = sensor_sim::ParamReader::LoadFile(meta_path.string());
   if (!meta.contains("format_version") || meta["format_version"] != hil::kRecordingFormatVersion ||
@@ -239,7 +254,7 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progres
   const double last_t_s = std::max({point.last_t_s, LastRowTime(run_dir / hil::kImuCsvName),
                                     LastRowTime(run_dir / hil::kAdsCsvName)});
   const std::unique_ptr<hil::Clock> base = hil::MakeClock(s.station.time_scale);
-  const OffsetClock clock(*base, last_t_s + 1.0 / options.packet_rate_hz);
+  const OffsetClock clock(*base, last_t_s + 1.0 / options.executor.packet_rate_hz);
   progress.Note(fmt::format("resuming {} at step {} of {}, clock from t = {:.2f} s", run_dir.string(),
                             point.first_incomplete_step + 1, s.sequence.steps.size(), clock.NowS()));
   return Execute(s, clock, meta, point.first_incomplete_step, point.interrupted_step_started_s,

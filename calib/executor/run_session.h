@@ -12,6 +12,8 @@
 
 #include <atomic>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 
 #include "calib/executor/executor.h"
@@ -24,6 +26,9 @@ struct NewRunOptions {
   std::string sequence_file;
   std::filesystem::path run_dir;
   ExecutorOptions executor;
+  /// When set, decorates the station's operator (a logging operator, a test's fixture
+  /// disturbance); receives the operator OpenStation made and returns the one the run uses.
+  std::function<std::unique_ptr<hil::Operator>(std::unique_ptr<hil::Operator>)> wrap_operator;
 };
 
 struct RunSummary {
@@ -38,8 +43,9 @@ struct RunSummary {
 RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
                     const std::atomic<bool>& stop);
 
-/// Resumes the run in `run_dir` from its first step not completed.
+/// Resumes the run in `run_dir` from its first step not completed (`options.station_file`,
+/// `sequence_file` and `run_dir` are ignored: the run's meta.json has them).
 RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progress,
-                     const std::atomic<bool>& stop, const ExecutorOptions& options = {});
+                     const std::atomic<bool>& stop, const NewRunOptions& options = {});
 
 }  // namespace adahrs::calib

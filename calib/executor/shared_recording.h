@@ -1,5 +1,7 @@
 // The run's RecordingWriter shared by the unit logger threads (rows) and the executor thread
-// (meta.json, durable flushes at step boundaries): one mutex around the writer.
+// (meta.json, durable flushes at step boundaries): one mutex around the writer. Each batch of
+// rows is flushed to the kernel as it is appended, so a killed process loses no row it received;
+// the fsync (power loss) happens at step boundaries.
 // Left out: any buffering of its own; the writer's stdio buffers suffice.
 #pragma once
 
@@ -17,11 +19,17 @@ class SharedRecording {
   template <typename Row>
   void Append(std::span<const Row> rows) {
     std::lock_guard lock(mutex_);
+    if (rows.empty()) return;
     for (const Row& row : rows) writer_.Append(row);
+    writer_.Flush(false);
   }
+  /// Flushes under the lock; with `durable`, fsyncs after releasing it (rows keep coming).
   void Flush(bool durable) {
-    std::lock_guard lock(mutex_);
-    writer_.Flush(durable);
+    {
+      std::lock_guard lock(mutex_);
+      writer_.Flush(false);
+    }
+    if (durable) writer_.SyncFlushed();
   }
   void WriteMeta(const nlohmann::json& meta) {
     std::lock_guard lock(mutex_);

@@ -38,22 +38,16 @@ void UnitLogger::Stop() {
   FailPendingRequests();
 }
 
-void UnitLogger::Call(const std::function<void(hil::UnitLink&)>& request) {
-  std::future<void> done;
-  {
-    std::lock_guard lock(mutex_);
-    if (error_) std::rethrow_exception(error_);
-    if (!running_) {
-      throw std::logic_error(role_ + ": unit logger is not running; request refused");
-    }
-    requests_.push_back({request, {}});
-    done = requests_.back().done.get_future();
-  }
-  done.get();
+std::future<void> UnitLogger::Submit(std::function<void(hil::UnitLink&)> request) {
+  std::lock_guard lock(mutex_);
+  if (error_) std::rethrow_exception(error_);
+  if (!running_) throw std::logic_error(role_ + ": unit logger is not running; request refused");
+  requests_.push_back({std::move(request), {}});
+  return requests_.back().done.get_future();
 }
 
-void UnitLogger::StartAcquisition(uint8_t tag, int64_t quota) {
-  Call([this, tag, quota](hil::UnitLink& link) {
+std::future<void> UnitLogger::StartAcquisition(uint8_t tag, int64_t quota) {
+  return Submit([this, tag, quota](hil::UnitLink& link) {
     {
       std::lock_guard lock(mutex_);
       armed_ = true;
@@ -65,15 +59,20 @@ void UnitLogger::StartAcquisition(uint8_t tag, int64_t quota) {
   });
 }
 
-void UnitLogger::EndAcquisition() {
-  Call([](hil::UnitLink& link) { link.SetTag(0); });
+std::future<void> UnitLogger::EndAcquisition() {
+  return Submit([](hil::UnitLink& link) { link.SetTag(0); });
 }
 
-void UnitLogger::BeginAverage(int64_t skip, int64_t packets) {
-  std::lock_guard lock(mutex_);
-  average_skip_ = skip;
-  average_wanted_ = packets;
-  sum_ = RawAverage{};
+std::future<void> UnitLogger::BeginAverage(int64_t packets) {
+  return Submit([this, packets](hil::UnitLink& link) {
+    // The response comes after every packet sent before the unit handled the request: record
+    // those first, then average what follows.
+    link.ReadCounters();
+    Record(link.Poll(std::chrono::milliseconds(0)));
+    std::lock_guard lock(mutex_);
+    average_wanted_ = packets;
+    sum_ = RawAverage{};
+  });
 }
 
 std::optional<RawAverage> UnitLogger::TakeAverage() {
@@ -147,10 +146,6 @@ uint8_t UnitLogger::RowTag(uint8_t packet_tag) {
 
 void UnitLogger::Accumulate(const firmware_model::ImuDataPayload& data) {
   if (average_wanted_ <= 0 || sum_.packets >= average_wanted_) return;
-  if (average_skip_ > 0) {
-    --average_skip_;
-    return;
-  }
   for (int ch = 0; ch < 6; ++ch) {
     if (data.raw.t2_cnt[ch] == 0) continue;  // no period captured: duty undefined
     sum_.duty_offset[ch] += static_cast<double>(data.raw.t1_cnt[ch]) / data.raw.t2_cnt[ch] - 0.5;

@@ -12,8 +12,9 @@
 // logger thread as requests, so packets that arrived while a request waited for its response are
 // recorded before the next request changes the accounting. Loss comes from the link's 8-bit
 // sequence counter. Raw averages (duty T1/T2 - 0.5 per accelerometer channel, gyro counts) over
-// N packets after skipping some (those still in transit from before a fixture move or a table
-// change) feed the interlocks (interlocks.h).
+// N packets feed the interlocks (interlocks.h); they start after a READ_COUNTERS round trip, so
+// every packet still in transit from before the request (from before a fixture move or a table
+// change: a fast rig's output backlog can hold seconds of packets) is left out.
 // Left out: retrying a failed poll (a transport error stops the thread; CheckHealthy rethrows it).
 #pragma once
 
@@ -58,20 +59,24 @@ class UnitLogger {
   /// Stops and joins the thread (idempotent); pending requests fail.
   void Stop();
 
-  /// Runs `request` on the logger thread between polls and waits for it; rethrows what it threw.
-  /// Throws the thread's own error if it has stopped.
-  void Call(const std::function<void(hil::UnitLink&)>& request);
+  /// Queues `request` to run on the logger thread between polls; the future rethrows what it
+  /// threw. Throws the thread's own error if it has stopped.
+  std::future<void> Submit(std::function<void(hil::UnitLink&)> request);
+  /// Submit() and wait.
+  void Call(std::function<void(hil::UnitLink&)> request) { Submit(std::move(request)).get(); }
 
   /// Sets the unit's TAG to `tag` and counts the packets that carry it from zero, recording at
-  /// most `quota` of them with the TAG (quota < 0: no limit). Throws what the link throws.
-  void StartAcquisition(uint8_t tag, int64_t quota);
+  /// most `quota` of them with the TAG (quota < 0: no limit). The future throws what the link
+  /// threw.
+  std::future<void> StartAcquisition(uint8_t tag, int64_t quota);
   /// Sets the unit's TAG back to 0; packets still carrying the old TAG count until the quota.
-  void EndAcquisition();
+  std::future<void> EndAcquisition();
   /// Packets counted since StartAcquisition().
   int64_t acquired() const { return acquired_.load(); }
 
-  /// Averages the raw values of `packets` IMU packets after skipping the next `skip`.
-  void BeginAverage(int64_t skip, int64_t packets);
+  /// Averages the raw values of the `packets` IMU packets that follow a READ_COUNTERS round trip
+  /// (queued like a request); the future throws what the link threw.
+  std::future<void> BeginAverage(int64_t packets);
   /// The average once complete, else nullopt.
   std::optional<RawAverage> TakeAverage();
 
@@ -113,7 +118,6 @@ class UnitLogger {
   int64_t quota_ = -1;
   std::atomic<int64_t> acquired_{0};
 
-  int64_t average_skip_ = 0;
   int64_t average_wanted_ = 0;
   RawAverage sum_;
 

@@ -120,4 +120,9 @@ void RecordingWriter::Flush(bool durable) {
   }
 }
 
+void RecordingWriter::SyncFlushed() const {
+  Check(::fsync(::fileno(imu_)), run_dir_ / kImuCsvName, "fsync failed");
+  Check(::fsync(::fileno(ads_)), run_dir_ / kAdsCsvName, "fsync failed");
+}
+
 }  // namespace adahrs::hil

@@ -28,6 +28,9 @@ class RecordingWriter {
   void Append(const AdsRecordRow& row);
   /// Flushes buffered rows; with `durable`, also fsyncs the files.
   void Flush(bool durable);
+  /// Fsyncs what was flushed before, without touching the stdio buffers: safe to call while
+  /// another thread appends (under its own lock), so a slow disk does not hold the writers up.
+  void SyncFlushed() const;
 
   const std::filesystem::path& run_dir() const { return run_dir_; }
   uint64_t imu_rows() const { return imu_rows_; }

@@ -1,0 +1,84 @@
+#include "calib/executor/journal.h"
+
+#include <unistd.h>
+
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "calib/executor/resume_point.h"
+
+namespace adahrs::calib {
+namespace {
+
+using ::testing::HasSubstr;
+
+class JournalTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("adahrs_journal_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(JournalTest, AppendsAcrossReopenAndToleratesATornLastLine) {
+  {
+    Journal j(dir_);
+    j.Append({{"event", "run_started"}, {"t_s", 0.0}});
+    j.Append({{"event", "action_started"}, {"t_s", 1.0}, {"step", 0}, {"index", 0}});
+    j.Sync();
+  }
+  {
+    Journal j(dir_);
+    j.Append({{"event", "step_completed"}, {"t_s", 2.0}, {"step", 0}});
+    j.Sync();
+  }
+  std::ofstream(dir_ / kJournalName, std::ios::app) << R"({"event":"action_sta)";  // crash
+  const JournalContents c = ReadJournal(dir_);
+  ASSERT_EQ(c.events.size(), 3u);
+  EXPECT_EQ(c.events[2]["event"], "step_completed");
+  EXPECT_EQ(c.torn_lines, 1);
+}
+
+TEST_F(JournalTest, ABadCompleteLineNamesTheLine) {
+  std::ofstream(dir_ / kJournalName) << "{\"event\":\"run_started\",\"t_s\":0}\n[1,2]\n";
+  try {
+    ReadJournal(dir_);
+    FAIL();
+  } catch (const JournalError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("journal.jsonl:2"));
+  }
+}
+
+// Steps complete in order; the first one without step_completed is where a resume starts, and its
+// first action's start is where its repeated rows begin.
+TEST(ResumePoint, FirstIncompleteStepAndWhenItBegan) {
+  JournalContents j;
+  j.events = {{{"event", "run_started"}, {"t_s", 0.5}},
+              {{"event", "action_started"}, {"t_s", 1.0}, {"step", 0}, {"index", 0}},
+              {{"event", "step_completed"}, {"t_s", 5.0}, {"step", 0}},
+              {{"event", "action_started"}, {"t_s", 5.5}, {"step", 1}, {"index", 1}},
+              {{"event", "action_completed"}, {"t_s", 7.0}, {"step", 1}, {"index", 1}},
+              {{"event", "action_started"}, {"t_s", 7.5}, {"step", 1}, {"index", 2}}};
+  const ResumePoint p = FindResumePoint(j, 3);
+  EXPECT_EQ(p.first_incomplete_step, 1u);
+  ASSERT_TRUE(p.interrupted_step_started_s.has_value());
+  EXPECT_EQ(*p.interrupted_step_started_s, 5.5);
+  EXPECT_EQ(p.last_t_s, 7.5);
+  EXPECT_FALSE(p.run_completed);
+}
+
+TEST(ResumePoint, RefusesAJournalWithoutRunStarted) {
+  JournalContents j;
+  j.events = {{{"event", "step_completed"}, {"t_s", 5.0}, {"step", 0}}};
+  EXPECT_THROW(FindResumePoint(j, 2), JournalError);
+}
+
+}  // namespace
+}  // namespace adahrs::calib
