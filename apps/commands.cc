@@ -9,6 +9,8 @@ void RegisterCommands(CLI::App& app) {
   RegisterSequenceCommand(app);
   RegisterPortsCommand(app);
   RegisterRunCommand(app);
+  RegisterFitCommand(app);
+  RegisterEvaluateCommand(app);
 }
 
 }  // namespace adahrs::apps

@@ -14,5 +14,7 @@ void RegisterRigCommand(CLI::App& app);
 void RegisterSequenceCommand(CLI::App& app);
 void RegisterPortsCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
+void RegisterFitCommand(CLI::App& app);
+void RegisterEvaluateCommand(CLI::App& app);
 
 }  // namespace adahrs::apps
