@@ -13,6 +13,8 @@ void RegisterCommands(CLI::App& app) {
   RegisterPortsCommand(app);
   RegisterRunCommand(app);
   RegisterDemoCommand(app);
+  RegisterFitCommand(app);
+  RegisterEvaluateCommand(app);
 }
 
 }  // namespace adahrs::apps

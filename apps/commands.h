@@ -18,5 +18,7 @@ void RegisterReportCommand(CLI::App& app);
 void RegisterPortsCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
 void RegisterDemoCommand(CLI::App& app);
+void RegisterFitCommand(CLI::App& app);
+void RegisterEvaluateCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

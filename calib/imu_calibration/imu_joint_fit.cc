@@ -95,7 +95,12 @@ double Variance(const ImuObservation& o, int ch, double n_thermal, bool datashee
                 const ImuDatasheetNoise& noise) {
   const double n = o.thermal ? n_thermal : o.count;
   const double floor_cnt = ch >= 6 ? noise.gyro_bias_floor_dph / 3600.0 * noise.gyro_counts_per_dps : 0.0;
-  if (!datasheet) return o.u_sd[ch] * o.u_sd[ch] / n + floor_cnt * floor_cnt;
+  if (!datasheet) {
+    // A measured spread below half the datasheet noise is not credible (few samples, or samples
+    // identical after quantisation): the variance is not allowed below a quarter of the datasheet's.
+    const double measured = o.u_sd[ch] * o.u_sd[ch] / n + floor_cnt * floor_cnt;
+    return std::max(measured, 0.25 * Variance(o, ch, n_thermal, true, noise));
+  }
   if (ch < 6) {
     // Filtered white noise sampled every frame: stationary variance N^2 / (4 tau) with lag-one
     // correlation rho = exp(-T / tau); a mean of n such samples has variance

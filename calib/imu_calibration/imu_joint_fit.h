@@ -14,7 +14,9 @@
 // Levenberg-Marquardt iteration would converge in its first step to the same point), per
 // channel, with inverse-variance weights:
 //   var = s^2 / n + floor^2      (s the observation's sample deviation, floor the gyro bias
-//                                 instability floor, which a mean does not average down)
+//                                 instability floor, which a mean does not average down; never
+//                                 below a quarter of the datasheet variance, since a smaller
+//                                 measured spread comes from too few or quantised samples)
 // and thermal bands weighted alike (n replaced by the median band count: every band weighs the
 // same). A first fit estimates the model-error variance (thermal band residuals beyond their
 // noise: drift the polynomial cannot follow); it is added to every observation's variance and

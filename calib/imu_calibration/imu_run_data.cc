@@ -32,6 +32,9 @@ struct Interval {
 
 // The reason a row cannot be calibration data, with its column, or empty.
 std::string RowDefect(const hil::ImuRecordRow& row) {
+  if (row.mode != 0) {
+    return "column mode: " + std::to_string(row.mode) + " (a compensated mode; calibration needs raw rows)";
+  }
   for (int ch = 0; ch < 6; ++ch) {
     const uint16_t t1 = row.accel_ticks[2 * ch];
     const uint16_t t2 = row.accel_ticks[2 * ch + 1];

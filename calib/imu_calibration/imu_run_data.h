@@ -11,7 +11,7 @@
 //                    reported temperature trend (slope over +-30 s beyond +-0.05 degC/min)
 // Rows that cannot be calibration data are excluded and each exclusion is reported with the file,
 // line and column: a duty that is undefined (t2 = 0 or t1 >= t2), a gyro or temperature count at
-// its converter's limit (saturated), a row not in raw mode (v2 mode column non-zero).
+// its converter's limit (saturated), a row not in raw mode (v2 `mode` column non-zero).
 // Refused (ImuInputError, naming the run, step and unit): an unreadable, truncated or malformed
 // recording or wrong format version (hil::RecordingError passes through with file, line and
 // column), meta.json without local gravity or sequence, a unit of meta.json with no rows in a step

@@ -4,7 +4,6 @@
 // step, unit and the reason).
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -39,10 +38,15 @@ void WriteLines(const fs::path& p, const std::vector<std::string>& lines) {
 }
 
 std::vector<std::string> Cells(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
-  return cells;
+  std::vector<std::string> cells(1);
+  for (char c : line) {
+    if (c == ',') {
+      cells.emplace_back();
+    } else {
+      cells.back() += c;
+    }
+  }
+  return cells;  // keeps empty cells, including trailing ones (v2 raw rows end in empty columns)
 }
 
 std::string Join(const std::vector<std::string>& cells) {
