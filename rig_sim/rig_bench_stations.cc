@@ -1,15 +1,26 @@
 #include "rig_sim/rig_bench_stations.h"
 
+#include <algorithm>
 #include <fstream>
 #include <stdexcept>
 
 namespace adahrs::rig_sim {
 namespace {
 
-// Per-reply timeouts at time scale 1 (the drivers scale them): generous for a loaded 2-core host.
+// Per-reply timeouts are clock time (the drivers divide them by the time scale). On a fast rig the
+// station asks for kWallReplyTimeoutS of wall time per reply, so that a loaded 2-core host still
+// answers in time, within the station format's limits (docs/station.md: 10...60,000 ms); never
+// less than the drivers' own defaults at time scale 1.
+constexpr double kWallReplyTimeoutS = 1.0;
+constexpr int kMaxTimeoutMs = 60000;
 constexpr int kInstrumentTimeoutMs = 1000;
 constexpr int kInstrumentRetries = 2;
 constexpr int kUnitTimeoutMs = 500;
+
+int TimeoutMs(int minimum_ms, double time_scale) {
+  return static_cast<int>(
+      std::clamp(kWallReplyTimeoutS * 1000.0 * time_scale, double(minimum_ms), double(kMaxTimeoutMs)));
+}
 // The Prologix GPIB-USB adapter's virtual serial port; other instruments at their config's
 // `baud`, 9600 when it has none (docs/rig/adts.md, docs/rig/).
 constexpr unsigned kPrologixBaud = 115200;
@@ -31,6 +42,7 @@ bool OnBench(RigBench bench, const std::string& kind) {
 hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const RigConfig& config,
                           const std::string& source) {
   const nlohmann::json& links = manifest.at("links");
+  const double time_scale = manifest.at("time_scale").get<double>();
   nlohmann::json instruments = nlohmann::json::object();
   for (const nlohmann::json& instrument : manifest.at("instruments")) {
     const std::string role = instrument.at("role");
@@ -49,7 +61,7 @@ hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const 
     instruments[role] = {{"type", kind},
                          {"port", Port(links.at(role).get<std::string>(), baud, flow)},
                          {"address", address},
-                         {"timeout_ms", kInstrumentTimeoutMs},
+                         {"timeout_ms", TimeoutMs(kInstrumentTimeoutMs, time_scale)},
                          {"retries", kInstrumentRetries}};
   }
   const std::string unit_kind = bench == RigBench::kImu ? "imu" : "ads";
@@ -60,7 +72,7 @@ hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const 
     units.push_back({{"role", role},
                      {"kind", unit_kind},
                      {"slot", unit.at("slot")},
-                     {"timeout_ms", kUnitTimeoutMs},
+                     {"timeout_ms", TimeoutMs(kUnitTimeoutMs, time_scale)},
                      {"port", Port(links.at(role).get<std::string>(),
                                    unit.at("baud").get<unsigned>(), "none")}});
   }
