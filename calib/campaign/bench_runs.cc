@@ -51,9 +51,12 @@ std::vector<std::vector<RunSummary>> RunBenchesConcurrently(const std::vector<Be
       for (const BenchSequenceRun& run : bench.runs) {
         try {
           if (stop_all) throw RunInterrupted("stopped before it started");
-          summaries[b].push_back(StartRun({bench.station_file, run.sequence_file, run.run_dir,
-                                           options},
-                                          *bench.progress, stop_all));
+          NewRunOptions run_options;
+          run_options.station_file = bench.station_file;
+          run_options.sequence_file = run.sequence_file;
+          run_options.run_dir = run.run_dir;
+          run_options.executor = options;
+          summaries[b].push_back(StartRun(run_options, *bench.progress, stop_all));
         } catch (...) {
           failure.Record(bench.name + ", run " + run.run_dir.string());
           stop_all = true;
