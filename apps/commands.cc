@@ -7,8 +7,10 @@ void RegisterCommands(CLI::App& app) {
   RegisterSimulateCommand(app);
   RegisterRigCommand(app);
   RegisterSequenceCommand(app);
-  RegisterRunCommand(app);
   RegisterPortsCommand(app);
+  RegisterRunCommand(app);
+  RegisterFitCommand(app);
+  RegisterEvaluateCommand(app);
 }
 
 }  // namespace adahrs::apps

@@ -12,7 +12,9 @@ void RegisterVersionCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);
 void RegisterRigCommand(CLI::App& app);
 void RegisterSequenceCommand(CLI::App& app);
-void RegisterRunCommand(CLI::App& app);
 void RegisterPortsCommand(CLI::App& app);
+void RegisterRunCommand(CLI::App& app);
+void RegisterFitCommand(CLI::App& app);
+void RegisterEvaluateCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

@@ -1,0 +1,42 @@
+// adahrs evaluate --constants FILE --truth FILE [--out FILE]: truth evaluation of IMU constants
+// of a simulated unit (calib/evaluation/imu_evaluation.h); prints the worst errors and verdicts
+// and writes evaluation.json (default: beside the constants).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "apps/commands.h"
+#include "calib/evaluation/imu_evaluation.h"
+#include "sensor_sim/param_reader.h"
+
+namespace adahrs::apps {
+
+void RegisterEvaluateCommand(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("evaluate", "Evaluate IMU constants against a simulated unit's truth");
+  auto constants = std::make_shared<std::string>();
+  auto truth = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  cmd->add_option("--constants", *constants, "constants.json")->required();
+  cmd->add_option("--truth", *truth, "truth/<serial>.json of the simulated unit")->required();
+  cmd->add_option("--out", *out, "evaluation.json (default: <constants>.evaluation.json)");
+  cmd->callback([constants, truth, out] {
+    const calib::ConstantsFile file = calib::ReadConstantsFile(*constants);
+    const nlohmann::json truth_json = sensor_sim::ParamReader::LoadFile(*truth);
+    const sensor_sim::ImuUnitParams params =
+        sensor_sim::ImuUnitParams::FromJson(sensor_sim::ParamReader(truth_json, *truth));
+    calib::ImuEvaluationOptions options;
+    options.g_local_mps2 = file.diagnostics.value("local_gravity_mps2", options.g_local_mps2);
+    const calib::ImuEvaluation e =
+        calib::EvaluateImu(file, params, calib::Specification::Reference(), options);
+    const std::string path = out->empty() ? *constants + ".evaluation.json" : *out;
+    std::ofstream(path) << e.report.dump(2) << "\n";
+    std::cout << fmt::format("{}: acceleration worst {:.3f} mg ({}), body rate worst {:.4f} deg/s ({}) -> {}\n",
+                             file.serial, e.worst_accel_mg, e.accel_verdict, e.worst_rate_dps,
+                             e.rate_verdict, path);
+  });
+}
+
+}  // namespace adahrs::apps

@@ -1,0 +1,253 @@
+#include "calib/constants/constants_file.h"
+
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <limits>
+
+#include "sensor_sim/param_reader.h"
+
+namespace adahrs::calib {
+namespace {
+
+using nlohmann::json;
+using sensor_sim::ParamError;
+using sensor_sim::ParamReader;
+
+// NaN numbers become null, recursively.
+json NullForNaN(json j) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) return nullptr;
+  if (j.is_structured()) {
+    for (auto& item : j) item = NullForNaN(item);
+  }
+  return j;
+}
+
+// Checks that `se` has the shape of `value` (objects with the same keys, arrays of the same
+// length) and that every number of `value` faces a non-negative finite number or null.
+void CheckShape(const json& value, const json& se, const std::string& where, const std::string& source) {
+  auto fail = [&](const std::string& message) {
+    throw ConstantsFileError(source + ": " + where + ": " + message);
+  };
+  if (value.is_object()) {
+    if (!se.is_object()) fail("expected an object like the constants");
+    for (const auto& [key, item] : value.items()) {
+      if (!se.contains(key)) fail("missing key \"" + key + "\" (the constants have it)");
+      CheckShape(item, se.at(key), where + "." + key, source);
+    }
+    for (const auto& [key, item] : se.items()) {
+      if (!value.contains(key)) fail("unexpected key \"" + key + "\" (not in the constants)");
+    }
+  } else if (value.is_array()) {
+    if (!se.is_array() || se.size() != value.size()) {
+      fail("expected an array of " + std::to_string(value.size()) + " like the constants");
+    }
+    for (size_t i = 0; i < value.size(); ++i) {
+      CheckShape(value[i], se[i], where + "[" + std::to_string(i) + "]", source);
+    }
+  } else if (value.is_number()) {
+    if (se.is_null()) return;
+    if (!se.is_number()) fail("expected a standard error (number) or null");
+    const double x = se.get<double>();
+    if (!std::isfinite(x) || x < 0.0) fail("a standard error must be finite and >= 0, got " + se.dump());
+  } else {
+    fail("unexpected value type in the constants");
+  }
+}
+
+bool IsSha256Hex(const std::string& s) {
+  if (s.size() != 64) return false;
+  for (char c : s) {
+    if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
+  }
+  return true;
+}
+
+json ConstantsJson(const ConstantsFile& file, const std::string& source) {
+  if (file.kind == hil::UnitKind::kImu) {
+    if (!file.imu || file.ads) throw ConstantsFileError(source + ": kind imu needs IMU constants only");
+    return firmware_model::ToJson(*file.imu);
+  }
+  if (!file.ads || file.imu) throw ConstantsFileError(source + ": kind ads needs ADS constants only");
+  return firmware_model::ToJson(*file.ads);
+}
+
+ConstantsFile Parse(const json& j, const std::string& source) {
+  const ParamReader reader(j, source);
+  ConstantsFile file;
+  const std::string format = reader.String("format");
+  if (format != kConstantsFormatName) {
+    reader.Fail("$.format", "expected \"" + std::string(kConstantsFormatName) + "\", got \"" +
+                                format + "\"");
+  }
+  const int64_t version = reader.Integer("format_version", 0, 1 << 20);
+  if (version != kConstantsFormatVersion) {
+    reader.Fail("$.format_version", "version " + std::to_string(version) +
+                                        " is not supported (this software reads version " +
+                                        std::to_string(kConstantsFormatVersion) + ")");
+  }
+  file.serial = reader.String("serial");
+  if (file.serial.empty()) reader.Fail("$.serial", "empty");
+  const std::string kind = reader.String("kind");
+  if (kind == "imu") {
+    file.kind = hil::UnitKind::kImu;
+  } else if (kind == "ads") {
+    file.kind = hil::UnitKind::kAds;
+  } else {
+    reader.Fail("$.kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
+  }
+  file.strategy = reader.String("strategy");
+  file.created_utc = reader.String("created_utc");
+  file.software_version = reader.String("software_version");
+
+  reader.Child("constants");
+  const json& constants = j.at("constants");
+  try {
+    if (file.kind == hil::UnitKind::kImu) {
+      file.imu = firmware_model::ImuCalibrationConstantsFromJson(constants);
+    } else {
+      file.ads = firmware_model::AdsCalibrationConstantsFromJson(constants);
+    }
+  } catch (const std::runtime_error& e) {
+    throw ConstantsFileError(source + ": $.constants: " + e.what());
+  }
+  reader.Child("standard_errors");
+  file.standard_errors = j.at("standard_errors");
+  CheckShape(constants, file.standard_errors, "$.standard_errors", source);
+
+  const ParamReader provenance = reader.Child("provenance");
+  const size_t n = provenance.ArrayLength("recordings", 0, 1000);
+  for (size_t i = 0; i < n; ++i) {
+    const ParamReader r = provenance.Element("recordings", i, n);
+    RecordingReference ref{r.String("path"), r.String("sha256")};
+    if (!IsSha256Hex(ref.sha256)) {
+      r.Fail(r.path() + ".sha256", "expected 64 lowercase hex digits, got \"" + ref.sha256 + "\"");
+    }
+    r.ExpectAllKeysUsed();
+    file.provenance.recordings.push_back(ref);
+  }
+  provenance.ArrayLength("sequence_names", 0, 1000);
+  for (const json& name : j.at("provenance").at("sequence_names")) {
+    if (!name.is_string()) provenance.Fail("$.provenance.sequence_names", "expected strings");
+    file.provenance.sequence_names.push_back(name.get<std::string>());
+  }
+  provenance.ExpectAllKeysUsed();
+  reader.Child("diagnostics");
+  file.diagnostics = j.at("diagnostics");
+  reader.ExpectAllKeysUsed();
+  return file;
+}
+
+}  // namespace
+
+json ImuStandardErrorsJson(const firmware_model::ImuCalibrationConstants& se) {
+  json j = NullForNaN(firmware_model::ToJson(se));
+  for (json& t : j["thermal"]) t["temp_sensor"] = nullptr;
+  return j;
+}
+
+json AdsStandardErrorsJson(const firmware_model::AdsCalibrationConstants& se) {
+  json j = NullForNaN(firmware_model::ToJson(se));
+  for (const char* surface : {"altitude_ft", "airspeed_kt"}) {
+    for (const char* key : {"x_min_code", "x_max_code", "y_min_code", "y_max_code"}) {
+      j[surface][key] = nullptr;
+    }
+  }
+  return j;
+}
+
+firmware_model::ImuCalibrationConstants ImuStandardErrors(const ConstantsFile& file) {
+  if (!file.imu) throw ConstantsFileError(file.serial + ": not an IMU constants file");
+  const json& j = file.standard_errors;
+  auto number = [](const json& x) {
+    return x.is_number() ? x.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  firmware_model::ImuCalibrationConstants se = *file.imu;
+  for (size_t ch = 0; ch < 9; ++ch) {
+    for (size_t i = 0; i < 3; ++i) se.thermal[ch].k[i] = number(j["thermal"][ch]["k"][i]);
+  }
+  for (size_t ch = 0; ch < 6; ++ch) {
+    se.accel[ch] = {number(j["accel"][ch]["offset_duty"]), number(j["accel"][ch]["scale_duty_per_g"])};
+  }
+  for (size_t g = 0; g < 3; ++g) {
+    se.gyro[g].null_cnt = number(j["gyro"][g]["null_cnt"]);
+    for (size_t i = 0; i < 4; ++i) se.gyro[g].l[i] = number(j["gyro"][g]["l"][i]);
+  }
+  for (size_t r = 0; r < 3; ++r) {
+    for (size_t k = 0; k < 3; ++k) {
+      se.ca_mps2_per_g[r][k] = number(j["ca_mps2_per_g"][r][k]);
+      se.cg[r][k] = number(j["cg"][r][k]);
+    }
+  }
+  return se;
+}
+
+json ToJson(const ConstantsFile& file) {
+  const std::string source = "constants of " + file.serial;
+  const json constants = ConstantsJson(file, source);
+  CheckShape(constants, file.standard_errors, "$.standard_errors", source);
+  json recordings = json::array();
+  for (const RecordingReference& r : file.provenance.recordings) {
+    if (!IsSha256Hex(r.sha256)) {
+      throw ConstantsFileError(source + ": recording " + r.path + ": not a SHA-256: " + r.sha256);
+    }
+    recordings.push_back({{"path", r.path}, {"sha256", r.sha256}});
+  }
+  return json{{"format", kConstantsFormatName},
+              {"format_version", kConstantsFormatVersion},
+              {"serial", file.serial},
+              {"kind", file.kind == hil::UnitKind::kImu ? "imu" : "ads"},
+              {"strategy", file.strategy},
+              {"created_utc", file.created_utc},
+              {"software_version", file.software_version},
+              {"constants", constants},
+              {"standard_errors", file.standard_errors},
+              {"provenance",
+               {{"recordings", recordings}, {"sequence_names", file.provenance.sequence_names}}},
+              {"diagnostics", NullForNaN(file.diagnostics)}};
+}
+
+ConstantsFile ConstantsFileFromJson(const json& j, const std::string& source) {
+  try {
+    return Parse(j, source);
+  } catch (const ParamError& e) {
+    throw ConstantsFileError(e.what());
+  }
+}
+
+ConstantsFile ReadConstantsFile(const std::filesystem::path& path) {
+  json j;
+  try {
+    j = ParamReader::LoadFile(path.string());
+  } catch (const ParamError& e) {
+    throw ConstantsFileError(e.what());
+  }
+  return ConstantsFileFromJson(j, path.string());
+}
+
+void WriteConstantsFile(const std::filesystem::path& path, const ConstantsFile& file) {
+  const std::string text = ToJson(file).dump(2) + "\n";
+  std::filesystem::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw ConstantsFileError(tmp.string() + ": cannot open for writing");
+    out << text;
+    out.flush();
+    if (!out) throw ConstantsFileError(tmp.string() + ": write failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw ConstantsFileError(path.string() + ": cannot rename into place: " + ec.message());
+}
+
+std::string UtcNowIso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return buffer;
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,91 @@
+// constants.json (contract C3, docs/constants-file.md): one file per calibrated unit holding the
+// double-precision firmware constants (firmware_model/calibration_constants.h) with the 1-sigma
+// standard error of every number, the strategy that produced them, and the provenance (the
+// recordings' SHA-256 and sequence names) needed to reproduce or audit them.
+//
+//   {"format": "adahrs-constants", "format_version": 1, "serial": "IMU-0001", "kind": "imu"|"ads",
+//    "strategy", "created_utc", "software_version",
+//    "constants": firmware_model::ToJson(...),
+//    "standard_errors": same shape as "constants", each number its standard error or null,
+//    "provenance": {"recordings": [{"path", "sha256"}], "sequence_names": [...]},
+//    "diagnostics": {free-form per strategy}}
+//
+// Units are those of the constants themselves (duty, counts, deg/s per count^i, m/s^2 per g, ft,
+// kt). The reader is strict: a missing or unexpected key, a wrong type, a wrong format or version,
+// a standard error that is negative or whose shape differs from the constants' is refused with
+// ConstantsFileError naming the file and the JSON path.
+// Not held: the fixed-point blocks (constants_exporter.h derives them), covariances between
+// constants (only the standard errors), the recordings themselves.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "firmware_model/calibration_constants.h"
+#include "hil/station.h"
+
+namespace adahrs::calib {
+
+class ConstantsFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+inline constexpr int kConstantsFormatVersion = 1;
+inline constexpr const char* kConstantsFormatName = "adahrs-constants";
+
+struct RecordingReference {
+  std::string path;    ///< run directory as given to the fit
+  std::string sha256;  ///< RecordingSha256 (recording_checksum.h), 64 lowercase hex digits
+  bool operator==(const RecordingReference&) const = default;
+};
+
+struct ConstantsProvenance {
+  std::vector<RecordingReference> recordings;
+  std::vector<std::string> sequence_names;
+  bool operator==(const ConstantsProvenance&) const = default;
+};
+
+struct ConstantsFile {
+  std::string serial;  ///< "IMU-0001" / "ADS-0001" (UnitSerialText)
+  hil::UnitKind kind = hil::UnitKind::kImu;
+  std::string strategy;
+  std::string created_utc;  ///< ISO 8601, e.g. 2024-05-01T12:00:00Z
+  std::string software_version;
+  std::optional<firmware_model::ImuCalibrationConstants> imu;  ///< set when kind is kImu
+  std::optional<firmware_model::AdsCalibrationConstants> ads;  ///< set when kind is kAds
+  nlohmann::json standard_errors;  ///< same shape as ToJson(constants); null = not estimated
+  ConstantsProvenance provenance;
+  nlohmann::json diagnostics = nlohmann::json::object();
+};
+
+/// The standard-error JSON of an IMU set from a struct holding the standard errors in place of
+/// the values: NaN becomes null (not estimated); temp_sensor (a choice, not an estimate) is null.
+nlohmann::json ImuStandardErrorsJson(const firmware_model::ImuCalibrationConstants& se);
+/// Likewise for ADS; the code box (a property of the data, not an estimate) is null.
+nlohmann::json AdsStandardErrorsJson(const firmware_model::AdsCalibrationConstants& se);
+
+/// The standard errors of an IMU file as a constants struct (null -> NaN; temp_sensor copied
+/// from the constants). Throws ConstantsFileError when the file is not an IMU's.
+firmware_model::ImuCalibrationConstants ImuStandardErrors(const ConstantsFile& file);
+
+/// The file's JSON; throws ConstantsFileError if the file is inconsistent (kind without its
+/// constants, standard errors of another shape, a negative standard error).
+nlohmann::json ToJson(const ConstantsFile& file);
+/// Parses and validates; `source` (a path) leads every message.
+ConstantsFile ConstantsFileFromJson(const nlohmann::json& json, const std::string& source);
+
+/// Reads and validates a file.
+ConstantsFile ReadConstantsFile(const std::filesystem::path& path);
+/// Writes atomically (temporary file + rename); throws ConstantsFileError naming the path.
+void WriteConstantsFile(const std::filesystem::path& path, const ConstantsFile& file);
+
+/// The current UTC time as ISO 8601 with seconds ("2024-05-01T12:00:00Z").
+std::string UtcNowIso8601();
+
+}  // namespace adahrs::calib

@@ -1,0 +1,18 @@
+// The checksum that ties constants (constants.json provenance) to the recording they came from:
+// SHA-256 over the bytes of meta.json, imu.csv and ads.csv of a run directory, concatenated in that
+// order (contract C3), computed with OpenSSL's libcrypto. Equal to
+// `cat meta.json imu.csv ads.csv | sha256sum`.
+// Not covered: truth/ (simulation only, never an input of calibration), any other file in the run
+// directory. meta.json is rewritten while a run is in progress, so a running recording's checksum
+// changes; checksum a finished run.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace adahrs::calib {
+
+/// 64 lowercase hex digits; throws std::runtime_error naming the file that cannot be read.
+std::string RecordingSha256(const std::filesystem::path& run_dir);
+
+}  // namespace adahrs::calib

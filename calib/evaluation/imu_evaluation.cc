@@ -1,0 +1,294 @@
+#include "calib/evaluation/imu_evaluation.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "calib/imu_calibration/imu_joint_fit.h"
+#include "calib/imu_calibration/imu_observations.h"
+#include "firmware_model/constants_exporter.h"
+#include "firmware_model/reference_compensator.h"
+#include "firmware_model/target/imu_compensator.h"
+#include "sensor_sim/units.h"
+
+namespace adahrs::calib {
+namespace {
+
+namespace fm = firmware_model;
+using nlohmann::json;
+
+constexpr double kTempMin_c = -40.0, kTempMax_c = 85.0, kTempStep_c = 12.5;
+constexpr double kRates_dps[] = {-150, -100, -50, 50, 100, 150};
+constexpr double kSigmaLimit = 3.0;   // CRB limit per point: 3 sigma
+constexpr double kCrbMargin = 1.5;    // issue 6: within 1.5x the CRB-implied limit
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+fm::ImuRawFrame ToFirmware(const sensor_sim::ImuRawFrame& f) {
+  fm::ImuRawFrame out{};
+  for (int i = 0; i < 6; ++i) {
+    out.t1_cnt[i] = f.accel[i].t1_cnt;
+    out.t2_cnt[i] = f.accel[i].t2_cnt;
+  }
+  for (int g = 0; g < 3; ++g) {
+    out.gyro_cnt[g] = f.gyro_cnt[g];
+    out.temp_cnt[g] = f.temp_cnt[g];
+  }
+  return out;
+}
+
+sensor_sim::ImuUnitParams NoiseOff(sensor_sim::ImuUnitParams p) {
+  for (auto& chip : p.accel_chips) chip.effects.noise = false;
+  for (auto& g : p.gyros) {
+    g.effects.noise = false;
+    g.effects.bias_instability = false;
+    g.effects.rate_random_walk = false;
+  }
+  for (auto& t : p.accel_thermal) t.effects.lag = false;
+  for (auto& t : p.gyro_thermal) t.effects.lag = false;
+  return p;
+}
+
+// Standard deviation of the six outputs at `raw` implied by `cov` of the 72 constants.
+std::array<double, 6> OutputSigma(const fm::ImuCalibrationConstants& c, const Eigen::MatrixXd& cov,
+                                  const fm::ImuRawFrame& raw) {
+  const Eigen::VectorXd v = FlattenConstants(c);
+  Eigen::MatrixXd jac(6, 72);
+  for (int j = 0; j < 72; ++j) {
+    const double h = std::max(1e-3 * std::sqrt(std::max(cov(j, j), 0.0)), 1e-14 * std::max(1.0, std::abs(v[j])));
+    Eigen::VectorXd plus = v, minus = v;
+    plus[j] += h;
+    minus[j] -= h;
+    const auto a = fm::ImuReference(UnflattenConstants(plus, c), fm::ImuCompensationMode::kFullyCalibrated, raw);
+    const auto b = fm::ImuReference(UnflattenConstants(minus, c), fm::ImuCompensationMode::kFullyCalibrated, raw);
+    for (int i = 0; i < 6; ++i) jac(i, j) = (a[i] - b[i]) / (2.0 * h);
+  }
+  const Eigen::MatrixXd out = jac * cov * jac.transpose();
+  std::array<double, 6> sigma{};
+  for (int i = 0; i < 6; ++i) sigma[i] = std::sqrt(std::max(out(i, i), 0.0));
+  return sigma;
+}
+
+struct GridPoint {
+  double temp_c = 0.0;
+  int orientation = 0;
+  double rate_dps = 0.0;
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();
+  std::vector<fm::ImuRawFrame> frames;
+};
+
+// The noise-free unit at every grid point: `frames` frames after settling.
+std::vector<GridPoint> SimulateGrid(const sensor_sim::ImuUnitParams& params, double g_l,
+                                    const ImuEvaluationOptions& options) {
+  std::vector<GridPoint> grid;
+  for (double temp_c = kTempMin_c; temp_c <= kTempMax_c + 1e-9; temp_c += kTempStep_c) {
+    sensor_sim::ImuUnit unit(params, options.seed, temp_c);
+    std::vector<std::pair<int, double>> points;
+    for (int o : {11, 12, 21, 22, 31, 32}) points.push_back({o, 0.0});
+    for (int o : {11, 21, 31}) {
+      for (double r : kRates_dps) points.push_back({o, r});
+    }
+    for (const auto& [orientation, rate_dps] : points) {
+      GridPoint p;
+      p.temp_c = temp_c;
+      p.orientation = orientation;
+      p.rate_dps = rate_dps;
+      const auto up = UpAxisOf(orientation);
+      p.up = Eigen::Vector3d(up[0], up[1], up[2]);
+      sensor_sim::ImuStimulus s;
+      s.f_B_g = g_l * p.up;
+      s.w_B_dps = rate_dps * p.up;
+      s.air_temp_c = temp_c;
+      for (int i = 0; i < options.settle_frames; ++i) unit.Step(s);
+      for (int i = 0; i < options.frames; ++i) p.frames.push_back(ToFirmware(unit.Step(s)));
+      grid.push_back(std::move(p));
+    }
+  }
+  return grid;
+}
+
+// Mean fixed-point outputs minus truth at every grid point: A in m/s^2 (slots 0..2), G in deg/s
+// (slots 3..5).
+std::vector<std::array<double, 6>> GridErrors(const fm::ImuCalibrationConstants& c,
+                                              const std::vector<GridPoint>& grid, double g_local_mps2) {
+  const fm::ImuExport exported = fm::ExportImuConstants(c);
+  std::vector<std::array<double, 6>> out;
+  for (const GridPoint& p : grid) {
+    std::array<double, 6> sum{};
+    for (const fm::ImuRawFrame& f : p.frames) {
+      fm::DspEngine engine(fm::CompensatorDspConfig());
+      fm::ImuCompensatedFrame frame{};
+      fm::ImuCompensate(&engine, exported.constants, fm::ImuCompensationMode::kFullyCalibrated, f, &frame);
+      const auto v = fm::ImuFrameToDouble(fm::ImuCompensationMode::kFullyCalibrated, frame);
+      for (int k = 0; k < 6; ++k) sum[k] += v[k];
+    }
+    std::array<double, 6> err{};
+    const double n = static_cast<double>(p.frames.size());
+    for (int k = 0; k < 3; ++k) {
+      err[k] = sum[k] / n - g_local_mps2 * p.up[k];
+      err[3 + k] = sum[3 + k] / n - p.rate_dps * p.up[k];
+    }
+    out.push_back(err);
+  }
+  return out;
+}
+
+struct QuantitySummary {
+  double worst = 0.0;
+  double worst_floor = 0.0;
+  double max_crb_limit = 0.0;
+  double worst_crb_limit = 0.0;
+  bool all_in_spec = true;
+  bool all_in_crb = true;
+  json worst_point;
+};
+
+std::string Verdict(const QuantitySummary& q, bool have_crb) {
+  if (q.all_in_spec) return "within specification";
+  if (have_crb && q.all_in_crb) return "within 1.5x the CRB limit";
+  if (have_crb && q.worst <= kCrbMargin * (q.worst_floor + q.max_crb_limit)) return "within 1.5x the firmware floor plus the CRB limit";
+  return "outside";
+}
+
+}  // namespace
+
+ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitParams& truth,
+                          const Specification& spec, const ImuEvaluationOptions& options) {
+  if (file.kind != hil::UnitKind::kImu || !file.imu) {
+    throw std::invalid_argument("evaluate: constants of " + file.serial + " are not an IMU's");
+  }
+  const fm::ImuCalibrationConstants& c = *file.imu;
+  const bool have_crb = file.diagnostics.contains("crb_covariance");
+  Eigen::MatrixXd crb = Eigen::MatrixXd::Zero(72, 72);
+  if (have_crb) {
+    const json& rows = file.diagnostics["crb_covariance"];
+    if (!rows.is_array() || rows.size() != 72) {
+      throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance is not 72x72");
+    }
+    for (int r = 0; r < 72; ++r) {
+      for (int k = 0; k < 72; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
+    }
+  }
+  const sensor_sim::ImuUnitParams params = NoiseOff(truth);
+  const double g_l = sensor_sim::Mps2ToG(options.g_local_mps2);
+  const std::vector<GridPoint> grid = SimulateGrid(params, g_l, options);
+  std::vector<ImuObservation> projection;
+  for (const GridPoint& p : grid) {
+    ObservationBuilder builder;
+    for (const fm::ImuRawFrame& f : p.frames) builder.Add(f);
+    projection.push_back(builder.Finish("grid", false, g_l * p.up, p.rate_dps * p.up));
+  }
+  // The true unit projected onto the firmware model: the best constants the structure can hold.
+  ImuJointOptions projection_options;
+  projection_options.thermal_order = 2;
+  projection_options.unit_weights = true;
+  const ImuFitResult truth_fit = FitImuJoint(file.serial + " (truth projection)", projection, projection_options);
+  std::vector<std::array<double, 6>> errors;
+  try {
+    errors = GridErrors(c, grid, options.g_local_mps2);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("evaluate: constants of " + file.serial +
+                                " cannot be exported to the firmware: " + e.what());
+  }
+  // The projection can need a thermal block the exporter cannot hold either: then the floor is
+  // unknown (NaN) and only the specification and the CRB are judged.
+  std::vector<std::array<double, 6>> floor;
+  try {
+    floor = GridErrors(truth_fit.constants, grid, options.g_local_mps2);
+  } catch (const std::invalid_argument&) {
+    floor.assign(grid.size(), {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN});
+  }
+
+  QuantitySummary accel, rate;
+  json points = json::array();
+  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  for (size_t i = 0; i < grid.size(); ++i) {
+    const GridPoint& p = grid[i];
+    const std::array<double, 6> sigma = have_crb ? OutputSigma(c, crb, p.frames.back()) : std::array<double, 6>{};
+    json point = {{"temp_c", p.temp_c}, {"orientation", p.orientation}, {"rate_dps", p.rate_dps}};
+    for (int k = 0; k < 3; ++k) {
+      const bool at_rest = p.rate_dps == 0.0;
+      const int slot = at_rest ? k : 3 + k;
+      const double to_unit = at_rest ? 1e3 / sensor_sim::kStandardGravity_mps2 : 1.0;  // mg or deg/s
+      const double err = errors[i][slot] * to_unit;
+      const double fl = floor[i][slot] * to_unit;
+      const double lim = kSigmaLimit * sigma[slot] * to_unit;
+      QuantitySummary& q = at_rest ? accel : rate;
+      const double tol = at_rest ? spec.accel_mg : spec.body_rate_dps;
+      const bool in_spec = std::abs(err) <= tol;
+      q.all_in_spec &= in_spec;
+      q.all_in_crb &= in_spec || std::abs(err) <= kCrbMargin * lim;
+      q.max_crb_limit = std::max(q.max_crb_limit, lim);
+      q.worst_floor = std::isnan(fl) || std::isnan(q.worst_floor) ? kNaN : std::max(q.worst_floor, std::abs(fl));
+      if (std::abs(err) > q.worst) {
+        q.worst = std::abs(err);
+        q.worst_crb_limit = lim;
+        q.worst_point = point;
+        q.worst_point["axis"] = kAxis[k];
+        q.worst_point["firmware_floor"] = fl;
+      }
+      const std::string unit = at_rest ? "_mg_" : "_dps_";
+      point[std::string("error") + unit + kAxis[k]] = err;
+      point[std::string("firmware_floor") + unit + kAxis[k]] = fl;
+      point[std::string("crb_limit") + unit + kAxis[k]] = lim;
+    }
+    points.push_back(point);
+  }
+
+  // Parameters against the projection of the true unit.
+  const Eigen::VectorXd value = FlattenConstants(c);
+  const Eigen::VectorXd true_value = FlattenConstants(truth_fit.constants);
+  const std::vector<std::string> names = ConstantNames();
+  json parameters = json::array();
+  double sum_se = 0.0, sum_crb = 0.0;
+  int n_se = 0, n_crb = 0;
+  const Eigen::VectorXd se = FlattenConstants(ImuStandardErrors(file));
+  for (int i = 0; i < 72; ++i) {
+    const double err = value[i] - true_value[i];
+    const double crb_se = have_crb ? std::sqrt(std::max(crb(i, i), 0.0)) : 0.0;
+    json p = {{"name", names[i]}, {"value", value[i]}, {"truth_projection", true_value[i]}, {"error", err}};
+    if (std::isfinite(se[i]) && se[i] > 0.0) {
+      p["standard_error"] = se[i];
+      p["error_over_se"] = err / se[i];
+      sum_se += err * err / (se[i] * se[i]);
+      ++n_se;
+    }
+    if (crb_se > 0.0 && std::isfinite(se[i])) {
+      p["crb_se"] = crb_se;
+      p["error_over_crb"] = err / crb_se;
+      sum_crb += err * err / (crb_se * crb_se);
+      ++n_crb;
+    }
+    parameters.push_back(p);
+  }
+
+  ImuEvaluation e;
+  e.worst_accel_mg = accel.worst;
+  e.worst_rate_dps = rate.worst;
+  e.accel_verdict = Verdict(accel, have_crb);
+  e.rate_verdict = Verdict(rate, have_crb);
+  e.report = {
+      {"format", "adahrs-imu-evaluation"},
+      {"format_version", 1},
+      {"serial", file.serial},
+      {"strategy", file.strategy},
+      {"specification", spec.ToJson()},
+      {"grid", {{"temp_c", {kTempMin_c, kTempMax_c, kTempStep_c}}, {"rates_dps", kRates_dps},
+                {"frames_per_point", options.frames},
+                {"switched_off", "accelerometer and gyro noise, gyro bias instability and rate random walk, die lag"}}},
+      {"acceleration", {{"worst_error_mg", accel.worst}, {"spec_mg", spec.accel_mg},
+                        {"crb_limit_mg_at_worst", accel.worst_crb_limit},
+                        {"worst_firmware_floor_mg", accel.worst_floor}, {"worst_point", accel.worst_point},
+                        {"verdict", e.accel_verdict}}},
+      {"body_rate", {{"worst_error_dps", rate.worst}, {"spec_dps", spec.body_rate_dps},
+                     {"crb_limit_dps_at_worst", rate.worst_crb_limit},
+                     {"worst_firmware_floor_dps", rate.worst_floor}, {"worst_point", rate.worst_point},
+                     {"verdict", e.rate_verdict}}},
+      {"parameters", parameters},
+      {"parameter_summary", {{"rms_error_over_se", n_se ? std::sqrt(sum_se / n_se) : 0.0},
+                             {"rms_error_over_crb", n_crb ? std::sqrt(sum_crb / n_crb) : 0.0},
+                             {"compared_with_se", n_se}, {"compared_with_crb", n_crb}}},
+      {"points", points}};
+  return e;
+}
+
+}  // namespace adahrs::calib

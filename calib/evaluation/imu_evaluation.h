@@ -1,0 +1,71 @@
+// Truth evaluation of IMU constants (simulated units only; docs/evaluation-format.md): the
+// constants are exported to the firmware's fixed-point blocks (constants_exporter.h) and run
+// through the target compensator (firmware_model/target/imu_compensator.h, fully calibrated mode)
+// on a dense grid of the envelope, with the unit's TRUE model (truth.json -> ImuUnitParams), and
+// the outputs are compared with the true inputs.
+//
+// Grid: chamber temperatures -40...+85 degC in 12.5 degC steps; at each, the six orientations at
+// rest (A against local gravity along the up axis) and rates -150...+150 deg/s by 50 about each
+// axis (G against the rate about the up axis). Each point averages `frames` frames after
+// `settle_frames`. The noise switches are off (accelerometer white noise, gyro white noise, bias
+// instability, rate random walk) and the die lag is off (a steady-state grid: the die sits at the
+// air temperature plus its self-heating); every other effect of the truth model stays as drawn,
+// including T2 jitter, which dithers the capture quantisation so that the mean is the steady-state
+// output, not a quantisation artefact.
+// Verdict per quantity (acceleration, body rate):
+//   "within specification"        every point's error is within the specification;
+//   "within 1.5x the CRB limit"   every point outside it is within 1.5 x 3 sigma_p, sigma_p the
+//                                 standard deviation of that output implied by the Cramer-Rao
+//                                 covariance of the constants (diagnostics.crb_covariance of the
+//                                 joint strategy) through the compensator's Jacobian,
+//                                 sigma_p^2 = j' CRB j (3 sigma: a per-point 99.7 % bound);
+//   "within 1.5x the firmware floor plus the CRB limit"  the worst error is within 1.5 x (the
+//                                 worst error of the best constants the firmware's structure can
+//                                 hold — the firmware floor, below — plus the largest 3 sigma_p);
+//                                 the 1.5 is the margin, applied to the floor because the
+//                                 floor is the equal-weight projection over the grid, not the
+//                                 minimax constants, nor those the recording's design leads to;
+//   "outside"                     none of these.
+// The firmware floor: the true unit projected onto the firmware's model (the joint model fitted
+// with thermal order 2 to the noise-free grid, equal weights) and run through the same
+// compensator; its worst error is what no calibration into these constants can beat (e.g. a
+// cubic zero-g or null drift that a quadratic thermal term cannot hold over -40...+85 degC).
+// Without a CRB covariance (the reference strategy) only the specification is judged. Constants
+// the exporter refuses are refused here (std::invalid_argument with the exporter's reason); a
+// projection it refuses leaves the floor unknown (NaN).
+// Parameters: the projection above gives a "true" value per constant; each constant's error is
+// reported against its standard error and its CRB standard error, with the ratios.
+// Not evaluated: dynamics (lag, filter), vibration, supply variation, attitude.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "calib/acceptance/specification.h"
+#include "calib/constants/constants_file.h"
+#include "sensor_sim/imu_unit.h"
+
+namespace adahrs::calib {
+
+struct ImuEvaluationOptions {
+  double g_local_mps2 = 9.80665;  ///< the station gravity the constants were fitted with
+  int settle_frames = 20;
+  int frames = 100;
+  uint64_t seed = 1;
+};
+
+struct ImuEvaluation {
+  double worst_accel_mg = 0.0;
+  double worst_rate_dps = 0.0;
+  std::string accel_verdict;
+  std::string rate_verdict;
+  nlohmann::json report;  ///< evaluation.json
+};
+
+/// Evaluates `constants` (kind imu) against `truth`; throws std::invalid_argument when the
+/// constants are not an IMU's or cannot be exported.
+ImuEvaluation EvaluateImu(const ConstantsFile& constants, const sensor_sim::ImuUnitParams& truth,
+                          const Specification& spec, const ImuEvaluationOptions& options = {});
+
+}  // namespace adahrs::calib

@@ -1,0 +1,422 @@
+#include "calib/imu_calibration/imu_joint_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "calib/imu_calibration/imu_reference_fit.h"
+#include "calib/solvers/linear_least_squares.h"
+#include "sensor_sim/units.h"
+
+namespace adahrs::calib {
+namespace {
+
+namespace fm = firmware_model;
+using nlohmann::json;
+
+constexpr std::array<const char*, 9> kChannelNames = {"az1", "ax1", "ay1", "az2", "ax2",
+                                                      "ay2", "gx",  "gy",  "gz"};
+constexpr std::array<int, 6> kAxisOfChannel = {2, 0, 1, 2, 0, 1};
+constexpr int kPairOfAxis[3][2] = {{1, 4}, {2, 5}, {0, 3}};
+// Temperature counts are fitted in tau = (t - centre) / span (conditioning), re-expanded in Map.
+constexpr double kTempCentre_cnt = 32768.0;
+constexpr double kTempSpan_cnt = 4096.0;
+constexpr double kInverseCubicSpan_dps = 150.0;  // the gyro's rated range (ADXRS150)
+constexpr double kDScale_cnt = 3.0e6;            // ~ counts at 150 deg/s, conditions the cubic
+
+// One channel's linear model and its fit.
+struct ChannelModel {
+  int channel = 0;
+  int order = 2;
+  bool scale_tempco = false;  // accelerometer only: extra tau * f_axis term
+  Eigen::VectorXd theta;
+  Eigen::MatrixXd cov;
+  Eigen::MatrixXd crb;
+  double residual_rms = 0.0;
+  int observations = 0;
+
+  bool gyro() const { return channel >= 6; }
+  int sensor() const { return kThermalSensorOfChannel[channel]; }
+  int size() const { return 1 + order + (gyro() ? 5 : 3) + (scale_tempco ? 1 : 0); }
+};
+
+double TauMean(const ImuObservation& o, int sensor) {
+  return (o.t_mean_cnt[sensor] - kTempCentre_cnt) / kTempSpan_cnt;
+}
+double Tau2Mean(const ImuObservation& o, int sensor) {
+  const double t = o.t_mean_cnt[sensor], t2 = o.t2_mean_cnt2[sensor];
+  return (t2 - 2.0 * kTempCentre_cnt * t + kTempCentre_cnt * kTempCentre_cnt) /
+         (kTempSpan_cnt * kTempSpan_cnt);
+}
+
+Eigen::RowVectorXd DesignRow(const ChannelModel& m, const ImuObservation& o) {
+  Eigen::RowVectorXd row(m.size());
+  int k = 0;
+  row[k++] = 1.0;
+  if (m.order >= 1) row[k++] = TauMean(o, m.sensor());
+  if (m.order >= 2) row[k++] = Tau2Mean(o, m.sensor());
+  if (!m.gyro()) {
+    for (int a = 0; a < 3; ++a) row[k++] = o.f_B_g[a];
+    if (m.scale_tempco) row[k++] = TauMean(o, m.sensor()) * o.f_B_g[kAxisOfChannel[m.channel]];
+  } else {
+    for (int a = 0; a < 3; ++a) row[k++] = o.w_B_dps[a];
+    const double w = o.w_B_dps[m.channel - 6];
+    row[k++] = w * w;
+    row[k++] = w * w * w;
+  }
+  return row;
+}
+
+std::vector<std::string> TermNames(const ChannelModel& m) {
+  std::vector<std::string> names = {"offset"};
+  if (m.order >= 1) names.push_back("tau");
+  if (m.order >= 2) names.push_back("tau^2");
+  if (!m.gyro()) {
+    names.insert(names.end(), {"f_x", "f_y", "f_z"});
+    if (m.scale_tempco) names.push_back("tau f_axis");
+  } else {
+    names.insert(names.end(), {"w_x", "w_y", "w_z", "w^2", "w^3"});
+  }
+  return names;
+}
+
+double MedianThermalCount(const std::vector<ImuObservation>& obs) {
+  std::vector<int> counts;
+  for (const ImuObservation& o : obs) {
+    if (o.thermal) counts.push_back(o.count);
+  }
+  if (counts.empty()) return 1.0;
+  std::nth_element(counts.begin(), counts.begin() + static_cast<long>(counts.size() / 2), counts.end());
+  return counts[counts.size() / 2];
+}
+
+// Variance of an observation's mean: measured (fit weights) or datasheet (CRB).
+double Variance(const ImuObservation& o, int ch, double n_thermal, bool datasheet,
+                const ImuDatasheetNoise& noise) {
+  const double n = o.thermal ? n_thermal : o.count;
+  const double floor_cnt = ch >= 6 ? noise.gyro_bias_floor_dph / 3600.0 * noise.gyro_counts_per_dps : 0.0;
+  if (!datasheet) {
+    // A measured spread below half the datasheet noise is not credible (few samples, or samples
+    // identical after quantisation): the variance is not allowed below a quarter of the datasheet's.
+    const double measured = o.u_sd[ch] * o.u_sd[ch] / n + floor_cnt * floor_cnt;
+    return std::max(measured, 0.25 * Variance(o, ch, n_thermal, true, noise));
+  }
+  if (ch < 6) {
+    // Filtered white noise sampled every frame: stationary variance N^2 / (4 tau) with lag-one
+    // correlation rho = exp(-T / tau); a mean of n such samples has variance
+    // sigma^2 / n * (1 + rho) / (1 - rho).
+    const double sigma_g = noise.accel_density_ug_per_rthz * 1e-6 / std::sqrt(4.0 * noise.accel_filter_tau_s);
+    const double rho = std::exp(-noise.frame_period_s / noise.accel_filter_tau_s);
+    const double sigma_duty = sigma_g * noise.accel_sensitivity_duty_per_g;
+    return sigma_duty * sigma_duty / n * (1.0 + rho) / (1.0 - rho);
+  }
+  // Per-frame rate (output filter + 16 conversions) has one-sided low-frequency PSD N^2, so a
+  // mean over T = n frames has variance N^2 / (2 T); the bias floor does not average down.
+  const double var_dps2 = noise.gyro_density_dps_per_rthz * noise.gyro_density_dps_per_rthz /
+                          (2.0 * n * noise.frame_period_s);
+  return var_dps2 * noise.gyro_counts_per_dps * noise.gyro_counts_per_dps + floor_cnt * floor_cnt;
+}
+
+LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<ImuObservation>& obs,
+                const std::vector<size_t>& use, double n_thermal, bool datasheet,
+                const ImuJointOptions& options, double model_variance = 0.0) {
+  const ImuDatasheetNoise& noise = options.noise;
+  LinearLeastSquaresProblem p;
+  p.context = "unit " + serial + " joint model of " + kChannelNames[m.channel];
+  p.term_names = TermNames(m);
+  p.design.resize(static_cast<long>(use.size()), m.size());
+  p.observations.resize(static_cast<long>(use.size()));
+  p.weights.resize(static_cast<long>(use.size()));
+  for (size_t r = 0; r < use.size(); ++r) {
+    const ImuObservation& o = obs[use[r]];
+    p.design.row(static_cast<long>(r)) = DesignRow(m, o);
+    p.observations[static_cast<long>(r)] = o.u_mean[m.channel];
+    p.weights[static_cast<long>(r)] =
+        options.unit_weights && !datasheet
+            ? 1.0
+            : 1.0 / (Variance(o, m.channel, n_thermal, datasheet, noise) + model_variance);
+  }
+  p.weight_kind = WeightKind::kInverseVariance;
+  p.error_scale = datasheet ? ErrorScale::kKnownVariance : ErrorScale::kResidualVariance;
+  return SolveLinearLeastSquares(p);
+}
+
+// 5-fold held-out error over the thermal bands for each order; the order with the least.
+int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservation>& obs,
+                double n_thermal, const ImuJointOptions& options, json* report) {
+  std::vector<size_t> thermal, other;
+  for (size_t i = 0; i < obs.size(); ++i) (obs[i].thermal ? thermal : other).push_back(i);
+  if (static_cast<int>(thermal.size()) < 4 * options.folds) return 2;
+  double best = std::numeric_limits<double>::infinity();
+  int best_order = 2;
+  json scores = json::array();
+  for (int order = 0; order <= 2; ++order) {
+    double sum = 0.0;
+    for (int fold = 0; fold < options.folds; ++fold) {
+      std::vector<size_t> train = other, test;
+      for (size_t k = 0; k < thermal.size(); ++k) {
+        (static_cast<int>(k) % options.folds == fold ? test : train).push_back(thermal[k]);
+      }
+      ChannelModel m;
+      m.channel = ch;
+      m.order = order;
+      const LinearFit fit = Solve(serial, m, obs, train, n_thermal, false, options);
+      for (size_t i : test) {
+        const double r = obs[i].u_mean[ch] - DesignRow(m, obs[i]).dot(fit.coefficients);
+        sum += r * r / Variance(obs[i], ch, n_thermal, false, options.noise);
+      }
+    }
+    const double score = std::sqrt(sum / static_cast<double>(thermal.size()));
+    scores.push_back(score);
+    if (score < best) {
+      best = score;
+      best_order = order;
+    }
+  }
+  (*report)["held_out_normalised_rms_by_order"] = scores;
+  return best_order;
+}
+
+// The channel models -> the 72 firmware numbers (the mapping of the header comment).
+fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
+                                const std::array<Eigen::VectorXd, 9>& theta) {
+  fm::ImuCalibrationConstants c;
+  const double tc = kTempCentre_cnt, ts = kTempSpan_cnt;
+  // offset + alpha1 tau + alpha2 tau^2 = const + a1 t + a2 t^2 (re-expanded in raw counts).
+  auto thermal = [&](int ch, double* offset) {
+    const ChannelModel& m = models[ch];
+    const Eigen::VectorXd& th = theta[ch];
+    const double alpha1 = m.order >= 1 ? th[1] : 0.0;
+    const double alpha2 = m.order >= 2 ? th[2] : 0.0;
+    c.thermal[ch].temp_sensor = m.sensor();
+    const double a1 = alpha1 / ts - 2.0 * alpha2 * tc / (ts * ts);
+    const double a2 = alpha2 / (ts * ts);
+    c.thermal[ch].k = {-(a1 * tc + a2 * tc * tc), a1, a2};  // xi(t) = alpha1 tau + alpha2 tau^2
+    *offset = th[0];
+  };
+  std::array<Eigen::Vector3d, 6> m_over_s;
+  for (int ch = 0; ch < 6; ++ch) {
+    double offset = 0.0;
+    thermal(ch, &offset);
+    const int k = 1 + models[ch].order;
+    const Eigen::Vector3d m(theta[ch][k], theta[ch][k + 1], theta[ch][k + 2]);
+    const double s = m[kAxisOfChannel[ch]];
+    c.accel[ch] = {offset, s};
+    m_over_s[ch] = m / s;
+  }
+  Eigen::Matrix3d pair;
+  for (int axis = 0; axis < 3; ++axis) {
+    pair.row(axis) = 0.5 * (m_over_s[kPairOfAxis[axis][0]] + m_over_s[kPairOfAxis[axis][1]]).transpose();
+  }
+  const Eigen::Matrix3d ca = sensor_sim::kStandardGravity_mps2 * pair.inverse();
+  Eigen::Matrix3d n_rows;
+  for (int g = 0; g < 3; ++g) {
+    const int ch = 6 + g;
+    double null_cnt = 0.0;
+    thermal(ch, &null_cnt);
+    const int k = 1 + models[ch].order;
+    const Eigen::Vector3d n(theta[ch][k], theta[ch][k + 1], theta[ch][k + 2]);
+    const double q2 = theta[ch][k + 3], q3 = theta[ch][k + 4];
+    // l: least squares of w on x = d / kDScale over the rated span.
+    constexpr int kRates = 61;
+    Eigen::MatrixXd a(kRates, 3);
+    Eigen::VectorXd w(kRates);
+    for (int i = 0; i < kRates; ++i) {
+      const double rate = -kInverseCubicSpan_dps + 2.0 * kInverseCubicSpan_dps * i / (kRates - 1);
+      const double x = (n[g] * rate + q2 * rate * rate + q3 * rate * rate * rate) / kDScale_cnt;
+      a.row(i) << x, x * x, x * x * x;
+      w[i] = rate;
+    }
+    const Eigen::Vector3d lambda = a.colPivHouseholderQr().solve(w);
+    c.gyro[g] = {null_cnt,
+                 {0.0, lambda[0] / kDScale_cnt, lambda[1] / (kDScale_cnt * kDScale_cnt),
+                  lambda[2] / (kDScale_cnt * kDScale_cnt * kDScale_cnt)}};
+    n_rows.row(g) = n.transpose() / n[g];
+  }
+  const Eigen::Matrix3d cg = n_rows.inverse();
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      c.ca_mps2_per_g[r][k] = ca(r, k);
+      c.cg[r][k] = cg(r, k);
+    }
+  }
+  return c;
+}
+
+// Cov of the firmware numbers from per-channel covariances through the mapping's Jacobian.
+Eigen::MatrixXd Propagate(const std::array<ChannelModel, 9>& models,
+                          const std::array<Eigen::VectorXd, 9>& theta,
+                          const std::array<Eigen::MatrixXd, 9>& cov) {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(72, 72);
+  for (int ch = 0; ch < 9; ++ch) {
+    const long p = theta[ch].size();
+    Eigen::MatrixXd jac(72, p);
+    for (long j = 0; j < p; ++j) {
+      const double h = std::max(1e-3 * std::sqrt(std::max(cov[ch](j, j), 0.0)),
+                                1e-12 * std::max(1.0, std::abs(theta[ch][j])));
+      std::array<Eigen::VectorXd, 9> plus = theta, minus = theta;
+      plus[ch][j] += h;
+      minus[ch][j] -= h;
+      jac.col(j) = (FlattenConstants(Map(models, plus)) - FlattenConstants(Map(models, minus))) / (2.0 * h);
+    }
+    out += jac * cov[ch] * jac.transpose();
+  }
+  return out;
+}
+
+}  // namespace
+
+Eigen::VectorXd FlattenConstants(const fm::ImuCalibrationConstants& c) {
+  Eigen::VectorXd v(72);
+  int k = 0;
+  for (const auto& t : c.thermal) {
+    for (double x : t.k) v[k++] = x;
+  }
+  for (const auto& a : c.accel) {
+    v[k++] = a.offset_duty;
+    v[k++] = a.scale_duty_per_g;
+  }
+  for (const auto& g : c.gyro) {
+    v[k++] = g.null_cnt;
+    for (double x : g.l) v[k++] = x;
+  }
+  for (const auto& row : c.ca_mps2_per_g) {
+    for (double x : row) v[k++] = x;
+  }
+  for (const auto& row : c.cg) {
+    for (double x : row) v[k++] = x;
+  }
+  return v;
+}
+
+fm::ImuCalibrationConstants UnflattenConstants(const Eigen::VectorXd& v,
+                                               const fm::ImuCalibrationConstants& like) {
+  fm::ImuCalibrationConstants c = like;
+  int k = 0;
+  for (auto& t : c.thermal) {
+    for (double& x : t.k) x = v[k++];
+  }
+  for (auto& a : c.accel) {
+    a.offset_duty = v[k++];
+    a.scale_duty_per_g = v[k++];
+  }
+  for (auto& g : c.gyro) {
+    g.null_cnt = v[k++];
+    for (double& x : g.l) x = v[k++];
+  }
+  for (auto& row : c.ca_mps2_per_g) {
+    for (double& x : row) x = v[k++];
+  }
+  for (auto& row : c.cg) {
+    for (double& x : row) x = v[k++];
+  }
+  return c;
+}
+
+std::vector<std::string> ConstantNames() {
+  std::vector<std::string> names;
+  for (int ch = 0; ch < 9; ++ch) {
+    for (int i = 0; i < 3; ++i) {
+      names.push_back("thermal[" + std::to_string(ch) + "].k[" + std::to_string(i) + "]");
+    }
+  }
+  for (int ch = 0; ch < 6; ++ch) {
+    names.push_back("accel[" + std::to_string(ch) + "].offset_duty");
+    names.push_back("accel[" + std::to_string(ch) + "].scale_duty_per_g");
+  }
+  for (int g = 0; g < 3; ++g) {
+    names.push_back("gyro[" + std::to_string(g) + "].null_cnt");
+    for (int i = 0; i < 4; ++i) {
+      names.push_back("gyro[" + std::to_string(g) + "].l[" + std::to_string(i) + "]");
+    }
+  }
+  for (const char* m : {"ca_mps2_per_g", "cg"}) {
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 3; ++k) {
+        names.push_back(std::string(m) + "[" + std::to_string(r) + "][" + std::to_string(k) + "]");
+      }
+    }
+  }
+  return names;
+}
+
+ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObservation>& obs,
+                         const ImuJointOptions& options) {
+  const double n_thermal = MedianThermalCount(obs);
+  std::vector<size_t> all(obs.size());
+  for (size_t i = 0; i < obs.size(); ++i) all[i] = i;
+  std::array<ChannelModel, 9> models;
+  std::array<Eigen::VectorXd, 9> theta;
+  std::array<Eigen::MatrixXd, 9> cov, crb;
+  ImuFitResult result;
+  json channels = json::object();
+  for (int ch = 0; ch < 9; ++ch) {
+    json report = json::object();
+    ChannelModel& m = models[ch];
+    m.channel = ch;
+    m.order = options.thermal_order ? *options.thermal_order
+                                    : ChooseOrder(serial, ch, obs, n_thermal, options, &report);
+    // Model error (drift the thermal polynomial cannot follow) is shared by every observation:
+    // its variance, the thermal bands' mean squared residual beyond their noise, is added to
+    // every observation's variance and the fit repeated, so that the 25 degC acquisitions (tiny
+    // noise) do not pin the polynomial's misfit at 25 degC instead of spreading it over the range.
+    const LinearFit first = Solve(serial, m, obs, all, n_thermal, false, options);
+    double excess = 0.0;
+    int n_bands = 0;
+    for (size_t i : all) {
+      if (!obs[i].thermal) continue;
+      const double r = obs[i].u_mean[ch] - DesignRow(m, obs[i]).dot(first.coefficients);
+      excess += r * r - Variance(obs[i], ch, n_thermal, false, options.noise);
+      ++n_bands;
+    }
+    const double model_variance =
+        options.unit_weights || n_bands == 0 ? 0.0 : std::max(0.0, excess / n_bands);
+    const LinearFit fit = Solve(serial, m, obs, all, n_thermal, false, options, model_variance);
+    report["model_error_rms"] = std::sqrt(model_variance);
+    const LinearFit bound = Solve(serial, m, obs, all, n_thermal, true, options);
+    theta[ch] = fit.coefficients;
+    cov[ch] = fit.covariance;
+    crb[ch] = bound.covariance;
+    report["thermal_order"] = m.order;
+    report["observations"] = fit.observations;
+    report["residual_rms"] = fit.residual_rms;
+    report["sigma_ratio_to_datasheet"] = fit.sigma;
+    if (ch < 6) {
+      ChannelModel with = m;
+      with.scale_tempco = true;
+      try {
+        const LinearFit t = Solve(serial, with, obs, all, n_thermal, false, options);
+        const double s_axis = t.coefficients[1 + m.order + kAxisOfChannel[ch]];
+        // tau per degC: 110 counts per degC / 4096 counts per tau unit (thermal_drift_fit.h).
+        const double per_c = 110.0 / kTempSpan_cnt / s_axis * 1e6;
+        report["scale_tempco_ppm_per_c"] = t.coefficients[t.coefficients.size() - 1] * per_c;
+        report["scale_tempco_se_ppm_per_c"] = t.standard_errors[t.standard_errors.size() - 1] * std::abs(per_c);
+        report["scale_tempco_note"] = "estimated, not held by the firmware (no scale-vs-temperature term)";
+      } catch (const DegenerateDesignError& e) {
+        report["scale_tempco_note"] = std::string("not identifiable from this design: ") + e.what();
+      }
+    }
+    channels[kChannelNames[ch]] = report;
+  }
+  result.constants = Map(models, theta);
+  const Eigen::MatrixXd cov_fw = Propagate(models, theta, cov);
+  const Eigen::MatrixXd crb_fw = Propagate(models, theta, crb);
+  Eigen::VectorXd se = cov_fw.diagonal().cwiseMax(0.0).cwiseSqrt();
+  // l0 is fixed at zero by the mapping (the null holds the offset): not estimated.
+  for (int g = 0; g < 3; ++g) se[27 + 12 + 5 * g + 1] = std::numeric_limits<double>::quiet_NaN();
+  result.standard_errors = UnflattenConstants(se, result.constants);
+  std::vector<std::vector<double>> crb_rows(72, std::vector<double>(72));
+  for (int r = 0; r < 72; ++r) {
+    for (int k = 0; k < 72; ++k) crb_rows[r][k] = crb_fw(r, k);
+  }
+  result.diagnostics = {{"channels", channels},
+                        {"observations", obs.size()},
+                        {"crb_parameters", ConstantNames()},
+                        {"crb_covariance", crb_rows},
+                        {"firmware_cannot_hold",
+                         "accelerometer scale vs temperature, accelerometer nonlinearity, gyro "
+                         "g-sensitivity, thermal orders above 2"}};
+  return result;
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,84 @@
+// The joint strategy (docs/calibration-strategies.md): the whole IMU model estimated from all
+// steps at once — thermal bands, six positions, every rate, cross-axis — then mapped into the
+// firmware's constant structure.
+//
+// Model, per channel, in the FORWARD direction (raw output from the known stimulus), written so
+// that it is linear in its parameters:
+//   accelerometer i:  U_i = o_i + a1_i t + a2_i t^2 + m_i . f_B_g
+//   gyro g:           U_g = c_g + b1_g t + b2_g t^2 + n_g . w_B_dps + q2_g w_g^2 + q3_g w_g^3
+// t the TEMP counts of the channel's sensor (kThermalSensorOfChannel), m_i (duty per g) and n_g
+// (counts per deg/s) 3-vectors that hold scale, misalignment and cross-axis together, w_g the
+// rate about the gyro's own axis (the span nonlinearity). Every observation (imu_observations.h)
+// is a mean, and because the model is linear in its parameters the mean of its design row (mean
+// t, mean t^2) is exact. Being linear, the least-squares problem is solved in one step (a
+// Levenberg-Marquardt iteration would converge in its first step to the same point), per
+// channel, with inverse-variance weights:
+//   var = s^2 / n + floor^2      (s the observation's sample deviation, floor the gyro bias
+//                                 instability floor, which a mean does not average down; never
+//                                 below a quarter of the datasheet variance, since a smaller
+//                                 measured spread comes from too few or quantised samples)
+// and thermal bands weighted alike (n replaced by the median band count: every band weighs the
+// same). A first fit estimates the model-error variance (thermal band residuals beyond their
+// noise: drift the polynomial cannot follow); it is added to every observation's variance and
+// the fit repeated, so the misfit spreads over the range instead of being pinned where the
+// acquisitions are (25 degC). Thermal order per channel: 0, 1 or 2, chosen by 5-fold held-out error over the thermal
+// bands (order "auto"), or fixed; the firmware holds at most order 2 (ThermalFit::k[3]).
+// Mapping to the firmware constants (calibration_constants.h):
+//   thermal xi(t) = alpha1 tau + alpha2 tau^2 re-expanded in raw t (k0 follows: xi = 0 at the
+//   centre 32768 counts, keeping the exporter's thermal block small); O_i = o_i; S_i = m_i[axis_i] (the channel's nominal axis, signed);
+//   pair rows P_axis = (m_i/S_i + m_j/S_j)/2, CA = 9.80665 P^-1 (A = CA Ca = 9.80665 f_B_g);
+//   gyro thermal likewise; null = c_g; l = the cubic that inverts
+//   d = n_gg w + q2 w^2 + q3 w^3 over +-150 deg/s (least squares on 61 rates, l0 = 0);
+//   rows N_g = n_g / n_gg, CG = N^-1.
+// Uncertainty: Cov(theta) per channel from the weighted fit (residual variance, so model error
+// shows); the Cramer-Rao bound of the design from the same design with the DATASHEET noise
+// (ImuDatasheetNoise): CRB = (A' W A)^-1, W = 1/var_datasheet (for Gaussian noise and a linear
+// model the Fisher information is exactly A' W A). Both are carried to the 72 firmware numbers by
+// the mapping's Jacobian (central differences): Cov_fw = J Cov J'. l0 is fixed at zero by the
+// mapping (the null holds the offset) and reported as not estimated.
+// Also estimated and reported, not held by the firmware: accelerometer scale vs temperature
+// (an extra t (m_i . f) term; identifiable only when the six positions or the thermal profile
+// visit several temperatures in several orientations, otherwise reported as not identifiable).
+// Not modelled: accelerometer nonlinearity, g-sensitivity of the gyros, die lag, supply.
+#pragma once
+
+#include <optional>
+
+#include "calib/imu_calibration/imu_fit_result.h"
+#include "calib/imu_calibration/imu_observations.h"
+
+namespace adahrs::calib {
+
+/// Datasheet noise of the sensors (ADXL210E, ADXRS150 typical; docs/models/), for the CRB.
+struct ImuDatasheetNoise {
+  double accel_density_ug_per_rthz = 200.0;  ///< ADXL210E typical
+  double accel_filter_tau_s = 3.2e-3;        ///< 32 kOhm x 0.1 uF
+  double accel_sensitivity_duty_per_g = 0.04;
+  double gyro_density_dps_per_rthz = 0.05;   ///< ADXRS150 typical
+  double gyro_bias_floor_dph = 75.0;         ///< Allan floor (E)
+  double gyro_counts_per_dps = 20971.52;     ///< 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
+  double frame_period_s = 0.01;
+};
+
+struct ImuJointOptions {
+  std::optional<int> thermal_order;  ///< 0..2; empty = chosen by held-out error
+  int folds = 5;
+  /// Equal weights instead of inverse variances (noise-free data, e.g. projecting a true unit).
+  bool unit_weights = false;
+  ImuDatasheetNoise noise;
+};
+
+/// The 72 firmware numbers in a fixed order (thermal k 9x3, accel O,S 6x2, gyro null,l0..l3 3x5,
+/// CA 3x3, CG 3x3) and back; names for reports ("thermal[0].k[1]").
+Eigen::VectorXd FlattenConstants(const firmware_model::ImuCalibrationConstants& c);
+firmware_model::ImuCalibrationConstants UnflattenConstants(const Eigen::VectorXd& v,
+                                                           const firmware_model::ImuCalibrationConstants& like);
+std::vector<std::string> ConstantNames();
+
+/// Fits the joint model to `observations` (named `serial` in messages); diagnostics hold the
+/// chosen orders, residuals, the CRB covariance ("crb_covariance", 72x72) and the scale-vs-
+/// temperature estimate. Throws DegenerateDesignError with the reason.
+ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObservation>& observations,
+                         const ImuJointOptions& options = {});
+
+}  // namespace adahrs::calib

@@ -1,0 +1,210 @@
+#include "calib/imu_calibration/imu_reference_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "calib/solvers/cross_axis_fit.h"
+#include "calib/solvers/gyro_scale_fit.h"
+#include "calib/solvers/sample_statistics.h"
+#include "calib/solvers/six_position_fit.h"
+#include "firmware_model/reference_compensator.h"
+
+namespace adahrs::calib {
+namespace {
+
+namespace fm = firmware_model;
+using nlohmann::json;
+
+constexpr double kCrossAxisRate_dps = 150.0;  // CG's reference (thesis Eq. 28)
+constexpr std::array<const char*, 9> kChannelNames = {"az1", "ax1", "ay1", "az2", "ax2",
+                                                      "ay2", "gx",  "gy",  "gz"};
+
+int UpAxisIndex(int orientation) { return orientation / 10 - 1; }
+double UpSign(int orientation) { return orientation % 10 == 1 ? 1.0 : -1.0; }
+
+fm::ImuCalibrationConstants Identity() {
+  fm::ImuCalibrationConstants c;
+  c.ca_mps2_per_g = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  c.cg = c.ca_mps2_per_g;
+  for (int ch = 0; ch < 9; ++ch) c.thermal[ch].temp_sensor = kThermalSensorOfChannel[ch];
+  return c;
+}
+
+json ThermalDiagnostics(const ThermalDriftResult& r) {
+  json j = {{"bands", r.all.bands},
+            {"samples", r.all.samples},
+            {"residual_rms", r.all.residual_rms},
+            {"temp_min_cnt", r.all.temp_min_cnt},
+            {"temp_max_cnt", r.all.temp_max_cnt},
+            {"hysteresis", r.hysteresis},
+            {"hysteresis_at_temp_cnt", r.hysteresis_at_temp_cnt}};
+  if (r.up) j["up_ramp_k"] = r.up->k;
+  if (r.down) j["down_ramp_k"] = r.down->k;
+  if (!r.ramp_note.empty()) j["ramp_note"] = r.ramp_note;
+  return j;
+}
+
+}  // namespace
+
+ChannelMeans MeansOf(const fm::ImuCalibrationConstants& constants, fm::ImuCompensationMode mode,
+                     const std::vector<ImuSample>& samples, const std::string& context) {
+  std::array<std::vector<double>, 9> columns;
+  for (const ImuSample& s : samples) {
+    const auto out = fm::ImuReference(constants, mode, s.raw);
+    for (int i = 0; i < 9; ++i) columns[i].push_back(out[i]);
+  }
+  ChannelMeans m;
+  m.count = static_cast<int>(samples.size());
+  for (int i = 0; i < 9; ++i) {
+    const SampleMean s = SummariseSamples(context + " " + kChannelNames[i], columns[i]);
+    m.mean[i] = s.mean;
+    m.standard_error[i] = s.standard_error;
+  }
+  return m;
+}
+
+ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
+                             const ImuReferenceOptions& options) {
+  const std::string who = "unit " + unit.serial;
+  ImuFitResult result;
+  result.standard_errors = NotEstimated();
+  fm::ImuCalibrationConstants& c = result.constants;
+  c = Identity();
+  json& diag = result.diagnostics;
+  diag["strategy_steps"] = "thermal (order 2), six-position, gyro cubic, cross-axis";
+
+  // 1. Thermal.
+  if (unit.thermal.empty()) {
+    throw ImuInputError(who + ": no thermal_profile rows (give the thermal-calibration run)");
+  }
+  json thermal_diag = json::object();
+  for (int ch = 0; ch < 9; ++ch) {
+    std::vector<ThermalSample> samples;
+    samples.reserve(unit.thermal.size());
+    for (size_t i = 0; i < unit.thermal.size(); ++i) {
+      const ImuSample& s = unit.thermal[i];
+      const double u = fm::ImuReference(c, fm::ImuCompensationMode::kRaw, s.raw)[ch];
+      samples.push_back({static_cast<double>(s.raw.temp_cnt[kThermalSensorOfChannel[ch]]), u,
+                         unit.thermal_segment[i]});
+    }
+    const ThermalDriftResult r =
+        FitThermalDrift(who + " thermal " + kChannelNames[ch], samples, options.thermal);
+    c.thermal[ch].k = r.all.k;
+    result.standard_errors.thermal[ch].k = r.all.k_se;
+    thermal_diag[kChannelNames[ch]] = ThermalDiagnostics(r);
+  }
+  diag["thermal"] = thermal_diag;
+
+  // 2. Six-position, pooled per orientation.
+  std::map<int, std::vector<ImuSample>> by_orientation;
+  for (const ImuAcquisition& a : unit.accel) {
+    auto& pool = by_orientation[a.orientation];
+    pool.insert(pool.end(), a.samples.begin(), a.samples.end());
+  }
+  std::vector<AccelOrientationMeans> six;
+  for (const auto& [orientation, samples] : by_orientation) {
+    const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kThermal, samples,
+                                   who + " orientation " + std::to_string(orientation));
+    AccelOrientationMeans s;
+    s.orientation = orientation;
+    for (int ch = 0; ch < 6; ++ch) {
+      s.t_duty[ch] = m.mean[ch];
+      s.t_duty_se[ch] = m.standard_error[ch];
+    }
+    six.push_back(s);
+  }
+  const auto accel = FitSixPosition(six, g_local_mps2);
+  json accel_diag = json::array();
+  for (int ch = 0; ch < 6; ++ch) {
+    c.accel[ch] = accel[ch].fit;
+    result.standard_errors.accel[ch] = {accel[ch].offset_se_duty, accel[ch].scale_se_duty_per_g};
+    accel_diag.push_back({{"channel", kChannelNames[ch]},
+                          {"inverse_scale_g_per_duty", accel[ch].inverse_scale_g_per_duty},
+                          {"inverse_scale_se_g_per_duty", accel[ch].inverse_scale_se_g_per_duty}});
+  }
+  diag["accel"] = accel_diag;
+
+  // 3. Gyro cubic per axis.
+  json gyro_diag = json::array();
+  for (int g = 0; g < 3; ++g) {
+    std::vector<GyroRateMean> steps;
+    for (const ImuAcquisition& a : unit.gyro) {
+      if (UpAxisIndex(a.orientation) != g) continue;
+      const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kThermal, a.samples,
+                                     who + " gyro step " + std::to_string(a.step));
+      steps.push_back({a.rate_dps * UpSign(a.orientation), m.mean[6 + g], m.standard_error[6 + g]});
+    }
+    const GyroScaleEstimate e = FitGyroScale(who + " " + kChannelNames[6 + g], steps);
+    c.gyro[g] = e.fit;
+    result.standard_errors.gyro[g] = {e.null_se_cnt, e.l_se};
+    gyro_diag.push_back({{"channel", kChannelNames[6 + g]},
+                         {"rates", e.rates},
+                         {"residual_rms_dps", e.residual_rms_dps}});
+  }
+  diag["gyro"] = gyro_diag;
+
+  // 4. Cross-axis on sensor-calibrated means (CA = CG = I gives Ca and Cg in slots 0..5).
+  const bool have_step = !unit.cross_axis.empty();
+  const std::vector<ImuAcquisition>& rest_source = have_step ? unit.cross_axis : unit.accel;
+  const std::vector<ImuAcquisition>& rate_source = have_step ? unit.cross_axis : unit.gyro;
+  std::vector<AxisStepMean> accel_steps, gyro_steps;
+  for (int orientation : {11, 21, 31}) {
+    const ImuAcquisition* rest = nullptr;
+    const ImuAcquisition* fast = nullptr;
+    for (const ImuAcquisition& a : rest_source) {
+      if (a.orientation == orientation && std::abs(a.rate_dps) < 1.0) rest = &a;
+    }
+    for (const ImuAcquisition& a : rate_source) {
+      if (a.orientation == orientation && a.rate_dps > 1.0 &&
+          (!fast || a.rate_dps > fast->rate_dps)) {
+        fast = &a;
+      }
+    }
+    if (rest) {
+      const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kFullyCalibrated, rest->samples,
+                                     who + " cross-axis rest " + std::to_string(orientation));
+      AxisStepMean s{orientation, {}, {}};
+      for (int i = 0; i < 3; ++i) {
+        s.mean[i] = m.mean[i];
+        s.standard_error[i] = m.standard_error[i];
+      }
+      accel_steps.push_back(s);
+    }
+    if (fast) {
+      const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kFullyCalibrated, fast->samples,
+                                     who + " cross-axis rate " + std::to_string(orientation));
+      const double k = kCrossAxisRate_dps / fast->rate_dps;
+      AxisStepMean s{orientation, {}, {}};
+      for (int i = 0; i < 3; ++i) {
+        s.mean[i] = k * m.mean[3 + i];
+        s.standard_error[i] = k * m.standard_error[3 + i];
+      }
+      gyro_steps.push_back(s);
+    }
+  }
+  const CrossAxisEstimate ca = FitCrossAxis(who + " accelerometer cross-axis", accel_steps, g_local_mps2);
+  const CrossAxisEstimate cg = FitCrossAxis(who + " gyro cross-axis", gyro_steps, kCrossAxisRate_dps);
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      c.ca_mps2_per_g[r][k] = ca.matrix(r, k);
+      c.cg[r][k] = cg.matrix(r, k);
+      result.standard_errors.ca_mps2_per_g[r][k] = ca.standard_error(r, k);
+      result.standard_errors.cg[r][k] = cg.standard_error(r, k);
+    }
+  }
+  diag["cross_axis"] = {{"source", have_step ? "cross_axis step" : "accel and gyro steps"},
+                        {"ca_condition", ca.condition_number},
+                        {"cg_condition", cg.condition_number}};
+  diag["excluded_rows"] = unit.exclusions.size();
+  if (!unit.exclusions.empty()) {
+    constexpr size_t kListed = 100;  // the count above is complete; the list names the first ones
+    diag["exclusions"] = std::vector<std::string>(
+        unit.exclusions.begin(),
+        unit.exclusions.begin() + static_cast<long>(std::min(kListed, unit.exclusions.size())));
+  }
+  diag["rejected_interval_rows"] = unit.rejected_interval_rows;
+  return result;
+}
+
+}  // namespace adahrs::calib

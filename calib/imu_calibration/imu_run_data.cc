@@ -1,0 +1,246 @@
+#include "calib/imu_calibration/imu_run_data.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "calib/constants/recording_checksum.h"
+#include "calib/sequence/sequence_json.h"
+#include "hil/recording/recording_reader.h"
+
+namespace adahrs::calib {
+namespace {
+
+using nlohmann::json;
+
+constexpr int32_t kGyroCountMax = 16 * ((1 << 19) - 1);  // 16 summed 19-bit conversions
+constexpr uint16_t kTempCountMax = 16 * 4095;            // 16 summed 12-bit conversions
+constexpr double kRateGroupWidth_dps = 1.0;
+constexpr double kTrendWindow_s = 30.0;
+constexpr double kTrendThreshold_c_per_s = 0.05 / 60.0;
+constexpr const char* kAccelColumns[12] = {"az1_t1", "az1_t2", "ax1_t1", "ax1_t2", "ay1_t1",
+                                           "ay1_t2", "az2_t1", "az2_t2", "ax2_t1", "ax2_t2",
+                                           "ay2_t1", "ay2_t2"};
+constexpr const char* kGyroColumns[3] = {"gx", "gy", "gz"};
+constexpr const char* kTempColumns[3] = {"tx", "ty", "tz"};
+
+struct Interval {
+  int step;
+  double t_start_s;
+  double t_end_s;
+};
+
+// The reason a row cannot be calibration data, with its column, or empty.
+std::string RowDefect(const hil::ImuRecordRow& row) {
+  if (row.mode != 0) {
+    return "column mode: " + std::to_string(row.mode) + " (a compensated mode; calibration needs raw rows)";
+  }
+  for (int ch = 0; ch < 6; ++ch) {
+    const uint16_t t1 = row.accel_ticks[2 * ch];
+    const uint16_t t2 = row.accel_ticks[2 * ch + 1];
+    if (t2 == 0 || t1 >= t2) {
+      return std::string("column ") + kAccelColumns[2 * ch] + ": t1 " + std::to_string(t1) +
+             " >= t2 " + std::to_string(t2) + " (duty undefined)";
+    }
+  }
+  for (int g = 0; g < 3; ++g) {
+    if (row.gyro_cnt[g] <= 0 || row.gyro_cnt[g] >= kGyroCountMax) {
+      return std::string("column ") + kGyroColumns[g] + ": " + std::to_string(row.gyro_cnt[g]) +
+             " at the converter limit (saturated)";
+    }
+    if (row.temp_cnt[g] == 0 || row.temp_cnt[g] >= kTempCountMax) {
+      return std::string("column ") + kTempColumns[g] + ": " + std::to_string(row.temp_cnt[g]) +
+             " at the converter limit (saturated)";
+    }
+  }
+  return {};
+}
+
+ImuSample ToSample(const hil::ImuRecordRow& row) {
+  ImuSample s;
+  for (int ch = 0; ch < 6; ++ch) {
+    s.raw.t1_cnt[ch] = row.accel_ticks[2 * ch];
+    s.raw.t2_cnt[ch] = row.accel_ticks[2 * ch + 1];
+  }
+  for (int g = 0; g < 3; ++g) {
+    s.raw.gyro_cnt[g] = row.gyro_cnt[g];
+    s.raw.temp_cnt[g] = row.temp_cnt[g];
+  }
+  s.t_s = row.t_s;
+  s.chamber_c = row.chamber_c;
+  s.table_rate_dps = row.table_rate_dps;
+  return s;
+}
+
+// Groups samples by reported table rate (and orientation): one acquisition per group.
+void GroupByRate(const std::string& run, int step, const std::string& kind,
+                 const std::vector<std::pair<int, ImuSample>>& samples,
+                 std::vector<ImuAcquisition>* out) {
+  std::vector<ImuAcquisition> groups;
+  for (const auto& [orientation, s] : samples) {
+    ImuAcquisition* group = nullptr;
+    for (ImuAcquisition& g : groups) {
+      if (g.orientation == orientation &&
+          std::abs(g.samples.front().table_rate_dps - s.table_rate_dps) < kRateGroupWidth_dps) {
+        group = &g;
+      }
+    }
+    if (!group) {
+      groups.push_back({run, step, kind, orientation, 0.0, {}});
+      group = &groups.back();
+    }
+    group->samples.push_back(s);
+  }
+  for (ImuAcquisition& g : groups) {
+    double sum = 0.0;
+    for (const ImuSample& s : g.samples) sum += s.table_rate_dps;
+    g.rate_dps = sum / static_cast<double>(g.samples.size());
+    out->push_back(std::move(g));
+  }
+}
+
+std::vector<ThermalSegment> Segments(const std::vector<ImuSample>& rows) {
+  std::vector<ThermalSegment> out(rows.size(), ThermalSegment::kSoak);
+  size_t lo = 0, hi = 0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    while (rows[lo].t_s < rows[i].t_s - kTrendWindow_s) ++lo;
+    while (hi + 1 < rows.size() && rows[hi + 1].t_s <= rows[i].t_s + kTrendWindow_s) ++hi;
+    const double dt = rows[hi].t_s - rows[lo].t_s;
+    if (dt <= 0.0) continue;
+    const double slope = (rows[hi].chamber_c - rows[lo].chamber_c) / dt;
+    if (slope > kTrendThreshold_c_per_s) out[i] = ThermalSegment::kUpRamp;
+    if (slope < -kTrendThreshold_c_per_s) out[i] = ThermalSegment::kDownRamp;
+  }
+  return out;
+}
+
+void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
+  const hil::Recording rec = hil::ReadRecording(dir);
+  const std::string run = dir.string();
+  auto fail = [&](const std::string& message) { throw ImuInputError(run + ": " + message); };
+  const json& meta = rec.meta;
+  if (!meta.contains("local_gravity_mps2") || !meta["local_gravity_mps2"].is_number()) {
+    fail("meta.json: $.local_gravity_mps2 missing (the station's local gravity is needed)");
+  }
+  const double g = meta["local_gravity_mps2"].get<double>();
+  if (!(g > 9.7 && g < 9.9)) fail("meta.json: $.local_gravity_mps2 " + std::to_string(g) + " is not Earth's");
+  if (data->local_gravity_mps2 != 0.0 && std::abs(data->local_gravity_mps2 - g) > 1e-9) {
+    fail("local gravity " + std::to_string(g) + " m/s^2 differs from the first run's " +
+         std::to_string(data->local_gravity_mps2) + " (runs from different stations)");
+  }
+  data->local_gravity_mps2 = g;
+  if (!meta.contains("sequence")) fail("meta.json: $.sequence missing");
+  const Sequence sequence = SequenceFromJson(meta["sequence"], run + "/meta.json $.sequence");
+  const std::vector<uint8_t> tags = EffectiveTags(sequence);
+  data->sequence_names.push_back(sequence.name);
+  data->recordings.push_back({run, RecordingSha256(dir)});
+
+  std::vector<std::string> serials;
+  if (meta.contains("units") && meta["units"].is_array()) {
+    for (const json& u : meta["units"]) {
+      if (u.value("kind", "") == "imu" && u.contains("serial")) {
+        serials.push_back(u["serial"].get<std::string>());
+      }
+    }
+  }
+  if (serials.empty()) fail("meta.json: $.units lists no IMU");
+  std::vector<Interval> rejected;
+  if (meta.contains("rejected_intervals")) {
+    for (const json& r : meta["rejected_intervals"]) {
+      rejected.push_back({r.at("step").get<int>(), r.at("t_start_s").get<double>(),
+                          r.at("t_end_s").get<double>()});
+    }
+  }
+
+  // Rows of each (unit, step) with the step's tag, in file order.
+  std::map<std::pair<std::string, int>, std::vector<std::pair<int, ImuSample>>> selected;
+  for (size_t i = 0; i < rec.imu.size(); ++i) {
+    const hil::ImuRecordRow& row = rec.imu[i];
+    if (row.step < 0 || row.step >= static_cast<int>(tags.size()) || row.tag == 0 ||
+        row.tag != tags[static_cast<size_t>(row.step)]) {
+      continue;
+    }
+    if (std::find(serials.begin(), serials.end(), row.unit) == serials.end()) continue;
+    ImuUnitData& unit = data->units[row.unit];
+    unit.serial = row.unit;
+    bool inside = false;
+    for (const Interval& r : rejected) {
+      inside |= r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s;
+    }
+    if (inside) {
+      ++unit.rejected_interval_rows;
+      continue;
+    }
+    const std::string defect = RowDefect(row);
+    if (!defect.empty()) {
+      unit.exclusions.push_back(run + "/imu.csv line " + std::to_string(i + 2) + " " + defect);
+      continue;
+    }
+    selected[{row.unit, row.step}].push_back({row.orientation, ToSample(row)});
+  }
+
+  int current_orientation = 0;
+  for (size_t step = 0; step < sequence.steps.size(); ++step) {
+    const StepBody& body = sequence.steps[step].body;
+    if (const auto* a = std::get_if<AccelStep>(&body)) current_orientation = a->orientation;
+    if (const auto* gs = std::get_if<GyroStep>(&body)) current_orientation = gs->orientation;
+    const bool acquires = std::holds_alternative<AccelStep>(body) ||
+                          std::holds_alternative<GyroStep>(body) ||
+                          std::holds_alternative<CrossAxisStep>(body) ||
+                          std::holds_alternative<ThermalProfileStep>(body);
+    if (!acquires) continue;
+    const std::string where = "step " + std::to_string(step) + " (" + StepKindName(body) +
+                              ", tag " + std::to_string(tags[step]) + ")";
+    for (const std::string& serial : serials) {
+      auto it = selected.find({serial, static_cast<int>(step)});
+      if (it == selected.end() || it->second.size() < 2) {
+        fail("unit " + serial + " is missing from " + where +
+             ": fewer than 2 usable rows with the step's tag");
+      }
+      ImuUnitData& unit = data->units[serial];
+      unit.serial = serial;
+      const auto& rows = it->second;
+      if (const auto* a = std::get_if<AccelStep>(&body)) {
+        ImuAcquisition acq{run, static_cast<int>(step), "accel", a->orientation, 0.0, {}};
+        for (const auto& [orientation, s] : rows) {
+          if (orientation != a->orientation) {
+            fail("unit " + serial + " " + where + ": a row carries orientation " +
+                 std::to_string(orientation) + ", the step commands " +
+                 std::to_string(a->orientation));
+          }
+          acq.samples.push_back(s);
+        }
+        unit.accel.push_back(std::move(acq));
+      } else if (std::holds_alternative<GyroStep>(body)) {
+        GroupByRate(run, static_cast<int>(step), "gyro", rows, &unit.gyro);
+      } else if (std::holds_alternative<CrossAxisStep>(body)) {
+        GroupByRate(run, static_cast<int>(step), "cross_axis", rows, &unit.cross_axis);
+      } else {
+        for (const auto& [orientation, s] : rows) unit.thermal.push_back(s);
+        unit.thermal_orientation = rows.front().first != 0 ? rows.front().first : current_orientation;
+      }
+    }
+  }
+  for (auto& [serial, unit] : data->units) unit.thermal_segment = Segments(unit.thermal);
+}
+
+}  // namespace
+
+std::array<double, 3> UpAxisOf(int orientation) {
+  std::array<double, 3> up{};
+  const int axis = orientation / 10 - 1;
+  if (axis < 0 || axis > 2 || (orientation % 10 != 1 && orientation % 10 != 2)) {
+    throw ImuInputError("orientation code " + std::to_string(orientation) + " is not 11...32");
+  }
+  up[static_cast<size_t>(axis)] = orientation % 10 == 1 ? 1.0 : -1.0;
+  return up;
+}
+
+ImuRunData LoadImuRuns(const std::vector<std::filesystem::path>& run_dirs) {
+  if (run_dirs.empty()) throw ImuInputError("no run directory given");
+  ImuRunData data;
+  for (const auto& dir : run_dirs) LoadRun(dir, &data);
+  return data;
+}
+
+}  // namespace adahrs::calib

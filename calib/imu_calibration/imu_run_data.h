@@ -1,0 +1,84 @@
+// The calibration data of each IMU in one or more recordings (docs/recording-format.md, contract
+// C2), selected as the executor defines it: the rows of a step are those whose TAG equals the
+// step's TAG (EffectiveTags of meta.json's sequence), of the step's index, not inside one of
+// meta.json's rejected intervals for that step. Grouped per unit serial and per acquisition:
+//   accel step       one acquisition (its orientation)
+//   gyro step        one acquisition per table rate (rows grouped by the table's REPORTED rate,
+//                    within 1 deg/s of each other; the acquisition's rate is their mean)
+//   cross_axis step  one acquisition per (orientation, reported rate): at rest and at rate_dps in
+//                    each of 11, 21, 31
+//   thermal_profile  every row, each labelled up-ramp, down-ramp or soak from the chamber's
+//                    reported temperature trend (slope over +-30 s beyond +-0.05 degC/min)
+// Rows that cannot be calibration data are excluded and each exclusion is reported with the file,
+// line and column: a duty that is undefined (t2 = 0 or t1 >= t2), a gyro or temperature count at
+// its converter's limit (saturated), a row not in raw mode (v2 `mode` column non-zero).
+// Refused (ImuInputError, naming the run, step and unit): an unreadable, truncated or malformed
+// recording or wrong format version (hil::RecordingError passes through with file, line and
+// column), meta.json without local gravity or sequence, a unit of meta.json with no rows in a step
+// that acquires (a unit missing from a step), an accel step whose rows carry another orientation,
+// runs with different local gravity.
+// Not done here: any fitting; interpretation of the temperature counts (the strategies decide).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "calib/constants/constants_file.h"
+#include "calib/solvers/thermal_drift_fit.h"
+#include "firmware_model/target/compensated_frame.h"
+
+namespace adahrs::calib {
+
+class ImuInputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// One received packet of calibration data.
+struct ImuSample {
+  firmware_model::ImuRawFrame raw{};
+  double t_s = 0.0;
+  double chamber_c = 0.0;
+  double table_rate_dps = 0.0;
+};
+
+/// The rows of one acquisition (one orientation and one table rate).
+struct ImuAcquisition {
+  std::string run;          ///< run directory
+  int step = 0;             ///< step index in the run's sequence
+  std::string step_kind;    ///< "accel", "gyro", "cross_axis"
+  int orientation = 0;      ///< 11...32
+  double rate_dps = 0.0;    ///< mean reported table rate about the up axis (0 at rest)
+  std::vector<ImuSample> samples;
+};
+
+struct ImuUnitData {
+  std::string serial;
+  std::vector<ImuSample> thermal;               ///< thermal_profile rows, time order
+  std::vector<ThermalSegment> thermal_segment;  ///< one per thermal row
+  int thermal_orientation = 0;                  ///< the orientation the profile ran in (0 unknown)
+  std::vector<ImuAcquisition> accel;
+  std::vector<ImuAcquisition> gyro;
+  std::vector<ImuAcquisition> cross_axis;
+  std::vector<std::string> exclusions;  ///< one message per excluded row (file, line, column)
+  int rejected_interval_rows = 0;       ///< rows dropped because a rejected interval holds them
+};
+
+struct ImuRunData {
+  double local_gravity_mps2 = 0.0;
+  std::vector<RecordingReference> recordings;  ///< with their SHA-256
+  std::vector<std::string> sequence_names;
+  std::map<std::string, ImuUnitData> units;    ///< by serial
+};
+
+/// Reads every run directory and collects each IMU's calibration data; throws ImuInputError or
+/// hil::RecordingError with the reason.
+ImuRunData LoadImuRuns(const std::vector<std::filesystem::path>& run_dirs);
+
+/// Unit vector of the up axis of `orientation` in B (11 -> +x_B, 12 -> -x_B, ..., 32 -> -z_B).
+std::array<double, 3> UpAxisOf(int orientation);
+
+}  // namespace adahrs::calib

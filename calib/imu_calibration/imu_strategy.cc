@@ -1,0 +1,78 @@
+#include "calib/imu_calibration/imu_strategy.h"
+
+#include "calib/imu_calibration/imu_joint_fit.h"
+#include "calib/imu_calibration/imu_observations.h"
+#include "calib/imu_calibration/imu_reference_fit.h"
+#include "calib/imu_calibration/imu_run_data.h"
+#include "sensor_sim/param_reader.h"
+
+namespace adahrs::calib {
+
+ImuStrategy ImuStrategy::Reference() {
+  ImuStrategy s;
+  s.name = "reference";
+  return s;
+}
+
+ImuStrategy ImuStrategy::Improved() { return ImuStrategy{}; }
+
+ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
+  const nlohmann::json j = sensor_sim::ParamReader::LoadFile(path.string());
+  const sensor_sim::ParamReader r(j, path.string());
+  if (r.String("format") != "adahrs-imu-strategy") r.Fail("$.format", "expected \"adahrs-imu-strategy\"");
+  if (r.Integer("format_version", 1, 1) != 1) r.Fail("$.format_version", "expected 1");
+  ImuStrategy s;
+  s.name = r.String("strategy");
+  if (s.name != "reference" && s.name != "joint") {
+    r.Fail("$.strategy", "expected \"reference\" or \"joint\", got \"" + s.name + "\"");
+  }
+  if (r.Has("thermal_order")) {
+    if (s.name != "joint") r.Fail("$.thermal_order", "only the joint strategy chooses a thermal order");
+    if (j["thermal_order"].is_string()) {
+      if (r.String("thermal_order") != "auto") r.Fail("$.thermal_order", "expected \"auto\" or 0, 1, 2");
+    } else {
+      s.thermal_order = static_cast<int>(r.Integer("thermal_order", 0, 2));
+    }
+  }
+  if (r.Has("thermal_band_width_cnt")) {
+    s.band_width_cnt = r.Number("thermal_band_width_cnt", 10.0, 2000.0, "counts");
+  }
+  r.ExpectAllKeysUsed();
+  return s;
+}
+
+std::vector<ConstantsFile> FitImuRuns(const std::vector<std::filesystem::path>& run_dirs,
+                                      const ImuStrategy& strategy,
+                                      const std::string& software_version) {
+  const ImuRunData data = LoadImuRuns(run_dirs);
+  std::vector<ConstantsFile> files;
+  for (const auto& [serial, unit] : data.units) {
+    ImuFitResult fit;
+    if (strategy.name == "reference") {
+      ImuReferenceOptions options;
+      options.thermal.band_width_cnt = strategy.band_width_cnt;
+      fit = FitImuReference(unit, data.local_gravity_mps2, options);
+    } else {
+      ImuJointOptions options;
+      options.thermal_order = strategy.thermal_order;
+      fit = FitImuJoint(serial, ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt), options);
+      fit.diagnostics["excluded_rows"] = unit.exclusions.size();
+      fit.diagnostics["rejected_interval_rows"] = unit.rejected_interval_rows;
+    }
+    fit.diagnostics["local_gravity_mps2"] = data.local_gravity_mps2;
+    ConstantsFile f;
+    f.serial = serial;
+    f.kind = hil::UnitKind::kImu;
+    f.strategy = strategy.name;
+    f.created_utc = UtcNowIso8601();
+    f.software_version = software_version;
+    f.imu = fit.constants;
+    f.standard_errors = ImuStandardErrorsJson(fit.standard_errors);
+    f.provenance = {data.recordings, data.sequence_names};
+    f.diagnostics = fit.diagnostics;
+    files.push_back(std::move(f));
+  }
+  return files;
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,38 @@
+// IMU calibration strategies selectable by name in a strategy file
+// (docs/calibration-strategies.md), and the fit of recordings into one constants.json per unit.
+//
+//   {"format": "adahrs-imu-strategy", "format_version": 1, "strategy": "reference" | "joint",
+//    "thermal_order": "auto" | 0 | 1 | 2,     (joint only; "auto" = held-out choice, default)
+//    "thermal_band_width_cnt": 110}            (optional, both)
+//
+// "reference" is the reference method exactly (imu_reference_fit.h); "joint" is the improved
+// strategy (imu_joint_fit.h). The strict reader names the file and JSON path of a bad key.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calib/constants/constants_file.h"
+
+namespace adahrs::calib {
+
+struct ImuStrategy {
+  std::string name = "joint";          ///< "reference" or "joint"
+  std::optional<int> thermal_order;    ///< joint: empty = chosen by held-out error
+  double band_width_cnt = 110.0;
+
+  static ImuStrategy Reference();
+  static ImuStrategy Improved();
+  /// Reads a strategy file; throws sensor_sim::ParamError naming the file and JSON path.
+  static ImuStrategy Load(const std::filesystem::path& path);
+};
+
+/// Fits every IMU of the runs with `strategy`; one constants file per unit, serial order.
+/// Throws ImuInputError, hil::RecordingError or DegenerateDesignError with the reason.
+std::vector<ConstantsFile> FitImuRuns(const std::vector<std::filesystem::path>& run_dirs,
+                                      const ImuStrategy& strategy,
+                                      const std::string& software_version);
+
+}  // namespace adahrs::calib

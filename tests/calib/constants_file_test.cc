@@ -1,0 +1,155 @@
+// constants.json (contract C3): round trip, and the strict reader refusing each kind of bad input
+// with the file and JSON path in the message.
+#include "calib/constants/constants_file.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace adahrs::calib {
+namespace {
+
+using ::testing::HasSubstr;
+using nlohmann::json;
+namespace fm = firmware_model;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+ConstantsFile ImuFile() {
+  ConstantsFile f;
+  f.serial = "IMU-0007";
+  f.kind = hil::UnitKind::kImu;
+  f.strategy = "reference";
+  f.created_utc = "2024-05-01T12:00:00Z";
+  f.software_version = "0.1.0";
+  fm::ImuCalibrationConstants c;
+  fm::ImuCalibrationConstants se;
+  for (int i = 0; i < 9; ++i) {
+    c.thermal[i] = {i % 3, {0.1 * i, 1e-5 * i, -3e-9 * i}};
+    se.thermal[i] = {0, {1e-4, 1e-8, kNaN}};
+  }
+  for (int i = 0; i < 6; ++i) {
+    c.accel[i] = {0.01 * i, (i % 2 ? -1 : 1) * 0.0398};
+    se.accel[i] = {2e-6, 3e-7};
+  }
+  for (int g = 0; g < 3; ++g) {
+    c.gyro[g] = {4.19e6 + g, {0.0, 4.77e-5, 1e-13, 1e-20}};
+    se.gyro[g] = {3.0, {0.0, 1e-9, 1e-15, 1e-22}};
+  }
+  c.ca_mps2_per_g = {{{9.8, 0.1, 0.0}, {0.0, 9.81, -0.05}, {0.02, 0.0, 9.79}}};
+  c.cg = {{{1.0, 0.01, 0.0}, {0.0, 1.0, 0.0}, {0.0, -0.01, 1.0}}};
+  se.ca_mps2_per_g = {{{1e-3, 1e-3, 1e-3}, {1e-3, 1e-3, 1e-3}, {1e-3, 1e-3, 1e-3}}};
+  se.cg = {{{1e-4, 1e-4, 1e-4}, {1e-4, 1e-4, 1e-4}, {1e-4, 1e-4, 1e-4}}};
+  f.imu = c;
+  f.standard_errors = ImuStandardErrorsJson(se);
+  f.provenance.recordings = {{"runs/cal1", std::string(64, 'a')}};
+  f.provenance.sequence_names = {"imu_sensor_calibration"};
+  f.diagnostics = {{"residual_rms", {1.0, 2.0}}};
+  return f;
+}
+
+std::string MessageOf(const json& j) {
+  try {
+    ConstantsFileFromJson(j, "unit.json");
+  } catch (const ConstantsFileError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(ConstantsFile, RoundTripsThroughDisk) {
+  const ConstantsFile f = ImuFile();
+  const auto path = std::filesystem::temp_directory_path() / "adahrs_constants_round_trip.json";
+  WriteConstantsFile(path, f);
+  const ConstantsFile g = ReadConstantsFile(path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(g.serial, f.serial);
+  EXPECT_EQ(g.kind, hil::UnitKind::kImu);
+  EXPECT_EQ(g.strategy, "reference");
+  EXPECT_EQ(g.provenance, f.provenance);
+  ASSERT_TRUE(g.imu.has_value());
+  // JSON numbers are written with 17 significant digits by nlohmann: bit-exact round trip.
+  EXPECT_EQ(fm::ToJson(*g.imu), fm::ToJson(*f.imu));
+  EXPECT_TRUE(g.standard_errors["thermal"][0]["k"][2].is_null());  // NaN = not estimated
+  EXPECT_TRUE(g.standard_errors["thermal"][0]["temp_sensor"].is_null());
+  EXPECT_DOUBLE_EQ(g.standard_errors["gyro"][1]["l"][1].get<double>(), 1e-9);
+  EXPECT_EQ(g.diagnostics, f.diagnostics);
+}
+
+TEST(ConstantsFile, RefusesWrongFormatAndVersion) {
+  json j = ToJson(ImuFile());
+  j["format_version"] = 2;
+  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.format_version: version 2 is not supported"));
+  j = ToJson(ImuFile());
+  j["format"] = "something-else";
+  EXPECT_THAT(MessageOf(j), HasSubstr("$.format"));
+}
+
+TEST(ConstantsFile, RefusesMissingAndUnexpectedKeys) {
+  json j = ToJson(ImuFile());
+  j.erase("strategy");
+  EXPECT_THAT(MessageOf(j), HasSubstr("$.strategy: missing key"));
+  j = ToJson(ImuFile());
+  j["strategy_name"] = "x";
+  EXPECT_THAT(MessageOf(j), HasSubstr("strategy_name"));
+  j = ToJson(ImuFile());
+  j["constants"]["gyro"][1].erase("l");
+  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.constants: imu.gyro[1].l: missing"));
+}
+
+TEST(ConstantsFile, RefusesStandardErrorsOfAnotherShapeOrSign) {
+  json j = ToJson(ImuFile());
+  j["standard_errors"]["cg"][2] = {1e-4, 1e-4};
+  EXPECT_THAT(MessageOf(j), HasSubstr("$.standard_errors.cg[2]: expected an array of 3"));
+  j = ToJson(ImuFile());
+  j["standard_errors"]["accel"][4]["offset_duty"] = -1e-6;
+  EXPECT_THAT(MessageOf(j), HasSubstr("$.standard_errors.accel[4].offset_duty: a standard error must be"));
+  j = ToJson(ImuFile());
+  j["standard_errors"].erase("ca_mps2_per_g");
+  EXPECT_THAT(MessageOf(j), HasSubstr("missing key \"ca_mps2_per_g\""));
+}
+
+TEST(ConstantsFile, RefusesABadChecksumAndKind) {
+  json j = ToJson(ImuFile());
+  j["provenance"]["recordings"][0]["sha256"] = "ABC";
+  EXPECT_THAT(MessageOf(j), HasSubstr("$.provenance.recordings[0].sha256: expected 64"));
+  j = ToJson(ImuFile());
+  j["kind"] = "ads";  // IMU constants under an ADS kind
+  EXPECT_THAT(MessageOf(j), HasSubstr("$.constants: ads"));
+  j["kind"] = "gps";
+  EXPECT_THAT(MessageOf(j), HasSubstr("$.kind: expected \"imu\" or \"ads\""));
+}
+
+TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
+  ConstantsFile f;
+  f.serial = "ADS-0002";
+  f.kind = hil::UnitKind::kAds;
+  f.strategy = "reference";
+  fm::AdsCalibrationConstants c;
+  c.altitude_ft = {{1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, -1e6, 1e6, 2e6, 3e6};
+  c.airspeed_kt = c.altitude_ft;
+  f.ads = c;
+  fm::AdsCalibrationConstants se = c;
+  f.standard_errors = AdsStandardErrorsJson(se);
+  const ConstantsFile g = ConstantsFileFromJson(ToJson(f), "ads.json");
+  ASSERT_TRUE(g.ads.has_value());
+  EXPECT_EQ(g.ads->altitude_ft.coeff, c.altitude_ft.coeff);
+  EXPECT_TRUE(g.standard_errors["altitude_ft"]["x_min_code"].is_null());
+  f.imu = fm::ImuCalibrationConstants{};  // both kinds set: refused by the writer
+  EXPECT_THROW(ToJson(f), ConstantsFileError);
+}
+
+TEST(ConstantsFile, UtcTimestampIsIso8601) {
+  const std::string t = UtcNowIso8601();
+  ASSERT_EQ(t.size(), 20u);
+  EXPECT_EQ(t[4], '-');
+  EXPECT_EQ(t[10], 'T');
+  EXPECT_EQ(t.back(), 'Z');
+}
+
+}  // namespace
+}  // namespace adahrs::calib
