@@ -1,0 +1,140 @@
+#include "calib/ads_calibration/ads_calibration_points.h"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "sensor_sim/ads1254.h"
+#include "sensor_sim/air_data.h"
+#include "sensor_sim/atmosphere.h"
+
+namespace adahrs::calib {
+namespace {
+
+struct RejectedInterval {
+  int step = 0;
+  double t_start_s = 0.0;
+  double t_end_s = 0.0;
+};
+
+std::vector<RejectedInterval> RejectedIntervals(const nlohmann::json& meta,
+                                                const std::string& source) {
+  std::vector<RejectedInterval> out;
+  if (!meta.contains("rejected_intervals")) return out;
+  const nlohmann::json& list = meta["rejected_intervals"];
+  if (!list.is_array()) {
+    throw std::runtime_error(
+        fmt::format("{}/meta.json: rejected_intervals: expected an array", source));
+  }
+  for (size_t i = 0; i < list.size(); ++i) {
+    const nlohmann::json& r = list[i];
+    const auto path = fmt::format("{}/meta.json: rejected_intervals[{}]", source, i);
+    if (!r.is_object() || !r.contains("step") || !r["step"].is_number_integer() ||
+        !r.contains("t_start_s") || !r["t_start_s"].is_number() || !r.contains("t_end_s") ||
+        !r["t_end_s"].is_number()) {
+      throw std::runtime_error(path + ": expected {\"step\": int, \"t_start_s\", \"t_end_s\"}");
+    }
+    out.push_back({r["step"].get<int>(), r["t_start_s"].get<double>(), r["t_end_s"].get<double>()});
+  }
+  return out;
+}
+
+bool Rejected(const std::vector<RejectedInterval>& intervals, const hil::AdsRecordRow& row) {
+  for (const RejectedInterval& r : intervals) {
+    if (r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s) return true;
+  }
+  return false;
+}
+
+void CheckFinite(double value, const char* column, int line, const std::string& source) {
+  if (!std::isfinite(value)) {
+    throw std::runtime_error(fmt::format("{}/ads.csv line {} column {}: value {} is not finite",
+                                         source, line, column, value));
+  }
+}
+
+void CheckNotSaturated(int32_t code, const char* column, int line, const std::string& source) {
+  if (code >= sensor_sim::Ads1254::kMaxCode || code <= sensor_sim::Ads1254::kMinCode) {
+    throw std::runtime_error(fmt::format(
+        "{}/ads.csv line {} column {}: code {} is at the ADS1254 rail (saturated input)", source,
+        line, column, code));
+  }
+}
+
+struct Sum {
+  AdsCalibrationPoint point;
+  double ps = 0, pt = 0, ps_t = 0, pt_t = 0, ps_ref = 0, qc_ref = 0, chamber = 0;
+};
+
+}  // namespace
+
+std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording& recording,
+                                                            const std::string& serial,
+                                                            const std::string& source) {
+  const std::vector<RejectedInterval> rejected = RejectedIntervals(recording.meta, source);
+  std::map<int, Sum> by_step;
+  bool unit_seen = false;
+  for (size_t i = 0; i < recording.ads.size(); ++i) {
+    const hil::AdsRecordRow& row = recording.ads[i];
+    if (row.unit != serial) continue;
+    unit_seen = true;
+    if (row.tag == 0 || Rejected(rejected, row)) continue;
+    const int line = static_cast<int>(i) + 2;  // line 1 is the header
+    CheckFinite(row.ps_ref_pa, "ps_ref_pa", line, source);
+    CheckFinite(row.qc_ref_pa, "qc_ref_pa", line, source);
+    CheckFinite(row.chamber_c, "chamber_c", line, source);
+    CheckNotSaturated(row.ps_counts, "ps_counts", line, source);
+    CheckNotSaturated(row.pt_counts, "pt_counts", line, source);
+    CheckNotSaturated(row.ps_temp_counts, "ps_temp_counts", line, source);
+    CheckNotSaturated(row.pt_temp_counts, "pt_temp_counts", line, source);
+    Sum& s = by_step[row.step];
+    if (s.point.rows == 0) {
+      s.point.step = row.step;
+      s.point.tag = row.tag;
+      s.point.first_line = line;
+    } else if (s.point.tag != row.tag) {
+      throw std::runtime_error(fmt::format(
+          "{}/ads.csv line {} column tag: unit {} step {} carries tag {} after tag {} (line {})",
+          source, line, serial, row.step, row.tag, s.point.tag, s.point.first_line));
+    }
+    ++s.point.rows;
+    s.ps += row.ps_counts;
+    s.pt += row.pt_counts;
+    s.ps_t += row.ps_temp_counts;
+    s.pt_t += row.pt_temp_counts;
+    s.ps_ref += row.ps_ref_pa;
+    s.qc_ref += row.qc_ref_pa;
+    s.chamber += row.chamber_c;
+  }
+  if (!unit_seen) {
+    throw std::runtime_error(
+        fmt::format("{}/ads.csv: no row of unit {} (column unit)", source, serial));
+  }
+  std::vector<AdsCalibrationPoint> out;
+  for (auto& [step, s] : by_step) {
+    AdsCalibrationPoint p = s.point;
+    const double n = p.rows;
+    p.ps_code = s.ps / n;
+    p.pt_code = s.pt / n;
+    p.ps_temp_code = s.ps_t / n;
+    p.pt_temp_code = s.pt_t / n;
+    p.ps_ref_pa = s.ps_ref / n;
+    p.qc_ref_pa = s.qc_ref / n;
+    p.chamber_c = s.chamber / n;
+    try {
+      p.alt_ft = sensor_sim::IsaPressureAltitudeFt(p.ps_ref_pa);
+      p.cas_kt = sensor_sim::CalibratedAirspeedKt(std::max(0.0, p.qc_ref_pa));
+    } catch (const std::domain_error& e) {
+      throw std::runtime_error(fmt::format(
+          "{}/ads.csv line {} columns ps_ref_pa/qc_ref_pa: step {} reference outside ISA: {}",
+          source, p.first_line, step, e.what()));
+    }
+    p.airspeed_point = p.cas_kt >= kMinAirspeedPointKt;
+    out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace adahrs::calib

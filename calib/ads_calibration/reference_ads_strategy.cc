@@ -1,0 +1,44 @@
+#include "calib/ads_calibration/reference_ads_strategy.h"
+
+#include "calib/solvers/ads_surface_fit.h"
+
+namespace adahrs::calib {
+namespace {
+
+nlohmann::json SurfaceErrors(const SurfaceEstimate& e) {
+  return {{"coeff_a_to_j", e.coeff_se},
+          {"x_min_code", nullptr},
+          {"x_max_code", nullptr},
+          {"y_min_code", nullptr},
+          {"y_max_code", nullptr}};
+}
+
+nlohmann::json SurfaceDiagnostics(const SurfaceEstimate& e, const char* unit) {
+  return {{"points", e.fit.fit.observations},
+          {"dof", e.fit.fit.dof},
+          {std::string("residual_rms_") + unit, e.residual_rms},
+          {std::string("max_abs_residual_") + unit, e.max_abs_residual}};
+}
+
+}  // namespace
+
+AdsFitResult FitReferenceAdsStrategy(const std::string& context,
+                                     const std::vector<AdsCalibrationPoint>& points) {
+  std::vector<SurfaceSample> altitude, airspeed;
+  for (const AdsCalibrationPoint& p : points) {
+    altitude.push_back({p.ps_code, p.ps_temp_code, p.alt_ft, p.chamber_c});
+    if (p.airspeed_point) airspeed.push_back({p.pt_code, p.pt_temp_code, p.cas_kt, p.chamber_c});
+  }
+  const SurfaceEstimate alt = FitReferenceSurface(context + ": altitude surface", altitude);
+  const SurfaceEstimate cas = FitReferenceSurface(context + ": airspeed surface", airspeed);
+  AdsFitResult out;
+  out.strategy = kReferenceAdsStrategyName;
+  out.constants.altitude_ft = alt.surface;
+  out.constants.airspeed_kt = cas.surface;
+  out.standard_errors = {{"altitude_ft", SurfaceErrors(alt)}, {"airspeed_kt", SurfaceErrors(cas)}};
+  out.diagnostics = {{"altitude_ft", SurfaceDiagnostics(alt, "ft")},
+                     {"airspeed_kt", SurfaceDiagnostics(cas, "kt")}};
+  return out;
+}
+
+}  // namespace adahrs::calib
