@@ -7,6 +7,9 @@ void RegisterCommands(CLI::App& app) {
   RegisterSimulateCommand(app);
   RegisterRigCommand(app);
   RegisterSequenceCommand(app);
+  RegisterRecordsCommand(app);
+  RegisterDownloadCommand(app);
+  RegisterReportCommand(app);
   RegisterPortsCommand(app);
   RegisterRunCommand(app);
   RegisterFitCommand(app);

@@ -1,0 +1,25 @@
+// Turns the pipeline's files into production records (records_store.h): a run directory
+// (meta.json of recording format 2, docs/recording-format.md; checksum recording_checksum.h) and a
+// constants.json (contract C3, constants_file.h). The files are validated by their own strict
+// readers first, so nothing malformed reaches the database; errors name the file and JSON path.
+// Left out: acceptance files (acceptance_records.h reads those).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "calib/records/records_store.h"
+
+namespace adahrs::calib {
+
+/// The run, its units and its steps (with each step's rejected time) from `run_dir`.
+RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir);
+
+/// The constants file as the next version of its unit; the file checksum is SHA-256 of its bytes.
+ConstantsRecord ConstantsRecordFromFile(const std::filesystem::path& constants_json);
+
+/// SHA-256 of one file's bytes, 64 lowercase hex digits (OpenSSL libcrypto); throws
+/// std::runtime_error naming the file.
+std::string FileSha256(const std::filesystem::path& file);
+
+}  // namespace adahrs::calib

@@ -1,0 +1,141 @@
+#include "calib/report/ads_report_sections.h"
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "calib/acceptance/specification.h"
+#include "calib/report/constants_table.h"
+#include "calib/report/html_builder.h"
+#include "calib/report/svg_plot.h"
+#include "firmware_model/reference_compensator.h"
+#include "sensor_sim/air_data.h"
+#include "sensor_sim/atmosphere.h"
+
+namespace adahrs::calib {
+namespace {
+
+namespace fm = firmware_model;
+
+// Chamber temperatures are grouped to this width for the map's series.
+constexpr double kTemperatureBinC = 5.0;
+
+struct Acquisition {
+  double alt_ref_ft = 0.0, cas_ref_kt = 0.0, qc_pa = 0.0, temp_c = 0.0;
+  double alt_ft = 0.0, cas_kt = 0.0;
+  int n = 0;
+};
+
+bool Rejected(const nlohmann::json& meta, int step, double t_s) {
+  if (!meta.contains("rejected_intervals")) return false;
+  for (const auto& r : meta["rejected_intervals"]) {
+    if (r.value("step", -1) == step && t_s >= r.value("t_start_s", 0.0) &&
+        t_s <= r.value("t_end_s", 0.0)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string ErrorPlot(const std::string& serial, const std::vector<Acquisition>& points, bool altitude,
+                      const std::string& source) {
+  const Specification spec = Specification::Reference();
+  const ToleranceTable& tol = altitude ? spec.altitude_ft : spec.airspeed_kt;
+  Plot plot{fmt::format("{} {} error vs {} by chamber temperature ({})", serial,
+                        altitude ? "altitude" : "airspeed", altitude ? "altitude" : "airspeed", source),
+            altitude ? "pressure altitude from the test set's Ps, ISA (ft)"
+                     : "calibrated airspeed from the test set's Qc (kt)",
+            altitude ? "altitude error (ft)" : "airspeed error (kt)", {}, {}};
+  PlotBand band{"specification tolerance (+-)", {}, {}, {}};
+  const int samples = 60;
+  for (int i = 0; i <= samples; ++i) {
+    const double x = tol.input_min() + (tol.input_max() - tol.input_min()) * i / samples;
+    band.x.push_back(x);
+    band.y_lo.push_back(-tol.At(x));
+    band.y_hi.push_back(tol.At(x));
+  }
+  plot.bands.push_back(band);
+  std::map<double, PlotSeries> by_temp;
+  HtmlTable table{fmt::format("{} {} error per acquisition", serial, altitude ? "altitude" : "airspeed"),
+                  {"chamber (degC)", altitude ? "reference (ft)" : "reference (kt)",
+                   altitude ? "error (ft)" : "error (kt)", "tolerance", "verdict"},
+                  {}};
+  for (const Acquisition& a : points) {
+    const double x = altitude ? a.alt_ref_ft : a.cas_ref_kt;
+    if (x < tol.input_min() || x > tol.input_max()) continue;
+    const double error = altitude ? a.alt_ft - a.alt_ref_ft : a.cas_kt - a.cas_ref_kt;
+    const double bin = std::round(a.temp_c / kTemperatureBinC) * kTemperatureBinC;
+    PlotSeries& s = by_temp[bin];
+    s.label = fmt::format("{:g} degC", bin);
+    s.style = PlotSeries::Style::kPoints;
+    s.x.push_back(x);
+    s.y.push_back(error);
+    table.rows.push_back({FormatNumber(a.temp_c, 4), FormatNumber(x, 6), FormatNumber(error, 3),
+                          FormatNumber(tol.At(x), 3), std::abs(error) <= tol.At(x) ? "PASS" : "FAIL"});
+  }
+  if (by_temp.empty()) {
+    return NotAvailable(std::string(altitude ? "Altitude" : "Airspeed") + " error map",
+                        "no acquisition inside the operating range");
+  }
+  for (auto& [bin, s] : by_temp) plot.series.push_back(std::move(s));
+  return RenderSvg(plot) + RenderTable(table);
+}
+
+}  // namespace
+
+std::string AdsReportSections(const std::string& serial, const std::vector<hil::AdsRecordRow>& rows,
+                              const nlohmann::json& meta, const ConstantsFile* constants) {
+  std::string html = Section(
+      serial + "-constants", 3, serial + " constants",
+      constants != nullptr ? ConstantsSection(*constants)
+                           : NotAvailable("Constants", "no constants.json for " + serial +
+                                                           " in the fit directory"));
+  std::map<std::tuple<int, int, long, long>, Acquisition> groups;
+  bool unit_values = false, reference_values = false;
+  for (const hil::AdsRecordRow& row : rows) {
+    if (row.unit != serial || row.tag == 0 || Rejected(meta, row.step, row.t_s)) continue;
+    double alt_ft = 0.0, cas_kt = 0.0;
+    if (row.alt_ft && row.cas_kt) {
+      alt_ft = *row.alt_ft;
+      cas_kt = *row.cas_kt;
+      unit_values = true;
+    } else if (constants != nullptr) {
+      const fm::AdsRawFrame raw{row.ps_counts, row.pt_counts, row.ps_temp_counts,
+                                row.pt_temp_counts, row.oat_counts};
+      const auto v = fm::AdsReference(*constants->ads, fm::AdsCompensationMode::kSurface, raw);
+      alt_ft = v[0];
+      cas_kt = v[1];
+      reference_values = true;
+    } else {
+      continue;
+    }
+    Acquisition& a = groups[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
+    a.alt_ref_ft += sensor_sim::IsaPressureAltitudeFt(row.ps_ref_pa);
+    a.cas_ref_kt += row.qc_ref_pa > 0.0 ? sensor_sim::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
+    a.temp_c += row.chamber_c;
+    a.alt_ft += alt_ft;
+    a.cas_kt += cas_kt;
+    ++a.n;
+  }
+  std::vector<Acquisition> points;
+  for (auto& [key, a] : groups) {
+    for (double* v : {&a.alt_ref_ft, &a.cas_ref_kt, &a.temp_c, &a.alt_ft, &a.cas_kt}) *v /= a.n;
+    points.push_back(a);
+  }
+  std::string map;
+  if (points.empty()) {
+    map = NotAvailable("ADS error map", constants == nullptr
+                                            ? "raw rows only and no constants.json for " + serial
+                                            : "no tagged acquisition rows for " + serial);
+  } else {
+    const std::string source = unit_values && reference_values ? "unit output and reference compensator"
+                               : unit_values ? "the unit's own surface output"
+                                             : "reference compensator on raw codes";
+    map = ErrorPlot(serial, points, true, source) + ErrorPlot(serial, points, false, source);
+  }
+  return html + Section(serial + "-error-map", 3, serial + " error map against the tolerance envelope", map);
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,39 @@
+#include "calib/report/constants_table.h"
+
+#include <fmt/format.h>
+
+#include "calib/report/svg_plot.h"
+
+namespace adahrs::calib {
+
+HtmlTable ConstantsTable(const ConstantsFile& file) {
+  const nlohmann::json document = ToJson(file);
+  const nlohmann::json values = document.at("constants").flatten();
+  const nlohmann::json errors = document.at("standard_errors").flatten();
+  HtmlTable table{fmt::format("{} constants ({} strategy), units of calibration_constants.h",
+                              file.serial, file.strategy),
+                  {"constant (JSON path)", "value", "standard error (1 sigma)"},
+                  {}};
+  for (const auto& [path, value] : values.items()) {
+    if (!value.is_number()) continue;
+    const auto error = errors.find(path);
+    const std::string se = error == errors.end() || error->is_null()
+                               ? "not estimated"
+                               : FormatNumber(error->get<double>(), 3);
+    table.rows.push_back({path, FormatNumber(value.get<double>(), 10), se});
+  }
+  return table;
+}
+
+std::string ConstantsSection(const ConstantsFile& file) {
+  std::string html = fmt::format("<p>strategy {}, created {}, software {}</p>\n<ul>\n",
+                                 XmlEscape(file.strategy), XmlEscape(file.created_utc),
+                                 XmlEscape(file.software_version));
+  for (const RecordingReference& r : file.provenance.recordings) {
+    html += fmt::format("<li>recording {} sha256 {}</li>\n", XmlEscape(r.path), XmlEscape(r.sha256));
+  }
+  html += "</ul>\n";
+  return html + RenderTable(ConstantsTable(file));
+}
+
+}  // namespace adahrs::calib

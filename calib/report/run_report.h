@@ -1,0 +1,27 @@
+// report.html for one run (docs/report.md): a self-contained XHTML page (inline CSS and SVG, no
+// scripts, no external references) from the run directory (recording format 2) and, if given, the
+// fit directory holding each unit's constants.json (any *.json whose "format" is
+// "adahrs-constants"), acceptance.json and evaluation.json. Sections: run summary (sequence,
+// station, units, rejected intervals), then per unit its constants with standard errors and the
+// IMU (imu_report_sections.h) or ADS (ads_report_sections.h) figures, then the acceptance and
+// evaluation tables. A missing input makes its section say "not available (why)".
+// Errors: unreadable or malformed inputs throw with their own readers' messages (file, line,
+// column, JSON path); the report is written atomically (temporary file + rename).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace adahrs::calib {
+
+/// The report's HTML.
+std::string BuildRunReport(const std::filesystem::path& run_dir,
+                           const std::optional<std::filesystem::path>& fit_dir);
+
+/// BuildRunReport written to `out`.
+void WriteRunReport(const std::filesystem::path& run_dir,
+                    const std::optional<std::filesystem::path>& fit_dir,
+                    const std::filesystem::path& out);
+
+}  // namespace adahrs::calib

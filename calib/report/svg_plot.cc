@@ -1,0 +1,193 @@
+#include "calib/report/svg_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "calib/report/nice_ticks.h"
+
+namespace adahrs::calib {
+namespace {
+
+constexpr int kMarginLeftPx = 78;
+constexpr int kMarginRightPx = 16;
+constexpr int kMarginTopPx = 30;
+constexpr int kMarginBottomPx = 48;
+constexpr int kLegendRowPx = 16;
+constexpr int kMaxTicks = 8;
+constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                    "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+
+struct Range {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void Add(double v) {
+    if (!std::isfinite(v)) return;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  bool Empty() const { return lo > hi; }
+};
+
+struct Frame {
+  AxisTicks x, y;
+  double left, right, top, bottom;
+  double Px(double v) const { return left + (v - x.lo) / (x.hi - x.lo) * (right - left); }
+  double Py(double v) const { return bottom - (v - y.lo) / (y.hi - y.lo) * (bottom - top); }
+};
+
+void CheckLengths(const Plot& plot, const std::string& what, size_t x, size_t y) {
+  if (x != y) {
+    throw std::invalid_argument(fmt::format("plot '{}': {} has {} x values and {} y values",
+                                            plot.title, what, x, y));
+  }
+}
+
+std::string Colour(size_t i) { return kColours[i % std::size(kColours)]; }
+
+}  // namespace
+
+std::string XmlEscape(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string RenderSvg(const Plot& plot) {
+  Range xr, yr;
+  for (const PlotSeries& s : plot.series) {
+    CheckLengths(plot, "series '" + s.label + "'", s.x.size(), s.y.size());
+    for (size_t i = 0; i < s.x.size(); ++i) {
+      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
+        xr.Add(s.x[i]);
+        yr.Add(s.y[i]);
+      }
+    }
+  }
+  for (const PlotBand& b : plot.bands) {
+    CheckLengths(plot, "band '" + b.label + "'", b.x.size(), b.y_lo.size());
+    CheckLengths(plot, "band '" + b.label + "'", b.x.size(), b.y_hi.size());
+    for (size_t i = 0; i < b.x.size(); ++i) {
+      xr.Add(b.x[i]);
+      yr.Add(b.y_lo[i]);
+      yr.Add(b.y_hi[i]);
+    }
+  }
+  if (xr.Empty() || yr.Empty()) {
+    throw std::invalid_argument(fmt::format("plot '{}': no finite point to draw", plot.title));
+  }
+  const size_t legend_rows = plot.series.size() + plot.bands.size();
+  const int height_px = plot.height_px + static_cast<int>(legend_rows) * kLegendRowPx;
+  Frame f{NiceTicks(xr.lo, xr.hi, kMaxTicks), NiceTicks(yr.lo, yr.hi, kMaxTicks),
+          static_cast<double>(kMarginLeftPx), static_cast<double>(plot.width_px - kMarginRightPx),
+          static_cast<double>(kMarginTopPx), static_cast<double>(plot.height_px - kMarginBottomPx)};
+
+  std::string svg = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{}\" height=\"{}\" "
+      "viewBox=\"0 0 {} {}\" font-family=\"sans-serif\" font-size=\"11\">\n",
+      plot.width_px, height_px, plot.width_px, height_px);
+  svg += fmt::format("<title>{}</title>\n", XmlEscape(plot.title));
+  svg += fmt::format("<text class=\"title\" x=\"{}\" y=\"18\" text-anchor=\"middle\" "
+                     "font-size=\"13\">{}</text>\n",
+                     plot.width_px / 2, XmlEscape(plot.title));
+  for (size_t i = 0; i < plot.bands.size(); ++i) {
+    const PlotBand& b = plot.bands[i];
+    std::string points;
+    for (size_t k = 0; k < b.x.size(); ++k) {
+      points += fmt::format("{:.2f},{:.2f} ", f.Px(b.x[k]), f.Py(b.y_hi[k]));
+    }
+    for (size_t k = b.x.size(); k-- > 0;) {
+      points += fmt::format("{:.2f},{:.2f} ", f.Px(b.x[k]), f.Py(b.y_lo[k]));
+    }
+    svg += fmt::format("<polygon class=\"band\" data-label=\"{}\" points=\"{}\" fill=\"#2ca02c\" "
+                       "fill-opacity=\"0.15\" stroke=\"none\"/>\n",
+                       XmlEscape(b.label), points);
+  }
+  svg += fmt::format("<rect class=\"frame\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
+                     "height=\"{:.2f}\" fill=\"none\" stroke=\"#333\"/>\n",
+                     f.left, f.top, f.right - f.left, f.bottom - f.top);
+  for (const double v : f.x.values) {
+    svg += fmt::format("<line class=\"xtick\" data-value=\"{:.12g}\" x1=\"{:.2f}\" y1=\"{:.2f}\" "
+                       "x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>"
+                       "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"middle\">{}</text>\n",
+                       v, f.Px(v), f.bottom, f.Px(v), f.bottom + 5, f.Px(v), f.bottom + 17,
+                       TickLabel(v, f.x.step));
+  }
+  for (const double v : f.y.values) {
+    svg += fmt::format("<line class=\"ytick\" data-value=\"{:.12g}\" x1=\"{:.2f}\" y1=\"{:.2f}\" "
+                       "x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>"
+                       "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"end\">{}</text>\n",
+                       v, f.left - 5, f.Py(v), f.left, f.Py(v), f.left - 7, f.Py(v) + 4,
+                       TickLabel(v, f.y.step));
+  }
+  svg += fmt::format("<text class=\"xlabel\" x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"middle\">{}"
+                     "</text>\n",
+                     (f.left + f.right) / 2, f.bottom + 36, XmlEscape(plot.x_label));
+  svg += fmt::format("<text class=\"ylabel\" x=\"14\" y=\"{:.2f}\" text-anchor=\"middle\" "
+                     "transform=\"rotate(-90 14 {:.2f})\">{}</text>\n",
+                     (f.top + f.bottom) / 2, (f.top + f.bottom) / 2, XmlEscape(plot.y_label));
+  for (size_t i = 0; i < plot.series.size(); ++i) {
+    const PlotSeries& s = plot.series[i];
+    const std::string colour = Colour(i);
+    if (s.style == PlotSeries::Style::kLine) {
+      // A non-finite point ends one polyline; the next finite point starts another.
+      std::string points;
+      auto flush = [&] {
+        if (!points.empty()) {
+          svg += fmt::format("<polyline class=\"series\" data-label=\"{}\" points=\"{}\" "
+                             "fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n",
+                             XmlEscape(s.label), points, colour);
+        }
+        points.clear();
+      };
+      for (size_t k = 0; k < s.x.size(); ++k) {
+        if (!std::isfinite(s.x[k]) || !std::isfinite(s.y[k])) {
+          flush();
+          continue;
+        }
+        points += fmt::format("{:.2f},{:.2f} ", f.Px(s.x[k]), f.Py(s.y[k]));
+      }
+      flush();
+    } else {
+      svg += fmt::format("<g class=\"series\" data-label=\"{}\" fill=\"{}\">", XmlEscape(s.label),
+                         colour);
+      for (size_t k = 0; k < s.x.size(); ++k) {
+        if (!std::isfinite(s.x[k]) || !std::isfinite(s.y[k])) continue;
+        svg += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"2.5\"/>", f.Px(s.x[k]),
+                           f.Py(s.y[k]));
+      }
+      svg += "</g>\n";
+    }
+  }
+  double legend_y = plot.height_px - 4.0;
+  for (size_t i = 0; i < plot.series.size(); ++i, legend_y += kLegendRowPx) {
+    svg += fmt::format("<g class=\"legend\"><rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"14\" "
+                       "height=\"4\" fill=\"{}\"/><text x=\"{:.2f}\" y=\"{:.2f}\">{}</text></g>\n",
+                       f.left, legend_y + 4, Colour(i), f.left + 20, legend_y + 10,
+                       XmlEscape(plot.series[i].label));
+  }
+  for (const PlotBand& b : plot.bands) {
+    svg += fmt::format("<g class=\"legend\"><rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"14\" "
+                       "height=\"10\" fill=\"#2ca02c\" fill-opacity=\"0.15\"/><text x=\"{:.2f}\" "
+                       "y=\"{:.2f}\">{}</text></g>\n",
+                       f.left, legend_y + 1, f.left + 20, legend_y + 10, XmlEscape(b.label));
+    legend_y += kLegendRowPx;
+  }
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,49 @@
+// A small inline-SVG x-y plot for report.html: framed axes with nice ticks (nice_ticks.h), axis
+// labels that carry their units, a title, series drawn as polylines or point markers, optional
+// shaded bands (a tolerance envelope: lower and upper y at each x) and a legend. The output is one
+// self-contained <svg> element (SVG 1.1, no scripts, no external references), well-formed XML with
+// every text escaped, so it can be embedded in HTML or parsed by any XML reader.
+// Coordinates: data (x, y) maps linearly to pixels, x to the right, y upwards, inside the frame.
+// Left out: log axes, multiple y axes, error bars, colour maps (a heat map is a set of series).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace adahrs::calib {
+
+struct PlotSeries {
+  enum class Style { kLine, kPoints };
+  std::string label;  ///< legend text
+  std::vector<double> x;
+  std::vector<double> y;
+  Style style = Style::kLine;
+};
+
+/// A shaded region between y_lo(x) and y_hi(x) (e.g. the specification's tolerance envelope).
+struct PlotBand {
+  std::string label;
+  std::vector<double> x;
+  std::vector<double> y_lo;
+  std::vector<double> y_hi;
+};
+
+struct Plot {
+  std::string title;
+  std::string x_label;  ///< with its unit, e.g. "chamber temperature (degC)"
+  std::string y_label;  ///< with its unit
+  std::vector<PlotSeries> series;
+  std::vector<PlotBand> bands;
+  int width_px = 640;
+  int height_px = 360;
+};
+
+/// The plot as an <svg> element. Non-finite points are skipped (a line breaks there). Throws
+/// std::invalid_argument naming the plot and series if x and y lengths differ or nothing is
+/// drawable.
+std::string RenderSvg(const Plot& plot);
+
+/// Escapes &, <, >, " and ' for XML text and attributes.
+std::string XmlEscape(const std::string& text);
+
+}  // namespace adahrs::calib
