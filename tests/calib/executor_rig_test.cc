@@ -123,9 +123,10 @@ TEST(ExecutorRig, ThermalProfileTagsEveryPacketWhileTheProfileRuns) {
   std::atomic<bool> stop{false};
   EXPECT_EQ(StartRun(options, progress, stop).lost, 0u);
   const hil::Recording rec = hil::ReadRecording(options.run_dir);
+  const auto tagged = testing::TaggedImuRows(rec);
   for (int u = 1; u <= 4; ++u) {
     const std::string serial = "IMU-000" + std::to_string(u);
-    const auto& rows = testing::TaggedImuRows(rec).at({serial, 1});
+    const auto& rows = tagged.at({serial, 1});
     // 25 -> 30 degC at 5 degC/min is 60 s, then 20 s of soak: 80 s of 100 Hz packets, less up to
     // 1 % (7,956 rows seen once, on a loaded machine: a 0.4 s shortfall whose cause - the F4
     // engine's start or the executor's end-of-profile poll - is not pinned down yet).
