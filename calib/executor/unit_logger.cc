@@ -12,21 +12,6 @@ namespace {
 // How long one poll waits for the first packet: short, so queued requests run promptly.
 constexpr std::chrono::milliseconds kPollWait{5};
 
-// Runs an idempotent request, repeating it while it ends in kNoReply (see the header).
-template <typename Request>
-void Idempotent(Request request) {
-  for (int attempt = 1;; ++attempt) {
-    try {
-      request();
-      return;
-    } catch (const hil::InstrumentError& e) {
-      if (e.kind() != hil::InstrumentError::Kind::kNoReply || attempt >= kIdempotentRequestTries) {
-        throw;
-      }
-    }
-  }
-}
-
 }  // namespace
 
 UnitLogger::UnitLogger(hil::UnitLink& link, std::string serial, SharedRecording& recording,
@@ -70,19 +55,19 @@ std::future<void> UnitLogger::StartAcquisition(uint8_t tag, int64_t quota) {
       quota_ = quota;
       acquired_ = 0;
     }
-    Idempotent([&] { link.SetTag(tag); });
+    link.SetTag(tag);
   });
 }
 
 std::future<void> UnitLogger::EndAcquisition() {
-  return Submit([](hil::UnitLink& link) { Idempotent([&] { link.SetTag(0); }); });
+  return Submit([](hil::UnitLink& link) { link.SetTag(0); });
 }
 
 std::future<void> UnitLogger::BeginAverage(int64_t packets) {
   return Submit([this, packets](hil::UnitLink& link) {
     // The response comes after every packet sent before the unit handled the request: record
     // those first, then average what follows.
-    Idempotent([&] { link.ReadCounters(); });
+    link.ReadCounters();
     Record(link.Poll(std::chrono::milliseconds(0)));
     std::lock_guard lock(mutex_);
     average_wanted_ = packets;

@@ -15,10 +15,8 @@
 // N packets feed the interlocks (interlocks.h); they start after a READ_COUNTERS round trip, so
 // every packet still in transit from before the request (from before a fixture move or a table
 // change: a fast rig's output backlog can hold seconds of packets) is left out.
-// SET_TAG and READ_COUNTERS are idempotent, and their response travels behind every data packet
-// the unit sent before it: on a fast rig with a backlog (a loaded PC falls behind by seconds of
-// packets) it can take longer than the link's attempts. A request that ends in kNoReply is
-// therefore sent again, kIdempotentRequestTries in all, before the failure stands.
+// A request's response travels behind every data packet still in the line; the link itself waits
+// for it while data keeps arriving (hil/drivers/unit_link.h).
 // Left out: retrying a failed poll (a transport error stops the thread; CheckHealthy rethrows it).
 #pragma once
 
@@ -40,10 +38,6 @@
 #include "hil/drivers/unit_link.h"
 
 namespace adahrs::calib {
-
-/// Times an idempotent unit request is sent before its kNoReply stands (each time with the
-/// link's own attempts).
-inline constexpr int kIdempotentRequestTries = 3;
 
 /// Mean raw values of an IMU over a number of packets.
 struct RawAverage {
