@@ -48,6 +48,7 @@ struct RunArgs {
 int RunAndReport(const RunArgs& a) {
   struct sigaction action {};
   action.sa_handler = OnSigint;
+  action.sa_flags = SA_RESTART;  // a serial read in progress goes on; the executor sees the flag
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   ConsoleProgress progress;

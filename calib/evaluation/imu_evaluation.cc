@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "calib/evaluation/simulated_raw_frame.h"
 #include "calib/imu_calibration/imu_joint_fit.h"
 #include "calib/imu_calibration/imu_observations.h"
 #include "firmware_model/constants_exporter.h"
@@ -22,19 +23,6 @@ constexpr double kRates_dps[] = {-150, -100, -50, 50, 100, 150};
 constexpr double kSigmaLimit = 3.0;   // CRB limit per point: 3 sigma
 constexpr double kCrbMargin = 1.5;    // issue 6: within 1.5x the CRB-implied limit
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-fm::ImuRawFrame ToFirmware(const sensor_sim::ImuRawFrame& f) {
-  fm::ImuRawFrame out{};
-  for (int i = 0; i < 6; ++i) {
-    out.t1_cnt[i] = f.accel[i].t1_cnt;
-    out.t2_cnt[i] = f.accel[i].t2_cnt;
-  }
-  for (int g = 0; g < 3; ++g) {
-    out.gyro_cnt[g] = f.gyro_cnt[g];
-    out.temp_cnt[g] = f.temp_cnt[g];
-  }
-  return out;
-}
 
 sensor_sim::ImuUnitParams NoiseOff(sensor_sim::ImuUnitParams p) {
   for (auto& chip : p.accel_chips) chip.effects.noise = false;
@@ -99,7 +87,7 @@ std::vector<GridPoint> SimulateGrid(const sensor_sim::ImuUnitParams& params, dou
       s.w_B_dps = rate_dps * p.up;
       s.air_temp_c = temp_c;
       for (int i = 0; i < options.settle_frames; ++i) unit.Step(s);
-      for (int i = 0; i < options.frames; ++i) p.frames.push_back(ToFirmware(unit.Step(s)));
+      for (int i = 0; i < options.frames; ++i) p.frames.push_back(ToFirmwareRawFrame(unit.Step(s)));
       grid.push_back(std::move(p));
     }
   }

@@ -109,7 +109,7 @@ void Executor::RunActions(size_t first_action) {
     journal_.Append({{"event", "action_started"}, {"t_s", action_started_s_}, {"index", i},
                      {"step", a.step}, {"action", Describe(a.action)}});
     Report(true);
-    Execute(a, i);
+    Execute(a);
     journal_.Append({{"event", "action_completed"}, {"t_s", clock_.NowS()}, {"index", i},
                      {"step", a.step}});
     const bool step_ends = i + 1 == plan_.actions.size() || plan_.actions[i + 1].step != a.step;
@@ -121,7 +121,7 @@ void Executor::RunActions(size_t first_action) {
   }
 }
 
-void Executor::Execute(const PlannedAction& a, size_t /*index*/) {
+void Executor::Execute(const PlannedAction& a) {
   std::visit(
       Overloaded{
           [&](const PromptOperator& x) { instruments_.op->Prompt(x.text); },

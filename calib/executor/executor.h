@@ -89,7 +89,7 @@ class Executor {
 
  private:
   void RunActions(size_t first_action);
-  void Execute(const PlannedAction& a, size_t index);
+  void Execute(const PlannedAction& a);
   void RestoreState(size_t first_action);
   void MakeSafe();
 

@@ -107,24 +107,11 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
   if (!imu_batch) batch.rate_table = nullptr;
   if (imu_batch) batch.adts = nullptr;
   nlohmann::json identities = nlohmann::json::array();
-  // The first exchanges on a line can meet what a crashed predecessor left behind (replies to
-  // its last requests, delivered when the port is opened again): a garbled reply to the
-  // identification is retried, kIdentifyAttempts in all, half a clock second apart (each failed
-  // exchange makes the driver flush its input); anything else stops the run.
-  constexpr int kIdentifyAttempts = 3;
+  // A crashed predecessor's late replies on a line are the drivers' business (they flush and
+  // repeat a garbled exchange within their bounded retries).
   const auto identify = [&](const char* role, auto* instrument) {
     if (instrument == nullptr) return;
-    hil::InstrumentIdentity id;
-    for (int attempt = 1;; ++attempt) {
-      try {
-        id = instrument->Identify();
-        break;
-      } catch (const hil::InstrumentError& e) {
-        if (e.kind() != hil::InstrumentError::Kind::kBadReply || attempt == kIdentifyAttempts) throw;
-        progress.Note(fmt::format("{}: garbled reply ({}); identifying again", role, e.what()));
-        clock.SleepS(0.5);
-      }
-    }
+    const hil::InstrumentIdentity id = instrument->Identify();
     identities.push_back({{"role", role}, {"model", id.model}, {"detail", id.detail}});
   };
   identify("rate_table", batch.rate_table);

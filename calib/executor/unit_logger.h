@@ -15,6 +15,8 @@
 // N packets feed the interlocks (interlocks.h); they start after a READ_COUNTERS round trip, so
 // every packet still in transit from before the request (from before a fixture move or a table
 // change: a fast rig's output backlog can hold seconds of packets) is left out.
+// A request's response travels behind every data packet still in the line; the link itself waits
+// for it while data keeps arriving (hil/drivers/unit_link.h).
 // Left out: retrying a failed poll (a transport error stops the thread; CheckHealthy rethrows it).
 #pragma once
 

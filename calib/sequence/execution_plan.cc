@@ -55,8 +55,11 @@ class Planner {
   }
 
   void TableRate(double rate_dps, double accel_dps2) {
-    Add(SetTableRate{rate_dps, accel_dps2}, std::abs(rate_dps - table_dps_) / accel_dps2);
-    Add(WaitTableAtRate{rate_dps}, timing_.table_settle_s);
+    // A command returns at once; the wait that follows carries the motion's time (the executor
+    // bounds each wait by its estimate).
+    Add(SetTableRate{rate_dps, accel_dps2}, 0.0);
+    Add(WaitTableAtRate{rate_dps},
+        std::abs(rate_dps - table_dps_) / accel_dps2 + timing_.table_settle_s);
     table_dps_ = rate_dps;
   }
 
@@ -80,16 +83,16 @@ class Planner {
   }
 
   void Altitude(const AltitudeStep& s) {
-    Add(SetAltitude{s.alt_ft, s.rate_ft_per_min},
-        std::abs(s.alt_ft - alt_ft_) / s.rate_ft_per_min * kSecondsPerMinute);
-    Add(WaitAdtsStable{}, timing_.adts_stable_s);
+    Add(SetAltitude{s.alt_ft, s.rate_ft_per_min}, 0.0);
+    Add(WaitAdtsStable{},
+        std::abs(s.alt_ft - alt_ft_) / s.rate_ft_per_min * kSecondsPerMinute + timing_.adts_stable_s);
     alt_ft_ = s.alt_ft;
   }
 
   void Airspeed(const AirspeedStep& s) {
-    Add(SetAirspeed{s.cas_kt, s.rate_kt_per_min},
-        std::abs(s.cas_kt - cas_kt_) / s.rate_kt_per_min * kSecondsPerMinute);
-    Add(WaitAdtsStable{}, timing_.adts_stable_s);
+    Add(SetAirspeed{s.cas_kt, s.rate_kt_per_min}, 0.0);
+    Add(WaitAdtsStable{},
+        std::abs(s.cas_kt - cas_kt_) / s.rate_kt_per_min * kSecondsPerMinute + timing_.adts_stable_s);
     cas_kt_ = s.cas_kt;
   }
 

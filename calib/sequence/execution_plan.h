@@ -22,7 +22,9 @@
 // the set point reached before) and soaks, each jump repeating its loop `count` times (the F4
 // profile engine as rig_sim models it: a jump is taken count times, then the profile goes on); the
 // ADTS slews at the commanded rate then takes 15 s to flag "stable" (protocols.md §4.4, DRV);
-// acquisition takes N / packet rate.
+// acquisition takes N / packet rate. A command (set rate, set point, ADTS aim) is estimated at
+// 0 s and the wait that follows it carries the motion, because the executor bounds each wait by
+// its own estimate.
 // Not modelled: instrument command latency, packet loss, interlock retries, operator delays
 // beyond the fixed prompt time.
 #pragma once

@@ -20,8 +20,11 @@
 
 namespace adahrs::hil {
 
-/// Floor of one reply's wall-clock wait, whatever the time scale.
-inline constexpr std::chrono::milliseconds kMinWallReplyTimeout{100};
+/// Floor of one reply's wall-clock wait, whatever the time scale. A busy PC (a loaded build
+/// machine, the two benches of a demo and the rig sharing two cores) can leave a reading thread
+/// unscheduled for a few hundred milliseconds; below a second the floor buys nothing but false
+/// "no reply" verdicts, and it costs only when an instrument really is silent.
+inline constexpr std::chrono::milliseconds kMinWallReplyTimeout{1000};
 
 /// The wall-clock wait for a reply promised within `timeout_ms` of clock time.
 std::chrono::milliseconds WallReplyTimeout(const Clock& clock, int timeout_ms);

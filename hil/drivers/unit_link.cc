@@ -116,13 +116,15 @@ fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
     } catch (const TransportError& e) {
       Fail(Kind::kNoReply, command_text, "", e.what());
     }
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    const auto sent = std::chrono::steady_clock::now();
+    const auto patience_end = sent + kUnitBacklogPatience * timeout;
+    auto quiet_end = sent + timeout;
     for (;;) {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-          deadline - std::chrono::steady_clock::now());
+          std::min(quiet_end, patience_end) - std::chrono::steady_clock::now());
       if (left.count() <= 0) break;
       std::vector<fm::MaintenanceResponse> responses;
-      ReadInto(left, &responses);
+      if (ReadInto(left, &responses) > 0) quiet_end = std::chrono::steady_clock::now() + timeout;
       for (const fm::MaintenanceResponse& response : responses) {
         // Responses to other requests (answers that came after their request gave up) are stale.
         if (response.command != command ||

@@ -8,8 +8,11 @@
 // it echoes the command and the sequence of any attempt of the same request (a late answer to an
 // earlier attempt is as good as the last). An attempt waits the station's `timeout_ms` of clock
 // time (converted to wall time by the Clock, never below kMinWallReplyTimeout so that the PC's
-// own scheduling cannot fake a silent unit on a fast rig); after kUnitRequestAttempts unanswered
-// attempts the request throws InstrumentError kNoReply. A NAK throws kRefused with its reason; a
+// own scheduling cannot fake a silent unit on a fast rig). The response travels behind every data
+// packet the unit sent before it, so on a fast rig whose line holds a backlog the wait is for
+// silence, not for a fixed time: it restarts whenever bytes arrive, up to kUnitBacklogPatience
+// reply timeouts per attempt (a unit that streams but never answers still fails, later). After
+// kUnitRequestAttempts unanswered attempts the request throws InstrumentError kNoReply. A NAK throws kRefused with its reason; a
 // response that does not parse, or a data packet of the other unit kind, throws kBadReply /
 // kWrongIdentity. Each error names the unit role, the port, the command and the reply.
 // Retrying COMMIT whose ACK was lost commits twice (constants_version counts both): harmless for
@@ -39,6 +42,8 @@ namespace adahrs::hil {
 
 /// Attempts of one maintenance request before kNoReply (the first try and two retries).
 inline constexpr int kUnitRequestAttempts = 3;
+/// Longest wait of one attempt while data keeps arriving, in reply timeouts.
+inline constexpr int kUnitBacklogPatience = 3;
 
 /// One data packet as received.
 struct ReceivedPacket {

@@ -109,8 +109,11 @@ void WatlowF4Chamber::Fail(Kind kind, const std::string& command, const std::str
 
 template <typename Call>
 void WatlowF4Chamber::Transact(const std::string& command, Call call) {
+  // A garbled or stale reply (a crashed predecessor's late answers, line noise) is flushed and the
+  // transaction repeated like a missing one: every register read and write here is idempotent.
   const int attempts = entry_.retries + 1;
   std::string last_error;
+  bool last_was_timeout = true;
   for (int attempt = 0; attempt < attempts; ++attempt) {
     errno = 0;
     if (call() >= 0) return;
@@ -121,10 +124,11 @@ void WatlowF4Chamber::Transact(const std::string& command, Call call) {
            "Modbus exception");
     }
     last_error = modbus_strerror(error);
+    last_was_timeout = error == ETIMEDOUT;
     modbus_flush(ctx_);
-    if (error != ETIMEDOUT) {
-      Fail(Kind::kBadReply, command, "", last_error);
-    }
+  }
+  if (!last_was_timeout) {
+    Fail(Kind::kBadReply, command, "", fmt::format("{} after {} attempts", last_error, attempts));
   }
   Fail(Kind::kNoReply, command, "",
        fmt::format("{} attempts of {} ms wall each", attempts,

@@ -118,6 +118,13 @@ TEST(ExecutionPlan, ChamberAndAdtsSteps) {
   // 40 °C at 1 °C/min = 2400 s + 600 s soak; 3000 ft at 1500 ft/min = 120 s + 15 s stable;
   // 3 s of packets; 100 kt at 50 kt/min = 120 s + 15 s; 5 s of logging.
   EXPECT_DOUBLE_EQ(plan.duration_estimate_s, 3000.0 + 135.0 + 3.0 + 135.0 + 5.0);
+  // The executor bounds every wait by its estimate, so the slew belongs to the wait, not to the
+  // command that returns at once (a 5,000 ft step at 3,000 ft/min once timed out at 105 s of a
+  // 115 s wait when the command carried the slew).
+  EXPECT_DOUBLE_EQ(plan.actions[2].estimate_s, 0.0);
+  EXPECT_DOUBLE_EQ(plan.actions[3].estimate_s, 135.0);
+  EXPECT_DOUBLE_EQ(plan.actions[5].estimate_s, 0.0);
+  EXPECT_DOUBLE_EQ(plan.actions[6].estimate_s, 135.0);
 }
 
 TEST(ProfileDuration, JumpRepeatsItsLoopCountTimes) {

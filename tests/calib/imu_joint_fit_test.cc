@@ -96,6 +96,10 @@ TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbOrFirmwareFloor) {
   }
   for (const auto& [v, n] : verdicts) std::printf("%2d x %s\n", n, v.c_str());
   EXPECT_LE(sum_joint, sum_reference);
+  // Most units must reach the evaluation: the exporter's uint16-wide temperature normalisation
+  // refuses 7 of these 20 today (a known firmware_model defect), and a change that refused more
+  // would otherwise pass unseen.
+  EXPECT_LE(verdicts["not exportable"], 7);
 }
 
 }  // namespace

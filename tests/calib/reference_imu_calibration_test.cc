@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "calib/evaluation/simulated_raw_frame.h"
 #include "calib/solvers/cross_axis_fit.h"
 #include "calib/solvers/gyro_scale_fit.h"
 #include "calib/solvers/sample_statistics.h"
@@ -38,19 +39,6 @@ Eigen::Vector3d UpAxis(int orientation) {
   return (orientation % 10 == 1 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(orientation / 10 - 1);
 }
 
-fm::ImuRawFrame ToFirmware(const sensor_sim::ImuRawFrame& f) {
-  fm::ImuRawFrame out{};
-  for (int i = 0; i < 6; ++i) {
-    out.t1_cnt[i] = f.accel[i].t1_cnt;
-    out.t2_cnt[i] = f.accel[i].t2_cnt;
-  }
-  for (int g = 0; g < 3; ++g) {
-    out.gyro_cnt[g] = f.gyro_cnt[g];
-    out.temp_cnt[g] = f.temp_cnt[g];
-  }
-  return out;
-}
-
 // The rig: orientation, table rate about the up axis and air temperature held per step.
 class Rig {
  public:
@@ -59,13 +47,13 @@ class Rig {
   std::vector<fm::ImuRawFrame> Acquire(int orientation, double rate_dps, double air_temp_c, int n) {
     std::vector<fm::ImuRawFrame> frames;
     for (int i = 0; i < kSettleFrames + n; ++i) {
-      const fm::ImuRawFrame f = ToFirmware(unit_.Step(Stimulus(orientation, rate_dps, air_temp_c)));
+      const fm::ImuRawFrame f = ToFirmwareRawFrame(unit_.Step(Stimulus(orientation, rate_dps, air_temp_c)));
       if (i >= kSettleFrames) frames.push_back(f);
     }
     return frames;
   }
   fm::ImuRawFrame Step(int orientation, double air_temp_c) {
-    return ToFirmware(unit_.Step(Stimulus(orientation, 0.0, air_temp_c)));
+    return ToFirmwareRawFrame(unit_.Step(Stimulus(orientation, 0.0, air_temp_c)));
   }
 
  private:

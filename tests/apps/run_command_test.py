@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""`adahrs run` as an operator sees it, against `adahrs rig` started as a separate process:
+refuses a missing option and a run directory that already holds a run; Ctrl-C (SIGINT) in the
+middle of a sequence leaves the rig's table at rest, exits with status 130, says how to resume,
+and `adahrs run --resume` then completes the run (meta.json status "complete").
+
+Usage: run_command_test.py ADAHRS_BINARY
+"""
+import json
+import pathlib
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+import serial
+
+
+def fail(message):
+    print("FAIL:", message)
+    sys.exit(1)
+
+
+def station_for(manifest, config):
+    """A station file for every role of the rig (as tests/support/rig_process.h writes it)."""
+    def port(path, baud, flow):
+        return {"path": path, "baud": baud, "data_bits": 8, "parity": "N", "stop_bits": 1,
+                "flow": flow}
+    instruments = {}
+    for inst in manifest["instruments"]:
+        role, kind = inst["role"], inst["kind"]
+        section = config["instruments"][kind]
+        address, baud, flow = 0, 9600, "none"
+        if kind == "watlow_f4":
+            address = section["modbus_address"]
+        if kind == "druck_adts_prologix":
+            address, baud = section["gpib_address"], 115200
+        if kind == "watlow_942":
+            flow = "xonxoff"
+        instruments[role] = {"type": kind, "port": port(manifest["links"][role], baud, flow),
+                             "address": address, "timeout_ms": 1000, "retries": 2}
+    units = [{"role": u["role"], "kind": u["kind"], "slot": u["slot"], "timeout_ms": 500,
+              "port": port(manifest["links"][u["role"]], u["baud"], "none")}
+             for u in manifest["units"]]
+    return {"name": "run command test", "time_scale": manifest["time_scale"],
+            "site": {"latitude_deg": manifest["station"]["latitude_deg"],
+                     "height_m": manifest["station"]["height_m"]},
+            "instruments": instruments, "units": units,
+            "operator": {"type": "virtual_fixture",
+                         "port": port(manifest["links"]["control"], 115200, "none")}}
+
+
+def main():
+    adahrs = sys.argv[1]
+    with tempfile.TemporaryDirectory(prefix="adahrs-run-cli-") as tmp:
+        tmp = pathlib.Path(tmp)
+        missing = subprocess.run([adahrs, "run", "--station", "x.json"], capture_output=True,
+                                 text=True)
+        if missing.returncode == 0 or "--sequence" not in missing.stderr + missing.stdout:
+            fail(f"missing options accepted: {missing.returncode} {missing.stderr}")
+
+        config = json.loads(subprocess.check_output([adahrs, "rig", "--print-default-config"]))
+        # 20x: the 40 simulated seconds of the sequence take 2 s of wall time, room for a Ctrl-C.
+        rig = subprocess.Popen([adahrs, "rig", "--manifest", str(tmp / "rig" / "manifest.json"),
+                                "--time-scale", "20"], stdout=subprocess.DEVNULL,
+                               stderr=subprocess.STDOUT)
+        try:
+            manifest_path = tmp / "rig" / "manifest.json"
+            deadline = time.monotonic() + 30
+            while not manifest_path.exists():
+                if time.monotonic() > deadline or rig.poll() is not None:
+                    fail("the rig did not start")
+                time.sleep(0.05)
+            manifest = json.loads(manifest_path.read_text())
+            (tmp / "station.json").write_text(json.dumps(station_for(manifest, config)))
+            (tmp / "sequence.json").write_text(json.dumps({
+                "format_version": 1, "name": "cli", "description": "Ctrl-C and resume",
+                "unit_kind": "imu", "steps": [
+                    {"kind": "accel", "orientation": 11, "packets": 500},
+                    {"kind": "gyro", "orientation": 31, "packets": 500, "rate_min_dps": 50,
+                     "rate_max_dps": 50, "rate_increment_dps": 10, "table_accel_dps2": 100}]}))
+            run_dir = tmp / "run"
+            args = [adahrs, "run", "--station", str(tmp / "station.json"), "--sequence",
+                    str(tmp / "sequence.json"), "--run-dir", str(run_dir)]
+            run = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            journal = run_dir / "journal.jsonl"
+            deadline = time.monotonic() + 30
+            while "set table rate 50" not in (journal.read_text() if journal.exists() else ""):
+                if time.monotonic() > deadline or run.poll() is not None:
+                    run.kill()
+                    out, err = run.communicate()
+                    fail(f"the run never reached the gyro step's rate: {out[-2000:]} {err}")
+                time.sleep(0.01)
+            run.send_signal(signal.SIGINT)
+            out, err = run.communicate(timeout=60)
+            print(err)
+            if run.returncode != 130:
+                fail(f"exit status {run.returncode} after SIGINT, expected 130")
+            if f"adahrs run --resume {run_dir}" not in err:
+                fail("no resume instruction after SIGINT")
+            meta = json.loads((run_dir / "meta.json").read_text())
+            if meta["status"] != "interrupted":
+                fail(f"meta.json status {meta['status']}")
+            with serial.Serial(manifest["links"]["control"], 115200, timeout=5) as control:
+                control.write(b"env\n")
+                env = control.readline().decode()
+            rate = float(env.split("table_rate_dps=")[1].split()[0])
+            print("rig after SIGINT:", env.strip())
+            if rate != 0.0:
+                fail(f"table still turning after SIGINT: {rate} deg/s")
+            again = subprocess.run(args, capture_output=True, text=True)
+            if again.returncode == 0 or "--resume" not in again.stderr:
+                fail(f"a second run into the same directory was not refused: {again.stderr}")
+            resumed = subprocess.run([adahrs, "run", "--resume", str(run_dir)],
+                                     capture_output=True, text=True, timeout=120)
+            if resumed.returncode != 0:
+                fail(f"resume failed: {resumed.stderr}")
+            meta = json.loads((run_dir / "meta.json").read_text())
+            if meta["status"] != "complete":
+                fail(f"meta.json status after resume {meta['status']}")
+        finally:
+            rig.send_signal(signal.SIGTERM)
+            rig.wait(timeout=30)
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
