@@ -1,5 +1,6 @@
 #include "calib/executor/executor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -195,7 +196,7 @@ void Executor::MakeSafe() {
       const double deadline_s = clock_.NowS() + 360.0 / options_.safe_stop_accel_dps2 + 10.0;
       while (std::abs(instruments_.rate_table->ReadRateDps()) > options_.table_rate_tolerance_dps &&
              clock_.NowS() < deadline_s) {
-        clock_.SleepS(options_.poll_interval_s);
+        clock_.SleepS(PollIntervalS());
       }
     });
   }
@@ -409,7 +410,8 @@ void Executor::WaitAdtsStable(double estimate_s) {
 
 template <typename Done, typename State>
 void Executor::WaitFor(const std::string& what, double estimate_s, Done done, State state) {
-  const double timeout_s = options_.timeout_factor * estimate_s + options_.timeout_margin_s;
+  const double margin_s = TimeoutMarginS();
+  const double timeout_s = options_.timeout_factor * estimate_s + margin_s;
   const double start_s = clock_.NowS();
   for (;;) {
     Tick();
@@ -417,10 +419,18 @@ void Executor::WaitFor(const std::string& what, double estimate_s, Done done, St
     if (clock_.NowS() - start_s > timeout_s) {
       throw RunError(fmt::format(
           "{}: {} not reached within {:.0f} s ({:.0f} x estimate {:.1f} s + {:.0f} s): {}", Where(), what,
-          timeout_s, options_.timeout_factor, estimate_s, options_.timeout_margin_s, state()));
+          timeout_s, options_.timeout_factor, estimate_s, margin_s, state()));
     }
-    clock_.SleepS(options_.poll_interval_s);
+    clock_.SleepS(PollIntervalS());
   }
+}
+
+double Executor::PollIntervalS() const {
+  return std::max(options_.poll_interval_s, options_.min_poll_wall_s * clock_.time_scale());
+}
+
+double Executor::TimeoutMarginS() const {
+  return std::max(options_.timeout_margin_s, options_.min_margin_wall_s * clock_.time_scale());
 }
 
 void Executor::Tick() {

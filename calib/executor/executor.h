@@ -3,8 +3,14 @@
 // UnitLogger thread per unit. Each action runs to a real condition read from the instruments
 // (hil/instruments/instruments.h): chamber process value inside ±band for the soak, table at rate,
 // ADTS stable, N packets tagged per unit, the profile no longer running. Conditions are polled at
-// `poll_interval_s` of pipeline clock; every wait is bounded by
-//   timeout = timeout_factor × the action's plan estimate + timeout_margin_s
+// `poll_interval_s` of pipeline clock, but never more often than every `min_poll_wall_s` of wall
+// time (a virtual rig at 600x would otherwise be polled every 0.4 ms of wall time); every wait is
+// bounded by
+//   timeout = timeout_factor × the action's plan estimate + margin,
+//   margin  = max(timeout_margin_s, min_margin_wall_s × the clock's time scale)
+// so the pipeline always has a few seconds of wall time to drain the units' lines, however fast
+// the rig runs (at 600x, 60 s of clock time is 0.1 s of wall time: a busy 2-core host falls that
+// far behind in reading packets).
 // and ends the run with a RunError naming the step, the instrument and the last reading; nothing
 // is ever a fixed sleep standing in for a condition.
 //
@@ -54,7 +60,9 @@ struct ExecutorOptions {
   double poll_interval_s = 0.25;     ///< clock seconds between condition polls
   double refresh_interval_s = 1.0;   ///< clock seconds between instrument readings for the rows
   double timeout_factor = 3.0;       ///< wait timeout = factor × estimate + margin
-  double timeout_margin_s = 60.0;
+  double timeout_margin_s = 60.0;     ///< clock seconds
+  double min_margin_wall_s = 3.0;     ///< wall seconds the margin never falls below
+  double min_poll_wall_s = 0.005;     ///< wall seconds between polls at least
   int interlock_attempts = 3;        ///< interlock tries (with a prompt between) before aborting
   double interlock_sample_s = 1.0;   ///< packets averaged by an interlock check
   double packet_rate_hz = 100.0;
@@ -113,6 +121,9 @@ class Executor {
   template <typename Done, typename State>
   void WaitFor(const std::string& what, double estimate_s, Done done, State state);
   void Tick();
+  /// Clock seconds between polls and the wait margin, with their wall-time floors (header).
+  double PollIntervalS() const;
+  double TimeoutMarginS() const;
   void RefreshReadings();
   void Report(bool force);
   std::string Where() const;

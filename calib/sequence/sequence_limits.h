@@ -47,6 +47,9 @@ struct SequenceLimits {
   std::string table_name = "rate table";
   /// ATL JOG accepts −360…360 °/s (protocols.md §1.2, DRV).
   double table_max_rate_dps = 360.0;
+  /// Rates the table can be commanded to are multiples of this: the ATL JOG command takes an
+  /// integer °/s (protocols.md §1.2, DRV; hil/drivers/atl_rate_table refuses anything else).
+  double table_rate_resolution_dps = 1.0;
   /// Acceleration the drive can command (E, rig_sim rate-table default; no manual available).
   double table_max_accel_dps2 = 500.0;
   /// The gyro interlock jogs the table at this rate before acquiring (thesis §3.5, Fig. 45b).

@@ -61,6 +61,18 @@ class Checker {
                             limits_.table_name),
           fmt::format("{} ±{:g} deg/s", limits_.table_name, limits_.table_max_rate_dps));
     }
+    TableResolution(path, rate_dps);
+  }
+
+  // A rate or rate increment the table can be commanded in: a whole number of its resolution.
+  void TableResolution(const std::string& path, double rate_dps) {
+    const double steps = rate_dps / limits_.table_rate_resolution_dps;
+    if (std::abs(steps - std::round(steps)) > 1e-9 * std::max(1.0, std::abs(steps))) {
+      Add(path, fmt::format("{:g} deg/s is not a multiple of the {}'s rate resolution", rate_dps,
+                            limits_.table_name),
+          fmt::format("{} commands rates in steps of {:g} deg/s", limits_.table_name,
+                      limits_.table_rate_resolution_dps));
+    }
   }
 
   void TableAccel(const std::string& path, double accel_dps2) {
@@ -295,6 +307,7 @@ class Checker {
     }
     TableRate(path + ".rate_min_dps", s.rate_min_dps);
     TableRate(path + ".rate_max_dps", s.rate_max_dps);
+    TableResolution(path + ".rate_increment_dps", s.rate_increment_dps);
   }
 
   void KindAllowed(const std::string& path, const StepBody& body, UnitKind kind) {

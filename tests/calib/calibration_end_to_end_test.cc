@@ -9,6 +9,9 @@
 //   - every acquiring step complete: rows with the step's index and TAG outside rejected intervals
 //     number exactly the packets the sequence file asks for (the sum of its acquisitions, from the
 //     sequence expansion), for every unit (contract C2: tagged rows are exactly the acquisitions).
+// Under ASan/UBSan the build checks memory and arithmetic, not speed: the same code paths run the
+// --quick variants of both sequences (calib/campaign/quick_sequences.h) at 200x with every loss
+// and completeness check, and the wall time is printed, not judged.
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -18,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/campaign/bench_runs.h"
+#include "calib/campaign/quick_sequences.h"
 #include "calib/sequence/execution_plan.h"
 #include "calib/sequence/sequence_json.h"
 #include "hil/recording/recording_reader.h"
@@ -26,9 +30,15 @@
 namespace adahrs::calib {
 namespace {
 
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+constexpr double kTimeScale = 200.0;
+#else
+constexpr bool kSanitized = false;
 // The rig's speed: above ~900x its 10 ms frames fall behind on this 2-core host and packets are
 // lost (docs/performance.md); 600 leaves margin for the pipeline sharing the cores.
 constexpr double kTimeScale = 600.0;
+#endif
 // The wall-time budget for both sequences.
 constexpr double kBudgetWallS = 120.0;
 
@@ -115,8 +125,17 @@ TEST(CalibrationEndToEndTest, FourImusAndOneAdsCalibratedConcurrentlyWithinBudge
       BenchStation(rig, "station-imu.json", {"aerosmith_atl", "watlow_f4"}, "imu");
   const std::string ads_station =
       BenchStation(rig, "station-ads.json", {"watlow_942", "druck_adts_prologix"}, "ads");
-  const std::string imu_sequence = kSequenceDir + "imu_sensor_calibration.json";
-  const std::string ads_sequence = kSequenceDir + "ads_calibration.json";
+  std::string imu_sequence = kSequenceDir + "imu_sensor_calibration.json";
+  std::string ads_sequence = kSequenceDir + "ads_calibration.json";
+  if (kSanitized) {
+    const CampaignSequences quick =
+        WriteQuickSequences({kSequenceDir + "imu_thermal_calibration_trial.json", imu_sequence,
+                             ads_sequence, kSequenceDir + "imu_acceptance.json",
+                             kSequenceDir + "ads_acceptance.json"},
+                            rig.dir() / "quick");
+    imu_sequence = quick.imu_sensor;
+    ads_sequence = quick.ads_calibration;
+  }
   SilentProgress imu_progress, ads_progress;
   const std::vector<BenchPlan> benches = {
       {"IMU bench", imu_station, {{imu_sequence, rig.dir() / "imu_run"}}, &imu_progress},
@@ -135,7 +154,9 @@ TEST(CalibrationEndToEndTest, FourImusAndOneAdsCalibratedConcurrentlyWithinBudge
               "calibration %.0f simulated s, %zu rows\n",
               wall_s, kTimeScale, imu.imu.empty() ? 0.0 : imu.imu.back().t_s, imu.imu.size(),
               ads.ads.empty() ? 0.0 : ads.ads.back().t_s, ads.ads.size());
-  EXPECT_LE(wall_s, kBudgetWallS);
+  if (!kSanitized) {
+    EXPECT_LE(wall_s, kBudgetWallS);
+  }
   ASSERT_EQ(summaries.size(), 2u);
   for (const std::vector<RunSummary>& bench : summaries) {
     ASSERT_EQ(bench.size(), 1u);

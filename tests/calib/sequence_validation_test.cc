@@ -90,9 +90,25 @@ TEST(SequenceValidation, GyroRatesMustBeAWholeNumberOfIncrements) {
       OnlyProblem(Imu({{std::nullopt, GyroStep{11, 100, -150.0, 150.0, 40.0, 100.0}}}));
   EXPECT_EQ(p.path, "$.steps[0].rate_increment_dps");
   EXPECT_THAT(p.rule, HasSubstr("not a whole number of 40 deg/s increments"));
-  // Decimal increments that are inexact in binary are whole: 0…1 by 0.1 is ten increments.
-  EXPECT_THAT(ValidateSequence(Imu({{std::nullopt, GyroStep{11, 1, 0.0, 1.0, 0.1, 100.0}}}), {}),
-              IsEmpty());
+  // Decimal increments that are inexact in binary are whole: 0…1 by 0.1 is ten increments (on a
+  // table that takes rates in 0.1 deg/s steps).
+  SequenceLimits fine_table;
+  fine_table.table_rate_resolution_dps = 0.1;
+  EXPECT_THAT(
+      ValidateSequence(Imu({{std::nullopt, GyroStep{11, 1, 0.0, 1.0, 0.1, 100.0}}}), fine_table),
+      IsEmpty());
+}
+
+TEST(SequenceValidation, GyroRatesMustBeWholeStepsOfTheTable) {
+  // The ATL's JOG takes integer deg/s: -125…+125 by 62.5 would command -62.5 deg/s.
+  const SequenceProblem p =
+      OnlyProblem(Imu({{std::nullopt, GyroStep{11, 100, -125.0, 125.0, 62.5, 100.0}}}));
+  EXPECT_EQ(p.path, "$.steps[0].rate_increment_dps");
+  EXPECT_THAT(p.rule, HasSubstr("62.5 deg/s is not a multiple of the rate table's rate resolution"));
+  EXPECT_EQ(p.limit, "rate table commands rates in steps of 1 deg/s");
+  const SequenceProblem cross =
+      OnlyProblem(Imu({{std::nullopt, CrossAxisStep{10, 100.5, 100.0}}}));
+  EXPECT_EQ(cross.path, "$.steps[0].rate_dps");
 }
 
 TEST(SequenceValidation, TemperatureBeyondUnitRatingAndChamberRange) {
