@@ -14,6 +14,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterRunCommand(app);
   RegisterFitCommand(app);
   RegisterEvaluateCommand(app);
+  RegisterAcceptanceCommand(app);
 }
 
 }  // namespace adahrs::apps

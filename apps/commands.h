@@ -19,5 +19,6 @@ void RegisterPortsCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
 void RegisterFitCommand(CLI::App& app);
 void RegisterEvaluateCommand(CLI::App& app);
+void RegisterAcceptanceCommand(CLI::App& app);
 
 }  // namespace adahrs::apps
