@@ -5,7 +5,6 @@
 
 #include <fmt/format.h>
 
-#include "calib/constants/constants_file.h"
 
 namespace adahrs::calib {
 namespace {
@@ -80,7 +79,6 @@ json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit, const 
           {"serial", unit.serial},
           {"kind", unit.kind},
           {"mode", unit.mode},
-          {"created_utc", UtcNowIso8601()},
           {"software_version", software_version},
           {"run", {{"dir", run.run_dir},
                    {"run_id", run.run_id},

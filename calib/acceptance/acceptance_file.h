@@ -2,7 +2,9 @@
 // with every judged point of an acceptance run (acceptance_judge.h), the unit's overall verdict and
 // its worst margin per quantity, the specification it was judged against and the recording it
 // came from (run id, SHA-256 of meta.json + imu.csv + ads.csv). Files are written atomically
-// (temporary file + rename) as <out>/<serial>/acceptance.json.
+// (temporary file + rename) as <out>/<serial>/acceptance.json. The file holds no time stamp: the
+// same recording judged by the same software gives the same bytes, so the records (keyed by the
+// file's SHA-256) hold it once however often it is judged.
 // The reader is strict: a wrong format or version, a missing key or a wrong type is refused with
 // the file and JSON path (AcceptanceFileError).
 // Also here: the plain-text table `adahrs acceptance` prints.

@@ -316,12 +316,13 @@ void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_loc
       Refuse(where, fmt::format("rows in mode {} where earlier steps were in mode {}", mode, unit->mode));
     }
     unit->mode = mode;
-    if (const auto* a = std::get_if<AccelStep>(&body)) {
-      for (const hil::ImuRecordRow* row : rows) {
-        if (row->orientation != a->orientation) {
-          Refuse(where, fmt::format("t_s {}: orientation {} where the step commands {}", row->t_s,
-                                    row->orientation, a->orientation));
-        }
+    std::optional<int> commanded;
+    if (const auto* a = std::get_if<AccelStep>(&body)) commanded = a->orientation;
+    if (const auto* g = std::get_if<GyroStep>(&body)) commanded = g->orientation;
+    for (const hil::ImuRecordRow* row : rows) {
+      if (commanded && row->orientation != *commanded) {
+        Refuse(where, fmt::format("t_s {}: orientation {} where the step commands {}", row->t_s,
+                                  row->orientation, *commanded));
       }
     }
     for (const ImuGroup& group : GroupImuStep(where, body, rows)) {
@@ -440,16 +441,20 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specif
                                                                       : run_dir.filename().string();
   run.recording_sha256 = RecordingSha256(run_dir);
   run.sequence_name = ctx.sequence.name;
-  if (!meta.contains("units") || !meta["units"].is_array() || meta["units"].empty()) {
-    fail("meta.json: $.units lists no unit");
-  }
+  if (!meta.contains("units") || !meta["units"].is_array()) fail("meta.json: $.units missing");
   for (size_t i = 0; i < meta["units"].size(); ++i) {
     const json& u = meta["units"][i];
     const std::string path = fmt::format("meta.json: $.units[{}]", i);
     if (!u.contains("serial") || !u["serial"].is_string()) fail(path + ".serial missing");
     const std::string kind = u.value("kind", "");
     if (kind != "imu" && kind != "ads") fail(path + ".kind: \"" + kind + "\" is neither imu nor ads");
-    run.units.push_back({u["serial"].get<std::string>(), kind, 0, {}});
+    if (kind == UnitKindName(ctx.sequence.unit_kind)) {
+      run.units.push_back({u["serial"].get<std::string>(), kind, 0, {}});
+    }
+  }
+  if (run.units.empty()) {
+    fail(fmt::format("meta.json: $.units lists no {} unit (the sequence's unit kind)",
+                     UnitKindName(ctx.sequence.unit_kind)));
   }
   const bool has_imu = std::any_of(run.units.begin(), run.units.end(),
                                    [](const UnitAcceptance& u) { return u.kind == "imu"; });

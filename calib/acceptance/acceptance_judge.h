@@ -4,7 +4,8 @@
 // (specification.h). Rows of a step are those with the step's TAG, of the step's index, outside
 // meta.json's rejected intervals (as the executor defines them).
 //
-// Per unit and per acquisition ("point"), one judgement per quantity:
+// Units of meta.json whose kind is the sequence's unit_kind are judged, each per acquisition
+// ("point"), one judgement per quantity:
 //   accel step            orientation from the row's commanded fixture code; reference
 //                         f_B = up axis * local gravity (meta.json local_gravity_mps2) in g;
 //                         accel_x, accel_y, accel_z in mg (1 mg = 9.80665e-3 m/s^2)
