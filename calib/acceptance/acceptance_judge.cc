@@ -326,6 +326,11 @@ void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_loc
       }
     }
     for (const ImuGroup& group : GroupImuStep(where, body, rows)) {
+      // A thermal bin the chamber only touched (a turning point, the profile's last value) holds
+      // too few packets for a mean and its standard error; it is not judged.
+      if (std::holds_alternative<ThermalProfileStep>(body) && group.rows.size() < kMinThermalBinPackets) {
+        continue;
+      }
       JudgeImuGroup(where, group, spec, sensor_sim::Mps2ToG(g_local_mps2), unit);
     }
   }

@@ -13,8 +13,9 @@
 //                         within 1 deg/s, matched to the nearest command); reference per row
 //                         w_B = up axis * table_rate_dps, the other axes 0; rate_x, rate_y, rate_z
 //   cross_axis step       per (orientation, rate): at rest as an accel point, at rate as a gyro one
-//   thermal_profile step  one point per 5 degC bin of the chamber's reported temperature: the
-//                         accel and rate quantities of the unit at rest in its orientation
+//   thermal_profile step  one point per 5 degC bin [5k, 5k+5) of the chamber's reported
+//                         temperature: the accel and rate quantities of the unit at rest in its
+//                         orientation; a bin with fewer than kMinThermalBinPackets is not judged
 //   ADS log step          altitude against ISA pressure altitude of ps_ref_pa (sensor_sim
 //                         atmosphere) and, when the aimed airspeed is inside 30...450 kt, airspeed
 //                         against the calibrated airspeed of qc_ref_pa (sensor_sim air_data)
@@ -62,6 +63,8 @@ class AcceptanceInputError : public std::runtime_error {
 inline constexpr double kRatingMarginC = 0.5;
 /// Width of the chamber temperature bins a thermal_profile step is judged in.
 inline constexpr double kThermalBinWidthC = 5.0;
+/// A thermal bin with fewer packets is not judged (the chamber only touched it).
+inline constexpr size_t kMinThermalBinPackets = 10;
 
 /// One quantity judged at one acquisition.
 struct AcceptancePoint {

@@ -310,5 +310,58 @@ TEST_F(AcceptanceJudgeTest, MalformedAcceptanceFileIsRefusedNamingThePath) {
   }
 }
 
+// Thermal acceptance over a profile 25 -> -20 -> 25 degC with an accelerometer drift of 0.05 mg
+// per degC left in the unit: each 5 degC bin is judged at its mean temperature, so the bins
+// whose mean is more than 20 degC from 25 fail (1.0 mg) and the others pass.
+TEST_F(AcceptanceJudgeTest, ThermalProfileIsJudgedPerTemperatureBin) {
+  AcceptanceRecordingMaker maker;
+  ImuErrors drift;
+  drift.accel_mg_per_c = 0.05;
+  maker.RunImu(testing::ThermalAcceptanceSequence(), {{"IMU-0001", drift}}, dir_ / "run");
+  const AcceptanceRun run = JudgeAcceptance(dir_ / "run", Specification::Reference());
+  const UnitAcceptance& unit = run.units.at(0);
+  // Bins [-20,-15) ... [20,25): 9 bins, each with accel_x..z and rate_x..z. The single rows at
+  // 25 degC (start and end) form a bin the judge skips.
+  ASSERT_EQ(unit.points.size(), 9u * 6u);
+  int failed = 0;
+  for (const AcceptancePoint& p : unit.points) {
+    SCOPED_TRACE(p.quantity + " " + p.Condition());
+    EXPECT_EQ(p.kind, "thermal_profile");
+    EXPECT_EQ(p.orientation, 31);
+    EXPECT_FALSE(p.rate_dps.has_value());
+    const double injected = p.quantity.starts_with("accel_") ? 0.05 * (p.chamber_c - 25.0) : 0.0;
+    EXPECT_NEAR(p.error, injected, 4.0 * p.std_error + 1e-12);
+    if (p.quantity.starts_with("accel_") && std::abs(p.chamber_c - 25.0) > 20.0 + 1.0) {
+      EXPECT_FALSE(p.pass);  // mean of a bin below 4 degC: > 1.05 mg
+    }
+    if (std::abs(p.chamber_c - 25.0) < 20.0 - 1.0) {
+      EXPECT_TRUE(p.pass);
+    }
+    failed += p.pass ? 0 : 1;
+  }
+  // The bins [-20,-15), [-15,-10), [-10,-5), [-5,0) and [0,5) (means -17.5 ... 2.5 degC, drift
+  // 2.1 ... 1.1 mg) fail on accel_x, y, z.
+  EXPECT_EQ(failed, 5 * 3);
+}
+
+// Cross-axis step: at rest in 11, 21, 31 the accelerations, at 150 deg/s the rates are judged;
+// IMU-0002's +1.5 mg on x and +0.020 deg/s on z fail wherever they are judged.
+TEST_F(AcceptanceJudgeTest, CrossAxisStepIsJudgedAtRestAndAtRate) {
+  AcceptanceRecordingMaker maker;
+  maker.RunImu(testing::CrossAxisAcceptanceSequence(), ImuUnits(), dir_ / "run");
+  const AcceptanceRun run = JudgeAcceptance(dir_ / "run", Specification::Reference());
+  const UnitAcceptance& bad = Unit(run, "IMU-0002");
+  ASSERT_EQ(bad.points.size(), 3u * (3u + 3u));
+  int failed = 0;
+  for (const AcceptancePoint& p : bad.points) {
+    SCOPED_TRACE(p.quantity + " " + p.Condition());
+    EXPECT_EQ(*p.rate_dps == 0.0, p.quantity.starts_with("accel_"));
+    EXPECT_EQ(p.pass, p.quantity != "accel_x" && p.quantity != "rate_z");
+    failed += p.pass ? 0 : 1;
+  }
+  EXPECT_EQ(failed, 3 + 3);
+  EXPECT_TRUE(Unit(run, "IMU-0001").pass());
+}
+
 }  // namespace
 }  // namespace adahrs::calib

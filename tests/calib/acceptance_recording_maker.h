@@ -3,13 +3,16 @@
 // the acceptance verdicts have a truth to be checked against:
 //   IMU (mode 3 or 2): measured = reference + error + N(0, noise), where the reference is the
 //     orientation's up axis times local gravity and the table's REPORTED rate about it
-//     (command + table_rate_error_dps, as a real table reports within 0.01 deg/s);
+//     (command + table_rate_error_dps, as a real table reports within 0.01 deg/s); thermal profile
+//     ramps move the chamber by thermal_step_c per packet with the unit in thermal_orientation;
 //   ADS (mode 1): the test set reports ps/qc of aim + reference_offset, the unit reads the
 //     reported reference + error + N(0, noise).
 // Errors are given per unit (and per quantity); noise has a fixed seed.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -33,6 +36,7 @@ inline constexpr double kTestGLocal_mps2 = 9.7965;
 struct ImuErrors {
   std::array<double, 3> accel_mg{};  ///< added to f_B, per axis
   std::array<double, 3> rate_dps{};  ///< added to w_B, per axis
+  double accel_mg_per_c = 0.0;       ///< added to f_B on every axis per degC away from 25 degC
   double noise_mg = 0.3;
   double noise_dps = 0.003;
   int mode = 3;
@@ -56,6 +60,8 @@ class AcceptanceRecordingMaker {
   double table_rate_error_dps = 0.004;
   double reference_offset_ft = 3.0;  ///< the test set's altitude differs from the aim
   double reference_offset_kt = 0.3;
+  double thermal_step_c = 0.05;   ///< chamber change per packet on a thermal profile ramp
+  int thermal_orientation = 31;
   ImuRowEdit imu_edit;
   AdsRowEdit ads_edit;
 
@@ -71,6 +77,29 @@ class AcceptanceRecordingMaker {
       }
       if (const auto* g = std::get_if<GyroStep>(&body)) {
         for (double r : GyroRates_dps(*g)) ImuFrames(units, static_cast<int>(s), tags[s], g->orientation, r);
+      }
+      if (const auto* c = std::get_if<CrossAxisStep>(&body)) {
+        for (int o : kCrossAxisOrientations) {
+          for (double r : {0.0, c->rate_dps}) ImuFrames(units, static_cast<int>(s), tags[s], o, r);
+        }
+      }
+      if (const auto* p = std::get_if<ThermalProfileStep>(&body)) {
+        // Ramps move the chamber by thermal_step_c per packet; soaks last `packets` packets.
+        const int saved = packets;
+        packets = 1;
+        for (const F4ProfileStep& ps : p->steps) {
+          if (const auto* r = std::get_if<F4RampRate>(&ps)) {
+            while (std::abs(r->target_c - chamber_c) > 1e-9) {
+              const double step_c = std::min(thermal_step_c, std::abs(r->target_c - chamber_c));
+              chamber_c += r->target_c > chamber_c ? step_c : -step_c;
+              ImuFrames(units, static_cast<int>(s), tags[s], thermal_orientation, 0.0);
+            }
+          }
+          if (std::holds_alternative<F4Soak>(ps)) {
+            for (int i = 0; i < saved; ++i) ImuFrames(units, static_cast<int>(s), tags[s], thermal_orientation, 0.0);
+          }
+        }
+        packets = saved;
       }
     }
     End(sequence, run_dir, units, "imu");
@@ -173,7 +202,8 @@ class AcceptanceRecordingMaker {
         std::array<double, 3> f_g{}, w_dps{};
         for (size_t k = 0; k < 3; ++k) {
           f_g[k] = up[k] * sensor_sim::Mps2ToG(kTestGLocal_mps2) +
-                   (e.accel_mg[k] + e.noise_mg * normal_(rng_)) / 1000.0;
+                   (e.accel_mg[k] + e.accel_mg_per_c * (chamber_c - 25.0) + e.noise_mg * normal_(rng_)) /
+                       1000.0;
           w_dps[k] = up[k] * reported_dps + e.rate_dps[k] + e.noise_dps * normal_(rng_);
         }
         std::array<double, 9> comp{};
@@ -232,6 +262,30 @@ inline Sequence AdsAcceptanceSequence() {
   s.steps.push_back({std::nullopt, AltitudeStep{0.0, 3000.0}});
   s.steps.push_back({std::nullopt, AirspeedStep{100.0, 100.0}});
   s.steps.push_back({std::nullopt, LogStep{100, std::nullopt}});
+  return s;
+}
+
+}  // namespace adahrs::calib::testing
+
+namespace adahrs::calib::testing {
+
+/// Cross-axis acceptance: 1 g and 150 deg/s along x, y, z (orientations 11, 21, 31).
+inline Sequence CrossAxisAcceptanceSequence() {
+  Sequence s;
+  s.name = "imu_cross_axis_acceptance_test";
+  s.unit_kind = UnitKind::kImu;
+  s.steps.push_back({std::nullopt, CrossAxisStep{100, 150.0, 100.0}});
+  return s;
+}
+
+/// Thermal acceptance: the unit at rest in orientation 31 while the chamber goes 25 -> -20 -> 25 degC.
+inline Sequence ThermalAcceptanceSequence() {
+  Sequence s;
+  s.name = "imu_thermal_acceptance_test";
+  s.unit_kind = UnitKind::kImu;
+  s.steps.push_back({std::nullopt, TargetTemperatureStep{25.0, 0.5, 0.0}});
+  s.steps.push_back({std::nullopt, ThermalProfileStep{"ACCEPT", {F4RampRate{-20.0, 1.0}, F4Soak{600.0},
+                                                                 F4RampRate{25.0, 1.0}, F4End{}}}});
   return s;
 }
 
