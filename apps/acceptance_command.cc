@@ -1,7 +1,8 @@
 // adahrs acceptance --run DIR [--out DIR] [--db FILE]: judges an acceptance run against the
 // specification (calib/acceptance/, docs/acceptance.md), writes <out>/<serial>/acceptance.json per
 // unit (default out: DIR/acceptance), prints the table and, with --db, records every point in the
-// production records. Exit code 0 when every point passes, 1 when any fails, 2 on bad input.
+// production records. Exit code 0 when every point passes, 1 when any fails, 2 on bad input (or
+// when the files or the records cannot be written: no verdict reached its destination).
 #include <iostream>
 #include <memory>
 #include <string>
@@ -45,12 +46,17 @@ void RegisterAcceptanceCommand(CLI::App& app) {
     std::cout << calib::AcceptanceText(result);
     for (const auto& file : files) std::cout << "wrote " << file.string() << "\n";
     if (!db->empty()) {
-      calib::RecordsStore store(*db);
-      for (const auto& file : files) {
-        const calib::AcceptanceRecords records = calib::AcceptanceRecordsFromFile(file);
-        const bool added = store.AddAcceptance(records.source_sha256, records.points);
-        std::cout << fmt::format("{}: {} points {}\n", file.string(), records.points.size(),
-                                 added ? "recorded" : "already recorded");
+      try {
+        calib::RecordsStore store(*db);
+        for (const auto& file : files) {
+          const calib::AcceptanceRecords records = calib::AcceptanceRecordsFromFile(file);
+          const bool added = store.AddAcceptance(records.source_sha256, records.points);
+          std::cout << fmt::format("{}: {} points {}\n", file.string(), records.points.size(),
+                                   added ? "recorded" : "already recorded");
+        }
+      } catch (const std::exception& e) {
+        std::cerr << "adahrs acceptance: " << e.what() << "\n";
+        throw CLI::RuntimeError(kExitBadInput);
       }
     }
     std::cout << (result.pass() ? "acceptance: PASS\n" : "acceptance: FAIL\n");
