@@ -15,6 +15,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterDemoCommand(app);
   RegisterFitCommand(app);
   RegisterEvaluateCommand(app);
+  RegisterAcceptanceCommand(app);
 }
 
 }  // namespace adahrs::apps

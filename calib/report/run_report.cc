@@ -6,8 +6,10 @@
 
 #include <fmt/format.h>
 
+#include "calib/acceptance/acceptance_file.h"
 #include "calib/constants/constants_file.h"
 #include "calib/imu_calibration/imu_run_data.h"
+#include "calib/report/acceptance_section.h"
 #include "calib/report/ads_report_sections.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/imu_report_sections.h"
@@ -98,10 +100,28 @@ std::string Summary(const std::filesystem::path& run_dir, const nlohmann::json& 
   return html;
 }
 
+// The acceptance section: per-unit acceptance files first, a fit directory's acceptance.json next.
+std::string Acceptance(const std::filesystem::path& run_dir,
+                       const std::optional<std::filesystem::path>& acceptance_dir, const FitInputs& fit) {
+  if (acceptance_dir && !std::filesystem::is_directory(*acceptance_dir)) {
+    throw std::runtime_error(acceptance_dir->string() + ": acceptance directory does not exist");
+  }
+  const std::filesystem::path dir = acceptance_dir.value_or(run_dir / "acceptance");
+  std::vector<nlohmann::json> documents;
+  for (const std::filesystem::path& file : FindAcceptanceFiles(dir)) {
+    documents.push_back(ReadAcceptanceFile(file));
+  }
+  if (!documents.empty()) return AcceptanceSectionBody(documents);
+  if (fit.acceptance) return RenderJsonTables("acceptance", *fit.acceptance);
+  return NotAvailable("acceptance.json", "no <serial>/acceptance.json in " + dir.string() +
+                                             "; fit directory: " + fit.why_missing);
+}
+
 }  // namespace
 
 std::string BuildRunReport(const std::filesystem::path& run_dir,
-                           const std::optional<std::filesystem::path>& fit_dir) {
+                           const std::optional<std::filesystem::path>& fit_dir,
+                           const std::optional<std::filesystem::path>& acceptance_dir) {
   const hil::Recording recording = hil::ReadRecording(run_dir);
   const FitInputs fit = LoadFit(fit_dir);
   const nlohmann::json& meta = recording.meta;
@@ -139,9 +159,7 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
     units += Section(serial, 2, fmt::format("Unit {} ({})", serial, u.value("role", "")), unit_html);
   }
   body += units;
-  body += Section("acceptance", 2, "Acceptance",
-                  fit.acceptance ? RenderJsonTables("acceptance", *fit.acceptance)
-                                 : NotAvailable("acceptance.json", fit.why_missing));
+  body += Section("acceptance", 2, "Acceptance", Acceptance(run_dir, acceptance_dir, fit));
   body += Section("evaluation", 2, "Evaluation against simulator truth",
                   fit.evaluation ? RenderJsonTables("evaluation", *fit.evaluation)
                                  : NotAvailable("evaluation.json", fit.why_missing));
@@ -157,8 +175,9 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
 
 void WriteRunReport(const std::filesystem::path& run_dir,
                     const std::optional<std::filesystem::path>& fit_dir,
-                    const std::filesystem::path& out) {
-  const std::string html = BuildRunReport(run_dir, fit_dir);
+                    const std::filesystem::path& out,
+                    const std::optional<std::filesystem::path>& acceptance_dir) {
+  const std::string html = BuildRunReport(run_dir, fit_dir, acceptance_dir);
   const std::filesystem::path temporary = out.string() + ".tmp";
   {
     std::ofstream file(temporary, std::ios::binary);

@@ -5,6 +5,10 @@
 // station, units, rejected intervals), then per unit its constants with standard errors and the
 // IMU (imu_report_sections.h) or ADS (ads_report_sections.h) figures, then the acceptance and
 // evaluation tables. A missing input makes its section say "not available (why)".
+// Acceptance: the <serial>/acceptance.json files (calib/acceptance/acceptance_file.h) of the
+// acceptance directory given, else of <run>/acceptance when it exists (where `adahrs acceptance`
+// writes by default), rendered as verdict, worst-margin and per-point PASS/FAIL tables
+// (acceptance_section.h); without any, a fit directory's acceptance.json as generic tables.
 // Errors: unreadable or malformed inputs throw with their own readers' messages (file, line,
 // column, JSON path); the report is written atomically (temporary file + rename).
 #pragma once
@@ -17,11 +21,13 @@ namespace adahrs::calib {
 
 /// The report's HTML.
 std::string BuildRunReport(const std::filesystem::path& run_dir,
-                           const std::optional<std::filesystem::path>& fit_dir);
+                           const std::optional<std::filesystem::path>& fit_dir,
+                           const std::optional<std::filesystem::path>& acceptance_dir = std::nullopt);
 
 /// BuildRunReport written to `out`.
 void WriteRunReport(const std::filesystem::path& run_dir,
                     const std::optional<std::filesystem::path>& fit_dir,
-                    const std::filesystem::path& out);
+                    const std::filesystem::path& out,
+                    const std::optional<std::filesystem::path>& acceptance_dir = std::nullopt);
 
 }  // namespace adahrs::calib

@@ -1,0 +1,187 @@
+#include "calib/acceptance/acceptance_file.h"
+
+#include <algorithm>
+#include <fstream>
+
+#include <fmt/format.h>
+
+
+namespace adahrs::calib {
+namespace {
+
+using nlohmann::json;
+
+json PointJson(const AcceptancePoint& p) {
+  json j = {{"step", p.step}, {"kind", p.kind}, {"quantity", p.quantity}};
+  if (p.orientation != 0) j["orientation"] = p.orientation;
+  if (p.rate_dps) j["rate_dps"] = *p.rate_dps;
+  if (p.alt_ft) j["alt_ft"] = *p.alt_ft;
+  if (p.cas_kt) j["cas_kt"] = *p.cas_kt;
+  j["chamber_c"] = p.chamber_c;
+  j["condition"] = p.Condition();
+  j["unit"] = p.unit;
+  j["samples"] = p.samples;
+  j["measured"] = p.measured;
+  j["reference"] = p.reference;
+  j["error"] = p.error;
+  j["std_error"] = p.std_error;
+  j["tolerance"] = p.tolerance;
+  j["margin"] = p.margin();
+  j["pass"] = p.pass;
+  j["beyond_noise"] = p.beyond_noise;
+  return j;
+}
+
+void WriteAtomically(const std::filesystem::path& out, const std::string& text) {
+  const std::filesystem::path temporary = out.string() + ".tmp";
+  {
+    std::ofstream file(temporary, std::ios::binary);
+    if (!file || !(file << text) || !file.flush()) {
+      throw AcceptanceFileError(temporary.string() + ": cannot write");
+    }
+  }
+  std::filesystem::rename(temporary, out);
+}
+
+// Checks that `j[key]` exists and has the type `is`; returns it.
+const json& Require(const json& j, const std::string& key, bool (json::*is)() const noexcept,
+                    const char* type, const std::string& path, const std::string& source) {
+  if (!j.is_object() || !j.contains(key)) {
+    throw AcceptanceFileError(fmt::format("{}: {}.{}: missing", source, path, key));
+  }
+  const json& value = j.at(key);
+  if (!(value.*is)()) {
+    throw AcceptanceFileError(
+        fmt::format("{}: {}.{}: expected {}, got {}", source, path, key, type, value.dump()));
+  }
+  return value;
+}
+
+}  // namespace
+
+json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit, const Specification& spec,
+                    const std::string& software_version) {
+  json points = json::array();
+  for (const AcceptancePoint& p : unit.points) points.push_back(PointJson(p));
+  json worst = json::array();
+  for (const WorstMargin& w : unit.WorstMargins()) {
+    worst.push_back({{"quantity", w.quantity}, {"unit", w.unit}, {"margin", w.margin},
+                     {"step", w.step}, {"point", w.point}, {"pass", w.margin >= 0.0}});
+  }
+  json reference = {
+      {"accel", "orientation's up axis times local gravity, in g (1 g = 9.80665 m/s^2)"},
+      {"rate", "table_rate_dps about the up axis, 0 about the others; Earth rate not added"},
+      {"altitude", "ISA pressure altitude of ps_ref_pa"},
+      {"airspeed", "calibrated airspeed of qc_ref_pa"}};
+  if (unit.kind == "imu") reference["local_gravity_mps2"] = run.local_gravity_mps2;
+  return {{"format", kAcceptanceFormatName},
+          {"format_version", kAcceptanceFormatVersion},
+          {"serial", unit.serial},
+          {"kind", unit.kind},
+          {"mode", unit.mode},
+          {"software_version", software_version},
+          {"run", {{"dir", run.run_dir},
+                   {"run_id", run.run_id},
+                   {"sequence", run.sequence_name},
+                   {"recording_sha256", run.recording_sha256}}},
+          {"specification", spec.ToJson()},
+          {"reference", reference},
+          {"verdict", unit.pass() ? "pass" : "fail"},
+          {"points_total", unit.points.size()},
+          {"points_failed", unit.failed()},
+          {"worst_margin", worst},
+          {"points", points}};
+}
+
+std::vector<std::filesystem::path> WriteAcceptanceFiles(const AcceptanceRun& run,
+                                                        const Specification& spec,
+                                                        const std::string& software_version,
+                                                        const std::filesystem::path& out_dir) {
+  std::vector<std::filesystem::path> paths;
+  for (const UnitAcceptance& unit : run.units) {
+    const std::filesystem::path dir = out_dir / unit.serial;
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path file = dir / kAcceptanceFileName;
+    WriteAtomically(file, AcceptanceJson(run, unit, spec, software_version).dump(2) + "\n");
+    paths.push_back(file);
+  }
+  return paths;
+}
+
+json ReadAcceptanceFile(const std::filesystem::path& file) {
+  const std::string source = file.string();
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw AcceptanceFileError(source + ": cannot open");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw AcceptanceFileError(source + ": not JSON: " + e.what());
+  }
+  const std::string format = Require(j, "format", &json::is_string, "a string", "$", source);
+  if (format != kAcceptanceFormatName) {
+    throw AcceptanceFileError(fmt::format("{}: $.format: expected \"{}\", got \"{}\"", source,
+                                          kAcceptanceFormatName, format));
+  }
+  const int version = Require(j, "format_version", &json::is_number_integer, "an integer", "$", source);
+  if (version != kAcceptanceFormatVersion) {
+    throw AcceptanceFileError(fmt::format("{}: $.format_version: {} is not {}", source, version,
+                                          kAcceptanceFormatVersion));
+  }
+  Require(j, "serial", &json::is_string, "a string", "$", source);
+  Require(j, "kind", &json::is_string, "a string", "$", source);
+  Require(j, "verdict", &json::is_string, "a string", "$", source);
+  const json& run = Require(j, "run", &json::is_object, "an object", "$", source);
+  Require(run, "run_id", &json::is_string, "a string", "$.run", source);
+  Require(run, "recording_sha256", &json::is_string, "a string", "$.run", source);
+  const json& points = Require(j, "points", &json::is_array, "an array", "$", source);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const std::string path = fmt::format("$.points[{}]", i);
+    Require(points[i], "step", &json::is_number_integer, "an integer", path, source);
+    for (const char* key : {"kind", "quantity", "unit", "condition"}) {
+      Require(points[i], key, &json::is_string, "a string", path, source);
+    }
+    for (const char* key : {"chamber_c", "measured", "reference", "error", "std_error", "tolerance"}) {
+      Require(points[i], key, &json::is_number, "a number", path, source);
+    }
+    Require(points[i], "pass", &json::is_boolean, "a boolean", path, source);
+  }
+  return j;
+}
+
+std::vector<std::filesystem::path> FindAcceptanceFiles(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  if (!std::filesystem::is_directory(dir)) return files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::filesystem::path file = entry.path() / kAcceptanceFileName;
+    if (entry.is_directory() && std::filesystem::is_regular_file(file)) files.push_back(file);
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::string AcceptanceText(const AcceptanceRun& run) {
+  std::string out = fmt::format("acceptance of run {} ({}), sequence {}\n", run.run_id, run.run_dir,
+                                run.sequence_name);
+  for (const UnitAcceptance& unit : run.units) {
+    out += fmt::format("\n{} ({}, mode {})\n", unit.serial, unit.kind, unit.mode);
+    out += fmt::format("{:>4} {:<15} {:<9} {:<38} {:>12} {:>10} {:>10} {:>9} {:<5} {}\n", "step",
+                       "kind", "quantity", "condition", "measured", "error", "std err",
+                       "tol", "unit", "verdict");
+    for (const AcceptancePoint& p : unit.points) {
+      out += fmt::format("{:>4} {:<15} {:<9} {:<38} {:>12.4f} {:>10.4f} {:>10.4f} {:>9.4f} {:<5} {}{}\n",
+                         p.step, p.kind, p.quantity, p.Condition(), p.measured, p.error, p.std_error,
+                         p.tolerance, p.unit, p.pass ? "PASS" : "FAIL",
+                         p.beyond_noise ? "" : " (within noise of the limit)");
+    }
+    for (const WorstMargin& w : unit.WorstMargins()) {
+      out += fmt::format("worst {} margin {:.4f} {} (step {}, {})\n", w.quantity, w.margin, w.unit,
+                         w.step, w.point);
+    }
+    out += fmt::format("{}: {} ({} of {} points failed)\n", unit.serial, unit.pass() ? "PASS" : "FAIL",
+                       unit.failed(), unit.points.size());
+  }
+  return out;
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,52 @@
+// acceptance.json (docs/acceptance.md, format "adahrs-acceptance" version 1): one file per unit
+// with every judged point of an acceptance run (acceptance_judge.h), the unit's overall verdict and
+// its worst margin per quantity, the specification it was judged against and the recording it
+// came from (run id, SHA-256 of meta.json + imu.csv + ads.csv). Files are written atomically
+// (temporary file + rename) as <out>/<serial>/acceptance.json. The file holds no time stamp: the
+// same recording judged by the same software gives the same bytes, so the records (keyed by the
+// file's SHA-256) hold it once however often it is judged.
+// The reader is strict: a wrong format or version, a missing key or a wrong type is refused with
+// the file and JSON path (AcceptanceFileError).
+// Also here: the plain-text table `adahrs acceptance` prints.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "calib/acceptance/acceptance_judge.h"
+
+namespace adahrs::calib {
+
+inline constexpr const char* kAcceptanceFormatName = "adahrs-acceptance";
+inline constexpr int kAcceptanceFormatVersion = 1;
+inline constexpr const char* kAcceptanceFileName = "acceptance.json";
+
+class AcceptanceFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The acceptance.json document of `unit` from `run`.
+nlohmann::json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit,
+                              const Specification& spec, const std::string& software_version);
+
+/// Writes <out_dir>/<serial>/acceptance.json for every unit of `run`; returns the paths.
+std::vector<std::filesystem::path> WriteAcceptanceFiles(const AcceptanceRun& run,
+                                                        const Specification& spec,
+                                                        const std::string& software_version,
+                                                        const std::filesystem::path& out_dir);
+
+/// Reads and validates an acceptance.json; throws AcceptanceFileError naming file and JSON path.
+nlohmann::json ReadAcceptanceFile(const std::filesystem::path& file);
+
+/// Every acceptance.json under `dir` (the layout WriteAcceptanceFiles makes), sorted by path.
+std::vector<std::filesystem::path> FindAcceptanceFiles(const std::filesystem::path& dir);
+
+/// One line per judged point and a verdict line per unit, for the terminal.
+std::string AcceptanceText(const AcceptanceRun& run);
+
+}  // namespace adahrs::calib

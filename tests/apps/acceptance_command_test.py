@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""adahrs acceptance end to end on a hand-written ADS recording (format 2): the test set's static
+pressure from ISA computed here (independently of sensor_sim), the unit reading the reference
+altitude + 14 ft (passes +-15 ft at 5,000 ft: exit 0) or + 16 ft (fails: exit 1); raw-mode rows
+are bad input (exit 2, naming run, unit and step). With --db the points land in the records'
+acceptance_results, read back with Python's sqlite3.
+Usage: acceptance_command_test.py ADAHRS"""
+import json
+import pathlib
+import sqlite3
+import subprocess
+import sys
+import tempfile
+
+IMU_HEADER = ("t_s,unit,seq,step,tag,orientation,chamber_c,table_rate_dps,"
+              "az1_t1,az1_t2,ax1_t1,ax1_t2,ay1_t1,ay1_t2,az2_t1,az2_t2,ax2_t1,ax2_t2,ay2_t1,ay2_t2,"
+              "gx,gy,gz,tx,ty,tz,mode,comp0,comp1,comp2,comp3,comp4,comp5,comp6,comp7,comp8,comp_flags")
+ADS_HEADER = ("t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,"
+              "ps_temp_counts,pt_temp_counts,oat_counts,mode,alt_ft,cas_kt,comp_flags")
+
+
+def isa_static_pa(alt_ft):
+    # ISA troposphere: p0 (1 - L h / T0)^(g0 / (R L)), ICAO Doc 7488.
+    h_m = alt_ft * 0.3048
+    return 101325.0 * (1.0 - 0.0065 * h_m / 288.15) ** (9.80665 / (287.05287 * 0.0065))
+
+
+def run(*args):
+    return subprocess.run([str(a) for a in args], capture_output=True, text=True, timeout=60)
+
+
+def write_run(run_dir, error_ft, mode=1):
+    run_dir.mkdir(parents=True)
+    sequence = {"format_version": 1, "name": "ads_acceptance_small", "description": "5,000 ft",
+                "unit_kind": "ads",
+                "steps": [{"kind": "altitude", "alt_ft": 5000.0, "rate_ft_per_min": 3000.0},
+                          {"kind": "log", "packets": 50}]}
+    meta = {"format_version": 2, "run_id": f"acc-{error_ft}-{mode}", "started_utc": "2026-11-22T08:00:00Z",
+            "status": "complete", "station": {"name": "virtual lab"}, "sequence": sequence,
+            "sequence_file": "ads_acceptance_small.json", "time_base": "s", "sample_rate_hz": 100,
+            "units": [{"role": "ads1", "kind": "ads", "serial": "ADS-0009", "serial_number": 9,
+                       "firmware": "1.0.0", "slot": 1, "constants_version": 1, "mode": mode}],
+            "instruments": [], "rejected_intervals": []}
+    (run_dir / "meta.json").write_text(json.dumps(meta))
+    (run_dir / "imu.csv").write_text(IMU_HEADER + "\n")
+    rows = [ADS_HEADER]
+    ps_pa = isa_static_pa(5000.0)
+    for i in range(50):
+        comp = f"{5000.0 + error_ft + (0.5 if i % 2 else -0.5)},0,0" if mode else ",,"
+        rows.append(f"{i * 0.01},ADS-0009,{i},1,2,25,{ps_pa!r},0,1000,1000,10,10,10,{mode},{comp}")
+    (run_dir / "ads.csv").write_text("\n".join(rows) + "\n")
+
+
+def main(adahrs):
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        db = tmp / "records.sqlite"
+
+        write_run(tmp / "pass", 14.0)
+        ok = run(adahrs, "acceptance", "--run", tmp / "pass", "--db", db)
+        assert ok.returncode == 0, (ok.returncode, ok.stdout, ok.stderr)
+        assert "ADS-0009: PASS" in ok.stdout, ok.stdout
+        doc = json.loads((tmp / "pass" / "acceptance" / "ADS-0009" / "acceptance.json").read_text())
+        assert doc["format"] == "adahrs-acceptance" and doc["verdict"] == "pass", doc
+        (point,) = doc["points"]
+        assert point["quantity"] == "altitude" and point["tolerance"] == 15.0, point
+        assert abs(point["reference"] - 5000.0) < 0.01, point  # our ISA and the judge's agree
+        assert abs(point["error"] - 14.0) < 0.01, point
+
+        write_run(tmp / "fail", 16.0)
+        bad = run(adahrs, "acceptance", "--run", tmp / "fail", "--out", tmp / "out", "--db", db)
+        assert bad.returncode == 1, (bad.returncode, bad.stdout, bad.stderr)
+        assert "FAIL" in bad.stdout and (tmp / "out" / "ADS-0009" / "acceptance.json").exists()
+
+        write_run(tmp / "raw", 0.0, mode=0)
+        raw = run(adahrs, "acceptance", "--run", tmp / "raw")
+        assert raw.returncode == 2, (raw.returncode, raw.stdout, raw.stderr)
+        for text in (str(tmp / "raw"), "unit ADS-0009", "step 1 (log", "raw mode"):
+            assert text in raw.stderr, raw.stderr
+
+        again = run(adahrs, "acceptance", "--run", tmp / "fail", "--out", tmp / "out2", "--db", db)
+        assert again.returncode == 1 and "already recorded" in again.stdout, again.stdout
+        assert (tmp / "out2" / "ADS-0009" / "acceptance.json").read_bytes() == \
+            (tmp / "out" / "ADS-0009" / "acceptance.json").read_bytes()
+
+        with sqlite3.connect(db) as connection:
+            rows = connection.execute(
+                "SELECT serial, run_id, quantity, condition, error, tolerance, unit, pass "
+                "FROM acceptance_results ORDER BY id").fetchall()
+        # The pass run and the fail run, the fail run's second judgement recorded once.
+        assert [r[1] for r in rows] == ["acc-14.0-1", "acc-16.0-1"], rows
+        assert rows[0][0] == "ADS-0009" and rows[0][2] == "altitude" and rows[0][7] == 1, rows
+        assert rows[0][3] == "step 1, 5000 ft, 25.0 degC", rows
+        assert abs(rows[1][4] - 16.0) < 0.01 and rows[1][5] == 15.0 and rows[1][6] == "ft", rows
+        assert rows[1][7] == 0, rows
+    print("ok")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
