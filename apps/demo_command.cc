@@ -92,7 +92,17 @@ void PrintSummary(const calib::CampaignResult& result, double wall_s) {
                              "verified)\n",
                              u.role, u.serial, u.download.unit_constants_version,
                              u.download.records_version, u.strategy, u.download.blocks);
-    std::cout << "  acceptance verdict: not judged (see below)\n";
+    if (u.acceptance) {
+      std::cout << fmt::format("  acceptance against the specification: {} ({} of {} points fail)\n",
+                               u.acceptance->pass() ? "PASS" : "FAIL", u.acceptance->failed(),
+                               u.acceptance->points.size());
+      for (const calib::WorstMargin& w : u.acceptance->WorstMargins()) {
+        std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n", w.quantity,
+                                 w.margin, w.unit, w.step, w.point);
+      }
+    } else {
+      std::cout << "  acceptance against the specification: the unit is not in the acceptance run\n";
+    }
     for (const calib::EvaluatedQuantity& q : u.evaluation) {
       std::cout << fmt::format("  evaluated worst {}: {:.4g} {} (spec {:g}) -> {}\n", q.quantity,
                                q.worst, q.unit, q.tolerance, q.verdict);

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include "calib/acceptance/acceptance_file.h"
 #include "calib/campaign/bench_runs.h"
 #include "calib/campaign/campaign_fits.h"
+#include "calib/records/acceptance_records.h"
 #include "calib/records/records_sources.h"
 #include "calib/records/records_store.h"
 #include "calib/report/run_report.h"
@@ -40,6 +42,20 @@ std::string RunsText(const std::vector<std::vector<RunSummary>>& benches) {
     }
   }
   return text;
+}
+
+// Judges an acceptance run, writes acceptance.json per unit into `run`/acceptance and records
+// every point; returns the judgement.
+AcceptanceRun JudgeIntoRecords(const std::filesystem::path& run, const std::string& software_version,
+                               RecordsStore& records) {
+  const Specification spec = Specification::Reference();
+  const AcceptanceRun judged = JudgeAcceptance(run, spec);
+  for (const std::filesystem::path& file :
+       WriteAcceptanceFiles(judged, spec, software_version, run / "acceptance")) {
+    const AcceptanceRecords points = AcceptanceRecordsFromFile(file);
+    records.AddAcceptance(points.source_sha256, points.points);
+  }
+  return judged;
 }
 
 }  // namespace
@@ -90,9 +106,13 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   observer.Stage("4/7 acceptance runs in the calibrated modes, both benches concurrently");
   const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
   observer.Stage("acceptance runs done:" + RunsText(acceptance));
-  result.not_run.push_back(
-      "acceptance verdicts against the specification: no acceptance library in this build (the "
-      "acceptance recordings are in runs/, with their compensated columns)");
+  const std::filesystem::path imu_acceptance_run = RunDir(o, seq.imu_acceptance);
+  const std::filesystem::path ads_acceptance_run = RunDir(o, seq.ads_acceptance);
+  const AcceptanceRun imu_judged = JudgeIntoRecords(imu_acceptance_run, o.software_version, records);
+  const AcceptanceRun ads_judged = JudgeIntoRecords(ads_acceptance_run, o.software_version, records);
+  observer.Stage(fmt::format("acceptance against the specification: IMU batch {}, ADS {}",
+                             imu_judged.pass() ? "PASS" : "FAIL",
+                             ads_judged.pass() ? "PASS" : "FAIL"));
 
   std::vector<EvaluatedQuantity> imu_eval, ads_eval;
   if (o.truth_dir) {
@@ -114,10 +134,12 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
       {thermal_run, imu_joint_dir},
       {sensor_run, imu_joint_dir},
       {ads_run, ads_reference_dir},
-      {RunDir(o, seq.imu_acceptance), imu_joint_dir},
-      {RunDir(o, seq.ads_acceptance), ads_reference_dir}};
+      {imu_acceptance_run, imu_joint_dir},
+      {ads_acceptance_run, ads_reference_dir}};
   for (const auto& [run, fit] : reports) {
-    WriteRunReport(run, fit, run / "report.html");
+    const bool judged = run == imu_acceptance_run || run == ads_acceptance_run;
+    WriteRunReport(run, fit, run / "report.html",
+                   judged ? std::optional<std::filesystem::path>(run / "acceptance") : std::nullopt);
     result.run_dirs.push_back(run);
   }
 
@@ -128,18 +150,21 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   }
 
   const auto outcomes = [&](const std::vector<UnitDownload>& downloads, const std::string& strategy,
-                            const std::vector<EvaluatedQuantity>& eval,
+                            const std::vector<EvaluatedQuantity>& eval, const AcceptanceRun& judged,
                             const std::filesystem::path& report) {
     for (const UnitDownload& d : downloads) {
-      UnitOutcome u{d.role, d.serial, strategy, d, {}, report};
+      UnitOutcome u{d.role, d.serial, strategy, d, {}, std::nullopt, report};
       for (const EvaluatedQuantity& q : eval) {
         if (q.serial == d.serial) u.evaluation.push_back(q);
+      }
+      for (const UnitAcceptance& a : judged.units) {
+        if (a.serial == d.serial) u.acceptance = a;
       }
       result.units.push_back(std::move(u));
     }
   };
-  outcomes(imu_downloads, "joint", imu_eval, RunDir(o, seq.imu_acceptance) / "report.html");
-  outcomes(ads_downloads, "reference", ads_eval, RunDir(o, seq.ads_acceptance) / "report.html");
+  outcomes(imu_downloads, "joint", imu_eval, imu_judged, imu_acceptance_run / "report.html");
+  outcomes(ads_downloads, "reference", ads_eval, ads_judged, ads_acceptance_run / "report.html");
   return result;
 }
 

@@ -7,12 +7,15 @@
 //   3. download of the chosen constants (improved IMU, reference ADS) into every unit, read-back
 //      verified, recorded (station_download.h)
 //   4. acceptance runs in the calibrated modes, both benches concurrently      -> runs/<sequence>/
+//      each judged against the reference specification (calib/acceptance/acceptance_judge.h)
+//                                                -> runs/<sequence>/acceptance/<serial>/acceptance.json
 //   5. evaluation against the simulator's truth when `truth_dir` is given (truth_evaluation.h),
 //      for every fit                                     -> fits/<…>/evaluation.json
 //   6. report.html per run (run_report.h) with the fit of its unit kind
 //   7. production records: every run, every constants file, every download -> records.sqlite
 // Stages this build has no library for are listed in CampaignResult::not_run with the reason,
-// never faked: acceptance verdicts against the specification, improved ADS strategies.
+// never faked: improved ADS strategies. A unit that fails acceptance is a result, not an error:
+// the campaign goes on to evaluation, reports and records.
 // Errors of a stage pass through with its own context (run, step, unit, file); a stop request
 // (SIGINT) stops the benches safely and throws RunInterrupted.
 // Left out: resuming a campaign (each run resumes with `adahrs run --resume`), choosing the
@@ -25,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "calib/acceptance/acceptance_judge.h"
 #include "calib/campaign/station_download.h"
 #include "calib/campaign/truth_evaluation.h"
 #include "calib/executor/executor.h"
@@ -66,6 +70,7 @@ struct UnitOutcome {
   std::string strategy;            ///< of the downloaded constants
   UnitDownload download;
   std::vector<EvaluatedQuantity> evaluation;  ///< of the downloaded constants (empty: no truth)
+  std::optional<UnitAcceptance> acceptance;   ///< the unit's acceptance judgement
   std::filesystem::path report;    ///< the acceptance run's report.html
 };
 

@@ -1,6 +1,7 @@
 #include "calib/campaign/truth_evaluation.h"
 
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -52,13 +53,23 @@ std::vector<EvaluatedQuantity> EvaluateAgainstTruth(const std::vector<WrittenCon
     if (file.kind == hil::UnitKind::kImu) {
       ImuEvaluationOptions options;
       options.g_local_mps2 = g_local_mps2;
-      const ImuEvaluation e =
-          EvaluateImu(file, sensor_sim::ImuUnitParams::FromJson(params), spec, options);
-      rows.push_back({file.serial, "acceleration", "mg", e.worst_accel_mg, spec.accel_mg,
-                      e.accel_verdict});
-      rows.push_back({file.serial, "body rate", "deg/s", e.worst_rate_dps, spec.body_rate_dps,
-                      e.rate_verdict});
-      detail = e.report;
+      try {
+        const ImuEvaluation e =
+            EvaluateImu(file, sensor_sim::ImuUnitParams::FromJson(params), spec, options);
+        rows.push_back({file.serial, "acceleration", "mg", e.worst_accel_mg, spec.accel_mg,
+                        e.accel_verdict});
+        rows.push_back({file.serial, "body rate", "deg/s", e.worst_rate_dps, spec.body_rate_dps,
+                        e.rate_verdict});
+        detail = e.report;
+      } catch (const std::invalid_argument& e) {
+        // Constants the firmware cannot hold (the exporter's refusal) are a result of the
+        // strategy, not an error of the campaign: no worst error, the reason as the verdict.
+        const std::string verdict = std::string("not evaluated: ") + e.what();
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        rows.push_back({file.serial, "acceleration", "mg", nan, spec.accel_mg, verdict});
+        rows.push_back({file.serial, "body rate", "deg/s", nan, spec.body_rate_dps, verdict});
+        detail = {{"serial", file.serial}, {"error", e.what()}};
+      }
     } else {
       const AdsEvaluation e =
           EvaluateAdsConstants(*file.ads, sensor_sim::AdsUnitParams::FromJson(params));

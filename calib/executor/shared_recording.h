@@ -1,12 +1,25 @@
 // The run's RecordingWriter shared by the unit logger threads (rows) and the executor thread
-// (meta.json, durable flushes at step boundaries): one mutex around the writer. Each batch of
-// rows is flushed to the kernel as it is appended, so a killed process loses no row it received;
-// the fsync (power loss) happens at step boundaries.
-// Left out: any buffering of its own; the writer's stdio buffers suffice.
+// (meta.json, durable flushes at step boundaries). Rows are handed to a writer thread of their
+// own, so a logger thread never waits on the disk: under a fast rig a CSV write can block for
+// seconds while the kernel throttles dirty pages (an fsync of a few hundred MB in progress), and a
+// logger that stops reading its unit for that long loses packets on the line. The writer thread
+// writes each batch and flushes it to the kernel as soon as it gets it, so a killed process loses
+// only the rows of the last moments still queued (as it loses those still on the line); the fsync
+// (power loss) happens at step boundaries, in Flush(true), after every row appended before the
+// call has reached the kernel.
+// A write error is kept and rethrown by the next Append or Flush, naming the file.
+// Left out: a bound on the queue (memory is the buffer; a disk slower than the units for the
+// whole run would grow it without limit).
 #pragma once
 
+#include <condition_variable>
+#include <cstdint>
+#include <exception>
 #include <mutex>
 #include <span>
+#include <thread>
+#include <variant>
+#include <vector>
 
 #include "hil/recording/recording_writer.h"
 
@@ -14,31 +27,45 @@ namespace adahrs::calib {
 
 class SharedRecording {
  public:
-  explicit SharedRecording(hil::RecordingWriter& writer) : writer_(writer) {}
+  /// Starts the writer thread; `writer` must outlive this object.
+  explicit SharedRecording(hil::RecordingWriter& writer);
+  /// Writes what is still queued (errors are dropped: Flush reports them), stops the thread.
+  ~SharedRecording();
+  SharedRecording(const SharedRecording&) = delete;
+  SharedRecording& operator=(const SharedRecording&) = delete;
 
   template <typename Row>
   void Append(std::span<const Row> rows) {
-    std::lock_guard lock(mutex_);
     if (rows.empty()) return;
-    for (const Row& row : rows) writer_.Append(row);
-    writer_.Flush(false);
-  }
-  /// Flushes under the lock; with `durable`, fsyncs after releasing it (rows keep coming).
-  void Flush(bool durable) {
     {
-      std::lock_guard lock(mutex_);
-      writer_.Flush(false);
+      std::lock_guard lock(queue_mutex_);
+      RethrowError();
+      for (const Row& row : rows) queue_.emplace_back(row);
+      queued_ += rows.size();
     }
-    if (durable) writer_.SyncFlushed();
+    queue_cv_.notify_one();
   }
-  void WriteMeta(const nlohmann::json& meta) {
-    std::lock_guard lock(mutex_);
-    writer_.WriteMeta(meta);
-  }
+  /// Waits until every row appended before the call has reached the kernel; with `durable`,
+  /// fsyncs them (rows appended meanwhile keep being written).
+  void Flush(bool durable);
+  void WriteMeta(const nlohmann::json& meta);
 
  private:
-  std::mutex mutex_;
+  using Row = std::variant<hil::ImuRecordRow, hil::AdsRecordRow>;
+  void WriterLoop();
+  void RethrowError() const;  // queue_mutex_ held
+
   hil::RecordingWriter& writer_;
+  std::mutex writer_mutex_;  // the writer's files: rows, meta.json, fsync
+  std::mutex queue_mutex_;
+  std::condition_variable queue_cv_;    // rows queued or stopping
+  std::condition_variable written_cv_;  // rows written
+  std::vector<Row> queue_;
+  uint64_t queued_ = 0;   // rows ever appended
+  uint64_t written_ = 0;  // rows ever written and flushed to the kernel
+  bool stopping_ = false;
+  std::exception_ptr error_;
+  std::thread thread_;
 };
 
 }  // namespace adahrs::calib

@@ -9,6 +9,7 @@
 //   - every acquiring step complete: rows with the step's index and TAG outside rejected intervals
 //     number exactly the packets the sequence file asks for (the sum of its acquisitions, from the
 //     sequence expansion), for every unit (contract C2: tagged rows are exactly the acquisitions).
+// ctest: RUN_SERIAL — the wall-time budget is the pipeline's on 2 cores, with nothing else running.
 // Under ASan/UBSan the build checks memory and arithmetic, not speed: the same code paths run the
 // --quick variants of both sequences (calib/campaign/quick_sequences.h) at 200x with every loss
 // and completeness check, and the wall time is printed, not judged.
