@@ -36,7 +36,7 @@ constexpr double kProgressLineIntervalS = 5.0;
 
 struct DemoOptions {
   std::string out = "runs/demo";
-  double time_scale = 600.0;
+  double time_scale = 300.0;
   bool quick = false;
   std::string sequences = ADAHRS_SEQUENCE_DIR;
 };
@@ -149,7 +149,7 @@ int RunDemo(const DemoOptions& options) {
   campaign.imu_station_file = station_file(rig_sim::RigBench::kImu, "station-imu.json");
   campaign.ads_station_file = station_file(rig_sim::RigBench::kAds, "station-ads.json");
   const std::filesystem::path dir = options.sequences;
-  campaign.sequences = {(dir / "imu_thermal_calibration_trial.json").string(),
+  campaign.sequences = {(dir / "imu_thermal_calibration_full.json").string(),
                         (dir / "imu_sensor_calibration.json").string(),
                         (dir / "ads_calibration.json").string(),
                         (dir / "imu_acceptance.json").string(),
