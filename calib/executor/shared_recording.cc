@@ -19,7 +19,7 @@ void SharedRecording::RethrowError() const {
 }
 
 void SharedRecording::WriterLoop() {
-  std::vector<Row> batch;
+  std::deque<Row> batch;
   for (;;) {
     {
       std::unique_lock lock(queue_mutex_);

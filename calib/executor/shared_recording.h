@@ -14,12 +14,12 @@
 
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <exception>
 #include <mutex>
 #include <span>
 #include <thread>
 #include <variant>
-#include <vector>
 
 #include "hil/recording/recording_writer.h"
 
@@ -60,7 +60,7 @@ class SharedRecording {
   std::mutex queue_mutex_;
   std::condition_variable queue_cv_;    // rows queued or stopping
   std::condition_variable written_cv_;  // rows written
-  std::vector<Row> queue_;
+  std::deque<Row> queue_;  // a deque: growing it never moves the queued rows under the lock
   uint64_t queued_ = 0;   // rows ever appended
   uint64_t written_ = 0;  // rows ever written and flushed to the kernel
   bool stopping_ = false;

@@ -19,7 +19,9 @@ std::string FirstLine(const std::filesystem::path& path) {
   return line;
 }
 
-std::FILE* OpenCsv(const std::filesystem::path& path, std::string_view header) {
+constexpr size_t kStdioBufferBytes = size_t{1} << 20;
+
+std::FILE* OpenCsv(const std::filesystem::path& path, std::string_view header, char* buffer) {
   const bool is_new = !std::filesystem::exists(path) || std::filesystem::file_size(path) == 0;
   if (!is_new && FirstLine(path) != header) {
     throw std::runtime_error(path.string() + ":1: cannot append: the header is not the version " +
@@ -31,6 +33,7 @@ std::FILE* OpenCsv(const std::filesystem::path& path, std::string_view header) {
     throw std::runtime_error(path.string() + ": cannot open for appending: " +
                              std::strerror(errno));
   }
+  std::setvbuf(f, buffer, _IOFBF, kStdioBufferBytes);
   if (is_new) std::fprintf(f, "%.*s\n", static_cast<int>(header.size()), header.data());
   return f;
 }
@@ -50,11 +53,14 @@ void Check(int rc, const std::filesystem::path& path, const char* what) {
 
 }  // namespace
 
-RecordingWriter::RecordingWriter(const std::filesystem::path& run_dir) : run_dir_(run_dir) {
+RecordingWriter::RecordingWriter(const std::filesystem::path& run_dir)
+    : run_dir_(run_dir),
+      imu_buffer_(std::make_unique<char[]>(kStdioBufferBytes)),
+      ads_buffer_(std::make_unique<char[]>(kStdioBufferBytes)) {
   std::filesystem::create_directories(run_dir_);
-  imu_ = OpenCsv(run_dir_ / kImuCsvName, kImuCsvHeader);
+  imu_ = OpenCsv(run_dir_ / kImuCsvName, kImuCsvHeader, imu_buffer_.get());
   try {
-    ads_ = OpenCsv(run_dir_ / kAdsCsvName, kAdsCsvHeader);
+    ads_ = OpenCsv(run_dir_ / kAdsCsvName, kAdsCsvHeader, ads_buffer_.get());
   } catch (...) {
     std::fclose(imu_);
     throw;
