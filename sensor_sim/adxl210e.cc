@@ -279,16 +279,24 @@ inline double Adxl210e::Duty(const Axis& axis, double a_g, double dtemp_c, doubl
 }
 
 Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
-  const double dtemp_c = input.die_temp_c - kReferenceTemp_c;
-  const double dsupply_v = input.supply_v - kNominalSupply_v;
-
-  const double t2_cnt = t2_25_cnt_ * (1.0 + t2_tc_per_c_ * dtemp_c);
+  // The frame's Gaussian draws come first, while little else is live: a draw's rare slow path
+  // calls libm, and values live across it would be saved and restored around every draw.
   double z_walk = 0.0;
   double z_period = 0.0;
   if (t2_jitter_ratio_ > 0.0) {
     z_walk = jitter_rng_.Normal();
     z_period = jitter_rng_.Normal();
   }
+  double z_x = 0.0;
+  double z_y = 0.0;
+  if (effects_.noise) {
+    z_x = noise_rng_.Normal();
+    z_y = noise_rng_.Normal();
+  }
+
+  const double dtemp_c = input.die_temp_c - kReferenceTemp_c;
+  const double dsupply_v = input.supply_v - kNominalSupply_v;
+  const double t2_cnt = t2_25_cnt_ * (1.0 + t2_tc_per_c_ * dtemp_c);
   const DcmPeriod period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_walk, z_period);
 
   // Cross-axis matrix applied to f_C (identity when the effect is off: the ratios are zero).
@@ -298,12 +306,6 @@ Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
     x_.filter_g = a_in_x_g;
     y_.filter_g = a_in_y_g;
     started_ = true;
-  }
-  double z_x = 0.0;
-  double z_y = 0.0;
-  if (effects_.noise) {
-    z_x = noise_rng_.Normal();
-    z_y = noise_rng_.Normal();
   }
   const double a_x_g = FilteredAccel(x_, a_in_x_g, period.start_cnt, z_x);
   const double a_y_g = FilteredAccel(y_, a_in_y_g, period.start_cnt, z_y);

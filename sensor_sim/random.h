@@ -44,29 +44,16 @@ class Rng {
   /// Uniform in [lo, hi).
   double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
 
-  /// Standard normal N(0, 1).
+  /// Standard normal N(0, 1). Inline is only the common case (the draw lands inside its layer's
+  /// box, ~99 % of draws); the rest is out of line so that callers keep their values in registers
+  /// across a draw instead of saving them around a possible libm call.
   double Normal() {
+    const uint64_t bits = NextU64();
+    const int layer = static_cast<int>(bits & 127);
+    const auto hz = static_cast<int32_t>(bits >> 32);
     const ZigguratTables& t = Tables();
-    for (;;) {
-      const uint64_t bits = NextU64();
-      const int layer = static_cast<int>(bits & 127);
-      const auto hz = static_cast<int32_t>(bits >> 32);
-      const double x = hz * t.w[layer];
-      if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) return x;  // inside the layer's box
-      if (layer == 0) {
-        // The tail beyond r, by Marsaglia's exponential rejection.
-        double tail, y;
-        do {
-          tail = -std::log(1.0 - Uniform()) / kZigguratR;
-          y = -std::log(1.0 - Uniform());
-        } while (y + y < tail * tail);
-        return hz > 0 ? kZigguratR + tail : -kZigguratR - tail;
-      }
-      // The wedge between the box and the density.
-      if (t.f[layer] + Uniform() * (t.f[layer - 1] - t.f[layer]) < std::exp(-0.5 * x * x)) {
-        return x;
-      }
-    }
+    if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) [[likely]] return hz * t.w[layer];
+    return NormalOutsideBox(layer, hz);
   }
 
   /// A per-unit draw of a datasheet quantity given as nominal ± tolerance: normal with the
@@ -81,6 +68,32 @@ class Rng {
   }
 
  private:
+  // Normal() for a draw outside its layer's box: the tail or wedge test, then fresh draws until
+  // one is accepted. Never inlined (see Normal()).
+  [[gnu::noinline]] double NormalOutsideBox(int layer, int32_t hz) {
+    const ZigguratTables& t = Tables();
+    for (;;) {
+      const double x = hz * t.w[layer];
+      if (layer == 0) {
+        // The tail beyond r, by Marsaglia's exponential rejection.
+        double tail, y;
+        do {
+          tail = -std::log(1.0 - Uniform()) / kZigguratR;
+          y = -std::log(1.0 - Uniform());
+        } while (y + y < tail * tail);
+        return hz > 0 ? kZigguratR + tail : -kZigguratR - tail;
+      }
+      // The wedge between the box and the density.
+      if (t.f[layer] + Uniform() * (t.f[layer - 1] - t.f[layer]) < std::exp(-0.5 * x * x)) {
+        return x;
+      }
+      const uint64_t bits = NextU64();
+      layer = static_cast<int>(bits & 127);
+      hz = static_cast<int32_t>(bits >> 32);
+      if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) return hz * t.w[layer];
+    }
+  }
+
   static uint64_t Rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   static uint64_t SplitMix64(uint64_t& x) {
     uint64_t z = (x += 0x9E3779B97F4A7C15ULL);
