@@ -1,6 +1,7 @@
 #include "sensor_sim/adxl210e.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -282,22 +283,18 @@ inline DoublePair Adxl210e::Duty(DoublePair a_g, double dtemp_c, double dsupply_
 Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
   // The frame's Gaussian draws come first, while little else is live: a draw's rare slow path
   // calls libm, and values live across it would be saved and restored around every draw.
-  double z_walk = 0.0;
-  double z_period = 0.0;
-  if (t2_jitter_ratio_ > 0.0) {
-    z_walk = jitter_rng_.Normal();
-    z_period = jitter_rng_.Normal();
-  }
+  std::array<double, 2> z_jitter = {0.0, 0.0};  // the period walk, the reported period
+  if (t2_jitter_ratio_ > 0.0) z_jitter = jitter_rng_.NormalPair();
   DoublePair z = {0.0, 0.0};
   if (effects_.noise) {
-    const double z_x = noise_rng_.Normal();
-    z = DoublePair{z_x, noise_rng_.Normal()};
+    const std::array<double, 2> z_noise = noise_rng_.NormalPair();
+    z = DoublePair{z_noise[0], z_noise[1]};
   }
 
   const double dtemp_c = input.die_temp_c - kReferenceTemp_c;
   const double dsupply_v = input.supply_v - kNominalSupply_v;
   const double t2_cnt = t2_25_cnt_ * (1.0 + t2_tc_per_c_ * dtemp_c);
-  const DcmPeriod period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_walk, z_period);
+  const DcmPeriod period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_jitter[0], z_jitter[1]);
 
   // Cross-axis matrix applied to f_C (identity when the effect is off: the ratios are zero).
   const DoublePair a_in_g = DoublePair{input.f_x_g, input.f_y_g} +

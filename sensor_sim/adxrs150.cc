@@ -1,6 +1,7 @@
 #include "sensor_sim/adxrs150.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -131,8 +132,9 @@ Adxrs150Output Adxrs150::Step(const Adxrs150Input& in) {
   // calls libm, and values live across it would be saved and restored around every draw.
   double z1 = 0.0, z2 = 0.0, z_temp = 0.0;
   if (noise_on_) {
-    z1 = rate_rng_.Normal();
-    z2 = rate_rng_.Normal();
+    const std::array<double, 2> z_rate = rate_rng_.NormalPair();
+    z1 = z_rate[0];
+    z2 = z_rate[1];
     z_temp = temp_rng_.Normal();
   }
   const double bias_process_dps = bias_.Step();

@@ -7,6 +7,7 @@
 // with `Rng::Derive(seed, stream_id)` so adding a stream never shifts another.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -54,6 +55,25 @@ class Rng {
     const ZigguratTables& t = Tables();
     if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) [[likely]] return hz * t.w[layer];
     return NormalOutsideBox(layer, hz);
+  }
+
+  /// Two independent standard normals from one 64-bit draw: each 32-bit half is a ziggurat draw of
+  /// its own, the layer from the half's low 7 bits and the value from its other 25 bits (the
+  /// resolution of Marsaglia and Tsang's original 32-bit RNOR, without its overlap of layer and
+  /// value bits). A half outside its box goes on as in Normal(), with fresh 64-bit draws. The noise
+  /// models take their per-frame normals in pairs: one generator step for two normals.
+  std::array<double, 2> NormalPair() {
+    const uint64_t bits = NextU64();
+    const ZigguratTables& t = Tables();
+    std::array<double, 2> z;
+    for (int half = 0; half < 2; ++half) {
+      const auto word = static_cast<uint32_t>(bits >> (32 * half));
+      const int layer = static_cast<int>(word & 127);
+      const auto hz = static_cast<int32_t>(word & ~uint32_t{127});
+      z[half] = std::abs(static_cast<int64_t>(hz)) < t.k[layer] ? hz * t.w[layer]
+                                                                : NormalOutsideBox(layer, hz);
+    }
+    return z;
   }
 
   /// A per-unit draw of a datasheet quantity given as nominal ± tolerance: normal with the
