@@ -46,7 +46,7 @@ class Rng {
   double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
 
   /// Standard normal N(0, 1). Inline is only the common case (the draw lands inside its layer's
-  /// box, ~99 % of draws); the rest is out of line so that callers keep their values in registers
+  /// box, ~97 % of draws); the rest is out of line so that callers keep their values in registers
   /// across a draw instead of saving them around a possible libm call.
   double Normal() {
     const uint64_t bits = NextU64();
