@@ -97,9 +97,10 @@ int32_t Ads1254::Convert(double input_v) {
     throw std::invalid_argument("Ads1254::Convert: input_v = " + std::to_string(input_v) +
                                 " V is not a finite voltage");
   }
+  const double z = noise_v_rms_ > 0.0 ? rng_.Normal() : 0.0;  // drawn before the live values
   const double v_clipped = std::clamp(input_v, -true_vref_v_, true_vref_v_);
   double v = input_v + inl_peak_v_ - inl_per_v2_ * v_clipped * v_clipped;
-  if (noise_v_rms_ > 0.0) v += noise_v_rms_ * rng_.Normal();
+  if (noise_v_rms_ > 0.0) v += noise_v_rms_ * z;
   // Clipping before rounding gives the same code as after (the limits are integers and rounding is
   // monotonic) and keeps the argument inside RoundHalfEven's exact range (it equals nearbyint).
   return static_cast<int32_t>(

@@ -1,6 +1,7 @@
 #include "sensor_sim/adxl210e.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -167,46 +168,47 @@ Adxl210eParams Adxl210eParams::FromJson(const ParamReader& reader) {
   return p;
 }
 
-Adxl210e::Axis Adxl210e::MakeAxis(const Adxl210eAxisParams& p, double frame_period_s,
-                                   double timer_clock_hz) {
-  Axis a;
-  a.tau_s = p.filter_r_ohm * p.filter_c_f;
-  if (frame_period_s / a.tau_s > kMaxFramePerTau) {
-    throw std::invalid_argument("Adxl210e: filter time constant too short for the frame (" +
-                                Describe("tau_s", a.tau_s) + ", " +
-                                Describe("frame_period_s", frame_period_s) + ")");
+Adxl210e::Axes Adxl210e::MakeAxes(const Adxl210eParams& params, double frame_period_s) {
+  Axes a;
+  for (int lane = 0; lane < 2; ++lane) {
+    const Adxl210eAxisParams& p = lane == 0 ? params.x : params.y;
+    const double tau_s = p.filter_r_ohm * p.filter_c_f;
+    if (frame_period_s / tau_s > kMaxFramePerTau) {
+      throw std::invalid_argument("Adxl210e: filter time constant too short for the frame (" +
+                                  Describe("tau_s", tau_s) + ", " +
+                                  Describe("frame_period_s", frame_period_s) + ")");
+    }
+    a.frame_decay[lane] = std::exp(-frame_period_s / tau_s);
+    a.exponent_per_tick[lane] = -1.0 / (params.timer_clock_hz * tau_s);
+    // One-sided density N through 1/(1 + sτ): σ² = ∫ N²/(1 + (2πfτ)²) df = N²/(4τ).
+    a.noise_rms_g[lane] = p.noise_density_ug_per_rthz * kGPerUg / std::sqrt(4.0 * tau_s);
+    a.zero_g_duty_ratio[lane] = p.zero_g_duty_ratio;
+    a.sensitivity_ratio_per_g[lane] = p.sensitivity_pct_per_g * kRatioPerPct;
+    const double mg_to_duty = a.sensitivity_ratio_per_g[lane] * kGPerMg;
+    a.zero_g_tc_ratio[0][lane] = p.zero_g_tc1_mg_per_c * mg_to_duty;
+    a.zero_g_tc_ratio[1][lane] = p.zero_g_tc2_mg_per_c2 * mg_to_duty;
+    a.zero_g_tc_ratio[2][lane] = p.zero_g_tc3_mg_per_c3 * mg_to_duty;
+    a.sensitivity_tc[0][lane] = p.sensitivity_tc1_ppm_per_c * kRatioPerPpm;
+    a.sensitivity_tc[1][lane] = p.sensitivity_tc2_ppm_per_c2 * kRatioPerPpm;
+    a.sensitivity_tc[2][lane] = p.sensitivity_tc3_ppm_per_c3 * kRatioPerPpm;
+    a.supply_ratio_per_v[lane] = p.zero_g_supply_pct_per_v * kRatioPerPct;
+    // k2·a² deviates from its least-squares line over [−FS, FS] by at most (2/3)·k2·FS² (at ±FS;
+    // the line is the mean FS²/3), so k2 = 1.5·nonlinearity/FS makes that maximum nl·FS.
+    a.quadratic_per_g[lane] = 1.5 * p.nonlinearity_pct_fs * kRatioPerPct / kFullScale_g;
   }
-  a.frame_decay = std::exp(-frame_period_s / a.tau_s);
-  a.exponent_per_tick = -1.0 / (timer_clock_hz * a.tau_s);
-  // One-sided density N through 1/(1 + sτ): σ² = ∫ N²/(1 + (2πfτ)²) df = N²/(4τ).
-  a.noise_rms_g = p.noise_density_ug_per_rthz * kGPerUg / std::sqrt(4.0 * a.tau_s);
-  a.zero_g_duty_ratio = p.zero_g_duty_ratio;
-  a.sensitivity_ratio_per_g = p.sensitivity_pct_per_g * kRatioPerPct;
-  const double mg_to_duty = a.sensitivity_ratio_per_g * kGPerMg;
-  a.zero_g_tc_ratio[0] = p.zero_g_tc1_mg_per_c * mg_to_duty;
-  a.zero_g_tc_ratio[1] = p.zero_g_tc2_mg_per_c2 * mg_to_duty;
-  a.zero_g_tc_ratio[2] = p.zero_g_tc3_mg_per_c3 * mg_to_duty;
-  a.sensitivity_tc[0] = p.sensitivity_tc1_ppm_per_c * kRatioPerPpm;
-  a.sensitivity_tc[1] = p.sensitivity_tc2_ppm_per_c2 * kRatioPerPpm;
-  a.sensitivity_tc[2] = p.sensitivity_tc3_ppm_per_c3 * kRatioPerPpm;
-  a.supply_ratio_per_v = p.zero_g_supply_pct_per_v * kRatioPerPct;
-  // k2·a² deviates from its least-squares line over [−FS, FS] by at most (2/3)·k2·FS² (at ±FS;
-  // the line is the mean FS²/3), so k2 = 1.5·nonlinearity/FS makes that maximum nl·FS.
-  a.quadratic_per_g = 1.5 * p.nonlinearity_pct_fs * kRatioPerPct / kFullScale_g;
+  const bool cross = params.effects.cross_axis;
+  a.cross_other_ratio = cross ? DoublePair{params.x.cross_other_ratio,
+                                           params.y.cross_other_ratio +
+                                               std::sin(DegToRad(params.xy_nonorthogonality_deg))}
+                              : DoublePair{0.0, 0.0};
+  a.cross_z_ratio = cross ? DoublePair{params.x.cross_z_ratio, params.y.cross_z_ratio}
+                          : DoublePair{0.0, 0.0};
   return a;
 }
 
 Adxl210e::Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double frame_period_s)
     : effects_(params.effects),
-      x_(MakeAxis(params.x, frame_period_s, params.timer_clock_hz)),
-      y_(MakeAxis(params.y, frame_period_s, params.timer_clock_hz)),
-      cross_xy_ratio_(params.effects.cross_axis ? params.x.cross_other_ratio : 0.0),
-      cross_xz_ratio_(params.effects.cross_axis ? params.x.cross_z_ratio : 0.0),
-      cross_yx_ratio_(params.effects.cross_axis
-                          ? params.y.cross_other_ratio +
-                                std::sin(DegToRad(params.xy_nonorthogonality_deg))
-                          : 0.0),
-      cross_yz_ratio_(params.effects.cross_axis ? params.y.cross_z_ratio : 0.0),
+      axes_(MakeAxes(params, frame_period_s)),
       t2_25_cnt_(params.rset_ohm * kT2PerRset_s_per_ohm * (1.0 + params.t2_oscillator_error_ratio) *
                  params.timer_clock_hz),
       t2_tc_per_c_(params.effects.t2_tempco ? params.t2_tc_ppm_per_c * kRatioPerPpm : 0.0),
@@ -233,7 +235,7 @@ Adxl210e::Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double fra
   dcm_ = DutyCycleModulator(frame_cnt, initial_end_cnt, phase_rng.Uniform());
 }
 
-inline double Adxl210e::FilteredAccel(Axis& axis, double a_in_g, double sample_cnt, double z) {
+inline DoublePair Adxl210e::FilteredAccel(DoublePair a_in_g, double sample_cnt, DoublePair z) {
   if (!effects_.filter && !effects_.noise) return a_in_g;
   // Input u held over the frame; sample instant s after the frame start. Exact one-pole solution:
   //   y(s) = u + (y(0) − u)·e^{−s/τ},   y(Δ) = u + (y(s) − u)·e^{−(Δ−s)/τ}.
@@ -242,83 +244,91 @@ inline double Adxl210e::FilteredAccel(Axis& axis, double a_in_g, double sample_c
   // s = sample_cnt·t_tick, so s/τ = sample_cnt·t_tick/τ with t_tick/τ precomputed (a multiply
   // instead of a divide on the frame's critical path; the argument differs from −(s)/τ by a
   // rounding, ~1e-16 relative). 0 ≤ s ≤ Δ and Δ/τ ≤ kMaxFramePerTau = kBoundedExpMaxArg (checked
-  // in MakeAxis), so the argument is inside BoundedExp's range, where it is within 1 ulp of
+  // in MakeAxes), so the argument is inside BoundedExp's range, where it is within 1 ulp of
   // std::exp (fast_math.h).
-  const double decay_to_sample = BoundedExp(sample_cnt * axis.exponent_per_tick);
-  const double decay_to_frame_end = axis.frame_decay / decay_to_sample;
-  double signal_g = a_in_g;
+  const DoublePair decay_to_sample = BoundedExpPair(sample_cnt * axes_.exponent_per_tick);
+  const DoublePair decay_to_frame_end = axes_.frame_decay / decay_to_sample;
+  DoublePair signal_g = a_in_g;
   if (effects_.filter) {
-    signal_g = a_in_g + (axis.filter_g - a_in_g) * decay_to_sample;
-    axis.filter_g = a_in_g + (signal_g - a_in_g) * decay_to_frame_end;
+    signal_g = a_in_g + (axes_.filter_g - a_in_g) * decay_to_sample;
+    axes_.filter_g = a_in_g + (signal_g - a_in_g) * decay_to_frame_end;
   }
   if (effects_.noise) {
-    const double phi = axis.decay_to_frame_end * decay_to_sample;
-    axis.noise_g = phi * axis.noise_g + axis.noise_rms_g * std::sqrt(1.0 - phi * phi) * z;
-    signal_g += axis.noise_g;
+    const DoublePair phi = axes_.decay_to_frame_end * decay_to_sample;
+    axes_.noise_g = phi * axes_.noise_g + axes_.noise_rms_g * SqrtPair(1.0 - phi * phi) * z;
+    signal_g += axes_.noise_g;
   }
-  axis.decay_to_frame_end = decay_to_frame_end;
+  axes_.decay_to_frame_end = decay_to_frame_end;
   return signal_g;
 }
 
-inline double Adxl210e::Duty(const Axis& axis, double a_g, double dtemp_c, double dsupply_v) const {
+inline DoublePair Adxl210e::Duty(DoublePair a_g, double dtemp_c, double dsupply_v) const {
   const double dtemp2 = dtemp_c * dtemp_c;
   const double dtemp3 = dtemp2 * dtemp_c;
-  double zero_g = axis.zero_g_duty_ratio;
+  DoublePair zero_g = axes_.zero_g_duty_ratio;
   if (effects_.zero_g_tempco) {
-    zero_g += axis.zero_g_tc_ratio[0] * dtemp_c + axis.zero_g_tc_ratio[1] * dtemp2 +
-              axis.zero_g_tc_ratio[2] * dtemp3;
+    zero_g += axes_.zero_g_tc_ratio[0] * dtemp_c + axes_.zero_g_tc_ratio[1] * dtemp2 +
+              axes_.zero_g_tc_ratio[2] * dtemp3;
   }
-  if (effects_.supply_sensitivity) zero_g += axis.supply_ratio_per_v * dsupply_v;
-  double sensitivity = axis.sensitivity_ratio_per_g;
+  if (effects_.supply_sensitivity) zero_g += axes_.supply_ratio_per_v * dsupply_v;
+  DoublePair sensitivity = axes_.sensitivity_ratio_per_g;
   if (effects_.sensitivity_tempco) {
-    sensitivity *= 1.0 + axis.sensitivity_tc[0] * dtemp_c + axis.sensitivity_tc[1] * dtemp2 +
-                   axis.sensitivity_tc[2] * dtemp3;
+    sensitivity *= 1.0 + axes_.sensitivity_tc[0] * dtemp_c + axes_.sensitivity_tc[1] * dtemp2 +
+                   axes_.sensitivity_tc[2] * dtemp3;
   }
-  const double a_nl_g = effects_.nonlinearity ? a_g + axis.quadratic_per_g * a_g * a_g : a_g;
-  return std::clamp(zero_g + sensitivity * a_nl_g, 0.0, 1.0);
+  const DoublePair a_nl_g = effects_.nonlinearity ? a_g + axes_.quadratic_per_g * a_g * a_g : a_g;
+  return ClampPair(zero_g + sensitivity * a_nl_g, 0.0, 1.0);
 }
 
 Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
+  // The frame's Gaussian draws come first, while little else is live: a draw's rare slow path
+  // calls libm, and values live across it would be saved and restored around every draw.
+  std::array<double, 2> z_jitter = {0.0, 0.0};  // the period walk, the reported period
+  if (t2_jitter_ratio_ > 0.0) z_jitter = jitter_rng_.NormalPair();
+  DoublePair z = {0.0, 0.0};
+  if (effects_.noise) {
+    const std::array<double, 2> z_noise = noise_rng_.NormalPair();
+    z = DoublePair{z_noise[0], z_noise[1]};
+  }
+
   const double dtemp_c = input.die_temp_c - kReferenceTemp_c;
   const double dsupply_v = input.supply_v - kNominalSupply_v;
-
   const double t2_cnt = t2_25_cnt_ * (1.0 + t2_tc_per_c_ * dtemp_c);
-  double z_walk = 0.0;
-  double z_period = 0.0;
-  if (t2_jitter_ratio_ > 0.0) {
-    z_walk = jitter_rng_.Normal();
-    z_period = jitter_rng_.Normal();
-  }
-  const DcmPeriod period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_walk, z_period);
+  const DcmPeriod period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_jitter[0], z_jitter[1]);
 
   // Cross-axis matrix applied to f_C (identity when the effect is off: the ratios are zero).
-  const double a_in_x_g = input.f_x_g + cross_xy_ratio_ * input.f_y_g + cross_xz_ratio_ * input.f_z_g;
-  const double a_in_y_g = input.f_y_g + cross_yx_ratio_ * input.f_x_g + cross_yz_ratio_ * input.f_z_g;
+  const DoublePair a_in_g = DoublePair{input.f_x_g, input.f_y_g} +
+                            axes_.cross_other_ratio * DoublePair{input.f_y_g, input.f_x_g} +
+                            axes_.cross_z_ratio * input.f_z_g;
   if (!started_) {
-    x_.filter_g = a_in_x_g;
-    y_.filter_g = a_in_y_g;
+    axes_.filter_g = a_in_g;
     started_ = true;
   }
-  double z_x = 0.0;
-  double z_y = 0.0;
-  if (effects_.noise) {
-    z_x = noise_rng_.Normal();
-    z_y = noise_rng_.Normal();
-  }
-  const double a_x_g = FilteredAccel(x_, a_in_x_g, period.start_cnt, z_x);
-  const double a_y_g = FilteredAccel(y_, a_in_y_g, period.start_cnt, z_y);
+  const DoublePair a_g = FilteredAccel(a_in_g, period.start_cnt, z);
+  const DoublePair fall_cnt = period.start_cnt + Duty(a_g, dtemp_c, dsupply_v) * period.length_cnt;
 
   const bool quantize = effects_.capture_quantization;
   const double end_cnt = period.start_cnt + period.length_cnt;
   const uint16_t t2_capture_cnt =
       CaptureIntervalCnt(period.grid_phase_cnt, period.start_cnt, end_cnt, quantize);
-  auto capture = [&](double duty_ratio) {
-    const double fall_cnt = period.start_cnt + duty_ratio * period.length_cnt;
-    return Adxl210eCapture{
-        CaptureIntervalCnt(period.grid_phase_cnt, period.start_cnt, fall_cnt, quantize),
-        t2_capture_cnt};
-  };
-  return {capture(Duty(x_, a_x_g, dtemp_c, dsupply_v)), capture(Duty(y_, a_y_g, dtemp_c, dsupply_v))};
+  uint16_t t1_capture_cnt[2];
+  if (quantize) {
+    // CaptureIntervalCnt for both falling edges at once: the edges' tick counts as doubles, exact
+    // integers far below 2^51, so the difference is the same integer.
+    const DoublePair ticks =
+        FloorPair(period.grid_phase_cnt + fall_cnt) -
+        static_cast<double>(FloorToInt64(period.grid_phase_cnt + period.start_cnt));
+    for (int lane = 0; lane < 2; ++lane) {
+      t1_capture_cnt[lane] = static_cast<uint16_t>(
+          static_cast<uint64_t>(static_cast<int64_t>(ticks[lane])) & 0xFFFFu);
+    }
+  } else {
+    for (int lane = 0; lane < 2; ++lane) {
+      t1_capture_cnt[lane] =
+          CaptureIntervalCnt(period.grid_phase_cnt, period.start_cnt, fall_cnt[lane], false);
+    }
+  }
+  return {{t1_capture_cnt[0], t2_capture_cnt}, {t1_capture_cnt[1], t2_capture_cnt}};
 }
 
 }  // namespace adahrs::sensor_sim

@@ -35,6 +35,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sensor_sim/double_pair.h"
 #include "sensor_sim/duty_cycle_modulator.h"
 #include "sensor_sim/param_reader.h"
 #include "sensor_sim/random.h"
@@ -134,30 +135,30 @@ class Adxl210e {
   Adxl210eOutput Step(const Adxl210eInput& input);
 
  private:
-  // Per-axis constants (precomputed) and filter state.
-  struct Axis {
-    double tau_s;
-    double frame_decay;        // exp(−Δ/τ)
-    double exponent_per_tick;  // −t_tick/τ: e^{−s/τ} = exp(s_cnt · exponent_per_tick)
-    double noise_rms_g;        // N/√(4τ), stationary rms of the filtered noise
-    double zero_g_duty_ratio;
-    double sensitivity_ratio_per_g;
-    double zero_g_tc_ratio[3];   // D0 change per °C^k, duty ratio
-    double sensitivity_tc[3];    // relative S change per °C^k
-    double supply_ratio_per_v;
-    double quadratic_per_g;      // k2
-    double filter_g = 0.0;       // a_f signal at the frame start
-    double noise_g = 0.0;        // noise at the previous sample instant
-    double decay_to_frame_end = 0.0;  // exp(−(Δ − s_prev)/τ)
+  // Both axes' constants (precomputed) and filter state, lane 0 the X axis and lane 1 the Y axis:
+  // the two axes share every instruction of the step (double_pair.h).
+  struct Axes {
+    DoublePair frame_decay;        // exp(−Δ/τ)
+    DoublePair exponent_per_tick;  // −t_tick/τ: e^{−s/τ} = exp(s_cnt · exponent_per_tick)
+    DoublePair noise_rms_g;        // N/√(4τ), stationary rms of the filtered noise
+    DoublePair zero_g_duty_ratio;
+    DoublePair sensitivity_ratio_per_g;
+    DoublePair zero_g_tc_ratio[3];  // D0 change per °C^k, duty ratio
+    DoublePair sensitivity_tc[3];   // relative S change per °C^k
+    DoublePair supply_ratio_per_v;
+    DoublePair quadratic_per_g;     // k2
+    DoublePair cross_other_ratio;   // c_xy on X; c_yx + sin(δ_xy) on Y (0 with cross_axis off)
+    DoublePair cross_z_ratio;       // c_xz, c_yz (0 with cross_axis off)
+    DoublePair filter_g = {};       // a_f signal at the frame start
+    DoublePair noise_g = {};        // noise at the previous sample instant
+    DoublePair decay_to_frame_end = {};  // exp(−(Δ − s_prev)/τ)
   };
-  static Axis MakeAxis(const Adxl210eAxisParams& p, double frame_period_s, double timer_clock_hz);
-  inline double FilteredAccel(Axis& axis, double a_in_g, double sample_cnt, double z);
-  inline double Duty(const Axis& axis, double a_g, double dtemp_c, double dsupply_v) const;
+  static Axes MakeAxes(const Adxl210eParams& params, double frame_period_s);
+  inline DoublePair FilteredAccel(DoublePair a_in_g, double sample_cnt, DoublePair z);
+  inline DoublePair Duty(DoublePair a_g, double dtemp_c, double dsupply_v) const;
 
   Adxl210eEffects effects_;
-  Axis x_;
-  Axis y_;
-  double cross_xy_ratio_, cross_xz_ratio_, cross_yx_ratio_, cross_yz_ratio_;
+  Axes axes_;
   double t2_25_cnt_;
   double t2_tc_per_c_;
   double t2_jitter_ratio_;

@@ -1,6 +1,7 @@
 #include "sensor_sim/adxrs150.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -127,6 +128,17 @@ Adxrs150::Adxrs150(const Adxrs150Params& params, uint64_t noise_seed, double fra
 }
 
 Adxrs150Output Adxrs150::Step(const Adxrs150Input& in) {
+  // The frame's Gaussian draws come first, while little else is live: a draw's rare slow path
+  // calls libm, and values live across it would be saved and restored around every draw.
+  double z1 = 0.0, z2 = 0.0, z_temp = 0.0;
+  if (noise_on_) {
+    const std::array<double, 2> z_rate = rate_rng_.NormalPair();
+    z1 = z_rate[0];
+    z2 = z_rate[1];
+    z_temp = temp_rng_.Normal();
+  }
+  const double bias_process_dps = bias_.Step();
+
   const double dt_c = in.die_temp_c - kReferenceTemp_c;
   const double dvs_v = in.supply_v - kNominalSupply_v;
   const double w = in.w_dps;
@@ -134,19 +146,13 @@ Adxrs150Output Adxrs150::Step(const Adxrs150Input& in) {
   const double bias_dps =
       dt_c * (null_tc_dps_[0] + dt_c * (null_tc_dps_[1] + dt_c * null_tc_dps_[2])) +
       g_sens_dps_per_g_[0] * in.f_x_g + g_sens_dps_per_g_[1] * in.f_y_g +
-      g_sens_dps_per_g_[2] * in.f_z_g + null_supply_dps_per_v_ * dvs_v + bias_.Step();
+      g_sens_dps_per_g_[2] * in.f_z_g + null_supply_dps_per_v_ * dvs_v + bias_process_dps;
   const double w_nl_dps =
       w + nonlinearity_[0] + w * (nonlinearity_[1] + w * (nonlinearity_[2] + w * nonlinearity_[3]));
   const double gain = 1.0 + dt_c * (sens_tc_per_c_[0] + dt_c * sens_tc_per_c_[1]);
   const double ratio = 1.0 + ratio_per_v_ * dvs_v;
   const double u_v = ratio * (params_.null_v + s25_v_per_dps_ * (bias_dps + gain * w_nl_dps));
 
-  double z1 = 0.0, z2 = 0.0, z_temp = 0.0;
-  if (noise_on_) {
-    z1 = rate_rng_.Normal();
-    z2 = rate_rng_.Normal();
-    z_temp = temp_rng_.Normal();
-  }
   if (!started_) {
     // Start in steady state for the first input, with the stationary filter noise.
     filter_state_v_ = u_v + (noise_on_ ? stationary_sigma_v_ * rate_rng_.Normal() : 0.0);

@@ -42,11 +42,4 @@ DieThermal::DieThermal(const DieThermalParams& params, double step_s, double ini
   if (!(step_s > 0.0)) throw std::invalid_argument("DieThermal: step_s must be positive");
 }
 
-double DieThermal::Step(double air_temp_c) {
-  const double target_c =
-      air_temp_c + (params_.effects.self_heating ? params_.self_heating_c : 0.0);
-  die_temp_c_ = target_c + (die_temp_c_ - target_c) * decay_;
-  return die_temp_c_;
-}
-
 }  // namespace adahrs::sensor_sim

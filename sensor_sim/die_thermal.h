@@ -48,8 +48,13 @@ class DieThermal {
   DieThermal(const DieThermalParams& params, double step_s, double initial_air_temp_c);
 
   /// Advances one step with the air at `air_temp_c` over the step; returns the die temperature at
-  /// the end of the step.
-  double Step(double air_temp_c);
+  /// the end of the step. Inline: it runs for every die of every unit every frame.
+  double Step(double air_temp_c) {
+    const double target_c =
+        air_temp_c + (params_.effects.self_heating ? params_.self_heating_c : 0.0);
+    die_temp_c_ = target_c + (die_temp_c_ - target_c) * decay_;
+    return die_temp_c_;
+  }
 
   double die_temp_c() const { return die_temp_c_; }
 

@@ -7,6 +7,7 @@
 // with `Rng::Derive(seed, stream_id)` so adding a stream never shifts another.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -44,29 +45,35 @@ class Rng {
   /// Uniform in [lo, hi).
   double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
 
-  /// Standard normal N(0, 1).
+  /// Standard normal N(0, 1). Inline is only the common case (the draw lands inside its layer's
+  /// box, ~97 % of draws); the rest is out of line so that callers keep their values in registers
+  /// across a draw instead of saving them around a possible libm call.
   double Normal() {
+    const uint64_t bits = NextU64();
+    const int layer = static_cast<int>(bits & 127);
+    const auto hz = static_cast<int32_t>(bits >> 32);
     const ZigguratTables& t = Tables();
-    for (;;) {
-      const uint64_t bits = NextU64();
-      const int layer = static_cast<int>(bits & 127);
-      const auto hz = static_cast<int32_t>(bits >> 32);
-      const double x = hz * t.w[layer];
-      if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) return x;  // inside the layer's box
-      if (layer == 0) {
-        // The tail beyond r, by Marsaglia's exponential rejection.
-        double tail, y;
-        do {
-          tail = -std::log(1.0 - Uniform()) / kZigguratR;
-          y = -std::log(1.0 - Uniform());
-        } while (y + y < tail * tail);
-        return hz > 0 ? kZigguratR + tail : -kZigguratR - tail;
-      }
-      // The wedge between the box and the density.
-      if (t.f[layer] + Uniform() * (t.f[layer - 1] - t.f[layer]) < std::exp(-0.5 * x * x)) {
-        return x;
-      }
+    if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) [[likely]] return hz * t.w[layer];
+    return NormalOutsideBox(layer, hz);
+  }
+
+  /// Two independent standard normals from one 64-bit draw: each 32-bit half is a ziggurat draw of
+  /// its own, the layer from the half's low 7 bits and the value from its other 25 bits (the
+  /// resolution of Marsaglia and Tsang's original 32-bit RNOR, without its overlap of layer and
+  /// value bits). A half outside its box goes on as in Normal(), with fresh 64-bit draws. The noise
+  /// models take their per-frame normals in pairs: one generator step for two normals.
+  std::array<double, 2> NormalPair() {
+    const uint64_t bits = NextU64();
+    const ZigguratTables& t = Tables();
+    std::array<double, 2> z;
+    for (int half = 0; half < 2; ++half) {
+      const auto word = static_cast<uint32_t>(bits >> (32 * half));
+      const int layer = static_cast<int>(word & 127);
+      const auto hz = static_cast<int32_t>(word & ~uint32_t{127});
+      z[half] = std::abs(static_cast<int64_t>(hz)) < t.k[layer] ? hz * t.w[layer]
+                                                                : NormalOutsideBox(layer, hz);
     }
+    return z;
   }
 
   /// A per-unit draw of a datasheet quantity given as nominal ± tolerance: normal with the
@@ -81,6 +88,32 @@ class Rng {
   }
 
  private:
+  // Normal() for a draw outside its layer's box: the tail or wedge test, then fresh draws until
+  // one is accepted. Never inlined (see Normal()).
+  [[gnu::noinline]] double NormalOutsideBox(int layer, int32_t hz) {
+    const ZigguratTables& t = Tables();
+    for (;;) {
+      const double x = hz * t.w[layer];
+      if (layer == 0) {
+        // The tail beyond r, by Marsaglia's exponential rejection.
+        double tail, y;
+        do {
+          tail = -std::log(1.0 - Uniform()) / kZigguratR;
+          y = -std::log(1.0 - Uniform());
+        } while (y + y < tail * tail);
+        return hz > 0 ? kZigguratR + tail : -kZigguratR - tail;
+      }
+      // The wedge between the box and the density.
+      if (t.f[layer] + Uniform() * (t.f[layer - 1] - t.f[layer]) < std::exp(-0.5 * x * x)) {
+        return x;
+      }
+      const uint64_t bits = NextU64();
+      layer = static_cast<int>(bits & 127);
+      hz = static_cast<int32_t>(bits >> 32);
+      if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) return hz * t.w[layer];
+    }
+  }
+
   static uint64_t Rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   static uint64_t SplitMix64(uint64_t& x) {
     uint64_t z = (x += 0x9E3779B97F4A7C15ULL);
