@@ -138,7 +138,7 @@ int Severity(AdsVerdict v) {
 AdsQuantityEvaluation Evaluate(const sensor_sim::AdsUnitParams& params, const Compensator& comp,
                                const Quantity& q, const std::vector<double>& values,
                                const std::vector<double>& temps_c,
-                               const std::vector<TolerancePoint>& table) {
+                               const std::vector<AdsTolerancePoint>& table) {
   AdsQuantityEvaluation out;
   out.quantity = q.name;
   for (double temp_c : temps_c) {
@@ -172,7 +172,7 @@ AdsQuantityEvaluation Evaluate(const sensor_sim::AdsUnitParams& params, const Co
       out.grid.push_back(g);
     }
   }
-  for (const TolerancePoint& t : table) {
+  for (const AdsTolerancePoint& t : table) {
     AdsTolerancePointResult r;
     r.at = t.at;
     r.tolerance = t.tolerance;

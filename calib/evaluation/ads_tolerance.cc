@@ -8,12 +8,12 @@ namespace adahrs::calib {
 namespace {
 
 // Linear interpolation through (at, tolerance) knots sorted by `at`, constant beyond the ends.
-double Interpolate(const std::vector<TolerancePoint>& knots, double at) {
+double Interpolate(const std::vector<AdsTolerancePoint>& knots, double at) {
   if (at <= knots.front().at) return knots.front().tolerance;
   for (size_t i = 1; i < knots.size(); ++i) {
     if (at <= knots[i].at) {
-      const TolerancePoint& a = knots[i - 1];
-      const TolerancePoint& b = knots[i];
+      const AdsTolerancePoint& a = knots[i - 1];
+      const AdsTolerancePoint& b = knots[i];
       return a.tolerance + (b.tolerance - a.tolerance) * (at - a.at) / (b.at - a.at);
     }
   }
@@ -22,15 +22,15 @@ double Interpolate(const std::vector<TolerancePoint>& knots, double at) {
 
 }  // namespace
 
-const std::vector<TolerancePoint>& AltitudeTolerancePoints() {
-  static const std::vector<TolerancePoint> points = {
+const std::vector<AdsTolerancePoint>& AltitudeTolerancePoints() {
+  static const std::vector<AdsTolerancePoint> points = {
       {-1000.0, 15.0}, {0.0, 15.0}, {5000.0, 15.0}, {10000.0, 15.0}, {30000.0, 20.0},
       {50000.0, 80.0}};
   return points;
 }
 
-const std::vector<TolerancePoint>& AirspeedTolerancePoints() {
-  static const std::vector<TolerancePoint> points = {
+const std::vector<AdsTolerancePoint>& AirspeedTolerancePoints() {
+  static const std::vector<AdsTolerancePoint> points = {
       {60.0, 5.0}, {100.0, 2.0}, {300.0, 1.0}, {450.0, 1.0}};
   return points;
 }

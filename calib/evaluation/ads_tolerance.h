@@ -18,15 +18,17 @@ inline constexpr double kAdsMaxAirspeedKt = 450.0;
 inline constexpr double kAdsMinTempC = -40.0;
 inline constexpr double kAdsMaxTempC = 85.0;
 
-struct TolerancePoint {
+/// One stated point of the table, with the evaluation's own extra report points (0 and 5,000 ft);
+/// the tolerances equal calib::Specification::Reference() (tests/calib/specification_test.cc).
+struct AdsTolerancePoint {
   double at = 0.0;         ///< ft or kt
   double tolerance = 0.0;  ///< +- ft or kt
 };
 
 /// The table's altitude points (-1,000, 0, 5,000, 10,000, 30,000, 50,000 ft) and tolerances.
-const std::vector<TolerancePoint>& AltitudeTolerancePoints();
+const std::vector<AdsTolerancePoint>& AltitudeTolerancePoints();
 /// The table's airspeed points (60, 100, 300, 450 kt) and tolerances.
-const std::vector<TolerancePoint>& AirspeedTolerancePoints();
+const std::vector<AdsTolerancePoint>& AirspeedTolerancePoints();
 
 /// Tolerance (+- ft) at `alt_ft` inside the operating limits; throws std::out_of_range outside.
 double AltitudeToleranceFt(double alt_ft);

@@ -2,6 +2,7 @@
 // interpolation rule: stated points exactly, linear between them, held below 60 kt, refused
 // outside the operating limits.
 #include "calib/acceptance/specification.h"
+#include "calib/evaluation/ads_tolerance.h"
 
 #include <stdexcept>
 
@@ -54,6 +55,18 @@ TEST(Specification, JsonCarriesTheTablesAndTheRule) {
   EXPECT_EQ(j["altitude_ft"]["points"].size(), 4u);
   EXPECT_EQ(j["airspeed_kt"]["points"][1][1], 2.0);
   EXPECT_THAT(j["altitude_ft"]["interpolation"].get<std::string>(), ::testing::HasSubstr("assumption"));
+}
+
+// The ADS evaluation keeps its own copy of the tolerance points (with extra report points); both
+// copies must give the same tolerance everywhere in the operating limits.
+TEST(Specification, AdsEvaluationTolerancesMatchTheSpecification) {
+  const Specification s = Specification::Reference();
+  for (double alt_ft = -1000.0; alt_ft <= 50000.0; alt_ft += 250.0) {
+    EXPECT_DOUBLE_EQ(AltitudeToleranceFt(alt_ft), s.altitude_ft.At(alt_ft)) << alt_ft << " ft";
+  }
+  for (double cas_kt = 30.0; cas_kt <= 450.0; cas_kt += 2.5) {
+    EXPECT_DOUBLE_EQ(AirspeedToleranceKt(cas_kt), s.airspeed_kt.At(cas_kt)) << cas_kt << " kt";
+  }
 }
 
 }  // namespace
