@@ -61,7 +61,7 @@ std::vector<EvaluatedQuantity> EvaluateAgainstTruth(const std::vector<WrittenCon
         rows.push_back({file.serial, "body rate", "deg/s", e.worst_rate_dps, spec.body_rate_dps,
                         e.rate_verdict});
         detail = e.report;
-      } catch (const std::invalid_argument& e) {
+      } catch (const ConstantsNotExportable& e) {
         // Constants the firmware cannot hold (the exporter's refusal) are a result of the
         // strategy, not an error of the campaign: no worst error, the reason as the verdict.
         const std::string verdict = std::string("not evaluated: ") + e.what();

@@ -174,8 +174,8 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   try {
     errors = GridErrors(c, grid, options.g_local_mps2);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("evaluate: constants of " + file.serial +
-                                " cannot be exported to the firmware: " + e.what());
+    throw ConstantsNotExportable("evaluate: constants of " + file.serial +
+                                 " cannot be exported to the firmware: " + e.what());
   }
   // The projection can need a thermal block the exporter cannot hold either: then the floor is
   // unknown (NaN) and only the specification and the CRB are judged.

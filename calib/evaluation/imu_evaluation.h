@@ -38,6 +38,7 @@
 // Not evaluated: dynamics (lag, filter), vibration, supply variation, attitude.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -63,8 +64,15 @@ struct ImuEvaluation {
   nlohmann::json report;  ///< evaluation.json
 };
 
-/// Evaluates `constants` (kind imu) against `truth`; throws std::invalid_argument when the
-/// constants are not an IMU's or cannot be exported.
+/// The constants are valid but the firmware exporter cannot hold them: a result of the strategy
+/// (reported as a verdict by callers that evaluate many units), not malformed input.
+class ConstantsNotExportable : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Evaluates `constants` (kind imu) against `truth`; throws ConstantsNotExportable when the
+/// exporter refuses them, std::invalid_argument when they are not an IMU's or malformed.
 ImuEvaluation EvaluateImu(const ConstantsFile& constants, const sensor_sim::ImuUnitParams& truth,
                           const Specification& spec, const ImuEvaluationOptions& options = {});
 
