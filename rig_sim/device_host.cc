@@ -115,14 +115,16 @@ void DeviceHost::OnTick() {
   const auto target = static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s);
   // Bound the work per tick so reads and control actions interleave with frames.
   for (int i = 0; i < 200 && frames_done_.load() < target; ++i) RunFrame();
+  {
+    // Published before the frames' bytes are written: a client that has read a reply sees the
+    // environment that reply describes.
+    std::lock_guard<std::mutex> lock(env_mutex_);
+    env_snapshot_ = env_;
+  }
   WriteOutputs();
   const uint64_t done = frames_done_.load();
   if (target > done && target - done > max_frames_behind_.load()) {
     max_frames_behind_.store(target - done);
-  }
-  {
-    std::lock_guard<std::mutex> lock(env_mutex_);
-    env_snapshot_ = env_;
   }
   if (frames_done_.load() < target) {
     // Behind the clock: continue at once (reads and posted actions still interleave) instead of
