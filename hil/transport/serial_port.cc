@@ -2,12 +2,15 @@
 
 #include "hil/transport/serial_port.h"
 
+#include <poll.h>
 #include <termios.h>
+#include <unistd.h>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/read.hpp>
 #include <boost/asio/serial_port.hpp>
 #include <boost/asio/write.hpp>
+#include <array>
 #include <cstdio>
 #include <optional>
 
@@ -52,7 +55,7 @@ std::string HexBytes(std::span<const uint8_t> bytes, size_t max_bytes) {
 }
 
 SerialPort::SerialPort(const SerialSettings& s, std::string role)
-    : impl_(std::make_unique<Impl>()), role_(std::move(role)), path_(s.path) {
+    : impl_(std::make_unique<Impl>()), role_(std::move(role)), path_(s.path), flow_(s.flow) {
   boost::system::error_code ec;
   impl_->port.open(s.path, ec);
   if (ec) throw TransportError(Describe("cannot open: " + ec.message()));
@@ -80,7 +83,18 @@ std::string SerialPort::Describe(const std::string& what) const {
 
 void SerialPort::DiscardInput() {
   pending_.clear();
-  ::tcflush(impl_->port.native_handle(), TCIFLUSH);
+  const int fd = impl_->port.native_handle();
+  if (flow_ != SerialSettings::Flow::kSoftware) {
+    ::tcflush(fd, TCIFLUSH);
+    return;
+  }
+  // Read what the line discipline has (it has acted on every XON/XOFF among it); bytes still on
+  // their way are left to it, and to the reply parser, which skips flow characters.
+  std::array<uint8_t, 256> dropped{};
+  pollfd ready{fd, POLLIN, 0};
+  while (::poll(&ready, 1, 0) > 0 && (ready.revents & POLLIN) != 0) {
+    if (::read(fd, dropped.data(), dropped.size()) <= 0) break;
+  }
 }
 
 void SerialPort::Write(std::span<const uint8_t> bytes, std::chrono::milliseconds timeout) {

@@ -65,7 +65,10 @@ class SerialPort {
   /// Reads exactly `count` bytes or throws TransportTimeout.
   std::vector<uint8_t> ReadExactly(size_t count, std::chrono::milliseconds timeout);
 
-  /// Drops bytes received but not read yet.
+  /// Drops bytes received but not read yet. With software flow control the bytes are read and
+  /// dropped rather than flushed: tcflush(TCIFLUSH) also discards bytes the line discipline has
+  /// not processed yet, and an instrument's XON among them would leave output stopped for good
+  /// (the next write times out; seen with the Watlow 942, docs/rig/watlow-942.md).
   void DiscardInput();
 
   /// Every byte sent and received is passed to `sink` (nullptr switches tracing off).
@@ -81,6 +84,7 @@ class SerialPort {
   std::unique_ptr<Impl> impl_;
   std::string role_;
   std::string path_;
+  SerialSettings::Flow flow_;
   std::vector<uint8_t> pending_;  // received beyond a terminator, kept for the next read
   TraceSink trace_;
 };
