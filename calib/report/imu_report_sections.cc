@@ -9,6 +9,7 @@
 
 #include "calib/report/constants_table.h"
 #include "calib/report/html_builder.h"
+#include "calib/report/imu_noise_section.h"
 #include "calib/report/svg_plot.h"
 #include "firmware_model/reference_compensator.h"
 
@@ -250,6 +251,8 @@ std::string ImuReportSections(const ImuUnitData& data, const ConstantsFile* cons
                   GyroSection(data, constants));
   html += Section(id + "-cross-axis", 3, data.serial + " cross-axis",
                   CrossAxisSection(data, constants, local_gravity_mps2));
+  html += Section(id + "-noise", 3, data.serial + " noise (Allan deviation at rest)",
+                  ImuNoiseSection(data, constants));
   return html;
 }
 

@@ -9,7 +9,8 @@
 //   gyro        residual of the sensor-calibrated rate (Eq. 23) against the table's reported rate
 //               about the up axis (deg/s) at each rate;
 //   cross-axis  CA (m/s^2 per g) and CG with standard errors, and the fully calibrated residuals at
-//               rest (mg) and at rate (deg/s) in orientations 11, 21, 31.
+//               rest (mg) and at rate (deg/s) in orientations 11, 21, 31;
+//   noise       Allan deviation at rest and the noise terms read off it (imu_noise_section.h).
 // Compensated values come from the double reference compensator (firmware_model/
 // reference_compensator.h) applied to the recorded raw frames with the file's constants.
 // A missing input makes its section say "not available (why)".

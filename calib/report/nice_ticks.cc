@@ -47,6 +47,22 @@ AxisTicks NiceTicks(double min, double max, int max_ticks) {
   return ticks;
 }
 
+AxisTicks DecadeTicks(double log10_min, double log10_max) {
+  if (!std::isfinite(log10_min) || !std::isfinite(log10_max)) {
+    throw std::invalid_argument(fmt::format("DecadeTicks: range 10^[{}, {}] is not drawable",
+                                            log10_min, log10_max));
+  }
+  if (log10_min > log10_max) std::swap(log10_min, log10_max);
+  AxisTicks ticks;
+  ticks.step = 1.0;
+  ticks.lo = std::floor(log10_min + 1e-9);
+  ticks.hi = std::max(ticks.lo + 1.0, std::ceil(log10_max - 1e-9));
+  for (double e = ticks.lo; e <= ticks.hi + 0.5; e += 1.0) ticks.values.push_back(e);
+  return ticks;
+}
+
+std::string DecadeLabel(double exponent) { return fmt::format("{:g}", std::pow(10.0, exponent)); }
+
 std::string TickLabel(double value, double step) {
   const double digits = -std::floor(std::log10(step) + 1e-9);
   if (step < 1e-4 || step >= 1e6) return fmt::format("{:g}", value);

@@ -1,7 +1,7 @@
 // Axis tick positions at "nice" steps (1, 2 or 5 times a power of ten) covering a data range, and
 // their labels: the usual graph-paper rule (Heckbert, "Nice numbers for graph labels", Graphics
 // Gems, 1990). Used by svg_plot.h.
-// Left out: logarithmic axes, date axes.
+// Logarithmic axes get one tick per decade (DecadeTicks). Left out: date axes, minor log ticks.
 #pragma once
 
 #include <string>
@@ -20,6 +20,14 @@ struct AxisTicks {
 /// is widened to a unit-wide range around the value. Throws std::invalid_argument on non-finite
 /// input.
 AxisTicks NiceTicks(double min, double max, int max_ticks);
+
+/// Ticks at every whole decade covering [log10_min, log10_max] (both log10 of data values): lo, hi
+/// and values are exponents, step is 1; a range inside one decade spans that decade. Throws
+/// std::invalid_argument on non-finite input.
+AxisTicks DecadeTicks(double log10_min, double log10_max);
+
+/// The label of decade tick `exponent`: 10^exponent as "0.001", "1", "1000", "1e+06".
+std::string DecadeLabel(double exponent);
 
 /// A tick label with as many decimals as the step needs ("0.25", "-5", "1e-05" for tiny steps).
 std::string TickLabel(double value, double step);

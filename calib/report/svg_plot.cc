@@ -48,6 +48,37 @@ void CheckLengths(const Plot& plot, const std::string& what, size_t x, size_t y)
 
 std::string Colour(size_t i) { return kColours[i % std::size(kColours)]; }
 
+// The value as the axis maps it: log10 on a decade axis (NaN for values <= 0, not drawn).
+double OnAxis(double v, bool log) {
+  if (!log) return v;
+  return v > 0.0 ? std::log10(v) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// `plot` with every coordinate on a logarithmic axis replaced by its log10.
+Plot ToAxisCoordinates(const Plot& plot) {
+  Plot out = plot;
+  for (PlotSeries& s : out.series) {
+    for (double& x : s.x) x = OnAxis(x, plot.log_x);
+    for (double& y : s.y) y = OnAxis(y, plot.log_y);
+  }
+  for (PlotBand& b : out.bands) {
+    for (double& x : b.x) x = OnAxis(x, plot.log_x);
+    for (double& y : b.y_lo) y = OnAxis(y, plot.log_y);
+    for (double& y : b.y_hi) y = OnAxis(y, plot.log_y);
+  }
+  return out;
+}
+
+AxisTicks Ticks(const Range& r, bool log) {
+  return log ? DecadeTicks(r.lo, r.hi) : NiceTicks(r.lo, r.hi, kMaxTicks);
+}
+
+// Tick value as data (10^v on a decade axis) and its label.
+double TickData(double v, bool log) { return log ? std::pow(10.0, v) : v; }
+std::string Label(double v, const AxisTicks& t, bool log) {
+  return log ? DecadeLabel(v) : TickLabel(v, t.step);
+}
+
 }  // namespace
 
 std::string XmlEscape(const std::string& text) {
@@ -66,7 +97,8 @@ std::string XmlEscape(const std::string& text) {
   return out;
 }
 
-std::string RenderSvg(const Plot& plot) {
+std::string RenderSvg(const Plot& data_plot) {
+  const Plot plot = ToAxisCoordinates(data_plot);
   Range xr, yr;
   for (const PlotSeries& s : plot.series) {
     CheckLengths(plot, "series '" + s.label + "'", s.x.size(), s.y.size());
@@ -91,7 +123,7 @@ std::string RenderSvg(const Plot& plot) {
   }
   const size_t legend_rows = plot.series.size() + plot.bands.size();
   const int height_px = plot.height_px + static_cast<int>(legend_rows) * kLegendRowPx;
-  Frame f{NiceTicks(xr.lo, xr.hi, kMaxTicks), NiceTicks(yr.lo, yr.hi, kMaxTicks),
+  Frame f{Ticks(xr, plot.log_x), Ticks(yr, plot.log_y),
           static_cast<double>(kMarginLeftPx), static_cast<double>(plot.width_px - kMarginRightPx),
           static_cast<double>(kMarginTopPx), static_cast<double>(plot.height_px - kMarginBottomPx)};
 
@@ -123,15 +155,15 @@ std::string RenderSvg(const Plot& plot) {
     svg += fmt::format("<line class=\"xtick\" data-value=\"{:.12g}\" x1=\"{:.2f}\" y1=\"{:.2f}\" "
                        "x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>"
                        "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"middle\">{}</text>\n",
-                       v, f.Px(v), f.bottom, f.Px(v), f.bottom + 5, f.Px(v), f.bottom + 17,
-                       TickLabel(v, f.x.step));
+                       TickData(v, plot.log_x), f.Px(v), f.bottom, f.Px(v), f.bottom + 5, f.Px(v),
+                       f.bottom + 17, Label(v, f.x, plot.log_x));
   }
   for (const double v : f.y.values) {
     svg += fmt::format("<line class=\"ytick\" data-value=\"{:.12g}\" x1=\"{:.2f}\" y1=\"{:.2f}\" "
                        "x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>"
                        "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"end\">{}</text>\n",
-                       v, f.left - 5, f.Py(v), f.left, f.Py(v), f.left - 7, f.Py(v) + 4,
-                       TickLabel(v, f.y.step));
+                       TickData(v, plot.log_y), f.left - 5, f.Py(v), f.left, f.Py(v), f.left - 7,
+                       f.Py(v) + 4, Label(v, f.y, plot.log_y));
   }
   svg += fmt::format("<text class=\"xlabel\" x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"middle\">{}"
                      "</text>\n",

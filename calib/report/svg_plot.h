@@ -3,8 +3,10 @@
 // shaded bands (a tolerance envelope: lower and upper y at each x) and a legend. The output is one
 // self-contained <svg> element (SVG 1.1, no scripts, no external references), well-formed XML with
 // every text escaped, so it can be embedded in HTML or parsed by any XML reader.
-// Coordinates: data (x, y) maps linearly to pixels, x to the right, y upwards, inside the frame.
-// Left out: log axes, multiple y axes, error bars, colour maps (a heat map is a set of series).
+// Coordinates: data (x, y) maps linearly to pixels, x to the right, y upwards, inside the frame;
+// an axis marked logarithmic maps log10 of the value instead, with a tick per decade, and values
+// <= 0 on it are not drawn (as non-finite ones).
+// Left out: multiple y axes, error bars, colour maps (a heat map is a set of series).
 #pragma once
 
 #include <string>
@@ -34,6 +36,8 @@ struct Plot {
   std::string y_label;  ///< with its unit
   std::vector<PlotSeries> series;
   std::vector<PlotBand> bands;
+  bool log_x = false;  ///< decade axis (an Allan deviation's tau)
+  bool log_y = false;
   int width_px = 640;
   int height_px = 360;
 };

@@ -141,14 +141,15 @@ TEST_F(RunReportTest, SectionsFiguresAndConstantsMatchTheFiles) {
   ASSERT_FALSE(html.is_null());
   for (const char* id : {"summary", "IMU-0001", "IMU-0001-constants", "IMU-0001-thermal",
                          "IMU-0001-six-position", "IMU-0001-gyro", "IMU-0001-cross-axis",
-                         "ADS-0001", "ADS-0001-constants", "ADS-0001-error-map", "acceptance",
+                         "IMU-0001-noise", "ADS-0001", "ADS-0001-constants", "ADS-0001-error-map", "acceptance",
                          "evaluation"}) {
     SectionById(html, id);
   }
   // Every figure: well-formed SVG (parsed above), both axes labelled with a unit in parentheses.
   const auto svgs = FindTag(html, "svg");
-  // Six-position residual, gyro residual, ADS altitude and airspeed error maps.
-  EXPECT_EQ(svgs.size(), 4u);
+  // Six-position residual, gyro residual, gyro and accelerometer Allan deviation, ADS altitude
+  // and airspeed error maps.
+  EXPECT_EQ(svgs.size(), 6u);
   for (const auto& svg : svgs) {
     EXPECT_THAT(FindTag(svg, "text", "xlabel").at(0)["text"].get<std::string>(), HasSubstr("("));
     EXPECT_THAT(FindTag(svg, "text", "ylabel").at(0)["text"].get<std::string>(), HasSubstr("("));
@@ -190,6 +191,44 @@ TEST_F(RunReportTest, SectionsFiguresAndConstantsMatchTheFiles) {
               HasSubstr("acceptance.json not available"));
 }
 
+// The noise figures are log-log with a tick per decade, and the tables say in which units and at
+// which tau each term was read (the maker's acquisitions are 50 packets: 0.5 s, short of 1 s).
+TEST_F(RunReportTest, NoiseFiguresAreLogLogAndTheTermsNameTheirTau) {
+  const nlohmann::json html = Report(true);
+  ASSERT_FALSE(html.is_null());
+  const nlohmann::json section = SectionById(html, "IMU-0001-noise");
+  const auto svgs = FindTag(section, "svg");
+  ASSERT_EQ(svgs.size(), 2u);
+  for (const auto& svg : svgs) {
+    EXPECT_EQ(FindTag(svg, "text", "xlabel").at(0)["text"], "cluster time tau (s)");
+    for (const char* tick : {"xtick", "ytick"}) {
+      const auto ticks = FindTag(svg, "line", tick);
+      ASSERT_GE(ticks.size(), 2u);
+      for (const auto& t : ticks) {
+        const double exponent = std::log10(std::stod(t["attrib"]["data-value"].get<std::string>()));
+        EXPECT_NEAR(exponent, std::round(exponent), 1e-9) << tick;
+      }
+    }
+    EXPECT_EQ(FindTag(svg, "polyline", "series").size(), 3u);  // x, y, z
+  }
+  const auto tables = FindTag(section, "table");
+  ASSERT_EQ(tables.size(), 2u);
+  EXPECT_THAT(tables[0]["text"].get<std::string>(), HasSubstr("IEEE Std 952"));
+  for (const auto& table : tables) {
+    const auto rows = FindTag(table, "tr");
+    ASSERT_EQ(rows.size(), 4u);  // header, x, y, z
+    for (size_t r = 1; r < rows.size(); ++r) {
+      const auto cells = FindTag(rows[r], "td");
+      EXPECT_THAT(cells.at(1)["text"].get<std::string>(), HasSubstr("record too short for 1 s"));
+      EXPECT_GT(std::stod(cells.at(2)["text"].get<std::string>()), 0.0);
+      EXPECT_THAT(cells.at(4)["text"].get<std::string>(), HasSubstr("at tau"));
+    }
+  }
+  const std::string header = FindTag(tables[0], "tr").at(0)["text"];
+  EXPECT_THAT(header, HasSubstr("deg/sqrt(h)"));
+  EXPECT_THAT(header, HasSubstr("one-sided"));
+}
+
 TEST_F(RunReportTest, WithoutAFitDirectoryEverySectionSaysWhy) {
   const nlohmann::json html = Report(false);
   ASSERT_FALSE(html.is_null());
@@ -197,6 +236,8 @@ TEST_F(RunReportTest, WithoutAFitDirectoryEverySectionSaysWhy) {
               HasSubstr("no constants.json for IMU-0001"));
   EXPECT_THAT(SectionById(html, "ADS-0001-error-map")["text"].get<std::string>(),
               HasSubstr("not available"));
+  EXPECT_THAT(SectionById(html, "IMU-0001-noise")["text"].get<std::string>(),
+              HasSubstr("Noise not available"));
   EXPECT_THAT(SectionById(html, "evaluation")["text"].get<std::string>(),
               HasSubstr("no fit directory given"));
 }

@@ -127,6 +127,41 @@ TEST_F(SvgPlotTest, PointsLandOnTheirTicksAndLabelsLegendAndTitleAreThere) {
   EXPECT_EQ(FindTag(svg, "text", "ylabel")[0]["text"], "drift (counts)");
 }
 
+// A decade axis: ticks at whole powers of ten, points placed by log10 (a decade is the same
+// width everywhere: 0.01 -> 0.1 as wide as 1 -> 10), values <= 0 not drawn, labels as numbers.
+TEST_F(SvgPlotTest, LogAxesPutTicksOnDecadesAndPointsByTheirLogarithm) {
+  Plot plot{"Allan deviation", "cluster time tau (s)", "Allan deviation (deg/s)", {}, {}};
+  plot.log_x = plot.log_y = true;
+  plot.series.push_back({"G x", {0.01, 0.1, 1.0, 10.0, 0.0}, {0.5, 0.2, 0.05, 0.02, 1.0},
+                         PlotSeries::Style::kLine});
+  const nlohmann::json svg = RenderAndParse(plot);
+  ASSERT_FALSE(svg.is_null());
+  std::map<double, double> x_px;
+  std::vector<std::string> x_labels;
+  for (const auto& tick : FindTag(svg, "line", "xtick")) {
+    x_px[std::stod(tick["attrib"]["data-value"].get<std::string>())] =
+        std::stod(tick["attrib"]["x1"].get<std::string>());
+  }
+  std::vector<double> x_values;
+  for (const auto& [value, px] : x_px) x_values.push_back(value);
+  ASSERT_EQ(x_values.size(), 4u);
+  EXPECT_DOUBLE_EQ(x_values[0], 0.01);
+  EXPECT_DOUBLE_EQ(x_values[3], 10.0);
+  EXPECT_NEAR(x_px[0.1] - x_px[0.01], x_px[10.0] - x_px[1.0], 0.02);
+  std::vector<double> y_values;
+  for (const auto& tick : FindTag(svg, "line", "ytick")) {
+    y_values.push_back(std::stod(tick["attrib"]["data-value"].get<std::string>()));
+  }
+  EXPECT_THAT(y_values, ElementsAre(0.01, 0.1, 1.0));
+  EXPECT_THAT(svg["text"].get<std::string>(), HasSubstr("0.01"));
+  const auto lines = FindTag(svg, "polyline", "series");
+  ASSERT_EQ(lines.size(), 1u);
+  const auto points = Points(lines[0]["attrib"]["points"]);
+  ASSERT_EQ(points.size(), 4u);  // tau 0 is not on a decade axis
+  EXPECT_NEAR(points[0].first, x_px[0.01], 0.01);
+  EXPECT_NEAR(points[2].first, x_px[1.0], 0.01);
+}
+
 TEST_F(SvgPlotTest, BandIsAClosedPolygonAroundItsLimits) {
   Plot plot;
   plot.title = "envelope";

@@ -1,0 +1,40 @@
+// The noise terms of a record taken at rest, read off its overlapping Allan deviation (IEEE Std
+// 952-1997 Annex C; the estimator and its conventions are sensor_sim/allan.h):
+//   white noise        read at tau = 1 s: N_952 = sigma(1 s) * sqrt(1 s) is IEEE 952's random-walk
+//                      coefficient (unit/sqrt(s); x60 gives unit/sqrt(h): deg/sqrt(h) for a gyro's
+//                      angle random walk, m/s/sqrt(h) for an accelerometer's velocity random walk);
+//                      the ONE-SIDED density of the datasheets is sqrt(2) * N_952 (unit/sqrt(Hz)).
+//                      A record too short to reach 1 s (under ~10 s) is read at its longest tau,
+//                      and white_tau_s says so.
+//   bias instability   the curve's minimum sigma_min, B = sigma_min / 0.664 (IEEE 952 C.2, flicker
+//                      floor), with the tau where it was read. If the curve is still falling at
+//                      its longest tau the record is too short to show the floor: B is then only an
+//                      upper bound (minimum_at_longest_tau).
+// Units: those of the samples (the caller names them); tau in s.
+// Left out: rate random walk, rate ramp and quantisation terms (they need hours of record or a
+// curve fit, not a calibration run's seconds at rest), confidence intervals beyond each curve
+// point's relative error.
+#pragma once
+
+#include <vector>
+
+#include "sensor_sim/allan.h"
+
+namespace adahrs::calib {
+
+struct AllanTerms {
+  std::vector<sensor_sim::AllanPoint> curve;  ///< about 10 points per decade, m = 1 ... N/10
+  double record_s = 0.0;                      ///< N * dt
+  double white_tau_s = 0.0;                   ///< tau at which the white term was read
+  double random_walk_per_rts = 0.0;           ///< N_952, unit/sqrt(s)
+  double density_one_sided_per_rthz = 0.0;    ///< sqrt(2) * N_952, unit/sqrt(Hz)
+  double bias_instability = 0.0;              ///< sigma_min / 0.664, unit
+  double bias_instability_tau_s = 0.0;        ///< tau of sigma_min
+  bool minimum_at_longest_tau = false;        ///< the floor is not reached: B is an upper bound
+};
+
+/// The terms of `samples` (averages over consecutive `dt_s` intervals, e.g. one per packet).
+/// Throws std::invalid_argument if there are fewer than 20 samples or dt_s is not positive.
+AllanTerms ReadAllanTerms(const std::vector<double>& samples, double dt_s);
+
+}  // namespace adahrs::calib
