@@ -109,9 +109,11 @@ void PrintSummary(const calib::CampaignResult& result, double wall_s) {
     }
     std::cout << "  report: " << u.report.string() << "\n";
   }
-  for (const calib::EvaluatedQuantity& q : result.reference_evaluation) {
-    std::cout << fmt::format("reference strategy, {} worst {}: {:.4g} {} -> {}\n", q.serial,
-                             q.quantity, q.worst, q.unit, q.verdict);
+  for (const auto* evaluation : {&result.reference_evaluation, &result.ads_reference_evaluation}) {
+    for (const calib::EvaluatedQuantity& q : *evaluation) {
+      std::cout << fmt::format("reference strategy, {} worst {}: {:.4g} {} -> {}\n", q.serial,
+                               q.quantity, q.worst, q.unit, q.verdict);
+    }
   }
   for (const std::string& s : result.not_run) std::cout << "not run: " << s << "\n";
   std::cout << "records: " << result.records_file.string() << " (adahrs units show SERIAL --db "

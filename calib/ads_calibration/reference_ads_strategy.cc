@@ -1,7 +1,5 @@
 #include "calib/ads_calibration/reference_ads_strategy.h"
 
-#include "calib/solvers/ads_surface_fit.h"
-
 namespace adahrs::calib {
 namespace {
 
@@ -29,10 +27,15 @@ AdsFitResult FitReferenceAdsStrategy(const std::string& context,
     altitude.push_back({p.ps_code, p.ps_temp_code, p.alt_ft, p.chamber_c});
     if (p.airspeed_point) airspeed.push_back({p.pt_code, p.pt_temp_code, p.cas_kt, p.chamber_c});
   }
-  const SurfaceEstimate alt = FitReferenceSurface(context + ": altitude surface", altitude);
-  const SurfaceEstimate cas = FitReferenceSurface(context + ": airspeed surface", airspeed);
+  return AdsFitFromSurfaces(kReferenceAdsStrategyName,
+                            FitReferenceSurface(context + ": altitude surface", altitude),
+                            FitReferenceSurface(context + ": airspeed surface", airspeed));
+}
+
+AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstimate& alt,
+                                const SurfaceEstimate& cas) {
   AdsFitResult out;
-  out.strategy = kReferenceAdsStrategyName;
+  out.strategy = strategy;
   out.constants.altitude_ft = alt.surface;
   out.constants.airspeed_kt = cas.surface;
   out.standard_errors = {{"altitude_ft", SurfaceErrors(alt)}, {"airspeed_kt", SurfaceErrors(cas)}};

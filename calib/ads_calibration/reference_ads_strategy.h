@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/ads_calibration/ads_calibration_points.h"
+#include "calib/solvers/ads_surface_fit.h"
 #include "firmware_model/calibration_constants.h"
 
 namespace adahrs::calib {
@@ -33,5 +34,10 @@ struct AdsFitResult {
 /// Throws DegenerateDesignError with the reason for a design the cubic cannot be fitted to.
 AdsFitResult FitReferenceAdsStrategy(const std::string& context,
                                      const std::vector<AdsCalibrationPoint>& points);
+
+/// The result of any 10-term cubic strategy from its two fitted surfaces: constants, standard
+/// errors (null for the code box) and diagnostics, labelled `strategy`.
+AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstimate& altitude,
+                                const SurfaceEstimate& airspeed);
 
 }  // namespace adahrs::calib

@@ -4,6 +4,7 @@
 
 #include "calib/acceptance/acceptance_file.h"
 #include "calib/campaign/bench_runs.h"
+#include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/campaign/campaign_fits.h"
 #include "calib/records/acceptance_records.h"
 #include "calib/records/records_sources.h"
@@ -78,30 +79,32 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   const std::filesystem::path sensor_run = RunDir(o, seq.imu_sensor);
   const std::filesystem::path ads_run = RunDir(o, seq.ads_calibration);
 
-  observer.Stage("2/7 fits: IMU reference and improved (joint) strategies, ADS reference");
+  observer.Stage("2/7 fits: IMU reference and improved (joint) strategies, ADS reference and "
+                 "improved (tolerance minimax) strategies");
   const std::filesystem::path imu_reference_dir = o.out_dir / "fits" / "imu-reference";
   const std::filesystem::path imu_joint_dir = o.out_dir / "fits" / "imu-joint";
   const std::filesystem::path ads_reference_dir = o.out_dir / "fits" / "ads-reference";
+  const std::filesystem::path ads_minimax_dir = o.out_dir / "fits" / "ads-tolerance-minimax";
   const auto imu_reference = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Reference(),
                                                  imu_reference_dir, o.software_version);
   const auto imu_joint = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Improved(),
                                              imu_joint_dir, o.software_version);
-  const auto ads_reference = FitAdsReferenceIntoDirectory(ads_run, ads_reference_dir,
-                                                          o.software_version);
-  result.not_run.push_back(
-      "improved ADS strategies: not in this build (the ADS reference cubic is downloaded)");
-  for (const auto* fits : {&imu_reference, &imu_joint, &ads_reference}) {
+  const auto ads_reference = FitAdsIntoDirectory(ads_run, kReferenceAdsStrategyName,
+                                                 ads_reference_dir, o.software_version);
+  const auto ads_minimax = FitAdsIntoDirectory(ads_run, kToleranceAdsStrategyName, ads_minimax_dir,
+                                               o.software_version);
+  for (const auto* fits : {&imu_reference, &imu_joint, &ads_reference, &ads_minimax}) {
     for (const WrittenConstants& w : *fits) records.AddConstants(ConstantsRecordFromFile(w.path));
   }
-  observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS", imu_joint.size(),
-                             ads_reference.size()));
+  observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
+                             imu_joint.size(), ads_reference.size()));
 
-  observer.Stage("3/7 download: improved IMU constants and reference ADS constants into every "
-                 "unit, read back bit for bit, committed");
+  observer.Stage("3/7 download: improved IMU and ADS constants into every unit, read back bit for "
+                 "bit, committed");
   const std::vector<UnitDownload> imu_downloads =
       DownloadStation(imu_station, imu_joint_dir, records);
   const std::vector<UnitDownload> ads_downloads =
-      DownloadStation(ads_station, ads_reference_dir, records);
+      DownloadStation(ads_station, ads_minimax_dir, records);
 
   observer.Stage("4/7 acceptance runs in the calibrated modes, both benches concurrently");
   const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
@@ -123,8 +126,10 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
                                                        imu_reference_dir);
     imu_eval = EvaluateAgainstTruth(imu_joint, *o.truth_dir, imu_station.local_gravity_mps2,
                                     imu_joint_dir);
-    ads_eval = EvaluateAgainstTruth(ads_reference, *o.truth_dir, ads_station.local_gravity_mps2,
-                                    ads_reference_dir);
+    result.ads_reference_evaluation = EvaluateAgainstTruth(
+        ads_reference, *o.truth_dir, ads_station.local_gravity_mps2, ads_reference_dir);
+    ads_eval = EvaluateAgainstTruth(ads_minimax, *o.truth_dir, ads_station.local_gravity_mps2,
+                                    ads_minimax_dir);
   } else {
     result.not_run.push_back("evaluation against truth: no truth directory (not a simulated rig)");
   }
@@ -133,9 +138,9 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   const std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports = {
       {thermal_run, imu_joint_dir},
       {sensor_run, imu_joint_dir},
-      {ads_run, ads_reference_dir},
+      {ads_run, ads_minimax_dir},
       {imu_acceptance_run, imu_joint_dir},
-      {ads_acceptance_run, ads_reference_dir}};
+      {ads_acceptance_run, ads_minimax_dir}};
   for (const auto& [run, fit] : reports) {
     const bool judged = run == imu_acceptance_run || run == ads_acceptance_run;
     WriteRunReport(run, fit, run / "report.html",
@@ -164,7 +169,8 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
     }
   };
   outcomes(imu_downloads, "joint", imu_eval, imu_judged, imu_acceptance_run / "report.html");
-  outcomes(ads_downloads, "reference", ads_eval, ads_judged, ads_acceptance_run / "report.html");
+  outcomes(ads_downloads, kToleranceAdsStrategyName, ads_eval, ads_judged,
+           ads_acceptance_run / "report.html");
   return result;
 }
 

@@ -2,9 +2,10 @@
 // library, each stage's output a directory under `out_dir` (docs/demo.md):
 //   1. calibration runs, IMU bench and ADS bench concurrently (bench_runs.h):
 //      IMU thermal calibration then IMU sensor calibration; ADS calibration;   -> runs/<sequence>/
-//   2. fits (campaign_fits.h): IMU reference and improved (joint) strategies, ADS reference
+//   2. fits (campaign_fits.h): IMU reference and improved (joint) strategies, ADS reference and
+//      improved (tolerance minimax, tolerance_ads_strategy.h) strategies
 //                                                                -> fits/<kind>-<strategy>/
-//   3. download of the chosen constants (improved IMU, reference ADS) into every unit, read-back
+//   3. download of the chosen constants (improved IMU, improved ADS) into every unit, read-back
 //      verified, recorded (station_download.h)
 //   4. acceptance runs in the calibrated modes, both benches concurrently      -> runs/<sequence>/
 //      each judged against the reference specification (calib/acceptance/acceptance_judge.h)
@@ -13,8 +14,8 @@
 //      for every fit                                     -> fits/<…>/evaluation.json
 //   6. report.html per run (run_report.h) with the fit of its unit kind
 //   7. production records: every run, every constants file, every download -> records.sqlite
-// Stages this build has no library for are listed in CampaignResult::not_run with the reason,
-// never faked: improved ADS strategies. A unit that fails acceptance is a result, not an error:
+// Stages that cannot run are listed in CampaignResult::not_run with the reason, never faked
+// (evaluation against truth on a real rig). A unit that fails acceptance is a result, not an error:
 // the campaign goes on to evaluation, reports and records.
 // Errors of a stage pass through with its own context (run, step, unit, file); a stop request
 // (SIGINT) stops the benches safely and throws RunInterrupted.
@@ -78,6 +79,7 @@ struct CampaignResult {
   std::vector<UnitOutcome> units;
   std::vector<std::filesystem::path> run_dirs;
   std::vector<EvaluatedQuantity> reference_evaluation;  ///< IMU reference strategy, for comparison
+  std::vector<EvaluatedQuantity> ads_reference_evaluation;  ///< ADS reference strategy, likewise
   std::vector<std::string> not_run;  ///< stages without a library in this build, with the reason
   std::filesystem::path records_file;
 };

@@ -1,7 +1,7 @@
 #include "calib/campaign/campaign_fits.h"
 
 #include "calib/ads_calibration/ads_calibration_points.h"
-#include "calib/ads_calibration/reference_ads_strategy.h"
+#include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/constants/recording_checksum.h"
 #include "hil/recording/recording_reader.h"
 
@@ -28,9 +28,10 @@ std::vector<WrittenConstants> FitImuIntoDirectory(const std::vector<std::filesys
   return written;
 }
 
-std::vector<WrittenConstants> FitAdsReferenceIntoDirectory(const std::filesystem::path& run_dir,
-                                                           const std::filesystem::path& fit_dir,
-                                                           const std::string& software_version) {
+std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& run_dir,
+                                                  const std::string& strategy,
+                                                  const std::filesystem::path& fit_dir,
+                                                  const std::string& software_version) {
   const hil::Recording recording = hil::ReadRecording(run_dir);
   const std::string source = (run_dir / "ads.csv").string();
   const RecordingReference reference{run_dir.string(), RecordingSha256(run_dir)};
@@ -40,7 +41,7 @@ std::vector<WrittenConstants> FitAdsReferenceIntoDirectory(const std::filesystem
     if (unit.at("kind") != "ads") continue;
     const std::string serial = unit.at("serial");
     const AdsFitResult fit =
-        FitReferenceAdsStrategy(serial, SelectAdsCalibrationPoints(recording, serial, source));
+        FitAdsStrategy(strategy, serial, SelectAdsCalibrationPoints(recording, serial, source));
     ConstantsFile file;
     file.serial = serial;
     file.kind = hil::UnitKind::kAds;

@@ -2,13 +2,12 @@
 // (contract C3, constants_file.h), written to `<fit_dir>/<serial>.json`.
 //   IMU: FitImuRuns (imu_strategy.h) over the thermal and sensor-calibration runs together, with
 //        the strategy given (the reference method or the improved joint fit);
-//   ADS: the reference 10-term cubic surface (reference_ads_strategy.h) on the calibration points
-//        of each ADS unit of the run (ads_calibration_points.h); provenance is the run's
-//        RecordingSha256 and its sequence name.
+//   ADS: a 10-term cubic strategy by name (reference_ads_strategy.h, tolerance_ads_strategy.h) on
+//        the calibration points of each ADS unit of the run (ads_calibration_points.h); provenance
+//        is the run's RecordingSha256 and its sequence name.
 // Errors pass through from the strategies (ImuInputError, DegenerateDesignError, RecordingError,
 // each naming the run, step, unit, line or column).
-// Left out: choosing between strategies (the campaign decides which fit it downloads), improved
-// ADS strategies (not in this build).
+// Left out: choosing between strategies (the campaign decides which fit it downloads).
 #pragma once
 
 #include <filesystem>
@@ -31,9 +30,11 @@ std::vector<WrittenConstants> FitImuIntoDirectory(const std::vector<std::filesys
                                                   const std::filesystem::path& fit_dir,
                                                   const std::string& software_version);
 
-/// Fits every ADS unit of `run_dir` with the reference strategy and writes the files into `fit_dir`.
-std::vector<WrittenConstants> FitAdsReferenceIntoDirectory(const std::filesystem::path& run_dir,
-                                                           const std::filesystem::path& fit_dir,
-                                                           const std::string& software_version);
+/// Fits every ADS unit of `run_dir` with the ADS strategy named `strategy` (FitAdsStrategy:
+/// "reference" or "tolerance_minimax") and writes the files into `fit_dir`.
+std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& run_dir,
+                                                  const std::string& strategy,
+                                                  const std::filesystem::path& fit_dir,
+                                                  const std::string& software_version);
 
 }  // namespace adahrs::calib

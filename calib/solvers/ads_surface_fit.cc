@@ -28,11 +28,15 @@ SurfaceEstimate FitReferenceSurface(const std::string& context,
         context, references.size()));
   }
   PolynomialObservations obs;
+  bool weighted = false;
   for (const SurfaceSample& s : samples) {
     obs.x.push_back(s.x_code);
     obs.y.push_back(s.y_code);
     obs.z.push_back(s.z);
+    obs.weights.push_back(s.weight);
+    weighted = weighted || s.weight != 1.0;
   }
+  if (!weighted) obs.weights.clear();
   const PolynomialBasis basis = PolynomialBasis::ReferenceCubicSurface("x", "y");
   SurfaceEstimate out;
   out.fit = FitPolynomial(context, basis, obs, WeightKind::kInverseVariance,

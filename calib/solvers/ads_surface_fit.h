@@ -6,8 +6,10 @@
 // test set at several chamber temperatures. Fitted in normalised inputs (the code box mapped onto
 // [-1, 1]^2) and re-expanded in raw codes for firmware_model::SurfaceFit, with the box, which the
 // exporter normalises to again (polynomial_basis.h).
-// Weighting: equal, as the reference's TableCurve 3-D fit; the reference instead places more
-// points where the tolerance is tight. Standard errors from the residual variance; the residuals
+// Weighting: equal, as the reference's TableCurve 3-D fit (the reference instead places more
+// points where the tolerance is tight), unless the samples carry weights (the tolerance-weighted
+// strategy, tolerance_ads_strategy.h): then sum w_i r_i^2 is minimised, w_i read as relative
+// inverse variances. Standard errors from the residual variance; the residuals
 // here are mostly model error (the cubic cannot follow the bridge's temperature behaviour), so they
 // describe the fit's spread, not noise.
 // Refused: fewer than 4 distinct chamber temperatures (the y, y^2, y^3 terms need four; the
@@ -15,8 +17,7 @@
 // temperature and normalisation would stretch that into a spurious regressor), fewer than 4
 // distinct reference values (likewise for x, x^2, x^3: the pressure code moves with temperature), fewer than 11
 // points, or a degenerate design (the message names the near-null combination of terms).
-// Not modelled: pressure or thermal hysteresis (a single-valued surface cannot), weighting by the
-// tolerance tables (an improved strategy, issue 6).
+// Not modelled: pressure or thermal hysteresis (a single-valued surface cannot).
 #pragma once
 
 #include <array>
@@ -34,6 +35,7 @@ struct SurfaceSample {
   double y_code = 0.0;  ///< bridge-voltage (temperature) code
   double z = 0.0;       ///< reference value: altitude ft or airspeed kt
   double chamber_c = 0.0;  ///< the step's chamber temperature (reference instrument), degC
+  double weight = 1.0;     ///< > 0; all 1 in the reference strategy
 };
 
 struct SurfaceEstimate {

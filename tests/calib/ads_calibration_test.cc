@@ -12,6 +12,7 @@
 
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/ads_calibration/reference_ads_strategy.h"
+#include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/evaluation/ads_evaluation.h"
 #include "calib/evaluation/ads_tolerance.h"
 #include "hil/recording/recording_reader.h"
@@ -133,6 +134,57 @@ TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecifica
     EXPECT_GT(low_temp_worst_ft, AltitudeToleranceFt(0.0));
     fs::remove_all(run);
   }
+}
+
+// The improved strategy the present firmware can run (tolerance_ads_strategy.h) against the
+// reference on 20 drawn units (every effect on), each run through the shipped ads_calibration
+// sequence and evaluated on the true model over the whole envelope (noise off, no history).
+TEST(ToleranceAdsStrategy, NarrowsTheWorstErrorInTolerancesOnTwentyUnits) {
+  constexpr int kUnits = 20;
+  double sum_ref[2] = {0, 0}, sum_new[2] = {0, 0};
+  int better[2] = {0, 0};
+  for (int i = 0; i < kUnits; ++i) {
+    const std::string serial = "ADS-" + std::to_string(9200 + i);
+    const auto truth =
+        sensor_sim::AdsUnitParams::Draw(serial, 6100 + i, sensor_sim::ModelProfile::kTruth);
+    const fs::path run = TempRun(serial);
+    testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), truth, 40 + i);
+    const hil::Recording rec = hil::ReadRecording(run);
+    const auto points = SelectAdsCalibrationPoints(rec, serial, run.string());
+    const AdsFitResult reference = FitAdsStrategy("reference", serial, points);
+    const AdsFitResult improved = FitAdsStrategy("tolerance_minimax", serial, points);
+    EXPECT_EQ(improved.strategy, "tolerance_minimax");
+    const AdsEvaluation ref_eval = EvaluateAdsConstants(reference.constants, truth);
+    const AdsEvaluation new_eval = EvaluateAdsConstants(improved.constants, truth);
+    const double ref_ratio[2] = {ref_eval.altitude.worst_ratio_no_history,
+                                 ref_eval.airspeed.worst_ratio_no_history};
+    const double new_ratio[2] = {new_eval.altitude.worst_ratio_no_history,
+                                 new_eval.airspeed.worst_ratio_no_history};
+    std::printf("%s worst |error|/tolerance on the envelope, no history: altitude %.1f -> %.1f, "
+                "airspeed %.1f -> %.1f (at the points: %.1f -> %.1f, %.1f -> %.1f)\n",
+                serial.c_str(), ref_ratio[0], new_ratio[0], ref_ratio[1], new_ratio[1],
+                improved.diagnostics["altitude_ft"]["worst_ratio_at_points_weighted_fit"].get<double>(),
+                improved.diagnostics["altitude_ft"]["worst_ratio_at_points"].get<double>(),
+                improved.diagnostics["airspeed_kt"]["worst_ratio_at_points_weighted_fit"].get<double>(),
+                improved.diagnostics["airspeed_kt"]["worst_ratio_at_points"].get<double>());
+    for (int q = 0; q < 2; ++q) {
+      sum_ref[q] += ref_ratio[q];
+      sum_new[q] += new_ratio[q];
+      better[q] += new_ratio[q] < ref_ratio[q] ? 1 : 0;
+    }
+    fs::remove_all(run);
+  }
+  std::printf("mean worst ratio over %d units: altitude %.2f -> %.2f, airspeed %.2f -> %.2f; "
+              "better on %d and %d units\n",
+              kUnits, sum_ref[0] / kUnits, sum_new[0] / kUnits, sum_ref[1] / kUnits,
+              sum_new[1] / kUnits, better[0], better[1]);
+  // Measured (2026-11-23): altitude 39.4 -> 27.6, airspeed 22.7 -> 18.6 tolerances, better on
+  // every unit. Required: better on every unit, and on average by a fifth (altitude) and a tenth
+  // (airspeed). Still tens of tolerances: the cubic cannot hold the bridge's temperature law.
+  EXPECT_EQ(better[0], kUnits);
+  EXPECT_EQ(better[1], kUnits);
+  EXPECT_LT(sum_new[0], 0.8 * sum_ref[0]);
+  EXPECT_LT(sum_new[1], 0.9 * sum_ref[1]);
 }
 
 // Evaluation truth: a unit whose only history effect is the thermal hysteresis h_T (pressure

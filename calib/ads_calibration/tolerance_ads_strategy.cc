@@ -1,0 +1,92 @@
+#include "calib/ads_calibration/tolerance_ads_strategy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+#include "calib/evaluation/ads_tolerance.h"
+#include "firmware_model/reference_compensator.h"
+
+namespace adahrs::calib {
+namespace {
+
+struct MinimaxSurface {
+  SurfaceEstimate estimate;
+  double first_worst_ratio = 0.0;  ///< of the 1/tol^2 fit
+  double worst_ratio = 0.0;        ///< of the kept iterate
+};
+
+double WorstRatio(const SurfaceEstimate& e, const std::vector<SurfaceSample>& samples,
+                  const std::vector<double>& tolerance, std::vector<double>& ratio) {
+  double worst = 0.0;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const double fitted =
+        firmware_model::EvaluateSurfaceFit(e.surface, samples[i].x_code, samples[i].y_code);
+    ratio[i] = std::abs(fitted - samples[i].z) / tolerance[i];
+    worst = std::max(worst, ratio[i]);
+  }
+  return worst;
+}
+
+MinimaxSurface FitMinimax(const std::string& context, std::vector<SurfaceSample> samples,
+                          const std::function<double(double)>& tolerance_of) {
+  std::vector<double> tolerance(samples.size()), ratio(samples.size());
+  for (size_t i = 0; i < samples.size(); ++i) {
+    tolerance[i] = tolerance_of(samples[i].z);
+    samples[i].weight = 1.0 / (tolerance[i] * tolerance[i]);
+  }
+  MinimaxSurface best;
+  best.estimate = FitReferenceSurface(context, samples);
+  best.first_worst_ratio = best.worst_ratio = WorstRatio(best.estimate, samples, tolerance, ratio);
+  for (int k = 0; k < kLawsonIterations; ++k) {
+    double sum = 0.0;
+    for (size_t i = 0; i < samples.size(); ++i) {
+      samples[i].weight *= ratio[i];
+      sum += samples[i].weight;
+    }
+    if (!(sum > 0.0)) break;  // an exact fit: nothing left to reweigh
+    for (SurfaceSample& s : samples) s.weight = std::max(s.weight / sum, 1e-12);
+    SurfaceEstimate next = FitReferenceSurface(context, samples);
+    const double worst = WorstRatio(next, samples, tolerance, ratio);
+    if (worst < best.worst_ratio) {
+      best.estimate = std::move(next);
+      best.worst_ratio = worst;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+AdsFitResult FitToleranceAdsStrategy(const std::string& context,
+                                     const std::vector<AdsCalibrationPoint>& points) {
+  std::vector<SurfaceSample> altitude, airspeed;
+  for (const AdsCalibrationPoint& p : points) {
+    altitude.push_back({p.ps_code, p.ps_temp_code, p.alt_ft, p.chamber_c});
+    if (p.airspeed_point) airspeed.push_back({p.pt_code, p.pt_temp_code, p.cas_kt, p.chamber_c});
+  }
+  const MinimaxSurface alt = FitMinimax(context + ": altitude surface", altitude, [](double ft) {
+    return AltitudeToleranceFt(std::clamp(ft, kAdsMinAltitudeFt, kAdsMaxAltitudeFt));
+  });
+  const MinimaxSurface cas = FitMinimax(context + ": airspeed surface", airspeed, [](double kt) {
+    return AirspeedToleranceKt(std::clamp(kt, kAdsMinAirspeedKt, kAdsMaxAirspeedKt));
+  });
+  AdsFitResult out = AdsFitFromSurfaces(kToleranceAdsStrategyName, alt.estimate, cas.estimate);
+  for (const auto& [key, m] : {std::pair{"altitude_ft", &alt}, std::pair{"airspeed_kt", &cas}}) {
+    out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->first_worst_ratio;
+    out.diagnostics[key]["worst_ratio_at_points"] = m->worst_ratio;
+    out.diagnostics[key]["lawson_iterations"] = kLawsonIterations;
+  }
+  return out;
+}
+
+AdsFitResult FitAdsStrategy(const std::string& name, const std::string& context,
+                            const std::vector<AdsCalibrationPoint>& points) {
+  if (name == kReferenceAdsStrategyName) return FitReferenceAdsStrategy(context, points);
+  if (name == kToleranceAdsStrategyName) return FitToleranceAdsStrategy(context, points);
+  throw std::invalid_argument("unknown ADS strategy '" + name + "' (known: " +
+                              kReferenceAdsStrategyName + ", " + kToleranceAdsStrategyName + ")");
+}
+
+}  // namespace adahrs::calib

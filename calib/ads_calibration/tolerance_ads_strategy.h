@@ -1,0 +1,40 @@
+// An improved ADS strategy that the present firmware can run: the reference's 10-term bivariate
+// cubic surfaces (reference_ads_strategy.h), fitted for the specification rather than for the
+// mean square. The tolerance is tight at low altitude (+-15 ft) and loose at 50,000 ft (+-80 ft),
+// tight at 300-450 kt (+-1 kt) and loose at 60 kt (+-5 kt); an equal-weight fit spends its
+// freedom evenly and leaves the tight end far outside. Here the quantity minimised is the worst
+// error in units of the tolerance at the calibration points, max_i |r_i| / tol_i, by Lawson's
+// iteratively reweighted least squares (C. L. Lawson, 1961; Rice and Usow, Math. Comp. 22, 1968):
+// start from w_i = 1/tol_i^2 (the weighted mean-square fit), then w_i <- w_i |r_i| / tol_i,
+// normalised, for kLawsonIterations; the iterate with the smallest worst ratio is kept. Tolerances
+// are calib/evaluation/ads_tolerance.h's, with points outside the operating limits weighed at the
+// nearest limit's tolerance.
+// Output as the reference's (constants, standard errors from the weighted residual variance,
+// diagnostics) plus, per output, the worst ratio at the points of the first (1/tol^2) fit and of
+// the kept one.
+// Left out: anything the 10-term cubic cannot hold (the bridge's high-order temperature
+// behaviour and its hysteresis: docs/calibration-strategies.md); it narrows the errors, it does
+// not bring them inside the specification.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "calib/ads_calibration/reference_ads_strategy.h"
+
+namespace adahrs::calib {
+
+inline constexpr const char* kToleranceAdsStrategyName = "tolerance_minimax";
+inline constexpr int kLawsonIterations = 40;
+
+/// Fits the tolerance-minimax strategy; `context` leads every message; throws
+/// DegenerateDesignError as the reference strategy does.
+AdsFitResult FitToleranceAdsStrategy(const std::string& context,
+                                     const std::vector<AdsCalibrationPoint>& points);
+
+/// The ADS strategy called `name` ("reference" or "tolerance_minimax"); throws
+/// std::invalid_argument naming the known strategies for any other name.
+AdsFitResult FitAdsStrategy(const std::string& name, const std::string& context,
+                            const std::vector<AdsCalibrationPoint>& points);
+
+}  // namespace adahrs::calib
