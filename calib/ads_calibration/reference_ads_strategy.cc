@@ -22,14 +22,21 @@ nlohmann::json SurfaceDiagnostics(const SurfaceEstimate& e, const char* unit) {
 
 AdsFitResult FitReferenceAdsStrategy(const std::string& context,
                                      const std::vector<AdsCalibrationPoint>& points) {
-  std::vector<SurfaceSample> altitude, airspeed;
-  for (const AdsCalibrationPoint& p : points) {
-    altitude.push_back({p.ps_code, p.ps_temp_code, p.alt_ft, p.chamber_c});
-    if (p.airspeed_point) airspeed.push_back({p.pt_code, p.pt_temp_code, p.cas_kt, p.chamber_c});
-  }
+  const AdsSurfaceSamples samples = SurfaceSamplesOf(points);
   return AdsFitFromSurfaces(kReferenceAdsStrategyName,
-                            FitReferenceSurface(context + ": altitude surface", altitude),
-                            FitReferenceSurface(context + ": airspeed surface", airspeed));
+                            FitReferenceSurface(context + ": altitude surface", samples.altitude),
+                            FitReferenceSurface(context + ": airspeed surface", samples.airspeed));
+}
+
+AdsSurfaceSamples SurfaceSamplesOf(const std::vector<AdsCalibrationPoint>& points) {
+  AdsSurfaceSamples out;
+  for (const AdsCalibrationPoint& p : points) {
+    out.altitude.push_back({p.ps_code, p.ps_temp_code, p.alt_ft, p.chamber_c});
+    if (p.airspeed_point) {
+      out.airspeed.push_back({p.pt_code, p.pt_temp_code, p.cas_kt, p.chamber_c});
+    }
+  }
+  return out;
 }
 
 AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstimate& alt,

@@ -35,6 +35,14 @@ struct AdsFitResult {
 AdsFitResult FitReferenceAdsStrategy(const std::string& context,
                                      const std::vector<AdsCalibrationPoint>& points);
 
+/// The surfaces' samples of `points`: every point for altitude (static code, static bridge code,
+/// ft), the airspeed points for airspeed (pitot code, pitot bridge code, kt); weights 1.
+struct AdsSurfaceSamples {
+  std::vector<SurfaceSample> altitude;
+  std::vector<SurfaceSample> airspeed;
+};
+AdsSurfaceSamples SurfaceSamplesOf(const std::vector<AdsCalibrationPoint>& points);
+
 /// The result of any 10-term cubic strategy from its two fitted surfaces: constants, standard
 /// errors (null for the code box) and diagnostics, labelled `strategy`.
 AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstimate& altitude,

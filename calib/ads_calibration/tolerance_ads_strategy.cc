@@ -61,15 +61,11 @@ MinimaxSurface FitMinimax(const std::string& context, std::vector<SurfaceSample>
 
 AdsFitResult FitToleranceAdsStrategy(const std::string& context,
                                      const std::vector<AdsCalibrationPoint>& points) {
-  std::vector<SurfaceSample> altitude, airspeed;
-  for (const AdsCalibrationPoint& p : points) {
-    altitude.push_back({p.ps_code, p.ps_temp_code, p.alt_ft, p.chamber_c});
-    if (p.airspeed_point) airspeed.push_back({p.pt_code, p.pt_temp_code, p.cas_kt, p.chamber_c});
-  }
-  const MinimaxSurface alt = FitMinimax(context + ": altitude surface", altitude, [](double ft) {
+  const AdsSurfaceSamples samples = SurfaceSamplesOf(points);
+  const MinimaxSurface alt = FitMinimax(context + ": altitude surface", samples.altitude, [](double ft) {
     return AltitudeToleranceFt(std::clamp(ft, kAdsMinAltitudeFt, kAdsMaxAltitudeFt));
   });
-  const MinimaxSurface cas = FitMinimax(context + ": airspeed surface", airspeed, [](double kt) {
+  const MinimaxSurface cas = FitMinimax(context + ": airspeed surface", samples.airspeed, [](double kt) {
     return AirspeedToleranceKt(std::clamp(kt, kAdsMinAirspeedKt, kAdsMaxAirspeedKt));
   });
   AdsFitResult out = AdsFitFromSurfaces(kToleranceAdsStrategyName, alt.estimate, cas.estimate);
