@@ -69,6 +69,7 @@ void RegisterRigCommand(CLI::App& app) {
     rig.Stop();
     std::cout << fmt::format("rig stopped by signal {} at simulated t = {:.2f} s\n", signal_number,
                              rig.host().now_s());
+    for (const std::string& line : rig.host().Report()) std::cout << line << "\n";
   });
 }
 

@@ -66,6 +66,7 @@ class ByteFaultDevice : public SerialDevice {
   void Advance(double now_s, double dt_s, RigEnvironment& env) override;
   void TakeOutput(double now_s, std::vector<uint8_t>& out) override;
   std::vector<std::string> PhysicalFaults() const override { return inner_->PhysicalFaults(); }
+  std::string LineReport() const override { return inner_->LineReport(); }
   void SetPhysicalFault(const std::string& fault, bool on) override {
     inner_->SetPhysicalFault(fault, on);
   }

@@ -2,6 +2,8 @@
 
 #include "rig_sim/device_host.h"
 
+#include <fmt/format.h>
+
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/posix/stream_descriptor.hpp>
 #include <boost/asio/post.hpp>
@@ -31,6 +33,7 @@ struct DeviceHost::Port {
   std::array<uint8_t, 4096> read_buffer{};
   std::vector<uint8_t> pending_in;
   std::vector<uint8_t> out;
+  uint64_t bytes_lost = 0;  // by this port: discarded without a reader, or cut beyond the backlog
   // Last wall instant the client took bytes: a client counts as reading while this is recent.
   std::chrono::steady_clock::time_point last_progress;
 };
@@ -100,9 +103,11 @@ void DeviceHost::WriteOutputs() {
       // Nobody is reading: the bytes go nowhere, as on a line with no listener, so a client
       // that opens the port later (and flushes the kernel's buffer) reads current data.
       bytes_lost_ += port->out.size();
+      port->bytes_lost += port->out.size();
       port->out.clear();
     } else if (port->out.size() > backlog_limit_bytes_) {
       bytes_lost_ += port->out.size() - backlog_limit_bytes_;
+      port->bytes_lost += port->out.size() - backlog_limit_bytes_;
       port->out.resize(backlog_limit_bytes_);
     }
   }
@@ -181,6 +186,21 @@ void DeviceHost::Run(
     }
   });
   done.get_future().get();
+}
+
+std::vector<std::string> DeviceHost::Report() {
+  std::vector<std::string> lines;
+  Run([&](std::vector<SerialDevice*>&, RigEnvironment&) {
+    for (const auto& port : ports_) {
+      const std::string device = port->device->LineReport();
+      lines.push_back(fmt::format("{:<14} host_bytes_lost={}{}{}", port->device->role(),
+                                  port->bytes_lost, device.empty() ? "" : " ", device));
+    }
+  });
+  lines.push_back(fmt::format("host: {} bytes lost in all, worst lag {} frames ({:.2f} s simulated)",
+                              bytes_lost_.load(), max_frames_behind_.load(),
+                              static_cast<double>(max_frames_behind_.load()) * kWorldFrame_s));
+  return lines;
 }
 
 RigEnvironment DeviceHost::environment() const {

@@ -17,7 +17,8 @@
 // reading client descheduled for a second on a busy machine loses nothing. A port whose client has
 // taken no bytes for kClientStallLimit_s of wall time counts as unread: its output is discarded
 // until a client reads again, as on a line with no listener, so a client that opens the port late
-// and flushes the kernel's buffer (pyserial's reset_input_buffer) reads current data.
+// and flushes the kernel's buffer (pyserial's reset_input_buffer) reads current data. Report()
+// says, per port, how many bytes were lost that way and what the device itself dropped.
 #pragma once
 
 #include <atomic>
@@ -72,6 +73,11 @@ class DeviceHost {
   double time_scale() const { return time_scale_; }
   /// Bytes per port held for a slow client before bytes are lost.
   size_t backlog_limit_bytes() const { return backlog_limit_bytes_; }
+
+  /// One line per port for the rig's exit report: role, bytes the host lost on it (no reader, or
+  /// beyond the backlog) and the device's own LineReport; then the worst lag behind the clock.
+  /// Taken on the host thread (Run) while it runs, directly once stopped.
+  std::vector<std::string> Report();
 
  private:
   struct Port;

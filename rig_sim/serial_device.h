@@ -42,6 +42,11 @@ class SerialDevice {
   /// Switches a physical fault on or off; throws std::invalid_argument naming the device and
   /// the fault when the device has no such fault.
   virtual void SetPhysicalFault(const std::string& fault, bool on);
+
+  /// What the device itself sent, dropped or refused on its line, as "name=value" words for the
+  /// rig's exit report (e.g. a unit's data packets refused by its full transmit buffer); empty
+  /// when the device keeps no such counts.
+  virtual std::string LineReport() const { return ""; }
 };
 
 inline void SerialDevice::SetPhysicalFault(const std::string& fault, bool) {

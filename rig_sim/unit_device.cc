@@ -64,6 +64,12 @@ void UnitDevice::Advance(double now_s, double, RigEnvironment& env) {
   }
 }
 
+std::string UnitDevice::LineReport() const {
+  return "packets_sent=" + std::to_string(counters_.packets_sent) +
+         " packets_dropped=" + std::to_string(counters_.packets_dropped) +
+         " responses_sent=" + std::to_string(counters_.responses_sent);
+}
+
 void UnitDevice::TakeOutput(double now_s, std::vector<uint8_t>& out) {
   if (!unplugged_) {
     line_.Release(now_s, out);

@@ -58,6 +58,7 @@ class UnitDevice : public SerialDevice {
   void Receive(std::span<const uint8_t> bytes, double now_s) override;
   void Advance(double now_s, double dt_s, RigEnvironment& env) override;
   void TakeOutput(double now_s, std::vector<uint8_t>& out) override;
+  std::string LineReport() const override;
   std::vector<std::string> PhysicalFaults() const override { return {kUnplugged, kReset}; }
   void SetPhysicalFault(const std::string& fault, bool on) override;
 

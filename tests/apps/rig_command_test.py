@@ -135,6 +135,9 @@ def main(adahrs):
                     if not control(ctl, "fault imu1 garbage maybe").startswith("ERR "):
                         fail("bad fault value accepted")
 
+            # imu2 has no reader: its pty fills within a second at 20x, and after 2 s of wall time
+            # without progress the host discards its stream (docs/rig.md). Give it that time.
+            time.sleep(3.5)
             rig.send_signal(signal.SIGTERM)
             out, err = rig.communicate(timeout=10)
         except BaseException:
@@ -144,6 +147,20 @@ def main(adahrs):
         if rig.returncode != 0 or "rig stopped by signal 15" not in out:
             fail(f"exit {rig.returncode}; stdout {out!r}; stderr {err!r}")
         print("rig stopped cleanly on SIGTERM")
+        # The exit report: per port what the host lost and what the unit itself sent or dropped.
+        # imu2 was never read, so the host discarded its stream; imu1's unit never had a full
+        # transmit buffer (one request in the whole run).
+        report = {line.split()[0]: dict(w.split("=") for w in line.split()[1:])
+                  for line in out.splitlines() if "host_bytes_lost=" in line}
+        if not {"imu1", "imu2", "ads1", "control"} <= set(report):
+            fail(f"exit report lists {sorted(report)}: {out!r}")
+        if int(report["imu2"]["host_bytes_lost"]) == 0:
+            fail(f"imu2 was never read, yet nothing was lost: {report['imu2']}")
+        if int(report["imu1"]["packets_sent"]) < 1000 or report["imu1"]["packets_dropped"] != "0":
+            fail(f"imu1 unit counters {report['imu1']}")
+        if "host: " not in out or "bytes lost in all" not in out:
+            fail(f"no host summary in {out!r}")
+        print("exit report:", report["imu1"], report["imu2"])
     return 0
 
 
