@@ -61,9 +61,13 @@ def main():
             fail(f"missing options accepted: {missing.returncode} {missing.stderr}")
 
         config = json.loads(subprocess.check_output([adahrs, "rig", "--print-default-config"]))
-        # 20x: the 40 simulated seconds of the sequence take 2 s of wall time, room for a Ctrl-C.
+        # 10x: the 40 simulated seconds of the sequence take 4 s of wall time, room for a Ctrl-C,
+        # and the executor's 60 s clock-time wait margin is 6 s of wall time. At 20x (3 s) a
+        # loaded 2-core machine failed this test about once in 10-60 runs: a unit logger that
+        # did not read for 2-3 s wall (cause not pinned down: docs/executor.md, "Known problem")
+        # ran out of margin, not the behaviour under test.
         rig = subprocess.Popen([adahrs, "rig", "--manifest", str(tmp / "rig" / "manifest.json"),
-                                "--time-scale", "20"], stdout=subprocess.DEVNULL,
+                                "--time-scale", "10"], stdout=subprocess.DEVNULL,
                                stderr=subprocess.STDOUT)
         try:
             manifest_path = tmp / "rig" / "manifest.json"
