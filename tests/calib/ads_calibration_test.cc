@@ -91,6 +91,21 @@ TEST(AdsCalibrationPoints, RefusesBadRowsNamingLineAndColumn) {
                   HasSubstr("run/meta.json: rejected_intervals[0]")));
 }
 
+// A drawn unit (every effect on) run through the shipped ads_calibration sequence: its truth and
+// the calibration points of the written recording (the run directory is removed again).
+struct CalibratedUnit {
+  sensor_sim::AdsUnitParams truth;
+  std::vector<AdsCalibrationPoint> points;
+};
+CalibratedUnit RunShippedCalibration(const std::string& serial, uint64_t seed, uint64_t noise_seed) {
+  CalibratedUnit u{sensor_sim::AdsUnitParams::Draw(serial, seed, sensor_sim::ModelProfile::kTruth), {}};
+  const fs::path run = TempRun(serial);
+  testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), u.truth, noise_seed);
+  u.points = SelectAdsCalibrationPoints(hil::ReadRecording(run), serial, run.string());
+  fs::remove_all(run);
+  return u;
+}
+
 // The reference observed (reference-method.md, Chapter 4) altitude errors at the lower
 // temperatures clearly outside the +-15 ft budget with the 10-term cubic. Run the shipped
 // calibration sequence on drawn units (every modelled effect on), fit the reference strategy from
@@ -98,12 +113,7 @@ TEST(AdsCalibrationPoints, RefusesBadRowsNamingLineAndColumn) {
 TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecification) {
   for (int i = 0; i < 2; ++i) {
     const std::string serial = "ADS-" + std::to_string(9100 + i);
-    const auto truth =
-        sensor_sim::AdsUnitParams::Draw(serial, 6000 + i, sensor_sim::ModelProfile::kTruth);
-    const fs::path run = TempRun(serial);
-    testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), truth, 17 + i);
-    const hil::Recording rec = hil::ReadRecording(run);
-    const auto points = SelectAdsCalibrationPoints(rec, serial, run.string());
+    const auto [truth, points] = RunShippedCalibration(serial, 6000 + i, 17 + i);
     // 5 temperatures x (13 altitudes + 9 airspeeds), one point per log step.
     ASSERT_EQ(points.size(), 5u * 22u);
     const AdsFitResult fit = FitReferenceAdsStrategy(serial, points);
@@ -132,7 +142,6 @@ TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecifica
       }
     }
     EXPECT_GT(low_temp_worst_ft, AltitudeToleranceFt(0.0));
-    fs::remove_all(run);
   }
 }
 
@@ -145,12 +154,7 @@ TEST(ToleranceAdsStrategy, NarrowsTheWorstErrorInTolerancesOnTwentyUnits) {
   int better[2] = {0, 0};
   for (int i = 0; i < kUnits; ++i) {
     const std::string serial = "ADS-" + std::to_string(9200 + i);
-    const auto truth =
-        sensor_sim::AdsUnitParams::Draw(serial, 6100 + i, sensor_sim::ModelProfile::kTruth);
-    const fs::path run = TempRun(serial);
-    testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), truth, 40 + i);
-    const hil::Recording rec = hil::ReadRecording(run);
-    const auto points = SelectAdsCalibrationPoints(rec, serial, run.string());
+    const auto [truth, points] = RunShippedCalibration(serial, 6100 + i, 40 + i);
     const AdsFitResult reference = FitAdsStrategy("reference", serial, points);
     const AdsFitResult improved = FitAdsStrategy("tolerance_minimax", serial, points);
     EXPECT_EQ(improved.strategy, "tolerance_minimax");
@@ -172,7 +176,6 @@ TEST(ToleranceAdsStrategy, NarrowsTheWorstErrorInTolerancesOnTwentyUnits) {
       sum_new[q] += new_ratio[q];
       better[q] += new_ratio[q] < ref_ratio[q] ? 1 : 0;
     }
-    fs::remove_all(run);
   }
   std::printf("mean worst ratio over %d units: altitude %.2f -> %.2f, airspeed %.2f -> %.2f; "
               "better on %d and %d units\n",
