@@ -280,32 +280,42 @@ inline DoublePair Adxl210e::Duty(DoublePair a_g, double dtemp_c, double dsupply_
   return ClampPair(zero_g + sensitivity * a_nl_g, 0.0, 1.0);
 }
 
-Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
+inline Adxl210e::Frame Adxl210e::BeginFrame(const Adxl210eInput& input) {
   // The frame's Gaussian draws come first, while little else is live: a draw's rare slow path
   // calls libm, and values live across it would be saved and restored around every draw.
   std::array<double, 2> z_jitter = {0.0, 0.0};  // the period walk, the reported period
   if (t2_jitter_ratio_ > 0.0) z_jitter = jitter_rng_.NormalPair();
-  DoublePair z = {0.0, 0.0};
+  Frame frame;
+  frame.z = DoublePair{0.0, 0.0};
   if (effects_.noise) {
     const std::array<double, 2> z_noise = noise_rng_.NormalPair();
-    z = DoublePair{z_noise[0], z_noise[1]};
+    frame.z = DoublePair{z_noise[0], z_noise[1]};
   }
 
-  const double dtemp_c = input.die_temp_c - kReferenceTemp_c;
-  const double dsupply_v = input.supply_v - kNominalSupply_v;
-  const double t2_cnt = t2_25_cnt_ * (1.0 + t2_tc_per_c_ * dtemp_c);
-  const DcmPeriod period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_jitter[0], z_jitter[1]);
+  frame.dtemp_c = input.die_temp_c - kReferenceTemp_c;
+  frame.dsupply_v = input.supply_v - kNominalSupply_v;
+  const double t2_cnt = t2_25_cnt_ * (1.0 + t2_tc_per_c_ * frame.dtemp_c);
+  frame.period = dcm_.NextFrame(t2_cnt, t2_cnt * t2_jitter_ratio_, z_jitter[0], z_jitter[1]);
 
   // Cross-axis matrix applied to f_C (identity when the effect is off: the ratios are zero).
-  const DoublePair a_in_g = DoublePair{input.f_x_g, input.f_y_g} +
-                            axes_.cross_other_ratio * DoublePair{input.f_y_g, input.f_x_g} +
-                            axes_.cross_z_ratio * input.f_z_g;
+  frame.a_in_g = DoublePair{input.f_x_g, input.f_y_g} +
+                 axes_.cross_other_ratio * DoublePair{input.f_y_g, input.f_x_g} +
+                 axes_.cross_z_ratio * input.f_z_g;
   if (!started_) {
-    axes_.filter_g = a_in_g;
+    axes_.filter_g = frame.a_in_g;
     started_ = true;
   }
-  const DoublePair a_g = FilteredAccel(a_in_g, period.start_cnt, z);
-  const DoublePair fall_cnt = period.start_cnt + Duty(a_g, dtemp_c, dsupply_v) * period.length_cnt;
+  return frame;
+}
+
+inline void Adxl210e::FilterFrame(Frame& frame) {
+  frame.a_g = FilteredAccel(frame.a_in_g, frame.period.start_cnt, frame.z);
+}
+
+inline Adxl210eOutput Adxl210e::FinishFrame(const Frame& frame) const {
+  const DcmPeriod& period = frame.period;
+  const DoublePair fall_cnt =
+      period.start_cnt + Duty(frame.a_g, frame.dtemp_c, frame.dsupply_v) * period.length_cnt;
 
   const bool quantize = effects_.capture_quantization;
   const double end_cnt = period.start_cnt + period.length_cnt;
@@ -329,6 +339,24 @@ Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
     }
   }
   return {{t1_capture_cnt[0], t2_capture_cnt}, {t1_capture_cnt[1], t2_capture_cnt}};
+}
+
+Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
+  Frame frame = BeginFrame(input);
+  FilterFrame(frame);
+  return FinishFrame(frame);
+}
+
+void Adxl210e::StepEach(std::span<Adxl210e> chips, std::span<const Adxl210eInput> inputs,
+                        std::span<Adxl210eOutput> outputs) {
+  constexpr size_t kMaxChipsPerPass = 4;  // a unit has 3; the frames stay on the stack
+  for (size_t first = 0; first < chips.size(); first += kMaxChipsPerPass) {
+    const size_t n = std::min(kMaxChipsPerPass, chips.size() - first);
+    Frame frames[kMaxChipsPerPass];
+    for (size_t k = 0; k < n; ++k) frames[k] = chips[first + k].BeginFrame(inputs[first + k]);
+    for (size_t k = 0; k < n; ++k) chips[first + k].FilterFrame(frames[k]);
+    for (size_t k = 0; k < n; ++k) outputs[first + k] = chips[first + k].FinishFrame(frames[k]);
+  }
 }
 
 }  // namespace adahrs::sensor_sim

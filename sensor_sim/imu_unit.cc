@@ -106,13 +106,17 @@ ImuUnit::ImuUnit(const ImuUnitParams& params, uint64_t noise_seed, double initia
 
 ImuRawFrame ImuUnit::Step(const ImuStimulus& s) {
   ImuRawFrame frame;
+  std::array<Adxl210eInput, 3> chip_inputs;
   for (int k = 0; k < 3; ++k) {
     die_.accel_chip_c[k] = accel_die_[k].Step(s.air_temp_c);
     const Eigen::Vector3d f_C_g = R_CB_[k] * s.f_B_g;
-    const Adxl210eOutput out = chips_[k].Step(
-        Adxl210eInput{f_C_g.x(), f_C_g.y(), f_C_g.z(), die_.accel_chip_c[k], s.supply_v});
-    frame.accel[2 * k] = out.x;
-    frame.accel[2 * k + 1] = out.y;
+    chip_inputs[k] = {f_C_g.x(), f_C_g.y(), f_C_g.z(), die_.accel_chip_c[k], s.supply_v};
+  }
+  std::array<Adxl210eOutput, 3> chip_outputs;
+  Adxl210e::StepEach(chips_, chip_inputs, chip_outputs);
+  for (int k = 0; k < 3; ++k) {
+    frame.accel[2 * k] = chip_outputs[k].x;
+    frame.accel[2 * k + 1] = chip_outputs[k].y;
   }
   for (int g = 0; g < 3; ++g) {
     die_.gyro_c[g] = gyro_die_[g].Step(s.air_temp_c);
