@@ -73,7 +73,10 @@ SurfaceFit SurfaceFromJson(const json& j, const std::string& path) {
 json ToJson(const ImuCalibrationConstants& c) {
   json thermal = json::array();
   for (const ThermalFit& t : c.thermal) {
-    thermal.push_back({{"temp_sensor", t.temp_sensor}, {"k", t.k}});
+    thermal.push_back({{"temp_sensor", t.temp_sensor},
+                       {"k", t.k},
+                       {"temp_min_cnt", t.temp_min_cnt},
+                       {"temp_max_cnt", t.temp_max_cnt}});
   }
   json accel = json::array();
   for (const AccelScaleFit& a : c.accel) {
@@ -94,14 +97,22 @@ ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j) {
   const json& thermal = Array(j["thermal"], "imu.thermal", 9);
   for (size_t i = 0; i < 9; ++i) {
     const std::string path = "imu.thermal[" + std::to_string(i) + "]";
-    ExpectKeys(thermal[i], path, {"temp_sensor", "k"});
+    ExpectKeys(thermal[i], path, {"temp_sensor", "k", "temp_min_cnt", "temp_max_cnt"});
     const double sensor = Number(thermal[i]["temp_sensor"], path + ".temp_sensor");
     if (sensor != 0.0 && sensor != 1.0 && sensor != 2.0) {
       throw std::runtime_error(path + ".temp_sensor: must be 0, 1 or 2, got " +
                                std::to_string(sensor));
     }
     c.thermal[i].temp_sensor = static_cast<int>(sensor);
-    c.thermal[i].k = Numbers<3>(thermal[i]["k"], path + ".k");
+    c.thermal[i].k = Numbers<4>(thermal[i]["k"], path + ".k");
+    c.thermal[i].temp_min_cnt = Number(thermal[i]["temp_min_cnt"], path + ".temp_min_cnt");
+    c.thermal[i].temp_max_cnt = Number(thermal[i]["temp_max_cnt"], path + ".temp_max_cnt");
+    if (!(c.thermal[i].temp_min_cnt >= 0.0 && c.thermal[i].temp_min_cnt < c.thermal[i].temp_max_cnt &&
+          c.thermal[i].temp_max_cnt <= 65535.0)) {
+      throw std::runtime_error(path + ": temp_min_cnt " + std::to_string(c.thermal[i].temp_min_cnt) +
+                               " .. temp_max_cnt " + std::to_string(c.thermal[i].temp_max_cnt) +
+                               " must be an increasing span inside 0..65535");
+    }
   }
   const json& accel = Array(j["accel"], "imu.accel", 6);
   for (size_t i = 0; i < 6; ++i) {

@@ -3,8 +3,11 @@
 // calibration solvers produce these; constants_exporter.h turns them into target blocks.
 //
 // IMU, per channel (order az1 ax1 ay1 az2 ax2 ay2 gx gy gz, imu_constants.h):
-//   thermal (Eq. 4-5): xi(t) = k[0] + k[1] t + k[2] t^2, t = temperature counts of sensor
-//     `temp_sensor`, xi in the channel's U units (duty for accelerometers, counts for gyros)
+//   thermal (Eq. 4-5, extended to a cubic): xi(t) = k[0] + k[1] t + k[2] t^2 + k[3] t^3,
+//     t = temperature counts of sensor `temp_sensor`, xi in the channel's U units (duty for
+//     accelerometers, counts for gyros); the reference method's quadratic has k[3] = 0. The fit is
+//     valid over [temp_min_cnt, temp_max_cnt], the span of the temperatures it was fitted on: the
+//     exporter normalises t to that span, and the target holds xi constant beyond it.
 //   accelerometer (Eq. 12 as the reference summary states it): Ca_g = (T - offset_duty) /
 //     scale_duty_per_g, S ~ +-0.04 duty per g (1/S ~ +-25 g per duty, Table 16)
 //   gyro (Eq. 23): rate_dps = l[0] + l[1] d + l[2] d^2 + l[3] d^3, d = T - null_cnt
@@ -25,7 +28,9 @@ namespace adahrs::firmware_model {
 
 struct ThermalFit {
   int temp_sensor = 0;           ///< 0..2
-  std::array<double, 3> k = {};  ///< U units per count^i
+  std::array<double, 4> k = {};  ///< U units per count^i
+  double temp_min_cnt = 0.0;     ///< lowest temperature count the fit covers
+  double temp_max_cnt = 65535.0; ///< highest temperature count the fit covers
 };
 
 struct AccelScaleFit {

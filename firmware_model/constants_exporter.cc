@@ -58,6 +58,28 @@ std::vector<Real> Renormalise(const std::vector<Real>& k, Real centre_minus_v0, 
   return c;
 }
 
+// Normalisation of a thermal fit's temperature counts: centred in the span the fit covers, with
+// the smallest power-of-two half-range (at most 2^16) that holds kThermalSpanMargin times the
+// span's half-width. The target evaluates xi only inside it, so the polynomial is bounded where it
+// was fitted rather than over the whole uint16 domain (where a cubic's extrapolation would not fit
+// the channel's U range), and a unit running a little beyond its calibrated temperatures still
+// gets the polynomial; beyond the range the target holds xi and flags the input.
+constexpr Real kThermalSpanMargin = 1.25;
+
+InputNormQ31 ThermalNorm(const ThermalFit& f, const std::string& what) {
+  if (!(f.temp_min_cnt >= 0 && f.temp_min_cnt < f.temp_max_cnt && f.temp_max_cnt <= 65535)) {
+    throw std::invalid_argument(fmt::format("{}: temperature span {} .. {} counts is not an "
+                                            "increasing span inside 0..65535",
+                                            what, f.temp_min_cnt, f.temp_max_cnt));
+  }
+  const Real centre = std::nearbyint((Real{f.temp_min_cnt} + Real{f.temp_max_cnt}) / 2);
+  const Real half_width =
+      std::max(centre - Real{f.temp_min_cnt}, Real{f.temp_max_cnt} - centre) * kThermalSpanMargin;
+  int shift = 0;
+  while (shift < 16 && std::ldexp(Real{1}, shift) < half_width) ++shift;
+  return InputNormQ31{static_cast<int32_t>(centre), static_cast<uint8_t>(shift)};
+}
+
 struct QuantisedPoly {
   PolyQ31 poly;
   double bound;  // worst-case |error| at |x| <= 1, output units
@@ -106,9 +128,10 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
     }
     ThermalConstantsQ31& t = q.thermal[ch];
     t.temp_sensor = static_cast<uint8_t>(f.temp_sensor);
-    t.temp_norm = InputNormQ31{32768, 16};
+    t.temp_norm = ThermalNorm(f, what);
     const int u_e = ch < kAccelChannels ? kDutyExponent : kGyroCountExponent;
-    const auto c = Renormalise({f.k[0], f.k[1], f.k[2]}, 32768, 16);
+    const auto c = Renormalise({f.k[0], f.k[1], f.k[2], f.k[3]}, t.temp_norm.centre,
+                               t.temp_norm.shift);
     const QuantisedPoly poly = QuantisePoly(c, u_e - kMaxAlignShift, u_e, what);
     t.drift = poly.poly;
     thermal_bound[ch] = poly.bound + 2 * Lsb(u_e);

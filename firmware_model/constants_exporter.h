@@ -7,7 +7,8 @@
 // target uses; c_m = sum_{j>=m} k_j C(j,m) (centre - v0)^(j-m) 2^(shift m). The working exponent is
 // the smallest E with sum |c_m| < 2^E (the target's overflow rule), each coefficient gets the
 // smallest exponent e >= E - 16 with |c| < 2^e and a mantissa rounded to nearest. Normalisation:
-// temperature counts over the whole uint16 domain (centre 32768, shift 16); gyro counts centred at
+// temperature counts centred in the span the thermal fit covers, the smallest power-of-two
+// half-range holding 1.25x its half-width (at most 2^16); gyro counts centred at
 // the null (rounded to 1/256 count), shift 22 (+-4.19e6 counts, ~+-200 deg/s); ADS codes centred
 // in the fitted code box, smallest shift covering it.
 // Error bound per quantity (reported, in output units): sum of |c - c_quantised| at |x| = 1,

@@ -27,7 +27,7 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensa
   for (int i = 0; i < 9; ++i) {
     const ThermalFit& f = c.thermal[i];
     const double temp_cnt = raw.temp_cnt[f.temp_sensor];
-    t[i] = u[i] - (f.k[0] + f.k[1] * temp_cnt + f.k[2] * temp_cnt * temp_cnt);
+    t[i] = u[i] - (f.k[0] + temp_cnt * (f.k[1] + temp_cnt * (f.k[2] + temp_cnt * f.k[3])));
   }
   if (mode == ImuCompensationMode::kThermal) return t;
 

@@ -1,7 +1,9 @@
 // Double-precision implementation of the same compensation equations as the target compensator,
 // straight from the pipeline's constants in raw units (calibration_constants.h). Used only to
 // validate the fixed-point model; outputs are in the units of compensated_frame.h (duty, counts,
-// g, deg/s, m/s^2, ft, kt) as doubles. Not modelled: any quantisation (that is the point).
+// g, deg/s, m/s^2, ft, kt) as doubles. Not modelled: any quantisation (that is the point), and
+// the target's hold of the thermal drift beyond its normalised temperature range (the exporter's
+// choice, constants_exporter.h): outside it the reference keeps evaluating the polynomial.
 #pragma once
 
 #include <array>

@@ -142,7 +142,11 @@ ConstantsFile Parse(const json& j, const std::string& source) {
 
 json ImuStandardErrorsJson(const firmware_model::ImuCalibrationConstants& se) {
   json j = NullForNaN(firmware_model::ToJson(se));
-  for (json& t : j["thermal"]) t["temp_sensor"] = nullptr;
+  for (json& t : j["thermal"]) {
+    t["temp_sensor"] = nullptr;
+    t["temp_min_cnt"] = nullptr;
+    t["temp_max_cnt"] = nullptr;
+  }
   return j;
 }
 
@@ -164,7 +168,7 @@ firmware_model::ImuCalibrationConstants ImuStandardErrors(const ConstantsFile& f
   };
   firmware_model::ImuCalibrationConstants se = *file.imu;
   for (size_t ch = 0; ch < 9; ++ch) {
-    for (size_t i = 0; i < 3; ++i) se.thermal[ch].k[i] = number(j["thermal"][ch]["k"][i]);
+    for (size_t i = 0; i < 4; ++i) se.thermal[ch].k[i] = number(j["thermal"][ch]["k"][i]);
   }
   for (size_t ch = 0; ch < 6; ++ch) {
     se.accel[ch] = {number(j["accel"][ch]["offset_duty"]), number(j["accel"][ch]["scale_duty_per_g"])};

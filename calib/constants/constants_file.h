@@ -36,7 +36,7 @@ class ConstantsFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-inline constexpr int kConstantsFormatVersion = 1;
+inline constexpr int kConstantsFormatVersion = 2;
 inline constexpr const char* kConstantsFormatName = "adahrs-constants";
 
 struct RecordingReference {

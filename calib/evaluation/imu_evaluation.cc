@@ -36,12 +36,12 @@ sensor_sim::ImuUnitParams NoiseOff(sensor_sim::ImuUnitParams p) {
   return p;
 }
 
-// Standard deviation of the six outputs at `raw` implied by `cov` of the 72 constants.
+// Standard deviation of the six outputs at `raw` implied by `cov` of the firmware numbers.
 std::array<double, 6> OutputSigma(const fm::ImuCalibrationConstants& c, const Eigen::MatrixXd& cov,
                                   const fm::ImuRawFrame& raw) {
   const Eigen::VectorXd v = FlattenConstants(c);
-  Eigen::MatrixXd jac(6, 72);
-  for (int j = 0; j < 72; ++j) {
+  Eigen::MatrixXd jac(6, kImuFirmwareNumbers);
+  for (int j = 0; j < kImuFirmwareNumbers; ++j) {
     const double h = std::max(1e-3 * std::sqrt(std::max(cov(j, j), 0.0)), 1e-14 * std::max(1.0, std::abs(v[j])));
     Eigen::VectorXd plus = v, minus = v;
     plus[j] += h;
@@ -146,14 +146,20 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   }
   const fm::ImuCalibrationConstants& c = *file.imu;
   const bool have_crb = file.diagnostics.contains("crb_covariance");
-  Eigen::MatrixXd crb = Eigen::MatrixXd::Zero(72, 72);
+  constexpr int n = kImuFirmwareNumbers;
+  Eigen::MatrixXd crb = Eigen::MatrixXd::Zero(n, n);
   if (have_crb) {
     const json& rows = file.diagnostics["crb_covariance"];
-    if (!rows.is_array() || rows.size() != 72) {
-      throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance is not 72x72");
+    if (!rows.is_array() || rows.size() != static_cast<size_t>(n)) {
+      throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance is not " +
+                                  std::to_string(n) + "x" + std::to_string(n));
     }
-    for (int r = 0; r < 72; ++r) {
-      for (int k = 0; k < 72; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
+    for (int r = 0; r < n; ++r) {
+      if (!rows[r].is_array() || rows[r].size() != static_cast<size_t>(n)) {
+        throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance[" +
+                                    std::to_string(r) + "] is not " + std::to_string(n) + " long");
+      }
+      for (int k = 0; k < n; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
     }
   }
   const sensor_sim::ImuUnitParams params = NoiseOff(truth);
@@ -167,7 +173,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   }
   // The true unit projected onto the firmware model: the best constants the structure can hold.
   ImuJointOptions projection_options;
-  projection_options.thermal_order = 2;
+  projection_options.thermal_order = kMaxThermalOrder;
   projection_options.unit_weights = true;
   const ImuFitResult truth_fit = FitImuJoint(file.serial + " (truth projection)", projection, projection_options);
   std::vector<std::array<double, 6>> errors;
@@ -230,7 +236,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   double sum_se = 0.0, sum_crb = 0.0;
   int n_se = 0, n_crb = 0;
   const Eigen::VectorXd se = FlattenConstants(ImuStandardErrors(file));
-  for (int i = 0; i < 72; ++i) {
+  for (int i = 0; i < kImuFirmwareNumbers; ++i) {
     const double err = value[i] - true_value[i];
     const double crb_se = have_crb ? std::sqrt(std::max(crb(i, i), 0.0)) : 0.0;
     json p = {{"name", names[i]}, {"value", value[i]}, {"truth_projection", true_value[i]}, {"error", err}};

@@ -27,9 +27,9 @@
 //                                 minimax constants, nor those the recording's design leads to;
 //   "outside"                     none of these.
 // The firmware floor: the true unit projected onto the firmware's model (the joint model fitted
-// with thermal order 2 to the noise-free grid, equal weights) and run through the same
-// compensator; its worst error is what no calibration into these constants can beat (e.g. a
-// cubic zero-g or null drift that a quadratic thermal term cannot hold over -40...+85 degC).
+// with the firmware's thermal order, 3, to the noise-free grid, equal weights) and run through
+// the same compensator; its worst error is what no calibration into these constants can beat
+// (e.g. a scale factor that changes with temperature, which the firmware has no term for).
 // Without a CRB covariance (the reference strategy) only the specification is judged. Constants
 // the exporter refuses are refused here (std::invalid_argument with the exporter's reason); a
 // projection it refuses leaves the floor unknown (NaN).

@@ -6,6 +6,7 @@
 
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/solvers/linear_least_squares.h"
+#include "firmware_model/target/imu_constants.h"
 #include "sensor_sim/units.h"
 
 namespace adahrs::calib {
@@ -13,6 +14,8 @@ namespace {
 
 namespace fm = firmware_model;
 using nlohmann::json;
+
+static_assert(kMaxThermalOrder == fm::kImuThermalDegree);
 
 constexpr std::array<const char*, 9> kChannelNames = {"az1", "ax1", "ay1", "az2", "ax2",
                                                       "ay2", "gx",  "gy",  "gz"};
@@ -48,6 +51,13 @@ double Tau2Mean(const ImuObservation& o, int sensor) {
   return (t2 - 2.0 * kTempCentre_cnt * t + kTempCentre_cnt * kTempCentre_cnt) /
          (kTempSpan_cnt * kTempSpan_cnt);
 }
+// Mean of tau^3 from the means of t, t^2, t^3: E[(t - c)^3] = E[t^3] - 3c E[t^2] + 3c^2 E[t] - c^3.
+double Tau3Mean(const ImuObservation& o, int sensor) {
+  const double c = kTempCentre_cnt;
+  const double t = o.t_mean_cnt[sensor], t2 = o.t2_mean_cnt2[sensor], t3 = o.t3_mean_cnt3[sensor];
+  return (t3 - 3.0 * c * t2 + 3.0 * c * c * t - c * c * c) /
+         (kTempSpan_cnt * kTempSpan_cnt * kTempSpan_cnt);
+}
 
 Eigen::RowVectorXd DesignRow(const ChannelModel& m, const ImuObservation& o) {
   Eigen::RowVectorXd row(m.size());
@@ -55,6 +65,7 @@ Eigen::RowVectorXd DesignRow(const ChannelModel& m, const ImuObservation& o) {
   row[k++] = 1.0;
   if (m.order >= 1) row[k++] = TauMean(o, m.sensor());
   if (m.order >= 2) row[k++] = Tau2Mean(o, m.sensor());
+  if (m.order >= 3) row[k++] = Tau3Mean(o, m.sensor());
   if (!m.gyro()) {
     for (int a = 0; a < 3; ++a) row[k++] = o.f_B_g[a];
     if (m.scale_tempco) row[k++] = TauMean(o, m.sensor()) * o.f_B_g[kAxisOfChannel[m.channel]];
@@ -71,6 +82,7 @@ std::vector<std::string> TermNames(const ChannelModel& m) {
   std::vector<std::string> names = {"offset"};
   if (m.order >= 1) names.push_back("tau");
   if (m.order >= 2) names.push_back("tau^2");
+  if (m.order >= 3) names.push_back("tau^3");
   if (!m.gyro()) {
     names.insert(names.end(), {"f_x", "f_y", "f_z"});
     if (m.scale_tempco) names.push_back("tau f_axis");
@@ -150,7 +162,7 @@ int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservat
   double best = std::numeric_limits<double>::infinity();
   int best_order = 2;
   json scores = json::array();
-  for (int order = 0; order <= 2; ++order) {
+  for (int order = 0; order <= kMaxThermalOrder; ++order) {
     double sum = 0.0;
     for (int fold = 0; fold < options.folds; ++fold) {
       std::vector<size_t> train = other, test;
@@ -177,21 +189,31 @@ int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservat
   return best_order;
 }
 
-// The channel models -> the 72 firmware numbers (the mapping of the header comment).
+// The channel models -> the 81 firmware numbers (the mapping of the header comment); each
+// channel's thermal span is `temp_span_cnt[sensor]`.
 fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
-                                const std::array<Eigen::VectorXd, 9>& theta) {
+                                const std::array<Eigen::VectorXd, 9>& theta,
+                                const std::array<std::array<double, 2>, 3>& temp_span_cnt) {
   fm::ImuCalibrationConstants c;
   const double tc = kTempCentre_cnt, ts = kTempSpan_cnt;
-  // offset + alpha1 tau + alpha2 tau^2 = const + a1 t + a2 t^2 (re-expanded in raw counts).
+  // xi(t) = sum_j alpha_j tau^j, tau = (t - tc)/ts, re-expanded in raw counts:
+  // k_m = sum_{j>=max(m,1)} alpha_j / ts^j * C(j, m) * (-tc)^(j - m).
   auto thermal = [&](int ch, double* offset) {
     const ChannelModel& m = models[ch];
     const Eigen::VectorXd& th = theta[ch];
-    const double alpha1 = m.order >= 1 ? th[1] : 0.0;
-    const double alpha2 = m.order >= 2 ? th[2] : 0.0;
+    std::array<double, kMaxThermalOrder + 1> alpha{};
+    for (int j = 1; j <= m.order; ++j) alpha[j] = th[j];
+    constexpr double kBinomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+    std::array<double, kMaxThermalOrder + 1> k{};
+    for (int j = 1; j <= kMaxThermalOrder; ++j) {
+      for (int i = 0; i <= j; ++i) {
+        k[i] += alpha[j] / std::pow(ts, j) * kBinomial[j][i] * std::pow(-tc, j - i);
+      }
+    }
     c.thermal[ch].temp_sensor = m.sensor();
-    const double a1 = alpha1 / ts - 2.0 * alpha2 * tc / (ts * ts);
-    const double a2 = alpha2 / (ts * ts);
-    c.thermal[ch].k = {-(a1 * tc + a2 * tc * tc), a1, a2};  // xi(t) = alpha1 tau + alpha2 tau^2
+    c.thermal[ch].k = k;
+    c.thermal[ch].temp_min_cnt = temp_span_cnt[m.sensor()][0];
+    c.thermal[ch].temp_max_cnt = temp_span_cnt[m.sensor()][1];
     *offset = th[0];
   };
   std::array<Eigen::Vector3d, 6> m_over_s;
@@ -246,18 +268,21 @@ fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
 // Cov of the firmware numbers from per-channel covariances through the mapping's Jacobian.
 Eigen::MatrixXd Propagate(const std::array<ChannelModel, 9>& models,
                           const std::array<Eigen::VectorXd, 9>& theta,
-                          const std::array<Eigen::MatrixXd, 9>& cov) {
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(72, 72);
+                          const std::array<Eigen::MatrixXd, 9>& cov,
+                          const std::array<std::array<double, 2>, 3>& temp_span_cnt) {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(kImuFirmwareNumbers, kImuFirmwareNumbers);
   for (int ch = 0; ch < 9; ++ch) {
     const long p = theta[ch].size();
-    Eigen::MatrixXd jac(72, p);
+    Eigen::MatrixXd jac(kImuFirmwareNumbers, p);
     for (long j = 0; j < p; ++j) {
       const double h = std::max(1e-3 * std::sqrt(std::max(cov[ch](j, j), 0.0)),
                                 1e-12 * std::max(1.0, std::abs(theta[ch][j])));
       std::array<Eigen::VectorXd, 9> plus = theta, minus = theta;
       plus[ch][j] += h;
       minus[ch][j] -= h;
-      jac.col(j) = (FlattenConstants(Map(models, plus)) - FlattenConstants(Map(models, minus))) / (2.0 * h);
+      jac.col(j) = (FlattenConstants(Map(models, plus, temp_span_cnt)) -
+                    FlattenConstants(Map(models, minus, temp_span_cnt))) /
+                   (2.0 * h);
     }
     out += jac * cov[ch] * jac.transpose();
   }
@@ -267,7 +292,7 @@ Eigen::MatrixXd Propagate(const std::array<ChannelModel, 9>& models,
 }  // namespace
 
 Eigen::VectorXd FlattenConstants(const fm::ImuCalibrationConstants& c) {
-  Eigen::VectorXd v(72);
+  Eigen::VectorXd v(kImuFirmwareNumbers);
   int k = 0;
   for (const auto& t : c.thermal) {
     for (double x : t.k) v[k++] = x;
@@ -316,7 +341,7 @@ fm::ImuCalibrationConstants UnflattenConstants(const Eigen::VectorXd& v,
 std::vector<std::string> ConstantNames() {
   std::vector<std::string> names;
   for (int ch = 0; ch < 9; ++ch) {
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i <= kMaxThermalOrder; ++i) {
       names.push_back("thermal[" + std::to_string(ch) + "].k[" + std::to_string(i) + "]");
     }
   }
@@ -398,16 +423,36 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     }
     channels[kChannelNames[ch]] = report;
   }
-  result.constants = Map(models, theta);
-  const Eigen::MatrixXd cov_fw = Propagate(models, theta, cov);
-  const Eigen::MatrixXd crb_fw = Propagate(models, theta, crb);
+  // The span each thermal polynomial is valid over: the observations' mean temperatures.
+  std::array<std::array<double, 2>, 3> temp_span_cnt;
+  for (int s = 0; s < 3; ++s) {
+    temp_span_cnt[s] = {std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
+    for (const ImuObservation& o : obs) {
+      temp_span_cnt[s][0] = std::min(temp_span_cnt[s][0], std::floor(o.t_mean_cnt[s]));
+      temp_span_cnt[s][1] = std::max(temp_span_cnt[s][1], std::ceil(o.t_mean_cnt[s]));
+    }
+    if (!(temp_span_cnt[s][0] < temp_span_cnt[s][1])) {
+      throw DegenerateDesignError("unit " + serial + ": TEMP sensor " + std::to_string(s) +
+                                  " reads one temperature in every observation (" +
+                                  std::to_string(temp_span_cnt[s][0]) +
+                                  " counts): no thermal span to calibrate over");
+    }
+  }
+  result.constants = Map(models, theta, temp_span_cnt);
+  const Eigen::MatrixXd cov_fw = Propagate(models, theta, cov, temp_span_cnt);
+  const Eigen::MatrixXd crb_fw = Propagate(models, theta, crb, temp_span_cnt);
   Eigen::VectorXd se = cov_fw.diagonal().cwiseMax(0.0).cwiseSqrt();
   // l0 is fixed at zero by the mapping (the null holds the offset): not estimated.
-  for (int g = 0; g < 3; ++g) se[27 + 12 + 5 * g + 1] = std::numeric_limits<double>::quiet_NaN();
+  constexpr int kFirstGyroNumber = 9 * (kMaxThermalOrder + 1) + 6 * 2;
+  for (int g = 0; g < 3; ++g) {
+    se[kFirstGyroNumber + 5 * g + 1] = std::numeric_limits<double>::quiet_NaN();
+  }
   result.standard_errors = UnflattenConstants(se, result.constants);
-  std::vector<std::vector<double>> crb_rows(72, std::vector<double>(72));
-  for (int r = 0; r < 72; ++r) {
-    for (int k = 0; k < 72; ++k) crb_rows[r][k] = crb_fw(r, k);
+  std::vector<std::vector<double>> crb_rows(kImuFirmwareNumbers,
+                                            std::vector<double>(kImuFirmwareNumbers));
+  for (int r = 0; r < kImuFirmwareNumbers; ++r) {
+    for (int k = 0; k < kImuFirmwareNumbers; ++k) crb_rows[r][k] = crb_fw(r, k);
   }
   result.diagnostics = {{"channels", channels},
                         {"observations", obs.size()},
@@ -415,7 +460,7 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
                         {"crb_covariance", crb_rows},
                         {"firmware_cannot_hold",
                          "accelerometer scale vs temperature, accelerometer nonlinearity, gyro "
-                         "g-sensitivity, thermal orders above 2"}};
+                         "g-sensitivity, thermal orders above 3"}};
   return result;
 }
 

@@ -22,7 +22,7 @@
 // noise: drift the polynomial cannot follow); it is added to every observation's variance and
 // the fit repeated, so the misfit spreads over the range instead of being pinned where the
 // acquisitions are (25 degC). Thermal order per channel: 0, 1 or 2, chosen by 5-fold held-out error over the thermal
-// bands (order "auto"), or fixed; the firmware holds at most order 2 (ThermalFit::k[3]).
+// bands (order "auto"), or fixed; the firmware holds at most order 3 (ThermalFit::k[4]).
 // Mapping to the firmware constants (calibration_constants.h):
 //   thermal xi(t) = alpha1 tau + alpha2 tau^2 re-expanded in raw t (k0 follows: xi = 0 at the
 //   centre 32768 counts, keeping the exporter's thermal block small); O_i = o_i; S_i = m_i[axis_i] (the channel's nominal axis, signed);
@@ -33,7 +33,7 @@
 // Uncertainty: Cov(theta) per channel from the weighted fit (residual variance, so model error
 // shows); the Cramer-Rao bound of the design from the same design with the DATASHEET noise
 // (ImuDatasheetNoise): CRB = (A' W A)^-1, W = 1/var_datasheet (for Gaussian noise and a linear
-// model the Fisher information is exactly A' W A). Both are carried to the 72 firmware numbers by
+// model the Fisher information is exactly A' W A). Both are carried to the 81 firmware numbers by
 // the mapping's Jacobian (central differences): Cov_fw = J Cov J'. l0 is fixed at zero by the
 // mapping (the null holds the offset) and reported as not estimated.
 // Also estimated and reported, not held by the firmware: accelerometer scale vs temperature
@@ -61,14 +61,19 @@ struct ImuDatasheetNoise {
 };
 
 struct ImuJointOptions {
-  std::optional<int> thermal_order;  ///< 0..2; empty = chosen by held-out error
+  std::optional<int> thermal_order;  ///< 0..kMaxThermalOrder; empty = chosen by held-out error
   int folds = 5;
   /// Equal weights instead of inverse variances (noise-free data, e.g. projecting a true unit).
   bool unit_weights = false;
   ImuDatasheetNoise noise;
 };
 
-/// The 72 firmware numbers in a fixed order (thermal k 9x3, accel O,S 6x2, gyro null,l0..l3 3x5,
+/// Highest thermal order the firmware holds (firmware_model::kImuThermalDegree).
+inline constexpr int kMaxThermalOrder = 3;
+/// How many firmware numbers FlattenConstants gives.
+inline constexpr int kImuFirmwareNumbers = 9 * (kMaxThermalOrder + 1) + 6 * 2 + 3 * 5 + 9 + 9;
+
+/// The 81 firmware numbers in a fixed order (thermal k 9x4, accel O,S 6x2, gyro null,l0..l3 3x5,
 /// CA 3x3, CG 3x3) and back; names for reports ("thermal[0].k[1]").
 Eigen::VectorXd FlattenConstants(const firmware_model::ImuCalibrationConstants& c);
 firmware_model::ImuCalibrationConstants UnflattenConstants(const Eigen::VectorXd& v,
@@ -76,7 +81,7 @@ firmware_model::ImuCalibrationConstants UnflattenConstants(const Eigen::VectorXd
 std::vector<std::string> ConstantNames();
 
 /// Fits the joint model to `observations` (named `serial` in messages); diagnostics hold the
-/// chosen orders, residuals, the CRB covariance ("crb_covariance", 72x72) and the scale-vs-
+/// chosen orders, residuals, the CRB covariance ("crb_covariance", 81x81) and the scale-vs-
 /// temperature estimate. Throws DegenerateDesignError with the reason.
 ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObservation>& observations,
                          const ImuJointOptions& options = {});

@@ -22,6 +22,7 @@ void ObservationBuilder::Add(const firmware_model::ImuRawFrame& raw) {
     const double t = raw.temp_cnt[g];
     t_sum_[g] += t;
     t2_sum_[g] += t * t;
+    t3_sum_[g] += t * t * t;
   }
   ++n_;
 }
@@ -43,6 +44,7 @@ ImuObservation ObservationBuilder::Finish(std::string source, bool thermal,
   for (int g = 0; g < 3; ++g) {
     o.t_mean_cnt[g] = t_sum_[g] / n;
     o.t2_mean_cnt2[g] = t2_sum_[g] / n;
+    o.t3_mean_cnt3[g] = t3_sum_[g] / n;
   }
   o.f_B_g = f_B_g;
   o.w_B_dps = w_B_dps;

@@ -30,6 +30,7 @@ struct ImuObservation {
   std::array<double, 9> u_sd{};
   std::array<double, 3> t_mean_cnt{};   ///< per TEMP sensor
   std::array<double, 3> t2_mean_cnt2{}; ///< mean of t^2 per TEMP sensor
+  std::array<double, 3> t3_mean_cnt3{}; ///< mean of t^3 per TEMP sensor
   Eigen::Vector3d f_B_g = Eigen::Vector3d::Zero();
   Eigen::Vector3d w_B_dps = Eigen::Vector3d::Zero();
 };
@@ -45,7 +46,7 @@ class ObservationBuilder {
  private:
   int n_ = 0;
   std::array<double, 9> sum_{}, sum2_{};
-  std::array<double, 3> t_sum_{}, t2_sum_{};
+  std::array<double, 3> t_sum_{}, t2_sum_{}, t3_sum_{};
 };
 
 /// Every acquisition of `unit` and its thermal bands as observations.

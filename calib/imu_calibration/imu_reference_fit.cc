@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "calib/solvers/cross_axis_fit.h"
@@ -90,8 +91,12 @@ ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
     }
     const ThermalDriftResult r =
         FitThermalDrift(who + " thermal " + kChannelNames[ch], samples, options.thermal);
-    c.thermal[ch].k = r.all.k;
-    result.standard_errors.thermal[ch].k = r.all.k_se;
+    // The reference method's drift is a quadratic: the cubic term is fixed at zero, not estimated.
+    c.thermal[ch].k = {r.all.k[0], r.all.k[1], r.all.k[2], 0.0};
+    c.thermal[ch].temp_min_cnt = r.all.temp_min_cnt;
+    c.thermal[ch].temp_max_cnt = r.all.temp_max_cnt;
+    result.standard_errors.thermal[ch].k = {r.all.k_se[0], r.all.k_se[1], r.all.k_se[2],
+                                            std::numeric_limits<double>::quiet_NaN()};
     thermal_diag[kChannelNames[ch]] = ThermalDiagnostics(r);
   }
   diag["thermal"] = thermal_diag;

@@ -29,9 +29,11 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
   if (r.Has("thermal_order")) {
     if (s.name != "joint") r.Fail("$.thermal_order", "only the joint strategy chooses a thermal order");
     if (j["thermal_order"].is_string()) {
-      if (r.String("thermal_order") != "auto") r.Fail("$.thermal_order", "expected \"auto\" or 0, 1, 2");
+      if (r.String("thermal_order") != "auto") {
+        r.Fail("$.thermal_order", "expected \"auto\" or 0, 1, 2, 3");
+      }
     } else {
-      s.thermal_order = static_cast<int>(r.Integer("thermal_order", 0, 2));
+      s.thermal_order = static_cast<int>(r.Integer("thermal_order", 0, kMaxThermalOrder));
     }
   }
   if (r.Has("thermal_band_width_cnt")) {

@@ -41,7 +41,7 @@ int32_t ThermalQ31(DspEngine* engine, const ThermalConstantsQ31& c, int8_t u_exp
   engine->ChargeCallReturn();
   const int32_t tau = NormaliseQ31(engine, temp_cnt[c.temp_sensor], kTempCountExponent, c.temp_norm);
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
-  HornerQ31(engine, Acc::kA, c.drift, 2, tau);
+  HornerQ31(engine, Acc::kA, c.drift, kImuThermalDegree, tau);
   engine->Sftac(Acc::kA, static_cast<int8_t>(u_exponent - c.drift.work_exponent));
   LoadQ31(engine, Acc::kB, u);
   engine->SubAcc(Acc::kB);

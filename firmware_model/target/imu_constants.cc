@@ -62,7 +62,7 @@ ConstantsStatus ThermalFromWords(const int16_t* words, uint8_t channel, ThermalC
   decoded.temp_sensor = static_cast<uint8_t>(words[0]);
   ConstantsStatus s = NormFromWords(words + 1, 16, &decoded.temp_norm);
   if (s != ConstantsStatus::kOk) return s;
-  s = PolyFromWords(words + 1 + kNormWords, 2, &decoded.drift);
+  s = PolyFromWords(words + 1 + kNormWords, kImuThermalDegree, &decoded.drift);
   if (s != ConstantsStatus::kOk) return s;
   // xi is subtracted from U at U's exponent; it may be evaluated at most 16 bits finer or coarser.
   const int8_t u_exponent = channel < kAccelChannels ? kDutyExponent : kGyroCountExponent;
@@ -174,7 +174,7 @@ ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants, uint8_t blo
     const ThermalConstantsQ31& t = constants->thermal[block_id - kImuBlockThermalFirst];
     words[0] = t.temp_sensor;
     NormToWords(t.temp_norm, words + 1);
-    PolyToWords(t.drift, 2, words + 1 + kNormWords);
+    PolyToWords(t.drift, kImuThermalDegree, words + 1 + kNormWords);
   } else if (block_id == kImuBlockAccelOffsetScale) {
     for (uint8_t c = 0; c < kAccelChannels; ++c) {
       int16_t* w = words + c * (2 + kCoeffWords);

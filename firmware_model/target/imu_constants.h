@@ -11,8 +11,10 @@
 // Stages and the formats of their values (value = mantissa * 2^(exponent - 31), fixed_coeff.h):
 //   U   raw channel value: accel duty T1/T2 - 0.5 at exponent kDutyExponent (0), gyro counts at
 //       kGyroCountExponent (23, i.e. counts * 2^8)
-//   xi  thermal drift (Eq. 4-5): xi(tau) = k0 + k1 tau + k2 tau^2, tau = normalised temperature
-//       counts; evaluated at the poly's working exponent, then brought to U's exponent
+//   xi  thermal drift (Eq. 4-5, extended to a cubic): xi(tau) = k0 + k1 tau + k2 tau^2 + k3 tau^3,
+//       tau = normalised temperature counts (saturating at +-1, which flags the input: beyond the
+//       normalised span xi is held at its end value); evaluated at the poly's working exponent,
+//       then brought to U's exponent. The reference method's quadratic is the case k3 = 0.
 //   T   = U - xi, same format as U
 //   Ca  accel, Eq. 12 as the reference summary states it: (T - O) / S, stored as offset O (duty,
 //       exponent 0) and the reciprocal scale 1/S (g per duty, ~ +-25), result in g at kAccelGExponent
@@ -22,7 +24,7 @@
 //
 // Blocks (id: content, length in int16 words; layouts in fixed_coeff.h):
 //   0x01..0x09 thermal, channel id-1: [temperature sensor 0..2][InputNormQ31 tau (shift <= 16)]
-//              [PolyQ31 degree 2 (xi)]                                           14 words
+//              [PolyQ31 degree 3 (xi)]                                           17 words
 //   0x0A       accelerometer offsets and scales: 6 x ([offset duty Q31 hi][lo][CoeffQ31 1/S])
 //                                                                                30 words
 //   0x0B..0x0D gyro x, y, z cubic: [InputNormQ31 on T (shift <= 23)][PolyQ31 degree 3, working
@@ -57,10 +59,13 @@ inline constexpr int8_t kRateExponent = 8;        ///< angular rate in deg/s, |G
 inline constexpr int32_t kRatedAccel_g = 10;
 inline constexpr int32_t kRatedRate_dps = 150;
 
+/// Degree of the thermal drift polynomial xi.
+inline constexpr uint8_t kImuThermalDegree = 3;
+
 struct ThermalConstantsQ31 {
   uint8_t temp_sensor;     ///< 0..2: which temperature count drives this channel
   InputNormQ31 temp_norm;  ///< tau = (t_cnt - centre) * 2^-shift, shift <= 16
-  PolyQ31 drift;           ///< xi(tau), degree 2, in the channel's U units
+  PolyQ31 drift;           ///< xi(tau), degree kImuThermalDegree, in the channel's U units
 };
 
 struct AccelScaleConstantsQ31 {
@@ -92,7 +97,7 @@ enum ImuBlockId : uint8_t {
   kImuBlockCg = 0x0F,
 };
 
-inline constexpr uint8_t kImuThermalBlockWords = 1 + kNormWords + PolyWords(2);
+inline constexpr uint8_t kImuThermalBlockWords = 1 + kNormWords + PolyWords(kImuThermalDegree);
 inline constexpr uint8_t kImuAccelBlockWords = kAccelChannels * (2 + kCoeffWords);
 inline constexpr uint8_t kImuGyroBlockWords = kNormWords + PolyWords(3);
 inline constexpr uint8_t kImuMatrixBlockWords = 9 * kCoeffWords;

@@ -58,8 +58,8 @@ TEST(ConstantsBlocksTest, ImuSetIsFifteenBlocksOfTheTargetLengths) {
   const ConstantsBlocks blocks = ExportConstantsBlocks(ImuFileFor("IMU-0001", 3), "c.json");
   ASSERT_EQ(blocks.blocks.size(), 15u);
   for (const ConstantsBlock& block : blocks.blocks) {
-    // Lengths from docs/unit-protocol.md §6.2: thermal 14, accel 30, gyro 16, matrices 27 words.
-    const size_t expected = block.block_id <= 0x09 ? 14 : block.block_id == 0x0A ? 30
+    // Lengths from docs/unit-protocol.md §6.2: thermal 17, accel 30, gyro 16, matrices 27 words.
+    const size_t expected = block.block_id <= 0x09 ? 17 : block.block_id == 0x0A ? 30
                             : block.block_id <= 0x0D ? 16 : 27;
     EXPECT_EQ(block.words.size(), expected) << block.name;
   }

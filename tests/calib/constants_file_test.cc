@@ -82,8 +82,11 @@ TEST(ConstantsFile, RoundTripsThroughDisk) {
 
 TEST(ConstantsFile, RefusesWrongFormatAndVersion) {
   json j = ToJson(ImuFile());
-  j["format_version"] = 2;
-  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.format_version: version 2 is not supported"));
+  j["format_version"] = 3;
+  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.format_version: version 3 is not supported"));
+  // Version 1 held a quadratic thermal drift without its temperature span: refit, not guessed.
+  j["format_version"] = 1;
+  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.format_version: version 1 is not supported"));
   j = ToJson(ImuFile());
   j["format"] = "something-else";
   EXPECT_THAT(MessageOf(j), HasSubstr("$.format"));

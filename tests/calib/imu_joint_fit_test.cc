@@ -28,14 +28,18 @@ std::string Verdict(const ImuEvaluation& e, const std::string& quantity) {
 
 // Issue 6 done-when: on >= 20 units the improved strategy's evaluated worst errors are within
 // the specification or within 1.5x the CRB-implied limit, and the evaluation says which.
-// NOT MET as stated, and the evaluation shows why: the simulated drift has cubic terms (zero-g
-// b3 sigma 5e-5 mg/degC^3, null tc3 sigma 1e-5 deg/s/degC^3, docs/models/) that the firmware's
-// quadratic thermal term cannot hold over -40...+85 degC: the best constants the firmware can
-// hold (the firmware floor) already miss the specification by several mg and tenths of deg/s.
-// What is tested: every verdict is one of the evaluation's categories; a unit judged "outside"
-// has a firmware floor (or an exporter refusal) that by itself misses the specification, i.e.
-// no calibration into these constants could pass; the improved strategy is no worse than the
-// reference summed over the units.
+// With the firmware's cubic thermal term and the exporter's span normalisation every unit exports
+// and the firmware floor is far below the specification (accel ~0.1-0.2 mg, rate ~0.005 deg/s).
+// Met for acceleration on all 20 units (0.15-0.29 mg against 1.0 mg). NOT met for body rate on 6
+// of the 20 (worst body-rate errors over the 20 units 0.08-0.28 deg/s, at +-150 deg/s and the
+// temperature extremes; reference 0.34-1.04 deg/s): their errors exceed the 1.5x(floor + CRB)
+// limit (CRB limit 0.04-0.09 deg/s). The parameters that miss are the gyro nulls and
+// thermal polynomials, 6-14 of their own standard errors from the truth: the realised gyro bias
+// wander (bias instability and rate random walk over the calibration runs), which the CRB's
+// white noise plus a 75 deg/h floor per observation does not describe (docs/calibration-
+// strategies.md). What is tested: every unit exports; acceleration within the specification on
+// every unit; body rate within the specification or the CRB limit on at least 13 units (14
+// measured), and every unit's body-rate error below the reference strategy's.
 TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbOrFirmwareFloor) {
   const auto base = std::filesystem::temp_directory_path() / "adahrs_imu_joint_twenty";
   testing::MakerOptions maker_options;
@@ -67,22 +71,12 @@ TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbOrFirmwareFloor) {
         e = EvaluateImu(joint[u], params[u], Specification::Reference(), options);
         r = EvaluateImu(reference[u], params[u], Specification::Reference(), options);
       } catch (const ConstantsNotExportable& error) {
-        // The exporter's uint16-wide temperature normalisation cannot hold this unit's drift.
-        EXPECT_THAT(error.what(), ::testing::HasSubstr("cannot be exported to the firmware"));
-        ++verdicts["not exportable"];
-        std::printf("%s not exportable: %s\n", params[u].serial.c_str(), error.what());
+        ADD_FAILURE() << params[u].serial << " not exportable: " << error.what();
         continue;
       }
-      for (const char* q : {"acceleration", "body_rate"}) {
-        const std::string v = Verdict(e, q);
-        ++verdicts[std::string(q) + ": " + v];
-        if (v == "outside") {
-          const std::string floor_key = std::string("worst_firmware_floor_") + (q[0] == 'a' ? "mg" : "dps");
-          const double floor = e.report[q][floor_key].get<double>();
-          const double spec = q[0] == 'a' ? 1.0 : 0.015;
-          EXPECT_TRUE(std::isnan(floor) || floor > spec) << e.report[q].dump();
-        }
-      }
+      for (const char* q : {"acceleration", "body_rate"}) ++verdicts[std::string(q) + ": " + Verdict(e, q)];
+      EXPECT_EQ(Verdict(e, "acceleration"), "within specification") << e.report["acceleration"].dump();
+      EXPECT_LT(e.worst_rate_dps, r.worst_rate_dps);
       sum_joint += e.worst_accel_mg / 1.0 + e.worst_rate_dps / 0.015;
       sum_reference += r.worst_accel_mg / 1.0 + r.worst_rate_dps / 0.015;
       std::printf("%s joint accel %.3f mg (floor %.3f) rate %.4f dps (floor %.4f) | reference %.3f mg %.4f dps\n",
@@ -96,10 +90,10 @@ TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbOrFirmwareFloor) {
   }
   for (const auto& [v, n] : verdicts) std::printf("%2d x %s\n", n, v.c_str());
   EXPECT_LE(sum_joint, sum_reference);
-  // Most units must reach the evaluation: the exporter's uint16-wide temperature normalisation
-  // refuses 7 of these 20 today (a known firmware_model defect), and a change that refused more
-  // would otherwise pass unseen.
-  EXPECT_LE(verdicts["not exportable"], 7);
+  EXPECT_GE(verdicts["body_rate: within specification"] +
+                verdicts["body_rate: within 1.5x the CRB limit"] +
+                verdicts["body_rate: within 1.5x the firmware floor plus the CRB limit"],
+            13);
 }
 
 }  // namespace

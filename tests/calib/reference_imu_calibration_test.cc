@@ -117,7 +117,10 @@ Calibration Calibrate(Rig& rig, const ImuUnitParams& params) {
   for (int ch = 0; ch < 9; ++ch) {
     cal.thermal[ch] = FitThermalDrift(std::to_string(ch), samples[ch]);
     c.thermal[ch].temp_sensor = kTempSensorOfChannel[ch];
-    c.thermal[ch].k = cal.thermal[ch].all.k;
+    const auto& k = cal.thermal[ch].all.k;
+    c.thermal[ch].k = {k[0], k[1], k[2], 0.0};
+    c.thermal[ch].temp_min_cnt = cal.thermal[ch].all.temp_min_cnt;
+    c.thermal[ch].temp_max_cnt = cal.thermal[ch].all.temp_max_cnt;
   }
 
   // Six orientations at 25 degC on thermally compensated data.

@@ -3,6 +3,7 @@
 // 30..450 kt, with realistic constants. Budgets (10 % of the accuracy budget, asserted): 0.1 mg,
 // 0.0015 deg/s, 1.5 ft, 0.1 kt; thermal mode: 0.1 mg at 25 g/duty = 4e-6 duty, 0.0015 deg/s at
 // 20,972 counts per deg/s = 31 counts. Cycle budget: <= 2,000 per IMU frame, <= 1,500 per ADS frame.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -119,8 +120,49 @@ TEST(CompensatorSweep, AdsWithinBudgetOverEnvelope) {
 namespace adahrs::firmware_model {
 namespace {
 
+// The thermal polynomial is normalised to the temperature span its fit covers (with 25 % margin,
+// rounded up to a power of two), not to the whole uint16 count domain; beyond that range the
+// target holds xi at its end value and flags the input, and a span that is not a span is refused.
+TEST(ThermalSpan, NormalisedToTheFittedSpanAndHeldBeyondIt) {
+  const ImuCalibrationConstants cal = RealisticImu(3);
+  const ImuExport exported = ExportImuConstants(cal);
+  for (int ch = 0; ch < kImuChannels; ++ch) {
+    SCOPED_TRACE(ch);
+    const ThermalFit& f = cal.thermal[ch];
+    const InputNormQ31& norm = exported.constants.thermal[ch].temp_norm;
+    EXPECT_NEAR(norm.centre, 0.5 * (f.temp_min_cnt + f.temp_max_cnt), 0.5);
+    const double needed_half_range = 1.25 * 0.5 * (f.temp_max_cnt - f.temp_min_cnt);
+    EXPECT_GE(std::ldexp(1.0, norm.shift), needed_half_range);
+    EXPECT_LT(std::ldexp(1.0, norm.shift - 1), needed_half_range);
+  }
+
+  const InputNormQ31& norm = exported.constants.thermal[0].temp_norm;
+  sensor_sim::Rng rng(8);
+  ImuRawFrame raw = SynthesiseImu(cal, {0.0, 0.0, 1.0}, {0.0, 0.0, 0.0}, 85.0, &rng);
+  auto thermal_frame = [&](uint16_t temp_cnt) {
+    for (uint16_t& t : raw.temp_cnt) t = temp_cnt;
+    DspEngine engine;
+    ImuCompensatedFrame frame{};
+    ImuCompensate(&engine, exported.constants, ImuCompensationMode::kThermal, raw, &frame);
+    return frame;
+  };
+  const auto edge_cnt = static_cast<uint16_t>(norm.centre + (1 << norm.shift));
+  const ImuCompensatedFrame inside = thermal_frame(static_cast<uint16_t>(norm.centre + 1000));
+  EXPECT_EQ(inside.flags & kFlagInputSaturated, 0);
+  const ImuCompensatedFrame at_edge = thermal_frame(edge_cnt);
+  const ImuCompensatedFrame beyond = thermal_frame(static_cast<uint16_t>(edge_cnt + 3000));
+  EXPECT_NE(beyond.flags & kFlagInputSaturated, 0);
+  for (int i = 0; i < kImuChannels; ++i) EXPECT_EQ(beyond.value[i], at_edge.value[i]) << i;
+
+  ImuCalibrationConstants bad = cal;
+  bad.thermal[4].temp_max_cnt = bad.thermal[4].temp_min_cnt;
+  EXPECT_THAT([&] { ExportImuConstants(bad); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  ::testing::HasSubstr("thermal block 0x05 (channel 4): temperature span")));
+}
+
 // The instruction mix of one frame. Structural truth: a fully calibrated IMU frame does
-// 2 x 9 thermal + 6 accel-scale + 3 x 3 gyro + 2 x 9 matrix = 51 Q31 multiplies (one MPY and two
+// 3 x 9 thermal + 6 accel-scale + 3 x 3 gyro + 2 x 9 matrix = 60 Q31 multiplies (one MPY and two
 // MUL.SU each) and 2 DIV.UD per accelerometer channel; an ADS frame 2 x (3 + 2 + 1 + 3) = 18.
 TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
   const ImuExport imu = ExportImuConstants(testing::RealisticImu(1));
@@ -130,8 +172,8 @@ TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
   DspEngine engine;
   ImuCompensatedFrame frame{};
   ImuCompensate(&engine, imu.constants, ImuCompensationMode::kFullyCalibrated, raw, &frame);
-  EXPECT_EQ(engine.op_count(DspOp::kMpy), 51u);
-  EXPECT_EQ(engine.op_count(DspOp::kMulSU), 102u);
+  EXPECT_EQ(engine.op_count(DspOp::kMpy), 60u);
+  EXPECT_EQ(engine.op_count(DspOp::kMulSU), 120u);
   EXPECT_EQ(engine.op_count(DspOp::kDivUD), 12u);
   std::printf("IMU fully calibrated frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at "
               "100 Hz)\n",

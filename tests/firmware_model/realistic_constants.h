@@ -36,14 +36,18 @@ inline ImuCalibrationConstants RealisticImu(uint64_t seed) {
   for (int ch = 0; ch < 9; ++ch) {
     ThermalFit& f = c.thermal[ch];
     f.temp_sensor = ch < 6 ? ch % 3 : ch - 6;
-    // Drift xi(t) = x0 + s1 dT + s2 dT^2, dT = (t - t25) counts: ~ +-40 mg (accel, as duty) or
-    // +-3 deg/s (gyro, counts) at the envelope edge 60 C away.
+    // Drift xi(t) = x0 + s1 dT + s2 dT^2 + s3 dT^3, dT = (t - t25) counts: ~ +-40 mg (accel, as
+    // duty) or +-3 deg/s (gyro, counts) at the envelope edge 60 C away, fitted over -40..85 C.
     const double edge = 60.0 * counts_per_c;
     const double full = ch < 6 ? 0.040 / 25.0 : 3.0 * kGyroCountsPerDps;
     const double x0 = ch < 6 ? rng.Uniform(-0.01, 0.01) : 4.2e6 + rng.Uniform(-5e4, 5e4);
     const double s1 = rng.Uniform(-1.0, 1.0) * full / edge;
     const double s2 = rng.Uniform(-0.5, 0.5) * full / (edge * edge);
-    f.k = {x0 - s1 * t25 + s2 * t25 * t25, s1 - 2 * s2 * t25, s2};
+    const double s3 = rng.Uniform(-0.25, 0.25) * full / (edge * edge * edge);
+    f.k = {x0 - s1 * t25 + s2 * t25 * t25 - s3 * t25 * t25 * t25,
+           s1 - 2 * s2 * t25 + 3 * s3 * t25 * t25, s2 - 3 * s3 * t25, s3};
+    f.temp_min_cnt = TempCounts(-40.0);
+    f.temp_max_cnt = TempCounts(85.0);
   }
   for (int ch = 0; ch < 6; ++ch) {
     c.accel[ch].offset_duty = rng.Uniform(-0.004, 0.004);
@@ -76,7 +80,7 @@ inline ImuRawFrame SynthesiseImu(const ImuCalibrationConstants& c, const std::ar
   for (int ch = 0; ch < 9; ++ch) {
     const ThermalFit& f = c.thermal[ch];
     const double t = raw.temp_cnt[f.temp_sensor];
-    const double xi = f.k[0] + f.k[1] * t + f.k[2] * t * t;
+    const double xi = f.k[0] + t * (f.k[1] + t * (f.k[2] + t * f.k[3]));
     if (ch < 6) {
       const double u = xi + c.accel[ch].offset_duty +
                        c.accel[ch].scale_duty_per_g * f_B_g[kAxisOfChannel[ch]];
