@@ -8,6 +8,9 @@ namespace adahrs::sensor_sim {
 inline constexpr double kPi = 3.14159265358979323846;
 /// Standard gravity, the definition of 1 g (CGPM 1901); not the local gravity of any lab.
 inline constexpr double kStandardGravity_mps2 = 9.80665;
+/// 1 milli-g and 1 micro-g in m/s² (of standard gravity: the unit g of the specifications).
+inline constexpr double kMpsPerMilliG = 1e-3 * kStandardGravity_mps2;
+inline constexpr double kMpsPerMicroG = 1e-6 * kStandardGravity_mps2;
 inline constexpr double kFeetPerMeter = 1.0 / 0.3048;
 inline constexpr double kMetersPerFoot = 0.3048;
 inline constexpr double kMpsPerKnot = 1852.0 / 3600.0;

@@ -196,19 +196,16 @@ fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
                                 const std::array<std::array<double, 2>, 3>& temp_span_cnt) {
   fm::ImuCalibrationConstants c;
   const double tc = kTempCentre_cnt, ts = kTempSpan_cnt;
-  // xi(t) = sum_j alpha_j tau^j, tau = (t - tc)/ts, re-expanded in raw counts:
-  // k_m = sum_{j>=max(m,1)} alpha_j / ts^j * C(j, m) * (-tc)^(j - m).
+  // xi(t) = sum_{j>=1} alpha_j tau^j, tau = (t - tc)/ts, re-expanded in raw counts by Horner's
+  // rule on polynomials in t: k <- k * (t - tc)/ts + alpha_j for j = order ... 0 (alpha_0 = 0:
+  // the offset is the channel's o_i or null, not part of xi).
   auto thermal = [&](int ch, double* offset) {
     const ChannelModel& m = models[ch];
     const Eigen::VectorXd& th = theta[ch];
-    std::array<double, kMaxThermalOrder + 1> alpha{};
-    for (int j = 1; j <= m.order; ++j) alpha[j] = th[j];
-    constexpr double kBinomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
-    std::array<double, kMaxThermalOrder + 1> k{};
-    for (int j = 1; j <= kMaxThermalOrder; ++j) {
-      for (int i = 0; i <= j; ++i) {
-        k[i] += alpha[j] / std::pow(ts, j) * kBinomial[j][i] * std::pow(-tc, j - i);
-      }
+    std::array<double, kMaxThermalOrder + 1> k{};  // k[i]: coefficient of t^i
+    for (int j = m.order; j >= 0; --j) {
+      for (int i = kMaxThermalOrder; i >= 1; --i) k[i] = (k[i - 1] - tc * k[i]) / ts;
+      k[0] = -tc * k[0] / ts + (j >= 1 ? th[j] : 0.0);
     }
     c.thermal[ch].temp_sensor = m.sensor();
     c.thermal[ch].k = k;
