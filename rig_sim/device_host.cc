@@ -33,7 +33,10 @@ struct DeviceHost::Port {
   std::array<uint8_t, 4096> read_buffer{};
   std::vector<uint8_t> pending_in;
   std::vector<uint8_t> out;
-  uint64_t bytes_lost = 0;  // by this port: discarded without a reader, or cut beyond the backlog
+  // Bytes this port's host lost, by cause: discarded while no client read (a line with no
+  // listener: expected between runs), or cut beyond the backlog while a client read too slowly.
+  uint64_t bytes_unread = 0;
+  uint64_t bytes_overflowed = 0;
   // Last wall instant the client took bytes: a client counts as reading while this is recent.
   std::chrono::steady_clock::time_point last_progress;
 };
@@ -103,11 +106,11 @@ void DeviceHost::WriteOutputs() {
       // Nobody is reading: the bytes go nowhere, as on a line with no listener, so a client
       // that opens the port later (and flushes the kernel's buffer) reads current data.
       bytes_lost_ += port->out.size();
-      port->bytes_lost += port->out.size();
+      port->bytes_unread += port->out.size();
       port->out.clear();
     } else if (port->out.size() > backlog_limit_bytes_) {
       bytes_lost_ += port->out.size() - backlog_limit_bytes_;
-      port->bytes_lost += port->out.size() - backlog_limit_bytes_;
+      port->bytes_overflowed += port->out.size() - backlog_limit_bytes_;
       port->out.resize(backlog_limit_bytes_);
     }
   }
@@ -193,8 +196,9 @@ std::vector<std::string> DeviceHost::Report() {
   Run([&](std::vector<SerialDevice*>&, RigEnvironment&) {
     for (const auto& port : ports_) {
       const std::string device = port->device->LineReport();
-      lines.push_back(fmt::format("{:<14} host_bytes_lost={}{}{}", port->device->role(),
-                                  port->bytes_lost, device.empty() ? "" : " ", device));
+      lines.push_back(fmt::format("{:<14} host_bytes_unread={} host_bytes_overflowed={}{}{}",
+                                  port->device->role(), port->bytes_unread,
+                                  port->bytes_overflowed, device.empty() ? "" : " ", device));
     }
   });
   lines.push_back(fmt::format("host: {} bytes lost in all, worst lag {} frames ({:.2f} s simulated)",

@@ -74,8 +74,10 @@ class DeviceHost {
   /// Bytes per port held for a slow client before bytes are lost.
   size_t backlog_limit_bytes() const { return backlog_limit_bytes_; }
 
-  /// One line per port for the rig's exit report: role, bytes the host lost on it (no reader, or
-  /// beyond the backlog) and the device's own LineReport; then the worst lag behind the clock.
+  /// One line per port for the rig's exit report: role, the bytes the host discarded on it while
+  /// no client read (host_bytes_unread: a line with no listener, expected between runs) and those
+  /// it cut beyond the backlog while a client read too slowly (host_bytes_overflowed: a real
+  /// loss), and the device's own LineReport; then the worst lag behind the clock.
   /// Taken on the host thread (Run) while it runs, directly once stopped.
   std::vector<std::string> Report();
 
