@@ -308,10 +308,6 @@ inline Adxl210e::Frame Adxl210e::BeginFrame(const Adxl210eInput& input) {
   return frame;
 }
 
-inline void Adxl210e::FilterFrame(Frame& frame) {
-  frame.a_g = FilteredAccel(frame.a_in_g, frame.period.start_cnt, frame.z);
-}
-
 inline Adxl210eOutput Adxl210e::FinishFrame(const Frame& frame) const {
   const DcmPeriod& period = frame.period;
   const DoublePair fall_cnt =
@@ -343,7 +339,7 @@ inline Adxl210eOutput Adxl210e::FinishFrame(const Frame& frame) const {
 
 Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
   Frame frame = BeginFrame(input);
-  FilterFrame(frame);
+  frame.a_g = FilteredAccel(frame.a_in_g, frame.period.start_cnt, frame.z);
   return FinishFrame(frame);
 }
 
@@ -354,7 +350,10 @@ void Adxl210e::StepEach(std::span<Adxl210e> chips, std::span<const Adxl210eInput
     const size_t n = std::min(kMaxChipsPerPass, chips.size() - first);
     Frame frames[kMaxChipsPerPass];
     for (size_t k = 0; k < n; ++k) frames[k] = chips[first + k].BeginFrame(inputs[first + k]);
-    for (size_t k = 0; k < n; ++k) chips[first + k].FilterFrame(frames[k]);
+    for (size_t k = 0; k < n; ++k) {
+      Frame& f = frames[k];
+      f.a_g = chips[first + k].FilteredAccel(f.a_in_g, f.period.start_cnt, f.z);
+    }
     for (size_t k = 0; k < n; ++k) outputs[first + k] = chips[first + k].FinishFrame(frames[k]);
   }
 }

@@ -154,7 +154,6 @@ class Adxl210e {
     double dsupply_v;
   };
   inline Frame BeginFrame(const Adxl210eInput& input);
-  inline void FilterFrame(Frame& frame);
   inline Adxl210eOutput FinishFrame(const Frame& frame) const;
   // Both axes' constants (precomputed) and filter state, lane 0 the X axis and lane 1 the Y axis:
   // the two axes share every instruction of the step (double_pair.h).

@@ -43,32 +43,27 @@ struct ChannelModel {
   int size() const { return 1 + order + (gyro() ? 5 : 3) + (scale_tempco ? 1 : 0); }
 };
 
-double TauMean(const ImuObservation& o, int sensor) {
-  return (o.t_mean_cnt[sensor] - kTempCentre_cnt) / kTempSpan_cnt;
-}
-double Tau2Mean(const ImuObservation& o, int sensor) {
-  const double t = o.t_mean_cnt[sensor], t2 = o.t2_mean_cnt2[sensor];
-  return (t2 - 2.0 * kTempCentre_cnt * t + kTempCentre_cnt * kTempCentre_cnt) /
-         (kTempSpan_cnt * kTempSpan_cnt);
-}
-// Mean of tau^3 from the means of t, t^2, t^3: E[(t - c)^3] = E[t^3] - 3c E[t^2] + 3c^2 E[t] - c^3.
-double Tau3Mean(const ImuObservation& o, int sensor) {
-  const double c = kTempCentre_cnt;
-  const double t = o.t_mean_cnt[sensor], t2 = o.t2_mean_cnt2[sensor], t3 = o.t3_mean_cnt3[sensor];
-  return (t3 - 3.0 * c * t2 + 3.0 * c * c * t - c * c * c) /
-         (kTempSpan_cnt * kTempSpan_cnt * kTempSpan_cnt);
+// Mean of tau^p over an observation's rows from its raw temperature moments E[t^i]:
+// E[((t - c)/s)^p] = sum_i C(p, i) E[t^i] (-c)^(p - i) / s^p.
+double TauPowerMean(const ImuObservation& o, int sensor, int p) {
+  const double moment[kMaxThermalOrder + 1] = {1.0, o.t_mean_cnt[sensor], o.t2_mean_cnt2[sensor],
+                                               o.t3_mean_cnt3[sensor]};
+  double sum = 0.0, binomial = 1.0;
+  for (int i = p; i >= 0; --i) {
+    sum += binomial * moment[i] * std::pow(-kTempCentre_cnt, p - i);
+    binomial = binomial * i / (p - i + 1);
+  }
+  return sum / std::pow(kTempSpan_cnt, p);
 }
 
 Eigen::RowVectorXd DesignRow(const ChannelModel& m, const ImuObservation& o) {
   Eigen::RowVectorXd row(m.size());
   int k = 0;
   row[k++] = 1.0;
-  if (m.order >= 1) row[k++] = TauMean(o, m.sensor());
-  if (m.order >= 2) row[k++] = Tau2Mean(o, m.sensor());
-  if (m.order >= 3) row[k++] = Tau3Mean(o, m.sensor());
+  for (int p = 1; p <= m.order; ++p) row[k++] = TauPowerMean(o, m.sensor(), p);
   if (!m.gyro()) {
     for (int a = 0; a < 3; ++a) row[k++] = o.f_B_g[a];
-    if (m.scale_tempco) row[k++] = TauMean(o, m.sensor()) * o.f_B_g[kAxisOfChannel[m.channel]];
+    if (m.scale_tempco) row[k++] = TauPowerMean(o, m.sensor(), 1) * o.f_B_g[kAxisOfChannel[m.channel]];
   } else {
     for (int a = 0; a < 3; ++a) row[k++] = o.w_B_dps[a];
     const double w = o.w_B_dps[m.channel - 6];
@@ -80,9 +75,7 @@ Eigen::RowVectorXd DesignRow(const ChannelModel& m, const ImuObservation& o) {
 
 std::vector<std::string> TermNames(const ChannelModel& m) {
   std::vector<std::string> names = {"offset"};
-  if (m.order >= 1) names.push_back("tau");
-  if (m.order >= 2) names.push_back("tau^2");
-  if (m.order >= 3) names.push_back("tau^3");
+  for (int p = 1; p <= m.order; ++p) names.push_back(p == 1 ? "tau" : "tau^" + std::to_string(p));
   if (!m.gyro()) {
     names.insert(names.end(), {"f_x", "f_y", "f_z"});
     if (m.scale_tempco) names.push_back("tau f_axis");
