@@ -47,6 +47,10 @@ int64_t FramesFor(double interval_s, double frame_period_s) {
 
 }  // namespace
 
+double GyroBiasProcess::PoleSigmaForFloor(double bias_instability_dps) {
+  return bias_instability_dps / UnitPolesFloor();
+}
+
 GyroBiasProcess::GyroBiasProcess(double bias_instability_dps,
                                  bool bias_instability_on,
                                  double rate_random_walk_dps_per_rts,
@@ -58,7 +62,7 @@ GyroBiasProcess::GyroBiasProcess(double bias_instability_dps,
       bi_rng_(Rng::Derive(seed, kBiasInstabilityStream)),
       rrw_rng_(Rng::Derive(seed, kRateRandomWalkStream)) {
   if (bias_instability_on_) {
-    pole_sigma_dps_ = bias_instability_dps / UnitPolesFloor();
+    pole_sigma_dps_ = PoleSigmaForFloor(bias_instability_dps);
     for (size_t k = 0; k < poles_.size(); ++k) {
       Pole& pole = poles_[k];
       const double t_s = kCorrelationTimes_s[k];

@@ -61,6 +61,10 @@ class GyroBiasProcess {
   /// Standard deviation of each Gauss-Markov process, deg/s.
   double pole_sigma_dps() const { return pole_sigma_dps_; }
 
+  /// The standard deviation of each Gauss-Markov process whose sum has the Allan floor
+  /// `bias_instability_dps` (for covariance models of the same process, e.g. calibration's).
+  static double PoleSigmaForFloor(double bias_instability_dps);
+
  private:
   struct Pole {
     double bias_dps = 0.0;

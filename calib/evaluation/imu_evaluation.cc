@@ -168,8 +168,8 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   std::vector<ImuObservation> projection;
   for (const GridPoint& p : grid) {
     ObservationBuilder builder;
-    for (const fm::ImuRawFrame& f : p.frames) builder.Add(f);
-    projection.push_back(builder.Finish("grid", false, g_l * p.up, p.rate_dps * p.up));
+    for (size_t i = 0; i < p.frames.size(); ++i) builder.Add(p.frames[i], static_cast<double>(i) * 0.01);
+    projection.push_back(builder.Finish("grid", false, 0, g_l * p.up, p.rate_dps * p.up));
   }
   // The true unit projected onto the firmware model: the best constants the structure can hold.
   ImuJointOptions projection_options;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "calib/imu_calibration/gyro_bias_covariance.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/solvers/linear_least_squares.h"
 #include "firmware_model/target/imu_constants.h"
@@ -95,15 +96,15 @@ double MedianThermalCount(const std::vector<ImuObservation>& obs) {
   return counts[counts.size() / 2];
 }
 
-// Variance of an observation's mean: measured (fit weights) or datasheet (CRB).
+// Variance of an observation's mean from white noise: measured (fit weights) or datasheet (CRB).
+// The gyro bias wander is not in it: it correlates observations (gyro_bias_covariance.h).
 double Variance(const ImuObservation& o, int ch, double n_thermal, bool datasheet,
                 const ImuDatasheetNoise& noise) {
   const double n = o.thermal ? n_thermal : o.count;
-  const double floor_cnt = ch >= 6 ? noise.gyro_bias_floor_dph / 3600.0 * noise.gyro_counts_per_dps : 0.0;
   if (!datasheet) {
     // A measured spread below half the datasheet noise is not credible (few samples, or samples
     // identical after quantisation): the variance is not allowed below a quarter of the datasheet's.
-    const double measured = o.u_sd[ch] * o.u_sd[ch] / n + floor_cnt * floor_cnt;
+    const double measured = o.u_sd[ch] * o.u_sd[ch] / n;
     return std::max(measured, 0.25 * Variance(o, ch, n_thermal, true, noise));
   }
   if (ch < 6) {
@@ -116,39 +117,64 @@ double Variance(const ImuObservation& o, int ch, double n_thermal, bool datashee
     return sigma_duty * sigma_duty / n * (1.0 + rho) / (1.0 - rho);
   }
   // Per-frame rate (output filter + 16 conversions) has one-sided low-frequency PSD N^2, so a
-  // mean over T = n frames has variance N^2 / (2 T); the bias floor does not average down.
+  // mean over T = n frames has variance N^2 / (2 T).
   const double var_dps2 = noise.gyro_density_dps_per_rthz * noise.gyro_density_dps_per_rthz /
                           (2.0 * n * noise.frame_period_s);
-  return var_dps2 * noise.gyro_counts_per_dps * noise.gyro_counts_per_dps + floor_cnt * floor_cnt;
+  return var_dps2 * noise.gyro_counts_per_dps * noise.gyro_counts_per_dps;
 }
+
+// How the bias wander enters a fit: not at all (accelerometers, projections of a true unit), as
+// each observation's own extra variance (order selection: cheap, ignores the correlation), or with
+// its covariance between observations (generalised least squares: the fit and the bound).
+enum class BiasWander { kNone, kDiagonal, kCorrelated };
 
 LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<ImuObservation>& obs,
                 const std::vector<size_t>& use, double n_thermal, bool datasheet,
-                const ImuJointOptions& options, double model_variance = 0.0) {
+                const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2, BiasWander wander,
+                double model_variance = 0.0) {
   const ImuDatasheetNoise& noise = options.noise;
+  const long n = static_cast<long>(use.size());
   LinearLeastSquaresProblem p;
   p.context = "unit " + serial + " joint model of " + kChannelNames[m.channel];
   p.term_names = TermNames(m);
-  p.design.resize(static_cast<long>(use.size()), m.size());
-  p.observations.resize(static_cast<long>(use.size()));
-  p.weights.resize(static_cast<long>(use.size()));
-  for (size_t r = 0; r < use.size(); ++r) {
-    const ImuObservation& o = obs[use[r]];
-    p.design.row(static_cast<long>(r)) = DesignRow(m, o);
-    p.observations[static_cast<long>(r)] = o.u_mean[m.channel];
-    p.weights[static_cast<long>(r)] =
-        options.unit_weights && !datasheet
-            ? 1.0
-            : 1.0 / (Variance(o, m.channel, n_thermal, datasheet, noise) + model_variance);
+  Eigen::MatrixXd design(n, m.size());
+  Eigen::VectorXd y(n), variance(n);
+  for (long r = 0; r < n; ++r) {
+    const ImuObservation& o = obs[use[static_cast<size_t>(r)]];
+    design.row(r) = DesignRow(m, o);
+    y[r] = o.u_mean[m.channel];
+    variance[r] = Variance(o, m.channel, n_thermal, datasheet, noise) + model_variance;
+    if (wander != BiasWander::kNone) variance[r] += bias_cnt2(use[static_cast<size_t>(r)], use[static_cast<size_t>(r)]);
+  }
+  if (wander == BiasWander::kCorrelated) {
+    // Whitening: with Sigma = L L', the rows L^-1 A and L^-1 y have unit independent errors.
+    Eigen::MatrixXd sigma(n, n);
+    for (long r = 0; r < n; ++r) {
+      for (long c = 0; c < n; ++c) sigma(r, c) = bias_cnt2(use[static_cast<size_t>(r)], use[static_cast<size_t>(c)]);
+      sigma(r, r) = variance[r];
+    }
+    const Eigen::LLT<Eigen::MatrixXd> llt(sigma);
+    p.design = llt.matrixL().solve(design);
+    p.observations = llt.matrixL().solve(y);
+  } else {
+    p.design = design;
+    p.observations = y;
+    p.weights = options.unit_weights && !datasheet ? Eigen::VectorXd::Ones(n) : Eigen::VectorXd(variance.cwiseInverse());
   }
   p.weight_kind = WeightKind::kInverseVariance;
   p.error_scale = datasheet ? ErrorScale::kKnownVariance : ErrorScale::kResidualVariance;
-  return SolveLinearLeastSquares(p);
+  LinearFit fit = SolveLinearLeastSquares(p);
+  // Residuals in the channel's units (the driver's are of the whitened rows).
+  const Eigen::VectorXd residual = y - design * fit.coefficients;
+  fit.residual_rms = n > 0 ? std::sqrt(residual.squaredNorm() / static_cast<double>(n)) : 0.0;
+  fit.max_abs_residual = n > 0 ? residual.cwiseAbs().maxCoeff() : 0.0;
+  return fit;
 }
 
 // 5-fold held-out error over the thermal bands for each order; the order with the least.
 int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservation>& obs,
-                double n_thermal, const ImuJointOptions& options, json* report) {
+                double n_thermal, const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2,
+                BiasWander wander, json* report) {
   std::vector<size_t> thermal, other;
   for (size_t i = 0; i < obs.size(); ++i) (obs[i].thermal ? thermal : other).push_back(i);
   if (static_cast<int>(thermal.size()) < 4 * options.folds) return 2;
@@ -165,10 +191,11 @@ int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservat
       ChannelModel m;
       m.channel = ch;
       m.order = order;
-      const LinearFit fit = Solve(serial, m, obs, train, n_thermal, false, options);
+      const LinearFit fit = Solve(serial, m, obs, train, n_thermal, false, options, bias_cnt2, wander);
       for (size_t i : test) {
         const double r = obs[i].u_mean[ch] - DesignRow(m, obs[i]).dot(fit.coefficients);
-        sum += r * r / Variance(obs[i], ch, n_thermal, false, options.noise);
+        const double wander_cnt2 = wander == BiasWander::kNone ? 0.0 : bias_cnt2(i, i);
+        sum += r * r / (Variance(obs[i], ch, n_thermal, false, options.noise) + wander_cnt2);
       }
     }
     const double score = std::sqrt(sum / static_cast<double>(thermal.size()));
@@ -365,30 +392,41 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
   std::array<Eigen::MatrixXd, 9> cov, crb;
   ImuFitResult result;
   json channels = json::object();
+  // The gyro bias wander between observations, counts^2 (the datasheet floor, like the CRB's).
+  const double cpd = options.noise.gyro_counts_per_dps;
+  const Eigen::MatrixXd bias_cnt2 =
+      options.unit_weights ? Eigen::MatrixXd()
+                           : Eigen::MatrixXd(GyroBiasCovariance_dps2(obs, options.noise.gyro_bias_floor_dph / 3600.0,
+                                                                     options.noise.frame_period_s) *
+                                             (cpd * cpd));
   for (int ch = 0; ch < 9; ++ch) {
     json report = json::object();
     ChannelModel& m = models[ch];
     m.channel = ch;
-    m.order = options.thermal_order ? *options.thermal_order
-                                    : ChooseOrder(serial, ch, obs, n_thermal, options, &report);
+    const bool wanders = ch >= 6 && !options.unit_weights;
+    const BiasWander correlated = wanders ? BiasWander::kCorrelated : BiasWander::kNone;
+    m.order = options.thermal_order
+                  ? *options.thermal_order
+                  : ChooseOrder(serial, ch, obs, n_thermal, options, bias_cnt2,
+                                wanders ? BiasWander::kDiagonal : BiasWander::kNone, &report);
     // Model error (drift the thermal polynomial cannot follow) is shared by every observation:
     // its variance, the thermal bands' mean squared residual beyond their noise, is added to
     // every observation's variance and the fit repeated, so that the 25 degC acquisitions (tiny
     // noise) do not pin the polynomial's misfit at 25 degC instead of spreading it over the range.
-    const LinearFit first = Solve(serial, m, obs, all, n_thermal, false, options);
+    const LinearFit first = Solve(serial, m, obs, all, n_thermal, false, options, bias_cnt2, correlated);
     double excess = 0.0;
     int n_bands = 0;
     for (size_t i : all) {
       if (!obs[i].thermal) continue;
       const double r = obs[i].u_mean[ch] - DesignRow(m, obs[i]).dot(first.coefficients);
-      excess += r * r - Variance(obs[i], ch, n_thermal, false, options.noise);
+      excess += r * r - Variance(obs[i], ch, n_thermal, false, options.noise) - (wanders ? bias_cnt2(i, i) : 0.0);
       ++n_bands;
     }
     const double model_variance =
         options.unit_weights || n_bands == 0 ? 0.0 : std::max(0.0, excess / n_bands);
-    const LinearFit fit = Solve(serial, m, obs, all, n_thermal, false, options, model_variance);
+    const LinearFit fit = Solve(serial, m, obs, all, n_thermal, false, options, bias_cnt2, correlated, model_variance);
     report["model_error_rms"] = std::sqrt(model_variance);
-    const LinearFit bound = Solve(serial, m, obs, all, n_thermal, true, options);
+    const LinearFit bound = Solve(serial, m, obs, all, n_thermal, true, options, bias_cnt2, correlated);
     theta[ch] = fit.coefficients;
     cov[ch] = fit.covariance;
     crb[ch] = bound.covariance;
@@ -400,7 +438,7 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
       ChannelModel with = m;
       with.scale_tempco = true;
       try {
-        const LinearFit t = Solve(serial, with, obs, all, n_thermal, false, options);
+        const LinearFit t = Solve(serial, with, obs, all, n_thermal, false, options, bias_cnt2, BiasWander::kNone);
         const double s_axis = t.coefficients[1 + m.order + kAxisOfChannel[ch]];
         // tau per degC: 110 counts per degC / 4096 counts per tau unit (thermal_drift_fit.h).
         const double per_c = 110.0 / kTempSpan_cnt / s_axis * 1e6;

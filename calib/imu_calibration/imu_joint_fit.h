@@ -4,27 +4,32 @@
 //
 // Model, per channel, in the FORWARD direction (raw output from the known stimulus), written so
 // that it is linear in its parameters:
-//   accelerometer i:  U_i = o_i + a1_i t + a2_i t^2 + m_i . f_B_g
-//   gyro g:           U_g = c_g + b1_g t + b2_g t^2 + n_g . w_B_dps + q2_g w_g^2 + q3_g w_g^3
+//   accelerometer i:  U_i = o_i + a1_i t + a2_i t^2 + a3_i t^3 + m_i . f_B_g
+//   gyro g:           U_g = c_g + b1_g t + b2_g t^2 + b3_g t^3 + n_g . w_B_dps + q2_g w_g^2 + q3_g w_g^3
 // t the TEMP counts of the channel's sensor (kThermalSensorOfChannel), m_i (duty per g) and n_g
 // (counts per deg/s) 3-vectors that hold scale, misalignment and cross-axis together, w_g the
 // rate about the gyro's own axis (the span nonlinearity). Every observation (imu_observations.h)
 // is a mean, and because the model is linear in its parameters the mean of its design row (mean
-// t, mean t^2) is exact. Being linear, the least-squares problem is solved in one step (a
+// t, t^2, t^3) is exact. Being linear, the least-squares problem is solved in one step (a
 // Levenberg-Marquardt iteration would converge in its first step to the same point), per
 // channel, with inverse-variance weights:
-//   var = s^2 / n + floor^2      (s the observation's sample deviation, floor the gyro bias
-//                                 instability floor, which a mean does not average down; never
-//                                 below a quarter of the datasheet variance, since a smaller
-//                                 measured spread comes from too few or quantised samples)
+//   var = s^2 / n                (s the observation's sample deviation; never below a quarter of
+//                                 the datasheet variance, since a smaller measured spread comes
+//                                 from too few or quantised samples)
 // and thermal bands weighted alike (n replaced by the median band count: every band weighs the
-// same). A first fit estimates the model-error variance (thermal band residuals beyond their
-// noise: drift the polynomial cannot follow); it is added to every observation's variance and
-// the fit repeated, so the misfit spreads over the range instead of being pinned where the
-// acquisitions are (25 degC). Thermal order per channel: 0, 1 or 2, chosen by 5-fold held-out error over the thermal
-// bands (order "auto"), or fixed; the firmware holds at most order 3 (ThermalFit::k[4]).
+// same). The gyros' bias wander (bias instability, correlated over minutes to hours) does not
+// average down in a mean and is shared by observations close in time: the gyro channels are
+// solved by generalised least squares with Sigma = diag(var) + K, K the bias process's
+// covariance between the observation means (gyro_bias_covariance.h, datasheet floor), by
+// whitening with the Cholesky factor of Sigma. A first fit estimates the model-error variance
+// (thermal band residuals beyond their noise: drift the polynomial cannot follow); it is added to
+// every observation's variance and the fit repeated, so the misfit spreads over the range instead
+// of being pinned where the acquisitions are (25 degC).
+// Thermal order per channel: 0...3, chosen by 5-fold held-out error over the thermal bands (order
+// "auto"; the gyro bias wander enters only as each observation's extra variance there), or
+// fixed; the firmware holds at most order 3 (ThermalFit::k[4]).
 // Mapping to the firmware constants (calibration_constants.h):
-//   thermal xi(t) = alpha1 tau + alpha2 tau^2 re-expanded in raw t (k0 follows: xi = 0 at the
+//   thermal xi(t) = alpha1 tau + alpha2 tau^2 + alpha3 tau^3 re-expanded in raw t (k0 follows: xi = 0 at the
 //   centre 32768 counts, keeping the exporter's thermal block small); O_i = o_i; S_i = m_i[axis_i] (the channel's nominal axis, signed);
 //   pair rows P_axis = (m_i/S_i + m_j/S_j)/2, CA = 9.80665 P^-1 (A = CA Ca = 9.80665 f_B_g);
 //   gyro thermal likewise; null = c_g; l = the cubic that inverts
@@ -32,8 +37,8 @@
 //   rows N_g = n_g / n_gg, CG = N^-1.
 // Uncertainty: Cov(theta) per channel from the weighted fit (residual variance, so model error
 // shows); the Cramer-Rao bound of the design from the same design with the DATASHEET noise
-// (ImuDatasheetNoise): CRB = (A' W A)^-1, W = 1/var_datasheet (for Gaussian noise and a linear
-// model the Fisher information is exactly A' W A). Both are carried to the 81 firmware numbers by
+// (ImuDatasheetNoise): CRB = (A' Sigma^-1 A)^-1, Sigma = diag(var_datasheet), plus K for the
+// gyros (for Gaussian noise and a linear model the Fisher information is exactly A' Sigma^-1 A). Both are carried to the 81 firmware numbers by
 // the mapping's Jacobian (central differences): Cov_fw = J Cov J'. l0 is fixed at zero by the
 // mapping (the null holds the offset) and reported as not estimated.
 // Also estimated and reported, not held by the firmware: accelerometer scale vs temperature

@@ -3,12 +3,18 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "sensor_sim/units.h"
 
 namespace adahrs::calib {
 
-void ObservationBuilder::Add(const firmware_model::ImuRawFrame& raw) {
+void ObservationBuilder::Add(const firmware_model::ImuRawFrame& raw, double t_s) {
+  if (windows_.empty() || t_s < windows_.back().last_s || t_s - windows_.back().last_s > kWindowMergeGap_s) {
+    windows_.push_back({t_s, t_s, 0});
+  }
+  windows_.back().last_s = t_s;
+  ++windows_.back().rows;
   for (int i = 0; i < 6; ++i) {
     const double u = static_cast<double>(raw.t1_cnt[i]) / static_cast<double>(raw.t2_cnt[i]) - 0.5;
     sum_[i] += u;
@@ -27,7 +33,7 @@ void ObservationBuilder::Add(const firmware_model::ImuRawFrame& raw) {
   ++n_;
 }
 
-ImuObservation ObservationBuilder::Finish(std::string source, bool thermal,
+ImuObservation ObservationBuilder::Finish(std::string source, bool thermal, int run,
                                           const Eigen::Vector3d& f_B_g,
                                           const Eigen::Vector3d& w_B_dps) const {
   if (n_ < 2) throw ImuInputError(source + ": fewer than 2 rows");
@@ -35,6 +41,8 @@ ImuObservation ObservationBuilder::Finish(std::string source, bool thermal,
   o.source = std::move(source);
   o.thermal = thermal;
   o.count = n_;
+  o.run = run;
+  o.windows = windows_;
   const double n = n_;
   for (int i = 0; i < 9; ++i) {
     const double mean = sum_[i] / n;
@@ -62,12 +70,12 @@ std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit, double g_lo
   for (const auto* list : {&unit.accel, &unit.gyro, &unit.cross_axis}) {
     for (const ImuAcquisition& a : *list) {
       ObservationBuilder b;
-      for (const ImuSample& s : a.samples) b.Add(s.raw);
+      for (const ImuSample& s : a.samples) b.Add(s.raw, s.t_s);
       std::ostringstream source;
       source << a.run << " step " << a.step << " (" << a.step_kind << ") orientation "
              << a.orientation << " rate " << a.rate_dps << " dps";
       const Eigen::Vector3d up = up_of(a.orientation);
-      out.push_back(b.Finish(source.str(), false, g_l * up, a.rate_dps * up));
+      out.push_back(b.Finish(source.str(), false, a.samples.front().run, g_l * up, a.rate_dps * up));
     }
   }
   if (!unit.thermal.empty()) {
@@ -75,17 +83,20 @@ std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit, double g_lo
       throw ImuInputError("unit " + unit.serial + ": the thermal profile's orientation is unknown");
     }
     const Eigen::Vector3d up = up_of(unit.thermal_orientation);
-    std::map<std::pair<long, int>, ObservationBuilder> bands;
+    // (run, band, segment) -> rows
+    std::map<std::tuple<int, long, int>, ObservationBuilder> bands;
     for (size_t i = 0; i < unit.thermal.size(); ++i) {
-      const long band = std::lround(std::floor(unit.thermal[i].raw.temp_cnt[0] / band_width_cnt));
-      bands[{band, static_cast<int>(unit.thermal_segment[i])}].Add(unit.thermal[i].raw);
+      const ImuSample& s = unit.thermal[i];
+      const long band = std::lround(std::floor(s.raw.temp_cnt[0] / band_width_cnt));
+      bands[{s.run, band, static_cast<int>(unit.thermal_segment[i])}].Add(s.raw, s.t_s);
     }
     static constexpr const char* kSegment[] = {"up", "down", "soak"};
     for (const auto& [key, b] : bands) {
+      const auto& [run, band, segment] = key;
       try {
-        out.push_back(b.Finish("thermal band " + std::to_string(key.first) + " " +
-                                   kSegment[key.second],
-                               true, g_l * up, Eigen::Vector3d::Zero()));
+        out.push_back(b.Finish("run " + std::to_string(run) + " thermal band " + std::to_string(band) +
+                                   " " + kSegment[segment],
+                               true, run, g_l * up, Eigen::Vector3d::Zero()));
       } catch (const ImuInputError&) {
         // A band crossed by a single row carries no spread; its row is too few to weigh.
       }

@@ -7,8 +7,11 @@
 // TEMP sensor (so a model linear in its parameters with t and t^2 terms is averaged exactly), the
 // specific force f_B in g (local gravity along the up axis: f = g_local / 9.80665 * up) and the
 // rate w_B in deg/s (reported table rate about the up axis).
-// Thermal-profile rows are grouped into bands of band_width_cnt of TEMP sensor 0 and ramp
-// segment (up, down, soak), so up- and down-ramp bands stay apart.
+// Thermal-profile rows are grouped into bands of band_width_cnt of TEMP sensor 0, ramp segment
+// (up, down, soak) and run, so up- and down-ramp bands stay apart.
+// When its rows were taken: the run they come from and their time windows (rows closer than
+// kWindowMergeGap_s in time form one window; a band revisited by a later ramp has two), for the
+// covariance of slowly wandering gyro bias between observations (gyro_bias_covariance.h).
 // Not represented: centripetal acceleration on the table (the unit sits on the axis), Earth rate.
 #pragma once
 
@@ -22,10 +25,22 @@
 
 namespace adahrs::calib {
 
+/// Rows this far apart or less in time belong to one window.
+inline constexpr double kWindowMergeGap_s = 2.0;
+
+/// A stretch of time the rows of an observation cover: first and last row times and row count.
+struct TimeWindow {
+  double first_s = 0.0;
+  double last_s = 0.0;
+  int rows = 0;
+};
+
 struct ImuObservation {
   std::string source;  ///< "step 4 orientation 11 rate 50.004 dps", "thermal band 3 up"
   bool thermal = false;
   int count = 0;
+  int run = 0;                      ///< index of the run (ImuSample::run)
+  std::vector<TimeWindow> windows;  ///< in time order within the run
   std::array<double, 9> u_mean{};
   std::array<double, 9> u_sd{};
   std::array<double, 3> t_mean_cnt{};   ///< per TEMP sensor
@@ -38,13 +53,15 @@ struct ImuObservation {
 /// Accumulates rows into one observation.
 class ObservationBuilder {
  public:
-  void Add(const firmware_model::ImuRawFrame& raw);
+  /// Adds a row taken at `t_s` (the run's clock; rows in time order).
+  void Add(const firmware_model::ImuRawFrame& raw, double t_s);
   /// Needs at least 2 rows; throws ImuInputError naming `source` otherwise.
-  ImuObservation Finish(std::string source, bool thermal, const Eigen::Vector3d& f_B_g,
+  ImuObservation Finish(std::string source, bool thermal, int run, const Eigen::Vector3d& f_B_g,
                         const Eigen::Vector3d& w_B_dps) const;
 
  private:
   int n_ = 0;
+  std::vector<TimeWindow> windows_;
   std::array<double, 9> sum_{}, sum2_{};
   std::array<double, 3> t_sum_{}, t2_sum_{}, t3_sum_{};
 };

@@ -99,12 +99,18 @@ void GroupByRate(const std::string& run, int step, const std::string& kind,
   }
 }
 
+// Rows of several runs follow each other (each run's clock starts at zero): the trend window
+// never reaches into another run.
 std::vector<ThermalSegment> Segments(const std::vector<ImuSample>& rows) {
   std::vector<ThermalSegment> out(rows.size(), ThermalSegment::kSoak);
   size_t lo = 0, hi = 0;
   for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[lo].run != rows[i].run) lo = hi = i;
     while (rows[lo].t_s < rows[i].t_s - kTrendWindow_s) ++lo;
-    while (hi + 1 < rows.size() && rows[hi + 1].t_s <= rows[i].t_s + kTrendWindow_s) ++hi;
+    while (hi + 1 < rows.size() && rows[hi + 1].run == rows[i].run &&
+           rows[hi + 1].t_s <= rows[i].t_s + kTrendWindow_s) {
+      ++hi;
+    }
     const double dt = rows[hi].t_s - rows[lo].t_s;
     if (dt <= 0.0) continue;
     const double slope = (rows[hi].chamber_c - rows[lo].chamber_c) / dt;
@@ -132,6 +138,7 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
   if (!meta.contains("sequence")) fail("meta.json: $.sequence missing");
   const Sequence sequence = SequenceFromJson(meta["sequence"], run + "/meta.json $.sequence");
   const std::vector<uint8_t> tags = EffectiveTags(sequence);
+  const int run_index = static_cast<int>(data->recordings.size());
   data->sequence_names.push_back(sequence.name);
   data->recordings.push_back({run, RecordingSha256(dir)});
 
@@ -176,7 +183,9 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
       unit.exclusions.push_back(run + "/imu.csv line " + std::to_string(i + 2) + " " + defect);
       continue;
     }
-    selected[{row.unit, row.step}].push_back({row.orientation, ToSample(row)});
+    ImuSample sample = ToSample(row);
+    sample.run = run_index;
+    selected[{row.unit, row.step}].push_back({row.orientation, sample});
   }
 
   int current_orientation = 0;

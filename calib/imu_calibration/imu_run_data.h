@@ -8,7 +8,8 @@
 //   cross_axis step  one acquisition per (orientation, reported rate): at rest and at rate_dps in
 //                    each of 11, 21, 31
 //   thermal_profile  every row, each labelled up-ramp, down-ramp or soak from the chamber's
-//                    reported temperature trend (slope over +-30 s beyond +-0.05 degC/min)
+//                    reported temperature trend (slope over +-30 s beyond +-0.05 degC/min,
+//                    within the row's own run: each run's clock starts at zero)
 // Rows that cannot be calibration data are excluded and each exclusion is reported with the file,
 // line and column: a duty that is undefined (t2 = 0 or t1 >= t2), a gyro or temperature count at
 // its converter's limit (saturated), a row not in raw mode (v2 `mode` column non-zero).
@@ -43,6 +44,7 @@ struct ImuSample {
   double t_s = 0.0;
   double chamber_c = 0.0;
   double table_rate_dps = 0.0;
+  int run = 0;  ///< index of its run in LoadImuRuns' order (ImuRunData::recordings)
 };
 
 /// The rows of one acquisition (one orientation and one table rate).

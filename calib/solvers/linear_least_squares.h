@@ -21,7 +21,8 @@
 // rank below the number of terms, or condition number above the limit; the message names the
 // near-null combination of terms (the right singular vector of the smallest singular value).
 // Not modelled: correlated observation errors (per-packet samples of a slowly drifting sensor are
-// correlated, so residual-variance standard errors are then optimistic), robust losses, nonlinear
+// correlated, so residual-variance standard errors are then optimistic; a caller that knows the
+// covariance whitens its rows first, as the joint IMU strategy does), robust losses, nonlinear
 // models.
 #pragma once
 

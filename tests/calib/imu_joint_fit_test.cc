@@ -2,7 +2,9 @@
 // magnitudes (ModelProfile::kNominal), recordings made by the recording maker (short: 300 packets
 // per acquisition, thermal profile compressed 60x — exact without die lag, and the CRB accounts
 // for the length).
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -26,26 +28,42 @@ std::string Verdict(const ImuEvaluation& e, const std::string& quantity) {
   return e.report[quantity]["verdict"].get<std::string>();
 }
 
+// RMS over the gyro nulls and gyro thermal coefficients of (error / CRB standard error), the
+// error against the projection of the true unit (evaluation.json parameters).
+double GyroErrorOverCrb(const ImuEvaluation& e) {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& p : e.report["parameters"]) {
+    const std::string name = p["name"];
+    const bool gyro = name.rfind("thermal[6]", 0) == 0 || name.rfind("thermal[7]", 0) == 0 ||
+                      name.rfind("thermal[8]", 0) == 0 || name.find("null_cnt") != std::string::npos;
+    if (!gyro || !p.contains("error_over_crb")) continue;
+    sum += std::pow(p["error_over_crb"].get<double>(), 2);
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum / n) : std::numeric_limits<double>::quiet_NaN();
+}
+
 // Issue 6 done-when: on >= 20 units the improved strategy's evaluated worst errors are within
 // the specification or within 1.5x the CRB-implied limit, and the evaluation says which.
 // With the firmware's cubic thermal term and the exporter's span normalisation every unit exports
 // and the firmware floor is far below the specification (accel ~0.1-0.2 mg, rate ~0.005 deg/s).
-// Met for acceleration on all 20 units (0.15-0.29 mg against 1.0 mg). NOT met for body rate on 6
-// of the 20 (worst body-rate errors over the 20 units 0.08-0.28 deg/s, at +-150 deg/s and the
-// temperature extremes; reference 0.34-1.04 deg/s): their errors exceed the 1.5x(floor + CRB)
-// limit (CRB limit 0.04-0.09 deg/s). The parameters that miss are the gyro nulls and
-// thermal polynomials, 6-14 of their own standard errors from the truth: the realised gyro bias
-// wander (bias instability and rate random walk over the calibration runs), which the CRB's
-// white noise plus a 75 deg/h floor per observation does not describe (docs/calibration-
-// strategies.md). What is tested: every unit exports; acceleration within the specification on
-// every unit; body rate within the specification or the CRB limit on at least 13 units (14
-// measured), and every unit's body-rate error below the reference strategy's.
-TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbOrFirmwareFloor) {
+// Acceleration: within the specification on all 20 units (0.15-0.29 mg against 1.0 mg).
+// Body rate: the gyro bias instability (75 deg/h floor, correlation times up to 5000 s) wanders
+// by more than the specification over a calibration run, and no static calibration averages its
+// slow part away in a run this long. The joint strategy fits the gyros by generalised least
+// squares with that wander's covariance between observations (gyro_bias_covariance.h) and the CRB
+// uses the same covariance: all 20 units within 1.5x the CRB limit (worst 0.08-0.19 deg/s against
+// a per-point 3-sigma limit of 0.11-0.15; reference strategy 0.34-1.04 deg/s). The bound is
+// checked against the truth, not only used: the gyro nulls' and thermal coefficients' errors are
+// about one CRB standard deviation (median over the units of their RMS error / CRB se 0.95).
+TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbLimit) {
   const auto base = std::filesystem::temp_directory_path() / "adahrs_imu_joint_twenty";
   testing::MakerOptions maker_options;
   maker_options.thermal_speedup = 60.0;
   std::map<std::string, int> verdicts;
   double sum_joint = 0.0, sum_reference = 0.0;
+  std::vector<double> gyro_error_over_crb;
   for (int batch = 0; batch < 5; ++batch) {
     std::vector<ImuUnitParams> params;
     for (int i = 0; i < 4; ++i) {
@@ -79,21 +97,27 @@ TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbOrFirmwareFloor) {
       EXPECT_LT(e.worst_rate_dps, r.worst_rate_dps);
       sum_joint += e.worst_accel_mg / 1.0 + e.worst_rate_dps / 0.015;
       sum_reference += r.worst_accel_mg / 1.0 + r.worst_rate_dps / 0.015;
-      std::printf("%s joint accel %.3f mg (floor %.3f) rate %.4f dps (floor %.4f) | reference %.3f mg %.4f dps\n",
+      gyro_error_over_crb.push_back(GyroErrorOverCrb(e));
+      std::printf("%s joint accel %.3f mg (floor %.3f) rate %.4f dps (floor %.4f, CRB limit %.4f, "
+                  "gyro error/CRB se %.2f) | reference %.3f mg %.4f dps\n",
                   params[u].serial.c_str(), e.worst_accel_mg,
                   e.report["acceleration"]["worst_firmware_floor_mg"].get<double>(), e.worst_rate_dps,
-                  e.report["body_rate"]["worst_firmware_floor_dps"].get<double>(), r.worst_accel_mg,
-                  r.worst_rate_dps);
+                  e.report["body_rate"]["worst_firmware_floor_dps"].get<double>(),
+                  e.report["body_rate"]["crb_limit_dps_at_worst"].get<double>(),
+                  gyro_error_over_crb.back(), r.worst_accel_mg, r.worst_rate_dps);
     }
     std::filesystem::remove_all(thermal);
     std::filesystem::remove_all(sensor);
   }
   for (const auto& [v, n] : verdicts) std::printf("%2d x %s\n", n, v.c_str());
   EXPECT_LE(sum_joint, sum_reference);
-  EXPECT_GE(verdicts["body_rate: within specification"] +
-                verdicts["body_rate: within 1.5x the CRB limit"] +
-                verdicts["body_rate: within 1.5x the firmware floor plus the CRB limit"],
-            13);
+  EXPECT_EQ(verdicts["body_rate: within specification"] + verdicts["body_rate: within 1.5x the CRB limit"], 20);
+  // An inflated bound would pass the verdict trivially; an optimistic one would fail it by luck.
+  ASSERT_EQ(gyro_error_over_crb.size(), 20u);
+  std::nth_element(gyro_error_over_crb.begin(), gyro_error_over_crb.begin() + 10, gyro_error_over_crb.end());
+  std::printf("median gyro error / CRB se %.2f\n", gyro_error_over_crb[10]);
+  EXPECT_GT(gyro_error_over_crb[10], 0.5);
+  EXPECT_LT(gyro_error_over_crb[10], 2.0);
 }
 
 }  // namespace
