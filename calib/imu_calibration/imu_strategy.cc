@@ -30,7 +30,7 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
     if (s.name != "joint") r.Fail("$.thermal_order", "only the joint strategy chooses a thermal order");
     if (j["thermal_order"].is_string()) {
       if (r.String("thermal_order") != "auto") {
-        r.Fail("$.thermal_order", "expected \"auto\" or 0, 1, 2, 3");
+        r.Fail("$.thermal_order", "expected \"auto\" or an order 0..." + std::to_string(kMaxThermalOrder));
       }
     } else {
       s.thermal_order = static_cast<int>(r.Integer("thermal_order", 0, kMaxThermalOrder));
