@@ -154,6 +154,10 @@ LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<Im
       sigma(r, r) = variance[r];
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(sigma);
+    if (llt.info() != Eigen::Success) {
+      throw DegenerateDesignError(p.context + ": the observations' covariance (own variance plus gyro "
+                                  "bias wander) is not positive definite");
+    }
     p.design = llt.matrixL().solve(design);
     p.observations = llt.matrixL().solve(y);
   } else {
