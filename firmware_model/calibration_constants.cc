@@ -8,11 +8,13 @@ namespace {
 
 using nlohmann::json;
 
-// Reads object `j` at `path`: every key must be in `keys`, and every key in `keys` present.
-void ExpectKeys(const json& j, const std::string& path, const std::set<std::string>& keys) {
+// Reads object `j` at `path`: every key must be in `keys` or `optional`, and every key in `keys`
+// present.
+void ExpectKeys(const json& j, const std::string& path, const std::set<std::string>& keys,
+                const std::set<std::string>& optional = {}) {
   if (!j.is_object()) throw std::runtime_error(path + ": expected an object");
   for (const auto& [key, value] : j.items()) {
-    if (!keys.count(key)) throw std::runtime_error(path + "." + key + ": unexpected key");
+    if (!keys.count(key) && !optional.count(key)) throw std::runtime_error(path + "." + key + ": unexpected key");
   }
   for (const std::string& key : keys) {
     if (!j.contains(key)) throw std::runtime_error(path + "." + key + ": missing");
@@ -48,15 +50,31 @@ const json& Array(const json& j, const std::string& path, size_t n) {
   return j;
 }
 
+constexpr std::pair<SurfaceLaw, const char*> kLawNames[] = {
+    {SurfaceLaw::kDirect, "direct"}, {SurfaceLaw::kIsaAltitude, "isa_altitude"}, {SurfaceLaw::kCas, "cas"}};
+
 json SurfaceToJson(const SurfaceFit& s) {
+  const char* law = "";
+  for (const auto& [value, name] : kLawNames) {
+    if (value == s.law) law = name;
+  }
   return json{{"coeff_a_to_j", s.coeff},    {"x_min_code", s.x_min_code},
               {"x_max_code", s.x_max_code}, {"y_min_code", s.y_min_code},
-              {"y_max_code", s.y_max_code}};
+              {"y_max_code", s.y_max_code}, {"law", law}};
 }
 
-SurfaceFit SurfaceFromJson(const json& j, const std::string& path) {
-  ExpectKeys(j, path, {"coeff_a_to_j", "x_min_code", "x_max_code", "y_min_code", "y_max_code"});
+// `pressure_law` the one law this surface may carry besides "direct"; a surface without "law"
+// (files written before it existed) is direct.
+SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pressure_law) {
+  ExpectKeys(j, path, {"coeff_a_to_j", "x_min_code", "x_max_code", "y_min_code", "y_max_code"}, {"law"});
   SurfaceFit s;
+  if (j.contains("law")) {
+    const std::string allowed = pressure_law == SurfaceLaw::kIsaAltitude ? "isa_altitude" : "cas";
+    if (!j["law"].is_string() || (j["law"] != "direct" && j["law"] != allowed)) {
+      throw std::runtime_error(path + ".law: expected \"direct\" or \"" + allowed + "\"");
+    }
+    s.law = j["law"] == "direct" ? SurfaceLaw::kDirect : pressure_law;
+  }
   s.coeff = Numbers<10>(j["coeff_a_to_j"], path + ".coeff_a_to_j");
   s.x_min_code = Number(j["x_min_code"], path + ".x_min_code");
   s.x_max_code = Number(j["x_max_code"], path + ".x_max_code");
@@ -144,8 +162,8 @@ json ToJson(const AdsCalibrationConstants& c) {
 AdsCalibrationConstants AdsCalibrationConstantsFromJson(const json& j) {
   ExpectKeys(j, "ads", {"altitude_ft", "airspeed_kt"});
   AdsCalibrationConstants c;
-  c.altitude_ft = SurfaceFromJson(j["altitude_ft"], "ads.altitude_ft");
-  c.airspeed_kt = SurfaceFromJson(j["airspeed_kt"], "ads.airspeed_kt");
+  c.altitude_ft = SurfaceFromJson(j["altitude_ft"], "ads.altitude_ft", SurfaceLaw::kIsaAltitude);
+  c.airspeed_kt = SurfaceFromJson(j["airspeed_kt"], "ads.airspeed_kt", SurfaceLaw::kCas);
   return c;
 }
 

@@ -51,12 +51,17 @@ struct ImuCalibrationConstants {
   std::array<std::array<double, 3>, 3> cg = {};
 };
 
+/// What follows an ADS surface (target/air_data_law.h): nothing, the surface's z being altitude in
+/// ft or airspeed in kt; or the ISA altitude / CAS law, z being static / impact pressure in Pa.
+enum class SurfaceLaw { kDirect, kIsaAltitude, kCas };
+
 struct SurfaceFit {
   std::array<double, 10> coeff = {};  ///< a..j in the reference's letter order
   double x_min_code = 0.0;
   double x_max_code = 0.0;
   double y_min_code = 0.0;
   double y_max_code = 0.0;
+  SurfaceLaw law = SurfaceLaw::kDirect;
 };
 
 struct AdsCalibrationConstants {

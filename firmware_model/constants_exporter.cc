@@ -9,6 +9,9 @@
 #define FMT_HEADER_ONLY
 #include <fmt/format.h>
 
+#include "firmware_model/air_data_law.h"
+#include "firmware_model/target/air_data_tables.h"
+
 namespace adahrs::firmware_model {
 namespace {
 
@@ -283,10 +286,25 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
         "{}: the surface's partial sums need more than 2^{} (output format 2^{})", what,
         out_e + kMaxAlignShift, out_e));
   };
-  out.report.altitude_ft = export_surface(in.altitude_ft, kAltitudeExponent,
+  // Under a law the surface gives Pa; its bound is carried to the output through the law's
+  // steepest slope in the envelope (at 51,000 ft, and at 25 kt: the envelope's 30 kt less a margin
+  // for the surface's own error), plus the table's interpolation error (air_data_law.h:
+  // h'' (128 Pa)^2 / 8 = 0.36 ft at 11 kPa; |d2(CAS^2)/dqc^2| (256 Pa)^2 / 8 = 0.36 kt^2, i.e.
+  // 0.007 kt at 25 kt), the square root's 1/128 kt and the output's resolution.
+  const bool isa = in.altitude_ft.law == SurfaceLaw::kIsaAltitude;
+  const bool cas = in.airspeed_kt.law == SurfaceLaw::kCas;
+  const double alt_bound = export_surface(in.altitude_ft, isa ? kPressureExponent : kAltitudeExponent,
                                           "altitude block 0x21", &out.constants.altitude);
-  out.report.airspeed_kt = export_surface(in.airspeed_kt, kAirspeedExponent,
+  const double cas_bound = export_surface(in.airspeed_kt, cas ? kPressureExponent : kAirspeedExponent,
                                           "airspeed block 0x22", &out.constants.airspeed);
+  out.constants.altitude.law = isa ? kAdsLawIsaAltitude : kAdsLawDirect;
+  out.constants.airspeed.law = cas ? kAdsLawCas : kAdsLawDirect;
+  constexpr double kLowestStaticPa = 11000.0, kLowestImpactPa = 101.0, kLowestCasKt = 25.0;
+  const double ft_per_pa = IsaAltitudeFtFromStaticPa(kLowestStaticPa - 0.5) - IsaAltitudeFtFromStaticPa(kLowestStaticPa + 0.5);
+  const double kt_per_pa = CasKtFromImpactPa(kLowestImpactPa + 0.5) - CasKtFromImpactPa(kLowestImpactPa - 0.5);
+  out.report.altitude_ft = isa ? alt_bound * ft_per_pa + 0.36 + Lsb(kAltitudeExponent) : alt_bound;
+  out.report.airspeed_kt =
+      cas ? cas_bound * kt_per_pa + 0.36 / (2.0 * kLowestCasKt) + 1.0 / 128.0 + Lsb(kAirspeedExponent) : cas_bound;
   AdsConstants check{};
   AdsConstantsInit(&check);
   for (uint8_t id : {uint8_t{kAdsBlockAltitude}, uint8_t{kAdsBlockAirspeed}}) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "firmware_model/air_data_law.h"
 #include "firmware_model/target/ads_constants.h"
 #include "firmware_model/target/imu_constants.h"
 
@@ -70,8 +71,21 @@ std::array<double, 2> AdsReference(const AdsCalibrationConstants& c, AdsCompensa
   if (mode == AdsCompensationMode::kRaw) {
     return {static_cast<double>(raw.ps_code), static_cast<double>(raw.pt_code)};
   }
-  return {EvaluateSurfaceFit(c.altitude_ft, raw.ps_code, raw.ps_bridge_code),
-          EvaluateSurfaceFit(c.airspeed_kt, raw.pt_code, raw.pt_bridge_code)};
+  return {SurfaceOutput(c.altitude_ft, raw.ps_code, raw.ps_bridge_code),
+          SurfaceOutput(c.airspeed_kt, raw.pt_code, raw.pt_bridge_code)};
+}
+
+double SurfaceOutput(const SurfaceFit& s, double x_code, double y_code) {
+  const double z = EvaluateSurfaceFit(s, x_code, y_code);
+  switch (s.law) {
+    case SurfaceLaw::kIsaAltitude:
+      return IsaAltitudeFtFromStaticPa(z);
+    case SurfaceLaw::kCas:
+      return CasKtFromImpactPa(z);
+    case SurfaceLaw::kDirect:
+      break;
+  }
+  return z;
 }
 
 std::array<double, 9> ImuFrameToDouble(ImuCompensationMode mode, const ImuCompensatedFrame& f) {

@@ -1,7 +1,8 @@
 // Double-precision implementation of the same compensation equations as the target compensator,
 // straight from the pipeline's constants in raw units (calibration_constants.h). Used only to
 // validate the fixed-point model; outputs are in the units of compensated_frame.h (duty, counts,
-// g, deg/s, m/s^2, ft, kt) as doubles. Not modelled: any quantisation (that is the point), and
+// g, deg/s, m/s^2, ft, kt) as doubles; an ADS surface's ISA / CAS law is the exact formula of
+// air_data_law.h, not the target's table. Not modelled: any quantisation (that is the point), and
 // the target's hold of the thermal drift beyond its normalised temperature range (the exporter's
 // choice, constants_exporter.h): outside it the reference keeps evaluating the polynomial.
 #pragma once
@@ -21,8 +22,10 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& constants,
 std::array<double, 2> AdsReference(const AdsCalibrationConstants& constants,
                                    AdsCompensationMode mode, const AdsRawFrame& raw);
 
-/// Evaluates one 10-term surface at raw codes (x, y).
+/// Evaluates one 10-term surface at raw codes (x, y): its z (ft, kt, or Pa under a law).
 double EvaluateSurfaceFit(const SurfaceFit& surface, double x_code, double y_code);
+/// The output of a surface and its law (air_data_law.h, exact in double): ft or kt.
+double SurfaceOutput(const SurfaceFit& surface, double x_code, double y_code);
 
 /// Converts a fixed-point frame to the same physical units (value = word * 2^(exponent - 31)).
 std::array<double, 9> ImuFrameToDouble(ImuCompensationMode mode, const ImuCompensatedFrame& frame);

@@ -40,14 +40,18 @@ AdsSurfaceSamples SurfaceSamplesOf(const std::vector<AdsCalibrationPoint>& point
 }
 
 AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstimate& alt,
-                                const SurfaceEstimate& cas) {
+                                const SurfaceEstimate& cas, bool pressure_laws) {
   AdsFitResult out;
   out.strategy = strategy;
   out.constants.altitude_ft = alt.surface;
   out.constants.airspeed_kt = cas.surface;
+  if (pressure_laws) {
+    out.constants.altitude_ft.law = firmware_model::SurfaceLaw::kIsaAltitude;
+    out.constants.airspeed_kt.law = firmware_model::SurfaceLaw::kCas;
+  }
   out.standard_errors = {{"altitude_ft", SurfaceErrors(alt)}, {"airspeed_kt", SurfaceErrors(cas)}};
-  out.diagnostics = {{"altitude_ft", SurfaceDiagnostics(alt, "ft")},
-                     {"airspeed_kt", SurfaceDiagnostics(cas, "kt")}};
+  out.diagnostics = {{"altitude_ft", SurfaceDiagnostics(alt, pressure_laws ? "Pa" : "ft")},
+                     {"airspeed_kt", SurfaceDiagnostics(cas, pressure_laws ? "Pa" : "kt")}};
   return out;
 }
 

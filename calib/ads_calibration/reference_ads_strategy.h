@@ -44,8 +44,9 @@ struct AdsSurfaceSamples {
 AdsSurfaceSamples SurfaceSamplesOf(const std::vector<AdsCalibrationPoint>& points);
 
 /// The result of any 10-term cubic strategy from its two fitted surfaces: constants, standard
-/// errors (null for the code box) and diagnostics, labelled `strategy`.
+/// errors (null for the code box) and diagnostics, labelled `strategy`. With `pressure_laws` the
+/// surfaces are of static and impact pressure (Pa) and the firmware's ISA and CAS laws follow.
 AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstimate& altitude,
-                                const SurfaceEstimate& airspeed);
+                                const SurfaceEstimate& airspeed, bool pressure_laws = false);
 
 }  // namespace adahrs::calib

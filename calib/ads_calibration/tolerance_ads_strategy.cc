@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "calib/evaluation/ads_tolerance.h"
+#include "firmware_model/air_data_law.h"
 #include "firmware_model/reference_compensator.h"
 
 namespace adahrs::calib {
@@ -77,12 +78,43 @@ AdsFitResult FitToleranceAdsStrategy(const std::string& context,
   return out;
 }
 
+AdsFitResult FitPressureAdsStrategy(const std::string& context,
+                                    const std::vector<AdsCalibrationPoint>& points) {
+  std::vector<SurfaceSample> ps, qc;
+  for (const AdsCalibrationPoint& p : points) {
+    ps.push_back({p.ps_code, p.ps_temp_code, p.ps_ref_pa, p.chamber_c});
+    if (p.airspeed_point) qc.push_back({p.pt_code, p.pt_temp_code, p.qc_ref_pa, p.chamber_c});
+  }
+  namespace fm = firmware_model;
+  const MinimaxSurface alt = FitMinimax(context + ": static pressure surface", ps, [](double pa) {
+    const double ft = std::clamp(fm::IsaAltitudeFtFromStaticPa(pa), kAdsMinAltitudeFt, kAdsMaxAltitudeFt);
+    const double ft_per_pa = fm::IsaAltitudeFtFromStaticPa(pa - 0.5) - fm::IsaAltitudeFtFromStaticPa(pa + 0.5);
+    return AltitudeToleranceFt(ft) / ft_per_pa;
+  });
+  const MinimaxSurface cas = FitMinimax(context + ": impact pressure surface", qc, [](double pa) {
+    const double kt = std::clamp(fm::CasKtFromImpactPa(pa), kAdsMinAirspeedKt, kAdsMaxAirspeedKt);
+    const double kt_per_pa = fm::CasKtFromImpactPa(pa + 0.5) - fm::CasKtFromImpactPa(pa - 0.5);
+    return AirspeedToleranceKt(kt) / kt_per_pa;
+  });
+  AdsFitResult out = AdsFitFromSurfaces(kPressureAdsStrategyName, alt.estimate, cas.estimate, true);
+  for (const auto& [key, m] : {std::pair{"altitude_ft", &alt}, std::pair{"airspeed_kt", &cas}}) {
+    out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->first_worst_ratio;
+    out.diagnostics[key]["worst_ratio_at_points"] = m->worst_ratio;
+    out.diagnostics[key]["lawson_iterations"] = kLawsonIterations;
+    out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
+                                                                    : "CAS from impact pressure";
+  }
+  return out;
+}
+
 AdsFitResult FitAdsStrategy(const std::string& name, const std::string& context,
                             const std::vector<AdsCalibrationPoint>& points) {
   if (name == kReferenceAdsStrategyName) return FitReferenceAdsStrategy(context, points);
   if (name == kToleranceAdsStrategyName) return FitToleranceAdsStrategy(context, points);
+  if (name == kPressureAdsStrategyName) return FitPressureAdsStrategy(context, points);
   throw std::invalid_argument("unknown ADS strategy '" + name + "' (known: " +
-                              kReferenceAdsStrategyName + ", " + kToleranceAdsStrategyName + ")");
+                              kReferenceAdsStrategyName + ", " + kToleranceAdsStrategyName + ", " +
+                              kPressureAdsStrategyName + ")");
 }
 
 }  // namespace adahrs::calib

@@ -13,8 +13,8 @@
 // diagnostics) plus, per output, the worst ratio at the points of the first (1/tol^2) fit and of
 // the kept one.
 // Left out: anything the 10-term cubic cannot hold (the bridge's high-order temperature
-// behaviour and its hysteresis: docs/calibration-strategies.md); it narrows the errors, it does
-// not bring them inside the specification.
+// behaviour and its hysteresis: docs/calibration-strategies.md); neither form brings every
+// error inside the specification.
 #pragma once
 
 #include <string>
@@ -25,6 +25,7 @@
 namespace adahrs::calib {
 
 inline constexpr const char* kToleranceAdsStrategyName = "tolerance_minimax";
+inline constexpr const char* kPressureAdsStrategyName = "pressure_minimax";
 inline constexpr int kLawsonIterations = 40;
 
 /// Fits the tolerance-minimax strategy; `context` leads every message; throws
@@ -32,8 +33,17 @@ inline constexpr int kLawsonIterations = 40;
 AdsFitResult FitToleranceAdsStrategy(const std::string& context,
                                      const std::vector<AdsCalibrationPoint>& points);
 
-/// The ADS strategy called `name` ("reference" or "tolerance_minimax"); throws
-/// std::invalid_argument naming the known strategies for any other name.
+/// The same minimax, for the firmware's pressure laws (air_data_law.h): the 10-term cubic surfaces
+/// of the test set's static and impact pressure (Pa), each point's tolerance carried into Pa by
+/// the law's local slope (tol_Pa = tol_ft |dp/dh|, tol_kt dqc/dCAS), and the ISA and CAS laws
+/// after them in the firmware. Pressure is the variable the bridge is nearly linear in; altitude
+/// and airspeed are not (logarithmic and square-root laws), which is what the direct cubic wastes
+/// its terms on.
+AdsFitResult FitPressureAdsStrategy(const std::string& context,
+                                    const std::vector<AdsCalibrationPoint>& points);
+
+/// The ADS strategy called `name` ("reference", "tolerance_minimax" or "pressure_minimax");
+/// throws std::invalid_argument naming the known strategies for any other name.
 AdsFitResult FitAdsStrategy(const std::string& name, const std::string& context,
                             const std::vector<AdsCalibrationPoint>& points);
 

@@ -80,18 +80,18 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   const std::filesystem::path ads_run = RunDir(o, seq.ads_calibration);
 
   observer.Stage("2/7 fits: IMU reference and improved (joint) strategies, ADS reference and "
-                 "improved (tolerance minimax) strategies");
+                 "improved (pressure minimax, ISA / CAS laws) strategies");
   const std::filesystem::path imu_reference_dir = o.out_dir / "fits" / "imu-reference";
   const std::filesystem::path imu_joint_dir = o.out_dir / "fits" / "imu-joint";
   const std::filesystem::path ads_reference_dir = o.out_dir / "fits" / "ads-reference";
-  const std::filesystem::path ads_minimax_dir = o.out_dir / "fits" / "ads-tolerance-minimax";
+  const std::filesystem::path ads_minimax_dir = o.out_dir / "fits" / "ads-pressure-minimax";
   const auto imu_reference = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Reference(),
                                                  imu_reference_dir, o.software_version);
   const auto imu_joint = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Improved(),
                                              imu_joint_dir, o.software_version);
   const auto ads_reference = FitAdsIntoDirectory(ads_run, kReferenceAdsStrategyName,
                                                  ads_reference_dir, o.software_version);
-  const auto ads_minimax = FitAdsIntoDirectory(ads_run, kToleranceAdsStrategyName, ads_minimax_dir,
+  const auto ads_minimax = FitAdsIntoDirectory(ads_run, kPressureAdsStrategyName, ads_minimax_dir,
                                                o.software_version);
   for (const auto* fits : {&imu_reference, &imu_joint, &ads_reference, &ads_minimax}) {
     for (const WrittenConstants& w : *fits) records.AddConstants(ConstantsRecordFromFile(w.path));
@@ -169,7 +169,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
     }
   };
   outcomes(imu_downloads, "joint", imu_eval, imu_judged, imu_acceptance_run / "report.html");
-  outcomes(ads_downloads, kToleranceAdsStrategyName, ads_eval, ads_judged,
+  outcomes(ads_downloads, kPressureAdsStrategyName, ads_eval, ads_judged,
            ads_acceptance_run / "report.html");
   return result;
 }

@@ -50,6 +50,9 @@ void CheckShape(const json& value, const json& se, const std::string& where, con
     if (!se.is_number()) fail("expected a standard error (number) or null");
     const double x = se.get<double>();
     if (!std::isfinite(x) || x < 0.0) fail("a standard error must be finite and >= 0, got " + se.dump());
+  } else if (value.is_string()) {
+    // A named choice (an ADS surface's law), not an estimate: its standard error is null.
+    if (!se.is_null()) fail("expected null (a named choice has no standard error)");
   } else {
     fail("unexpected value type in the constants");
   }
@@ -153,7 +156,7 @@ json ImuStandardErrorsJson(const firmware_model::ImuCalibrationConstants& se) {
 json AdsStandardErrorsJson(const firmware_model::AdsCalibrationConstants& se) {
   json j = NullForNaN(firmware_model::ToJson(se));
   for (const char* surface : {"altitude_ft", "airspeed_kt"}) {
-    for (const char* key : {"x_min_code", "x_max_code", "y_min_code", "y_max_code"}) {
+    for (const char* key : {"x_min_code", "x_max_code", "y_min_code", "y_max_code", "law"}) {
       j[surface][key] = nullptr;
     }
   }

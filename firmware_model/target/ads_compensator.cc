@@ -1,5 +1,7 @@
 #include "firmware_model/target/ads_compensator.h"
 
+#include "firmware_model/target/air_data_law.h"
+#include "firmware_model/target/air_data_tables.h"
 #include "firmware_model/target/imu_compensator.h"
 #include "firmware_model/target/q31_kernels.h"
 
@@ -49,10 +51,21 @@ void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensa
     out->flags = flags;
     return;
   }
-  out->value[0] = EvaluateSurface(engine, constants.altitude, kAltitudeExponent, raw.ps_code,
-                             raw.ps_bridge_code, &flags);
-  out->value[1] = EvaluateSurface(engine, constants.airspeed, kAirspeedExponent, raw.pt_code,
-                             raw.pt_bridge_code, &flags);
+  const SurfaceQ31& alt = constants.altitude;
+  const SurfaceQ31& cas = constants.airspeed;
+  engine->ChargeBranch(2);  // the law of each surface
+  if (alt.law == kAdsLawIsaAltitude) {
+    const int32_t ps = EvaluateSurface(engine, alt, kPressureExponent, raw.ps_code, raw.ps_bridge_code, &flags);
+    out->value[0] = IsaAltitudeQ31(engine, ps, &flags);
+  } else {
+    out->value[0] = EvaluateSurface(engine, alt, kAltitudeExponent, raw.ps_code, raw.ps_bridge_code, &flags);
+  }
+  if (cas.law == kAdsLawCas) {
+    const int32_t qc = EvaluateSurface(engine, cas, kPressureExponent, raw.pt_code, raw.pt_bridge_code, &flags);
+    out->value[1] = CasQ31(engine, qc, &flags);
+  } else {
+    out->value[1] = EvaluateSurface(engine, cas, kAirspeedExponent, raw.pt_code, raw.pt_bridge_code, &flags);
+  }
   out->flags = flags;
 }
 

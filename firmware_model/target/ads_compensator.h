@@ -5,7 +5,9 @@
 // Each output is the 10-term bivariate cubic surface of ads_constants.h in x = normalised pressure
 // code and y = normalised bridge-voltage (temperature) code, by nested Horner: the four b_k(y)
 // first (Horner at their own working exponents), then Horner in x at the surface's working
-// exponent, then one saturating SFTAC to the output format. Input normalisation is exact (32-bit
+// exponent, then one saturating SFTAC to the output format: altitude and airspeed themselves
+// (kAdsLawDirect), or static / impact pressure in Pa that the ISA altitude or CAS law of
+// air_data_law.h then turns into the output. Input normalisation is exact (32-bit
 // centring in the accumulator, a power-of-two shift), which the 24-bit codes need: a Q15 x would
 // resolve only 3e-5 of the fit span, ~1.5 ft over a 50,000 ft span before any other error.
 // Not modelled: Mach, TAS, OAT calibration, hysteresis; the ADC driver.

@@ -1,5 +1,7 @@
 #include "firmware_model/target/ads_constants.h"
 
+#include "firmware_model/target/air_data_tables.h"
+
 namespace adahrs::firmware_model {
 namespace {
 
@@ -13,6 +15,7 @@ void ZeroSurface(SurfaceQ31* s, int8_t out_exponent) {
   s->x_norm = InputNormQ31{0, 23};
   s->y_norm = InputNormQ31{0, 23};
   s->outer_work_exponent = out_exponent;
+  s->law = kAdsLawDirect;
   for (PolyQ31& b : s->b) {
     b.work_exponent = static_cast<int8_t>(out_exponent - 2);
     for (CoeffQ31& c : b.coeff) c = CoeffQ31{0, b.work_exponent};
@@ -37,8 +40,17 @@ ConstantsStatus ValidateOuter(const SurfaceQ31& s, int8_t out_exponent) {
   return ConstantsStatus::kOk;
 }
 
-ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, SurfaceQ31* out) {
+// The exponent the surface's result must reach: the output's, or the pressure's under a law.
+int8_t SurfaceExponent(uint8_t law, int8_t out_exponent) {
+  return law == kAdsLawDirect ? out_exponent : kPressureExponent;
+}
+
+ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, uint8_t pressure_law,
+                                 SurfaceQ31* out) {
   SurfaceQ31 decoded{};
+  const int16_t law = words[kAdsSurfaceBlockWords - 1];
+  if (law != kAdsLawDirect && law != pressure_law) return ConstantsStatus::kOutOfRange;
+  decoded.law = static_cast<uint8_t>(law);
   ConstantsStatus s = NormFromWords(words, 31, &decoded.x_norm);
   if (s != ConstantsStatus::kOk) return s;
   s = NormFromWords(words + kNormWords, 31, &decoded.y_norm);
@@ -60,7 +72,7 @@ ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, Surf
     s = ValidatePoly(b, InnerDegree(i));
     if (s != ConstantsStatus::kOk) return s;
   }
-  s = ValidateOuter(decoded, out_exponent);
+  s = ValidateOuter(decoded, SurfaceExponent(decoded.law, out_exponent));
   if (s != ConstantsStatus::kOk) return s;
   *out = decoded;
   return ConstantsStatus::kOk;
@@ -77,6 +89,7 @@ void SurfaceToWords(const SurfaceQ31& s, int16_t* words) {
       CoeffToWords(s.b[i].coeff[k], w + 5 + kCoeffWords * kLetterOf[i][k]);
     }
   }
+  words[kAdsSurfaceBlockWords - 1] = s.law;
 }
 
 }  // namespace
@@ -98,9 +111,9 @@ ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants, uint8_t block_id
   if (length == 0) return ConstantsStatus::kUnknownBlock;
   if (count != length) return ConstantsStatus::kWrongLength;
   if (block_id == kAdsBlockAltitude) {
-    return SurfaceFromWords(words, kAltitudeExponent, &constants->altitude);
+    return SurfaceFromWords(words, kAltitudeExponent, kAdsLawIsaAltitude, &constants->altitude);
   }
-  return SurfaceFromWords(words, kAirspeedExponent, &constants->airspeed);
+  return SurfaceFromWords(words, kAirspeedExponent, kAdsLawCas, &constants->airspeed);
 }
 
 ConstantsStatus AdsConstantsReadBlock(const AdsConstants* constants, uint8_t block_id,

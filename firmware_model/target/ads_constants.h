@@ -16,18 +16,26 @@
 // saturation: altitude in ft at kAltitudeExponent (|alt| < 65,536 ft), airspeed in kt at
 // kAirspeedExponent (|cas| < 512 kt).
 //
+// A law may follow the surface (air_data_law.h): with kAdsLawDirect the surface gives altitude
+// (ft) or airspeed (kt) itself, as the reference method does; with kAdsLawIsaAltitude (altitude
+// block only) it gives static pressure and with kAdsLawCas (airspeed block only) impact pressure,
+// both in Pa at kPressureExponent, and the ISA or CAS law turns it into the output.
+//
 // Blocks:
-//   0x21 altitude surface, 0x22 airspeed surface, 41 words each:
+//   0x21 altitude surface, 0x22 airspeed surface, 42 words each:
 //     [InputNormQ31 x][InputNormQ31 y][outer work exponent][b0..b3 work exponents]
 //     [CoeffQ31 a, b, c, d, e, f, g, h, i, j]   (the reference's letter order)
+//     [law]                                      (AdsSurfaceLaw)
 // A write validates the whole block first and changes nothing unless it returns kOk. Overflow
 // rule: each b_k must satisfy the PolyQ31 bound; the outer Horner must satisfy
 // sum_k 2^(E_k) <= 2^E_outer (with |b_k| < 2^E_k this bounds every partial sum for |x| <= 1).
+// A law the block does not allow is kOutOfRange.
 // Not modelled: Mach and TAS (need OAT; computed downstream), hysteresis, OAT calibration.
 #pragma once
 
 #include <cstdint>
 
+#include "firmware_model/target/air_data_law.h"
 #include "firmware_model/target/fixed_coeff.h"
 
 namespace adahrs::firmware_model {
@@ -41,6 +49,7 @@ struct SurfaceQ31 {
   InputNormQ31 y_norm;      ///< temperature code normalisation
   int8_t outer_work_exponent;
   PolyQ31 b[4];             ///< b_k(y), degree 3 - k
+  uint8_t law;              ///< AdsSurfaceLaw: what follows the surface
 };
 
 struct AdsConstants {
@@ -53,10 +62,10 @@ enum AdsBlockId : uint8_t {
   kAdsBlockAirspeed = 0x22,
 };
 
-inline constexpr uint8_t kAdsSurfaceBlockWords = 2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords;
+inline constexpr uint8_t kAdsSurfaceBlockWords = 2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords + 1;
 inline constexpr uint8_t kAdsMaxBlockWords = kAdsSurfaceBlockWords;
 
-/// Uncalibrated state: all-zero surfaces (outputs read zero), centres 0, shifts 23.
+/// Uncalibrated state: all-zero direct surfaces (outputs read zero), centres 0, shifts 23.
 void AdsConstantsInit(AdsConstants* constants);
 
 /// Words in block `block_id`, or 0 if the block is unknown.

@@ -2,6 +2,7 @@
 // interval, refusal of bad rows naming line and column, the reference strategy on simulated units
 // run through the shipped ads_calibration sequence, and the evaluation against the true model.
 // Truth: the simulated unit's drawn parameters and the ISA pressures the test applies.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -145,49 +146,62 @@ TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecifica
   }
 }
 
-// The improved strategy the present firmware can run (tolerance_ads_strategy.h) against the
-// reference on 20 drawn units (every effect on), each run through the shipped ads_calibration
-// sequence and evaluated on the true model over the whole envelope (noise off, no history).
-TEST(ToleranceAdsStrategy, NarrowsTheWorstErrorInTolerancesOnTwentyUnits) {
+// The improved strategies (tolerance_ads_strategy.h) against the reference on 20 drawn units
+// (every effect on), each run through the shipped ads_calibration sequence and evaluated on the
+// true model over the whole envelope (noise off, no history) through the fixed-point firmware:
+// tolerance_minimax (the 10-term cubic of altitude / airspeed, weighted for the specification)
+// and pressure_minimax (the same cubic of pressure, then the firmware's ISA / CAS tables).
+TEST(ImprovedAdsStrategies, NarrowTheWorstErrorInTolerancesOnTwentyUnits) {
   constexpr int kUnits = 20;
-  double sum_ref[2] = {0, 0}, sum_new[2] = {0, 0};
-  int better[2] = {0, 0};
+  constexpr const char* kStrategies[] = {"reference", "tolerance_minimax", "pressure_minimax"};
+  double sum[3][2] = {}, worst_pressure[2] = {};
+  int better[2][2] = {}, fails[3][2] = {};
   for (int i = 0; i < kUnits; ++i) {
     const std::string serial = "ADS-" + std::to_string(9200 + i);
     const auto [truth, points] = RunShippedCalibration(serial, 6100 + i, 40 + i);
-    const AdsFitResult reference = FitAdsStrategy("reference", serial, points);
-    const AdsFitResult improved = FitAdsStrategy("tolerance_minimax", serial, points);
-    EXPECT_EQ(improved.strategy, "tolerance_minimax");
-    const AdsEvaluation ref_eval = EvaluateAdsConstants(reference.constants, truth);
-    const AdsEvaluation new_eval = EvaluateAdsConstants(improved.constants, truth);
-    const double ref_ratio[2] = {ref_eval.altitude.worst_ratio_no_history,
-                                 ref_eval.airspeed.worst_ratio_no_history};
-    const double new_ratio[2] = {new_eval.altitude.worst_ratio_no_history,
-                                 new_eval.airspeed.worst_ratio_no_history};
-    std::printf("%s worst |error|/tolerance on the envelope, no history: altitude %.1f -> %.1f, "
-                "airspeed %.1f -> %.1f (at the points: %.1f -> %.1f, %.1f -> %.1f)\n",
-                serial.c_str(), ref_ratio[0], new_ratio[0], ref_ratio[1], new_ratio[1],
-                improved.diagnostics["altitude_ft"]["worst_ratio_at_points_weighted_fit"].get<double>(),
-                improved.diagnostics["altitude_ft"]["worst_ratio_at_points"].get<double>(),
-                improved.diagnostics["airspeed_kt"]["worst_ratio_at_points_weighted_fit"].get<double>(),
-                improved.diagnostics["airspeed_kt"]["worst_ratio_at_points"].get<double>());
+    double ratio[3][2];
+    for (int k = 0; k < 3; ++k) {
+      const AdsFitResult fit = FitAdsStrategy(kStrategies[k], serial, points);
+      EXPECT_EQ(fit.strategy, kStrategies[k]);
+      const AdsEvaluation eval = EvaluateAdsConstants(fit.constants, truth);
+      ratio[k][0] = eval.altitude.worst_ratio_no_history;
+      ratio[k][1] = eval.airspeed.worst_ratio_no_history;
+      fails[k][0] += eval.altitude.fail;
+      fails[k][1] += eval.airspeed.fail;
+      for (int q = 0; q < 2; ++q) sum[k][q] += ratio[k][q];
+    }
+    std::printf("%s worst |error|/tolerance on the envelope, no history: altitude %.1f / %.1f / "
+                "%.2f, airspeed %.1f / %.1f / %.2f (reference / tolerance_minimax / pressure_minimax)\n",
+                serial.c_str(), ratio[0][0], ratio[1][0], ratio[2][0], ratio[0][1], ratio[1][1], ratio[2][1]);
     for (int q = 0; q < 2; ++q) {
-      sum_ref[q] += ref_ratio[q];
-      sum_new[q] += new_ratio[q];
-      better[q] += new_ratio[q] < ref_ratio[q] ? 1 : 0;
+      better[0][q] += ratio[1][q] < ratio[0][q] ? 1 : 0;
+      better[1][q] += ratio[2][q] < ratio[1][q] ? 1 : 0;
+      worst_pressure[q] = std::max(worst_pressure[q], ratio[2][q]);
     }
   }
-  std::printf("mean worst ratio over %d units: altitude %.2f -> %.2f, airspeed %.2f -> %.2f; "
-              "better on %d and %d units\n",
-              kUnits, sum_ref[0] / kUnits, sum_new[0] / kUnits, sum_ref[1] / kUnits,
-              sum_new[1] / kUnits, better[0], better[1]);
-  // Measured (2026-11-23): altitude 39.4 -> 27.6, airspeed 22.7 -> 18.6 tolerances, better on
-  // every unit. Required: better on every unit, and on average by a fifth (altitude) and a tenth
-  // (airspeed). Still tens of tolerances: the cubic cannot hold the bridge's temperature law.
-  EXPECT_EQ(better[0], kUnits);
-  EXPECT_EQ(better[1], kUnits);
-  EXPECT_LT(sum_new[0], 0.8 * sum_ref[0]);
-  EXPECT_LT(sum_new[1], 0.9 * sum_ref[1]);
+  for (int k = 0; k < 3; ++k) {
+    std::printf("%s: mean worst ratio altitude %.2f, airspeed %.2f; grid points failing (with "
+                "history, over the 20 units) altitude %d, airspeed %d\n",
+                kStrategies[k], sum[k][0] / kUnits, sum[k][1] / kUnits, fails[k][0], fails[k][1]);
+  }
+  // Measured (2026-11-23): mean worst ratio altitude 39.4 / 27.6 / 5.8, airspeed 22.7 / 18.6 /
+  // 2.0 (pressure_minimax worst unit 7.9 and 2.6); grid points failing over the 20 units altitude
+  // 480 / 622 / 134, airspeed 15,216 / 16,201 / 10,986. Required: each improvement on every unit;
+  // the tolerance form by a fifth (altitude) and a tenth (airspeed) on average; the pressure form
+  // below 8 and 3 tolerances on average, with fewer failing grid points than the reference.
+  // Still outside the specification: the cubic's temperature order (docs/calibration-strategies.md).
+  EXPECT_EQ(better[0][0], kUnits);
+  EXPECT_EQ(better[0][1], kUnits);
+  EXPECT_LT(sum[1][0], 0.8 * sum[0][0]);
+  EXPECT_LT(sum[1][1], 0.9 * sum[0][1]);
+  EXPECT_EQ(better[1][0], kUnits);
+  EXPECT_EQ(better[1][1], kUnits);
+  std::printf("pressure_minimax worst over the units: altitude %.2f, airspeed %.2f tolerances\n",
+              worst_pressure[0], worst_pressure[1]);
+  EXPECT_LT(sum[2][0], 8.0 * kUnits);
+  EXPECT_LT(sum[2][1], 3.0 * kUnits);
+  EXPECT_LT(fails[2][0], fails[0][0]);
+  EXPECT_LT(fails[2][1], fails[0][1]);
 }
 
 // Evaluation truth: a unit whose only history effect is the thermal hysteresis h_T (pressure

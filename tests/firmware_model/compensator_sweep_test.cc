@@ -84,8 +84,16 @@ TEST(CompensatorSweep, ImuWithinBudgetOverEnvelope) {
   EXPECT_LE(max_cycles, 2000u);
 }
 
-TEST(CompensatorSweep, AdsWithinBudgetOverEnvelope) {
-  const AdsCalibrationConstants cal = RealisticAds();
+// Both forms: surfaces of altitude and airspeed themselves (the reference method), and surfaces of
+// pressure followed by the ISA and CAS laws (the double reference applies the exact laws, so the
+// difference includes the target's table interpolation and its 1/128 kt square root).
+class AdsSweep : public ::testing::TestWithParam<bool> {};
+
+INSTANTIATE_TEST_SUITE_P(CompensatorSweep, AdsSweep, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "PressureLaws" : "Direct"; });
+
+TEST_P(AdsSweep, WithinBudgetOverEnvelope) {
+  const AdsCalibrationConstants cal = GetParam() ? testing::RealisticPressureAds() : RealisticAds();
   const AdsExport exported = ExportAdsConstants(cal);
   sensor_sim::Rng rng(4242);
   double worst_alt_ft = 0, worst_cas_kt = 0;
@@ -111,6 +119,8 @@ TEST(CompensatorSweep, AdsWithinBudgetOverEnvelope) {
               max_cycles);
   EXPECT_LE(worst_alt_ft, 1.5);
   EXPECT_LE(worst_cas_kt, 0.1);
+  EXPECT_LE(worst_alt_ft, exported.report.altitude_ft);
+  EXPECT_LE(worst_cas_kt, exported.report.airspeed_kt);
   EXPECT_LE(max_cycles, 1500u);
 }
 

@@ -84,7 +84,8 @@ TEST(ConstantsBlocks, AdsRoundTripAndRefusals) {
   uint8_t count = 0;
   ASSERT_EQ(AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count),
             ConstantsStatus::kOk);
-  EXPECT_EQ(count, 41);
+  EXPECT_EQ(count, 42);
+  EXPECT_EQ(words[41], kAdsLawDirect);
   int16_t bad[kAdsMaxBlockWords];
   std::memcpy(bad, words, sizeof(bad));
   bad[6] = static_cast<int16_t>(bad[6] - 3);  // outer exponent below the b_k bound
@@ -96,6 +97,52 @@ TEST(ConstantsBlocks, AdsRoundTripAndRefusals) {
   int16_t back[kAdsMaxBlockWords];
   AdsConstantsReadBlock(&target, kAdsBlockAltitude, back, kAdsMaxBlockWords, &count);
   EXPECT_EQ(std::memcmp(words, back, count * sizeof(int16_t)), 0);
+}
+
+// The law word: the altitude block takes direct or ISA, the airspeed block direct or CAS; any
+// other value changes nothing. A pressure surface's result must fit the pressure format instead
+// of the output's, so the same surface words validate under one law and not necessarily another.
+TEST(ConstantsBlocks, AdsLawWordIsCheckedPerBlock) {
+  const AdsConstants source = ExportAdsConstants(testing::RealisticPressureAds()).constants;
+  EXPECT_EQ(source.altitude.law, kAdsLawIsaAltitude);
+  EXPECT_EQ(source.airspeed.law, kAdsLawCas);
+  AdsConstants target;
+  AdsConstantsInit(&target);
+  const AdsConstants before = target;
+  int16_t words[kAdsMaxBlockWords];
+  uint8_t count = 0;
+  AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count);
+  EXPECT_EQ(words[41], kAdsLawIsaAltitude);
+  for (int16_t law : {int16_t{kAdsLawCas}, int16_t{3}, int16_t{-1}}) {
+    words[41] = law;
+    EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAltitude, words, count), ConstantsStatus::kOutOfRange) << law;
+  }
+  AdsConstantsReadBlock(&source, kAdsBlockAirspeed, words, kAdsMaxBlockWords, &count);
+  EXPECT_EQ(words[41], kAdsLawCas);
+  words[41] = kAdsLawIsaAltitude;
+  EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAirspeed, words, count), ConstantsStatus::kOutOfRange);
+  EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
+  words[41] = kAdsLawCas;
+  EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAirspeed, words, count), ConstantsStatus::kOk);
+  EXPECT_EQ(target.airspeed.law, kAdsLawCas);
+}
+
+TEST(CalibrationConstants, AdsLawInJsonAndFilesWithoutItAreDirect) {
+  AdsCalibrationConstants ads = testing::RealisticAds();
+  ads.altitude_ft.law = SurfaceLaw::kIsaAltitude;
+  nlohmann::json j = ToJson(ads);
+  EXPECT_EQ(j["altitude_ft"]["law"], "isa_altitude");
+  EXPECT_EQ(j["airspeed_kt"]["law"], "direct");
+  EXPECT_EQ(ToJson(AdsCalibrationConstantsFromJson(j)), j);
+  j["altitude_ft"].erase("law");
+  EXPECT_EQ(AdsCalibrationConstantsFromJson(j).altitude_ft.law, SurfaceLaw::kDirect);
+  j["airspeed_kt"]["law"] = "isa_altitude";
+  try {
+    AdsCalibrationConstantsFromJson(j);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("ads.airspeed_kt.law: expected \"direct\" or \"cas\""));
+  }
 }
 
 TEST(ConstantsExporter, RefusesUnrepresentableSetsWithReason) {

@@ -36,8 +36,10 @@ nlohmann::json Generate() {
   const double alts_ft[] = {-1000.0, 0.0, 10000.0, 30000.0, 50000.0};
   const double cas_kt[] = {30.0, 60.0, 100.0, 300.0, 450.0};
   for (int i = 0; i < 5; ++i) ads_frames.push_back(testing::SynthesiseAds(alts_ft[i], cas_kt[i], temps_c[i % 4]));
+  // The ADS set is the pressure-law form (surface, then ISA / CAS tables and the square root):
+  // the longer arithmetic path; the direct form's surface is the same code.
   return MakeCompensatorGolden(ExportImuConstants(imu_cal).constants,
-                               ExportAdsConstants(testing::RealisticAds()).constants, imu_frames,
+                               ExportAdsConstants(testing::RealisticPressureAds()).constants, imu_frames,
                                ads_frames);
 }
 

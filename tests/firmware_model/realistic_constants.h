@@ -188,6 +188,23 @@ inline AdsCalibrationConstants RealisticAds() {
   return AdsCalibrationConstants{FitSurface(alt), FitSurface(cas)};
 }
 
+/// The same bridges calibrated for the firmware's laws: surfaces of static and impact pressure (Pa).
+inline AdsCalibrationConstants RealisticPressureAds() {
+  std::vector<std::array<double, 3>> ps, qc;
+  for (double temp_c = -40.0; temp_c <= 85.0; temp_c += 12.5) {
+    for (double alt_ft = -1000.0; alt_ft <= 50000.0; alt_ft += 1000.0) {
+      ps.push_back({PressureCode(IsaPressure_pa(alt_ft), temp_c), BridgeCode(temp_c), IsaPressure_pa(alt_ft)});
+    }
+    for (double cas_kt = 30.0; cas_kt <= 450.0; cas_kt += 10.0) {
+      qc.push_back({PressureCode(ImpactPressure_pa(cas_kt), temp_c), BridgeCode(temp_c), ImpactPressure_pa(cas_kt)});
+    }
+  }
+  AdsCalibrationConstants c{FitSurface(ps), FitSurface(qc)};
+  c.altitude_ft.law = SurfaceLaw::kIsaAltitude;
+  c.airspeed_kt.law = SurfaceLaw::kCas;
+  return c;
+}
+
 inline AdsRawFrame SynthesiseAds(double alt_ft, double cas_kt, double temp_c) {
   AdsRawFrame raw{};
   raw.ps_code = static_cast<int32_t>(std::lround(PressureCode(IsaPressure_pa(alt_ft), temp_c)));
