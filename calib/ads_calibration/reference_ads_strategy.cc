@@ -1,15 +1,9 @@
 #include "calib/ads_calibration/reference_ads_strategy.h"
 
+#include "calib/constants/constants_file.h"
+
 namespace adahrs::calib {
 namespace {
-
-nlohmann::json SurfaceErrors(const SurfaceEstimate& e) {
-  return {{"coeff_a_to_j", e.coeff_se},
-          {"x_min_code", nullptr},
-          {"x_max_code", nullptr},
-          {"y_min_code", nullptr},
-          {"y_max_code", nullptr}};
-}
 
 nlohmann::json SurfaceDiagnostics(const SurfaceEstimate& e, const char* unit) {
   return {{"points", e.fit.fit.observations},
@@ -49,7 +43,11 @@ AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstima
     out.constants.altitude_ft.law = firmware_model::SurfaceLaw::kIsaAltitude;
     out.constants.airspeed_kt.law = firmware_model::SurfaceLaw::kCas;
   }
-  out.standard_errors = {{"altitude_ft", SurfaceErrors(alt)}, {"airspeed_kt", SurfaceErrors(cas)}};
+  // The constants' own shape with the coefficients' standard errors (code box and law: null).
+  firmware_model::AdsCalibrationConstants se = out.constants;
+  se.altitude_ft.coeff = alt.coeff_se;
+  se.airspeed_kt.coeff = cas.coeff_se;
+  out.standard_errors = AdsStandardErrorsJson(se);
   out.diagnostics = {{"altitude_ft", SurfaceDiagnostics(alt, pressure_laws ? "Pa" : "ft")},
                      {"airspeed_kt", SurfaceDiagnostics(cas, pressure_laws ? "Pa" : "kt")}};
   return out;

@@ -14,6 +14,7 @@
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/ads_calibration/reference_ads_strategy.h"
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
+#include "calib/constants/constants_file.h"
 #include "calib/evaluation/ads_evaluation.h"
 #include "calib/evaluation/ads_tolerance.h"
 #include "hil/recording/recording_reader.h"
@@ -163,6 +164,21 @@ TEST(ImprovedAdsStrategies, NarrowTheWorstErrorInTolerancesOnTwentyUnits) {
     for (int k = 0; k < 3; ++k) {
       const AdsFitResult fit = FitAdsStrategy(kStrategies[k], serial, points);
       EXPECT_EQ(fit.strategy, kStrategies[k]);
+      if (i == 0) {
+        // What the campaign writes: a constants file the strict reader takes back unchanged.
+        ConstantsFile file;
+        file.serial = serial;
+        file.kind = hil::UnitKind::kAds;
+        file.strategy = fit.strategy;
+        file.created_utc = "2026-11-23T00:00:00Z";
+        file.software_version = "test";
+        file.ads = fit.constants;
+        file.standard_errors = fit.standard_errors;
+        file.provenance.recordings = {{"run", std::string(64, 'a')}};
+        file.diagnostics = fit.diagnostics;
+        const ConstantsFile back = ConstantsFileFromJson(ToJson(file), serial + ".json");
+        EXPECT_EQ(ToJson(back), ToJson(file)) << kStrategies[k];
+      }
       const AdsEvaluation eval = EvaluateAdsConstants(fit.constants, truth);
       ratio[k][0] = eval.altitude.worst_ratio_no_history;
       ratio[k][1] = eval.airspeed.worst_ratio_no_history;
