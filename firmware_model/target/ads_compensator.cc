@@ -1,7 +1,6 @@
 #include "firmware_model/target/ads_compensator.h"
 
 #include "firmware_model/target/air_data_law.h"
-#include "firmware_model/target/air_data_tables.h"
 #include "firmware_model/target/imu_compensator.h"
 #include "firmware_model/target/q31_kernels.h"
 
@@ -35,6 +34,17 @@ int32_t EvaluateSurface(DspEngine* engine, const SurfaceQ31& s, int8_t out_expon
   return result;
 }
 
+// The output of one surface at `out_exponent`: the surface itself, or its pressure (at
+// kPressureExponent) through the block's law (validated per block by ads_constants.cc).
+int32_t SurfaceAndLaw(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponent, int32_t x_code,
+                      int32_t y_code, uint16_t* flags) {
+  engine->ChargeBranch(1);  // the law
+  const int32_t z = EvaluateSurface(engine, s, AdsSurfaceExponent(s.law, out_exponent), x_code, y_code, flags);
+  if (s.law == kAdsLawIsaAltitude) return IsaAltitudeQ31(engine, z, flags);
+  if (s.law == kAdsLawCas) return CasQ31(engine, z, flags);
+  return z;
+}
+
 }  // namespace
 
 void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensationMode mode,
@@ -51,21 +61,10 @@ void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensa
     out->flags = flags;
     return;
   }
-  const SurfaceQ31& alt = constants.altitude;
-  const SurfaceQ31& cas = constants.airspeed;
-  engine->ChargeBranch(2);  // the law of each surface
-  if (alt.law == kAdsLawIsaAltitude) {
-    const int32_t ps = EvaluateSurface(engine, alt, kPressureExponent, raw.ps_code, raw.ps_bridge_code, &flags);
-    out->value[0] = IsaAltitudeQ31(engine, ps, &flags);
-  } else {
-    out->value[0] = EvaluateSurface(engine, alt, kAltitudeExponent, raw.ps_code, raw.ps_bridge_code, &flags);
-  }
-  if (cas.law == kAdsLawCas) {
-    const int32_t qc = EvaluateSurface(engine, cas, kPressureExponent, raw.pt_code, raw.pt_bridge_code, &flags);
-    out->value[1] = CasQ31(engine, qc, &flags);
-  } else {
-    out->value[1] = EvaluateSurface(engine, cas, kAirspeedExponent, raw.pt_code, raw.pt_bridge_code, &flags);
-  }
+  out->value[0] = SurfaceAndLaw(engine, constants.altitude, kAltitudeExponent, raw.ps_code,
+                                raw.ps_bridge_code, &flags);
+  out->value[1] = SurfaceAndLaw(engine, constants.airspeed, kAirspeedExponent, raw.pt_code,
+                                raw.pt_bridge_code, &flags);
   out->flags = flags;
 }
 

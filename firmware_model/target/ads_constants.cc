@@ -40,11 +40,6 @@ ConstantsStatus ValidateOuter(const SurfaceQ31& s, int8_t out_exponent) {
   return ConstantsStatus::kOk;
 }
 
-// The exponent the surface's result must reach: the output's, or the pressure's under a law.
-int8_t SurfaceExponent(uint8_t law, int8_t out_exponent) {
-  return law == kAdsLawDirect ? out_exponent : kPressureExponent;
-}
-
 ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, uint8_t pressure_law,
                                  SurfaceQ31* out) {
   SurfaceQ31 decoded{};
@@ -72,7 +67,7 @@ ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, uint
     s = ValidatePoly(b, InnerDegree(i));
     if (s != ConstantsStatus::kOk) return s;
   }
-  s = ValidateOuter(decoded, SurfaceExponent(decoded.law, out_exponent));
+  s = ValidateOuter(decoded, AdsSurfaceExponent(decoded.law, out_exponent));
   if (s != ConstantsStatus::kOk) return s;
   *out = decoded;
   return ConstantsStatus::kOk;
@@ -93,6 +88,10 @@ void SurfaceToWords(const SurfaceQ31& s, int16_t* words) {
 }
 
 }  // namespace
+
+int8_t AdsSurfaceExponent(uint8_t law, int8_t out_exponent) {
+  return law == kAdsLawDirect ? out_exponent : kPressureExponent;
+}
 
 void AdsConstantsInit(AdsConstants* constants) {
   ZeroSurface(&constants->altitude, kAltitudeExponent);

@@ -65,6 +65,10 @@ enum AdsBlockId : uint8_t {
 inline constexpr uint8_t kAdsSurfaceBlockWords = 2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords + 1;
 inline constexpr uint8_t kAdsMaxBlockWords = kAdsSurfaceBlockWords;
 
+/// The exponent a surface's result must reach: the output's (`out_exponent`) when `law` is
+/// direct, the pressure's (kPressureExponent) under a law.
+int8_t AdsSurfaceExponent(uint8_t law, int8_t out_exponent);
+
 /// Uncalibrated state: all-zero direct surfaces (outputs read zero), centres 0, shifts 23.
 void AdsConstantsInit(AdsConstants* constants);
 
