@@ -1,13 +1,21 @@
 // The reference ADS surface fit (calib/solvers/ads_surface_fit.h) over one million points, the
 // issue-6 budget being <= 1 s. The points are a noiseless typical static bridge over the
 // calibration envelope (-1,000...50,000 ft x -40...+85 degC), synthesised in closed form here so
-// that only the fit is timed. Results: docs/performance.md.
+// that only the fit is timed. And the whole pressure_minimax strategy (tolerance_ads_strategy.h:
+// order selection by held-out temperatures, two Lawson minimax fits per surface) on one unit's
+// calibration points as the shipped ads_calibration sequence takes them (9 temperatures in its
+// order, 13 altitudes and 9 airspeeds each, sweeps alternating), from a drawn unit with every
+// effect on. Results: docs/performance.md.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
+#include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/solvers/ads_surface_fit.h"
+#include "sensor_sim/air_data.h"
+#include "sensor_sim/ads_unit.h"
 #include "sensor_sim/atmosphere.h"
 #include "sensor_sim/pressure_bridge.h"
 
@@ -41,6 +49,47 @@ void BM_ReferenceSurfaceFitMillionPoints(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kPoints);
 }
 BENCHMARK(BM_ReferenceSurfaceFitMillionPoints)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+std::vector<AdsCalibrationPoint> ShippedSequencePoints() {
+  const auto params = sensor_sim::AdsUnitParams::Draw("ADS-BENCH", 7, sensor_sim::ModelProfile::kTruth);
+  sensor_sim::AdsUnit unit(params, 1, 25.0);
+  std::vector<double> alts_ft = {-1000, 0, 1000, 2000, 3500, 5000, 7500, 10000, 15000, 20000, 30000, 40000, 50000};
+  std::vector<double> cas_kt = {30, 45, 60, 80, 100, 150, 250, 350, 450};
+  std::vector<AdsCalibrationPoint> points;
+  int step = 0;
+  for (double temp_c : {-40.0, -15.0, 25.0, 65.0, 85.0, 75.0, 45.0, 0.0, -30.0}) {
+    auto take = [&](double ps_pa, double qc_pa, bool airspeed) {
+      sensor_sim::AdsRawFrame f{};
+      for (int k = 0; k < 3; ++k) f = unit.Step({ps_pa, qc_pa, temp_c, temp_c});
+      AdsCalibrationPoint p;
+      p.step = step++;
+      p.ps_code = f.ps_cnt;
+      p.pt_code = f.pt_cnt;
+      p.ps_temp_code = f.ps_temp_cnt;
+      p.pt_temp_code = f.pt_temp_cnt;
+      p.ps_ref_pa = ps_pa;
+      p.qc_ref_pa = qc_pa;
+      p.chamber_c = temp_c;
+      p.airspeed_point = airspeed;
+      points.push_back(p);
+    };
+    for (double alt_ft : alts_ft) take(sensor_sim::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
+    for (double kt : cas_kt) {
+      take(sensor_sim::kIsaSeaLevelPressure_pa, sensor_sim::ImpactPressurePaFromKt(kt), true);
+    }
+    std::reverse(alts_ft.begin(), alts_ft.end());
+    std::reverse(cas_kt.begin(), cas_kt.end());
+  }
+  return points;
+}
+
+void BM_PressureMinimaxStrategyOneUnit(benchmark::State& state) {
+  const std::vector<AdsCalibrationPoint> points = ShippedSequencePoints();
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(FitAdsStrategy(kPressureAdsStrategyName, "ADS-BENCH", points));
+  }
+}
+BENCHMARK(BM_PressureMinimaxStrategyOneUnit)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace
 }  // namespace adahrs::calib

@@ -58,15 +58,37 @@ json SurfaceToJson(const SurfaceFit& s) {
   for (const auto& [value, name] : kLawNames) {
     if (value == s.law) law = name;
   }
-  return json{{"coeff_a_to_j", s.coeff},    {"x_min_code", s.x_min_code},
+  return json{{"coeff_x_y", s.coeff_xy},    {"x_min_code", s.x_min_code},
               {"x_max_code", s.x_max_code}, {"y_min_code", s.y_min_code},
               {"y_max_code", s.y_max_code}, {"law", law}};
+}
+
+// The coefficients: "coeff_x_y" (rows p = 0..3 of x, columns q = 0..5 of y), or, in files written
+// before the surface grew beyond the reference cubic, "coeff_a_to_j" in the reference's letters.
+SurfaceCoefficients CoefficientsFromJson(const json& j, const std::string& path) {
+  const bool xy = j.contains("coeff_x_y"), letters = j.contains("coeff_a_to_j");
+  if (xy == letters) {
+    throw std::runtime_error(path + ": expected exactly one of coeff_x_y and coeff_a_to_j");
+  }
+  SurfaceCoefficients c{};
+  if (letters) {
+    const auto a_to_j = Numbers<10>(j["coeff_a_to_j"], path + ".coeff_a_to_j");
+    for (int t = 0; t < 10; ++t) c[kReferenceCubicTerm[t].p][kReferenceCubicTerm[t].q] = a_to_j[t];
+    return c;
+  }
+  const std::string rows = path + ".coeff_x_y";
+  Array(j["coeff_x_y"], rows, kSurfaceXDegree + 1);
+  for (int p = 0; p <= kSurfaceXDegree; ++p) {
+    c[p] = Numbers<kSurfaceYDegree + 1>(j["coeff_x_y"][p], rows + "[" + std::to_string(p) + "]");
+  }
+  return c;
 }
 
 // `pressure_law` the one law this surface may carry besides "direct"; a surface without "law"
 // (files written before it existed) is direct.
 SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pressure_law) {
-  ExpectKeys(j, path, {"coeff_a_to_j", "x_min_code", "x_max_code", "y_min_code", "y_max_code"}, {"law"});
+  ExpectKeys(j, path, {"x_min_code", "x_max_code", "y_min_code", "y_max_code"},
+             {"law", "coeff_x_y", "coeff_a_to_j"});
   SurfaceFit s;
   if (j.contains("law")) {
     const std::string allowed = pressure_law == SurfaceLaw::kIsaAltitude ? "isa_altitude" : "cas";
@@ -75,7 +97,7 @@ SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pr
     }
     s.law = j["law"] == "direct" ? SurfaceLaw::kDirect : pressure_law;
   }
-  s.coeff = Numbers<10>(j["coeff_a_to_j"], path + ".coeff_a_to_j");
+  s.coeff_xy = CoefficientsFromJson(j, path);
   s.x_min_code = Number(j["x_min_code"], path + ".x_min_code");
   s.x_max_code = Number(j["x_max_code"], path + ".x_max_code");
   s.y_min_code = Number(j["y_min_code"], path + ".y_min_code");

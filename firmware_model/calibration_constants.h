@@ -13,9 +13,11 @@
 //   gyro (Eq. 23): rate_dps = l[0] + l[1] d + l[2] d^2 + l[3] d^3, d = T - null_cnt
 //   cross axis (Eq. 26, 29): A_mps2 = ca_mps2_per_g Ca_g (Ca per axis = mean of its two channels),
 //     G_dps = cg G_dps
-// ADS, per output: z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y,
-//   x = pressure code, y = bridge-voltage code (thesis section 2.9, Table 25), with the code box
-//   the surface was fitted over (the exporter normalises to it).
+// ADS, per output: z = sum_{p<=3, q<=5} coeff_xy[p][q] x^p y^q, x = pressure code, y = bridge-
+//   voltage code, with the code box the surface was fitted over (the exporter normalises to it).
+//   The reference method's 10-term cubic (thesis section 2.9, Table 25)
+//   z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y
+//   is the instance with every other coefficient zero (ReferenceCubicTerm maps its letters).
 // Not modelled: uncertainty of the constants, fit residual statistics (the solvers report those).
 #pragma once
 
@@ -55,8 +57,22 @@ struct ImuCalibrationConstants {
 /// ft or airspeed in kt; or the ISA altitude / CAS law, z being static / impact pressure in Pa.
 enum class SurfaceLaw { kDirect, kIsaAltitude, kCas };
 
+inline constexpr int kSurfaceXDegree = 3;
+inline constexpr int kSurfaceYDegree = 5;
+/// [p][q]: the coefficient of x^p y^q, in z units per count^(p+q).
+using SurfaceCoefficients =
+    std::array<std::array<double, kSurfaceYDegree + 1>, kSurfaceXDegree + 1>;
+
+/// The powers (p of x, q of y) of the reference cubic's letter `t` (a = 0 .. j = 9).
+struct XyPowers {
+  int p;
+  int q;
+};
+inline constexpr XyPowers kReferenceCubicTerm[10] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2},
+                                                     {1, 1}, {3, 0}, {0, 3}, {1, 2}, {2, 1}};
+
 struct SurfaceFit {
-  std::array<double, 10> coeff = {};  ///< a..j in the reference's letter order
+  SurfaceCoefficients coeff_xy = {};
   double x_min_code = 0.0;
   double x_max_code = 0.0;
   double y_min_code = 0.0;

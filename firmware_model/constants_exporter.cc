@@ -238,20 +238,17 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
     };
     q->x_norm = norm(s.x_min_code, s.x_max_code, "x");
     q->y_norm = norm(s.y_min_code, s.y_max_code, "y");
-    // Raw coefficient of x^p y^q, letter order a..j.
-    constexpr int kP[10] = {0, 1, 0, 2, 0, 1, 3, 0, 1, 2};
-    constexpr int kQ[10] = {0, 0, 1, 0, 2, 1, 0, 3, 2, 1};
-    Real raw[4][4] = {};
-    for (int t = 0; t < 10; ++t) raw[kP[t]][kQ[t]] = s.coeff[t];
+    constexpr int kPx = kSurfaceXDegree, kQy = kSurfaceYDegree;
+    static_assert(kPx == kAdsSurfaceXDegree && kQy == kAdsSurfaceYDegree);
     const Real cx = q->x_norm.centre, cy = q->y_norm.centre;
     const Real hx = std::ldexp(Real{1}, q->x_norm.shift), hy = std::ldexp(Real{1}, q->y_norm.shift);
-    Real norm_c[4][4] = {};  // coefficient of X^m Y^n
-    for (int m = 0; m < 4; ++m) {
-      for (int n = 0; m + n < 4; ++n) {
-        for (int p = m; p < 4; ++p) {
-          for (int r = n; p + r < 4; ++r) {
-            norm_c[m][n] += raw[p][r] * Binomial(p, m) * std::pow(cx, p - m) * std::pow(hx, m) *
-                            Binomial(r, n) * std::pow(cy, r - n) * std::pow(hy, n);
+    Real norm_c[kPx + 1][kQy + 1] = {};  // coefficient of X^m Y^n
+    for (int m = 0; m <= kPx; ++m) {
+      for (int n = 0; n <= kQy; ++n) {
+        for (int p = m; p <= kPx; ++p) {
+          for (int r = n; r <= kQy; ++r) {
+            norm_c[m][n] += Real{s.coeff_xy[p][r]} * Binomial(p, m) * std::pow(cx, p - m) *
+                            std::pow(hx, m) * Binomial(r, n) * std::pow(cy, r - n) * std::pow(hy, n);
           }
         }
       }
@@ -262,9 +259,8 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
       double bound = 0;
       Real sum = 0;
       bool aligned = true;
-      for (int k = 0; k < 4; ++k) {
-        std::vector<Real> c;
-        for (int n = 0; n <= 3 - k; ++n) c.push_back(norm_c[k][n]);
+      for (int k = 0; k <= kPx; ++k) {
+        std::vector<Real> c(norm_c[k], norm_c[k] + kQy + 1);
         Real sum_abs = 0;
         for (Real v : c) sum_abs += std::fabs(v);
         if (sum_abs >= std::ldexp(Real{1}, e)) {
@@ -279,7 +275,7 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
       }
       if (aligned && sum <= std::ldexp(Real{1}, e)) {
         q->outer_work_exponent = static_cast<int8_t>(e);
-        return bound + 4 * 3 * Lsb(e) + Lsb(out_e);
+        return bound + 4 * kPx * Lsb(e) + Lsb(out_e);
       }
     }
     throw std::invalid_argument(fmt::format(

@@ -1,6 +1,8 @@
 #include "firmware_model/golden_vectors.h"
 
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "firmware_model/target/ads_compensator.h"
 #include "firmware_model/target/imu_compensator.h"
@@ -14,9 +16,12 @@ template <typename Constants, typename ReadFn>
 json Blocks(const Constants& c, std::initializer_list<uint8_t> ids, ReadFn read) {
   json blocks = json::array();
   for (uint8_t id : ids) {
-    int16_t words[64];
+    constexpr uint8_t kCapacity = kImuMaxBlockWords > kAdsMaxBlockWords ? kImuMaxBlockWords : kAdsMaxBlockWords;
+    int16_t words[kCapacity];
     uint8_t count = 0;
-    read(&c, id, words, 64, &count);
+    if (read(&c, id, words, kCapacity, &count) != ConstantsStatus::kOk) {
+      throw std::logic_error("golden vectors: block " + std::to_string(id) + " cannot be read");
+    }
     blocks.push_back({{"id", id}, {"words", std::vector<int16_t>(words, words + count)}});
   }
   return blocks;

@@ -60,10 +60,16 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensa
   return out;
 }
 
+// Horner in y, then in x, in long double: the raw-code monomials of a degree-5 term cancel by up
+// to (box centre / half-width)^8 against each other.
 double EvaluateSurfaceFit(const SurfaceFit& s, double x, double y) {
-  const auto& k = s.coeff;
-  return k[0] + k[1] * x + k[2] * y + k[3] * x * x + k[4] * y * y + k[5] * x * y +
-         k[6] * x * x * x + k[7] * y * y * y + k[8] * x * y * y + k[9] * x * x * y;
+  long double z = 0;
+  for (int p = kSurfaceXDegree; p >= 0; --p) {
+    long double b = 0;
+    for (int q = kSurfaceYDegree; q >= 0; --q) b = b * y + s.coeff_xy[p][q];
+    z = z * x + b;
+  }
+  return static_cast<double>(z);
 }
 
 std::array<double, 2> AdsReference(const AdsCalibrationConstants& c, AdsCompensationMode mode,

@@ -7,6 +7,8 @@ namespace {
 
 nlohmann::json SurfaceDiagnostics(const SurfaceEstimate& e, const char* unit) {
   return {{"points", e.fit.fit.observations},
+          {"terms", e.terms},
+          {"y_degree", e.y_degree},
           {"dof", e.fit.fit.dof},
           {std::string("residual_rms_") + unit, e.residual_rms},
           {std::string("max_abs_residual_") + unit, e.max_abs_residual}};
@@ -45,8 +47,8 @@ AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstima
   }
   // The constants' own shape with the coefficients' standard errors (code box and law: null).
   firmware_model::AdsCalibrationConstants se = out.constants;
-  se.altitude_ft.coeff = alt.coeff_se;
-  se.airspeed_kt.coeff = cas.coeff_se;
+  se.altitude_ft.coeff_xy = alt.coeff_se;
+  se.airspeed_kt.coeff_xy = cas.coeff_se;
   out.standard_errors = AdsStandardErrorsJson(se);
   out.diagnostics = {{"altitude_ft", SurfaceDiagnostics(alt, pressure_laws ? "Pa" : "ft")},
                      {"airspeed_kt", SurfaceDiagnostics(cas, pressure_laws ? "Pa" : "kt")}};

@@ -3,8 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
+#include <limits>
+#include <set>
 #include <stdexcept>
+#include <tuple>
 
+#include <fmt/format.h>
+
+#include "calib/ads_calibration/bridge_history.h"
 #include "calib/evaluation/ads_tolerance.h"
 #include "firmware_model/air_data_law.h"
 #include "firmware_model/reference_compensator.h"
@@ -18,27 +25,43 @@ struct MinimaxSurface {
   double worst_ratio = 0.0;        ///< of the kept iterate
 };
 
+// The fit's value at a sample: the surface, plus its branch when the fit has history terms.
+double Fitted(const SurfaceEstimate& e, const SurfaceSample& s) {
+  double z = firmware_model::EvaluateSurfaceFit(e.surface, s.x_code, s.y_code);
+  if (e.history) z += e.history->pressure * s.s_pressure + e.history->thermal * s.s_thermal;
+  return z;
+}
+
 double WorstRatio(const SurfaceEstimate& e, const std::vector<SurfaceSample>& samples,
                   const std::vector<double>& tolerance, std::vector<double>& ratio) {
   double worst = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
-    const double fitted =
-        firmware_model::EvaluateSurfaceFit(e.surface, samples[i].x_code, samples[i].y_code);
-    ratio[i] = std::abs(fitted - samples[i].z) / tolerance[i];
+    ratio[i] = std::abs(Fitted(e, samples[i]) - samples[i].z) / tolerance[i];
     worst = std::max(worst, ratio[i]);
   }
   return worst;
 }
 
-MinimaxSurface FitMinimax(const std::string& context, std::vector<SurfaceSample> samples,
-                          const std::function<double(double)>& tolerance_of) {
-  std::vector<double> tolerance(samples.size()), ratio(samples.size());
-  for (size_t i = 0; i < samples.size(); ++i) {
-    tolerance[i] = tolerance_of(samples[i].z);
-    samples[i].weight = 1.0 / (tolerance[i] * tolerance[i]);
-  }
+std::vector<double> Tolerances(const std::vector<SurfaceSample>& samples,
+                               const std::function<double(double)>& tolerance_of) {
+  std::vector<double> tolerance(samples.size());
+  for (size_t i = 0; i < samples.size(); ++i) tolerance[i] = tolerance_of(samples[i].z);
+  return tolerance;
+}
+
+// Each sample weighted 1/tol^2 (the tolerance-weighted mean-square fit).
+void WeighByTolerance(std::vector<SurfaceSample>& samples, const std::vector<double>& tolerance) {
+  for (size_t i = 0; i < samples.size(); ++i) samples[i].weight = 1.0 / (tolerance[i] * tolerance[i]);
+}
+
+// Minimises max_i |r_i| / tolerance[i] (Lawson, from the 1/tol^2 fit).
+MinimaxSurface FitMinimax(const std::string& context, const PolynomialBasis& basis,
+                          HistoryTerms history, std::vector<SurfaceSample> samples,
+                          const std::vector<double>& tolerance) {
+  WeighByTolerance(samples, tolerance);
+  std::vector<double> ratio(samples.size());
   MinimaxSurface best;
-  best.estimate = FitReferenceSurface(context, samples);
+  best.estimate = FitSurface(context, basis, samples, history);
   best.first_worst_ratio = best.worst_ratio = WorstRatio(best.estimate, samples, tolerance, ratio);
   for (int k = 0; k < kLawsonIterations; ++k) {
     double sum = 0.0;
@@ -48,7 +71,7 @@ MinimaxSurface FitMinimax(const std::string& context, std::vector<SurfaceSample>
     }
     if (!(sum > 0.0)) break;  // an exact fit: nothing left to reweigh
     for (SurfaceSample& s : samples) s.weight = std::max(s.weight / sum, 1e-12);
-    SurfaceEstimate next = FitReferenceSurface(context, samples);
+    SurfaceEstimate next = FitSurface(context, basis, samples, history);
     const double worst = WorstRatio(next, samples, tolerance, ratio);
     if (worst < best.worst_ratio) {
       best.estimate = std::move(next);
@@ -58,17 +81,72 @@ MinimaxSurface FitMinimax(const std::string& context, std::vector<SurfaceSample>
   return best;
 }
 
+// Temperature order by held-out temperatures: for each candidate degree q of y (3 up to the
+// firmware's 5, and at most the number of chamber temperatures less 2, so that every fold still
+// determines the surface), each interior chamber temperature in turn is left out of the
+// tolerance-weighted (3, q) fit and the worst |error| / tolerance at its points is taken; the
+// score is the worst over the folds, and the lowest score wins. The extremes stay in every fold:
+// leaving one out would score extrapolation, which the envelope never asks of the surface.
+struct OrderChoice {
+  int y_degree = 3;
+  nlohmann::json held_out_worst_ratio = nlohmann::json::object();  ///< per candidate degree
+};
+
+OrderChoice ChooseYDegree(const std::string& context, std::vector<SurfaceSample> samples,
+                          const std::function<double(double)>& tolerance_of) {
+  const std::vector<double> tolerance = Tolerances(samples, tolerance_of);
+  WeighByTolerance(samples, tolerance);
+  std::set<long long> temperatures_dc;
+  for (const SurfaceSample& s : samples) temperatures_dc.insert(std::llround(10.0 * s.chamber_c));
+  const int max_degree = std::min<int>(firmware_model::kSurfaceYDegree,
+                                       static_cast<int>(temperatures_dc.size()) - 2);
+  OrderChoice choice;
+  double best_score = std::numeric_limits<double>::infinity();
+  for (int q = 3; q <= max_degree; ++q) {
+    const PolynomialBasis basis = PolynomialBasis::TensorSurface(firmware_model::kSurfaceXDegree, q, "x", "y");
+    double score = 0.0;
+    for (auto it = std::next(temperatures_dc.begin()); it != std::prev(temperatures_dc.end()); ++it) {
+      std::vector<SurfaceSample> kept;
+      std::vector<size_t> held;
+      for (size_t i = 0; i < samples.size(); ++i) {
+        if (std::llround(10.0 * samples[i].chamber_c) == *it) {
+          held.push_back(i);
+        } else {
+          kept.push_back(samples[i]);
+        }
+      }
+      const SurfaceEstimate e = FitSurface(
+          fmt::format("{} (y degree {}, {:.1f} degC held out)", context, q, *it / 10.0), basis,
+          kept, HistoryTerms::kPressureAndThermal);
+      for (size_t i : held) {
+        score = std::max(score, std::abs(Fitted(e, samples[i]) - samples[i].z) / tolerance[i]);
+      }
+    }
+    choice.held_out_worst_ratio[std::to_string(q)] = score;
+    if (score < best_score) {
+      best_score = score;
+      choice.y_degree = q;
+    }
+  }
+  return choice;
+}
+
 }  // namespace
 
 AdsFitResult FitToleranceAdsStrategy(const std::string& context,
                                      const std::vector<AdsCalibrationPoint>& points) {
   const AdsSurfaceSamples samples = SurfaceSamplesOf(points);
-  const MinimaxSurface alt = FitMinimax(context + ": altitude surface", samples.altitude, [](double ft) {
-    return AltitudeToleranceFt(std::clamp(ft, kAdsMinAltitudeFt, kAdsMaxAltitudeFt));
-  });
-  const MinimaxSurface cas = FitMinimax(context + ": airspeed surface", samples.airspeed, [](double kt) {
-    return AirspeedToleranceKt(std::clamp(kt, kAdsMinAirspeedKt, kAdsMaxAirspeedKt));
-  });
+  const PolynomialBasis cubic = PolynomialBasis::ReferenceCubicSurface("x", "y");
+  const MinimaxSurface alt = FitMinimax(
+      context + ": altitude surface", cubic, HistoryTerms::kNone, samples.altitude,
+      Tolerances(samples.altitude, [](double ft) {
+        return AltitudeToleranceFt(std::clamp(ft, kAdsMinAltitudeFt, kAdsMaxAltitudeFt));
+      }));
+  const MinimaxSurface cas = FitMinimax(
+      context + ": airspeed surface", cubic, HistoryTerms::kNone, samples.airspeed,
+      Tolerances(samples.airspeed, [](double kt) {
+        return AirspeedToleranceKt(std::clamp(kt, kAdsMinAirspeedKt, kAdsMaxAirspeedKt));
+      }));
   AdsFitResult out = AdsFitFromSurfaces(kToleranceAdsStrategyName, alt.estimate, cas.estimate);
   for (const auto& [key, m] : {std::pair{"altitude_ft", &alt}, std::pair{"airspeed_kt", &cas}}) {
     out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->first_worst_ratio;
@@ -81,26 +159,79 @@ AdsFitResult FitToleranceAdsStrategy(const std::string& context,
 AdsFitResult FitPressureAdsStrategy(const std::string& context,
                                     const std::vector<AdsCalibrationPoint>& points) {
   std::vector<SurfaceSample> ps, qc;
-  for (const AdsCalibrationPoint& p : points) {
-    ps.push_back({p.ps_code, p.ps_temp_code, p.ps_ref_pa, p.chamber_c});
-    if (p.airspeed_point) qc.push_back({p.pt_code, p.pt_temp_code, p.qc_ref_pa, p.chamber_c});
+  std::vector<BridgeBands> ps_bands, qc_bands;
+  const std::vector<PointHistory> history = BridgeHistoryOf(points);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const AdsCalibrationPoint& p = points[i];
+    const PointBands bands = EnvelopeBands(p);
+    const BridgeStates& s = history[i].static_bridge;
+    ps.push_back({p.ps_code, p.ps_temp_code, p.ps_ref_pa, p.chamber_c, 1.0, s.s_pressure, s.s_thermal});
+    ps_bands.push_back(bands.static_bridge);
+    if (p.airspeed_point) {
+      const BridgeStates& t = history[i].pitot_bridge;
+      qc.push_back({p.pt_code, p.pt_temp_code, p.qc_ref_pa, p.chamber_c, 1.0, t.s_pressure, t.s_thermal});
+      qc_bands.push_back(bands.pitot_bridge);
+    }
   }
   namespace fm = firmware_model;
-  const MinimaxSurface alt = FitMinimax(context + ": static pressure surface", ps, [](double pa) {
+  const std::function<double(double)> ps_tolerance = [](double pa) {
     const double ft = std::clamp(fm::IsaAltitudeFtFromStaticPa(pa), kAdsMinAltitudeFt, kAdsMaxAltitudeFt);
     const double ft_per_pa = fm::IsaAltitudeFtFromStaticPa(pa - 0.5) - fm::IsaAltitudeFtFromStaticPa(pa + 0.5);
     return AltitudeToleranceFt(ft) / ft_per_pa;
-  });
-  const MinimaxSurface cas = FitMinimax(context + ": impact pressure surface", qc, [](double pa) {
+  };
+  const std::function<double(double)> qc_tolerance = [](double pa) {
     const double kt = std::clamp(fm::CasKtFromImpactPa(pa), kAdsMinAirspeedKt, kAdsMaxAirspeedKt);
     const double kt_per_pa = fm::CasKtFromImpactPa(pa + 0.5) - fm::CasKtFromImpactPa(pa - 0.5);
     return AirspeedToleranceKt(kt) / kt_per_pa;
-  });
-  AdsFitResult out = AdsFitFromSurfaces(kPressureAdsStrategyName, alt.estimate, cas.estimate, true);
-  for (const auto& [key, m] : {std::pair{"altitude_ft", &alt}, std::pair{"airspeed_kt", &cas}}) {
-    out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->first_worst_ratio;
-    out.diagnostics[key]["worst_ratio_at_points"] = m->worst_ratio;
+  };
+  const std::string ps_context = context + ": static pressure surface";
+  const std::string qc_context = context + ": impact pressure surface";
+  auto relative_to_mid = [](std::vector<SurfaceSample> samples, const std::vector<BridgeBands>& bands) {
+    for (size_t i = 0; i < samples.size(); ++i) {
+      samples[i].s_pressure -= bands[i].pressure.mid;
+      samples[i].s_thermal -= bands[i].thermal.mid;
+    }
+    return samples;
+  };
+  const std::vector<SurfaceSample> ps_mid = relative_to_mid(ps, ps_bands);
+  const std::vector<SurfaceSample> qc_mid = relative_to_mid(qc, qc_bands);
+  const OrderChoice ps_order = ChooseYDegree(ps_context, ps_mid, ps_tolerance);
+  const OrderChoice qc_order = ChooseYDegree(qc_context, qc_mid, qc_tolerance);
+  // Two fits with the states as regressors. The first takes them as recorded: its surface is the
+  // loop's centre, and its coefficients the half loops (diagnostics, checked against the truth in
+  // the tests). The second takes each point's state relative to the middle of its envelope band,
+  // so that its surface reads that middle: the smallest worst error over the envelope's
+  // histories. The second's surface is the one exported; its history coefficients also absorb
+  // what the polynomial cannot follow of the band's middle, so they are not reported.
+  struct Fitted {
+    MinimaxSurface centre;
+    MinimaxSurface surface;
+  };
+  auto fit = [](const std::string& what, const OrderChoice& order, const std::vector<SurfaceSample>& recorded,
+                const std::vector<SurfaceSample>& mid, const std::function<double(double)>& tolerance_of) {
+    const PolynomialBasis basis =
+        PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, order.y_degree, "x", "y");
+    const std::vector<double> tolerance = Tolerances(recorded, tolerance_of);
+    return Fitted{FitMinimax(what, basis, HistoryTerms::kPressureAndThermal, recorded, tolerance),
+                  FitMinimax(what, basis, HistoryTerms::kPressureAndThermal, mid, tolerance)};
+  };
+  const Fitted alt = fit(ps_context, ps_order, ps, ps_mid, ps_tolerance);
+  const Fitted cas = fit(qc_context, qc_order, qc, qc_mid, qc_tolerance);
+  AdsFitResult out =
+      AdsFitFromSurfaces(kPressureAdsStrategyName, alt.surface.estimate, cas.surface.estimate, true);
+  for (const auto& [key, m, order] : {std::tuple{"altitude_ft", &alt, &ps_order},
+                                      std::tuple{"airspeed_kt", &cas, &qc_order}}) {
+    out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->surface.first_worst_ratio;
+    out.diagnostics[key]["worst_ratio_at_points"] = m->surface.worst_ratio;
     out.diagnostics[key]["lawson_iterations"] = kLawsonIterations;
+    out.diagnostics[key]["held_out_worst_ratio_by_y_degree"] = order->held_out_worst_ratio;
+    // The half loops the centre fit separated, Pa per unit state (c = -FS h / 2 for a loop of
+    // h FSO between the branches), and how far its centre fits the points.
+    const HysteresisEstimate& h = *m->centre.estimate.history;
+    out.diagnostics[key]["hysteresis"] = {
+        {"pressure_half_loop_Pa", h.pressure}, {"pressure_half_loop_se_Pa", h.pressure_se},
+        {"thermal_half_loop_Pa", h.thermal},   {"thermal_half_loop_se_Pa", h.thermal_se},
+        {"centre_fit_worst_ratio_at_points", m->centre.worst_ratio}};
     out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
                                                                     : "CAS from impact pressure";
   }

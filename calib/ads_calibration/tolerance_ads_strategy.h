@@ -1,6 +1,5 @@
-// An improved ADS strategy that the present firmware can run: the reference's 10-term bivariate
-// cubic surfaces (reference_ads_strategy.h), fitted for the specification rather than for the
-// mean square. The tolerance is tight at low altitude (+-15 ft) and loose at 50,000 ft (+-80 ft),
+// Improved ADS strategies that the firmware runs: surfaces fitted for the specification rather
+// than for the mean square. The tolerance is tight at low altitude (+-15 ft) and loose at 50,000 ft (+-80 ft),
 // tight at 300-450 kt (+-1 kt) and loose at 60 kt (+-5 kt); an equal-weight fit spends its
 // freedom evenly and leaves the tight end far outside. Here the quantity minimised is the worst
 // error in units of the tolerance at the calibration points, max_i |r_i| / tol_i, by Lawson's
@@ -12,9 +11,9 @@
 // Output as the reference's (constants, standard errors from the weighted residual variance,
 // diagnostics) plus, per output, the worst ratio at the points of the first (1/tol^2) fit and of
 // the kept one.
-// Left out: anything the 10-term cubic cannot hold (the bridge's high-order temperature
-// behaviour and its hysteresis: docs/calibration-strategies.md); neither form brings every
-// error inside the specification.
+// Left out: hysteresis (a single-valued surface returns one branch; the evaluation quantifies the
+// loop: docs/calibration-strategies.md); tolerance_minimax also keeps the 10-term cubic's
+// temperature order, which cannot follow the bridge over -40...+85 degC.
 #pragma once
 
 #include <string>
@@ -33,12 +32,16 @@ inline constexpr int kLawsonIterations = 40;
 AdsFitResult FitToleranceAdsStrategy(const std::string& context,
                                      const std::vector<AdsCalibrationPoint>& points);
 
-/// The same minimax, for the firmware's pressure laws (air_data_law.h): the 10-term cubic surfaces
-/// of the test set's static and impact pressure (Pa), each point's tolerance carried into Pa by
-/// the law's local slope (tol_Pa = tol_ft |dp/dh|, tol_kt dqc/dCAS), and the ISA and CAS laws
-/// after them in the firmware. Pressure is the variable the bridge is nearly linear in; altitude
-/// and airspeed are not (logarithmic and square-root laws), which is what the direct cubic wastes
-/// its terms on.
+/// The same minimax, for the firmware's pressure laws (air_data_law.h): surfaces of the test set's
+/// static and impact pressure (Pa), each point's tolerance carried into Pa by the law's local
+/// slope (tol_Pa = tol_ft |dp/dh|, tol_kt dqc/dCAS), and the ISA and CAS laws after them in the
+/// firmware. Pressure is the variable the bridge is nearly linear in; altitude and airspeed are
+/// not (logarithmic and square-root laws), which is what the direct cubic wastes its terms on.
+/// Each surface is the full tensor of degree 3 in the pressure code and q in the temperature code,
+/// q in 3..5 chosen by held-out chamber temperatures (each interior temperature left out in turn,
+/// the worst held-out |error| / tolerance compared; diagnostics list every candidate's score).
+/// The bridge's ratiometric span tempco makes its temperature behaviour high order in the
+/// bridge-voltage code; q = 5 needs at least 7 chamber temperatures to be a candidate.
 AdsFitResult FitPressureAdsStrategy(const std::string& context,
                                     const std::vector<AdsCalibrationPoint>& points);
 

@@ -88,21 +88,28 @@ std::vector<uint8_t> EffectiveTags(const Sequence& sequence) {
     }
     used[static_cast<size_t>(*tag)] = true;
   }
+  std::vector<int> free_tags;  // the TAGs no step states, taken in turn and reused cyclically
+  for (int t = 1; t <= kMaxTag; ++t) {
+    if (!used[static_cast<size_t>(t)]) free_tags.push_back(t);
+  }
   std::vector<uint8_t> tags;
-  int next = 1;
+  size_t next = 0;
   for (size_t i = 0; i < sequence.steps.size(); ++i) {
     const std::optional<int>& tag = sequence.steps[i].tag;
     if (tag) {
       tags.push_back(static_cast<uint8_t>(*tag));
       continue;
     }
-    while (next <= kMaxTag && used[static_cast<size_t>(next)]) ++next;
-    if (next > kMaxTag) {
-      throw std::invalid_argument("step " + std::to_string(i) +
-                                  ": no TAG left in 1…255 to assign");
+    if (free_tags.empty()) {
+      throw std::invalid_argument("step " + std::to_string(i) + ": no TAG left in 1…255 to assign");
     }
-    used[static_cast<size_t>(next)] = true;
-    tags.push_back(static_cast<uint8_t>(next));
+    const int t = free_tags[next++ % free_tags.size()];
+    if (!tags.empty() && tags.back() == t) {
+      throw std::invalid_argument("step " + std::to_string(i) + ": TAG " + std::to_string(t) +
+                                  " would follow itself (one TAG left in 1…255 for " +
+                                  "consecutive steps)");
+    }
+    tags.push_back(static_cast<uint8_t>(t));
   }
   return tags;
 }

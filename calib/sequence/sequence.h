@@ -18,8 +18,12 @@
 //   log                 acquire ADS packets: N packets or a duration.
 //   prompt              an operator action; answered by the virtual fixture in simulated runs.
 // TAG: every step carries a one-byte TAG (1…255) written into every packet acquired in it
-// (docs/recording-format.md). A step may state it; steps that do not get the smallest TAG not
-// yet used, in step order (EffectiveTags()).
+// (docs/recording-format.md). A step may state it (each stated TAG once); steps that do not take
+// the TAGs no step states, in ascending order and step order, starting over after the last: a
+// sequence may be longer than 255 steps, and consecutive steps never share a TAG, which is all
+// the TAG has to tell apart (a packet still in flight from the step before). Every row also
+// carries its step index, so a TAG reused many steps later is never mistaken
+// (EffectiveTags()).
 // Orientation codes: two digits, axis made vertical (1 x_B, 2 y_B, 3 z_B) and sense (1 up,
 // 2 down), as rig_sim/fixture_orientation.h defines them for the rig.
 // Not represented: the chamber's guaranteed-soak flag per profile step, event outputs and
@@ -148,9 +152,10 @@ const char* UnitKindName(UnitKind kind);
 /// increment is not positive (validation refuses such steps first).
 std::vector<double> GyroRates_dps(const GyroStep& step);
 
-/// The TAG of every step: the explicit one, or the smallest of 1…255 not used before it (and not
-/// stated explicitly by any step). Throws std::invalid_argument naming the step when TAGs are
-/// duplicated or run out; validation reports the same problems as data.
+/// The TAG of every step: the explicit one, or the next of the TAGs no step states (ascending,
+/// starting over after the last). Throws std::invalid_argument naming the step when a stated TAG
+/// is duplicated, none is left to assign, or two consecutive steps would share one; validation
+/// reports the same problems as data.
 std::vector<uint8_t> EffectiveTags(const Sequence& sequence);
 
 }  // namespace adahrs::calib

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -340,9 +341,14 @@ class Checker {
         first_user[static_cast<size_t>(*tag)] = static_cast<int>(i);
       }
     }
-    if (sequence.steps.size() > 255) {
-      Add("$.steps", fmt::format("{} steps, but only 255 TAGs exist", sequence.steps.size()),
-          "one-byte TAG 1…255");
+    bool explicit_ok = true;
+    for (const SequenceProblem& p : problems_) explicit_ok = explicit_ok && p.path.find(".tag") == std::string::npos;
+    if (explicit_ok) {
+      try {
+        EffectiveTags(sequence);
+      } catch (const std::invalid_argument& e) {
+        Add("$.steps", e.what(), "one-byte TAG 1…255, consecutive steps distinct");
+      }
     }
   }
 

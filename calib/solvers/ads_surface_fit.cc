@@ -1,31 +1,40 @@
 #include "calib/solvers/ads_surface_fit.h"
 
 #include <cmath>
+#include <limits>
 #include <set>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 namespace adahrs::calib {
 
-SurfaceEstimate FitReferenceSurface(const std::string& context,
-                                    const std::vector<SurfaceSample>& samples,
-                                    const LeastSquaresOptions& options) {
-  constexpr int kMinTemperatures = 4;
+SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& basis,
+                           const std::vector<SurfaceSample>& samples, HistoryTerms history,
+                           const LeastSquaresOptions& options) {
+  namespace fm = firmware_model;
+  if (basis.MaxXPower() > fm::kSurfaceXDegree || basis.MaxYPower() > fm::kSurfaceYDegree) {
+    throw std::invalid_argument(fmt::format(
+        "{}: a surface of degree ({}, {}) exceeds the firmware's ({}, {})", context,
+        basis.MaxXPower(), basis.MaxYPower(), fm::kSurfaceXDegree, fm::kSurfaceYDegree));
+  }
+  const int min_temperatures = basis.MaxYPower() + 1;
   std::set<long long> temperatures_dc;  // chamber temperatures to 0.1 degC
   for (const SurfaceSample& s : samples) temperatures_dc.insert(std::llround(10.0 * s.chamber_c));
-  if (static_cast<int>(temperatures_dc.size()) < kMinTemperatures) {
+  if (static_cast<int>(temperatures_dc.size()) < min_temperatures) {
     throw DegenerateDesignError(fmt::format(
-        "{}: design refused: {} chamber temperature(s), the cubic's y, y^2, y^3 terms need at "
+        "{}: design refused: {} chamber temperature(s), the surface's terms up to y^{} need at "
         "least {} (too few temperatures)",
-        context, temperatures_dc.size(), kMinTemperatures));
+        context, temperatures_dc.size(), basis.MaxYPower(), min_temperatures));
   }
+  const int min_references = basis.MaxXPower() + 1;
   std::set<double> references;
   for (const SurfaceSample& s : samples) references.insert(s.z);
-  if (static_cast<int>(references.size()) < kMinTemperatures) {
+  if (static_cast<int>(references.size()) < min_references) {
     throw DegenerateDesignError(fmt::format(
-        "{}: design refused: {} distinct reference value(s), the cubic's x, x^2, x^3 terms need "
-        "at least 4 (too few altitudes or airspeeds)",
-        context, references.size()));
+        "{}: design refused: {} distinct reference value(s), the surface's terms up to x^{} need "
+        "at least {} (too few altitudes or airspeeds)",
+        context, references.size(), basis.MaxXPower(), min_references));
   }
   PolynomialObservations obs;
   bool weighted = false;
@@ -37,14 +46,31 @@ SurfaceEstimate FitReferenceSurface(const std::string& context,
     weighted = weighted || s.weight != 1.0;
   }
   if (!weighted) obs.weights.clear();
-  const PolynomialBasis basis = PolynomialBasis::ReferenceCubicSurface("x", "y");
+  if (history == HistoryTerms::kPressureAndThermal) {
+    obs.extra_names = {"s_pressure", "s_thermal"};
+    obs.extra_columns.resize(2);
+    for (const SurfaceSample& s : samples) {
+      obs.extra_columns[0].push_back(s.s_pressure);
+      obs.extra_columns[1].push_back(s.s_thermal);
+    }
+  }
   SurfaceEstimate out;
+  for (auto& row : out.coeff_se) row.fill(std::numeric_limits<double>::quiet_NaN());
   out.fit = FitPolynomial(context, basis, obs, WeightKind::kInverseVariance,
                           ErrorScale::kResidualVariance, options);
-  for (int i = 0; i < 10; ++i) {
-    out.surface.coeff[i] = out.fit.raw_coefficients[i];
-    out.coeff_se[i] = out.fit.raw_standard_errors[i];
+  for (int i = 0; i < basis.size(); ++i) {
+    const Monomial& m = basis.terms()[i];
+    out.surface.coeff_xy[m.x_power][m.y_power] = out.fit.raw_coefficients[i];
+    out.coeff_se[m.x_power][m.y_power] = out.fit.raw_standard_errors[i];
   }
+  if (history == HistoryTerms::kPressureAndThermal) {
+    const Eigen::Index k = basis.size();
+    out.history = HysteresisEstimate{out.fit.raw_coefficients[k], out.fit.raw_standard_errors[k],
+                                     out.fit.raw_coefficients[k + 1],
+                                     out.fit.raw_standard_errors[k + 1]};
+  }
+  out.terms = basis.size();
+  out.y_degree = basis.MaxYPower();
   out.surface.x_min_code = out.fit.x_min;
   out.surface.x_max_code = out.fit.x_max;
   out.surface.y_min_code = out.fit.y_min;
@@ -52,6 +78,13 @@ SurfaceEstimate FitReferenceSurface(const std::string& context,
   out.residual_rms = out.fit.fit.residual_rms;
   out.max_abs_residual = out.fit.fit.max_abs_residual;
   return out;
+}
+
+SurfaceEstimate FitReferenceSurface(const std::string& context,
+                                    const std::vector<SurfaceSample>& samples,
+                                    const LeastSquaresOptions& options) {
+  return FitSurface(context, PolynomialBasis::ReferenceCubicSurface("x", "y"), samples,
+                    HistoryTerms::kNone, options);
 }
 
 }  // namespace adahrs::calib

@@ -1,30 +1,37 @@
-// Reference air-data surface (thesis sections 2.9.1 and 4.3.1, Table 25): the 10-term bivariate
-// cubic
+// Air-data surfaces (thesis sections 2.9.1 and 4.3.1, Table 25): a bivariate polynomial of the
+// pressure code x (static for altitude or static pressure, pitot for airspeed or impact pressure)
+// and the same bridge's temperature code y (its bridge voltage), fitted to the reference values of
+// an air data test set at several chamber temperatures. The reference method's is the 10-term cubic
 //   z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y
-// with x the pressure code (static for altitude in ft, pitot for airspeed in kt) and y the same
-// bridge's temperature code (its bridge voltage), fitted to the reference values of an air data
-// test set at several chamber temperatures. Fitted in normalised inputs (the code box mapped onto
+// (FitReferenceSurface); FitSurface takes any basis the firmware can hold (powers of x up to 3,
+// of y up to 5: firmware_model::SurfaceFit). Fitted in normalised inputs (the code box mapped onto
 // [-1, 1]^2) and re-expanded in raw codes for firmware_model::SurfaceFit, with the box, which the
 // exporter normalises to again (polynomial_basis.h).
 // Weighting: equal, as the reference's TableCurve 3-D fit (the reference instead places more
 // points where the tolerance is tight), unless the samples carry weights (the tolerance-weighted
-// strategy, tolerance_ads_strategy.h): then sum w_i r_i^2 is minimised, w_i read as relative
-// inverse variances. Standard errors from the residual variance; the residuals
-// here are mostly model error (the cubic cannot follow the bridge's temperature behaviour), so they
+// strategies, tolerance_ads_strategy.h): then sum w_i r_i^2 is minimised, w_i read as relative
+// inverse variances. Standard errors from the residual variance; the residuals here are mostly
+// model error (a polynomial cannot follow the bridge's temperature behaviour exactly), so they
 // describe the fit's spread, not noise.
-// Refused: fewer than 4 distinct chamber temperatures (the y, y^2, y^3 terms need four; the
-// bridge-voltage code alone cannot show it, since pressure and noise move it slightly even at one
-// temperature and normalisation would stretch that into a spurious regressor), fewer than 4
-// distinct reference values (likewise for x, x^2, x^3: the pressure code moves with temperature), fewer than 11
-// points, or a degenerate design (the message names the near-null combination of terms).
-// Not modelled: pressure or thermal hysteresis (a single-valued surface cannot).
+// Refused: fewer distinct chamber temperatures than the highest power of y plus one (the bridge-
+// voltage code alone cannot show it, since pressure and noise move it slightly even at one
+// temperature and normalisation would stretch that into a spurious regressor), fewer distinct
+// reference values than the highest power of x plus one (likewise: the pressure code moves with
+// temperature), no more points than terms, or a degenerate design (the message names the
+// near-null combination of terms).
+// Hysteresis: a single-valued surface cannot hold it; with HistoryTerms the fit separates the
+// points' branch (their hysteresis states, bridge_history.h) from the surface, which is then the
+// loop's centre. The states must vary independently of x and y for that (a sequence that
+// approaches temperatures and pressures from both sides); otherwise the design is refused as
+// degenerate, naming the state.
 #pragma once
 
-#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "calib/solvers/linear_least_squares.h"
+#include "calib/solvers/polynomial_basis.h"
 #include "calib/solvers/polynomial_fit.h"
 #include "firmware_model/calibration_constants.h"
 
@@ -33,21 +40,47 @@ namespace adahrs::calib {
 struct SurfaceSample {
   double x_code = 0.0;  ///< pressure code
   double y_code = 0.0;  ///< bridge-voltage (temperature) code
-  double z = 0.0;       ///< reference value: altitude ft or airspeed kt
+  double z = 0.0;       ///< reference value: altitude ft, airspeed kt, or pressure Pa
   double chamber_c = 0.0;  ///< the step's chamber temperature (reference instrument), degC
   double weight = 1.0;     ///< > 0; all 1 in the reference strategy
+  double s_pressure = 0.0; ///< the bridge's pressure hysteresis state (bridge_history.h)
+  double s_thermal = 0.0;  ///< its thermal hysteresis state
+};
+
+/// Whether the fit carries the bridge's hysteresis states as regressors: z = surface(x, y)
+/// + c_P s_P + c_T s_T. The surface is then the loop's centre (what a unit without history reads);
+/// c_P and c_T are the half loops in z units.
+enum class HistoryTerms { kNone, kPressureAndThermal };
+
+struct HysteresisEstimate {
+  double pressure = 0.0;     ///< c_P, z units per unit state
+  double pressure_se = 0.0;
+  double thermal = 0.0;      ///< c_T
+  double thermal_se = 0.0;
 };
 
 struct SurfaceEstimate {
-  firmware_model::SurfaceFit surface;     ///< raw-code coefficients a..j and the code box
-  std::array<double, 10> coeff_se{};      ///< standard errors of the raw coefficients
+  firmware_model::SurfaceFit surface;           ///< raw-code coefficients and the code box
+  firmware_model::SurfaceCoefficients coeff_se{};  ///< standard errors of the raw coefficients
+                                                   ///< (NaN for a term outside the basis: held
+                                                   ///< at zero, not fitted; null in the file)
   PolynomialFit fit;                      ///< normalised fit, covariance and diagnostics
+  int terms = 0;                          ///< the basis's size
+  int y_degree = 0;                       ///< its highest power of y
+  std::optional<HysteresisEstimate> history;  ///< with HistoryTerms::kPressureAndThermal
   double residual_rms = 0.0;              ///< z units
   double max_abs_residual = 0.0;          ///< z units
 };
 
-/// Fits the reference surface; `context` ("altitude surface") leads every message; throws
-/// DegenerateDesignError with the reason.
+/// Fits `basis` (its x and y are the pressure and temperature codes; powers within the firmware's
+/// 3 and 5); `context` ("altitude surface") leads every message; throws DegenerateDesignError with
+/// the reason, std::invalid_argument for a basis the firmware cannot hold.
+SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& basis,
+                           const std::vector<SurfaceSample>& samples,
+                           HistoryTerms history = HistoryTerms::kNone,
+                           const LeastSquaresOptions& options = {});
+
+/// FitSurface with the reference's 10-term cubic.
 SurfaceEstimate FitReferenceSurface(const std::string& context,
                                     const std::vector<SurfaceSample>& samples,
                                     const LeastSquaresOptions& options = {});

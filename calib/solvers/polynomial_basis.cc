@@ -1,5 +1,6 @@
 #include "calib/solvers/polynomial_basis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -41,6 +42,27 @@ PolynomialBasis PolynomialBasis::ReferenceCubicSurface(std::string x_name, std::
   return PolynomialBasis(
       {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2}, {1, 1}, {3, 0}, {0, 3}, {1, 2}, {2, 1}},
       std::move(x_name), std::move(y_name));
+}
+
+PolynomialBasis PolynomialBasis::TensorSurface(int x_degree, int y_degree, std::string x_name,
+                                               std::string y_name) {
+  std::vector<Monomial> terms;
+  for (int p = 0; p <= x_degree; ++p) {
+    for (int q = 0; q <= y_degree; ++q) terms.push_back({p, q});
+  }
+  return PolynomialBasis(std::move(terms), std::move(x_name), std::move(y_name));
+}
+
+int PolynomialBasis::MaxXPower() const {
+  int m = 0;
+  for (const Monomial& t : terms_) m = std::max(m, t.x_power);
+  return m;
+}
+
+int PolynomialBasis::MaxYPower() const {
+  int m = 0;
+  for (const Monomial& t : terms_) m = std::max(m, t.y_power);
+  return m;
 }
 
 std::vector<std::string> PolynomialBasis::TermNames() const {

@@ -8,7 +8,8 @@
 //   u^i v^j = sum_{k<=i} sum_{l<=j} C(i,k) (-c_x)^(i-k) s_x^-i C(j,l) (-c_y)^(j-l) s_y^-j x^k y^l,
 // a linear map b = T a of the coefficients, so the raw covariance is T Cov_a T' (exact, no
 // linearisation). The map needs every lower monomial x^k y^l of a term in the basis, which holds
-// for the complete-degree bases used here (1-D polynomials and the reference's 10-term cubic).
+// for the complete-degree and tensor bases used here (1-D polynomials, the reference's 10-term
+// cubic, the (3, q) surfaces of the improved ADS strategy).
 // Not modelled: orthogonal-polynomial bases (monomials on [-1, 1] are well enough conditioned to
 // degree 3).
 #pragma once
@@ -46,6 +47,12 @@ class PolynomialBasis {
   /// The reference's 10-term cubic (thesis section 4.3.1) in its letter order a..j:
   /// 1, x, y, x^2, y^2, x y, x^3, y^3, x y^2, x^2 y.
   static PolynomialBasis ReferenceCubicSurface(std::string x_name, std::string y_name);
+  /// Every x^p y^q with p <= x_degree, q <= y_degree, ordered by p then q.
+  static PolynomialBasis TensorSurface(int x_degree, int y_degree, std::string x_name,
+                                       std::string y_name);
+  /// The largest power of x and of y among the terms.
+  int MaxXPower() const;
+  int MaxYPower() const;
 
   int size() const { return static_cast<int>(terms_.size()); }
   const std::vector<Monomial>& terms() const { return terms_; }

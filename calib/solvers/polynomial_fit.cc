@@ -8,7 +8,8 @@
 namespace adahrs::calib {
 
 double PolynomialFit::Evaluate(const PolynomialBasis& basis, double x, double y) const {
-  return basis.Evaluate(normalised_coefficients, x_scaling.Normalise(x), y_scaling.Normalise(y));
+  return basis.Evaluate(normalised_coefficients.head(basis.size()), x_scaling.Normalise(x),
+                        y_scaling.Normalise(y));
 }
 
 PolynomialFit FitPolynomial(const std::string& context, const PolynomialBasis& basis,
@@ -22,6 +23,19 @@ PolynomialFit FitPolynomial(const std::string& context, const PolynomialBasis& b
                                             context, n, obs.y.size(), obs.z.size(),
                                             obs.weights.size()));
   }
+  if (obs.extra_names.size() != obs.extra_columns.size()) {
+    throw std::invalid_argument(fmt::format("{}: {} extra columns but {} names", context,
+                                            obs.extra_columns.size(), obs.extra_names.size()));
+  }
+  for (size_t c = 0; c < obs.extra_columns.size(); ++c) {
+    if (obs.extra_columns[c].size() != n) {
+      throw std::invalid_argument(fmt::format("{}: extra column {} has {} values for {} observations",
+                                              context, obs.extra_names[c],
+                                              obs.extra_columns[c].size(), n));
+    }
+  }
+  const Eigen::Index terms = basis.size();
+  const Eigen::Index extras = static_cast<Eigen::Index>(obs.extra_columns.size());
   PolynomialFit out;
   if (n > 0) {
     const auto [x_lo, x_hi] = std::minmax_element(obs.x.begin(), obs.x.end());
@@ -39,12 +53,16 @@ PolynomialFit FitPolynomial(const std::string& context, const PolynomialBasis& b
   LinearLeastSquaresProblem problem;
   problem.context = context;
   problem.term_names = basis.TermNames();
-  problem.design.resize(static_cast<Eigen::Index>(n), basis.size());
+  problem.term_names.insert(problem.term_names.end(), obs.extra_names.begin(), obs.extra_names.end());
+  problem.design.resize(static_cast<Eigen::Index>(n), terms + extras);
   problem.observations.resize(static_cast<Eigen::Index>(n));
   for (size_t i = 0; i < n; ++i) {
     const double v = bivariate ? out.y_scaling.Normalise(obs.y[i]) : 0.0;
-    problem.design.row(static_cast<Eigen::Index>(i)) =
-        basis.Row(out.x_scaling.Normalise(obs.x[i]), v);
+    const auto row = static_cast<Eigen::Index>(i);
+    problem.design.row(row).head(terms) = basis.Row(out.x_scaling.Normalise(obs.x[i]), v);
+    for (Eigen::Index c = 0; c < extras; ++c) {
+      problem.design(row, terms + c) = obs.extra_columns[static_cast<size_t>(c)][i];
+    }
     problem.observations[static_cast<Eigen::Index>(i)] = obs.z[i];
   }
   if (!obs.weights.empty()) {
@@ -56,7 +74,8 @@ PolynomialFit FitPolynomial(const std::string& context, const PolynomialBasis& b
 
   out.fit = SolveLinearLeastSquares(problem, options);
   out.normalised_coefficients = out.fit.coefficients;
-  const Eigen::MatrixXd t = basis.NormalisedToRaw(out.x_scaling, out.y_scaling);
+  Eigen::MatrixXd t = Eigen::MatrixXd::Identity(terms + extras, terms + extras);
+  t.topLeftCorner(terms, terms) = basis.NormalisedToRaw(out.x_scaling, out.y_scaling);
   out.raw_coefficients = t * out.normalised_coefficients;
   out.raw_covariance = t * out.fit.covariance * t.transpose();
   out.raw_standard_errors = out.raw_covariance.diagonal().cwiseSqrt();

@@ -14,14 +14,14 @@ int32_t EvaluateSurface(DspEngine* engine, const SurfaceQ31& s, int8_t out_expon
   const int32_t x = NormaliseQ31(engine, x_code, 31, s.x_norm);
   const int32_t y = NormaliseQ31(engine, y_code, 31, s.y_norm);
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
-  int32_t b[4];
-  for (uint8_t k = 0; k < 4; ++k) {
-    b[k] = HornerQ31(engine, Acc::kA, s.b[k], static_cast<uint8_t>(3 - k), y);
+  int32_t b[kAdsSurfaceXDegree + 1];
+  for (uint8_t k = 0; k <= kAdsSurfaceXDegree; ++k) {
+    b[k] = HornerQ31(engine, Acc::kA, s.b[k], kAdsSurfaceYDegree, y);
   }
-  LoadQ31(engine, Acc::kA, b[3]);
-  engine->Sftac(Acc::kA, static_cast<int8_t>(s.outer_work_exponent - s.b[3].work_exponent));
+  LoadQ31(engine, Acc::kA, b[kAdsSurfaceXDegree]);
+  engine->Sftac(Acc::kA, static_cast<int8_t>(s.outer_work_exponent - s.b[kAdsSurfaceXDegree].work_exponent));
   int32_t z = ReadQ31(engine, Acc::kA);
-  for (int32_t k = 2; k >= 0; --k) {
+  for (int32_t k = kAdsSurfaceXDegree - 1; k >= 0; --k) {
     MulQ31(engine, Acc::kA, z, x);
     LoadQ31(engine, Acc::kB, b[k]);
     engine->Sftac(Acc::kB, static_cast<int8_t>(s.outer_work_exponent - s.b[k].work_exponent));

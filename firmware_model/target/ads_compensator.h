@@ -2,7 +2,7 @@
 // airspeed out as Q31 values, every operation an instruction of the DSP engine model (issue 3;
 // reference-method.md step 6, thesis section 2.9).
 //
-// Each output is the 10-term bivariate cubic surface of ads_constants.h in x = normalised pressure
+// Each output is the degree (3, 5) surface of ads_constants.h in x = normalised pressure
 // code and y = normalised bridge-voltage (temperature) code, by nested Horner: the four b_k(y)
 // first (Horner at their own working exponents), then Horner in x at the surface's working
 // exponent, then one saturating SFTAC to the output format: altitude and airspeed themselves

@@ -5,11 +5,12 @@
 namespace adahrs::firmware_model {
 namespace {
 
-// Letter index (a = 0 .. j = 9) of coefficient k of b_i(y), per ads_constants.h:
-// b0 = a + c y + e y^2 + h y^3, b1 = b + f y + i y^2, b2 = d + j y, b3 = g.
-constexpr uint8_t kLetterOf[4][4] = {{0, 2, 4, 7}, {1, 5, 8, 0}, {3, 9, 0, 0}, {6, 0, 0, 0}};
+constexpr uint8_t kHeadWords = 2 * kNormWords + 1 + (kAdsSurfaceXDegree + 1);
 
-uint8_t InnerDegree(uint8_t i) { return static_cast<uint8_t>(3 - i); }
+// Word offset of coefficient c_in (of y^n in b_i) in the block.
+uint8_t CoeffOffset(uint8_t i, uint8_t n) {
+  return static_cast<uint8_t>(kHeadWords + kCoeffWords * (i * (kAdsSurfaceYDegree + 1) + n));
+}
 
 void ZeroSurface(SurfaceQ31* s, int8_t out_exponent) {
   s->x_norm = InputNormQ31{0, 23};
@@ -51,20 +52,19 @@ ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, uint
   s = NormFromWords(words + kNormWords, 31, &decoded.y_norm);
   if (s != ConstantsStatus::kOk) return s;
   const int16_t* w = words + 2 * kNormWords;
-  for (uint8_t i = 0; i < 5; ++i) {
+  for (uint8_t i = 0; i < 1 + kAdsSurfaceXDegree + 1; ++i) {
     if (w[i] < kMinExponent || w[i] > kMaxExponent) return ConstantsStatus::kOutOfRange;
   }
   decoded.outer_work_exponent = static_cast<int8_t>(w[0]);
-  const int16_t* coeff_words = w + 5;
-  for (uint8_t i = 0; i < 4; ++i) {
+  for (uint8_t i = 0; i <= kAdsSurfaceXDegree; ++i) {
     PolyQ31& b = decoded.b[i];
     b.work_exponent = static_cast<int8_t>(w[1 + i]);
     for (uint8_t k = 0; k <= kMaxPolyDegree; ++k) b.coeff[k] = CoeffQ31{0, b.work_exponent};
-    for (uint8_t k = 0; k <= InnerDegree(i); ++k) {
-      s = CoeffFromWords(coeff_words + kCoeffWords * kLetterOf[i][k], &b.coeff[k]);
+    for (uint8_t n = 0; n <= kAdsSurfaceYDegree; ++n) {
+      s = CoeffFromWords(words + CoeffOffset(i, n), &b.coeff[n]);
       if (s != ConstantsStatus::kOk) return s;
     }
-    s = ValidatePoly(b, InnerDegree(i));
+    s = ValidatePoly(b, kAdsSurfaceYDegree);
     if (s != ConstantsStatus::kOk) return s;
   }
   s = ValidateOuter(decoded, AdsSurfaceExponent(decoded.law, out_exponent));
@@ -78,11 +78,9 @@ void SurfaceToWords(const SurfaceQ31& s, int16_t* words) {
   NormToWords(s.y_norm, words + kNormWords);
   int16_t* w = words + 2 * kNormWords;
   w[0] = s.outer_work_exponent;
-  for (uint8_t i = 0; i < 4; ++i) {
+  for (uint8_t i = 0; i <= kAdsSurfaceXDegree; ++i) {
     w[1 + i] = s.b[i].work_exponent;
-    for (uint8_t k = 0; k <= InnerDegree(i); ++k) {
-      CoeffToWords(s.b[i].coeff[k], w + 5 + kCoeffWords * kLetterOf[i][k]);
-    }
+    for (uint8_t n = 0; n <= kAdsSurfaceYDegree; ++n) CoeffToWords(s.b[i].coeff[n], words + CoeffOffset(i, n));
   }
   words[kAdsSurfaceBlockWords - 1] = s.law;
 }

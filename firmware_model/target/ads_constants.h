@@ -1,15 +1,19 @@
 // The ADS unit's calibration constants in target (fixed-point) form and their block-wise access
 // over the maintenance port (issue 3; reference-method.md step 6, thesis section 2.9).
 //
-// Each output is the reference's 10-term bivariate cubic surface
-//   z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y
+// Each output is a bivariate polynomial surface of degree 3 in x and kAdsSurfaceYDegree (5) in y,
+//   z = sum_{k=0..3} b_k(y) x^k,   b_k(y) = sum_{n=0..5} c_kn y^n,
 // in normalised pressure counts x and normalised temperature (bridge-voltage) counts y:
 //   altitude: x from the static-port code ps, y from the static bridge-voltage code
 //   airspeed: x from the pitot (differential) code pt, y from the pitot bridge-voltage code
+// The reference method's 10-term cubic (thesis section 2.9)
+//   z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y
+// is the instance b0 = a + c y + e y^2 + h y^3, b1 = b + f y + i y^2, b2 = d + j y, b3 = g with
+// every other c_kn zero; degree 5 in y is what the bridge's ratiometric span tempco needs over
+// -40...+85 degC (docs/calibration-strategies.md).
 // Inputs are 24-bit ADS1254 codes held in int32 (raw integers, exponent 31), normalised as
 // x = (code - centre) * 2^-shift, shift <= 31 (fixed_coeff.h).
-// Evaluation is nested Horner, first in y then in x:
-//   b0(y) = a + c y + e y^2 + h y^3,  b1(y) = b + f y + i y^2,  b2(y) = d + j y,  b3 = g
+// Evaluation is nested Horner, first each b_k(y) (all four of degree 5: constant time), then
 //   z = ((b3 x + b2) x + b1) x + b0
 // Each b_k is a PolyQ31 with its own working exponent; the outer Horner runs at the surface's
 // working exponent (>= every b_k's) and its result is brought to the output exponent with
@@ -22,10 +26,10 @@
 // both in Pa at kPressureExponent, and the ISA or CAS law turns it into the output.
 //
 // Blocks:
-//   0x21 altitude surface, 0x22 airspeed surface, 42 words each:
+//   0x21 altitude surface, 0x22 airspeed surface, 84 words each:
 //     [InputNormQ31 x][InputNormQ31 y][outer work exponent][b0..b3 work exponents]
-//     [CoeffQ31 a, b, c, d, e, f, g, h, i, j]   (the reference's letter order)
-//     [law]                                      (AdsSurfaceLaw)
+//     [CoeffQ31 c_00 .. c_05][c_10 .. c_15][c_20 .. c_25][c_30 .. c_35]   (b0 .. b3, y^0 first)
+//     [law]                                                               (AdsSurfaceLaw)
 // A write validates the whole block first and changes nothing unless it returns kOk. Overflow
 // rule: each b_k must satisfy the PolyQ31 bound; the outer Horner must satisfy
 // sum_k 2^(E_k) <= 2^E_outer (with |b_k| < 2^E_k this bounds every partial sum for |x| <= 1).
@@ -42,13 +46,16 @@ namespace adahrs::firmware_model {
 
 inline constexpr int8_t kAltitudeExponent = 16;  ///< altitude in ft, |alt| < 65,536 ft
 inline constexpr int8_t kAirspeedExponent = 9;   ///< airspeed in kt, |cas| < 512 kt
-inline constexpr uint8_t kSurfaceTerms = 10;
+inline constexpr uint8_t kAdsSurfaceXDegree = 3;
+inline constexpr uint8_t kAdsSurfaceYDegree = 5;
+inline constexpr uint8_t kSurfaceTerms = (kAdsSurfaceXDegree + 1) * (kAdsSurfaceYDegree + 1);
+static_assert(kAdsSurfaceYDegree <= kMaxPolyDegree);
 
 struct SurfaceQ31 {
   InputNormQ31 x_norm;      ///< pressure code normalisation
   InputNormQ31 y_norm;      ///< temperature code normalisation
   int8_t outer_work_exponent;
-  PolyQ31 b[4];             ///< b_k(y), degree 3 - k
+  PolyQ31 b[kAdsSurfaceXDegree + 1];  ///< b_k(y), degree kAdsSurfaceYDegree
   uint8_t law;              ///< AdsSurfaceLaw: what follows the surface
 };
 

@@ -45,8 +45,9 @@ struct InputNormQ31 {
   uint8_t shift;
 };
 
-/// Largest polynomial degree any stage uses (gyro Eq. 23 and the ADS surface are cubic).
-inline constexpr uint8_t kMaxPolyDegree = 3;
+/// Largest polynomial degree any stage uses: the gyro's Eq. 23 and the thermal drift are cubic,
+/// the ADS surface's temperature polynomials b_k(y) are of degree 5 (ads_constants.h).
+inline constexpr uint8_t kMaxPolyDegree = 5;
 
 /// p(x) = sum c_k x^k, evaluated by Horner at the working exponent: every partial sum is a Q31
 /// mantissa at `work_exponent`, coefficient k is aligned by the constant right shift

@@ -80,14 +80,14 @@ TEST(AdsSurfaceFit, RefusesTooFewTemperaturesOrAltitudes) {
   EXPECT_THAT([&] { FitReferenceSurface("altitude surface", Grid(unit, {25, 45, 65}, -2000.0,
                                                                    1000.0)); },
               ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr(
-                  "altitude surface: design refused: 3 chamber temperature(s), the cubic's y, "
-                  "y^2, y^3 terms need at least 4 (too few temperatures)")));
+                  "altitude surface: design refused: 3 chamber temperature(s), the surface's terms "
+                  "up to y^3 need at least 4 (too few temperatures)")));
   // Four temperatures but three altitudes: x^3 cannot be separated from 1, x and x^2.
   EXPECT_THAT([&] { FitReferenceSurface("altitude surface", Grid(unit, {25, 35, 45, 55}, 1000.0,
                                                                    4500.0)); },
               ::testing::ThrowsMessage<DegenerateDesignError>(
                   HasSubstr("altitude surface: design refused: 3 distinct reference value(s), the "
-                            "cubic's x, x^2, x^3 terms need at least 4")));
+                            "surface's terms up to x^3 need at least 4")));
   const auto few = Grid(unit, {25, 35, 45, 55}, 7000.0, 1000.0);  // 4 altitudes x 4 = 16 points
   std::vector<SurfaceSample> ten;  // all four temperatures and altitudes, but only 10 points
   for (int i : {0, 1, 2, 3, 4, 5, 8, 9, 12, 13}) ten.push_back(few[i]);

@@ -133,17 +133,55 @@ TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
   f.kind = hil::UnitKind::kAds;
   f.strategy = "reference";
   fm::AdsCalibrationConstants c;
-  c.altitude_ft = {{1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, -1e6, 1e6, 2e6, 3e6};
+  c.altitude_ft.x_min_code = -1e6;
+  c.altitude_ft.x_max_code = 1e6;
+  c.altitude_ft.y_min_code = 2e6;
+  c.altitude_ft.y_max_code = 3e6;
+  for (int p = 0; p <= fm::kSurfaceXDegree; ++p) {
+    for (int q = 0; q <= fm::kSurfaceYDegree; ++q) c.altitude_ft.coeff_xy[p][q] = 1.0 + p + 0.25 * q;
+  }
   c.airspeed_kt = c.altitude_ft;
   f.ads = c;
   fm::AdsCalibrationConstants se = c;
   f.standard_errors = AdsStandardErrorsJson(se);
   const ConstantsFile g = ConstantsFileFromJson(ToJson(f), "ads.json");
   ASSERT_TRUE(g.ads.has_value());
-  EXPECT_EQ(g.ads->altitude_ft.coeff, c.altitude_ft.coeff);
+  EXPECT_EQ(g.ads->altitude_ft.coeff_xy, c.altitude_ft.coeff_xy);
   EXPECT_TRUE(g.standard_errors["altitude_ft"]["x_min_code"].is_null());
   f.imu = fm::ImuCalibrationConstants{};  // both kinds set: refused by the writer
   EXPECT_THROW(ToJson(f), ConstantsFileError);
+}
+
+// Files written before the surface grew beyond the reference cubic carry its ten letters: they are
+// read into the same powers of x and y (a = 1, b = x, c = y, ..., j = x^2 y); a surface with both
+// forms, or neither, is refused with its JSON path.
+TEST(ConstantsFile, ReadsTheReferenceCubicsLettersFromOlderFiles) {
+  nlohmann::json surface = {{"coeff_a_to_j", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10}},
+                            {"x_min_code", -1e6}, {"x_max_code", 1e6},
+                            {"y_min_code", 2e6},  {"y_max_code", 3e6}};
+  nlohmann::json ads = {{"altitude_ft", surface}, {"airspeed_kt", surface}};
+  const fm::AdsCalibrationConstants c = fm::AdsCalibrationConstantsFromJson(ads);
+  const auto& k = c.altitude_ft.coeff_xy;
+  EXPECT_EQ(k[0][0], 1);   // a
+  EXPECT_EQ(k[1][0], 2);   // b x
+  EXPECT_EQ(k[0][1], 3);   // c y
+  EXPECT_EQ(k[2][0], 4);   // d x^2
+  EXPECT_EQ(k[0][2], 5);   // e y^2
+  EXPECT_EQ(k[1][1], 6);   // f x y
+  EXPECT_EQ(k[3][0], 7);   // g x^3
+  EXPECT_EQ(k[0][3], 8);   // h y^3
+  EXPECT_EQ(k[1][2], 9);   // i x y^2
+  EXPECT_EQ(k[2][1], 10);  // j x^2 y
+  EXPECT_EQ(k[3][5], 0);
+  ads["airspeed_kt"]["coeff_x_y"] = fm::ToJson(c)["altitude_ft"]["coeff_x_y"];
+  EXPECT_THAT([&] { fm::AdsCalibrationConstantsFromJson(ads); },
+              ::testing::ThrowsMessage<std::runtime_error>(
+                  HasSubstr("airspeed_kt: expected exactly one of coeff_x_y and coeff_a_to_j")));
+  ads["airspeed_kt"].erase("coeff_a_to_j");
+  ads["airspeed_kt"]["coeff_x_y"][2] = {1, 2, 3};
+  EXPECT_THAT([&] { fm::AdsCalibrationConstantsFromJson(ads); },
+              ::testing::ThrowsMessage<std::runtime_error>(
+                  HasSubstr("airspeed_kt.coeff_x_y[2]: expected an array of 6 numbers")));
 }
 
 TEST(ConstantsFile, UtcTimestampIsIso8601) {

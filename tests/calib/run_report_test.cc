@@ -113,7 +113,9 @@ class RunReportTest : public ::testing::Test {
     f.ads = fm::testing::RealisticAds();
     fm::AdsCalibrationConstants se = *f.ads;  // 0.1 % of each coefficient
     for (fm::SurfaceFit* surface : {&se.altitude_ft, &se.airspeed_kt}) {
-      for (double& c : surface->coeff) c = 1e-3 * std::abs(c);
+      for (auto& row : surface->coeff_xy) {
+        for (double& c : row) c = 1e-3 * std::abs(c);
+      }
     }
     f.standard_errors = AdsStandardErrorsJson(se);
     return f;

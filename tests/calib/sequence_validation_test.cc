@@ -167,6 +167,32 @@ TEST(SequenceValidation, DuplicateTagsRefused) {
   EXPECT_THROW(EffectiveTags(s), std::invalid_argument);
 }
 
+// More steps than TAGs: the unstated ones start over after 255, skipping stated ones, and no two
+// consecutive steps share a TAG; with a single TAG left to assign two adjacent unstated steps would,
+// and the sequence is refused naming the step.
+TEST(SequenceValidation, TagsStartOverBeyond255StepsButNeverRepeatBackToBack) {
+  std::vector<Step> steps;
+  steps.push_back({7, AccelStep{11, 10}});
+  for (int i = 0; i < 300; ++i) steps.push_back({std::nullopt, AccelStep{11, 10}});
+  const Sequence s = Imu(steps);
+  EXPECT_TRUE(ValidateSequence(s, {}).empty()) << Joined(ValidateSequence(s, {}), "seq.json");
+  const std::vector<uint8_t> tags = EffectiveTags(s);
+  ASSERT_EQ(tags.size(), 301u);
+  EXPECT_EQ(tags[0], 7);
+  EXPECT_EQ(tags[1], 1);
+  EXPECT_EQ(tags[7], 8);      // 7 is stated: skipped
+  EXPECT_EQ(tags[254], 255);  // the 254 free TAGs used once each
+  EXPECT_EQ(tags[255], 1);    // then again from the first
+  for (size_t i = 1; i < tags.size(); ++i) EXPECT_NE(tags[i], tags[i - 1]) << i;
+  std::vector<Step> crowded;
+  for (int t = 1; t <= 254; ++t) crowded.push_back({t, AccelStep{11, 10}});
+  crowded.push_back({std::nullopt, AccelStep{11, 10}});
+  crowded.push_back({std::nullopt, AccelStep{11, 10}});
+  const SequenceProblem p = OnlyProblem(Imu(crowded));
+  EXPECT_EQ(p.path, "$.steps");
+  EXPECT_THAT(p.rule, HasSubstr("step 255: TAG 255 would follow itself"));
+}
+
 TEST(SequenceValidation, TagOutsideOneByteRefused) {
   EXPECT_EQ(OnlyProblem(Imu({{0, AccelStep{11, 10}}})).path, "$.steps[0].tag");
   EXPECT_THAT(OnlyProblem(Imu({{256, AccelStep{11, 10}}})).rule, HasSubstr("TAG 256 outside"));

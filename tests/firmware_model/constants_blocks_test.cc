@@ -84,8 +84,8 @@ TEST(ConstantsBlocks, AdsRoundTripAndRefusals) {
   uint8_t count = 0;
   ASSERT_EQ(AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count),
             ConstantsStatus::kOk);
-  EXPECT_EQ(count, 42);
-  EXPECT_EQ(words[41], kAdsLawDirect);
+  EXPECT_EQ(count, 84);  // 2 x 3 normalisation, 5 exponents, 24 x 3 coefficient, law
+  EXPECT_EQ(words[kAdsSurfaceBlockWords - 1], kAdsLawDirect);
   int16_t bad[kAdsMaxBlockWords];
   std::memcpy(bad, words, sizeof(bad));
   bad[6] = static_cast<int16_t>(bad[6] - 3);  // outer exponent below the b_k bound
@@ -112,17 +112,17 @@ TEST(ConstantsBlocks, AdsLawWordIsCheckedPerBlock) {
   int16_t words[kAdsMaxBlockWords];
   uint8_t count = 0;
   AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count);
-  EXPECT_EQ(words[41], kAdsLawIsaAltitude);
+  EXPECT_EQ(words[kAdsSurfaceBlockWords - 1], kAdsLawIsaAltitude);
   for (int16_t law : {int16_t{kAdsLawCas}, int16_t{3}, int16_t{-1}}) {
-    words[41] = law;
+    words[kAdsSurfaceBlockWords - 1] = law;
     EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAltitude, words, count), ConstantsStatus::kOutOfRange) << law;
   }
   AdsConstantsReadBlock(&source, kAdsBlockAirspeed, words, kAdsMaxBlockWords, &count);
-  EXPECT_EQ(words[41], kAdsLawCas);
-  words[41] = kAdsLawIsaAltitude;
+  EXPECT_EQ(words[kAdsSurfaceBlockWords - 1], kAdsLawCas);
+  words[kAdsSurfaceBlockWords - 1] = kAdsLawIsaAltitude;
   EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAirspeed, words, count), ConstantsStatus::kOutOfRange);
   EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
-  words[41] = kAdsLawCas;
+  words[kAdsSurfaceBlockWords - 1] = kAdsLawCas;
   EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAirspeed, words, count), ConstantsStatus::kOk);
   EXPECT_EQ(target.airspeed.law, kAdsLawCas);
 }

@@ -23,7 +23,7 @@ constexpr UnitIdentity kAdsIdentity = {UnitKind::kAds, 230017, 1, 4, 0};
 // Index of one mantissa low word per block layout (imu_constants.h, ads_constants.h, fixed_coeff.h):
 // thermal: sensor, norm(3), work exponent, c0 hi at 5, lo at 6; accel: offset lo of az1 at 1;
 // gyro: norm(3), work exponent, c0 lo at 5; matrices: [0][0] lo at 1; ADS: 2 norms, 5 exponents,
-// coefficient a lo at 12.
+// coefficient c_00 (the reference's a) lo at 12.
 int MantissaLowIndex(uint8_t block_id) {
   if (block_id <= kImuBlockThermalLast) return 6;
   if (block_id == kImuBlockAccelOffsetScale) return 1;
@@ -36,17 +36,17 @@ int MantissaLowIndex(uint8_t block_id) {
 // word set to `marker` (a change of at most 2^16 LSB of a Q31 mantissa, far inside every
 // format's overflow bound).
 std::vector<int16_t> ValidBlock(UnitKind kind, uint8_t block_id, int16_t marker) {
-  std::vector<int16_t> words(64);
+  std::vector<int16_t> words(kAdsMaxBlockWords > kImuMaxBlockWords ? kAdsMaxBlockWords : kImuMaxBlockWords);
   uint8_t count = 0;
   ConstantsStatus status;
   if (kind == UnitKind::kImu) {
     ImuConstants constants;
     ImuConstantsInit(&constants);
-    status = ImuConstantsReadBlock(&constants, block_id, words.data(), 64, &count);
+    status = ImuConstantsReadBlock(&constants, block_id, words.data(), static_cast<uint8_t>(words.size()), &count);
   } else {
     AdsConstants constants;
     AdsConstantsInit(&constants);
-    status = AdsConstantsReadBlock(&constants, block_id, words.data(), 64, &count);
+    status = AdsConstantsReadBlock(&constants, block_id, words.data(), static_cast<uint8_t>(words.size()), &count);
   }
   EXPECT_EQ(status, ConstantsStatus::kOk);
   words.resize(count);
@@ -131,12 +131,12 @@ class Unit {
     s.mode = handler_.kind() == UnitKind::kImu ? static_cast<uint8_t>(handler_.imu_mode())
                                                : static_cast<uint8_t>(handler_.ads_mode());
     for (const uint8_t id : BlockIds(handler_.kind())) {
-      std::vector<int16_t> words(64);
+      std::vector<int16_t> words(kAdsMaxBlockWords > kImuMaxBlockWords ? kAdsMaxBlockWords : kImuMaxBlockWords);
       uint8_t count = 0;
       if (handler_.kind() == UnitKind::kImu) {
-        ImuConstantsReadBlock(&handler_.imu_constants(), id, words.data(), 64, &count);
+        ImuConstantsReadBlock(&handler_.imu_constants(), id, words.data(), static_cast<uint8_t>(words.size()), &count);
       } else {
-        AdsConstantsReadBlock(&handler_.ads_constants(), id, words.data(), 64, &count);
+        AdsConstantsReadBlock(&handler_.ads_constants(), id, words.data(), static_cast<uint8_t>(words.size()), &count);
       }
       words.resize(count);
       s.blocks.push_back(words);
@@ -231,9 +231,9 @@ TEST(MaintenanceHandlerTest, CorruptFlashMeansNoConstantsAfterPowerCycle) {
   for (const uint8_t id : BlockIds(UnitKind::kImu)) {
     ImuConstants init;
     ImuConstantsInit(&init);
-    std::vector<int16_t> words(64);
+    std::vector<int16_t> words(kAdsMaxBlockWords > kImuMaxBlockWords ? kAdsMaxBlockWords : kImuMaxBlockWords);
     uint8_t count = 0;
-    ImuConstantsReadBlock(&init, id, words.data(), 64, &count);
+    ImuConstantsReadBlock(&init, id, words.data(), static_cast<uint8_t>(words.size()), &count);
     words.resize(count);
     EXPECT_EQ(unit.ReadBack(id), words) << "block " << +id;
   }

@@ -116,9 +116,12 @@ inline double BridgeCode(double temp_c) {
   return 6710886.0 * (1.0 + 0.0026 * (temp_c - 25.0));
 }
 
-// Least-squares fit of the 10-term surface to samples (x, y, z), in normalised variables
+// Least-squares fit of the surface with `terms` (the reference's 10 by default) to samples
+// (x, y, z), in normalised variables
 // (X = (x - cx)/hx) solved by normal equations in long double, returned in raw-code form.
-inline SurfaceFit FitSurface(const std::vector<std::array<double, 3>>& xyz) {
+inline SurfaceFit FitSurface(const std::vector<std::array<double, 3>>& xyz,
+                             const std::vector<XyPowers>& terms = std::vector<XyPowers>(
+                                 std::begin(kReferenceCubicTerm), std::end(kReferenceCubicTerm))) {
   SurfaceFit s;
   s.x_min_code = s.y_min_code = 1e300;
   s.x_max_code = s.y_max_code = -1e300;
@@ -130,48 +133,58 @@ inline SurfaceFit FitSurface(const std::vector<std::array<double, 3>>& xyz) {
   }
   const long double cx = 0.5L * (s.x_min_code + s.x_max_code), hx = 0.5L * (s.x_max_code - s.x_min_code);
   const long double cy = 0.5L * (s.y_min_code + s.y_max_code), hy = 0.5L * (s.y_max_code - s.y_min_code);
-  constexpr int kP[10] = {0, 1, 0, 2, 0, 1, 3, 0, 1, 2};
-  constexpr int kQ[10] = {0, 0, 1, 0, 2, 1, 0, 3, 2, 1};
-  long double n[10][11] = {};
+  const size_t nt = terms.size();
+  std::vector<std::vector<long double>> n(nt, std::vector<long double>(nt + 1, 0.0L));
+  std::vector<long double> phi(nt);
   for (const auto& p : xyz) {
     const long double X = (p[0] - cx) / hx, Y = (p[1] - cy) / hy;
-    long double phi[10];
-    for (int t = 0; t < 10; ++t) phi[t] = std::pow(X, kP[t]) * std::pow(Y, kQ[t]);
-    for (int r = 0; r < 10; ++r) {
-      for (int c = 0; c < 10; ++c) n[r][c] += phi[r] * phi[c];
-      n[r][10] += phi[r] * p[2];
+    for (size_t t = 0; t < nt; ++t) phi[t] = std::pow(X, terms[t].p) * std::pow(Y, terms[t].q);
+    for (size_t r = 0; r < nt; ++r) {
+      for (size_t c = 0; c < nt; ++c) n[r][c] += phi[r] * phi[c];
+      n[r][nt] += phi[r] * p[2];
     }
   }
-  for (int col = 0; col < 10; ++col) {  // Gauss-Jordan with partial pivoting
-    int piv = col;
-    for (int r = col + 1; r < 10; ++r) {
+  for (size_t col = 0; col < nt; ++col) {  // Gauss-Jordan with partial pivoting
+    size_t piv = col;
+    for (size_t r = col + 1; r < nt; ++r) {
       if (std::fabs(n[r][col]) > std::fabs(n[piv][col])) piv = r;
     }
-    for (int c = 0; c < 11; ++c) std::swap(n[col][c], n[piv][c]);
-    for (int r = 0; r < 10; ++r) {
+    std::swap(n[col], n[piv]);
+    for (size_t r = 0; r < nt; ++r) {
       if (r == col) continue;
       const long double f = n[r][col] / n[col][col];
-      for (int c = col; c < 11; ++c) n[r][c] -= f * n[col][c];
+      for (size_t c = col; c <= nt; ++c) n[r][c] -= f * n[col][c];
     }
   }
-  long double norm_coeff[4][4] = {};
-  for (int t = 0; t < 10; ++t) norm_coeff[kP[t]][kQ[t]] = n[t][10] / n[t][t];
+  long double norm_coeff[kSurfaceXDegree + 1][kSurfaceYDegree + 1] = {};
+  for (size_t t = 0; t < nt; ++t) norm_coeff[terms[t].p][terms[t].q] = n[t][nt] / n[t][t];
   auto binom = [](int a, int b) {
     long double r = 1;
     for (int i = 1; i <= b; ++i) r = r * (a - b + i) / i;
     return r;
   };
-  for (int t = 0; t < 10; ++t) {  // raw coefficient of x^p y^q
-    long double sum = 0;
-    for (int m = kP[t]; m < 4; ++m) {
-      for (int q = kQ[t]; m + q < 4; ++q) {
-        sum += norm_coeff[m][q] * binom(m, kP[t]) * std::pow(-cx, m - kP[t]) / std::pow(hx, m) *
-               binom(q, kQ[t]) * std::pow(-cy, q - kQ[t]) / std::pow(hy, q);
+  for (int p = 0; p <= kSurfaceXDegree; ++p) {  // raw coefficient of x^p y^q
+    for (int q = 0; q <= kSurfaceYDegree; ++q) {
+      long double sum = 0;
+      for (int m = p; m <= kSurfaceXDegree; ++m) {
+        for (int r = q; r <= kSurfaceYDegree; ++r) {
+          sum += norm_coeff[m][r] * binom(m, p) * std::pow(-cx, m - p) / std::pow(hx, m) *
+                 binom(r, q) * std::pow(-cy, r - q) / std::pow(hy, r);
+        }
       }
+      s.coeff_xy[p][q] = static_cast<double>(sum);
     }
-    s.coeff[t] = static_cast<double>(sum);
   }
   return s;
+}
+
+/// Every term x^p y^q, p <= 3, q <= 5: the firmware surface's full form.
+inline std::vector<XyPowers> FullSurfaceTerms() {
+  std::vector<XyPowers> terms;
+  for (int p = 0; p <= kSurfaceXDegree; ++p) {
+    for (int q = 0; q <= kSurfaceYDegree; ++q) terms.push_back({p, q});
+  }
+  return terms;
 }
 
 /// ADS constants fitted by least squares on ISA data over the envelope.
@@ -188,7 +201,8 @@ inline AdsCalibrationConstants RealisticAds() {
   return AdsCalibrationConstants{FitSurface(alt), FitSurface(cas)};
 }
 
-/// The same bridges calibrated for the firmware's laws: surfaces of static and impact pressure (Pa).
+/// The same bridges calibrated for the firmware's laws: surfaces of static and impact pressure (Pa),
+/// in the full degree-(3, 5) form, so every coefficient word of the blocks is exercised.
 inline AdsCalibrationConstants RealisticPressureAds() {
   std::vector<std::array<double, 3>> ps, qc;
   for (double temp_c = -40.0; temp_c <= 85.0; temp_c += 12.5) {
@@ -199,7 +213,7 @@ inline AdsCalibrationConstants RealisticPressureAds() {
       qc.push_back({PressureCode(ImpactPressure_pa(cas_kt), temp_c), BridgeCode(temp_c), ImpactPressure_pa(cas_kt)});
     }
   }
-  AdsCalibrationConstants c{FitSurface(ps), FitSurface(qc)};
+  AdsCalibrationConstants c{FitSurface(ps, FullSurfaceTerms()), FitSurface(qc, FullSurfaceTerms())};
   c.altitude_ft.law = SurfaceLaw::kIsaAltitude;
   c.airspeed_kt.law = SurfaceLaw::kCas;
   return c;

@@ -1,0 +1,68 @@
+#include "calib/ads_calibration/bridge_history.h"
+
+#include <algorithm>
+
+#include "calib/evaluation/ads_tolerance.h"
+#include "sensor_sim/air_data.h"
+#include "sensor_sim/atmosphere.h"
+#include "sensor_sim/last_extreme_hysteresis.h"
+#include "sensor_sim/pressure_bridge.h"
+
+namespace adahrs::calib {
+namespace {
+
+constexpr double kRoomTemperatureC = 25.0;
+
+}  // namespace
+
+HysteresisSpans HysteresisSpans::Nominal() {
+  using sensor_sim::PressureBridgeKind;
+  using sensor_sim::PressureBridgeParams;
+  const PressureBridgeParams ps = PressureBridgeParams::Typical(PressureBridgeKind::kAbsolute);
+  const PressureBridgeParams pt = PressureBridgeParams::Typical(PressureBridgeKind::kDifferential);
+  return {ps.pressure_hysteresis_span_pct_fs / 100.0 * ps.full_scale_pa,
+          pt.pressure_hysteresis_span_pct_fs / 100.0 * pt.full_scale_pa,
+          ps.thermal_hysteresis_span_c};
+}
+
+std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>& points,
+                                          const HysteresisSpans& spans) {
+  sensor_sim::LastExtremeHysteresis static_p(spans.static_pressure_pa);
+  sensor_sim::LastExtremeHysteresis impact_p(spans.impact_pressure_pa);
+  sensor_sim::LastExtremeHysteresis temperature(spans.temperature_c);
+  static_p.Update(sensor_sim::kIsaSeaLevelPressure_pa);
+  impact_p.Update(0.0);
+  temperature.Update(kRoomTemperatureC);
+  std::vector<PointHistory> out;
+  out.reserve(points.size());
+  for (const AdsCalibrationPoint& p : points) {
+    const double s_t = temperature.Update(p.chamber_c);
+    out.push_back({{static_p.Update(p.ps_ref_pa), s_t}, {impact_p.Update(p.qc_ref_pa), s_t}});
+  }
+  return out;
+}
+
+StateBand EnvelopeStateBand(double x, double low, double high, double span) {
+  auto after = [&](double first, double second) {
+    sensor_sim::LastExtremeHysteresis op(span);
+    op.Update(first);
+    op.Update(second);
+    return op.Update(x);
+  };
+  const double rising = after(high, low), falling = after(low, high);
+  const double lo = std::min({0.0, rising, falling}), hi = std::max({0.0, rising, falling});
+  return {0.5 * (lo + hi), 0.5 * (hi - lo)};
+}
+
+PointBands EnvelopeBands(const AdsCalibrationPoint& point, const HysteresisSpans& spans) {
+  using sensor_sim::IsaStaticPressurePaFromFt;
+  const double ps_low = IsaStaticPressurePaFromFt(kAdsMaxAltitudeFt);
+  const double ps_high = IsaStaticPressurePaFromFt(kAdsMinAltitudeFt);
+  const double qc_low = sensor_sim::ImpactPressurePaFromKt(kAdsMinAirspeedKt);
+  const double qc_high = sensor_sim::ImpactPressurePaFromKt(kAdsMaxAirspeedKt);
+  const StateBand t = EnvelopeStateBand(point.chamber_c, kAdsMinTempC, kAdsMaxTempC, spans.temperature_c);
+  return {{EnvelopeStateBand(point.ps_ref_pa, ps_low, ps_high, spans.static_pressure_pa), t},
+          {EnvelopeStateBand(point.qc_ref_pa, qc_low, qc_high, spans.impact_pressure_pa), t}};
+}
+
+}  // namespace adahrs::calib

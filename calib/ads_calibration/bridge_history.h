@@ -1,0 +1,80 @@
+// The hysteresis states of the ADS's two pressure bridges at each calibration point, from the
+// history the reference instruments imposed (shared/physics.md section 6 rows 4 and 7;
+// sensor_sim/pressure_bridge.h): a bridge's output carries S (h_P/2) s_P + S (h_T/2) s_T, where
+// s_P and s_T in [-1, 1] remember the last extreme of pressure and of die temperature (-1 after a
+// rise, +1 after a fall, developing over a travel `span` after each reversal). A single-valued
+// surface fitted to points recorded on one branch returns that branch, not the loop's centre;
+// with the states as regressors (tolerance_ads_strategy.h) it returns the centre.
+//
+// The states are those of the same last-extreme operator (sensor_sim/last_extreme_hysteresis.h)
+// driven by the reference history in step order: the test set's static pressure (static bridge)
+// and impact pressure (pitot bridge), and the chamber temperature (both dies; after a soak the die
+// sits at the chamber's temperature). Between calibration points the test set and the chamber
+// move monotonically from one aim to the next (the sequence's steps), so every reversal happens at
+// a point and the points alone carry the whole history. Before the first point the unit is taken
+// to be at rest in the room, fresh (state 0): 25 degC, standard sea-level static pressure, no
+// impact pressure; the sequence's first excursion wipes that out.
+// Spans: the part's nominal (physics.md section 6: E, estimated), 20 % of full scale and 20 degC
+// for the model-1230 class; HysteresisSpans holds them so a measured value can replace them.
+// Left out: die temperature lagging the chamber during a step's dwell (the points are taken after
+// the soak), small reversals from the chamber's overshoot (a dither of a << span moves the state
+// by ~6 (2a/span)^2), older extremes (the operator remembers only the last).
+#pragma once
+
+#include <vector>
+
+#include "calib/ads_calibration/ads_calibration_points.h"
+
+namespace adahrs::calib {
+
+struct HysteresisSpans {
+  double static_pressure_pa = 0.0;  ///< travel after a reversal to the full pressure state
+  double impact_pressure_pa = 0.0;
+  double temperature_c = 0.0;       ///< likewise for the die temperature
+
+  /// The model-1230 class's nominal spans (sensor_sim::PressureBridgeParams::Typical).
+  static HysteresisSpans Nominal();
+};
+
+struct BridgeStates {
+  double s_pressure = 0.0;  ///< in [-1, 1]
+  double s_thermal = 0.0;   ///< in [-1, 1]
+};
+
+struct PointHistory {
+  BridgeStates static_bridge;
+  BridgeStates pitot_bridge;
+};
+
+/// The states at each of `points` (in step order, as SelectAdsCalibrationPoints returns them).
+std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>& points,
+                                          const HysteresisSpans& spans = HysteresisSpans::Nominal());
+
+/// The band of states that the operating envelope's histories can leave at input `x`: fresh (0),
+/// after a major loop low -> high -> x, and after high -> low -> x (the histories
+/// calib/evaluation/ads_evaluation.h judges a unit under). A surface that reads the middle of
+/// that band at every point has the smallest worst error over them, and no surface does better
+/// than the band's half-width times the half loop; near the envelope's ends only one branch is
+/// reachable (nothing arrives at -40 degC but by cooling), so the middle there is not the loop's
+/// centre.
+struct StateBand {
+  double mid = 0.0;
+  double half_width = 0.0;
+};
+StateBand EnvelopeStateBand(double x, double low, double high, double span);
+
+struct BridgeBands {
+  StateBand pressure;
+  StateBand thermal;
+};
+struct PointBands {
+  BridgeBands static_bridge;
+  BridgeBands pitot_bridge;
+};
+
+/// The bands of each bridge at the reference pressures and chamber temperature of `point`, over
+/// the specification's envelope (-1,000...50,000 ft, 30...450 kt, -40...+85 degC).
+PointBands EnvelopeBands(const AdsCalibrationPoint& point,
+                         const HysteresisSpans& spans = HysteresisSpans::Nominal());
+
+}  // namespace adahrs::calib
