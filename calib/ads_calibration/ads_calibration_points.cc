@@ -63,10 +63,34 @@ void CheckNotSaturated(int32_t code, const char* column, int line, const std::st
   }
 }
 
+// The extremes of one reference column over a step's rows, with their lines.
+struct Extremes {
+  double min = 0, max = 0;
+  int min_line = 0, max_line = 0;
+
+  void Add(double v, int line, bool first) {
+    if (first || v < min) min = v, min_line = line;
+    if (first || v > max) max = v, max_line = line;
+  }
+};
+
 struct Sum {
   AdsCalibrationPoint point;
   double ps = 0, pt = 0, ps_t = 0, pt_t = 0, ps_ref = 0, qc_ref = 0, chamber = 0;
+  Extremes ps_ref_range, qc_ref_range;
 };
+
+// A point's truth is the test set's pressure; if that moved within the acquisition, the mean pairs
+// codes and references of different pressures.
+void CheckSteady(const Extremes& e, const char* column, int step, const std::string& source) {
+  if (e.max - e.min <= kMaxReferenceSpanPa) return;
+  throw std::runtime_error(fmt::format(
+      "{}/ads.csv lines {} and {} column {}: the test set's reference moved {:.1f} Pa within step "
+      "{}'s acquisition ({:.1f} to {:.1f} Pa; limit {:.0f} Pa): not a steady point (reject the "
+      "interval in meta.json or repeat the step)",
+      source, std::min(e.min_line, e.max_line), std::max(e.min_line, e.max_line), column,
+      e.max - e.min, step, e.min, e.max, kMaxReferenceSpanPa));
+}
 
 }  // namespace
 
@@ -99,6 +123,8 @@ std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording
           "{}/ads.csv line {} column tag: unit {} step {} carries tag {} after tag {} (line {})",
           source, line, serial, row.step, row.tag, s.point.tag, s.point.first_line));
     }
+    s.ps_ref_range.Add(row.ps_ref_pa, line, s.point.rows == 0);
+    s.qc_ref_range.Add(row.qc_ref_pa, line, s.point.rows == 0);
     ++s.point.rows;
     s.ps += row.ps_counts;
     s.pt += row.pt_counts;
@@ -114,6 +140,8 @@ std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording
   }
   std::vector<AdsCalibrationPoint> out;
   for (auto& [step, s] : by_step) {
+    CheckSteady(s.ps_ref_range, "ps_ref_pa", step, source);
+    CheckSteady(s.qc_ref_range, "qc_ref_pa", step, source);
     AdsCalibrationPoint p = s.point;
     const double n = p.rows;
     p.ps_code = s.ps / n;

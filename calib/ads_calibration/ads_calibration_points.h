@@ -10,7 +10,9 @@
 // is above that of kMinAirspeedPointKt; every point is an altitude point (the static sensor reads
 // its pressure whatever the pitot does).
 // Refused, naming ads.csv, the line and the column: a non-finite reference or chamber value, a
-// code at the converter's rail (saturated), a recording without rows of the unit. Not modelled:
+// code at the converter's rail (saturated), a recording without rows of the unit, a reference
+// pressure that moved more than kMaxReferenceSpanPa within one step's acquisition (the point's
+// truth is then unknown: a test set still settling, or a stale reading on the first rows). Not modelled:
 // outlier rejection inside a step (the executor's rejected intervals do that), the test set's own
 // uncertainty (taken as exact).
 #pragma once
@@ -25,6 +27,9 @@ namespace adahrs::calib {
 
 /// Points whose reference CAS is below this carry no airspeed information (qc ~ 0).
 inline constexpr double kMinAirspeedPointKt = 10.0;
+/// Largest span of a reference pressure (static or impact) over one step's rows: four times the
+/// largest seen in a steady acquisition (6.4 Pa over the 198 points of a demo run, 2026-11-23).
+inline constexpr double kMaxReferenceSpanPa = 25.0;
 
 struct AdsCalibrationPoint {
   int step = 0;

@@ -72,6 +72,30 @@ TEST(AdsCalibrationPoints, SelectsTaggedRowsOutsideRejectedIntervals) {
   EXPECT_FALSE(points[0].airspeed_point);
 }
 
+// The case a demo run showed (step 121, 2026-11-23): the first rows of an acquisition carry the
+// test set's reading from before it settled (13,513.8 Pa against 11,597). The mean would pair the
+// unit's codes at 11,597 Pa with a reference 370 Pa higher; the point is refused naming the lines,
+// and rejecting the stale rows' interval in meta.json (what an operator would do) makes it usable.
+TEST(AdsCalibrationPoints, RefusesAReferenceThatMovedWithinTheAcquisition) {
+  hil::Recording rec;
+  rec.meta = nlohmann::json::object();
+  for (int i = 1; i <= 10; ++i) rec.ads.push_back(Row(121, 9, 0.125 * i, 21290, i <= 2 ? 13513.8 : 11597.0));
+  EXPECT_THAT([&] { SelectAdsCalibrationPoints(rec, "ADS-0007", "run"); },
+              ::testing::ThrowsMessage<std::runtime_error>(HasSubstr(
+                  "run/ads.csv lines 2 and 4 column ps_ref_pa: the test set's reference moved "
+                  "1916.8 Pa within step 121's acquisition")));
+  rec.meta = {{"rejected_intervals", {{{"step", 121}, {"t_start_s", 0.0}, {"t_end_s", 0.3}}}}};
+  const auto points = SelectAdsCalibrationPoints(rec, "ADS-0007", "run");
+  ASSERT_EQ(points.size(), 1u);
+  EXPECT_EQ(points[0].rows, 8);
+  EXPECT_DOUBLE_EQ(points[0].ps_ref_pa, 11597.0);
+  // A steady reference's jitter (6.4 Pa at most in that run) passes.
+  hil::Recording steady;
+  steady.meta = nlohmann::json::object();
+  for (int i = 1; i <= 10; ++i) steady.ads.push_back(Row(5, 9, 0.125 * i, 21290, 11597.0 + (i % 2) * 6.4));
+  EXPECT_EQ(SelectAdsCalibrationPoints(steady, "ADS-0007", "run").size(), 1u);
+}
+
 TEST(AdsCalibrationPoints, RefusesBadRowsNamingLineAndColumn) {
   hil::Recording rec;
   rec.meta = nlohmann::json::object();
