@@ -197,22 +197,24 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
   const std::vector<SurfaceSample> qc_mid = relative_to_mid(qc, qc_bands);
   const OrderChoice ps_order = ChooseYDegree(ps_context, ps_mid, ps_tolerance);
   const OrderChoice qc_order = ChooseYDegree(qc_context, qc_mid, qc_tolerance);
-  // Two fits with the states as regressors. The first takes them as recorded: its surface is the
-  // loop's centre, and its coefficients the half loops (diagnostics, checked against the truth in
-  // the tests). The second takes each point's state relative to the middle of its envelope band,
+  // Two fits with the states as regressors. The first takes them as recorded, weighted 1/tol^2
+  // (least squares, not minimax: the minimax's final weights rest on a few points and leave the
+  // half loops barely determined): its surface is the loop's centre, and its coefficients the half
+  // loops with standard errors (diagnostics, checked against the truth in the tests). The second takes each point's state relative to the middle of its envelope band,
   // so that its surface reads that middle: the smallest worst error over the envelope's
   // histories. The second's surface is the one exported; its history coefficients also absorb
   // what the polynomial cannot follow of the band's middle, so they are not reported.
   struct Fitted {
-    MinimaxSurface centre;
+    SurfaceEstimate centre;
     MinimaxSurface surface;
   };
-  auto fit = [](const std::string& what, const OrderChoice& order, const std::vector<SurfaceSample>& recorded,
+  auto fit = [](const std::string& what, const OrderChoice& order, std::vector<SurfaceSample> recorded,
                 const std::vector<SurfaceSample>& mid, const std::function<double(double)>& tolerance_of) {
     const PolynomialBasis basis =
         PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, order.y_degree, "x", "y");
     const std::vector<double> tolerance = Tolerances(recorded, tolerance_of);
-    return Fitted{FitMinimax(what, basis, HistoryTerms::kPressureAndThermal, recorded, tolerance),
+    WeighByTolerance(recorded, tolerance);
+    return Fitted{FitSurface(what, basis, recorded, HistoryTerms::kPressureAndThermal),
                   FitMinimax(what, basis, HistoryTerms::kPressureAndThermal, mid, tolerance)};
   };
   const Fitted alt = fit(ps_context, ps_order, ps, ps_mid, ps_tolerance);
@@ -227,11 +229,11 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
     out.diagnostics[key]["held_out_worst_ratio_by_y_degree"] = order->held_out_worst_ratio;
     // The half loops the centre fit separated, Pa per unit state (c = -FS h / 2 for a loop of
     // h FSO between the branches), and how far its centre fits the points.
-    const HysteresisEstimate& h = *m->centre.estimate.history;
+    const HysteresisEstimate& h = *m->centre.history;
     out.diagnostics[key]["hysteresis"] = {
         {"pressure_half_loop_Pa", h.pressure}, {"pressure_half_loop_se_Pa", h.pressure_se},
         {"thermal_half_loop_Pa", h.thermal},   {"thermal_half_loop_se_Pa", h.thermal_se},
-        {"centre_fit_worst_ratio_at_points", m->centre.worst_ratio}};
+        {"centre_fit_residual_rms_Pa", m->centre.residual_rms}};
     out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
                                                                     : "CAS from impact pressure";
   }
