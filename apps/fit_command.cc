@@ -1,15 +1,20 @@
 // adahrs fit --run DIR [--run DIR ...] [--strategy FILE] --out DIR: fits every IMU of the runs
 // (a thermal-calibration run and a sensor-calibration run) with the strategy (default: the
-// improved "joint" strategy) and writes OUT/<serial>.constants.json per unit
-// (docs/constants-file.md, docs/calibration-strategies.md).
+// improved "joint" strategy) and writes OUT/<serial>.constants.json per unit.
+// adahrs fit --run DIR --ads-strategy NAME --out DIR: fits every ADS unit of one ADS calibration
+// run with the ADS strategy NAME (reference, tolerance_minimax, pressure_minimax) and writes
+// OUT/<serial>.json per unit, as the demo campaign does (docs/constants-file.md,
+// docs/calibration-strategies.md).
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "apps/commands.h"
+#include "calib/campaign/campaign_fits.h"
 #include "calib/imu_calibration/imu_strategy.h"
 
 namespace adahrs::apps {
@@ -18,11 +23,28 @@ void RegisterFitCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("fit", "Fit calibration constants from recordings");
   auto runs = std::make_shared<std::vector<std::string>>();
   auto strategy_file = std::make_shared<std::string>();
+  auto ads_strategy = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   cmd->add_option("--run", *runs, "Run directory (repeat for several)")->required();
-  cmd->add_option("--strategy", *strategy_file, "Strategy file (default: joint, auto order)");
-  cmd->add_option("--out", *out, "Output directory for <serial>.constants.json")->required();
-  cmd->callback([runs, strategy_file, out] {
+  CLI::Option* imu_option =
+      cmd->add_option("--strategy", *strategy_file, "IMU strategy file (default: joint, auto order)");
+  cmd->add_option("--ads-strategy", *ads_strategy,
+                  "Fit the ADS units of one ADS calibration run with this strategy: reference, "
+                  "tolerance_minimax or pressure_minimax")
+      ->excludes(imu_option);
+  cmd->add_option("--out", *out, "Output directory for the constants files")->required();
+  cmd->callback([runs, strategy_file, ads_strategy, out] {
+    if (!ads_strategy->empty()) {
+      if (runs->size() != 1) {
+        throw CLI::ValidationError("--ads-strategy", "takes exactly one --run (an ADS calibration run)");
+      }
+      const auto written = calib::FitAdsIntoDirectory(runs->front(), *ads_strategy, *out, ADAHRS_VERSION);
+      if (written.empty()) throw std::runtime_error(runs->front() + "/meta.json: the run has no ADS unit");
+      for (const calib::WrittenConstants& w : written) {
+        std::cout << fmt::format("{}: strategy {} -> {}\n", w.file.serial, w.file.strategy, w.path.string());
+      }
+      return;
+    }
     const calib::ImuStrategy strategy = strategy_file->empty()
                                             ? calib::ImuStrategy::Improved()
                                             : calib::ImuStrategy::Load(*strategy_file);
