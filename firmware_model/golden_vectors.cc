@@ -1,5 +1,6 @@
 #include "firmware_model/golden_vectors.h"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -16,7 +17,7 @@ template <typename Constants, typename ReadFn>
 json Blocks(const Constants& c, std::initializer_list<uint8_t> ids, ReadFn read) {
   json blocks = json::array();
   for (uint8_t id : ids) {
-    constexpr uint8_t kCapacity = kImuMaxBlockWords > kAdsMaxBlockWords ? kImuMaxBlockWords : kAdsMaxBlockWords;
+    constexpr uint8_t kCapacity = std::max(kImuMaxBlockWords, kAdsMaxBlockWords);
     int16_t words[kCapacity];
     uint8_t count = 0;
     if (read(&c, id, words, kCapacity, &count) != ConstantsStatus::kOk) {

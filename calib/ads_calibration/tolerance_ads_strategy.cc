@@ -26,7 +26,7 @@ struct MinimaxSurface {
 };
 
 // The fit's value at a sample: the surface, plus its branch when the fit has history terms.
-double Fitted(const SurfaceEstimate& e, const SurfaceSample& s) {
+double Predicted(const SurfaceEstimate& e, const SurfaceSample& s) {
   double z = firmware_model::EvaluateSurfaceFit(e.surface, s.x_code, s.y_code);
   if (e.history) z += e.history->pressure * s.s_pressure + e.history->thermal * s.s_thermal;
   return z;
@@ -36,7 +36,7 @@ double WorstRatio(const SurfaceEstimate& e, const std::vector<SurfaceSample>& sa
                   const std::vector<double>& tolerance, std::vector<double>& ratio) {
   double worst = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
-    ratio[i] = std::abs(Fitted(e, samples[i]) - samples[i].z) / tolerance[i];
+    ratio[i] = std::abs(Predicted(e, samples[i]) - samples[i].z) / tolerance[i];
     worst = std::max(worst, ratio[i]);
   }
   return worst;
@@ -97,7 +97,7 @@ OrderChoice ChooseYDegree(const std::string& context, std::vector<SurfaceSample>
   const std::vector<double> tolerance = Tolerances(samples, tolerance_of);
   WeighByTolerance(samples, tolerance);
   std::set<long long> temperatures_dc;
-  for (const SurfaceSample& s : samples) temperatures_dc.insert(std::llround(10.0 * s.chamber_c));
+  for (const SurfaceSample& s : samples) temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
   const int max_degree = std::min<int>(firmware_model::kSurfaceYDegree,
                                        static_cast<int>(temperatures_dc.size()) - 2);
   OrderChoice choice;
@@ -109,7 +109,7 @@ OrderChoice ChooseYDegree(const std::string& context, std::vector<SurfaceSample>
       std::vector<SurfaceSample> kept;
       std::vector<size_t> held;
       for (size_t i = 0; i < samples.size(); ++i) {
-        if (std::llround(10.0 * samples[i].chamber_c) == *it) {
+        if (ChamberTemperatureKeyDc(samples[i].chamber_c) == *it) {
           held.push_back(i);
         } else {
           kept.push_back(samples[i]);
@@ -119,7 +119,7 @@ OrderChoice ChooseYDegree(const std::string& context, std::vector<SurfaceSample>
           fmt::format("{} (y degree {}, {:.1f} degC held out)", context, q, *it / 10.0), basis,
           kept, HistoryTerms::kPressureAndThermal);
       for (size_t i : held) {
-        score = std::max(score, std::abs(Fitted(e, samples[i]) - samples[i].z) / tolerance[i]);
+        score = std::max(score, std::abs(Predicted(e, samples[i]) - samples[i].z) / tolerance[i]);
       }
     }
     choice.held_out_worst_ratio[std::to_string(q)] = score;
@@ -204,7 +204,7 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
   // so that its surface reads that middle: the smallest worst error over the envelope's
   // histories. The second's surface is the one exported; its history coefficients also absorb
   // what the polynomial cannot follow of the band's middle, so they are not reported.
-  struct Fitted {
+  struct CentreAndSurface {
     SurfaceEstimate centre;
     MinimaxSurface surface;
   };
@@ -214,11 +214,11 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
         PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, order.y_degree, "x", "y");
     const std::vector<double> tolerance = Tolerances(recorded, tolerance_of);
     WeighByTolerance(recorded, tolerance);
-    return Fitted{FitSurface(what, basis, recorded, HistoryTerms::kPressureAndThermal),
+    return CentreAndSurface{FitSurface(what, basis, recorded, HistoryTerms::kPressureAndThermal),
                   FitMinimax(what, basis, HistoryTerms::kPressureAndThermal, mid, tolerance)};
   };
-  const Fitted alt = fit(ps_context, ps_order, ps, ps_mid, ps_tolerance);
-  const Fitted cas = fit(qc_context, qc_order, qc, qc_mid, qc_tolerance);
+  const CentreAndSurface alt = fit(ps_context, ps_order, ps, ps_mid, ps_tolerance);
+  const CentreAndSurface cas = fit(qc_context, qc_order, qc, qc_mid, qc_tolerance);
   AdsFitResult out =
       AdsFitFromSurfaces(kPressureAdsStrategyName, alt.surface.estimate, cas.surface.estimate, true);
   for (const auto& [key, m, order] : {std::tuple{"altitude_ft", &alt, &ps_order},

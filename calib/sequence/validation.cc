@@ -325,6 +325,7 @@ class Checker {
   }
 
   void Tags(const Sequence& sequence, const std::vector<std::string>& step_paths) {
+    const size_t problems_before = problems_.size();
     std::vector<int> first_user(256, -1);
     for (size_t i = 0; i < sequence.steps.size(); ++i) {
       const std::optional<int>& tag = sequence.steps[i].tag;
@@ -341,9 +342,7 @@ class Checker {
         first_user[static_cast<size_t>(*tag)] = static_cast<int>(i);
       }
     }
-    bool explicit_ok = true;
-    for (const SequenceProblem& p : problems_) explicit_ok = explicit_ok && p.path.find(".tag") == std::string::npos;
-    if (explicit_ok) {
+    if (problems_.size() == problems_before) {  // stated TAGs valid: assign the others
       try {
         EffectiveTags(sequence);
       } catch (const std::invalid_argument& e) {

@@ -20,7 +20,7 @@ SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& ba
   }
   const int min_temperatures = basis.MaxYPower() + 1;
   std::set<long long> temperatures_dc;  // chamber temperatures to 0.1 degC
-  for (const SurfaceSample& s : samples) temperatures_dc.insert(std::llround(10.0 * s.chamber_c));
+  for (const SurfaceSample& s : samples) temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
   if (static_cast<int>(temperatures_dc.size()) < min_temperatures) {
     throw DegenerateDesignError(fmt::format(
         "{}: design refused: {} chamber temperature(s), the surface's terms up to y^{} need at "

@@ -26,6 +26,7 @@
 // degenerate, naming the state.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,6 +47,9 @@ struct SurfaceSample {
   double s_pressure = 0.0; ///< the bridge's pressure hysteresis state (bridge_history.h)
   double s_thermal = 0.0;  ///< its thermal hysteresis state
 };
+
+/// A chamber temperature as the key that tells calibration temperatures apart (0.1 degC).
+inline long long ChamberTemperatureKeyDc(double chamber_c) { return std::llround(10.0 * chamber_c); }
 
 /// Whether the fit carries the bridge's hysteresis states as regressors: z = surface(x, y)
 /// + c_P s_P + c_T s_T. The surface is then the loop's centre (what a unit without history reads);

@@ -4,6 +4,7 @@
 // unchanged, and commit / power-cycle semantics.
 #include "firmware_model/target/maintenance_handler.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -24,6 +25,9 @@ constexpr UnitIdentity kAdsIdentity = {UnitKind::kAds, 230017, 1, 4, 0};
 // thermal: sensor, norm(3), work exponent, c0 hi at 5, lo at 6; accel: offset lo of az1 at 1;
 // gyro: norm(3), work exponent, c0 lo at 5; matrices: [0][0] lo at 1; ADS: 2 norms, 5 exponents,
 // coefficient c_00 (the reference's a) lo at 12.
+// Room for any constants block of either unit kind.
+constexpr uint8_t kLargestBlockWords = std::max(kAdsMaxBlockWords, kImuMaxBlockWords);
+
 int MantissaLowIndex(uint8_t block_id) {
   if (block_id <= kImuBlockThermalLast) return 6;
   if (block_id == kImuBlockAccelOffsetScale) return 1;
@@ -36,7 +40,7 @@ int MantissaLowIndex(uint8_t block_id) {
 // word set to `marker` (a change of at most 2^16 LSB of a Q31 mantissa, far inside every
 // format's overflow bound).
 std::vector<int16_t> ValidBlock(UnitKind kind, uint8_t block_id, int16_t marker) {
-  std::vector<int16_t> words(kAdsMaxBlockWords > kImuMaxBlockWords ? kAdsMaxBlockWords : kImuMaxBlockWords);
+  std::vector<int16_t> words(kLargestBlockWords);
   uint8_t count = 0;
   ConstantsStatus status;
   if (kind == UnitKind::kImu) {
@@ -131,7 +135,7 @@ class Unit {
     s.mode = handler_.kind() == UnitKind::kImu ? static_cast<uint8_t>(handler_.imu_mode())
                                                : static_cast<uint8_t>(handler_.ads_mode());
     for (const uint8_t id : BlockIds(handler_.kind())) {
-      std::vector<int16_t> words(kAdsMaxBlockWords > kImuMaxBlockWords ? kAdsMaxBlockWords : kImuMaxBlockWords);
+      std::vector<int16_t> words(kLargestBlockWords);
       uint8_t count = 0;
       if (handler_.kind() == UnitKind::kImu) {
         ImuConstantsReadBlock(&handler_.imu_constants(), id, words.data(), static_cast<uint8_t>(words.size()), &count);
@@ -231,7 +235,7 @@ TEST(MaintenanceHandlerTest, CorruptFlashMeansNoConstantsAfterPowerCycle) {
   for (const uint8_t id : BlockIds(UnitKind::kImu)) {
     ImuConstants init;
     ImuConstantsInit(&init);
-    std::vector<int16_t> words(kAdsMaxBlockWords > kImuMaxBlockWords ? kAdsMaxBlockWords : kImuMaxBlockWords);
+    std::vector<int16_t> words(kLargestBlockWords);
     uint8_t count = 0;
     ImuConstantsReadBlock(&init, id, words.data(), static_cast<uint8_t>(words.size()), &count);
     words.resize(count);
