@@ -2,7 +2,8 @@
 // (a thermal-calibration run and a sensor-calibration run) with the strategy (default: the
 // improved "joint" strategy) and writes OUT/<serial>.constants.json per unit.
 // adahrs fit --run DIR --ads-strategy NAME --out DIR: fits every ADS unit of one ADS calibration
-// run with the ADS strategy NAME (reference, tolerance_minimax, pressure_minimax) and writes
+// run with the ADS strategy NAME (reference, tolerance_minimax, pressure_minimax,
+// hysteresis_compensated) and writes
 // OUT/<serial>.json per unit, as the demo campaign does (docs/constants-file.md,
 // docs/calibration-strategies.md).
 #include <filesystem>
@@ -30,7 +31,7 @@ void RegisterFitCommand(CLI::App& app) {
       cmd->add_option("--strategy", *strategy_file, "IMU strategy file (default: joint, auto order)");
   cmd->add_option("--ads-strategy", *ads_strategy,
                   "Fit the ADS units of one ADS calibration run with this strategy: reference, "
-                  "tolerance_minimax or pressure_minimax")
+                  "tolerance_minimax, pressure_minimax or hysteresis_compensated")
       ->excludes(imu_option);
   cmd->add_option("--out", *out, "Output directory for the constants files")->required();
   cmd->callback([runs, strategy_file, ads_strategy, out] {

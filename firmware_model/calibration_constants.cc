@@ -2,6 +2,7 @@
 
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 namespace adahrs::firmware_model {
 namespace {
@@ -58,9 +59,54 @@ json SurfaceToJson(const SurfaceFit& s) {
   for (const auto& [value, name] : kLawNames) {
     if (value == s.law) law = name;
   }
-  return json{{"coeff_x_y", s.coeff_xy},    {"x_min_code", s.x_min_code},
-              {"x_max_code", s.x_max_code}, {"y_min_code", s.y_min_code},
-              {"y_max_code", s.y_max_code}, {"law", law}};
+  json out{{"coeff_x_y", s.coeff_xy},    {"x_min_code", s.x_min_code},
+           {"x_max_code", s.x_max_code}, {"y_min_code", s.y_min_code},
+           {"y_max_code", s.y_max_code}, {"law", law}};
+  if (s.hysteresis.active()) {
+    const HysteresisCompensation& h = s.hysteresis;
+    out["hysteresis"] = {{"pressure_gain", h.pressure_gain},
+                         {"pressure_gain_per_degc", h.pressure_gain_per_degc},
+                         {"pressure_span", h.pressure_span},
+                         {"thermal_gain", h.thermal_gain},
+                         {"thermal_gain_per_degc", h.thermal_gain_per_degc},
+                         {"thermal_span_c", h.thermal_span_c},
+                         {"die_temp_origin_code", h.die_temp_origin_code},
+                         {"die_temp_c", h.die_temp_c}};
+  }
+  return out;
+}
+
+// "hysteresis": both operators' gains and spans and the die temperature of the bridge code. A
+// zero span with a non-zero gain is refused (the state would never move, so the gain would be a
+// constant offset in disguise), as are negative spans and a thermal span without a temperature.
+HysteresisCompensation HysteresisFromJson(const json& j, const std::string& path) {
+  ExpectKeys(j, path, {"pressure_gain", "pressure_gain_per_degc", "pressure_span", "thermal_gain",
+                       "thermal_gain_per_degc", "thermal_span_c", "die_temp_origin_code",
+                       "die_temp_c"});
+  HysteresisCompensation h;
+  h.pressure_gain = Number(j["pressure_gain"], path + ".pressure_gain");
+  h.pressure_gain_per_degc = Number(j["pressure_gain_per_degc"], path + ".pressure_gain_per_degc");
+  h.pressure_span = Number(j["pressure_span"], path + ".pressure_span");
+  h.thermal_gain = Number(j["thermal_gain"], path + ".thermal_gain");
+  h.thermal_gain_per_degc = Number(j["thermal_gain_per_degc"], path + ".thermal_gain_per_degc");
+  h.thermal_span_c = Number(j["thermal_span_c"], path + ".thermal_span_c");
+  h.die_temp_origin_code = Number(j["die_temp_origin_code"], path + ".die_temp_origin_code");
+  h.die_temp_c = Numbers<4>(j["die_temp_c"], path + ".die_temp_c");
+  for (const auto& [span, gain, slope, name] :
+       {std::tuple{h.pressure_span, h.pressure_gain, h.pressure_gain_per_degc, "pressure"},
+        std::tuple{h.thermal_span_c, h.thermal_gain, h.thermal_gain_per_degc, "thermal"}}) {
+    if (span < 0.0) throw std::runtime_error(path + "." + name + " span: must not be negative");
+    if (span == 0.0 && (gain != 0.0 || slope != 0.0)) {
+      throw std::runtime_error(path + "." + name + "_gain: non-zero with a zero span");
+    }
+  }
+  const bool needs_temperature =
+      h.thermal_span_c != 0.0 || h.pressure_gain_per_degc != 0.0 || h.thermal_gain_per_degc != 0.0;
+  if (needs_temperature && h.die_temp_c[1] == 0.0 && h.die_temp_c[2] == 0.0 && h.die_temp_c[3] == 0.0) {
+    throw std::runtime_error(path + ".die_temp_c: no temperature dependence, but a thermal span or "
+                             "a gain's temperature slope needs one");
+  }
+  return h;
 }
 
 // The coefficients: "coeff_x_y" (rows p = 0..3 of x, columns q = 0..5 of y), or, in files written
@@ -88,7 +134,7 @@ SurfaceCoefficients CoefficientsFromJson(const json& j, const std::string& path)
 // (files written before it existed) is direct.
 SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pressure_law) {
   ExpectKeys(j, path, {"x_min_code", "x_max_code", "y_min_code", "y_max_code"},
-             {"law", "coeff_x_y", "coeff_a_to_j"});
+             {"law", "coeff_x_y", "coeff_a_to_j", "hysteresis"});
   SurfaceFit s;
   if (j.contains("law")) {
     const std::string allowed = pressure_law == SurfaceLaw::kIsaAltitude ? "isa_altitude" : "cas";
@@ -98,6 +144,7 @@ SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pr
     s.law = j["law"] == "direct" ? SurfaceLaw::kDirect : pressure_law;
   }
   s.coeff_xy = CoefficientsFromJson(j, path);
+  if (j.contains("hysteresis")) s.hysteresis = HysteresisFromJson(j["hysteresis"], path + ".hysteresis");
   s.x_min_code = Number(j["x_min_code"], path + ".x_min_code");
   s.x_max_code = Number(j["x_max_code"], path + ".x_max_code");
   s.y_min_code = Number(j["y_min_code"], path + ".y_min_code");

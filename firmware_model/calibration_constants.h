@@ -71,6 +71,26 @@ struct XyPowers {
 inline constexpr XyPowers kReferenceCubicTerm[10] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2},
                                                      {1, 1}, {3, 0}, {0, 3}, {1, 2}, {2, 1}};
 
+/// The branch terms the unit adds to a surface's z (target/ads_constants.h "Hysteresis"):
+/// z + gain_P(T) s_P + gain_T(T) s_T, gain(T) = gain + gain_per_degc (T - kHysteresisGainReferenceC),
+/// each state from a last-extreme operator: the pressure one driven by z, the thermal one by the
+/// die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j of the bridge-voltage
+/// code y, which also gives the gains' T. A span of 0 switches its operator off (its gains must
+/// then be 0). Absent from a constants file: both off, the static surface.
+inline constexpr double kHysteresisGainReferenceC = 25.0;
+
+struct HysteresisCompensation {
+  double pressure_gain = 0.0;           ///< z units per unit state at 25 degC
+  double pressure_gain_per_degc = 0.0;  ///< its change per degC of die temperature
+  double pressure_span = 0.0;           ///< z travel after a reversal to the full state
+  double thermal_gain = 0.0;            ///< z units per unit state at 25 degC
+  double thermal_gain_per_degc = 0.0;
+  double thermal_span_c = 0.0;          ///< die-temperature travel to the full state, degC
+  double die_temp_origin_code = 0.0;
+  std::array<double, 4> die_temp_c = {};  ///< degC per code^j
+  bool active() const { return pressure_span != 0.0 || thermal_span_c != 0.0; }
+};
+
 struct SurfaceFit {
   SurfaceCoefficients coeff_xy = {};
   double x_min_code = 0.0;
@@ -78,6 +98,7 @@ struct SurfaceFit {
   double y_min_code = 0.0;
   double y_max_code = 0.0;
   SurfaceLaw law = SurfaceLaw::kDirect;
+  HysteresisCompensation hysteresis;
 };
 
 struct AdsCalibrationConstants {

@@ -1,8 +1,11 @@
 #include "firmware_model/constants_exporter.h"
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 // fmt header-only: firmware_model links no formatting library (firmware_model/CMakeLists.txt).
@@ -221,6 +224,93 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
   return out;
 }
 
+namespace {
+
+// One operator's inv_span: 0 for a term that is off; otherwise the input exponent plus its
+// exponent must lie in -31..31 (ads_constants.h).
+CoeffQ31 InverseSpan(double span, int input_exponent, const std::string& what) {
+  if (span == 0.0) return CoeffQ31{0, 0};
+  const CoeffQ31 inv = Quantise(1.0L / span, kMinExponent, what);
+  if (inv.mantissa_q31 == INT32_MIN || input_exponent + inv.exponent < -31 ||
+      input_exponent + inv.exponent > 31) {
+    throw std::invalid_argument(
+        fmt::format("{}: span {:.6g} is outside what the operator's travel can carry", what, span));
+  }
+  return inv;
+}
+
+// A gain at_centre + per_tau tau in Q15 at the smallest exponent (from result_e - 16 up) for which
+// |at_centre| + |per_tau| stays within Q15 (|tau| < 1); refused above the result's full scale.
+GainQ15 QuantiseGain(double at_centre, double per_tau, int result_e, const std::string& what) {
+  auto q15 = [](double v, int e) { return std::nearbyint(std::ldexp(v, 15 - e)); };
+  int e = result_e - kMaxAlignShift;
+  while (e <= result_e && std::fabs(q15(at_centre, e)) + std::fabs(q15(per_tau, e)) > 32767.0) ++e;
+  if (e > result_e) {
+    throw std::invalid_argument(fmt::format("{}: gain {:.6g} + {:.6g} tau exceeds the result's full "
+                                            "scale 2^{}", what, at_centre, per_tau, result_e));
+  }
+  return GainQ15{static_cast<int16_t>(q15(at_centre, e)), static_cast<int16_t>(q15(per_tau, e)),
+                 static_cast<int8_t>(e)};
+}
+
+double Q15Lsb(int exponent) { return std::ldexp(1.0, exponent - 15); }
+
+// The hysteresis terms of surface `q` (its y normalisation already chosen) whose result is at
+// `result_e`. The die temperature T(y) is re-expanded in the normalised y and scaled by the
+// smallest power of two K (degC) that keeps sum |t_k| within Q15 with a 1 % margin: tau =
+// (T - T_c) / K, T_c the temperature at the normalisation's centre (the operator sees only
+// differences of tau; the gains are re-centred on T_c). inv_span = K / span. Returns the terms'
+// contribution to the error bound against the double reference fed the same states and the exact
+// die temperature: per gain, its rounding (1 LSB each part), tau's (Horner, 3 LSB of K degC) times
+// its slope, the Q15 gain's and state's roundings (2 + 4 LSB of the gain), the alignment (1 LSB).
+double ExportHysteresis(const HysteresisCompensation& h, int result_e, const std::string& what,
+                        SurfaceQ31* q) {
+  for (int16_t& t : q->die_temp_q15) t = 0;
+  Real centre_c = kHysteresisGainReferenceC;
+  Real scale_c = 1;
+  if (h.die_temp_c[1] != 0.0 || h.die_temp_c[2] != 0.0 || h.die_temp_c[3] != 0.0) {
+    const std::vector<Real> k(h.die_temp_c.begin(), h.die_temp_c.end());
+    const std::vector<Real> c = Renormalise(
+        k, static_cast<Real>(q->y_norm.centre) - static_cast<Real>(h.die_temp_origin_code),
+        q->y_norm.shift);
+    const Real sum = std::fabs(c[1]) + std::fabs(c[2]) + std::fabs(c[3]);
+    int scale_e = -8;
+    while (sum >= 0.99L * std::ldexp(Real{1}, scale_e)) ++scale_e;
+    if (scale_e > 16) {
+      throw std::invalid_argument(fmt::format(
+          "{}: die temperature spans {:.6g} degC over the code box, beyond tau's range", what,
+          static_cast<double>(sum)));
+    }
+    for (int m = 1; m <= 3; ++m) {
+      q->die_temp_q15[m - 1] = static_cast<int16_t>(std::nearbyint(std::ldexp(c[m], 15 - scale_e)));
+    }
+    centre_c = c[0];
+    scale_c = std::ldexp(Real{1}, scale_e);
+  }
+  auto term = [&](double gain, double per_degc, double inv_span_input, int input_e,
+                  const std::string& name) {
+    const Real at_centre = Real{gain} + Real{per_degc} * (centre_c - kHysteresisGainReferenceC);
+    const HysteresisTermQ t{
+        InverseSpan(inv_span_input, input_e, what + " " + name + " span"),
+        QuantiseGain(static_cast<double>(at_centre), static_cast<double>(per_degc * scale_c),
+                     result_e, what + " " + name)};
+    return t;
+  };
+  q->pressure = term(h.pressure_gain, h.pressure_gain_per_degc, h.pressure_span, result_e, "pressure");
+  q->thermal = term(h.thermal_gain, h.thermal_gain_per_degc,
+                    static_cast<double>(h.thermal_span_c / scale_c), 0, "thermal");
+  double bound = 0.0;
+  for (const auto& [g, slope, c] : {std::tuple{h.pressure_gain, h.pressure_gain_per_degc, q->pressure.gain},
+                                    std::tuple{h.thermal_gain, h.thermal_gain_per_degc, q->thermal.gain}}) {
+    const double lsb = Q15Lsb(c.exponent);
+    bound += 2.0 * lsb + std::fabs(slope) * 3.0 * static_cast<double>(scale_c) / 32768.0 +
+             6.0 * lsb + (std::fabs(g) + std::fabs(slope) * 65.0) * 4.0 / 32768.0 + Lsb(result_e);
+  }
+  return bound;
+}
+
+}  // namespace
+
 AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
   AdsExport out{};
   AdsConstantsInit(&out.constants);
@@ -275,7 +365,7 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
       }
       if (aligned && sum <= std::ldexp(Real{1}, e)) {
         q->outer_work_exponent = static_cast<int8_t>(e);
-        return bound + 4 * kPx * Lsb(e) + Lsb(out_e);
+        return bound + 4 * kPx * Lsb(e) + Lsb(out_e) + ExportHysteresis(s.hysteresis, out_e, what, q);
       }
     }
     throw std::invalid_argument(fmt::format(

@@ -42,12 +42,13 @@ json ImuModes(const ImuConstants& c, const ImuRawFrame& raw) {
   return modes;
 }
 
-json AdsModes(const AdsConstants& c, const AdsRawFrame& raw) {
+// Both modes of one frame; the surface mode advances `state` (kRaw leaves it alone).
+json AdsModes(const AdsConstants& c, const AdsRawFrame& raw, AdsHysteresisState* state) {
   json modes = json::array();
   for (uint8_t m = 0; m <= 1; ++m) {
     DspEngine engine;
     AdsCompensatedFrame out{};
-    AdsCompensate(&engine, c, static_cast<AdsCompensationMode>(m), raw, &out);
+    AdsCompensate(&engine, c, static_cast<AdsCompensationMode>(m), raw, state, &out);
     modes.push_back({{"mode", m},
                      {"value", std::vector<int32_t>(out.value, out.value + kAdsOutputValues)},
                      {"flags", out.flags},
@@ -90,13 +91,15 @@ json MakeCompensatorGolden(const ImuConstants& imu, const AdsConstants& ads,
   }
   doc["ads"]["blocks"] = Blocks(ads, {kAdsBlockAltitude, kAdsBlockAirspeed}, AdsConstantsReadBlock);
   doc["ads"]["frames"] = json::array();
+  AdsHysteresisState state;
+  AdsHysteresisReset(&state);
   for (const AdsRawFrame& f : ads_frames) {
     doc["ads"]["frames"].push_back({{"ps_code", f.ps_code},
                                     {"pt_code", f.pt_code},
                                     {"ps_bridge_code", f.ps_bridge_code},
                                     {"pt_bridge_code", f.pt_bridge_code},
                                     {"oat_code", f.oat_code},
-                                    {"modes", AdsModes(ads, f)}});
+                                    {"modes", AdsModes(ads, f, &state)}});
   }
   return doc;
 }
@@ -134,12 +137,14 @@ std::string ReplayCompensatorGolden(const json& golden) {
     if (!diff.empty()) return diff;
   }
   const json& ads_frames = golden.at("ads").at("frames");
+  AdsHysteresisState state;
+  AdsHysteresisReset(&state);
   for (size_t i = 0; i < ads_frames.size(); ++i) {
     const json& f = ads_frames[i];
     const AdsRawFrame raw{f.at("ps_code").get<int32_t>(), f.at("pt_code").get<int32_t>(),
                           f.at("ps_bridge_code").get<int32_t>(),
                           f.at("pt_bridge_code").get<int32_t>(), f.at("oat_code").get<int32_t>()};
-    const std::string diff = Compare(f.at("modes"), AdsModes(ads, raw), "ADS frame " + std::to_string(i));
+    const std::string diff = Compare(f.at("modes"), AdsModes(ads, raw, &state), "ADS frame " + std::to_string(i));
     if (!diff.empty()) return diff;
   }
   return "";

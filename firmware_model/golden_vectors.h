@@ -2,6 +2,8 @@
 // words, raw input frames, and the bit-exact outputs, flags and cycle counts of every mode, in one
 // JSON document (tests/firmware_model/data/compensator_golden.json). A target build replays it by
 // writing each block with Imu/AdsConstantsWriteBlock, running each frame, and comparing words.
+// The ADS frames run in order from fresh hysteresis operators (ads_compensator.h), so a replay
+// checks the operators' memory as well as each frame.
 // Layout: {"format": 1, "imu": {"blocks": [{"id", "words"}], "frames": [{"t1_cnt", "t2_cnt",
 // "gyro_cnt", "temp_cnt", "modes": [{"mode", "value", "flags", "cycles"}]}]}, "ads": {...
 // "frames": [{"ps_code", "pt_code", "ps_bridge_code", "pt_bridge_code", "oat_code", "modes"}]}}.

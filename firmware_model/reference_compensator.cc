@@ -73,16 +73,25 @@ double EvaluateSurfaceFit(const SurfaceFit& s, double x, double y) {
 }
 
 std::array<double, 2> AdsReference(const AdsCalibrationConstants& c, AdsCompensationMode mode,
-                                   const AdsRawFrame& raw) {
+                                   const AdsRawFrame& raw, const AdsReferenceStates& states) {
   if (mode == AdsCompensationMode::kRaw) {
     return {static_cast<double>(raw.ps_code), static_cast<double>(raw.pt_code)};
   }
-  return {SurfaceOutput(c.altitude_ft, raw.ps_code, raw.ps_bridge_code),
-          SurfaceOutput(c.airspeed_kt, raw.pt_code, raw.pt_bridge_code)};
+  return {SurfaceOutput(c.altitude_ft, raw.ps_code, raw.ps_bridge_code, states.static_pressure,
+                        states.static_thermal),
+          SurfaceOutput(c.airspeed_kt, raw.pt_code, raw.pt_bridge_code, states.pitot_pressure,
+                        states.pitot_thermal)};
 }
 
-double SurfaceOutput(const SurfaceFit& s, double x_code, double y_code) {
-  const double z = EvaluateSurfaceFit(s, x_code, y_code);
+double SurfaceOutput(const SurfaceFit& s, double x_code, double y_code, double s_pressure,
+                     double s_thermal) {
+  const HysteresisCompensation& h = s.hysteresis;
+  double die_c = 0.0;  // T(y): only the gains' slopes use it
+  for (int j = 3; j >= 0; --j) die_c = die_c * (y_code - h.die_temp_origin_code) + h.die_temp_c[j];
+  const double dt_c = die_c - kHysteresisGainReferenceC;
+  const double z = EvaluateSurfaceFit(s, x_code, y_code) +
+                   (h.pressure_gain + h.pressure_gain_per_degc * dt_c) * s_pressure +
+                   (h.thermal_gain + h.thermal_gain_per_degc * dt_c) * s_thermal;
   switch (s.law) {
     case SurfaceLaw::kIsaAltitude:
       return IsaAltitudeFtFromStaticPa(z);

@@ -18,14 +18,27 @@ namespace adahrs::firmware_model {
 std::array<double, 9> ImuReference(const ImuCalibrationConstants& constants,
                                    ImuCompensationMode mode, const ImuRawFrame& raw);
 
-/// Altitude (ft) and airspeed (kt) from the surfaces; in kRaw mode the ps and pt codes.
-std::array<double, 2> AdsReference(const AdsCalibrationConstants& constants,
-                                   AdsCompensationMode mode, const AdsRawFrame& raw);
+/// The hysteresis states the reference is given (it runs no operator: the target's are checked
+/// against the simulator's law on their own, tests/firmware_model/last_extreme_q15_test.cc).
+struct AdsReferenceStates {
+  double static_pressure = 0.0;
+  double static_thermal = 0.0;
+  double pitot_pressure = 0.0;
+  double pitot_thermal = 0.0;
+};
 
-/// Evaluates one 10-term surface at raw codes (x, y): its z (ft, kt, or Pa under a law).
+/// Altitude (ft) and airspeed (kt) from the surfaces and their hysteresis terms at `states`; in
+/// kRaw mode the ps and pt codes.
+std::array<double, 2> AdsReference(const AdsCalibrationConstants& constants,
+                                   AdsCompensationMode mode, const AdsRawFrame& raw,
+                                   const AdsReferenceStates& states = {});
+
+/// Evaluates one surface at raw codes (x, y): its z (ft, kt, or Pa under a law), no hysteresis.
 double EvaluateSurfaceFit(const SurfaceFit& surface, double x_code, double y_code);
-/// The output of a surface and its law (air_data_law.h, exact in double): ft or kt.
-double SurfaceOutput(const SurfaceFit& surface, double x_code, double y_code);
+/// The output of a surface, its hysteresis terms at states (s_pressure, s_thermal) with the gains
+/// at the die temperature of y_code, and its law (air_data_law.h, exact in double): ft or kt.
+double SurfaceOutput(const SurfaceFit& surface, double x_code, double y_code,
+                     double s_pressure = 0.0, double s_thermal = 0.0);
 
 /// Converts a fixed-point frame to the same physical units (value = word * 2^(exponent - 31)).
 std::array<double, 9> ImuFrameToDouble(ImuCompensationMode mode, const ImuCompensatedFrame& frame);

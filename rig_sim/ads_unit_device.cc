@@ -24,15 +24,22 @@ uint16_t AdsUnitDevice::Acquire(double, const RigEnvironment& env, bool encode,
   stimulus.air_temp_c = env.ads_chamber_air_c;
   stimulus.oat_c = env.ads_chamber_air_c;
   const sensor_sim::AdsRawFrame measured = unit_.Step(stimulus);
-  if (!encode) return 0;
+  if (!encode) {
+    compensating_ = false;  // unpowered: the operators' RAM is lost
+    return 0;
+  }
 
   fm::AdsDataPayload payload{};
   payload.raw = {measured.ps_cnt, measured.pt_cnt, measured.ps_temp_cnt, measured.pt_temp_cnt,
                  measured.oat_cnt};
   payload.mode = handler.ads_mode();
-  if (payload.mode != fm::AdsCompensationMode::kRaw) {
+  if (payload.mode == fm::AdsCompensationMode::kRaw) {
+    compensating_ = false;
+  } else {
+    if (!compensating_) fm::AdsHysteresisReset(&hysteresis_);
+    compensating_ = true;
     fm::DspEngine engine;
-    fm::AdsCompensate(&engine, handler.ads_constants(), payload.mode, payload.raw,
+    fm::AdsCompensate(&engine, handler.ads_constants(), payload.mode, payload.raw, &hysteresis_,
                       &payload.compensated);
   }
   const uint8_t tag = handler.tag();

@@ -7,13 +7,16 @@
 // them to the ports, ads_chamber_air_c around the board and at the OAT probe (the probe sits in
 // the bench chamber with the unit).
 // Firmware per sample: the handler's mode; in surface mode AdsCompensate with the handler's RAM
-// constants; the packet carries the handler's next sequence number and current TAG (§5).
+// constants and the hysteresis operators' memory, which starts fresh whenever the unit enters the
+// surface mode or is powered (RAM is lost unpowered; the firmware does not keep it in flash); the
+// packet carries the handler's next sequence number and current TAG (§5).
 // Left out: pneumatic lag between the test set and the ports (the ADTS model slews), leaks.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
+#include "firmware_model/target/ads_compensator.h"
 #include "rig_sim/unit_device.h"
 #include "sensor_sim/ads_unit.h"
 
@@ -42,6 +45,8 @@ class AdsUnitDevice : public UnitDevice {
 
  private:
   sensor_sim::AdsUnit unit_;
+  firmware_model::AdsHysteresisState hysteresis_{};
+  bool compensating_ = false;  ///< the last sample ran the compensator
 };
 
 }  // namespace adahrs::rig_sim

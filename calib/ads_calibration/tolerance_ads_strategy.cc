@@ -1,6 +1,7 @@
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <iterator>
@@ -9,15 +10,19 @@
 #include <stdexcept>
 #include <tuple>
 
+#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include "calib/ads_calibration/bridge_history.h"
 #include "calib/evaluation/ads_tolerance.h"
+#include "calib/constants/constants_file.h"
 #include "firmware_model/air_data_law.h"
 #include "firmware_model/reference_compensator.h"
 
 namespace adahrs::calib {
 namespace {
+
+namespace fm = firmware_model;
 
 struct MinimaxSurface {
   SurfaceEstimate estimate;
@@ -156,34 +161,57 @@ AdsFitResult FitToleranceAdsStrategy(const std::string& context,
   return out;
 }
 
-AdsFitResult FitPressureAdsStrategy(const std::string& context,
-                                    const std::vector<AdsCalibrationPoint>& points) {
+namespace {
+
+// The pressure-surface samples of both bridges with their recorded hysteresis states and their
+// envelope bands, and each point's tolerance carried into Pa by the law's local slope.
+struct PressureSamples {
   std::vector<SurfaceSample> ps, qc;
   std::vector<BridgeBands> ps_bands, qc_bands;
-  const std::vector<PointHistory> history = BridgeHistoryOf(points);
+};
+
+PressureSamples PressureSamplesOf(const std::vector<AdsCalibrationPoint>& points,
+                                  const HysteresisSpans& spans = HysteresisSpans::Nominal()) {
+  PressureSamples out;
+  const std::vector<PointHistory> history = BridgeHistoryOf(points, spans);
   for (size_t i = 0; i < points.size(); ++i) {
     const AdsCalibrationPoint& p = points[i];
-    const PointBands bands = EnvelopeBands(p);
+    const PointBands bands = EnvelopeBands(p, spans);
     const BridgeStates& s = history[i].static_bridge;
-    ps.push_back({p.ps_code, p.ps_temp_code, p.ps_ref_pa, p.chamber_c, 1.0, s.s_pressure, s.s_thermal});
-    ps_bands.push_back(bands.static_bridge);
+    out.ps.push_back({p.ps_code, p.ps_temp_code, p.ps_ref_pa, p.chamber_c, 1.0, s.s_pressure, s.s_thermal});
+    out.ps_bands.push_back(bands.static_bridge);
     if (p.airspeed_point) {
       const BridgeStates& t = history[i].pitot_bridge;
-      qc.push_back({p.pt_code, p.pt_temp_code, p.qc_ref_pa, p.chamber_c, 1.0, t.s_pressure, t.s_thermal});
-      qc_bands.push_back(bands.pitot_bridge);
+      out.qc.push_back({p.pt_code, p.pt_temp_code, p.qc_ref_pa, p.chamber_c, 1.0, t.s_pressure, t.s_thermal});
+      out.qc_bands.push_back(bands.pitot_bridge);
     }
   }
-  namespace fm = firmware_model;
-  const std::function<double(double)> ps_tolerance = [](double pa) {
-    const double ft = std::clamp(fm::IsaAltitudeFtFromStaticPa(pa), kAdsMinAltitudeFt, kAdsMaxAltitudeFt);
-    const double ft_per_pa = fm::IsaAltitudeFtFromStaticPa(pa - 0.5) - fm::IsaAltitudeFtFromStaticPa(pa + 0.5);
-    return AltitudeToleranceFt(ft) / ft_per_pa;
-  };
-  const std::function<double(double)> qc_tolerance = [](double pa) {
-    const double kt = std::clamp(fm::CasKtFromImpactPa(pa), kAdsMinAirspeedKt, kAdsMaxAirspeedKt);
-    const double kt_per_pa = fm::CasKtFromImpactPa(pa + 0.5) - fm::CasKtFromImpactPa(pa - 0.5);
-    return AirspeedToleranceKt(kt) / kt_per_pa;
-  };
+  return out;
+}
+
+double StaticTolerancePa(double pa) {
+  const double ft = std::clamp(fm::IsaAltitudeFtFromStaticPa(pa), kAdsMinAltitudeFt, kAdsMaxAltitudeFt);
+  const double ft_per_pa = fm::IsaAltitudeFtFromStaticPa(pa - 0.5) - fm::IsaAltitudeFtFromStaticPa(pa + 0.5);
+  return AltitudeToleranceFt(ft) / ft_per_pa;
+}
+
+double ImpactTolerancePa(double pa) {
+  const double kt = std::clamp(fm::CasKtFromImpactPa(pa), kAdsMinAirspeedKt, kAdsMaxAirspeedKt);
+  const double kt_per_pa = fm::CasKtFromImpactPa(pa + 0.5) - fm::CasKtFromImpactPa(pa - 0.5);
+  return AirspeedToleranceKt(kt) / kt_per_pa;
+}
+
+}  // namespace
+
+AdsFitResult FitPressureAdsStrategy(const std::string& context,
+                                    const std::vector<AdsCalibrationPoint>& points) {
+  const PressureSamples samples = PressureSamplesOf(points);
+  const std::vector<SurfaceSample>& ps = samples.ps;
+  const std::vector<SurfaceSample>& qc = samples.qc;
+  const std::vector<BridgeBands>& ps_bands = samples.ps_bands;
+  const std::vector<BridgeBands>& qc_bands = samples.qc_bands;
+  const std::function<double(double)> ps_tolerance = StaticTolerancePa;
+  const std::function<double(double)> qc_tolerance = ImpactTolerancePa;
   const std::string ps_context = context + ": static pressure surface";
   const std::string qc_context = context + ": impact pressure surface";
   auto relative_to_mid = [](std::vector<SurfaceSample> samples, const std::vector<BridgeBands>& bands) {
@@ -240,14 +268,140 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
   return out;
 }
 
+namespace {
+
+// The die temperature as a cubic of the bridge-voltage code, T = sum_j k_j (y - y0)^j (degC),
+// least squares over the samples (each at a soak, where the die sits at the chamber's
+// temperature plus its self-heating, which the operator does not see: it takes differences), in
+// u = (y - y0) / half-width for conditioning; y0 is the codes' mean. The bridge resistance's
+// quadratic tempco makes the code's slope change by ~40 % over the range (pressure_bridge.h), so
+// a straight line would misjudge a 20 degC travel by as much near the ends.
+struct DieTemperature {
+  double origin_code = 0.0;
+  std::array<double, 4> degc_per_code_power = {};
+  double residual_rms_c = 0.0;
+};
+
+DieTemperature FitDieTemperature(const std::string& context, const std::vector<SurfaceSample>& samples) {
+  std::set<long long> temperatures_dc;
+  double y0 = 0.0;
+  for (const SurfaceSample& s : samples) {
+    temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
+    y0 += s.y_code;
+  }
+  if (temperatures_dc.size() < 4) {
+    throw DegenerateDesignError(fmt::format(
+        "{}: the die temperature's cubic in the bridge code needs 4 chamber temperatures, got {}",
+        context, temperatures_dc.size()));
+  }
+  y0 /= static_cast<double>(samples.size());
+  double half = 0.0;
+  for (const SurfaceSample& s : samples) half = std::max(half, std::abs(s.y_code - y0));
+  Eigen::MatrixXd a(samples.size(), 4);
+  Eigen::VectorXd b(samples.size());
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const double u = (samples[i].y_code - y0) / half;
+    a.row(static_cast<Eigen::Index>(i)) << 1.0, u, u * u, u * u * u;
+    b(static_cast<Eigen::Index>(i)) = samples[i].chamber_c;
+  }
+  const Eigen::Vector4d c = a.colPivHouseholderQr().solve(b);
+  DieTemperature out;
+  out.origin_code = y0;
+  for (int j = 0; j < 4; ++j) out.degc_per_code_power[j] = c(j) / std::pow(half, j);
+  out.residual_rms_c = std::sqrt((a * c - b).squaredNorm() / static_cast<double>(samples.size()));
+  return out;
+}
+
+struct CompensatedSurface {
+  SurfaceEstimate centre;  ///< least squares with the recorded states: surface and gains
+  fm::HysteresisCompensation hysteresis;
+  double worst_ratio_at_points = 0.0;  ///< |surface + gains . states - z| / tolerance
+  double die_temp_residual_rms_c = 0.0;
+};
+
+CompensatedSurface FitCompensated(const std::string& context, const std::vector<SurfaceSample>& recorded,
+                                  const std::function<double(double)>& tolerance_of,
+                                  double pressure_span_pa, double thermal_span_c, OrderChoice* order) {
+  *order = ChooseYDegree(context, recorded, tolerance_of);
+  const PolynomialBasis basis = PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, order->y_degree, "x", "y");
+  const std::vector<double> tolerance = Tolerances(recorded, tolerance_of);
+  std::vector<SurfaceSample> weighted = recorded;
+  WeighByTolerance(weighted, tolerance);
+  CompensatedSurface out;
+  out.centre = FitSurface(context, basis, weighted, HistoryTerms::kWithTemperatureSlopes);
+  const HysteresisEstimate& h = *out.centre.history;
+  for (size_t i = 0; i < recorded.size(); ++i) {
+    const SurfaceSample& s = recorded[i];
+    const double dt_c = s.chamber_c - kHysteresisReferenceC;
+    const double predicted = fm::EvaluateSurfaceFit(out.centre.surface, s.x_code, s.y_code) +
+                             (h.pressure + h.pressure_per_degc * dt_c) * s.s_pressure +
+                             (h.thermal + h.thermal_per_degc * dt_c) * s.s_thermal;
+    out.worst_ratio_at_points = std::max(out.worst_ratio_at_points, std::abs(predicted - s.z) / tolerance[i]);
+  }
+  const DieTemperature die = FitDieTemperature(context, recorded);
+  static_assert(kHysteresisReferenceC == fm::kHysteresisGainReferenceC);
+  out.hysteresis = {h.pressure,         h.pressure_per_degc, pressure_span_pa, h.thermal,
+                    h.thermal_per_degc, thermal_span_c,      die.origin_code,  die.degc_per_code_power};
+  out.die_temp_residual_rms_c = die.residual_rms_c;
+  return out;
+}
+
+}  // namespace
+
+AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
+                                      const std::vector<AdsCalibrationPoint>& points,
+                                      const HysteresisSpans& spans) {
+  const PressureSamples samples = PressureSamplesOf(points, spans);
+  OrderChoice ps_order, qc_order;
+  const CompensatedSurface alt =
+      FitCompensated(context + ": static pressure surface", samples.ps, StaticTolerancePa,
+                     spans.static_pressure_pa, spans.temperature_c, &ps_order);
+  const CompensatedSurface cas =
+      FitCompensated(context + ": impact pressure surface", samples.qc, ImpactTolerancePa,
+                     spans.impact_pressure_pa, spans.temperature_c, &qc_order);
+  AdsFitResult out =
+      AdsFitFromSurfaces(kHysteresisAdsStrategyName, alt.centre, cas.centre, true);
+  out.constants.altitude_ft.hysteresis = alt.hysteresis;
+  out.constants.airspeed_kt.hysteresis = cas.hysteresis;
+  fm::AdsCalibrationConstants se = out.constants;
+  se.altitude_ft.coeff_xy = alt.centre.coeff_se;
+  se.airspeed_kt.coeff_xy = cas.centre.coeff_se;
+  for (const auto& [surface, c] : {std::pair{&se.altitude_ft, &alt}, std::pair{&se.airspeed_kt, &cas}}) {
+    const HysteresisEstimate& h = *c->centre.history;
+    surface->hysteresis.pressure_gain = h.pressure_se;
+    surface->hysteresis.pressure_gain_per_degc = h.pressure_per_degc_se;
+    surface->hysteresis.thermal_gain = h.thermal_se;
+    surface->hysteresis.thermal_gain_per_degc = h.thermal_per_degc_se;
+    surface->hysteresis.die_temp_c.fill(std::numeric_limits<double>::quiet_NaN());  // not carried
+  }
+  out.standard_errors = AdsStandardErrorsJson(se);
+  for (const auto& [key, c, order] : {std::tuple{"altitude_ft", &alt, &ps_order},
+                                      std::tuple{"airspeed_kt", &cas, &qc_order}}) {
+    out.diagnostics[key]["worst_ratio_at_points"] = c->worst_ratio_at_points;
+    out.diagnostics[key]["held_out_worst_ratio_by_y_degree"] = order->held_out_worst_ratio;
+    const HysteresisEstimate& h = *c->centre.history;
+    out.diagnostics[key]["hysteresis"] = {
+        {"pressure_half_loop_Pa", h.pressure}, {"pressure_half_loop_se_Pa", h.pressure_se},
+        {"thermal_half_loop_Pa", h.thermal},   {"thermal_half_loop_se_Pa", h.thermal_se},
+        {"pressure_half_loop_per_degC_Pa", h.pressure_per_degc},
+        {"thermal_half_loop_per_degC_Pa", h.thermal_per_degc},
+        {"centre_fit_residual_rms_Pa", c->centre.residual_rms},
+        {"die_temperature_residual_rms_degC", c->die_temp_residual_rms_c}};
+    out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
+                                                                    : "CAS from impact pressure";
+  }
+  return out;
+}
+
 AdsFitResult FitAdsStrategy(const std::string& name, const std::string& context,
                             const std::vector<AdsCalibrationPoint>& points) {
   if (name == kReferenceAdsStrategyName) return FitReferenceAdsStrategy(context, points);
   if (name == kToleranceAdsStrategyName) return FitToleranceAdsStrategy(context, points);
   if (name == kPressureAdsStrategyName) return FitPressureAdsStrategy(context, points);
+  if (name == kHysteresisAdsStrategyName) return FitHysteresisAdsStrategy(context, points);
   throw std::invalid_argument("unknown ADS strategy '" + name + "' (known: " +
                               kReferenceAdsStrategyName + ", " + kToleranceAdsStrategyName + ", " +
-                              kPressureAdsStrategyName + ")");
+                              kPressureAdsStrategyName + ", " + kHysteresisAdsStrategyName + ")");
 }
 
 }  // namespace adahrs::calib

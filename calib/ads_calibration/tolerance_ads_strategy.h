@@ -19,12 +19,14 @@
 #include <string>
 #include <vector>
 
+#include "calib/ads_calibration/bridge_history.h"
 #include "calib/ads_calibration/reference_ads_strategy.h"
 
 namespace adahrs::calib {
 
 inline constexpr const char* kToleranceAdsStrategyName = "tolerance_minimax";
 inline constexpr const char* kPressureAdsStrategyName = "pressure_minimax";
+inline constexpr const char* kHysteresisAdsStrategyName = "hysteresis_compensated";
 inline constexpr int kLawsonIterations = 40;
 
 /// Fits the tolerance-minimax strategy; `context` leads every message; throws
@@ -45,7 +47,23 @@ AdsFitResult FitToleranceAdsStrategy(const std::string& context,
 AdsFitResult FitPressureAdsStrategy(const std::string& context,
                                     const std::vector<AdsCalibrationPoint>& points);
 
-/// The ADS strategy called `name` ("reference", "tolerance_minimax" or "pressure_minimax");
+/// pressure_minimax's surfaces for a unit that compensates its hysteresis itself
+/// (target/ads_constants.h "Hysteresis"): the temperature order chosen as there but with the
+/// states as recorded; one least-squares fit weighted 1/tol^2 with the states and the states times
+/// (T - 25 degC) as regressors gives the surface (the loop's centre) and the gains (the half
+/// loops, Pa per unit state, and their change per degC). (A minimax surface of the branch-free
+/// z was measured and not kept: 1,582 failing altitude grid points over 20 units against 1,454.) Exported with each operator's span (pressure in Pa, the surface's z
+/// being Pa; temperature in degC) and the die temperature as a cubic of the bridge-voltage code
+/// (least squares of the chamber temperatures over the points; needs 4 temperatures).
+/// Diagnostics as pressure_minimax's plus that cubic's rms residual. Left out: a span estimated from the data (the spans are the part's nominal
+/// values, physics.md section 6: estimated), the unit's state at power-on (fresh; the bridge
+/// remembers its last extremes across power cycles, the firmware does not).
+AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
+                                      const std::vector<AdsCalibrationPoint>& points,
+                                      const HysteresisSpans& spans = HysteresisSpans::Nominal());
+
+/// The ADS strategy called `name` ("reference", "tolerance_minimax", "pressure_minimax" or
+/// "hysteresis_compensated");
 /// throws std::invalid_argument naming the known strategies for any other name.
 AdsFitResult FitAdsStrategy(const std::string& name, const std::string& context,
                             const std::vector<AdsCalibrationPoint>& points);

@@ -80,20 +80,20 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   const std::filesystem::path ads_run = RunDir(o, seq.ads_calibration);
 
   observer.Stage("2/7 fits: IMU reference and improved (joint) strategies, ADS reference and "
-                 "improved (pressure minimax, ISA / CAS laws) strategies");
+                 "improved (hysteresis-compensated pressure surfaces, ISA / CAS laws) strategies");
   const std::filesystem::path imu_reference_dir = o.out_dir / "fits" / "imu-reference";
   const std::filesystem::path imu_joint_dir = o.out_dir / "fits" / "imu-joint";
   const std::filesystem::path ads_reference_dir = o.out_dir / "fits" / "ads-reference";
-  const std::filesystem::path ads_minimax_dir = o.out_dir / "fits" / "ads-pressure-minimax";
+  const std::filesystem::path ads_improved_dir = o.out_dir / "fits" / "ads-hysteresis-compensated";
   const auto imu_reference = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Reference(),
                                                  imu_reference_dir, o.software_version);
   const auto imu_joint = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Improved(),
                                              imu_joint_dir, o.software_version);
   const auto ads_reference = FitAdsIntoDirectory(ads_run, kReferenceAdsStrategyName,
                                                  ads_reference_dir, o.software_version);
-  const auto ads_minimax = FitAdsIntoDirectory(ads_run, kPressureAdsStrategyName, ads_minimax_dir,
-                                               o.software_version);
-  for (const auto* fits : {&imu_reference, &imu_joint, &ads_reference, &ads_minimax}) {
+  const auto ads_improved = FitAdsIntoDirectory(ads_run, kHysteresisAdsStrategyName,
+                                                ads_improved_dir, o.software_version);
+  for (const auto* fits : {&imu_reference, &imu_joint, &ads_reference, &ads_improved}) {
     for (const WrittenConstants& w : *fits) records.AddConstants(ConstantsRecordFromFile(w.path));
   }
   observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
@@ -104,7 +104,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   const std::vector<UnitDownload> imu_downloads =
       DownloadStation(imu_station, imu_joint_dir, records);
   const std::vector<UnitDownload> ads_downloads =
-      DownloadStation(ads_station, ads_minimax_dir, records);
+      DownloadStation(ads_station, ads_improved_dir, records);
 
   observer.Stage("4/7 acceptance runs in the calibrated modes, both benches concurrently");
   const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
@@ -128,8 +128,8 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
                                     imu_joint_dir);
     result.ads_reference_evaluation = EvaluateAgainstTruth(
         ads_reference, *o.truth_dir, ads_station.local_gravity_mps2, ads_reference_dir);
-    ads_eval = EvaluateAgainstTruth(ads_minimax, *o.truth_dir, ads_station.local_gravity_mps2,
-                                    ads_minimax_dir);
+    ads_eval = EvaluateAgainstTruth(ads_improved, *o.truth_dir, ads_station.local_gravity_mps2,
+                                    ads_improved_dir);
   } else {
     result.not_run.push_back("evaluation against truth: no truth directory (not a simulated rig)");
   }
@@ -138,9 +138,9 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   const std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports = {
       {thermal_run, imu_joint_dir},
       {sensor_run, imu_joint_dir},
-      {ads_run, ads_minimax_dir},
+      {ads_run, ads_improved_dir},
       {imu_acceptance_run, imu_joint_dir},
-      {ads_acceptance_run, ads_minimax_dir}};
+      {ads_acceptance_run, ads_improved_dir}};
   for (const auto& [run, fit] : reports) {
     const bool judged = run == imu_acceptance_run || run == ads_acceptance_run;
     WriteRunReport(run, fit, run / "report.html",
@@ -169,7 +169,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
     }
   };
   outcomes(imu_downloads, "joint", imu_eval, imu_judged, imu_acceptance_run / "report.html");
-  outcomes(ads_downloads, kPressureAdsStrategyName, ads_eval, ads_judged,
+  outcomes(ads_downloads, kHysteresisAdsStrategyName, ads_eval, ads_judged,
            ads_acceptance_run / "report.html");
   return result;
 }

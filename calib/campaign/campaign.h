@@ -3,7 +3,8 @@
 //   1. calibration runs, IMU bench and ADS bench concurrently (bench_runs.h):
 //      IMU thermal calibration then IMU sensor calibration; ADS calibration;   -> runs/<sequence>/
 //   2. fits (campaign_fits.h): IMU reference and improved (joint) strategies, ADS reference and
-//      improved (pressure minimax with the firmware's ISA / CAS laws, tolerance_ads_strategy.h) strategies
+//      improved (hysteresis_compensated: pressure surfaces with the firmware's ISA / CAS laws and
+//      hysteresis operators, tolerance_ads_strategy.h) strategies
 //                                                                -> fits/<kind>-<strategy>/
 //   3. download of the chosen constants (improved IMU, improved ADS) into every unit, read-back
 //      verified, recorded (station_download.h)

@@ -31,7 +31,8 @@ std::vector<WrittenConstants> FitImuIntoDirectory(const std::vector<std::filesys
                                                   const std::string& software_version);
 
 /// Fits every ADS unit of `run_dir` with the ADS strategy named `strategy` (FitAdsStrategy:
-/// "reference", "tolerance_minimax" or "pressure_minimax") and writes the files into `fit_dir`.
+/// "reference", "tolerance_minimax", "pressure_minimax" or "hysteresis_compensated") and writes
+/// the files into `fit_dir`.
 std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& run_dir,
                                                   const std::string& strategy,
                                                   const std::filesystem::path& fit_dir,

@@ -159,6 +159,11 @@ json AdsStandardErrorsJson(const firmware_model::AdsCalibrationConstants& se) {
     for (const char* key : {"x_min_code", "x_max_code", "y_min_code", "y_max_code", "law"}) {
       j[surface][key] = nullptr;
     }
+    if (j[surface].contains("hysteresis")) {  // spans: nominal parameters, not estimates
+      for (const char* key : {"pressure_span", "thermal_span_c", "die_temp_origin_code"}) {
+        j[surface]["hysteresis"][key] = nullptr;
+      }
+    }
   }
   return j;
 }

@@ -67,7 +67,8 @@ struct ConstantsFile {
 /// The standard-error JSON of an IMU set from a struct holding the standard errors in place of
 /// the values: NaN becomes null (not estimated); temp_sensor (a choice, not an estimate) is null.
 nlohmann::json ImuStandardErrorsJson(const firmware_model::ImuCalibrationConstants& se);
-/// Likewise for ADS; the code box (a property of the data, not an estimate) is null.
+/// Likewise for ADS; the code box (a property of the data, not an estimate), the law, the
+/// hysteresis spans (nominal parameters) and the die temperature's origin are null.
 nlohmann::json AdsStandardErrorsJson(const firmware_model::AdsCalibrationConstants& se);
 
 /// The standard errors of an IMU file as a constants struct (null -> NaN; temp_sensor copied

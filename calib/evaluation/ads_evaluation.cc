@@ -55,53 +55,64 @@ sensor_sim::AdsStimulus Stimulus(const Quantity& q, double pressure_pa, double t
   return s;
 }
 
-class Compensator {
+// The unit's firmware over one history: the exported constants and the hysteresis operators'
+// memory, fresh at the start (the unit powered through the whole history).
+class Firmware {
  public:
-  explicit Compensator(const firmware_model::AdsCalibrationConstants& constants)
-      : exported_(firmware_model::ExportAdsConstants(constants)) {}
+  explicit Firmware(const firmware_model::AdsConstants& constants) : constants_(constants) {
+    firmware_model::AdsHysteresisReset(&state_);
+  }
 
-  double Output(const sensor_sim::AdsRawFrame& f, int slot, int* saturated) const {
+  // Compensates the frame `unit` produces at `stimulus`; returns output `slot`.
+  double Step(sensor_sim::AdsUnit& unit, const sensor_sim::AdsStimulus& stimulus, int slot,
+              int* saturated) {
+    const sensor_sim::AdsRawFrame f = unit.Step(stimulus);
     const firmware_model::AdsRawFrame raw{f.ps_cnt, f.pt_cnt, f.ps_temp_cnt, f.pt_temp_cnt,
                                           f.oat_cnt};
     firmware_model::DspEngine engine;
     firmware_model::AdsCompensatedFrame frame{};
-    firmware_model::AdsCompensate(&engine, exported_.constants, AdsCompensationMode::kSurface, raw,
+    firmware_model::AdsCompensate(&engine, constants_, AdsCompensationMode::kSurface, raw, &state_,
                                   &frame);
-    if (frame.flags != 0) ++*saturated;
+    if (frame.flags != 0 && saturated != nullptr) ++*saturated;
     return firmware_model::AdsFrameToDouble(AdsCompensationMode::kSurface, frame)[slot];
   }
 
  private:
-  firmware_model::AdsExport exported_;
+  const firmware_model::AdsConstants& constants_;
+  firmware_model::AdsHysteresisState state_;
 };
 
-// Applies the thermal history at constant pressure `pressure_pa`, ending at `temp_c`.
-void ApplyThermalHistory(sensor_sim::AdsUnit& unit, const Quantity& q, ThermalHistory h,
-                         double pressure_pa, double temp_c) {
+// Applies the thermal history at constant pressure `pressure_pa`, ending at `temp_c`; the
+// firmware sees every step.
+void ApplyThermalHistory(sensor_sim::AdsUnit& unit, Firmware& firmware, const Quantity& q,
+                         ThermalHistory h, double pressure_pa, double temp_c) {
   if (h == ThermalHistory::kHeating) {
-    unit.Step(Stimulus(q, pressure_pa, kAdsMaxTempC));
-    unit.Step(Stimulus(q, pressure_pa, kAdsMinTempC));
+    firmware.Step(unit, Stimulus(q, pressure_pa, kAdsMaxTempC), q.output, nullptr);
+    firmware.Step(unit, Stimulus(q, pressure_pa, kAdsMinTempC), q.output, nullptr);
   } else if (h == ThermalHistory::kCooling) {
-    unit.Step(Stimulus(q, pressure_pa, kAdsMinTempC));
-    unit.Step(Stimulus(q, pressure_pa, kAdsMaxTempC));
+    firmware.Step(unit, Stimulus(q, pressure_pa, kAdsMinTempC), q.output, nullptr);
+    firmware.Step(unit, Stimulus(q, pressure_pa, kAdsMaxTempC), q.output, nullptr);
   }
-  unit.Step(Stimulus(q, pressure_pa, temp_c));
+  firmware.Step(unit, Stimulus(q, pressure_pa, temp_c), q.output, nullptr);
 }
 
 // Errors (compensated - true) at every grid value, for one temperature and one history pair.
-std::vector<double> Sweep(const sensor_sim::AdsUnitParams& params, const Compensator& comp,
-                          const Quantity& q, const std::vector<double>& values, double temp_c,
-                          PressureHistory ph, ThermalHistory th, int* saturated) {
+std::vector<double> Sweep(const sensor_sim::AdsUnitParams& params,
+                          const firmware_model::AdsConstants& constants, const Quantity& q,
+                          const std::vector<double>& values, double temp_c, PressureHistory ph,
+                          ThermalHistory th, int* saturated) {
   std::vector<double> errors(values.size());
-  auto error_at = [&](sensor_sim::AdsUnit& unit, size_t i) {
-    const sensor_sim::AdsRawFrame f = unit.Step(Stimulus(q, q.pressure_pa(values[i]), temp_c));
-    errors[i] = comp.Output(f, q.output, saturated) - values[i];
+  auto error_at = [&](sensor_sim::AdsUnit& unit, Firmware& firmware, size_t i) {
+    errors[i] = firmware.Step(unit, Stimulus(q, q.pressure_pa(values[i]), temp_c), q.output,
+                              saturated) -
+                values[i];
   };
   if (ph == PressureHistory::kNone) {
     for (size_t i = 0; i < values.size(); ++i) {
       sensor_sim::AdsUnit unit(params, 0, temp_c);
-      ApplyThermalHistory(unit, q, th, q.pressure_pa(values[i]), temp_c);
-      error_at(unit, i);
+      Firmware firmware(constants);
+      ApplyThermalHistory(unit, firmware, q, th, q.pressure_pa(values[i]), temp_c);
+      error_at(unit, firmware, i);
     }
     return errors;
   }
@@ -111,15 +122,16 @@ std::vector<double> Sweep(const sensor_sim::AdsUnitParams& params, const Compens
   const bool rising = ph == PressureHistory::kRising;
   const double p_low = std::min(p_first, p_last), p_high = std::max(p_first, p_last);
   sensor_sim::AdsUnit unit(params, 0, temp_c);
-  ApplyThermalHistory(unit, q, th, rising ? p_high : p_low, temp_c);
-  unit.Step(Stimulus(q, rising ? p_low : p_high, temp_c));
+  Firmware firmware(constants);
+  ApplyThermalHistory(unit, firmware, q, th, rising ? p_high : p_low, temp_c);
+  firmware.Step(unit, Stimulus(q, rising ? p_low : p_high, temp_c), q.output, nullptr);
   std::vector<size_t> order(values.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     const double pa = q.pressure_pa(values[a]), pb = q.pressure_pa(values[b]);
     return rising ? pa < pb : pa > pb;
   });
-  for (size_t i : order) error_at(unit, i);
+  for (size_t i : order) error_at(unit, firmware, i);
   return errors;
 }
 
@@ -135,17 +147,19 @@ int Severity(AdsVerdict v) {
   return v == AdsVerdict::kPass ? 0 : (v == AdsVerdict::kUnreachable ? 1 : 2);
 }
 
-AdsQuantityEvaluation Evaluate(const sensor_sim::AdsUnitParams& params, const Compensator& comp,
+AdsQuantityEvaluation Evaluate(const sensor_sim::AdsUnitParams& params,
+                               const firmware_model::AdsConstants& constants,
                                const Quantity& q, const std::vector<double>& values,
                                const std::vector<double>& temps_c,
-                               const std::vector<AdsTolerancePoint>& table) {
+                               const std::vector<AdsTolerancePoint>& table, bool static_surface) {
   AdsQuantityEvaluation out;
   out.quantity = q.name;
   for (double temp_c : temps_c) {
     std::vector<std::vector<double>> errors;  // [history][value]
     for (ThermalHistory th : kThermalHistories) {
       for (PressureHistory ph : kPressureHistories) {
-        errors.push_back(Sweep(params, comp, q, values, temp_c, ph, th, &out.saturated_frames));
+        errors.push_back(
+            Sweep(params, constants, q, values, temp_c, ph, th, &out.saturated_frames));
       }
     }
     for (size_t i = 0; i < values.size(); ++i) {
@@ -161,9 +175,9 @@ AdsQuantityEvaluation Evaluate(const sensor_sim::AdsUnitParams& params, const Co
       }
       g.worst_with_history = std::max(std::abs(lo), std::abs(hi));
       g.loop_half_width = 0.5 * (hi - lo);
-      g.verdict = g.worst_with_history <= g.tolerance  ? AdsVerdict::kPass
-                  : g.loop_half_width > g.tolerance    ? AdsVerdict::kUnreachable
-                                                       : AdsVerdict::kFail;
+      g.verdict = g.worst_with_history <= g.tolerance                 ? AdsVerdict::kPass
+                  : static_surface && g.loop_half_width > g.tolerance ? AdsVerdict::kUnreachable
+                                                                      : AdsVerdict::kFail;
       out.worst_ratio_no_history =
           std::max(out.worst_ratio_no_history, std::abs(g.error_no_history) / g.tolerance);
       ++(g.verdict == AdsVerdict::kPass ? out.pass
@@ -231,7 +245,7 @@ AdsEvaluation EvaluateAdsConstants(const firmware_model::AdsCalibrationConstants
                                    const sensor_sim::AdsUnitParams& truth,
                                    const AdsEvaluationOptions& options) {
   const sensor_sim::AdsUnitParams params = Noiseless(truth);
-  const Compensator comp(constants);
+  const firmware_model::AdsConstants exported = firmware_model::ExportAdsConstants(constants).constants;
   const std::vector<double> temps_c = Range(kAdsMinTempC, kAdsMaxTempC, options.temp_step_c);
   const Quantity altitude{"altitude_ft", 0,
                           [](double ft) { return sensor_sim::IsaStaticPressurePaFromFt(ft); },
@@ -240,12 +254,12 @@ AdsEvaluation EvaluateAdsConstants(const firmware_model::AdsCalibrationConstants
                           [](double kt) { return sensor_sim::ImpactPressurePaFromKt(kt); },
                           [](double kt) { return AirspeedToleranceKt(kt); }, false};
   AdsEvaluation out;
-  out.altitude = Evaluate(params, comp, altitude,
+  out.altitude = Evaluate(params, exported, altitude,
                           Range(kAdsMinAltitudeFt, kAdsMaxAltitudeFt, options.alt_step_ft),
-                          temps_c, AltitudeTolerancePoints());
-  out.airspeed = Evaluate(params, comp, airspeed,
+                          temps_c, AltitudeTolerancePoints(), !constants.altitude_ft.hysteresis.active());
+  out.airspeed = Evaluate(params, exported, airspeed,
                           Range(kAdsMinAirspeedKt, kAdsMaxAirspeedKt, options.cas_step_kt),
-                          temps_c, AirspeedTolerancePoints());
+                          temps_c, AirspeedTolerancePoints(), !constants.airspeed_kt.hysteresis.active());
   return out;
 }
 

@@ -17,11 +17,15 @@
 //     envelope: static 50,000 -> -1,000 ft then climbing; pitot 450 -> 30 kt then accelerating is
 //     written "rising" for the impact pressure), "falling" (the reverse);
 //   temperature: "none", "heating" (85 -> -40 degC then heating), "cooling" (-40 -> 85 then cooling).
+// The firmware sees the whole history too: its hysteresis operators (ads_compensator.h) start
+// fresh with the unit and compensate every frame of it, as in a unit powered through the history.
 // Per grid point: the error without history (both operators fresh), the worst |error| over the
 // nine histories, and the loop half-width (max - min)/2 of the error over them: a static
 // calibration returns one value where the truth spans that band, so no static calibration can
-// have a worst error below the half-width. Verdict: pass (worst <= tolerance), unreachable
-// (half-width > tolerance: says so with the number), else fail.
+// have a worst error below the half-width. Verdict: pass (worst <= tolerance); for a static
+// surface (no hysteresis terms), unreachable where the half-width > tolerance (says so with the
+// number); else fail. A surface with hysteresis terms is not static: what its half-width shows
+// is what its compensation left, so it has no unreachable points.
 // Not modelled: the converter noise (off by design), pneumatic lag, Mach/TAS.
 #pragma once
 

@@ -46,12 +46,23 @@ SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& ba
     weighted = weighted || s.weight != 1.0;
   }
   if (!weighted) obs.weights.clear();
-  if (history == HistoryTerms::kPressureAndThermal) {
+  // The slopes' columns in units of 100 degC, so that all four are of order 1.
+  constexpr double kSlopeUnitC = 100.0;
+  if (history != HistoryTerms::kNone) {
     obs.extra_names = {"s_pressure", "s_thermal"};
     obs.extra_columns.resize(2);
     for (const SurfaceSample& s : samples) {
       obs.extra_columns[0].push_back(s.s_pressure);
       obs.extra_columns[1].push_back(s.s_thermal);
+    }
+  }
+  if (history == HistoryTerms::kWithTemperatureSlopes) {
+    obs.extra_names.insert(obs.extra_names.end(), {"s_pressure dT", "s_thermal dT"});
+    obs.extra_columns.resize(4);
+    for (const SurfaceSample& s : samples) {
+      const double dt = (s.chamber_c - kHysteresisReferenceC) / kSlopeUnitC;
+      obs.extra_columns[2].push_back(s.s_pressure * dt);
+      obs.extra_columns[3].push_back(s.s_thermal * dt);
     }
   }
   SurfaceEstimate out;
@@ -63,11 +74,18 @@ SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& ba
     out.surface.coeff_xy[m.x_power][m.y_power] = out.fit.raw_coefficients[i];
     out.coeff_se[m.x_power][m.y_power] = out.fit.raw_standard_errors[i];
   }
-  if (history == HistoryTerms::kPressureAndThermal) {
+  if (history != HistoryTerms::kNone) {
     const Eigen::Index k = basis.size();
-    out.history = HysteresisEstimate{out.fit.raw_coefficients[k], out.fit.raw_standard_errors[k],
-                                     out.fit.raw_coefficients[k + 1],
-                                     out.fit.raw_standard_errors[k + 1]};
+    const Eigen::VectorXd& c = out.fit.raw_coefficients;
+    const Eigen::VectorXd& se = out.fit.raw_standard_errors;
+    HysteresisEstimate h{c[k], se[k], c[k + 1], se[k + 1]};
+    if (history == HistoryTerms::kWithTemperatureSlopes) {
+      h.pressure_per_degc = c[k + 2] / kSlopeUnitC;
+      h.pressure_per_degc_se = se[k + 2] / kSlopeUnitC;
+      h.thermal_per_degc = c[k + 3] / kSlopeUnitC;
+      h.thermal_per_degc_se = se[k + 3] / kSlopeUnitC;
+    }
+    out.history = h;
   }
   out.terms = basis.size();
   out.y_degree = basis.MaxYPower();

@@ -53,14 +53,24 @@ inline long long ChamberTemperatureKeyDc(double chamber_c) { return std::llround
 
 /// Whether the fit carries the bridge's hysteresis states as regressors: z = surface(x, y)
 /// + c_P s_P + c_T s_T. The surface is then the loop's centre (what a unit without history reads);
-/// c_P and c_T are the half loops in z units.
-enum class HistoryTerms { kNone, kPressureAndThermal };
+/// c_P and c_T are the half loops in z units. kWithTemperatureSlopes adds s_P dT and s_T dT,
+/// dT = chamber_c - kHysteresisReferenceC: half loops that change with temperature (a bridge's
+/// loop is a fixed fraction of its output at the reference temperature, pressure_bridge.h, so in
+/// pressure it follows the span tempco, about +-15 % over -40...+85 degC).
+enum class HistoryTerms { kNone, kPressureAndThermal, kWithTemperatureSlopes };
+
+/// The temperature the half loops are given at.
+inline constexpr double kHysteresisReferenceC = 25.0;
 
 struct HysteresisEstimate {
-  double pressure = 0.0;     ///< c_P, z units per unit state
+  double pressure = 0.0;     ///< c_P, z units per unit state (at kHysteresisReferenceC)
   double pressure_se = 0.0;
   double thermal = 0.0;      ///< c_T
   double thermal_se = 0.0;
+  double pressure_per_degc = 0.0;  ///< d c_P / dT (kWithTemperatureSlopes; else 0)
+  double pressure_per_degc_se = 0.0;
+  double thermal_per_degc = 0.0;
+  double thermal_per_degc_se = 0.0;
 };
 
 struct SurfaceEstimate {
@@ -71,7 +81,7 @@ struct SurfaceEstimate {
   PolynomialFit fit;                      ///< normalised fit, covariance and diagnostics
   int terms = 0;                          ///< the basis's size
   int y_degree = 0;                       ///< its highest power of y
-  std::optional<HysteresisEstimate> history;  ///< with HistoryTerms::kPressureAndThermal
+  std::optional<HysteresisEstimate> history;  ///< with history terms
   double residual_rms = 0.0;              ///< z units
   double max_abs_residual = 0.0;          ///< z units
 };

@@ -3,16 +3,19 @@
 #include "firmware_model/target/air_data_law.h"
 #include "firmware_model/target/imu_compensator.h"
 #include "firmware_model/target/q31_kernels.h"
+#include "firmware_model/target/q_math.h"
 
 namespace adahrs::firmware_model {
 namespace {
 
-// z(x, y) = ((b3 x + b2) x + b1) x + b0, b_k = b_k(y); result at out_exponent.
+// z(x, y) = ((b3 x + b2) x + b1) x + b0, b_k = b_k(y); result at out_exponent; the normalised
+// y (Q31) in *y_out.
 int32_t EvaluateSurface(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponent, int32_t x_code,
-                   int32_t y_code, uint16_t* flags) {
+                   int32_t y_code, int32_t* y_out, uint16_t* flags) {
   engine->ChargeCallReturn();
   const int32_t x = NormaliseQ31(engine, x_code, 31, s.x_norm);
   const int32_t y = NormaliseQ31(engine, y_code, 31, s.y_norm);
+  *y_out = y;
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
   int32_t b[kAdsSurfaceXDegree + 1];
   for (uint8_t k = 0; k <= kAdsSurfaceXDegree; ++k) {
@@ -34,12 +37,64 @@ int32_t EvaluateSurface(DspEngine* engine, const SurfaceQ31& s, int8_t out_expon
   return result;
 }
 
+// tau(y) = ((t3 y + t2) y + t1) y in Q15 (ads_constants.h: the exporter keeps every partial sum
+// within Q15), y the normalised bridge code's high word.
+int16_t DieTemperatureQ15(DspEngine* engine, const SurfaceQ31& s, int32_t y_q31) {
+  const int16_t y_q15 = HighWord(y_q31);
+  engine->ChargeMov(1);
+  engine->Mpy(Acc::kA, s.die_temp_q15[2], y_q15);
+  engine->AddWordAcc(Acc::kA, s.die_temp_q15[1], 0);
+  int16_t tau_q15 = engine->SacR(Acc::kA, 0);
+  engine->Mpy(Acc::kA, tau_q15, y_q15);
+  engine->AddWordAcc(Acc::kA, s.die_temp_q15[0], 0);
+  tau_q15 = engine->SacR(Acc::kA, 0);
+  engine->Mpy(Acc::kA, tau_q15, y_q15);
+  return engine->SacR(Acc::kA, 0);
+}
+
+// gain(tau) = at_centre + per_tau tau, Q15 at the gain's exponent (SAC.R saturates).
+int16_t GainAt(DspEngine* engine, const GainQ15& gain, int16_t tau_q15) {
+  engine->Lac(Acc::kA, gain.at_centre_q15, 0);
+  engine->Mac(Acc::kA, gain.per_tau_q15, tau_q15);
+  return engine->SacR(Acc::kA, 0);
+}
+
+// z + gain_P s_P + gain_T s_T after advancing both operators; z at `result_exponent`.
+int32_t CompensateHysteresis(DspEngine* engine, const SurfaceQ31& s, int8_t result_exponent,
+                             int32_t z, int32_t y_q31, LastExtremeQ15* pressure,
+                             LastExtremeQ15* thermal, uint16_t* flags) {
+  const int16_t s_pressure =
+      LastExtremeUpdateQ15(engine, pressure, z, result_exponent, s.pressure.inv_span);
+  const int16_t tau_q15 = DieTemperatureQ15(engine, s, y_q31);
+  const int16_t s_thermal =
+      LastExtremeUpdateQ15(engine, thermal, JoinWords(tau_q15, 0), 0, s.thermal.inv_span);
+  const int16_t gain_pressure_q15 = GainAt(engine, s.pressure.gain, tau_q15);
+  const int16_t gain_thermal_q15 = GainAt(engine, s.thermal.gain, tau_q15);
+  engine->TestAndClearSaturation();  // the travel clamp
+  engine->Mpy(Acc::kA, gain_pressure_q15, s_pressure);
+  engine->Sftac(Acc::kA, static_cast<int8_t>(result_exponent - s.pressure.gain.exponent));
+  engine->Mpy(Acc::kB, gain_thermal_q15, s_thermal);
+  engine->Sftac(Acc::kB, static_cast<int8_t>(result_exponent - s.thermal.gain.exponent));
+  engine->AddAcc(Acc::kA);
+  LoadQ31(engine, Acc::kB, z);
+  engine->AddAcc(Acc::kA);
+  const int32_t result = ReadQ31(engine, Acc::kA);
+  if (engine->TestAndClearSaturation()) *flags |= kFlagOutputSaturated;
+  return result;
+}
+
 // The output of one surface at `out_exponent`: the surface itself, or its pressure (at
-// kPressureExponent) through the block's law (validated per block by ads_constants.cc).
+// kPressureExponent) through the block's law (validated per block by ads_constants.cc), each
+// after the hysteresis terms.
 int32_t SurfaceAndLaw(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponent, int32_t x_code,
-                      int32_t y_code, uint16_t* flags) {
+                      int32_t y_code, LastExtremeQ15* pressure, LastExtremeQ15* thermal,
+                      uint16_t* flags) {
   engine->ChargeBranch(1);  // the law
-  const int32_t z = EvaluateSurface(engine, s, AdsSurfaceExponent(s.law, out_exponent), x_code, y_code, flags);
+  const int8_t result_exponent = AdsSurfaceExponent(s.law, out_exponent);
+  int32_t y_q31 = 0;
+  const int32_t surface = EvaluateSurface(engine, s, result_exponent, x_code, y_code, &y_q31, flags);
+  const int32_t z =
+      CompensateHysteresis(engine, s, result_exponent, surface, y_q31, pressure, thermal, flags);
   if (s.law == kAdsLawIsaAltitude) return IsaAltitudeQ31(engine, z, flags);
   if (s.law == kAdsLawCas) return CasQ31(engine, z, flags);
   return z;
@@ -47,8 +102,15 @@ int32_t SurfaceAndLaw(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponen
 
 }  // namespace
 
+void AdsHysteresisReset(AdsHysteresisState* state) {
+  LastExtremeResetQ15(&state->static_pressure);
+  LastExtremeResetQ15(&state->static_thermal);
+  LastExtremeResetQ15(&state->pitot_pressure);
+  LastExtremeResetQ15(&state->pitot_thermal);
+}
+
 void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensationMode mode,
-                   const AdsRawFrame& raw, AdsCompensatedFrame* out) {
+                   const AdsRawFrame& raw, AdsHysteresisState* state, AdsCompensatedFrame* out) {
   engine->ChargeCallReturn();
   engine->set_config(CompensatorDspConfig());
   engine->ChargeMov(1);  // CORCON write
@@ -62,9 +124,11 @@ void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensa
     return;
   }
   out->value[0] = SurfaceAndLaw(engine, constants.altitude, kAltitudeExponent, raw.ps_code,
-                                raw.ps_bridge_code, &flags);
+                                raw.ps_bridge_code, &state->static_pressure,
+                                &state->static_thermal, &flags);
   out->value[1] = SurfaceAndLaw(engine, constants.airspeed, kAirspeedExponent, raw.pt_code,
-                                raw.pt_bridge_code, &flags);
+                                raw.pt_bridge_code, &state->pitot_pressure, &state->pitot_thermal,
+                                &flags);
   out->flags = flags;
 }
 

@@ -12,11 +12,19 @@ uint8_t CoeffOffset(uint8_t i, uint8_t n) {
   return static_cast<uint8_t>(kHeadWords + kCoeffWords * (i * (kAdsSurfaceYDegree + 1) + n));
 }
 
+constexpr uint8_t kHysteresisOffset = kHeadWords + kSurfaceTerms * kCoeffWords;
+constexpr uint8_t kThermalOffset = kHysteresisOffset + kCoeffWords + kGainWords;
+constexpr int8_t kTauExponent = 0;
+
 void ZeroSurface(SurfaceQ31* s, int8_t out_exponent) {
   s->x_norm = InputNormQ31{0, 23};
   s->y_norm = InputNormQ31{0, 23};
   s->outer_work_exponent = out_exponent;
   s->law = kAdsLawDirect;
+  const HysteresisTermQ off{CoeffQ31{0, 0}, GainQ15{0, 0, static_cast<int8_t>(out_exponent - 2)}};
+  s->pressure = off;
+  s->thermal = off;
+  for (int16_t& t : s->die_temp_q15) t = 0;
   for (PolyQ31& b : s->b) {
     b.work_exponent = static_cast<int8_t>(out_exponent - 2);
     for (CoeffQ31& c : b.coeff) c = CoeffQ31{0, b.work_exponent};
@@ -39,6 +47,29 @@ ConstantsStatus ValidateOuter(const SurfaceQ31& s, int8_t out_exponent) {
   }
   if (sum > (static_cast<int64_t>(1) << kMaxAlignShift)) return ConstantsStatus::kWouldOverflow;
   return ConstantsStatus::kOk;
+}
+
+// A hysteresis term from its 6 words (see ads_constants.h "Hysteresis").
+ConstantsStatus TermFromWords(const int16_t* words, int8_t input_exponent, int8_t result_exponent,
+                              HysteresisTermQ* term) {
+  const ConstantsStatus s = CoeffFromWords(words, &term->inv_span);
+  if (s != ConstantsStatus::kOk) return s;
+  term->gain = GainQ15{words[kCoeffWords], words[kCoeffWords + 1],
+                       static_cast<int8_t>(words[kCoeffWords + 2])};
+  const int32_t travel_shift = input_exponent + term->inv_span.exponent;
+  const int32_t gain_align = result_exponent - words[kCoeffWords + 2];
+  if (term->inv_span.mantissa_q31 == INT32_MIN || travel_shift < -31 || travel_shift > 31 ||
+      gain_align < 0 || gain_align > kMaxAlignShift) {
+    return ConstantsStatus::kOutOfRange;
+  }
+  return ConstantsStatus::kOk;
+}
+
+void TermToWords(const HysteresisTermQ& term, int16_t* words) {
+  CoeffToWords(term.inv_span, words);
+  words[kCoeffWords] = term.gain.at_centre_q15;
+  words[kCoeffWords + 1] = term.gain.per_tau_q15;
+  words[kCoeffWords + 2] = term.gain.exponent;
 }
 
 ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, uint8_t pressure_law,
@@ -67,7 +98,18 @@ ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, uint
     s = ValidatePoly(b, kAdsSurfaceYDegree);
     if (s != ConstantsStatus::kOk) return s;
   }
-  s = ValidateOuter(decoded, AdsSurfaceExponent(decoded.law, out_exponent));
+  const int8_t result_exponent = AdsSurfaceExponent(decoded.law, out_exponent);
+  s = ValidateOuter(decoded, result_exponent);
+  if (s != ConstantsStatus::kOk) return s;
+  s = TermFromWords(words + kHysteresisOffset, result_exponent, result_exponent, &decoded.pressure);
+  if (s != ConstantsStatus::kOk) return s;
+  int32_t tau_bound = 0;
+  for (uint8_t k = 0; k < 3; ++k) {
+    decoded.die_temp_q15[k] = words[kThermalOffset + k];
+    tau_bound += decoded.die_temp_q15[k] < 0 ? -decoded.die_temp_q15[k] : decoded.die_temp_q15[k];
+  }
+  if (tau_bound > INT16_MAX) return ConstantsStatus::kWouldOverflow;
+  s = TermFromWords(words + kThermalOffset + 3, kTauExponent, result_exponent, &decoded.thermal);
   if (s != ConstantsStatus::kOk) return s;
   *out = decoded;
   return ConstantsStatus::kOk;
@@ -82,6 +124,9 @@ void SurfaceToWords(const SurfaceQ31& s, int16_t* words) {
     w[1 + i] = s.b[i].work_exponent;
     for (uint8_t n = 0; n <= kAdsSurfaceYDegree; ++n) CoeffToWords(s.b[i].coeff[n], words + CoeffOffset(i, n));
   }
+  TermToWords(s.pressure, words + kHysteresisOffset);
+  for (uint8_t k = 0; k < 3; ++k) words[kThermalOffset + k] = s.die_temp_q15[k];
+  TermToWords(s.thermal, words + kThermalOffset + 3);
   words[kAdsSurfaceBlockWords - 1] = s.law;
 }
 

@@ -26,15 +26,35 @@
 // both in Pa at kPressureExponent, and the ISA or CAS law turns it into the output.
 //
 // Blocks:
-//   0x21 altitude surface, 0x22 airspeed surface, 84 words each:
+//   0x21 altitude surface, 0x22 airspeed surface, 99 words each:
 //     [InputNormQ31 x][InputNormQ31 y][outer work exponent][b0..b3 work exponents]
 //     [CoeffQ31 c_00 .. c_05][c_10 .. c_15][c_20 .. c_25][c_30 .. c_35]   (b0 .. b3, y^0 first)
+//     [pressure: CoeffQ31 inv_span][GainQ15 gain]                         (hysteresis, below)
+//     [thermal:  int16 t1 t2 t3][CoeffQ31 inv_span][GainQ15 gain]
 //     [law]                                                               (AdsSurfaceLaw)
+// Hysteresis (issue 6; last_extreme_q15.h): the bridge's output carries its branch, a multiple of
+// the states s_P (last pressure extreme) and s_T (last die-temperature extreme). The unit runs one
+// operator per state and adds gain_P(tau) s_P + gain_T(tau) s_T to the surface's result z, before
+// the law, each gain linear in the die temperature tau (below): a loop that is a fixed fraction of
+// the bridge's output at one temperature follows the span tempco in pressure (+-15 %):
+//   pressure operator: driven by z itself (Pa under a law), inv_span per unit of z;
+//   thermal operator: driven by tau = t1 y + t2 y^2 + t3 y^3 (Q15), the die temperature's change
+//     from the y-normalisation's centre in units of a power of two of degC chosen by the exporter,
+//     y the surface's normalised bridge-voltage code in Q15 (the bridge's resistance is not
+//     linear in temperature: its slope changes by about 40 % over -40...+85 degC, so a span in
+//     code would be wrong by as much near the ends); inv_span per unit of tau (tau held as a Q31
+//     mantissa at exponent 0).
+// GainQ15: gain(tau) = (at_centre + per_tau tau) 2^(exponent - 15), evaluated in Q15 with
+// saturation (the exporter keeps |at_centre| + |per_tau| within Q15); its exponent lies within
+// 0..16 below the surface's result exponent. Each operator's input exponent plus its inv_span
+// exponent must lie in -31..31; an inv_span mantissa of INT32_MIN is refused (its magnitude has no
+// Q31 form); sum |t_k| must stay within Q15 (no Horner partial sum of tau overflows for |y| <= 1).
+// Zero gains, inv_spans and t_k are the static surface.
 // A write validates the whole block first and changes nothing unless it returns kOk. Overflow
 // rule: each b_k must satisfy the PolyQ31 bound; the outer Horner must satisfy
 // sum_k 2^(E_k) <= 2^E_outer (with |b_k| < 2^E_k this bounds every partial sum for |x| <= 1).
 // A law the block does not allow is kOutOfRange.
-// Not modelled: Mach and TAS (need OAT; computed downstream), hysteresis, OAT calibration.
+// Not modelled: Mach and TAS (need OAT; computed downstream), OAT calibration.
 #pragma once
 
 #include <cstdint>
@@ -51,11 +71,27 @@ inline constexpr uint8_t kAdsSurfaceYDegree = 5;
 inline constexpr uint8_t kSurfaceTerms = (kAdsSurfaceXDegree + 1) * (kAdsSurfaceYDegree + 1);
 static_assert(kAdsSurfaceYDegree <= kMaxPolyDegree);
 
+/// A gain linear in the die temperature tau (Q15): (at_centre + per_tau tau) 2^(exponent - 15).
+struct GainQ15 {
+  int16_t at_centre_q15;
+  int16_t per_tau_q15;
+  int8_t exponent;
+};
+
+/// One hysteresis state's compensation term (see "Hysteresis" above).
+struct HysteresisTermQ {
+  CoeffQ31 inv_span;  ///< per unit of the operator's input; 0 = the state never moves
+  GainQ15 gain;       ///< the surface's result units per unit state
+};
+
 struct SurfaceQ31 {
   InputNormQ31 x_norm;      ///< pressure code normalisation
   InputNormQ31 y_norm;      ///< temperature code normalisation
   int8_t outer_work_exponent;
   PolyQ31 b[kAdsSurfaceXDegree + 1];  ///< b_k(y), degree kAdsSurfaceYDegree
+  HysteresisTermQ pressure;  ///< driven by the surface's result
+  HysteresisTermQ thermal;   ///< driven by tau(y)
+  int16_t die_temp_q15[3];   ///< t1, t2, t3 of tau(y)
   uint8_t law;              ///< AdsSurfaceLaw: what follows the surface
 };
 
@@ -69,14 +105,18 @@ enum AdsBlockId : uint8_t {
   kAdsBlockAirspeed = 0x22,
 };
 
-inline constexpr uint8_t kAdsSurfaceBlockWords = 2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords + 1;
+inline constexpr uint8_t kGainWords = 3;
+inline constexpr uint8_t kAdsHysteresisWords = 2 * (kCoeffWords + kGainWords) + 3;
+inline constexpr uint8_t kAdsSurfaceBlockWords =
+    2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords + kAdsHysteresisWords + 1;
 inline constexpr uint8_t kAdsMaxBlockWords = kAdsSurfaceBlockWords;
 
 /// The exponent a surface's result must reach: the output's (`out_exponent`) when `law` is
 /// direct, the pressure's (kPressureExponent) under a law.
 int8_t AdsSurfaceExponent(uint8_t law, int8_t out_exponent);
 
-/// Uncalibrated state: all-zero direct surfaces (outputs read zero), centres 0, shifts 23.
+/// Uncalibrated state: all-zero direct surfaces (outputs read zero), centres 0, shifts 23, no
+/// hysteresis terms.
 void AdsConstantsInit(AdsConstants* constants);
 
 /// Words in block `block_id`, or 0 if the block is unknown.

@@ -98,6 +98,8 @@ TEST_P(AdsSweep, WithinBudgetOverEnvelope) {
   sensor_sim::Rng rng(4242);
   double worst_alt_ft = 0, worst_cas_kt = 0;
   uint32_t max_cycles = 0;
+  AdsHysteresisState state;
+  AdsHysteresisReset(&state);
   for (int i = 0; i < 4000; ++i) {
     const double alt_ft = i < 2 ? (i == 0 ? -1000.0 : 50000.0) : rng.Uniform(-1000.0, 50000.0);
     const double cas_kt = i < 2 ? (i == 0 ? 30.0 : 450.0) : rng.Uniform(30.0, 450.0);
@@ -105,11 +107,17 @@ TEST_P(AdsSweep, WithinBudgetOverEnvelope) {
     const AdsRawFrame raw = SynthesiseAds(alt_ft, cas_kt, temp_c);
     DspEngine engine;
     AdsCompensatedFrame frame{};
-    AdsCompensate(&engine, exported.constants, AdsCompensationMode::kSurface, raw, &frame);
+    AdsCompensate(&engine, exported.constants, AdsCompensationMode::kSurface, raw, &state, &frame);
     ASSERT_EQ(frame.flags, 0) << "frame " << i;
     max_cycles = std::max(max_cycles, engine.cycles());
     const auto fixed = AdsFrameToDouble(AdsCompensationMode::kSurface, frame);
-    const auto ref = AdsReference(cal, AdsCompensationMode::kSurface, raw);
+    // The reference is given the operators' states (their law: last_extreme_q15_test.cc).
+    constexpr double kQ15 = 1.0 / 32768.0;
+    const AdsReferenceStates states{state.static_pressure.state_q15 * kQ15,
+                                    state.static_thermal.state_q15 * kQ15,
+                                    state.pitot_pressure.state_q15 * kQ15,
+                                    state.pitot_thermal.state_q15 * kQ15};
+    const auto ref = AdsReference(cal, AdsCompensationMode::kSurface, raw, states);
     worst_alt_ft = std::max(worst_alt_ft, std::fabs(fixed[0] - ref[0]));
     worst_cas_kt = std::max(worst_cas_kt, std::fabs(fixed[1] - ref[1]));
   }
@@ -174,7 +182,10 @@ TEST(ThermalSpan, NormalisedToTheFittedSpanAndHeldBeyondIt) {
 // The instruction mix of one frame. Structural truth: a fully calibrated IMU frame does
 // 3 x 9 thermal + 6 accel-scale + 3 x 3 gyro + 2 x 9 matrix = 60 Q31 multiplies (one MPY and two
 // MUL.SU each) and 2 DIV.UD per accelerometer channel; an ADS frame 2 x (4 x 5 + 3) = 46 (four
-// b_k(y) of degree 5, then the cubic in x).
+// b_k(y) of degree 5, then the cubic in x) plus, per output, 3 for the die temperature's cubic
+// and 2 gain x state products: 56; once the hysteresis operators have started (from the second
+// frame), 4 x 3 more: each operator's travel (a Q31 multiply), t^2 and the smoothstep (one MPY
+// each; the state's product is an MSC).
 TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
   const ImuExport imu = ExportImuConstants(testing::RealisticImu(1));
   sensor_sim::Rng rng(5);
@@ -201,15 +212,30 @@ TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
     ImuCompensate(&e, imu.constants, static_cast<ImuCompensationMode>(m), raw, &frame);
     std::printf("IMU mode %u: %u cycles\n", m, e.cycles());
   }
-  const AdsExport ads = ExportAdsConstants(testing::RealisticAds());
+  AdsCalibrationConstants with_hysteresis = testing::RealisticAds();
+  with_hysteresis.altitude_ft.hysteresis = testing::RealisticPressureAds().altitude_ft.hysteresis;
+  with_hysteresis.altitude_ft.hysteresis.pressure_gain = -2.0;  // ft: the surface is direct
+  with_hysteresis.altitude_ft.hysteresis.pressure_span = 6000.0;
+  with_hysteresis.airspeed_kt.hysteresis = testing::RealisticPressureAds().airspeed_kt.hysteresis;
+  with_hysteresis.airspeed_kt.hysteresis.pressure_gain = -0.5;  // kt
+  with_hysteresis.airspeed_kt.hysteresis.pressure_span = 80.0;
+  const AdsExport ads = ExportAdsConstants(with_hysteresis);
   DspEngine ads_engine;
   AdsCompensatedFrame ads_frame{};
+  AdsHysteresisState ads_state;
+  AdsHysteresisReset(&ads_state);
   AdsCompensate(&ads_engine, ads.constants, AdsCompensationMode::kSurface,
-                testing::SynthesiseAds(5000.0, 200.0, 25.0), &ads_frame);
-  EXPECT_EQ(ads_engine.op_count(DspOp::kMpy), 46u);
-  std::printf("ADS surface frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at 100 Hz)\n",
+                testing::SynthesiseAds(5000.0, 200.0, 25.0), &ads_state, &ads_frame);
+  EXPECT_EQ(ads_engine.op_count(DspOp::kMpy), 56u);
+  DspEngine moving_engine;
+  AdsCompensate(&moving_engine, ads.constants, AdsCompensationMode::kSurface,
+                testing::SynthesiseAds(6000.0, 210.0, 26.0), &ads_state, &ads_frame);
+  EXPECT_EQ(moving_engine.op_count(DspOp::kMpy), 68u);
+  EXPECT_EQ(moving_engine.op_count(DspOp::kMsc), 4u);
+  std::printf("ADS surface frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at 100 Hz); "
+              "with the operators moving: %u cycles\n",
               ads_engine.instructions(), ads_engine.cycles(),
-              100.0 * ads_engine.cycles() * 100.0 / 30e6);
+              100.0 * ads_engine.cycles() * 100.0 / 30e6, moving_engine.cycles());
 }
 
 }  // namespace

@@ -3,11 +3,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <climits>
+#include <cmath>
 #include <cstring>
+#include <initializer_list>
+#include <utility>
 
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/target/ads_constants.h"
+#include "firmware_model/target/air_data_tables.h"
 #include "firmware_model/target/imu_constants.h"
+#include "firmware_model/target/q_math.h"
 #include "tests/firmware_model/realistic_constants.h"
 
 namespace adahrs::firmware_model {
@@ -84,7 +90,7 @@ TEST(ConstantsBlocks, AdsRoundTripAndRefusals) {
   uint8_t count = 0;
   ASSERT_EQ(AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count),
             ConstantsStatus::kOk);
-  EXPECT_EQ(count, 84);  // 2 x 3 normalisation, 5 exponents, 24 x 3 coefficient, law
+  EXPECT_EQ(count, 99);  // 2 x 3 normalisation, 5 exponents, 24 x 3 coefficient, 15 hysteresis, law
   EXPECT_EQ(words[kAdsSurfaceBlockWords - 1], kAdsLawDirect);
   int16_t bad[kAdsMaxBlockWords];
   std::memcpy(bad, words, sizeof(bad));
@@ -125,6 +131,77 @@ TEST(ConstantsBlocks, AdsLawWordIsCheckedPerBlock) {
   words[kAdsSurfaceBlockWords - 1] = kAdsLawCas;
   EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAirspeed, words, count), ConstantsStatus::kOk);
   EXPECT_EQ(target.airspeed.law, kAdsLawCas);
+}
+
+// The hysteresis words (ads_constants.h), just before the law: pressure [inv_span (CoeffQ31:
+// mantissa high, low, exponent)][gain (GainQ15: at the centre, per tau, exponent)], thermal
+// [t1 t2 t3][inv_span][gain]. Written by the exporter from RealisticPressureAds's terms; each refused field changes
+// nothing.
+TEST(ConstantsBlocks, AdsHysteresisWordsRoundTripAndRefusals) {
+  const AdsCalibrationConstants cal = testing::RealisticPressureAds();
+  const AdsConstants source = ExportAdsConstants(cal).constants;
+  int16_t words[kAdsMaxBlockWords];
+  uint8_t count = 0;
+  ASSERT_EQ(AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count),
+            ConstantsStatus::kOk);
+  constexpr int kAt = kAdsSurfaceBlockWords - 1 - kAdsHysteresisWords;
+  constexpr int kThermal = kAt + kCoeffWords + kGainWords;
+  auto coeff = [&](int at) {
+    const int32_t mantissa = JoinWords(words[at], static_cast<uint16_t>(words[at + 1]));
+    return std::ldexp(static_cast<double>(mantissa), words[at + 2] - 31);
+  };
+  const HysteresisCompensation& h = cal.altitude_ft.hysteresis;
+  // The die temperature at the y normalisation's centre (the gains are given there) and K, the
+  // degC of one unit of tau, from t1 (the bridge code is linear in temperature here).
+  const double degc_per_y = std::ldexp(h.die_temp_c[1], source.altitude.y_norm.shift);
+  const double centre_c = h.die_temp_c[0] + h.die_temp_c[1] * (source.altitude.y_norm.centre - h.die_temp_origin_code);
+  const double k_c = degc_per_y / (words[kThermal] / 32768.0);
+  auto gain = [&](int at, double tau) {
+    return std::ldexp(words[at] + words[at + 1] * tau, words[at + 2] - 15);
+  };
+  // Values as the exporter was given them, to the words' resolution, at two temperatures.
+  EXPECT_NEAR(coeff(kAt), 1.0 / h.pressure_span, 1e-9 / h.pressure_span);
+  EXPECT_EQ(words[kAt + 5], 7);  // |at centre| + |per tau| < 128 Pa: within 16 of the result's 17
+  for (const double temp_c : {-40.0, 85.0}) {
+    const double tau = (temp_c - centre_c) / k_c;
+    EXPECT_NEAR(gain(kAt + 3, tau), h.pressure_gain + h.pressure_gain_per_degc * (temp_c - 25.0),
+                2 * 64.0 / 32768.0) << temp_c;
+    EXPECT_NEAR(gain(kThermal + 6, tau), h.thermal_gain + h.thermal_gain_per_degc * (temp_c - 25.0),
+                2 * 128.0 / 32768.0) << temp_c;
+  }
+  // tau = t1 y: t1 = (degC per normalised y) / K, and inv_span = K / 20 degC, so t1 * inv_span is
+  // the travel per unit of normalised y whatever K the exporter chose.
+  EXPECT_NEAR(words[kThermal] / 32768.0 * coeff(kThermal + 3), degc_per_y / h.thermal_span_c,
+              1e-4 * degc_per_y / h.thermal_span_c);
+  EXPECT_EQ(words[kThermal + 1], 0);
+  EXPECT_EQ(words[kThermal + 2], 0);
+
+  AdsConstants target;
+  AdsConstantsInit(&target);
+  const AdsConstants before = target;
+  auto refused = [&](std::initializer_list<std::pair<int, int16_t>> changes) {
+    int16_t bad[kAdsMaxBlockWords];
+    std::memcpy(bad, words, sizeof(bad));
+    for (const auto& [at, value] : changes) bad[at] = value;
+    return AdsConstantsWriteBlock(&target, kAdsBlockAltitude, bad, count);
+  };
+  // inv_span mantissa INT32_MIN (no magnitude in Q31).
+  EXPECT_EQ(refused({{kAt, INT16_MIN}, {kAt + 1, 0}}), ConstantsStatus::kOutOfRange);
+  // Travel shift outside -31..31: pressure input at 2^17 with inv_span at 2^15; tau at 2^0
+  // with inv_span at 2^32.
+  EXPECT_EQ(refused({{kAt + 2, 15}}), ConstantsStatus::kOutOfRange);
+  EXPECT_EQ(refused({{kThermal + 5, 32}}), ConstantsStatus::kOutOfRange);
+  // A gain above the result's exponent, or more than 16 below it.
+  EXPECT_EQ(refused({{kAt + 5, kPressureExponent + 1}}), ConstantsStatus::kOutOfRange);
+  EXPECT_EQ(refused({{kThermal + 8, kPressureExponent - 17}}), ConstantsStatus::kOutOfRange);
+  // tau's coefficients summing beyond Q15.
+  EXPECT_EQ(refused({{kThermal, 20000}, {kThermal + 1, 13000}}), ConstantsStatus::kWouldOverflow);
+  EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
+  ASSERT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAltitude, words, count), ConstantsStatus::kOk);
+  EXPECT_EQ(target.altitude.pressure.gain.at_centre_q15, source.altitude.pressure.gain.at_centre_q15);
+  EXPECT_EQ(target.altitude.thermal.gain.per_tau_q15, source.altitude.thermal.gain.per_tau_q15);
+  EXPECT_EQ(target.altitude.die_temp_q15[0], source.altitude.die_temp_q15[0]);
+  EXPECT_EQ(target.altitude.thermal.inv_span.exponent, source.altitude.thermal.inv_span.exponent);
 }
 
 TEST(CalibrationConstants, AdsLawInJsonAndFilesWithoutItAreDirect) {

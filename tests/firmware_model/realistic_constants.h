@@ -216,6 +216,14 @@ inline AdsCalibrationConstants RealisticPressureAds() {
   AdsCalibrationConstants c{FitSurface(ps, FullSurfaceTerms()), FitSurface(qc, FullSurfaceTerms())};
   c.altitude_ft.law = SurfaceLaw::kIsaAltitude;
   c.airspeed_kt.law = SurfaceLaw::kCas;
+  // Hysteresis terms of the model-1230 class's magnitude (physics.md section 6: half loops of
+  // 0.05 % and 0.075 % FSO of a 15 psi and a 5 psi bridge, following a -2,500 ppm/degC span
+  // tempco, spans 20 % FS and 20 degC), the die temperature the inverse of BridgeCode above.
+  constexpr double kCodePerDegC = 6710886.0 * 0.0026;
+  c.altitude_ft.hysteresis = {-51.7, 51.7 * 0.0025, 20684.0, -77.6, 77.6 * 0.0025, 20.0, 6710886.0,
+                              {25.0, 1.0 / kCodePerDegC, 0.0, 0.0}};
+  c.airspeed_kt.hysteresis = {-17.2, 17.2 * 0.0025, 6895.0, -25.9, 25.9 * 0.0025, 20.0, 6710886.0 * 1.01,
+                              {25.0, 1.0 / (kCodePerDegC * 1.01), 0.0, 0.0}};
   return c;
 }
 
