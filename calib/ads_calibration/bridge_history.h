@@ -17,8 +17,9 @@
 // Spans: the part's nominal (physics.md section 6: E, estimated), 20 % of full scale and 20 degC
 // for the model-1230 class; HysteresisSpans holds them so a measured value can replace them.
 // Left out: die temperature lagging the chamber during a step's dwell (the points are taken after
-// the soak), small reversals from the chamber's overshoot (a dither of a << span moves the state
-// by ~6 (2a/span)^2), older extremes (the operator remembers only the last).
+// the soak); small reversals between points (the test set's noise, the chamber's overshoot): the
+// law's return-point memory forgets them once the input passes back, which it does at the next
+// point of a sweep.
 #pragma once
 
 #include <vector>

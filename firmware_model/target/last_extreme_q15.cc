@@ -10,13 +10,56 @@ constexpr int16_t kQ15ThreeQuarters = 0x6000;
 }  // namespace
 
 void LastExtremeResetQ15(LastExtremeQ15* op) {
+  for (BranchStartQ15& b : op->branches) b = BranchStartQ15{0, 0};
+  op->depth = 0;
   op->last_input = 0;
-  op->extreme_input = 0;
-  op->extreme_state_q15 = 0;
   op->state_q15 = 0;
   op->direction = 0;
   op->started = 0;
 }
+
+namespace {
+
+// Begins a branch at the last input. When the stack is full, the smallest minor loop below the
+// current branch is forgotten: the pair of consecutive starts (i, i + 1) closest in input, as if the
+// excursion between them had not happened (the directions still alternate). Noise makes small
+// loops; a major branch's start is far from its neighbours and stays.
+void PushBranch(DspEngine* engine, LastExtremeQ15* op) {
+  engine->ChargeAlu(1);
+  engine->ChargeBranch(1);
+  if (op->depth == kLastExtremeDepth) {
+    uint8_t smallest = 0;
+    uint32_t smallest_extent = UINT32_MAX;
+    for (uint8_t i = 0; i + 2 < kLastExtremeDepth; ++i) {
+      const int64_t extent = static_cast<int64_t>(op->branches[i + 1].input) - op->branches[i].input;
+      const uint32_t magnitude = static_cast<uint32_t>(extent < 0 ? -extent : extent);
+      engine->ChargeAlu(5);  // 32-bit SUB, SUBB, absolute value, compare
+      engine->ChargeBranch(1);
+      if (magnitude < smallest_extent) {
+        smallest_extent = magnitude;
+        smallest = i;
+        engine->ChargeMov(3);
+      }
+    }
+    for (uint8_t i = static_cast<uint8_t>(smallest + 2); i < kLastExtremeDepth; ++i) {
+      op->branches[i - 2] = op->branches[i];
+      engine->ChargeMov(3);
+    }
+    op->depth = static_cast<uint8_t>(op->depth - 2);
+  }
+  op->branches[op->depth] = BranchStartQ15{op->last_input, op->state_q15};
+  ++op->depth;
+  engine->ChargeMov(4);
+}
+
+// Whether `input`, moving in the input's own direction `input_direction`, has reached `start`.
+bool Beyond(DspEngine* engine, int32_t input, int32_t start, int8_t input_direction) {
+  engine->ChargeAlu(2);  // 32-bit compare: SUB, SUBB
+  engine->ChargeBranch(1);
+  return input_direction > 0 ? input >= start : input <= start;
+}
+
+}  // namespace
 
 int16_t LastExtremeUpdateQ15(DspEngine* engine, LastExtremeQ15* op, int32_t input,
                              int8_t input_exponent, const CoeffQ31& inv_span) {
@@ -26,8 +69,7 @@ int16_t LastExtremeUpdateQ15(DspEngine* engine, LastExtremeQ15* op, int32_t inpu
   if (op->started == 0) {
     op->started = 1;
     op->last_input = input;
-    op->extreme_input = input;
-    engine->ChargeMov(5);
+    engine->ChargeMov(3);
     return op->state_q15;
   }
   engine->ChargeAlu(2);  // 32-bit compare: SUB, SUBB
@@ -35,22 +77,32 @@ int16_t LastExtremeUpdateQ15(DspEngine* engine, LastExtremeQ15* op, int32_t inpu
   if (input == op->last_input) return op->state_q15;
 
   // Direction of the physical quantity: the input's, flipped by a negative inv_span.
-  int8_t direction = input > op->last_input ? 1 : -1;
-  if (inv_span.mantissa_q31 < 0) direction = static_cast<int8_t>(-direction);
+  const int8_t input_direction = input > op->last_input ? 1 : -1;
+  const int8_t direction =
+      inv_span.mantissa_q31 < 0 ? static_cast<int8_t>(-input_direction) : input_direction;
   engine->ChargeAlu(2);
   engine->ChargeBranch(2);
   if (direction != op->direction) {
+    PushBranch(engine, op);
     op->direction = direction;
-    op->extreme_input = op->last_input;
-    op->extreme_state_q15 = op->state_q15;
-    engine->ChargeMov(4);
+    engine->ChargeMov(1);
   }
   op->last_input = input;
   engine->ChargeMov(2);
+  // Return-point memory: beyond the previous branch's start, the minor loop is closed.
+  engine->ChargeAlu(1);
+  engine->ChargeBranch(1);
+  while (op->depth >= 3 && Beyond(engine, input, op->branches[op->depth - 2].input, input_direction)) {
+    op->depth = static_cast<uint8_t>(op->depth - 2);
+    engine->ChargeAlu(2);
+    engine->ChargeBranch(1);
+  }
+  const BranchStartQ15& branch = op->branches[op->depth - 1];
+  engine->ChargeMov(3);
 
-  // t = |input - extreme| * |inv_span|, carried to exponent 0; 1.31 saturation clamps it at 1.
+  // t = |input - start| * |inv_span|, carried to exponent 0; 1.31 saturation clamps it at 1.
   LoadQ31(engine, Acc::kA, input);
-  LoadQ31(engine, Acc::kB, op->extreme_input);
+  LoadQ31(engine, Acc::kB, branch.input);
   engine->SubAcc(Acc::kA);
   engine->ChargeBranch(1);
   if (engine->MovFromAccUpper(Acc::kA) < 0) engine->NegAcc(Acc::kA);
@@ -70,10 +122,9 @@ int16_t LastExtremeUpdateQ15(DspEngine* engine, LastExtremeQ15* op, int32_t inpu
   engine->Mpy(Acc::kA, travel_sq_q15, factor_q15);
   const int16_t weight_q15 = engine->SacR(Acc::kA, -2);
 
-  // state = s_ext - w s_ext + target w, target = -direction: exactly s_ext while w = 0, so the
-  // reversals of input noise do not wear the state down.
-  engine->Lac(Acc::kA, op->extreme_state_q15, 0);
-  engine->Msc(Acc::kA, weight_q15, op->extreme_state_q15);
+  // state = s_b - w s_b + target w, target = -direction: exactly s_b while w = 0.
+  engine->Lac(Acc::kA, branch.state_q15, 0);
+  engine->Msc(Acc::kA, weight_q15, branch.state_q15);
   engine->ChargeAlu(1);  // NEG of w for a rise
   engine->AddWordAcc(Acc::kA, direction > 0 ? static_cast<int16_t>(-weight_q15) : weight_q15, 0);
   op->state_q15 = engine->SacR(Acc::kA, 0);

@@ -3,23 +3,29 @@
 // rows 4 and 7), driven by what the unit itself sees, so that the compensator can subtract the
 // branch a bridge is on (ads_compensator.h).
 //
-//   after a reversal at u_ext with state s_ext, moving in direction d = +-1 of the physical
-//   quantity, travel t = min(|u - u_ext| * |inv_span|, 1),
-//   state = s_ext + w (-d - s_ext),   w = t^2 (3 - 2 t)
+//   on a branch that began at u_b with state s_b, moving in direction d = +-1 of the physical
+//   quantity, travel t = min(|u - u_b| * |inv_span|, 1),
+//   state = s_b + w (-d - s_b),   w = t^2 (3 - 2 t)
 //
+// with the law's return-point memory: a reversal begins a branch; passing back to the start of
+// the previous branch closes the minor loop and the state continues the older branch. That is what
+// keeps the unit's own ADC noise (a reversal every few frames on a slow ramp) from holding the
+// state back. The branch starts are a stack of kLastExtremeDepth entries in RAM; when it is full
+// the smallest minor loop below the current branch is forgotten (noise makes small loops; a major
+// branch's start is far from its neighbours and stays).
 // The input u is a Q31 mantissa at `input_exponent` (fixed_coeff.h): the surface's pressure for
-// the pressure state, the raw bridge-voltage code (exponent 31) for the thermal state.
+// the pressure state, the die temperature tau (ads_constants.h) for the thermal state.
 // `inv_span` is the reciprocal of the travel to the full state in the input's units; its sign
-// says which way the physical quantity moves when the input rises (negative for a code that falls
-// as the die warms), so that the state keeps the physical convention: -1 after a rise, +1 after a
-// fall. A zero inv_span holds the state where it is (the term is off).
+// says which way the physical quantity moves when the input rises (negative for an input that
+// falls as the quantity rises), so that the state keeps the physical convention: -1 after a rise,
+// +1 after a fall. A zero inv_span holds the state where it is (the term is off).
 // Number formats: travel and the smoothstep weight w are Q15 in [0, 1] (w saturates at 0x7FFF);
 // the state is Q15 in [-1, 1). The Q15 state resolves 3e-5 of a half loop: 0.003 Pa of a 100 Pa
-// loop. Cycle cost: 10 on the first frame and on an unchanged input, about 40 otherwise
-// (one MulQ31 for the travel, two MPYs for the weight and the state).
-// Not modelled, as in the law it follows: older extremes (Preisach memory), creep. A fresh
-// operator (power-on) starts at state 0 and learns the branch from the first reversal on; the
-// bridge's own state survives power cycles, which the operator cannot know.
+// loop. Cycle cost: 10 on the first frame and on an unchanged input, about 50 otherwise
+// (one MulQ31 for the travel, two MPYs for the weight and the state, the stack's bookkeeping).
+// Not modelled, as in the law it follows: exact minor-loop closure, creep. A fresh operator
+// (power-on) starts at state 0 and learns the branch from the first reversal on; the bridge's own
+// state survives power cycles, which the operator cannot know.
 #pragma once
 
 #include <cstdint>
@@ -29,13 +35,21 @@
 
 namespace adahrs::firmware_model {
 
+inline constexpr uint8_t kLastExtremeDepth = 8;
+
+/// The start of one branch.
+struct BranchStartQ15 {
+  int32_t input;
+  int16_t state_q15;
+};
+
 /// One operator's memory (RAM; zero-initialised is the fresh operator).
 struct LastExtremeQ15 {
+  BranchStartQ15 branches[kLastExtremeDepth];  ///< oldest first
+  uint8_t depth;
   int32_t last_input;
-  int32_t extreme_input;
-  int16_t extreme_state_q15;
   int16_t state_q15;
-  int8_t direction;  ///< of the physical quantity at the last move: +1, -1, 0 before any move
+  int8_t direction;  ///< of the physical quantity on the current branch: +1, -1, 0 before any move
   uint8_t started;
 };
 

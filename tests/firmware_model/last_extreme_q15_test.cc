@@ -61,7 +61,7 @@ TEST(LastExtremeQ15, FollowsTheSimulatorsLawOverRandomPressureHistories) {
   std::printf("pressure operator: worst |state - law| %.2e over 1,200 excursions, max %u cycles\n",
               worst, max_cycles);
   EXPECT_LT(worst, 5e-4);
-  EXPECT_LE(max_cycles, 64u);
+  EXPECT_LE(max_cycles, 100u);
 }
 
 // A thermal operator on a bridge-voltage code that FALLS as the die warms (negative inv_span):
@@ -89,12 +89,9 @@ TEST(LastExtremeQ15, NegativeInverseSpanKeepsTheTemperatureConvention) {
   EXPECT_GT(op.state_q15, 0);  // last move: cooling from 85 to 60, then 10 degC of heating
 }
 
-// Input noise reverses the operator every frame. Each reversal restarts the smoothstep from the
-// state it had, with a travel of a few Pa (weight ~3 (2a/span)^2 ~ 5e-7, below the Q15 LSB), so
-// the state must stay where the last real excursion left it: 200,000 frames of +-4 Pa noise after
-// a climb leave it within 2 LSB of -1. The law itself creeps towards 0 under such a dither, by at
-// most 6 (2a/span)^2 per reversal (sensor_sim/last_extreme_hysteresis.h), which the Q15 weight
-// does not resolve: the two may part by that bound and no more.
+// Input noise reverses the operator every frame; each excursion that returns past its start is
+// wiped out, so 200,000 frames of +-4 Pa noise after a climb leave the state within 2 LSB of -1,
+// with the law.
 TEST(LastExtremeQ15, NoiseReversalsDoNotWearTheStateDown) {
   constexpr double kSpanPa = 20684.0;
   const CoeffQ31 inv_span = InverseSpan(1.0 / kSpanPa);
@@ -115,10 +112,47 @@ TEST(LastExtremeQ15, NoiseReversalsDoNotWearTheStateDown) {
     law.Update(PressureOf(input));
   }
   EXPECT_LE(op.state_q15, after_climb + 2);
-  const double creep_bound = 200000 * 6.0 * std::pow(2.0 * 4.0 / kSpanPa, 2);
-  std::printf("after 200,000 noise reversals: operator %.5f, law %.5f (creep bound %.3f)\n",
-              op.state_q15 * kQ15, law.state(), creep_bound);
-  EXPECT_LT(std::abs(op.state_q15 * kQ15 - law.state()), creep_bound);
+  EXPECT_LT(std::abs(op.state_q15 * kQ15 - law.state()), 1e-4);
+  EXPECT_LE(op.depth, kLastExtremeDepth);
+}
+
+// A slow sweep with the ADC's noise, as the unit sees its pressure during a test-set ramp
+// (60 Pa/s at 100 Hz: 0.6 Pa per frame, +-10 Pa of noise): reversals every few frames, yet the
+// state develops as along the clean sweep and as the law does on the same noisy input (within the
+// operator's quantisation), and the branch stack stays shallow.
+TEST(LastExtremeQ15, NoisySweepDevelopsLikeTheCleanSweep) {
+  constexpr double kSpanPa = 20684.0;
+  const CoeffQ31 inv_span = InverseSpan(1.0 / kSpanPa);
+  LastExtremeQ15 op;
+  LastExtremeResetQ15(&op);
+  sensor_sim::LastExtremeHysteresis law(kSpanPa), clean(kSpanPa);
+  sensor_sim::Rng rng(7);
+  DspEngine engine;
+  double worst = 0.0;
+  uint8_t deepest = 0;
+  int reversals = 0, last_direction = 0;
+  double previous = 100000.0;
+  clean.Update(100000.0);
+  for (int i = 0; i <= 30000; ++i) {
+    const double p_pa = 100000.0 - 0.6 * i;  // falling: the state develops towards +1
+    const int32_t input = PressureMantissa(p_pa + rng.Uniform(-10.0, 10.0));
+    const int16_t state = LastExtremeUpdateQ15(&engine, &op, input, kPressureExponent, inv_span);
+    const double exact = law.Update(PressureOf(input));
+    worst = std::max(worst, std::abs(state * kQ15 - exact));
+    deepest = std::max(deepest, op.depth);
+    const int direction = PressureOf(input) > previous ? 1 : -1;
+    reversals += direction != last_direction ? 1 : 0;
+    last_direction = direction;
+    previous = PressureOf(input);
+    if (i % 1000 == 0) {
+      EXPECT_NEAR(state * kQ15, clean.Update(p_pa), 0.01) << "at " << p_pa << " Pa";
+    }
+  }
+  std::printf("noisy sweep: %d reversals, worst |state - law| %.2e, deepest stack %u\n", reversals,
+              worst, deepest);
+  EXPECT_GT(reversals, 5000);
+  EXPECT_LT(worst, 5e-4);
+  EXPECT_LE(deepest, kLastExtremeDepth);
 }
 
 // A zero inv_span (the term off) holds the state; the first frame only starts the operator.

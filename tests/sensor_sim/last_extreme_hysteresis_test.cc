@@ -39,10 +39,39 @@ TEST(LastExtremeHysteresis, ContinuousAtReversalAndNoDriftUnderDither) {
   const double at_top = h.Update(4.0);
   // A reversal by a tiny step changes the state by far less than the step (zero slope).
   EXPECT_NEAR(h.Update(4.0 - 1e-6), at_top, 1e-10);
-  // Dither ±0.001 about 4 for 1000 cycles: each reversal moves the state by at most
-  // 3·(0.002/10)²·2 = 2.4e-7, so 2000 reversals stay within 5e-4 of where they started.
+  // Dither +-0.001 about 4 for 1000 cycles: every excursion that returns past its start closes
+  // its minor loop, and the state is back on the branch from 0 each time.
   for (int i = 0; i < 2000; ++i) h.Update(i % 2 ? 4.001 : 3.999);
-  EXPECT_NEAR(h.state(), at_top, 5e-4);
+  EXPECT_NEAR(h.state(), -(0.4001 * 0.4001 * (3.0 - 2.0 * 0.4001)), 1e-12);
+}
+
+// Return-point memory: a minor loop inside a branch is forgotten once the input passes its start.
+// Rise 0 -> 6, fall to 5, rise to 8: beyond 6 the state is the 0 -> 8 branch's, exactly.
+TEST(LastExtremeHysteresis, MinorLoopIsWipedOutBeyondItsStart) {
+  LastExtremeHysteresis h(10.0);
+  h.Update(0.0);
+  h.Update(6.0);
+  const double in_loop = h.Update(5.0);
+  EXPECT_GT(in_loop, h.Update(6.0) - 1.0);  // inside the loop: its own branch
+  EXPECT_DOUBLE_EQ(h.Update(8.0), -(0.8 * 0.8 * (3.0 - 2.0 * 0.8)));
+}
+
+// A slow ramp with noise (a reversal every few steps) develops the state as the clean ramp does:
+// 0 -> 10 in steps of 0.01 with +-0.05 of noise ends within the noise's travel of -1 (without the
+// return-point memory every reversal restarted the smoothstep at zero slope and the same ramp
+// ended near -0.2).
+TEST(LastExtremeHysteresis, NoisyRampDevelopsLikeACleanOne) {
+  LastExtremeHysteresis noisy(10.0), clean(10.0);
+  noisy.Update(0.0);
+  clean.Update(0.0);
+  unsigned seed = 12345;
+  for (int i = 1; i <= 700; ++i) {
+    seed = seed * 1103515245u + 12345u;
+    const double noise = 0.05 * (static_cast<double>((seed >> 16) & 0x7FFF) / 16383.5 - 1.0);
+    noisy.Update(0.01 * i + noise);
+    clean.Update(0.01 * i);
+  }
+  EXPECT_NEAR(noisy.state(), clean.state(), 0.02);
 }
 
 }  // namespace
