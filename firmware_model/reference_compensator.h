@@ -19,7 +19,7 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& constants,
                                    ImuCompensationMode mode, const ImuRawFrame& raw);
 
 /// The hysteresis states the reference is given (it runs no operator: the target's are checked
-/// against the simulator's law on their own, tests/firmware_model/last_extreme_q15_test.cc).
+/// against the simulator's law on their own, tests/firmware_model/preisach_q15_test.cc).
 struct AdsReferenceStates {
   double static_pressure = 0.0;
   double static_thermal = 0.0;

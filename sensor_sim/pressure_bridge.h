@@ -21,7 +21,7 @@
 // span nonlinearity K·u² is parameterised by its best-fit-straight-line value NL (least-squares
 // BFSL over 0…FS, as % FSO): for a parabola the largest BFSL residual is K/6, at the end points,
 // so K = 6·NL·S and S_lin = S − K keeps FSO = V_B·S (NL > 0: ends above the BFSL).
-// s_P and s_T ∈ [−1, 1] are LastExtremeHysteresis states of pressure and die temperature (−1 after
+// s_P and s_T ∈ [−1, 1] are PreisachHysteresis states of pressure and die temperature (−1 after
 // a rise, +1 after a fall); h_P and h_T are the configured hysteresis as the full difference
 // between falling and rising branches, in fractions of FSO.
 //
@@ -49,7 +49,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sensor_sim/last_extreme_hysteresis.h"
+#include "sensor_sim/preisach_hysteresis.h"
 #include "sensor_sim/param_reader.h"
 #include "sensor_sim/random.h"
 
@@ -126,7 +126,7 @@ struct PressureBridgeParams {
   bool operator==(const PressureBridgeParams&) const = default;
 };
 
-/// Stateful bridge model (the hysteresis operators remember the last extremes).
+/// Stateful bridge model (the hysteresis operators remember the extremes that are not wiped out).
 class PressureBridge {
  public:
   PressureBridge(const PressureBridgeParams& params, uint64_t noise_seed);
@@ -145,8 +145,8 @@ class PressureBridge {
  private:
   PressureBridgeParams params_;
   Rng rng_;
-  LastExtremeHysteresis pressure_hysteresis_;
-  LastExtremeHysteresis thermal_hysteresis_;
+  PreisachHysteresis pressure_hysteresis_;
+  PreisachHysteresis thermal_hysteresis_;
   // Coefficients with switched-off terms set to zero, precomputed in the constructor.
   double inv_full_scale_per_pa_;
   double current0_a_, current_tc_per_c_;

@@ -5,7 +5,7 @@
 #include "calib/evaluation/ads_tolerance.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/last_extreme_hysteresis.h"
+#include "sensor_sim/preisach_hysteresis.h"
 #include "sensor_sim/pressure_bridge.h"
 
 namespace adahrs::calib {
@@ -27,9 +27,9 @@ HysteresisSpans HysteresisSpans::Nominal() {
 
 std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>& points,
                                           const HysteresisSpans& spans) {
-  sensor_sim::LastExtremeHysteresis static_p(spans.static_pressure_pa);
-  sensor_sim::LastExtremeHysteresis impact_p(spans.impact_pressure_pa);
-  sensor_sim::LastExtremeHysteresis temperature(spans.temperature_c);
+  sensor_sim::PreisachHysteresis static_p(spans.static_pressure_pa);
+  sensor_sim::PreisachHysteresis impact_p(spans.impact_pressure_pa);
+  sensor_sim::PreisachHysteresis temperature(spans.temperature_c);
   static_p.Update(sensor_sim::kIsaSeaLevelPressure_pa);
   impact_p.Update(0.0);
   temperature.Update(kRoomTemperatureC);
@@ -44,7 +44,7 @@ std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>
 
 StateBand EnvelopeStateBand(double x, double low, double high, double span) {
   auto after = [&](double first, double second) {
-    sensor_sim::LastExtremeHysteresis op(span);
+    sensor_sim::PreisachHysteresis op(span);
     op.Update(first);
     op.Update(second);
     return op.Update(x);

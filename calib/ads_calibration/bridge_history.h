@@ -1,25 +1,26 @@
 // The hysteresis states of the ADS's two pressure bridges at each calibration point, from the
 // history the reference instruments imposed (shared/physics.md section 6 rows 4 and 7;
 // sensor_sim/pressure_bridge.h): a bridge's output carries S (h_P/2) s_P + S (h_T/2) s_T, where
-// s_P and s_T in [-1, 1] remember the last extreme of pressure and of die temperature (-1 after a
-// rise, +1 after a fall, developing over a travel `span` after each reversal). A single-valued
-// surface fitted to points recorded on one branch returns that branch, not the loop's centre;
-// with the states as regressors (tolerance_ads_strategy.h) it returns the centre.
+// s_P and s_T in [-1, 1] are Preisach states of pressure and of die temperature (-1 after a
+// rise, +1 after a fall, set by the extremes that are not wiped out). A single-valued surface
+// fitted to points recorded on one branch returns that branch, not the loop's centre; with the
+// states as regressors (tolerance_ads_strategy.h) it returns the centre.
 //
-// The states are those of the same last-extreme operator (sensor_sim/last_extreme_hysteresis.h)
-// driven by the reference history in step order: the test set's static pressure (static bridge)
-// and impact pressure (pitot bridge), and the chamber temperature (both dies; after a soak the die
-// sits at the chamber's temperature). Between calibration points the test set and the chamber
-// move monotonically from one aim to the next (the sequence's steps), so every reversal happens at
-// a point and the points alone carry the whole history. Before the first point the unit is taken
-// to be at rest in the room, fresh (state 0): 25 degC, standard sea-level static pressure, no
-// impact pressure; the sequence's first excursion wipes that out.
+// The states are those of the same Preisach operator (sensor_sim/preisach_hysteresis.h) driven by
+// the reference history in step order: the test set's static pressure (static bridge) and impact
+// pressure (pitot bridge), and the chamber temperature (both dies; after a soak the die sits at
+// the chamber's temperature). Between calibration points the test set and the chamber move
+// monotonically from one aim to the next (the sequence's steps), so every reversal that matters
+// happens at a point and the points alone carry the history: the test set's noise and the
+// chamber's overshoot make minor loops that the operator's return-point memory forgets once the
+// input passes back, which it does on the way to the next point. Before the first point the unit
+// is taken to be at rest in the room, demagnetised (the operator's virgin state): 25 degC,
+// standard sea-level static pressure, no impact pressure; the sequence's first full excursions
+// wipe that out.
 // Spans: the part's nominal (physics.md section 6: E, estimated), 20 % of full scale and 20 degC
 // for the model-1230 class; HysteresisSpans holds them so a measured value can replace them.
 // Left out: die temperature lagging the chamber during a step's dwell (the points are taken after
-// the soak); small reversals between points (the test set's noise, the chamber's overshoot): the
-// law's return-point memory forgets them once the input passes back, which it does at the next
-// point of a sweep.
+// the soak); a real unit's history before the run (a full excursion of the sequence erases it).
 #pragma once
 
 #include <vector>

@@ -57,7 +57,7 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
 /// (least squares of the chamber temperatures over the points; needs 4 temperatures).
 /// Diagnostics as pressure_minimax's plus that cubic's rms residual. Left out: a span estimated from the data (the spans are the part's nominal
 /// values, physics.md section 6: estimated), the unit's state at power-on (fresh; the bridge
-/// remembers its last extremes across power cycles, the firmware does not).
+/// keeps its hysteresis state across power cycles, the firmware does not).
 AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
                                       const std::vector<AdsCalibrationPoint>& points,
                                       const HysteresisSpans& spans = HysteresisSpans::Nominal());

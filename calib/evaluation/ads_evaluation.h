@@ -10,7 +10,7 @@
 // chamber air (self-heating included; the thermal lag is not exercised: every point is a soak).
 //
 // History. The bridges' pressure and thermal hysteresis depend on the last pressure and
-// temperature extremes (sensor_sim/last_extreme_hysteresis.h), which no static calibration sees.
+// temperature extremes (sensor_sim/preisach_hysteresis.h), which no static calibration sees.
 // The evaluation never switches them off; it evaluates every grid point under each history of the
 // major loops of the operating envelope:
 //   pressure: "none" (operator fresh, the loop centre), "rising" (after the opposite end of the

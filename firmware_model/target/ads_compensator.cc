@@ -61,13 +61,13 @@ int16_t GainAt(DspEngine* engine, const GainQ15& gain, int16_t tau_q15) {
 
 // z + gain_P s_P + gain_T s_T after advancing both operators; z at `result_exponent`.
 int32_t CompensateHysteresis(DspEngine* engine, const SurfaceQ31& s, int8_t result_exponent,
-                             int32_t z, int32_t y_q31, LastExtremeQ15* pressure,
-                             LastExtremeQ15* thermal, uint16_t* flags) {
+                             int32_t z, int32_t y_q31, PreisachQ15* pressure,
+                             PreisachQ15* thermal, uint16_t* flags) {
   const int16_t s_pressure =
-      LastExtremeUpdateQ15(engine, pressure, z, result_exponent, s.pressure.inv_span);
+      PreisachUpdateQ15(engine, pressure, z, result_exponent, s.pressure.inv_span);
   const int16_t tau_q15 = DieTemperatureQ15(engine, s, y_q31);
   const int16_t s_thermal =
-      LastExtremeUpdateQ15(engine, thermal, JoinWords(tau_q15, 0), 0, s.thermal.inv_span);
+      PreisachUpdateQ15(engine, thermal, JoinWords(tau_q15, 0), 0, s.thermal.inv_span);
   const int16_t gain_pressure_q15 = GainAt(engine, s.pressure.gain, tau_q15);
   const int16_t gain_thermal_q15 = GainAt(engine, s.thermal.gain, tau_q15);
   engine->TestAndClearSaturation();  // the travel clamp
@@ -87,7 +87,7 @@ int32_t CompensateHysteresis(DspEngine* engine, const SurfaceQ31& s, int8_t resu
 // kPressureExponent) through the block's law (validated per block by ads_constants.cc), each
 // after the hysteresis terms.
 int32_t SurfaceAndLaw(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponent, int32_t x_code,
-                      int32_t y_code, LastExtremeQ15* pressure, LastExtremeQ15* thermal,
+                      int32_t y_code, PreisachQ15* pressure, PreisachQ15* thermal,
                       uint16_t* flags) {
   engine->ChargeBranch(1);  // the law
   const int8_t result_exponent = AdsSurfaceExponent(s.law, out_exponent);
@@ -103,10 +103,10 @@ int32_t SurfaceAndLaw(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponen
 }  // namespace
 
 void AdsHysteresisReset(AdsHysteresisState* state) {
-  LastExtremeResetQ15(&state->static_pressure);
-  LastExtremeResetQ15(&state->static_thermal);
-  LastExtremeResetQ15(&state->pitot_pressure);
-  LastExtremeResetQ15(&state->pitot_thermal);
+  PreisachResetQ15(&state->static_pressure);
+  PreisachResetQ15(&state->static_thermal);
+  PreisachResetQ15(&state->pitot_pressure);
+  PreisachResetQ15(&state->pitot_thermal);
 }
 
 void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensationMode mode,

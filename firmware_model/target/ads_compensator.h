@@ -10,8 +10,8 @@
 // air_data_law.h then turns into the output. Input normalisation is exact (32-bit
 // centring in the accumulator, a power-of-two shift), which the 24-bit codes need: a Q15 x would
 // resolve only 3e-5 of the fit span, ~1.5 ft over a 50,000 ft span before any other error.
-// Hysteresis (ads_constants.h): after the surface, each block's two last-extreme operators
-// (last_extreme_q15.h) advance, the pressure one on the surface's result and the thermal one on
+// Hysteresis (ads_constants.h): after the surface, each block's two Preisach operators
+// (preisach_q15.h) advance, the pressure one on the surface's result and the thermal one on
 // the die temperature tau(y) (a Q15 cubic of the normalised bridge-voltage code), and
 // gain_P s_P + gain_T s_T (Q15 gains, one MPY each) is added to the result before the law. The
 // operators' memory is the caller's (AdsHysteresisState, RAM); it must see every frame in order.
@@ -22,16 +22,16 @@
 #include "firmware_model/target/ads_constants.h"
 #include "firmware_model/target/compensated_frame.h"
 #include "firmware_model/target/dsp_engine.h"
-#include "firmware_model/target/last_extreme_q15.h"
+#include "firmware_model/target/preisach_q15.h"
 
 namespace adahrs::firmware_model {
 
 /// The hysteresis operators' memory of one unit: pressure and thermal state per bridge.
 struct AdsHysteresisState {
-  LastExtremeQ15 static_pressure;
-  LastExtremeQ15 static_thermal;
-  LastExtremeQ15 pitot_pressure;
-  LastExtremeQ15 pitot_thermal;
+  PreisachQ15 static_pressure;
+  PreisachQ15 static_thermal;
+  PreisachQ15 pitot_pressure;
+  PreisachQ15 pitot_thermal;
 };
 
 /// Fresh operators (power-on, or new constants).

@@ -32,7 +32,7 @@
 //     [pressure: CoeffQ31 inv_span][GainQ15 gain]                         (hysteresis, below)
 //     [thermal:  int16 t1 t2 t3][CoeffQ31 inv_span][GainQ15 gain]
 //     [law]                                                               (AdsSurfaceLaw)
-// Hysteresis (issue 6; last_extreme_q15.h): the bridge's output carries its branch, a multiple of
+// Hysteresis (issue 6; preisach_q15.h): the bridge's output carries its branch, a multiple of
 // the states s_P (last pressure extreme) and s_T (last die-temperature extreme). The unit runs one
 // operator per state and adds gain_P(tau) s_P + gain_T(tau) s_T to the surface's result z, before
 // the law, each gain linear in the die temperature tau (below): a loop that is a fixed fraction of

@@ -140,10 +140,10 @@ TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecifica
   for (int i = 0; i < 2; ++i) {
     const std::string serial = "ADS-" + std::to_string(9100 + i);
     const auto [truth, points] = RunShippedCalibration(serial, 6000 + i, 17 + i);
-    // 9 temperatures x (13 altitudes + 9 airspeeds), one point per log step.
-    ASSERT_EQ(points.size(), 9u * 22u);
+    // 9 temperatures x (13 altitudes + 2 return points + 9 airspeeds), one point per log step.
+    ASSERT_EQ(points.size(), 9u * 24u);
     const AdsFitResult fit = FitReferenceAdsStrategy(serial, points);
-    EXPECT_EQ(fit.diagnostics["altitude_ft"]["points"], 198);
+    EXPECT_EQ(fit.diagnostics["altitude_ft"]["points"], 216);
     EXPECT_EQ(fit.diagnostics["airspeed_kt"]["points"], 81);
     const AdsEvaluation eval = EvaluateAdsConstants(fit.constants, truth);
     double low_temp_worst_ft = 0.0, warm_worst_ft = 0.0;
@@ -293,16 +293,15 @@ TEST(ImprovedAdsStrategies, LeaveOnlyHysteresisBoundPointsOutsideTheTolerancesOn
               unreachable[1], fails[2][1], least_band_at_a_fail, worst_thermal_loop_error,
               worst_pressure_loop_error);
   // Measured (2026-11-23), docs/calibration-strategies.md: failing grid points over the 20 units,
-  // altitude 475 / 634 / 103, airspeed 15,163 / 16,227 / 1,702 (of 27,040 and 22,360); the
-  // pressure_minimax failures all where the band's half-width is 0.81 of the tolerance or more;
-  // half loops within 0.01 (thermal) and 0.10 (pressure) of the truth (0.26 before the bridges'
-  // law had return-point memory: the sequence's small excursions to -1,000 ft and back held the
-  // state back). Required: each
-  // improvement on every unit (no-history worst ratio); the tolerance form by a fifth (altitude)
-  // and a tenth (airspeed) on average; pressure_minimax failing at most a quarter of the
-  // reference's altitude points and a seventh of its airspeed points, only where hysteresis takes
-  // three quarters of the tolerance or more, and separating the loops within 5 % (thermal) and
-  // 15 % (pressure) of the truth.
+  // altitude 506 / 630 / 90, airspeed 15,158 / 16,224 / 1,760 (of 27,040 and 22,360); the
+  // pressure_minimax failures all where the band's half-width is 0.77 of the tolerance or more;
+  // half loops within 0.01 (thermal) and 0.02 (pressure) of the truth (0.25 before the sequence's
+  // return points gave every temperature both static branches at 7,500 and 20,000 ft). Required:
+  // each improvement on every unit (no-history worst ratio); the tolerance form by a fifth
+  // (altitude) and a tenth (airspeed) on average; pressure_minimax failing at most a quarter of
+  // the reference's altitude points and a seventh of its airspeed points, only where hysteresis
+  // takes three quarters of the tolerance or more, and separating the loops within 5 % of the
+  // truth.
   EXPECT_EQ(better[0][0], kUnits);
   EXPECT_EQ(better[0][1], kUnits);
   EXPECT_LT(sum[1][0], 0.8 * sum[0][0]);
@@ -313,7 +312,7 @@ TEST(ImprovedAdsStrategies, LeaveOnlyHysteresisBoundPointsOutsideTheTolerancesOn
   EXPECT_LT(fails[2][1], fails[0][1] / 7);
   EXPECT_GE(least_band_at_a_fail, 0.75);
   EXPECT_LT(worst_thermal_loop_error, 0.05);
-  EXPECT_LT(worst_pressure_loop_error, 0.15);
+  EXPECT_LT(worst_pressure_loop_error, 0.05);
   std::printf("hysteresis_compensated: worst |error| / tolerance under the nine histories, over the "
               "units: altitude %.2f, airspeed %.2f; failing grid points %d and %d; altitude "
               "passes %d; failing on %d units, at %.0f...%.0f ft, no-history error there up to "
@@ -321,13 +320,14 @@ TEST(ImprovedAdsStrategies, LeaveOnlyHysteresisBoundPointsOutsideTheTolerancesOn
               worst_compensated[0], worst_compensated[1], fails[3][0], fails[3][1], compensated_passes,
               compensated_failing_units, failing_alt_ft[0], failing_alt_ft[1], worst_failing_no_history);
   // hysteresis_compensated (the firmware runs the operators, target/ads_constants.h): measured
-  // (2026-11-23) airspeed 0 failing (worst 0.55 tolerances under every history), altitude 219
-  // failing of 27,040 (26,821 pass, where pressure_minimax passes 51), on 2 of the 20 units, worst
-  // 1.42 tolerances: not yet every point. Required: no airspeed point fails; at least 98 % of the
+  // (2026-11-23) airspeed 0 failing (worst 0.56 tolerances under every history), altitude 7
+  // failing of 27,040 (27,033 pass, where pressure_minimax passes 63), all on one unit at
+  // 6,000-12,000 ft where its surface alone (no history) is 0.97 tolerances off, worst 1.04
+  // tolerances: not yet every point. Required: no airspeed point fails; at least 99.9 % of the
   // altitude points pass; nothing is called unreachable (the surfaces are not static).
   EXPECT_EQ(fails[3][1], 0);
   EXPECT_LT(worst_compensated[1], 1.0);
-  EXPECT_GT(compensated_passes, 27040 * 98 / 100);
+  EXPECT_LE(27040 - compensated_passes, 27);
   EXPECT_EQ(compensated_unreachable, 0);
 }
 

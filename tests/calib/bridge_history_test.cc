@@ -1,7 +1,8 @@
 // The hysteresis states the ADS strategy assigns to calibration points (bridge_history.h), against
-// the last-extreme law written out here by hand (physics.md section 6, the smoothstep
-// s = s_ext + (-d - s_ext) t^2 (3 - 2 t) over a travel t of the span after a reversal), and the
-// envelope bands against the histories the evaluation applies (ads_evaluation.h).
+// the Preisach law written out here by hand (physics.md section 6: along a branch from a reversal
+// at state s_ext, s = s_ext - 2 d F(t), F(t) = t^2 (3 - 2 t) over a travel t of the span; the
+// virgin curve from a fresh unit, s = -d F(2 t)), and the envelope bands against the histories the
+// evaluation applies (ads_evaluation.h).
 #include "calib/ads_calibration/bridge_history.h"
 
 #include <algorithm>
@@ -15,7 +16,7 @@ namespace {
 // State after moving in direction d from a reversal at state s_ext by `travel` (input units).
 double AfterReversal(double s_ext, int d, double travel, double span) {
   const double t = std::min(travel / span, 1.0);
-  return s_ext + (-d - s_ext) * t * t * (3.0 - 2.0 * t);
+  return s_ext - 2.0 * d * t * t * (3.0 - 2.0 * t);
 }
 
 AdsCalibrationPoint At(double chamber_c, double ps_pa, double qc_pa) {

@@ -1,5 +1,5 @@
-// The target's last-extreme operator (firmware_model/target/last_extreme_q15.h) against the law
-// the simulator gives the bridges (sensor_sim/last_extreme_hysteresis.h, double precision): the
+// The target's Preisach operator (firmware_model/target/preisach_q15.h) against the law
+// the simulator gives the bridges (sensor_sim/preisach_hysteresis.h, double precision): the
 // same input histories, the fixed-point state within its quantisation of the exact one.
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <cstdio>
 
 #include "firmware_model/target/air_data_tables.h"
-#include "firmware_model/target/last_extreme_q15.h"
-#include "sensor_sim/last_extreme_hysteresis.h"
+#include "firmware_model/target/preisach_q15.h"
+#include "sensor_sim/preisach_hysteresis.h"
 #include "sensor_sim/random.h"
 
 namespace adahrs::firmware_model {
@@ -32,16 +32,16 @@ double PressureOf(int32_t mantissa) { return std::ldexp(mantissa, kPressureExpon
 // (from a few Pa to the whole envelope), stepped in frames of up to 400 Pa: the operator's state
 // matches the law to within 5e-4 throughout (Q15 travel, weight and state roundings: a few 3e-5,
 // carried through reversals by convex combinations, so they do not grow).
-TEST(LastExtremeQ15, FollowsTheSimulatorsLawOverRandomPressureHistories) {
+TEST(PreisachQ15, FollowsTheSimulatorsLawOverRandomPressureHistories) {
   constexpr double kSpanPa = 20684.0;  // 20 % FS of a 15 psi bridge
   const CoeffQ31 inv_span = InverseSpan(1.0 / kSpanPa);
   sensor_sim::Rng rng(5150);
   double worst = 0.0;
   uint32_t max_cycles = 0;
   for (int history = 0; history < 20; ++history) {
-    LastExtremeQ15 op;
-    LastExtremeResetQ15(&op);
-    sensor_sim::LastExtremeHysteresis law(kSpanPa);
+    PreisachQ15 op;
+    PreisachResetQ15(&op);
+    sensor_sim::PreisachHysteresis law(kSpanPa);
     double p_pa = rng.Uniform(11000.0, 105000.0);
     for (int excursion = 0; excursion < 60; ++excursion) {
       const double size = std::pow(10.0, rng.Uniform(0.5, 5.0));
@@ -51,7 +51,7 @@ TEST(LastExtremeQ15, FollowsTheSimulatorsLawOverRandomPressureHistories) {
                           : std::max(aim, p_pa - rng.Uniform(1.0, 400.0));
         const int32_t input = PressureMantissa(p_pa);
         DspEngine engine;
-        const int16_t state = LastExtremeUpdateQ15(&engine, &op, input, kPressureExponent, inv_span);
+        const int16_t state = PreisachUpdateQ15(&engine, &op, input, kPressureExponent, inv_span);
         max_cycles = std::max(max_cycles, engine.cycles());
         const double exact = law.Update(PressureOf(input));
         worst = std::max(worst, std::abs(state * kQ15 - exact));
@@ -66,14 +66,14 @@ TEST(LastExtremeQ15, FollowsTheSimulatorsLawOverRandomPressureHistories) {
 
 // A thermal operator on a bridge-voltage code that FALLS as the die warms (negative inv_span):
 // the state keeps the physical convention, -1 after heating, as the law on temperature gives.
-TEST(LastExtremeQ15, NegativeInverseSpanKeepsTheTemperatureConvention) {
+TEST(PreisachQ15, NegativeInverseSpanKeepsTheTemperatureConvention) {
   constexpr double kCodePerDegC = -17448.0;
   constexpr double kSpanC = 20.0;
   const CoeffQ31 inv_span = InverseSpan(1.0 / (kSpanC * kCodePerDegC));
   ASSERT_LT(inv_span.mantissa_q31, 0);
-  LastExtremeQ15 op;
-  LastExtremeResetQ15(&op);
-  sensor_sim::LastExtremeHysteresis law(kSpanC);
+  PreisachQ15 op;
+  PreisachResetQ15(&op);
+  sensor_sim::PreisachHysteresis law(kSpanC);
   double worst = 0.0;
   double temp_c = 25.0;
   for (const double aim_c : {25.0, 85.0, -40.0, 10.0, 20.0, 12.0, 85.0, 60.0, 70.0}) {
@@ -81,7 +81,7 @@ TEST(LastExtremeQ15, NegativeInverseSpanKeepsTheTemperatureConvention) {
       temp_c = aim_c > temp_c ? std::min(aim_c, temp_c + 0.5) : std::max(aim_c, temp_c - 0.5);
       const int32_t code = static_cast<int32_t>(std::lround(6710886.0 + kCodePerDegC * (temp_c - 25.0)));
       DspEngine engine;
-      const int16_t state = LastExtremeUpdateQ15(&engine, &op, code, 31, inv_span);
+      const int16_t state = PreisachUpdateQ15(&engine, &op, code, 31, inv_span);
       worst = std::max(worst, std::abs(state * kQ15 - law.Update(temp_c)));
     }
   }
@@ -92,40 +92,40 @@ TEST(LastExtremeQ15, NegativeInverseSpanKeepsTheTemperatureConvention) {
 // Input noise reverses the operator every frame; each excursion that returns past its start is
 // wiped out, so 200,000 frames of +-4 Pa noise after a climb leave the state within 2 LSB of -1,
 // with the law.
-TEST(LastExtremeQ15, NoiseReversalsDoNotWearTheStateDown) {
+TEST(PreisachQ15, NoiseReversalsDoNotWearTheStateDown) {
   constexpr double kSpanPa = 20684.0;
   const CoeffQ31 inv_span = InverseSpan(1.0 / kSpanPa);
-  LastExtremeQ15 op;
-  LastExtremeResetQ15(&op);
-  sensor_sim::LastExtremeHysteresis law(kSpanPa);
+  PreisachQ15 op;
+  PreisachResetQ15(&op);
+  sensor_sim::PreisachHysteresis law(kSpanPa);
   sensor_sim::Rng rng(99);
   DspEngine engine;
   for (double p = 30000.0; p <= 80000.0; p += 250.0) {
-    LastExtremeUpdateQ15(&engine, &op, PressureMantissa(p), kPressureExponent, inv_span);
+    PreisachUpdateQ15(&engine, &op, PressureMantissa(p), kPressureExponent, inv_span);
     law.Update(PressureOf(PressureMantissa(p)));
   }
   const int16_t after_climb = op.state_q15;
   EXPECT_LE(after_climb, -32767);
   for (int i = 0; i < 200000; ++i) {
     const int32_t input = PressureMantissa(80000.0 + rng.Uniform(-4.0, 4.0));
-    LastExtremeUpdateQ15(&engine, &op, input, kPressureExponent, inv_span);
+    PreisachUpdateQ15(&engine, &op, input, kPressureExponent, inv_span);
     law.Update(PressureOf(input));
   }
   EXPECT_LE(op.state_q15, after_climb + 2);
   EXPECT_LT(std::abs(op.state_q15 * kQ15 - law.state()), 1e-4);
-  EXPECT_LE(op.depth, kLastExtremeDepth);
+  EXPECT_LE(op.depth, kPreisachDepth);
 }
 
 // A slow sweep with the ADC's noise, as the unit sees its pressure during a test-set ramp
 // (60 Pa/s at 100 Hz: 0.6 Pa per frame, +-10 Pa of noise): reversals every few frames, yet the
 // state develops as along the clean sweep and as the law does on the same noisy input (within the
 // operator's quantisation), and the branch stack stays shallow.
-TEST(LastExtremeQ15, NoisySweepDevelopsLikeTheCleanSweep) {
+TEST(PreisachQ15, NoisySweepDevelopsLikeTheCleanSweep) {
   constexpr double kSpanPa = 20684.0;
   const CoeffQ31 inv_span = InverseSpan(1.0 / kSpanPa);
-  LastExtremeQ15 op;
-  LastExtremeResetQ15(&op);
-  sensor_sim::LastExtremeHysteresis law(kSpanPa), clean(kSpanPa);
+  PreisachQ15 op;
+  PreisachResetQ15(&op);
+  sensor_sim::PreisachHysteresis law(kSpanPa), clean(kSpanPa);
   sensor_sim::Rng rng(7);
   DspEngine engine;
   double worst = 0.0;
@@ -136,7 +136,7 @@ TEST(LastExtremeQ15, NoisySweepDevelopsLikeTheCleanSweep) {
   for (int i = 0; i <= 30000; ++i) {
     const double p_pa = 100000.0 - 0.6 * i;  // falling: the state develops towards +1
     const int32_t input = PressureMantissa(p_pa + rng.Uniform(-10.0, 10.0));
-    const int16_t state = LastExtremeUpdateQ15(&engine, &op, input, kPressureExponent, inv_span);
+    const int16_t state = PreisachUpdateQ15(&engine, &op, input, kPressureExponent, inv_span);
     const double exact = law.Update(PressureOf(input));
     worst = std::max(worst, std::abs(state * kQ15 - exact));
     deepest = std::max(deepest, op.depth);
@@ -152,18 +152,18 @@ TEST(LastExtremeQ15, NoisySweepDevelopsLikeTheCleanSweep) {
               worst, deepest);
   EXPECT_GT(reversals, 5000);
   EXPECT_LT(worst, 5e-4);
-  EXPECT_LE(deepest, kLastExtremeDepth);
+  EXPECT_LE(deepest, kPreisachDepth);
 }
 
 // A zero inv_span (the term off) holds the state; the first frame only starts the operator.
-TEST(LastExtremeQ15, ZeroInverseSpanHoldsTheStateAndTheFirstFrameStartsIt) {
-  LastExtremeQ15 op;
-  LastExtremeResetQ15(&op);
+TEST(PreisachQ15, ZeroInverseSpanHoldsTheStateAndTheFirstFrameStartsIt) {
+  PreisachQ15 op;
+  PreisachResetQ15(&op);
   DspEngine engine;
-  EXPECT_EQ(LastExtremeUpdateQ15(&engine, &op, 1000, 31, CoeffQ31{0, 0}), 0);
+  EXPECT_EQ(PreisachUpdateQ15(&engine, &op, 1000, 31, CoeffQ31{0, 0}), 0);
   EXPECT_EQ(op.started, 1);
   for (int32_t code = 1000; code < 2000000; code += 50000) {
-    EXPECT_EQ(LastExtremeUpdateQ15(&engine, &op, code, 31, CoeffQ31{0, 0}), 0);
+    EXPECT_EQ(PreisachUpdateQ15(&engine, &op, code, 31, CoeffQ31{0, 0}), 0);
   }
   EXPECT_EQ(op.direction, 1);
 }
