@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include "firmware_model/target/air_data_tables.h"
@@ -153,6 +154,37 @@ TEST(PreisachQ15, NoisySweepDevelopsLikeTheCleanSweep) {
   EXPECT_GT(reversals, 5000);
   EXPECT_LT(worst, 5e-4);
   EXPECT_LE(deepest, kPreisachDepth);
+}
+
+// Power-on in the virgin state, then a pitot's day: 0 -> 450 kt's impact pressure -> 0, then
+// noise about zero that dips below every earlier minimum. The state stays on the falling major
+// branch (+1 within the noise loops' 6 (a/span)^2 and the operator's 5e-4 of the law), with the
+// law, and never returns to the fresh 0.
+TEST(PreisachQ15, FullExcursionForgetsThePowerOnState) {
+  constexpr double kSpanPa = 6895.0;  // 20 % FS of a 5 psid bridge
+  const CoeffQ31 inv_span = InverseSpan(1.0 / kSpanPa);
+  PreisachQ15 op;
+  PreisachResetQ15(&op);
+  sensor_sim::PreisachHysteresis law(kSpanPa);
+  sensor_sim::Rng rng(11);
+  DspEngine engine;
+  double worst = 0.0;
+  auto step = [&](double qc_pa) {
+    const int32_t input = PressureMantissa(qc_pa);
+    const int16_t state = PreisachUpdateQ15(&engine, &op, input, kPressureExponent, inv_span);
+    worst = std::max(worst, std::abs(state * kQ15 - law.Update(PressureOf(input))));
+    return state;
+  };
+  EXPECT_EQ(step(0.0), 0);
+  for (double qc = 0.0; qc <= 33000.0; qc += 300.0) step(qc);
+  EXPECT_LE(op.state_q15, -32767);
+  for (double qc = 33000.0; qc >= 0.0; qc -= 300.0) step(qc);
+  EXPECT_GE(op.state_q15, 32767);
+  int16_t lowest = INT16_MAX;
+  for (int i = 0; i < 20000; ++i) lowest = std::min(lowest, step(rng.Uniform(-20.0, 20.0)));
+  EXPECT_GE(lowest * kQ15, 1.0 - 6.0 * std::pow(40.0 / kSpanPa, 2) - 5e-4);
+  EXPECT_GE(step(-30.0), 32766);  // below every noise minimum: the major branch again
+  EXPECT_LT(worst, 5e-4);
 }
 
 // A zero inv_span (the term off) holds the state; the first frame only starts the operator.
