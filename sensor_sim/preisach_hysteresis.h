@@ -38,12 +38,6 @@ class PreisachHysteresis {
   /// `span` > 0: travel from one saturated state to the other along a branch.
   explicit PreisachHysteresis(double span) : inv_span_(1.0 / span) {}
 
-  /// The branch weight F(t) (t = travel / span, >= 0).
-  static double Weight(double t) {
-    if (t >= 1.0) return 1.0;
-    return t * t * (3.0 - 2.0 * t);
-  }
-
   /// Advances to input `x` and returns the state in [−1, 1].
   double Update(double x) {
     if (!started_) {
@@ -79,6 +73,9 @@ class PreisachHysteresis {
     double start_x;
     double start_state;
   };
+
+  // The branch weight F(t) (t = travel / span, >= 0).
+  static double Weight(double t) { return t >= 1.0 ? 1.0 : t * t * (3.0 - 2.0 * t); }
 
   // When full, the smallest minor loop below the current branch is forgotten: the pair of
   // consecutive starts closest in input, as if the excursion between them had not happened (the

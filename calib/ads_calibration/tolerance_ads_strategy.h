@@ -56,7 +56,7 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
 /// being Pa; temperature in degC) and the die temperature as a cubic of the bridge-voltage code
 /// (least squares of the chamber temperatures over the points; needs 4 temperatures).
 /// Diagnostics as pressure_minimax's plus that cubic's rms residual. Left out: a span estimated from the data (the spans are the part's nominal
-/// values, physics.md section 6: estimated), the unit's state at power-on (fresh; the bridge
+/// values, physics.md section 6: estimated), the unit's state at power-on (virgin; the bridge
 /// keeps its hysteresis state across power cycles, the firmware does not).
 AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
                                       const std::vector<AdsCalibrationPoint>& points,

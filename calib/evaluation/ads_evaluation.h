@@ -9,8 +9,8 @@
 // each x -40...+85 degC, in the steps of AdsEvaluationOptions; the die at its steady state in the
 // chamber air (self-heating included; the thermal lag is not exercised: every point is a soak).
 //
-// History. The bridges' pressure and thermal hysteresis depend on the last pressure and
-// temperature extremes (sensor_sim/preisach_hysteresis.h), which no static calibration sees.
+// History. The bridges' pressure and thermal hysteresis depend on the pressure and temperature
+// extremes not yet wiped out (sensor_sim/preisach_hysteresis.h), which no static calibration sees.
 // The evaluation never switches them off; it evaluates every grid point under each history of the
 // major loops of the operating envelope:
 //   pressure: "none" (operator fresh, the loop centre), "rising" (after the opposite end of the

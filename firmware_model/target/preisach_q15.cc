@@ -74,7 +74,7 @@ bool BeyondMirror(DspEngine* engine, const PreisachQ15* op, int32_t input, int8_
 }  // namespace
 
 int16_t PreisachUpdateQ15(DspEngine* engine, PreisachQ15* op, int32_t input,
-                             int8_t input_exponent, const CoeffQ31& inv_span) {
+                          int8_t input_exponent, const CoeffQ31& inv_span) {
   engine->ChargeCallReturn();
   engine->ChargeAlu(1);
   engine->ChargeBranch(1);

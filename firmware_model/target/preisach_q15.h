@@ -24,9 +24,9 @@
 // +1 after a fall. A zero inv_span holds the state at 0 (the term is off).
 // Number formats: travel and the smoothstep weight w are Q15 in [0, 1] (w saturates at 0x7FFF);
 // the state is Q15 in [-1, 1), saturated by the store. The Q15 state resolves 3e-5 of a half loop:
-// 0.003 Pa of a 100 Pa loop. Cycle cost: 10 on the first frame and on an unchanged input, about 60
-// otherwise (one MulQ31 for the travel, two MPYs for the weight, the state's add, the stack's
-// bookkeeping). Not modelled, as in the law it follows: creep. The bridge's own state survives
+// 0.003 Pa of a 100 Pa loop. Cycle cost: about 10 on the first frame and on an unchanged input, 75
+// on average otherwise (one MulQ31 for the travel, two MPYs for the weight, the state's add, the
+// stack's bookkeeping), 109 at most measured with the stack full (preisach_q15_test.cc). Not modelled, as in the law it follows: creep. The bridge's own state survives
 // power cycles, which the fresh operator cannot know.
 #pragma once
 
@@ -63,6 +63,6 @@ void PreisachResetQ15(PreisachQ15* op);
 /// The caller guarantees inv_span.mantissa_q31 != INT32_MIN and
 /// -31 <= input_exponent + inv_span.exponent <= 31 (ads_constants.cc validates both).
 int16_t PreisachUpdateQ15(DspEngine* engine, PreisachQ15* op, int32_t input,
-                             int8_t input_exponent, const CoeffQ31& inv_span);
+                          int8_t input_exponent, const CoeffQ31& inv_span);
 
 }  // namespace adahrs::firmware_model

@@ -3,8 +3,8 @@
 // 30..450 kt, with realistic constants. Budgets (10 % of the accuracy budget, asserted): 0.1 mg,
 // 0.0015 deg/s, 1.5 ft, 0.1 kt; thermal mode: 0.1 mg at 25 g/duty = 4e-6 duty, 0.0015 deg/s at
 // 20,972 counts per deg/s = 31 counts. Cycle budget: <= 2,000 per IMU frame, <= 2,000 per ADS frame
-// (1,500 before the ADS hysteresis operators; their branch stacks cost up to ~75 cycles each in a
-// frame that reverses all four with full stacks, docs/firmware-compensator.md).
+// (1,500 before the ADS hysteresis operators, which cost 75 cycles each on average when their input
+// moves and up to 109 with a full branch stack, docs/firmware-compensator.md).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
