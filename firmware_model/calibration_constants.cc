@@ -1,5 +1,6 @@
 #include "firmware_model/calibration_constants.h"
 
+#include <cmath>
 #include <set>
 #include <stdexcept>
 #include <tuple>
@@ -73,7 +74,23 @@ json SurfaceToJson(const SurfaceFit& s) {
                          {"die_temp_origin_code", h.die_temp_origin_code},
                          {"die_temp_c", h.die_temp_c}};
   }
+  if (s.y_linearisation.active()) {
+    out["y_linearisation"] = {{"origin_code", s.y_linearisation.origin_code},
+                              {"curvature_per_code", s.y_linearisation.curvature_per_code}};
+  }
   return out;
+}
+
+// "y_linearisation": a whole origin code and a finite curvature.
+BridgeLinearisation LinearisationFromJson(const json& j, const std::string& path) {
+  ExpectKeys(j, path, {"origin_code", "curvature_per_code"});
+  BridgeLinearisation l;
+  l.origin_code = Number(j["origin_code"], path + ".origin_code");
+  l.curvature_per_code = Number(j["curvature_per_code"], path + ".curvature_per_code");
+  if (l.origin_code != std::nearbyint(l.origin_code)) {
+    throw std::runtime_error(path + ".origin_code: must be a whole code");
+  }
+  return l;
 }
 
 // "hysteresis": both operators' gains and spans and the die temperature of the bridge code. A
@@ -134,7 +151,7 @@ SurfaceCoefficients CoefficientsFromJson(const json& j, const std::string& path)
 // (files written before it existed) is direct.
 SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pressure_law) {
   ExpectKeys(j, path, {"x_min_code", "x_max_code", "y_min_code", "y_max_code"},
-             {"law", "coeff_x_y", "coeff_a_to_j", "hysteresis"});
+             {"law", "coeff_x_y", "coeff_a_to_j", "hysteresis", "y_linearisation"});
   SurfaceFit s;
   if (j.contains("law")) {
     const std::string allowed = pressure_law == SurfaceLaw::kIsaAltitude ? "isa_altitude" : "cas";
@@ -145,6 +162,9 @@ SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pr
   }
   s.coeff_xy = CoefficientsFromJson(j, path);
   if (j.contains("hysteresis")) s.hysteresis = HysteresisFromJson(j["hysteresis"], path + ".hysteresis");
+  if (j.contains("y_linearisation")) {
+    s.y_linearisation = LinearisationFromJson(j["y_linearisation"], path + ".y_linearisation");
+  }
   s.x_min_code = Number(j["x_min_code"], path + ".x_min_code");
   s.x_max_code = Number(j["x_max_code"], path + ".x_max_code");
   s.y_min_code = Number(j["y_min_code"], path + ".y_min_code");

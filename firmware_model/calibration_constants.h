@@ -74,8 +74,8 @@ inline constexpr XyPowers kReferenceCubicTerm[10] = {{0, 0}, {1, 0}, {0, 1}, {2,
 /// The branch terms the unit adds to a surface's z (target/ads_constants.h "Hysteresis"):
 /// z + gain_P(T) s_P + gain_T(T) s_T, gain(T) = gain + gain_per_degc (T - kHysteresisGainReferenceC),
 /// each state from a Preisach operator: the pressure one driven by z, the thermal one by the
-/// die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j of the bridge-voltage
-/// code y, which also gives the gains' T. A span of 0 switches its operator off (its gains must
+/// die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j of the surface's y (the
+/// bridge-voltage code, or its linearised code), which also gives the gains' T. A span of 0 switches its operator off (its gains must
 /// then be 0). Absent from a constants file: both off, the static surface.
 inline constexpr double kHysteresisGainReferenceC = 25.0;
 
@@ -91,6 +91,19 @@ struct HysteresisCompensation {
   bool active() const { return pressure_span != 0.0 || thermal_span_c != 0.0; }
 };
 
+/// The bridge-voltage code's linearisation in die temperature (target/bridge_linearisation.h):
+/// with kappa = curvature_per_code != 0 the surface's y is the linearised code
+///   s(y) = origin + 2 (y - origin) / (1 + sqrt(1 + kappa (y - origin))),
+/// which is origin + b dT where y = origin + b dT + (kappa b^2 / 4) dT^2. kappa = 0: y itself.
+/// The origin is a whole code (the target holds it as one). Absent from a constants file: off.
+struct BridgeLinearisation {
+  double origin_code = 0.0;
+  double curvature_per_code = 0.0;  ///< kappa, 1/code
+  bool active() const { return curvature_per_code != 0.0; }
+};
+
+/// A surface z(x, y) in pressure code x and bridge-voltage code y (the linearised code when
+/// y_linearisation is active: the y box and the coefficients are then in s).
 struct SurfaceFit {
   SurfaceCoefficients coeff_xy = {};
   double x_min_code = 0.0;
@@ -99,6 +112,7 @@ struct SurfaceFit {
   double y_max_code = 0.0;
   SurfaceLaw law = SurfaceLaw::kDirect;
   HysteresisCompensation hysteresis;
+  BridgeLinearisation y_linearisation;
 };
 
 struct AdsCalibrationConstants {

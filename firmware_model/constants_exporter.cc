@@ -309,6 +309,47 @@ double ExportHysteresis(const HysteresisCompensation& h, int result_e, const std
   return bound;
 }
 
+// The target's form of a surface's linearisation (bridge_linearisation.h): the raw normalisation
+// centred on the origin with the smallest power-of-two half-width that holds the bridge codes
+// whose linearised codes bound the surface's y box (y - origin = d + kappa d^2 / 4, d = s -
+// origin), and k = kappa 2^shift in Q13. Off: the code itself.
+BridgeLinearisationQ ExportLinearisation(const SurfaceFit& s, const std::string& what) {
+  const BridgeLinearisation& l = s.y_linearisation;
+  if (!l.active()) return BridgeLinearisationQ{InputNormQ31{0, 23}, 0};
+  constexpr double kCodeLimit = 16777216.0;  // the ADS1254's 2^24
+  if (l.origin_code != std::nearbyint(l.origin_code) || std::fabs(l.origin_code) >= kCodeLimit) {
+    throw std::invalid_argument(fmt::format("{}: linearisation origin {} is not a whole 24-bit code",
+                                            what, l.origin_code));
+  }
+  auto raw_offset = [&](double s_code) {
+    const double d = s_code - l.origin_code;
+    return d + l.curvature_per_code * d * d / 4.0;
+  };
+  const double half = std::max(std::fabs(raw_offset(s.y_min_code)), std::fabs(raw_offset(s.y_max_code)));
+  int shift = 0;
+  while (std::ldexp(1.0, shift) <= half) ++shift;
+  const double k_q13 = std::nearbyint(std::ldexp(l.curvature_per_code, shift + 13));
+  // sqrt(1 + kappa (y - origin)) = 1 + kappa d / 2 must stay positive over the box (the root's
+  // own branch).
+  const bool principal = 1.0 + l.curvature_per_code * (s.y_min_code - l.origin_code) / 2.0 > 0.0 &&
+                         1.0 + l.curvature_per_code * (s.y_max_code - l.origin_code) / 2.0 > 0.0;
+  if (shift > 24 || std::fabs(k_q13) > INT16_MAX || !principal) {
+    throw std::invalid_argument(fmt::format(
+        "{}: bridge curvature {:.4g} per code over a half-width of 2^{} codes is beyond the "
+        "target's |k| < 4 (or its 2^24 codes, or turns inside the y box)", what,
+        l.curvature_per_code, shift));
+  }
+  return BridgeLinearisationQ{InputNormQ31{static_cast<int32_t>(l.origin_code), static_cast<uint8_t>(shift)},
+                              static_cast<int16_t>(k_q13)};
+}
+
+// The linearised code's error against the double's, in codes: the quotient's LSB 2^(shift - 14),
+// the root's truncation (2^-14 of v at most), the divisor's (2^-13 of v) and k's rounding (2^-16
+// of v, which also bounds a k that rounds to 0): 4 quotient LSBs bound them. 0 when off.
+double LinearisedCodeError(const SurfaceFit& s, const BridgeLinearisationQ& l) {
+  return s.y_linearisation.active() ? 4.0 * std::ldexp(1.0, l.raw_norm.shift - 14) : 0.0;
+}
+
 }  // namespace
 
 AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
@@ -328,6 +369,7 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
     };
     q->x_norm = norm(s.x_min_code, s.x_max_code, "x");
     q->y_norm = norm(s.y_min_code, s.y_max_code, "y");
+    q->y_linearisation = ExportLinearisation(s, what);
     constexpr int kPx = kSurfaceXDegree, kQy = kSurfaceYDegree;
     static_assert(kPx == kAdsSurfaceXDegree && kQy == kAdsSurfaceYDegree);
     const Real cx = q->x_norm.centre, cy = q->y_norm.centre;
@@ -365,7 +407,12 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
       }
       if (aligned && sum <= std::ldexp(Real{1}, e)) {
         q->outer_work_exponent = static_cast<int8_t>(e);
-        return bound + 4 * kPx * Lsb(e) + Lsb(out_e) + ExportHysteresis(s.hysteresis, out_e, what, q);
+        Real slope_per_code = 0;  // |dz/dy| over the box
+        for (int m = 0; m <= kPx; ++m) {
+          for (int n = 1; n <= kQy; ++n) slope_per_code += n * std::fabs(norm_c[m][n]) / hy;
+        }
+        return bound + 4 * kPx * Lsb(e) + Lsb(out_e) + ExportHysteresis(s.hysteresis, out_e, what, q) +
+               static_cast<double>(slope_per_code) * LinearisedCodeError(s, q->y_linearisation);
       }
     }
     throw std::invalid_argument(fmt::format(

@@ -62,7 +62,15 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensa
 
 // Horner in y, then in x, in long double: the raw-code monomials of a degree-5 term cancel by up
 // to (box centre / half-width)^8 against each other.
-double EvaluateSurfaceFit(const SurfaceFit& s, double x, double y) {
+double LinearisedBridgeCode(const BridgeLinearisation& l, double y_code) {
+  if (!l.active()) return y_code;
+  const double dy = y_code - l.origin_code;
+  return l.origin_code + 2.0 * dy / (1.0 + std::sqrt(1.0 + l.curvature_per_code * dy));
+}
+
+namespace {
+
+double SurfaceAt(const SurfaceFit& s, double x, double y) {
   long double z = 0;
   for (int p = kSurfaceXDegree; p >= 0; --p) {
     long double b = 0;
@@ -70,6 +78,12 @@ double EvaluateSurfaceFit(const SurfaceFit& s, double x, double y) {
     z = z * x + b;
   }
   return static_cast<double>(z);
+}
+
+}  // namespace
+
+double EvaluateSurfaceFit(const SurfaceFit& s, double x_code, double y_code) {
+  return SurfaceAt(s, x_code, LinearisedBridgeCode(s.y_linearisation, y_code));
 }
 
 std::array<double, 2> AdsReference(const AdsCalibrationConstants& c, AdsCompensationMode mode,
@@ -86,10 +100,11 @@ std::array<double, 2> AdsReference(const AdsCalibrationConstants& c, AdsCompensa
 double SurfaceOutput(const SurfaceFit& s, double x_code, double y_code, double s_pressure,
                      double s_thermal) {
   const HysteresisCompensation& h = s.hysteresis;
+  const double y = LinearisedBridgeCode(s.y_linearisation, y_code);
   double die_c = 0.0;  // T(y): only the gains' slopes use it
-  for (int j = 3; j >= 0; --j) die_c = die_c * (y_code - h.die_temp_origin_code) + h.die_temp_c[j];
+  for (int j = 3; j >= 0; --j) die_c = die_c * (y - h.die_temp_origin_code) + h.die_temp_c[j];
   const double dt_c = die_c - kHysteresisGainReferenceC;
-  const double z = EvaluateSurfaceFit(s, x_code, y_code) +
+  const double z = SurfaceAt(s, x_code, y) +
                    (h.pressure_gain + h.pressure_gain_per_degc * dt_c) * s_pressure +
                    (h.thermal_gain + h.thermal_gain_per_degc * dt_c) * s_thermal;
   switch (s.law) {

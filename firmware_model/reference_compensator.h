@@ -33,10 +33,15 @@ std::array<double, 2> AdsReference(const AdsCalibrationConstants& constants,
                                    AdsCompensationMode mode, const AdsRawFrame& raw,
                                    const AdsReferenceStates& states = {});
 
-/// Evaluates one surface at raw codes (x, y): its z (ft, kt, or Pa under a law), no hysteresis.
+/// The linearised code s(y) of a bridge-voltage code (calibration_constants.h); y itself when the
+/// linearisation is off.
+double LinearisedBridgeCode(const BridgeLinearisation& linearisation, double y_code);
+/// Evaluates one surface at raw codes (x, y), through its linearisation of y: its z (ft, kt, or
+/// Pa under a law), no hysteresis.
 double EvaluateSurfaceFit(const SurfaceFit& surface, double x_code, double y_code);
 /// The output of a surface, its hysteresis terms at states (s_pressure, s_thermal) with the gains
-/// at the die temperature of y_code, and its law (air_data_law.h, exact in double): ft or kt.
+/// at the die temperature of the (linearised) y_code, and its law (air_data_law.h, exact in
+/// double): ft or kt.
 double SurfaceOutput(const SurfaceFit& surface, double x_code, double y_code,
                      double s_pressure = 0.0, double s_thermal = 0.0);
 

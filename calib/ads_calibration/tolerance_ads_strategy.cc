@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "calib/ads_calibration/bridge_history.h"
+#include "calib/ads_calibration/bridge_linearisation_fit.h"
 #include "calib/evaluation/ads_tolerance.h"
 #include "calib/constants/constants_file.h"
 #include "firmware_model/air_data_law.h"
@@ -101,8 +102,7 @@ OrderChoice ChooseYDegree(const std::string& context, std::vector<SurfaceSample>
                           const std::function<double(double)>& tolerance_of) {
   const std::vector<double> tolerance = Tolerances(samples, tolerance_of);
   WeighByTolerance(samples, tolerance);
-  std::set<long long> temperatures_dc;
-  for (const SurfaceSample& s : samples) temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
+  const std::set<long long> temperatures_dc = ChamberTemperaturesDc(samples);
   const int max_degree = std::min<int>(firmware_model::kSurfaceYDegree,
                                        static_cast<int>(temperatures_dc.size()) - 2);
   OrderChoice choice;
@@ -270,12 +270,11 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
 
 namespace {
 
-// The die temperature as a cubic of the bridge-voltage code, T = sum_j k_j (y - y0)^j (degC),
-// least squares over the samples (each at a soak, where the die sits at the chamber's
-// temperature plus its self-heating, which the operator does not see: it takes differences), in
-// u = (y - y0) / half-width for conditioning; y0 is the codes' mean. The bridge resistance's
-// quadratic tempco makes the code's slope change by ~40 % over the range (pressure_bridge.h), so
-// a straight line would misjudge a 20 degC travel by as much near the ends.
+// The die temperature as a cubic of the surface's y, T = sum_j k_j (y - y0)^j (degC), least
+// squares over the samples (each at a soak, where the die sits at the chamber's temperature plus
+// its self-heating, which the operator does not see: it takes differences), in u = (y - y0) /
+// half-width for conditioning; y0 is the codes' mean. y is the linearised bridge code, nearly
+// linear in T; the cubic takes up what the linearisation's quadratic leaves.
 struct DieTemperature {
   double origin_code = 0.0;
   std::array<double, 4> degc_per_code_power = {};
@@ -283,17 +282,14 @@ struct DieTemperature {
 };
 
 DieTemperature FitDieTemperature(const std::string& context, const std::vector<SurfaceSample>& samples) {
-  std::set<long long> temperatures_dc;
-  double y0 = 0.0;
-  for (const SurfaceSample& s : samples) {
-    temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
-    y0 += s.y_code;
-  }
-  if (temperatures_dc.size() < 4) {
+  const size_t temperatures = ChamberTemperaturesDc(samples).size();
+  if (temperatures < 4) {
     throw DegenerateDesignError(fmt::format(
         "{}: the die temperature's cubic in the bridge code needs 4 chamber temperatures, got {}",
-        context, temperatures_dc.size()));
+        context, temperatures));
   }
+  double y0 = 0.0;
+  for (const SurfaceSample& s : samples) y0 += s.y_code;
   y0 /= static_cast<double>(samples.size());
   double half = 0.0;
   for (const SurfaceSample& s : samples) half = std::max(half, std::abs(s.y_code - y0));
@@ -315,19 +311,23 @@ DieTemperature FitDieTemperature(const std::string& context, const std::vector<S
 struct CompensatedSurface {
   SurfaceEstimate centre;  ///< least squares with the recorded states: surface and gains
   fm::HysteresisCompensation hysteresis;
+  BridgeLinearisationFit linearisation;  ///< of the bridge code: the surface's y is linearised
   double worst_ratio_at_points = 0.0;  ///< |surface + gains . states - z| / tolerance
   double die_temp_residual_rms_c = 0.0;
 };
 
-CompensatedSurface FitCompensated(const std::string& context, const std::vector<SurfaceSample>& recorded,
+CompensatedSurface FitCompensated(const std::string& context, const std::vector<SurfaceSample>& samples,
                                   const std::function<double(double)>& tolerance_of,
                                   double pressure_span_pa, double thermal_span_c, OrderChoice* order) {
+  const BridgeLinearisationFit linearisation = FitBridgeLinearisation(context, samples);
+  const std::vector<SurfaceSample> recorded = Linearised(samples, linearisation.linearisation);
   *order = ChooseYDegree(context, recorded, tolerance_of);
   const PolynomialBasis basis = PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, order->y_degree, "x", "y");
   const std::vector<double> tolerance = Tolerances(recorded, tolerance_of);
   std::vector<SurfaceSample> weighted = recorded;
   WeighByTolerance(weighted, tolerance);
   CompensatedSurface out;
+  out.linearisation = linearisation;
   out.centre = FitSurface(context, basis, weighted, HistoryTerms::kWithTemperatureSlopes);
   const HysteresisEstimate& h = *out.centre.history;
   for (size_t i = 0; i < recorded.size(); ++i) {
@@ -338,6 +338,7 @@ CompensatedSurface FitCompensated(const std::string& context, const std::vector<
                              (h.thermal + h.thermal_per_degc * dt_c) * s.s_thermal;
     out.worst_ratio_at_points = std::max(out.worst_ratio_at_points, std::abs(predicted - s.z) / tolerance[i]);
   }
+  out.centre.surface.y_linearisation = linearisation.linearisation;  // its y box is already in s
   const DieTemperature die = FitDieTemperature(context, recorded);
   static_assert(kHysteresisReferenceC == fm::kHysteresisGainReferenceC);
   out.hysteresis = {h.pressure,         h.pressure_per_degc, pressure_span_pa, h.thermal,
@@ -373,6 +374,7 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
     surface->hysteresis.thermal_gain = h.thermal_se;
     surface->hysteresis.thermal_gain_per_degc = h.thermal_per_degc_se;
     surface->hysteresis.die_temp_c.fill(std::numeric_limits<double>::quiet_NaN());  // not carried
+    surface->y_linearisation.curvature_per_code = c->linearisation.curvature_se_per_code;
   }
   out.standard_errors = AdsStandardErrorsJson(se);
   for (const auto& [key, c, order] : {std::tuple{"altitude_ft", &alt, &ps_order},
@@ -387,6 +389,12 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
         {"thermal_half_loop_per_degC_Pa", h.thermal_per_degc},
         {"centre_fit_residual_rms_Pa", c->centre.residual_rms},
         {"die_temperature_residual_rms_degC", c->die_temp_residual_rms_c}};
+    const BridgeLinearisationFit& l = c->linearisation;
+    out.diagnostics[key]["bridge_linearisation"] = {
+        {"curvature_per_code", l.linearisation.curvature_per_code},
+        {"curvature_se_per_code", l.curvature_se_per_code},
+        {"slope_code_per_degC", l.slope_code_per_degc},
+        {"quadratic_residual_rms_degC", l.residual_rms_c}};
     out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
                                                                     : "CAS from impact pressure";
   }

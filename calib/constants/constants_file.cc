@@ -164,6 +164,9 @@ json AdsStandardErrorsJson(const firmware_model::AdsCalibrationConstants& se) {
         j[surface]["hysteresis"][key] = nullptr;
       }
     }
+    if (j[surface].contains("y_linearisation")) {  // the origin is a chosen whole code
+      j[surface]["y_linearisation"]["origin_code"] = nullptr;
+    }
   }
   return j;
 }

@@ -9,6 +9,12 @@
 
 namespace adahrs::calib {
 
+std::set<long long> ChamberTemperaturesDc(const std::vector<SurfaceSample>& samples) {
+  std::set<long long> temperatures_dc;
+  for (const SurfaceSample& s : samples) temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
+  return temperatures_dc;
+}
+
 SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& basis,
                            const std::vector<SurfaceSample>& samples, HistoryTerms history,
                            const LeastSquaresOptions& options) {
@@ -19,8 +25,7 @@ SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& ba
         basis.MaxXPower(), basis.MaxYPower(), fm::kSurfaceXDegree, fm::kSurfaceYDegree));
   }
   const int min_temperatures = basis.MaxYPower() + 1;
-  std::set<long long> temperatures_dc;  // chamber temperatures to 0.1 degC
-  for (const SurfaceSample& s : samples) temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
+  const std::set<long long> temperatures_dc = ChamberTemperaturesDc(samples);
   if (static_cast<int>(temperatures_dc.size()) < min_temperatures) {
     throw DegenerateDesignError(fmt::format(
         "{}: design refused: {} chamber temperature(s), the surface's terms up to y^{} need at "

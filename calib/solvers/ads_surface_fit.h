@@ -28,6 +28,7 @@
 
 #include <cmath>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ struct SurfaceSample {
 
 /// A chamber temperature as the key that tells calibration temperatures apart (0.1 degC).
 inline long long ChamberTemperatureKeyDc(double chamber_c) { return std::llround(10.0 * chamber_c); }
+
+/// The samples' distinct chamber temperatures, as keys (ascending).
+std::set<long long> ChamberTemperaturesDc(const std::vector<SurfaceSample>& samples);
 
 /// Whether the fit carries the bridge's hysteresis states as regressors: z = surface(x, y)
 /// + c_P s_P + c_T s_T. The surface is then the loop's centre (what a unit without history reads);

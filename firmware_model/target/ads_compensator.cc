@@ -8,13 +8,14 @@
 namespace adahrs::firmware_model {
 namespace {
 
-// z(x, y) = ((b3 x + b2) x + b1) x + b0, b_k = b_k(y); result at out_exponent; the normalised
-// y (Q31) in *y_out.
+// z(x, y) = ((b3 x + b2) x + b1) x + b0, b_k = b_k(y), y the normalised linearised bridge code;
+// result at out_exponent; y (Q31) in *y_out.
 int32_t EvaluateSurface(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponent, int32_t x_code,
                    int32_t y_code, int32_t* y_out, uint16_t* flags) {
   engine->ChargeCallReturn();
   const int32_t x = NormaliseQ31(engine, x_code, 31, s.x_norm);
-  const int32_t y = NormaliseQ31(engine, y_code, 31, s.y_norm);
+  const int32_t y_linear_code = LinearisedBridgeCode(engine, s.y_linearisation, y_code, flags);
+  const int32_t y = NormaliseQ31(engine, y_linear_code, 31, s.y_norm);
   *y_out = y;
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
   int32_t b[kAdsSurfaceXDegree + 1];

@@ -14,6 +14,8 @@ uint8_t CoeffOffset(uint8_t i, uint8_t n) {
 
 constexpr uint8_t kHysteresisOffset = kHeadWords + kSurfaceTerms * kCoeffWords;
 constexpr uint8_t kThermalOffset = kHysteresisOffset + kCoeffWords + kGainWords;
+constexpr uint8_t kLinearisationOffset = kThermalOffset + 3 + kCoeffWords + kGainWords;
+static_assert(kLinearisationOffset + kBridgeLinearisationWords + 1 == kAdsSurfaceBlockWords);
 constexpr int8_t kTauExponent = 0;
 
 void ZeroSurface(SurfaceQ31* s, int8_t out_exponent) {
@@ -25,6 +27,7 @@ void ZeroSurface(SurfaceQ31* s, int8_t out_exponent) {
   s->pressure = off;
   s->thermal = off;
   for (int16_t& t : s->die_temp_q15) t = 0;
+  s->y_linearisation = BridgeLinearisationQ{InputNormQ31{0, 23}, 0};
   for (PolyQ31& b : s->b) {
     b.work_exponent = static_cast<int8_t>(out_exponent - 2);
     for (CoeffQ31& c : b.coeff) c = CoeffQ31{0, b.work_exponent};
@@ -111,6 +114,8 @@ ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, uint
   if (tau_bound > INT16_MAX) return ConstantsStatus::kWouldOverflow;
   s = TermFromWords(words + kThermalOffset + 3, kTauExponent, result_exponent, &decoded.thermal);
   if (s != ConstantsStatus::kOk) return s;
+  s = BridgeLinearisationFromWords(words + kLinearisationOffset, &decoded.y_linearisation);
+  if (s != ConstantsStatus::kOk) return s;
   *out = decoded;
   return ConstantsStatus::kOk;
 }
@@ -127,6 +132,7 @@ void SurfaceToWords(const SurfaceQ31& s, int16_t* words) {
   TermToWords(s.pressure, words + kHysteresisOffset);
   for (uint8_t k = 0; k < 3; ++k) words[kThermalOffset + k] = s.die_temp_q15[k];
   TermToWords(s.thermal, words + kThermalOffset + 3);
+  BridgeLinearisationToWords(s.y_linearisation, words + kLinearisationOffset);
   words[kAdsSurfaceBlockWords - 1] = s.law;
 }
 

@@ -3,7 +3,8 @@
 //
 // Each output is a bivariate polynomial surface of degree 3 in x and kAdsSurfaceYDegree (5) in y,
 //   z = sum_{k=0..3} b_k(y) x^k,   b_k(y) = sum_{n=0..5} c_kn y^n,
-// in normalised pressure counts x and normalised temperature (bridge-voltage) counts y:
+// in normalised pressure counts x and normalised temperature (bridge-voltage) counts y, the
+// latter linearised first when the block says so ("Linearisation" below):
 //   altitude: x from the static-port code ps, y from the static bridge-voltage code
 //   airspeed: x from the pitot (differential) code pt, y from the pitot bridge-voltage code
 // The reference method's 10-term cubic (thesis section 2.9)
@@ -26,12 +27,17 @@
 // both in Pa at kPressureExponent, and the ISA or CAS law turns it into the output.
 //
 // Blocks:
-//   0x21 altitude surface, 0x22 airspeed surface, 99 words each:
+//   0x21 altitude surface, 0x22 airspeed surface, 103 words each:
 //     [InputNormQ31 x][InputNormQ31 y][outer work exponent][b0..b3 work exponents]
 //     [CoeffQ31 c_00 .. c_05][c_10 .. c_15][c_20 .. c_25][c_30 .. c_35]   (b0 .. b3, y^0 first)
 //     [pressure: CoeffQ31 inv_span][GainQ15 gain]                         (hysteresis, below)
 //     [thermal:  int16 t1 t2 t3][CoeffQ31 inv_span][GainQ15 gain]
+//     [linearisation: InputNormQ31 raw][int16 k]                          (below)
 //     [law]                                                               (AdsSurfaceLaw)
+// Linearisation (issue 6; bridge_linearisation.h): with k != 0 the surface's y is not the
+// bridge-voltage code itself but its linearised code s, linear in the die temperature; y_norm
+// then normalises s. k = 0 is the code itself (the reference's and the static strategies'
+// surfaces). Blocks of 99 words (before the linearisation) are refused as kWrongLength.
 // Hysteresis (issue 6; preisach_q15.h): the bridge's output carries its branch, a multiple of
 // the states s_P (last pressure extreme) and s_T (last die-temperature extreme). The unit runs one
 // operator per state and adds gain_P(tau) s_P + gain_T(tau) s_T to the surface's result z, before
@@ -60,6 +66,7 @@
 #include <cstdint>
 
 #include "firmware_model/target/air_data_law.h"
+#include "firmware_model/target/bridge_linearisation.h"
 #include "firmware_model/target/fixed_coeff.h"
 
 namespace adahrs::firmware_model {
@@ -86,12 +93,13 @@ struct HysteresisTermQ {
 
 struct SurfaceQ31 {
   InputNormQ31 x_norm;      ///< pressure code normalisation
-  InputNormQ31 y_norm;      ///< temperature code normalisation
+  InputNormQ31 y_norm;      ///< normalisation of the (linearised) bridge-voltage code
   int8_t outer_work_exponent;
   PolyQ31 b[kAdsSurfaceXDegree + 1];  ///< b_k(y), degree kAdsSurfaceYDegree
   HysteresisTermQ pressure;  ///< driven by the surface's result
   HysteresisTermQ thermal;   ///< driven by tau(y)
   int16_t die_temp_q15[3];   ///< t1, t2, t3 of tau(y)
+  BridgeLinearisationQ y_linearisation;  ///< bridge code -> the surface's y code
   uint8_t law;              ///< AdsSurfaceLaw: what follows the surface
 };
 
@@ -108,7 +116,8 @@ enum AdsBlockId : uint8_t {
 inline constexpr uint8_t kGainWords = 3;
 inline constexpr uint8_t kAdsHysteresisWords = 2 * (kCoeffWords + kGainWords) + 3;
 inline constexpr uint8_t kAdsSurfaceBlockWords =
-    2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords + kAdsHysteresisWords + 1;
+    2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords + kAdsHysteresisWords +
+    kBridgeLinearisationWords + 1;
 inline constexpr uint8_t kAdsMaxBlockWords = kAdsSurfaceBlockWords;
 
 /// The exponent a surface's result must reach: the output's (`out_exponent`) when `law` is
@@ -116,7 +125,7 @@ inline constexpr uint8_t kAdsMaxBlockWords = kAdsSurfaceBlockWords;
 int8_t AdsSurfaceExponent(uint8_t law, int8_t out_exponent);
 
 /// Uncalibrated state: all-zero direct surfaces (outputs read zero), centres 0, shifts 23, no
-/// hysteresis terms.
+/// hysteresis terms, no linearisation.
 void AdsConstantsInit(AdsConstants* constants);
 
 /// Words in block `block_id`, or 0 if the block is unknown.

@@ -64,4 +64,22 @@ int32_t HornerQ31(DspEngine* engine, Acc acc, const PolyQ31& poly, uint8_t degre
   return y;
 }
 
+uint16_t IntegerSqrt(DspEngine* engine, uint32_t radicand) {
+  uint32_t root = 0;
+  uint32_t bit = static_cast<uint32_t>(1) << 30;
+  for (uint8_t step = 0; step < 16; ++step) {
+    engine->ChargeAlu(6);  // trial = root + bit (2), compare (2), subtract (2)
+    engine->ChargeBranch(1);
+    const uint32_t trial = root + bit;
+    root >>= 1;
+    if (radicand >= trial) {
+      radicand -= trial;
+      root += bit;
+    }
+    engine->ChargeAlu(4);  // root >>= 1, bit >>= 2 on 32-bit pairs
+    bit >>= 2;
+  }
+  return static_cast<uint16_t>(root);
+}
+
 }  // namespace adahrs::firmware_model

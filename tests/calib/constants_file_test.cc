@@ -141,13 +141,25 @@ TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
     for (int q = 0; q <= fm::kSurfaceYDegree; ++q) c.altitude_ft.coeff_xy[p][q] = 1.0 + p + 0.25 * q;
   }
   c.airspeed_kt = c.altitude_ft;
+  c.altitude_ft.y_linearisation = {2500000.0, 7.5e-7};  // the airspeed surface has none
   f.ads = c;
   fm::AdsCalibrationConstants se = c;
+  se.altitude_ft.y_linearisation.curvature_per_code = 6e-10;
   f.standard_errors = AdsStandardErrorsJson(se);
   const ConstantsFile g = ConstantsFileFromJson(ToJson(f), "ads.json");
   ASSERT_TRUE(g.ads.has_value());
   EXPECT_EQ(g.ads->altitude_ft.coeff_xy, c.altitude_ft.coeff_xy);
+  EXPECT_EQ(g.ads->altitude_ft.y_linearisation.origin_code, 2500000.0);
+  EXPECT_EQ(g.ads->altitude_ft.y_linearisation.curvature_per_code, 7.5e-7);
+  EXPECT_FALSE(g.ads->airspeed_kt.y_linearisation.active());
+  EXPECT_FALSE(ToJson(f)["constants"]["airspeed_kt"].contains("y_linearisation"));
   EXPECT_TRUE(g.standard_errors["altitude_ft"]["x_min_code"].is_null());
+  EXPECT_TRUE(g.standard_errors["altitude_ft"]["y_linearisation"]["origin_code"].is_null());
+  EXPECT_EQ(g.standard_errors["altitude_ft"]["y_linearisation"]["curvature_per_code"], 6e-10);
+  // The target holds the origin as a whole code: a fractional one is refused with its path.
+  json bad = ToJson(f);
+  bad["constants"]["altitude_ft"]["y_linearisation"]["origin_code"] = 2500000.5;
+  EXPECT_THAT(MessageOf(bad), HasSubstr("altitude_ft.y_linearisation.origin_code: must be a whole code"));
   f.imu = fm::ImuCalibrationConstants{};  // both kinds set: refused by the writer
   EXPECT_THROW(ToJson(f), ConstantsFileError);
 }

@@ -2,9 +2,10 @@
 // when"): temperature -40..85 C, rates +-150 deg/s, +-10 g, altitude -1,000..50,000 ft, airspeed
 // 30..450 kt, with realistic constants. Budgets (10 % of the accuracy budget, asserted): 0.1 mg,
 // 0.0015 deg/s, 1.5 ft, 0.1 kt; thermal mode: 0.1 mg at 25 g/duty = 4e-6 duty, 0.0015 deg/s at
-// 20,972 counts per deg/s = 31 counts. Cycle budget: <= 2,000 per IMU frame, <= 2,000 per ADS frame
+// 20,972 counts per deg/s = 31 counts. Cycle budget: <= 2,000 per IMU frame, <= 2,500 per ADS frame
 // (1,500 before the ADS hysteresis operators, which cost 75 cycles each on average when their input
-// moves and up to 109 with a full branch stack, docs/firmware-compensator.md).
+// moves and up to 109 with a full branch stack; 2,000 before the bridge codes' linearisation, a
+// square root and a division per bridge: docs/firmware-compensator.md).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -131,7 +132,7 @@ TEST_P(AdsSweep, WithinBudgetOverEnvelope) {
   EXPECT_LE(worst_cas_kt, 0.1);
   EXPECT_LE(worst_alt_ft, exported.report.altitude_ft);
   EXPECT_LE(worst_cas_kt, exported.report.airspeed_kt);
-  EXPECT_LE(max_cycles, 2000u);
+  EXPECT_LE(max_cycles, 2500u);
 }
 
 }  // namespace

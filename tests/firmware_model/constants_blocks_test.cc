@@ -90,7 +90,8 @@ TEST(ConstantsBlocks, AdsRoundTripAndRefusals) {
   uint8_t count = 0;
   ASSERT_EQ(AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count),
             ConstantsStatus::kOk);
-  EXPECT_EQ(count, 99);  // 2 x 3 normalisation, 5 exponents, 24 x 3 coefficient, 15 hysteresis, law
+  // 2 x 3 normalisation, 5 exponents, 24 x 3 coefficient, 15 hysteresis, 4 linearisation, law
+  EXPECT_EQ(count, 103);
   EXPECT_EQ(words[kAdsSurfaceBlockWords - 1], kAdsLawDirect);
   int16_t bad[kAdsMaxBlockWords];
   std::memcpy(bad, words, sizeof(bad));
@@ -133,7 +134,7 @@ TEST(ConstantsBlocks, AdsLawWordIsCheckedPerBlock) {
   EXPECT_EQ(target.airspeed.law, kAdsLawCas);
 }
 
-// The hysteresis words (ads_constants.h), just before the law: pressure [inv_span (CoeffQ31:
+// The hysteresis words (ads_constants.h), just before the linearisation's: pressure [inv_span (CoeffQ31:
 // mantissa high, low, exponent)][gain (GainQ15: at the centre, per tau, exponent)], thermal
 // [t1 t2 t3][inv_span][gain]. Written by the exporter from RealisticPressureAds's terms; each refused field changes
 // nothing.
@@ -144,7 +145,7 @@ TEST(ConstantsBlocks, AdsHysteresisWordsRoundTripAndRefusals) {
   uint8_t count = 0;
   ASSERT_EQ(AdsConstantsReadBlock(&source, kAdsBlockAltitude, words, kAdsMaxBlockWords, &count),
             ConstantsStatus::kOk);
-  constexpr int kAt = kAdsSurfaceBlockWords - 1 - kAdsHysteresisWords;
+  constexpr int kAt = kAdsSurfaceBlockWords - 1 - kBridgeLinearisationWords - kAdsHysteresisWords;
   constexpr int kThermal = kAt + kCoeffWords + kGainWords;
   auto coeff = [&](int at) {
     const int32_t mantissa = JoinWords(words[at], static_cast<uint16_t>(words[at + 1]));

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "firmware_model/calibration_constants.h"
+#include "firmware_model/reference_compensator.h"
 #include "firmware_model/target/compensated_frame.h"
 #include "sensor_sim/random.h"
 
@@ -108,12 +109,21 @@ inline double ImpactPressure_pa(double cas_kt) {
   return 101325.0 * (std::pow(1.0 + 0.2 * m * m, 3.5) - 1.0);
 }
 // 100 mV full-scale output over 15 psi into a 5 V FSR 24-bit ADC: 167,772 codes per 103,421 Pa,
-// with a -0.05 %/C span tempco; bridge voltage ~2 V at 25 C after a divider, +0.26 %/C.
+// with a -0.05 %/C span tempco; bridge voltage ~2 V at 25 C after a divider, +0.26 %/C and
+// +8 ppm/C^2 (the bridge resistance's quadratic tempco, pressure_bridge.h).
 inline double PressureCode(double p_pa, double temp_c) {
   return 30000.0 + 1.62222 * p_pa * (1.0 - 5e-4 * (temp_c - 25.0)) + 40.0 * (temp_c - 25.0);
 }
 inline double BridgeCode(double temp_c) {
-  return 6710886.0 * (1.0 + 0.0026 * (temp_c - 25.0));
+  const double dt_c = temp_c - 25.0;
+  return 6710886.0 * (1.0 + 0.0026 * dt_c + 8e-6 * dt_c * dt_c);
+}
+// Its linearisation (calibration_constants.h): origin at 25 C, kappa = 4 c / b^2 of the quadratic
+// above, so that the linearised code is origin + b (T - 25 C); the pitot's bridge reads 1.01 times
+// as much.
+inline BridgeLinearisation BridgeCodeLinearisation(double gain) {
+  const double b = gain * 6710886.0 * 0.0026, c = gain * 6710886.0 * 8e-6;
+  return BridgeLinearisation{std::nearbyint(gain * 6710886.0), 4.0 * c / (b * b)};
 }
 
 // Least-squares fit of the surface with `terms` (the reference's 10 by default) to samples
@@ -203,17 +213,25 @@ inline AdsCalibrationConstants RealisticAds() {
 
 /// The same bridges calibrated for the firmware's laws: surfaces of static and impact pressure (Pa),
 /// in the full degree-(3, 5) form, so every coefficient word of the blocks is exercised.
+/// Each surface in the bridge code's linearisation (so every block word, the linearisation's too,
+/// is exercised).
 inline AdsCalibrationConstants RealisticPressureAds() {
   std::vector<std::array<double, 3>> ps, qc;
+  const BridgeLinearisation static_linearisation = BridgeCodeLinearisation(1.0);
+  const BridgeLinearisation pitot_linearisation = BridgeCodeLinearisation(1.01);
   for (double temp_c = -40.0; temp_c <= 85.0; temp_c += 12.5) {
+    const double s_static = LinearisedBridgeCode(static_linearisation, BridgeCode(temp_c));
+    const double s_pitot = LinearisedBridgeCode(pitot_linearisation, 1.01 * BridgeCode(temp_c));
     for (double alt_ft = -1000.0; alt_ft <= 50000.0; alt_ft += 1000.0) {
-      ps.push_back({PressureCode(IsaPressure_pa(alt_ft), temp_c), BridgeCode(temp_c), IsaPressure_pa(alt_ft)});
+      ps.push_back({PressureCode(IsaPressure_pa(alt_ft), temp_c), s_static, IsaPressure_pa(alt_ft)});
     }
     for (double cas_kt = 30.0; cas_kt <= 450.0; cas_kt += 10.0) {
-      qc.push_back({PressureCode(ImpactPressure_pa(cas_kt), temp_c), BridgeCode(temp_c), ImpactPressure_pa(cas_kt)});
+      qc.push_back({PressureCode(ImpactPressure_pa(cas_kt), temp_c), s_pitot, ImpactPressure_pa(cas_kt)});
     }
   }
   AdsCalibrationConstants c{FitSurface(ps, FullSurfaceTerms()), FitSurface(qc, FullSurfaceTerms())};
+  c.altitude_ft.y_linearisation = static_linearisation;
+  c.airspeed_kt.y_linearisation = pitot_linearisation;
   c.altitude_ft.law = SurfaceLaw::kIsaAltitude;
   c.airspeed_kt.law = SurfaceLaw::kCas;
   // Hysteresis terms of the model-1230 class's magnitude (physics.md section 6: half loops of
