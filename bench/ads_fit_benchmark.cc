@@ -1,11 +1,14 @@
 // The reference ADS surface fit (calib/solvers/ads_surface_fit.h) over one million points, the
 // issue-6 budget being <= 1 s. The points are a noiseless typical static bridge over the
 // calibration envelope (-1,000...50,000 ft x -40...+85 degC), synthesised in closed form here so
-// that only the fit is timed. And the whole pressure_minimax strategy (tolerance_ads_strategy.h:
-// order selection by held-out temperatures, two Lawson minimax fits per surface) on one unit's
-// calibration points as the shipped ads_calibration sequence takes them (9 temperatures in its
-// order, 13 altitudes and 9 airspeeds each, sweeps alternating), from a drawn unit with every
-// effect on. Results: docs/performance.md.
+// that only the fit is timed. And the whole pressure_minimax and hysteresis_compensated
+// strategies (tolerance_ads_strategy.h: order selection by held-out temperatures, then two Lawson
+// minimax fits per surface, or the linearisation, one least-squares fit with the history terms
+// and the die-temperature cubic) on one unit's calibration points as the shipped ads_calibration
+// sequence takes them (9 temperatures in its order, 13 altitudes, the 20,000 and 7,500 ft return
+// points and 9 airspeeds each, sweeps alternating: 216 points), from a drawn unit with every
+// effect on (the strategies replay the bridges' history from the points' order, timed with them).
+// Results: docs/performance.md.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -51,7 +54,9 @@ void BM_ReferenceSurfaceFitMillionPoints(benchmark::State& state) {
 BENCHMARK(BM_ReferenceSurfaceFitMillionPoints)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 std::vector<AdsCalibrationPoint> ShippedSequencePoints() {
-  const auto params = sensor_sim::AdsUnitParams::Draw("ADS-BENCH", 7, sensor_sim::ModelProfile::kTruth);
+  auto params = sensor_sim::AdsUnitParams::Draw("ADS-BENCH", 7, sensor_sim::ModelProfile::kTruth);
+  params.static_thermal.effects.lag = false;  // every point a soak, as the sequence's are
+  params.pitot_thermal.effects.lag = false;
   sensor_sim::AdsUnit unit(params, 1, 25.0);
   std::vector<double> alts_ft = {-1000, 0, 1000, 2000, 3500, 5000, 7500, 10000, 15000, 20000, 30000, 40000, 50000};
   std::vector<double> cas_kt = {30, 45, 60, 80, 100, 150, 250, 350, 450};
@@ -74,6 +79,7 @@ std::vector<AdsCalibrationPoint> ShippedSequencePoints() {
       points.push_back(p);
     };
     for (double alt_ft : alts_ft) take(sensor_sim::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
+    for (double alt_ft : {20000.0, 7500.0}) take(sensor_sim::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
     for (double kt : cas_kt) {
       take(sensor_sim::kIsaSeaLevelPressure_pa, sensor_sim::ImpactPressurePaFromKt(kt), true);
     }
@@ -83,13 +89,16 @@ std::vector<AdsCalibrationPoint> ShippedSequencePoints() {
   return points;
 }
 
-void BM_PressureMinimaxStrategyOneUnit(benchmark::State& state) {
+void BM_StrategyOneUnit(benchmark::State& state, const char* strategy) {
   const std::vector<AdsCalibrationPoint> points = ShippedSequencePoints();
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(FitAdsStrategy(kPressureAdsStrategyName, "ADS-BENCH", points));
-  }
+  for (auto _ : state) benchmark::DoNotOptimize(FitAdsStrategy(strategy, "ADS-BENCH", points));
 }
-BENCHMARK(BM_PressureMinimaxStrategyOneUnit)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK_CAPTURE(BM_StrategyOneUnit, pressure_minimax, kPressureAdsStrategyName)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+BENCHMARK_CAPTURE(BM_StrategyOneUnit, hysteresis_compensated, kHysteresisAdsStrategyName)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
 
 }  // namespace
 }  // namespace adahrs::calib
