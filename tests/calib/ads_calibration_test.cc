@@ -307,7 +307,7 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
               "units: altitude %.2f, airspeed %.2f; failing grid points %d and %d\n",
               worst_compensated[0], worst_compensated[1], fails[3][0], fails[3][1]);
   // hysteresis_compensated (the firmware runs the operators and linearises the bridge codes,
-  // target/ads_constants.h): measured (2026-11-24) no grid point failing on the 20 units, worst
+  // target/ads_constants.h): measured (2026-11-23) no grid point failing on the 20 units, worst
   // 0.16 (altitude) and 0.10 (airspeed) tolerances under the nine histories. Before the
   // linearisation: 7 altitude points failing on one unit (beta = 9.8 ppm/degC^2), worst 1.04
   // (altitude) and 0.56 (airspeed). Required: every grid point of every unit inside its tolerance

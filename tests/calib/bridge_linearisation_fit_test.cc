@@ -45,7 +45,7 @@ double WorstStraightLineResidualC(const std::vector<double>& temps_c, const std:
 
 // Ten drawn units (every effect on but noise). Fitted from 9 chamber temperatures x 5 altitudes
 // (the bridge resistance's pressure dependence spreads each soak's codes), judged at every degree
-// from -40 to +85 degC at 0 and 30,000 ft. Measured (2026-11-24): raw code 4.8...10.6 degC from a
+// from -40 to +85 degC at 0 and 30,000 ft. Measured (2026-11-23): raw code 4.8...10.6 degC from a
 // straight line, linearised 0.016 degC at most (what the quadratic leaves: the current source's
 // cubic). Required: the linearised code within 0.05 degC, and at least 100 times straighter than
 // the raw code on every unit.
