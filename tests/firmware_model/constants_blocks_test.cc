@@ -242,6 +242,33 @@ TEST(ConstantsExporter, RefusesUnrepresentableSetsWithReason) {
   }
 }
 
+// The bridge code's linearisation: the target holds a whole 24-bit origin and |k| < 4 (k = kappa
+// times the power-of-two half-width of the codes behind the y box), and needs the box on the
+// root's own branch; anything else is refused naming the block.
+TEST(ConstantsExporter, RefusesALinearisationTheTargetCannotHold) {
+  const AdsCalibrationConstants good = testing::RealisticPressureAds();
+  const AdsConstants exported = ExportAdsConstants(good).constants;
+  EXPECT_EQ(exported.altitude.y_linearisation.raw_norm.centre, 6710886);
+  EXPECT_NE(exported.altitude.y_linearisation.curvature_q13, 0);
+  auto refusal = [](const AdsCalibrationConstants& c) -> std::string {
+    try {
+      ExportAdsConstants(c);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  AdsCalibrationConstants bad = good;
+  bad.altitude_ft.y_linearisation.origin_code += 0.5;
+  EXPECT_THAT(refusal(bad), ::testing::HasSubstr("altitude block 0x21: linearisation origin"));
+  bad = good;
+  bad.airspeed_kt.y_linearisation.curvature_per_code = 4.0 / (1 << 21);  // k = 4 at shift 21
+  EXPECT_THAT(refusal(bad), ::testing::HasSubstr("airspeed block 0x22: bridge curvature"));
+  bad = good;
+  bad.altitude_ft.y_linearisation.curvature_per_code = -2.5 / (bad.altitude_ft.y_max_code - 6710886.0);
+  EXPECT_THAT(refusal(bad), ::testing::HasSubstr("turns inside the y box"));
+}
+
 TEST(CalibrationConstants, JsonRoundTripAndPathInErrors) {
   const ImuCalibrationConstants imu = testing::RealisticImu(8);
   const ImuCalibrationConstants back = ImuCalibrationConstantsFromJson(ToJson(imu));
