@@ -51,10 +51,20 @@ void BM_AdsSurfaceFrame(benchmark::State& state) {
   // With hysteresis terms and the bridge codes' linearisation, so that every frame runs the four
   // operators and both square roots (the input is constant, so after the first frame the
   // operators take the unchanged-input path; the sweep test's max cycles cover the moving path).
-  c.altitude_ft = {{1000.0, -0.2, 1e-4, 1e-9, 0, 0, 0, 0, 0, 0}, 30000, 200000, 5e6, 8e6,
+  // Coefficients in the reference's letters a + b x + c y + d x^2, placed at their powers (the
+  // surface is the x^p y^q array, calibration_constants.h).
+  auto letters = [](double a, double b, double c, double d) {
+    SurfaceCoefficients k{};
+    k[0][0] = a;
+    k[1][0] = b;
+    k[0][1] = c;
+    k[2][0] = d;
+    return k;
+  };
+  c.altitude_ft = {letters(1000.0, -0.2, 1e-4, 1e-9), 30000, 200000, 5e6, 8e6,
                    SurfaceLaw::kDirect, {-2.0, 0.005, 3000.0, -3.0, 0.0075, 20.0, 6.5e6, {25.0, 5.7e-5, 1e-13, 0.0}},
                    {6.5e6, 1.5e-7}};
-  c.airspeed_kt = {{30.0, 0.01, 0, -1e-9, 0, 0, 0, 0, 0, 0}, 30000, 100000, 5e6, 8e6,
+  c.airspeed_kt = {letters(30.0, 0.001, 0.0, -1e-9), 30000, 100000, 5e6, 8e6,
                    SurfaceLaw::kDirect, {-0.1, 0.0003, 40.0, -0.2, 0.0005, 20.0, 6.5e6, {25.0, 5.7e-5, 1e-13, 0.0}},
                    {6.5e6, 1.5e-7}};
   const AdsConstants constants = ExportAdsConstants(c).constants;

@@ -74,9 +74,10 @@ inline constexpr XyPowers kReferenceCubicTerm[10] = {{0, 0}, {1, 0}, {0, 1}, {2,
 /// The branch terms the unit adds to a surface's z (target/ads_constants.h "Hysteresis"):
 /// z + gain_P(T) s_P + gain_T(T) s_T, gain(T) = gain + gain_per_degc (T - kHysteresisGainReferenceC),
 /// each state from a Preisach operator: the pressure one driven by z, the thermal one by the
-/// die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j of the surface's y (the
-/// bridge-voltage code, or its linearised code), which also gives the gains' T. A span of 0 switches its operator off (its gains must
-/// then be 0). Absent from a constants file: both off, the static surface.
+/// die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j of the surface's y
+/// (the bridge-voltage code, or its linearised code), which also gives the gains' T. A span of 0
+/// switches its operator off (its gains must then be 0). Absent from a constants file: both off,
+/// the static surface.
 inline constexpr double kHysteresisGainReferenceC = 25.0;
 
 struct HysteresisCompensation {

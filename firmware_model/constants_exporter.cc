@@ -309,6 +309,13 @@ double ExportHysteresis(const HysteresisCompensation& h, int result_e, const std
   return bound;
 }
 
+// The smallest shift with 2^shift > half: the power-of-two half-width of a code normalisation.
+int HalfWidthShift(double half) {
+  int shift = 0;
+  while (std::ldexp(1.0, shift) <= half) ++shift;
+  return shift;
+}
+
 // The target's form of a surface's linearisation (bridge_linearisation.h): the raw normalisation
 // centred on the origin with the smallest power-of-two half-width that holds the bridge codes
 // whose linearised codes bound the surface's y box (y - origin = d + kappa d^2 / 4, d = s -
@@ -325,9 +332,8 @@ BridgeLinearisationQ ExportLinearisation(const SurfaceFit& s, const std::string&
     const double d = s_code - l.origin_code;
     return d + l.curvature_per_code * d * d / 4.0;
   };
-  const double half = std::max(std::fabs(raw_offset(s.y_min_code)), std::fabs(raw_offset(s.y_max_code)));
-  int shift = 0;
-  while (std::ldexp(1.0, shift) <= half) ++shift;
+  const int shift =
+      HalfWidthShift(std::max(std::fabs(raw_offset(s.y_min_code)), std::fabs(raw_offset(s.y_max_code))));
   const double k_q13 = std::nearbyint(std::ldexp(l.curvature_per_code, shift + 13));
   // sqrt(1 + kappa (y - origin)) = 1 + kappa d / 2 must stay positive over the box (the root's
   // own branch).
@@ -359,9 +365,7 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
                            SurfaceQ31* q) {
     auto norm = [&](double lo, double hi, const char* axis) {
       const double centre = std::nearbyint(0.5 * (lo + hi));
-      const double half = std::max(hi - centre, centre - lo);
-      int shift = 0;
-      while (std::ldexp(1.0, shift) <= half) ++shift;
+      const int shift = HalfWidthShift(std::max(hi - centre, centre - lo));
       if (shift > 31 || std::fabs(centre) >= std::ldexp(1.0, 31)) {
         throw std::invalid_argument(fmt::format("{}: {} code box [{}, {}] too wide", what, axis, lo, hi));
       }

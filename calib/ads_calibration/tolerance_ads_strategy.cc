@@ -10,12 +10,12 @@
 #include <stdexcept>
 #include <tuple>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include "calib/ads_calibration/bridge_history.h"
 #include "calib/ads_calibration/bridge_linearisation_fit.h"
 #include "calib/evaluation/ads_tolerance.h"
+#include "calib/solvers/polynomial_fit.h"
 #include "calib/constants/constants_file.h"
 #include "firmware_model/air_data_law.h"
 #include "firmware_model/reference_compensator.h"
@@ -270,11 +270,11 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
 
 namespace {
 
-// The die temperature as a cubic of the surface's y, T = sum_j k_j (y - y0)^j (degC), least
-// squares over the samples (each at a soak, where the die sits at the chamber's temperature plus
-// its self-heating, which the operator does not see: it takes differences), in u = (y - y0) /
-// half-width for conditioning; y0 is the codes' mean. y is the linearised bridge code, nearly
-// linear in T; the cubic takes up what the linearisation's quadratic leaves.
+// The die temperature as a cubic of the surface's y, T = sum_j k_j (y - y0)^j (degC), by the
+// project's least-squares driver over the samples (each at a soak, where the die sits at the
+// chamber's temperature plus its self-heating, which the operator does not see: it takes
+// differences); y0 is the codes' mean. y is the linearised bridge code, nearly linear in T; the
+// cubic takes up what the linearisation's quadratic leaves.
 struct DieTemperature {
   double origin_code = 0.0;
   std::array<double, 4> degc_per_code_power = {};
@@ -291,20 +291,18 @@ DieTemperature FitDieTemperature(const std::string& context, const std::vector<S
   double y0 = 0.0;
   for (const SurfaceSample& s : samples) y0 += s.y_code;
   y0 /= static_cast<double>(samples.size());
-  double half = 0.0;
-  for (const SurfaceSample& s : samples) half = std::max(half, std::abs(s.y_code - y0));
-  Eigen::MatrixXd a(samples.size(), 4);
-  Eigen::VectorXd b(samples.size());
-  for (size_t i = 0; i < samples.size(); ++i) {
-    const double u = (samples[i].y_code - y0) / half;
-    a.row(static_cast<Eigen::Index>(i)) << 1.0, u, u * u, u * u * u;
-    b(static_cast<Eigen::Index>(i)) = samples[i].chamber_c;
+  PolynomialObservations obs;
+  for (const SurfaceSample& s : samples) {
+    obs.x.push_back(s.y_code - y0);
+    obs.z.push_back(s.chamber_c);
   }
-  const Eigen::Vector4d c = a.colPivHouseholderQr().solve(b);
+  const PolynomialFit fit = FitPolynomial(context + ": die temperature against the bridge code",
+                                          PolynomialBasis::Univariate(3, "y"), obs,
+                                          WeightKind::kInverseVariance, ErrorScale::kResidualVariance);
   DieTemperature out;
   out.origin_code = y0;
-  for (int j = 0; j < 4; ++j) out.degc_per_code_power[j] = c(j) / std::pow(half, j);
-  out.residual_rms_c = std::sqrt((a * c - b).squaredNorm() / static_cast<double>(samples.size()));
+  for (int j = 0; j < 4; ++j) out.degc_per_code_power[j] = fit.raw_coefficients(j);
+  out.residual_rms_c = fit.fit.residual_rms;
   return out;
 }
 
@@ -329,16 +327,16 @@ CompensatedSurface FitCompensated(const std::string& context, const std::vector<
   CompensatedSurface out;
   out.linearisation = linearisation;
   out.centre = FitSurface(context, basis, weighted, HistoryTerms::kWithTemperatureSlopes);
+  out.centre.surface.y_linearisation = linearisation.linearisation;  // fitted in s: takes raw y
   const HysteresisEstimate& h = *out.centre.history;
-  for (size_t i = 0; i < recorded.size(); ++i) {
-    const SurfaceSample& s = recorded[i];
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const SurfaceSample& s = samples[i];
     const double dt_c = s.chamber_c - kHysteresisReferenceC;
     const double predicted = fm::EvaluateSurfaceFit(out.centre.surface, s.x_code, s.y_code) +
                              (h.pressure + h.pressure_per_degc * dt_c) * s.s_pressure +
                              (h.thermal + h.thermal_per_degc * dt_c) * s.s_thermal;
     out.worst_ratio_at_points = std::max(out.worst_ratio_at_points, std::abs(predicted - s.z) / tolerance[i]);
   }
-  out.centre.surface.y_linearisation = linearisation.linearisation;  // its y box is already in s
   const DieTemperature die = FitDieTemperature(context, recorded);
   static_assert(kHysteresisReferenceC == fm::kHysteresisGainReferenceC);
   out.hysteresis = {h.pressure,         h.pressure_per_degc, pressure_span_pa, h.thermal,

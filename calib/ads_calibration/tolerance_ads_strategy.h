@@ -51,16 +51,18 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
 /// (target/ads_constants.h "Hysteresis") and linearises its bridge codes (target/
 /// bridge_linearisation.h; the linearisation fitted per bridge by bridge_linearisation_fit.h, and
 /// every surface, order choice and die-temperature cubic then in the linearised code): the
-/// temperature order chosen as there but with the states as recorded; one least-squares fit weighted 1/tol^2 with the states and the states times
-/// (T - 25 degC) as regressors gives the surface (the loop's centre) and the gains (the half
-/// loops, Pa per unit state, and their change per degC). (A minimax surface of the branch-free
-/// z was measured and not kept: 1,582 failing altitude grid points over 20 units against 1,454.) Exported with each operator's span (pressure in Pa, the surface's z
-/// being Pa; temperature in degC) and the die temperature as a cubic of the bridge-voltage code
-/// (least squares of the chamber temperatures over the points; needs 4 temperatures).
-/// Diagnostics as pressure_minimax's plus that cubic's rms residual and the linearisation
-/// (curvature with its standard error, slope, the quadratic's residual in degC). Left out: a span estimated from the data (the spans are the part's nominal
-/// values, physics.md section 6: estimated), the unit's state at power-on (virgin; the bridge
-/// keeps its hysteresis state across power cycles, the firmware does not).
+/// temperature order chosen as there but with the states as recorded; one least-squares fit
+/// weighted 1/tol^2 with the states and the states times (T - 25 degC) as regressors gives the
+/// surface (the loop's centre) and the gains (the half loops, Pa per unit state, and their change
+/// per degC). (A minimax surface of the branch-free z was measured and not kept: 1,582 failing
+/// altitude grid points over 20 units against 1,454.) Exported with each operator's span
+/// (pressure in Pa, the surface's z being Pa; temperature in degC) and the die temperature as a
+/// cubic of the linearised code (least squares of the chamber temperatures over the points; needs
+/// 4 temperatures). Diagnostics as pressure_minimax's plus that cubic's rms residual and the
+/// linearisation (curvature with its standard error, slope, the quadratic's residual in degC).
+/// Left out: a span estimated from the data (the spans are the part's nominal values, physics.md
+/// section 6: estimated), the unit's state at power-on (virgin; the bridge keeps its hysteresis
+/// state across power cycles, the firmware does not).
 AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
                                       const std::vector<AdsCalibrationPoint>& points,
                                       const HysteresisSpans& spans = HysteresisSpans::Nominal());

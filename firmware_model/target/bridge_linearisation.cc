@@ -25,11 +25,13 @@ int32_t LinearisedBridgeCode(DspEngine* engine, const BridgeLinearisationQ& line
   const int32_t radicand_q28 = (INT32_C(1) << 28) + kv_q28;
   engine->ChargeBranch(1);  // r < 0?
   if (radicand_q28 < 0) *flags |= kFlagInputSaturated;
-  const uint16_t root_q14 = IntegerSqrt(engine, radicand_q28 < 0 ? 0u : static_cast<uint32_t>(radicand_q28));
+  const uint16_t root_q14 =
+      IntegerSqrt(engine, radicand_q28 < 0 ? 0u : static_cast<uint32_t>(radicand_q28));
   engine->ChargeAlu(2);  // (1 + root) 2^13: LSR, ADD
   const int16_t divisor_q13 = static_cast<int16_t>((1 << 13) + (root_q14 >> 1));
   engine->ChargeAlu(3);  // v 2^28 into a W pair: sign-extend, two shifts
-  const DivResult quotient_q15 = engine->DivSD(static_cast<int32_t>(v_q15) * (INT32_C(1) << 13), divisor_q13);
+  const DivResult quotient_q15 =
+      engine->DivSD(static_cast<int32_t>(v_q15) * (INT32_C(1) << 13), divisor_q13);
   engine->ChargeAlu(6);  // q 2^(shift - 14) on a W pair (4), + origin (ADD, ADDC)
   const int64_t offset = ShiftArith(quotient_q15.quotient, 14 - linearisation.raw_norm.shift);
   return static_cast<int32_t>(linearisation.raw_norm.centre + offset);

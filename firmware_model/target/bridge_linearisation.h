@@ -11,7 +11,8 @@
 // the rationalised form of origin + (2/kappa)(sqrt(1 + kappa (y - origin)) - 1): no division by
 // kappa, so kappa -> 0 is the code itself without loss of precision.
 //
-// Fixed point, with v = (y - origin) 2^-shift (the raw normalisation, |v| < 1) and k = kappa 2^shift:
+// Fixed point, with v = (y - origin) 2^-shift (the raw normalisation, |v| < 1) and
+// k = kappa 2^shift:
 //   v       Q15, the normalised code's high word (|v| >= 1 sets kFlagInputSaturated);
 //   k       Q13 (|k| < 4: a model-1230 bridge's quadratic tempco makes the radicand run from
 //           about 0.27 to 2.2 over -40...+85 degC, kappa |y - origin| up to 1.2, and the
@@ -24,7 +25,8 @@
 //   s       origin + q 2^(shift - 14), an int32 code the surface's own normalisation takes.
 // Resolution: s moves in steps of 2^(shift - 14) codes, about 1/16,000 of the code box's
 // half-width (0.004 degC over -40...+85 degC); the root's truncation (2^-14) and the divisor's
-// (2^-13) add at most 2^-12.4 of v. k = 0 returns y unchanged (the static strategies' surfaces, bit for bit).
+// (2^-13) add at most 2^-12.4 of v. k = 0 returns y unchanged (the static strategies' surfaces,
+// bit for bit).
 // Cost: 245 cycles with k != 0 (the square root 192, DIV.SD 19), at most 8 with k = 0 (measured:
 // tests/firmware_model/bridge_linearisation_test.cc).
 // Left out: the cubic term of the current source's tempco and the bridge resistance's pressure

@@ -26,8 +26,9 @@
 // the state is Q15 in [-1, 1), saturated by the store. The Q15 state resolves 3e-5 of a half loop:
 // 0.003 Pa of a 100 Pa loop. Cycle cost: about 10 on the first frame and on an unchanged input, 75
 // on average otherwise (one MulQ31 for the travel, two MPYs for the weight, the state's add, the
-// stack's bookkeeping), 109 at most measured with the stack full (preisach_q15_test.cc). Not modelled, as in the law it follows: creep. The bridge's own state survives
-// power cycles, which the fresh operator cannot know.
+// stack's bookkeeping), 109 at most measured with the stack full (preisach_q15_test.cc). Not
+// modelled, as in the law it follows: creep. The bridge's own state survives power cycles, which
+// the fresh operator cannot know.
 #pragma once
 
 #include <cstdint>

@@ -36,7 +36,8 @@ int32_t NormaliseQ31(DspEngine* engine, int32_t v, int8_t v_exponent, const Inpu
 /// p(x) by Horner at poly.work_exponent; result (Q31 at that exponent) in `acc` and returned.
 int32_t HornerQ31(DspEngine* engine, Acc acc, const PolyQ31& poly, uint8_t degree, int32_t x_q31);
 /// floor(sqrt(radicand)) by 16 steps of the restoring method on 32-bit W pairs: 192 cycles. The
-/// root of a radicand at 2^(2n) is at 2^n (CAS: kt^2 2^14 -> kt 2^7; a Q30 radicand -> Q15 root).
+/// root of a radicand at 2^(2n) is at 2^n (CAS: kt^2 2^14 -> kt 2^7; the bridge code's
+/// linearisation: r 2^28 -> sqrt(r) 2^14).
 uint16_t IntegerSqrt(DspEngine* engine, uint32_t radicand);
 
 }  // namespace adahrs::firmware_model

@@ -191,6 +191,8 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
   int better[2][2] = {}, fails[kStrategyCount][2] = {}, unreachable[2] = {}, passes[2] = {};
   double worst_compensated[2] = {};  // hysteresis_compensated: worst |error| / tolerance with history
   int compensated_unreachable = 0;
+  double centre_rms_pa[2][2] = {{1e300, 0.0}, {1e300, 0.0}};  // [altitude/airspeed][min/max]
+  int chosen_degree[2][6] = {};                                // units per temperature degree
   double worst_thermal_loop_error = 0.0, worst_pressure_loop_error = 0.0;
   double least_band_at_a_fail = 1e9;  // half-width / tolerance, over pressure_minimax's failing points
   for (int i = 0; i < kUnits; ++i) {
@@ -223,6 +225,25 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
       for (int q = 0; q < 2; ++q) sum[k][q] += ratio[k][q];
       if (k == 3) {
         compensated_unreachable += eval.altitude.unreachable + eval.airspeed.unreachable;
+        // What docs/calibration-strategies.md quotes of the fit: the centre surface's residual
+        // and the temperature degree the held-out choice takes, per quantity.
+        int q_fit = 0;
+        for (const char* key : {"altitude_ft", "airspeed_kt"}) {
+          const nlohmann::json& d = fit.diagnostics[key];
+          const double rms_pa = d["hysteresis"]["centre_fit_residual_rms_Pa"].get<double>();
+          centre_rms_pa[q_fit][0] = std::min(centre_rms_pa[q_fit][0], rms_pa);
+          centre_rms_pa[q_fit][1] = std::max(centre_rms_pa[q_fit][1], rms_pa);
+          std::string chosen;
+          double best = 1e300;
+          for (const auto& [degree, score] : d["held_out_worst_ratio_by_y_degree"].items()) {
+            if (score.get<double>() < best) {
+              best = score.get<double>();
+              chosen = degree;
+            }
+          }
+          ++chosen_degree[q_fit][std::stoi(chosen)];
+          ++q_fit;
+        }
         int q = 0;
         for (const AdsQuantityEvaluation* e : {&eval.altitude, &eval.airspeed}) {
           for (const AdsGridPoint& g : e->grid) {
@@ -306,6 +327,12 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
   std::printf("hysteresis_compensated: worst |error| / tolerance under the nine histories, over the "
               "units: altitude %.2f, airspeed %.2f; failing grid points %d and %d\n",
               worst_compensated[0], worst_compensated[1], fails[3][0], fails[3][1]);
+  std::printf("hysteresis_compensated fits: centre-surface residual rms %.2f-%.2f Pa (static), "
+              "%.2f-%.2f Pa (impact); units taking temperature degree 3/4/5: altitude %d/%d/%d, "
+              "airspeed %d/%d/%d\n",
+              centre_rms_pa[0][0], centre_rms_pa[0][1], centre_rms_pa[1][0], centre_rms_pa[1][1],
+              chosen_degree[0][3], chosen_degree[0][4], chosen_degree[0][5], chosen_degree[1][3],
+              chosen_degree[1][4], chosen_degree[1][5]);
   // hysteresis_compensated (the firmware runs the operators and linearises the bridge codes,
   // target/ads_constants.h): measured (2026-11-23) no grid point failing on the 20 units, worst
   // 0.16 (altitude) and 0.10 (airspeed) tolerances under the nine histories. Before the

@@ -102,7 +102,7 @@ TEST(BridgeLinearisationFit, RefusesFewerThanThreeTemperaturesAndAFlatCode) {
         << e.what();
   }
   std::vector<SurfaceSample> flat;
-  for (double temp_c : {-40.0, 25.0, 85.0}) flat.push_back({1e5, 6.7e6, 0.0, temp_c});
+  for (double temp_c : {-40.0, 0.0, 25.0, 85.0}) flat.push_back({1e5, 6.7e6, 0.0, temp_c});
   try {
     FitBridgeLinearisation("static bridge", flat);
     ADD_FAILURE() << "a flat code accepted";
