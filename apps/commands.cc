@@ -15,6 +15,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterDemoCommand(app);
   RegisterFitCommand(app);
   RegisterEvaluateCommand(app);
+  RegisterDiagnoseCommand(app);
   RegisterAcceptanceCommand(app);
 }
 

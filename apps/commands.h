@@ -20,6 +20,7 @@ void RegisterRunCommand(CLI::App& app);
 void RegisterDemoCommand(CLI::App& app);
 void RegisterFitCommand(CLI::App& app);
 void RegisterEvaluateCommand(CLI::App& app);
+void RegisterDiagnoseCommand(CLI::App& app);
 void RegisterAcceptanceCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

@@ -4,6 +4,7 @@
 // (calib/campaign/campaign.h) with the rig's truth for the evaluation, prints a summary per unit,
 // and always stops the rig. Thin: the rig process and the stations are rig_sim's, the chain is
 // calib's; this file picks the files, prints, and handles SIGINT (exit 130).
+#include "adahrs_build_paths.h"
 #include <signal.h>
 
 #include <atomic>

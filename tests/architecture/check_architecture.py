@@ -3,7 +3,9 @@
 
 1. One-way folder dependencies: apps -> calib -> hil -> firmware_model / sensor_sim, and
    rig_sim -> hil + sensor_sim + firmware_model. calib never includes rig_sim.
-2. firmware_model/target/ is target-clean for the 16-bit dsPIC: no floating point, heap,
+2. No inverse crime in diagnosis: calib/diagnosis/ (which turns recordings into findings) includes
+   nothing of sensor_sim/, the simulator that generates the recordings it is proven on.
+3. firmware_model/target/ is target-clean for the 16-bit dsPIC: no floating point, heap,
    exceptions or STL containers.
 Prints every violation as file:line and exits 1 if there is any.
 """
@@ -17,6 +19,10 @@ FORBID = {
     "hil": ["rig_sim", "calib", "apps"],
     "calib": ["rig_sim", "apps"],
     "rig_sim": ["calib", "apps"],
+}
+# Folders below a top-level folder with a stricter rule of their own.
+FORBID_SUBFOLDER = {
+    "calib/diagnosis": ["sensor_sim", "rig_sim"],
 }
 SOURCE_SUFFIXES = {".h", ".hpp", ".cc", ".cpp"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([./]*)([A-Za-z_]+)/')
@@ -44,6 +50,13 @@ def main(root):
                 if match and match.group(2) in forbidden:
                     violations.append(f"{path.relative_to(root)}:{number}: {folder}/ must not "
                                       f"include {match.group(2)}/")
+    for folder, forbidden in FORBID_SUBFOLDER.items():
+        for path in sources(root / folder):
+            for number, line in enumerate(path.read_text().splitlines(), 1):
+                match = INCLUDE.match(line)
+                if match and match.group(2) in forbidden:
+                    violations.append(f"{path.relative_to(root)}:{number}: {folder}/ must not "
+                                      f"include {match.group(2)}/ (no inverse crime)")
     for path in sources(root / "firmware_model" / "target"):
         in_block_comment = False
         for number, line in enumerate(path.read_text().splitlines(), 1):

@@ -10,6 +10,7 @@
 // 1 s of untagged packets (tag 0: not calibration data), packets are never lost.
 #pragma once
 
+#include "adahrs_build_paths.h"
 #include <filesystem>
 #include <string>
 #include <variant>

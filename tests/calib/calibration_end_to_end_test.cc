@@ -13,6 +13,7 @@
 // Under ASan/UBSan the build checks memory and arithmetic, not speed: the same code paths run the
 // --quick variants of both sequences (calib/campaign/quick_sequences.h) at 200x with every loss
 // and completeness check, and the wall time is printed, not judged.
+#include "adahrs_build_paths.h"
 #include <chrono>
 #include <cstdio>
 #include <map>

@@ -10,6 +10,7 @@
 // truth/<serial>.json holds each unit's parameters, as the rig writes it.
 #pragma once
 
+#include "adahrs_build_paths.h"
 #include <cmath>
 #include <filesystem>
 #include <fstream>

@@ -1,5 +1,6 @@
 // Run directories and constants files into records: fields taken from the files as written,
 // checksums equal to those of independent tools (sha256sum), bad input refused by file and path.
+#include "adahrs_build_paths.h"
 #include "calib/records/records_sources.h"
 
 #include <unistd.h>

@@ -1,5 +1,6 @@
 // Every shipped reference sequence (calib/sequences/*.json) loads and validates against the
 // reference hardware's limits, and holds what reference-method.md says it must.
+#include "adahrs_build_paths.h"
 #include <algorithm>
 #include <filesystem>
 #include <set>

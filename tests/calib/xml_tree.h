@@ -2,6 +2,7 @@
 // parser) and returns its element tree as JSON, plus small search helpers.
 #pragma once
 
+#include "adahrs_build_paths.h"
 #include <cstdio>
 #include <filesystem>
 #include <functional>

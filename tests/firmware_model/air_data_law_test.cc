@@ -1,6 +1,7 @@
 // The ADS firmware's air-data laws (target/air_data_law.h) against independent truth: the
 // published ISA pressures (US Standard Atmosphere 1976 / ICAO) and sensor_sim's own atmosphere and
 // airspeed formulas, over the whole envelope; the compiled ROM tables against their generator.
+#include "adahrs_build_paths.h"
 #include "firmware_model/target/air_data_law.h"
 
 #include <algorithm>

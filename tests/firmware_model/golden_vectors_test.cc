@@ -3,6 +3,7 @@
 // means the fixed-point arithmetic changed; review it, then regenerate with
 // ADAHRS_WRITE_GOLDEN=1 build/bin/firmware_model_tests --gtest_filter=GoldenVectors.*).
 // The truth tests for the same arithmetic are the envelope sweeps (compensator_sweep_test.cc).
+#include "adahrs_build_paths.h"
 #include "firmware_model/golden_vectors.h"
 
 #include <gtest/gtest.h>

@@ -2,6 +2,7 @@
 // tests/firmware_model/unit_protocol_peer.py, a standard-library Python decoder written from
 // docs/unit-protocol.md alone (bitwise CRC from the CRC's definition, struct layouts from the
 // tables). Every field it reports must equal what the test encoded.
+#include "adahrs_build_paths.h"
 #include <cstdint>
 #include <cstdio>
 #include <fstream>

@@ -1,3 +1,4 @@
+#include "adahrs_build_paths.h"
 #include "hil/codecs/atl_codec.h"
 
 #include <gmock/gmock.h>

@@ -1,4 +1,5 @@
 // The ATL rate-table driver against the virtual table of the rig process (docs/rig/rate-table.md).
+#include "adahrs_build_paths.h"
 #include "hil/drivers/atl_rate_table.h"
 
 #include <gmock/gmock.h>

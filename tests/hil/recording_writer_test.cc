@@ -1,3 +1,4 @@
+#include "adahrs_build_paths.h"
 #include "hil/recording/recording_writer.h"
 
 #include <cmath>

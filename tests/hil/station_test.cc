@@ -1,3 +1,4 @@
+#include "adahrs_build_paths.h"
 #include "hil/station.h"
 
 #include <gmock/gmock.h>

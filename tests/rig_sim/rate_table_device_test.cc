@@ -1,3 +1,4 @@
+#include "adahrs_build_paths.h"
 #include "rig_sim/rate_table_device.h"
 
 #include <gmock/gmock.h>

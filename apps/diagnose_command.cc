@@ -1,0 +1,42 @@
+// adahrs diagnose --run DIR [--run DIR...] [--unit SERIAL] [--profile nominal] --out DIR: where the
+// recordings and the pipeline's model part ways, which physics the model leaves out, and the
+// held-out fit with it (calib/diagnosis, docs/diagnose.md). Exit 0 whatever is found; 1 on bad input.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "apps/commands.h"
+#include "calib/diagnosis/diagnosis_output.h"
+
+namespace adahrs::apps {
+
+void RegisterDiagnoseCommand(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("diagnose", "Locate and name the physics a recording shows and the model leaves out");
+  auto runs = std::make_shared<std::vector<std::string>>();
+  auto unit = std::make_shared<std::string>();
+  auto profile = std::make_shared<std::string>("nominal");
+  auto out = std::make_shared<std::string>();
+  cmd->add_option("--run", *runs, "run directory (repeatable: the runs of one batch)")->required();
+  cmd->add_option("--unit", *unit, "diagnose only this IMU serial");
+  cmd->add_option("--profile", *profile, "the model to compare with: nominal (the pipeline's forward model)")
+      ->check(CLI::IsMember({"nominal"}));
+  cmd->add_option("--out", *out, "output directory (diagnosis.json, report.html)")->required();
+  cmd->callback([runs, unit, out] {
+    std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
+    const calib::DiagnosisRun run =
+        calib::DiagnoseRuns(dirs, unit->empty() ? std::nullopt : std::optional<std::string>(*unit));
+    calib::WriteDiagnosis(run, *out);
+    for (const calib::UnitDiagnosis& u : run.units) {
+      std::cout << fmt::format("{}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());
+      for (const calib::Finding& f : u.findings) std::cout << "  " << f.words << "\n";
+      for (const calib::Unexplained& x : u.unexplained) std::cout << "  unexplained: " << x.channel << " " << x.where << ": " << x.description << "\n";
+      if (u.findings.empty() && u.unexplained.empty()) std::cout << "  no missing physics found\n";
+    }
+    std::cout << "wrote " << (std::filesystem::path(*out) / "diagnosis.json").string() << " and report.html\n";
+  });
+}
+
+}  // namespace adahrs::apps

@@ -1,0 +1,165 @@
+#include "calib/diagnosis/diagnosis_output.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "calib/report/html_builder.h"
+#include "calib/report/svg_plot.h"
+
+namespace adahrs::calib {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kModel =
+    "pipeline forward model (nominal: thermal polynomials, scale and cross-axis, gyro span nonlinearity), "
+    "fitted to this recording";
+
+std::string Figures(const UnitDiagnosis& u) {
+  std::string body;
+  for (const ChannelFitSummary& c : u.channels) {
+    bool found = false;
+    for (const Finding& f : u.findings) found = found || f.channel == c.channel;
+    for (const Unexplained& x : u.unexplained) found = found || x.channel == c.channel;
+    if (!found || c.plot_t_s.empty()) continue;
+    Plot p;
+    p.title = fmt::format("{} {}: residual of each 1 s cell", u.serial, c.channel);
+    p.x_label = "thermometer temperature (degC)";
+    p.y_label = "residual (" + c.unit + ")";
+    p.series.push_back({"baseline model", c.plot_temp_c, c.plot_residual_baseline, PlotSeries::Style::kPoints});
+    p.series.push_back({"with the findings", c.plot_temp_c, c.plot_residual_final, PlotSeries::Style::kPoints});
+    body += RenderSvg(p);
+  }
+  return body;
+}
+
+std::string UnitSection(const UnitDiagnosis& u) {
+  std::string body = "<p>" + XmlEscape(fmt::format("{} rows in {} segments ({} cells of 1 s), thermometers span {:.1f} degC.",
+                                                   u.rows, u.segments, u.cells, u.temp_span_c)) + "</p>";
+  if (u.findings.empty()) {
+    body += "<p>No missing physics found: every candidate term stays below its detection limit (table below).</p>";
+  } else {
+    body += "<ul>";
+    for (const Finding& f : u.findings) body += "<li>" + XmlEscape(f.words) + "</li>";
+    body += "</ul>";
+    HtmlTable t{"Findings: held-out RMS of the cell means without and with each term, channel unit",
+                {"effect", "channel", "magnitude", "held-out RMS before", "after", "unit", "evidence (largest contribution)"}, {}};
+    for (const Finding& f : u.findings) {
+      std::string mag;
+      for (const FindingComponent& c : f.components) {
+        mag += fmt::format("{}{} {} ± {} {}", mag.empty() ? "" : "; ", c.name, FormatNumber(c.magnitude, 3),
+                           FormatNumber(c.standard_error, 2), c.unit);
+      }
+      std::string ev;
+      for (const std::string& e : f.evidence) ev += (ev.empty() ? "" : "; ") + e;
+      t.rows.push_back({f.effect, f.channel, mag, FormatNumber(f.held_out_rms_before, 3),
+                        FormatNumber(f.held_out_rms_after, 3), f.rms_unit, ev});
+    }
+    body += RenderTable(t);
+  }
+  if (!u.unexplained.empty()) {
+    HtmlTable t{"Unexplained structure (located, not fitted)", {"channel", "where", "description"}, {}};
+    for (const Unexplained& x : u.unexplained) t.rows.push_back({x.channel, x.where, x.description});
+    body += RenderTable(t);
+  }
+  HtmlTable ch{"Per channel: held-out RMS of the 1 s cell means (leave one segment out)",
+               {"channel", "baseline", "final", "white noise alone", "unit"}, {}};
+  for (const ChannelFitSummary& c : u.channels) {
+    ch.rows.push_back({c.channel, FormatNumber(c.held_out_rms_baseline, 3), FormatNumber(c.held_out_rms_final, 3),
+                       FormatNumber(c.white_noise_rms, 3), c.unit});
+  }
+  body += RenderTable(ch);
+  body += Figures(u);
+  HtmlTable lim{"Detection limits: the smallest magnitude this recording would have found (80 % power)",
+                {"effect", "channel", "smallest detectable"}, {}};
+  for (const DetectionLimit& d : u.detection_limits) {
+    std::string v;
+    for (const FindingComponent& c : d.limits) {
+      v += fmt::format("{}{} {} {}", v.empty() ? "" : "; ", c.name, FormatNumber(c.magnitude, 2), c.unit);
+    }
+    lim.rows.push_back({d.effect, d.channel, d.limits.empty() ? "untestable: " + d.note : v});
+  }
+  body += RenderTable(lim);
+  for (const std::string& n : u.notes) body += "<p class=\"note\">" + XmlEscape(n) + "</p>";
+  return Section("unit-" + u.serial, 2, u.serial, body);
+}
+
+}  // namespace
+
+json DiagnosisRun::ToJson() const {
+  json recs = json::array(), units_json = json::array(), findings = json::array(), unexplained = json::array(),
+       limits = json::array();
+  for (const RecordingReference& r : recordings) recs.push_back({{"path", r.path}, {"sha256", r.sha256}});
+  for (const UnitDiagnosis& u : units) {
+    units_json.push_back(u.ToJson());
+    for (const Finding& f : u.findings) {
+      json j = f.ToJson();
+      j["unit_serial"] = u.serial;
+      findings.push_back(j);
+    }
+    for (const Unexplained& x : u.unexplained) {
+      json j = x.ToJson();
+      j["unit_serial"] = u.serial;
+      unexplained.push_back(j);
+    }
+    for (const DetectionLimit& d : u.detection_limits) {
+      json j = d.ToJson();
+      j["unit_serial"] = u.serial;
+      limits.push_back(j);
+    }
+  }
+  return {{"format", "adahrs-diagnosis"}, {"format_version", kDiagnosisFormatVersion}, {"recording", recs},
+          {"model", model}, {"findings", findings}, {"unexplained", unexplained}, {"detection_limits", limits},
+          {"units", units_json}};
+}
+
+DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const std::optional<std::string>& serial,
+                          const DiagnosisOptions& options) {
+  const ImuRunData data = LoadImuRuns(runs);
+  DiagnosisRun out;
+  out.recordings = data.recordings;
+  out.model = kModel;
+  if (serial && data.units.count(*serial) == 0) {
+    std::string have;
+    for (const auto& [s, u] : data.units) have += (have.empty() ? "" : ", ") + s;
+    throw ImuInputError("unit " + *serial + " is not in the recordings (they hold: " + have + ")");
+  }
+  for (const auto& [s, unit] : data.units) {
+    if (serial && s != *serial) continue;
+    out.units.push_back(DiagnoseImu(BuildDiagnosisData(unit, data.local_gravity_mps2), options));
+  }
+  if (out.units.empty()) throw ImuInputError("the recordings hold no IMU calibration data");
+  return out;
+}
+
+std::string DiagnosisHtml(const DiagnosisRun& run) {
+  std::string body = "<h1>Diagnosis</h1><p>" + XmlEscape("Compared with: " + run.model) + "</p><ul>";
+  for (const RecordingReference& r : run.recordings) body += "<li>" + XmlEscape(r.path + " (sha256 " + r.sha256 + ")") + "</li>";
+  body += "</ul>";
+  for (const UnitDiagnosis& u : run.units) body += UnitSection(u);
+  return "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\"><head><meta charset=\"utf-8\"/>"
+         "<title>adahrs diagnosis</title><style>body{font-family:sans-serif;max-width:72em;margin:auto}"
+         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #999;padding:2px 6px}"
+         ".note{color:#555}</style></head><body>" + body + "</body></html>\n";
+}
+
+void WriteDiagnosis(const DiagnosisRun& run, const std::filesystem::path& out_dir) {
+  std::filesystem::create_directories(out_dir);
+  auto write = [&](const std::string& name, const std::string& text) {
+    const std::filesystem::path path = out_dir / name;
+    const std::filesystem::path tmp = out_dir / (name + ".tmp");
+    {
+      std::ofstream f(tmp);
+      f << text;
+      f.flush();
+      if (!f) throw std::runtime_error("cannot write " + tmp.string());
+    }
+    std::filesystem::rename(tmp, path);
+  };
+  write("diagnosis.json", run.ToJson().dump(2) + "\n");
+  write("report.html", DiagnosisHtml(run));
+}
+
+}  // namespace adahrs::calib

@@ -1,0 +1,41 @@
+// `adahrs diagnose` end to end on run directories: every IMU of the recordings (or one) diagnosed
+// against the pipeline's forward model (imu_diagnosis.h), written as OUT/diagnosis.json (format
+// "adahrs-diagnosis", docs/diagnose.md) and OUT/report.html (findings in words, located structure,
+// residual figures before and after, detection limits).
+// Recordings are read by LoadImuRuns (calibration rows of raw-mode steps; refusals name the file,
+// line and column). Not done here: ADS recordings, generic channel CSVs.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "calib/diagnosis/imu_diagnosis.h"
+
+namespace adahrs::calib {
+
+inline constexpr int kDiagnosisFormatVersion = 1;
+
+struct DiagnosisRun {
+  std::vector<RecordingReference> recordings;
+  std::string model;  ///< what the recordings were compared with
+  std::vector<UnitDiagnosis> units;
+  nlohmann::json ToJson() const;
+};
+
+/// Reads the runs and diagnoses every IMU (or only `serial`); throws ImuInputError or
+/// hil::RecordingError with the reason, and ImuInputError when `serial` is not in the runs.
+DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const std::optional<std::string>& serial,
+                          const DiagnosisOptions& options = {});
+
+/// report.html of a diagnosis.
+std::string DiagnosisHtml(const DiagnosisRun& run);
+
+/// Writes OUT/diagnosis.json and OUT/report.html (creating OUT); throws std::runtime_error naming
+/// the file it could not write.
+void WriteDiagnosis(const DiagnosisRun& run, const std::filesystem::path& out_dir);
+
+}  // namespace adahrs::calib

@@ -1,0 +1,664 @@
+#include "calib/diagnosis/imu_diagnosis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <limits>
+#include <numeric>
+
+#include <boost/math/distributions/fisher_f.hpp>
+#include <boost/math/distributions/students_t.hpp>
+#include <fmt/format.h>
+
+#include "calib/diagnosis/clustered_least_squares.h"
+
+namespace adahrs::calib {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kTempRef_c = 25.0;
+constexpr double kTempHalfSpan_c = 62.5;
+constexpr double kRateFullScale_dps = 150.0;
+constexpr std::array<double, 4> kWarmUpTau_s = {150.0, 300.0, 600.0, 1200.0};
+constexpr double kAccelDatasheetDutyPerG = 0.04;         // ADXL210E 4 %/g
+constexpr double kGyroDatasheetCountsPerDps = 20971.52;  // 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
+constexpr double kOutlierRobustZ = 10.0;
+constexpr double kOutlierNoiseZ = 6.0;
+constexpr double kStepZ = 10.0;
+constexpr int kStepWindowCells = 30;
+
+// Column indices of the baseline, per channel kind.
+enum Baseline { kOffset = 0, kTemp1, kTemp2, kTemp3, kStim0, kStim1, kStim2, kRate2, kRate3 };
+
+struct Candidate {
+  std::string effect;
+  std::vector<std::string> components;
+  std::optional<double> tau_s;
+  std::vector<int> columns;  // filled by the layout
+};
+
+// What the dependent columns need from the current baseline fit.
+struct BaselineState {
+  std::array<double, 3> temp{};            // coefficients of s, s^2, s^3
+  Eigen::Vector3d stim = Eigen::Vector3d::Zero();  // m (duty/g) or n (counts per deg/s)
+};
+
+struct Layout {
+  int channel = 0;
+  int baseline = 0;
+  std::vector<std::string> names;
+  std::vector<Candidate> candidates;
+};
+
+Layout MakeLayout(int channel, bool uncalibrated) {
+  Layout l;
+  l.channel = channel;
+  const bool gyro = IsGyroChannel(channel);
+  l.names = {"offset", "temp_s", "temp_s2", "temp_s3"};
+  if (gyro) {
+    for (const char* n : {"w_x", "w_y", "w_z", "u2", "u3"}) l.names.push_back(n);
+  } else {
+    for (const char* n : {"f_x", "f_y", "f_z"}) l.names.push_back(n);
+  }
+  l.baseline = static_cast<int>(l.names.size());
+  // A gyro's thermometer is its own die's TEMP pin: no lag or warm-up can open between the two.
+  if (!gyro) l.candidates.push_back({"die_thermal_lag", {"delay"}, {}, {}});
+  l.candidates.push_back({"scale_factor_tempco", {"tc1", "tc2"}, {}, {}});
+  if (gyro) l.candidates.push_back({"gyro_g_sensitivity", {"x", "y", "z"}, {}, {}});
+  if (uncalibrated) {
+    l.candidates.push_back({"thermal_hysteresis", {"half_loop"}, {}, {}});
+    if (!gyro) {
+      for (double tau : kWarmUpTau_s) l.candidates.push_back({"self_heating_warm_up", {"initial_excess"}, tau, {}});
+      l.candidates.push_back({"accel_nonlinearity", {"k2"}, {}, {}});
+    }
+  }
+  for (Candidate& c : l.candidates) {
+    for (const std::string& comp : c.components) {
+      c.columns.push_back(static_cast<int>(l.names.size()));
+      l.names.push_back(c.effect + (c.tau_s ? fmt::format("_{:.0f}s", *c.tau_s) : "") + "." + comp);
+    }
+  }
+  return l;
+}
+
+int CandidateTests(bool uncalibrated) {
+  int n = 0;
+  for (int ch = 0; ch < kImuChannels; ++ch) n += static_cast<int>(MakeLayout(ch, uncalibrated).candidates.size());
+  return n;
+}
+
+// The design row of one cell for `layout` under `state`.
+Eigen::VectorXd Row(const Layout& layout, const DiagnosisCell& c, const BaselineState& state) {
+  const int ch = layout.channel;
+  const int k = kChannelThermometer[ch];
+  const bool gyro = IsGyroChannel(ch);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(static_cast<int>(layout.names.size()));
+  const double s = (c.temp_c[k] - kTempRef_c) / kTempHalfSpan_c;
+  x[kOffset] = 1.0;
+  x[kTemp1] = s;
+  x[kTemp2] = s * s;
+  x[kTemp3] = s * s * s;
+  const Eigen::Vector3d& stim = gyro ? c.w_B_dps : c.f_B_g;
+  for (int j = 0; j < 3; ++j) x[kStim0 + j] = stim[j];
+  if (gyro) {
+    const double u = c.w_B_dps[kChannelAxis[ch]] / kRateFullScale_dps;
+    x[kRate2] = u * u;
+    x[kRate3] = u * u * u;
+  }
+  const double dudt_per_c = (state.temp[0] + 2.0 * state.temp[1] * s + 3.0 * state.temp[2] * s * s) / kTempHalfSpan_c;
+  const double stim_part = state.stim.dot(stim);
+  const double dt_c = c.temp_c[k] - kTempRef_c;
+  for (const Candidate& cand : layout.candidates) {
+    const int col = cand.columns[0];
+    if (cand.effect == "die_thermal_lag") x[col] = -dudt_per_c * c.dtemp_dt_c_per_s[k];
+    if (cand.effect == "thermal_hysteresis") x[col] = c.last_change_sense[k];
+    if (cand.effect == "self_heating_warm_up") x[col] = dudt_per_c * std::exp(-c.t_since_start_s / *cand.tau_s);
+    if (cand.effect == "scale_factor_tempco") {
+      x[col] = stim_part * dt_c;
+      x[col + 1] = stim_part * dt_c * dt_c;
+    }
+    if (cand.effect == "accel_nonlinearity") {
+      const double f = c.f_B_g[kChannelAxis[ch]];
+      x[col] = std::abs(state.stim[kChannelAxis[ch]]) * f * f;
+    }
+    if (cand.effect == "gyro_g_sensitivity") {
+      for (int j = 0; j < 3; ++j) x[col + j] = c.f_B_g[j];
+    }
+  }
+  return x;
+}
+
+struct ChannelData {
+  std::vector<double> y;  // centred cell means
+  double centre = 0.0;
+  double offset_ratio = std::numeric_limits<double>::infinity();  // sigma_e^2 / sigma_w^2 per row weight
+};
+
+ChannelData CentredOutput(const DiagnosisData& data, int ch) {
+  ChannelData out;
+  double sw = 0.0;
+  for (const DiagnosisCell& c : data.cells) {
+    out.centre += c.rows * c.y_mean[ch];
+    sw += c.rows;
+  }
+  out.centre /= sw;
+  for (const DiagnosisCell& c : data.cells) out.y.push_back(c.y_mean[ch] - out.centre);
+  return out;
+}
+
+ClusteredLeastSquares Accumulate(const DiagnosisData& data, const Layout& layout, const ChannelData& y,
+                                 const BaselineState& state) {
+  ClusteredLeastSquares ls(static_cast<int>(layout.names.size()), static_cast<int>(data.segments.size()));
+  ls.SetClusterOffsetRatio(y.offset_ratio);
+  for (size_t i = 0; i < data.cells.size(); ++i) {
+    const DiagnosisCell& c = data.cells[i];
+    ls.Add(c.segment, Row(layout, c, state), y.y[i], static_cast<double>(c.rows));
+  }
+  return ls;
+}
+
+double Coefficient(const ClusteredFit& fit, const std::vector<int>& subset, int column) {
+  for (size_t i = 0; i < subset.size(); ++i) {
+    if (subset[i] == column) return fit.theta[static_cast<int>(i)];
+  }
+  return 0.0;
+}
+
+BaselineState StateFrom(const ClusteredFit& fit, const std::vector<int>& subset) {
+  BaselineState st;
+  for (int j = 0; j < 3; ++j) st.temp[j] = Coefficient(fit, subset, kTemp1 + j);
+  for (int j = 0; j < 3; ++j) st.stim[j] = Coefficient(fit, subset, kStim0 + j);
+  return st;
+}
+
+// Physical units per raw unit of the channel: mg per duty, deg/s per count.
+double PhysicalScale(int ch, const BaselineState& st) {
+  const double sens = std::abs(st.stim[kChannelAxis[ch]]);
+  if (IsGyroChannel(ch)) return 1.0 / (sens > 0.0 ? sens : kGyroDatasheetCountsPerDps);
+  return 1000.0 / (sens > 0.0 ? sens : kAccelDatasheetDutyPerG);
+}
+
+std::string RmsUnit(int ch) { return IsGyroChannel(ch) ? "dps" : "mg"; }
+
+struct Test {
+  bool testable = false;
+  std::string note;
+  double p_value = 1.0;
+  double gain = 0.0;  // held-out SS drop
+  ClusteredFit fit;
+  std::vector<int> subset;
+};
+
+std::vector<int> With(std::vector<int> subset, const std::vector<int>& extra) {
+  subset.insert(subset.end(), extra.begin(), extra.end());
+  return subset;
+}
+
+Test RunTest(const ClusteredLeastSquares& ls, const std::vector<int>& selected, const ClusteredFit& selected_fit,
+             const Candidate& cand) {
+  Test t;
+  t.subset = With(selected, cand.columns);
+  if (!ls.FullRank(t.subset)) {
+    t.note = "not excited by this recording (its term is zero or a combination of the model's)";
+    return t;
+  }
+  t.fit = ls.Fit(t.subset);
+  if (!t.fit.ok || !t.fit.jackknife_ok) {
+    t.note = "rests on a single segment (cannot be told from that segment's own disturbance)";
+    return t;
+  }
+  const int q = static_cast<int>(cand.columns.size());
+  const Eigen::VectorXd theta = t.fit.theta.tail(q);
+  const Eigen::MatrixXd v = t.fit.covariance.bottomRightCorner(q, q);
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(v);
+  if (ldlt.info() != Eigen::Success || !(v.diagonal().minCoeff() > 0.0)) {
+    t.note = "its jackknife variance vanishes";
+    return t;
+  }
+  const double wald = theta.dot(ldlt.solve(theta));
+  const double dof = std::max(1, t.fit.clusters - 1);
+  const boost::math::fisher_f dist(q, dof);
+  t.p_value = std::isfinite(wald) && wald >= 0.0 ? boost::math::cdf(boost::math::complement(dist, wald / q)) : 1.0;
+  const HeldOutComparison cv = CompareHeldOut(selected_fit, t.fit);
+  t.gain = cv.ss_a - cv.ss_b;
+  t.testable = true;
+  return t;
+}
+
+double TCritical(double alpha, int clusters) {
+  const boost::math::students_t dist(std::max(1, clusters - 1));
+  return boost::math::quantile(boost::math::complement(dist, alpha / 2.0));
+}
+
+// Magnitudes of a candidate's components in their physical units.
+std::vector<FindingComponent> Components(const Candidate& cand, const Eigen::VectorXd& theta,
+                                         const Eigen::VectorXd& se, int ch, double phys) {
+  std::vector<FindingComponent> out;
+  for (size_t i = 0; i < cand.components.size(); ++i) {
+    const int k = static_cast<int>(i);
+    double scale = 1.0;
+    std::string unit;
+    if (cand.effect == "die_thermal_lag") unit = "s";
+    if (cand.effect == "thermal_hysteresis") { scale = phys; unit = RmsUnit(ch); }
+    if (cand.effect == "self_heating_warm_up") unit = "degC";
+    if (cand.effect == "scale_factor_tempco") { scale = 1e6; unit = i == 0 ? "ppm/degC" : "ppm/degC^2"; }
+    if (cand.effect == "accel_nonlinearity") { scale = 1000.0; unit = "mg/g^2"; }
+    if (cand.effect == "gyro_g_sensitivity") { scale = phys; unit = "dps/g"; }
+    out.push_back({cand.components[i], theta[k] * scale, se[k] * scale, unit});
+  }
+  return out;
+}
+
+std::string Words(const Candidate& cand, const std::vector<FindingComponent>& c, int ch) {
+  const std::string name = kImuChannelNames[ch];
+  const std::string thermometer = std::string("TEMP ") + "xyz"[kChannelThermometer[ch]];
+  auto pm = [](const FindingComponent& x) { return fmt::format("{:.3g} ± {:.2g} {}", x.magnitude, x.standard_error, x.unit); };
+  if (cand.effect == "die_thermal_lag") {
+    return fmt::format("{} follows its thermometer ({}) {} late: die thermal lag between the sensor and its "
+                       "thermometer is missing from the model", name, thermometer, pm(c[0]));
+  }
+  if (cand.effect == "thermal_hysteresis") {
+    return fmt::format("{} reads {} higher after heating than after cooling (half the loop): thermal "
+                       "hysteresis is missing from the model", name, pm(c[0]));
+  }
+  if (cand.effect == "self_heating_warm_up") {
+    return fmt::format("{}'s die starts {} above its thermometer ({}) at power-on and settles with tau ≈ "
+                       "{:.0f} s: self-heating warm-up is missing from the model",
+                       name, pm(c[0]), thermometer, *cand.tau_s);
+  }
+  if (cand.effect == "scale_factor_tempco") {
+    return fmt::format("{}'s scale factor changes {} and {}: scale factor vs temperature is missing from "
+                       "the model", name, pm(c[0]), pm(c[1]));
+  }
+  if (cand.effect == "accel_nonlinearity") {
+    return fmt::format("{} deviates {} of its input squared: second-order accelerometer nonlinearity is "
+                       "missing from the model", name, pm(c[0]));
+  }
+  size_t big = 0;
+  for (size_t i = 1; i < c.size(); ++i) {
+    if (std::abs(c[i].magnitude) > std::abs(c[big].magnitude)) big = i;
+  }
+  return fmt::format("{} responds {:.3g} ± {:.2g} deg/s per g along {}{} (x {:.3g}, y {:.3g}, z {:.3g} dps/g): "
+                     "gyro g-sensitivity is missing from the model", name, std::abs(c[big].magnitude),
+                     c[big].standard_error, c[big].magnitude >= 0 ? "+" : "-", "XYZ"[big], c[0].magnitude,
+                     c[1].magnitude, c[2].magnitude);
+}
+
+double HeldOutRms(const ClusteredFit& a, const ClusteredFit& b, bool second, double phys) {
+  const HeldOutComparison cv = CompareHeldOut(a, b);
+  if (!(cv.weight > 0.0)) return 0.0;
+  return std::sqrt(std::max(0.0, (second ? cv.ss_b : cv.ss_a) / cv.weight)) * phys;
+}
+
+// Segments where the term's contribution is largest (mean |x theta| over the segment's cells).
+std::vector<std::string> Evidence(const DiagnosisData& data, const Layout& layout, const BaselineState& st,
+                                  const Candidate& cand, const Eigen::VectorXd& theta) {
+  std::vector<double> sum(data.segments.size(), 0.0), w(data.segments.size(), 0.0);
+  for (const DiagnosisCell& c : data.cells) {
+    const Eigen::VectorXd x = Row(layout, c, st);
+    double v = 0.0;
+    for (size_t i = 0; i < cand.columns.size(); ++i) v += x[cand.columns[i]] * theta[static_cast<int>(i)];
+    sum[c.segment] += c.rows * std::abs(v);
+    w[c.segment] += c.rows;
+  }
+  std::vector<int> order(data.segments.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return sum[a] / std::max(1.0, w[a]) > sum[b] / std::max(1.0, w[b]); });
+  std::vector<std::string> out;
+  for (size_t i = 0; i < order.size() && i < 3; ++i) out.push_back(data.segments[order[i]].label);
+  return out;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Segments far outside the others, and abrupt steps inside long segments, of the final residual.
+void LocateStructure(const DiagnosisData& data, const Layout& layout, const BaselineState& st,
+                     const ClusteredFit& fit, const std::vector<int>& subset, const ChannelData& y, double phys,
+                     std::vector<Unexplained>* out) {
+  const int ch = layout.channel;
+  const size_t segs = data.segments.size();
+  std::vector<double> sum(segs, 0.0), w(segs, 0.0), var(segs, 0.0);
+  std::vector<std::vector<double>> series(segs);
+  for (size_t i = 0; i < data.cells.size(); ++i) {
+    const DiagnosisCell& c = data.cells[i];
+    const Eigen::VectorXd x = Row(layout, c, st);
+    double pred = 0.0;
+    for (size_t j = 0; j < subset.size(); ++j) pred += x[subset[j]] * fit.theta[static_cast<int>(j)];
+    const double r = y.y[i] - pred;
+    sum[c.segment] += c.rows * r;
+    w[c.segment] += c.rows;
+    var[c.segment] += c.y_var[ch] * c.rows;
+    series[c.segment].push_back(r);
+  }
+  std::vector<double> mean(segs, 0.0);
+  for (size_t s = 0; s < segs; ++s) mean[s] = w[s] > 0 ? sum[s] / w[s] : 0.0;
+  const double med = Median(mean);
+  std::vector<double> dev;
+  for (double m : mean) dev.push_back(std::abs(m - med));
+  const double robust = 1.4826 * Median(dev);
+  for (size_t s = 0; s < segs; ++s) {
+    if (!(w[s] > 0)) continue;
+    const double white_se = std::sqrt(var[s] / w[s] / w[s]);
+    const double d = mean[s] - med;
+    if (std::abs(d) > kOutlierRobustZ * robust && std::abs(d) > kOutlierNoiseZ * white_se && robust > 0.0) {
+      out->push_back({kImuChannelNames[ch], data.segments[s].label,
+                      fmt::format("segment mean {:+.3g} {} away from the other segments' (robust spread {:.2g}); "
+                                  "no candidate term explains it", d * phys, RmsUnit(ch), robust * phys),
+                      d * phys, RmsUnit(ch)});
+    }
+  }
+  for (size_t s = 0; s < segs; ++s) {
+    const std::vector<double>& r = series[s];
+    const int n = static_cast<int>(r.size());
+    const int L = kStepWindowCells;
+    if (n < 4 * L) continue;
+    // d_i: mean of the next L cells minus mean of the previous L. Its robust spread over the
+    // segment holds whatever wander the residual has (gyro bias flicker), so only a change far
+    // beyond the segment's own wander counts as a step.
+    std::vector<double> d;
+    double left = std::accumulate(r.begin(), r.begin() + L, 0.0);
+    double right = std::accumulate(r.begin() + L, r.begin() + 2 * L, 0.0);
+    for (int i = L; i + L <= n; ++i) {
+      if (i > L) {
+        left += r[i - 1] - r[i - 1 - L];
+        right += r[i + L - 1] - r[i - 1];
+      }
+      d.push_back((right - left) / L);
+    }
+    const double d_med = Median(d);
+    std::vector<double> dev_d;
+    for (double v : d) dev_d.push_back(std::abs(v - d_med));
+    const double spread = 1.4826 * Median(dev_d);
+    std::vector<double> diff;
+    for (int i = 1; i < n; ++i) diff.push_back(std::abs(r[i] - r[i - 1]));
+    const double white = 1.4826 * Median(diff) / std::sqrt(2.0) * std::sqrt(2.0 / L);
+    size_t at = 0;
+    for (size_t i = 0; i < d.size(); ++i) {
+      if (std::abs(d[i] - d_med) > std::abs(d[at] - d_med)) at = i;
+    }
+    const double z = spread > 0.0 ? std::abs(d[at] - d_med) / spread : 0.0;
+    if (z > kStepZ && std::abs(d[at]) > kOutlierNoiseZ * white) {
+      double t_at = 0.0;
+      int k = 0;
+      for (const DiagnosisCell& c : data.cells) {
+        if (c.segment == static_cast<int>(s) && k++ == static_cast<int>(at) + L) t_at = c.t_first_s;
+      }
+      out->push_back({kImuChannelNames[ch], fmt::format("{} at t = {:.1f} s", data.segments[s].label, t_at),
+                      fmt::format("a step of {:+.3g} {} ({:.0f} times the segment's own wander over {} s); no "
+                                  "candidate term explains it", d[at] * phys, RmsUnit(ch), z, L),
+                      d[at] * phys, RmsUnit(ch)});
+    }
+  }
+}
+
+std::vector<double> Residuals(const DiagnosisData& data, const Layout& layout, const BaselineState& st,
+                              const ClusteredFit& fit, const std::vector<int>& subset, const ChannelData& y) {
+  std::vector<double> r;
+  for (size_t i = 0; i < data.cells.size(); ++i) {
+    const Eigen::VectorXd x = Row(layout, data.cells[i], st);
+    double pred = 0.0;
+    for (size_t j = 0; j < subset.size(); ++j) pred += x[subset[j]] * fit.theta[static_cast<int>(j)];
+    r.push_back(y.y[i] - pred);
+  }
+  return r;
+}
+
+void FillPlot(const DiagnosisData& data, const std::vector<double>& base, const std::vector<double>& final,
+              int ch, double phys, ChannelFitSummary* out) {
+  const size_t stride = std::max<size_t>(1, data.cells.size() / kPlotCells + 1);
+  for (size_t i = 0; i < data.cells.size(); i += stride) {
+    out->plot_t_s.push_back(data.cells[i].t_mean_s);
+    out->plot_temp_c.push_back(data.cells[i].temp_c[kChannelThermometer[ch]]);
+    out->plot_residual_baseline.push_back(base[i] * phys);
+    out->plot_residual_final.push_back(final[i] * phys);
+  }
+}
+
+std::vector<int> BaselineSubset(const ClusteredLeastSquares& ls, const Layout& layout, std::vector<std::string>* notes) {
+  std::vector<int> subset;
+  for (int j = 0; j < layout.baseline; ++j) {
+    std::vector<int> trial = With(subset, {j});
+    if (!ls.FullRank(trial)) {
+      notes->push_back(fmt::format("{}: baseline term {} is not identifiable from this recording (left out)",
+                                   kImuChannelNames[layout.channel], layout.names[j]));
+      continue;
+    }
+    if (j > kOffset && !ls.Fit(trial).jackknife_ok) {
+      notes->push_back(fmt::format("{}: baseline term {} rests on a single segment (left out)",
+                                   kImuChannelNames[layout.channel], layout.names[j]));
+      continue;
+    }
+    subset = trial;
+  }
+  return subset;
+}
+
+// sigma_e^2 (per row) from the cell-to-cell differences of the baseline residual within segments,
+// sigma_w^2 from the segments' mean residuals beyond it (method of moments on medians, robust to a
+// few segments the baseline cannot follow). Their ratio sets the random intercept per segment.
+double OffsetRatio(const DiagnosisData& data, const std::vector<double>& residual) {
+  std::vector<double> diff, rows;
+  std::vector<double> sum(data.segments.size(), 0.0), w(data.segments.size(), 0.0);
+  for (size_t i = 0; i < data.cells.size(); ++i) {
+    const DiagnosisCell& c = data.cells[i];
+    if (i > 0 && data.cells[i - 1].segment == c.segment) diff.push_back(std::abs(residual[i] - residual[i - 1]));
+    rows.push_back(c.rows);
+    sum[c.segment] += c.rows * residual[i];
+    w[c.segment] += c.rows;
+  }
+  if (diff.empty()) return std::numeric_limits<double>::infinity();
+  const double sigma_cell = 1.4826 * Median(diff) / std::sqrt(2.0);
+  const double sigma_e2 = sigma_cell * sigma_cell * Median(rows);
+  std::vector<double> excess;
+  for (size_t s = 0; s < sum.size(); ++s) {
+    if (w[s] > 0.0) excess.push_back(std::pow(sum[s] / w[s], 2) - sigma_e2 / w[s]);
+  }
+  const double sigma_w2 = std::max(0.0, Median(excess) / 0.455);
+  return sigma_w2 > 0.0 ? sigma_e2 / sigma_w2 : std::numeric_limits<double>::infinity();
+}
+
+struct ChannelResult {
+  std::vector<Finding> findings;
+  std::vector<Unexplained> unexplained;
+  std::vector<DetectionLimit> limits;
+  ChannelFitSummary summary;
+};
+
+ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const DiagnosisOptions& options, double alpha,
+                              std::vector<std::string>* notes) {
+  ChannelResult out;
+  Layout layout = MakeLayout(ch, options.uncalibrated_candidates);
+  ChannelData y = CentredOutput(data, ch);
+  BaselineState st;
+  ClusteredLeastSquares ls = Accumulate(data, layout, y, st);
+  const std::vector<int> base = BaselineSubset(ls, layout, notes);
+  const ClusteredFit base_fit0 = ls.Fit(base);
+  if (!base_fit0.ok) throw ImuInputError(data.serial + ": " + kImuChannelNames[ch] + ": the baseline cannot be fitted");
+  st = StateFrom(base_fit0, base);
+  y.offset_ratio = OffsetRatio(data, Residuals(data, layout, st, base_fit0, base, y));
+  ls = Accumulate(data, layout, y, st);
+
+  std::vector<int> selected = base;
+  std::vector<const Candidate*> chosen;
+  ClusteredFit selected_fit = ls.Fit(selected);
+  while (static_cast<int>(chosen.size()) < options.max_findings_per_channel) {
+    const Candidate* best = nullptr;
+    Test best_test;
+    for (const Candidate& cand : layout.candidates) {
+      const bool taken = std::any_of(chosen.begin(), chosen.end(), [&](const Candidate* c) { return c->effect == cand.effect; });
+      if (taken) continue;
+      Test t = RunTest(ls, selected, selected_fit, cand);
+      if (!t.testable || t.p_value >= alpha || t.gain <= 0.0) continue;
+      if (best == nullptr || t.p_value < best_test.p_value) {
+        best = &cand;
+        best_test = std::move(t);
+      }
+    }
+    if (best == nullptr) break;
+    chosen.push_back(best);
+    selected = best_test.subset;
+    selected_fit = best_test.fit;
+  }
+  // Rebuild the dependent columns from the final baseline once.
+  if (!chosen.empty()) {
+    const BaselineState refined = StateFrom(selected_fit, selected);
+    ClusteredLeastSquares ls2 = Accumulate(data, layout, y, refined);
+    ClusteredFit fit2 = ls2.Fit(selected);
+    if (fit2.ok && fit2.jackknife_ok) {
+      st = refined;
+      ls = std::move(ls2);
+      selected_fit = std::move(fit2);
+    }
+  }
+  const double phys = PhysicalScale(ch, st);
+  const ClusteredFit base_fit = ls.Fit(base);
+
+  const double tcrit = TCritical(alpha, selected_fit.clusters);
+  for (const Candidate* cand : chosen) {
+    std::vector<int> without;
+    for (int col : selected) {
+      if (std::find(cand->columns.begin(), cand->columns.end(), col) == cand->columns.end()) without.push_back(col);
+    }
+    const ClusteredFit fit_without = ls.Fit(without);
+    std::vector<int> pos;
+    for (int col : cand->columns) pos.push_back(static_cast<int>(std::find(selected.begin(), selected.end(), col) - selected.begin()));
+    Eigen::VectorXd theta(static_cast<int>(pos.size())), se(static_cast<int>(pos.size()));
+    for (size_t i = 0; i < pos.size(); ++i) {
+      theta[static_cast<int>(i)] = selected_fit.theta[pos[i]];
+      se[static_cast<int>(i)] = std::sqrt(selected_fit.covariance(pos[i], pos[i]));
+    }
+    Finding f;
+    f.effect = cand->effect;
+    f.channel = kImuChannelNames[ch];
+    f.components = Components(*cand, theta, se, ch, phys);
+    f.time_constant_s = cand->tau_s;
+    f.held_out_rms_before = HeldOutRms(fit_without, selected_fit, false, phys);
+    f.held_out_rms_after = HeldOutRms(fit_without, selected_fit, true, phys);
+    f.rms_unit = RmsUnit(ch);
+    f.evidence = Evidence(data, layout, st, *cand, theta);
+    f.words = Words(*cand, f.components, ch);
+    const Test t = RunTest(ls, without, fit_without, *cand);
+    f.wald_p_value = t.p_value;
+    out.findings.push_back(std::move(f));
+  }
+  for (const Candidate& cand : layout.candidates) {
+    DetectionLimit lim;
+    lim.effect = cand.effect + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
+    lim.channel = kImuChannelNames[ch];
+    const bool is_chosen = std::find(chosen.begin(), chosen.end(), &cand) != chosen.end();
+    std::vector<int> others;
+    for (int col : selected) {
+      if (std::find(cand.columns.begin(), cand.columns.end(), col) == cand.columns.end()) others.push_back(col);
+    }
+    const Test t = RunTest(ls, others, is_chosen ? ls.Fit(others) : selected_fit, cand);
+    if (!t.fit.ok || !t.fit.jackknife_ok || !t.note.empty()) {
+      lim.note = t.note;
+    } else {
+      const int q = static_cast<int>(cand.columns.size());
+      const Eigen::VectorXd se = t.fit.covariance.bottomRightCorner(q, q).diagonal().cwiseSqrt();
+      const Eigen::VectorXd limit = se * (tcrit + options.power_z);
+      lim.limits = Components(cand, limit, se, ch, phys);
+      for (FindingComponent& c : lim.limits) c.magnitude = std::abs(c.magnitude);
+    }
+    out.limits.push_back(std::move(lim));
+  }
+  std::vector<double> white;
+  for (const DiagnosisCell& c : data.cells) white.push_back(std::sqrt(c.y_var[ch] / std::max(1, c.rows)));
+  out.summary.channel = kImuChannelNames[ch];
+  out.summary.unit = RmsUnit(ch);
+  out.summary.held_out_rms_baseline = HeldOutRms(base_fit, selected_fit, false, phys);
+  out.summary.held_out_rms_final = HeldOutRms(base_fit, selected_fit, true, phys);
+  out.summary.white_noise_rms = Median(white) * phys;
+  for (int col : base) out.summary.baseline_terms.push_back(layout.names[col]);
+  FillPlot(data, Residuals(data, layout, st, base_fit, base, y), Residuals(data, layout, st, selected_fit, selected, y),
+           ch, phys, &out.summary);
+  LocateStructure(data, layout, st, selected_fit, selected, y, phys, &out.unexplained);
+  return out;
+}
+
+}  // namespace
+
+json FindingComponent::ToJson() const {
+  return {{"name", name}, {"magnitude", magnitude}, {"standard_error", standard_error}, {"unit", unit}};
+}
+
+json Finding::ToJson() const {
+  json comps = json::array();
+  for (const FindingComponent& c : components) comps.push_back(c.ToJson());
+  json j = {{"effect", effect}, {"channels", json::array({channel})}, {"components", comps},
+            {"wald_p_value", wald_p_value}, {"held_out_rms_before", held_out_rms_before},
+            {"held_out_rms_after", held_out_rms_after}, {"rms_unit", rms_unit}, {"evidence", evidence},
+            {"words", words}};
+  if (!components.empty()) {
+    j["magnitude"] = components[0].magnitude;
+    j["standard_error"] = components[0].standard_error;
+    j["unit"] = components[0].unit;
+  }
+  if (time_constant_s) j["time_constant_s"] = *time_constant_s;
+  return j;
+}
+
+json Unexplained::ToJson() const {
+  return {{"channel", channel}, {"where", where}, {"description", description}, {"size", size}, {"unit", unit}};
+}
+
+json DetectionLimit::ToJson() const {
+  json j = {{"effect", effect}, {"channel", channel}};
+  if (limits.empty()) {
+    j["limits"] = nullptr;
+    j["note"] = note;
+  } else {
+    json l = json::array();
+    for (const FindingComponent& c : limits) l.push_back({{"name", c.name}, {"smallest_detectable", c.magnitude}, {"unit", c.unit}});
+    j["limits"] = l;
+  }
+  return j;
+}
+
+json ChannelFitSummary::ToJson() const {
+  return {{"channel", channel}, {"unit", unit}, {"held_out_rms_baseline", held_out_rms_baseline},
+          {"held_out_rms_final", held_out_rms_final}, {"white_noise_rms_per_cell", white_noise_rms},
+          {"baseline_terms", baseline_terms}};
+}
+
+json UnitDiagnosis::ToJson() const {
+  json f = json::array(), u = json::array(), d = json::array(), c = json::array();
+  for (const Finding& x : findings) f.push_back(x.ToJson());
+  for (const Unexplained& x : unexplained) u.push_back(x.ToJson());
+  for (const DetectionLimit& x : detection_limits) d.push_back(x.ToJson());
+  for (const ChannelFitSummary& x : channels) c.push_back(x.ToJson());
+  return {{"serial", serial}, {"rows", rows}, {"segments", segments}, {"cells", cells},
+          {"temperature_span_c", temp_span_c}, {"thermometers_fitted", thermometers_fitted},
+          {"tests", tests}, {"per_test_alpha", test_alpha}, {"findings", f}, {"unexplained", u},
+          {"detection_limits", d}, {"channels", c}, {"notes", notes}};
+}
+
+UnitDiagnosis DiagnoseImu(const DiagnosisData& data, const DiagnosisOptions& options) {
+  UnitDiagnosis out;
+  out.serial = data.serial;
+  out.rows = data.rows;
+  out.segments = static_cast<int>(data.segments.size());
+  out.cells = static_cast<int>(data.cells.size());
+  out.temp_span_c = data.temp_span_c;
+  out.thermometers_fitted = data.thermometers[0].fitted && data.thermometers[1].fitted && data.thermometers[2].fitted;
+  if (!out.thermometers_fitted) {
+    out.notes.push_back("the recording's soaks span less than 5 degC: thermometers use the datasheet's 110.1 counts/degC");
+  }
+  out.tests = CandidateTests(options.uncalibrated_candidates);
+  out.test_alpha = options.family_alpha / out.tests;
+  for (int ch = 0; ch < kImuChannels; ++ch) {
+    ChannelResult r = DiagnoseChannel(data, ch, options, out.test_alpha, &out.notes);
+    for (Finding& f : r.findings) out.findings.push_back(std::move(f));
+    for (Unexplained& u : r.unexplained) out.unexplained.push_back(std::move(u));
+    for (DetectionLimit& l : r.limits) out.detection_limits.push_back(std::move(l));
+    out.channels.push_back(std::move(r.summary));
+  }
+  return out;
+}
+
+}  // namespace adahrs::calib
