@@ -31,8 +31,22 @@ constexpr int kStepWindowCells = 30;
 // Column indices of the baseline, per channel kind.
 enum Baseline { kOffset = 0, kTemp1, kTemp2, kTemp3, kStim0, kStim1, kStim2, kRate2, kRate3 };
 
+enum class Effect { kDieLag, kScaleTempco, kGSensitivity, kThermalHysteresis, kWarmUp, kAccelNonlinearity };
+
+const char* EffectName(Effect e) {
+  switch (e) {
+    case Effect::kDieLag: return "die_thermal_lag";
+    case Effect::kScaleTempco: return "scale_factor_tempco";
+    case Effect::kGSensitivity: return "gyro_g_sensitivity";
+    case Effect::kThermalHysteresis: return "thermal_hysteresis";
+    case Effect::kWarmUp: return "self_heating_warm_up";
+    case Effect::kAccelNonlinearity: return "accel_nonlinearity";
+  }
+  return "?";
+}
+
 struct Candidate {
-  std::string effect;
+  Effect effect;
   std::vector<std::string> components;
   std::optional<double> tau_s;
   std::vector<int> columns;  // filled by the layout
@@ -63,20 +77,20 @@ Layout MakeLayout(int channel, bool uncalibrated) {
   }
   l.baseline = static_cast<int>(l.names.size());
   // A gyro's thermometer is its own die's TEMP pin: no lag or warm-up can open between the two.
-  if (!gyro) l.candidates.push_back({"die_thermal_lag", {"delay"}, {}, {}});
-  l.candidates.push_back({"scale_factor_tempco", {"tc1", "tc2"}, {}, {}});
-  if (gyro) l.candidates.push_back({"gyro_g_sensitivity", {"x", "y", "z"}, {}, {}});
+  if (!gyro) l.candidates.push_back({Effect::kDieLag, {"delay"}, {}, {}});
+  l.candidates.push_back({Effect::kScaleTempco, {"tc1", "tc2"}, {}, {}});
+  if (gyro) l.candidates.push_back({Effect::kGSensitivity, {"x", "y", "z"}, {}, {}});
   if (uncalibrated) {
-    l.candidates.push_back({"thermal_hysteresis", {"half_loop"}, {}, {}});
+    l.candidates.push_back({Effect::kThermalHysteresis, {"half_loop"}, {}, {}});
     if (!gyro) {
-      for (double tau : kWarmUpTau_s) l.candidates.push_back({"self_heating_warm_up", {"initial_excess"}, tau, {}});
-      l.candidates.push_back({"accel_nonlinearity", {"k2"}, {}, {}});
+      for (double tau : kWarmUpTau_s) l.candidates.push_back({Effect::kWarmUp, {"initial_excess"}, tau, {}});
+      l.candidates.push_back({Effect::kAccelNonlinearity, {"k2"}, {}, {}});
     }
   }
   for (Candidate& c : l.candidates) {
     for (const std::string& comp : c.components) {
       c.columns.push_back(static_cast<int>(l.names.size()));
-      l.names.push_back(c.effect + (c.tau_s ? fmt::format("_{:.0f}s", *c.tau_s) : "") + "." + comp);
+      l.names.push_back(EffectName(c.effect) + (c.tau_s ? fmt::format("_{:.0f}s", *c.tau_s) : "") + "." + comp);
     }
   }
   return l;
@@ -111,18 +125,18 @@ Eigen::VectorXd Row(const Layout& layout, const DiagnosisCell& c, const Baseline
   const double dt_c = c.temp_c[k] - kTempRef_c;
   for (const Candidate& cand : layout.candidates) {
     const int col = cand.columns[0];
-    if (cand.effect == "die_thermal_lag") x[col] = -dudt_per_c * c.dtemp_dt_c_per_s[k];
-    if (cand.effect == "thermal_hysteresis") x[col] = c.last_change_sense[k];
-    if (cand.effect == "self_heating_warm_up") x[col] = dudt_per_c * std::exp(-c.t_since_start_s / *cand.tau_s);
-    if (cand.effect == "scale_factor_tempco") {
+    if (cand.effect == Effect::kDieLag) x[col] = -dudt_per_c * c.dtemp_dt_c_per_s[k];
+    if (cand.effect == Effect::kThermalHysteresis) x[col] = c.last_change_sense[k];
+    if (cand.effect == Effect::kWarmUp) x[col] = dudt_per_c * std::exp(-c.t_since_start_s / *cand.tau_s);
+    if (cand.effect == Effect::kScaleTempco) {
       x[col] = stim_part * dt_c;
       x[col + 1] = stim_part * dt_c * dt_c;
     }
-    if (cand.effect == "accel_nonlinearity") {
+    if (cand.effect == Effect::kAccelNonlinearity) {
       const double f = c.f_B_g[kChannelAxis[ch]];
       x[col] = std::abs(state.stim[kChannelAxis[ch]]) * f * f;
     }
-    if (cand.effect == "gyro_g_sensitivity") {
+    if (cand.effect == Effect::kGSensitivity) {
       for (int j = 0; j < 3; ++j) x[col + j] = c.f_B_g[j];
     }
   }
@@ -239,12 +253,12 @@ std::vector<FindingComponent> Components(const Candidate& cand, const Eigen::Vec
     const int k = static_cast<int>(i);
     double scale = 1.0;
     std::string unit;
-    if (cand.effect == "die_thermal_lag") unit = "s";
-    if (cand.effect == "thermal_hysteresis") { scale = phys; unit = RmsUnit(ch); }
-    if (cand.effect == "self_heating_warm_up") unit = "degC";
-    if (cand.effect == "scale_factor_tempco") { scale = 1e6; unit = i == 0 ? "ppm/degC" : "ppm/degC^2"; }
-    if (cand.effect == "accel_nonlinearity") { scale = 1000.0; unit = "mg/g^2"; }
-    if (cand.effect == "gyro_g_sensitivity") { scale = phys; unit = "dps/g"; }
+    if (cand.effect == Effect::kDieLag) unit = "s";
+    if (cand.effect == Effect::kThermalHysteresis) { scale = phys; unit = RmsUnit(ch); }
+    if (cand.effect == Effect::kWarmUp) unit = "degC";
+    if (cand.effect == Effect::kScaleTempco) { scale = 1e6; unit = i == 0 ? "ppm/degC" : "ppm/degC^2"; }
+    if (cand.effect == Effect::kAccelNonlinearity) { scale = 1000.0; unit = "mg/g^2"; }
+    if (cand.effect == Effect::kGSensitivity) { scale = phys; unit = "dps/g"; }
     out.push_back({cand.components[i], theta[k] * scale, se[k] * scale, unit});
   }
   return out;
@@ -254,24 +268,24 @@ std::string Words(const Candidate& cand, const std::vector<FindingComponent>& c,
   const std::string name = kImuChannelNames[ch];
   const std::string thermometer = std::string("TEMP ") + "xyz"[kChannelThermometer[ch]];
   auto pm = [](const FindingComponent& x) { return fmt::format("{:.3g} ± {:.2g} {}", x.magnitude, x.standard_error, x.unit); };
-  if (cand.effect == "die_thermal_lag") {
+  if (cand.effect == Effect::kDieLag) {
     return fmt::format("{} follows its thermometer ({}) {} late: die thermal lag between the sensor and its "
                        "thermometer is missing from the model", name, thermometer, pm(c[0]));
   }
-  if (cand.effect == "thermal_hysteresis") {
+  if (cand.effect == Effect::kThermalHysteresis) {
     return fmt::format("{} reads {} higher after heating than after cooling (half the loop): thermal "
                        "hysteresis is missing from the model", name, pm(c[0]));
   }
-  if (cand.effect == "self_heating_warm_up") {
+  if (cand.effect == Effect::kWarmUp) {
     return fmt::format("{}'s die starts {} above its thermometer ({}) at power-on and settles with tau ≈ "
                        "{:.0f} s: self-heating warm-up is missing from the model",
                        name, pm(c[0]), thermometer, *cand.tau_s);
   }
-  if (cand.effect == "scale_factor_tempco") {
+  if (cand.effect == Effect::kScaleTempco) {
     return fmt::format("{}'s scale factor changes {} and {}: scale factor vs temperature is missing from "
                        "the model", name, pm(c[0]), pm(c[1]));
   }
-  if (cand.effect == "accel_nonlinearity") {
+  if (cand.effect == Effect::kAccelNonlinearity) {
     return fmt::format("{} deviates {} of its input squared: second-order accelerometer nonlinearity is "
                        "missing from the model", name, pm(c[0]));
   }
@@ -316,24 +330,30 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+std::vector<double> Residuals(const DiagnosisData& data, const Layout& layout, const BaselineState& st,
+                              const ClusteredFit& fit, const std::vector<int>& subset, const ChannelData& y) {
+  std::vector<double> r;
+  for (size_t i = 0; i < data.cells.size(); ++i) {
+    const Eigen::VectorXd x = Row(layout, data.cells[i], st);
+    double pred = 0.0;
+    for (size_t j = 0; j < subset.size(); ++j) pred += x[subset[j]] * fit.theta[static_cast<int>(j)];
+    r.push_back(y.y[i] - pred);
+  }
+  return r;
+}
+
 // Segments far outside the others, and abrupt steps inside long segments, of the final residual.
-void LocateStructure(const DiagnosisData& data, const Layout& layout, const BaselineState& st,
-                     const ClusteredFit& fit, const std::vector<int>& subset, const ChannelData& y, double phys,
+void LocateStructure(const DiagnosisData& data, int ch, const std::vector<double>& residual, double phys,
                      std::vector<Unexplained>* out) {
-  const int ch = layout.channel;
   const size_t segs = data.segments.size();
   std::vector<double> sum(segs, 0.0), w(segs, 0.0), var(segs, 0.0);
   std::vector<std::vector<double>> series(segs);
   for (size_t i = 0; i < data.cells.size(); ++i) {
     const DiagnosisCell& c = data.cells[i];
-    const Eigen::VectorXd x = Row(layout, c, st);
-    double pred = 0.0;
-    for (size_t j = 0; j < subset.size(); ++j) pred += x[subset[j]] * fit.theta[static_cast<int>(j)];
-    const double r = y.y[i] - pred;
-    sum[c.segment] += c.rows * r;
+    sum[c.segment] += c.rows * residual[i];
     w[c.segment] += c.rows;
     var[c.segment] += c.y_var[ch] * c.rows;
-    series[c.segment].push_back(r);
+    series[c.segment].push_back(residual[i]);
   }
   std::vector<double> mean(segs, 0.0);
   for (size_t s = 0; s < segs; ++s) mean[s] = w[s] > 0 ? sum[s] / w[s] : 0.0;
@@ -394,18 +414,6 @@ void LocateStructure(const DiagnosisData& data, const Layout& layout, const Base
                       d[at] * phys, RmsUnit(ch)});
     }
   }
-}
-
-std::vector<double> Residuals(const DiagnosisData& data, const Layout& layout, const BaselineState& st,
-                              const ClusteredFit& fit, const std::vector<int>& subset, const ChannelData& y) {
-  std::vector<double> r;
-  for (size_t i = 0; i < data.cells.size(); ++i) {
-    const Eigen::VectorXd x = Row(layout, data.cells[i], st);
-    double pred = 0.0;
-    for (size_t j = 0; j < subset.size(); ++j) pred += x[subset[j]] * fit.theta[static_cast<int>(j)];
-    r.push_back(y.y[i] - pred);
-  }
-  return r;
 }
 
 void FillPlot(const DiagnosisData& data, const std::vector<double>& base, const std::vector<double>& final,
@@ -533,7 +541,7 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
       se[static_cast<int>(i)] = std::sqrt(selected_fit.covariance(pos[i], pos[i]));
     }
     Finding f;
-    f.effect = cand->effect;
+    f.effect = EffectName(cand->effect);
     f.channel = kImuChannelNames[ch];
     f.components = Components(*cand, theta, se, ch, phys);
     f.time_constant_s = cand->tau_s;
@@ -548,7 +556,7 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
   }
   for (const Candidate& cand : layout.candidates) {
     DetectionLimit lim;
-    lim.effect = cand.effect + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
+    lim.effect = EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
     lim.channel = kImuChannelNames[ch];
     const bool is_chosen = std::find(chosen.begin(), chosen.end(), &cand) != chosen.end();
     std::vector<int> others;
@@ -575,9 +583,9 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
   out.summary.held_out_rms_final = HeldOutRms(base_fit, selected_fit, true, phys);
   out.summary.white_noise_rms = Median(white) * phys;
   for (int col : base) out.summary.baseline_terms.push_back(layout.names[col]);
-  FillPlot(data, Residuals(data, layout, st, base_fit, base, y), Residuals(data, layout, st, selected_fit, selected, y),
-           ch, phys, &out.summary);
-  LocateStructure(data, layout, st, selected_fit, selected, y, phys, &out.unexplained);
+  const std::vector<double> residual = Residuals(data, layout, st, selected_fit, selected, y);
+  FillPlot(data, Residuals(data, layout, st, base_fit, base, y), residual, ch, phys, &out.summary);
+  LocateStructure(data, ch, residual, phys, &out.unexplained);
   return out;
 }
 

@@ -204,7 +204,7 @@ TEST(ImuDiagnosis, FindsScaleFactorTempcoVisibleOnlyAwayFromTheCalibrationTemper
   EXPECT_LE(missed, 5);
 }
 
-TEST(ImuDiagnosis, ScaleFactorTempcoIsNotExcitedByOneCalibrationTemperature) {
+TEST(ImuDiagnosis, ScaleFactorTempcoIsUndetectableFromOneCalibrationTemperature) {
   Shape shape;
   ImuUnitParams p = Nominal(301);
   for (auto& g : p.gyros) g.effects.sensitivity_tempco = true;
