@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include "sensor_sim/ads1254.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
 
@@ -55,8 +54,12 @@ void CheckFinite(double value, const char* column, int line, const std::string& 
   }
 }
 
+// The ADS1254's output word: 24-bit two's complement (datasheet), so its rails are these codes.
+constexpr int32_t kAdcMaxCode = (1 << 23) - 1;
+constexpr int32_t kAdcMinCode = -(1 << 23);
+
 void CheckNotSaturated(int32_t code, const char* column, int line, const std::string& source) {
-  if (code >= sensor_sim::Ads1254::kMaxCode || code <= sensor_sim::Ads1254::kMinCode) {
+  if (code >= kAdcMaxCode || code <= kAdcMinCode) {
     throw std::runtime_error(fmt::format(
         "{}/ads.csv line {} column {}: code {} is at the ADS1254 rail (saturated input)", source,
         line, column, code));

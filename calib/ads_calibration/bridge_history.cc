@@ -5,31 +5,30 @@
 #include "calib/evaluation/ads_tolerance.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/preisach_hysteresis.h"
-#include "sensor_sim/pressure_bridge.h"
+#include "calib/ads_calibration/unit_hysteresis_operator.h"
 
 namespace adahrs::calib {
 namespace {
 
 constexpr double kRoomTemperatureC = 25.0;
+// The model-1230 class: 0-15 psi absolute and differential (physics.md section 3.1, R); the
+// travel to a full hysteresis state 20 % of full scale and 20 degC (physics.md section 6 rows 4
+// and 7 give the loops' size, not their travel: an engineering estimate, E).
+constexpr double kFullScalePa = 15.0 * 6894.757293168;
+constexpr double kPressureSpanFractionFs = 0.20;
+constexpr double kThermalSpanC = 20.0;
 
 }  // namespace
 
 HysteresisSpans HysteresisSpans::Nominal() {
-  using sensor_sim::PressureBridgeKind;
-  using sensor_sim::PressureBridgeParams;
-  const PressureBridgeParams ps = PressureBridgeParams::Typical(PressureBridgeKind::kAbsolute);
-  const PressureBridgeParams pt = PressureBridgeParams::Typical(PressureBridgeKind::kDifferential);
-  return {ps.pressure_hysteresis_span_pct_fs / 100.0 * ps.full_scale_pa,
-          pt.pressure_hysteresis_span_pct_fs / 100.0 * pt.full_scale_pa,
-          ps.thermal_hysteresis_span_c};
+  return {kPressureSpanFractionFs * kFullScalePa, kPressureSpanFractionFs * kFullScalePa, kThermalSpanC};
 }
 
 std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>& points,
                                           const HysteresisSpans& spans) {
-  sensor_sim::PreisachHysteresis static_p(spans.static_pressure_pa);
-  sensor_sim::PreisachHysteresis impact_p(spans.impact_pressure_pa);
-  sensor_sim::PreisachHysteresis temperature(spans.temperature_c);
+  UnitHysteresisOperator static_p(spans.static_pressure_pa);
+  UnitHysteresisOperator impact_p(spans.impact_pressure_pa);
+  UnitHysteresisOperator temperature(spans.temperature_c);
   static_p.Update(sensor_sim::kIsaSeaLevelPressure_pa);
   impact_p.Update(0.0);
   temperature.Update(kRoomTemperatureC);
@@ -44,7 +43,7 @@ std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>
 
 StateBand EnvelopeStateBand(double x, double low, double high, double span) {
   auto after = [&](double first, double second) {
-    sensor_sim::PreisachHysteresis op(span);
+    UnitHysteresisOperator op(span);
     op.Update(first);
     op.Update(second);
     return op.Update(x);

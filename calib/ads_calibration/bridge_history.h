@@ -1,12 +1,12 @@
 // The hysteresis states of the ADS's two pressure bridges at each calibration point, from the
-// history the reference instruments imposed (shared/physics.md section 6 rows 4 and 7;
-// sensor_sim/pressure_bridge.h): a bridge's output carries S (h_P/2) s_P + S (h_T/2) s_T, where
+// history the reference instruments imposed (shared/physics.md section 6 rows 4 and 7): a
+// bridge's output carries S (h_P/2) s_P + S (h_T/2) s_T, where
 // s_P and s_T in [-1, 1] are Preisach states of pressure and of die temperature (-1 after a
 // rise, +1 after a fall, set by the extremes that are not wiped out). A single-valued surface
 // fitted to points recorded on one branch returns that branch, not the loop's centre; with the
 // states as regressors (tolerance_ads_strategy.h) it returns the centre.
 //
-// The states are those of the same Preisach operator (sensor_sim/preisach_hysteresis.h) driven by
+// The states are those of the Preisach operator the unit runs (unit_hysteresis_operator.h) driven by
 // the reference history in step order: the test set's static pressure (static bridge) and impact
 // pressure (pitot bridge), and the chamber temperature (both dies; after a soak the die sits at
 // the chamber's temperature). Between calibration points the test set and the chamber move
@@ -34,7 +34,7 @@ struct HysteresisSpans {
   double impact_pressure_pa = 0.0;
   double temperature_c = 0.0;       ///< likewise for the die temperature
 
-  /// The model-1230 class's nominal spans (sensor_sim::PressureBridgeParams::Typical).
+  /// The model-1230 class's spans as estimated (bridge_history.cc: 20 % of 15 psi, 20 degC, E).
   static HysteresisSpans Nominal();
 };
 

@@ -1,11 +1,39 @@
 #include "calib/imu_calibration/gyro_bias_covariance.h"
 
+#include <array>
 #include <cmath>
-
-#include "sensor_sim/gyro_bias_process.h"
 
 namespace adahrs::calib {
 namespace {
+
+// The calibration's own prior for a datasheet Allan floor B (header comment): flicker noise as
+// equal-variance first-order Gauss-Markov poles one decade apart, which gives a PSD ~ 1/f between
+// the corners and a flat Allan floor over the band where datasheets quote it.
+constexpr std::array<double, 4> kPoleCorrelationTimes_s = {5.0, 50.0, 500.0, 5000.0};
+constexpr double kFloorBandMin_s = 10.0;
+constexpr double kFloorBandMax_s = 5000.0;
+constexpr int kFloorBandPoints = 201;
+
+// Allan variance at tau of a unit-variance Gauss-Markov process of correlation time t
+// (IEEE Std 952-1997 Annex C): (2 t / tau) [1 - (3 - 4 e^-x + e^-2x) / (2x)], x = tau / t.
+double UnitPoleAvar(double tau_s, double t_s) {
+  const double x = tau_s / t_s;
+  return (2.0 * t_s / tau_s) * (1.0 - (3.0 - 4.0 * std::exp(-x) + std::exp(-2.0 * x)) / (2.0 * x));
+}
+
+// The pole standard deviation whose sum's Allan deviation, averaged over log(tau) in the band,
+// equals the floor B.
+double PoleSigmaForFloor(double floor_dps) {
+  double sum = 0.0;
+  for (int i = 0; i < kFloorBandPoints; ++i) {
+    const double u = static_cast<double>(i) / (kFloorBandPoints - 1);
+    const double tau_s = std::exp(std::log(kFloorBandMin_s) + u * std::log(kFloorBandMax_s / kFloorBandMin_s));
+    double avar = 0.0;
+    for (double t_s : kPoleCorrelationTimes_s) avar += UnitPoleAvar(tau_s, t_s);
+    sum += std::sqrt(avar);
+  }
+  return floor_dps / (sum / kFloorBandPoints);
+}
 
 // H(x) / T^2 for one correlation time (header comment).
 double H(double x_s, double t_s) {
@@ -26,7 +54,7 @@ Eigen::MatrixXd GyroBiasCovariance_dps2(const std::vector<ImuObservation>& obs,
   const long n = static_cast<long>(obs.size());
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
   if (bias_instability_dps <= 0.0) return k;
-  const double q = sensor_sim::GyroBiasProcess::PoleSigmaForFloor(bias_instability_dps);
+  const double q = PoleSigmaForFloor(bias_instability_dps);
   for (long i = 0; i < n; ++i) {
     for (long j = i; j < n; ++j) {
       if (obs[i].run != obs[j].run) continue;
@@ -34,7 +62,7 @@ Eigen::MatrixXd GyroBiasCovariance_dps2(const std::vector<ImuObservation>& obs,
       for (const TimeWindow& w1 : obs[i].windows) {
         for (const TimeWindow& w2 : obs[j].windows) {
           const double weight = (static_cast<double>(w1.rows) / obs[i].count) * (static_cast<double>(w2.rows) / obs[j].count);
-          for (double t_s : sensor_sim::GyroBiasProcess::kCorrelationTimes_s) {
+          for (double t_s : kPoleCorrelationTimes_s) {
             sum += weight * WindowMeanCovariance(w1.first_s, w1.last_s + frame_period_s, w2.first_s,
                                                  w2.last_s + frame_period_s, t_s);
           }

@@ -1,7 +1,10 @@
 // Covariance, between the means of calibration observations (imu_observations.h), of a gyro's
-// slowly wandering bias: the bias-instability process of the ADXRS150 model (sensor_sim/
-// gyro_bias_process.h: flicker noise as the sum of four Gauss-Markov processes with correlation
-// times 5, 50, 500 and 5000 s and equal variance q^2, q set by the Allan floor B).
+// slowly wandering bias, from the datasheet's Allan floor B: flicker noise written as the sum of
+// four Gauss-Markov processes with correlation times 5, 50, 500 and 5000 s and equal variance q^2,
+// q set so that their Allan deviation averaged over 10...5000 s (log tau) is B. This is the
+// calibration's own prior (IEEE Std 952 Annex C formulas); it has the same structure as the
+// simulator's generator, so a unit whose wander differs is not yet represented (the covariance
+// is not estimated from the recording).
 //
 // For one process of variance q^2 and correlation time T the covariance of the means over the
 // windows [a1, b1] and [a2, b2] (lengths L1, L2) is

@@ -3,8 +3,9 @@
 
 1. One-way folder dependencies: apps -> calib -> hil -> firmware_model / sensor_sim, and
    rig_sim -> hil + sensor_sim + firmware_model. calib never includes rig_sim.
-2. No inverse crime in diagnosis: calib/diagnosis/ (which turns recordings into findings) includes
-   nothing of sensor_sim/, the simulator that generates the recordings it is proven on.
+2. No inverse crime: calib/ code that turns recordings into constants, verdicts or diagnoses
+   includes none of the simulator's sensor models (only evaluation/, campaign/ and study/, which
+   judge against truth or draw units, may); calib/diagnosis/ includes nothing of sensor_sim/.
 3. firmware_model/target/ is target-clean for the 16-bit dsPIC: no floating point, heap,
    exceptions or STL containers.
 Prints every violation as file:line and exits 1 if there is any.
@@ -24,6 +25,11 @@ FORBID = {
 FORBID_SUBFOLDER = {
     "calib/diagnosis": ["sensor_sim", "rig_sim"],
 }
+SENSOR_MODELS = re.compile(
+    r'^\s*#\s*include\s*[<"]sensor_sim/(adxl210e|adxrs150|adxrs150_params|pressure_bridge|'
+    r'preisach_hysteresis|gyro_bias_process|imu_unit|ads_unit|ads1254|die_thermal|summed_adc|'
+    r'duty_cycle_modulator|oat_probe)\.h')
+MAY_USE_SENSOR_MODELS = ("evaluation", "campaign", "study", "studies")
 SOURCE_SUFFIXES = {".h", ".hpp", ".cc", ".cpp"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([./]*)([A-Za-z_]+)/')
 TARGET_BANNED = re.compile(
@@ -50,6 +56,14 @@ def main(root):
                 if match and match.group(2) in forbidden:
                     violations.append(f"{path.relative_to(root)}:{number}: {folder}/ must not "
                                       f"include {match.group(2)}/")
+    for path in sources(root / "calib"):
+        if path.relative_to(root / "calib").parts[0] in MAY_USE_SENSOR_MODELS:
+            continue
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            if SENSOR_MODELS.match(line):
+                violations.append(f"{path.relative_to(root)}:{number}: calib/ outside "
+                                  f"{', '.join(MAY_USE_SENSOR_MODELS[:3])} must not include a "
+                                  f"sensor model (no inverse crime)")
     for folder, forbidden in FORBID_SUBFOLDER.items():
         for path in sources(root / folder):
             for number, line in enumerate(path.read_text().splitlines(), 1):
