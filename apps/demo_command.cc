@@ -116,6 +116,15 @@ void PrintSummary(const calib::CampaignResult& result, double wall_s) {
                                q.quantity, q.worst, q.unit, q.verdict);
     }
   }
+  std::cout << "diagnosis of the IMU calibration runs against the nominal model ("
+            << (result.diagnosis_dir / "report.html").string() << "):\n";
+  for (const calib::UnitDiagnosis& u : result.diagnosis) {
+    std::cout << fmt::format("  {}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(),
+                             u.unexplained.size());
+  }
+  for (const calib::DiagnosisTruthLine& l : result.diagnosis_truth) {
+    std::cout << fmt::format("  {} {} {}: {}\n", l.serial, l.channel, l.effect, l.text);
+  }
   for (const std::string& s : result.not_run) std::cout << "not run: " << s << "\n";
   std::cout << "records: " << result.records_file.string() << " (adahrs units show SERIAL --db "
             << result.records_file.string() << ")\n";

@@ -6,6 +6,7 @@
 #include "calib/campaign/bench_runs.h"
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/campaign/campaign_fits.h"
+#include "calib/diagnosis/diagnosis_output.h"
 #include "calib/records/acceptance_records.h"
 #include "calib/records/records_sources.h"
 #include "calib/records/records_store.h"
@@ -70,7 +71,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   result.records_file = o.out_dir / "records.sqlite";
   RecordsStore records(result.records_file);
 
-  observer.Stage("1/7 calibration runs: IMU thermal + sensor calibration on the IMU bench, ADS "
+  observer.Stage("1/8 calibration runs: IMU thermal + sensor calibration on the IMU bench, ADS "
                  "calibration on the ADS bench, concurrently");
   const auto calibration =
       RunBenches(o, observer, {seq.imu_thermal, seq.imu_sensor}, {seq.ads_calibration}, stop);
@@ -79,7 +80,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   const std::filesystem::path sensor_run = RunDir(o, seq.imu_sensor);
   const std::filesystem::path ads_run = RunDir(o, seq.ads_calibration);
 
-  observer.Stage("2/7 fits: IMU reference and improved (joint) strategies, ADS reference and "
+  observer.Stage("2/8 fits: IMU reference and improved (joint) strategies, ADS reference and "
                  "improved (hysteresis-compensated pressure surfaces, ISA / CAS laws) strategies");
   const std::filesystem::path imu_reference_dir = o.out_dir / "fits" / "imu-reference";
   const std::filesystem::path imu_joint_dir = o.out_dir / "fits" / "imu-joint";
@@ -99,14 +100,14 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
                              imu_joint.size(), ads_reference.size()));
 
-  observer.Stage("3/7 download: improved IMU and ADS constants into every unit, read back bit for "
+  observer.Stage("3/8 download: improved IMU and ADS constants into every unit, read back bit for "
                  "bit, committed");
   const std::vector<UnitDownload> imu_downloads =
       DownloadStation(imu_station, imu_joint_dir, records);
   const std::vector<UnitDownload> ads_downloads =
       DownloadStation(ads_station, ads_improved_dir, records);
 
-  observer.Stage("4/7 acceptance runs in the calibrated modes, both benches concurrently");
+  observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
   const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
   observer.Stage("acceptance runs done:" + RunsText(acceptance));
   const std::filesystem::path imu_acceptance_run = RunDir(o, seq.imu_acceptance);
@@ -119,7 +120,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
 
   std::vector<EvaluatedQuantity> imu_eval, ads_eval;
   if (o.truth_dir) {
-    observer.Stage("5/7 evaluation against the rig's truth: every fit through the firmware "
+    observer.Stage("5/8 evaluation against the rig's truth: every fit through the firmware "
                    "compensator on the envelope grid");
     result.reference_evaluation = EvaluateAgainstTruth(imu_reference, *o.truth_dir,
                                                        imu_station.local_gravity_mps2,
@@ -134,7 +135,15 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
     result.not_run.push_back("evaluation against truth: no truth directory (not a simulated rig)");
   }
 
-  observer.Stage("6/7 report.html per run");
+  observer.Stage("6/8 diagnosis: the IMU calibration runs against the pipeline's nominal model "
+                 "(adahrs diagnose) -> " + (o.out_dir / "diagnosis").string());
+  result.diagnosis_dir = o.out_dir / "diagnosis";
+  const DiagnosisRun diagnosed = DiagnoseRuns({thermal_run, sensor_run}, std::nullopt);
+  WriteDiagnosis(diagnosed, result.diagnosis_dir);
+  result.diagnosis = diagnosed.units;
+  if (o.truth_dir) result.diagnosis_truth = CompareDiagnosisWithTruth(diagnosed.units, *o.truth_dir);
+
+  observer.Stage("7/8 report.html per run");
   const std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports = {
       {thermal_run, imu_joint_dir},
       {sensor_run, imu_joint_dir},
@@ -148,7 +157,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
     result.run_dirs.push_back(run);
   }
 
-  observer.Stage("7/7 production records: runs, constants versions, downloads -> " +
+  observer.Stage("8/8 production records: runs, constants versions, downloads -> " +
                  result.records_file.string());
   for (const std::filesystem::path& run : result.run_dirs) {
     records.AddRun(RunRecordFromDirectory(run));

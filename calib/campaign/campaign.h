@@ -13,8 +13,11 @@
 //                                                -> runs/<sequence>/acceptance/<serial>/acceptance.json
 //   5. evaluation against the simulator's truth when `truth_dir` is given (truth_evaluation.h),
 //      for every fit                                     -> fits/<…>/evaluation.json
-//   6. report.html per run (run_report.h) with the fit of its unit kind
-//   7. production records: every run, every constants file, every download -> records.sqlite
+//   6. diagnosis of the IMU calibration runs against the pipeline's nominal model
+//      (calib/diagnosis), beside the truth when `truth_dir` is given (diagnosis_truth.h)
+//                                                          -> diagnosis/diagnosis.json, report.html
+//   7. report.html per run (run_report.h) with the fit of its unit kind
+//   8. production records: every run, every constants file, every download -> records.sqlite
 // Stages that cannot run are listed in CampaignResult::not_run with the reason, never faked
 // (evaluation against truth on a real rig). A unit that fails acceptance is a result, not an error:
 // the campaign goes on to evaluation, reports and records.
@@ -31,8 +34,10 @@
 #include <vector>
 
 #include "calib/acceptance/acceptance_judge.h"
+#include "calib/campaign/diagnosis_truth.h"
 #include "calib/campaign/station_download.h"
 #include "calib/campaign/truth_evaluation.h"
+#include "calib/diagnosis/imu_diagnosis.h"
 #include "calib/executor/executor.h"
 #include "calib/executor/progress.h"
 
@@ -78,6 +83,10 @@ struct UnitOutcome {
 
 struct CampaignResult {
   std::vector<UnitOutcome> units;
+  /// The IMU calibration runs diagnosed against the pipeline's nominal model (diagnosis/).
+  std::vector<UnitDiagnosis> diagnosis;
+  std::vector<DiagnosisTruthLine> diagnosis_truth;  ///< empty without a truth directory
+  std::filesystem::path diagnosis_dir;
   std::vector<std::filesystem::path> run_dirs;
   std::vector<EvaluatedQuantity> reference_evaluation;  ///< IMU reference strategy, for comparison
   std::vector<EvaluatedQuantity> ads_reference_evaluation;  ///< ADS reference strategy, likewise

@@ -4,10 +4,13 @@
 // is the simulator; the diagnoser (calib/diagnosis) never includes it.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "calib/campaign/diagnosis_truth.h"
 #include "calib/diagnosis/diagnosis_cells.h"
 #include "calib/diagnosis/imu_diagnosis.h"
 #include "sensor_sim/im3_geometry.h"
@@ -275,6 +278,31 @@ TEST(ImuDiagnosis, LocatesABiasStepWithoutFittingAnyTerm) {
     }
   }
   EXPECT_TRUE(located);
+}
+
+// The campaign sets each finding beside the rig's truth file, and lists what the truth has that
+// the diagnosis did not report, with the diagnosis's reason.
+TEST(ImuDiagnosis, CampaignComparesFindingsWithTheTruthFile) {
+  ImuUnitParams p = Nominal(801);
+  for (auto& g : p.gyros) g.effects.g_sensitivity = true;
+  p.gyros[0].effects.sensitivity_tempco = true;  // not excited by one calibration temperature
+  const UnitDiagnosis d = Diagnose(Simulate(p, 9001, Shape{}));
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "diagnosis_truth";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / (p.serial + ".json")) << nlohmann::json{{"serial", p.serial}, {"params", p.ToJson()}}.dump();
+  const std::vector<DiagnosisTruthLine> lines = CompareDiagnosisWithTruth({d}, dir);
+  int found_gsens = 0, scale_not_found = 0;
+  for (const DiagnosisTruthLine& l : lines) {
+    std::printf("%s %s %s: %s\n", l.serial.c_str(), l.channel.c_str(), l.effect.c_str(), l.text.c_str());
+    if (l.effect == "gyro_g_sensitivity" && l.found) ++found_gsens;
+    if (l.effect == "scale_factor_tempco" && l.channel == "gx" && !l.found) {
+      ++scale_not_found;
+      EXPECT_NE(l.text.find("detection limit"), std::string::npos) << l.text;
+    }
+  }
+  EXPECT_EQ(found_gsens, 3);
+  EXPECT_EQ(scale_not_found, 1);
+  EXPECT_THROW(CompareDiagnosisWithTruth({d}, dir / "missing"), std::exception);
 }
 
 // The output contract: format, version, one finding's fields, every candidate's limit.
