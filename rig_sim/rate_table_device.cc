@@ -1,5 +1,7 @@
 #include "rig_sim/rate_table_device.h"
 
+#include "adahrs_build_paths.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <optional>
@@ -243,8 +245,9 @@ double RateTableDevice::Value(const std::string& operation, const std::string& m
 }
 
 std::string DefaultAtlCommandTablePath() {
-  // This source file sits in rig_sim/; the default table beside it in rig_sim/data/.
-  return (std::filesystem::path(__FILE__).parent_path() / "data" / "atl_commands.json").string();
+  // In the source tree (the generated header holds its absolute path, so the path does not depend
+  // on how the compiler was invoked: a compiler cache rewrites source paths relative).
+  return (std::filesystem::path(ADAHRS_SOURCE_DIR) / "rig_sim" / "data" / "atl_commands.json").string();
 }
 
 std::unique_ptr<SerialDevice> MakeRateTableDevice(const ParamReader& config) {
