@@ -280,6 +280,44 @@ TEST(ImuDiagnosis, LocatesABiasStepWithoutFittingAnyTerm) {
   EXPECT_TRUE(located);
 }
 
+// Truth-profile units (every modelled effect on at once) through the demo's calibration shape:
+// the full thermal profile (25 -> -40 -> 25 -> 85 -> 25 degC at 1 degC/min, 1 h soaks) in
+// orientation 31, then the sensor calibration at 25 degC. Die lag is found on every accelerometer
+// channel and g-sensitivity on most gyros, sized within 3 SE + 15 % (lag) or 3 SE; scale factor
+// vs temperature stays undetectable from one calibration temperature.
+TEST(ImuDiagnosis, TruthProfileUnitsOnTheDemosShape) {
+  Tally lag, gsens;
+  int gyros_found = 0;
+  for (uint64_t seed : {1, 2}) {
+    const ImuUnitParams p = ImuUnitParams::Draw("IMU-0001", seed, ModelProfile::kTruth);
+    ImuScenario s(p, 77 + seed, 25.0);
+    s.Soak(25.0, 1800.0);
+    s.ThermalProfile(31, {-40.0, 25.0, 85.0, 25.0}, 1.0, 3600.0);
+    s.Soak(25.0, 1800.0);
+    s.SensorCalibration(4, 1000, 1000);
+    const UnitDiagnosis d = Diagnose(s.data());
+    for (int ch = 0; ch < 6; ++ch) {
+      const double truth = p.accel_thermal[ch / 2].tau_s - p.gyro_thermal[kChannelThermometer[ch]].tau_s;
+      const Finding* f = Find(d, "die_thermal_lag", kImuChannelNames[ch]);
+      ASSERT_NE(f, nullptr) << "seed " << seed << " " << kImuChannelNames[ch];
+      lag.Check(f->components[0].magnitude, f->components[0].standard_error, truth, 0.15 * std::abs(truth));
+    }
+    for (int g = 0; g < 3; ++g) {
+      const Eigen::Vector3d truth_B = p.geometry.R_GB(g).transpose() * Eigen::Vector3d(p.gyros[g].g_sensitivity_dps_per_g.data());
+      const Finding* f = Find(d, "gyro_g_sensitivity", kImuChannelNames[6 + g]);
+      if (f == nullptr) continue;
+      ++gyros_found;
+      for (int k = 0; k < 3; ++k) gsens.Check(f->components[k].magnitude, f->components[k].standard_error, truth_B[k]);
+    }
+    for (const Finding& f : d.findings) EXPECT_NE(f.effect, "scale_factor_tempco") << f.words;
+  }
+  std::printf("truth profile, demo shape: lag %d of %d within 3 SE + 15 %%; g-sensitivity on %d of 6 gyros, "
+              "%d of %d components within 3 SE\n", lag.within, lag.total, gyros_found, gsens.within, gsens.total);
+  EXPECT_GE(lag.Fraction(), 0.9);
+  EXPECT_GE(gyros_found, 4);
+  EXPECT_GE(gsens.Fraction(), 0.8);
+}
+
 // The campaign sets each finding beside the rig's truth file, and lists what the truth has that
 // the diagnosis did not report, with the diagnosis's reason.
 TEST(ImuDiagnosis, CampaignComparesFindingsWithTheTruthFile) {
