@@ -9,6 +9,7 @@
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <future>
 #include <stdexcept>
@@ -130,10 +131,7 @@ void DeviceHost::OnTick() {
     env_snapshot_ = env_;
   }
   WriteOutputs();
-  const uint64_t done = frames_done_.load();
-  if (target > done && target - done > max_frames_behind_.load()) {
-    max_frames_behind_.store(target - done);
-  }
+  NoteShortfall(target, 0);
   if (frames_done_.load() < target) {
     // Behind the clock: continue at once (reads and posted actions still interleave) instead of
     // sleeping on the timer, whose wake-up latency on a loaded machine would set the pace.
@@ -142,7 +140,7 @@ void DeviceHost::OnTick() {
   }
   const auto wall_per_frame = std::chrono::duration<double>(kWorldFrame_s / time_scale_);
   impl_->timer.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::min(wall_per_frame, std::chrono::duration<double>(0.002))));
+      std::min(wall_per_frame, std::chrono::duration<double>(kTickLimit_s))));
   impl_->timer.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) OnTick();
   });
@@ -161,9 +159,23 @@ void DeviceHost::Start() {
   thread_ = std::thread([this] { impl_->io.run(); });
 }
 
+void DeviceHost::NoteShortfall(uint64_t target, uint64_t tolerance) {
+  const uint64_t done = frames_done_.load();
+  if (target > done + tolerance && target - done > max_frames_behind_.load()) {
+    max_frames_behind_.store(target - done);
+  }
+}
+
 void DeviceHost::Stop() {
   if (!started_ || !thread_.joinable()) return;
   asio::post(impl_->io, [this] {
+    // A host starved just before the stop never ran the tick that would have noticed: count the
+    // frames the clock owed at the stop, beyond what one tick's pacing leaves undone.
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - impl_->wall_start).count();
+    const double frames_per_tick = kTickLimit_s * time_scale_ / kWorldFrame_s;
+    NoteShortfall(static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s),
+                  static_cast<uint64_t>(std::ceil(frames_per_tick)) + 1);
     impl_->stopping = true;
     impl_->timer.cancel();
     for (auto& port : ports_) port->stream.cancel();

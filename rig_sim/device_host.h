@@ -42,6 +42,8 @@ inline constexpr double kWorldFrame_s = 0.01;
 inline constexpr size_t kMinBacklogBytes = 64 * 1024;
 /// Wall time without reading after which a port counts as unread and its output is discarded.
 inline constexpr double kClientStallLimit_s = 2.0;
+/// Longest wait between ticks when the host is on time, s.
+inline constexpr double kTickLimit_s = 0.002;
 
 class DeviceHost {
  public:
@@ -85,6 +87,8 @@ class DeviceHost {
   struct Port;
   void ArmRead(Port& port);
   void OnTick();
+  // Raises max_frames_behind to `target` - done when that exceeds `tolerance` frames.
+  void NoteShortfall(uint64_t target, uint64_t tolerance);
   void RunFrame();
   void WriteOutputs();
 
