@@ -73,9 +73,13 @@ void UnitLink::Accept(const fm::Frame& frame, double t_s,
     } else {
       packet.data = fm::ParseAdsData(frame);
     }
-  } catch (const fm::ProtocolError& e) {
-    Fail(Kind::kBadReply, "data packet",
-         fm::HexTrace(std::span<const uint8_t>(frame.payload, frame.payload_length)), e.what());
+  } catch (const fm::ProtocolError&) {
+    // A data frame that passed its CRC but whose payload no unit sends: bytes cut from a stream
+    // that overran and spliced into a frame whose CRC matches by chance (1 in 65,536). Its
+    // contents cannot be trusted, so it is dropped and counted; its sequence number is not
+    // trusted either, so the gap to the next good packet counts it as lost.
+    ++malformed_data_packets_;
+    return;
   }
   tracker_.Observe(packet.seq);
   queue_.push_back(std::move(packet));

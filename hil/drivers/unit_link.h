@@ -80,6 +80,10 @@ class UnitLink {
   /// Packets missing from the sequence counter since the link was opened.
   uint64_t lost_packets() const { return tracker_.lost_total(); }
 
+  /// Data frames whose CRC held but whose payload no unit sends (wrong length for its mode, mode
+  /// byte out of range), dropped since the link was opened; each also shows as a lost packet.
+  uint64_t malformed_data_packets() const { return malformed_data_packets_; }
+
   /// Frames the link's decoder refused (bad CRC, length, type) since it was opened.
   const firmware_model::DecoderCounters& decoder_counters() const { return reader_.counters(); }
 
@@ -106,6 +110,7 @@ class UnitLink {
   firmware_model::UnitProtocolClient client_;
   firmware_model::StreamReader reader_;
   firmware_model::SequenceTracker tracker_;
+  uint64_t malformed_data_packets_ = 0;
   std::vector<ReceivedPacket> queue_;
 };
 
