@@ -40,6 +40,7 @@ struct DemoOptions {
   double time_scale = 300.0;
   bool quick = false;
   std::string sequences = ADAHRS_SEQUENCE_DIR;
+  std::string truth_variant = "standard";
 };
 
 class ConsoleObserver : public calib::CampaignObserver {
@@ -86,8 +87,10 @@ class ConsoleObserver : public calib::CampaignObserver {
   std::map<std::string, std::unique_ptr<BenchSink>> sinks_;
 };
 
-void PrintSummary(const calib::CampaignResult& result, double wall_s) {
+void PrintSummary(const calib::CampaignResult& result, double wall_s, sensor_sim::TruthVariant variant) {
   std::cout << fmt::format("\ndemo finished in {:.0f} s wall\n", wall_s);
+  std::cout << fmt::format("truth: every modelled effect on, variant {}: {}\n",
+                           sensor_sim::ToString(variant), sensor_sim::Describe(variant));
   for (const calib::UnitOutcome& u : result.units) {
     std::cout << fmt::format("{} {}: constants version {} (records v{}, {} strategy, {} blocks "
                              "verified)\n",
@@ -142,9 +145,13 @@ int RunDemo(const DemoOptions& options) {
   }
   const std::filesystem::path rig_dir = out / "rig";
   std::filesystem::create_directories(rig_dir);
-  const nlohmann::json rig_json = rig_sim::DefaultRigConfig();
-  std::ofstream(rig_dir / "rig.json") << rig_json.dump(2) << "\n";
+  nlohmann::json rig_json = rig_sim::DefaultRigConfig();
+  rig_json["units"]["truth_variant"] = options.truth_variant;
   const rig_sim::RigConfig rig_config = rig_sim::RigConfig::FromJson(rig_json, "built-in rig config");
+  std::ofstream(rig_dir / "rig.json") << rig_json.dump(2) << "\n";
+  std::cout << fmt::format("truth: every modelled effect on, variant {}: {}\n",
+                           sensor_sim::ToString(rig_config.truth_variant),
+                           sensor_sim::Describe(rig_config.truth_variant));
 
   std::cout << fmt::format("starting the virtual rig at {:g}x in {}\n", options.time_scale,
                            rig_dir.string());
@@ -175,8 +182,9 @@ int RunDemo(const DemoOptions& options) {
   try {
     const calib::CampaignResult result = calib::RunCampaign(campaign, observer, g_demo_stop);
     rig.Stop();
-    PrintSummary(result, std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                             .count());
+    PrintSummary(result,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                 rig_config.truth_variant);
     return 0;
   } catch (const calib::RunInterrupted& e) {
     std::cerr << "adahrs demo: interrupted (" << e.what() << "); the rig is stopped\n";
@@ -204,6 +212,11 @@ void RegisterDemoCommand(CLI::App& app) {
   demo->add_flag("--quick", options->quick, "Shorter sequences (docs/demo.md says what is trimmed)");
   demo->add_option("--sequences", options->sequences, "Directory of the reference sequences")
       ->capture_default_str();
+  demo->add_option("--truth-variant", options->truth_variant,
+                   "The units' truth in model form: standard, play_hysteresis or slow_bias_wander "
+                   "(docs/sensor-models.md)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"standard", "play_hysteresis", "slow_bias_wander"}));
   demo->callback([options] {
     const int status = RunDemo(*options);
     if (status != 0) std::exit(status);

@@ -79,6 +79,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     unit.serial_number = slot.serial_number;
     unit.params = sensor_sim::ImuUnitParams::Draw(ImuSerial(slot.serial_number), slot.seed,
                                                   config.model_profile);
+    unit.params.ApplyVariant(config.truth_variant);
     unit.noise_seed = sensor_sim::Rng::Derive(slot.seed, kNoiseStream);
     unit.baud = slot.baud;
     unit.initial_air_c = config.initial_air_c;
@@ -97,6 +98,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     unit.serial_number = slot.serial_number;
     unit.params = sensor_sim::AdsUnitParams::Draw(AdsSerial(slot.serial_number), slot.seed,
                                                   config.model_profile);
+    unit.params.ApplyVariant(config.truth_variant);
     unit.noise_seed = sensor_sim::Rng::Derive(slot.seed, kNoiseStream);
     unit.baud = slot.baud;
     unit.initial_air_c = config.initial_air_c;
@@ -162,6 +164,7 @@ nlohmann::json Rig::Manifest() const {
                        {"height_m", config_.station.height_m},
                        {"local_gravity_mps2", config_.LocalGravityMps2()}}},
           {"model_profile", sensor_sim::ToString(config_.model_profile)},
+          {"truth_variant", sensor_sim::ToString(config_.truth_variant)},
           {"run_dir", run_dir_.string()},
           {"ports", ports_},
           {"links", links},

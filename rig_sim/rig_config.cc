@@ -98,6 +98,13 @@ RigConfig RigConfig::FromJson(const nlohmann::json& json, const std::string& sou
   } catch (const std::invalid_argument& e) {
     units.Fail(units.path() + ".model_profile", e.what());
   }
+  if (units.Has("truth_variant")) {
+    try {
+      config.truth_variant = sensor_sim::TruthVariantFromString(units.String("truth_variant"));
+    } catch (const std::invalid_argument& e) {
+      units.Fail(units.path() + ".truth_variant", e.what());
+    }
+  }
   const nlohmann::json& units_json = json.at("units");
   const size_t imu_count = ArraySize(units, units_json, "imu", kMaxImuUnits);
   const size_t ads_count = ArraySize(units, units_json, "ads", kMaxAdsUnits);
@@ -174,6 +181,7 @@ nlohmann::json DefaultRigConfig() {
       {"initial_air_c", 25.0},
       {"units",
        {{"model_profile", "truth"},
+        {"truth_variant", "standard"},
         {"imu", imus},
         {"ads", nlohmann::json::array(
                     {{{"serial_number", 1}, {"seed", 2001}, {"baud", 115200}}})}}},

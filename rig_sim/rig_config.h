@@ -5,7 +5,9 @@
 //                sensor_sim/gravity.h), supply_v (the units' supply rail)
 //   time_scale   simulated seconds per wall second (0.01…100,000; --time-scale overrides it)
 //   initial_air_c  air in both chambers and every die at power-on
-//   units        model_profile ("nominal" or "truth"), imu: 0…4 entries, ads: 0…4 entries, each
+//   units        model_profile ("nominal" or "truth"), truth_variant (optional: "standard",
+//                "play_hysteresis" or "slow_bias_wander", sensor_sim/model_profile.h),
+//                imu: 0…4 entries, ads: 0…4 entries, each
 //                {serial_number, seed, baud} and for IMUs the fixture orientation code
 //   instruments  one section per instrument kind present (InstrumentKinds()), read by that
 //                instrument's own factory; a kind left out is not on this rig
@@ -69,6 +71,7 @@ struct RigConfig {
   double time_scale = 1.0;
   double initial_air_c = 25.0;
   sensor_sim::ModelProfile model_profile = sensor_sim::ModelProfile::kTruth;
+  sensor_sim::TruthVariant truth_variant = sensor_sim::TruthVariant::kStandard;
   std::vector<UnitSlotConfig> imus;
   std::vector<UnitSlotConfig> ads;
   nlohmann::json instruments = nlohmann::json::object();  ///< validated sections by kind name

@@ -47,6 +47,14 @@ void AdsUnitParams::ApplyProfile(ModelProfile profile) {
   pitot_thermal.effects = EffectsFor<DieThermalEffects>(profile);
 }
 
+void AdsUnitParams::ApplyVariant(TruthVariant variant) {
+  const HysteresisLaw law = variant == TruthVariant::kPlayHysteresis
+                                ? HysteresisLaw::kPlayOperators
+                                : HysteresisLaw::kTravelPreisach;
+  static_bridge.hysteresis_law = law;
+  pitot_bridge.hysteresis_law = law;
+}
+
 nlohmann::json AdsUnitParams::ToJson() const {
   return {{"serial", serial},
           {"frame_period_s", frame_period_s},

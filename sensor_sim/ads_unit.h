@@ -54,6 +54,8 @@ struct AdsUnitParams {
 
   static AdsUnitParams Draw(const std::string& serial, uint64_t seed, ModelProfile profile);
   void ApplyProfile(ModelProfile profile);
+  /// kPlayHysteresis puts both bridges on the play-operator law; the other variants leave the ADS as is.
+  void ApplyVariant(TruthVariant variant);
   nlohmann::json ToJson() const;
   static AdsUnitParams FromJson(const ParamReader& reader);
 };

@@ -50,7 +50,8 @@ Adxrs150::Adxrs150(const Adxrs150Params& params, uint64_t noise_seed, double fra
             params.rate_random_walk_dph_per_rth * kDpsPerRtsPerDphPerRth,
             params.effects.rate_random_walk,
             frame_period_s,
-            Rng::Derive(noise_seed, kBiasProcessStream)),
+            Rng::Derive(noise_seed, kBiasProcessStream),
+            params.bias_correlation_time_scale),
       rate_rng_(Rng::Derive(noise_seed, kRateNoiseStream)),
       temp_rng_(Rng::Derive(noise_seed, kTempNoiseStream)) {
   if (!(frame_period_s > 0.0) || !std::isfinite(frame_period_s)) {

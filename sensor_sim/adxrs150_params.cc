@@ -144,6 +144,7 @@ nlohmann::json Adxrs150Params::ToJson() const {
       {"output_filter_c_nf", output_filter_c_nf},
       {"bias_instability_dph", bias_instability_dph},
       {"rate_random_walk_dph_per_rth", rate_random_walk_dph_per_rth},
+      {"bias_correlation_time_scale", bias_correlation_time_scale},
       {"rate_adc_noise_lsb", rate_adc_noise_lsb},
       {"temp_out_v_at_298k", temp_out_v_at_298k},
       {"temp_out_mv_per_k", temp_out_mv_per_k},
@@ -189,6 +190,10 @@ Adxrs150Params Adxrs150Params::FromJson(const ParamReader& reader) {
   p.bias_instability_dph = reader.Number("bias_instability_dph", 0.0, 3600.0, "deg/h");
   p.rate_random_walk_dph_per_rth =
       reader.Number("rate_random_walk_dph_per_rth", 0.0, 3600.0, "deg/h/sqrt(h)");
+  // Optional: files written before the truth variants carry no scale (the datasheet form, 1).
+  if (reader.Has("bias_correlation_time_scale")) {
+    p.bias_correlation_time_scale = reader.Number("bias_correlation_time_scale", 0.01, 100.0, "");
+  }
   p.rate_adc_noise_lsb = reader.Number("rate_adc_noise_lsb", 0.0, 1000.0, "LSB rms");
   p.temp_out_v_at_298k = reader.Number("temp_out_v_at_298k", 1.5, 3.5, "V");
   p.temp_out_mv_per_k = reader.Number("temp_out_mv_per_k", 1.0, 20.0, "mV/K");

@@ -59,6 +59,7 @@ struct Adxrs150Params {
   double output_filter_c_nf;                      ///< external C_OUT
   double bias_instability_dph;                    ///< Allan-deviation floor, deg/h
   double rate_random_walk_dph_per_rth;            ///< K, deg/h/sqrt(h)
+  double bias_correlation_time_scale = 1.0;       ///< multiplies the flicker poles' times
   double rate_adc_noise_lsb;                      ///< 19-bit ADC noise per conversion, LSB rms
   double temp_out_v_at_298k;                      ///< TEMP pin at 298.15 K
   double temp_out_mv_per_k;                       ///< TEMP pin slope

@@ -23,20 +23,22 @@ double UnitGaussMarkovAvar(double tau_s, double t_s) {
   return (2.0 * t_s / tau_s) * (1.0 - (3.0 - 4.0 * std::exp(-x) + std::exp(-2.0 * x)) / (2.0 * x));
 }
 
-double UnitPolesAdev(double tau_s) {
+double UnitPolesAdev(double tau_s, double time_scale) {
   double avar = 0.0;
-  for (double t_s : GyroBiasProcess::kCorrelationTimes_s) avar += UnitGaussMarkovAvar(tau_s, t_s);
+  for (double t_s : GyroBiasProcess::kCorrelationTimes_s) {
+    avar += UnitGaussMarkovAvar(tau_s, time_scale * t_s);
+  }
   return std::sqrt(avar);
 }
 
 // Mean over log(tau) in the floor band of the Allan deviation of unit-variance poles.
-double UnitPolesFloor() {
+double UnitPolesFloor(double time_scale) {
   const double log_min = std::log(GyroBiasProcess::kFloorBandMin_s);
   const double log_max = std::log(GyroBiasProcess::kFloorBandMax_s);
   double sum = 0.0;
   for (int i = 0; i < kFloorBandPoints; ++i) {
     const double log_tau = log_min + (log_max - log_min) * i / (kFloorBandPoints - 1);
-    sum += UnitPolesAdev(std::exp(log_tau));
+    sum += UnitPolesAdev(std::exp(log_tau), time_scale);
   }
   return sum / kFloorBandPoints;
 }
@@ -47,8 +49,8 @@ int64_t FramesFor(double interval_s, double frame_period_s) {
 
 }  // namespace
 
-double GyroBiasProcess::PoleSigmaForFloor(double bias_instability_dps) {
-  return bias_instability_dps / UnitPolesFloor();
+double GyroBiasProcess::PoleSigmaForFloor(double bias_instability_dps, double correlation_time_scale) {
+  return bias_instability_dps / UnitPolesFloor(correlation_time_scale);
 }
 
 GyroBiasProcess::GyroBiasProcess(double bias_instability_dps,
@@ -56,16 +58,18 @@ GyroBiasProcess::GyroBiasProcess(double bias_instability_dps,
                                  double rate_random_walk_dps_per_rts,
                                  bool rate_random_walk_on,
                                  double frame_period_s,
-                                 uint64_t seed)
-    : bias_instability_on_(bias_instability_on && bias_instability_dps > 0.0),
+                                 uint64_t seed,
+                                 double correlation_time_scale)
+    : time_scale_(correlation_time_scale),
+      bias_instability_on_(bias_instability_on && bias_instability_dps > 0.0),
       rate_random_walk_on_(rate_random_walk_on && rate_random_walk_dps_per_rts > 0.0),
       bi_rng_(Rng::Derive(seed, kBiasInstabilityStream)),
       rrw_rng_(Rng::Derive(seed, kRateRandomWalkStream)) {
   if (bias_instability_on_) {
-    pole_sigma_dps_ = PoleSigmaForFloor(bias_instability_dps);
+    pole_sigma_dps_ = PoleSigmaForFloor(bias_instability_dps, time_scale_);
     for (size_t k = 0; k < poles_.size(); ++k) {
       Pole& pole = poles_[k];
-      const double t_s = kCorrelationTimes_s[k];
+      const double t_s = time_scale_ * kCorrelationTimes_s[k];
       pole.update_interval_frames = FramesFor(t_s / kUpdatesPerCorrelationTime, frame_period_s);
       const double h_s = static_cast<double>(pole.update_interval_frames) * frame_period_s;
       pole.phi = std::exp(-h_s / t_s);
@@ -125,7 +129,7 @@ double GyroBiasProcess::SumDps() const {
 }
 
 double GyroBiasProcess::BiasInstabilityAdev(double tau_s) const {
-  return pole_sigma_dps_ * UnitPolesAdev(tau_s);
+  return pole_sigma_dps_ * UnitPolesAdev(tau_s, time_scale_);
 }
 
 }  // namespace adahrs::sensor_sim

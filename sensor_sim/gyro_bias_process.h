@@ -39,12 +39,15 @@ class GyroBiasProcess {
 
   /// `bias_instability_dps` the Allan floor (0 or `bias_instability_on` false: none);
   /// `rate_random_walk_dps_per_rts` K in deg/s/sqrt(s). Streams are derived from `seed`.
+  /// `correlation_time_scale` multiplies every pole's correlation time (1: the datasheet form
+  /// above; a truth variant moves the corners, the floor over the band staying B).
   GyroBiasProcess(double bias_instability_dps,
                   bool bias_instability_on,
                   double rate_random_walk_dps_per_rts,
                   bool rate_random_walk_on,
                   double frame_period_s,
-                  uint64_t seed);
+                  uint64_t seed,
+                  double correlation_time_scale = 1.0);
 
   /// Advances one frame and returns the bias for that frame, deg/s.
   double Step() {
@@ -63,7 +66,7 @@ class GyroBiasProcess {
 
   /// The standard deviation of each Gauss-Markov process whose sum has the Allan floor
   /// `bias_instability_dps` (for covariance models of the same process, e.g. calibration's).
-  static double PoleSigmaForFloor(double bias_instability_dps);
+  static double PoleSigmaForFloor(double bias_instability_dps, double correlation_time_scale = 1.0);
 
  private:
   struct Pole {
@@ -83,6 +86,7 @@ class GyroBiasProcess {
   double SumDps() const;
 
   std::array<Pole, kBiasInstabilityPoles> poles_;
+  double time_scale_ = 1.0;
   double pole_sigma_dps_ = 0.0;
   bool bias_instability_on_;
   bool rate_random_walk_on_;

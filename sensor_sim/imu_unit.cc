@@ -52,6 +52,16 @@ ImuUnitParams ImuUnitParams::Draw(const std::string& serial, uint64_t seed, Mode
   return p;
 }
 
+void ImuUnitParams::ApplyVariant(TruthVariant variant) {
+  if (variant != TruthVariant::kSlowBiasWander) return;
+  constexpr double kSlowerPoles = 10.0, kStrongerWalk = 3.0;  // the variant's definition (E)
+  for (Adxrs150Params& g : gyros) {
+    g.bias_correlation_time_scale = kSlowerPoles;
+    g.rate_random_walk_dph_per_rth *= kStrongerWalk;
+    g.effects.rate_random_walk = true;
+  }
+}
+
 void ImuUnitParams::ApplyProfile(ModelProfile profile) {
   for (int k = 0; k < 3; ++k) {
     accel_chips[k].effects = EffectsFor<Adxl210eEffects>(profile);

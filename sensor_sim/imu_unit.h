@@ -62,6 +62,10 @@ struct ImuUnitParams {
   static ImuUnitParams Draw(const std::string& serial, uint64_t seed, ModelProfile profile);
   /// Switches every sub-model's effects to the profile's set.
   void ApplyProfile(ModelProfile profile);
+  /// kSlowBiasWander slows every gyro's flicker poles tenfold and switches its rate random walk on
+  /// at three times the drawn one; the other variants leave the IMU as drawn. Apply once, after
+  /// Draw (and after ApplyProfile).
+  void ApplyVariant(TruthVariant variant);
   nlohmann::json ToJson() const;
   static ImuUnitParams FromJson(const ParamReader& reader);
 };

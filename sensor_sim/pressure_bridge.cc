@@ -37,11 +37,19 @@ constexpr double kThermalHysteresisSpan_c = 20.0;      // E
 constexpr double kNoise_uv_rms = 1.0;  // D: Johnson noise of 5 kΩ at 300 K over ~10 kHz
 constexpr double kSelfHeating_c_per_w = 150.0;  // E: 100…200 °C/W
 
+// The play-operator law's working range of die temperature: the range FromJson accepts for a reference.
+constexpr double kPlayLawMinTemp_c = -55.0;
+constexpr double kPlayLawMaxTemp_c = 125.0;
+
 const char* KindName(PressureBridgeKind kind) {
   return kind == PressureBridgeKind::kAbsolute ? "absolute" : "differential";
 }
 
 }  // namespace
+
+const char* ToString(HysteresisLaw law) {
+  return law == HysteresisLaw::kTravelPreisach ? "travel_preisach" : "play_operators";
+}
 
 PressureBridgeEffects PressureBridgeEffects::Nominal() {
   PressureBridgeEffects e;
@@ -106,6 +114,8 @@ PressureBridgeParams PressureBridgeParams::Draw(PressureBridgeKind kind, uint64_
   p.pressure_hysteresis_pct_fso = rng.Tolerance(kPressureHysteresis_pct_fso, 0.025);
   p.thermal_hysteresis_pct_fso = rng.Tolerance(kThermalHysteresis_pct_fso, 0.05);
   p.self_heating_c_per_w = rng.Tolerance(kSelfHeating_c_per_w, 50.0);
+  p.pressure_hysteresis_span_pct_fs = rng.Tolerance(kPressureHysteresisSpan_pct_fs, 10.0);
+  p.thermal_hysteresis_span_c = rng.Tolerance(kThermalHysteresisSpan_c, 10.0);
   p.effects = PressureBridgeEffects::All();
   return p;
 }
@@ -134,6 +144,7 @@ nlohmann::json PressureBridgeParams::ToJson() const {
           {"thermal_hysteresis_span_c", thermal_hysteresis_span_c},
           {"noise_uv_rms", noise_uv_rms},
           {"self_heating_c_per_w", self_heating_c_per_w},
+          {"hysteresis_law", ToString(hysteresis_law)},
           {"effects",
            {{"noise", e.noise},
             {"bridge_tcr", e.bridge_tcr},
@@ -181,6 +192,17 @@ PressureBridgeParams PressureBridgeParams::FromJson(const ParamReader& r) {
   p.thermal_hysteresis_span_c = r.Number("thermal_hysteresis_span_c", 0.1, 200.0, "degC");
   p.noise_uv_rms = r.Number("noise_uv_rms", 0.0, 1000.0, "uV rms");
   p.self_heating_c_per_w = r.Number("self_heating_c_per_w", 0.0, 2000.0, "degC/W");
+  if (r.Has("hysteresis_law")) {
+    const std::string law = r.String("hysteresis_law");
+    if (law == ToString(HysteresisLaw::kTravelPreisach)) {
+      p.hysteresis_law = HysteresisLaw::kTravelPreisach;
+    } else if (law == ToString(HysteresisLaw::kPlayOperators)) {
+      p.hysteresis_law = HysteresisLaw::kPlayOperators;
+    } else {
+      r.Fail(r.path() + ".hysteresis_law",
+             "\"" + law + "\" is not one of \"travel_preisach\", \"play_operators\"");
+    }
+  }
   const ParamReader e = r.Child("effects");
   p.effects.noise = e.Flag("noise");
   p.effects.bridge_tcr = e.Flag("bridge_tcr");
@@ -203,6 +225,11 @@ PressureBridge::PressureBridge(const PressureBridgeParams& params, uint64_t nois
       pressure_hysteresis_(params.pressure_hysteresis_span_pct_fs * kPercent * params.full_scale_pa),
       thermal_hysteresis_(params.thermal_hysteresis_span_c) {
   const PressureBridgeParams& p = params_;
+  if (p.hysteresis_law == HysteresisLaw::kPlayOperators) {
+    pressure_play_.emplace(p.pressure_hysteresis_span_pct_fs * kPercent * p.full_scale_pa, 0.0,
+                             p.full_scale_pa);
+    thermal_play_.emplace(p.thermal_hysteresis_span_c, kPlayLawMinTemp_c, kPlayLawMaxTemp_c);
+  }
   const PressureBridgeEffects& on = p.effects;
   inv_full_scale_per_pa_ = 1.0 / p.full_scale_pa;
   current0_a_ = p.excitation_current_ma * kAmpsPerMilliamp;
@@ -247,10 +274,14 @@ PressureBridgeOutput PressureBridge::Step(const PressureBridgeInput& input) {
                  span_lin_ * (1.0 + (span_tc_per_c_ + span_tc2_per_c2_ * dt_c) * dt_c) * u +
                  quadratic_ * u * u;
   if (pressure_hysteresis_half_ != 0.0) {
-    ratio += pressure_hysteresis_half_ * pressure_hysteresis_.Update(input.pressure_pa);
+    const double s_p = pressure_play_ ? pressure_play_->Update(input.pressure_pa)
+                                        : pressure_hysteresis_.Update(input.pressure_pa);
+    ratio += pressure_hysteresis_half_ * s_p;
   }
   if (thermal_hysteresis_half_ != 0.0) {
-    ratio += thermal_hysteresis_half_ * thermal_hysteresis_.Update(input.die_temp_c);
+    const double s_t = thermal_play_ ? thermal_play_->Update(input.die_temp_c)
+                                       : thermal_hysteresis_.Update(input.die_temp_c);
+    ratio += thermal_hysteresis_half_ * s_t;
   }
   double signal_v = bridge_v * ratio;
   if (noise_v_rms_ > 0.0) signal_v += noise_v_rms_ * rng_.Normal();

@@ -21,9 +21,11 @@
 // span nonlinearity K·u² is parameterised by its best-fit-straight-line value NL (least-squares
 // BFSL over 0…FS, as % FSO): for a parabola the largest BFSL residual is K/6, at the end points,
 // so K = 6·NL·S and S_lin = S − K keeps FSO = V_B·S (NL > 0: ends above the BFSL).
-// s_P and s_T ∈ [−1, 1] are PreisachHysteresis states of pressure and die temperature (−1 after
-// a rise, +1 after a fall); h_P and h_T are the configured hysteresis as the full difference
-// between falling and rising branches, in fractions of FSO.
+// s_P and s_T ∈ [−1, 1] are hysteresis states of pressure and die temperature (−1 after a rise,
+// +1 after a fall) under the bridge's hysteresis law: the travel law of preisach_hysteresis.h (the
+// typical part, and the law the firmware runs) or the play-operator law of play_hysteresis.h
+// (a truth variant of another family, over 0…FS and −55…+125 °C); h_P and h_T are the configured
+// hysteresis as the full difference between falling and rising branches, in fractions of FSO.
 //
 // The coefficients o·, t· describe the ratio signal_v/V_B (the ratiometric output, as a constant
 // voltage datasheet gives them). Under constant current the span tempco of signal_v is α + t1
@@ -49,14 +51,23 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sensor_sim/preisach_hysteresis.h"
+#include <optional>
+
 #include "sensor_sim/param_reader.h"
+#include "sensor_sim/preisach_hysteresis.h"
 #include "sensor_sim/random.h"
+#include "sensor_sim/play_hysteresis.h"
 
 namespace adahrs::sensor_sim {
 
 /// What the sensor's reference port sees: vacuum (static sensor) or the other port (pitot).
 enum class PressureBridgeKind { kAbsolute, kDifferential };
+
+/// The law behind the hysteresis states s_P and s_T (see the header comment).
+enum class HysteresisLaw { kTravelPreisach, kPlayOperators };
+
+/// "travel_preisach" or "play_operators".
+const char* ToString(HysteresisLaw law);
 
 struct PressureBridgeInput {
   double pressure_pa;  ///< absolute (static sensor) or differential (pitot)
@@ -113,15 +124,18 @@ struct PressureBridgeParams {
   double thermal_hysteresis_span_c = 0.0;        ///< temperature travel to full h_T
   double noise_uv_rms = 0.0;                     ///< output noise per sample
   double self_heating_c_per_w = 0.0;            ///< die-to-case thermal resistance
+  HysteresisLaw hysteresis_law = HysteresisLaw::kTravelPreisach;
   PressureBridgeEffects effects;
 
   /// The typical 0–15 psi part of the given kind, Nominal() effects.
   static PressureBridgeParams Typical(PressureBridgeKind kind);
   /// One part drawn from the datasheet / estimate distributions (deterministic per seed and
-  /// kind), All() effects.
+  /// kind), All() effects, the travel law; the hysteresis spans are drawn too (20 ± 10 % FS and
+  /// 20 ± 10 °C at 3 sigma, E), so no two drawn parts share them.
   static PressureBridgeParams Draw(PressureBridgeKind kind, uint64_t seed);
   nlohmann::json ToJson() const;
-  /// Reads every key with its allowed range; throws ParamError naming the JSON path.
+  /// Reads every key with its allowed range; throws ParamError naming the JSON path. A file
+  /// without "hysteresis_law" (written before the key existed) reads as the travel law.
   static PressureBridgeParams FromJson(const ParamReader& reader);
   bool operator==(const PressureBridgeParams&) const = default;
 };
@@ -147,6 +161,8 @@ class PressureBridge {
   Rng rng_;
   PreisachHysteresis pressure_hysteresis_;
   PreisachHysteresis thermal_hysteresis_;
+  std::optional<PlayHysteresis> pressure_play_;  // set under the play-operator law
+  std::optional<PlayHysteresis> thermal_play_;
   // Coefficients with switched-off terms set to zero, precomputed in the constructor.
   double inv_full_scale_per_pa_;
   double current0_a_, current_tc_per_c_;

@@ -21,22 +21,25 @@ constexpr double kThermalSpanC = 20.0;
 }  // namespace
 
 HysteresisSpans HysteresisSpans::Nominal() {
-  return {kPressureSpanFractionFs * kFullScalePa, kPressureSpanFractionFs * kFullScalePa, kThermalSpanC};
+  return {kPressureSpanFractionFs * kFullScalePa, kPressureSpanFractionFs * kFullScalePa, kThermalSpanC,
+          kThermalSpanC};
 }
 
 std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>& points,
                                           const HysteresisSpans& spans) {
   UnitHysteresisOperator static_p(spans.static_pressure_pa);
   UnitHysteresisOperator impact_p(spans.impact_pressure_pa);
-  UnitHysteresisOperator temperature(spans.temperature_c);
+  UnitHysteresisOperator static_t(spans.static_temperature_c);
+  UnitHysteresisOperator pitot_t(spans.pitot_temperature_c);
   static_p.Update(sensor_sim::kIsaSeaLevelPressure_pa);
   impact_p.Update(0.0);
-  temperature.Update(kRoomTemperatureC);
+  static_t.Update(kRoomTemperatureC);
+  pitot_t.Update(kRoomTemperatureC);
   std::vector<PointHistory> out;
   out.reserve(points.size());
   for (const AdsCalibrationPoint& p : points) {
-    const double s_t = temperature.Update(p.chamber_c);
-    out.push_back({{static_p.Update(p.ps_ref_pa), s_t}, {impact_p.Update(p.qc_ref_pa), s_t}});
+    out.push_back({{static_p.Update(p.ps_ref_pa), static_t.Update(p.chamber_c)},
+                   {impact_p.Update(p.qc_ref_pa), pitot_t.Update(p.chamber_c)}});
   }
   return out;
 }
@@ -59,9 +62,13 @@ PointBands EnvelopeBands(const AdsCalibrationPoint& point, const HysteresisSpans
   const double ps_high = IsaStaticPressurePaFromFt(kAdsMinAltitudeFt);
   const double qc_low = sensor_sim::ImpactPressurePaFromKt(kAdsMinAirspeedKt);
   const double qc_high = sensor_sim::ImpactPressurePaFromKt(kAdsMaxAirspeedKt);
-  const StateBand t = EnvelopeStateBand(point.chamber_c, kAdsMinTempC, kAdsMaxTempC, spans.temperature_c);
-  return {{EnvelopeStateBand(point.ps_ref_pa, ps_low, ps_high, spans.static_pressure_pa), t},
-          {EnvelopeStateBand(point.qc_ref_pa, qc_low, qc_high, spans.impact_pressure_pa), t}};
+  auto thermal = [&](double span_c) {
+    return EnvelopeStateBand(point.chamber_c, kAdsMinTempC, kAdsMaxTempC, span_c);
+  };
+  return {{EnvelopeStateBand(point.ps_ref_pa, ps_low, ps_high, spans.static_pressure_pa),
+           thermal(spans.static_temperature_c)},
+          {EnvelopeStateBand(point.qc_ref_pa, qc_low, qc_high, spans.impact_pressure_pa),
+           thermal(spans.pitot_temperature_c)}};
 }
 
 }  // namespace adahrs::calib

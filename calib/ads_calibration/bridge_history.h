@@ -17,8 +17,10 @@
 // is taken to be at rest in the room, demagnetised (the operator's virgin state): 25 degC,
 // standard sea-level static pressure, no impact pressure; the sequence's first full excursions
 // wipe that out.
-// Spans: the part's nominal (physics.md section 6: E, estimated), 20 % of full scale and 20 degC
-// for the model-1230 class; HysteresisSpans holds them so a measured value can replace them.
+// Spans: each bridge has its own (a part's spans are not given by any datasheet). Nominal() holds
+// the class's estimate (physics.md section 6: E), 20 % of full scale and 20 degC, which the
+// hysteresis-compensated strategy starts from and then estimates from the recording
+// (hysteresis_span_fit.h).
 // Left out: die temperature lagging the chamber during a step's dwell (the points are taken after
 // the soak); a real unit's history before the run (a full excursion of the sequence erases it).
 #pragma once
@@ -32,7 +34,8 @@ namespace adahrs::calib {
 struct HysteresisSpans {
   double static_pressure_pa = 0.0;  ///< travel after a reversal to the full pressure state
   double impact_pressure_pa = 0.0;
-  double temperature_c = 0.0;       ///< likewise for the die temperature
+  double static_temperature_c = 0.0;  ///< likewise for each bridge's die temperature
+  double pitot_temperature_c = 0.0;
 
   /// The model-1230 class's spans as estimated (bridge_history.cc: 20 % of 15 psi, 20 degC, E).
   static HysteresisSpans Nominal();

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "calib/ads_calibration/bridge_history.h"
+#include "calib/ads_calibration/hysteresis_span_fit.h"
 #include "calib/ads_calibration/bridge_linearisation_fit.h"
 #include "calib/evaluation/ads_tolerance.h"
 #include "calib/solvers/polynomial_fit.h"
@@ -171,7 +172,7 @@ struct PressureSamples {
 };
 
 PressureSamples PressureSamplesOf(const std::vector<AdsCalibrationPoint>& points,
-                                  const HysteresisSpans& spans = HysteresisSpans::Nominal()) {
+                                  const HysteresisSpans& spans) {
   PressureSamples out;
   const std::vector<PointHistory> history = BridgeHistoryOf(points, spans);
   for (size_t i = 0; i < points.size(); ++i) {
@@ -205,7 +206,10 @@ double ImpactTolerancePa(double pa) {
 
 AdsFitResult FitPressureAdsStrategy(const std::string& context,
                                     const std::vector<AdsCalibrationPoint>& points) {
-  const PressureSamples samples = PressureSamplesOf(points);
+  nlohmann::json span_diagnostics;
+  const HysteresisSpans spans =
+      EstimateHysteresisSpans(context, points, HysteresisSpans::Nominal(), &span_diagnostics);
+  const PressureSamples samples = PressureSamplesOf(points, spans);
   const std::vector<SurfaceSample>& ps = samples.ps;
   const std::vector<SurfaceSample>& qc = samples.qc;
   const std::vector<BridgeBands>& ps_bands = samples.ps_bands;
@@ -262,6 +266,7 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
         {"pressure_half_loop_Pa", h.pressure}, {"pressure_half_loop_se_Pa", h.pressure_se},
         {"thermal_half_loop_Pa", h.thermal},   {"thermal_half_loop_se_Pa", h.thermal_se},
         {"centre_fit_residual_rms_Pa", m->centre.residual_rms}};
+    out.diagnostics[key]["hysteresis_spans"] = span_diagnostics[key]["hysteresis_spans"];
     out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
                                                                     : "CAS from impact pressure";
   }
@@ -347,17 +352,92 @@ CompensatedSurface FitCompensated(const std::string& context, const std::vector<
 
 }  // namespace
 
+namespace {
+
+// One bridge's spans: the cost of a candidate is the tolerance-weighted residual sum of squares
+// of the bridge's centre fit (surface of degree (3, q) in the linearised code, q chosen at the
+// starting spans; gains and their temperature slopes) with the states those spans give.
+SpanFit FitBridgeSpans(const std::string& context, const std::vector<AdsCalibrationPoint>& points,
+                       std::vector<SurfaceSample> samples, const std::function<double(double)>& tolerance_of,
+                       const HysteresisSpans& start, bool static_bridge) {
+  const BridgeLinearisationFit linearisation = FitBridgeLinearisation(context, samples);
+  samples = Linearised(samples, linearisation.linearisation);
+  const int y_degree = ChooseYDegree(context, samples, tolerance_of).y_degree;
+  const PolynomialBasis basis = PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, y_degree, "x", "y");
+  WeighByTolerance(samples, Tolerances(samples, tolerance_of));
+  auto cost = [&](double pressure_span, double thermal_span_c) {
+    HysteresisSpans spans = start;
+    (static_bridge ? spans.static_pressure_pa : spans.impact_pressure_pa) = pressure_span;
+    (static_bridge ? spans.static_temperature_c : spans.pitot_temperature_c) = thermal_span_c;
+    const std::vector<PointHistory> history = BridgeHistoryOf(points, spans);
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (!static_bridge && !points[i].airspeed_point) continue;
+      const BridgeStates& b = static_bridge ? history[i].static_bridge : history[i].pitot_bridge;
+      samples[k].s_pressure = b.s_pressure;
+      samples[k].s_thermal = b.s_thermal;
+      ++k;
+    }
+    const SurfaceEstimate e = FitSurface(context, basis, samples, HistoryTerms::kWithTemperatureSlopes);
+    const HysteresisEstimate& h = *e.history;
+    double sum = 0.0;
+    for (const SurfaceSample& s : samples) {
+      const double dt_c = s.chamber_c - kHysteresisReferenceC;
+      const double r = fm::EvaluateSurfaceFit(e.surface, s.x_code, s.y_code) +
+                       (h.pressure + h.pressure_per_degc * dt_c) * s.s_pressure +
+                       (h.thermal + h.thermal_per_degc * dt_c) * s.s_thermal - s.z;
+      sum += s.weight * r * r;
+    }
+    return sum;
+  };
+  const int parameters = static_cast<int>(basis.size()) + 4 + 2;  // surface, gains, slopes, spans
+  return FitHysteresisSpans(cost, static_bridge ? start.static_pressure_pa : start.impact_pressure_pa,
+                            static_bridge ? start.static_temperature_c : start.pitot_temperature_c,
+                            std::max(1, static_cast<int>(samples.size()) - parameters));
+}
+
+nlohmann::json SpanFitJson(const SpanFit& f, const char* pressure_unit) {
+  return {{std::string("pressure_span_") + pressure_unit, f.pressure_span},
+          {std::string("pressure_span_se_") + pressure_unit, f.pressure_span_se},
+          {"thermal_span_degC", f.thermal_span_c},
+          {"thermal_span_se_degC", f.thermal_span_c_se},
+          {"weighted_cost_at_nominal_spans", f.cost_at_start},
+          {"weighted_cost", f.cost},
+          {"at_search_edge", f.at_search_edge}};
+}
+
+}  // namespace
+
+HysteresisSpans EstimateHysteresisSpans(const std::string& context,
+                                        const std::vector<AdsCalibrationPoint>& points,
+                                        const HysteresisSpans& start, nlohmann::json* diagnostics) {
+  const PressureSamples samples = PressureSamplesOf(points, start);
+  const SpanFit ps = FitBridgeSpans(context + ": static bridge's hysteresis spans", points, samples.ps,
+                                    StaticTolerancePa, start, true);
+  const SpanFit qc = FitBridgeSpans(context + ": pitot bridge's hysteresis spans", points, samples.qc,
+                                    ImpactTolerancePa, start, false);
+  if (diagnostics != nullptr) {
+    (*diagnostics)["altitude_ft"]["hysteresis_spans"] = SpanFitJson(ps, "Pa");
+    (*diagnostics)["airspeed_kt"]["hysteresis_spans"] = SpanFitJson(qc, "Pa");
+  }
+  return {ps.pressure_span, qc.pressure_span, ps.thermal_span_c, qc.thermal_span_c};
+}
+
 AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
                                       const std::vector<AdsCalibrationPoint>& points,
-                                      const HysteresisSpans& spans) {
+                                      const HysteresisSpans& start, SpanChoice span_choice) {
+  nlohmann::json span_diagnostics;
+  const HysteresisSpans spans = span_choice == SpanChoice::kEstimated
+                                    ? EstimateHysteresisSpans(context, points, start, &span_diagnostics)
+                                    : start;
   const PressureSamples samples = PressureSamplesOf(points, spans);
   OrderChoice ps_order, qc_order;
   const CompensatedSurface alt =
       FitCompensated(context + ": static pressure surface", samples.ps, StaticTolerancePa,
-                     spans.static_pressure_pa, spans.temperature_c, &ps_order);
+                     spans.static_pressure_pa, spans.static_temperature_c, &ps_order);
   const CompensatedSurface cas =
       FitCompensated(context + ": impact pressure surface", samples.qc, ImpactTolerancePa,
-                     spans.impact_pressure_pa, spans.temperature_c, &qc_order);
+                     spans.impact_pressure_pa, spans.pitot_temperature_c, &qc_order);
   AdsFitResult out =
       AdsFitFromSurfaces(kHysteresisAdsStrategyName, alt.centre, cas.centre, true);
   out.constants.altitude_ft.hysteresis = alt.hysteresis;
@@ -395,6 +475,9 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
         {"quadratic_residual_rms_degC", l.residual_rms_c}};
     out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
                                                                     : "CAS from impact pressure";
+    if (span_diagnostics.contains(key)) {
+      out.diagnostics[key]["hysteresis_spans"] = span_diagnostics[key]["hysteresis_spans"];
+    }
   }
   return out;
 }

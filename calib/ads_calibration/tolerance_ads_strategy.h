@@ -39,6 +39,8 @@ AdsFitResult FitToleranceAdsStrategy(const std::string& context,
 /// slope (tol_Pa = tol_ft |dp/dh|, tol_kt dqc/dCAS), and the ISA and CAS laws after them in the
 /// firmware. Pressure is the variable the bridge is nearly linear in; altitude and airspeed are
 /// not (logarithmic and square-root laws), which is what the direct cubic wastes its terms on.
+/// The states are those of each bridge's spans as estimated from the points
+/// (EstimateHysteresisSpans, diagnostics "hysteresis_spans").
 /// Each surface is the full tensor of degree 3 in the pressure code and q in the temperature code,
 /// q in 3..5 chosen by held-out chamber temperatures (each interior temperature left out in turn,
 /// the worst held-out |error| / tolerance compared; diagnostics list every candidate's score).
@@ -60,12 +62,24 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
 /// cubic of the linearised code (least squares of the chamber temperatures over the points; needs
 /// 4 temperatures). Diagnostics as pressure_minimax's plus that cubic's rms residual and the
 /// linearisation (curvature with its standard error, slope, the quadratic's residual in degC).
-/// Left out: a span estimated from the data (the spans are the part's nominal values, physics.md
-/// section 6: estimated), the unit's state at power-on (virgin; the bridge keeps its hysteresis
-/// state across power cycles, the firmware does not).
+/// The operators' spans are estimated from the points (EstimateHysteresisSpans, from `start`)
+/// unless `span_choice` is kAssumed, when `start` is taken as the part's (the tests' "assumed
+/// spans" column); diagnostics carry the estimate per surface ("hysteresis_spans").
+/// Left out: the unit's state at power-on (virgin; the bridge keeps its hysteresis state across
+/// power cycles, the firmware does not).
+enum class SpanChoice { kEstimated, kAssumed };
 AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
                                       const std::vector<AdsCalibrationPoint>& points,
-                                      const HysteresisSpans& spans = HysteresisSpans::Nominal());
+                                      const HysteresisSpans& start = HysteresisSpans::Nominal(),
+                                      SpanChoice span_choice = SpanChoice::kEstimated);
+
+/// Each bridge's pressure and thermal spans that let its centre fit explain the points best
+/// (hysteresis_span_fit.h), searched around `start`; with `diagnostics`, writes
+/// ["altitude_ft" | "airspeed_kt"]["hysteresis_spans"] (spans, standard errors, the weighted cost
+/// at `start` and at the estimate).
+HysteresisSpans EstimateHysteresisSpans(const std::string& context,
+                                        const std::vector<AdsCalibrationPoint>& points,
+                                        const HysteresisSpans& start, nlohmann::json* diagnostics);
 
 /// The ADS strategy called `name` ("reference", "tolerance_minimax", "pressure_minimax" or
 /// "hysteresis_compensated");

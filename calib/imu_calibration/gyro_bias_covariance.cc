@@ -23,13 +23,13 @@ double UnitPoleAvar(double tau_s, double t_s) {
 
 // The pole standard deviation whose sum's Allan deviation, averaged over log(tau) in the band,
 // equals the floor B.
-double PoleSigmaForFloor(double floor_dps) {
+double PoleSigmaForFloor(double floor_dps, double time_scale) {
   double sum = 0.0;
   for (int i = 0; i < kFloorBandPoints; ++i) {
     const double u = static_cast<double>(i) / (kFloorBandPoints - 1);
     const double tau_s = std::exp(std::log(kFloorBandMin_s) + u * std::log(kFloorBandMax_s / kFloorBandMin_s));
     double avar = 0.0;
-    for (double t_s : kPoleCorrelationTimes_s) avar += UnitPoleAvar(tau_s, t_s);
+    for (double t_s : kPoleCorrelationTimes_s) avar += UnitPoleAvar(tau_s, time_scale * t_s);
     sum += std::sqrt(avar);
   }
   return floor_dps / (sum / kFloorBandPoints);
@@ -50,11 +50,12 @@ double WindowMeanCovariance(double a1, double b1, double a2, double b2, double t
 }  // namespace
 
 Eigen::MatrixXd GyroBiasCovariance_dps2(const std::vector<ImuObservation>& obs,
-                                        double bias_instability_dps, double frame_period_s) {
+                                        double bias_instability_dps, double frame_period_s,
+                                        double time_scale) {
   const long n = static_cast<long>(obs.size());
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
   if (bias_instability_dps <= 0.0) return k;
-  const double q = PoleSigmaForFloor(bias_instability_dps);
+  const double q = PoleSigmaForFloor(bias_instability_dps, time_scale);
   for (long i = 0; i < n; ++i) {
     for (long j = i; j < n; ++j) {
       if (obs[i].run != obs[j].run) continue;
@@ -64,7 +65,7 @@ Eigen::MatrixXd GyroBiasCovariance_dps2(const std::vector<ImuObservation>& obs,
           const double weight = (static_cast<double>(w1.rows) / obs[i].count) * (static_cast<double>(w2.rows) / obs[j].count);
           for (double t_s : kPoleCorrelationTimes_s) {
             sum += weight * WindowMeanCovariance(w1.first_s, w1.last_s + frame_period_s, w2.first_s,
-                                                 w2.last_s + frame_period_s, t_s);
+                                                 w2.last_s + frame_period_s, time_scale * t_s);
           }
         }
       }

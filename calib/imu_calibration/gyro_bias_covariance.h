@@ -1,10 +1,10 @@
 // Covariance, between the means of calibration observations (imu_observations.h), of a gyro's
 // slowly wandering bias, from the datasheet's Allan floor B: flicker noise written as the sum of
-// four Gauss-Markov processes with correlation times 5, 50, 500 and 5000 s and equal variance q^2,
-// q set so that their Allan deviation averaged over 10...5000 s (log tau) is B. This is the
-// calibration's own prior (IEEE Std 952 Annex C formulas); it has the same structure as the
-// simulator's generator, so a unit whose wander differs is not yet represented (the covariance
-// is not estimated from the recording).
+// four Gauss-Markov processes with correlation times c x (5, 50, 500, 5000 s) and equal variance
+// q^2, q set so that their Allan deviation averaged over 10...5000 s (log tau) is B. With the
+// datasheet's B and c = 1 this is the calibration's prior (IEEE Std 952 Annex C formulas); the
+// joint fit estimates B and c from the recording (gyro_wander_fit.h), so a unit whose wander is
+// slower, faster or larger than the datasheet's is fitted with its own.
 //
 // For one process of variance q^2 and correlation time T the covariance of the means over the
 // windows [a1, b1] and [a2, b2] (lengths L1, L2) is
@@ -29,8 +29,10 @@
 namespace adahrs::calib {
 
 /// n x n covariance, (deg/s)^2, of the bias-instability process between the means of `obs`, for
-/// the Allan floor `bias_instability_dps` and frame period `frame_period_s`.
+/// the Allan floor `bias_instability_dps`, frame period `frame_period_s` and the poles'
+/// correlation times scaled by `time_scale`.
 Eigen::MatrixXd GyroBiasCovariance_dps2(const std::vector<ImuObservation>& obs,
-                                        double bias_instability_dps, double frame_period_s);
+                                        double bias_instability_dps, double frame_period_s,
+                                        double time_scale = 1.0);
 
 }  // namespace adahrs::calib

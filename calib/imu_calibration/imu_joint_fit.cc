@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "calib/imu_calibration/gyro_bias_covariance.h"
+#include "calib/imu_calibration/gyro_wander_fit.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/solvers/linear_least_squares.h"
 #include "firmware_model/target/imu_constants.h"
@@ -310,6 +311,23 @@ Eigen::MatrixXd Propagate(const std::array<ChannelModel, 9>& models,
   return out;
 }
 
+// The gyro channel's wander from the recording: its model's design over every observation, and
+// the observations' own variances (gyro_wander_fit.h).
+GyroWanderEstimate EstimateWander(const ChannelModel& m, const std::vector<ImuObservation>& obs,
+                                  double n_thermal, const ImuJointOptions& options) {
+  const long n = static_cast<long>(obs.size());
+  Eigen::MatrixXd design(n, m.size());
+  Eigen::VectorXd y(n), white(n);
+  for (long r = 0; r < n; ++r) {
+    const ImuObservation& o = obs[static_cast<size_t>(r)];
+    design.row(r) = DesignRow(m, o);
+    y[r] = o.u_mean[m.channel];
+    white[r] = Variance(o, m.channel, n_thermal, false, options.noise);
+  }
+  return EstimateGyroWander(obs, design, y, white, options.noise.gyro_bias_floor_dph,
+                            options.noise.gyro_counts_per_dps, options.noise.frame_period_s);
+}
+
 }  // namespace
 
 Eigen::VectorXd FlattenConstants(const fm::ImuCalibrationConstants& c) {
@@ -396,9 +414,10 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
   std::array<Eigen::MatrixXd, 9> cov, crb;
   ImuFitResult result;
   json channels = json::object();
-  // The gyro bias wander between observations, counts^2 (the datasheet floor, like the CRB's).
+  // The gyro bias wander between observations, counts^2: the datasheet's prior, then (unless
+  // options say otherwise) each gyro's own, estimated from the recording (gyro_wander_fit.h).
   const double cpd = options.noise.gyro_counts_per_dps;
-  const Eigen::MatrixXd bias_cnt2 =
+  const Eigen::MatrixXd prior_cnt2 =
       options.unit_weights ? Eigen::MatrixXd()
                            : Eigen::MatrixXd(GyroBiasCovariance_dps2(obs, options.noise.gyro_bias_floor_dph / 3600.0,
                                                                      options.noise.frame_period_s) *
@@ -409,10 +428,29 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     m.channel = ch;
     const bool wanders = ch >= 6 && !options.unit_weights;
     const BiasWander correlated = wanders ? BiasWander::kCorrelated : BiasWander::kNone;
+    const BiasWander diagonal = wanders ? BiasWander::kDiagonal : BiasWander::kNone;
     m.order = options.thermal_order
                   ? *options.thermal_order
-                  : ChooseOrder(serial, ch, obs, n_thermal, options, bias_cnt2,
-                                wanders ? BiasWander::kDiagonal : BiasWander::kNone, &report);
+                  : ChooseOrder(serial, ch, obs, n_thermal, options, prior_cnt2, diagonal, &report);
+    Eigen::MatrixXd wander_cnt2 = prior_cnt2;
+    if (wanders && options.estimate_gyro_wander) {
+      const GyroWanderEstimate w = EstimateWander(m, obs, n_thermal, options);
+      wander_cnt2 = w.covariance_cnt2;
+      report["bias_wander"] = {{"floor_dph", w.floor_dph},
+                               {"time_scale", w.time_scale},
+                               {"white_variance_scale", w.white_scale},
+                               {"log_likelihood_gain_over_datasheet", w.log_likelihood_gain},
+                               {"at_grid_edge", w.at_grid_edge},
+                               {"source", "estimated from the recording (REML)"}};
+      if (!options.thermal_order) {
+        m.order = ChooseOrder(serial, ch, obs, n_thermal, options, wander_cnt2, diagonal, &report);
+      }
+    } else if (wanders) {
+      report["bias_wander"] = {{"floor_dph", options.noise.gyro_bias_floor_dph},
+                               {"time_scale", 1.0},
+                               {"source", "datasheet prior"}};
+    }
+    const Eigen::MatrixXd& bias_cnt2 = wander_cnt2;
     // Model error (drift the thermal polynomial cannot follow) is shared by every observation:
     // its variance, the thermal bands' mean squared residual beyond their noise, is added to
     // every observation's variance and the fit repeated, so that the 25 degC acquisitions (tiny

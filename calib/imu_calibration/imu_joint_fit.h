@@ -70,6 +70,11 @@ struct ImuJointOptions {
   int folds = 5;
   /// Equal weights instead of inverse variances (noise-free data, e.g. projecting a true unit).
   bool unit_weights = false;
+  /// Each gyro's bias wander (Allan floor, time scale, white scale) estimated from the recording
+  /// (gyro_wander_fit.h) instead of the datasheet's prior (noise.gyro_bias_floor_dph, time scale
+  /// 1). Off by default: measured on 20 units it did not make the bound more honest
+  /// (docs/calibration-strategies.md "Model-form mismatch").
+  bool estimate_gyro_wander = false;
   ImuDatasheetNoise noise;
 };
 

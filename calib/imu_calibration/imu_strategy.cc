@@ -39,6 +39,14 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
   if (r.Has("thermal_band_width_cnt")) {
     s.band_width_cnt = r.Number("thermal_band_width_cnt", 10.0, 2000.0, "counts");
   }
+  if (r.Has("gyro_bias_wander")) {
+    if (s.name != "joint") r.Fail("$.gyro_bias_wander", "only the joint strategy models the gyro bias wander");
+    const std::string w = r.String("gyro_bias_wander");
+    if (w != "estimated" && w != "datasheet") {
+      r.Fail("$.gyro_bias_wander", "expected \"estimated\" or \"datasheet\", got \"" + w + "\"");
+    }
+    s.estimate_gyro_wander = w == "estimated";
+  }
   r.ExpectAllKeysUsed();
   return s;
 }
@@ -57,6 +65,7 @@ std::vector<ConstantsFile> FitImuRuns(const std::vector<std::filesystem::path>& 
     } else {
       ImuJointOptions options;
       options.thermal_order = strategy.thermal_order;
+      options.estimate_gyro_wander = strategy.estimate_gyro_wander;
       fit = FitImuJoint(serial, ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt), options);
       fit.diagnostics["excluded_rows"] = unit.exclusions.size();
       fit.diagnostics["rejected_interval_rows"] = unit.rejected_interval_rows;

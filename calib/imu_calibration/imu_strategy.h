@@ -22,6 +22,7 @@ struct ImuStrategy {
   std::string name = "joint";          ///< "reference" or "joint"
   std::optional<int> thermal_order;    ///< joint: empty = chosen by held-out error
   double band_width_cnt = 110.0;
+  bool estimate_gyro_wander = false;   ///< joint: the wander from the recording, else datasheet's
 
   static ImuStrategy Reference();
   static ImuStrategy Improved();

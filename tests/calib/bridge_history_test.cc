@@ -28,7 +28,7 @@ AdsCalibrationPoint At(double chamber_c, double ps_pa, double qc_pa) {
 }
 
 TEST(BridgeHistory, StatesFollowTheReferenceHistoryFromARestingUnit) {
-  const HysteresisSpans spans{20000.0, 20000.0, 20.0};
+  const HysteresisSpans spans{20000.0, 20000.0, 20.0, 20.0};
   // From the room (25 degC, 101,325 Pa, fresh): cool to -40 (65 degC of travel: +1), climb to a
   // static 81,325 Pa (a fall of 20,000 Pa from the start: +1), then heat by 10 degC (-30 degC:
   // half the span from the reversal at -40) with the static pressure back up by 5,000 Pa.

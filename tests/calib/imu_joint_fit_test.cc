@@ -15,6 +15,7 @@
 #include "calib/evaluation/imu_evaluation.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "imu_recording_maker.h"
+#include "tests/calib/gyro_crb_check.h"
 #include "sensor_sim/gravity.h"
 
 namespace adahrs::calib {
@@ -26,22 +27,6 @@ const double kGLocal_mps2 = sensor_sim::NormalGravityMps2(32.6, 200.0);
 
 std::string Verdict(const ImuEvaluation& e, const std::string& quantity) {
   return e.report[quantity]["verdict"].get<std::string>();
-}
-
-// RMS over the gyro nulls and gyro thermal coefficients of (error / CRB standard error), the
-// error against the projection of the true unit (evaluation.json parameters).
-double GyroErrorOverCrb(const ImuEvaluation& e) {
-  double sum = 0.0;
-  int n = 0;
-  for (const auto& p : e.report["parameters"]) {
-    const std::string name = p["name"];
-    const bool gyro = name.rfind("thermal[6]", 0) == 0 || name.rfind("thermal[7]", 0) == 0 ||
-                      name.rfind("thermal[8]", 0) == 0 || name.find("null_cnt") != std::string::npos;
-    if (!gyro || !p.contains("error_over_crb")) continue;
-    sum += std::pow(p["error_over_crb"].get<double>(), 2);
-    ++n;
-  }
-  return n > 0 ? std::sqrt(sum / n) : std::numeric_limits<double>::quiet_NaN();
 }
 
 // Issue 6 done-when: on >= 20 units the improved strategy's evaluated worst errors are within
@@ -97,7 +82,7 @@ TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbLimit) {
       EXPECT_LT(e.worst_rate_dps, r.worst_rate_dps);
       sum_joint += e.worst_accel_mg / 1.0 + e.worst_rate_dps / 0.015;
       sum_reference += r.worst_accel_mg / 1.0 + r.worst_rate_dps / 0.015;
-      gyro_error_over_crb.push_back(GyroErrorOverCrb(e));
+      gyro_error_over_crb.push_back(testing::GyroErrorOverCrb(e));
       std::printf("%s joint accel %.3f mg (floor %.3f) rate %.4f dps (floor %.4f, CRB limit %.4f, "
                   "gyro error/CRB se %.2f) | reference %.3f mg %.4f dps\n",
                   params[u].serial.c_str(), e.worst_accel_mg,

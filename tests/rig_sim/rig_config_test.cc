@@ -8,6 +8,7 @@
 namespace adahrs::rig_sim {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 std::string ErrorOf(const nlohmann::json& json) {
@@ -26,6 +27,7 @@ TEST(RigConfig, DefaultIsCompleteAndValid) {
   EXPECT_EQ(config.imus[2].serial_number, 3u);
   EXPECT_EQ(config.imus[0].baud, 115200);
   EXPECT_EQ(config.model_profile, sensor_sim::ModelProfile::kTruth);
+  EXPECT_EQ(config.truth_variant, sensor_sim::TruthVariant::kStandard);
   EXPECT_TRUE(config.faults.empty());
   EXPECT_EQ(ImuSerial(3), "IMU-0003");
   EXPECT_EQ(AdsSerial(12), "ADS-0012");
@@ -39,6 +41,7 @@ TEST(RigConfig, ReadsUnitsStationAndFaults) {
   j["station"]["latitude_deg"] = 0.0;
   j["station"]["height_m"] = 1000.0;
   j["units"]["model_profile"] = "nominal";
+  j["units"]["truth_variant"] = "play_hysteresis";
   j["units"]["imu"] = {{{"serial_number", 12}, {"seed", 5}, {"orientation", 11}, {"baud", 57600}}};
   j["units"]["ads"] = nlohmann::json::array();
   j["faults"] = {{{"role", "imu1"}, {"fault", "drop_rate"}, {"rate", 0.01}},
@@ -49,6 +52,7 @@ TEST(RigConfig, ReadsUnitsStationAndFaults) {
   EXPECT_EQ(c.imus[0].baud, 57600);
   EXPECT_TRUE(c.ads.empty());
   EXPECT_EQ(c.model_profile, sensor_sim::ModelProfile::kNominal);
+  EXPECT_EQ(c.truth_variant, sensor_sim::TruthVariant::kPlayHysteresis);
   ASSERT_EQ(c.faults.size(), 2u);
   EXPECT_TRUE(c.faults[0].is_rate);
   EXPECT_DOUBLE_EQ(c.faults[0].rate, 0.01);
@@ -81,6 +85,10 @@ TEST(RigConfig, ErrorsNameTheFileAndTheJsonPath) {
   j = DefaultRigConfig();
   j["units"]["model_profile"] = "perfect";
   EXPECT_THAT(ErrorOf(j), HasSubstr("$.units.model_profile"));
+
+  j = DefaultRigConfig();
+  j["units"]["truth_variant"] = "ideal";
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units.truth_variant"), HasSubstr("play_hysteresis")));
 
   j = DefaultRigConfig();
   j["instruments"]["tea_urn"] = nlohmann::json::object();

@@ -302,10 +302,55 @@ TEST(PressureBridge, DrawnPartsStayInsideTheDocumentedRanges) {
   }
 }
 
+// Each drawn part has its own hysteresis spans (20 +- 10 % FS and 20 +- 10 degC at 3 sigma, E):
+// a calibration that assumed the typical part's would be wrong on every unit by a different amount.
+TEST(PressureBridge, DrawnPartsHaveTheirOwnHysteresisSpans) {
+  double min_p = 1e9, max_p = 0.0, min_t = 1e9, max_t = 0.0;
+  for (uint64_t seed = 0; seed < 300; ++seed) {
+    const PressureBridgeParams p = PressureBridgeParams::Draw(kStatic, seed);
+    min_p = std::min(min_p, p.pressure_hysteresis_span_pct_fs);
+    max_p = std::max(max_p, p.pressure_hysteresis_span_pct_fs);
+    min_t = std::min(min_t, p.thermal_hysteresis_span_c);
+    max_t = std::max(max_t, p.thermal_hysteresis_span_c);
+  }
+  EXPECT_GE(min_p, 10.0);
+  EXPECT_LE(max_p, 30.0);
+  EXPECT_LT(min_p, 14.0);
+  EXPECT_GT(max_p, 26.0);
+  EXPECT_GE(min_t, 10.0);
+  EXPECT_LE(max_t, 30.0);
+  EXPECT_NE(PressureBridgeParams::Draw(kStatic, 1).thermal_hysteresis_span_c,
+            PressureBridgeParams::Draw(kStatic, 2).thermal_hysteresis_span_c);
+}
+
+// Under the play-operator law the loop between fully developed branches is still h_P (the weights sum
+// to one), while a loop of a tenth of the span is larger than the travel law's, whose branch
+// leaves a reversal with zero slope.
+TEST(PressureBridge, PlayLawKeepsTheFullLoopAndChangesItsShape) {
+  PressureBridgeParams travel = PressureBridgeParams::Typical(kStatic);
+  travel.effects.noise = false;
+  travel.effects.pressure_hysteresis = true;
+  PressureBridgeParams play = travel;
+  play.hysteresis_law = HysteresisLaw::kPlayOperators;
+  const auto [up_r, down_r] = UpDownAtMidScale(play);
+  EXPECT_NEAR(down_r - up_r, 0.075e-2 * 0.090, 1e-9);
+  auto small_loop_v = [](const PressureBridgeParams& p) {
+    PressureBridge b(p, 1);
+    const double fs = p.full_scale_pa, dp = 0.02 * fs;
+    for (double x : {0.5 * fs, fs, 0.5 * fs + dp}) b.Step({x, 25.0});
+    const double up = b.Step({0.5 * fs, 25.0}).signal_v;
+    b.Step({0.5 * fs - dp, 25.0});
+    return b.Step({0.5 * fs, 25.0}).signal_v - up;
+  };
+  EXPECT_GT(std::abs(small_loop_v(play)), 3.0 * std::abs(small_loop_v(travel)));
+}
+
 TEST(PressureBridge, JsonRoundTripIsExactAndStable) {
+  PressureBridgeParams play = PressureBridgeParams::Draw(kStatic, 6);
+  play.hysteresis_law = HysteresisLaw::kPlayOperators;
   for (const PressureBridgeParams& p :
        {PressureBridgeParams::Typical(kStatic), PressureBridgeParams::Typical(kPitot),
-        PressureBridgeParams::Draw(kStatic, 5), PressureBridgeParams::Draw(kPitot, 5)}) {
+        PressureBridgeParams::Draw(kStatic, 5), PressureBridgeParams::Draw(kPitot, 5), play}) {
     const nlohmann::json j = nlohmann::json::parse(p.ToJson().dump());
     EXPECT_EQ(PressureBridgeParams::FromJson(ParamReader(j, "bridge.json")), p);
   }
@@ -338,6 +383,13 @@ TEST(PressureBridge, BadJsonNamesPathAndRange) {
                     HasSubstr("[0, 1000] uV rms")));
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["kind"] = "gauge"; }),
               AllOf(HasSubstr("$.kind"), HasSubstr("\"gauge\""), HasSubstr("differential")));
+  EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["hysteresis_law"] = "jiles_atherton"; }),
+              AllOf(HasSubstr("$.hysteresis_law"), HasSubstr("play_operators")));
+  // A file written before the key existed reads as the travel law.
+  nlohmann::json old = PressureBridgeParams::Typical(kPitot).ToJson();
+  old.erase("hysteresis_law");
+  EXPECT_EQ(PressureBridgeParams::FromJson(ParamReader(old, "old.json")).hysteresis_law,
+            HysteresisLaw::kTravelPreisach);
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["effects"].erase("nonlinearity"); }),
               AllOf(HasSubstr("$.effects.nonlinearity"), HasSubstr("missing")));
 }
