@@ -216,7 +216,16 @@ void RegisterDemoCommand(CLI::App& app) {
                    "The units' truth in model form: standard, play_hysteresis or slow_bias_wander "
                    "(docs/sensor-models.md)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"standard", "play_hysteresis", "slow_bias_wander"}));
+      ->check(CLI::Validator(
+          [](const std::string& name) {
+            try {
+              sensor_sim::TruthVariantFromString(name);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+          },
+          "VARIANT"));
   demo->callback([options] {
     const int status = RunDemo(*options);
     if (status != 0) std::exit(status);

@@ -32,10 +32,16 @@ struct MinimaxSurface {
   double worst_ratio = 0.0;        ///< of the kept iterate
 };
 
-// The fit's value at a sample: the surface, plus its branch when the fit has history terms.
+// The fit's value at a sample: the surface, plus its branch when the fit has history terms (the
+// gains' temperature slopes are zero unless the fit had them).
 double Predicted(const SurfaceEstimate& e, const SurfaceSample& s) {
   double z = firmware_model::EvaluateSurfaceFit(e.surface, s.x_code, s.y_code);
-  if (e.history) z += e.history->pressure * s.s_pressure + e.history->thermal * s.s_thermal;
+  if (e.history) {
+    const HysteresisEstimate& h = *e.history;
+    const double dt_c = s.chamber_c - kHysteresisReferenceC;
+    z += (h.pressure + h.pressure_per_degc * dt_c) * s.s_pressure +
+         (h.thermal + h.thermal_per_degc * dt_c) * s.s_thermal;
+  }
   return z;
 }
 
@@ -336,11 +342,8 @@ CompensatedSurface FitCompensated(const std::string& context, const std::vector<
   const HysteresisEstimate& h = *out.centre.history;
   for (size_t i = 0; i < samples.size(); ++i) {
     const SurfaceSample& s = samples[i];
-    const double dt_c = s.chamber_c - kHysteresisReferenceC;
-    const double predicted = fm::EvaluateSurfaceFit(out.centre.surface, s.x_code, s.y_code) +
-                             (h.pressure + h.pressure_per_degc * dt_c) * s.s_pressure +
-                             (h.thermal + h.thermal_per_degc * dt_c) * s.s_thermal;
-    out.worst_ratio_at_points = std::max(out.worst_ratio_at_points, std::abs(predicted - s.z) / tolerance[i]);
+    out.worst_ratio_at_points =
+        std::max(out.worst_ratio_at_points, std::abs(Predicted(out.centre, s) - s.z) / tolerance[i]);
   }
   const DieTemperature die = FitDieTemperature(context, recorded);
   static_assert(kHysteresisReferenceC == fm::kHysteresisGainReferenceC);
@@ -379,15 +382,8 @@ SpanFit FitBridgeSpans(const std::string& context, const std::vector<AdsCalibrat
       ++k;
     }
     const SurfaceEstimate e = FitSurface(context, basis, samples, HistoryTerms::kWithTemperatureSlopes);
-    const HysteresisEstimate& h = *e.history;
     double sum = 0.0;
-    for (const SurfaceSample& s : samples) {
-      const double dt_c = s.chamber_c - kHysteresisReferenceC;
-      const double r = fm::EvaluateSurfaceFit(e.surface, s.x_code, s.y_code) +
-                       (h.pressure + h.pressure_per_degc * dt_c) * s.s_pressure +
-                       (h.thermal + h.thermal_per_degc * dt_c) * s.s_thermal - s.z;
-      sum += s.weight * r * r;
-    }
+    for (const SurfaceSample& s : samples) sum += s.weight * std::pow(Predicted(e, s) - s.z, 2);
     return sum;
   };
   const int parameters = static_cast<int>(basis.size()) + 4 + 2;  // surface, gains, slopes, spans

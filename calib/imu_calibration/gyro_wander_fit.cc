@@ -10,8 +10,9 @@ namespace {
 
 constexpr int kFloorSteps = 25;        // over a factor of 100, uniform in log B
 constexpr double kFloorRange = 10.0;   // B0 / 10 ... 10 B0
-constexpr int kWhiteSteps = 13;        // the white variances' scale s, 1/4 ... 16
-constexpr double kWhiteMin = 0.25, kWhiteMax = 16.0;
+constexpr int kWhiteSteps = 13;        // the white variances' scale s = 2^(w/2 - 2): 1/4 ... 16
+constexpr int kWhitePrior = 4;         // s = 1 exactly
+constexpr int kFloorPrior = (kFloorSteps - 1) / 2;  // B = B0 exactly
 constexpr double kDphPerDps = 3600.0;
 
 // One time scale's covariance K0 (at B0) whitened by the white variances D and diagonalised,
@@ -68,11 +69,11 @@ GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs, co
                                cnt2_per_dps2;
     const Rotated rotated = Rotate(k0, design, y, white_cnt2);
     for (int w = 0; w < kWhiteSteps; ++w) {
-      const double s = kWhiteMin * std::pow(kWhiteMax / kWhiteMin, static_cast<double>(w) / (kWhiteSteps - 1));
+      const double s = std::exp2(0.5 * w - 2.0);
       for (int b = 0; b < kFloorSteps; ++b) {
         const double factor = std::pow(kFloorRange, 2.0 * b / (kFloorSteps - 1) - 1.0);
         const double ll = RestrictedLogLikelihood(rotated, s, factor);
-        if (kWanderTimeScales[c] == 1.0 && b == (kFloorSteps - 1) / 2 && s == 1.0) prior_ll = ll;
+        if (kWanderTimeScales[c] == 1.0 && b == kFloorPrior && w == kWhitePrior) prior_ll = ll;
         if (ll > best_ll) {
           best_ll = ll;
           best_b = b;

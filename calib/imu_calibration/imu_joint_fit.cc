@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "calib/imu_calibration/gyro_bias_covariance.h"
 #include "calib/imu_calibration/gyro_wander_fit.h"
@@ -432,25 +433,24 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     m.order = options.thermal_order
                   ? *options.thermal_order
                   : ChooseOrder(serial, ch, obs, n_thermal, options, prior_cnt2, diagonal, &report);
-    Eigen::MatrixXd wander_cnt2 = prior_cnt2;
+    std::optional<GyroWanderEstimate> estimate;
     if (wanders && options.estimate_gyro_wander) {
-      const GyroWanderEstimate w = EstimateWander(m, obs, n_thermal, options);
-      wander_cnt2 = w.covariance_cnt2;
-      report["bias_wander"] = {{"floor_dph", w.floor_dph},
-                               {"time_scale", w.time_scale},
-                               {"white_variance_scale", w.white_scale},
-                               {"log_likelihood_gain_over_datasheet", w.log_likelihood_gain},
-                               {"at_grid_edge", w.at_grid_edge},
+      estimate = EstimateWander(m, obs, n_thermal, options);
+      report["bias_wander"] = {{"floor_dph", estimate->floor_dph},
+                               {"time_scale", estimate->time_scale},
+                               {"white_variance_scale", estimate->white_scale},
+                               {"log_likelihood_gain_over_datasheet", estimate->log_likelihood_gain},
+                               {"at_grid_edge", estimate->at_grid_edge},
                                {"source", "estimated from the recording (REML)"}};
-      if (!options.thermal_order) {
-        m.order = ChooseOrder(serial, ch, obs, n_thermal, options, wander_cnt2, diagonal, &report);
-      }
     } else if (wanders) {
       report["bias_wander"] = {{"floor_dph", options.noise.gyro_bias_floor_dph},
                                {"time_scale", 1.0},
                                {"source", "datasheet prior"}};
     }
-    const Eigen::MatrixXd& bias_cnt2 = wander_cnt2;
+    const Eigen::MatrixXd& bias_cnt2 = estimate ? estimate->covariance_cnt2 : prior_cnt2;
+    if (estimate && !options.thermal_order) {
+      m.order = ChooseOrder(serial, ch, obs, n_thermal, options, bias_cnt2, diagonal, &report);
+    }
     // Model error (drift the thermal polynomial cannot follow) is shared by every observation:
     // its variance, the thermal bands' mean squared residual beyond their noise, is added to
     // every observation's variance and the fit repeated, so that the 25 degC acquisitions (tiny

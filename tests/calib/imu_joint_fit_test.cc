@@ -14,8 +14,7 @@
 
 #include "calib/evaluation/imu_evaluation.h"
 #include "calib/imu_calibration/imu_strategy.h"
-#include "imu_recording_maker.h"
-#include "tests/calib/gyro_crb_check.h"
+#include "tests/calib/twenty_nominal_imus.h"
 #include "sensor_sim/gravity.h"
 
 namespace adahrs::calib {
@@ -44,23 +43,13 @@ std::string Verdict(const ImuEvaluation& e, const std::string& quantity) {
 // about one CRB standard deviation (median over the units of their RMS error / CRB se 0.95).
 TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbLimit) {
   const auto base = std::filesystem::temp_directory_path() / "adahrs_imu_joint_twenty";
-  testing::MakerOptions maker_options;
-  maker_options.thermal_speedup = 60.0;
   std::map<std::string, int> verdicts;
   double sum_joint = 0.0, sum_reference = 0.0;
   std::vector<double> gyro_error_over_crb;
-  for (int batch = 0; batch < 5; ++batch) {
-    std::vector<ImuUnitParams> params;
-    for (int i = 0; i < 4; ++i) {
-      const int n = 4 * batch + i + 1;
-      params.push_back(ImuUnitParams::Draw("IMU-" + std::string(n < 10 ? "000" : "00") + std::to_string(n),
-                                           500 + n, sensor_sim::ModelProfile::kNominal));
-    }
-    testing::ImuRecordingMaker maker(params, kGLocal_mps2, 900 + batch, maker_options);
-    const auto thermal = base / ("thermal" + std::to_string(batch));
-    const auto sensor = base / ("sensor" + std::to_string(batch));
-    maker.Run(testing::ShippedSequence("imu_thermal_calibration_full", 300), thermal);
-    maker.Run(testing::ShippedSequence("imu_sensor_calibration", 300), sensor);
+  testing::ForEachNominalImuBatch(base, kGLocal_mps2, sensor_sim::TruthVariant::kStandard,
+                                  [&](const std::vector<ImuUnitParams>& params,
+                                      const std::filesystem::path& thermal,
+                                      const std::filesystem::path& sensor) {
     const auto joint = FitImuRuns({thermal, sensor}, ImuStrategy::Improved(), "test");
     const auto reference = FitImuRuns({thermal, sensor}, ImuStrategy::Reference(), "test");
     ASSERT_EQ(joint.size(), 4u);
@@ -91,9 +80,7 @@ TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbLimit) {
                   e.report["body_rate"]["crb_limit_dps_at_worst"].get<double>(),
                   gyro_error_over_crb.back(), r.worst_accel_mg, r.worst_rate_dps);
     }
-    std::filesystem::remove_all(thermal);
-    std::filesystem::remove_all(sensor);
-  }
+  });
   for (const auto& [v, n] : verdicts) std::printf("%2d x %s\n", n, v.c_str());
   EXPECT_LE(sum_joint, sum_reference);
   EXPECT_EQ(verdicts["body_rate: within specification"] + verdicts["body_rate: within 1.5x the CRB limit"], 20);

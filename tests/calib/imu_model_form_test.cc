@@ -22,8 +22,7 @@
 
 #include "calib/evaluation/imu_evaluation.h"
 #include "calib/imu_calibration/imu_strategy.h"
-#include "imu_recording_maker.h"
-#include "tests/calib/gyro_crb_check.h"
+#include "tests/calib/twenty_nominal_imus.h"
 #include "sensor_sim/gravity.h"
 
 namespace adahrs::calib {
@@ -50,21 +49,10 @@ std::array<Column, 2> RunTwentyUnits(sensor_sim::TruthVariant variant) {
   // One directory per truth: ctest runs the tests side by side.
   const auto base = std::filesystem::temp_directory_path() /
                     ("adahrs_imu_model_form_" + sensor_sim::ToString(variant));
-  testing::MakerOptions maker_options;
-  maker_options.thermal_speedup = 60.0;
-  for (int batch = 0; batch < 5; ++batch) {
-    std::vector<ImuUnitParams> params;
-    for (int i = 0; i < 4; ++i) {
-      const int n = 4 * batch + i + 1;
-      params.push_back(ImuUnitParams::Draw("IMU-" + std::string(n < 10 ? "000" : "00") + std::to_string(n),
-                                           500 + n, sensor_sim::ModelProfile::kNominal));
-      params.back().ApplyVariant(variant);
-    }
-    testing::ImuRecordingMaker maker(params, kGLocal_mps2, 900 + batch, maker_options);
-    const auto thermal = base / ("thermal" + std::to_string(batch));
-    const auto sensor = base / ("sensor" + std::to_string(batch));
-    maker.Run(testing::ShippedSequence("imu_thermal_calibration_full", 300), thermal);
-    maker.Run(testing::ShippedSequence("imu_sensor_calibration", 300), sensor);
+  testing::ForEachNominalImuBatch(base, kGLocal_mps2, variant,
+                                  [&](const std::vector<ImuUnitParams>& params,
+                                      const std::filesystem::path& thermal,
+                                      const std::filesystem::path& sensor) {
     for (int k = 0; k < 2; ++k) {
       ImuStrategy strategy = ImuStrategy::Improved();
       strategy.estimate_gyro_wander = k == 1;
@@ -86,9 +74,7 @@ std::array<Column, 2> RunTwentyUnits(sensor_sim::TruthVariant variant) {
         }
       }
     }
-    std::filesystem::remove_all(thermal);
-    std::filesystem::remove_all(sensor);
-  }
+  });
   for (int k = 0; k < 2; ++k) {
     const Column& col = c[k];
     std::printf("%s, wander %s: median gyro error / CRB se %.2f (max %.2f); worst rate %.3f-%.3f "
