@@ -41,7 +41,11 @@ struct DemoOptions {
   bool quick = false;
   std::string sequences = ADAHRS_SEQUENCE_DIR;
   std::string truth_variant = "standard";
+  bool free_running = false;
 };
+
+// Exit status of a demo that completed but lost packets in a run.
+constexpr int kExitPacketsLost = 3;
 
 class ConsoleObserver : public calib::CampaignObserver {
  public:
@@ -86,6 +90,19 @@ class ConsoleObserver : public calib::CampaignObserver {
   std::mutex mutex_;
   std::map<std::string, std::unique_ptr<BenchSink>> sinks_;
 };
+
+// Prints every run's rows and lost packets; returns the packets lost in all.
+uint64_t PrintRuns(const std::vector<calib::RunSummary>& runs) {
+  uint64_t lost = 0;
+  for (const calib::RunSummary& r : runs) {
+    std::cout << fmt::format("run {}: {}, {} rows, {}\n", r.run_dir.filename().string(), r.status,
+                             r.rows,
+                             r.lost == 0 ? std::string("no packet lost")
+                                         : fmt::format("{} PACKETS LOST", r.lost));
+    lost += r.lost;
+  }
+  return lost;
+}
 
 void PrintSummary(const calib::CampaignResult& result, double wall_s, sensor_sim::TruthVariant variant) {
   std::cout << fmt::format("\ndemo finished in {:.0f} s wall\n", wall_s);
@@ -153,10 +170,11 @@ int RunDemo(const DemoOptions& options) {
                            sensor_sim::ToString(rig_config.truth_variant),
                            sensor_sim::Describe(rig_config.truth_variant));
 
-  std::cout << fmt::format("starting the virtual rig at {:g}x in {}\n", options.time_scale,
-                           rig_dir.string());
-  rig_sim::RigChildProcess rig(
-      {"/proc/self/exe", rig_dir, rig_dir / "rig.json", options.time_scale, 30.0});
+  std::cout << fmt::format("starting the virtual rig {} {:g}x in {}\n",
+                           options.free_running ? "free-running at" : "in lockstep, at most",
+                           options.time_scale, rig_dir.string());
+  rig_sim::RigChildProcess rig({"/proc/self/exe", rig_dir, rig_dir / "rig.json",
+                                options.time_scale, 30.0, !options.free_running});
   const auto station_file = [&](rig_sim::RigBench bench, const char* name) {
     const std::filesystem::path path = out / name;
     rig_sim::WriteStationFile(rig_sim::BenchStation(bench, rig.manifest(), rig_config, path.string()),
@@ -185,6 +203,10 @@ int RunDemo(const DemoOptions& options) {
     PrintSummary(result,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                  rig_config.truth_variant);
+    if (const uint64_t lost = PrintRuns(result.runs); lost > 0) {
+      std::cout << fmt::format("adahrs demo: {} packets lost: the runs are not complete\n", lost);
+      return kExitPacketsLost;
+    }
     return 0;
   } catch (const calib::RunInterrupted& e) {
     std::cerr << "adahrs demo: interrupted (" << e.what() << "); the rig is stopped\n";
@@ -209,6 +231,9 @@ void RegisterDemoCommand(CLI::App& app) {
   demo->add_option("--time-scale", options->time_scale, "Rig speed, simulated s per wall s")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 900.0));
+  demo->add_flag("--free-running", options->free_running,
+                 "Run the rig on the wall clock (it may outrun a slow machine and lose packets) "
+                 "instead of in lockstep with its readers");
   demo->add_flag("--quick", options->quick, "Shorter sequences (docs/demo.md says what is trimmed)");
   demo->add_option("--sequences", options->sequences, "Directory of the reference sequences")
       ->capture_default_str();

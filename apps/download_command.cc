@@ -45,7 +45,8 @@ void Download(const DownloadOptions& options) {
     store.emplace(options.db);
     records_version = store->AddConstants(calib::ConstantsRecordFromFile(options.constants));
   }
-  const std::unique_ptr<hil::Clock> clock = hil::MakeClock(station.time_scale);
+  const std::unique_ptr<hil::Clock> clock =
+      hil::MakeClock(station.time_scale, station.clock_file);
   hil::UnitLink link(*entry, *clock);
   calib::DownloadRecord record{file.serial, records_version, station.name, entry->role,
                                false, false, std::nullopt, std::nullopt, ""};

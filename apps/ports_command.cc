@@ -21,7 +21,8 @@ void RegisterPortsCommand(CLI::App& app) {
   check->add_option("--station", *station_path, "Station JSON file (docs/station.md)")->required();
   check->callback([station_path] {
     const hil::Station station = hil::Station::Load(*station_path);
-    const std::unique_ptr<hil::Clock> clock = hil::MakeClock(station.time_scale);
+    const std::unique_ptr<hil::Clock> clock =
+        hil::MakeClock(station.time_scale, station.clock_file);
     const std::vector<hil::PortCheckRow> rows = hil::CheckPorts(station, *clock);
     std::cout << fmt::format("{:<12} {:<32} {:<60} {}\n", "role", "port", "identity", "status");
     bool all_ok = true;

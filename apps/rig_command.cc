@@ -20,6 +20,7 @@ void RegisterRigCommand(CLI::App& app) {
     std::string run_dir;
     double time_scale = 0.0;
     bool print_default = false;
+    bool lockstep = false;
   };
   auto options = std::make_shared<Options>();
   cmd->add_option("--config", options->config_path, "Rig configuration JSON (default: built in)");
@@ -28,6 +29,8 @@ void RegisterRigCommand(CLI::App& app) {
   cmd->add_option("--time-scale", options->time_scale,
                   "Simulated seconds per wall second (overrides the config)")
       ->check(CLI::Range(0.01, 100000.0));
+  cmd->add_flag("--lockstep", options->lockstep,
+                "The clock waits for every reading client; --time-scale is its top speed");
   cmd->add_option("--run-dir", options->run_dir,
                   "Run directory for truth/ and ports/ (default: the manifest's directory)");
   cmd->add_flag("--print-default-config", options->print_default,
@@ -45,6 +48,7 @@ void RegisterRigCommand(CLI::App& app) {
             ? rig_sim::RigConfig::FromJson(rig_sim::DefaultRigConfig(), "built-in rig config")
             : rig_sim::RigConfig::Load(options->config_path);
     if (options->time_scale > 0.0) config.time_scale = options->time_scale;
+    if (options->lockstep) config.lockstep = true;
     const std::filesystem::path manifest = std::filesystem::absolute(options->manifest_path);
     const std::filesystem::path run_dir =
         options->run_dir.empty() ? manifest.parent_path() : std::filesystem::path(options->run_dir);
@@ -61,8 +65,9 @@ void RegisterRigCommand(CLI::App& app) {
     for (const auto& [role, path] : rig.ports()) {
       std::cout << fmt::format("{:<14} {}\n", role, path);
     }
-    std::cout << fmt::format("rig running at {:g}x; manifest {}; stop with SIGINT or SIGTERM\n",
-                             config.time_scale, manifest.string())
+    std::cout << fmt::format("rig running at {}{:g}x; manifest {}; stop with SIGINT or SIGTERM\n",
+                             config.lockstep ? "lockstep, up to " : "", config.time_scale,
+                             manifest.string())
               << std::flush;
     int signal_number = 0;
     sigwait(&stop_signals, &signal_number);

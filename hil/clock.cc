@@ -1,5 +1,7 @@
 #include "hil/clock.h"
 
+#include "hil/rig_clock.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -44,6 +46,11 @@ void ScaledClock::SleepS(double duration_s) const {
 std::unique_ptr<Clock> MakeClock(double time_scale) {
   if (time_scale == 1.0) return std::make_unique<WallClock>();
   return std::make_unique<ScaledClock>(time_scale);
+}
+
+std::unique_ptr<Clock> MakeClock(double time_scale, const std::string& clock_file) {
+  if (clock_file.empty()) return MakeClock(time_scale);
+  return std::make_unique<RigClock>(clock_file);
 }
 
 }  // namespace adahrs::hil

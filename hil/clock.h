@@ -4,12 +4,13 @@
 // a day. Drivers and the executor only ever ask a Clock.
 // NowS() is seconds on the run's time base (simulated seconds for a scaled rig), starting at 0
 // when the clock is made. SleepS() waits that many clock seconds.
-// Left out: synchronising to the rig's own frame counter (the rig's clock starts when it starts;
-// the pipeline's when the run starts; recordings use the pipeline's time base).
+// Against a lockstep rig the station names the rig's clock file and the clock is the rig's own
+// (hil/rig_clock.h): it starts at 0 when the run starts, like the others.
 #pragma once
 
 #include <chrono>
 #include <memory>
+#include <string>
 
 namespace adahrs::hil {
 
@@ -22,6 +23,10 @@ class Clock {
   virtual void SleepS(double duration_s) const = 0;
   /// Clock seconds per wall second.
   virtual double time_scale() const = 0;
+  /// Whether the units' packets are produced on this clock's timeline (the wall for real units,
+  /// the rig's own clock for a lockstep rig), so that a line quiet for a clock interval means
+  /// packets were not sent in it. A scaled wall clock only estimates a free-running rig's time.
+  virtual bool source_timed() const = 0;
   /// A wall-clock duration for a timeout of `duration_s` clock seconds (never below 1 ms).
   std::chrono::milliseconds WallTimeout(double duration_s) const;
 };
@@ -33,6 +38,7 @@ class WallClock : public Clock {
   double NowS() const override;
   void SleepS(double duration_s) const override;
   double time_scale() const override { return 1.0; }
+  bool source_timed() const override { return true; }
 
  private:
   std::chrono::steady_clock::time_point start_;
@@ -45,6 +51,7 @@ class ScaledClock : public Clock {
   double NowS() const override;
   void SleepS(double duration_s) const override;
   double time_scale() const override { return time_scale_; }
+  bool source_timed() const override { return false; }
 
  private:
   std::chrono::steady_clock::time_point start_;
@@ -53,5 +60,7 @@ class ScaledClock : public Clock {
 
 /// The clock a station asks for: wall clock at scale 1, a scaled clock otherwise.
 std::unique_ptr<Clock> MakeClock(double time_scale);
+/// The same, or the rig's own clock (hil/rig_clock.h) when `clock_file` is not empty.
+std::unique_ptr<Clock> MakeClock(double time_scale, const std::string& clock_file);
 
 }  // namespace adahrs::hil

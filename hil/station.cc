@@ -79,6 +79,7 @@ Station Station::FromJson(const ParamReader& r) {
   Station st;
   st.name = r.String("name");
   st.time_scale = r.Number("time_scale", 0.01, 1e6, "clock s per wall s");
+  if (r.Has("clock_file")) st.clock_file = r.String("clock_file");
   const ParamReader site = r.Child("site");
   st.latitude_deg = site.Number("latitude_deg", -90.0, 90.0, "deg");
   st.height_m = site.Number("height_m", -500.0, 5000.0, "m");
@@ -169,12 +170,14 @@ nlohmann::json Station::ToJson() const {
   }
   nlohmann::json op_json = {{"type", ToString(op.type)}};
   if (op.type == OperatorType::kVirtualFixture) op_json["port"] = PortJson(op.port);
-  return {{"name", name},
-          {"time_scale", time_scale},
-          {"site", {{"latitude_deg", latitude_deg}, {"height_m", height_m}}},
-          {"instruments", instruments},
-          {"units", units},
-          {"operator", op_json}};
+  nlohmann::json j = {{"name", name},
+                      {"time_scale", time_scale},
+                      {"site", {{"latitude_deg", latitude_deg}, {"height_m", height_m}}},
+                      {"instruments", instruments},
+                      {"units", units},
+                      {"operator", op_json}};
+  if (!clock_file.empty()) j["clock_file"] = clock_file;
+  return j;
 }
 
 const InstrumentEntry* Station::Instrument(const std::string& role) const {

@@ -49,6 +49,9 @@ struct OperatorEntry {
 struct Station {
   std::string name;
   double time_scale = 1.0;       ///< clock seconds per wall second (1 on a real lab)
+  /// A lockstep virtual rig's clock file (hil/rig_clock.h); empty: the clock is the wall's,
+  /// scaled by time_scale.
+  std::string clock_file;
   double latitude_deg = 0.0;
   double height_m = 0.0;
   double local_gravity_mps2 = 0.0;  ///< WGS-84 normal gravity at latitude and height

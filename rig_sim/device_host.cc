@@ -22,6 +22,8 @@ struct DeviceHost::Impl {
   asio::io_context io;
   asio::steady_timer timer{io};
   std::chrono::steady_clock::time_point wall_start;
+  std::chrono::steady_clock::time_point last_tick;
+  bool held = false;  // lockstep: the last tick ended waiting for a reader
   bool stopping = false;
 };
 
@@ -40,6 +42,7 @@ struct DeviceHost::Port {
   uint64_t bytes_overflowed = 0;
   // Last wall instant the client took bytes: a client counts as reading while this is recent.
   std::chrono::steady_clock::time_point last_progress;
+  size_t last_unread = 0;  // lockstep: the pty's input queue when last looked at
 };
 
 DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
@@ -93,17 +96,44 @@ void DeviceHost::RunFrame() {
   frames_done_.fetch_add(1);
 }
 
+bool DeviceHost::ClientReads(const Port& port, std::chrono::steady_clock::time_point now) const {
+  const double limit_s = lockstep_ ? kLockstepStallLimit_s : kClientStallLimit_s;
+  return now - port.last_progress <= std::chrono::duration<double>(limit_s);
+}
+
+bool DeviceHost::HeldByAReader() {
+  const auto now = std::chrono::steady_clock::now();
+  bool held = false;
+  for (auto& port : ports_) {
+    const size_t unread = port->pty.UnreadBytes();
+    if (unread < port->last_unread) port->last_progress = now;  // the client took bytes
+    port->last_unread = unread;
+    if (ClientReads(*port, now) && port->out.size() + unread > kLockstepBudgetBytes) held = true;
+  }
+  return held;
+}
+
 void DeviceHost::WriteOutputs() {
   const auto now = std::chrono::steady_clock::now();
   for (auto& port : ports_) {
     if (port->out.empty()) continue;
+    size_t allowed = port->out.size();
+    if (lockstep_) {
+      // Only while the line discipline's queue is at most half full, and only up to half of it,
+      // so the bytes not yet read stay visible to UnreadBytes() instead of piling up in the
+      // kernel's flip buffers, and a write is accepted only once a client has read.
+      const size_t unread = port->pty.UnreadBytes();
+      constexpr size_t kHalf = kPtyQueueBytes / 2;
+      allowed = std::min(allowed, unread < kHalf ? kHalf - unread : 0);
+    }
     boost::system::error_code ec;
-    const size_t written = port->stream.write_some(asio::buffer(port->out), ec);
+    const size_t written =
+        allowed == 0 ? 0 : port->stream.write_some(asio::buffer(port->out.data(), allowed), ec);
     if (!ec && written > 0) {
       port->out.erase(port->out.begin(), port->out.begin() + static_cast<std::ptrdiff_t>(written));
       port->last_progress = now;
     }
-    if (now - port->last_progress > std::chrono::duration<double>(kClientStallLimit_s)) {
+    if (!ClientReads(*port, now)) {
       // Nobody is reading: the bytes go nowhere, as on a line with no listener, so a client
       // that opens the port later (and flushes the kernel's buffer) reads current data.
       bytes_lost_ += port->out.size();
@@ -120,10 +150,28 @@ void DeviceHost::WriteOutputs() {
 void DeviceHost::OnTick() {
   if (impl_->stopping) return;
   const auto now = std::chrono::steady_clock::now();
+  if (impl_->held) held_wall_s_.store(held_wall_s_.load() +
+                                      std::chrono::duration<double>(now - impl_->last_tick).count());
+  impl_->last_tick = now;
   const double wall_s = std::chrono::duration<double>(now - impl_->wall_start).count();
   const auto target = static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s);
   // Bound the work per tick so reads and control actions interleave with frames.
-  for (int i = 0; i < 200 && frames_done_.load() < target; ++i) RunFrame();
+  bool held = false;
+  for (int i = 0; i < 200 && frames_done_.load() < target; ++i) {
+    if (lockstep_ && i % kLockstepCheckFrames == 0 && HeldByAReader()) {
+      held = true;
+      break;
+    }
+    RunFrame();
+  }
+  if (held) {
+    // The clock waited for a reader: restart the pacing from here, so the world does not race
+    // to catch up with the wall once the reader is back.
+    impl_->wall_start = now - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                  std::chrono::duration<double>(static_cast<double>(frames_done_.load()) *
+                                                                kWorldFrame_s / time_scale_));
+  }
+  impl_->held = held;
   {
     // Published before the frames' bytes are written: a client that has read a reply sees the
     // environment that reply describes.
@@ -131,19 +179,31 @@ void DeviceHost::OnTick() {
     env_snapshot_ = env_;
   }
   WriteOutputs();
-  NoteShortfall(target, 0);
-  if (frames_done_.load() < target) {
+  if (clock_file_) clock_file_->Publish(frames_done_.load());
+  if (!held) NoteShortfall(target, 0);
+  if (!held && frames_done_.load() < target) {
     // Behind the clock: continue at once (reads and posted actions still interleave) instead of
     // sleeping on the timer, whose wake-up latency on a loaded machine would set the pace.
     asio::post(impl_->io, [this] { OnTick(); });
     return;
   }
   const auto wall_per_frame = std::chrono::duration<double>(kWorldFrame_s / time_scale_);
-  impl_->timer.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::min(wall_per_frame, std::chrono::duration<double>(kTickLimit_s))));
+  const auto wait = held ? std::chrono::duration<double>(kLockstepRetry_s)
+                         : std::min(wall_per_frame, std::chrono::duration<double>(kTickLimit_s));
+  impl_->timer.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(wait));
   impl_->timer.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) OnTick();
   });
+}
+
+void DeviceHost::SetLockstep(bool on) {
+  if (started_) throw std::logic_error("DeviceHost::SetLockstep after Start");
+  lockstep_ = on;
+}
+
+void DeviceHost::SetClockFile(const std::filesystem::path& path) {
+  if (started_) throw std::logic_error("DeviceHost::SetClockFile after Start");
+  clock_file_ = std::make_unique<hil::RigClockWriter>(path, kWorldFrame_s, time_scale_);
 }
 
 void DeviceHost::Start() {
@@ -153,6 +213,7 @@ void DeviceHost::Start() {
   asio::post(impl_->io, [this] {
     // The clock starts when the frame thread runs, not when it was asked to.
     impl_->wall_start = std::chrono::steady_clock::now();
+    impl_->last_tick = impl_->wall_start;
     for (auto& port : ports_) port->last_progress = impl_->wall_start;
     OnTick();
   });
@@ -216,6 +277,10 @@ std::vector<std::string> DeviceHost::Report() {
   lines.push_back(fmt::format("host: {} bytes lost in all, worst lag {} frames ({:.2f} s simulated)",
                               bytes_lost_.load(), max_frames_behind_.load(),
                               static_cast<double>(max_frames_behind_.load()) * kWorldFrame_s));
+  if (lockstep_) {
+    lines.push_back(fmt::format("host: lockstep, clock held {:.2f} s of wall time for its readers",
+                                held_wall_s_.load()));
+  }
   return lines;
 }
 

@@ -19,10 +19,19 @@
 // until a client reads again, as on a line with no listener, so a client that opens the port late
 // and flushes the kernel's buffer (pyserial's reset_input_buffer) reads current data. Report()
 // says, per port, how many bytes were lost that way and what the device itself dropped.
+//
+// Lockstep (SetLockstep): the clock advances only while every port whose client reads holds at
+// most kLockstepBudgetBytes not yet read (the host's backlog plus the pty's input queue), so a
+// slow or descheduled reader slows the world instead of losing bytes, and time_scale becomes the
+// top speed. A client still counts as absent after kLockstepStallLimit_s of wall time without
+// taking a byte, so a port nobody opens holds the clock only that long once. The clock file
+// (SetClockFile, hil/rig_clock.h) publishes the frame count for pipelines that follow the rig.
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -30,6 +39,7 @@
 #include <thread>
 #include <vector>
 
+#include "hil/rig_clock.h"
 #include "hil/transport/pty.h"
 #include "rig_sim/rig_environment.h"
 #include "rig_sim/serial_device.h"
@@ -44,6 +54,15 @@ inline constexpr size_t kMinBacklogBytes = 64 * 1024;
 inline constexpr double kClientStallLimit_s = 2.0;
 /// Longest wait between ticks when the host is on time, s.
 inline constexpr double kTickLimit_s = 0.002;
+/// Lockstep: unread bytes per reading port (host backlog + pty input queue) that hold the clock.
+inline constexpr size_t kLockstepBudgetBytes = 16 * 1024;
+/// Lockstep: wall time without reading after which a client counts as absent.
+inline constexpr double kLockstepStallLimit_s = 5.0;
+/// Lockstep: frames between looks at the readers, and the wall wait while one holds the clock.
+inline constexpr int kLockstepCheckFrames = 10;
+inline constexpr double kLockstepRetry_s = 0.0002;
+/// The pty line discipline's input queue (Linux N_TTY_BUF_SIZE).
+inline constexpr size_t kPtyQueueBytes = 4096;
 
 class DeviceHost {
  public:
@@ -55,6 +74,12 @@ class DeviceHost {
 
   /// Opens a pty for `device` and returns its slave path. Only before Start().
   std::string Add(std::unique_ptr<SerialDevice> device);
+
+  /// Lockstep mode (see above). Only before Start().
+  void SetLockstep(bool on);
+  /// Publishes the frame count to `path` (hil::RigClockWriter) from Start() on.
+  void SetClockFile(const std::filesystem::path& path);
+  bool lockstep() const { return lockstep_; }
 
   /// Starts the background thread; the simulated clock starts at 0.
   void Start();
@@ -72,6 +97,8 @@ class DeviceHost {
   /// Frames the host was behind the scaled clock at the worst moment so far.
   uint64_t max_frames_behind() const { return max_frames_behind_.load(); }
   uint64_t bytes_lost() const { return bytes_lost_.load(); }
+  /// Lockstep: wall seconds the clock was held for a reading client, in all.
+  double held_wall_s() const { return held_wall_s_.load(); }
   double time_scale() const { return time_scale_; }
   /// Bytes per port held for a slow client before bytes are lost.
   size_t backlog_limit_bytes() const { return backlog_limit_bytes_; }
@@ -91,6 +118,9 @@ class DeviceHost {
   void NoteShortfall(uint64_t target, uint64_t tolerance);
   void RunFrame();
   void WriteOutputs();
+  // Lockstep: true while a reading client has more than the budget unread.
+  bool HeldByAReader();
+  bool ClientReads(const Port& port, std::chrono::steady_clock::time_point now) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -103,6 +133,9 @@ class DeviceHost {
   std::atomic<uint64_t> frames_done_{0};
   std::atomic<uint64_t> max_frames_behind_{0};
   std::atomic<uint64_t> bytes_lost_{0};
+  std::atomic<double> held_wall_s_{0.0};
+  bool lockstep_ = false;
+  std::unique_ptr<hil::RigClockWriter> clock_file_;
   std::thread thread_;
   bool started_ = false;
 };

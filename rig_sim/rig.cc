@@ -111,6 +111,8 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     AddDevice(std::make_unique<AdsUnitDevice>(unit), "ads", -1, fault_stream++);
   }
   control_ = std::make_unique<RigControl>(targets_, config.time_scale);
+  host_->SetLockstep(config.lockstep);
+  host_->SetClockFile(run_dir_ / kClockFileName);
   ports_["control"] = host_->Add(std::make_unique<ControlPortDevice>(control_.get()));
 
   const nlohmann::json no_keys = nlohmann::json::object();
@@ -159,6 +161,8 @@ nlohmann::json Rig::Manifest() const {
           {"version", kManifestVersion},
           {"pid", static_cast<int64_t>(::getpid())},
           {"time_scale", config_.time_scale},
+          {"clock", {{"file", (run_dir_ / kClockFileName).string()},
+                     {"lockstep", config_.lockstep}}},
           {"station", {{"name", config_.station.name},
                        {"latitude_deg", config_.station.latitude_deg},
                        {"height_m", config_.station.height_m},

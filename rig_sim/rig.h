@@ -29,6 +29,8 @@ namespace adahrs::rig_sim {
 
 /// Version of the manifest layout (docs/rig.md).
 inline constexpr int kManifestVersion = 1;
+/// The clock file (hil/rig_clock.h) in the run directory; the manifest's "clock" names it.
+inline constexpr const char* kClockFileName = "clock";
 
 class Rig {
  public:

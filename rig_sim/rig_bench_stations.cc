@@ -87,7 +87,10 @@ hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const 
       {"operator",
        {{"type", "virtual_fixture"},
         {"port", Port(links.at("control").get<std::string>(), kControlBaud, "none")}}}};
-  return hil::Station::FromJson(sensor_sim::ParamReader(station, source));
+  nlohmann::json with_clock = station;
+  const nlohmann::json clock = manifest.value("clock", nlohmann::json::object());
+  if (clock.value("lockstep", false)) with_clock["clock_file"] = clock.at("file");
+  return hil::Station::FromJson(sensor_sim::ParamReader(with_clock, source));
 }
 
 hil::Station WriteStationFile(const hil::Station& station, const std::filesystem::path& path) {

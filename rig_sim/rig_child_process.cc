@@ -53,6 +53,7 @@ void RigChildProcess::Spawn() {
                                    options_.run_dir.string(),
                                    "--time-scale",
                                    std::to_string(options_.time_scale)};
+  if (options_.lockstep) args.push_back("--lockstep");
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

@@ -32,8 +32,9 @@ struct RigChildOptions {
   std::filesystem::path binary;       ///< the adahrs binary (e.g. /proc/self/exe)
   std::filesystem::path run_dir;      ///< manifest.json, rig.log, ports/, truth/ go here
   std::filesystem::path config_file;  ///< rig config (docs/rig.md "Configuration")
-  double time_scale = 1.0;            ///< simulated s per wall s
+  double time_scale = 1.0;            ///< simulated s per wall s (the top speed in lockstep)
   double start_timeout_s = 30.0;      ///< wall s allowed for the manifest to appear
+  bool lockstep = false;              ///< the rig's clock waits for slow readers
 };
 
 class RigChildProcess {

@@ -90,6 +90,7 @@ RigConfig RigConfig::FromJson(const nlohmann::json& json, const std::string& sou
 
   config.time_scale = root.Number("time_scale", 0.01, 100000.0, "simulated s per wall s");
   config.initial_air_c = root.Number("initial_air_c", -60.0, 100.0, "degC");
+  if (root.Has("lockstep")) config.lockstep = root.Flag("lockstep");
 
   const ParamReader units = root.Child("units");
   const std::string profile = units.String("model_profile");

@@ -4,6 +4,8 @@
 //   station      name, latitude_deg, height_m (→ local gravity, WGS-84 normal gravity,
 //                sensor_sim/gravity.h), supply_v (the units' supply rail)
 //   time_scale   simulated seconds per wall second (0.01…100,000; --time-scale overrides it)
+//   lockstep     optional, default false: the clock waits for slow readers and time_scale is
+//                its top speed (rig_sim/device_host.h; --lockstep sets it)
 //   initial_air_c  air in both chambers and every die at power-on
 //   units        model_profile ("nominal" or "truth"), truth_variant (optional: "standard",
 //                "play_hysteresis" or "slow_bias_wander", sensor_sim/model_profile.h),
@@ -69,6 +71,7 @@ struct RigConfig {
   std::string source;  ///< file the config came from, for messages
   StationConfig station;
   double time_scale = 1.0;
+  bool lockstep = false;
   double initial_air_c = 25.0;
   sensor_sim::ModelProfile model_profile = sensor_sim::ModelProfile::kTruth;
   sensor_sim::TruthVariant truth_variant = sensor_sim::TruthVariant::kStandard;

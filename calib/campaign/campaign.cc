@@ -76,6 +76,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   const auto calibration =
       RunBenches(o, observer, {seq.imu_thermal, seq.imu_sensor}, {seq.ads_calibration}, stop);
   observer.Stage("calibration runs done:" + RunsText(calibration));
+  for (const auto& bench : calibration) result.runs.insert(result.runs.end(), bench.begin(), bench.end());
   const std::filesystem::path thermal_run = RunDir(o, seq.imu_thermal);
   const std::filesystem::path sensor_run = RunDir(o, seq.imu_sensor);
   const std::filesystem::path ads_run = RunDir(o, seq.ads_calibration);
@@ -110,6 +111,7 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
   const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
   observer.Stage("acceptance runs done:" + RunsText(acceptance));
+  for (const auto& bench : acceptance) result.runs.insert(result.runs.end(), bench.begin(), bench.end());
   const std::filesystem::path imu_acceptance_run = RunDir(o, seq.imu_acceptance);
   const std::filesystem::path ads_acceptance_run = RunDir(o, seq.ads_acceptance);
   const AcceptanceRun imu_judged = JudgeIntoRecords(imu_acceptance_run, o.software_version, records);

@@ -40,6 +40,7 @@
 #include "calib/diagnosis/imu_diagnosis.h"
 #include "calib/executor/executor.h"
 #include "calib/executor/progress.h"
+#include "calib/executor/run_session.h"
 
 namespace adahrs::calib {
 
@@ -88,6 +89,8 @@ struct CampaignResult {
   std::vector<DiagnosisTruthLine> diagnosis_truth;  ///< empty without a truth directory
   std::filesystem::path diagnosis_dir;
   std::vector<std::filesystem::path> run_dirs;
+  /// Every bench run as its session ended: rows recorded and packets lost.
+  std::vector<RunSummary> runs;
   std::vector<EvaluatedQuantity> reference_evaluation;  ///< IMU reference strategy, for comparison
   std::vector<EvaluatedQuantity> ads_reference_evaluation;  ///< ADS reference strategy, likewise
   std::vector<std::string> not_run;  ///< stages without a library in this build, with the reason

@@ -14,7 +14,8 @@ namespace adahrs::calib {
 std::vector<UnitDownload> DownloadStation(const hil::Station& station,
                                           const std::filesystem::path& fit_dir,
                                           RecordsStore& records) {
-  const std::unique_ptr<hil::Clock> clock = hil::MakeClock(station.time_scale);
+  const std::unique_ptr<hil::Clock> clock =
+      hil::MakeClock(station.time_scale, station.clock_file);
   std::vector<UnitDownload> downloads;
   for (const hil::UnitEntry& entry : station.units) {
     hil::UnitLink link(entry, *clock);

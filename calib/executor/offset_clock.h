@@ -15,6 +15,7 @@ class OffsetClock : public hil::Clock {
   double NowS() const override { return base_.NowS() + offset_s_; }
   void SleepS(double duration_s) const override { base_.SleepS(duration_s); }
   double time_scale() const override { return base_.time_scale(); }
+  bool source_timed() const override { return base_.source_timed(); }
 
  private:
   const hil::Clock& base_;

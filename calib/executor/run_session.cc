@@ -203,7 +203,8 @@ RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
                                s.run_dir.string(), s.run_dir.string()));
   }
   std::filesystem::create_directories(s.run_dir);
-  const std::unique_ptr<hil::Clock> clock = hil::MakeClock(s.station.time_scale);
+  const std::unique_ptr<hil::Clock> clock =
+      hil::MakeClock(s.station.time_scale, s.station.clock_file);
   return Execute(s, *clock, std::nullopt, 0, std::nullopt, {}, progress, stop, options);
 }
 
@@ -240,7 +241,8 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progres
   // The clock continues one packet period after the latest time on record.
   const double last_t_s = std::max({point.last_t_s, LastRowTime(run_dir / hil::kImuCsvName),
                                     LastRowTime(run_dir / hil::kAdsCsvName)});
-  const std::unique_ptr<hil::Clock> base = hil::MakeClock(s.station.time_scale);
+  const std::unique_ptr<hil::Clock> base =
+      hil::MakeClock(s.station.time_scale, s.station.clock_file);
   const OffsetClock clock(*base, last_t_s + 1.0 / options.executor.packet_rate_hz);
   progress.Note(fmt::format("resuming {} at step {} of {}, clock from t = {:.2f} s", run_dir.string(),
                             point.first_incomplete_step + 1, s.sequence.steps.size(), clock.NowS()));

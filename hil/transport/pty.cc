@@ -1,6 +1,7 @@
 #include "hil/transport/pty.h"
 
 #include <fcntl.h>
+#include <sys/ioctl.h>
 #include <stdlib.h>
 #include <termios.h>
 #include <unistd.h>
@@ -73,6 +74,12 @@ void PtyPair::Close() {
   if (slave_fd_ >= 0) ::close(slave_fd_);
   if (master_fd_ >= 0) ::close(master_fd_);
   slave_fd_ = master_fd_ = -1;
+}
+
+size_t PtyPair::UnreadBytes() const {
+  int unread = 0;
+  if (slave_fd_ < 0 || ::ioctl(slave_fd_, FIONREAD, &unread) != 0 || unread < 0) return 0;
+  return static_cast<size_t>(unread);
 }
 
 }  // namespace adahrs::hil

@@ -10,6 +10,7 @@
 // the simulated clock), modem control lines, parity errors.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace adahrs::hil {
@@ -29,6 +30,9 @@ class PtyPair {
   int master_fd() const { return master_fd_; }
   /// Path of the slave device (the client side), e.g. /dev/pts/7.
   const std::string& slave_path() const { return slave_path_; }
+  /// Bytes written on the master that no client has read yet (FIONREAD on the pair's own slave
+  /// descriptor: the slave's input queue, which every client of the path shares).
+  size_t UnreadBytes() const;
 
  private:
   PtyPair(int master_fd, int slave_fd, std::string slave_path);

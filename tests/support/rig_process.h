@@ -49,10 +49,11 @@ inline constexpr double kRigStartTimeoutS = 30.0;
 
 class RigProcess {
  public:
-  /// Starts the rig at `time_scale` (simulated s per wall s) with `config` (the rig's built-in
-  /// default config when absent).
-  explicit RigProcess(double time_scale, std::optional<nlohmann::json> config = std::nullopt)
-      : time_scale_(time_scale) {
+  /// Starts the rig at `time_scale` (simulated s per wall s; the top speed in lockstep) with
+  /// `config` (the rig's built-in default config when absent).
+  explicit RigProcess(double time_scale, std::optional<nlohmann::json> config = std::nullopt,
+                      bool lockstep = false)
+      : time_scale_(time_scale), lockstep_(lockstep) {
     const char* bin_dir = std::getenv("ADAHRS_BIN_DIR");
     if (bin_dir == nullptr) throw std::runtime_error("RigProcess: ADAHRS_BIN_DIR is not set");
     binary_ = std::filesystem::path(bin_dir) / "adahrs";
@@ -126,7 +127,7 @@ class RigProcess {
                        {"timeout_ms", 500},
                        {"port", port(Port(role), unit["baud"].get<unsigned>(), "none")}});
     }
-    return {{"name", "virtual rig (test)"},
+    nlohmann::json station = {{"name", "virtual rig (test)"},
             {"time_scale", time_scale_},
             {"site",
              {{"latitude_deg", manifest_["station"]["latitude_deg"]},
@@ -135,6 +136,8 @@ class RigProcess {
             {"units", units},
             {"operator",
              {{"type", "virtual_fixture"}, {"port", port(Port("control"), 115200, "none")}}}};
+    if (lockstep_) station["clock_file"] = manifest_["clock"]["file"];
+    return station;
   }
 
   /// Writes StationJson() (changed by `edit`, if given) to <dir>/<file_name>; returns its path.
@@ -219,6 +222,7 @@ class RigProcess {
                                      dir_.string(),
                                      "--time-scale",
                                      std::to_string(time_scale_)};
+    if (lockstep_) args.push_back("--lockstep");
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -263,6 +267,7 @@ class RigProcess {
   }
 
   double time_scale_;
+  bool lockstep_;
   std::filesystem::path binary_;
   std::filesystem::path dir_;
   nlohmann::json config_;
