@@ -101,13 +101,20 @@ bool DeviceHost::ClientReads(const Port& port, std::chrono::steady_clock::time_p
   return now - port.last_progress <= std::chrono::duration<double>(limit_s);
 }
 
+size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point now) {
+  // The pty's input queue only shrinks when a client reads or flushes it (bytes just written
+  // may show late, never early), so a smaller count than last time is a client at work.
+  const size_t unread = port.pty.UnreadBytes();
+  if (unread < port.last_unread) port.last_progress = now;
+  port.last_unread = unread;
+  return unread;
+}
+
 bool DeviceHost::HeldByAReader() {
   const auto now = std::chrono::steady_clock::now();
   bool held = false;
   for (auto& port : ports_) {
-    const size_t unread = port->pty.UnreadBytes();
-    if (unread < port->last_unread) port->last_progress = now;  // the client took bytes
-    port->last_unread = unread;
+    const size_t unread = NoteReader(*port, now);
     if (ClientReads(*port, now) && port->out.size() + unread > kLockstepBudgetBytes) held = true;
   }
   return held;
@@ -122,7 +129,7 @@ void DeviceHost::WriteOutputs() {
       // Only while the line discipline's queue is at most half full, and only up to half of it,
       // so the bytes not yet read stay visible to UnreadBytes() instead of piling up in the
       // kernel's flip buffers, and a write is accepted only once a client has read.
-      const size_t unread = port->pty.UnreadBytes();
+      const size_t unread = NoteReader(*port, now);
       constexpr size_t kHalf = kPtyQueueBytes / 2;
       allowed = std::min(allowed, unread < kHalf ? kHalf - unread : 0);
     }
@@ -131,7 +138,9 @@ void DeviceHost::WriteOutputs() {
         allowed == 0 ? 0 : port->stream.write_some(asio::buffer(port->out.data(), allowed), ec);
     if (!ec && written > 0) {
       port->out.erase(port->out.begin(), port->out.begin() + static_cast<std::ptrdiff_t>(written));
-      port->last_progress = now;
+      // In lockstep an accepted write says nothing of a client (an empty queue takes bytes with
+      // nobody there): only NoteReader's shrinking queue does.
+      if (!lockstep_) port->last_progress = now;
     }
     if (!ClientReads(*port, now)) {
       // Nobody is reading: the bytes go nowhere, as on a line with no listener, so a client
@@ -214,7 +223,11 @@ void DeviceHost::Start() {
     // The clock starts when the frame thread runs, not when it was asked to.
     impl_->wall_start = std::chrono::steady_clock::now();
     impl_->last_tick = impl_->wall_start;
-    for (auto& port : ports_) port->last_progress = impl_->wall_start;
+    // Free-running, every port starts as read; in lockstep none does until a client reads, so
+    // a port nobody opens never holds the clock.
+    const auto never = impl_->wall_start - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                               std::chrono::duration<double>(kLockstepStallLimit_s + 1.0));
+    for (auto& port : ports_) port->last_progress = lockstep_ ? never : impl_->wall_start;
     OnTick();
   });
   thread_ = std::thread([this] { impl_->io.run(); });

@@ -23,8 +23,9 @@
 // Lockstep (SetLockstep): the clock advances only while every port whose client reads holds at
 // most kLockstepBudgetBytes not yet read (the host's backlog plus the pty's input queue), so a
 // slow or descheduled reader slows the world instead of losing bytes, and time_scale becomes the
-// top speed. A client still counts as absent after kLockstepStallLimit_s of wall time without
-// taking a byte, so a port nobody opens holds the clock only that long once. The clock file
+// top speed. A port counts as read from the moment its client reads or flushes the pty's queue,
+// and as unread again after kLockstepStallLimit_s of wall time without that: a port nobody opens
+// never holds the clock, and one whose client went away holds it that long. The clock file
 // (SetClockFile, hil/rig_clock.h) publishes the frame count for pipelines that follow the rig.
 #pragma once
 
@@ -57,7 +58,7 @@ inline constexpr double kTickLimit_s = 0.002;
 /// Lockstep: unread bytes per reading port (host backlog + pty input queue) that hold the clock.
 inline constexpr size_t kLockstepBudgetBytes = 16 * 1024;
 /// Lockstep: wall time without reading after which a client counts as absent.
-inline constexpr double kLockstepStallLimit_s = 5.0;
+inline constexpr double kLockstepStallLimit_s = 0.5;
 /// Lockstep: frames between looks at the readers, and the wall wait while one holds the clock.
 inline constexpr int kLockstepCheckFrames = 10;
 inline constexpr double kLockstepRetry_s = 0.0002;
@@ -120,6 +121,8 @@ class DeviceHost {
   void WriteOutputs();
   // Lockstep: true while a reading client has more than the budget unread.
   bool HeldByAReader();
+  // Lockstep: the pty's unread bytes; a client that took some since the last look is progress.
+  size_t NoteReader(Port& port, std::chrono::steady_clock::time_point now);
   bool ClientReads(const Port& port, std::chrono::steady_clock::time_point now) const;
 
   struct Impl;

@@ -108,7 +108,17 @@ TEST(UnitLink, StreamsAtOneHundredHertzWithoutLossInLockstepForSimulatedMinutes)
   for (const UnitEntry& entry : station.units) {
     links.push_back(std::make_unique<UnitLink>(entry, clock));
   }
-  for (auto& link : links) link->Poll(std::chrono::milliseconds(1));  // discard the start
+  // Discard the start: until the rig has seen a link read, its port counts as unread and the
+  // rig drops what it sends there (a line with no listener), which shows as a gap.
+  const auto warm_up_end = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
+  while (std::chrono::steady_clock::now() < warm_up_end) {
+    for (auto& link : links) link->Poll(std::chrono::milliseconds(1));
+  }
+  std::vector<uint64_t> lost_before, bad_crc_before;
+  for (auto& link : links) {
+    lost_before.push_back(link->lost_packets());
+    bad_crc_before.push_back(link->decoder_counters().bad_crc);
+  }
   std::vector<size_t> counts(links.size(), 0);
   const double rig_start_s = clock.RigTimeS();
   const auto wall_limit = std::chrono::steady_clock::now() + std::chrono::seconds(120);
@@ -121,8 +131,8 @@ TEST(UnitLink, StreamsAtOneHundredHertzWithoutLossInLockstepForSimulatedMinutes)
   const double rig_elapsed_s = clock.RigTimeS() - rig_start_s;
   for (size_t i = 0; i < links.size(); ++i) {
     SCOPED_TRACE(station.units[i].role);
-    EXPECT_EQ(links[i]->lost_packets(), 0u);
-    EXPECT_EQ(links[i]->decoder_counters().bad_crc, 0u);
+    EXPECT_EQ(links[i]->lost_packets(), lost_before[i]);
+    EXPECT_EQ(links[i]->decoder_counters().bad_crc, bad_crc_before[i]);
     // 100 Hz (docs/unit-protocol.md §1) over the rig's own elapsed time. At each edge of the
     // window the packets sent but not yet read are at most what lockstep lets wait: the budget,
     // the pty's queue and one look's frames (rig_sim/device_host.h), in the smallest packets.
