@@ -43,6 +43,9 @@ struct DeviceHost::Port {
   // Last wall instant the client took bytes: a client counts as reading while this is recent.
   std::chrono::steady_clock::time_point last_progress;
   size_t last_unread = 0;  // lockstep: the pty's input queue when last looked at
+  // Lockstep: looks at the queue since it last shrank. Saturates; starts "long ago" so a port
+  // counts as unread until a client reads.
+  uint32_t looks_since_progress = kLockstepMinLooks;
 };
 
 DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
@@ -98,14 +101,22 @@ void DeviceHost::RunFrame() {
 
 bool DeviceHost::ClientReads(const Port& port, std::chrono::steady_clock::time_point now) const {
   const double limit_s = lockstep_ ? kLockstepStallLimit_s : kClientStallLimit_s;
-  return now - port.last_progress <= std::chrono::duration<double>(limit_s);
+  const bool recent = now - port.last_progress <= std::chrono::duration<double>(limit_s);
+  // In lockstep the host must also have looked often enough to have seen the client read: a host
+  // thread that was itself descheduled for the limit has no evidence against its readers.
+  return recent || (lockstep_ && port.looks_since_progress < kLockstepMinLooks);
 }
 
 size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point now) {
   // The pty's input queue only shrinks when a client reads or flushes it (bytes just written
   // may show late, never early), so a smaller count than last time is a client at work.
   const size_t unread = port.pty.UnreadBytes();
-  if (unread < port.last_unread) port.last_progress = now;
+  if (unread < port.last_unread) {
+    port.last_progress = now;
+    port.looks_since_progress = 0;
+  } else if (port.looks_since_progress < kLockstepMinLooks) {
+    ++port.looks_since_progress;
+  }
   port.last_unread = unread;
   return unread;
 }

@@ -59,6 +59,9 @@ inline constexpr double kTickLimit_s = 0.002;
 inline constexpr size_t kLockstepBudgetBytes = 16 * 1024;
 /// Lockstep: wall time without reading after which a client counts as absent.
 inline constexpr double kLockstepStallLimit_s = 0.5;
+/// Lockstep: looks at a port's queue (at least one per tick) without it shrinking that, besides
+/// the stall limit, make its client count as gone.
+inline constexpr uint32_t kLockstepMinLooks = 100;
 /// Lockstep: frames between looks at the readers, and the wall wait while one holds the clock.
 inline constexpr int kLockstepCheckFrames = 10;
 inline constexpr double kLockstepRetry_s = 0.0002;
