@@ -43,6 +43,31 @@ void ScaledClock::SleepS(double duration_s) const {
   }
 }
 
+ReplyDeadline::ReplyDeadline(const Clock& clock, double timeout_s,
+                             std::chrono::milliseconds wall_timeout)
+    : clock_(clock), timeout_s_(timeout_s), wall_timeout_(wall_timeout) {
+  Restart();
+}
+
+void ReplyDeadline::Restart() {
+  wall_start_ = std::chrono::steady_clock::now();
+  clock_deadline_s_ = clock_.NowS() + timeout_s_;
+}
+
+bool ReplyDeadline::Passed() const {
+  const auto waited = std::chrono::steady_clock::now() - wall_start_;
+  if (waited < wall_timeout_) return false;
+  if (!clock_.may_pause() || waited >= kMaxReplyWall) return true;
+  return clock_.NowS() >= clock_deadline_s_;
+}
+
+std::chrono::milliseconds ReplyDeadline::WaitLeft() const {
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+      wall_start_ + wall_timeout_ - std::chrono::steady_clock::now());
+  if (left.count() >= 1) return left;
+  return clock_.may_pause() ? std::chrono::milliseconds(10) : std::chrono::milliseconds(1);
+}
+
 std::unique_ptr<Clock> MakeClock(double time_scale) {
   if (time_scale == 1.0) return std::make_unique<WallClock>();
   return std::make_unique<ScaledClock>(time_scale);

@@ -27,6 +27,9 @@ class Clock {
   /// the rig's own clock for a lockstep rig), so that a line quiet for a clock interval means
   /// packets were not sent in it. A scaled wall clock only estimates a free-running rig's time.
   virtual bool source_timed() const = 0;
+  /// Whether the clock stands still while its source is held (a lockstep rig waiting for a slow
+  /// reader): a reply is then late only once this clock, too, has passed its promised time.
+  virtual bool may_pause() const { return false; }
   /// A wall-clock duration for a timeout of `duration_s` clock seconds (never below 1 ms).
   std::chrono::milliseconds WallTimeout(double duration_s) const;
 };
@@ -56,6 +59,30 @@ class ScaledClock : public Clock {
  private:
   std::chrono::steady_clock::time_point start_;
   double time_scale_;
+};
+
+/// Wall time after which a reply is late on any clock (a lockstep rig that never moves again).
+inline constexpr std::chrono::seconds kMaxReplyWall{60};
+
+/// When a reply promised within `timeout_s` clock seconds is late: once `wall_timeout` of wall
+/// time has passed and, on a clock that may pause, `timeout_s` of that clock too (a held rig
+/// makes nothing late), or after kMaxReplyWall whatever the clock. Restart() re-arms it (a
+/// reader that saw bytes gives the line another timeout).
+class ReplyDeadline {
+ public:
+  ReplyDeadline(const Clock& clock, double timeout_s, std::chrono::milliseconds wall_timeout);
+  void Restart();
+  bool Passed() const;
+  /// How long to wait before asking again: the wall time left, or 10 ms once only the clock's
+  /// own deadline is pending (never below 1 ms).
+  std::chrono::milliseconds WaitLeft() const;
+
+ private:
+  const Clock& clock_;
+  double timeout_s_;
+  std::chrono::milliseconds wall_timeout_;
+  std::chrono::steady_clock::time_point wall_start_;
+  double clock_deadline_s_ = 0.0;
 };
 
 /// The clock a station asks for: wall clock at scale 1, a scaled clock otherwise.

@@ -58,7 +58,7 @@ inline constexpr double kTickLimit_s = 0.002;
 /// Lockstep: unread bytes per reading port (host backlog + pty input queue) that hold the clock.
 inline constexpr size_t kLockstepBudgetBytes = 16 * 1024;
 /// Lockstep: wall time without reading after which a client counts as absent.
-inline constexpr double kLockstepStallLimit_s = 0.5;
+inline constexpr double kLockstepStallLimit_s = 5.0;
 /// Lockstep: looks at a port's queue (at least one per tick) without it shrinking that, besides
 /// the stall limit, make its client count as gone.
 inline constexpr uint32_t kLockstepMinLooks = 100;

@@ -16,6 +16,7 @@ class OffsetClock : public hil::Clock {
   void SleepS(double duration_s) const override { base_.SleepS(duration_s); }
   double time_scale() const override { return base_.time_scale(); }
   bool source_timed() const override { return base_.source_timed(); }
+  bool may_pause() const override { return base_.may_pause(); }
 
  private:
   const hil::Clock& base_;

@@ -67,15 +67,12 @@ std::string InstrumentPort::Exchange(const std::string& command, std::string_vie
     port_->DiscardInput();
     Send(command, request);
     received.clear();
-    const auto deadline = std::chrono::steady_clock::now() + reply_timeout();
+    const ReplyDeadline deadline(clock_, entry_.timeout_ms / 1000.0, reply_timeout());
     std::array<uint8_t, 256> chunk{};
-    for (;;) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-          deadline - std::chrono::steady_clock::now());
-      if (left.count() <= 0) break;
+    while (!deadline.Passed()) {
       size_t n = 0;
       try {
-        n = port_->ReadSome(chunk, left);
+        n = port_->ReadSome(chunk, deadline.WaitLeft());
       } catch (const TransportError& e) {
         Fail(InstrumentError::Kind::kNoReply, command, PrintableReply(received), e.what());
       }

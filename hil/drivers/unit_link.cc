@@ -146,15 +146,15 @@ fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
     } catch (const TransportError& e) {
       Fail(Kind::kNoReply, command_text, "", e.what());
     }
-    const auto sent = std::chrono::steady_clock::now();
-    const auto patience_end = sent + kUnitBacklogPatience * timeout;
-    auto quiet_end = sent + timeout;
-    for (;;) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-          std::min(quiet_end, patience_end) - std::chrono::steady_clock::now());
-      if (left.count() <= 0) break;
+    const double timeout_s = entry_.timeout_ms / 1000.0;
+    const ReplyDeadline patience(clock_, kUnitBacklogPatience * timeout_s,
+                                 kUnitBacklogPatience * timeout);
+    ReplyDeadline quiet(clock_, timeout_s, timeout);
+    while (!quiet.Passed() && !patience.Passed()) {
       std::vector<fm::MaintenanceResponse> responses;
-      if (ReadInto(left, &responses) > 0) quiet_end = std::chrono::steady_clock::now() + timeout;
+      if (ReadInto(std::min(quiet.WaitLeft(), patience.WaitLeft()), &responses) > 0) {
+        quiet.Restart();
+      }
       for (const fm::MaintenanceResponse& response : responses) {
         // Responses to other requests (answers that came after their request gave up) are stale.
         if (response.command != command ||

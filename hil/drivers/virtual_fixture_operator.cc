@@ -1,6 +1,7 @@
 #include "hil/drivers/virtual_fixture_operator.h"
 
 #include <algorithm>
+#include <array>
 #include <ostream>
 
 #include <fmt/format.h>
@@ -36,13 +37,25 @@ VirtualFixtureOperator::VirtualFixtureOperator(const OperatorEntry& entry, const
 std::string VirtualFixtureOperator::Command(const std::string& line) {
   const std::chrono::milliseconds timeout =
       std::max(kMinWallReplyTimeout, clock_.WallTimeout(kControlReplyTimeoutS));
+  std::string received;
   try {
     port_->DiscardInput();
     port_->Write(line + "\n", timeout);
-    return Trim(port_->ReadUntil("\n", timeout));
+    // The rig's clock may stand still while it waits for a slow reader (lockstep): the reply
+    // is late only once that clock, too, has passed the promised time.
+    const ReplyDeadline deadline(clock_, kControlReplyTimeoutS, timeout);
+    std::array<uint8_t, 256> chunk{};
+    while (!deadline.Passed()) {
+      const size_t n = port_->ReadSome(chunk, deadline.WaitLeft());
+      received.append(reinterpret_cast<const char*>(chunk.data()), n);
+      const size_t end = received.find('\n');
+      if (end != std::string::npos) return Trim(received.substr(0, end + 1));
+    }
   } catch (const TransportError& e) {
-    throw InstrumentError(Kind::kNoReply, kRole, port_->path(), line, "", e.what());
+    throw InstrumentError(Kind::kNoReply, kRole, port_->path(), line, received, e.what());
   }
+  throw InstrumentError(Kind::kNoReply, kRole, port_->path(), line, received,
+                        fmt::format("no reply line within {} ms wall", timeout.count()));
 }
 
 void VirtualFixtureOperator::Mount(const std::vector<std::string>& unit_roles,

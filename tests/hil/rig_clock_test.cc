@@ -57,6 +57,25 @@ TEST_F(RigClockTest, SleepWaitsForTheRigNotForTheWall) {
   EXPECT_TRUE(woke.load());
 }
 
+TEST_F(RigClockTest, AReplyIsLateOnlyOnceTheHeldRigHasPassedItsTimeToo) {
+  RigClockWriter writer(dir_ / "clock", 0.01, 100.0);
+  const RigClock clock(dir_ / "clock");
+  const ReplyDeadline deadline(clock, 0.5, std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(60));
+  EXPECT_FALSE(deadline.Passed()) << "late while the rig was held";
+  EXPECT_EQ(deadline.WaitLeft(), std::chrono::milliseconds(10));
+  writer.Publish(49);
+  EXPECT_FALSE(deadline.Passed());
+  writer.Publish(50);
+  EXPECT_TRUE(deadline.Passed());
+  // On a clock that never pauses, the wall time alone decides.
+  const ScaledClock scaled(100.0);
+  const ReplyDeadline wall(scaled, 1000.0, std::chrono::milliseconds(20));
+  EXPECT_FALSE(wall.Passed());
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  EXPECT_TRUE(wall.Passed());
+}
+
 TEST_F(RigClockTest, ARigThatStoppedIsAnErrorNamingTheFile) {
   RigClockWriter writer(dir_ / "clock", 0.01, 100.0);
   writer.Publish(500);
