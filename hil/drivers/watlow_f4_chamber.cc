@@ -1,5 +1,7 @@
 #include "hil/drivers/watlow_f4_chamber.h"
 
+#include <thread>
+
 #include <modbus.h>
 
 #include <cerrno>
@@ -114,10 +116,23 @@ void WatlowF4Chamber::Transact(const std::string& command, Call call) {
   const int attempts = entry_.retries + 1;
   std::string last_error;
   bool last_was_timeout = true;
+  const std::chrono::milliseconds wall_timeout = WallReplyTimeout(clock_, entry_.timeout_ms);
+  const auto started = std::chrono::steady_clock::now();
   for (int attempt = 0; attempt < attempts; ++attempt) {
+    const ReplyDeadline deadline(clock_, entry_.timeout_ms / 1000.0, wall_timeout);
     errno = 0;
     if (call() >= 0) return;
     const int error = errno;
+    if (error == ETIMEDOUT && !deadline.Passed() &&
+        std::chrono::steady_clock::now() - started < kMaxReplyWall) {
+      // libmodbus gave up on the wall clock while the rig's clock stood still (a lockstep rig
+      // held for a slow reader): the controller has not yet had its time. Wait until it has,
+      // drop whatever late answer came, and ask again without counting the attempt.
+      while (!deadline.Passed()) std::this_thread::sleep_for(deadline.WaitLeft());
+      modbus_flush(ctx_);
+      --attempt;
+      continue;
+    }
     if (error > MODBUS_ENOBASE && error <= MODBUS_ENOBASE + MODBUS_EXCEPTION_GATEWAY_TARGET) {
       const int code = error - MODBUS_ENOBASE;
       Fail(Kind::kRefused, command, fmt::format("exception {:02d} ({})", code, ExceptionName(code)),
