@@ -285,11 +285,10 @@ AdsDataPayload ParseAdsData(const Frame& frame) {
   return data;
 }
 
-uint32_t SequenceTracker::Observe(uint8_t sequence, uint32_t at_least_missing) {
+uint32_t SequenceTracker::Observe(uint8_t sequence) {
   uint32_t lost = 0;
   if (has_previous_) {
     lost = static_cast<uint8_t>(sequence - previous_ - 1);
-    if (at_least_missing > lost) lost += (at_least_missing - lost + 255u) / 256u * 256u;
   }
   has_previous_ = true;
   previous_ = sequence;

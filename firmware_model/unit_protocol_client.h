@@ -126,14 +126,11 @@ ImuDataPayload ParseImuData(const Frame& frame);
 AdsDataPayload ParseAdsData(const Frame& frame);
 
 /// Loss detection on the wrapping 8-bit data sequence counter: packets missing between
-/// consecutive observations. The counter alone cannot tell a gap of n from n + 256k; a caller
-/// that saw the line quiet for long enough passes the packets that must at least be missing,
-/// and the gap is widened by whole turns of the counter until it covers them.
+/// consecutive observations, assuming fewer than 256 are lost in a row.
 class SequenceTracker {
  public:
-  /// Records `sequence`; returns the number of packets lost since the previous one (0 for the
-  /// first): the counter's gap plus as many 256s as `at_least_missing` requires.
-  uint32_t Observe(uint8_t sequence, uint32_t at_least_missing = 0);
+  /// Records `sequence`; returns the number of packets lost since the previous one (0 for the first).
+  uint32_t Observe(uint8_t sequence);
   uint64_t lost_total() const { return lost_total_; }
 
  private:

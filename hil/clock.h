@@ -23,10 +23,6 @@ class Clock {
   virtual void SleepS(double duration_s) const = 0;
   /// Clock seconds per wall second.
   virtual double time_scale() const = 0;
-  /// Whether the units' packets are produced on this clock's timeline (the wall for real units,
-  /// the rig's own clock for a lockstep rig), so that a line quiet for a clock interval means
-  /// packets were not sent in it. A scaled wall clock only estimates a free-running rig's time.
-  virtual bool source_timed() const = 0;
   /// Whether the clock stands still while its source is held (a lockstep rig waiting for a slow
   /// reader): a reply is then late only once this clock, too, has passed its promised time.
   virtual bool may_pause() const { return false; }
@@ -41,7 +37,6 @@ class WallClock : public Clock {
   double NowS() const override;
   void SleepS(double duration_s) const override;
   double time_scale() const override { return 1.0; }
-  bool source_timed() const override { return true; }
 
  private:
   std::chrono::steady_clock::time_point start_;
@@ -54,7 +49,6 @@ class ScaledClock : public Clock {
   double NowS() const override;
   void SleepS(double duration_s) const override;
   double time_scale() const override { return time_scale_; }
-  bool source_timed() const override { return false; }
 
  private:
   std::chrono::steady_clock::time_point start_;

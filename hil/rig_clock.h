@@ -51,7 +51,6 @@ class RigClock : public Clock {
   double NowS() const override;
   void SleepS(double duration_s) const override;
   double time_scale() const override { return time_scale_; }
-  bool source_timed() const override { return true; }
   bool may_pause() const override { return true; }
   /// Rig seconds since the rig started.
   double RigTimeS() const;

@@ -42,7 +42,12 @@ struct DeviceHost::Port {
   uint64_t bytes_overflowed = 0;
   // Last wall instant the client took bytes: a client counts as reading while this is recent.
   std::chrono::steady_clock::time_point last_progress;
-  size_t last_unread = 0;  // lockstep: the pty's input queue when last looked at
+  // Lockstep: bytes written to the pty in all and by the last write, and the most the client is
+  // known to have taken (written, less the queue, less the last write which may still be on its
+  // way into the queue).
+  uint64_t total_written = 0;
+  uint64_t last_write = 0;
+  uint64_t taken_at_least = 0;
   // Lockstep: looks at the queue since it last shrank. Saturates; starts "long ago" so a port
   // counts as unread until a client reads.
   uint32_t looks_since_progress = kLockstepMinLooks;
@@ -108,16 +113,18 @@ bool DeviceHost::ClientReads(const Port& port, std::chrono::steady_clock::time_p
 }
 
 size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point now) {
-  // The pty's input queue only shrinks when a client reads or flushes it (bytes just written
-  // may show late, never early), so a smaller count than last time is a client at work.
+  // Only a client takes bytes out of the pty's queue (reading or flushing it); bytes just
+  // written may reach the queue late, so the last write is not counted as in it.
   const size_t unread = port.pty.UnreadBytes();
-  if (unread < port.last_unread) {
+  const uint64_t in_line = unread + port.last_write;
+  const uint64_t taken = port.total_written > in_line ? port.total_written - in_line : 0;
+  if (taken > port.taken_at_least) {
+    port.taken_at_least = taken;
     port.last_progress = now;
     port.looks_since_progress = 0;
   } else if (port.looks_since_progress < kLockstepMinLooks) {
     ++port.looks_since_progress;
   }
-  port.last_unread = unread;
   return unread;
 }
 
@@ -150,8 +157,13 @@ void DeviceHost::WriteOutputs() {
     if (!ec && written > 0) {
       port->out.erase(port->out.begin(), port->out.begin() + static_cast<std::ptrdiff_t>(written));
       // In lockstep an accepted write says nothing of a client (an empty queue takes bytes with
-      // nobody there): only NoteReader's shrinking queue does.
-      if (!lockstep_) port->last_progress = now;
+      // nobody there): only the bytes NoteReader finds taken out of the queue do.
+      if (lockstep_) {
+        port->total_written += written;
+        port->last_write = written;
+      } else {
+        port->last_progress = now;
+      }
     }
     if (!ClientReads(*port, now)) {
       // Nobody is reading: the bytes go nowhere, as on a line with no listener, so a client

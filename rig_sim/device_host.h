@@ -124,7 +124,7 @@ class DeviceHost {
   void WriteOutputs();
   // Lockstep: true while a reading client has more than the budget unread.
   bool HeldByAReader();
-  // Lockstep: the pty's unread bytes; a client that took some since the last look is progress.
+  // Lockstep: the pty's unread bytes; a client that took bytes since the last look is progress.
   size_t NoteReader(Port& port, std::chrono::steady_clock::time_point now);
   bool ClientReads(const Port& port, std::chrono::steady_clock::time_point now) const;
 

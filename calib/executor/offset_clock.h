@@ -15,7 +15,6 @@ class OffsetClock : public hil::Clock {
   double NowS() const override { return base_.NowS() + offset_s_; }
   void SleepS(double duration_s) const override { base_.SleepS(duration_s); }
   double time_scale() const override { return base_.time_scale(); }
-  bool source_timed() const override { return base_.source_timed(); }
   bool may_pause() const override { return base_.may_pause(); }
 
  private:

@@ -2,20 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 
 #include <fmt/format.h>
 
 namespace adahrs::hil {
 namespace {
-
-// Data packets are sent every 10 ms (docs/unit-protocol.md §1).
-constexpr double kDataPeriodS = 0.01;
-// How long the first bytes after a quiet may have waited before they were read: a lockstep rig
-// holds up to its budget and the pty's queue (about 4 s of an IMU stream, 7 s of an ADS one)
-// and publishes its clock after up to 200 frames (2 s) of a catching-up tick; a USB-serial
-// adapter and the kernel hold about a second. Quiet shorter than this proves nothing.
-constexpr double kQuietMarginS = 10.0;
 
 namespace fm = firmware_model;
 using Kind = InstrumentError::Kind;
@@ -90,38 +81,21 @@ void UnitLink::Accept(const fm::Frame& frame, double t_s,
     ++malformed_data_packets_;
     return;
   }
-  tracker_.Observe(packet.seq, AtLeastMissing());
-  quiet_evidence_s_ = 0.0;
+  tracker_.Observe(packet.seq);
   queue_.push_back(std::move(packet));
-}
-
-uint32_t UnitLink::AtLeastMissing() const {
-  if (!clock_.source_timed() || quiet_evidence_s_ <= kQuietMarginS) return 0;
-  return static_cast<uint32_t>((quiet_evidence_s_ - kQuietMarginS) / kDataPeriodS);
 }
 
 size_t UnitLink::ReadInto(std::chrono::milliseconds timeout,
                           std::vector<fm::MaintenanceResponse>* responses) {
   std::array<uint8_t, kReadChunkBytes> chunk{};
   size_t n = 0;
-  const double read_from_s = clock_.NowS();
   try {
     n = port_->ReadSome(chunk, timeout);
   } catch (const TransportError& e) {
     Fail(Kind::kNoReply, "read", "", e.what());
   }
+  if (n == 0) return 0;
   const double t_s = clock_.NowS();
-  if (n == 0) {
-    // The line has been quiet since this read began.
-    if (std::isnan(quiet_from_s_)) quiet_from_s_ = read_from_s;
-    return 0;
-  }
-  if (!std::isnan(quiet_from_s_)) {
-    // From the first empty read to the read that ends the quiet; the margin below allows for
-    // the bytes of that read having waited in the line.
-    quiet_evidence_s_ = std::max(quiet_evidence_s_, t_s - quiet_from_s_);
-    quiet_from_s_ = std::numeric_limits<double>::quiet_NaN();
-  }
   for (const fm::Frame& frame : reader_.Push(std::span<const uint8_t>(chunk.data(), n))) {
     Accept(frame, t_s, responses);
   }

@@ -25,7 +25,6 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
-#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -104,9 +103,6 @@ class UnitLink {
   [[noreturn]] void Fail(InstrumentError::Kind kind, const std::string& command, const std::string& reply,
                          const std::string& detail) const;
   std::chrono::milliseconds ReplyTimeout() const;
-  // Packets that must have been missed, by the quiet seen since the last data packet (0 unless
-  // the clock is the packets' own timeline).
-  uint32_t AtLeastMissing() const;
 
   UnitEntry entry_;
   const Clock& clock_;
@@ -114,10 +110,6 @@ class UnitLink {
   firmware_model::UnitProtocolClient client_;
   firmware_model::StreamReader reader_;
   firmware_model::SequenceTracker tracker_;
-  // The longest quiet since the last data packet, in clock s: from a first empty read to the
-  // read that brought bytes again; and the current quiet's first empty read (NaN: none).
-  double quiet_evidence_s_ = 0.0;
-  double quiet_from_s_ = std::numeric_limits<double>::quiet_NaN();
   uint64_t malformed_data_packets_ = 0;
   std::vector<ReceivedPacket> queue_;
 };

@@ -258,19 +258,5 @@ TEST(PacketCodecTest, SequenceTrackerCountsLossAcrossTheWrap) {
   EXPECT_EQ(tracker.lost_total(), 4u);
 }
 
-TEST(PacketCodecTest, SequenceTrackerWidensAGapByWholeTurnsWhenTheLineWasQuietLonger) {
-  SequenceTracker tracker;
-  tracker.Observe(10);
-  EXPECT_EQ(tracker.Observe(12, 0), 1u);
-  // 331 packets missing show as a gap of 75 on the counter; quiet for at least 300 packets'
-  // time, the gap is one turn longer.
-  EXPECT_EQ(tracker.Observe(static_cast<uint8_t>(12 + 332), 300), 331u);
-  // A whole number of turns missing shows as no gap at all.
-  EXPECT_EQ(tracker.Observe(static_cast<uint8_t>(12 + 332 + 513), 400), 512u);
-  // Quiet shorter than the counter's gap changes nothing.
-  EXPECT_EQ(tracker.Observe(static_cast<uint8_t>(12 + 332 + 513 + 6), 3), 5u);
-  EXPECT_EQ(tracker.lost_total(), 1u + 331u + 512u + 5u);
-}
-
 }  // namespace
 }  // namespace adahrs::firmware_model
