@@ -25,6 +25,7 @@ UnitLogger::UnitLogger(hil::UnitLink& link, std::string serial, SharedRecording&
 UnitLogger::~UnitLogger() { Stop(); }
 
 void UnitLogger::Start() {
+  link_.RestartStream();  // the recording starts here
   {
     std::lock_guard lock(mutex_);
     running_ = true;

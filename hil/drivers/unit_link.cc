@@ -85,6 +85,12 @@ void UnitLink::Accept(const fm::Frame& frame, double t_s,
   queue_.push_back(std::move(packet));
 }
 
+void UnitLink::RestartStream() {
+  port_->DiscardInput();
+  queue_.clear();
+  tracker_ = fm::SequenceTracker{};
+}
+
 size_t UnitLink::ReadInto(std::chrono::milliseconds timeout,
                           std::vector<fm::MaintenanceResponse>* responses) {
   std::array<uint8_t, kReadChunkBytes> chunk{};

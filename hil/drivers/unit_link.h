@@ -79,6 +79,10 @@ class UnitLink {
 
   /// Packets missing from the sequence counter since the link was opened.
   uint64_t lost_packets() const { return tracker_.lost_total(); }
+  /// Starts the stream afresh: drops what the line holds and what was received but not polled,
+  /// and counts loss from the next packet on (a recording that starts now misses nothing before
+  /// it; a lockstep rig may have discarded what it sent while nobody read).
+  void RestartStream();
 
   /// Data frames whose CRC held but whose payload no unit sends (wrong length for its mode, mode
   /// byte out of range), dropped since the link was opened; each also shows as a lost packet.
