@@ -50,6 +50,9 @@ class CellCutter {
       }
     }
     segment.chamber_mean_c = chamber / static_cast<double>(rows.size());
+    data_->spectra.AddSegment(
+        index, rows.size(), [&](size_t i) { return rows[i]->t_s; },
+        [&](size_t i, int ch) { return Output(*rows[i], ch); });
     data_->rows += segment.rows;
     data_->segments.push_back(std::move(segment));
   }
@@ -245,12 +248,49 @@ void DeriveThermalState(DiagnosisData* data) {
   }
 }
 
+// The recording's row interval: the median over the first rows of each source.
+double NominalInterval(const ImuUnitData& unit) {
+  constexpr size_t kLook = 20000;
+  std::vector<double> times;
+  for (size_t i = 0; i < std::min(kLook, unit.thermal.size()); ++i) times.push_back(unit.thermal[i].t_s);
+  double d = MedianInterval(times);
+  for (const auto* group : {&unit.accel, &unit.gyro, &unit.cross_axis}) {
+    for (const ImuAcquisition& a : *group) {
+      if (d > 0.0) return d;
+      times.clear();
+      for (size_t i = 0; i < std::min(kLook, a.samples.size()); ++i) times.push_back(a.samples[i].t_s);
+      d = MedianInterval(times);
+    }
+  }
+  return d;
+}
+
+// One tick over the mean captured period for the duty outputs, one count for the gyros.
+std::array<double, kImuChannels> OutputQuantum(const ImuUnitData& unit) {
+  constexpr size_t kLook = 20000;
+  std::array<double, 6> t2_sum{};
+  size_t n = 0;
+  auto add = [&](const std::vector<ImuSample>& rows) {
+    for (size_t i = 0; i < rows.size() && n < kLook; ++i, ++n) {
+      for (int ch = 0; ch < 6; ++ch) t2_sum[ch] += rows[i].raw.t2_cnt[ch];
+    }
+  };
+  add(unit.thermal);
+  for (const ImuAcquisition& a : unit.accel) add(a.samples);
+  std::array<double, kImuChannels> q{};
+  for (int ch = 0; ch < kImuChannels; ++ch) {
+    q[ch] = IsGyroChannel(ch) || n == 0 ? 1.0 : static_cast<double>(n) / t2_sum[ch];
+  }
+  return q;
+}
+
 }  // namespace
 
 DiagnosisData BuildDiagnosisData(const ImuUnitData& unit, double g_local_mps2, double cell_duration_s) {
   DiagnosisData data;
   data.serial = unit.serial;
   const double g_scale = g_local_mps2 / 9.80665;
+  data.spectra = RowSpectra(kImuChannels, NominalInterval(unit));
   CellCutter cutter(&data, cell_duration_s);
   CutThermal(unit, g_scale, &cutter);
   CutAcquisitions(unit.accel, g_scale, &cutter);
@@ -261,6 +301,7 @@ DiagnosisData BuildDiagnosisData(const ImuUnitData& unit, double g_local_mps2, d
                         " segment(s) of calibration data; diagnosis needs at least 2 to hold one out");
   }
   DeriveThermalState(&data);
+  data.output_quantum = OutputQuantum(unit);
   return data;
 }
 

@@ -12,6 +12,7 @@
 // Derived per cell from the recording alone: each thermometer's temperature, its rate of change
 // (least-squares slope over +-kRateWindow_s within the run), the sense of its last change
 // (+1 heated, -1 cooled, 0 none yet) and the time since the run's first row (power-on proxy).
+// Also the row-level spectra of every segment (row_spectrum.h), for periodic structure.
 // Not done: interpolation across gaps (a gap only splits cells), any model of the sensors.
 #pragma once
 
@@ -21,6 +22,7 @@
 
 #include <Eigen/Dense>
 
+#include "calib/diagnosis/row_spectrum.h"
 #include "calib/imu_calibration/imu_run_data.h"
 
 namespace adahrs::calib {
@@ -92,6 +94,11 @@ struct DiagnosisData {
   std::array<ThermometerMap, 3> thermometers;
   double temp_span_c = 0.0;  ///< range of thermometer 0 over the cells
   int rows = 0;
+  /// Row-level spectra of the raw outputs, per channel and segment, at the recording's median
+  /// row interval (row_spectrum.h).
+  RowSpectra spectra{kImuChannels, 0.0};
+  /// The step of each raw output: one timer tick over the mean period (duty), or one count.
+  std::array<double, kImuChannels> output_quantum{};
 };
 
 /// Cuts one unit's calibration data into segments and cells and derives the thermal state.

@@ -416,6 +416,32 @@ void LocateStructure(const DiagnosisData& data, int ch, const std::vector<double
   }
 }
 
+// Periodic lines in the rows' spectra: located, never fitted (no candidate is periodic). A line
+// below half the output's step is what capture quantisation makes of a slowly moving input (the
+// edges' tick phase beats against the frame), so it is noted, not reported.
+void LocatePeriodic(const DiagnosisData& data, int ch, double alpha, double phys, std::vector<Unexplained>* out,
+                    std::vector<std::string>* notes) {
+  const bool gyro = IsGyroChannel(ch);
+  const double raw_scale = gyro ? 1.0 : 1e6;  // counts, or duty in ppm
+  const char* raw_unit = gyro ? "counts" : "ppm of duty";
+  for (const PeriodicLine& line : FindPeriodicLines(data.spectra, ch, alpha)) {
+    const std::string what =
+        fmt::format("periodic {:.3g} Hz, amplitude {:.3g} {} ({:.3g} {}), {:.1f} times the noise floor at that frequency",
+                    line.frequency_hz, line.amplitude * raw_scale, raw_unit, line.amplitude * phys, RmsUnit(ch),
+                    line.floor_ratio);
+    if (line.amplitude < 0.5 * data.output_quantum[ch]) {
+      notes->push_back(fmt::format("{}: {}: below half the output step ({:.3g} {}), capture quantisation", kImuChannelNames[ch],
+                                   what, data.output_quantum[ch] * raw_scale, raw_unit));
+      continue;
+    }
+    std::string where = fmt::format("rows of {} of {} segments with {}-row windows", line.segments.size(),
+                                    line.segments_with_windows, data.spectra.window_rows());
+    if (!line.segments.empty()) where += fmt::format(", first {}", data.segments[line.segments.front()].label);
+    out->push_back({kImuChannelNames[ch], where, what + "; no candidate term explains it", line.amplitude * phys,
+                    RmsUnit(ch)});
+  }
+}
+
 void FillPlot(const DiagnosisData& data, const std::vector<double>& base, const std::vector<double>& final,
               int ch, double phys, ChannelFitSummary* out) {
   const size_t stride = std::max<size_t>(1, data.cells.size() / kPlotCells + 1);
@@ -586,6 +612,7 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
   const std::vector<double> residual = Residuals(data, layout, st, selected_fit, selected, y);
   FillPlot(data, Residuals(data, layout, st, base_fit, base, y), residual, ch, phys, &out.summary);
   LocateStructure(data, ch, residual, phys, &out.unexplained);
+  LocatePeriodic(data, ch, options.family_alpha / kImuChannels, phys, &out.unexplained, notes);
   return out;
 }
 

@@ -23,10 +23,11 @@
 // every (channel, candidate) test of the unit, and only if the leave-one-segment-out error drops.
 // Dependent columns (dU/dT, the stimulus part) are rebuilt from the final baseline once.
 // Unexplained structure, after the final model: a segment whose held-out mean residual lies far
-// outside the others' (robust scale), and an abrupt step inside a long segment. Neither is fitted.
+// outside the others' (robust scale), an abrupt step inside a long segment, and a periodic line in
+// the rows' spectra (row_spectrum.h) above half the output's step. None is fitted.
 // Detection limits: per candidate and channel, (t_crit + 0.84) standard errors of the candidate
 // added alone to the final model (80 % power at the selection's level).
-// Not done: periodic interference (no spectrum of the rows yet), the ADS, generic channel CSVs.
+// Not done: the ADS, generic channel CSVs.
 #pragma once
 
 #include <optional>
