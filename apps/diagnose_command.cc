@@ -20,7 +20,7 @@ void RegisterDiagnoseCommand(CLI::App& app) {
   auto profile = std::make_shared<std::string>("nominal");
   auto out = std::make_shared<std::string>();
   cmd->add_option("--run", *runs, "run directory (repeatable: the runs of one batch)")->required();
-  cmd->add_option("--unit", *unit, "diagnose only this IMU serial");
+  cmd->add_option("--unit", *unit, "diagnose only this unit (IMU or ADS serial)");
   cmd->add_option("--profile", *profile, "the model to compare with: nominal (the pipeline's forward model)")
       ->check(CLI::IsMember({"nominal"}));
   cmd->add_option("--out", *out, "output directory (diagnosis.json, report.html)")->required();

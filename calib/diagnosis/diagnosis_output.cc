@@ -1,10 +1,15 @@
 #include "calib/diagnosis/diagnosis_output.h"
 
+#include <algorithm>
 #include <fstream>
+#include <set>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "calib/ads_calibration/ads_calibration_points.h"
+#include "calib/constants/recording_checksum.h"
+#include "calib/diagnosis/ads_diagnosis.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
 
@@ -14,8 +19,38 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kModel =
-    "pipeline forward model (nominal: thermal polynomials, scale and cross-axis, gyro span nonlinearity), "
-    "fitted to this recording";
+    "pipeline forward model (nominal), fitted to this recording: IMU thermal polynomials, scale and cross-axis, "
+    "gyro span nonlinearity; ADS bivariate polynomial of each bridge's code in pressure and bridge voltage";
+
+// The unit kinds a run's meta.json lists ("imu", "ads"); empty when it cannot be read (the
+// recording reader then says why).
+std::set<std::string> UnitKinds(const std::filesystem::path& run) {
+  std::set<std::string> kinds;
+  std::ifstream f(run / "meta.json");
+  const json meta = json::parse(f, nullptr, false);
+  if (meta.is_discarded() || !meta.contains("units") || !meta["units"].is_array()) return kinds;
+  for (const json& u : meta["units"]) {
+    if (u.is_object() && u.contains("kind") && u["kind"].is_string()) kinds.insert(u["kind"].get<std::string>());
+  }
+  return kinds;
+}
+
+// Every ADS unit of `run` (or only `serial`), diagnosed from its calibration points.
+void DiagnoseAdsRun(const std::filesystem::path& run, const std::optional<std::string>& serial,
+                    const DiagnosisOptions& options, DiagnosisRun* out, std::vector<std::string>* seen) {
+  const hil::Recording rec = hil::ReadRecording(run);
+  std::vector<std::string> serials;
+  for (const hil::AdsRecordRow& r : rec.ads) {
+    if (std::find(serials.begin(), serials.end(), r.unit) == serials.end()) serials.push_back(r.unit);
+  }
+  out->recordings.push_back({run.string(), RecordingSha256(run)});
+  for (const std::string& s : serials) {
+    seen->push_back(s);
+    if (serial && s != *serial) continue;
+    out->units.push_back(DiagnoseAds(s, SelectAdsCalibrationPoints(rec, s, run.string()), options));
+    out->units.back().notes.push_back("points of " + run.string());
+  }
+}
 
 std::string Figures(const UnitDiagnosis& u) {
   std::string body;
@@ -25,8 +60,9 @@ std::string Figures(const UnitDiagnosis& u) {
     for (const Unexplained& x : u.unexplained) found = found || x.channel == c.channel;
     if (!found || c.plot_t_s.empty()) continue;
     Plot p;
-    p.title = fmt::format("{} {}: residual of each 1 s cell", u.serial, c.channel);
-    p.x_label = "thermometer temperature (degC)";
+    const bool points = c.unit == "Pa";
+    p.title = fmt::format("{} {}: residual of each {}", u.serial, c.channel, points ? "calibration point" : "1 s cell");
+    p.x_label = points ? "chamber temperature (degC)" : "thermometer temperature (degC)";
     p.y_label = "residual (" + c.unit + ")";
     p.series.push_back({"baseline model", c.plot_temp_c, c.plot_residual_baseline, PlotSeries::Style::kPoints});
     p.series.push_back({"with the findings", c.plot_temp_c, c.plot_residual_final, PlotSeries::Style::kPoints});
@@ -117,20 +153,31 @@ json DiagnosisRun::ToJson() const {
 
 DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const std::optional<std::string>& serial,
                           const DiagnosisOptions& options) {
-  const ImuRunData data = LoadImuRuns(runs);
+  std::vector<std::filesystem::path> imu_runs, ads_runs;
+  for (const std::filesystem::path& run : runs) {
+    const std::set<std::string> kinds = UnitKinds(run);
+    if (kinds.count("ads")) ads_runs.push_back(run);
+    if (kinds.count("imu") || !kinds.count("ads")) imu_runs.push_back(run);
+  }
   DiagnosisRun out;
-  out.recordings = data.recordings;
   out.model = kModel;
-  if (serial && data.units.count(*serial) == 0) {
+  std::vector<std::string> seen;
+  if (!imu_runs.empty()) {
+    const ImuRunData data = LoadImuRuns(imu_runs);
+    out.recordings = data.recordings;
+    for (const auto& [s, unit] : data.units) {
+      seen.push_back(s);
+      if (serial && s != *serial) continue;
+      out.units.push_back(DiagnoseImu(BuildDiagnosisData(unit, data.local_gravity_mps2), options));
+    }
+  }
+  for (const std::filesystem::path& run : ads_runs) DiagnoseAdsRun(run, serial, options, &out, &seen);
+  if (serial && std::find(seen.begin(), seen.end(), *serial) == seen.end()) {
     std::string have;
-    for (const auto& [s, u] : data.units) have += (have.empty() ? "" : ", ") + s;
+    for (const std::string& s : seen) have += (have.empty() ? "" : ", ") + s;
     throw ImuInputError("unit " + *serial + " is not in the recordings (they hold: " + have + ")");
   }
-  for (const auto& [s, unit] : data.units) {
-    if (serial && s != *serial) continue;
-    out.units.push_back(DiagnoseImu(BuildDiagnosisData(unit, data.local_gravity_mps2), options));
-  }
-  if (out.units.empty()) throw ImuInputError("the recordings hold no IMU calibration data");
+  if (out.units.empty()) throw ImuInputError("the recordings hold no IMU or ADS calibration data");
   return out;
 }
 

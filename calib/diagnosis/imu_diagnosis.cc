@@ -6,11 +6,10 @@
 #include <limits>
 #include <numeric>
 
-#include <boost/math/distributions/fisher_f.hpp>
-#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 
 #include "calib/diagnosis/clustered_least_squares.h"
+#include "calib/diagnosis/term_test.h"
 
 namespace adahrs::calib {
 namespace {
@@ -195,54 +194,9 @@ double PhysicalScale(int ch, const BaselineState& st) {
 
 std::string RmsUnit(int ch) { return IsGyroChannel(ch) ? "dps" : "mg"; }
 
-struct Test {
-  bool testable = false;
-  std::string note;
-  double p_value = 1.0;
-  double gain = 0.0;  // held-out SS drop
-  ClusteredFit fit;
-  std::vector<int> subset;
-};
-
-std::vector<int> With(std::vector<int> subset, const std::vector<int>& extra) {
-  subset.insert(subset.end(), extra.begin(), extra.end());
-  return subset;
-}
-
-Test RunTest(const ClusteredLeastSquares& ls, const std::vector<int>& selected, const ClusteredFit& selected_fit,
-             const Candidate& cand) {
-  Test t;
-  t.subset = With(selected, cand.columns);
-  if (!ls.FullRank(t.subset)) {
-    t.note = "not excited by this recording (its term is zero or a combination of the model's)";
-    return t;
-  }
-  t.fit = ls.Fit(t.subset);
-  if (!t.fit.ok || !t.fit.jackknife_ok) {
-    t.note = "rests on a single segment (cannot be told from that segment's own disturbance)";
-    return t;
-  }
-  const int q = static_cast<int>(cand.columns.size());
-  const Eigen::VectorXd theta = t.fit.theta.tail(q);
-  const Eigen::MatrixXd v = t.fit.covariance.bottomRightCorner(q, q);
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(v);
-  if (ldlt.info() != Eigen::Success || !(v.diagonal().minCoeff() > 0.0)) {
-    t.note = "its jackknife variance vanishes";
-    return t;
-  }
-  const double wald = theta.dot(ldlt.solve(theta));
-  const double dof = std::max(1, t.fit.clusters - 1);
-  const boost::math::fisher_f dist(q, dof);
-  t.p_value = std::isfinite(wald) && wald >= 0.0 ? boost::math::cdf(boost::math::complement(dist, wald / q)) : 1.0;
-  const HeldOutComparison cv = CompareHeldOut(selected_fit, t.fit);
-  t.gain = cv.ss_a - cv.ss_b;
-  t.testable = true;
-  return t;
-}
-
-double TCritical(double alpha, int clusters) {
-  const boost::math::students_t dist(std::max(1, clusters - 1));
-  return boost::math::quantile(boost::math::complement(dist, alpha / 2.0));
+TermTest RunTest(const ClusteredLeastSquares& ls, const std::vector<int>& selected, const ClusteredFit& selected_fit,
+                 const Candidate& cand) {
+  return TestTerm(ls, selected, selected_fit, cand.columns);
 }
 
 // Magnitudes of a candidate's components in their physical units.
@@ -297,12 +251,6 @@ std::string Words(const Candidate& cand, const std::vector<FindingComponent>& c,
                      "gyro g-sensitivity is missing from the model", name, std::abs(c[big].magnitude),
                      c[big].standard_error, c[big].magnitude >= 0 ? "+" : "-", "XYZ"[big], c[0].magnitude,
                      c[1].magnitude, c[2].magnitude);
-}
-
-double HeldOutRms(const ClusteredFit& a, const ClusteredFit& b, bool second, double phys) {
-  const HeldOutComparison cv = CompareHeldOut(a, b);
-  if (!(cv.weight > 0.0)) return 0.0;
-  return std::sqrt(std::max(0.0, (second ? cv.ss_b : cv.ss_a) / cv.weight)) * phys;
 }
 
 // Segments where the term's contribution is largest (mean |x theta| over the segment's cells).
@@ -456,7 +404,7 @@ void FillPlot(const DiagnosisData& data, const std::vector<double>& base, const 
 std::vector<int> BaselineSubset(const ClusteredLeastSquares& ls, const Layout& layout, std::vector<std::string>* notes) {
   std::vector<int> subset;
   for (int j = 0; j < layout.baseline; ++j) {
-    std::vector<int> trial = With(subset, {j});
+    std::vector<int> trial = WithColumns(subset, {j});
     if (!ls.FullRank(trial)) {
       notes->push_back(fmt::format("{}: baseline term {} is not identifiable from this recording (left out)",
                                    kImuChannelNames[layout.channel], layout.names[j]));
@@ -522,11 +470,11 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
   ClusteredFit selected_fit = ls.Fit(selected);
   while (static_cast<int>(chosen.size()) < options.max_findings_per_channel) {
     const Candidate* best = nullptr;
-    Test best_test;
+    TermTest best_test;
     for (const Candidate& cand : layout.candidates) {
       const bool taken = std::any_of(chosen.begin(), chosen.end(), [&](const Candidate* c) { return c->effect == cand.effect; });
       if (taken) continue;
-      Test t = RunTest(ls, selected, selected_fit, cand);
+      TermTest t = RunTest(ls, selected, selected_fit, cand);
       if (!t.testable || t.p_value >= alpha || t.gain <= 0.0) continue;
       if (best == nullptr || t.p_value < best_test.p_value) {
         best = &cand;
@@ -576,7 +524,7 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
     f.rms_unit = RmsUnit(ch);
     f.evidence = Evidence(data, layout, st, *cand, theta);
     f.words = Words(*cand, f.components, ch);
-    const Test t = RunTest(ls, without, fit_without, *cand);
+    const TermTest t = RunTest(ls, without, fit_without, *cand);
     f.wald_p_value = t.p_value;
     out.findings.push_back(std::move(f));
   }
@@ -589,7 +537,7 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
     for (int col : selected) {
       if (std::find(cand.columns.begin(), cand.columns.end(), col) == cand.columns.end()) others.push_back(col);
     }
-    const Test t = RunTest(ls, others, is_chosen ? ls.Fit(others) : selected_fit, cand);
+    const TermTest t = RunTest(ls, others, is_chosen ? ls.Fit(others) : selected_fit, cand);
     if (!t.fit.ok || !t.fit.jackknife_ok || !t.note.empty()) {
       lim.note = t.note;
     } else {

@@ -1,0 +1,131 @@
+// ADS diagnosis proofs (docs/diagnose.md "ADS"): simulated units run through the shipped
+// ads_calibration sequence (temperatures up and back down, sweeps alternating in direction, return
+// points on the opposite branch). A unit whose truth carries pressure hysteresis the model lacks
+// must have it found on both bridges and sized within the stated uncertainty; clean units must give
+// no finding. The recordings come from the simulator (ads_recording_sim.h); the diagnoser
+// (calib/diagnosis) never includes it.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "calib/ads_calibration/ads_calibration_points.h"
+#include "calib/diagnosis/ads_diagnosis.h"
+#include "calib/diagnosis/diagnosis_output.h"
+#include "hil/recording/recording_reader.h"
+#include "tests/calib/ads_recording_sim.h"
+
+namespace adahrs::calib {
+namespace {
+
+namespace fs = std::filesystem;
+using sensor_sim::AdsUnitParams;
+
+UnitDiagnosis Diagnose(const AdsUnitParams& unit, uint64_t noise_seed) {
+  const fs::path run = fs::temp_directory_path() / ("adahrs_ads_diagnosis_" + unit.serial);
+  fs::remove_all(run);
+  testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), unit, noise_seed);
+  const std::vector<AdsCalibrationPoint> points =
+      SelectAdsCalibrationPoints(hil::ReadRecording(run), unit.serial, run.string());
+  fs::remove_all(run);
+  return DiagnoseAds(unit.serial, points);
+}
+
+void Print(const UnitDiagnosis& d) {
+  for (const Finding& f : d.findings) std::printf("  finding: %s (p %.2g, held-out %.4g -> %.4g Pa)\n", f.words.c_str(), f.wald_p_value, f.held_out_rms_before, f.held_out_rms_after);
+  for (const Unexplained& u : d.unexplained) std::printf("  unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
+  for (const ChannelFitSummary& c : d.channels) std::printf("  %s held-out %.4g -> %.4g Pa\n", c.channel.c_str(), c.held_out_rms_baseline, c.held_out_rms_final);
+}
+
+// The truth's half loop in Pa: h (fraction of FSO, falling minus rising) / 2 of the full scale.
+double HalfLoopPa(const sensor_sim::PressureBridgeParams& b) {
+  return b.pressure_hysteresis_pct_fso / 100.0 / 2.0 * b.full_scale_pa;
+}
+
+// Clean units (nominal profile: what the model expresses): no finding on at least 19 of 20
+// (measured 2026-11-27: one, a 13 Pa pitot "pressure hysteresis" carried by the top airspeed
+// points, where the baseline polynomial leaves structure of its own).
+TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
+  int with_findings = 0, with_unexplained = 0;
+  for (int i = 0; i < 20; ++i) {
+    const AdsUnitParams unit = AdsUnitParams::Draw("ADS-" + std::to_string(9300 + i), 6300 + i, sensor_sim::ModelProfile::kNominal);
+    const UnitDiagnosis d = Diagnose(unit, 300 + i);
+    if (!d.findings.empty() || !d.unexplained.empty()) {
+      std::printf("%s:\n", unit.serial.c_str());
+      Print(d);
+    }
+    with_findings += d.findings.empty() ? 0 : 1;
+    with_unexplained += d.unexplained.empty() ? 0 : 1;
+  }
+  std::printf("clean ADS: %d of 20 units with a finding, %d with unexplained structure\n", with_findings, with_unexplained);
+  EXPECT_LE(with_findings, 1);
+  EXPECT_EQ(with_unexplained, 0);
+}
+
+// Pressure hysteresis the model lacks: a single-valued surface returns one branch where the points
+// went up and the other where they came down. On the static bridge (0...103 kPa, five spans of
+// travel): found on every unit, half loop within 3 standard errors of the truth's on at least 9 of
+// 10. On the pitot bridge (0...37 kPa, under two spans): found on at least 8 of 10, and within
+// 3 SE + 20 % of the truth's on at least 7 (measured 2026-11-27: found on 9, half loops 5-15 %
+// low, one span on the search box's edge: docs/diagnose.md).
+TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
+  int found[2] = {}, within[2] = {};
+  for (int i = 0; i < 10; ++i) {
+    AdsUnitParams unit = AdsUnitParams::Draw("ADS-" + std::to_string(9400 + i), 6400 + i, sensor_sim::ModelProfile::kNominal);
+    for (sensor_sim::PressureBridgeParams* b : {&unit.static_bridge, &unit.pitot_bridge}) b->effects.pressure_hysteresis = true;
+    const UnitDiagnosis d = Diagnose(unit, 400 + i);
+    for (const Finding& f : d.findings) {
+      if (f.effect != "pressure_hysteresis") {
+        ADD_FAILURE() << unit.serial << ": " << f.words;
+        continue;
+      }
+      const int k = f.channel == "ps" ? 0 : 1;
+      const auto& b = k == 0 ? unit.static_bridge : unit.pitot_bridge;
+      const double truth = HalfLoopPa(b);
+      const FindingComponent& half = f.components[0];
+      std::printf("%s %s: half loop %.2f +- %.2f Pa, truth %.2f Pa; span %.0f +- %.0f Pa, truth %.0f Pa\n",
+                  unit.serial.c_str(), f.channel.c_str(), half.magnitude, half.standard_error, truth,
+                  f.components[1].magnitude, f.components[1].standard_error,
+                  b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa);
+      ++found[k];
+      if (std::abs(half.magnitude - truth) <= 3.0 * half.standard_error + (k == 0 ? 0.0 : 0.2 * truth)) ++within[k];
+      EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
+    }
+  }
+  std::printf("pressure hysteresis: static bridge found on %d of 10 (%d within 3 SE), pitot on %d of 10 (%d within "
+              "3 SE + 20 %%)\n", found[0], within[0], found[1], within[1]);
+  EXPECT_EQ(found[0], 10);
+  EXPECT_GE(within[0], 9);
+  EXPECT_GE(found[1], 8);
+  EXPECT_GE(within[1], 7);
+}
+
+// `adahrs diagnose` on an ADS run directory: the unit is found by its kind in meta.json and written
+// under the documented contract, both bridges summarised.
+TEST(AdsDiagnosis, DiagnoseRunsReadsAnAdsRunDirectory) {
+  AdsUnitParams unit = AdsUnitParams::Draw("ADS-9500", 6500, sensor_sim::ModelProfile::kNominal);
+  unit.static_bridge.effects.pressure_hysteresis = true;
+  const fs::path run = fs::temp_directory_path() / "adahrs_ads_diagnosis_runs";
+  fs::remove_all(run);
+  testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), unit, 500);
+  const DiagnosisRun d = DiagnoseRuns({run}, std::nullopt);
+  EXPECT_THROW(DiagnoseRuns({run}, std::string("ADS-9999")), ImuInputError);
+  fs::remove_all(run);
+  ASSERT_EQ(d.units.size(), 1u);
+  EXPECT_EQ(d.units[0].serial, "ADS-9500");
+  ASSERT_EQ(d.units[0].channels.size(), 2u);
+  const nlohmann::json j = d.ToJson();
+  EXPECT_EQ(j["format"], "adahrs-diagnosis");
+  ASSERT_EQ(j["recording"].size(), 1u);
+  EXPECT_EQ(j["recording"][0]["sha256"].get<std::string>().size(), 64u);
+  ASSERT_GE(j["findings"].size(), 1u);
+  EXPECT_EQ(j["findings"][0]["effect"], "pressure_hysteresis");
+  EXPECT_EQ(j["findings"][0]["channels"], nlohmann::json::array({"ps"}));
+  EXPECT_EQ(j["detection_limits"].size(), 6u);
+  EXPECT_NE(DiagnosisHtml(d).find("calibration point"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace adahrs::calib
