@@ -1,10 +1,12 @@
-// adahrs diagnose --run DIR [--run DIR...] [--unit SERIAL] [--profile nominal] --out DIR: where the
-// recordings and the pipeline's model part ways, which physics the model leaves out, and the
-// held-out fit with it (calib/diagnosis, docs/diagnose.md). Exit 0 whatever is found; 1 on bad input.
+// adahrs diagnose (--run DIR [--run DIR...] [--unit SERIAL] | --csv SIDECAR...) [--profile nominal]
+// --out DIR: where the recordings and the pipeline's model part ways, which physics the model leaves
+// out, and the held-out fit with it (calib/diagnosis, docs/diagnose.md). Exit 0 whatever is found;
+// 1 on bad input.
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -16,18 +18,26 @@ namespace adahrs::apps {
 void RegisterDiagnoseCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("diagnose", "Locate and name the physics a recording shows and the model leaves out");
   auto runs = std::make_shared<std::vector<std::string>>();
+  auto csvs = std::make_shared<std::vector<std::string>>();
   auto unit = std::make_shared<std::string>();
   auto profile = std::make_shared<std::string>("nominal");
   auto out = std::make_shared<std::string>();
-  cmd->add_option("--run", *runs, "run directory (repeatable: the runs of one batch)")->required();
+  CLI::Option* run_opt = cmd->add_option("--run", *runs, "run directory (repeatable: the runs of one batch)");
+  CLI::Option* csv_opt =
+      cmd->add_option("--csv", *csvs, "generic channel recording: its JSON sidecar (repeatable; docs/diagnose.md)");
+  run_opt->excludes(csv_opt);
+  csv_opt->excludes(run_opt);
   cmd->add_option("--unit", *unit, "diagnose only this unit (IMU or ADS serial)");
   cmd->add_option("--profile", *profile, "the model to compare with: nominal (the pipeline's forward model)")
       ->check(CLI::IsMember({"nominal"}));
   cmd->add_option("--out", *out, "output directory (diagnosis.json, report.html)")->required();
-  cmd->callback([runs, unit, out] {
+  cmd->callback([runs, csvs, unit, out] {
+    if (runs->empty() && csvs->empty()) throw std::runtime_error("diagnose: give --run DIR or --csv SIDECAR.json");
     std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
+    std::vector<std::filesystem::path> sidecars(csvs->begin(), csvs->end());
     const calib::DiagnosisRun run =
-        calib::DiagnoseRuns(dirs, unit->empty() ? std::nullopt : std::optional<std::string>(*unit));
+        sidecars.empty() ? calib::DiagnoseRuns(dirs, unit->empty() ? std::nullopt : std::optional<std::string>(*unit))
+                         : calib::DiagnoseChannelFiles(sidecars);
     calib::WriteDiagnosis(run, *out);
     for (const calib::UnitDiagnosis& u : run.units) {
       std::cout << fmt::format("{}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());

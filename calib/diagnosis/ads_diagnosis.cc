@@ -320,50 +320,23 @@ struct BridgeResult {
 // Forward selection over the candidates; returns the chosen effects in order.
 std::vector<Effect> Select(const BaselineChoice& bc, double alpha, int max_findings, std::vector<int>* selected,
                            ClusteredFit* selected_fit) {
+  const std::vector<std::vector<int>> candidates(bc.layout.candidate.begin(), bc.layout.candidate.end());
+  TermSelection sel = SelectTerms(bc.ls, Range(bc.layout.baseline), bc.fit, candidates, alpha, max_findings);
+  *selected = std::move(sel.selected);
+  *selected_fit = std::move(sel.fit);
   std::vector<Effect> chosen;
-  *selected = Range(bc.layout.baseline);
-  *selected_fit = bc.fit;
-  while (static_cast<int>(chosen.size()) < max_findings) {
-    int best = -1;
-    TermTest best_test;
-    for (int e = 0; e < 3; ++e) {
-      if (std::find(chosen.begin(), chosen.end(), kEffects[e]) != chosen.end()) continue;
-      TermTest t = TestTerm(bc.ls, *selected, *selected_fit, bc.layout.candidate[e]);
-      if (!t.testable || t.p_value >= alpha || t.gain <= 0.0) continue;
-      if (best < 0 || t.p_value < best_test.p_value) {
-        best = e;
-        best_test = std::move(t);
-      }
-    }
-    if (best < 0) break;
-    chosen.push_back(kEffects[best]);
-    *selected = best_test.subset;
-    *selected_fit = std::move(best_test.fit);
-  }
+  for (int k : sel.chosen) chosen.push_back(kEffects[static_cast<size_t>(k)]);
   return chosen;
-}
-
-std::vector<int> Without(const std::vector<int>& subset, const std::vector<int>& columns) {
-  std::vector<int> out;
-  for (int c : subset) {
-    if (std::find(columns.begin(), columns.end(), c) == columns.end()) out.push_back(c);
-  }
-  return out;
 }
 
 Finding MakeFinding(Effect e, const BaselineChoice& bc, const Bridge& b, const std::vector<int>& selected,
                     const ClusteredFit& selected_fit, double sens, const std::vector<std::string>& labels,
                     const std::optional<SpanFit>& spans) {
   const std::vector<int>& cols = bc.layout.candidate[static_cast<int>(e)];
-  const std::vector<int> without = Without(selected, cols);
+  const std::vector<int> without = WithoutColumns(selected, cols);
   const ClusteredFit fit_without = bc.ls.Fit(without);
-  const int q = static_cast<int>(cols.size());
-  Eigen::VectorXd theta(q), se(q);
-  for (int k = 0; k < q; ++k) {
-    const int pos = static_cast<int>(std::find(selected.begin(), selected.end(), cols[k]) - selected.begin());
-    theta[k] = selected_fit.theta[pos];
-    se[k] = std::sqrt(selected_fit.covariance(pos, pos));
-  }
+  Eigen::VectorXd theta, se;
+  ColumnEstimates(selected_fit, selected, cols, &theta, &se);
   Finding f;
   f.effect = EffectName(e);
   f.channel = b.channel;
@@ -442,14 +415,8 @@ BridgeResult DiagnoseBridge(Bridge b, bool pitot, const std::vector<AdsCalibrati
     DetectionLimit lim;
     lim.effect = EffectName(kEffects[e]);
     lim.channel = b.channel;
-    const std::vector<int>& cols = bc.layout.candidate[e];
-    const std::vector<int> others = Without(selected, cols);
-    const TermTest t = TestTerm(bc.ls, others, bc.ls.Fit(others), cols);
-    if (!t.fit.ok || !t.fit.jackknife_ok || !t.note.empty()) {
-      lim.note = t.note;
-    } else {
-      const int q = static_cast<int>(cols.size());
-      const Eigen::VectorXd se = t.fit.covariance.bottomRightCorner(q, q).diagonal().cwiseSqrt();
+    Eigen::VectorXd se;
+    if (LimitStandardErrors(bc.ls, selected, bc.layout.candidate[e], &se, &lim.note)) {
       lim.limits = Components(kEffects[e], se * (tcrit + options.power_z), se, sens, bc.layout, b);
       for (FindingComponent& c : lim.limits) c.magnitude = std::abs(c.magnitude);
     }

@@ -10,6 +10,7 @@
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/constants/recording_checksum.h"
 #include "calib/diagnosis/ads_diagnosis.h"
+#include "calib/diagnosis/channel_diagnosis.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
 
@@ -21,6 +22,10 @@ using nlohmann::json;
 constexpr const char* kModel =
     "pipeline forward model (nominal), fitted to this recording: IMU thermal polynomials, scale and cross-axis, "
     "gyro span nonlinearity; ADS bivariate polynomial of each bridge's code in pressure and bridge voltage";
+
+constexpr const char* kChannelModel =
+    "generic thermal model, fitted to this recording: bias polynomial in temperature, scale and its tempco per "
+    "reference input";
 
 // The unit kinds a run's meta.json lists ("imu", "ads"); empty when it cannot be read (the
 // recording reader then says why).
@@ -178,6 +183,17 @@ DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const 
     throw ImuInputError("unit " + *serial + " is not in the recordings (they hold: " + have + ")");
   }
   if (out.units.empty()) throw ImuInputError("the recordings hold no IMU or ADS calibration data");
+  return out;
+}
+
+DiagnosisRun DiagnoseChannelFiles(const std::vector<std::filesystem::path>& sidecars, const DiagnosisOptions& options) {
+  DiagnosisRun out;
+  out.model = kChannelModel;
+  for (const std::filesystem::path& sidecar : sidecars) {
+    const ChannelRecording rec = ReadChannelRecording(sidecar);
+    out.recordings.push_back({rec.csv, rec.sha256});
+    out.units.push_back(DiagnoseChannels(rec, options));
+  }
   return out;
 }
 

@@ -5,7 +5,7 @@
 // Runs whose meta.json lists ADS units are read for their calibration points
 // (SelectAdsCalibrationPoints) and each ADS unit is diagnosed per run (ads_diagnosis.h); the others
 // by LoadImuRuns (calibration rows of raw-mode steps). Refusals name the file, line and column.
-// Not done here: generic channel CSVs.
+// Generic channel CSVs (a sidecar JSON each) go through DiagnoseChannelFiles.
 #pragma once
 
 #include <filesystem>
@@ -33,6 +33,12 @@ struct DiagnosisRun {
 /// not in the runs.
 DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const std::optional<std::string>& serial,
                           const DiagnosisOptions& options = {});
+
+/// Diagnoses each generic channel recording (a JSON sidecar and the CSV it names,
+/// channel_recording.h) against the generic model (channel_diagnosis.h); throws
+/// ChannelInputError naming the file, JSON path or line and column.
+DiagnosisRun DiagnoseChannelFiles(const std::vector<std::filesystem::path>& sidecars,
+                                  const DiagnosisOptions& options = {});
 
 /// report.html of a diagnosis.
 std::string DiagnosisHtml(const DiagnosisRun& run);

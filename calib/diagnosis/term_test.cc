@@ -44,6 +44,64 @@ TermTest TestTerm(const ClusteredLeastSquares& ls, const std::vector<int>& selec
   return t;
 }
 
+TermSelection SelectTerms(const ClusteredLeastSquares& ls, const std::vector<int>& base, const ClusteredFit& base_fit,
+                          const std::vector<std::vector<int>>& candidates, double alpha, int max_terms,
+                          const std::function<bool(int, const std::vector<int>&)>& allowed) {
+  TermSelection out{{}, base, base_fit};
+  while (static_cast<int>(out.chosen.size()) < max_terms) {
+    int best = -1;
+    TermTest best_test;
+    for (int k = 0; k < static_cast<int>(candidates.size()); ++k) {
+      if (std::find(out.chosen.begin(), out.chosen.end(), k) != out.chosen.end()) continue;
+      if (allowed && !allowed(k, out.chosen)) continue;
+      TermTest t = TestTerm(ls, out.selected, out.fit, candidates[static_cast<size_t>(k)]);
+      if (!t.testable || t.p_value >= alpha || t.gain <= 0.0) continue;
+      if (best < 0 || t.p_value < best_test.p_value) {
+        best = k;
+        best_test = std::move(t);
+      }
+    }
+    if (best < 0) break;
+    out.chosen.push_back(best);
+    out.selected = std::move(best_test.subset);
+    out.fit = std::move(best_test.fit);
+  }
+  return out;
+}
+
+std::vector<int> WithoutColumns(const std::vector<int>& subset, const std::vector<int>& columns) {
+  std::vector<int> out;
+  for (int c : subset) {
+    if (std::find(columns.begin(), columns.end(), c) == columns.end()) out.push_back(c);
+  }
+  return out;
+}
+
+void ColumnEstimates(const ClusteredFit& fit, const std::vector<int>& subset, const std::vector<int>& columns,
+                     Eigen::VectorXd* theta, Eigen::VectorXd* se) {
+  const int q = static_cast<int>(columns.size());
+  theta->resize(q);
+  se->resize(q);
+  for (int k = 0; k < q; ++k) {
+    const int pos = static_cast<int>(std::find(subset.begin(), subset.end(), columns[static_cast<size_t>(k)]) - subset.begin());
+    (*theta)[k] = fit.theta[pos];
+    (*se)[k] = std::sqrt(fit.covariance(pos, pos));
+  }
+}
+
+bool LimitStandardErrors(const ClusteredLeastSquares& ls, const std::vector<int>& selected,
+                         const std::vector<int>& columns, Eigen::VectorXd* se, std::string* note) {
+  const std::vector<int> others = WithoutColumns(selected, columns);
+  const TermTest t = TestTerm(ls, others, ls.Fit(others), columns);
+  if (!t.fit.ok || !t.fit.jackknife_ok || !t.note.empty()) {
+    *note = t.note;
+    return false;
+  }
+  const int q = static_cast<int>(columns.size());
+  *se = t.fit.covariance.bottomRightCorner(q, q).diagonal().cwiseSqrt();
+  return true;
+}
+
 double TCritical(double alpha, int clusters) {
   const boost::math::students_t dist(std::max(1, clusters - 1));
   return boost::math::quantile(boost::math::complement(dist, alpha / 2.0));

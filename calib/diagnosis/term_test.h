@@ -3,6 +3,7 @@
 // F(q, C-1), and kept only when the leave-one-cluster-out error drops as well.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,31 @@ std::vector<int> WithColumns(std::vector<int> subset, const std::vector<int>& ex
 /// Tests `columns` added to `selected` (whose fit is `selected_fit`).
 TermTest TestTerm(const ClusteredLeastSquares& ls, const std::vector<int>& selected, const ClusteredFit& selected_fit,
                   const std::vector<int>& columns);
+
+/// Forward selection: from `base` (fitted as `base_fit`), the candidate (a set of columns) with the
+/// smallest p-value below `alpha` and a positive held-out gain is added, until none qualifies or
+/// `max_terms` are in. `allowed(k, chosen)` may refuse candidate k given those chosen (one of a
+/// family of alternatives).
+struct TermSelection {
+  std::vector<int> chosen;    ///< candidate indices, in the order taken
+  std::vector<int> selected;  ///< columns: base, then the chosen candidates'
+  ClusteredFit fit;           ///< of `selected`
+};
+TermSelection SelectTerms(const ClusteredLeastSquares& ls, const std::vector<int>& base, const ClusteredFit& base_fit,
+                          const std::vector<std::vector<int>>& candidates, double alpha, int max_terms,
+                          const std::function<bool(int, const std::vector<int>&)>& allowed = {});
+
+/// `subset` without `columns`.
+std::vector<int> WithoutColumns(const std::vector<int>& subset, const std::vector<int>& columns);
+
+/// The estimates and jackknife standard errors of `columns` in `fit` of `subset`.
+void ColumnEstimates(const ClusteredFit& fit, const std::vector<int>& subset, const std::vector<int>& columns,
+                     Eigen::VectorXd* theta, Eigen::VectorXd* se);
+
+/// Standard errors of `columns` added alone to `selected` less those columns (the detection limit's
+/// basis); false with `note` set when the recording cannot test them.
+bool LimitStandardErrors(const ClusteredLeastSquares& ls, const std::vector<int>& selected,
+                         const std::vector<int>& columns, Eigen::VectorXd* se, std::string* note);
 
 /// Two-sided Student t quantile at `alpha` with clusters - 1 degrees of freedom.
 double TCritical(double alpha, int clusters);
