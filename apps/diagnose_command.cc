@@ -1,7 +1,8 @@
 // adahrs diagnose (--run DIR [--run DIR...] [--unit SERIAL] | --csv SIDECAR...) [--profile nominal]
-// --out DIR: where the recordings and the pipeline's model part ways, which physics the model leaves
-// out, and the held-out fit with it (calib/diagnosis, docs/diagnose.md). Exit 0 whatever is found;
-// 1 on bad input.
+// [--model UNIT.json] --out DIR: where the recordings and the pipeline's model part ways, which
+// physics the model leaves out, the held-out fit with it (calib/diagnosis, docs/diagnose.md), and
+// with --model the unit file with the findings switched on (OUT/model.json). Exit 0 whatever is
+// found; 1 on bad input.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "apps/commands.h"
+#include "calib/campaign/augmented_model.h"
 #include "calib/diagnosis/diagnosis_output.h"
 
 namespace adahrs::apps {
@@ -21,6 +23,7 @@ void RegisterDiagnoseCommand(CLI::App& app) {
   auto csvs = std::make_shared<std::vector<std::string>>();
   auto unit = std::make_shared<std::string>();
   auto profile = std::make_shared<std::string>("nominal");
+  auto model = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   CLI::Option* run_opt = cmd->add_option("--run", *runs, "run directory (repeatable: the runs of one batch)");
   CLI::Option* csv_opt =
@@ -30,8 +33,10 @@ void RegisterDiagnoseCommand(CLI::App& app) {
   cmd->add_option("--unit", *unit, "diagnose only this unit (IMU or ADS serial)");
   cmd->add_option("--profile", *profile, "the model to compare with: nominal (the pipeline's forward model)")
       ->check(CLI::IsMember({"nominal"}));
+  cmd->add_option("--model", *model,
+                  "unit file of the rig's truth schema: write OUT/model.json, it with the findings switched on");
   cmd->add_option("--out", *out, "output directory (diagnosis.json, report.html)")->required();
-  cmd->callback([runs, csvs, unit, out] {
+  cmd->callback([runs, csvs, unit, model, out] {
     if (runs->empty() && csvs->empty()) throw std::runtime_error("diagnose: give --run DIR or --csv SIDECAR.json");
     std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
     std::vector<std::filesystem::path> sidecars(csvs->begin(), csvs->end());
@@ -46,6 +51,12 @@ void RegisterDiagnoseCommand(CLI::App& app) {
       if (u.findings.empty() && u.unexplained.empty()) std::cout << "  no missing physics found\n";
     }
     std::cout << "wrote " << (std::filesystem::path(*out) / "diagnosis.json").string() << " and report.html\n";
+    if (!model->empty()) {
+      const calib::AugmentedModel m = calib::WriteAugmentedModel(run, *model, *out);
+      for (const std::string& a : m.applied) std::cout << "  model: " << a << "\n";
+      for (const std::string& n : m.not_applied) std::cout << "  model, not applied: " << n << "\n";
+      std::cout << "wrote " << (std::filesystem::path(*out) / "model.json").string() << "\n";
+    }
   });
 }
 

@@ -14,6 +14,17 @@
 namespace adahrs::rig_sim {
 namespace {
 
+// A slot's unit: its model file's params when it names one, else the profile's draw.
+template <typename Params>
+Params SlotParams(const UnitSlotConfig& slot, const std::string& serial, const RigConfig& config) {
+  if (!slot.model_params.is_null()) {
+    return Params::FromJson(sensor_sim::ParamReader(slot.model_params, slot.model_file, "$.params"));
+  }
+  Params p = Params::Draw(serial, slot.seed, config.model_profile);
+  p.ApplyVariant(config.truth_variant);
+  return p;
+}
+
 // Stream ids under each unit's seed (static_thermal_run.cc uses the same: 1 = noise).
 constexpr uint64_t kNoiseStream = 1;
 // Byte-fault streams are derived from the role's position so adding a fault never shifts another.
@@ -77,9 +88,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     unit.role = fmt::format("imu{}", i + 1);
     unit.slot = static_cast<int>(i);
     unit.serial_number = slot.serial_number;
-    unit.params = sensor_sim::ImuUnitParams::Draw(ImuSerial(slot.serial_number), slot.seed,
-                                                  config.model_profile);
-    unit.params.ApplyVariant(config.truth_variant);
+    unit.params = SlotParams<sensor_sim::ImuUnitParams>(slot, ImuSerial(slot.serial_number), config);
     unit.noise_seed = sensor_sim::Rng::Derive(slot.seed, kNoiseStream);
     unit.baud = slot.baud;
     unit.initial_air_c = config.initial_air_c;
@@ -96,9 +105,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     AdsUnitDeviceConfig unit;
     unit.role = fmt::format("ads{}", i + 1);
     unit.serial_number = slot.serial_number;
-    unit.params = sensor_sim::AdsUnitParams::Draw(AdsSerial(slot.serial_number), slot.seed,
-                                                  config.model_profile);
-    unit.params.ApplyVariant(config.truth_variant);
+    unit.params = SlotParams<sensor_sim::AdsUnitParams>(slot, AdsSerial(slot.serial_number), config);
     unit.noise_seed = sensor_sim::Rng::Derive(slot.seed, kNoiseStream);
     unit.baud = slot.baud;
     unit.initial_air_c = config.initial_air_c;

@@ -3,13 +3,16 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <filesystem>
 #include <set>
 
 #include "rig_sim/prologix_adts_device.h"
 #include "rig_sim/rate_table_device.h"
 #include "rig_sim/watlow_942_device.h"
 #include "rig_sim/watlow_f4_device.h"
+#include "sensor_sim/ads_unit.h"
 #include "sensor_sim/gravity.h"
+#include "sensor_sim/imu_unit.h"
 
 namespace adahrs::rig_sim {
 
@@ -50,7 +53,33 @@ size_t ArraySize(const ParamReader& reader, const nlohmann::json& object, const 
   return array.size();
 }
 
-UnitSlotConfig ReadUnit(const ParamReader& unit, bool imu) {
+std::string ImuSerialName(uint32_t n) { return fmt::format("IMU-{:04d}", n); }
+std::string AdsSerialName(uint32_t n) { return fmt::format("ADS-{:04d}", n); }
+
+// The slot's "model" file, relative to the rig config's folder: its kind must be the slot's and
+// its serial the slot's; its params are read in full here so a bad file is refused before the rig
+// starts.
+void ReadUnitModel(const ParamReader& unit, bool imu, const std::filesystem::path& base_dir, UnitSlotConfig* slot) {
+  std::filesystem::path file = unit.String("model");
+  if (file.is_relative()) file = base_dir / file;
+  const nlohmann::json model = ParamReader::LoadFile(file.string());
+  const ParamReader top(model, file.string());
+  const std::string kind = top.String("kind");
+  if (kind != (imu ? "imu" : "ads")) {
+    unit.Fail(unit.path() + ".model", fmt::format("{}: kind '{}' in an {} slot", file.string(), kind, imu ? "imu" : "ads"));
+  }
+  const ParamReader params = top.Child("params");
+  const std::string serial = imu ? sensor_sim::ImuUnitParams::FromJson(params).serial
+                                 : sensor_sim::AdsUnitParams::FromJson(params).serial;
+  const std::string expected = imu ? ImuSerialName(slot->serial_number) : AdsSerialName(slot->serial_number);
+  if (serial != expected) {
+    unit.Fail(unit.path() + ".model", fmt::format("{}: $.params.serial '{}' is not this slot's {}", file.string(), serial, expected));
+  }
+  slot->model_params = model["params"];
+  slot->model_file = file.string();
+}
+
+UnitSlotConfig ReadUnit(const ParamReader& unit, bool imu, const std::filesystem::path& base_dir) {
   UnitSlotConfig slot;
   slot.serial_number = static_cast<uint32_t>(unit.Integer("serial_number", 0, 9999));
   slot.seed = static_cast<uint64_t>(unit.Integer("seed", 0, INT64_MAX));
@@ -63,14 +92,15 @@ UnitSlotConfig ReadUnit(const ParamReader& unit, bool imu) {
                 fmt::format("{} is not a fixture code (11 12 21 22 31 32)", slot.orientation));
     }
   }
+  if (unit.Has("model")) ReadUnitModel(unit, imu, base_dir, &slot);
   unit.ExpectAllKeysUsed();
   return slot;
 }
 
 }  // namespace
 
-std::string ImuSerial(uint32_t serial_number) { return fmt::format("IMU-{:04d}", serial_number); }
-std::string AdsSerial(uint32_t serial_number) { return fmt::format("ADS-{:04d}", serial_number); }
+std::string ImuSerial(uint32_t serial_number) { return ImuSerialName(serial_number); }
+std::string AdsSerial(uint32_t serial_number) { return AdsSerialName(serial_number); }
 
 double RigConfig::LocalGravityMps2() const {
   return sensor_sim::NormalGravityMps2(station.latitude_deg, station.height_m);
@@ -92,6 +122,8 @@ RigConfig RigConfig::FromJson(const nlohmann::json& json, const std::string& sou
   config.initial_air_c = root.Number("initial_air_c", -60.0, 100.0, "degC");
   if (root.Has("lockstep")) config.lockstep = root.Flag("lockstep");
 
+  // A unit's "model" file is named relative to the config file's folder.
+  const std::filesystem::path base_dir = std::filesystem::path(source).parent_path();
   const ParamReader units = root.Child("units");
   const std::string profile = units.String("model_profile");
   try {
@@ -112,14 +144,14 @@ RigConfig RigConfig::FromJson(const nlohmann::json& json, const std::string& sou
   std::set<std::string> serials;
   for (size_t i = 0; i < imu_count; ++i) {
     const ParamReader unit = units.Element("imu", i, imu_count);
-    config.imus.push_back(ReadUnit(unit, true));
+    config.imus.push_back(ReadUnit(unit, true, base_dir));
     if (!serials.insert(ImuSerial(config.imus.back().serial_number)).second) {
       unit.Fail(unit.path() + ".serial_number", "serial used twice");
     }
   }
   for (size_t i = 0; i < ads_count; ++i) {
     const ParamReader unit = units.Element("ads", i, ads_count);
-    config.ads.push_back(ReadUnit(unit, false));
+    config.ads.push_back(ReadUnit(unit, false, base_dir));
     if (!serials.insert(AdsSerial(config.ads.back().serial_number)).second) {
       unit.Fail(unit.path() + ".serial_number", "serial used twice");
     }

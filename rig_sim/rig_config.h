@@ -56,6 +56,11 @@ struct UnitSlotConfig {
   uint64_t seed = 1;      ///< parameter draw; the noise stream is derived from it
   int orientation = 31;   ///< fixture code (IMU only)
   int baud = 115200;
+  /// A unit file of the truth schema ("model": a rig's truth/<serial>.json, or the model.json of
+  /// `adahrs diagnose --model`) whose params replace the draw; null when the slot names none. The
+  /// profile and truth variant do not apply to it; the seed still sets the noise stream.
+  nlohmann::json model_params;
+  std::string model_file;  ///< its path, for messages
 };
 
 struct FaultSetting {

@@ -3,6 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
+#include "sensor_sim/ads_unit.h"
 #include "sensor_sim/gravity.h"
 
 namespace adahrs::rig_sim {
@@ -59,6 +63,46 @@ TEST(RigConfig, ReadsUnitsStationAndFaults) {
   EXPECT_TRUE(c.faults[1].on);
   EXPECT_EQ(c.faults[1].where, "$.faults[1]");
   EXPECT_DOUBLE_EQ(c.LocalGravityMps2(), sensor_sim::NormalGravityMps2(0.0, 1000.0));
+}
+
+// A slot naming a unit file (a truth file, or the model.json of `adahrs diagnose --model`) takes
+// its params; a file of the other kind or serial is refused naming the slot and the file.
+TEST(RigConfig, ASlotTakesItsUnitFromAModelFile) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "adahrs_rig_config_model";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  sensor_sim::AdsUnitParams ads = sensor_sim::AdsUnitParams::Draw("ADS-0001", 77, sensor_sim::ModelProfile::kNominal);
+  ads.static_bridge.effects.pressure_hysteresis = true;
+  ads.static_bridge.pressure_hysteresis_pct_fso = 0.0615;
+  std::ofstream(dir / "model.json") << nlohmann::json{{"kind", "ads"}, {"model_profile", "nominal"}, {"params", ads.ToJson()}}.dump();
+  nlohmann::json j = DefaultRigConfig();
+  j["units"]["ads"][0]["model"] = "model.json";
+  const RigConfig c = RigConfig::FromJson(j, (dir / "rig.json").string());
+  ASSERT_FALSE(c.ads[0].model_params.is_null());
+  const sensor_sim::AdsUnitParams read = sensor_sim::AdsUnitParams::FromJson(
+      sensor_sim::ParamReader(c.ads[0].model_params, c.ads[0].model_file, "$.params"));
+  EXPECT_TRUE(read.static_bridge.effects.pressure_hysteresis);
+  EXPECT_DOUBLE_EQ(read.static_bridge.pressure_hysteresis_pct_fso, 0.0615);
+  EXPECT_TRUE(c.imus[0].model_params.is_null());
+
+  j["units"]["ads"][0]["serial_number"] = 2;
+  try {
+    RigConfig::FromJson(j, (dir / "rig.json").string());
+    ADD_FAILURE() << "accepted";
+  } catch (const sensor_sim::ParamError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("$.units.ads[0].model"));
+    EXPECT_THAT(e.what(), HasSubstr("$.params.serial 'ADS-0001' is not this slot's ADS-0002"));
+  }
+  j["units"]["ads"][0]["serial_number"] = 1;
+  j["units"]["imu"][0]["model"] = (dir / "model.json").string();
+  try {
+    RigConfig::FromJson(j, "rig.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const sensor_sim::ParamError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("$.units.imu[0].model"));
+    EXPECT_THAT(e.what(), HasSubstr("kind 'ads' in an imu slot"));
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(RigConfig, ErrorsNameTheFileAndTheJsonPath) {
