@@ -121,7 +121,7 @@ std::vector<ThermalSegment> Segments(const std::vector<ImuSample>& rows) {
 }
 
 void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
-  const hil::Recording rec = hil::ReadRecording(dir);
+  const hil::Recording rec = hil::ReadRecordingMeta(dir);  // the rows are streamed below
   const std::string run = dir.string();
   auto fail = [&](const std::string& message) { throw ImuInputError(run + ": " + message); };
   const json& meta = rec.meta;
@@ -159,15 +159,15 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
     }
   }
 
-  // Rows of each (unit, step) with the step's tag, in file order.
+  // Rows of each (unit, step) with the step's tag, in file order, streamed from imu.csv: a
+  // recording of ten million rows is never held twice.
   std::map<std::pair<std::string, int>, std::vector<std::pair<int, ImuSample>>> selected;
-  for (size_t i = 0; i < rec.imu.size(); ++i) {
-    const hil::ImuRecordRow& row = rec.imu[i];
+  auto take = [&](hil::ImuRecordRow&& row, int line) {
     if (row.step < 0 || row.step >= static_cast<int>(tags.size()) || row.tag == 0 ||
         row.tag != tags[static_cast<size_t>(row.step)]) {
-      continue;
+      return;
     }
-    if (std::find(serials.begin(), serials.end(), row.unit) == serials.end()) continue;
+    if (std::find(serials.begin(), serials.end(), row.unit) == serials.end()) return;
     ImuUnitData& unit = data->units[row.unit];
     unit.serial = row.unit;
     bool inside = false;
@@ -176,17 +176,18 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
     }
     if (inside) {
       ++unit.rejected_interval_rows;
-      continue;
+      return;
     }
     const std::string defect = RowDefect(row);
     if (!defect.empty()) {
-      unit.exclusions.push_back(run + "/imu.csv line " + std::to_string(i + 2) + " " + defect);
-      continue;
+      unit.exclusions.push_back(run + "/imu.csv line " + std::to_string(line) + " " + defect);
+      return;
     }
     ImuSample sample = ToSample(row);
     sample.run = run_index;
     selected[{row.unit, row.step}].push_back({row.orientation, sample});
-  }
+  };
+  hil::StreamRecording(dir, {take, {}});
 
   int current_orientation = 0;
   for (size_t step = 0; step < sequence.steps.size(); ++step) {
@@ -208,7 +209,7 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
       }
       ImuUnitData& unit = data->units[serial];
       unit.serial = serial;
-      const auto& rows = it->second;
+      const std::vector<std::pair<int, ImuSample>> rows = std::move(it->second);  // freed after use
       if (const auto* a = std::get_if<AccelStep>(&body)) {
         ImuAcquisition acq{run, static_cast<int>(step), "accel", a->orientation, 0.0, {}};
         for (const auto& [orientation, s] : rows) {

@@ -39,6 +39,8 @@ class CsvCursor {
     }
   }
 
+  int line() const { return static_cast<int>(line_); }  ///< 1-based line of the current row
+
   // Reads the next row's cells; false at the end. A last line without its newline is truncated.
   bool Next(bool allow_truncated_tail, int& truncated) {
     std::string text;
@@ -171,6 +173,18 @@ std::vector<RejectedInterval> ReadRejectedIntervals(const nlohmann::json& meta,
 }  // namespace
 
 Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions& options) {
+  Recording rows;
+  Recording rec = StreamRecording(
+      run_dir,
+      {[&](ImuRecordRow&& r, int) { rows.imu.push_back(std::move(r)); },
+       [&](AdsRecordRow&& r, int) { rows.ads.push_back(std::move(r)); }},
+      options);
+  rec.imu = std::move(rows.imu);
+  rec.ads = std::move(rows.ads);
+  return rec;
+}
+
+Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
   Recording rec;
   const std::filesystem::path meta_path = run_dir / kMetaJsonName;
   std::ifstream meta_in(meta_path);
@@ -192,6 +206,12 @@ Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions&
   }
   rec.format_version = version;
   rec.rejected_intervals = ReadRejectedIntervals(rec.meta, meta_path.string());
+  return rec;
+}
+
+Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& sinks, const ReadOptions& options) {
+  Recording rec = ReadRecordingMeta(run_dir);
+  const int version = rec.format_version;
   const bool v2 = version >= 2;
 
   CsvCursor imu(run_dir / kImuCsvName, v2 ? kImuCsvHeader : kImuCsvHeaderV1, version);
@@ -217,7 +237,7 @@ Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions&
         r.comp_flags = imu.Integer<uint32_t>(36);
       }
     }
-    rec.imu.push_back(std::move(r));
+    if (sinks.imu) sinks.imu(std::move(r), imu.line());
   }
   CsvCursor ads(run_dir / kAdsCsvName, v2 ? kAdsCsvHeader : kAdsCsvHeaderV1, version);
   while (ads.Next(options.allow_truncated_tail, rec.truncated_lines)) {
@@ -243,7 +263,7 @@ Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions&
         r.comp_flags = ads.Integer<uint32_t>(16);
       }
     }
-    rec.ads.push_back(std::move(r));
+    if (sinks.ads) sinks.ads(std::move(r), ads.line());
   }
   return rec;
 }

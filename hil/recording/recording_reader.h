@@ -12,6 +12,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -51,6 +52,22 @@ struct Recording {
 
 /// Reads meta.json, imu.csv and ads.csv of `run_dir`.
 Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions& options = {});
+
+/// meta.json of `run_dir`, checked as ReadRecording checks it, without reading the rows.
+Recording ReadRecordingMeta(const std::filesystem::path& run_dir);
+
+/// Where StreamRecording hands each row, in file order, with its 1-based CSV line. A sink may be
+/// empty: that file's rows are still read and checked, then dropped.
+struct RowSinks {
+  std::function<void(ImuRecordRow&&, int line)> imu;
+  std::function<void(AdsRecordRow&&, int line)> ads;
+};
+
+/// ReadRecording without holding the rows: each is checked as ReadRecording checks it and handed
+/// to `sinks`; the result carries meta.json, the rejected intervals and the truncation count, and
+/// empty row vectors. For recordings too large to hold twice (ten million rows of imu.csv).
+Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& sinks,
+                          const ReadOptions& options = {});
 
 /// True when `t_s` lies inside one of the recording's rejected intervals (its rows there are not
 /// calibration data).

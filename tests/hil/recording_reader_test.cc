@@ -81,6 +81,23 @@ TEST_F(RecordingReaderTest, ReadsBackWhatTheWriterWrote) {
   EXPECT_EQ(rec.meta["sample_rate_hz"], 100);
 }
 
+TEST_F(RecordingReaderTest, StreamingHandsEachRowWithItsLineAndHoldsNone) {
+  std::vector<std::pair<uint32_t, int>> imu;
+  std::vector<int> ads_lines;
+  const Recording rec = StreamRecording(
+      dir_, {[&](ImuRecordRow&& r, int line) { imu.emplace_back(r.seq, line); },
+             [&](AdsRecordRow&& r, int line) { ads_lines.push_back(r.ps_counts == -8388608 ? line : -1); }});
+  EXPECT_TRUE(rec.imu.empty());
+  EXPECT_TRUE(rec.ads.empty());
+  EXPECT_EQ(rec.meta["sample_rate_hz"], 100);
+  ASSERT_EQ(imu.size(), 3u);
+  for (uint32_t i = 0; i < 3; ++i) EXPECT_EQ(imu[i], std::make_pair(i, static_cast<int>(i) + 2));  // line 1: header
+  EXPECT_EQ(ads_lines, std::vector<int>{2});
+  // An empty sink still checks its file's rows.
+  ReplaceInFile("imu.csv", ",4194304,-3,", ",4194304,nan,");
+  EXPECT_THROW(StreamRecording(dir_, {}), RecordingError);
+}
+
 TEST_F(RecordingReaderTest, BadCellNamesFileLineAndColumn) {
   ReplaceInFile("imu.csv", ",4194304,-3,", ",4194304,nan,");
   EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:2"), HasSubstr("column 22 (gy)"), HasSubstr("'nan'")));
