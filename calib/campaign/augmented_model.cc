@@ -1,7 +1,6 @@
 #include "calib/campaign/augmented_model.h"
 
 #include <cmath>
-#include <fstream>
 #include <map>
 
 #include <fmt/format.h>
@@ -159,14 +158,7 @@ AugmentedModel WriteAugmentedModel(const DiagnosisRun& run, const std::filesyste
     if (u.serial != serial) continue;
     AugmentedModel m = AugmentUnitModel(u, base_file);
     std::filesystem::create_directories(out_dir);
-    const std::filesystem::path path = out_dir / "model.json", tmp = out_dir / "model.json.tmp";
-    {
-      std::ofstream f(tmp);
-      f << m.model.dump(2) << "\n";
-      f.flush();
-      if (!f) throw std::runtime_error("cannot write " + tmp.string());
-    }
-    std::filesystem::rename(tmp, path);
+    WriteTextAtomically(out_dir / "model.json", m.model.dump(2) + "\n");
     return m;
   }
   throw ParamError(fmt::format("{}: $.params.serial: '{}' is not a unit of the diagnosed recordings", base_file.string(), serial));

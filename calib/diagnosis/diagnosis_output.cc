@@ -27,13 +27,12 @@ constexpr const char* kChannelModel =
     "generic thermal model, fitted to this recording: bias polynomial in temperature, scale and its tempco per "
     "reference input";
 
-// The unit kinds a run's meta.json lists ("imu", "ads"); empty when it cannot be read (the
-// recording reader then says why).
+// The unit kinds a run's meta.json lists ("imu", "ads"), read by the recording reader (which
+// refuses a missing file or an unknown format version, naming the file).
 std::set<std::string> UnitKinds(const std::filesystem::path& run) {
   std::set<std::string> kinds;
-  std::ifstream f(run / "meta.json");
-  const json meta = json::parse(f, nullptr, false);
-  if (meta.is_discarded() || !meta.contains("units") || !meta["units"].is_array()) return kinds;
+  const json meta = hil::ReadRecordingMeta(run).meta;
+  if (!meta.contains("units") || !meta["units"].is_array()) return kinds;
   for (const json& u : meta["units"]) {
     if (u.is_object() && u.contains("kind") && u["kind"].is_string()) kinds.insert(u["kind"].get<std::string>());
   }
@@ -208,21 +207,21 @@ std::string DiagnosisHtml(const DiagnosisRun& run) {
          ".note{color:#555}</style></head><body>" + body + "</body></html>\n";
 }
 
+void WriteTextAtomically(const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << text;
+    f.flush();
+    if (!f) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  std::filesystem::rename(tmp, path);
+}
+
 void WriteDiagnosis(const DiagnosisRun& run, const std::filesystem::path& out_dir) {
   std::filesystem::create_directories(out_dir);
-  auto write = [&](const std::string& name, const std::string& text) {
-    const std::filesystem::path path = out_dir / name;
-    const std::filesystem::path tmp = out_dir / (name + ".tmp");
-    {
-      std::ofstream f(tmp);
-      f << text;
-      f.flush();
-      if (!f) throw std::runtime_error("cannot write " + tmp.string());
-    }
-    std::filesystem::rename(tmp, path);
-  };
-  write("diagnosis.json", run.ToJson().dump(2) + "\n");
-  write("report.html", DiagnosisHtml(run));
+  WriteTextAtomically(out_dir / "diagnosis.json", run.ToJson().dump(2) + "\n");
+  WriteTextAtomically(out_dir / "report.html", DiagnosisHtml(run));
 }
 
 }  // namespace adahrs::calib
