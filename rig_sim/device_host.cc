@@ -11,10 +11,14 @@
 #include <algorithm>
 #include <cmath>
 #include <chrono>
+#include <deque>
 #include <future>
 #include <stdexcept>
 
 namespace adahrs::rig_sim {
+
+// How long a write may take to reach the line discipline's queue (FIONREAD) on a loaded machine.
+constexpr std::chrono::milliseconds kFlipGrace{200};
 
 namespace asio = boost::asio;
 
@@ -42,11 +46,11 @@ struct DeviceHost::Port {
   uint64_t bytes_overflowed = 0;
   // Last wall instant the client took bytes: a client counts as reading while this is recent.
   std::chrono::steady_clock::time_point last_progress;
-  // Lockstep: bytes written to the pty in all and by the last write, and the most the client is
-  // known to have taken (written, less the queue, less the last write which may still be on its
-  // way into the queue).
+  // Lockstep: bytes written to the pty in all, the writes of the last kFlipGrace (which may still
+  // sit in the kernel's flip buffer, where FIONREAD does not count them), and the most the client
+  // is known to have taken (written, less the queue, less those recent writes).
   uint64_t total_written = 0;
-  uint64_t last_write = 0;
+  std::deque<std::pair<std::chrono::steady_clock::time_point, uint64_t>> recent_writes;
   uint64_t taken_at_least = 0;
   // Lockstep: looks at the queue since it last shrank. Saturates; starts "long ago" so a port
   // counts as unread until a client reads.
@@ -113,10 +117,16 @@ bool DeviceHost::ClientReads(const Port& port, std::chrono::steady_clock::time_p
 }
 
 size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point now) {
-  // Only a client takes bytes out of the pty's queue (reading or flushing it); bytes just
-  // written may reach the queue late, so the last write is not counted as in it.
+  // Only a client takes bytes out of the pty's queue (reading or flushing it); bytes written within
+  // kFlipGrace may reach the queue late (the kernel's flip-buffer worker can be descheduled on a
+  // loaded machine), so they are counted as still on their way, not as taken.
   const size_t unread = port.pty.UnreadBytes();
-  const uint64_t in_line = unread + port.last_write;
+  while (!port.recent_writes.empty() && now - port.recent_writes.front().first > kFlipGrace) {
+    port.recent_writes.pop_front();
+  }
+  uint64_t in_flight = 0;
+  for (const auto& [when, bytes] : port.recent_writes) in_flight += bytes;
+  const uint64_t in_line = unread + in_flight;
   const uint64_t taken = port.total_written > in_line ? port.total_written - in_line : 0;
   if (taken > port.taken_at_least) {
     port.taken_at_least = taken;
@@ -160,7 +170,7 @@ void DeviceHost::WriteOutputs() {
       // nobody there): only the bytes NoteReader finds taken out of the queue do.
       if (lockstep_) {
         port->total_written += written;
-        port->last_write = written;
+        port->recent_writes.emplace_back(now, written);
       } else {
         port->last_progress = now;
       }
