@@ -22,6 +22,7 @@
 #include "apps/commands.h"
 #include "calib/campaign/campaign.h"
 #include "calib/campaign/quick_sequences.h"
+#include "rig_sim/recording_replay.h"
 #include "rig_sim/rig_bench_stations.h"
 #include "rig_sim/rig_child_process.h"
 #include "rig_sim/rig_config.h"
@@ -136,7 +137,7 @@ void PrintSummary(const calib::CampaignResult& result, double wall_s, sensor_sim
                                q.quantity, q.worst, q.unit, q.verdict);
     }
   }
-  std::cout << "diagnosis of the IMU calibration runs against the nominal model ("
+  std::cout << "diagnosis of the IMU and ADS calibration runs against the nominal model ("
             << (result.diagnosis_dir / "report.html").string() << "):\n";
   for (const calib::UnitDiagnosis& u : result.diagnosis) {
     std::cout << fmt::format("  {}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(),
@@ -144,6 +145,16 @@ void PrintSummary(const calib::CampaignResult& result, double wall_s, sensor_sim
   }
   for (const calib::DiagnosisTruthLine& l : result.diagnosis_truth) {
     std::cout << fmt::format("  {} {} {}: {}\n", l.serial, l.channel, l.effect, l.text);
+  }
+  for (const calib::ReplayComparison& c : result.replay_checks) {
+    std::cout << fmt::format("held-out check: {} re-simulated, RMS of its acquisition means, recorded - replayed:\n",
+                             c.recording.filename().string());
+    for (const calib::UnitReplayFit& u : c.units) {
+      for (const calib::ChannelReplayFit& ch : u.channels) {
+        std::cout << fmt::format("  {} {:<3}: {:.3g} {} with the base model, {:.3g} with model.json (noise alone {:.2g})\n",
+                                 u.serial, ch.channel, ch.rms_base, ch.unit, ch.rms_model, ch.rms_noise);
+      }
+    }
   }
   for (const std::string& s : result.not_run) std::cout << "not run: " << s << "\n";
   std::cout << "records: " << result.records_file.string() << " (adahrs units show SERIAL --db "
@@ -196,6 +207,8 @@ int RunDemo(const DemoOptions& options) {
   }
   campaign.truth_dir = rig.truth_dir();
   campaign.software_version = ADAHRS_VERSION;
+  campaign.replay = [](const std::filesystem::path& run, const std::vector<std::filesystem::path>& files,
+                       const std::filesystem::path& to) { rig_sim::ReplayRecording(run, files, to); };
   ConsoleObserver observer;
   try {
     const calib::CampaignResult result = calib::RunCampaign(campaign, observer, g_demo_stop);

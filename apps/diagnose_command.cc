@@ -1,8 +1,9 @@
 // adahrs diagnose (--run DIR [--run DIR...] [--unit SERIAL] | --csv SIDECAR...) [--profile nominal]
 // [--model UNIT.json] --out DIR: where the recordings and the pipeline's model part ways, which
 // physics the model leaves out, the held-out fit with it (calib/diagnosis, docs/diagnose.md), and
-// with --model the unit file with the findings switched on (OUT/model.json). Exit 0 whatever is
-// found; 1 on bad input.
+// with --model the unit file with the findings switched on (OUT/model.json); with --check-run,
+// that run re-simulated with the base and the augmented model and compared with its recording
+// (OUT/replay_check.json). Exit 0 whatever is found; 1 on bad input.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -14,8 +15,25 @@
 #include "apps/commands.h"
 #include "calib/campaign/augmented_model.h"
 #include "calib/diagnosis/diagnosis_output.h"
+#include "calib/diagnosis/replay_comparison.h"
+#include "rig_sim/recording_replay.h"
 
 namespace adahrs::apps {
+namespace {
+
+void PrintReplayCheck(const calib::ReplayComparison& c) {
+  std::cout << fmt::format("re-simulation of {} ({}): RMS of the acquisition means, recorded - replayed\n",
+                           c.recording.string(), c.held_out ? "held out: not a diagnosed run" : "a diagnosed run");
+  for (const calib::UnitReplayFit& u : c.units) {
+    for (const calib::ChannelReplayFit& ch : u.channels) {
+      std::cout << fmt::format("  {} {:<3} base model {:9.4g}  model.json {:9.4g}  noise alone {:9.4g} {} ({} acquisitions)\n",
+                               u.serial, ch.channel, ch.rms_base, ch.rms_model, ch.rms_noise, ch.unit,
+                               ch.acquisitions.size());
+    }
+  }
+}
+
+}  // namespace
 
 void RegisterDiagnoseCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("diagnose", "Locate and name the physics a recording shows and the model leaves out");
@@ -25,6 +43,7 @@ void RegisterDiagnoseCommand(CLI::App& app) {
   auto profile = std::make_shared<std::string>("nominal");
   auto model = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
+  auto check_runs = std::make_shared<std::vector<std::string>>();
   CLI::Option* run_opt = cmd->add_option("--run", *runs, "run directory (repeatable: the runs of one batch)");
   CLI::Option* csv_opt =
       cmd->add_option("--csv", *csvs, "generic channel recording: its JSON sidecar (repeatable; docs/diagnose.md)");
@@ -35,8 +54,12 @@ void RegisterDiagnoseCommand(CLI::App& app) {
       ->check(CLI::IsMember({"nominal"}));
   cmd->add_option("--model", *model,
                   "unit file of the rig's truth schema: write OUT/model.json, it with the findings switched on");
+  cmd->add_option("--check-run", *check_runs,
+                  "with --model: re-simulate this run with the base file and with model.json and compare "
+                  "(repeatable; a run not diagnosed is a held-out check)")
+      ->needs("--model");
   cmd->add_option("--out", *out, "output directory (diagnosis.json, report.html)")->required();
-  cmd->callback([runs, csvs, unit, model, out] {
+  cmd->callback([runs, csvs, unit, model, out, check_runs] {
     if (runs->empty() && csvs->empty()) throw std::runtime_error("diagnose: give --run DIR or --csv SIDECAR.json");
     std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
     std::vector<std::filesystem::path> sidecars(csvs->begin(), csvs->end());
@@ -56,6 +79,24 @@ void RegisterDiagnoseCommand(CLI::App& app) {
       for (const std::string& a : m.applied) std::cout << "  model: " << a << "\n";
       for (const std::string& n : m.not_applied) std::cout << "  model, not applied: " << n << "\n";
       std::cout << "wrote " << (std::filesystem::path(*out) / "model.json").string() << "\n";
+    }
+    nlohmann::json checks = nlohmann::json::array();
+    for (const std::string& check : *check_runs) {
+      const std::filesystem::path dir(check);
+      bool diagnosed = false;
+      for (const std::string& r : *runs) diagnosed |= std::filesystem::equivalent(r, dir);
+      const calib::ReplayComparison c = calib::CheckByReplay(
+          dir, {*model}, {std::filesystem::path(*out) / "model.json"},
+          std::filesystem::path(*out) / "replay" / dir.filename(), !diagnosed,
+          [](const std::filesystem::path& r, const std::vector<std::filesystem::path>& files,
+             const std::filesystem::path& o) { rig_sim::ReplayRecording(r, files, o); });
+      PrintReplayCheck(c);
+      checks.push_back(c.ToJson());
+    }
+    if (!check_runs->empty()) {
+      const std::filesystem::path file = std::filesystem::path(*out) / "replay_check.json";
+      calib::WriteTextAtomically(file, checks.dump(2) + "\n");
+      std::cout << "wrote " << file.string() << "\n";
     }
   });
 }

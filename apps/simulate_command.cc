@@ -1,17 +1,56 @@
 // adahrs simulate static-thermal: a simulated static + thermal recording of a batch of units.
+// adahrs simulate replay: a recording's stimulus re-simulated with unit model files.
 #include <chrono>
 #include <iostream>
 
 #include <fmt/format.h>
 
 #include "apps/commands.h"
+#include "rig_sim/recording_replay.h"
 #include "rig_sim/static_thermal_run.h"
 
 namespace adahrs::apps {
 
+namespace {
+
+void RegisterReplay(CLI::App* sim) {
+  CLI::App* cmd = sim->add_subcommand(
+      "replay", "Re-simulate a recording's stimulus with unit model files (docs/diagnose.md)");
+  struct Options {
+    std::string run;
+    std::vector<std::string> units;
+    std::string out;
+    bool same_noise = false;
+    rig_sim::ReplayOptions replay;
+  };
+  auto o = std::make_shared<Options>();
+  cmd->add_option("--run", o->run, "Run directory whose stimulus is replayed")->required();
+  cmd->add_option("--unit", o->units,
+                  "Unit file of the truth schema (truth/<serial>.json, a diagnosis's model.json); repeatable")
+      ->required();
+  cmd->add_option("--out", o->out, "New run directory to write")->required();
+  cmd->add_option("--seed", o->replay.noise_seed, "Noise seed")->capture_default_str();
+  cmd->add_flag("--same-noise", o->replay.noise_from_unit_file,
+                "Each unit's noise as the rig drew it (the unit file's seed)");
+  cmd->callback([o] {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<std::filesystem::path> files(o->units.begin(), o->units.end());
+    const rig_sim::ReplaySummary s = rig_sim::ReplayRecording(o->run, files, o->out, o->replay);
+    std::string skipped;
+    for (const std::string& x : s.skipped) skipped += (skipped.empty() ? "" : ", ") + x;
+    std::cout << fmt::format("replayed {} unit(s): {} IMU rows, {} ADS rows into {} in {:.1f} s{}\n",
+                             s.replayed.size(), s.imu_rows, s.ads_rows, o->out,
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                             skipped.empty() ? "" : "; not replayed (no unit file): " + skipped);
+  });
+}
+
+}  // namespace
+
 void RegisterSimulateCommand(CLI::App& app) {
   CLI::App* sim = app.add_subcommand("simulate", "Simulated recordings without instruments");
   sim->require_subcommand(1);
+  RegisterReplay(sim);
   CLI::App* cmd = sim->add_subcommand(
       "static-thermal",
       "Record a batch of simulated units, static in one orientation, through a chamber profile");

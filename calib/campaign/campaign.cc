@@ -137,13 +137,19 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
     result.not_run.push_back("evaluation against truth: no truth directory (not a simulated rig)");
   }
 
-  observer.Stage("6/8 diagnosis: the IMU calibration runs against the pipeline's nominal model "
+  observer.Stage("6/8 diagnosis: the IMU and ADS calibration runs against the pipeline's nominal model "
                  "(adahrs diagnose) -> " + (o.out_dir / "diagnosis").string());
   result.diagnosis_dir = o.out_dir / "diagnosis";
-  const DiagnosisRun diagnosed = DiagnoseRuns({thermal_run, sensor_run}, std::nullopt);
+  const DiagnosisRun diagnosed = DiagnoseRuns({thermal_run, sensor_run, ads_run}, std::nullopt);
   WriteDiagnosis(diagnosed, result.diagnosis_dir);
   result.diagnosis = diagnosed.units;
   if (o.truth_dir) result.diagnosis_truth = CompareDiagnosisWithTruth(diagnosed.units, *o.truth_dir);
+  if (o.truth_dir && o.replay) {
+    result.replay_checks = CheckDiagnosisByReplay(diagnosed, *o.truth_dir, result.diagnosis_dir,
+                                                  {imu_acceptance_run, ads_acceptance_run}, o.replay);
+  } else {
+    result.not_run.push_back("re-simulation check of the diagnosis: needs the rig's truth and a replay function");
+  }
 
   observer.Stage("7/8 report.html per run");
   const std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports = {

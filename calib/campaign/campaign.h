@@ -13,9 +13,13 @@
 //                                                -> runs/<sequence>/acceptance/<serial>/acceptance.json
 //   5. evaluation against the simulator's truth when `truth_dir` is given (truth_evaluation.h),
 //      for every fit                                     -> fits/<…>/evaluation.json
-//   6. diagnosis of the IMU calibration runs against the pipeline's nominal model
+//   6. diagnosis of the IMU and ADS calibration runs against the pipeline's nominal model
 //      (calib/diagnosis), beside the truth when `truth_dir` is given (diagnosis_truth.h)
 //                                                          -> diagnosis/diagnosis.json, report.html
+//      and, with a truth directory and a replay function, the held-out check: each unit's truth
+//      without the vocabulary's effects (the base) and it with the findings (model.json), the
+//      acceptance runs re-simulated with either and compared with their recordings
+//                          -> diagnosis/models/<serial>/{base,model}.json, diagnosis/replay_check.json
 //   7. report.html per run (run_report.h) with the fit of its unit kind
 //   8. production records: every run, every constants file, every download -> records.sqlite
 // Stages that cannot run are listed in CampaignResult::not_run with the reason, never faked
@@ -38,6 +42,7 @@
 #include "calib/campaign/station_download.h"
 #include "calib/campaign/truth_evaluation.h"
 #include "calib/diagnosis/imu_diagnosis.h"
+#include "calib/diagnosis/replay_comparison.h"
 #include "calib/executor/executor.h"
 #include "calib/executor/progress.h"
 #include "calib/executor/run_session.h"
@@ -60,6 +65,9 @@ struct CampaignOptions {
   std::optional<std::filesystem::path> truth_dir;  ///< simulated rigs only
   std::string software_version;
   ExecutorOptions executor;
+  /// Re-simulates a run with unit files (the application's rig_sim::ReplayRecording); empty: the
+  /// held-out re-simulation check is not run.
+  ReplayFunction replay;
 };
 
 /// What the campaign tells its user while it runs (thread-safe: benches report concurrently).
@@ -87,6 +95,9 @@ struct CampaignResult {
   /// The IMU calibration runs diagnosed against the pipeline's nominal model (diagnosis/).
   std::vector<UnitDiagnosis> diagnosis;
   std::vector<DiagnosisTruthLine> diagnosis_truth;  ///< empty without a truth directory
+  /// The acceptance runs re-simulated with the base and the augmented models (empty without a
+  /// truth directory or a replay function).
+  std::vector<ReplayComparison> replay_checks;
   std::filesystem::path diagnosis_dir;
   std::vector<std::filesystem::path> run_dirs;
   /// Every bench run as its session ended: rows recorded and packets lost.

@@ -1,22 +1,50 @@
 #include "calib/campaign/diagnosis_truth.h"
 
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
+#include "calib/campaign/augmented_model.h"
+#include "hil/recording/recording_reader.h"
+#include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
 #include "sensor_sim/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
 
-sensor_sim::ImuUnitParams ReadTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
+nlohmann::json ReadTruthFile(const std::filesystem::path& truth_dir, const std::string& serial) {
   const std::string path = (truth_dir / (serial + ".json")).string();
-  const nlohmann::json truth = sensor_sim::ParamReader::LoadFile(path);
+  nlohmann::json truth = sensor_sim::ParamReader::LoadFile(path);
   if (!truth.is_object() || !truth.contains("params")) {
     throw sensor_sim::ParamError(path + ": $.params: missing (not a rig truth file)");
   }
-  return sensor_sim::ImuUnitParams::FromJson(sensor_sim::ParamReader(truth["params"], path, "$.params"));
+  return truth;
+}
+
+sensor_sim::ImuUnitParams ReadTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
+  const std::string path = (truth_dir / (serial + ".json")).string();
+  return sensor_sim::ImuUnitParams::FromJson(
+      sensor_sim::ParamReader(ReadTruthFile(truth_dir, serial)["params"], path, "$.params"));
+}
+
+sensor_sim::AdsUnitParams ReadAdsTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
+  const std::string path = (truth_dir / (serial + ".json")).string();
+  return sensor_sim::AdsUnitParams::FromJson(
+      sensor_sim::ParamReader(ReadTruthFile(truth_dir, serial)["params"], path, "$.params"));
+}
+
+// The truth's half loop (Pa) and span (Pa or degC) of a bridge's hysteresis, empty when it is off.
+std::vector<double> AdsTruthOf(const sensor_sim::AdsUnitParams& p, const std::string& effect, const std::string& ch) {
+  const sensor_sim::PressureBridgeParams& b = ch == "ps" ? p.static_bridge : p.pitot_bridge;
+  if (effect == "pressure_hysteresis" && b.effects.pressure_hysteresis) {
+    return {b.pressure_hysteresis_pct_fso / 200.0 * b.full_scale_pa, b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa};
+  }
+  if (effect == "thermal_hysteresis" && b.effects.thermal_hysteresis) {
+    return {b.thermal_hysteresis_pct_fso / 200.0 * b.full_scale_pa, b.thermal_hysteresis_span_c};
+  }
+  return {};
 }
 
 const sensor_sim::Adxl210eAxisParams& Axis(const sensor_sim::ImuUnitParams& p, int ch) {
@@ -56,48 +84,126 @@ std::string Values(const std::vector<double>& v) {
   return s;
 }
 
+// The line of one (unit, channel, effect): the finding beside the truth, or why it was not found.
+DiagnosisTruthLine TruthLine(const UnitDiagnosis& u, const std::string& effect, const std::string& channel,
+                             const std::vector<double>& t, const Finding* found) {
+  DiagnosisTruthLine line{u.serial, effect, channel, found != nullptr, ""};
+  if (found != nullptr) {
+    std::string comps;
+    for (const FindingComponent& c : found->components) {
+      comps += fmt::format("{}{:.3g} ± {:.2g}", comps.empty() ? "" : ", ", c.magnitude, c.standard_error);
+    }
+    line.text = fmt::format("found {} {}; truth {}", comps, found->components[0].unit,
+                            t.empty() ? "does not have it" : Values(t));
+    return line;
+  }
+  std::string why = "no limit";
+  for (const DetectionLimit& l : u.detection_limits) {
+    if (l.effect != effect || l.channel != channel) continue;
+    std::vector<double> limits;
+    for (const FindingComponent& c : l.limits) limits.push_back(c.magnitude);
+    why = l.limits.empty() ? l.note
+                           : fmt::format("below this recording's detection limit ({} {})", Values(limits), l.limits[0].unit);
+  }
+  line.text = fmt::format("not found (truth {}): {}", Values(t), why);
+  return line;
+}
+
+const Finding* FindingOf(const UnitDiagnosis& u, const std::string& effect, const std::string& channel) {
+  for (const Finding& f : u.findings) {
+    if (f.effect == effect && f.channel == channel) return &f;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 std::vector<DiagnosisTruthLine> CompareDiagnosisWithTruth(const std::vector<UnitDiagnosis>& units,
                                                           const std::filesystem::path& truth_dir) {
   std::vector<DiagnosisTruthLine> out;
   for (const UnitDiagnosis& u : units) {
+    const bool ads = ReadTruthFile(truth_dir, u.serial).value("kind", "") == "ads";
+    if (ads) {
+      const sensor_sim::AdsUnitParams truth = ReadAdsTruth(truth_dir, u.serial);
+      for (const char* ch : {"ps", "pt"}) {
+        for (const char* effect : {"pressure_hysteresis", "thermal_hysteresis"}) {
+          const std::vector<double> t = AdsTruthOf(truth, effect, ch);
+          const Finding* found = FindingOf(u, effect, ch);
+          if (found != nullptr || !t.empty()) out.push_back(TruthLine(u, effect, ch, t, found));
+        }
+      }
+      continue;
+    }
     const sensor_sim::ImuUnitParams truth = ReadTruth(truth_dir, u.serial);
     for (int ch = 0; ch < kImuChannels; ++ch) {
       for (const char* effect : {"die_thermal_lag", "gyro_g_sensitivity", "scale_factor_tempco"}) {
         const std::vector<double> t = TruthOf(truth, effect, ch);
-        const Finding* found = nullptr;
-        for (const Finding& f : u.findings) {
-          if (f.effect == effect && f.channel == kImuChannelNames[ch]) found = &f;
-        }
-        if (found == nullptr && t.empty()) continue;
-        DiagnosisTruthLine line{u.serial, effect, kImuChannelNames[ch], found != nullptr, ""};
-        if (found != nullptr) {
-          std::string comps;
-          for (const FindingComponent& c : found->components) {
-            comps += fmt::format("{}{:.3g} ± {:.2g}", comps.empty() ? "" : ", ", c.magnitude, c.standard_error);
-          }
-          line.text = fmt::format("found {} {}; truth {}", comps, found->components[0].unit,
-                                  t.empty() ? "does not have it" : Values(t));
-        } else {
-          std::string why = "no limit";
-          for (const DetectionLimit& l : u.detection_limits) {
-            if (l.effect != effect || l.channel != kImuChannelNames[ch]) continue;
-            why = l.limits.empty() ? l.note
-                                   : fmt::format("below this recording's detection limit ({} {})",
-                                                 Values([&] {
-                                                   std::vector<double> v;
-                                                   for (const FindingComponent& c : l.limits) v.push_back(c.magnitude);
-                                                   return v;
-                                                 }()),
-                                                 l.limits[0].unit);
-          }
-          line.text = fmt::format("not found (truth {}): {}", Values(t), why);
-        }
-        out.push_back(std::move(line));
+        const Finding* found = FindingOf(u, effect, kImuChannelNames[ch]);
+        if (found != nullptr || !t.empty()) out.push_back(TruthLine(u, effect, kImuChannelNames[ch], t, found));
       }
     }
   }
+  return out;
+}
+
+nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
+  nlohmann::json file = ReadTruthFile(truth_dir, serial);
+  if (file.value("kind", "") == "ads") {
+    sensor_sim::AdsUnitParams p = ReadAdsTruth(truth_dir, serial);
+    for (sensor_sim::PressureBridgeParams* b : {&p.static_bridge, &p.pitot_bridge}) {
+      b->effects.pressure_hysteresis = false;
+      b->effects.thermal_hysteresis = false;
+    }
+    file["params"] = p.ToJson();
+  } else {
+    sensor_sim::ImuUnitParams p = ReadTruth(truth_dir, serial);
+    for (auto& g : p.gyros) {
+      g.effects.g_sensitivity = false;
+      g.effects.sensitivity_tempco = false;
+    }
+    for (size_t c = 0; c < p.accel_chips.size(); ++c) {
+      p.accel_chips[c].effects.sensitivity_tempco = false;
+      const auto& thermometer = p.gyro_thermal[static_cast<size_t>(kChannelThermometer[2 * c])];
+      p.accel_thermal[c].tau_s = thermometer.tau_s;
+      p.accel_thermal[c].effects.lag = thermometer.effects.lag;
+    }
+    file["params"] = p.ToJson();
+  }
+  file["model_profile"] = "truth without the diagnosis vocabulary's effects";
+  return file;
+}
+
+std::vector<ReplayComparison> CheckDiagnosisByReplay(const DiagnosisRun& diagnosed,
+                                                     const std::filesystem::path& truth_dir,
+                                                     const std::filesystem::path& diagnosis_dir,
+                                                     const std::vector<std::filesystem::path>& check_runs,
+                                                     const ReplayFunction& replay) {
+  std::map<std::string, std::pair<std::filesystem::path, std::filesystem::path>> files;  // base, model
+  for (const UnitDiagnosis& u : diagnosed.units) {
+    const std::filesystem::path dir = diagnosis_dir / "models" / u.serial;
+    std::filesystem::create_directories(dir);
+    WriteTextAtomically(dir / "base.json", BaseModelFromTruth(truth_dir, u.serial).dump(2) + "\n");
+    WriteAugmentedModel(diagnosed, dir / "base.json", dir);
+    files[u.serial] = {dir / "base.json", dir / "model.json"};
+  }
+  std::vector<ReplayComparison> out;
+  nlohmann::json all = nlohmann::json::array();
+  for (const std::filesystem::path& run : check_runs) {
+    std::vector<std::filesystem::path> bases, models;
+    for (const nlohmann::json& unit : hil::ReadRecordingMeta(run).meta.value("units", nlohmann::json::array())) {
+      const auto f = files.find(unit.value("serial", ""));
+      if (f == files.end()) continue;
+      bases.push_back(f->second.first);
+      models.push_back(f->second.second);
+    }
+    if (bases.empty()) continue;
+    const std::filesystem::path work = diagnosis_dir / "replay" / run.filename();
+    out.push_back(CheckByReplay(run, bases, models, work, true, replay));
+    std::filesystem::remove_all(work);
+    all.push_back(out.back().ToJson());
+  }
+  std::filesystem::remove_all(diagnosis_dir / "replay");
+  WriteTextAtomically(diagnosis_dir / "replay_check.json", all.dump(2) + "\n");
   return out;
 }
 

@@ -15,7 +15,11 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "calib/diagnosis/diagnosis_output.h"
 #include "calib/diagnosis/imu_diagnosis.h"
+#include "calib/diagnosis/replay_comparison.h"
 
 namespace adahrs::calib {
 
@@ -31,5 +35,24 @@ struct DiagnosisTruthLine {
 /// diagnosis reported. Throws sensor_sim::ParamError naming a missing or malformed truth file.
 std::vector<DiagnosisTruthLine> CompareDiagnosisWithTruth(const std::vector<UnitDiagnosis>& units,
                                                           const std::filesystem::path& truth_dir);
+
+/// The truth file of `serial` with every effect the diagnosis vocabulary writes into a unit file
+/// switched off (IMU: gyro g-sensitivity, scale factor vs temperature, each accelerometer die's own
+/// lag, which takes its thermometer die's time constant; ADS: pressure and thermal hysteresis): a
+/// unit model that lacks exactly what the diagnosis can add, from which the campaign's
+/// re-simulation check starts. Throws sensor_sim::ParamError naming a missing or malformed file.
+nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir, const std::string& serial);
+
+/// The campaign's held-out check of its diagnosis: per diagnosed unit, the base model
+/// (BaseModelFromTruth) and the base with the findings switched on (WriteAugmentedModel), written
+/// as `diagnosis_dir`/models/<serial>/{base,model}.json; each run of `check_runs` (runs the
+/// diagnosis did not see) re-simulated with the bases and with the models of the units it holds
+/// and compared with its recording -> `diagnosis_dir`/replay_check.json. The re-simulated runs,
+/// the size of their recordings, are removed once compared.
+std::vector<ReplayComparison> CheckDiagnosisByReplay(const DiagnosisRun& diagnosed,
+                                                     const std::filesystem::path& truth_dir,
+                                                     const std::filesystem::path& diagnosis_dir,
+                                                     const std::vector<std::filesystem::path>& check_runs,
+                                                     const ReplayFunction& replay);
 
 }  // namespace adahrs::calib

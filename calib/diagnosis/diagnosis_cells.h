@@ -34,6 +34,10 @@ inline constexpr double kRateWindow_s = 60.0;
 inline constexpr double kTrendThreshold_c_per_s = 0.05 / 60.0;
 /// ADXRS150 TEMP through 16 summed 12-bit conversions: 16 * 4096 / 5 V * 8.4 mV/K (datasheet).
 inline constexpr double kDatasheetTempCountsPerC = 110.10;
+/// ADXL210E duty-cycle sensitivity, 4 %/g (datasheet), where a recording does not give its own.
+inline constexpr double kAccelDatasheetDutyPerG = 0.04;
+/// ADXRS150 rate through 16 summed 19-bit conversions: 16 * 2^19 / 5 V * 12.5 mV/(deg/s).
+inline constexpr double kGyroDatasheetCountsPerDps = 20971.52;
 
 inline constexpr std::array<const char*, kImuChannels> kImuChannelNames = {
     "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};

@@ -1,0 +1,336 @@
+#include "rig_sim/recording_replay.h"
+
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <variant>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "hil/recording/recording_reader.h"
+#include "hil/recording/recording_writer.h"
+#include "rig_sim/fixture_orientation.h"
+#include "sensor_sim/ads_unit.h"
+#include "sensor_sim/imu_unit.h"
+#include "sensor_sim/param_reader.h"
+#include "sensor_sim/random.h"
+#include "sensor_sim/units.h"
+
+namespace adahrs::rig_sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Rows held while the instruments have not reported yet: beyond this many, the zeros are taken as
+// the instruments' values.
+constexpr size_t kMaxHeldRows = 1000000;
+// A unit's rows may arrive in bursts; a row this far before the unit's previous one is time going
+// backwards.
+constexpr double kBackwardsTolerance_s = 1.0;
+// A gap longer than this between a unit's rows is not a soak but a broken time column; a first
+// row later than this on the time base is not counted from power-on.
+constexpr double kMaxGap_s = 30.0 * 86400.0;
+// The noise stream under a unit's seed, as the rig and static_thermal_run.cc derive it.
+constexpr uint64_t kNoiseStream = 1;
+
+struct UnitFile {
+  fs::path path;
+  nlohmann::json file;
+  std::string kind;
+  std::string serial;
+  std::optional<uint64_t> seed;  ///< the rig's seed of the unit, when the file is a truth file
+};
+
+UnitFile ReadUnitFile(const fs::path& path) {
+  UnitFile u{path, sensor_sim::ParamReader::LoadFile(path.string()), "", "", std::nullopt};
+  const sensor_sim::ParamReader top(u.file, path.string());
+  u.kind = top.String("kind");
+  if (top.Has("seed")) {
+    const nlohmann::json& seed = u.file["seed"];
+    if (!seed.is_number_unsigned()) top.Fail("$.seed", "not an unsigned 64-bit integer");
+    u.seed = seed.get<uint64_t>();
+  }
+  const sensor_sim::ParamReader params = top.Child("params");
+  if (u.kind == "imu") {
+    u.serial = sensor_sim::ImuUnitParams::FromJson(params).serial;
+  } else if (u.kind == "ads") {
+    u.serial = sensor_sim::AdsUnitParams::FromJson(params).serial;
+  } else {
+    top.Fail("$.kind", fmt::format("'{}' is neither imu nor ads", u.kind));
+  }
+  return u;
+}
+
+// A stable 64-bit hash of the serial (FNV-1a), so a unit's noise does not depend on the others.
+uint64_t SerialStream(const std::string& serial) {
+  uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : serial) h = (h ^ c) * 1099511628211ULL;
+  return h;
+}
+
+// Frames a unit ran between its rows: the 8-bit packet counter's step (lost packets are frames
+// too), plus the whole counter turns the arrival times say passed; the first row counts from
+// power-on at t = 0. Arrival times jitter (packets come in bursts); the counter does not.
+class FrameClock {
+ public:
+  FrameClock(double period_s, std::string where) : period_s_(period_s), where_(std::move(where)) {}
+
+  int64_t FramesFor(double t_s, uint32_t seq, int line) {
+    int64_t n = 1;
+    if (!started_) {
+      started_ = true;
+      if (t_s > 0.0 && t_s <= kMaxGap_s) n = std::max<int64_t>(1, std::llround(t_s / period_s_));
+    } else {
+      const double dt_s = t_s - last_t_s_;
+      if (dt_s < -kBackwardsTolerance_s || dt_s > kMaxGap_s) {
+        throw std::runtime_error(fmt::format("{} line {}: t_s {} after the unit's row at {} s", where_, line, t_s,
+                                             last_t_s_));
+      }
+      const int64_t dseq = (static_cast<int64_t>(seq) - static_cast<int64_t>(last_seq_)) & 0xFF;
+      const int64_t turns = std::max<int64_t>(0, std::llround((dt_s / period_s_ - static_cast<double>(dseq)) / 256.0));
+      n = dseq + 256 * turns;  // 0: the same packet logged twice
+    }
+    last_t_s_ = t_s;
+    last_seq_ = seq;
+    return n;
+  }
+
+ private:
+  double period_s_;
+  std::string where_;
+  bool started_ = false;
+  double last_t_s_ = 0.0;
+  uint32_t last_seq_ = 0;
+};
+
+struct ImuReplayer {
+  sensor_sim::ImuUnit unit;
+  FrameClock clock;
+  Eigen::Vector3d up_B = Eigen::Vector3d::UnitZ();
+  sensor_sim::ImuRawFrame last;
+};
+
+struct AdsReplayer {
+  sensor_sim::AdsUnit unit;
+  FrameClock clock;
+  sensor_sim::AdsRawFrame last;
+};
+
+// The first reported instrument values of one file, and the rows held until they are known.
+template <typename Row>
+class LeadingZeros {
+ public:
+  explicit LeadingZeros(std::function<bool(const Row&)> reported) : reported_(std::move(reported)) {}
+
+  // Hands `row` (and the rows held before it) to `emit` once the instruments have reported. A held
+  // row goes with the first reporting row, whose instrument values it takes; the others with null.
+  template <typename Emit>
+  void Add(Row&& row, int line, const Emit& emit) {
+    if (!first_ && reported_(row)) first_ = row;
+    if (!first_ && held_.size() < kMaxHeldRows) {
+      held_.emplace_back(std::move(row), line);
+      return;
+    }
+    Release(emit);
+    emit(std::move(row), line, nullptr);
+  }
+
+  // Emits the held rows (at the end of the file: with the zeros when nothing was ever reported).
+  template <typename Emit>
+  void Release(const Emit& emit) {
+    while (!held_.empty()) {
+      emit(std::move(held_.front().first), held_.front().second, first_ ? &*first_ : nullptr);
+      held_.pop_front();
+    }
+  }
+
+ private:
+  std::function<bool(const Row&)> reported_;
+  std::optional<Row> first_;
+  std::deque<std::pair<Row, int>> held_;
+};
+
+double LocalGravity(const nlohmann::json& meta, const fs::path& run_dir) {
+  for (const nlohmann::json* j : {&meta, meta.contains("station") ? &meta["station"] : nullptr}) {
+    if (j != nullptr && j->is_object() && j->contains("local_gravity_mps2") && (*j)["local_gravity_mps2"].is_number()) {
+      return (*j)["local_gravity_mps2"].get<double>();
+    }
+  }
+  throw std::runtime_error((run_dir / "meta.json").string() +
+                           ": no local_gravity_mps2 (top level or in station): an IMU replay needs the station's gravity");
+}
+
+void WriteJsonFile(const fs::path& path, const nlohmann::json& j) {
+  std::ofstream out(path);
+  out << j.dump(2) << "\n";
+  if (!out) throw std::runtime_error(path.string() + ": write failed");
+}
+
+}  // namespace
+
+ReplaySummary ReplayRecording(const fs::path& run_dir, const std::vector<fs::path>& unit_files,
+                              const fs::path& out_dir, const ReplayOptions& options) {
+  const hil::Recording meta_only = hil::ReadRecordingMeta(run_dir);
+  const nlohmann::json& meta = meta_only.meta;
+  std::map<std::string, UnitFile> files;
+  for (const fs::path& p : unit_files) {
+    UnitFile u = ReadUnitFile(p);
+    if (files.count(u.serial) != 0) {
+      throw std::runtime_error(fmt::format("{}: a second unit file for {} (the first: {})", p.string(), u.serial,
+                                           files.at(u.serial).path.string()));
+    }
+    files.emplace(u.serial, std::move(u));
+  }
+  ReplaySummary summary;
+  nlohmann::json units = nlohmann::json::array();
+  std::map<std::string, std::string> recorded_kind;
+  for (const nlohmann::json& u : meta.value("units", nlohmann::json::array())) {
+    const std::string serial = u.value("serial", "");
+    const std::string kind = u.value("kind", "");
+    recorded_kind[serial] = kind;
+    const auto f = files.find(serial);
+    if (f == files.end()) {
+      summary.skipped.push_back(serial);
+      continue;
+    }
+    if (f->second.kind != kind) {
+      throw std::runtime_error(fmt::format("{}: kind '{}' but {} is an {} unit in {}", f->second.path.string(),
+                                           f->second.kind, serial, kind, (run_dir / "meta.json").string()));
+    }
+    units.push_back(u);
+    summary.replayed.push_back(serial);
+  }
+  for (const auto& [serial, f] : files) {
+    if (recorded_kind.count(serial) == 0) {
+      std::string held;
+      for (const auto& [s, k] : recorded_kind) held += (held.empty() ? "" : ", ") + s;
+      throw std::runtime_error(fmt::format("{}: unit {} is not in {} (it holds {})", f.path.string(), serial,
+                                           (run_dir / "meta.json").string(), held.empty() ? "none" : held));
+    }
+  }
+  if (fs::exists(out_dir)) throw std::runtime_error(out_dir.string() + ": exists; the replay writes a new run directory");
+
+  bool any_imu = false;
+  std::map<std::string, ImuReplayer> imus;
+  std::map<std::string, AdsReplayer> adss;
+  std::map<std::string, sensor_sim::ImuUnitParams> imu_params;
+  std::map<std::string, sensor_sim::AdsUnitParams> ads_params;
+  std::map<std::string, uint64_t> noise_seeds;
+  for (const auto& [serial, f] : files) {
+    if (options.noise_from_unit_file && !f.seed) {
+      throw std::runtime_error(f.path.string() + ": $.seed: missing (the same noise as the rig needs a truth file's seed)");
+    }
+    noise_seeds[serial] = options.noise_from_unit_file ? sensor_sim::Rng::Derive(*f.seed, kNoiseStream)
+                                                       : sensor_sim::Rng::Derive(options.noise_seed, SerialStream(serial));
+    const sensor_sim::ParamReader params(f.file["params"], f.path.string(), "$.params");
+    if (f.kind == "imu") {
+      imu_params.emplace(serial, sensor_sim::ImuUnitParams::FromJson(params));
+      any_imu = true;
+    } else {
+      ads_params.emplace(serial, sensor_sim::AdsUnitParams::FromJson(params));
+    }
+  }
+  const double g_ratio = any_imu ? LocalGravity(meta, run_dir) / sensor_sim::kStandardGravity_mps2 : 1.0;
+
+  hil::RecordingWriter writer(out_dir);
+  nlohmann::json out_meta = meta;
+  out_meta.erase("format_version");
+  out_meta["units"] = units;
+  nlohmann::json file_list = nlohmann::json::array();
+  for (const auto& [serial, f] : files) file_list.push_back(fs::absolute(f.path).string());
+  out_meta["replay"] = {{"of", fs::absolute(run_dir).string()},
+                        {"noise", options.noise_from_unit_file ? nlohmann::json("the unit files' seeds")
+                                                               : nlohmann::json(options.noise_seed)},
+                        {"unit_files", file_list}};
+  writer.WriteMeta(out_meta);
+  fs::create_directories(out_dir / "truth");
+  for (const auto& [serial, f] : files) WriteJsonFile(out_dir / "truth" / (serial + ".json"), f.file);
+
+  const std::string imu_csv = (run_dir / "imu.csv").string();
+  const std::string ads_csv = (run_dir / "ads.csv").string();
+  auto emit_imu = [&](hil::ImuRecordRow&& row, int line, const hil::ImuRecordRow* first) {
+    const auto p = imu_params.find(row.unit);
+    if (p == imu_params.end()) return;
+    auto it = imus.find(row.unit);
+    const double air_c = first != nullptr && row.chamber_c == 0.0 ? first->chamber_c : row.chamber_c;
+    if (it == imus.end()) {
+      it = imus.emplace(row.unit, ImuReplayer{sensor_sim::ImuUnit(p->second, noise_seeds.at(row.unit), air_c),
+                                              FrameClock(p->second.frame_period_s, imu_csv + " (" + row.unit + ")"), {}, {}})
+               .first;
+    }
+    ImuReplayer& r = it->second;
+    if (IsValidOrientation(row.orientation)) r.up_B = UpAxis_B(row.orientation);
+    sensor_sim::ImuStimulus in;
+    in.f_B_g = r.up_B * g_ratio;
+    in.w_B_dps = r.up_B * row.table_rate_dps;
+    in.air_temp_c = air_c;
+    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, line); n > 0; --n) r.last = r.unit.Step(in);
+    const sensor_sim::ImuRawFrame& f = r.last;
+    for (size_t ch = 0; ch < 6; ++ch) {
+      row.accel_ticks[2 * ch] = f.accel[ch].t1_cnt;
+      row.accel_ticks[2 * ch + 1] = f.accel[ch].t2_cnt;
+    }
+    row.gyro_cnt = f.gyro_cnt;
+    row.temp_cnt = f.temp_cnt;
+    row.mode = 0;
+    row.comp.reset();
+    row.comp_flags = 0;
+    writer.Append(row);
+    ++summary.imu_rows;
+  };
+  auto emit_ads = [&](hil::AdsRecordRow&& row, int line, const hil::AdsRecordRow* first) {
+    const auto p = ads_params.find(row.unit);
+    if (p == ads_params.end()) return;
+    const double air_c = first != nullptr && row.chamber_c == 0.0 ? first->chamber_c : row.chamber_c;
+    auto it = adss.find(row.unit);
+    if (it == adss.end()) {
+      it = adss.emplace(row.unit, AdsReplayer{sensor_sim::AdsUnit(p->second, noise_seeds.at(row.unit), air_c),
+                                              FrameClock(p->second.frame_period_s, ads_csv + " (" + row.unit + ")"), {}})
+               .first;
+    }
+    sensor_sim::AdsStimulus in;
+    in.ps_pa = first != nullptr ? first->ps_ref_pa : row.ps_ref_pa;
+    in.qc_pa = first != nullptr ? first->qc_ref_pa : row.qc_ref_pa;
+    in.air_temp_c = air_c;
+    in.oat_c = air_c;
+    AdsReplayer& r = it->second;
+    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, line); n > 0; --n) r.last = r.unit.Step(in);
+    const sensor_sim::AdsRawFrame& f = r.last;
+    row.ps_counts = f.ps_cnt;
+    row.pt_counts = f.pt_cnt;
+    row.ps_temp_counts = f.ps_temp_cnt;
+    row.pt_temp_counts = f.pt_temp_cnt;
+    row.oat_counts = f.oat_cnt;
+    row.mode = 0;
+    row.alt_ft.reset();
+    row.cas_kt.reset();
+    row.comp_flags = 0;
+    writer.Append(row);
+    ++summary.ads_rows;
+  };
+
+  // Reported: an IMU row once the chamber reads other than 0 or the fixture holds a code (after
+  // that, 0 °C is a temperature); an ADS row once the test set reads a static pressure (never 0).
+  LeadingZeros<hil::ImuRecordRow> imu_hold(
+      [](const hil::ImuRecordRow& r) { return r.chamber_c != 0.0 || r.orientation != 0; });
+  LeadingZeros<hil::AdsRecordRow> ads_hold([](const hil::AdsRecordRow& r) { return r.ps_ref_pa != 0.0; });
+  hil::RowSinks sinks;
+  sinks.imu = [&](hil::ImuRecordRow&& row, int line) {
+    if (imu_params.count(row.unit) != 0) imu_hold.Add(std::move(row), line, emit_imu);
+  };
+  sinks.ads = [&](hil::AdsRecordRow&& row, int line) {
+    if (ads_params.count(row.unit) != 0) ads_hold.Add(std::move(row), line, emit_ads);
+  };
+  hil::StreamRecording(run_dir, sinks);
+  imu_hold.Release(emit_imu);
+  ads_hold.Release(emit_ads);
+  writer.Flush(true);
+  return summary;
+}
+
+}  // namespace adahrs::rig_sim

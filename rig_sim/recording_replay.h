@@ -1,0 +1,55 @@
+// Re-simulation of a recording's stimulus (`adahrs simulate replay`): each unit of a run directory
+// is driven by a unit model file (the truth schema {kind, params}: a rig's truth/<serial>.json, or
+// the augmented model.json `adahrs diagnose --model` writes) with the recording's own reference
+// columns, and a run of the same rows is written with the model's raw outputs in place of the
+// recorded ones. Comparing the two says how well the model explains the recording.
+// Stimulus per row: IMU, 1 local g (meta.json local_gravity_mps2) and the table rate along the
+// up axis of the row's fixture code, the chamber column as the air around the unit; ADS, the
+// reference static and impact pressures, the chamber column as the air around the board and at
+// the OAT probe. The unit is powered on at t = 0 of the time base (at its first row when that is
+// not within 30 days after it) and stepped at its frame period: a row takes the frames its packet
+// counter (seq) moved since the unit's previous row, lost packets included, with the counter's
+// 256-frame turns that the arrival times say passed (arrival times jitter, the counter does not).
+// A row whose counter did not move is the same packet logged twice: it repeats the last frame.
+// Before an instrument's first report the recording holds 0 in its column (docs/recording-format.md):
+// IMU rows before the first with a chamber value other than 0 or a fixture code, and ADS rows
+// before the first with a static pressure (a test set never reads 0 Pa), are replayed at that
+// row's values (their chamber column only where it reads 0). After it, 0 °C is a temperature.
+// A row with no fixture code (0) keeps the last one, z up before any.
+// Left out: the rig's own errors (fixture levelling, table wobble, the chamber air's difference
+// from its controller's probe, the test set's pressure error), the firmware (rows are written in
+// raw mode, mode 0, without compensated values).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace adahrs::rig_sim {
+
+struct ReplayOptions {
+  uint64_t noise_seed = 1;  ///< each unit's noise stream is drawn from this and its serial
+  /// Each unit's noise stream as the rig drew it, from the unit file's "seed" (a truth file has
+  /// it): with the file the rig ran, a recording of one row per frame is reproduced bit for bit.
+  bool noise_from_unit_file = false;
+};
+
+struct ReplaySummary {
+  uint64_t imu_rows = 0;
+  uint64_t ads_rows = 0;
+  std::vector<std::string> replayed;  ///< serials replayed
+  std::vector<std::string> skipped;   ///< serials of the recording without a unit file (rows not written)
+};
+
+/// Replays `run_dir` into `out_dir` (which must not exist yet) with one unit file per unit to
+/// replay. Writes meta.json (the recording's, with "replay": {of, noise, unit_files} and only
+/// the replayed units), imu.csv, ads.csv and truth/<serial>.json (the unit file's content).
+/// Throws sensor_sim::ParamError for a bad unit file, hil::RecordingError for a bad recording, and
+/// std::runtime_error naming the file for a unit file whose serial the recording does not hold,
+/// two files of one serial, an existing `out_dir`, or a unit's time going backwards.
+ReplaySummary ReplayRecording(const std::filesystem::path& run_dir,
+                              const std::vector<std::filesystem::path>& unit_files,
+                              const std::filesystem::path& out_dir, const ReplayOptions& options = {});
+
+}  // namespace adahrs::rig_sim
