@@ -52,6 +52,9 @@ struct DeviceHost::Port {
   uint64_t total_written = 0;
   std::deque<std::pair<std::chrono::steady_clock::time_point, uint64_t>> recent_writes;
   uint64_t taken_at_least = 0;
+  // Lockstep: the queue at the last look. A queue that shrank between two looks was read: bytes
+  // late in the flip buffer can only make it grow.
+  size_t unread_at_last_look = 0;
   // Lockstep: looks at the queue since it last shrank. Saturates; starts "long ago" so a port
   // counts as unread until a client reads.
   uint32_t looks_since_progress = kLockstepMinLooks;
@@ -117,9 +120,10 @@ bool DeviceHost::ClientReads(const Port& port, std::chrono::steady_clock::time_p
 }
 
 size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point now) {
-  // Only a client takes bytes out of the pty's queue (reading or flushing it); bytes written within
-  // kFlipGrace may reach the queue late (the kernel's flip-buffer worker can be descheduled on a
-  // loaded machine), so they are counted as still on their way, not as taken.
+  // Only a client takes bytes out of the pty's queue (reading or flushing it): a queue that shrank
+  // since the last look was read. Bytes written within kFlipGrace may reach the queue late (the
+  // kernel's flip-buffer worker can be descheduled on a loaded machine), so they are counted as
+  // still on their way, not as taken: a reader that keeps the queue empty is seen that much later.
   const size_t unread = port.pty.UnreadBytes();
   while (!port.recent_writes.empty() && now - port.recent_writes.front().first > kFlipGrace) {
     port.recent_writes.pop_front();
@@ -128,8 +132,10 @@ size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point 
   for (const auto& [when, bytes] : port.recent_writes) in_flight += bytes;
   const uint64_t in_line = unread + in_flight;
   const uint64_t taken = port.total_written > in_line ? port.total_written - in_line : 0;
-  if (taken > port.taken_at_least) {
-    port.taken_at_least = taken;
+  const bool shrank = unread < port.unread_at_last_look;
+  port.unread_at_last_look = unread;
+  if (taken > port.taken_at_least || shrank) {
+    port.taken_at_least = std::max(taken, port.taken_at_least);
     port.last_progress = now;
     port.looks_since_progress = 0;
   } else if (port.looks_since_progress < kLockstepMinLooks) {
