@@ -44,15 +44,16 @@ struct Acquisition {
   Moments ps_ref_pa, qc_ref_pa;
 };
 
-using Key = std::tuple<std::string, int, int>;  // serial, step, tag
+// serial, step, tag, table rate in 0.1 °/s (a gyro step's one TAG spans all its rates).
+using Key = std::tuple<std::string, int, int, long>;
 
 struct RunMeans {
   std::map<Key, Acquisition> acquisitions;
   std::map<std::string, bool> imu;  // serial -> is an IMU
 };
 
-Acquisition& At(RunMeans* m, const std::string& serial, int step, int tag, size_t channels) {
-  Acquisition& a = m->acquisitions[{serial, step, tag}];
+Acquisition& At(RunMeans* m, const std::string& serial, int step, int tag, long rate, size_t channels) {
+  Acquisition& a = m->acquisitions[{serial, step, tag, rate}];
   if (a.channels.empty()) a.channels.resize(channels);
   return a;
 }
@@ -63,7 +64,7 @@ RunMeans ReadMeans(const fs::path& run) {
   sinks.imu = [&](hil::ImuRecordRow&& r, int) {
     if (r.tag == 0) return;
     m.imu[r.unit] = true;
-    Acquisition& a = At(&m, r.unit, r.step, r.tag, kImuChannels);
+    Acquisition& a = At(&m, r.unit, r.step, r.tag, std::lround(r.table_rate_dps * 10.0), kImuChannels);
     for (size_t ch = 0; ch < 6; ++ch) {
       const double t2 = r.accel_ticks[2 * ch + 1];
       if (t2 <= 0.0) continue;
@@ -74,7 +75,7 @@ RunMeans ReadMeans(const fs::path& run) {
   sinks.ads = [&](hil::AdsRecordRow&& r, int) {
     if (r.tag == 0) return;
     m.imu[r.unit] = false;
-    Acquisition& a = At(&m, r.unit, r.step, r.tag, kAdsChannels);
+    Acquisition& a = At(&m, r.unit, r.step, r.tag, 0, kAdsChannels);
     a.channels[0].Add(r.ps_counts);
     a.channels[1].Add(r.pt_counts);
     a.ps_ref_pa.Add(r.ps_ref_pa);
@@ -127,6 +128,7 @@ ChannelReplayFit CompareChannel(const std::string& serial, bool imu, int ch, con
     if (r.n == 0 || rb.n == 0 || rm.n == 0) continue;
     AcquisitionResidual res;
     res.label = fmt::format("step {} tag {}", std::get<1>(key), std::get<2>(key));
+    if (imu && std::get<3>(key) != 0) res.label += fmt::format(" at {:g} dps", 0.1 * static_cast<double>(std::get<3>(key)));
     res.base = (r.Mean() - rb.Mean()) * scale;
     res.model = (r.Mean() - rm.Mean()) * scale;
     res.noise_se = std::sqrt(r.VarianceOfMean() + 0.5 * (rb.VarianceOfMean() + rm.VarianceOfMean())) * scale;

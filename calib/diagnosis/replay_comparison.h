@@ -1,6 +1,7 @@
 // A recording against two re-simulations of its stimulus (`adahrs simulate replay`): one with the
 // unit model the diagnosis started from, one with the augmented model it wrote. Per unit, channel
-// and acquisition (the rows of one step and TAG, TAG ≠ 0), the mean output difference recorded −
+// and acquisition (the rows of one step and TAG ≠ 0, and for an IMU one table rate to 0.1 °/s:
+// a gyro step's TAG spans all its rates), the mean output difference recorded −
 // replayed, in the channel's physical unit; per channel the RMS over acquisitions for either model
 // and the RMS that the noise alone leaves (two independent means: the standard error of their
 // difference from each acquisition's own row scatter). Held out when the recording is not one the
@@ -21,7 +22,7 @@
 namespace adahrs::calib {
 
 struct AcquisitionResidual {
-  std::string label;  ///< "step 12 tag 3"
+  std::string label;  ///< "step 12 tag 3", "step 5 tag 6 at -25 dps"
   double base = 0.0;  ///< recorded − replayed with the base model, channel unit
   double model = 0.0; ///< recorded − replayed with the augmented model
   double noise_se = 0.0;  ///< standard error of either difference from the rows' scatter
