@@ -225,11 +225,12 @@ TEST(ImuDiagnosis, ScaleFactorTempcoIsUndetectableFromOneCalibrationTemperature)
 
 // Die lag between the accelerometer chips and the gyro dies whose TEMP pins are the thermometers:
 // on a monotone ramp it is indistinguishable from a shifted temperature polynomial; the up and
-// down ramps tell it apart. Sized within 3 SE plus 15 % of the truth (the first-order lag term
-// is exact only on a steady ramp).
+// down ramps of two thermal cycles tell it apart (with one cycle the jackknife has too few
+// informative segments: docs/diagnose.md). Sized within 3 SE plus 15 % of the truth (the
+// first-order lag term is exact only on a steady ramp).
 TEST(ImuDiagnosis, FindsDieLagConfoundedWithTheTemperaturePolynomial) {
   Shape shape;
-  shape.profile_c = {0.0, 50.0, 25.0};
+  shape.profile_c = {0.0, 50.0, 0.0, 50.0, 25.0};
   shape.ramp_c_per_min = 4.0;
   shape.soak_s = 1500.0;
   Tally tally;
@@ -255,7 +256,7 @@ TEST(ImuDiagnosis, FindsDieLagConfoundedWithTheTemperaturePolynomial) {
   std::printf("die lag: %d of %d within 3 SE + 15 %%, %d of %d detectable channels missed\n", tally.within,
               tally.total, missed, detectable);
   EXPECT_GE(tally.Fraction(), 0.9);
-  EXPECT_LE(missed, detectable / 2);  // measured 2026-11-26: see docs/diagnose.md
+  EXPECT_LE(10 * missed, detectable);  // at least 90 % of the channels the limits call detectable
 }
 
 // A bias step (an effect outside the library) is located and not forced into a term.
