@@ -50,6 +50,7 @@ class CellCutter {
       }
     }
     segment.chamber_mean_c = chamber / static_cast<double>(rows.size());
+    CountSequenceGaps(rows);
     data_->spectra.AddSegment(
         index, rows.size(), [&](size_t i) { return rows[i]->t_s; },
         [&](size_t i, int ch) { return Output(*rows[i], ch); });
@@ -58,6 +59,25 @@ class CellCutter {
   }
 
  private:
+  // Gaps of the packet counter against its most frequent step in the segment (1, or log_every).
+  void CountSequenceGaps(const std::vector<const ImuSample*>& rows) {
+    std::array<int, 256> steps{};
+    for (size_t i = 1; i < rows.size(); ++i) ++steps[static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq)];
+    const int usual = static_cast<int>(std::max_element(steps.begin(), steps.end()) - steps.begin());
+    if (usual == 0) return;
+    for (size_t i = 1; i < rows.size(); ++i) {
+      const int d = static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq);
+      if (d == usual) continue;
+      const int missing = d > usual ? (d - usual) / usual : 0;
+      ++data_->seq_gaps;
+      data_->seq_missing += missing;
+      if (missing > data_->largest_seq_gap) {
+        data_->largest_seq_gap = missing;
+        data_->largest_seq_gap_at_s = rows[i]->t_s;
+      }
+    }
+  }
+
   void AddCell(int segment, const std::vector<const ImuSample*>& rows, size_t begin, size_t end,
                const Eigen::Vector3d& f_B_g, const Eigen::Vector3d& w_B_dps) {
     DiagnosisCell c;

@@ -103,6 +103,14 @@ struct DiagnosisData {
   RowSpectra spectra{kImuChannels, 0.0};
   /// The step of each raw output: one timer tick over the mean period (duty), or one count.
   std::array<double, kImuChannels> output_quantum{};
+  /// Packets missing inside segments, by the 8-bit sequence counter against its usual step in
+  /// the segment (1, or the recording's log_every): gaps, packets missing (a gap of 256 packets
+  /// or more is under-counted modulo 256), and the time of the largest. Cells close at a gap in
+  /// time; nothing is interpolated.
+  int seq_gaps = 0;
+  int64_t seq_missing = 0;
+  double largest_seq_gap_at_s = 0.0;
+  int largest_seq_gap = 0;
 };
 
 /// Cuts one unit's calibration data into segments and cells and derives the thermal state.

@@ -630,6 +630,12 @@ UnitDiagnosis DiagnoseImu(const DiagnosisData& data, const DiagnosisOptions& opt
   if (!out.thermometers_fitted) {
     out.notes.push_back("the recording's soaks span less than 5 degC: thermometers use the datasheet's 110.1 counts/degC");
   }
+  out.notes.push_back(
+      data.seq_gaps == 0
+          ? "sequence counter: no packet missing inside a segment"
+          : fmt::format("sequence counter: {} gap(s) inside segments, {} packet(s) missing (the largest, {}, at t = {:.2f} s; "
+                        "a gap of 256 or more is counted modulo 256); cells close at a gap in time, nothing is interpolated",
+                        data.seq_gaps, data.seq_missing, data.largest_seq_gap, data.largest_seq_gap_at_s));
   out.tests = CandidateTests(options.uncalibrated_candidates);
   out.test_alpha = options.family_alpha / out.tests;
   for (int ch = 0; ch < kImuChannels; ++ch) {

@@ -69,6 +69,7 @@ ImuSample ToSample(const hil::ImuRecordRow& row) {
   s.t_s = row.t_s;
   s.chamber_c = row.chamber_c;
   s.table_rate_dps = row.table_rate_dps;
+  s.seq = static_cast<uint8_t>(row.seq & 0xFF);
   return s;
 }
 

@@ -44,7 +44,8 @@ struct ImuSample {
   double t_s = 0.0;
   double chamber_c = 0.0;
   double table_rate_dps = 0.0;
-  int run = 0;  ///< index of its run in LoadImuRuns' order (ImuRunData::recordings)
+  int run = 0;       ///< index of its run in LoadImuRuns' order (ImuRunData::recordings)
+  uint8_t seq = 0;   ///< the packet's 8-bit sequence counter
 };
 
 /// The rows of one acquisition (one orientation and one table rate).

@@ -94,10 +94,12 @@ class ImuScenario {
         out->raw.temp_cnt[g] = f.temp_cnt[g];
       }
       out->t_s = t_s_;
+      out->seq = static_cast<uint8_t>(frame_);
       out->chamber_c = std::round(air_c_ * 10.0) / 10.0;
       out->table_rate_dps = rate_dps;
     }
     t_s_ += kFrame_s;
+    ++frame_;
   }
 
   void ThermalRow(const Eigen::Vector3d& up, ThermalSegment seg) {
@@ -126,6 +128,7 @@ class ImuScenario {
   }
 
   std::unique_ptr<sensor_sim::ImuUnit> unit_;
+  uint64_t frame_ = 0;  // the packet counter a unit would send
   double g_scale_;
   double air_c_;
   double t_s_ = 0.0;

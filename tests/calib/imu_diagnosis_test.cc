@@ -2,12 +2,14 @@
 // pipeline's model, the effect concealed, must be found, named and sized within the stated
 // uncertainty; clean units must give no finding. The scenario generator (imu_diagnosis_scenario.h)
 // is the simulator; the diagnoser (calib/diagnosis) never includes it.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "calib/campaign/diagnosis_truth.h"
@@ -279,6 +281,24 @@ TEST(ImuDiagnosis, LocatesABiasStepWithoutFittingAnyTerm) {
     }
   }
   EXPECT_TRUE(located);
+}
+
+// Packets lost inside a segment are counted by the sequence counter and said, never interpolated.
+TEST(ImuDiagnosis, ReportsPacketsMissingByTheSequenceCounter) {
+  Shape shape;
+  ImuUnitData data = Simulate(Nominal(602), 7002, shape);
+  const auto has_note = [](const UnitDiagnosis& d, const std::string& text) {
+    return std::any_of(d.notes.begin(), d.notes.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(has_note(Diagnose(data), "sequence counter: no packet missing inside a segment"));
+  const size_t at = data.thermal.size() / 2;
+  const double t_gap = data.thermal[at + 37].t_s;
+  data.thermal.erase(data.thermal.begin() + static_cast<std::ptrdiff_t>(at), data.thermal.begin() + static_cast<std::ptrdiff_t>(at + 37));
+  data.thermal_segment.erase(data.thermal_segment.begin() + static_cast<std::ptrdiff_t>(at),
+                             data.thermal_segment.begin() + static_cast<std::ptrdiff_t>(at + 37));
+  const UnitDiagnosis d = Diagnose(data);
+  EXPECT_TRUE(has_note(d, fmt::format("1 gap(s) inside segments, 37 packet(s) missing (the largest, 37, at t = {:.2f} s", t_gap)))
+      << ::testing::PrintToString(d.notes);
 }
 
 // Periodic interference (outside the library) at a fifth of the per-row noise: visible only in
