@@ -3,7 +3,7 @@
 // physics the model leaves out, the held-out fit with it (calib/diagnosis, docs/diagnose.md), and
 // with --model the unit file with the findings switched on (OUT/model.json); with --check-run,
 // that run re-simulated with the base and the augmented model and compared with its recording
-// (OUT/replay_check.json). Exit 0 whatever is found; 1 on bad input.
+// (OUT/replay_check.json, replay_check.html). Exit 0 whatever is found; 1 on bad input.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -15,6 +15,7 @@
 #include "apps/commands.h"
 #include "calib/campaign/augmented_model.h"
 #include "calib/diagnosis/diagnosis_output.h"
+#include "calib/diagnosis/replay_check_report.h"
 #include "calib/diagnosis/replay_comparison.h"
 #include "rig_sim/recording_replay.h"
 
@@ -80,7 +81,7 @@ void RegisterDiagnoseCommand(CLI::App& app) {
       for (const std::string& n : m.not_applied) std::cout << "  model, not applied: " << n << "\n";
       std::cout << "wrote " << (std::filesystem::path(*out) / "model.json").string() << "\n";
     }
-    nlohmann::json checks = nlohmann::json::array();
+    std::vector<calib::ReplayComparison> checks;
     for (const std::string& check : *check_runs) {
       const std::filesystem::path dir(check);
       bool diagnosed = false;
@@ -91,12 +92,11 @@ void RegisterDiagnoseCommand(CLI::App& app) {
           [](const std::filesystem::path& r, const std::vector<std::filesystem::path>& files,
              const std::filesystem::path& o) { rig_sim::ReplayRecording(r, files, o); });
       PrintReplayCheck(c);
-      checks.push_back(c.ToJson());
+      checks.push_back(c);
     }
     if (!check_runs->empty()) {
-      const std::filesystem::path file = std::filesystem::path(*out) / "replay_check.json";
-      calib::WriteTextAtomically(file, checks.dump(2) + "\n");
-      std::cout << "wrote " << file.string() << "\n";
+      calib::WriteReplayCheck(checks, *out);
+      std::cout << "wrote " << (std::filesystem::path(*out) / "replay_check.json").string() << " and replay_check.html\n";
     }
   });
 }

@@ -19,7 +19,7 @@
 //      and, with a truth directory and a replay function, the held-out check: each unit's truth
 //      without the vocabulary's effects (the base) and it with the findings (model.json), the
 //      acceptance runs re-simulated with either and compared with their recordings
-//                          -> diagnosis/models/<serial>/{base,model}.json, diagnosis/replay_check.json
+//                          -> diagnosis/models/<serial>/{base,model}.json, diagnosis/replay_check.{json,html}
 //   7. report.html per run (run_report.h) with the fit of its unit kind
 //   8. production records: every run, every constants file, every download -> records.sqlite
 // Stages that cannot run are listed in CampaignResult::not_run with the reason, never faked

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "calib/campaign/augmented_model.h"
+#include "calib/diagnosis/replay_check_report.h"
 #include "hil/recording/recording_reader.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
@@ -187,7 +188,6 @@ std::vector<ReplayComparison> CheckDiagnosisByReplay(const DiagnosisRun& diagnos
     files[u.serial] = {dir / "base.json", dir / "model.json"};
   }
   std::vector<ReplayComparison> out;
-  nlohmann::json all = nlohmann::json::array();
   for (const std::filesystem::path& run : check_runs) {
     std::vector<std::filesystem::path> bases, models;
     for (const nlohmann::json& unit : hil::ReadRecordingMeta(run).meta.value("units", nlohmann::json::array())) {
@@ -200,10 +200,9 @@ std::vector<ReplayComparison> CheckDiagnosisByReplay(const DiagnosisRun& diagnos
     const std::filesystem::path work = diagnosis_dir / "replay" / run.filename();
     out.push_back(CheckByReplay(run, bases, models, work, true, replay));
     std::filesystem::remove_all(work);
-    all.push_back(out.back().ToJson());
   }
   std::filesystem::remove_all(diagnosis_dir / "replay");
-  WriteTextAtomically(diagnosis_dir / "replay_check.json", all.dump(2) + "\n");
+  WriteReplayCheck(out, diagnosis_dir);
   return out;
 }
 

@@ -47,7 +47,7 @@ nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir, const 
 /// (BaseModelFromTruth) and the base with the findings switched on (WriteAugmentedModel), written
 /// as `diagnosis_dir`/models/<serial>/{base,model}.json; each run of `check_runs` (runs the
 /// diagnosis did not see) re-simulated with the bases and with the models of the units it holds
-/// and compared with its recording -> `diagnosis_dir`/replay_check.json. The re-simulated runs,
+/// and compared with its recording -> `diagnosis_dir`/replay_check.json, replay_check.html. The re-simulated runs,
 /// the size of their recordings, are removed once compared.
 std::vector<ReplayComparison> CheckDiagnosisByReplay(const DiagnosisRun& diagnosed,
                                                      const std::filesystem::path& truth_dir,

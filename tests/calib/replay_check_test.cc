@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -17,6 +18,7 @@
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/campaign/augmented_model.h"
 #include "calib/diagnosis/ads_diagnosis.h"
+#include "calib/diagnosis/replay_check_report.h"
 #include "calib/diagnosis/replay_comparison.h"
 #include "hil/recording/recording_reader.h"
 #include "hil/recording/recording_writer.h"
@@ -91,6 +93,12 @@ TEST(ReplayCheck, AHeldOutRunIsReproducedWithTheFoundHysteresis) {
     // is a temperature, not an instrument that has not reported).
     EXPECT_LT(ch.rms_base, 2.0 * ch.rms_noise) << ch.channel;
   }
+  WriteReplayCheck({c}, dir / "out");
+  std::ifstream html_file(dir / "out/replay_check.html");
+  const std::string html((std::istreambuf_iterator<char>(html_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("ADS-0007 ps: mean residual of each acquisition"), std::string::npos);  // its figure
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "out/replay_check.json"))[0]["units"][0]["channels"][0]["rms_model"],
+            ps.rms_model);
   const hil::Recording meta = hil::ReadRecordingMeta(dir / "replay/model");
   EXPECT_EQ(meta.meta["replay"]["noise"], 77);
   fs::remove_all(dir);
