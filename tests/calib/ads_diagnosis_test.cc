@@ -44,12 +44,11 @@ double HalfLoopPa(const sensor_sim::PressureBridgeParams& b) {
   return b.pressure_hysteresis_pct_fso / 100.0 / 2.0 * b.full_scale_pa;
 }
 
-// Clean units (nominal profile: what the model expresses): no finding on at least 19 of 20
-// (measured 2026-11-27: one, a 13 Pa pitot "pressure hysteresis" carried by the top airspeed
-// points, where the baseline polynomial leaves structure of its own).
+// Clean units (nominal profile: what the model expresses): a finding on at most 5 of 100, and no
+// unexplained structure (docs/diagnose.md gives what the measured false findings were).
 TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
   int with_findings = 0, with_unexplained = 0;
-  for (int i = 0; i < 20; ++i) {
+  for (int i = 0; i < 100; ++i) {
     const AdsUnitParams unit = AdsUnitParams::Draw("ADS-" + std::to_string(9300 + i), 6300 + i, sensor_sim::ModelProfile::kNominal);
     const UnitDiagnosis d = Diagnose(unit, 300 + i);
     if (!d.findings.empty() || !d.unexplained.empty()) {
@@ -59,8 +58,8 @@ TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
     with_findings += d.findings.empty() ? 0 : 1;
     with_unexplained += d.unexplained.empty() ? 0 : 1;
   }
-  std::printf("clean ADS: %d of 20 units with a finding, %d with unexplained structure\n", with_findings, with_unexplained);
-  EXPECT_LE(with_findings, 1);
+  std::printf("clean ADS: %d of 100 units with a finding, %d with unexplained structure\n", with_findings, with_unexplained);
+  EXPECT_LE(with_findings, 5);
   EXPECT_EQ(with_unexplained, 0);
 }
 
