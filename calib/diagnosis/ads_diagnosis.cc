@@ -385,6 +385,45 @@ std::optional<SpanFit> RefitSpans(Bridge* b, bool pitot, const std::vector<AdsCa
   return spans;
 }
 
+// The spans the bridge's states were set with after RefitSpans: the fitted one of each chosen
+// hysteresis effect, the nominal one of the other.
+std::pair<double, double> UsedSpans(bool pitot, const SpanFit& spans, const std::vector<Effect>& chosen) {
+  auto has = [&](Effect e) { return std::find(chosen.begin(), chosen.end(), e) != chosen.end(); };
+  const HysteresisSpans nominal = HysteresisSpans::Nominal();
+  return {has(Effect::kPressureHysteresis) ? spans.pressure_span
+                                           : (pitot ? nominal.impact_pressure_pa : nominal.static_pressure_pa),
+          has(Effect::kThermalHysteresis) ? spans.thermal_span_c
+                                          : (pitot ? nominal.pitot_temperature_c : nominal.static_temperature_c)};
+}
+
+// A hysteresis finding's half loop is fitted at its span; the span's own uncertainty moves it too.
+// The half loop refitted with the span at ± one standard error (the other span fixed): half the
+// change is added in quadrature to the half loop's standard error, which otherwise holds the span
+// exact (a loop that never saturates, the pitot's, trades loop height for span).
+void AddSpanUncertainty(Finding* f, Effect e, const Bridge& b, bool pitot, const std::vector<AdsCalibrationPoint>& pts,
+                        const std::pair<double, double>& used, const SpanFit& spans, const BaselineChoice& bc,
+                        const std::vector<int>& selected, int sweeps, double y_mid, double sens) {
+  const bool pressure = e == Effect::kPressureHysteresis;
+  const double se_span = pressure ? spans.pressure_span_se : spans.thermal_span_c_se;
+  const double span = pressure ? used.first : used.second;
+  if (!std::isfinite(se_span) || !(se_span > 0.0) || se_span >= span) return;
+  const std::vector<int>& cols = bc.layout.candidate[static_cast<int>(e)];
+  double half[2] = {0.0, 0.0};
+  for (int k = 0; k < 2; ++k) {
+    const double moved = span + (k == 0 ? -se_span : se_span);
+    Bridge trial = b;
+    SetStates(&trial, pitot, pts, pressure ? moved : used.first, pressure ? used.second : moved);
+    const ClusteredFit fit = Accumulate(bc.layout, trial, sweeps, y_mid).Fit(selected);
+    if (!fit.ok) return;
+    Eigen::VectorXd theta, se;
+    ColumnEstimates(fit, selected, cols, &theta, &se);
+    half[k] = theta[0] / sens;
+  }
+  FindingComponent& h = f->components[0];
+  h.standard_error = std::hypot(h.standard_error, 0.5 * (half[1] - half[0]));
+  f->words = Words(e, f->components, b, bc.layout);
+}
+
 BridgeResult DiagnoseBridge(Bridge b, bool pitot, const std::vector<AdsCalibrationPoint>& pts,
                             const std::vector<std::string>& labels, double alpha, const DiagnosisOptions& options,
                             std::vector<std::string>* notes) {
@@ -409,6 +448,10 @@ BridgeResult DiagnoseBridge(Bridge b, bool pitot, const std::vector<AdsCalibrati
   for (Effect e : chosen) {
     const bool refit = std::find(first.begin(), first.end(), e) != first.end();
     out.findings.push_back(MakeFinding(e, bc, b, selected, selected_fit, sens, labels, refit ? spans : std::nullopt));
+    if (refit && spans && e != Effect::kNonlinearity) {
+      AddSpanUncertainty(&out.findings.back(), e, b, pitot, pts, UsedSpans(pitot, *spans, first), *spans, bc, selected,
+                         sweeps, y_mid, sens);
+    }
   }
   const double tcrit = TCritical(alpha, selected_fit.clusters);
   for (int e = 0; e < 3; ++e) {
