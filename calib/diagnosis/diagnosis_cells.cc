@@ -29,7 +29,10 @@ Eigen::Vector3d Up(int orientation) {
 // Accumulates consecutive rows of one segment into cells.
 class CellCutter {
  public:
-  CellCutter(DiagnosisData* data, double cell_s) : data_(data), cell_s_(cell_s) {}
+  /// `frame_period_s` > 0: the spectra take each row's time from the packet counter (frames since
+  /// the segment's first row), not from its arrival time, which comes in bursts on a real line.
+  CellCutter(DiagnosisData* data, double cell_s, double frame_period_s)
+      : data_(data), cell_s_(cell_s), frame_period_s_(frame_period_s) {}
 
   void Segment(DiagnosisSegment segment, const std::vector<const ImuSample*>& rows,
                const Eigen::Vector3d& f_B_g, const Eigen::Vector3d& w_B_dps) {
@@ -51,9 +54,14 @@ class CellCutter {
     }
     segment.chamber_mean_c = chamber / static_cast<double>(rows.size());
     CountSequenceGaps(rows);
+    std::vector<double> t(rows.size());
+    for (size_t i = 0; i < rows.size(); ++i) {
+      t[i] = frame_period_s_ > 0.0 && i > 0
+                 ? t[i - 1] + static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq) * frame_period_s_
+                 : rows[i]->t_s;
+    }
     data_->spectra.AddSegment(
-        index, rows.size(), [&](size_t i) { return rows[i]->t_s; },
-        [&](size_t i, int ch) { return Output(*rows[i], ch); });
+        index, rows.size(), [&](size_t i) { return t[i]; }, [&](size_t i, int ch) { return Output(*rows[i], ch); });
     data_->rows += segment.rows;
     data_->segments.push_back(std::move(segment));
   }
@@ -112,6 +120,7 @@ class CellCutter {
 
   DiagnosisData* data_;
   double cell_s_;
+  double frame_period_s_;
 };
 
 const char* TrendName(ThermalSegment s) {
@@ -269,6 +278,40 @@ void DeriveThermalState(DiagnosisData* data) {
 }
 
 // The recording's row interval: the median over the first rows of each source.
+// The unit's frame period from its packet counter: the time over the frames counted between
+// consecutive rows less than 2.56 s apart (where the 8-bit counter cannot have turned), over the
+// thermal rows and the acquisitions. Arrival times jitter by bursts; their sum over millions of
+// frames does not. 0 when the counter never moves (a recording without one).
+double FramePeriod(const ImuUnitData& unit) {
+  double frames = 0.0, time_s = 0.0;
+  auto add = [&](const std::vector<ImuSample>& rows) {
+    for (size_t i = 1; i < rows.size(); ++i) {
+      const int d = static_cast<uint8_t>(rows[i].seq - rows[i - 1].seq);
+      const double dt = rows[i].t_s - rows[i - 1].t_s;
+      if (d == 0 || dt < 0.0 || dt > 2.56) continue;
+      frames += d;
+      time_s += dt;
+    }
+  };
+  add(unit.thermal);
+  for (const auto* group : {&unit.accel, &unit.gyro, &unit.cross_axis}) {
+    for (const ImuAcquisition& a : *group) add(a.samples);
+  }
+  return frames > 0.0 ? time_s / frames : 0.0;
+}
+
+// The most frequent step of the packet counter between consecutive thermal rows (1, or log_every).
+int UsualCounterStep(const ImuUnitData& unit) {
+  std::array<int, 256> steps{};
+  for (size_t i = 1; i < unit.thermal.size(); ++i) ++steps[static_cast<uint8_t>(unit.thermal[i].seq - unit.thermal[i - 1].seq)];
+  for (const auto* group : {&unit.accel, &unit.gyro, &unit.cross_axis}) {
+    for (const ImuAcquisition& a : *group) {
+      for (size_t i = 1; i < a.samples.size(); ++i) ++steps[static_cast<uint8_t>(a.samples[i].seq - a.samples[i - 1].seq)];
+    }
+  }
+  return static_cast<int>(std::max_element(steps.begin() + 1, steps.end()) - steps.begin());
+}
+
 double NominalInterval(const ImuUnitData& unit) {
   constexpr size_t kLook = 20000;
   std::vector<double> times;
@@ -310,8 +353,10 @@ DiagnosisData BuildDiagnosisData(const ImuUnitData& unit, double g_local_mps2, d
   DiagnosisData data;
   data.serial = unit.serial;
   const double g_scale = g_local_mps2 / 9.80665;
-  data.spectra = RowSpectra(kImuChannels, NominalInterval(unit));
-  CellCutter cutter(&data, cell_duration_s);
+  const double frame_period_s = FramePeriod(unit);
+  data.spectra =
+      RowSpectra(kImuChannels, frame_period_s > 0.0 ? UsualCounterStep(unit) * frame_period_s : NominalInterval(unit));
+  CellCutter cutter(&data, cell_duration_s, frame_period_s);
   CutThermal(unit, g_scale, &cutter);
   CutAcquisitions(unit.accel, g_scale, &cutter);
   CutAcquisitions(unit.gyro, g_scale, &cutter);

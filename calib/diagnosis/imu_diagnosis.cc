@@ -636,6 +636,12 @@ UnitDiagnosis DiagnoseImu(const DiagnosisData& data, const DiagnosisOptions& opt
           : fmt::format("sequence counter: {} gap(s) inside segments, {} packet(s) missing (the largest, {}, at t = {:.2f} s; "
                         "a gap of 256 or more is counted modulo 256); cells close at a gap in time, nothing is interpolated",
                         data.seq_gaps, data.seq_missing, data.largest_seq_gap, data.largest_seq_gap_at_s));
+  out.notes.push_back(
+      data.spectra.windows() == 0
+          ? fmt::format("row spectra: no run of {} rows at a steady interval: periodic lines not searched",
+                        data.spectra.window_rows())
+          : fmt::format("row spectra: {} windows of {} rows at {:.4g} s (bins of {:.3g} Hz)", data.spectra.windows(),
+                        data.spectra.window_rows(), data.spectra.dt_s(), data.spectra.BinHz(1.0)));
   out.tests = CandidateTests(options.uncalibrated_candidates);
   out.test_alpha = options.family_alpha / out.tests;
   for (int ch = 0; ch < kImuChannels; ++ch) {

@@ -347,6 +347,39 @@ TEST(ImuDiagnosis, LocatesPeriodicInterferenceBelowTheRowNoise) {
   EXPECT_GE(located, 9);
 }
 
+// On a real line packets arrive in bursts: their arrival times share values and jump. The row
+// spectra take each row's time from the packet counter, so a tone is located as well from rows
+// whose arrival times are quantised to 0.2 s (bursts of 20 packets) as from exact ones.
+TEST(ImuDiagnosis, LocatesPeriodicInterferenceInRowsThatArriveInBursts) {
+  Shape shape;
+  int located = 0;
+  for (int unit = 0; unit < 3; ++unit) {
+    ImuUnitData data = Simulate(Nominal(640 + unit), 7040 + unit, shape);
+    const int axis = unit % 3;
+    const double f_hz = 3.1 + 11.0 * unit;
+    const double amplitude_cnt = 3000.0;
+    auto add = [&](ImuSample& s) {
+      s.raw.gyro_cnt[axis] += static_cast<int32_t>(std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s)));
+      s.t_s = 0.2 * std::floor(s.t_s / 0.2);
+    };
+    for (ImuSample& s : data.thermal) add(s);
+    for (ImuAcquisition& a : data.accel) for (ImuSample& s : a.samples) add(s);
+    for (ImuAcquisition& a : data.gyro) for (ImuSample& s : a.samples) add(s);
+    const DiagnosisData cells = BuildDiagnosisData(data, 9.80665);
+    const std::vector<PeriodicLine> lines = FindPeriodicLines(cells.spectra, 6 + axis, 1e-3 / kImuChannels);
+    const double bin_hz = cells.spectra.BinHz(1.0);
+    for (const PeriodicLine& l : lines) {
+      std::printf("bursts: injected %.0f counts at %.2f Hz; found %.0f counts at %.3f Hz (bin %.3f Hz), %d windows\n",
+                  amplitude_cnt, f_hz, l.amplitude, l.frequency_hz, bin_hz, cells.spectra.windows());
+    }
+    if (lines.size() == 1 && std::abs(lines[0].frequency_hz - f_hz) < bin_hz / 2 &&
+        std::abs(lines[0].amplitude - amplitude_cnt) < 0.15 * amplitude_cnt) {
+      ++located;
+    }
+  }
+  EXPECT_EQ(located, 3);
+}
+
 // Truth-profile units (every modelled effect on at once) through the demo's calibration shape:
 // the full thermal profile (25 -> -40 -> 25 -> 85 -> 25 degC at 1 degC/min, 1 h soaks) in
 // orientation 31, then the sensor calibration at 25 degC. Die lag is found on every accelerometer
