@@ -3,7 +3,8 @@
 // the IMU-bench and ADS-bench station files for its ports, runs the calibration campaign
 // (calib/campaign/campaign.h) with the rig's truth for the evaluation, prints a summary per unit,
 // and always stops the rig. Thin: the rig process and the stations are rig_sim's, the chain is
-// calib's; this file picks the files, prints, and handles SIGINT (exit 130).
+// calib's; this file picks the files, prints, and handles SIGINT, SIGTERM and SIGHUP alike (exit
+// 128 + the signal's number).
 #include "adahrs_build_paths.h"
 #include <signal.h>
 
@@ -31,7 +32,11 @@ namespace adahrs::apps {
 namespace {
 
 std::atomic<bool> g_demo_stop{false};
-extern "C" void OnDemoSigint(int) { g_demo_stop = true; }
+std::atomic<int> g_demo_signal{SIGINT};
+extern "C" void OnDemoStopSignal(int signal_number) {
+  g_demo_signal = signal_number;
+  g_demo_stop = true;
+}
 
 // Wall seconds between two progress lines of one bench.
 constexpr double kProgressLineIntervalS = 5.0;
@@ -163,9 +168,9 @@ void PrintSummary(const calib::CampaignResult& result, double wall_s, sensor_sim
 
 int RunDemo(const DemoOptions& options) {
   struct sigaction action {};
-  action.sa_handler = OnDemoSigint;
+  action.sa_handler = OnDemoStopSignal;
   sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal_number, &action, nullptr);
   const auto start = std::chrono::steady_clock::now();
   const std::filesystem::path out = std::filesystem::absolute(options.out);
   if (std::filesystem::exists(out) && !std::filesystem::is_empty(out)) {
@@ -222,8 +227,9 @@ int RunDemo(const DemoOptions& options) {
     }
     return 0;
   } catch (const calib::RunInterrupted& e) {
-    std::cerr << "adahrs demo: interrupted (" << e.what() << "); the rig is stopped\n";
-    return 130;
+    std::cerr << "adahrs demo: interrupted by signal " << g_demo_signal.load() << " (" << e.what()
+              << "); the rig is stopped\n";
+    return 128 + g_demo_signal.load();
   } catch (const std::exception& e) {
     if (const std::optional<std::string> exit = rig.ExitDescription()) {
       throw std::runtime_error(std::string(e.what()) + " (the rig " + *exit + ")");

@@ -1,6 +1,7 @@
 // adahrs run: runs a calibration sequence on a station (docs/executor.md), or resumes an
-// interrupted run. Thin: parses, installs the SIGINT handler (a stop request the executor polls;
-// the rig is left safe and the run resumable, exit status 130), prints progress lines.
+// interrupted run. Thin: parses, installs the handler of SIGINT, SIGTERM and SIGHUP (a stop
+// request the executor polls: the rig is left safe and the run resumable, exit status 128 + the
+// signal's number: 130, 143, 129), prints progress lines.
 //   adahrs run --station FILE --sequence FILE --run-dir DIR
 //   adahrs run --resume DIR
 #include <signal.h>
@@ -21,8 +22,21 @@ namespace adahrs::apps {
 namespace {
 
 std::atomic<bool> g_stop_requested{false};
+std::atomic<int> g_stop_signal{0};
 
-extern "C" void OnSigint(int) { g_stop_requested = true; }
+extern "C" void OnStopSignal(int signal_number) {
+  g_stop_signal = signal_number;
+  g_stop_requested = true;
+}
+
+const char* SignalName(int signal_number) {
+  switch (signal_number) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    default: return "a signal";
+  }
+}
 
 class ConsoleProgress : public calib::ProgressSink {
  public:
@@ -47,10 +61,11 @@ struct RunArgs {
 
 int RunAndReport(const RunArgs& a) {
   struct sigaction action {};
-  action.sa_handler = OnSigint;
+  action.sa_handler = OnStopSignal;
   action.sa_flags = SA_RESTART;  // a serial read in progress goes on; the executor sees the flag
   sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
+  // Ctrl-C, `kill`, and a closed terminal session all stop the run the same safe way.
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal_number, &action, nullptr);
   ConsoleProgress progress;
   const std::string dir = a.resume.empty() ? a.run_dir : a.resume;
   calib::NewRunOptions options;
@@ -65,10 +80,11 @@ int RunAndReport(const RunArgs& a) {
                              summary.run_dir.string(), summary.status, summary.rows, summary.lost);
     return 0;
   } catch (const calib::RunInterrupted& e) {
-    std::cerr << fmt::format("adahrs run: interrupted ({}); the rig is safe. Resume with: "
+    const int signal_number = g_stop_signal.load();
+    std::cerr << fmt::format("adahrs run: interrupted by {} ({}); the rig is safe. Resume with: "
                              "adahrs run --resume {}\n",
-                             e.what(), dir);
-    return 130;
+                             SignalName(signal_number), e.what(), dir);
+    return 128 + (signal_number != 0 ? signal_number : SIGINT);
   } catch (const calib::RunError& e) {
     std::cerr << "adahrs run: aborted: " << e.what() << "\n";
     return 1;

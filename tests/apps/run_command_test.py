@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """`adahrs run` as an operator sees it, against `adahrs rig` started as a separate process:
-refuses a missing option and a run directory that already holds a run; Ctrl-C (SIGINT) in the
-middle of a sequence leaves the rig's table at rest, exits with status 130, says how to resume,
-and `adahrs run --resume` then completes the run (meta.json status "complete").
+refuses a missing option and a run directory that already holds a run; SIGTERM, SIGHUP or Ctrl-C
+(SIGINT) in the middle of a sequence leaves the rig's table at rest, meta.json "interrupted" and a
+journal entry, exits with status 128 + the signal, names it and says how to resume, and
+`adahrs run --resume` then completes the run (meta.json status "complete").
 
 Usage: run_command_test.py ADAHRS_BINARY
 """
@@ -51,6 +52,48 @@ def station_for(manifest, config):
                          "port": port(manifest["links"]["control"], 115200, "none")}}
 
 
+def interrupt(adahrs, manifest, tmp, run_dir, sig, status):
+    """Starts the sequence into run_dir, sends `sig` once the table turns, and checks the stop."""
+    args = [adahrs, "run", "--station", str(tmp / "station.json"), "--sequence",
+            str(tmp / "sequence.json"), "--run-dir", str(run_dir)]
+    run = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    journal = run_dir / "journal.jsonl"
+    deadline = time.monotonic() + 30
+    while "set table rate 50" not in (journal.read_text() if journal.exists() else ""):
+        if time.monotonic() > deadline or run.poll() is not None:
+            run.kill()
+            out, err = run.communicate()
+            fail(f"the run never reached the gyro step's rate: {out[-2000:]} {err}")
+        time.sleep(0.01)
+    run.send_signal(sig)
+    out, err = run.communicate(timeout=60)
+    print(err)
+    if run.returncode != status:
+        fail(f"exit status {run.returncode} after {sig.name}, expected {status}")
+    if f"interrupted by {sig.name}" not in err or f"adahrs run --resume {run_dir}" not in err:
+        fail(f"no signal name or resume instruction after {sig.name}: {err}")
+    meta = json.loads((run_dir / "meta.json").read_text())
+    if meta["status"] != "interrupted":
+        fail(f"meta.json status {meta['status']} after {sig.name}")
+    if "interrupted" not in journal.read_text():
+        fail(f"no journal entry of the interruption after {sig.name}")
+    # The safe stop commanded the table to rest; its rate loop settles the last
+    # 1e-4 deg/s within a fraction of a simulated second (tau 0.05 s), which at 10x can
+    # still be under way when this query comes: poll for up to 2 s of wall time.
+    deadline = time.monotonic() + 2.0
+    with serial.Serial(manifest["links"]["control"], 115200, timeout=5) as control:
+        while True:
+            control.write(b"env\n")
+            env = control.readline().decode()
+            rate = float(env.split("table_rate_dps=")[1].split()[0])
+            if rate == 0.0 or time.monotonic() > deadline:
+                break
+            time.sleep(0.05)
+    print(f"rig after {sig.name}:", env.strip())
+    if rate != 0.0:
+        fail(f"table still turning 2 s after {sig.name}: {rate} deg/s")
+
+
 def main():
     adahrs = sys.argv[1]
     with tempfile.TemporaryDirectory(prefix="adahrs-run-cli-") as tmp:
@@ -87,40 +130,11 @@ def main():
             run_dir = tmp / "run"
             args = [adahrs, "run", "--station", str(tmp / "station.json"), "--sequence",
                     str(tmp / "sequence.json"), "--run-dir", str(run_dir)]
-            run = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-            journal = run_dir / "journal.jsonl"
-            deadline = time.monotonic() + 30
-            while "set table rate 50" not in (journal.read_text() if journal.exists() else ""):
-                if time.monotonic() > deadline or run.poll() is not None:
-                    run.kill()
-                    out, err = run.communicate()
-                    fail(f"the run never reached the gyro step's rate: {out[-2000:]} {err}")
-                time.sleep(0.01)
-            run.send_signal(signal.SIGINT)
-            out, err = run.communicate(timeout=60)
-            print(err)
-            if run.returncode != 130:
-                fail(f"exit status {run.returncode} after SIGINT, expected 130")
-            if f"adahrs run --resume {run_dir}" not in err:
-                fail("no resume instruction after SIGINT")
-            meta = json.loads((run_dir / "meta.json").read_text())
-            if meta["status"] != "interrupted":
-                fail(f"meta.json status {meta['status']}")
-            # The safe stop commanded the table to rest; its rate loop settles the last
-            # 1e-4 deg/s within a fraction of a simulated second (tau 0.05 s), which at 10x can
-            # still be under way when this query comes: poll for up to 2 s of wall time.
-            deadline = time.monotonic() + 2.0
-            with serial.Serial(manifest["links"]["control"], 115200, timeout=5) as control:
-                while True:
-                    control.write(b"env\n")
-                    env = control.readline().decode()
-                    rate = float(env.split("table_rate_dps=")[1].split()[0])
-                    if rate == 0.0 or time.monotonic() > deadline:
-                        break
-                    time.sleep(0.05)
-            print("rig after SIGINT:", env.strip())
-            if rate != 0.0:
-                fail(f"table still turning 2 s after SIGINT: {rate} deg/s")
+            # SIGTERM (`kill`) and SIGHUP (a closed terminal) stop a run as Ctrl-C does; the
+            # last run, stopped by SIGINT, is the one refused and resumed below.
+            for sig, status in ((signal.SIGTERM, 143), (signal.SIGHUP, 129), (signal.SIGINT, 130)):
+                interrupted = run_dir if sig == signal.SIGINT else tmp / f"run-{sig.name}"
+                interrupt(adahrs, manifest, tmp, interrupted, sig, status)
             again = subprocess.run(args, capture_output=True, text=True)
             if again.returncode == 0 or "--resume" not in again.stderr:
                 fail(f"a second run into the same directory was not refused: {again.stderr}")
