@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -194,17 +195,24 @@ Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
   } catch (const nlohmann::json::parse_error& e) {
     throw RecordingError(meta_path.string() + ": not valid JSON at byte " + std::to_string(e.byte));
   }
-  if (!rec.meta.contains("format_version") || !rec.meta["format_version"].is_number_integer()) {
+  if (!rec.meta.is_object() || !rec.meta.contains("format_version")) {
     throw RecordingError(meta_path.string() + ": $.format_version missing");
   }
-  const int version = rec.meta["format_version"].get<int>();
+  const nlohmann::json& v = rec.meta["format_version"];
+  if (!v.is_number_integer()) {
+    throw RecordingError(meta_path.string() + ": $.format_version is " + v.dump() + ", not an integer");
+  }
+  // Read wide, so 4294967298 is refused as itself instead of wrapping to 2.
+  const int64_t version = v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX)
+                              ? INT64_MAX
+                              : v.get<int64_t>();
   if (version < kOldestReadableFormatVersion || version > kRecordingFormatVersion) {
-    throw RecordingError(meta_path.string() + ": $.format_version is " + std::to_string(version) +
+    throw RecordingError(meta_path.string() + ": $.format_version is " + v.dump() +
                          "; this software reads versions " +
                          std::to_string(kOldestReadableFormatVersion) + " to " +
                          std::to_string(kRecordingFormatVersion));
   }
-  rec.format_version = version;
+  rec.format_version = static_cast<int>(version);
   rec.rejected_intervals = ReadRejectedIntervals(rec.meta, meta_path.string());
   return rec;
 }

@@ -122,6 +122,17 @@ TEST_F(RecordingReaderTest, WrongFormatVersionIsRefused) {
   EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("meta.json"), HasSubstr("format_version is 3")));
 }
 
+// A version that would wrap to a readable one in 32 bits is refused as itself; a version that is
+// not an integer is named as such, not called missing.
+TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
+  ReplaceInFile("meta.json", "\"format_version\": 2", "\"format_version\": 4294967298");
+  EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is 4294967298; this software reads versions 1 to 2"));
+  ReplaceInFile("meta.json", "\"format_version\": 4294967298", "\"format_version\": 2.0");
+  EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is 2.0, not an integer"));
+  ReplaceInFile("meta.json", "\"format_version\": 2.0", "\"format_version\": \"2\"");
+  EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is \"2\", not an integer"));
+}
+
 TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
   const Recording rec = ReadRecording(dir_);
   EXPECT_EQ(rec.format_version, 2);
