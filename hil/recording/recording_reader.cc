@@ -185,6 +185,25 @@ Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions&
   return rec;
 }
 
+namespace {
+
+// A unit listed twice would have its rows read twice by any consumer that walks the list.
+void RefuseRepeatedUnits(const nlohmann::json& meta, const std::string& meta_path) {
+  if (!meta.contains("units") || !meta["units"].is_array()) return;
+  const nlohmann::json& units = meta["units"];
+  for (size_t i = 0; i < units.size(); ++i) {
+    if (!units[i].is_object() || !units[i].contains("serial") || !units[i]["serial"].is_string()) continue;
+    for (size_t j = 0; j < i; ++j) {
+      if (units[j].is_object() && units[j].value("serial", nlohmann::json()) == units[i]["serial"]) {
+        throw RecordingError(meta_path + ": $.units[" + std::to_string(i) + "].serial " + units[i]["serial"].dump() +
+                             " is listed already as $.units[" + std::to_string(j) + "]");
+      }
+    }
+  }
+}
+
+}  // namespace
+
 Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
   Recording rec;
   const std::filesystem::path meta_path = run_dir / kMetaJsonName;
@@ -213,6 +232,7 @@ Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
                          std::to_string(kRecordingFormatVersion));
   }
   rec.format_version = static_cast<int>(version);
+  RefuseRepeatedUnits(rec.meta, meta_path.string());
   rec.rejected_intervals = ReadRejectedIntervals(rec.meta, meta_path.string());
   return rec;
 }

@@ -133,6 +133,14 @@ TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
   EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is \"2\", not an integer"));
 }
 
+// A unit listed twice would have its rows counted twice by whoever walks the list.
+TEST_F(RecordingReaderTest, UnitListedTwiceIsRefused) {
+  nlohmann::json meta = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
+  meta["units"] = {{{"kind", "imu"}, {"serial", "IMU-0001"}}, {{"kind", "imu"}, {"serial", "IMU-0001"}}};
+  std::ofstream(dir_ / "meta.json") << meta.dump();
+  EXPECT_THAT(ErrorOf(), HasSubstr("meta.json: $.units[1].serial \"IMU-0001\" is listed already as $.units[0]"));
+}
+
 TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
   const Recording rec = ReadRecording(dir_);
   EXPECT_EQ(rec.format_version, 2);
