@@ -5,12 +5,13 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "apps/commands.h"
 #include "calib/evaluation/imu_evaluation.h"
-#include "sensor_sim/param_reader.h"
+#include "calib/evaluation/truth_file.h"
 
 namespace adahrs::apps {
 
@@ -24,15 +25,16 @@ void RegisterEvaluateCommand(CLI::App& app) {
   cmd->add_option("--out", *out, "evaluation.json (default: <constants>.evaluation.json)");
   cmd->callback([constants, truth, out] {
     const calib::ConstantsFile file = calib::ReadConstantsFile(*constants);
-    const nlohmann::json truth_json = sensor_sim::ParamReader::LoadFile(*truth);
-    const sensor_sim::ImuUnitParams params =
-        sensor_sim::ImuUnitParams::FromJson(sensor_sim::ParamReader(truth_json, *truth));
+    const sensor_sim::ImuUnitParams params = calib::ImuTruth(calib::ReadTruthFile(*truth), file.serial);
     calib::ImuEvaluationOptions options;
     options.g_local_mps2 = file.diagnostics.value("local_gravity_mps2", options.g_local_mps2);
     const calib::ImuEvaluation e =
         calib::EvaluateImu(file, params, calib::Specification::Reference(), options);
     const std::string path = out->empty() ? *constants + ".evaluation.json" : *out;
-    std::ofstream(path) << e.report.dump(2) << "\n";
+    std::ofstream written(path);
+    written << e.report.dump(2) << "\n";
+    written.flush();
+    if (!written) throw std::runtime_error(path + ": cannot write the evaluation");
     std::cout << fmt::format("{}: acceleration worst {:.3f} mg ({}), body rate worst {:.4f} deg/s ({}) -> {}\n",
                              file.serial, e.worst_accel_mg, e.accel_verdict, e.worst_rate_dps,
                              e.rate_verdict, path);

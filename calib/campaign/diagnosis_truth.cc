@@ -7,6 +7,7 @@
 
 #include "calib/campaign/augmented_model.h"
 #include "calib/diagnosis/replay_check_report.h"
+#include "calib/evaluation/truth_file.h"
 #include "hil/recording/recording_reader.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
@@ -15,25 +16,16 @@
 namespace adahrs::calib {
 namespace {
 
-nlohmann::json ReadTruthFile(const std::filesystem::path& truth_dir, const std::string& serial) {
-  const std::string path = (truth_dir / (serial + ".json")).string();
-  nlohmann::json truth = sensor_sim::ParamReader::LoadFile(path);
-  if (!truth.is_object() || !truth.contains("params")) {
-    throw sensor_sim::ParamError(path + ": $.params: missing (not a rig truth file)");
-  }
-  return truth;
+nlohmann::json TruthJson(const std::filesystem::path& truth_dir, const std::string& serial) {
+  return calib::ReadTruthFile(truth_dir / (serial + ".json")).file;
 }
 
 sensor_sim::ImuUnitParams ReadTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
-  const std::string path = (truth_dir / (serial + ".json")).string();
-  return sensor_sim::ImuUnitParams::FromJson(
-      sensor_sim::ParamReader(ReadTruthFile(truth_dir, serial)["params"], path, "$.params"));
+  return ImuTruth(calib::ReadTruthFile(truth_dir / (serial + ".json")), serial);
 }
 
 sensor_sim::AdsUnitParams ReadAdsTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
-  const std::string path = (truth_dir / (serial + ".json")).string();
-  return sensor_sim::AdsUnitParams::FromJson(
-      sensor_sim::ParamReader(ReadTruthFile(truth_dir, serial)["params"], path, "$.params"));
+  return AdsTruth(calib::ReadTruthFile(truth_dir / (serial + ".json")), serial);
 }
 
 // The truth's half loop (Pa) and span (Pa or degC) of a bridge's hysteresis, empty when it is off.
@@ -123,7 +115,7 @@ std::vector<DiagnosisTruthLine> CompareDiagnosisWithTruth(const std::vector<Unit
                                                           const std::filesystem::path& truth_dir) {
   std::vector<DiagnosisTruthLine> out;
   for (const UnitDiagnosis& u : units) {
-    const bool ads = ReadTruthFile(truth_dir, u.serial).value("kind", "") == "ads";
+    const bool ads = calib::ReadTruthFile(truth_dir / (u.serial + ".json")).kind == "ads";
     if (ads) {
       const sensor_sim::AdsUnitParams truth = ReadAdsTruth(truth_dir, u.serial);
       for (const char* ch : {"ps", "pt"}) {
@@ -148,7 +140,7 @@ std::vector<DiagnosisTruthLine> CompareDiagnosisWithTruth(const std::vector<Unit
 }
 
 nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
-  nlohmann::json file = ReadTruthFile(truth_dir, serial);
+  nlohmann::json file = TruthJson(truth_dir, serial);
   if (file.value("kind", "") == "ads") {
     sensor_sim::AdsUnitParams p = ReadAdsTruth(truth_dir, serial);
     for (sensor_sim::PressureBridgeParams* b : {&p.static_bridge, &p.pitot_bridge}) {

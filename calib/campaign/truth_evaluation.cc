@@ -9,7 +9,7 @@
 #include "calib/acceptance/specification.h"
 #include "calib/evaluation/ads_evaluation.h"
 #include "calib/evaluation/imu_evaluation.h"
-#include "sensor_sim/param_reader.h"
+#include "calib/evaluation/truth_file.h"
 
 namespace adahrs::calib {
 namespace {
@@ -43,19 +43,14 @@ std::vector<EvaluatedQuantity> EvaluateAgainstTruth(const std::vector<WrittenCon
   std::vector<EvaluatedQuantity> rows;
   for (const WrittenConstants& written : constants) {
     const ConstantsFile& file = written.file;
-    const std::string truth_path = (truth_dir / (file.serial + ".json")).string();
-    const nlohmann::json truth = sensor_sim::ParamReader::LoadFile(truth_path);
-    if (!truth.is_object() || !truth.contains("params")) {
-      throw sensor_sim::ParamError(truth_path + ": $.params: missing (not a rig truth file)");
-    }
-    const sensor_sim::ParamReader params(truth["params"], truth_path, "$.params");
+    const TruthFile truth = ReadTruthFile(truth_dir / (file.serial + ".json"));
     nlohmann::json detail;
     if (file.kind == hil::UnitKind::kImu) {
       ImuEvaluationOptions options;
       options.g_local_mps2 = g_local_mps2;
       try {
         const ImuEvaluation e =
-            EvaluateImu(file, sensor_sim::ImuUnitParams::FromJson(params), spec, options);
+            EvaluateImu(file, ImuTruth(truth, file.serial), spec, options);
         rows.push_back({file.serial, "acceleration", "mg", e.worst_accel_mg, spec.accel_mg,
                         e.accel_verdict});
         rows.push_back({file.serial, "body rate", "deg/s", e.worst_rate_dps, spec.body_rate_dps,
@@ -72,7 +67,7 @@ std::vector<EvaluatedQuantity> EvaluateAgainstTruth(const std::vector<WrittenCon
       }
     } else {
       const AdsEvaluation e =
-          EvaluateAdsConstants(*file.ads, sensor_sim::AdsUnitParams::FromJson(params));
+          EvaluateAdsConstants(*file.ads, AdsTruth(truth, file.serial));
       rows.push_back(AdsRow(file.serial, "altitude", e.altitude));
       rows.push_back(AdsRow(file.serial, "airspeed", e.airspeed));
       detail = e.ToJson();

@@ -427,7 +427,7 @@ TEST(ImuDiagnosis, CampaignComparesFindingsWithTheTruthFile) {
   const UnitDiagnosis d = Diagnose(Simulate(p, 9001, Shape{}));
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "diagnosis_truth";
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / (p.serial + ".json")) << nlohmann::json{{"serial", p.serial}, {"params", p.ToJson()}}.dump();
+  std::ofstream(dir / (p.serial + ".json")) << nlohmann::json{{"serial", p.serial}, {"kind", "imu"}, {"params", p.ToJson()}}.dump();
   const std::vector<DiagnosisTruthLine> lines = CompareDiagnosisWithTruth({d}, dir);
   int found_gsens = 0, scale_not_found = 0;
   for (const DiagnosisTruthLine& l : lines) {
