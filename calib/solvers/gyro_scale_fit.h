@@ -8,6 +8,7 @@
 // source (null, Earth rate, g-sensitivity in that orientation).
 // Standard errors: from the residual variance (n - 4 degrees of freedom, 3 for the reference's
 // seven rates) with equal weights, as the reference fits; se(null_cnt) is the 0 deg/s mean's.
+// The 0 deg/s step is the one whose mean reported rate is within kNullStepTolerance_dps of 0.
 // Refused: no 0 deg/s step, fewer than min_rates distinct rates (too few rates), a degenerate design.
 // Not modelled: scale factor vs temperature (the reference's future work), the rate table's own
 // rate error, noise in d (the regressor; its relative size ~1e-6 makes the bias negligible).
@@ -23,6 +24,10 @@
 #include "firmware_model/calibration_constants.h"
 
 namespace adahrs::calib {
+
+/// A step whose mean reported rate is this close to 0 is the null step (the ATL resolves 1e-4
+/// deg/s; its rate loop settles the last of a deceleration within the first second).
+inline constexpr double kNullStepTolerance_dps = 0.01;
 
 /// Mean thermally compensated output of the gyro under calibration at one table rate.
 struct GyroRateMean {

@@ -80,5 +80,17 @@ TEST(GyroScaleFit, RefusesWithoutZeroRate) {
                   HasSubstr("no 0 deg/s step to normalise the means by")));
 }
 
+// The table still settling for part of the null acquisition reports a mean of -1e-5 deg/s (a
+// fresh-clone demo's IMU-0001 gy): that step is the null step, not a missing one.
+TEST(GyroScaleFit, NullStepIsTheOneReportedWithinTheToleranceOfZero) {
+  auto steps = Steps(nullptr, 1.0);
+  steps[3].rate_dps = -9.6e-6;
+  const GyroScaleEstimate e = FitGyroScale("gy", steps);
+  EXPECT_EQ(e.fit.null_cnt, steps[3].t_cnt);
+  steps[3].rate_dps = 2.0 * kNullStepTolerance_dps;
+  EXPECT_THAT([&] { FitGyroScale("gy", steps); },
+              ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr("no 0 deg/s step")));
+}
+
 }  // namespace
 }  // namespace adahrs::calib
