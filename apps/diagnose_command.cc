@@ -68,6 +68,7 @@ void RegisterDiagnoseCommand(CLI::App& app) {
         sidecars.empty() ? calib::DiagnoseRuns(dirs, unit->empty() ? std::nullopt : std::optional<std::string>(*unit))
                          : calib::DiagnoseChannelFiles(sidecars);
     calib::WriteDiagnosis(run, *out);
+    for (const std::string& n : run.notes) std::cout << "note: " << n << "\n";
     for (const calib::UnitDiagnosis& u : run.units) {
       std::cout << fmt::format("{}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());
       for (const calib::Finding& f : u.findings) std::cout << "  " << f.words << "\n";

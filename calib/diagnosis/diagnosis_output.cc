@@ -43,6 +43,7 @@ std::set<std::string> UnitKinds(const std::filesystem::path& run) {
 void DiagnoseAdsRun(const std::filesystem::path& run, const std::optional<std::string>& serial,
                     const DiagnosisOptions& options, DiagnosisRun* out, std::vector<std::string>* seen) {
   const hil::Recording rec = hil::ReadRecording(run);
+  out->notes.insert(out->notes.end(), rec.notes.begin(), rec.notes.end());
   std::vector<std::string> serials;
   for (const hil::AdsRecordRow& r : rec.ads) {
     if (std::find(serials.begin(), serials.end(), r.unit) == serials.end()) serials.push_back(r.unit);
@@ -152,7 +153,7 @@ json DiagnosisRun::ToJson() const {
   }
   return {{"format", "adahrs-diagnosis"}, {"format_version", kDiagnosisFormatVersion}, {"recording", recs},
           {"model", model}, {"findings", findings}, {"unexplained", unexplained}, {"detection_limits", limits},
-          {"units", units_json}};
+          {"units", units_json}, {"notes", notes}};
 }
 
 DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const std::optional<std::string>& serial,
@@ -169,6 +170,7 @@ DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const 
   if (!imu_runs.empty()) {
     const ImuRunData data = LoadImuRuns(imu_runs);
     out.recordings = data.recordings;
+    out.notes = data.notes;
     for (const auto& [s, unit] : data.units) {
       seen.push_back(s);
       if (serial && s != *serial) continue;
@@ -200,6 +202,7 @@ std::string DiagnosisHtml(const DiagnosisRun& run) {
   std::string body = "<h1>Diagnosis</h1><p>" + XmlEscape("Compared with: " + run.model) + "</p><ul>";
   for (const RecordingReference& r : run.recordings) body += "<li>" + XmlEscape(r.path + " (sha256 " + r.sha256 + ")") + "</li>";
   body += "</ul>";
+  for (const std::string& n : run.notes) body += "<p class=\"note\">" + XmlEscape(n) + "</p>";
   for (const UnitDiagnosis& u : run.units) body += UnitSection(u);
   return "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\"><head><meta charset=\"utf-8\"/>"
          "<title>adahrs diagnosis</title><style>body{font-family:sans-serif;max-width:72em;margin:auto}"

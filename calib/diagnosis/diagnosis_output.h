@@ -25,6 +25,7 @@ struct DiagnosisRun {
   std::vector<RecordingReference> recordings;
   std::string model;  ///< what the recordings were compared with
   std::vector<UnitDiagnosis> units;
+  std::vector<std::string> notes;  ///< about the recordings as read (columns ignored, ...)
   nlohmann::json ToJson() const;
 };
 

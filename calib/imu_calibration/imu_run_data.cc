@@ -188,7 +188,8 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
     sample.run = run_index;
     selected[{row.unit, row.step}].push_back({row.orientation, sample});
   };
-  hil::StreamRecording(dir, {take, {}});
+  const hil::Recording read = hil::StreamRecording(dir, {take, {}});
+  data->notes.insert(data->notes.end(), read.notes.begin(), read.notes.end());
 
   int current_orientation = 0;
   for (size_t step = 0; step < sequence.steps.size(); ++step) {

@@ -75,6 +75,7 @@ struct ImuRunData {
   std::vector<RecordingReference> recordings;  ///< with their SHA-256
   std::vector<std::string> sequence_names;
   std::map<std::string, ImuUnitData> units;    ///< by serial
+  std::vector<std::string> notes;              ///< what the recording reader passed over
 };
 
 /// Reads every run directory and collects each IMU's calibration data; throws ImuInputError or

@@ -1,5 +1,6 @@
 #include "hil/recording/recording_reader.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -27,17 +28,23 @@ std::vector<std::string> SplitHeader(std::string_view header) {
 // error can say where it happened.
 class CsvCursor {
  public:
-  CsvCursor(const std::filesystem::path& path, std::string_view header, int version)
+  // Reads the header and maps the format's columns onto the file's: a format column the file
+  // lacks, or a name the header repeats, is refused; a column the format does not know is
+  // ignored and named in `notes`; one of the latest version's columns in an older version's file
+  // (`latest_header`) says meta.json's version is wrong and is refused.
+  CsvCursor(const std::filesystem::path& path, std::string_view header, std::string_view latest_header,
+            int version, std::vector<std::string>* notes)
       : path_(path), names_(SplitHeader(header)), in_(path) {
     if (!in_) throw RecordingError(path_.string() + ": cannot open for reading");
     std::string first;
     if (!std::getline(in_, first)) throw RecordingError(path_.string() + ": empty file, no header");
     line_ = 1;
-    if (first != header) {
-      throw RecordingError(path_.string() + ":1: header is not the recording format's (version " +
-                           std::to_string(version) + ", as meta.json says): expected '" +
-                           std::string(header) + "'");
+    if (first == header) {
+      file_columns_ = names_.size();
+      for (size_t i = 0; i < names_.size(); ++i) column_of_.push_back(i);
+      return;
     }
+    MapColumns(SplitHeader(first), SplitHeader(latest_header), version, notes);
   }
 
   int line() const { return static_cast<int>(line_); }  ///< 1-based line of the current row
@@ -56,14 +63,14 @@ class CsvCursor {
         if (comma == std::string::npos) break;
         start = comma + 1;
       }
-      if (!complete || cells_.size() != names_.size()) {
+      if (!complete || cells_.size() != file_columns_) {
         if (!complete && allow_truncated_tail) {
           ++truncated;
           return false;
         }
         throw RecordingError(Where() + (complete ? "" : " (last line, no newline: truncated?)") +
                              ": " + std::to_string(cells_.size()) + " columns, expected " +
-                             std::to_string(names_.size()));
+                             std::to_string(file_columns_) + " (as the header)");
       }
       return true;
     }
@@ -72,7 +79,7 @@ class CsvCursor {
 
   double Real(size_t column) const {
     double v = 0.0;
-    const std::string& cell = cells_[column];
+    const std::string& cell = cells_[column_of_[column]];
     const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
     if (ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v)) {
       throw RecordingError(Where(column) + ": '" + cell + "' is not a finite number");
@@ -83,7 +90,7 @@ class CsvCursor {
   template <typename Int>
   Int Integer(size_t column) const {
     long long v = 0;
-    const std::string& cell = cells_[column];
+    const std::string& cell = cells_[column_of_[column]];
     const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
     if (ec != std::errc() || end != cell.data() + cell.size() ||
         v < static_cast<long long>(std::numeric_limits<Int>::min()) ||
@@ -95,7 +102,7 @@ class CsvCursor {
     return static_cast<Int>(v);
   }
 
-  bool Empty(size_t column) const { return cells_[column].empty(); }
+  bool Empty(size_t column) const { return cells_[column_of_[column]].empty(); }
 
   // The compensated cells [first, last] of a version-2 row: all empty in raw mode (false), all
   // present otherwise (true); a mixture is an error naming the first offending column.
@@ -111,18 +118,51 @@ class CsvCursor {
   }
 
   const std::string& Text(size_t column) const {
-    if (cells_[column].empty()) throw RecordingError(Where(column) + ": empty");
-    return cells_[column];
+    if (cells_[column_of_[column]].empty()) throw RecordingError(Where(column) + ": empty");
+    return cells_[column_of_[column]];
   }
 
  private:
   std::string Where() const { return path_.string() + ":" + std::to_string(line_); }
   std::string Where(size_t column) const {
-    return Where() + ": column " + std::to_string(column + 1) + " (" + names_[column] + ")";
+    return Where() + ": column " + std::to_string(column_of_[column] + 1) + " (" + names_[column] + ")";
+  }
+
+  void MapColumns(const std::vector<std::string>& file_names, const std::vector<std::string>& latest_names,
+                  int version, std::vector<std::string>* notes) {
+    const std::string format = " (recording format version " + std::to_string(version) + ", as meta.json says)";
+    for (size_t i = 0; i < file_names.size(); ++i) {
+      for (size_t j = 0; j < i; ++j) {
+        if (file_names[j] == file_names[i]) {
+          throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + file_names[i] +
+                               "' repeats column " + std::to_string(j + 1));
+        }
+      }
+    }
+    for (const std::string& name : names_) {
+      const auto it = std::find(file_names.begin(), file_names.end(), name);
+      if (it == file_names.end()) {
+        throw RecordingError(path_.string() + ":1: column '" + name + "' is missing" + format);
+      }
+      column_of_.push_back(static_cast<size_t>(it - file_names.begin()));
+    }
+    for (size_t i = 0; i < file_names.size(); ++i) {
+      if (std::find(names_.begin(), names_.end(), file_names[i]) != names_.end()) continue;
+      if (std::find(latest_names.begin(), latest_names.end(), file_names[i]) != latest_names.end()) {
+        throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + file_names[i] +
+                             "' belongs to recording format version " + std::to_string(kRecordingFormatVersion) +
+                             ", but meta.json says version " + std::to_string(version));
+      }
+      notes->push_back(path_.string() + ": column " + std::to_string(i + 1) + " '" + file_names[i] +
+                       "' is not in the recording format" + format + "; ignored");
+    }
+    file_columns_ = file_names.size();
   }
 
   std::filesystem::path path_;
-  std::vector<std::string> names_;
+  std::vector<std::string> names_;    ///< the format's columns, in the format's order
+  std::vector<size_t> column_of_;     ///< file column of each format column
+  size_t file_columns_ = 0;
   std::ifstream in_;
   std::vector<std::string> cells_;
   long line_ = 0;
@@ -242,7 +282,7 @@ Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& 
   const int version = rec.format_version;
   const bool v2 = version >= 2;
 
-  CsvCursor imu(run_dir / kImuCsvName, v2 ? kImuCsvHeader : kImuCsvHeaderV1, version);
+  CsvCursor imu(run_dir / kImuCsvName, v2 ? kImuCsvHeader : kImuCsvHeaderV1, kImuCsvHeader, version, &rec.notes);
   while (imu.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     ImuRecordRow r;
     r.t_s = imu.Real(0);
@@ -267,7 +307,7 @@ Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& 
     }
     if (sinks.imu) sinks.imu(std::move(r), imu.line());
   }
-  CsvCursor ads(run_dir / kAdsCsvName, v2 ? kAdsCsvHeader : kAdsCsvHeaderV1, version);
+  CsvCursor ads(run_dir / kAdsCsvName, v2 ? kAdsCsvHeader : kAdsCsvHeaderV1, kAdsCsvHeader, version, &rec.notes);
   while (ads.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     AdsRecordRow r;
     r.t_s = ads.Real(0);

@@ -1,11 +1,13 @@
 // Reads a run directory in the recording format (docs/recording-format.md) back into rows, as the
 // solvers and reports consume it. Refuses what it cannot trust and says exactly where: a missing
-// or unreadable file, a format version it does not know, a header that is not the contract's, a row
-// with the wrong number of columns, a cell that is not a number of its column's type or is out of
+// or unreadable file, a format version it does not know, a header that lacks one of the contract's
+// columns or repeats a name, a row with another number of columns than its header, a cell that is not a number of its column's type or is out of
 // its type's range — each error names the file, the 1-based line and the column name.
 // A truncated last line (a crash while writing) is reported as such, not silently dropped:
 // `ReadOptions::allow_truncated_tail` accepts it and counts it, as a resumed run needs.
 // Reads format versions 1 and 2 (recording_format.h); version 1 rows have no compensated values.
+// Columns are found by name, in any order; a column the contract does not know is ignored and
+// named in `Recording::notes` (a foreign logger's extra channels lose nothing that is read).
 // In version 2 the compensated cells are all empty exactly when the row's mode is 0 (raw).
 // meta.json's optional "rejected_intervals" (rows that are NOT calibration data) are parsed
 // strictly too; the rest of meta.json is handed over as JSON.
@@ -48,6 +50,9 @@ struct Recording {
   std::vector<ImuRecordRow> imu;
   std::vector<AdsRecordRow> ads;
   int truncated_lines = 0;  ///< incomplete last lines skipped (only with allow_truncated_tail)
+  /// What the reader passed over without refusing: columns the format does not know, named with
+  /// their file and position.
+  std::vector<std::string> notes;
 };
 
 /// Reads meta.json, imu.csv and ads.csv of `run_dir`.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -101,14 +102,25 @@ TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
   EXPECT_GE(within[1], 7);
 }
 
+// Appends a column the recording format does not know to every line of `csv`.
+void AppendForeignColumn(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::string line, text;
+  for (int n = 0; std::getline(in, line); ++n) text += line + (n == 0 ? ",humidity_pct" : ",41.5") + "\n";
+  in.close();
+  std::ofstream(csv) << text;
+}
+
 // `adahrs diagnose` on an ADS run directory: the unit is found by its kind in meta.json and written
-// under the documented contract, both bridges summarised.
+// under the documented contract, both bridges summarised; a column the format does not know is
+// ignored with a note.
 TEST(AdsDiagnosis, DiagnoseRunsReadsAnAdsRunDirectory) {
   AdsUnitParams unit = AdsUnitParams::Draw("ADS-9500", 6500, sensor_sim::ModelProfile::kNominal);
   unit.static_bridge.effects.pressure_hysteresis = true;
   const fs::path run = fs::temp_directory_path() / "adahrs_ads_diagnosis_runs";
   fs::remove_all(run);
   testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), unit, 500);
+  AppendForeignColumn(run / "ads.csv");
   const DiagnosisRun d = DiagnoseRuns({run}, std::nullopt);
   EXPECT_THROW(DiagnoseRuns({run}, std::string("ADS-9999")), ImuInputError);
   fs::remove_all(run);
@@ -123,7 +135,10 @@ TEST(AdsDiagnosis, DiagnoseRunsReadsAnAdsRunDirectory) {
   EXPECT_EQ(j["findings"][0]["effect"], "pressure_hysteresis");
   EXPECT_EQ(j["findings"][0]["channels"], nlohmann::json::array({"ps"}));
   EXPECT_EQ(j["detection_limits"].size(), 6u);
+  ASSERT_EQ(j["notes"].size(), 1u);
+  EXPECT_NE(j["notes"][0].get<std::string>().find("'humidity_pct' is not in the recording format"), std::string::npos);
   EXPECT_NE(DiagnosisHtml(d).find("calibration point"), std::string::npos);
+  EXPECT_NE(DiagnosisHtml(d).find("humidity_pct"), std::string::npos);
 }
 
 }  // namespace

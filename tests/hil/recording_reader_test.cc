@@ -228,9 +228,50 @@ TEST_F(RecordingReaderTest, MalformedRejectedIntervalNamesItsPath) {
   EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("$.rejected_intervals[0]"), HasSubstr("before t_start_s")));
 }
 
-TEST_F(RecordingReaderTest, ForeignHeaderIsRefused) {
+TEST_F(RecordingReaderTest, MissingColumnIsRefusedByName) {
   ReplaceInFile("ads.csv", "ps_ref_pa", "ps_ref_hpa");
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("ads.csv:1"), HasSubstr("header")));
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("ads.csv:1"), HasSubstr("column 'ps_ref_pa' is missing")));
+}
+
+TEST_F(RecordingReaderTest, RepeatedColumnNameIsRefused) {
+  ReplaceInFile("ads.csv", "ps_ref_pa", "qc_ref_pa");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("ads.csv:1"), HasSubstr("'qc_ref_pa' repeats column")));
+}
+
+// A foreign logger's extra column, inserted in the middle of every line, is passed over and named;
+// the format's columns are read by name, so every value read is the one written.
+TEST_F(RecordingReaderTest, UnknownColumnIsIgnoredWithANote) {
+  const Recording before = ReadRecording(dir_);
+  const auto path = dir_ / "imu.csv";
+  std::ifstream in(path);
+  std::string line, text;
+  for (int n = 0; std::getline(in, line); ++n) {
+    const size_t third = line.find(',', line.find(',', line.find(',') + 1) + 1);
+    text += line.substr(0, third + 1) + (n == 0 ? "humidity_pct" : std::to_string(40 + n)) + line.substr(third) + "\n";
+  }
+  in.close();
+  std::ofstream(path) << text;
+  const Recording after = ReadRecording(dir_);
+  ASSERT_EQ(after.imu.size(), before.imu.size());
+  for (size_t i = 0; i < after.imu.size(); ++i) {
+    EXPECT_EQ(after.imu[i].seq, before.imu[i].seq);
+    EXPECT_EQ(after.imu[i].step, before.imu[i].step);
+    EXPECT_EQ(after.imu[i].accel_ticks, before.imu[i].accel_ticks);
+    EXPECT_EQ(after.imu[i].gyro_cnt, before.imu[i].gyro_cnt);
+    EXPECT_EQ(after.imu[i].temp_cnt, before.imu[i].temp_cnt);
+  }
+  ASSERT_EQ(after.notes.size(), 1u);
+  EXPECT_THAT(after.notes[0], AllOf(HasSubstr("imu.csv"), HasSubstr("column 4 'humidity_pct'"), HasSubstr("ignored")));
+  EXPECT_TRUE(before.notes.empty());
+}
+
+// Columns in another order than the writer's are found by name.
+TEST_F(RecordingReaderTest, ColumnsAreFoundByNameInAnyOrder) {
+  ReplaceInFile("ads.csv", "ps_ref_pa,qc_ref_pa", "qc_ref_pa,ps_ref_pa");
+  const Recording rec = ReadRecording(dir_);
+  ASSERT_EQ(rec.ads.size(), 1u);
+  EXPECT_DOUBLE_EQ(rec.ads[0].qc_ref_pa, 69681.64);  // the file's values did not move: its names did
+  EXPECT_DOUBLE_EQ(rec.ads[0].ps_ref_pa, 0.0);
 }
 
 }  // namespace
