@@ -69,6 +69,8 @@ void ApplyImu(const UnitDiagnosis& d, sensor_sim::ImuUnitParams* p, AugmentedMod
       const double se = std::max(f.components[0].standard_error, 1e-9);
       lag[ch / 2].sum += Component(f, "delay") / (se * se);
       lag[ch / 2].weight += 1.0 / (se * se);
+    } else if (f.effect == "table_rate_ripple") {
+      out->not_applied.push_back(what + ": the rate table's, not the unit's (rig.json rate_table.rate_ripple_ratio)");
     } else {
       out->not_applied.push_back(what + ": the unit schema has no parameter of this form");
     }

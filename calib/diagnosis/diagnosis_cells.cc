@@ -62,11 +62,23 @@ class CellCutter {
     }
     data_->spectra.AddSegment(
         index, rows.size(), [&](size_t i) { return t[i]; }, [&](size_t i, int ch) { return Output(*rows[i], ch); });
+    MeasureRippleOfSegment(index, rows, t, w_B_dps);
     data_->rows += segment.rows;
     data_->segments.push_back(std::move(segment));
   }
 
  private:
+  // Lock-ins at the table's revolution frequency for each gyro whose axis is the table axis.
+  void MeasureRippleOfSegment(int index, const std::vector<const ImuSample*>& rows, const std::vector<double>& t,
+                              const Eigen::Vector3d& w_B_dps) {
+    std::vector<double> y(rows.size());
+    for (int g = 0; g < 3; ++g) {
+      if (std::abs(w_B_dps[g]) < 0.5 * w_B_dps.norm() || w_B_dps[g] == 0.0) continue;
+      for (size_t i = 0; i < rows.size(); ++i) y[i] = Output(*rows[i], 6 + g);  // gx, gy, gz
+      if (std::optional<RippleSegment> r = MeasureRipple(index, w_B_dps[g], t, y)) data_->ripple[g].push_back(*r);
+    }
+  }
+
   // Gaps of the packet counter against its most frequent step in the segment (1, or log_every).
   void CountSequenceGaps(const std::vector<const ImuSample*>& rows) {
     std::array<int, 256> steps{};

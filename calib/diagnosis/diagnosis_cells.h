@@ -12,7 +12,8 @@
 // Derived per cell from the recording alone: each thermometer's temperature, its rate of change
 // (least-squares slope over +-kRateWindow_s within the run), the sense of its last change
 // (+1 heated, -1 cooled, 0 none yet) and the time since the run's first row (power-on proxy).
-// Also the row-level spectra of every segment (row_spectrum.h), for periodic structure.
+// Also the row-level spectra of every segment (row_spectrum.h), for periodic structure, and the
+// gyros' lock-ins at the table's revolution frequency (rate_ripple.h).
 // Not done: interpolation across gaps (a gap only splits cells), any model of the sensors.
 #pragma once
 
@@ -22,6 +23,7 @@
 
 #include <Eigen/Dense>
 
+#include "calib/diagnosis/rate_ripple.h"
 #include "calib/diagnosis/row_spectrum.h"
 #include "calib/imu_calibration/imu_run_data.h"
 
@@ -109,6 +111,9 @@ struct DiagnosisData {
   /// time; nothing is interpolated.
   int seq_gaps = 0;
   int64_t seq_missing = 0;
+  /// Per gyro (x, y, z): the lock-ins at the table's revolution frequency of the rate segments
+  /// with that gyro on the table axis (rate_ripple.h), from the rows.
+  std::array<std::vector<RippleSegment>, 3> ripple;
   double largest_seq_gap_at_s = 0.0;
   int largest_seq_gap = 0;
 };

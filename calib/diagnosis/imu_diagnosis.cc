@@ -93,9 +93,13 @@ Layout MakeLayout(int channel, bool uncalibrated) {
   return l;
 }
 
+// Every (channel, candidate) test of a unit: the cell model's candidates and table_rate_ripple on
+// each gyro.
 int CandidateTests(bool uncalibrated) {
   int n = 0;
-  for (int ch = 0; ch < kImuChannels; ++ch) n += static_cast<int>(MakeLayout(ch, uncalibrated).candidates.size());
+  for (int ch = 0; ch < kImuChannels; ++ch) {
+    n += static_cast<int>(MakeLayout(ch, uncalibrated).candidates.size()) + (IsGyroChannel(ch) ? 1 : 0);
+  }
   return n;
 }
 
@@ -449,6 +453,33 @@ struct ChannelResult {
   ChannelFitSummary summary;
 };
 
+// table_rate_ripple, a rig effect measured on the rows (rate_ripple.h), not a column of the cells'
+// model: its detection limit always, a finding when the test passes at `alpha`.
+void DiagnoseRipple(const DiagnosisData& data, int ch, double phys, double alpha, double power_z, ChannelResult* out) {
+  const std::vector<RippleSegment>& segments = data.ripple[static_cast<size_t>(ch - 6)];
+  const RippleTest r = TestRipple(segments, 1.0 / phys, alpha, power_z);
+  DetectionLimit lim{"table_rate_ripple", kImuChannelNames[ch], {}, r.note};
+  if (r.testable) lim.limits.push_back({"ratio", r.smallest_detectable_ratio * 1e6, 0.0, "ppm of rate"});
+  out->limits.push_back(std::move(lim));
+  if (!r.testable || r.p_value >= alpha) return;
+  double fastest_dps = 0.0;
+  for (const RippleSegment& seg : segments) fastest_dps = std::max(fastest_dps, std::abs(seg.rate_dps));
+  Finding f;
+  f.effect = "table_rate_ripple";
+  f.channel = kImuChannelNames[ch];
+  f.components.push_back({"ratio", r.ratio * 1e6, r.ratio_se * 1e6, "ppm of rate"});
+  f.wald_p_value = r.p_value;
+  f.held_out_rms_before = r.held_out_rms_before_dps;
+  f.held_out_rms_after = r.held_out_rms_after_dps;
+  f.rms_unit = "dps (amplitude at the revolution frequency)";
+  for (int seg : r.strongest_segments) f.evidence.push_back(data.segments[static_cast<size_t>(seg)].label);
+  f.words = fmt::format("{} carries a line at the table's revolution frequency of {:.3g} ± {:.2g} ppm of the rate "
+                        "({:.3g} deg/s at {:.0f} deg/s, over {} segments): table rate ripple, the table turns "
+                        "unevenly once per revolution; a rig effect, not the unit's",
+                        f.channel, r.ratio * 1e6, r.ratio_se * 1e6, r.ratio * fastest_dps, fastest_dps, r.segments);
+  out->findings.push_back(std::move(f));
+}
+
 ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const DiagnosisOptions& options, double alpha,
                               std::vector<std::string>* notes) {
   ChannelResult out;
@@ -559,6 +590,7 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
   FillPlot(data, Residuals(data, layout, st, base_fit, base, y), residual, ch, phys, &out.summary);
   LocateStructure(data, ch, residual, phys, &out.unexplained);
   LocatePeriodic(data, ch, options.family_alpha / kImuChannels, phys, &out.unexplained, notes);
+  if (IsGyroChannel(ch)) DiagnoseRipple(data, ch, phys, alpha, options.power_z, &out);
   return out;
 }
 

@@ -16,6 +16,8 @@
 //   self_heating_warm_up    dU/dT * exp(-t/tau_w)      the die's excess over its thermometer at power-on, degC
 //                                                      (tau_w from a grid: 150, 300, 600, 1200 s)
 //   accel_nonlinearity      |S| f_axis^2               mg/g^2 (accelerometers)
+// and, on the rows rather than the cells, table_rate_ripple: a line at the table's revolution
+// frequency on the gyro along the table axis, in ppm of the rate (rate_ripple.h; a rig effect).
 // Errors: white per row plus a random offset per segment whose variance is estimated from the
 // baseline's own residuals (clustered_least_squares.h), never from a datasheet or the simulator.
 // Selection, per channel: forward, one candidate at a time, by the jackknife Wald test over

@@ -66,6 +66,10 @@ class ImuScenario {
     for (int o : {11, 21, 31}) Gyro(step++, o, {-150, -100, -50, 50, 100, 150}, gyro_packets);
   }
 
+  /// The rate table's once-per-revolution relative ripple k: the unit turns at
+  /// rate (1 + k cos(angle)) while the recording keeps the commanded rate (a rig effect).
+  void set_table_rate_ripple(double k) { ripple_ratio_ = k; }
+
   ImuUnitData& data() { return data_; }
   double t_s() const { return t_s_; }
 
@@ -81,7 +85,8 @@ class ImuScenario {
   void Step(const Eigen::Vector3d& up, double rate_dps, ImuSample* out) {
     sensor_sim::ImuStimulus s;
     s.f_B_g = up * g_scale_;
-    s.w_B_dps = up * rate_dps;
+    s.w_B_dps = up * rate_dps * (1.0 + ripple_ratio_ * std::cos(table_angle_rad_));
+    table_angle_rad_ += rate_dps * kFrame_s * M_PI / 180.0;
     s.air_temp_c = air_c_;
     const sensor_sim::ImuRawFrame f = unit_->Step(s);
     if (out != nullptr) {
@@ -129,6 +134,8 @@ class ImuScenario {
 
   std::unique_ptr<sensor_sim::ImuUnit> unit_;
   uint64_t frame_ = 0;  // the packet counter a unit would send
+  double ripple_ratio_ = 0.0;
+  double table_angle_rad_ = 0.7;
   double g_scale_;
   double air_c_;
   double t_s_ = 0.0;
