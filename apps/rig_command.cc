@@ -60,6 +60,8 @@ void RegisterRigCommand(CLI::App& app) {
     sigaddset(&stop_signals, SIGTERM);
     pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
 
+    const std::string claimed = rig_sim::ClaimManifestPath(manifest);
+    if (!claimed.empty()) std::cout << "rig: " << claimed << "\n";
     rig_sim::Rig rig(config, run_dir);
     rig.Start(manifest);
     for (const auto& [role, path] : rig.ports()) {

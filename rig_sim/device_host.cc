@@ -321,16 +321,20 @@ void DeviceHost::Run(
 
 std::vector<std::string> DeviceHost::Report() {
   std::vector<std::string> lines;
+  uint64_t unread = 0, overflowed = 0;
   Run([&](std::vector<SerialDevice*>&, RigEnvironment&) {
     for (const auto& port : ports_) {
+      unread += port->bytes_unread;
+      overflowed += port->bytes_overflowed;
       const std::string device = port->device->LineReport();
       lines.push_back(fmt::format("{:<14} host_bytes_unread={} host_bytes_overflowed={}{}{}",
                                   port->device->role(), port->bytes_unread,
                                   port->bytes_overflowed, device.empty() ? "" : " ", device));
     }
   });
-  lines.push_back(fmt::format("host: {} bytes lost in all, worst lag {} frames ({:.2f} s simulated)",
-                              bytes_lost_.load(), max_frames_behind_.load(),
+  lines.push_back(fmt::format("host: {} bytes discarded with no client reading, {} bytes cut beyond the backlog "
+                              "while a client read; worst lag {} frames ({:.2f} s simulated)",
+                              unread, overflowed, max_frames_behind_.load(),
                               static_cast<double>(max_frames_behind_.load()) * kWorldFrame_s));
   if (lockstep_) {
     lines.push_back(fmt::format("host: lockstep, clock held {:.2f} s of wall time for its readers",

@@ -47,6 +47,7 @@ class PrologixAdtsDevice : public SerialDevice {
   void TakeOutput(double now_s, std::vector<uint8_t>& out) override;
   std::vector<std::string> PhysicalFaults() const override { return {"never_stable"}; }
   void SetPhysicalFault(const std::string& fault, bool on) override;
+  std::optional<int> GpibAddress() const override { return params_.gpib_address; }
 
   const Adts405& adts() const { return adts_; }
   /// `++` commands the adapter ignored (unknown or bad argument), with the reason; the last 100.

@@ -1,7 +1,9 @@
 #include "rig_sim/rig.h"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <fstream>
 #include <stdexcept>
 
@@ -80,6 +82,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     auto device = kind.make(root.Child(kind.name));
     instruments_.push_back({{"role", device->role()}, {"kind", kind.name},
                             {"doc", kind.doc_page}});
+    if (const std::optional<int> address = device->GpibAddress()) instruments_.back()["gpib_address"] = *address;
     AddDevice(std::move(device), kind.name, -1, fault_stream++);
   }
   for (size_t i = 0; i < config.imus.size(); ++i) {
@@ -188,9 +191,49 @@ void Rig::Start(const std::filesystem::path& manifest_path) {
   WriteLinks();
   if (manifest_path.has_parent_path()) std::filesystem::create_directories(manifest_path.parent_path());
   WriteFileAtomically(manifest_path, Manifest().dump(2) + "\n");
+  manifest_path_ = manifest_path;
 }
 
-void Rig::Stop() { host_->Stop(); }
+void Rig::Stop() {
+  host_->Stop();
+  RemoveManifestAndLinks();
+}
+
+void Rig::RemoveManifestAndLinks() {
+  if (manifest_path_.empty()) return;
+  std::error_code ignored;
+  std::filesystem::remove(manifest_path_, ignored);
+  for (const auto& [role, path] : ports_) std::filesystem::remove(run_dir_ / "ports" / role, ignored);
+  std::filesystem::remove(run_dir_ / "ports", ignored);  // only when empty
+  manifest_path_.clear();
+}
+
+std::string ClaimManifestPath(const std::filesystem::path& manifest_path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(manifest_path, ec)) return "";
+  nlohmann::json old;
+  try {
+    std::ifstream in(manifest_path);
+    old = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception&) {
+    std::filesystem::remove(manifest_path, ec);
+    return fmt::format("removed {}: not a readable manifest", manifest_path.string());
+  }
+  const int64_t pid = old.is_object() && old.contains("pid") && old["pid"].is_number_integer() ? old["pid"].get<int64_t>() : 0;
+  if (pid > 0 && pid != ::getpid() && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM)) {
+    throw std::runtime_error(fmt::format("{}: the rig of pid {} still runs with this manifest; stop it or give another "
+                                         "--manifest", manifest_path.string(), pid));
+  }
+  if (old.is_object() && old.contains("links") && old["links"].is_object()) {
+    for (const auto& [role, link] : old["links"].items()) {
+      if (link.is_string() && std::filesystem::is_symlink(link.get<std::string>(), ec)) {
+        std::filesystem::remove(link.get<std::string>(), ec);
+      }
+    }
+  }
+  std::filesystem::remove(manifest_path, ec);
+  return fmt::format("removed {}, left by the rig of pid {}, which no longer runs", manifest_path.string(), pid);
+}
 
 std::string Rig::Control(const std::string& command) {
   std::string reply;

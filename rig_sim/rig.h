@@ -9,7 +9,8 @@
 //   truth/<serial>.json   every simulated unit's drawn parameters (written when the rig is built)
 //   ports/<role>          symlink to the role's slave device (stable names for station files)
 // and the manifest (role → slave path, links, units, instruments; docs/rig.md "Manifest"),
-// written atomically (temporary file + rename) once every port is open and the clock runs.
+// written atomically (temporary file + rename) once every port is open and the clock runs, and
+// removed with the links when the rig stops (ClaimManifestPath clears what a dead rig left).
 #pragma once
 
 #include <filesystem>
@@ -32,6 +33,12 @@ inline constexpr int kManifestVersion = 1;
 /// The clock file (hil/rig_clock.h) in the run directory; the manifest's "clock" names it.
 inline constexpr const char* kClockFileName = "clock";
 
+/// Makes `manifest_path` free for a new rig, before it starts: a manifest left by a rig whose
+/// process no longer runs (or one that cannot be read) is removed with the port links it lists;
+/// one whose process still runs is refused with std::runtime_error naming the path and pid.
+/// Returns a line for the log, empty when there was no manifest.
+std::string ClaimManifestPath(const std::filesystem::path& manifest_path);
+
 class Rig {
  public:
   /// Builds every device, opens the ptys and writes truth/ into `run_dir` (created if needed).
@@ -44,7 +51,9 @@ class Rig {
 
   /// Starts the clock, creates ports/<role> symlinks and writes the manifest to `manifest_path`.
   void Start(const std::filesystem::path& manifest_path);
-  /// Stops the clock (idempotent); the ptys close when the Rig is destroyed.
+  /// Stops the clock and removes the manifest and the port links Start wrote, so nobody waiting
+  /// for a manifest can take a stopped rig's ports (idempotent); the ptys close when the Rig is
+  /// destroyed.
   void Stop();
 
   /// Executes a control command as the control port would, on the frame thread.
@@ -61,9 +70,11 @@ class Rig {
   void AddDevice(std::unique_ptr<SerialDevice> device, const std::string& kind, int imu_slot,
                  uint64_t fault_seed);
   void WriteLinks() const;
+  void RemoveManifestAndLinks();
 
   RigConfig config_;
   std::filesystem::path run_dir_;
+  std::filesystem::path manifest_path_;  ///< written by Start, removed by Stop
   std::unique_ptr<DeviceHost> host_;
   std::unique_ptr<RigControl> control_;
   std::vector<ControlTarget> targets_;

@@ -73,12 +73,26 @@ void RigChildProcess::Spawn() {
   }
 }
 
+namespace {
+
+// True when `path` holds the manifest of the rig process `pid` (written atomically, so a file
+// that exists is whole).
+bool ManifestOf(const std::filesystem::path& path, pid_t pid) {
+  std::ifstream in(path);
+  if (!in) return false;
+  const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+  return manifest.is_object() && manifest.value("pid", int64_t{-1}) == static_cast<int64_t>(pid);
+}
+
+}  // namespace
+
 void RigChildProcess::WaitForManifest() {
-  // The rig writes the manifest atomically (temporary file + rename) once every port is open.
+  // The rig writes the manifest atomically (temporary file + rename) once every port is open; one
+  // holding another pid is a dead rig's, which this rig removes before writing its own.
   const std::filesystem::path path = options_.run_dir / "manifest.json";
   const auto end = std::chrono::steady_clock::now() +
                    std::chrono::duration<double>(options_.start_timeout_s);
-  while (!std::filesystem::exists(path)) {
+  while (!ManifestOf(path, pid_)) {
     if (const std::optional<std::string> exit = ExitDescription()) {
       throw RigProcessError("the rig " + *exit + " before writing its manifest " + path.string());
     }
@@ -90,11 +104,7 @@ void RigChildProcess::WaitForManifest() {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   std::ifstream in(path);
-  try {
-    manifest_ = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw RigProcessError(path.string() + ": not JSON: " + e.what());
-  }
+  manifest_ = nlohmann::json::parse(in);
 }
 
 std::optional<std::string> RigChildProcess::ExitDescription() {

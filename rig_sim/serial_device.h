@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <span>
 #include <string>
@@ -47,6 +48,10 @@ class SerialDevice {
   /// rig's exit report (e.g. a unit's data packets refused by its full transmit buffer); empty
   /// when the device keeps no such counts.
   virtual std::string LineReport() const { return ""; }
+
+  /// The GPIB address a client must address behind this port (a GPIB adapter's instrument), for
+  /// the manifest; nullopt for a device on the serial line itself.
+  virtual std::optional<int> GpibAddress() const { return std::nullopt; }
 };
 
 inline void SerialDevice::SetPhysicalFault(const std::string& fault, bool) {

@@ -42,7 +42,9 @@ def station_for(manifest, config):
         if kind == "watlow_942":
             entry["port"] = port(links[role], flow="xonxoff")
         if kind == "druck_adts_prologix":
-            entry["address"] = section["gpib_address"]
+            entry["address"] = instrument["gpib_address"]  # from the manifest, as an outside client would
+            if instrument["gpib_address"] != section["gpib_address"]:
+                raise SystemExit(f"FAIL: manifest gpib_address {instrument['gpib_address']}, config {section['gpib_address']}")
             entry["port"] = port(links[role], baud=115200)
         instruments[role] = entry
     units = [{"role": u["role"], "kind": u["kind"], "slot": u["slot"], "timeout_ms": 500,

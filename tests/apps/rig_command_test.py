@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """`adahrs rig` as an outside program sees it: starts, writes the manifest with symlinks, answers
 on the ports (a pyserial client decodes the unit stream with the independent peer decoder and gets
-an IDENTIFY answer; the control port switches a fault), and stops cleanly on SIGTERM.
+an IDENTIFY answer; the control port switches a fault), and stops cleanly on SIGTERM, leaving
+neither manifest nor port links; a dead rig's manifest is cleared at start, a live one's refused.
 
 Usage: rig_command_test.py ADAHRS_BINARY
 """
@@ -70,17 +71,38 @@ def main(adahrs):
 
         manifest_path = tmp / "out" / "manifest.json"
         run_dir = tmp / "run"
+        # A manifest whose rig still runs (this test's own pid stands in for it) is refused.
+        manifest_path.parent.mkdir()
+        manifest_path.write_text(json.dumps({"pid": os.getpid(), "links": {}}))
+        busy = subprocess.run([adahrs, "rig", "--config", str(config), "--manifest", str(manifest_path)],
+                              capture_output=True, text=True, timeout=30)
+        if busy.returncode == 0 or f"pid {os.getpid()} still runs" not in busy.stderr:
+            fail(f"a live rig's manifest was not refused: {busy.returncode} {busy.stderr!r}")
+        # A dead rig's manifest and port link (pty numbers are reused) are cleared before the new
+        # rig writes its own, so nobody waiting for the manifest picks up the old ports.
+        # No process has a pid above 2**22 (Linux's largest pid_max).
+        (run_dir / "ports").mkdir(parents=True)
+        stale_link = run_dir / "ports" / "imu9"
+        stale_link.symlink_to("/dev/pts/9999")
+        manifest_path.write_text(json.dumps({"pid": 2 ** 22 + 17, "links": {"imu9": str(stale_link)}}))
         rig = subprocess.Popen([adahrs, "rig", "--config", str(config), "--manifest",
                                 str(manifest_path), "--time-scale", "20", "--run-dir",
                                 str(run_dir)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                text=True)
         try:
+            # Wait for the manifest of the rig started here: its pid tells it from a stale one.
             deadline = time.monotonic() + 15
-            while not manifest_path.exists():
+            manifest = None
+            while manifest is None or manifest.get("pid") != rig.pid:
                 if rig.poll() is not None or time.monotonic() > deadline:
                     fail(f"no manifest; rig exit {rig.poll()}: {rig.stderr.read()}")
                 time.sleep(0.05)
-            manifest = json.loads(manifest_path.read_text())
+                try:
+                    manifest = json.loads(manifest_path.read_text())
+                except FileNotFoundError:
+                    manifest = None
+            if os.path.lexists(stale_link):
+                fail(f"the stale manifest or link survived: pid {manifest['pid']}, rig {rig.pid}")
             roles = set(manifest["ports"])
             if not {"imu1", "imu2", "ads1", "control"} <= roles or "imu3" in roles:
                 fail(f"roles {sorted(roles)}")
@@ -147,6 +169,11 @@ def main(adahrs):
         if rig.returncode != 0 or "rig stopped by signal 15" not in out:
             fail(f"exit {rig.returncode}; stdout {out!r}; stderr {err!r}")
         print("rig stopped cleanly on SIGTERM")
+        if "left by the rig of pid 4194321, which no longer runs" not in out:
+            fail(f"the stale manifest's removal is not in the log: {out!r}")
+        # Stopped, the rig leaves neither its manifest nor its port links behind.
+        if manifest_path.exists() or (run_dir / "ports").exists():
+            fail(f"left behind: manifest {manifest_path.exists()}, ports {list((run_dir / 'ports').iterdir())}")
         # The exit report: per port what the host lost and what the unit itself sent or dropped.
         # imu2 was never read, so the host discarded its stream; imu1's unit never had a full
         # transmit buffer (one request in the whole run).
@@ -161,8 +188,15 @@ def main(adahrs):
             fail(f"imu1 was read, yet bytes overflowed: {report['imu1']}")
         if int(report["imu1"]["packets_sent"]) < 1000 or report["imu1"]["packets_dropped"] != "0":
             fail(f"imu1 unit counters {report['imu1']}")
-        if "host: " not in out or "bytes lost in all" not in out:
+        # The summary splits the two: bytes nobody read (imu2's) are not a client's loss.
+        summary = [line for line in out.splitlines() if line.startswith("host: ") and "discarded" in line]
+        if len(summary) != 1:
             fail(f"no host summary in {out!r}")
+        discarded = int(summary[0].split()[1])
+        cut = int(summary[0].split("with no client reading, ")[1].split()[0])
+        if discarded != sum(int(r["host_bytes_unread"]) for r in report.values()) or \
+                cut != sum(int(r["host_bytes_overflowed"]) for r in report.values()):
+            fail(f"summary {summary[0]!r} is not the sum of the ports' {report}")
         print("exit report:", report["imu1"], report["imu2"])
     return 0
 
