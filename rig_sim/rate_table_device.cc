@@ -3,9 +3,12 @@
 #include "adahrs_build_paths.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 namespace adahrs::rig_sim {
 namespace {
@@ -208,10 +211,37 @@ std::string RateTableDevice::Perform(const AtlParsed& parsed, const std::string&
     case RateTableRefusal::kInterlockOpen:
       return hil::FormatAtlError(commands_.errors().interlock_open, parsed, line_text);
     case RateTableRefusal::kBeyondLimit:
+      if (op == "sine_start") return SineRefusal(parsed, line_text);
       return hil::FormatAtlError(
           commands_.errors().out_of_range, parsed, line_text, EnforcedLimits(parsed));
   }
-  return form.reply.empty() ? std::string() : hil::FormatAtlValue(form, Value(op, spec.mnemonic));
+  if (form.reply.empty()) return std::string();
+  double value = Value(op, spec.mnemonic);
+  if (op == "position") {
+    // [0, 360) as printed: 359.99999 would print as 360.0000.
+    const double scale = std::pow(10.0, form.decimals);
+    value = std::round(value * scale) / scale;
+    if (value >= 360.0) value -= 360.0;
+  }
+  return hil::FormatAtlValue(form, value);
+}
+
+std::string RateTableDevice::SineRefusal(const AtlParsed& parsed, const std::string& line_text) const {
+  const double omega_radps = 2.0 * M_PI * sine_frequency_hz_;
+  const double peak_rate_dps = sine_amplitude_deg_ * omega_radps;
+  const double peak_accel_dps2 = peak_rate_dps * omega_radps;
+  if (!(sine_amplitude_deg_ >= 0.0 && sine_frequency_hz_ > 0.0 && sine_cycles_ >= 1.0)) {
+    return hil::FormatAtlError(commands_.errors().bad_argument, parsed, line_text);
+  }
+  const bool rate = peak_rate_dps > config_.physics.max_rate_dps;
+  AtlParsed peak = parsed;
+  peak.argument_text = fmt::format("{:.4f}", rate ? peak_rate_dps : peak_accel_dps2);
+  std::string error_template = commands_.errors().out_of_range;
+  for (size_t at = error_template.find("{unit}"); at != std::string::npos; at = error_template.find("{unit}")) {
+    error_template.replace(at, 6, rate ? "deg/s" : "deg/s^2");
+  }
+  return hil::FormatAtlError(error_template, peak, line_text,
+                             std::make_pair(0.0, rate ? config_.physics.max_rate_dps : config_.physics.max_accel_dps2));
 }
 
 std::optional<std::pair<double, double>> RateTableDevice::EnforcedLimits(

@@ -78,6 +78,9 @@ class RateTableDevice : public SerialDevice {
   // The limits the controller enforces for a command: the table's, narrowed by the drive's
   // configured limits for rate and acceleration; nullopt when the form takes no number.
   std::optional<std::pair<double, double>> EnforcedLimits(const hil::AtlParsed& parsed) const;
+  // The refusal of SGO: the sine's peak rate or acceleration beyond the drive's limit, or a sine
+  // that cannot run (amplitude < 0, frequency or cycles <= 0).
+  std::string SineRefusal(const hil::AtlParsed& parsed, const std::string& line_text) const;
   void Send(std::string_view bytes, double ready_s);
 
   RateTableDeviceConfig config_;

@@ -123,8 +123,12 @@ TEST(RateTableDevice, OutOfLimitCommandsAreRefusedAndChangeNothing) {
   EXPECT_EQ(bench.Ask("JOG -300\r\n"), "?OUT OF RANGE JOG -300 LIMITS -200 200 deg/s\r\n>\r\n");
   EXPECT_EQ(bench.Ask("ACL 800\r\n"), "?OUT OF RANGE ACL 800 LIMITS 0.1 500 deg/s^2\r\n>\r\n");
   EXPECT_EQ(bench.Ask("ACL 2000\r\n"), "?OUT OF RANGE ACL 2000 LIMITS 0.1 500 deg/s^2\r\n>\r\n");
+  // A sine beyond the drive names the peak that breaks it: 10 deg at 10 Hz peaks at 628 deg/s;
+  // 1 deg at 5 Hz at 987 deg/s^2.
   EXPECT_EQ(bench.Ask("AMP 10\r\nFRQ 10\r\nSGO\r\n"),
-            "\r\n>\r\n\r\n>\r\n?OUT OF RANGE SGO  LIMITS   \r\n>\r\n");
+            "\r\n>\r\n\r\n>\r\n?OUT OF RANGE SGO 628.3185 LIMITS 0 200 deg/s\r\n>\r\n");
+  EXPECT_EQ(bench.Ask("AMP 1\r\nFRQ 5\r\nSGO\r\n"),
+            "\r\n>\r\n\r\n>\r\n?OUT OF RANGE SGO 986.9604 LIMITS 0 500 deg/s^2\r\n>\r\n");
   bench.RunFor(1.0);
   EXPECT_EQ(bench.Ask("JOG?\r\n"), "0.000\r\n>\r\n");
   EXPECT_EQ(bench.Ask("ACL?\r\n"), "100.000\r\n>\r\n");
@@ -168,6 +172,10 @@ TEST(RateTableDevice, PositionMoveEndsAtTheCommandedAngle) {
   EXPECT_EQ(bench.Ask("HOM\r\n"), "\r\n>\r\n");
   bench.RunFor(3.0);
   EXPECT_EQ(bench.Ask("PPO\r\n"), "0.0000\r\n>\r\n");
+  // Just short of a full turn is printed as the home it rounds to, never as 360.0000.
+  EXPECT_EQ(bench.Ask("P-0.00002\r\n"), "\r\n>\r\n");
+  bench.RunFor(3.0);
+  EXPECT_EQ(bench.Ask("PPO?\r\n"), "0.0000\r\n>\r\n");
 }
 
 TEST(RateTableDevice, SameTimelineWhateverTheFrameLength) {
