@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <utility>
 
@@ -31,7 +32,9 @@ constexpr int kEsrExecutionError = 1 << 4;
 constexpr int kEsrCommandError = 1 << 5;
 constexpr int kEsrQueryError = 1 << 2;
 constexpr int kStbErrorQueue = 1 << 2;
+constexpr int kStbMessageAvailable = 1 << 4;
 constexpr int kStbEventSummary = 1 << 5;
+constexpr int kStbMasterSummary = 1 << 6;
 
 constexpr int kReplyDigits = 8;
 constexpr size_t kMaxErrors = 10;
@@ -96,8 +99,21 @@ void Adts405::PushError(int code) {
   if (code <= -400 && code > -500) esr_ |= kEsrQueryError;
 }
 
-int Adts405::StatusByte() const {
-  return (errors_.empty() ? 0 : kStbErrorQueue) | (esr_ ? kStbEventSummary : 0);
+int Adts405::StatusByte(bool message_available) const {
+  const int stb = (errors_.empty() ? 0 : kStbErrorQueue) | (message_available ? kStbMessageAvailable : 0) |
+                  ((esr_ & ese_) ? kStbEventSummary : 0);
+  return stb | ((stb & sre_) ? kStbMasterSummary : 0);
+}
+
+// *ESE n or *SRE n: an integer 0...255, else -224 and nothing changes.
+void Adts405::SetEnableRegister(const std::string& arg, int* reg, int mask) {
+  int value = -1;
+  const auto [end, ec] = std::from_chars(arg.data(), arg.data() + arg.size(), value);
+  if (ec != std::errc() || end != arg.data() + arg.size() || value < 0 || value > 255) {
+    PushError(hil::kScpiIllegalParameterValue);
+    return;
+  }
+  *reg = value & mask;
 }
 
 std::optional<std::string> Adts405::Execute(std::string_view message) {
@@ -134,6 +150,12 @@ std::optional<std::string> Adts405::ExecuteOne(const ScpiCommand& c, const std::
     if (h == "OPC" && c.query && want_args(0)) return "1";
     if (h == "ESR" && c.query && want_args(0)) return std::to_string(std::exchange(esr_, 0));
     if (h == "STB" && c.query && want_args(0)) return std::to_string(StatusByte());
+    if ((h == "ESE" || h == "SRE") && c.query && want_args(0)) return std::to_string(h == "ESE" ? ese_ : sre_);
+    if ((h == "ESE" || h == "SRE") && !c.query && want_args(1)) {
+      if (h == "ESE") SetEnableRegister(c.args[0], &ese_, 0xFF);
+      if (h == "SRE") SetEnableRegister(c.args[0], &sre_, 0xFF & ~kStbMasterSummary);
+      return std::nullopt;
+    }
     if (h == "CLS" && !c.query && want_args(0)) {
       errors_.clear();
       esr_ = 0;
@@ -149,7 +171,10 @@ std::optional<std::string> Adts405::ExecuteOne(const ScpiCommand& c, const std::
       qc_ = {qc_pa_, Rate::kAirspeed, params_.initial_cas_rate_kt_per_min / 60.0};
       return std::nullopt;
     }
-    if (h == "IDN" || h == "OPC" || h == "ESR" || h == "STB" || h == "CLS" || h == "RST") return std::nullopt;
+    if (h == "IDN" || h == "OPC" || h == "ESR" || h == "STB" || h == "CLS" || h == "RST" || h == "ESE" ||
+        h == "SRE") {
+      return std::nullopt;
+    }
   } else if (is({"SOURce", "STATe"})) {
     if (c.query) {
       if (!want_args(0)) return std::nullopt;

@@ -67,8 +67,9 @@ class Adts405 {
   /// Advances the controllers in 10 ms ticks up to `now_s`.
   void AdvanceTo(double now_s);
 
-  /// IEEE 488.2 status byte: bit 2 error queue not empty, bit 5 event status (ESR) summary.
-  int StatusByte() const;
+  /// IEEE 488.2 status byte: bit 2 error queue not empty, bit 4 message available (as the caller
+  /// says), bit 5 event status summary (ESR & ESE), bit 6 master summary (the others & SRE).
+  int StatusByte(bool message_available = false) const;
   /// The pressures delivered to the ports (with the controller noise while controlling).
   double ps_pa() const { return ps_pa_ + (control_ == Control::kOff ? 0.0 : ps_noise_pa_); }
   double qc_pa() const { return qc_pa_ + (control_ == Control::kOff ? 0.0 : qc_noise_pa_); }
@@ -79,6 +80,7 @@ class Adts405 {
   void SetNeverStable(bool on) { never_stable_ = on; }
   /// Queues a SCPI error (also used by the transport for −410 query interrupted).
   void PushError(int code);
+  void SetEnableRegister(const std::string& arg, int* reg, int mask);
 
  private:
   enum class Rate { kAltitude, kAirspeed, kPressure };
@@ -111,6 +113,8 @@ class Adts405 {
   int condition_ = 0;
   int event_ = 0;
   int esr_ = 0;
+  int ese_ = 0;  ///< *ESE, 0 at power-on; *CLS and *RST keep it (IEEE 488.2 §10.10)
+  int sre_ = 0;  ///< *SRE, bit 6 ignored; 0 at power-on
   double both_at_set_point_since_s_ = -1.0;
   bool never_stable_ = false;
   std::deque<int> errors_;

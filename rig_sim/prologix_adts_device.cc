@@ -8,8 +8,6 @@ namespace adahrs::rig_sim {
 
 namespace {
 constexpr size_t kInstrumentInputMax = 1024;  // the ADTS input buffer (INF)
-constexpr int kScpiQueryInterrupted = -410;   // IEEE 488.2 §6.3.2.3
-constexpr int kStbMessageAvailable = 1 << 4;
 constexpr size_t kMaxIgnored = 100;
 }  // namespace
 
@@ -57,7 +55,7 @@ void PrologixAdtsDevice::SendToInstrument(const std::string& data, double now_s)
   for (const std::string& message : messages) {
     const std::optional<std::string> reply = adts_.Execute(message);
     if (!reply) continue;
-    if (response_) adts_.PushError(kScpiQueryInterrupted);
+    if (response_) adts_.PushError(hil::kScpiQueryInterrupted);
     response_ = Response{now_s + params_.response_delay_s, *reply + "\n"};
   }
 }
@@ -102,7 +100,7 @@ void PrologixAdtsDevice::HandleCommand(const std::string& text, double now_s) {
       break;
     case Kind::kSerialPoll:
       if (addressed) {
-        const int stb = adts_.StatusByte() | (response_ ? kStbMessageAvailable : 0);
+        const int stb = adts_.StatusByte(response_.has_value());
         Queue(now_s + params_.adapter_reply_delay_s, std::to_string(stb) + "\r\n");
       }
       break;

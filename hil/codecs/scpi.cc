@@ -39,6 +39,7 @@ std::string_view ScpiErrorMessage(int code) {
     case kScpiSettingsConflict: return "Settings conflict";
     case kScpiDataOutOfRange: return "Data out of range";
     case kScpiIllegalParameterValue: return "Illegal parameter value";
+    case kScpiQueryInterrupted: return "Query INTERRUPTED";
     default: return "Error";
   }
 }

@@ -28,6 +28,7 @@ inline constexpr int kScpiUndefinedHeader = -113;
 inline constexpr int kScpiSettingsConflict = -221;
 inline constexpr int kScpiDataOutOfRange = -222;
 inline constexpr int kScpiIllegalParameterValue = -224;
+inline constexpr int kScpiQueryInterrupted = -410;  ///< IEEE 488.2 §6.3.2.3
 
 /// The standard message of a SCPI error number ("Undefined header"), or "Error".
 std::string_view ScpiErrorMessage(int code);

@@ -252,6 +252,27 @@ TEST(PrologixAdtsDevice, SurvivesGarbageAndKeepsAnswering) {
   EXPECT_EQ(bench.Query("*IDN?"), "DRUCK,ADTS405,0000000,V1.00");
 }
 
+// IEEE 488.2 status reporting: the event summary bit follows ESR & ESE (nothing while ESE is 0),
+// the master summary bit the status byte & SRE; *ESE and *SRE read back, survive *CLS, refuse
+// values outside 0...255; a query whose answer was never read is -410 with its message.
+TEST(PrologixAdtsDevice, StatusByteFollowsTheEnableRegisters) {
+  Bench bench;
+  EXPECT_EQ(bench.Query("*ESE?"), "0");
+  bench.Talk("++addr 1\nNOSUCH:HEADER\n", 0.5);  // -113: a command error, ESR bit 5
+  EXPECT_EQ(bench.Query("*STB?"), "4");           // error queue only: ESE masks the summary
+  bench.Talk("++addr 1\n*ESE 32\n*SRE 32\n", 0.5);
+  EXPECT_EQ(bench.Query("*ESE?"), "32");
+  EXPECT_EQ(bench.Query("*SRE?"), "32");
+  EXPECT_EQ(bench.Query("*STB?"), std::to_string(4 | 32 | 64));
+  EXPECT_EQ(bench.Query("SYST:ERR?"), "-113,\"Undefined header\"");
+  bench.Talk("++addr 1\n*CLS\n*ESE 256\n", 0.5);
+  EXPECT_EQ(bench.Query("SYST:ERR?"), "-224,\"Illegal parameter value\"");
+  EXPECT_EQ(bench.Query("*ESE?"), "32");  // kept by *CLS, unchanged by the refused value
+  bench.Talk("++addr 1\n*CLS\n*IDN?\n", 0.5);  // answered, never read ...
+  bench.Talk("++addr 1\n*OPC?\n", 0.5);         // ... and replaced by the next query
+  EXPECT_EQ(bench.Query("SYST:ERR?"), "-410,\"Query INTERRUPTED\"");
+}
+
 TEST(PrologixAdtsDevice, ConfigIsValidatedWithItsPath) {
   nlohmann::json config = DefaultPrologixAdtsConfig();
   config["adts"]["qc_max_pa"] = 120000.0;  // supersonic: refused
