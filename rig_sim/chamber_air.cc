@@ -14,6 +14,8 @@ double ChamberAir::Step(double set_point_c, double dt_s) {
   const double heat_c_per_s = params_.heat_rate_c_per_min / 60.0;
   const double cool_c_per_s = params_.cool_rate_c_per_min / 60.0;
   const double linear_c_per_s = error_c / params_.tau_s;
+  heat_fraction_ = heat_c_per_s > 0.0 ? std::clamp(linear_c_per_s / heat_c_per_s, 0.0, 1.0) : 0.0;
+  cool_fraction_ = cool_c_per_s > 0.0 ? std::clamp(-linear_c_per_s / cool_c_per_s, 0.0, 1.0) : 0.0;
   if (linear_c_per_s > heat_c_per_s || linear_c_per_s < -cool_c_per_s) {
     // Capacity-limited: a straight ramp, never overshooting the set point.
     const double slope = linear_c_per_s > 0 ? heat_c_per_s : -cool_c_per_s;

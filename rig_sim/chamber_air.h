@@ -32,11 +32,17 @@ class ChamberAir {
   double Step(double set_point_c, double dt_s);
 
   double air_c() const { return air_c_ + cycling_c_; }
+  /// The fractions of the heating and the cooling capacity the last Step asked for (the
+  /// clamped slope over the capacity).
+  double heat_fraction() const { return heat_fraction_; }
+  double cool_fraction() const { return cool_fraction_; }
 
  private:
   ChamberAirParams params_;
   double air_c_;        // the controlled mean
   double cycling_c_ = 0.0;
+  double heat_fraction_ = 0.0;
+  double cool_fraction_ = 0.0;
   double phase_rad_ = 0.0;
 };
 

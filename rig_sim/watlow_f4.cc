@@ -10,6 +10,14 @@ namespace {
 using hil::modbus::ExceptionCode;
 
 // Register numbers, shared/protocols.md §2.3–2.4.
+constexpr uint16_t kRegModel = 0;           // 5270: '4' (52) and 'F' (70), DRV
+constexpr uint16_t kModelF4 = 5270;
+constexpr uint16_t kRegIdentLast = 5;       // serial number (1, 2), software (3, 4), date (5)
+constexpr uint16_t kRegAlarm1Status = 102;
+constexpr uint16_t kRegHeatPower = 103;
+constexpr uint16_t kRegCoolPower = 107;
+constexpr uint16_t kRegSensor = 600;
+constexpr uint16_t kRegInputErrorLatch = 607;
 constexpr uint16_t kRegSave = 25;
 constexpr uint16_t kRegPv = 100;
 constexpr uint16_t kRegInputError = 101;
@@ -172,6 +180,11 @@ hil::modbus::Response WatlowF4::Handle(const hil::modbus::Request& request) {
   return response;
 }
 
+void WatlowF4::SetOutputPower(double heat_fraction, double cool_fraction) {
+  heat_power_ = static_cast<uint16_t>(std::lround(10000.0 * std::clamp(heat_fraction, 0.0, 1.0)));
+  cool_power_ = static_cast<uint16_t>(std::lround(10000.0 * std::clamp(cool_fraction, 0.0, 1.0)));
+}
+
 WatlowF4::Exception WatlowF4::Read(uint16_t reg, uint16_t& value) const {
   value = 0;
   if (reg >= kRegNameFirst && reg <= kRegNameLast) {
@@ -215,7 +228,16 @@ WatlowF4::Exception WatlowF4::Read(uint16_t reg, uint16_t& value) const {
     }
     return std::nullopt;
   }
+  if (reg <= kRegIdentLast) {
+    value = reg == kRegModel ? kModelF4 : 0;
+    return std::nullopt;
+  }
   switch (reg) {
+    case kRegAlarm1Status: return std::nullopt;
+    case kRegHeatPower: value = heat_power_; return std::nullopt;
+    case kRegCoolPower: value = cool_power_; return std::nullopt;
+    case kRegSensor: return std::nullopt;
+    case kRegInputErrorLatch: return std::nullopt;
     case kRegPv: value = ToReg(pv_c_); return std::nullopt;
     case kRegInputError: return std::nullopt;  // 0: no sensor error
     case kRegMode: value = static_cast<uint16_t>(mode_); return std::nullopt;

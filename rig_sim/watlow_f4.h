@@ -17,6 +17,11 @@
 // a jump with repeat count N is taken N times, then the profile goes on with the next step; the
 // running profile cannot be edited (03); editing registers for a step or profile that does not exist
 // gives 03; hold/resume without a running profile give 03, terminate is always accepted.
+// Identification (registers 0-5): model 5270, which a public F4 client decodes as "F4" (DRV);
+// serial number, software and date of manufacture read 0 (their values were not found: UNKNOWN).
+// Input 1 sensor (600) and error latching (607) read 0. Alarm 1 status (102) reads 0: no alarm is
+// modelled. Output power 103 / 107: the fraction of the chamber's heating / cooling capacity the
+// loop asks for, in 0.01 % (DRV scale; the chamber's own model, INF).
 // Left out: channel 2 and cascade (F4S single channel: channel-2 registers are unmapped → 02),
 // autostart steps and wait-for events / analog inputs (enabling them → 03: nothing would satisfy
 // them), alarms, PID tuning (the chamber's closed loop is ChamberAir's), the real-time clock,
@@ -64,6 +69,9 @@ class WatlowF4 {
 
   /// Advances the profile engine by `dt_s` with the measured process value `pv_c`.
   void Tick(double dt_s, double pv_c);
+  /// The loop's output now, fractions 0...1 of the heating and the cooling capacity (registers
+  /// 103 and 107 in hundredths of a percent).
+  void SetOutputPower(double heat_fraction, double cool_fraction);
 
   /// The set point the loop controls to now: the profile's ramping set point (register 4122)
   /// while a profile runs or holds, else the static set point (300).
@@ -108,6 +116,8 @@ class WatlowF4 {
   WatlowF4Settings settings_;
   double static_set_point_c_;
   double pv_c_;
+  uint16_t heat_power_ = 0;  // register 103, 0.01 %
+  uint16_t cool_power_ = 0;  // register 107
   std::array<Profile, kProfiles> profiles_;
   std::array<uint16_t, 10 * kProfiles> names_;
   uint16_t selected_profile_ = 1;  // register 4000

@@ -128,7 +128,9 @@ void WatlowF4Device::Advance(double now_s, double, RigEnvironment& env) {
       if (!chamber_driven_) chamber_ = ChamberAir(ActiveChamberParams(), air_c_);
       chamber_driven_ = true;
       air_c_ = chamber_.Step(controller_.WorkingSetPointC(), tick_s);
+      controller_.SetOutputPower(chamber_.heat_fraction(), chamber_.cool_fraction());
     } else {
+      controller_.SetOutputPower(0.0, 0.0);
       chamber_driven_ = false;
       air_c_ = config_.ambient_c +
                (air_c_ - config_.ambient_c) * std::exp(-tick_s / config_.control_off_tau_s);

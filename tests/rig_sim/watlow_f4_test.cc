@@ -132,6 +132,29 @@ TEST(WatlowF4, LimitsCanBeNarrowedButNeverStrandTheSetPoint) {
   EXPECT_EQ(Write(f4, 603, Tenths(-80.0)), ExceptionCode::kIllegalDataValue);  // below 602
 }
 
+// What a client reads to identify the controller and its input (a public F4 client reads 0...5
+// and 606...608 in one request each and decodes register 0 as "F4"), and the output power.
+TEST(WatlowF4, IdentificationInputAndOutputPowerRegistersAnswer) {
+  WatlowF4 f4(WatlowF4Settings{});
+  const Response ident = f4.Handle(ReadRequest(1, 0, 6));
+  ASSERT_FALSE(ident.is_exception);
+  ASSERT_EQ(ident.values.size(), 6u);
+  const std::string model = std::to_string(ident.values[0]);
+  EXPECT_EQ(std::string() + static_cast<char>(std::stoi(model.substr(2))) + static_cast<char>(std::stoi(model.substr(0, 2))),
+            "F4");
+  const Response input = f4.Handle(ReadRequest(1, 606, 3));
+  ASSERT_FALSE(input.is_exception);
+  EXPECT_EQ(input.values, (std::vector<uint16_t>{1, 0, 0}));  // tenths, not latching, temperature
+  EXPECT_EQ(Read(f4, 102), 0);                                 // alarm 1: none modelled
+  f4.SetOutputPower(0.4567, 0.0);
+  EXPECT_EQ(Read(f4, 103), 4567);
+  EXPECT_EQ(Read(f4, 107), 0);
+  f4.SetOutputPower(0.0, 2.0);  // clamped to the capacity
+  EXPECT_EQ(Read(f4, 103), 0);
+  EXPECT_EQ(Read(f4, 107), 10000);
+  EXPECT_EQ(Write(f4, 103, 0), ExceptionCode::kIllegalDataAddress);  // read-only
+}
+
 TEST(WatlowF4, ReadOnlyAndUnmappedRegistersGiveException02) {
   WatlowF4 f4(WatlowF4Settings{});
   EXPECT_EQ(Write(f4, 100, 0), ExceptionCode::kIllegalDataAddress);   // PV is read-only
