@@ -14,6 +14,11 @@
 namespace adahrs::calib {
 namespace {
 
+// More rates than this in one gyro step is a typo, not a calibration: every rate is an
+// acquisition of its own in the plan.
+constexpr int kMaxGyroRatesPerStep = 1000;
+
+
 template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
@@ -298,9 +303,26 @@ class Checker {
                                               s.rate_min_dps, s.rate_max_dps));
       return;
     }
+    // At least one step of the table: a smaller increment would command the same rate over and
+    // over (1e-9 deg/s once expanded 3e11 rates and ran out of memory).
+    if (s.rate_increment_dps < limits_.table_rate_resolution_dps * (1.0 - 1e-9)) {
+      Add(path + ".rate_increment_dps",
+          fmt::format("rate increment {:g} deg/s is below the {}'s rate resolution", s.rate_increment_dps,
+                      limits_.table_name),
+          fmt::format("{} commands rates in steps of {:g} deg/s", limits_.table_name,
+                      limits_.table_rate_resolution_dps));
+      return;
+    }
     // Whole number of increments, to a part in 10⁹ of the span (decimal fractions like 0.1 are
     // not exact in binary).
     const double intervals = (s.rate_max_dps - s.rate_min_dps) / s.rate_increment_dps;
+    if (intervals + 1.0 > kMaxGyroRatesPerStep) {
+      Add(path + ".rate_increment_dps",
+          fmt::format("{:g}…{:g} deg/s by {:g} deg/s is {:.0f} rates", s.rate_min_dps, s.rate_max_dps,
+                      s.rate_increment_dps, std::floor(intervals) + 1.0),
+          fmt::format("at most {} rates in one gyro step", kMaxGyroRatesPerStep));
+      return;
+    }
     if (std::abs(intervals - std::round(intervals)) > 1e-9 * std::max(1.0, intervals)) {
       Add(path + ".rate_increment_dps",
           fmt::format("{:g}…{:g} deg/s is not a whole number of {:g} deg/s increments",

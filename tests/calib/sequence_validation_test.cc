@@ -109,6 +109,17 @@ TEST(SequenceValidation, GyroRatesMustBeWholeStepsOfTheTable) {
   const SequenceProblem cross =
       OnlyProblem(Imu({{std::nullopt, CrossAxisStep{10, 100.5, 100.0}}}));
   EXPECT_EQ(cross.path, "$.steps[0].rate_dps");
+  // An increment below the table's step passed the multiple-of-resolution test (1e-9 is 0 steps
+  // to within 1e-9) and expanded into 3e11 rates.
+  const SequenceProblem tiny = OnlyProblem(Imu({{std::nullopt, GyroStep{11, 100, -150.0, 150.0, 1e-9, 100.0}}}));
+  EXPECT_EQ(tiny.path, "$.steps[0].rate_increment_dps");
+  EXPECT_THAT(tiny.rule, HasSubstr("below the rate table's rate resolution"));
+  SequenceLimits fine_table;
+  fine_table.table_rate_resolution_dps = 0.001;
+  const SequenceProblem many =
+      OnlyProblem(Imu({{std::nullopt, GyroStep{11, 100, -150.0, 150.0, 0.01, 100.0}}}), fine_table);
+  EXPECT_THAT(many.rule, HasSubstr("30001 rates"));
+  EXPECT_EQ(many.limit, "at most 1000 rates in one gyro step");
 }
 
 TEST(SequenceValidation, TemperatureBeyondUnitRatingAndChamberRange) {
