@@ -1,6 +1,11 @@
 #include "hil/station.h"
 
+#include <sys/stat.h>
+
+#include <filesystem>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "sensor_sim/gravity.h"
 
@@ -62,6 +67,25 @@ nlohmann::json PortJson(const SerialSettings& s) {
           {"parity", std::string(1, s.parity)}, {"stop_bits", s.stop_bits}, {"flow", flow}};
 }
 
+// What makes two port paths one port: the device they lead to (a symlink and its /dev/pts target,
+// two spellings of one path), or the path itself, made absolute and normal, when nothing exists
+// there yet (a station written before its rig runs).
+struct PortIdentity {
+  bool device = false;
+  uint64_t dev = 0, ino = 0;
+  std::string path;
+  bool operator==(const PortIdentity&) const = default;
+};
+
+PortIdentity IdentityOf(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    if (S_ISCHR(st.st_mode)) return {true, static_cast<uint64_t>(st.st_rdev), 0, ""};
+    return {true, static_cast<uint64_t>(st.st_dev), static_cast<uint64_t>(st.st_ino), ""};
+  }
+  return {false, 0, 0, std::filesystem::absolute(path).lexically_normal().string()};
+}
+
 }  // namespace
 
 std::string ToString(InstrumentType type) { return TypeName(type); }
@@ -86,11 +110,17 @@ Station Station::FromJson(const ParamReader& r) {
   site.ExpectAllKeysUsed();
   st.local_gravity_mps2 = sensor_sim::NormalGravityMps2(st.latitude_deg, st.height_m);
 
-  std::set<std::string> paths;
+  std::vector<std::pair<PortIdentity, std::string>> claimed;  // identity, the path that claimed it
   const auto claim_path = [&](const ParamReader& where, const std::string& path) {
-    if (!paths.insert(path).second) {
-      where.Fail(where.path() + ".port.path", "port " + path + " is already used by another role");
+    const PortIdentity id = IdentityOf(path);
+    for (const auto& [other, other_path] : claimed) {
+      if (other != id) continue;
+      where.Fail(where.path() + ".port.path",
+                 other_path == path ? "port " + path + " is already used by another role"
+                                    : "port " + path + " is the device " + other_path +
+                                          " already used by another role");
     }
+    claimed.emplace_back(id, path);
   };
   const ParamReader instruments = r.Child("instruments");
   for (const InstrumentRole& role : kRoles) {
@@ -132,6 +162,11 @@ Station Station::FromJson(const ParamReader& r) {
     u.port = ReadPort(ur.Child("port"));
     claim_path(ur, u.port.path);
     u.slot = static_cast<int>(ur.Integer("slot", 1, 4));
+    for (const UnitEntry& other : st.units) {
+      if (other.kind == u.kind && other.slot == u.slot) {
+        ur.Fail(ur.path() + ".slot", "slot " + std::to_string(u.slot) + " already holds " + other.role);
+      }
+    }
     u.timeout_ms = static_cast<int>(ur.Integer("timeout_ms", 10, 60000));
     ur.ExpectAllKeysUsed();
     st.units.push_back(u);

@@ -1,6 +1,11 @@
 #include "adahrs_build_paths.h"
 #include "hil/station.h"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -76,6 +81,29 @@ TEST(Station, RefusesWhatARealLabWouldGetWrong) {
   j["units"][1]["port"]["path"] = j["units"][0]["port"]["path"];
   EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1]"), HasSubstr("already used")));
 
+  // One device under two names: a symlink and its target, and a path spelt two ways.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("adahrs_station_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::filesystem::remove(dir / "imu1");
+  std::filesystem::create_symlink("/dev/null", dir / "imu1");
+  j = Example();
+  j["units"][0]["port"]["path"] = (dir / "imu1").string();
+  j["units"][1]["port"]["path"] = "/dev/null";
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1].port.path"), HasSubstr("/dev/null is the device"),
+                                HasSubstr("imu1 already used")));
+  j["units"][1]["port"]["path"] = (dir / "." / "imu1").string();
+  EXPECT_THAT(ErrorOf(j), HasSubstr("$.units[1].port.path"));
+  std::filesystem::remove_all(dir);
+  j = Example();
+  j["units"][1]["port"]["path"] = "/dev/not_yet_a/../not_yet_b";
+  j["units"][0]["port"]["path"] = "/dev/not_yet_b";
+  EXPECT_THAT(ErrorOf(j), HasSubstr("$.units[1].port.path"));
+
+  // Two IMUs in one slot of the fixture.
+  j = Example();
+  j["units"][1]["slot"] = j["units"][0]["slot"];
+  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1].slot"), HasSubstr("slot 1 already holds imu1")));
+
   j = Example();
   j["instruments"]["imu_chamber"]["type"] = "watlow_942";
   EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.instruments.imu_chamber.type"), HasSubstr("watlow_f4")));
@@ -88,6 +116,7 @@ TEST(Station, RefusesWhatARealLabWouldGetWrong) {
   for (int i = 0; i < 3; ++i) {
     nlohmann::json u = j["units"][0];
     u["role"] = "imu" + std::to_string(3 + i);
+    u["slot"] = std::min(4, 3 + i);
     u["port"]["path"] = "/dev/x" + std::to_string(i);
     j["units"].push_back(u);
   }
