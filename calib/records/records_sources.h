@@ -12,7 +12,9 @@
 
 namespace adahrs::calib {
 
-/// The run, its units and its steps (with each step's rejected time) from `run_dir`.
+/// The run, its units and its steps (with each step's rejected time) from `run_dir`, after every
+/// row of its recording was read and checked (refused by file and line: a bad cell, a unit not in
+/// meta.json, a unit's time going backwards, a repeated row).
 RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir);
 
 /// The constants file as the next version of its unit; the file checksum is SHA-256 of its bytes.

@@ -32,8 +32,16 @@ def main(adahrs):
                            "constants_version": 0, "mode": 0}],
                 "instruments": [], "rejected_intervals": []}
         (run_dir / "meta.json").write_text(json.dumps(meta))
-        (run_dir / "imu.csv").write_text("t_s\n")
-        (run_dir / "ads.csv").write_text("t_s\n")
+        # The recording format's version-2 headers (docs/recording-format.md) and two raw rows.
+        imu_header = ("t_s,unit,seq,step,tag,orientation,chamber_c,table_rate_dps,"
+                      + ",".join(f"{c}_t{k}" for c in ("az1", "ax1", "ay1", "az2", "ax2", "ay2") for k in (1, 2))
+                      + ",gx,gy,gz,tx,ty,tz,mode," + ",".join(f"comp{i}" for i in range(9)) + ",comp_flags")
+        row = ",".join(["1000", "2000"] * 6 + ["4194304"] * 3 + ["30000"] * 3 + ["0"] + [""] * 10)
+        (run_dir / "imu.csv").write_text(imu_header + "\n"
+                                         + f"0.01,IMU-0007,1,2,3,11,25.0,0,{row}\n"
+                                         + f"0.02,IMU-0007,2,2,3,11,25.0,0,{row}\n")
+        (run_dir / "ads.csv").write_text("t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,"
+                                         "ps_temp_counts,pt_temp_counts,oat_counts,mode,alt_ft,cas_kt,comp_flags\n")
         digest = hashlib.sha256(b"".join((run_dir / n).read_bytes()
                                          for n in ("meta.json", "imu.csv", "ads.csv"))).hexdigest()
         db = tmp / "records.sqlite"

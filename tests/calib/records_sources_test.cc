@@ -9,17 +9,21 @@
 #include <cstdio>
 #include <fstream>
 
+#include <functional>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "calib/constants/constants_file.h"
 #include "calib/records/unit_history_text.h"
 #include "calib/sequence/sequence_json.h"
+#include "hil/recording/recording_writer.h"
 #include "tests/firmware_model/realistic_constants.h"
 
 namespace adahrs::calib {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 class RecordsSourcesTest : public ::testing::Test {
@@ -55,10 +59,27 @@ class RecordsSourcesTest : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
-  void WriteRun() {
+  // meta.json and a recording of `rows` rows per unit, written by the recording writer; `edit`
+  // may change a row before it is written.
+  void WriteRun(const std::function<void(int, hil::ImuRecordRow&)>& edit = {}) {
+    std::filesystem::remove(dir_ / "run" / "imu.csv");
+    std::filesystem::remove(dir_ / "run" / "ads.csv");
+    hil::RecordingWriter writer(dir_ / "run");
+    int n = 0;
+    for (int i = 0; i < 5; ++i) {
+      for (const char* serial : {"IMU-0001", "IMU-0002"}) {
+        hil::ImuRecordRow r;
+        r.t_s = 0.01 * i;
+        r.unit = serial;
+        r.seq = static_cast<uint32_t>(i);
+        r.orientation = 31;
+        if (edit) edit(n, r);
+        ++n;
+        writer.Append(r);
+      }
+    }
+    writer.Flush(true);
     std::ofstream(dir_ / "run" / "meta.json") << meta_.dump(2);
-    std::ofstream(dir_ / "run" / "imu.csv") << "header\n1,2\n";
-    std::ofstream(dir_ / "run" / "ads.csv") << "header\n";
   }
 
   // sha256sum of `files` concatenated: the independent checksum.
@@ -101,6 +122,25 @@ TEST_F(RecordsSourcesTest, RunRecordCarriesMetaStepsUnitsAndTheRecordingChecksum
   EXPECT_EQ(run.units[1].constants_version, 4);
   const std::string d = (dir_ / "run").string();
   EXPECT_EQ(run.recording_sha256, Sha256sum(d + "/meta.json " + d + "/imu.csv " + d + "/ads.csv"));
+}
+
+// add-run reads the rows before recording a run: what the pipeline would not trust is refused
+// by file and line.
+TEST_F(RecordsSourcesTest, RowsTheFitWouldNotTrustAreRefusedByLine) {
+  WriteRun([](int n, hil::ImuRecordRow& r) { if (n == 6) r.unit = "IMU-0009"; });
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:8"), HasSubstr("'IMU-0009' is not listed")));
+  WriteRun([](int n, hil::ImuRecordRow& r) { if (n == 7) r.t_s = 0.0; });
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:9"), HasSubstr("IMU-0002 t_s 0.000000 s goes back")));
+  WriteRun([](int n, hil::ImuRecordRow& r) { if (n == 5) { r.t_s = 0.01; r.seq = 1; } });
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:7"), HasSubstr("IMU-0002 repeats its previous row")));
+  WriteRun();
+  {
+    std::ofstream(dir_ / "run" / "imu.csv", std::ios::app) << "0.05,IMU-0001,5,0,0,31,x";
+  }
+  EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:12"));  // a torn last line, in a complete run
+  meta_["status"] = "interrupted";
+  std::ofstream(dir_ / "run" / "meta.json") << meta_.dump(2);
+  EXPECT_EQ(ErrorOf(), "accepted");  // the crash that interrupted it tore the line
 }
 
 TEST_F(RecordsSourcesTest, BadMetaIsRefusedWithFileAndPath) {
