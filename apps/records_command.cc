@@ -59,7 +59,7 @@ void RegisterRecordsCommand(CLI::App& app) {
     if (!std::filesystem::exists(*db)) {
       throw calib::RecordsError(fmt::format("records database {}: no such file", *db));
     }
-    calib::RecordsStore store(*db);
+    calib::RecordsStore store = calib::RecordsStore::OpenForReading(*db);
     std::cout << calib::FormatUnitHistory(store.History(*serial));
   });
 }

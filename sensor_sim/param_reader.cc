@@ -22,6 +22,8 @@ nlohmann::json ParamReader::LoadFile(const std::string& file_path) {
   } catch (const nlohmann::json::parse_error& e) {
     throw ParamError(file_path + ": not valid JSON at byte " + std::to_string(e.byte) + ": " +
                      e.what());
+  } catch (const nlohmann::json::exception& e) {  // a number beyond double's range (1e400)
+    throw ParamError(file_path + ": not valid JSON: " + e.what());
   }
 }
 

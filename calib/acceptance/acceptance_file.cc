@@ -115,7 +115,7 @@ json ReadAcceptanceFile(const std::filesystem::path& file) {
   json j;
   try {
     j = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number beyond double's range
     throw AcceptanceFileError(source + ": not JSON: " + e.what());
   }
   const std::string format = Require(j, "format", &json::is_string, "a string", "$", source);

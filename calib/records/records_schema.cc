@@ -111,6 +111,19 @@ int RecordsSchemaVersionOf(SqliteDatabase& database) {
   return static_cast<int>(version.Int(0));
 }
 
+void RequireRecordsSchema(SqliteDatabase& database) {
+  const int found = RecordsSchemaVersionOf(database);
+  if (found == 0) {
+    throw RecordsError(fmt::format("records database {}: not an adahrs records database (no schema_version)",
+                                   database.file().string()));
+  }
+  if (found != kRecordsSchemaVersion) {
+    throw RecordsError(fmt::format("records database {}: schema version {}, this program reads {}{}",
+                                   database.file().string(), found, kRecordsSchemaVersion,
+                                   found < kRecordsSchemaVersion ? " (a records command that writes migrates it)" : ""));
+  }
+}
+
 void MigrateRecordsSchema(SqliteDatabase& database) {
   SqliteTransaction bootstrap(database);
   database.Execute("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");

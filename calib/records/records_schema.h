@@ -18,4 +18,9 @@ int RecordsSchemaVersionOf(SqliteDatabase& database);
 /// migration if one fails (that migration is rolled back), or if the database is newer than us.
 void MigrateRecordsSchema(SqliteDatabase& database);
 
+/// For a reader that must not write: throws RecordsError naming the file unless it holds the
+/// records schema of this program's version (an empty file, another SQLite database, an older or
+/// a newer schema are refused; an older one is migrated by any command that writes).
+void RequireRecordsSchema(SqliteDatabase& database);
+
 }  // namespace adahrs::calib

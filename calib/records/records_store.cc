@@ -22,6 +22,12 @@ RecordsStore::RecordsStore(const std::filesystem::path& file) : database_(file, 
   MigrateRecordsSchema(database_);
 }
 
+RecordsStore::RecordsStore(const std::filesystem::path& file, ReadOnly) : database_(file, false, true) {
+  RequireRecordsSchema(database_);
+}
+
+RecordsStore RecordsStore::OpenForReading(const std::filesystem::path& file) { return RecordsStore(file, ReadOnly{}); }
+
 void RecordsStore::EnsureUnit(const std::string& serial, const std::string& kind) {
   if (KindOfSerial(database_.file(), serial) != kind) {
     throw RecordsError(fmt::format("records database {}: unit {} given kind '{}', but its serial names another kind",

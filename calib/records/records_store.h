@@ -127,6 +127,9 @@ class RecordsStore {
  public:
   /// Opens or creates `file` and brings its schema up to date.
   explicit RecordsStore(const std::filesystem::path& file);
+  /// Opens an existing database for queries only: the file is never written, and one that does
+  /// not hold this program's records schema is refused (RequireRecordsSchema).
+  static RecordsStore OpenForReading(const std::filesystem::path& file);
 
   /// Records a run with its units and steps; returns false if that recording is already there.
   bool AddRun(const RunRecord& run);
@@ -148,6 +151,8 @@ class RecordsStore {
   const std::filesystem::path& file() const { return database_.file(); }
 
  private:
+  struct ReadOnly {};
+  RecordsStore(const std::filesystem::path& file, ReadOnly);
   void EnsureUnit(const std::string& serial, const std::string& kind);
 
   SqliteDatabase database_;

@@ -6,11 +6,11 @@
 
 namespace adahrs::calib {
 
-SqliteDatabase::SqliteDatabase(const std::filesystem::path& file, bool create) : file_(file) {
+SqliteDatabase::SqliteDatabase(const std::filesystem::path& file, bool create, bool read_only) : file_(file) {
   if (!create && !std::filesystem::exists(file)) {
     throw RecordsError(fmt::format("records database {}: no such file", file.string()));
   }
-  const int flags = SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
+  const int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
   if (sqlite3_open_v2(file.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string message = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
@@ -18,7 +18,7 @@ SqliteDatabase::SqliteDatabase(const std::filesystem::path& file, bool create) :
     throw RecordsError(fmt::format("records database {}: cannot open: {}", file.string(), message));
   }
   sqlite3_busy_timeout(db_, 5000);
-  Execute("PRAGMA foreign_keys = ON; PRAGMA journal_mode = WAL;");
+  if (!read_only) Execute("PRAGMA foreign_keys = ON; PRAGMA journal_mode = WAL;");
 }
 
 SqliteDatabase::~SqliteDatabase() { sqlite3_close(db_); }

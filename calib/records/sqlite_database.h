@@ -60,8 +60,9 @@ class SqliteStatement {
 
 class SqliteDatabase {
  public:
-  /// Opens (creating if `create`) the database file; throws RecordsError naming the file.
-  SqliteDatabase(const std::filesystem::path& file, bool create);
+  /// Opens (creating if `create`; read-only if `read_only`, which never writes the file) the
+  /// database file; throws RecordsError naming the file.
+  SqliteDatabase(const std::filesystem::path& file, bool create, bool read_only = false);
   ~SqliteDatabase();
   SqliteDatabase(const SqliteDatabase&) = delete;
   SqliteDatabase& operator=(const SqliteDatabase&) = delete;

@@ -253,6 +253,8 @@ Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
     rec.meta = nlohmann::json::parse(meta_in);
   } catch (const nlohmann::json::parse_error& e) {
     throw RecordingError(meta_path.string() + ": not valid JSON at byte " + std::to_string(e.byte));
+  } catch (const nlohmann::json::exception& e) {  // a number beyond double's range (1e400)
+    throw RecordingError(meta_path.string() + ": not valid JSON: " + e.what());
   }
   if (!rec.meta.is_object() || !rec.meta.contains("format_version")) {
     throw RecordingError(meta_path.string() + ": $.format_version missing");

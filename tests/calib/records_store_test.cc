@@ -121,6 +121,28 @@ TEST_F(RecordsStoreTest, ConstantsVersionsAreKeptAndNeverOverwritten) {
   EXPECT_EQ(PythonQuery("SELECT count(*) FROM constants"), "[(3,)]\n");
 }
 
+// A query never writes: an empty file, another SQLite database, or a database written by this
+// program are opened read-only; the first two are refused by name and left as they were.
+TEST_F(RecordsStoreTest, ReadingNeverWritesAndRefusesWhatIsNotARecordsDatabase) {
+  const std::filesystem::path empty = dir_ / "empty.sqlite";
+  std::ofstream(empty).close();
+  try {
+    RecordsStore::OpenForReading(empty);
+    FAIL() << "an empty file was opened";
+  } catch (const RecordsError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("not an adahrs records database"));
+  }
+  EXPECT_EQ(std::filesystem::file_size(empty), 0u);
+  {
+    RecordsStore store(db_);
+    store.AddConstants(Constants("IMU-0001", "c1"));
+  }
+  const auto before = std::filesystem::last_write_time(db_);
+  RecordsStore reader = RecordsStore::OpenForReading(db_);
+  EXPECT_EQ(reader.History("IMU-0001").constants.size(), 1u);
+  EXPECT_EQ(std::filesystem::last_write_time(db_), before);
+}
+
 TEST_F(RecordsStoreTest, HistoryShowsDownloadsAndAcceptanceVerdicts) {
   RecordsStore store(db_);
   store.AddConstants(Constants("IMU-0001", "c1"));

@@ -1,5 +1,7 @@
 #include "sensor_sim/param_reader.h"
 
+#include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include <gmock/gmock.h>
@@ -65,6 +67,16 @@ TEST(ParamReader, WrongTypeIsRefused) {
   ParamReader r(j, "f.json");
   EXPECT_THAT(ErrorOf([&] { r.Integer("n", 0, 4); }), HasSubstr("expected an integer"));
   EXPECT_THAT(ErrorOf([&] { r.Flag("on"); }), HasSubstr("expected true or false"));
+}
+
+// A number beyond double's range is a parse failure of the file, named as such (it escaped as
+// a bare "[json.exception.out_of_range.406]").
+TEST(ParamReader, NumberBeyondDoubleRangeNamesTheFile) {
+  const std::string path = (std::filesystem::temp_directory_path() / "adahrs_param_reader_1e400.json").string();
+  std::ofstream(path) << R"({"x": 1e400})";
+  EXPECT_THAT(ErrorOf([&] { ParamReader::LoadFile(path); }),
+              AllOf(HasSubstr(path + ": not valid JSON"), HasSubstr("1e400")));
+  std::filesystem::remove(path);
 }
 
 }  // namespace
