@@ -1,10 +1,13 @@
 #include "calib/executor/run_session.h"
 
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -47,16 +50,31 @@ PlanTiming TimingFor(const hil::Station& station) {
   return timing;
 }
 
-// The t_s of the last complete row of a CSV (0 when it has none).
+// The t_s of the last complete row of a CSV (0 when it has none); a cell that is not a time of
+// the run is refused naming the file and line.
 double LastRowTime(const std::filesystem::path& csv) {
   std::ifstream in(csv);
   std::string line, last;
+  long line_number = 1, last_number = 0;
   std::getline(in, line);  // header
   while (std::getline(in, line)) {
-    if (!line.empty()) last = line;
+    ++line_number;
+    if (!line.empty()) {
+      last = line;
+      last_number = line_number;
+    }
   }
   if (last.empty()) return 0.0;
-  return std::stod(last.substr(0, last.find(',')));
+  const std::string cell = last.substr(0, last.find(','));
+  double t_s = 0.0;
+  const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), t_s);
+  constexpr double kMaxRunTime_s = 365.0 * 86400.0;  // as the journal's (resume_point.cc)
+  if (ec != std::errc() || end != cell.data() + cell.size() || !(t_s >= 0.0 && t_s <= kMaxRunTime_s)) {
+    throw std::runtime_error(fmt::format("{}:{}: column 1 (t_s) '{}' is not a time of the run: the last complete "
+                                         "row is corrupt, so the run cannot be resumed after it",
+                                         csv.string(), last_number, cell));
+  }
+  return t_s;
 }
 
 // Everything a run needs once the station, the sequence and the run directory are decided.

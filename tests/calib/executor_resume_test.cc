@@ -6,6 +6,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -86,6 +87,22 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   // F4 driver may read that stale reply as its own and fail with "Invalid data" rather than
   // retry: reported to the drivers owner.)
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
+
+  // A copy whose last complete row is garbled is refused by file and line before anything moves
+  // (it died with a bare "stod").
+  const std::filesystem::path garbled = dir.path() / "garbled";
+  std::filesystem::copy(run_dir, garbled, std::filesystem::copy_options::recursive);
+  std::filesystem::remove(garbled / "imu.csv");
+  const size_t last_row = complete_at_kill.rfind('\n', complete_at_kill.size() - 2) + 1;
+  std::ofstream(garbled / "imu.csv", std::ios::binary)
+      << complete_at_kill.substr(0, last_row) << "x" << complete_at_kill.substr(last_row);
+  const long last_line = static_cast<long>(std::count(complete_at_kill.begin(), complete_at_kill.end(), '\n'));
+  const pid_t refused = Spawn({adahrs, "run", "--resume", garbled.string()}, dir.path() / "garbled.log");
+  ::waitpid(refused, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);
+  EXPECT_NE(ReadAll(dir.path() / "garbled.log").find("imu.csv:" + std::to_string(last_line) + ": column 1 (t_s) 'x"),
+            std::string::npos) << ReadAll(dir.path() / "garbled.log");
+
   const pid_t second = Spawn({adahrs, "run", "--resume", run_dir.string()}, dir.path() / "second.log");
   ::waitpid(second, &status, 0);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadAll(dir.path() / "second.log");
