@@ -12,6 +12,7 @@
 #include "apps/commands.h"
 #include "calib/constants/constants_file.h"
 #include "calib/download/constants_download.h"
+#include "calib/records/download_records.h"
 #include "calib/records/records_sources.h"
 #include "calib/records/records_store.h"
 #include "hil/clock.h"
@@ -40,15 +41,19 @@ void Download(const DownloadOptions& options) {
   }
   const calib::ConstantsFile file = calib::ReadConstantsFile(options.constants);
   std::optional<calib::RecordsStore> store;
-  int64_t records_version = 0;
-  if (!options.db.empty()) {
-    store.emplace(options.db);
-    records_version = store->AddConstants(calib::ConstantsRecordFromFile(options.constants));
-  }
+  if (!options.db.empty()) store.emplace(options.db);
+  // Recorded once the outcome is known: a refused file never becomes a constants version.
+  const auto record_attempt = [&](const calib::DownloadRecord& attempt) {
+    if (!store) return;
+    if (!calib::RecordDownloadAttempt(*store, calib::ConstantsRecordFromFile(options.constants), attempt)) {
+      std::cout << fmt::format("records: nothing recorded in {}: the unit refused a file that is no constants "
+                               "version of {} yet\n", options.db, file.serial);
+    }
+  };
   const std::unique_ptr<hil::Clock> clock =
       hil::MakeClock(station.time_scale, station.clock_file);
   hil::UnitLink link(*entry, *clock);
-  calib::DownloadRecord record{file.serial, records_version, station.name, entry->role,
+  calib::DownloadRecord record{file.serial, 0, station.name, entry->role,
                                false, false, std::nullopt, std::nullopt, ""};
   try {
     const calib::DownloadResult result = calib::DownloadConstants(link, file, options.constants);
@@ -65,11 +70,11 @@ void Download(const DownloadOptions& options) {
     record.unit_constants_version = result.after.constants_version;
     record.unit_constants_crc = result.after.constants_crc;
     record.detail = "ok";
-    if (store) store->AddDownload(record);
+    record_attempt(record);
   } catch (const calib::DownloadError& e) {
     record.verified = e.verified();
     record.detail = e.what();
-    if (store) store->AddDownload(record);
+    record_attempt(record);
     throw;
   }
 }

@@ -9,6 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "calib/records/download_records.h"
 #include "calib/records/records_schema.h"
 
 namespace adahrs::calib {
@@ -141,6 +142,26 @@ TEST_F(RecordsStoreTest, ReadingNeverWritesAndRefusesWhatIsNotARecordsDatabase) 
   RecordsStore reader = RecordsStore::OpenForReading(db_);
   EXPECT_EQ(reader.History("IMU-0001").constants.size(), 1u);
   EXPECT_EQ(std::filesystem::last_write_time(db_), before);
+}
+
+// A refused file never becomes a constants version; an accepted one does, and a later refused
+// attempt of the same file is recorded against it.
+TEST_F(RecordsStoreTest, OnlyAcceptedFilesBecomeConstantsVersions) {
+  RecordsStore store(db_);
+  const DownloadRecord refused{"IMU-0001", 0, "virtual lab", "imu1", false, false, std::nullopt, std::nullopt,
+                               "IMU-0002 answers on imu1: another unit's constants"};
+  EXPECT_EQ(RecordDownloadAttempt(store, Constants("IMU-0001", "c1"), refused), std::nullopt);
+  EXPECT_EQ(PythonQuery("SELECT count(*) FROM constants"), "[(0,)]\n");
+  EXPECT_EQ(PythonQuery("SELECT count(*) FROM downloads"), "[(0,)]\n");
+
+  DownloadRecord accepted = refused;
+  accepted.verified = accepted.committed = true;
+  accepted.detail = "ok";
+  EXPECT_EQ(RecordDownloadAttempt(store, Constants("IMU-0001", "c1"), accepted), 1);
+  EXPECT_EQ(RecordDownloadAttempt(store, Constants("IMU-0001", "c1"), refused), 1);
+  EXPECT_EQ(RecordDownloadAttempt(store, Constants("IMU-0001", "c2"), refused), std::nullopt);
+  EXPECT_EQ(PythonQuery("SELECT count(*) FROM constants"), "[(1,)]\n");
+  EXPECT_EQ(PythonQuery("SELECT verified, committed FROM downloads ORDER BY rowid"), "[(1, 1), (0, 0)]\n");
 }
 
 TEST_F(RecordsStoreTest, HistoryShowsDownloadsAndAcceptanceVerdicts) {
