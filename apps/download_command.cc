@@ -11,6 +11,7 @@
 
 #include "apps/commands.h"
 #include "calib/constants/constants_file.h"
+#include "calib/constants/provenance_check.h"
 #include "calib/download/constants_download.h"
 #include "calib/records/download_records.h"
 #include "calib/records/records_sources.h"
@@ -40,6 +41,9 @@ void Download(const DownloadOptions& options) {
         fmt::format("{}: the station has no unit with role '{}'", options.station, options.unit));
   }
   const calib::ConstantsFile file = calib::ReadConstantsFile(options.constants);
+  for (const calib::RecordingCheck& c : calib::RequireUnchangedRecordings(file, options.constants)) {
+    if (!c.current_sha256) std::cout << "provenance: recording " << c.Describe() << "\n";
+  }
   std::optional<calib::RecordsStore> store;
   if (!options.db.empty()) store.emplace(options.db);
   // Recorded once the outcome is known: a refused file never becomes a constants version.

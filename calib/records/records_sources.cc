@@ -12,6 +12,7 @@
 #include <openssl/evp.h>
 
 #include "calib/constants/constants_file.h"
+#include "calib/constants/provenance_check.h"
 #include "calib/constants/recording_checksum.h"
 #include "calib/sequence/sequence_json.h"
 #include "hil/recording/recording_format.h"
@@ -144,6 +145,7 @@ RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
 
 ConstantsRecord ConstantsRecordFromFile(const std::filesystem::path& constants_json) {
   const ConstantsFile file = ReadConstantsFile(constants_json);
+  RequireUnchangedRecordings(file, constants_json.string());  // never record what no longer stands
   ConstantsRecord record;
   record.serial = file.serial;
   record.kind = file.kind == hil::UnitKind::kImu ? "imu" : "ads";

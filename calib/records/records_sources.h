@@ -18,6 +18,8 @@ namespace adahrs::calib {
 RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir);
 
 /// The constants file as the next version of its unit; the file checksum is SHA-256 of its bytes.
+/// Refused (std::runtime_error naming the file and the recording) when a recording it was fitted
+/// on changed since the fit (provenance_check.h).
 ConstantsRecord ConstantsRecordFromFile(const std::filesystem::path& constants_json);
 
 /// SHA-256 of one file's bytes, 64 lowercase hex digits (OpenSSL libcrypto); throws

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "calib/constants/provenance_check.h"
 #include "calib/report/svg_plot.h"
 
 namespace adahrs::calib {
@@ -29,8 +30,8 @@ std::string ConstantsSection(const ConstantsFile& file) {
   std::string html = fmt::format("<p>strategy {}, created {}, software {}</p>\n<ul>\n",
                                  XmlEscape(file.strategy), XmlEscape(file.created_utc),
                                  XmlEscape(file.software_version));
-  for (const RecordingReference& r : file.provenance.recordings) {
-    html += fmt::format("<li>recording {} sha256 {}</li>\n", XmlEscape(r.path), XmlEscape(r.sha256));
+  for (const RecordingCheck& c : CheckRecordings(file.provenance)) {
+    html += fmt::format("<li{}>recording {}</li>\n", c.changed() ? " class=\"fail\"" : "", XmlEscape(c.Describe()));
   }
   html += "</ul>\n";
   return html + RenderTable(ConstantsTable(file));
