@@ -374,7 +374,11 @@ void Executor::WaitTableAt(double rate_dps, double estimate_s) {
 }
 
 void Executor::WaitChamberInBand(double target_c, double band_c, double soak_s, double estimate_s) {
-  double pv_c = 0.0;
+  // The plan estimated from where the sequence left the chamber; it may start elsewhere (a first
+  // step 10 degC away, a resume after a crash mid-ramp), so the budget also counts from its PV.
+  const double start_c = Chamber().ReadProcessC();
+  estimate_s = std::max(estimate_s, std::abs(target_c - start_c) / options_.chamber_ramp_c_per_min * 60.0 + soak_s);
+  double pv_c = start_c;
   double inside_since_s = -1.0;  // clock time the value entered the band, < 0 when outside
   WaitFor(
       fmt::format("{} inside {:.2f} +- {:.2f} degC for {:.0f} s", ChamberRole(), target_c, band_c, soak_s),

@@ -60,6 +60,9 @@ struct ExecutorOptions {
   double poll_interval_s = 0.25;     ///< clock seconds between condition polls
   double refresh_interval_s = 1.0;   ///< clock seconds between instrument readings for the rows
   double timeout_factor = 3.0;       ///< wait timeout = factor × estimate + margin
+  /// The chamber's mean rate to a new set point, as the plan's model (PlanTiming): a chamber wait
+  /// is budgeted from the process value it starts at, at this rate, when that is longer.
+  double chamber_ramp_c_per_min = PlanTiming{}.chamber_ramp_c_per_min;
   double timeout_margin_s = 60.0;     ///< clock seconds
   double min_margin_wall_s = 3.0;     ///< wall seconds the margin never falls below
   double min_poll_wall_s = 0.005;     ///< wall seconds between polls at least

@@ -6,6 +6,8 @@
 #include <memory>
 
 #include <gmock/gmock.h>
+#include <cstdio>
+
 #include <gtest/gtest.h>
 
 #include "calib/executor/run_session.h"
@@ -104,6 +106,40 @@ TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
   for (const auto& r : rec.imu) EXPECT_NE(r.tag, 3) << "no row tagged for step 2";
   EXPECT_EQ(testing::TaggedImuRows(rec).at({"IMU-0002", 2}).size(), 200u);  // step 1 kept
   EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
+}
+
+// A first temperature step whose chamber starts far from where the plan assumed (25 degC): the
+// wait is budgeted from the chamber's own process value. The F4 holds 0 degC at power-up; the
+// step asks for 25 degC, which the plan estimated at its 10 s soak alone: 3 x 10 s + the margin
+// would abort it minutes before the air arrives (a 5 degC/min ramp, then the loop's tail).
+TEST(ExecutorRig, AFirstChamberStepFarFromThePlansStartIsWaitedFor) {
+  auto config = nlohmann::json::parse(adahrs::testing::RigProcess(kTimeScale).config().dump());
+  config["instruments"]["watlow_f4"]["controller"]["static_set_point_c"] = 0.0;
+  config["instruments"]["watlow_f4"]["chamber"]["initial_air_c"] = 0.0;
+  adahrs::testing::RigProcess rig(kTimeScale / 2, config);
+  TempDir dir("far_chamber");
+  NewRunOptions options;
+  options.station_file = rig.WriteStation();
+  options.sequence_file = testing::WriteSequence(dir.path(), "imu", nlohmann::json::parse(R"([
+    {"kind": "target_temperature", "target_c": 25.0, "band_c": 1.0, "soak_s": 10.0}])"));
+  options.run_dir = dir.path() / "run";
+  RecordingProgress progress;
+  std::atomic<bool> stop{false};
+  StartRun(options, progress, stop);
+  const hil::Recording rec = hil::ReadRecording(options.run_dir);
+  EXPECT_EQ(rec.meta["status"], "complete");
+  ASSERT_FALSE(rec.imu.empty());
+  double first_c = 0.0;  // the first reported temperature (rows before the first report carry 0)
+  for (const auto& r : rec.imu) {
+    if (r.chamber_c != 0.0) {
+      first_c = r.chamber_c;
+      break;
+    }
+  }
+  std::printf("chamber from %.1f degC to %.1f degC over %.0f s\n", first_c, rec.imu.back().chamber_c,
+              rec.imu.back().t_s - rec.imu.front().t_s);
+  EXPECT_LT(first_c, 5.0);  // it did start far away
+  EXPECT_NEAR(rec.imu.back().chamber_c, 25.0, 1.0);
 }
 
 // thermal_profile: the TAG is on for the whole profile run, so every packet of the run is tagged,
