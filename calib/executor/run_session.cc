@@ -14,6 +14,7 @@
 #include "calib/executor/journal.h"
 #include "calib/executor/offset_clock.h"
 #include "calib/executor/resume_point.h"
+#include "calib/executor/run_lock.h"
 #include "calib/executor/run_meta.h"
 #include "calib/executor/unit_logger.h"
 #include "calib/sequence/sequence_json.h"
@@ -221,6 +222,7 @@ RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
                                s.run_dir.string(), s.run_dir.string()));
   }
   std::filesystem::create_directories(s.run_dir);
+  const RunDirectoryLock lock(s.run_dir);
   const std::unique_ptr<hil::Clock> clock =
       hil::MakeClock(s.station.time_scale, s.station.clock_file);
   return Execute(s, *clock, std::nullopt, 0, std::nullopt, {}, progress, stop, options);
@@ -229,6 +231,8 @@ RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
 RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progress,
                      const std::atomic<bool>& stop, const NewRunOptions& options) {
   const std::filesystem::path meta_path = run_dir / hil::kMetaJsonName;
+  if (!std::filesystem::exists(meta_path)) throw RunError(meta_path.string() + ": no run to resume here");
+  const RunDirectoryLock lock(run_dir);  // before anything of the run is read or moved
   const nlohmann::json meta = sensor_sim::ParamReader::LoadFile(meta_path.string());
   if (!meta.contains("format_version") || meta["format_version"] != hil::kRecordingFormatVersion ||
       !meta.contains("station") || !meta.contains("sequence")) {
