@@ -137,7 +137,10 @@ size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point 
   const uint64_t taken = port.total_written > in_line ? port.total_written - in_line : 0;
   const bool shrank = unread < port.unread_at_last_look;
   port.unread_at_last_look = unread;
-  if (taken > port.taken_at_least || shrank) {
+  // A client that has taken every byte written is waiting, not stalled: while another port holds
+  // the clock its line brings nothing new, and the stall limit must not run out on it meanwhile.
+  const bool caught_up = in_line == 0 && port.total_written > 0;
+  if (taken > port.taken_at_least || shrank || caught_up) {
     port.taken_at_least = std::max(taken, port.taken_at_least);
     port.last_progress = now;
     port.looks_since_progress = 0;

@@ -24,8 +24,9 @@
 // most kLockstepBudgetBytes not yet read (the host's backlog plus the pty's input queue), so a
 // slow or descheduled reader slows the world instead of losing bytes, and time_scale becomes the
 // top speed. A port counts as read from the moment its client reads or flushes the pty's queue,
-// and as unread again after kLockstepStallLimit_s of wall time without that: a port nobody opens
-// never holds the clock, and one whose client went away holds it that long. The clock file
+// and as unread again after kLockstepStallLimit_s of wall time without that while bytes wait for
+// it (a client that has taken everything is waiting, however long another port holds the clock):
+// a port nobody opens never holds the clock, and one whose client went away holds it that long. The clock file
 // (SetClockFile, hil/rig_clock.h) publishes the frame count for pipelines that follow the rig.
 #pragma once
 
