@@ -55,7 +55,7 @@ struct SequenceLimits {
   /// The gyro interlock jogs the table at this rate before acquiring (thesis §3.5, Fig. 45b).
   double interlock_jog_rate_dps = 100.0;
 
-  // --- Environmental chamber (Watlow F4 on the IMU rig) ---
+  // --- Environmental chamber (Watlow F4 on the IMU bench) ---
   std::string chamber_name = "chamber (Watlow F4)";
   /// Set point limits of the chamber (F4 registers 602/603 as the rig is set up).
   double chamber_min_c = -70.0;
@@ -69,6 +69,14 @@ struct SequenceLimits {
   int chamber_max_jump_count = 9999;
   /// Longest ramp-time or soak step: hours 0…99, minutes and seconds 0…59 (registers 4009–4011).
   double chamber_max_step_duration_s = 99.0 * 3600.0 + 59.0 * 60.0 + 59.0;
+
+  // --- Environmental chamber of the ADS bench (Watlow 942) ---
+  /// The 942 itself stores profiles of up to 24 steps (protocols.md §3.6, DOC), but its driver
+  /// (hil/drivers/watlow942_chamber.h) runs set points only: a thermal_profile step in an ADS
+  /// sequence would be refused by the driver after the chamber had soaked. Its set point range
+  /// and ramp are taken as the F4's above.
+  std::string ads_chamber_name = "chamber (Watlow 942)";
+  bool ads_chamber_runs_profiles = false;
 
   // --- Air data test set (Druck ADTS 403/405) ---
   std::string adts_name = "air data test set (ADTS)";

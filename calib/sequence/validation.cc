@@ -415,7 +415,18 @@ std::vector<SequenceProblem> Validate(const Sequence& sequence, const SequenceLi
               }
               check.TableAccel(p + ".table_accel_dps2", s.table_accel_dps2);
             },
-            [&](const ThermalProfileStep& s) { check.Profile(p, s, set_point_c); },
+            [&](const ThermalProfileStep& s) {
+              if (sequence.unit_kind == UnitKind::kAds && !limits.ads_chamber_runs_profiles) {
+                check.Add(p + ".kind",
+                          fmt::format("the ADS bench's {} runs set points only: its driver "
+                                      "downloads no profile (use target_temperature and log "
+                                      "steps)",
+                                      limits.ads_chamber_name),
+                          fmt::format("{} driver: set points only", limits.ads_chamber_name));
+                return;
+              }
+              check.Profile(p, s, set_point_c);
+            },
             [&](const AltitudeStep& s) { check.Altitude(p, s); },
             [&](const AirspeedStep& s) { check.Airspeed(p, s); },
             [&](const LogStep& s) {

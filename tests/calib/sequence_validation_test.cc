@@ -244,7 +244,7 @@ TEST(SequenceValidation, ProfileShapeRules) {
 }
 
 TEST(SequenceValidation, ProfileLongerThanTheChamberHoldsRefused) {
-  // A Watlow 942 holds 24 steps (protocols.md §3.6).
+  // A chamber holding 24 steps, as the Watlow 942 does (protocols.md §3.6).
   SequenceLimits limits;
   limits.chamber_name = "chamber (Watlow 942)";
   limits.chamber_max_profile_steps = 24;
@@ -253,6 +253,18 @@ TEST(SequenceValidation, ProfileLongerThanTheChamberHoldsRefused) {
   const SequenceProblem p = OnlyProblem(Imu({{std::nullopt, Profile(steps)}}), limits);
   EXPECT_EQ(p.path, "$.steps[0].profile_steps");
   EXPECT_EQ(p.limit, "chamber (Watlow 942) 24 profile steps");
+}
+
+TEST(SequenceValidation, AdsThermalProfileRefusedSinceThe942DriverRunsSetPointsOnly) {
+  const SequenceProblem p = OnlyProblem(
+      Ads({{std::nullopt, Profile({F4RampRate{-40.0, 2.0}, F4Soak{60.0}, F4End{}})}}));
+  EXPECT_EQ(p.path, "$.steps[0].kind");
+  EXPECT_THAT(p.rule, HasSubstr("chamber (Watlow 942) runs set points only"));
+  EXPECT_EQ(p.limit, "chamber (Watlow 942) driver: set points only");
+  SequenceLimits profiles;  // a bench whose ADS chamber driver ran profiles would take it
+  profiles.ads_chamber_runs_profiles = true;
+  EXPECT_THAT(ValidateSequence(Ads({{std::nullopt, Profile({F4Soak{60.0}, F4End{}})}}), profiles),
+              IsEmpty());
 }
 
 TEST(SequenceValidation, StepKindMustSuitTheUnitKind) {

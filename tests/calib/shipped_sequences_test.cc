@@ -87,11 +87,20 @@ TEST(ShippedSequences, ThermalSequencesCoverTheirRanges) {
   EXPECT_EQ(TemperatureSpanC(Load("ads_calibration")), std::make_pair(-40.0, 85.0));
 }
 
-TEST(ShippedSequences, AdsBurnInFitsTheWatlow942) {
-  // The ADS bench's Watlow 942 holds 24 profile steps (protocols.md §3.6).
-  SequenceLimits limits;
-  limits.chamber_max_profile_steps = 24;
-  EXPECT_TRUE(ValidateSequence(Load("ads_burn_in"), limits).empty());
+TEST(ShippedSequences, AdsBurnInRunsOnTheWatlow942sSetPointsWithLoggedDwells) {
+  // The ADS bench's 942 driver runs set points only: three cycles of a set point at each end of
+  // the rating and a 30 min logged dwell there.
+  const Sequence s = Load("ads_burn_in");
+  std::vector<double> dwell_ends_c;
+  for (size_t i = 0; i + 1 < s.steps.size(); ++i) {
+    EXPECT_FALSE(std::holds_alternative<ThermalProfileStep>(s.steps[i].body));
+    const auto* target = std::get_if<TargetTemperatureStep>(&s.steps[i].body);
+    const auto* log = std::get_if<LogStep>(&s.steps[i + 1].body);
+    if (target == nullptr || log == nullptr) continue;
+    EXPECT_EQ(log->duration_s, std::optional<double>(1800.0));
+    dwell_ends_c.push_back(target->target_c);
+  }
+  EXPECT_THAT(dwell_ends_c, ElementsAre(-40.0, 85.0, -40.0, 85.0, -40.0, 85.0));
 }
 
 TEST(ShippedSequences, AdsCalibrationPointsDenserWhereToleranceIsTighter) {
