@@ -69,6 +69,7 @@ void Executor::Run(size_t first_step, std::optional<double> resumed_from_s) {
   current_action_ = first_action;
   try {
     EndAcquisitions();
+    SafeStart();
     if (resumed_from_s) {
       const double now_s = clock_.NowS();
       meta_.AddRejectedInterval(first_step, *resumed_from_s, now_s, "repeated partial step");
@@ -179,6 +180,41 @@ void Executor::RestoreState(size_t first_action) {
   journal_.Append({{"event", "state_restored"}, {"t_s", clock_.NowS()}});
 }
 
+void Executor::StopTableAndWait() {
+  hil::RateTable& table = *instruments_.rate_table;
+  table.Stop(options_.safe_stop_accel_dps2);
+  // Bounded wait for rest: the slowest stop is from the table's top rate.
+  const double deadline_s = clock_.NowS() + 360.0 / options_.safe_stop_accel_dps2 + 10.0;
+  double rate_dps = table.ReadRateDps();
+  while (std::abs(rate_dps) > options_.table_rate_tolerance_dps) {
+    if (clock_.NowS() >= deadline_s) {
+      throw RunError(fmt::format("{}: the rate table did not come to rest: {:.3f} deg/s after "
+                                 "stopping at {:g} deg/s^2",
+                                 Where(), rate_dps, options_.safe_stop_accel_dps2));
+    }
+    clock_.SleepS(PollIntervalS());
+    rate_dps = table.ReadRateDps();
+  }
+}
+
+void Executor::SafeStart() {
+  nlohmann::json event = {{"event", "rig_safe_at_start"}};
+  if (instruments_.rate_table != nullptr) {
+    const double found_dps = instruments_.rate_table->ReadRateDps();
+    event["table_found_dps"] = found_dps;
+    if (std::abs(found_dps) > options_.table_rate_tolerance_dps) {
+      progress_.Note(fmt::format("rate table found turning at {:.2f} deg/s: stopping it first",
+                                 found_dps));
+    }
+    StopTableAndWait();
+  }
+  if (instruments_.chamber != nullptr) instruments_.chamber->Hold();
+  if (instruments_.adts != nullptr) instruments_.adts->GoToGround();
+  event["t_s"] = clock_.NowS();
+  journal_.Append(event);
+  journal_.Sync();
+}
+
 void Executor::MakeSafe() {
   const auto attempt = [&](const char* what, auto&& f) {
     try {
@@ -190,15 +226,7 @@ void Executor::MakeSafe() {
     }
   };
   if (instruments_.rate_table != nullptr) {
-    attempt("table stop", [&] {
-      instruments_.rate_table->Stop(options_.safe_stop_accel_dps2);
-      // Bounded wait for rest: the slowest stop is from the table's top rate.
-      const double deadline_s = clock_.NowS() + 360.0 / options_.safe_stop_accel_dps2 + 10.0;
-      while (std::abs(instruments_.rate_table->ReadRateDps()) > options_.table_rate_tolerance_dps &&
-             clock_.NowS() < deadline_s) {
-        clock_.SleepS(PollIntervalS());
-      }
-    });
+    attempt("table stop", [&] { StopTableAndWait(); });
   }
   if (instruments_.chamber != nullptr) attempt("chamber hold", [&] { instruments_.chamber->Hold(); });
   if (instruments_.adts != nullptr) attempt("ADTS to ground", [&] { instruments_.adts->GoToGround(); });

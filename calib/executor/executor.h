@@ -102,6 +102,12 @@ class Executor {
   void RunActions(size_t first_action);
   void Execute(const PlannedAction& a);
   void RestoreState(size_t first_action);
+  /// Before anything else of a run or a resume: what a killed run may have left moving is brought
+  /// to a known state (table stopped and at rest, chamber profile stopped holding its set point,
+  /// ADTS to ground), so no step starts on a spinning table. A table that does not come to rest
+  /// stops the run.
+  void SafeStart();
+  void StopTableAndWait();
   void MakeSafe();
 
   void Mount(int orientation);

@@ -1,6 +1,7 @@
 // The executor against the virtual rig as a separate process (the production code path: station
 // file, serial ports, drivers). Expected values come from the sequence (N, orientations, rates)
 // and the rig's own report of its physics (control port `env`), never from the executor.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <memory>
@@ -10,7 +11,9 @@
 
 #include <gtest/gtest.h>
 
+#include "calib/executor/journal.h"
 #include "calib/executor/run_session.h"
+#include "hil/drivers/station_instruments.h"
 #include "tests/calib/executor_test_util.h"
 
 namespace adahrs::calib {
@@ -106,6 +109,40 @@ TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
   for (const auto& r : rec.imu) EXPECT_NE(r.tag, 3) << "no row tagged for step 2";
   EXPECT_EQ(testing::TaggedImuRows(rec).at({"IMU-0002", 2}).size(), 200u);  // step 1 kept
   EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
+}
+
+// A killed run leaves the table turning: the next run stops it before its first step, so no
+// accelerometer row is acquired on a spinning table.
+TEST(ExecutorRig, ATableLeftTurningIsStoppedBeforeTheFirstStep) {
+  adahrs::testing::RigProcess rig(kTimeScale);
+  TempDir dir("turning");
+  NewRunOptions options;
+  options.station_file = rig.WriteStation();
+  {
+    const hil::Station station = hil::Station::Load(options.station_file);
+    const std::unique_ptr<hil::Clock> clock = hil::MakeClock(station.time_scale, station.clock_file);
+    hil::StationInstruments left = hil::OpenStation(station, *clock);
+    left.rate_table->CommandRate(50.0, 100.0);
+    clock->SleepS(5.0);
+  }
+  ASSERT_NEAR(testing::RigTableRateDps(rig), 50.0, 0.1);
+  options.sequence_file = testing::WriteSequence(dir.path(), "imu", nlohmann::json::parse(R"([
+    {"kind": "accel", "orientation": 11, "packets": 200}])"));
+  options.run_dir = dir.path() / "run";
+  RecordingProgress progress;
+  std::atomic<bool> stop{false};
+  EXPECT_EQ(StartRun(options, progress, stop).status, "complete");
+  const hil::Recording rec = hil::ReadRecording(options.run_dir);
+  const auto tagged = testing::TaggedImuRows(rec);
+  ASSERT_EQ(tagged.at({"IMU-0001", 1}).size(), 200u);
+  for (const auto& r : tagged.at({"IMU-0001", 1})) ASSERT_NEAR(r.table_rate_dps, 0.0, 0.01);
+  const JournalContents journal = ReadJournal(options.run_dir);
+  const auto safe = std::find_if(journal.events.begin(), journal.events.end(), [](const auto& e) {
+    return e["event"] == "rig_safe_at_start";
+  });
+  ASSERT_NE(safe, journal.events.end());
+  EXPECT_NEAR((*safe)["table_found_dps"].get<double>(), 50.0, 0.1);
+  EXPECT_THAT(progress.notes, ::testing::Contains(HasSubstr("rate table found turning at 50")));
 }
 
 // A first temperature step whose chamber starts far from where the plan assumed (25 degC): the
