@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <cstdio>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace adahrs::hil {
@@ -279,12 +281,90 @@ Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
   return rec;
 }
 
+namespace {
+
+// Per unit, rows come in the order they arrived: a row of a unit meta.json does not list (when it
+// lists serials), a negative step, time going back, or the unit's previous row again (same time,
+// counter and raw readings: a copy, not a burst of packets sharing an arrival time) is refused,
+// naming the file and line. Read twice, a row would count twice in every fit and narrow its
+// standard errors.
+class RowOrder {
+ public:
+  RowOrder(const nlohmann::json& meta, std::filesystem::path file) : file_(std::move(file)) {
+    if (!meta.contains("units") || !meta["units"].is_array()) return;
+    for (const nlohmann::json& u : meta["units"]) {
+      if (u.is_object() && u.contains("serial") && u["serial"].is_string()) {
+        last_[u["serial"].get<std::string>()];
+      }
+    }
+    listed_ = !last_.empty();
+  }
+
+  void Check(const std::string& unit, int step, double t_s, uint32_t seq, uint64_t raw, int line) {
+    auto it = last_.find(unit);
+    if (it == last_.end()) {
+      if (listed_) Fail(line, "unit '" + unit + "' is not listed in meta.json $.units");
+      it = last_.emplace(unit, Last{}).first;
+    }
+    if (step < 0) Fail(line, "unit " + unit + " step " + std::to_string(step) + " is negative");
+    Last& l = it->second;
+    if (l.seen && t_s < l.t_s) {
+      Fail(line, Format("unit %s t_s %.6f s goes back from %.6f s", unit, t_s, l.t_s));
+    }
+    if (l.seen && t_s == l.t_s && seq == l.seq && raw == l.raw) {
+      Fail(line, Format("unit %s repeats its previous row (seq %u, t_s %.6f s)", unit, seq, t_s));
+    }
+    l = {true, t_s, seq, raw};
+  }
+
+ private:
+  struct Last {
+    bool seen = false;
+    double t_s = 0.0;
+    uint32_t seq = 0;
+    uint64_t raw = 0;
+  };
+  template <typename... Args>
+  static std::string Format(const char* format, const std::string& unit, Args... args) {
+    char text[256];
+    std::snprintf(text, sizeof text, format, unit.c_str(), args...);
+    return text;
+  }
+  [[noreturn]] void Fail(int line, const std::string& what) const {
+    throw RecordingError(file_.string() + ":" + std::to_string(line) + ": " + what);
+  }
+  std::filesystem::path file_;
+  std::map<std::string, Last> last_;
+  bool listed_ = false;
+};
+
+// The raw readings of a row folded into one word: equal for a copied row, all but never for two
+// packets (the gyro and bridge counts carry noise).
+uint64_t RawWord(const ImuRecordRow& r) {
+  uint64_t w = 1469598103934665603ull;
+  const auto mix = [&w](uint64_t v) { w = (w ^ v) * 1099511628211ull; };
+  for (uint16_t t : r.accel_ticks) mix(t);
+  for (int32_t g : r.gyro_cnt) mix(static_cast<uint32_t>(g));
+  for (uint16_t t : r.temp_cnt) mix(t);
+  return w;
+}
+
+uint64_t RawWord(const AdsRecordRow& r) {
+  uint64_t w = 1469598103934665603ull;
+  const auto mix = [&w](int32_t v) { w = (w ^ static_cast<uint32_t>(v)) * 1099511628211ull; };
+  for (int32_t c : {r.ps_counts, r.pt_counts, r.ps_temp_counts, r.pt_temp_counts, r.oat_counts}) mix(c);
+  return w;
+}
+
+}  // namespace
+
 Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& sinks, const ReadOptions& options) {
   Recording rec = ReadRecordingMeta(run_dir);
   const int version = rec.format_version;
   const bool v2 = version >= 2;
 
   CsvCursor imu(run_dir / kImuCsvName, v2 ? kImuCsvHeader : kImuCsvHeaderV1, kImuCsvHeader, version, &rec.notes);
+  RowOrder imu_order(rec.meta, run_dir / kImuCsvName);
   while (imu.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     ImuRecordRow r;
     r.t_s = imu.Real(0);
@@ -307,9 +387,11 @@ Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& 
         r.comp_flags = imu.Integer<uint32_t>(36);
       }
     }
+    imu_order.Check(r.unit, r.step, r.t_s, r.seq, RawWord(r), imu.line());
     if (sinks.imu) sinks.imu(std::move(r), imu.line());
   }
   CsvCursor ads(run_dir / kAdsCsvName, v2 ? kAdsCsvHeader : kAdsCsvHeaderV1, kAdsCsvHeader, version, &rec.notes);
+  RowOrder ads_order(rec.meta, run_dir / kAdsCsvName);
   while (ads.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     AdsRecordRow r;
     r.t_s = ads.Real(0);
@@ -333,6 +415,7 @@ Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& 
         r.comp_flags = ads.Integer<uint32_t>(16);
       }
     }
+    ads_order.Check(r.unit, r.step, r.t_s, r.seq, RawWord(r), ads.line());
     if (sinks.ads) sinks.ads(std::move(r), ads.line());
   }
   return rec;

@@ -3,6 +3,8 @@
 // or unreadable file, a format version it does not know, a header that lacks one of the contract's
 // columns or repeats a name, a row with another number of columns than its header, a cell that is not a number of its column's type or is out of
 // its type's range — each error names the file, the 1-based line and the column name.
+// Per unit, rows must come in arrival order: a row of a unit meta.json does not list, a negative
+// step, a unit's time going back or its previous row repeated is refused by file and line.
 // A truncated last line (a crash while writing) is reported as such, not silently dropped:
 // `ReadOptions::allow_truncated_tail` accepts it and counts it, as a resumed run needs.
 // Reads format versions 1 and 2 (recording_format.h); version 1 rows have no compensated values.

@@ -47,7 +47,7 @@ def bridge_code(temp_c):
     return round(6710886 * (1.0 + 0.0026 * (temp_c - 25.0)))
 
 
-def write_run(run_dir, with_ads=True):
+def write_run(run_dir, with_ads=True, ads_rows=True):
     run_dir.mkdir()
     sequence = json.loads((ROOT / "calib/sequences/ads_calibration.json").read_text())
     unit = {"role": "ads1", "kind": "ads", "serial": SERIAL, "serial_number": 7,
@@ -78,7 +78,7 @@ def write_run(run_dir, with_ads=True):
                              f"{ps_pa:.2f},{qc_pa:.2f},{pressure_code(ps_pa, temp_c)},"
                              f"{pressure_code(qc_pa, temp_c)},{bridge_code(temp_c)},"
                              f"{bridge_code(temp_c)},800000,0,,,")
-    (run_dir / "ads.csv").write_text("\n".join(lines) + "\n")
+    (run_dir / "ads.csv").write_text("\n".join(lines if ads_rows else lines[:1]) + "\n")
     return points
 
 
@@ -123,11 +123,24 @@ def main(adahrs):
                 "reference", "--out", out)
         if r.returncode == 0 or "takes exactly one --run" not in r.stderr:
             failures.append(f"two runs: {r.returncode} {r.stderr}")
-        write_run(tmp / "imu_run", with_ads=False)
+        write_run(tmp / "imu_run", with_ads=False, ads_rows=False)
         r = run(adahrs, "fit", "--run", tmp / "imu_run", "--ads-strategy", "reference",
                 "--out", out)
         if r.returncode == 0 or "meta.json: the run has no ADS unit" not in r.stderr:
             failures.append(f"no ADS unit: {r.returncode} {r.stderr}")
+        # Rows of a unit meta.json does not list are refused by file and line.
+        write_run(tmp / "stray_run", with_ads=False)
+        r = run(adahrs, "fit", "--run", tmp / "stray_run", "--ads-strategy", "reference",
+                "--out", out)
+        stray = f"stray_run/ads.csv:2: unit '{SERIAL}' is not listed in meta.json $.units"
+        if r.returncode == 0 or stray not in r.stderr:
+            failures.append(f"unlisted unit: {r.returncode} {r.stderr}")
+        # A duplicated row (a copy, not a new packet) would count twice in the fit.
+        lines = (tmp / "run" / "ads.csv").read_text().splitlines()
+        (tmp / "run" / "ads.csv").write_text("\n".join(lines[:40] + [lines[39]] + lines[40:]) + "\n")
+        r = run(adahrs, "fit", "--run", tmp / "run", "--ads-strategy", "reference", "--out", out)
+        if r.returncode == 0 or "ads.csv:41: unit ADS-0007 repeats its previous row" not in r.stderr:
+            failures.append(f"repeated row: {r.returncode} {r.stderr}")
     for f in failures:
         print("FAIL:", f)
     return 1 if failures else 0

@@ -133,6 +133,49 @@ TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
   EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is \"2\", not an integer"));
 }
 
+// Per unit, rows come in arrival order; a copy, time going back, a unit meta.json does not list
+// and a negative step are refused by file and line. Rows 2-4 of imu.csv are seq 0, 1, 2.
+TEST_F(RecordingReaderTest, RowsOutOfArrivalOrderAreRefusedByLine) {
+  const auto append = [&](const std::string& row) { std::ofstream(dir_ / "imu.csv", std::ios::app) << row; };
+  std::ifstream in(dir_ / "imu.csv");
+  std::string header, row1, row2, row3;
+  std::getline(in, header);
+  std::getline(in, row1);
+  std::getline(in, row2);
+  std::getline(in, row3);
+  in.close();
+  append(row3 + "\n");
+  EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:5: unit IMU-0001 repeats its previous row (seq 2, t_s 0.030000 s)"));
+  ReplaceInFile("imu.csv", row3 + "\n" + row3, row3 + "\n" + row1);
+  EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:5: unit IMU-0001 t_s 0.010000 s goes back from 0.030000 s"));
+  ReplaceInFile("imu.csv", row3 + "\n" + row1, row3);
+  ASSERT_EQ(ErrorOf(), "accepted");
+  ReplaceInFile("imu.csv", "0.0200,IMU-0001,1,0,", "0.0200,IMU-0001,1,-4,");
+  EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:3: unit IMU-0001 step -4 is negative"));
+  ReplaceInFile("imu.csv", "0.0200,IMU-0001,1,-4,", "0.0200,IMU-0001,1,0,");
+  nlohmann::json meta = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
+  meta["units"] = {{{"kind", "imu"}, {"serial", "IMU-0002"}}, {{"kind", "ads"}, {"serial", "ADS-0001"}}};
+  std::ofstream(dir_ / "meta.json") << meta.dump();
+  EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:2: unit 'IMU-0001' is not listed in meta.json $.units"));
+}
+
+// Packets sharing an arrival time (a burst read at once) are not copies, even when their 8-bit
+// counter comes round to the same value within the burst.
+TEST_F(RecordingReaderTest, ABurstSharingOneTimeIsRead) {
+  RecordingWriter w(dir_ / "burst");
+  for (uint32_t i = 0; i < 300; ++i) {
+    ImuRecordRow r;
+    r.t_s = 1.0;
+    r.unit = "IMU-0001";
+    r.seq = i % 256;
+    r.gyro_cnt = {static_cast<int32_t>(1000 + i % 7), static_cast<int32_t>(i), 5};
+    w.Append(r);
+  }
+  w.WriteMeta({});
+  w.Flush(true);
+  EXPECT_EQ(ReadRecording(dir_ / "burst").imu.size(), 300u);
+}
+
 // A unit listed twice would have its rows counted twice by whoever walks the list.
 TEST_F(RecordingReaderTest, UnitListedTwiceIsRefused) {
   nlohmann::json meta = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
@@ -153,7 +196,9 @@ TEST_F(RecordingReaderTest, CompensatedRowReadsBackExactly) {
   {
     RecordingWriter w(dir_);
     ImuRecordRow r;
+    r.t_s = 0.04;
     r.unit = "IMU-0001";
+    r.seq = 3;
     r.mode = 3;
     r.comp = std::array<double, 9>{9.80665, -0.1, 0.2, 150.0, -3.5, 0.0, 1e-6, -2e-6, 0.0};
     r.comp_flags = 1;
