@@ -17,7 +17,8 @@ constexpr const char* kRole = "operator";
 
 std::unique_ptr<SerialPort> OpenControlPort(const OperatorEntry& entry) {
   try {
-    return std::make_unique<SerialPort>(entry.port, kRole);
+    // Shared: the rig's control port serves every bench's operator and the test tools.
+    return std::make_unique<SerialPort>(entry.port, kRole, PortAccess::kShared);
   } catch (const TransportError& e) {
     throw InstrumentError(Kind::kNoReply, kRole, entry.port.path, "open", "", e.what());
   }

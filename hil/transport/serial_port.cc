@@ -3,6 +3,7 @@
 #include "hil/transport/serial_port.h"
 
 #include <poll.h>
+#include <sys/file.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -11,7 +12,9 @@
 #include <boost/asio/serial_port.hpp>
 #include <boost/asio/write.hpp>
 #include <array>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 
 namespace adahrs::hil {
@@ -54,11 +57,19 @@ std::string HexBytes(std::span<const uint8_t> bytes, size_t max_bytes) {
   return out;
 }
 
-SerialPort::SerialPort(const SerialSettings& s, std::string role)
+SerialPort::SerialPort(const SerialSettings& s, std::string role, PortAccess access)
     : impl_(std::make_unique<Impl>()), role_(std::move(role)), path_(s.path), flow_(s.flow) {
   boost::system::error_code ec;
   impl_->port.open(s.path, ec);
   if (ec) throw TransportError(Describe("cannot open: " + ec.message()));
+  if (access == PortAccess::kExclusive && ::flock(impl_->port.native_handle(), LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    throw TransportError(Describe(error == EWOULDBLOCK
+                                      ? std::string("in use: another open of this device holds its lock "
+                                                    "(a second pipeline, or a program opening it "
+                                                    "exclusively); one client per port")
+                                      : std::string("cannot lock: ") + std::strerror(error)));
+  }
   using P = asio::serial_port_base;
   const auto parity = s.parity == 'E'   ? P::parity::even
                       : s.parity == 'O' ? P::parity::odd

@@ -39,13 +39,21 @@ struct SerialSettings {
   enum class Flow { kNone, kSoftware, kHardware } flow = Flow::kNone;
 };
 
+/// Whether the port is taken for this client alone: an exclusive open holds flock(LOCK_EX) on the
+/// device for its lifetime (what pyserial's `exclusive=True` takes), so a second pipeline, or a
+/// second open of the same device by another path, is refused instead of splitting the replies.
+/// Shared is for a line made to be shared (the virtual rig's control port).
+enum class PortAccess { kExclusive, kShared };
+
 enum class TraceDirection { kSent, kReceived };
 using TraceSink = std::function<void(TraceDirection, std::span<const uint8_t>)>;
 
 class SerialPort {
  public:
-  /// Opens and configures the port; discards bytes that arrived before it was opened.
-  SerialPort(const SerialSettings& settings, std::string role);
+  /// Opens and configures the port; discards bytes that arrived before it was opened. Throws
+  /// TransportError when an exclusive open finds the port held by another open.
+  SerialPort(const SerialSettings& settings, std::string role,
+             PortAccess access = PortAccess::kExclusive);
   ~SerialPort();
   SerialPort(const SerialPort&) = delete;
   SerialPort& operator=(const SerialPort&) = delete;

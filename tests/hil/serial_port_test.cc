@@ -1,7 +1,10 @@
 #include "hil/transport/serial_port.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <thread>
 
@@ -77,6 +80,40 @@ TEST(SerialPort, MissingDeviceIsAClearError) {
     EXPECT_THAT(e.what(), AllOf(HasSubstr("adts"), HasSubstr("/dev/does-not-exist-adahrs"),
                                 HasSubstr("cannot open")));
   }
+}
+
+// pyserial's exclusive open (flock LOCK_EX | LOCK_NB, as ours): 0 when it got the port, 3 when
+// refused, another status when it could not run.
+int PyserialExclusiveOpen(const std::string& path) {
+  const std::string command =
+      "/usr/bin/python3 -c 'import sys, serial\n"
+      "try:\n    serial.Serial(sys.argv[1], exclusive=True).close()\n"
+      "except serial.SerialException:\n    sys.exit(3)' " + path;
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(SerialPort, ASecondExclusiveOpenIsRefusedByAnyPathUntilTheFirstCloses) {
+  PtyPair pty = PtyPair::Open();
+  const std::string link = ::testing::TempDir() + "adahrs-port-link-" + std::to_string(::getpid());
+  std::filesystem::remove(link);
+  std::filesystem::create_symlink(pty.slave_path(), link);
+  {
+    SerialPort first({pty.slave_path(), 9600}, "imu1");
+    for (const std::string& path : {pty.slave_path(), link}) {
+      try {
+        SerialPort second({path, 9600}, "imu2");
+        FAIL() << "opened twice through " << path;
+      } catch (const TransportError& e) {
+        EXPECT_THAT(e.what(), AllOf(HasSubstr("imu2"), HasSubstr(path), HasSubstr("in use")));
+      }
+    }
+    EXPECT_EQ(PyserialExclusiveOpen(pty.slave_path()), 3) << "an independent client got the port";
+    SerialPort shared({pty.slave_path(), 9600}, "operator", PortAccess::kShared);
+  }
+  EXPECT_EQ(PyserialExclusiveOpen(link), 0);
+  SerialPort again({link, 9600}, "imu1");
+  std::filesystem::remove(link);
 }
 
 TEST(SerialPort, HexBytesTruncatesLongDumps) {
