@@ -1,6 +1,8 @@
 #include "rig_sim/static_thermal_run.h"
 
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
@@ -46,6 +48,79 @@ double SetPoint(double from_c, const ThermalProfileStep& step, double t_in_step_
   return std::abs(span_c) <= moved_c ? step.target_c : from_c + std::copysign(moved_c, span_c);
 }
 
+std::string UtcNow() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+// The profile as a sequence of the sequence language (docs/sequences.md): a target_temperature
+// step per profile step. The language has no ramp on a target step (the chamber ramps at its own
+// rate), so the simulated ramps go beside it in meta.json.
+nlohmann::json ProfileSequence(const StaticThermalRunConfig& config) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (size_t i = 0; i < config.steps.size(); ++i) {
+    const auto& s = config.steps[i];
+    steps.push_back({{"kind", "target_temperature"},
+                     {"tag", i + 1},
+                     {"target_c", s.target_c},
+                     {"band_c", config.soak_band_c},
+                     {"soak_s", s.soak_s}});
+  }
+  return {{"format_version", 1},
+          {"name", "static_thermal"},
+          {"description", fmt::format("adahrs simulate static-thermal: units static in orientation "
+                                      "{}, the chamber through {} set points",
+                                      config.orientation, config.steps.size())},
+          {"unit_kind", config.imu_units > 0 ? "imu" : "ads"},
+          {"steps", steps}};
+}
+
+// meta.json as the executor writes it (docs/recording-format.md), so fit, records and report take
+// the simulator's recordings as they take a rig's, plus what only a simulation knows.
+nlohmann::json RunMetaJson(const StaticThermalRunConfig& config, const std::filesystem::path& run_dir,
+                           double g_local_mps2, const nlohmann::json& units) {
+  nlohmann::json ramps = nlohmann::json::array();
+  for (const auto& s : config.steps) ramps.push_back(s.ramp_c_per_min);
+  const std::string started_utc = UtcNow();
+  const std::filesystem::path name = std::filesystem::absolute(run_dir).lexically_normal().filename();
+  return {{"run_id", (name.empty() ? std::string("static-thermal") : name.string()) + "-" + started_utc},
+          {"started_utc", started_utc},
+          {"status", "running"},
+          {"station",
+           {{"name", "simulated static thermal bench"},
+            {"latitude_deg", config.latitude_deg},
+            {"height_m", config.height_m},
+            {"local_gravity_mps2", g_local_mps2},
+            {"time_scale", 0}}},
+          {"sequence", ProfileSequence(config)},
+          {"sequence_file", "(adahrs simulate static-thermal)"},
+          {"time_base", "seconds since the batch was powered on"},
+          {"sample_rate_hz", 1.0 / kFramePeriod_s},
+          {"local_gravity_mps2", g_local_mps2},
+          {"units", units},
+          {"instruments", nlohmann::json::array()},
+          {"rejected_intervals", nlohmann::json::array()},
+          {"orientation", config.orientation},
+          {"model_profile", sensor_sim::ToString(config.profile)},
+          {"simulated_chamber_ramps_c_per_min", ramps},
+          {"log_every", config.log_every}};
+}
+
+nlohmann::json UnitJson(const std::string& serial, const char* kind, int index) {
+  return {{"role", fmt::format("{}{}", kind, index + 1)},
+          {"kind", kind},
+          {"serial", serial},
+          {"serial_number", index + 1},
+          {"firmware", "simulated"},
+          {"slot", index + 1},
+          {"constants_version", 0},
+          {"mode", 0}};
+}
+
 }  // namespace
 
 StaticThermalRunConfig StaticThermalRunConfig::Demo() {
@@ -80,7 +155,7 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
     const auto params = sensor_sim::ImuUnitParams::Draw(serial, seed, config.profile);
     WriteTruth(run_dir / "truth", serial, "imu", seed, config.profile, params.ToJson());
     imus.emplace_back(params, sensor_sim::Rng::Derive(seed, 1), config.start_c);
-    units.push_back({{"serial", serial}, {"kind", "imu"}, {"firmware_version", "simulated"}});
+    units.push_back(UnitJson(serial, "imu", i));
   }
   for (int i = 0; i < config.ads_units; ++i) {
     const std::string serial = fmt::format("ADS-{:04d}", i + 1);
@@ -88,33 +163,12 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
     const auto params = sensor_sim::AdsUnitParams::Draw(serial, seed, config.profile);
     WriteTruth(run_dir / "truth", serial, "ads", seed, config.profile, params.ToJson());
     adss.emplace_back(params, sensor_sim::Rng::Derive(seed, 1), config.start_c);
-    units.push_back({{"serial", serial}, {"kind", "ads"}, {"firmware_version", "simulated"}});
+    units.push_back(UnitJson(serial, "ads", i));
   }
 
-  nlohmann::json steps = nlohmann::json::array();
-  for (size_t i = 0; i < config.steps.size(); ++i) {
-    const auto& s = config.steps[i];
-    steps.push_back({{"type", "target_temperature"},
-                     {"tag", i + 1},
-                     {"target_c", s.target_c},
-                     {"ramp_c_per_min", s.ramp_c_per_min},
-                     {"soak_s", s.soak_s},
-                     {"band_c", config.soak_band_c}});
-  }
   hil::RecordingWriter writer(run_dir);
-  writer.WriteMeta({{"station",
-                     {{"name", "simulated static thermal bench"},
-                      {"latitude_deg", config.latitude_deg},
-                      {"height_m", config.height_m},
-                      {"local_gravity_mps2", g_local_mps2},
-                      {"time_scale", 0}}},
-                    {"sequence", {{"name", "static thermal run"}, {"steps", steps}}},
-                    {"units", units},
-                    {"orientation", config.orientation},
-                    {"model_profile", sensor_sim::ToString(config.profile)},
-                    {"sample_rate_hz", 1.0 / kFramePeriod_s},
-                    {"time_base", "seconds since the batch was powered on"},
-                    {"log_every", config.log_every}});
+  nlohmann::json meta = RunMetaJson(config, run_dir, g_local_mps2, units);
+  writer.WriteMeta(meta);
 
   ChamberAir chamber(config.chamber, config.start_c);
   StaticThermalRunSummary summary;
@@ -182,6 +236,8 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
     writer.Flush(true);
     if (on_step) on_step(static_cast<int>(step), static_cast<double>(frame) * kFramePeriod_s);
   }
+  meta["status"] = "complete";
+  writer.WriteMeta(meta);
   summary.frames = frame;
   summary.duration_s = static_cast<double>(frame) * kFramePeriod_s;
   summary.imu_rows = writer.imu_rows();
