@@ -134,7 +134,10 @@ size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point 
   uint64_t in_flight = 0;
   for (const auto& [when, bytes] : port.recent_writes) in_flight += bytes;
   const uint64_t in_line = unread + in_flight;
-  const uint64_t taken = port.total_written > in_line ? port.total_written - in_line : 0;
+  // A full queue (nobody is reading it now) shows no more than it holds: bytes written beyond it
+  // wait in the kernel's flip buffers however old they are, so they are not evidence of a reader.
+  const bool queue_full = unread + kPtyQueueSlackBytes >= kPtyQueueBytes;
+  const uint64_t taken = !queue_full && port.total_written > in_line ? port.total_written - in_line : 0;
   const bool shrank = unread < port.unread_at_last_look;
   port.unread_at_last_look = unread;
   // A client that has taken every byte written is waiting, not stalled: while another port holds

@@ -66,8 +66,10 @@ inline constexpr uint32_t kLockstepMinLooks = 100;
 /// Lockstep: frames between looks at the readers, and the wall wait while one holds the clock.
 inline constexpr int kLockstepCheckFrames = 10;
 inline constexpr double kLockstepRetry_s = 0.0002;
-/// The pty line discipline's input queue (Linux N_TTY_BUF_SIZE).
+/// The pty line discipline's input queue (Linux N_TTY_BUF_SIZE), and how close to it the queue
+/// counts as full.
 inline constexpr size_t kPtyQueueBytes = 4096;
+inline constexpr size_t kPtyQueueSlackBytes = 64;
 
 class DeviceHost {
  public:
