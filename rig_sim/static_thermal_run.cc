@@ -1,8 +1,6 @@
 #include "rig_sim/static_thermal_run.h"
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
@@ -11,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "hil/recording/recording_writer.h"
+#include "hil/utc_time.h"
 #include "rig_sim/fixture_orientation.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/gravity.h"
@@ -48,15 +47,6 @@ double SetPoint(double from_c, const ThermalProfileStep& step, double t_in_step_
   return std::abs(span_c) <= moved_c ? step.target_c : from_c + std::copysign(moved_c, span_c);
 }
 
-std::string UtcNow() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return text;
-}
-
 // The profile as a sequence of the sequence language (docs/sequences.md): a target_temperature
 // step per profile step. The language has no ramp on a target step (the chamber ramps at its own
 // rate), so the simulated ramps go beside it in meta.json.
@@ -85,7 +75,7 @@ nlohmann::json RunMetaJson(const StaticThermalRunConfig& config, const std::file
                            double g_local_mps2, const nlohmann::json& units) {
   nlohmann::json ramps = nlohmann::json::array();
   for (const auto& s : config.steps) ramps.push_back(s.ramp_c_per_min);
-  const std::string started_utc = UtcNow();
+  const std::string started_utc = hil::UtcNowIso8601();
   const std::filesystem::path name = std::filesystem::absolute(run_dir).lexically_normal().filename();
   return {{"run_id", (name.empty() ? std::string("static-thermal") : name.string()) + "-" + started_utc},
           {"started_utc", started_utc},

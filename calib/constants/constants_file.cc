@@ -256,13 +256,4 @@ void WriteConstantsFile(const std::filesystem::path& path, const ConstantsFile& 
   if (ec) throw ConstantsFileError(path.string() + ": cannot rename into place: " + ec.message());
 }
 
-std::string UtcNowIso8601() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return buffer;
-}
-
 }  // namespace adahrs::calib

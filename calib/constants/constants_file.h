@@ -28,6 +28,7 @@
 
 #include "firmware_model/calibration_constants.h"
 #include "hil/station.h"
+#include "hil/utc_time.h"
 
 namespace adahrs::calib {
 
@@ -87,6 +88,6 @@ ConstantsFile ReadConstantsFile(const std::filesystem::path& path);
 void WriteConstantsFile(const std::filesystem::path& path, const ConstantsFile& file);
 
 /// The current UTC time as ISO 8601 with seconds ("2024-05-01T12:00:00Z").
-std::string UtcNowIso8601();
+using hil::UtcNowIso8601;
 
 }  // namespace adahrs::calib

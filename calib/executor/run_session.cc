@@ -25,21 +25,13 @@
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_writer.h"
 #include "hil/recording/torn_tail.h"
+#include "hil/utc_time.h"
 
 namespace adahrs::calib {
 namespace {
 
 constexpr const char* kTimeBase =
     "pipeline clock seconds since the run started (simulated seconds on a scaled rig)";
-
-std::string UtcNow() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return text;
-}
 
 hil::UnitKind StationKind(UnitKind kind) {
   return kind == UnitKind::kImu ? hil::UnitKind::kImu : hil::UnitKind::kAds;
@@ -150,8 +142,8 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
       }
     }
   } else {
-    meta = {{"run_id", s.run_dir.filename().string() + "-" + UtcNow()},
-            {"started_utc", UtcNow()},
+    meta = {{"run_id", s.run_dir.filename().string() + "-" + hil::UtcNowIso8601()},
+            {"started_utc", hil::UtcNowIso8601()},
             {"station", s.station.ToJson()},
             {"sequence", SequenceToJson(s.sequence)},
             {"sequence_file", s.sequence_file},
@@ -170,7 +162,7 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
   run_meta.Write();
   Journal journal(s.run_dir);
   journal.Append({{"event", old_meta ? "run_resumed" : "run_started"}, {"t_s", clock.NowS()},
-                  {"utc", UtcNow()}, {"first_step", first_step}});
+                  {"utc", hil::UtcNowIso8601()}, {"first_step", first_step}});
   for (nlohmann::json& e : resume_events) {
     e["t_s"] = clock.NowS();
     journal.Append(e);
