@@ -175,6 +175,49 @@ SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pr
   return s;
 }
 
+json ScaleTemperatureToJson(const ImuScaleTemperature& st) {
+  json sensors = json::array();
+  for (const TempSensorSpan& span : st.sensor) {
+    sensors.push_back(
+        {{"origin_cnt", span.origin_cnt}, {"min_cnt", span.min_cnt}, {"max_cnt", span.max_cnt}});
+  }
+  return json{{"sensor", sensors},
+              {"scale", st.scale},
+              {"accel_quadratic_per_g", st.accel_quadratic_per_g},
+              {"gs_dps_per_mps2", st.gs_dps_per_mps2}};
+}
+
+// "scale_temperature": spans with a whole origin inside an increasing span in 0..65535.
+ImuScaleTemperature ScaleTemperatureFromJson(const json& j, const std::string& path) {
+  ExpectKeys(j, path, {"sensor", "scale", "accel_quadratic_per_g", "gs_dps_per_mps2"});
+  ImuScaleTemperature st;
+  st.active = true;
+  const json& sensors = Array(j["sensor"], path + ".sensor", 3);
+  for (size_t s = 0; s < 3; ++s) {
+    const std::string sp = path + ".sensor[" + std::to_string(s) + "]";
+    ExpectKeys(sensors[s], sp, {"origin_cnt", "min_cnt", "max_cnt"});
+    TempSensorSpan& span = st.sensor[s];
+    span.origin_cnt = Number(sensors[s]["origin_cnt"], sp + ".origin_cnt");
+    span.min_cnt = Number(sensors[s]["min_cnt"], sp + ".min_cnt");
+    span.max_cnt = Number(sensors[s]["max_cnt"], sp + ".max_cnt");
+    if (span.origin_cnt != std::nearbyint(span.origin_cnt)) {
+      throw std::runtime_error(sp + ".origin_cnt: must be a whole count");
+    }
+    if (!(span.min_cnt >= 0.0 && span.min_cnt <= span.origin_cnt && span.origin_cnt <= span.max_cnt &&
+          span.min_cnt < span.max_cnt && span.max_cnt <= 65535.0)) {
+      throw std::runtime_error(sp + ": min_cnt <= origin_cnt <= max_cnt must be an increasing span "
+                               "inside 0..65535");
+    }
+  }
+  const json& scale = Array(j["scale"], path + ".scale", 9);
+  for (size_t c = 0; c < 9; ++c) {
+    st.scale[c] = Numbers<4>(scale[c], path + ".scale[" + std::to_string(c) + "]");
+  }
+  st.accel_quadratic_per_g = Numbers<3>(j["accel_quadratic_per_g"], path + ".accel_quadratic_per_g");
+  st.gs_dps_per_mps2 = Matrix(j["gs_dps_per_mps2"], path + ".gs_dps_per_mps2");
+  return st;
+}
+
 }  // namespace
 
 json ToJson(const ImuCalibrationConstants& c) {
@@ -191,15 +234,17 @@ json ToJson(const ImuCalibrationConstants& c) {
   }
   json gyro = json::array();
   for (const GyroCubicFit& g : c.gyro) gyro.push_back({{"null_cnt", g.null_cnt}, {"l", g.l}});
-  return json{{"thermal", thermal},
-              {"accel", accel},
-              {"gyro", gyro},
-              {"ca_mps2_per_g", c.ca_mps2_per_g},
-              {"cg", c.cg}};
+  json out{{"thermal", thermal},
+           {"accel", accel},
+           {"gyro", gyro},
+           {"ca_mps2_per_g", c.ca_mps2_per_g},
+           {"cg", c.cg}};
+  if (c.scale_temperature.active) out["scale_temperature"] = ScaleTemperatureToJson(c.scale_temperature);
+  return out;
 }
 
 ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j) {
-  ExpectKeys(j, "imu", {"thermal", "accel", "gyro", "ca_mps2_per_g", "cg"});
+  ExpectKeys(j, "imu", {"thermal", "accel", "gyro", "ca_mps2_per_g", "cg"}, {"scale_temperature"});
   ImuCalibrationConstants c;
   const json& thermal = Array(j["thermal"], "imu.thermal", 9);
   for (size_t i = 0; i < 9; ++i) {
@@ -240,6 +285,9 @@ ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j) {
   }
   c.ca_mps2_per_g = Matrix(j["ca_mps2_per_g"], "imu.ca_mps2_per_g");
   c.cg = Matrix(j["cg"], "imu.cg");
+  if (j.contains("scale_temperature")) {
+    c.scale_temperature = ScaleTemperatureFromJson(j["scale_temperature"], "imu.scale_temperature");
+  }
   return c;
 }
 

@@ -13,6 +13,9 @@
 //   gyro (Eq. 23): rate_dps = l[0] + l[1] d + l[2] d^2 + l[3] d^3, d = T - null_cnt
 //   cross axis (Eq. 26, 29): A_mps2 = ca_mps2_per_g Ca_g (Ca per axis = mean of its two channels),
 //     G_dps = cg G_dps
+//   scale-temperature terms (constants format 3, optional): every channel's sensor-calibrated
+//     value times F(t) = sum_j scale[j] (t - origin_cnt)^j, t the count of the channel's thermal
+//     sensor; Ca per axis + q Ca^2 after the pair mean; G_dps + gs A_mps2.
 // ADS, per output: z = sum_{p<=3, q<=5} coeff_xy[p][q] x^p y^q, x = pressure code, y = bridge-
 //   voltage code, with the code box the surface was fitted over (the exporter normalises to it).
 //   The reference method's 10-term cubic (thesis section 2.9, Table 25)
@@ -45,12 +48,33 @@ struct GyroCubicFit {
   std::array<double, 4> l = {};  ///< deg/s per count^i
 };
 
+/// One temperature sensor's count span for the scale factors: the polynomials' origin (a whole
+/// count) and the span they were fitted over (the exporter normalises to it).
+struct TempSensorSpan {
+  double origin_cnt = 32768.0;
+  double min_cnt = 0.0;
+  double max_cnt = 65535.0;
+};
+
+/// Constants format 3 (target/imu_constants.h "Scale-temperature stages"). Inactive: a format-2
+/// unit, and the JSON form has no "scale_temperature".
+struct ImuScaleTemperature {
+  bool active = false;
+  std::array<TempSensorSpan, 3> sensor;
+  /// Per channel F(t) = sum_j scale[j] (t - origin)^j, dimensionless per count^j; F = 1 is
+  /// {1, 0, 0, 0}.
+  std::array<std::array<double, 4>, 9> scale = {};
+  std::array<double, 3> accel_quadratic_per_g = {};  ///< q of body x, y, z, g per g^2
+  std::array<std::array<double, 3>, 3> gs_dps_per_mps2 = {};
+};
+
 struct ImuCalibrationConstants {
   std::array<ThermalFit, 9> thermal;
   std::array<AccelScaleFit, 6> accel;
   std::array<GyroCubicFit, 3> gyro;
   std::array<std::array<double, 3>, 3> ca_mps2_per_g = {};
   std::array<std::array<double, 3>, 3> cg = {};
+  ImuScaleTemperature scale_temperature;
 };
 
 /// What follows an ADS surface (target/air_data_law.h): nothing, the surface's z being altitude in

@@ -119,6 +119,71 @@ QuantisedPoly QuantisePoly(const std::vector<Real>& c, int min_work, int max_wor
       static_cast<double>(sum_abs), max_work));
 }
 
+// A scale-factor sensor's normalisation: centred at the origin, the smallest power-of-two
+// half-range (at most 2^16) holding kThermalSpanMargin times the span's larger side.
+InputNormQ31 ScaleSensorNorm(const TempSensorSpan& span, const std::string& what) {
+  if (!(span.min_cnt >= 0 && span.min_cnt <= span.origin_cnt && span.origin_cnt <= span.max_cnt &&
+        span.min_cnt < span.max_cnt && span.max_cnt <= 65535 &&
+        span.origin_cnt == std::nearbyint(span.origin_cnt))) {
+    throw std::invalid_argument(fmt::format("{}: span {} .. {} about origin {} counts is not an "
+                                            "increasing span in 0..65535 about a whole count",
+                                            what, span.min_cnt, span.max_cnt, span.origin_cnt));
+  }
+  const Real half_width = std::max(Real{span.origin_cnt} - Real{span.min_cnt},
+                                   Real{span.max_cnt} - Real{span.origin_cnt}) * kThermalSpanMargin;
+  int shift = 0;
+  while (shift < 16 && std::ldexp(Real{1}, shift) < half_width) ++shift;
+  return InputNormQ31{static_cast<int32_t>(span.origin_cnt), static_cast<uint8_t>(shift)};
+}
+
+// Error bounds the format-3 stages add, in output units.
+struct ScaleTemperatureBounds {
+  double factor = 0.0;      // worst |F - F_exported| over the normalised span
+  double factor_max = 1.0;  // worst |F| over it
+  double quadratic_gain = 1.0;  // d(ca + q ca^2)/d(ca) at the rated input
+  double quadratic_g = 0.0;     // quantisation of q at the rated input, g
+};
+
+ScaleTemperatureBounds ExportScaleTemperature(const ImuScaleTemperature& in,
+                                              const ThermalConstantsQ31 thermal[kImuChannels],
+                                              ScaleTemperatureConstantsQ31* out) {
+  ScaleTemperatureBounds b{};
+  if (!in.active) return b;
+  out->enabled = 1;
+  for (int s = 0; s < kTempSensors; ++s) {
+    out->temp_norm[s] = ScaleSensorNorm(
+        in.sensor[s], fmt::format("scale switch block 0x{:02X} (sensor {})", kImuBlockScaleSwitch, s));
+  }
+  b.factor_max = 0.0;
+  for (int ch = 0; ch < kImuChannels; ++ch) {
+    const std::string what =
+        fmt::format("scale factor block 0x{:02X} (channel {})", kImuBlockScaleFactorFirst + ch, ch);
+    const InputNormQ31& norm = out->temp_norm[thermal[ch].temp_sensor];
+    const auto& f = in.scale[ch];
+    const auto c = Renormalise({f[0], f[1], f[2], f[3]}, 0, norm.shift);
+    const QuantisedPoly poly = QuantisePoly(c, kScaleFactorExponent, kScaleFactorExponent, what);
+    out->scale[ch] = poly.poly;
+    Real sum_abs = 0;
+    for (Real v : c) sum_abs += std::fabs(v);
+    b.factor = std::max(b.factor, poly.bound);
+    b.factor_max = std::max(b.factor_max, static_cast<double>(sum_abs));
+  }
+  const double rated_g = kRatedAccel_g;
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::string what = fmt::format("accelerometer nonlinearity block 0x{:02X} (axis {})",
+                                         kImuBlockAccelQuadratic, axis);
+    const double q = in.accel_quadratic_per_g[axis];
+    if (std::fabs(q) >= 1.0 / 16.0) {
+      throw std::invalid_argument(fmt::format("{}: |q| = {:.4g} g/g^2 is not below 1/16", what, q));
+    }
+    out->accel_quadratic[axis] = Quantise(q, -kAccelGExponent - kMaxAlignShift, what);
+    const double dq = static_cast<double>(std::fabs(Value(out->accel_quadratic[axis]) - q));
+    b.quadratic_gain = std::max(b.quadratic_gain, 1.0 + 2.0 * std::fabs(q) * rated_g);
+    b.quadratic_g = std::max(b.quadratic_g, dq * rated_g * rated_g + 8 * Lsb(kAccelGExponent));
+  }
+  return b;
+}
+
 }  // namespace
 
 ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
@@ -183,6 +248,15 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
                                              3 * std::fabs(f.l[3]) * span * span);
     rate_dps = std::max(rate_dps, poly.bound + thermal_bound[kAccelChannels + g] * slope);
   }
+  const ScaleTemperatureBounds st = ExportScaleTemperature(in.scale_temperature, q.thermal,
+                                                           &q.scale_temperature);
+  if (in.scale_temperature.active) {
+    // y F: the error of y grows by |F|, F's own error by the largest |y|; the product's rounding
+    // and the one-bit alignment are 4 LSB.
+    accel_g = accel_g * st.factor_max + kRatedAccel_g * st.factor + 4 * Lsb(kAccelGExponent);
+    rate_dps = rate_dps * st.factor_max + kRatedRate_dps * st.factor + 4 * Lsb(kRateExponent);
+  }
+  const double ca_in_g = accel_g * st.quadratic_gain + st.quadratic_g;
   auto export_matrix = [&](const std::array<std::array<double, 3>, 3>& m, CoeffQ31 out_m[3][3],
                            int out_e, double rated, double in_bound, const std::string& what) {
     double worst = 0;
@@ -204,13 +278,18 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
     return worst;
   };
   const double ca_bound = export_matrix(in.ca_mps2_per_g, q.ca, kAccelMps2Exponent, kRatedAccel_g,
-                                        accel_g, "CA block 0x0E");
-  const double cg_bound =
+                                        ca_in_g, "CA block 0x0E");
+  double cg_bound =
       export_matrix(in.cg, q.cg, kRateExponent, kRatedRate_dps, rate_dps, "CG block 0x0F");
+  if (in.scale_temperature.active) {
+    cg_bound += export_matrix(in.scale_temperature.gs_dps_per_mps2, q.scale_temperature.gs,
+                              kRateExponent, kRatedAccel_mps2, ca_bound, "GS block 0x1B") +
+                4 * Lsb(kRateExponent);
+  }
   // Every block must pass the target's own validation, so host and target agree on what is valid.
   ImuConstants check{};
   ImuConstantsInit(&check);
-  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockCg; ++id) {
+  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockLast; ++id) {
     int16_t words[kImuMaxBlockWords];
     uint8_t count = 0;
     ImuConstantsReadBlock(&q, id, words, kImuMaxBlockWords, &count);

@@ -14,7 +14,7 @@ namespace {
 using nlohmann::json;
 
 template <typename Constants, typename ReadFn>
-json Blocks(const Constants& c, std::initializer_list<uint8_t> ids, ReadFn read) {
+json Blocks(const Constants& c, const std::vector<uint8_t>& ids, ReadFn read) {
   json blocks = json::array();
   for (uint8_t id : ids) {
     constexpr uint8_t kCapacity = std::max(kImuMaxBlockWords, kAdsMaxBlockWords);
@@ -78,9 +78,11 @@ json MakeCompensatorGolden(const ImuConstants& imu, const AdsConstants& ads,
                            const std::vector<AdsRawFrame>& ads_frames) {
   json doc;
   doc["format"] = 1;
-  doc["imu"]["blocks"] =
-      Blocks(imu, {1, 2, 3, 4, 5, 6, 7, 8, 9, 0x0A, 0x0B, 0x0C, 0x0D, 0x0E, 0x0F},
-             ImuConstantsReadBlock);
+  // A format-2 set is its blocks 0x01..0x0F; a set whose format-3 stages are on adds 0x10..0x1B.
+  const uint8_t last = imu.scale_temperature.enabled != 0 ? kImuBlockLast : uint8_t{kImuBlockCg};
+  std::vector<uint8_t> imu_ids;
+  for (uint8_t id = kImuBlockThermalFirst; id <= last; ++id) imu_ids.push_back(id);
+  doc["imu"]["blocks"] = Blocks(imu, imu_ids, ImuConstantsReadBlock);
   doc["imu"]["frames"] = json::array();
   for (const ImuRawFrame& f : imu_frames) {
     doc["imu"]["frames"].push_back({{"t1_cnt", f.t1_cnt},

@@ -4,6 +4,7 @@
 // writing each block with Imu/AdsConstantsWriteBlock, running each frame, and comparing words.
 // The ADS frames run in order from fresh hysteresis operators (ads_compensator.h), so a replay
 // checks the operators' memory as well as each frame.
+// The IMU blocks are 0x01..0x0F for a format-2 set, 0x01..0x1B when the format-3 stages are on.
 // Layout: {"format": 1, "imu": {"blocks": [{"id", "words"}], "frames": [{"t1_cnt", "t2_cnt",
 // "gyro_cnt", "temp_cnt", "modes": [{"mode", "value", "flags", "cycles"}]}]}, "ads": {...
 // "frames": [{"ps_code", "pt_code", "ps_bridge_code", "pt_bridge_code", "oat_code", "modes"}]}}.

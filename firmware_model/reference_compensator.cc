@@ -13,6 +13,13 @@ constexpr int kPairOfAxis[3][2] = {{1, 4}, {2, 5}, {0, 3}};  // x, y, z: (ch1, c
 
 double Scale(int8_t exponent) { return std::ldexp(1.0, exponent - 31); }
 
+// F(t) of one channel (calibration_constants.h ImuScaleTemperature).
+double ScaleFactor(const ImuScaleTemperature& st, int sensor, const std::array<double, 4>& f,
+                   double temp_cnt) {
+  const double d = temp_cnt - st.sensor[sensor].origin_cnt;
+  return f[0] + d * (f[1] + d * (f[2] + d * f[3]));
+}
+
 }  // namespace
 
 std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensationMode mode,
@@ -41,6 +48,13 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensa
     const auto& l = c.gyro[g].l;
     cal[6 + g] = l[0] + l[1] * d + l[2] * d * d + l[3] * d * d * d;
   }
+  const ImuScaleTemperature& st = c.scale_temperature;
+  if (st.active) {
+    for (int i = 0; i < 9; ++i) {
+      const int sensor = c.thermal[i].temp_sensor;
+      cal[i] *= ScaleFactor(st, sensor, st.scale[i], raw.temp_cnt[sensor]);
+    }
+  }
   if (mode == ImuCompensationMode::kSensorCalibrated) return cal;
 
   std::array<double, 9> out{};
@@ -49,12 +63,18 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensa
     const double ch1 = cal[kPairOfAxis[axis][0]];
     const double ch2 = cal[kPairOfAxis[axis][1]];
     ca_g[axis] = 0.5 * (ch1 + ch2);
+    if (st.active) ca_g[axis] += st.accel_quadratic_per_g[axis] * ca_g[axis] * ca_g[axis];
     out[6 + axis] = 0.5 * (ch1 - ch2);
   }
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) {
       out[r] += c.ca_mps2_per_g[r][k] * ca_g[k];
       out[3 + r] += c.cg[r][k] * cal[6 + k];
+    }
+  }
+  if (st.active) {
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 3; ++k) out[3 + r] += st.gs_dps_per_mps2[r][k] * out[k];
     }
   }
   return out;

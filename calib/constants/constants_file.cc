@@ -84,9 +84,10 @@ ConstantsFile Parse(const json& j, const std::string& source) {
                                 format + "\"");
   }
   const int64_t version = reader.Integer("format_version", 0, 1 << 20);
-  if (version != kConstantsFormatVersion) {
+  if (version < kConstantsOldestFormatVersion || version > kConstantsFormatVersion) {
     reader.Fail("$.format_version", "version " + std::to_string(version) +
-                                        " is not supported (this software reads version " +
+                                        " is not supported (this software reads versions " +
+                                        std::to_string(kConstantsOldestFormatVersion) + " to " +
                                         std::to_string(kConstantsFormatVersion) + ")");
   }
   file.serial = reader.String("serial");
@@ -105,6 +106,10 @@ ConstantsFile Parse(const json& j, const std::string& source) {
 
   reader.Child("constants");
   const json& constants = j.at("constants");
+  if (version < 3 && constants.is_object() && constants.contains("scale_temperature")) {
+    reader.Fail("$.constants.scale_temperature", "needs format_version 3, the file says " +
+                                                     std::to_string(version));
+  }
   try {
     if (file.kind == hil::UnitKind::kImu) {
       file.imu = firmware_model::ImuCalibrationConstantsFromJson(constants);
@@ -150,6 +155,11 @@ json ImuStandardErrorsJson(const firmware_model::ImuCalibrationConstants& se) {
     t["temp_min_cnt"] = nullptr;
     t["temp_max_cnt"] = nullptr;
   }
+  if (j.contains("scale_temperature")) {  // the spans are chosen, not estimated
+    for (json& s : j["scale_temperature"]["sensor"]) {
+      for (const char* key : {"origin_cnt", "min_cnt", "max_cnt"}) s[key] = nullptr;
+    }
+  }
   return j;
 }
 
@@ -194,6 +204,18 @@ firmware_model::ImuCalibrationConstants ImuStandardErrors(const ConstantsFile& f
       se.cg[r][k] = number(j["cg"][r][k]);
     }
   }
+  if (se.scale_temperature.active) {
+    const json& st = j["scale_temperature"];
+    for (size_t c = 0; c < 9; ++c) {
+      for (size_t i = 0; i < 4; ++i) se.scale_temperature.scale[c][i] = number(st["scale"][c][i]);
+    }
+    for (size_t a = 0; a < 3; ++a) {
+      se.scale_temperature.accel_quadratic_per_g[a] = number(st["accel_quadratic_per_g"][a]);
+      for (size_t k = 0; k < 3; ++k) {
+        se.scale_temperature.gs_dps_per_mps2[a][k] = number(st["gs_dps_per_mps2"][a][k]);
+      }
+    }
+  }
   return se;
 }
 
@@ -208,8 +230,9 @@ json ToJson(const ConstantsFile& file) {
     }
     recordings.push_back({{"path", r.path}, {"sha256", r.sha256}});
   }
+  const bool format3 = file.imu && file.imu->scale_temperature.active;
   return json{{"format", kConstantsFormatName},
-              {"format_version", kConstantsFormatVersion},
+              {"format_version", format3 ? kConstantsFormatVersion : kConstantsOldestFormatVersion},
               {"serial", file.serial},
               {"kind", file.kind == hil::UnitKind::kImu ? "imu" : "ads"},
               {"strategy", file.strategy},

@@ -37,7 +37,10 @@ class ConstantsFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-inline constexpr int kConstantsFormatVersion = 2;
+/// Version 3 adds the IMU's "scale_temperature" (firmware constants format 3); a file is written
+/// as version 2 when it has none, so files of format-2 constants read in older software.
+inline constexpr int kConstantsFormatVersion = 3;
+inline constexpr int kConstantsOldestFormatVersion = 2;
 inline constexpr const char* kConstantsFormatName = "adahrs-constants";
 
 struct RecordingReference {

@@ -23,7 +23,13 @@ std::string ImuBlockName(uint8_t id) {
   if (id >= fm::kImuBlockGyroCubicFirst && id <= fm::kImuBlockGyroCubicLast) {
     return fmt::format("gyro {} cubic", "xyz"[id - fm::kImuBlockGyroCubicFirst]);
   }
-  return id == fm::kImuBlockCa ? "CA" : "CG";
+  if (id == fm::kImuBlockCa) return "CA";
+  if (id == fm::kImuBlockCg) return "CG";
+  if (id == fm::kImuBlockScaleSwitch) return "scale-temperature switch";
+  if (id >= fm::kImuBlockScaleFactorFirst && id <= fm::kImuBlockScaleFactorLast) {
+    return fmt::format("scale factor {}", kChannelNames[id - fm::kImuBlockScaleFactorFirst]);
+  }
+  return id == fm::kImuBlockAccelQuadratic ? "accel nonlinearity" : "gyro g-sensitivity";
 }
 
 }  // namespace
@@ -40,7 +46,9 @@ ConstantsBlocks ExportConstantsBlocks(const ConstantsFile& file, const std::stri
                           {"rate_dps", exported.report.rate_dps},
                           {"accel_mps2", exported.report.accel_mps2},
                           {"rate_full_dps", exported.report.rate_full_dps}};
-      for (uint8_t id = fm::kImuBlockThermalFirst; id <= fm::kImuBlockCg; ++id) {
+      // Every block, the format-3 ones with their switch off for format-2 constants, so that no
+      // stage of an earlier download survives this one (docs/unit-protocol.md §6.3).
+      for (uint8_t id = fm::kImuBlockThermalFirst; id <= fm::kImuBlockLast; ++id) {
         std::array<int16_t, fm::kImuMaxBlockWords> words{};
         uint8_t count = 0;
         if (fm::ImuConstantsReadBlock(&exported.constants, id, words.data(), words.size(),

@@ -23,16 +23,16 @@ int32_t EvaluateSurface(DspEngine* engine, const SurfaceQ31& s, int8_t out_expon
     b[k] = HornerQ31(engine, Acc::kA, s.b[k], kAdsSurfaceYDegree, y);
   }
   LoadQ31(engine, Acc::kA, b[kAdsSurfaceXDegree]);
-  engine->Sftac(Acc::kA, static_cast<int8_t>(s.outer_work_exponent - s.b[kAdsSurfaceXDegree].work_exponent));
+  SftacBy(engine, Acc::kA, s.outer_work_exponent - s.b[kAdsSurfaceXDegree].work_exponent);
   int32_t z = ReadQ31(engine, Acc::kA);
   for (int32_t k = kAdsSurfaceXDegree - 1; k >= 0; --k) {
     MulQ31(engine, Acc::kA, z, x);
     LoadQ31(engine, Acc::kB, b[k]);
-    engine->Sftac(Acc::kB, static_cast<int8_t>(s.outer_work_exponent - s.b[k].work_exponent));
+    SftacBy(engine, Acc::kB, s.outer_work_exponent - s.b[k].work_exponent);
     engine->AddAcc(Acc::kA);
     z = ReadQ31(engine, Acc::kA);
   }
-  engine->Sftac(Acc::kA, static_cast<int8_t>(out_exponent - s.outer_work_exponent));
+  SftacBy(engine, Acc::kA, out_exponent - s.outer_work_exponent);
   const int32_t result = ReadQ31(engine, Acc::kA);
   if (engine->TestAndClearSaturation()) *flags |= kFlagOutputSaturated;
   return result;
@@ -73,9 +73,9 @@ int32_t CompensateHysteresis(DspEngine* engine, const SurfaceQ31& s, int8_t resu
   const int16_t gain_thermal_q15 = GainAt(engine, s.thermal.gain, tau_q15);
   engine->TestAndClearSaturation();  // the travel clamp
   engine->Mpy(Acc::kA, gain_pressure_q15, s_pressure);
-  engine->Sftac(Acc::kA, static_cast<int8_t>(result_exponent - s.pressure.gain.exponent));
+  SftacBy(engine, Acc::kA, result_exponent - s.pressure.gain.exponent);
   engine->Mpy(Acc::kB, gain_thermal_q15, s_thermal);
-  engine->Sftac(Acc::kB, static_cast<int8_t>(result_exponent - s.thermal.gain.exponent));
+  SftacBy(engine, Acc::kB, result_exponent - s.thermal.gain.exponent);
   engine->AddAcc(Acc::kA);
   LoadQ31(engine, Acc::kB, z);
   engine->AddAcc(Acc::kA);

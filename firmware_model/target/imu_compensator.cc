@@ -9,6 +9,12 @@ constexpr int32_t kHalfDutyQ31 = INT32_C(0x40000000);  // 0.5 at exponent 0
 // Accelerometer channels of body axes x, y, z: (ch1, ch2) in az1 ax1 ay1 az2 ax2 ay2 order.
 constexpr uint8_t kPairOfAxis[3][2] = {{1, 4}, {2, 5}, {0, 3}};
 
+// One pass of a channel loop: pointer increments, the count's DEC and the branch back.
+void ChargeLoopStep(DspEngine* engine) {
+  engine->ChargeAlu(2);
+  engine->ChargeBranch(1);
+}
+
 // U = T1/T2 - 0.5 at exponent 0, floor(U 2^31); kFlagBadDuty and +full scale if t1 >= t2.
 int32_t DutyQ31(DspEngine* engine, uint16_t t1, uint16_t t2, uint16_t* flags) {
   engine->ChargeMov(2);     // t1, t2 into W registers
@@ -42,7 +48,7 @@ int32_t ThermalQ31(DspEngine* engine, const ThermalConstantsQ31& c, int8_t u_exp
   const int32_t tau = NormaliseQ31(engine, temp_cnt[c.temp_sensor], kTempCountExponent, c.temp_norm);
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
   HornerQ31(engine, Acc::kA, c.drift, kImuThermalDegree, tau);
-  engine->Sftac(Acc::kA, static_cast<int8_t>(u_exponent - c.drift.work_exponent));
+  SftacBy(engine, Acc::kA, u_exponent - c.drift.work_exponent);
   LoadQ31(engine, Acc::kB, u);
   engine->SubAcc(Acc::kB);
   return ReadQ31(engine, Acc::kB);
@@ -55,7 +61,7 @@ int32_t AccelCalibratedQ31(DspEngine* engine, const AccelScaleConstantsQ31& c, i
   engine->SubAcc(Acc::kA);
   const int32_t d = ReadQ31(engine, Acc::kA);
   MulQ31(engine, Acc::kA, d, c.inv_scale_g.mantissa_q31);
-  engine->Sftac(Acc::kA, static_cast<int8_t>(kAccelGExponent - c.inv_scale_g.exponent));
+  SftacBy(engine, Acc::kA, kAccelGExponent - c.inv_scale_g.exponent);
   return ReadQ31(engine, Acc::kA);
 }
 
@@ -91,7 +97,7 @@ void MatrixVectorQ31(DspEngine* engine, const CoeffQ31 m[3][3], const int32_t v[
     int32_t sum = 0;
     for (uint8_t c = 0; c < 3; ++c) {
       MulQ31(engine, Acc::kA, m[r][c].mantissa_q31, v[c]);
-      engine->Sftac(Acc::kA, static_cast<int8_t>(out_exponent - m[r][c].exponent - in_exponent));
+      SftacBy(engine, Acc::kA, out_exponent - m[r][c].exponent - in_exponent);
       if (c > 0) {
         LoadQ31(engine, Acc::kB, sum);
         engine->AddAcc(Acc::kA);
@@ -100,6 +106,45 @@ void MatrixVectorQ31(DspEngine* engine, const CoeffQ31 m[3][3], const int32_t v[
     }
     y[r] = sum;
   }
+}
+
+// tau_s = (t_cnt[s] - centre_s) 2^-shift_s for every temperature sensor (format 3).
+void ScaleTemperaturesQ31(DspEngine* engine, const ScaleTemperatureConstantsQ31& st,
+                          const uint16_t temp_cnt[kTempSensors], int32_t tau[kTempSensors],
+                          uint16_t* flags) {
+  for (uint8_t s = 0; s < kTempSensors; ++s) {
+    tau[s] = NormaliseQ31(engine, temp_cnt[s], kTempCountExponent, st.temp_norm[s]);
+    ChargeLoopStep(engine);
+  }
+  if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
+}
+
+// y F(tau), at y's exponent (F at kScaleFactorExponent).
+int32_t ScaledQ31(DspEngine* engine, const PolyQ31& factor, int32_t tau, int32_t y) {
+  engine->ChargeCallReturn();
+  const int32_t f = HornerQ31(engine, Acc::kA, factor, kImuScaleFactorDegree, tau);
+  MulQ31(engine, Acc::kA, y, f);
+  engine->Sftac(Acc::kA, static_cast<int8_t>(-kScaleFactorExponent));
+  return ReadQ31(engine, Acc::kA);
+}
+
+// ca + q ca^2 in g: ca^2 at 2 kAccelGExponent, times q, brought back to kAccelGExponent.
+int32_t AccelQuadraticQ31(DspEngine* engine, const CoeffQ31& q, int32_t ca) {
+  MulQ31(engine, Acc::kA, ca, ca);
+  const int32_t square = ReadQ31(engine, Acc::kA);
+  MulQ31(engine, Acc::kA, square, q.mantissa_q31);
+  SftacBy(engine, Acc::kA, -kAccelGExponent - q.exponent);
+  LoadQ31(engine, Acc::kB, ca);
+  engine->AddAcc(Acc::kA);
+  return ReadQ31(engine, Acc::kA);
+}
+
+// a + b, saturating.
+int32_t AddQ31(DspEngine* engine, int32_t a, int32_t b) {
+  LoadQ31(engine, Acc::kA, a);
+  LoadQ31(engine, Acc::kB, b);
+  engine->AddAcc(Acc::kA);
+  return ReadQ31(engine, Acc::kA);
 }
 
 }  // namespace
@@ -127,9 +172,11 @@ void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensa
   int32_t u[kImuChannels];
   for (uint8_t c = 0; c < kAccelChannels; ++c) {
     u[c] = DutyQ31(engine, raw.t1_cnt[c], raw.t2_cnt[c], &flags);
+    ChargeLoopStep(engine);
   }
   for (uint8_t g = 0; g < kGyroChannels; ++g) {
     u[kAccelChannels + g] = GyroCountsQ31(engine, raw.gyro_cnt[g]);
+    ChargeLoopStep(engine);
   }
   if (engine->TestAndClearSaturation()) flags |= kFlagInputSaturated;
   if (mode == ImuCompensationMode::kRaw) {
@@ -142,6 +189,7 @@ void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensa
   for (uint8_t c = 0; c < kImuChannels; ++c) {
     const int8_t u_exponent = c < kAccelChannels ? kDutyExponent : kGyroCountExponent;
     t[c] = ThermalQ31(engine, constants.thermal[c], u_exponent, u[c], raw.temp_cnt, &flags);
+    ChargeLoopStep(engine);
   }
   if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
   if (mode == ImuCompensationMode::kThermal) {
@@ -153,10 +201,24 @@ void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensa
   int32_t cal[kImuChannels];
   for (uint8_t c = 0; c < kAccelChannels; ++c) {
     cal[c] = AccelCalibratedQ31(engine, constants.accel[c], t[c]);
+    ChargeLoopStep(engine);
   }
   for (uint8_t g = 0; g < kGyroChannels; ++g) {
     const uint8_t c = static_cast<uint8_t>(kAccelChannels + g);
     cal[c] = GyroCalibratedQ31(engine, constants.gyro[g], t[c], &flags);
+    ChargeLoopStep(engine);
+  }
+  const ScaleTemperatureConstantsQ31& st = constants.scale_temperature;
+  engine->ChargeMov(1);  // enabled flag
+  engine->ChargeBranch(1);
+  if (st.enabled != 0) {
+    if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
+    int32_t tau[kTempSensors];
+    ScaleTemperaturesQ31(engine, st, raw.temp_cnt, tau, &flags);
+    for (uint8_t c = 0; c < kImuChannels; ++c) {
+      cal[c] = ScaledQ31(engine, st.scale[c], tau[constants.thermal[c].temp_sensor], cal[c]);
+      ChargeLoopStep(engine);
+    }
   }
   if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
   if (mode == ImuCompensationMode::kSensorCalibrated) {
@@ -172,11 +234,17 @@ void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensa
     const int32_t ch2 = cal[kPairOfAxis[axis][1]];
     ca_g[axis] = HalfSumQ31(engine, ch1, ch2, false);
     half_difference_g[axis] = HalfSumQ31(engine, ch1, ch2, true);
+    if (st.enabled != 0) ca_g[axis] = AccelQuadraticQ31(engine, st.accel_quadratic[axis], ca_g[axis]);
   }
   int32_t a_mps2[3];
   int32_t g_dps[3];
   MatrixVectorQ31(engine, constants.ca, ca_g, kAccelGExponent, kAccelMps2Exponent, a_mps2);
   MatrixVectorQ31(engine, constants.cg, cal + kAccelChannels, kRateExponent, kRateExponent, g_dps);
+  if (st.enabled != 0) {
+    int32_t g_sensitivity_dps[3];
+    MatrixVectorQ31(engine, st.gs, a_mps2, kAccelMps2Exponent, kRateExponent, g_sensitivity_dps);
+    for (uint8_t i = 0; i < 3; ++i) g_dps[i] = AddQ31(engine, g_dps[i], g_sensitivity_dps[i]);
+  }
   if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
   for (uint8_t i = 0; i < 3; ++i) {
     out->value[i] = a_mps2[i];

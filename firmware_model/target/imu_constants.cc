@@ -111,6 +111,90 @@ ConstantsStatus GyroFromWords(const int16_t* words, GyroCubicConstantsQ31* out) 
   return ConstantsStatus::kOk;
 }
 
+// [enabled][3 x norm]: enabled must be 0 or 1, every shift <= 16.
+ConstantsStatus ScaleSwitchFromWords(const int16_t* words, ScaleTemperatureConstantsQ31* out) {
+  if (words[0] != 0 && words[0] != 1) return ConstantsStatus::kOutOfRange;
+  InputNormQ31 norms[kTempSensors];
+  for (uint8_t s = 0; s < kTempSensors; ++s) {
+    const ConstantsStatus status = NormFromWords(words + 1 + s * kNormWords, 16, &norms[s]);
+    if (status != ConstantsStatus::kOk) return status;
+  }
+  out->enabled = static_cast<uint8_t>(words[0]);
+  for (uint8_t s = 0; s < kTempSensors; ++s) out->temp_norm[s] = norms[s];
+  return ConstantsStatus::kOk;
+}
+
+ConstantsStatus ScaleFactorFromWords(const int16_t* words, PolyQ31* out) {
+  PolyQ31 decoded{};
+  const ConstantsStatus s = PolyFromWords(words, kImuScaleFactorDegree, &decoded);
+  if (s != ConstantsStatus::kOk) return s;
+  if (decoded.work_exponent != kScaleFactorExponent) return ConstantsStatus::kOutOfRange;
+  *out = decoded;
+  return ConstantsStatus::kOk;
+}
+
+// q per axis: q ca^2 is formed as (ca^2 at 2 kAccelGExponent) * q, brought to kAccelGExponent by
+// one SFTAC of (kAccelGExponent - 2 kAccelGExponent - e) bits, which must lie in -16..16; and
+// |q| * (16 g)^2 < 16 g keeps the term inside the g format for any ca the stage can hold.
+ConstantsStatus AccelQuadraticFromWords(const int16_t* words, CoeffQ31 out[3]) {
+  CoeffQ31 decoded[3];
+  for (uint8_t axis = 0; axis < 3; ++axis) {
+    const ConstantsStatus s = CoeffFromWords(words + axis * kCoeffWords, &decoded[axis]);
+    if (s != ConstantsStatus::kOk) return s;
+    const int32_t shift = -kAccelGExponent - decoded[axis].exponent;
+    if (shift < -kMaxAlignShift || shift > kMaxAlignShift) return ConstantsStatus::kOutOfRange;
+    // |q| < 1/16 g per g^2  <=>  |m| 2^(e - 31) < 2^-4  <=>  |m| < 2^(27 - e).
+    const int64_t abs_m = decoded[axis].mantissa_q31 < 0
+                              ? -static_cast<int64_t>(decoded[axis].mantissa_q31)
+                              : decoded[axis].mantissa_q31;
+    const int32_t limit_log2 = 27 - decoded[axis].exponent;
+    if (limit_log2 <= 31 && abs_m >= (static_cast<int64_t>(1) << limit_log2)) {
+      return ConstantsStatus::kWouldOverflow;
+    }
+  }
+  for (uint8_t axis = 0; axis < 3; ++axis) out[axis] = decoded[axis];
+  return ConstantsStatus::kOk;
+}
+
+void ScaleTemperatureInit(ScaleTemperatureConstantsQ31* st) {
+  st->enabled = 0;
+  for (InputNormQ31& n : st->temp_norm) n = InputNormQ31{INT32_C(32768), 16};
+  for (PolyQ31& f : st->scale) {
+    ZeroPoly(&f, kScaleFactorExponent);
+    f.coeff[0] = kOneCoeff;
+  }
+  for (CoeffQ31& q : st->accel_quadratic) q = kZeroCoeff;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) st->gs[r][c] = CoeffQ31{0, 0};
+  }
+}
+
+ConstantsStatus ScaleTemperatureWriteBlock(ScaleTemperatureConstantsQ31* st, uint8_t block_id,
+                                           const int16_t* words) {
+  if (block_id == kImuBlockScaleSwitch) return ScaleSwitchFromWords(words, st);
+  if (block_id <= kImuBlockScaleFactorLast) {
+    return ScaleFactorFromWords(words, &st->scale[block_id - kImuBlockScaleFactorFirst]);
+  }
+  if (block_id == kImuBlockAccelQuadratic) return AccelQuadraticFromWords(words, st->accel_quadratic);
+  return MatrixFromWords(words, kRatedAccel_mps2, kRateExponent, st->gs);
+}
+
+void ScaleTemperatureReadBlock(const ScaleTemperatureConstantsQ31& st, uint8_t block_id,
+                               int16_t* words) {
+  if (block_id == kImuBlockScaleSwitch) {
+    words[0] = st.enabled;
+    for (uint8_t s = 0; s < kTempSensors; ++s) NormToWords(st.temp_norm[s], words + 1 + s * kNormWords);
+  } else if (block_id <= kImuBlockScaleFactorLast) {
+    PolyToWords(st.scale[block_id - kImuBlockScaleFactorFirst], kImuScaleFactorDegree, words);
+  } else if (block_id == kImuBlockAccelQuadratic) {
+    for (uint8_t axis = 0; axis < 3; ++axis) {
+      CoeffToWords(st.accel_quadratic[axis], words + axis * kCoeffWords);
+    }
+  } else {
+    MatrixToWords(st.gs, words);
+  }
+}
+
 }  // namespace
 
 void ImuConstantsInit(ImuConstants* constants) {
@@ -128,6 +212,7 @@ void ImuConstantsInit(ImuConstants* constants) {
   }
   IdentityMatrix(constants->ca);
   IdentityMatrix(constants->cg);
+  ScaleTemperatureInit(&constants->scale_temperature);
 }
 
 uint8_t ImuConstantsBlockLength(uint8_t block_id) {
@@ -139,6 +224,12 @@ uint8_t ImuConstantsBlockLength(uint8_t block_id) {
     return kImuGyroBlockWords;
   }
   if (block_id == kImuBlockCa || block_id == kImuBlockCg) return kImuMatrixBlockWords;
+  if (block_id == kImuBlockScaleSwitch) return kImuScaleSwitchBlockWords;
+  if (block_id >= kImuBlockScaleFactorFirst && block_id <= kImuBlockScaleFactorLast) {
+    return kImuScaleFactorBlockWords;
+  }
+  if (block_id == kImuBlockAccelQuadratic) return kImuAccelQuadraticBlockWords;
+  if (block_id == kImuBlockGs) return kImuMatrixBlockWords;
   return 0;
 }
 
@@ -159,7 +250,10 @@ ConstantsStatus ImuConstantsWriteBlock(ImuConstants* constants, uint8_t block_id
   if (block_id == kImuBlockCa) {
     return MatrixFromWords(words, kRatedAccel_g, kAccelMps2Exponent, constants->ca);
   }
-  return MatrixFromWords(words, kRatedRate_dps, kRateExponent, constants->cg);
+  if (block_id == kImuBlockCg) {
+    return MatrixFromWords(words, kRatedRate_dps, kRateExponent, constants->cg);
+  }
+  return ScaleTemperatureWriteBlock(&constants->scale_temperature, block_id, words);
 }
 
 ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants, uint8_t block_id,
@@ -187,8 +281,10 @@ ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants, uint8_t blo
     const GyroCubicConstantsQ31& g = constants->gyro[block_id - kImuBlockGyroCubicFirst];
     NormToWords(g.count_norm, words);
     PolyToWords(g.rate, 3, words + kNormWords);
-  } else {
+  } else if (block_id <= kImuBlockCg) {
     MatrixToWords(block_id == kImuBlockCa ? constants->ca : constants->cg, words);
+  } else {
+    ScaleTemperatureReadBlock(constants->scale_temperature, block_id, words);
   }
   *count = length;
   return ConstantsStatus::kOk;

@@ -21,6 +21,13 @@
 //   Cg  gyro, Eq. 23: l0 + l1 x + l2 x^2 + l3 x^3, x = (T - centre) * 2^-shift, result in deg/s at
 //       kRateExponent
 //   A = CA * mean-pair(Ca) (Eq. 26, m/s^2), G = CG * Cg (Eq. 29, deg/s); see compensated_frame.h.
+// Scale-temperature stages (constants format 3; run only when block 0x10 enables them, so a
+// format-2 set computes bit for bit what it did before):
+//   tau_s = (t_cnt[s] - centre_s) * 2^-shift_s, one normalisation per temperature sensor s
+//   Ca_i *= F_i(tau_s(i)), Cg_g *= F_g(tau_s(g)): a dimensionless scale factor, cubic in tau of the
+//       sensor the channel's thermal block names, evaluated at kScaleFactorExponent (|F| < 2)
+//   ca_axis += q_axis ca_axis^2 after the pair mean (accelerometer second-order nonlinearity)
+//   G = CG * Cg + GS * A, GS in deg/s per m/s^2 (gyro g-sensitivity on the compensated A)
 //
 // Blocks (id: content, length in int16 words; layouts in fixed_coeff.h):
 //   0x01..0x09 thermal, channel id-1: [temperature sensor 0..2][InputNormQ31 tau (shift <= 16)]
@@ -31,9 +38,17 @@
 //              exponent must equal kRateExponent]                                  16 words
 //   0x0E       CA, row-major 3x3 CoeffQ31 (m/s^2 per g)                             27 words
 //   0x0F       CG, row-major 3x3 CoeffQ31 (deg/s per deg/s)                         27 words
+//   0x10       format-3 switch and temperature normalisation: [enabled 0|1]
+//              3 x [InputNormQ31 tau_s (shift <= 16)]                                10 words
+//   0x11..0x19 scale factor F of channel id-0x11: [PolyQ31 degree 3, working exponent
+//              kScaleFactorExponent]                                                  13 words
+//   0x1A       accelerometer nonlinearity q, 3 x CoeffQ31 (g per g^2)                  9 words
+//   0x1B       GS, row-major 3x3 CoeffQ31 (deg/s per m/s^2)                          27 words
+// Blocks 0x01..0x0F are the format-2 set and must all be written before a commit; 0x10..0x1B
+// are written all together or not at all (maintenance_handler.h).
 // A write validates the whole block first and changes nothing unless it returns kOk.
-// Not modelled: the gyro scale factor's temperature dependence (the reference leaves it as future
-// work), run-time bias estimation, and any constants version or CRC (the maintenance handler's).
+// Not modelled: run-time bias estimation, and any constants version or CRC (the maintenance
+// handler's).
 #pragma once
 
 #include <cstdint>
@@ -54,13 +69,16 @@ inline constexpr int8_t kTempCountExponent = 31;  ///< temperature counts, raw i
 inline constexpr int8_t kAccelGExponent = 4;      ///< specific force in g, |Ca| < 16 g
 inline constexpr int8_t kAccelMps2Exponent = 8;   ///< specific force in m/s^2, |A| < 256 m/s^2
 inline constexpr int8_t kRateExponent = 8;        ///< angular rate in deg/s, |G| < 256 deg/s
+inline constexpr int8_t kScaleFactorExponent = 1; ///< dimensionless scale factor, |F| < 2
 
 /// Rated input envelope used by the overflow check of the cross-axis matrices (Table 5).
 inline constexpr int32_t kRatedAccel_g = 10;
 inline constexpr int32_t kRatedRate_dps = 150;
+inline constexpr int32_t kRatedAccel_mps2 = 99;  ///< 10 g, rounded up
 
-/// Degree of the thermal drift polynomial xi.
+/// Degree of the thermal drift polynomial xi and of the scale factors F.
 inline constexpr uint8_t kImuThermalDegree = 3;
+inline constexpr uint8_t kImuScaleFactorDegree = 3;
 
 struct ThermalConstantsQ31 {
   uint8_t temp_sensor;     ///< 0..2: which temperature count drives this channel
@@ -78,12 +96,22 @@ struct GyroCubicConstantsQ31 {
   PolyQ31 rate;             ///< Eq. 23 in x, deg/s, work_exponent == kRateExponent
 };
 
+/// The format-3 stages (blocks 0x10..0x1B).
+struct ScaleTemperatureConstantsQ31 {
+  uint8_t enabled;                          ///< 0: skipped (a format-2 set), 1: run
+  InputNormQ31 temp_norm[kTempSensors];     ///< tau_s, shift <= 16
+  PolyQ31 scale[kImuChannels];              ///< F_c(tau), work_exponent == kScaleFactorExponent
+  CoeffQ31 accel_quadratic[3];              ///< q per body axis, g per g^2
+  CoeffQ31 gs[3][3];                        ///< GS, deg/s per m/s^2
+};
+
 struct ImuConstants {
   ThermalConstantsQ31 thermal[kImuChannels];
   AccelScaleConstantsQ31 accel[kAccelChannels];
   GyroCubicConstantsQ31 gyro[kGyroChannels];
   CoeffQ31 ca[3][3];  ///< CA, A_mps2 = CA * Ca_g
   CoeffQ31 cg[3][3];  ///< CG, G_dps = CG * Cg_dps
+  ScaleTemperatureConstantsQ31 scale_temperature;
 };
 
 /// Block ids of the IMU constant set.
@@ -95,17 +123,28 @@ enum ImuBlockId : uint8_t {
   kImuBlockGyroCubicLast = 0x0D,
   kImuBlockCa = 0x0E,
   kImuBlockCg = 0x0F,
+  kImuBlockScaleSwitch = 0x10,      ///< format-3 switch and temperature normalisations
+  kImuBlockScaleFactorFirst = 0x11, ///< 0x11..0x19: F, channel = id - 0x11
+  kImuBlockScaleFactorLast = 0x19,
+  kImuBlockAccelQuadratic = 0x1A,
+  kImuBlockGs = 0x1B,
 };
+/// The format-2 set is 0x01..0x0F; the format-3 blocks are 0x10..kImuBlockLast.
+inline constexpr uint8_t kImuBlockLast = kImuBlockGs;
 
 inline constexpr uint8_t kImuThermalBlockWords = 1 + kNormWords + PolyWords(kImuThermalDegree);
 inline constexpr uint8_t kImuAccelBlockWords = kAccelChannels * (2 + kCoeffWords);
 inline constexpr uint8_t kImuGyroBlockWords = kNormWords + PolyWords(3);
 inline constexpr uint8_t kImuMatrixBlockWords = 9 * kCoeffWords;
+inline constexpr uint8_t kImuScaleSwitchBlockWords = 1 + kTempSensors * kNormWords;
+inline constexpr uint8_t kImuScaleFactorBlockWords = PolyWords(kImuScaleFactorDegree);
+inline constexpr uint8_t kImuAccelQuadraticBlockWords = 3 * kCoeffWords;
 /// Longest IMU block, for callers sizing a buffer.
 inline constexpr uint8_t kImuMaxBlockWords = kImuAccelBlockWords;
 
 /// Puts the set into its uncalibrated state: zero drift, zero offsets, zero scales, zero gyro
-/// polynomials, identity matrices (so every calibrated output of an unconfigured unit reads zero).
+/// polynomials, identity matrices (so every calibrated output of an unconfigured unit reads zero),
+/// and the format-3 stages off (scale factors 1, q and GS zero).
 void ImuConstantsInit(ImuConstants* constants);
 
 /// Words in block `block_id`, or 0 if the block is unknown.

@@ -14,8 +14,10 @@ constexpr uint8_t kWriteBlockHeaderBytes = 3;  // command, block id, word count
 constexpr uint8_t kMaxBlockWords = (kMaxPayloadBytes - kWriteBlockHeaderBytes) / 2;
 static_assert(kImuMaxBlockWords <= kMaxBlockWords && kAdsMaxBlockWords <= kMaxBlockWords);
 
-// IMU blocks are 0x01..0x0F without gaps; ADS blocks 0x21..0x22.
-constexpr uint8_t kImuBlockCount = kImuBlockCg - kImuBlockThermalFirst + 1;
+// IMU blocks are 0x01..0x1B without gaps (0x01..0x0F the format-2 set); ADS blocks 0x21..0x22.
+constexpr uint8_t kImuBlockCount = kImuBlockLast - kImuBlockThermalFirst + 1;
+constexpr uint8_t kImuFormat2BlockCount = kImuBlockCg - kImuBlockThermalFirst + 1;
+constexpr uint32_t kImuFormat2Mask = (uint32_t{1} << kImuFormat2BlockCount) - 1u;
 constexpr uint8_t kAdsBlockCount = kAdsBlockAirspeed - kAdsBlockAltitude + 1;
 
 ResultCode ToResultCode(ConstantsStatus status) {
@@ -80,7 +82,7 @@ void MaintenanceHandler::LoadCommittedConstants() {
     loaded_mask |= uint32_t{1} << index;
     position = static_cast<uint16_t>(position + 2 + count_word);
   }
-  if (position != image_length || loaded_mask != AllBlocksMask()) {
+  if (position != image_length || !IsCompleteSet(loaded_mask)) {
     InitConstants();
     return;
   }
@@ -119,6 +121,13 @@ bool MaintenanceHandler::BlockIndex(uint8_t block_id, uint8_t* index) const {
 
 uint32_t MaintenanceHandler::AllBlocksMask() const {
   return (uint32_t{1} << BlockCount()) - 1u;
+}
+
+bool MaintenanceHandler::IsCompleteSet(uint32_t mask) const {
+  if (identity_.kind != UnitKind::kImu) return mask == AllBlocksMask();
+  const uint32_t format3 = AllBlocksMask() & ~kImuFormat2Mask;
+  return (mask & kImuFormat2Mask) == kImuFormat2Mask &&
+         ((mask & format3) == 0 || (mask & format3) == format3);
 }
 
 ConstantsStatus MaintenanceHandler::WriteBlock(uint8_t block_id, const int16_t* words, uint8_t count) {
@@ -283,7 +292,7 @@ ResultCode MaintenanceHandler::DoCommit(const Frame& frame) {
   if (frame.payload_length != kNoArgumentRequestBytes) {
     return ResultCode::kBadLength;
   }
-  if (blocks_valid_mask_ != AllBlocksMask()) {
+  if (!IsCompleteSet(blocks_valid_mask_)) {
     return ResultCode::kIncompleteConstants;
   }
   uint16_t position = 0;

@@ -106,6 +106,9 @@ class MaintenanceHandler {
   ConstantsStatus WriteBlock(uint8_t block_id, const int16_t* words, uint8_t count);
   ConstantsStatus ReadBlock(uint8_t block_id, int16_t* words, uint8_t capacity, uint8_t* count) const;
   uint32_t AllBlocksMask() const;
+  /// True when `mask` holds a set the unit can run: every block for the ADS; for the IMU the
+  /// format-2 blocks 0x01..0x0F, and the format-3 blocks 0x10..0x1B all or none.
+  bool IsCompleteSet(uint32_t mask) const;
 
   UnitIdentity identity_;
   FlashStore* flash_;

@@ -24,8 +24,14 @@ void ShiftAcc(DspEngine* engine, Acc acc, int32_t shift) {
   } while (remaining != 0);
 }
 
+void SftacBy(DspEngine* engine, Acc acc, int32_t shift) {
+  engine->ChargeMov(1);  // the shift count into a W register
+  engine->Sftac(acc, static_cast<int8_t>(shift));
+}
+
 void MulQ31(DspEngine* engine, Acc acc, int32_t a_q31, int32_t b_q31) {
   const Acc scratch = Other(acc);
+  engine->ChargeMov(4);  // ah, al, bh, bl into W registers
   const int16_t ah = HighWord(a_q31);
   const uint16_t al = LowWord(a_q31);
   const int16_t bh = HighWord(b_q31);
@@ -45,21 +51,27 @@ int32_t NormaliseQ31(DspEngine* engine, int32_t v, int8_t v_exponent, const Inpu
   LoadQ31(engine, Acc::kA, v);
   LoadQ31(engine, Acc::kB, norm.centre);
   engine->SubAcc(Acc::kA);
+  engine->ChargeMov(1);  // the shift count into a W register
   ShiftAcc(engine, Acc::kA, norm.shift - v_exponent);
   return ReadQ31(engine, Acc::kA);
 }
 
 int32_t HornerQ31(DspEngine* engine, Acc acc, const PolyQ31& poly, uint8_t degree, int32_t x_q31) {
   const Acc scratch = Other(acc);
+  engine->ChargeMov(2);  // coefficient pointer and loop count
   LoadQ31(engine, acc, poly.coeff[degree].mantissa_q31);
-  engine->Sftac(acc, static_cast<int8_t>(poly.work_exponent - poly.coeff[degree].exponent));
+  engine->ChargeAlu(1);  // shift = work exponent - coefficient exponent
+  SftacBy(engine, acc, poly.work_exponent - poly.coeff[degree].exponent);
   int32_t y = ReadQ31(engine, acc);
   for (int32_t k = degree - 1; k >= 0; --k) {
     MulQ31(engine, acc, y, x_q31);
     LoadQ31(engine, scratch, poly.coeff[k].mantissa_q31);
-    engine->Sftac(scratch, static_cast<int8_t>(poly.work_exponent - poly.coeff[k].exponent));
+    engine->ChargeAlu(1);  // shift = work exponent - coefficient exponent
+    SftacBy(engine, scratch, poly.work_exponent - poly.coeff[k].exponent);
     engine->AddAcc(acc);
     y = ReadQ31(engine, acc);
+    engine->ChargeAlu(1);  // DEC loop count
+    engine->ChargeBranch(1);
   }
   return y;
 }

@@ -9,11 +9,13 @@
 // The al*bl term (< 2 LSB) is dropped. Result: acc = 2 ah bh + floor(ah bl / 2^15) +
 // floor(al bh / 2^15), within [-3, 0] LSB of floor(a b / 2^31); the only saturation is
 // (-1)*(-1) -> 0x7FFFFFFF under 1.31 saturation. Cost: 11 cycles (2 MUL.SU, 2 LAC, 2 MOV ACCxL,
-// 2 SFTAC, 1 MPY, 2 ADD). The engine must be in fractional mode with 1.31 saturation.
+// 2 SFTAC, 1 MPY, 2 ADD) plus 4 MOVs that bring the operands' words into W registers, as a
+// compiler emits them: 15. The engine must be in fractional mode with 1.31 saturation.
 //
 // Horner at a working exponent E (fixed_coeff.h): y_n = c_n; y_k = y_{k+1} x + c_k, every c_k
 // aligned to E by a right shift (E - e_k) (one SFTAC with the shift in a W register), each step
-// 17 cycles: MulQ31 11, load c_k 2, SFTAC 1, ADD 1, read y 2.
+// 25 cycles: MulQ31 15, load c_k 2, the shift's SUB and MOV 2, SFTAC 1, ADD 1, read y 2, loop
+// DEC and branch 2; plus a pointer and count set-up of 2.
 #pragma once
 
 #include <cstdint>
@@ -27,11 +29,13 @@ namespace adahrs::firmware_model {
 void LoadQ31(DspEngine* engine, Acc acc, int32_t v);
 /// Reads ACCxH:ACCxL as int32 (2 cycles); exact while the accumulator is within 1.31.
 int32_t ReadQ31(DspEngine* engine, Acc acc);
+/// SFTAC by a shift held in a W register (-16..16): the MOV that loads it, then the SFTAC.
+void SftacBy(DspEngine* engine, Acc acc, int32_t shift);
 /// Shifts acc by `shift` (positive right), using as many SFTACs (+-16 each) as needed, at least one.
 void ShiftAcc(DspEngine* engine, Acc acc, int32_t shift);
 /// acc = a*b in Q31 (see derivation above); uses the other accumulator as scratch.
 void MulQ31(DspEngine* engine, Acc acc, int32_t a_q31, int32_t b_q31);
-/// x = (v - centre) * 2^(v_exponent - shift) in Q31, saturating (SA set) if |x| >= 1: 9-10 cycles.
+/// x = (v - centre) * 2^(v_exponent - shift) in Q31, saturating (SA set) if |x| >= 1: 10-11 cycles.
 int32_t NormaliseQ31(DspEngine* engine, int32_t v, int8_t v_exponent, const InputNormQ31& norm);
 /// p(x) by Horner at poly.work_exponent; result (Q31 at that exponent) in `acc` and returned.
 int32_t HornerQ31(DspEngine* engine, Acc acc, const PolyQ31& poly, uint8_t degree, int32_t x_q31);

@@ -54,15 +54,21 @@ TEST(ReadbackCheckTest, FindsTheFirstDifferingWordOrLength) {
   EXPECT_EQ(CompareReadback(written, shorter)->Describe(), "wrote 4 words, read 3");
 }
 
-TEST(ConstantsBlocksTest, ImuSetIsFifteenBlocksOfTheTargetLengths) {
+TEST(ConstantsBlocksTest, ImuSetIsTwentySevenBlocksOfTheTargetLengths) {
   const ConstantsBlocks blocks = ExportConstantsBlocks(ImuFileFor("IMU-0001", 3), "c.json");
-  ASSERT_EQ(blocks.blocks.size(), 15u);
+  ASSERT_EQ(blocks.blocks.size(), 27u);
   for (const ConstantsBlock& block : blocks.blocks) {
-    // Lengths from docs/unit-protocol.md §6.2: thermal 17, accel 30, gyro 16, matrices 27 words.
-    const size_t expected = block.block_id <= 0x09 ? 17 : block.block_id == 0x0A ? 30
-                            : block.block_id <= 0x0D ? 16 : 27;
+    // Lengths from docs/unit-protocol.md §6.2: thermal 17, accel 30, gyro 16, matrices 27 words;
+    // format 3: switch 10, scale factors 13, accelerometer nonlinearity 9, g-sensitivity 27.
+    const uint8_t id = block.block_id;
+    const size_t expected = id <= 0x09 ? 17 : id == 0x0A ? 30 : id <= 0x0D ? 16 : id <= 0x0F ? 27
+                            : id == 0x10 ? 10 : id <= 0x19 ? 13 : id == 0x1A ? 9 : 27;
     EXPECT_EQ(block.words.size(), expected) << block.name;
+    EXPECT_EQ(id, blocks.blocks.front().block_id + (&block - blocks.blocks.data()));
   }
+  // Format-2 constants: the switch block is written, with the stages off.
+  EXPECT_EQ(blocks.blocks[15].name, "scale-temperature switch");
+  EXPECT_EQ(blocks.blocks[15].words[0], 0);
   ConstantsFile empty = ImuFileFor("IMU-0001", 3);
   empty.imu.reset();
   EXPECT_THAT([&] { ExportConstantsBlocks(empty, "c.json"); },

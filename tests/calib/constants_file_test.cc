@@ -82,14 +82,49 @@ TEST(ConstantsFile, RoundTripsThroughDisk) {
 
 TEST(ConstantsFile, RefusesWrongFormatAndVersion) {
   json j = ToJson(ImuFile());
-  j["format_version"] = 3;
-  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.format_version: version 3 is not supported"));
+  j["format_version"] = 4;
+  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.format_version: version 4 is not supported"));
   // Version 1 held a quadratic thermal drift without its temperature span: refit, not guessed.
   j["format_version"] = 1;
   EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.format_version: version 1 is not supported"));
   j = ToJson(ImuFile());
   j["format"] = "something-else";
   EXPECT_THAT(MessageOf(j), HasSubstr("$.format"));
+}
+
+// Constants with the firmware's format-3 terms are written as version 3 and read back exactly; the
+// same constants without them stay version 2; a version-2 file may not carry them.
+TEST(ConstantsFile, Format3TermsMakeAVersion3FileAndRoundTrip) {
+  ConstantsFile f = ImuFile();
+  EXPECT_EQ(ToJson(f)["format_version"], 2);
+  EXPECT_FALSE(ToJson(f)["constants"].contains("scale_temperature"));
+  fm::ImuScaleTemperature& st = f.imu->scale_temperature;
+  st.active = true;
+  for (fm::TempSensorSpan& span : st.sensor) span = {32768.0, 27000.0, 40000.0};
+  for (int c = 0; c < 9; ++c) st.scale[c] = {1.0 + 1e-4 * c, 2e-7, -1e-11, 3e-16};
+  st.accel_quadratic_per_g = {1e-3, -2e-3, 5e-4};
+  st.gs_dps_per_mps2 = {{{0.01, 0.0, -0.002}, {0.0, 0.003, 0.0}, {0.001, 0.0, 0.0}}};
+  fm::ImuCalibrationConstants se = ImuStandardErrors(ImuFile());
+  se.scale_temperature = st;
+  for (auto& scale : se.scale_temperature.scale) scale = {1e-5, 1e-9, 1e-13, 1e-17};
+  se.scale_temperature.accel_quadratic_per_g = {1e-5, 1e-5, 1e-5};
+  se.scale_temperature.gs_dps_per_mps2 = {{{1e-4, 1e-4, 1e-4}, {1e-4, 1e-4, 1e-4}, {1e-4, 1e-4, 1e-4}}};
+  f.standard_errors = ImuStandardErrorsJson(se);
+  const json j = ToJson(f);
+  EXPECT_EQ(j["format_version"], 3);
+  EXPECT_TRUE(j["standard_errors"]["scale_temperature"]["sensor"][1]["origin_cnt"].is_null());
+  const ConstantsFile g = ConstantsFileFromJson(j, "unit.json");
+  ASSERT_TRUE(g.imu && g.imu->scale_temperature.active);
+  EXPECT_EQ(fm::ToJson(*g.imu), fm::ToJson(*f.imu));
+  EXPECT_EQ(ImuStandardErrors(g).scale_temperature.scale[4][2], 1e-13);
+  json old = j;
+  old["format_version"] = 2;
+  EXPECT_THAT(MessageOf(old),
+              HasSubstr("unit.json: $.constants.scale_temperature: needs format_version 3"));
+  json bad = j;
+  bad["constants"]["scale_temperature"]["sensor"][2]["origin_cnt"] = 32768.5;
+  bad["standard_errors"]["scale_temperature"]["sensor"][2]["origin_cnt"] = nullptr;
+  EXPECT_THAT(MessageOf(bad), HasSubstr("imu.scale_temperature.sensor[2].origin_cnt: must be a whole count"));
 }
 
 TEST(ConstantsFile, RefusesMissingAndUnexpectedKeys) {

@@ -41,6 +41,57 @@ TEST(ConstantsBlocks, ImuRoundTripEveryBlock) {
   }
 }
 
+TEST(ConstantsBlocks, Format3RoundTripAndRefusals) {
+  const ImuConstants source =
+      ExportImuConstants(testing::WithScaleTemperature(testing::RealisticImu(5), 6)).constants;
+  ASSERT_EQ(source.scale_temperature.enabled, 1);
+  ImuConstants target;
+  ImuConstantsInit(&target);
+  EXPECT_EQ(target.scale_temperature.enabled, 0);
+  int16_t words[kImuMaxBlockWords];
+  uint8_t count = 0;
+  for (uint8_t id = kImuBlockScaleSwitch; id <= kImuBlockLast; ++id) {
+    ASSERT_EQ(ImuConstantsReadBlock(&source, id, words, kImuMaxBlockWords, &count), ConstantsStatus::kOk);
+    EXPECT_EQ(count, ImuConstantsBlockLength(id));
+    ASSERT_EQ(ImuConstantsWriteBlock(&target, id, words, count), ConstantsStatus::kOk) << int(id);
+    int16_t back[kImuMaxBlockWords];
+    uint8_t back_count = 0;
+    ImuConstantsReadBlock(&target, id, back, kImuMaxBlockWords, &back_count);
+    ASSERT_EQ(back_count, count);
+    EXPECT_EQ(std::memcmp(words, back, count * sizeof(int16_t)), 0) << int(id);
+  }
+  EXPECT_EQ(ImuConstantsBlockLength(kImuBlockLast + 1), 0);
+
+  const ImuConstants before = target;
+  ImuConstantsReadBlock(&target, kImuBlockScaleSwitch, words, kImuMaxBlockWords, &count);
+  words[0] = 2;  // the switch is 0 or 1
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockScaleSwitch, words, count), ConstantsStatus::kOutOfRange);
+  words[0] = 1;
+  words[1 + 2 * kNormWords + 2] = 17;  // sensor 2's shift beyond 16
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockScaleSwitch, words, count), ConstantsStatus::kOutOfRange);
+  ImuConstantsReadBlock(&target, kImuBlockScaleFactorFirst + 4, words, kImuMaxBlockWords, &count);
+  words[0] = kScaleFactorExponent + 1;  // F's working exponent is fixed
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockScaleFactorFirst + 4, words, count),
+            ConstantsStatus::kOutOfRange);
+  // q = 0.9375 * 2^-3 = 0.117 g/g^2: beyond 1/16, it could leave the g format at 16 g.
+  ImuConstantsReadBlock(&target, kImuBlockAccelQuadratic, words, kImuMaxBlockWords, &count);
+  words[3] = 0x7800;
+  words[4] = 0;
+  words[5] = -3;
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockAccelQuadratic, words, count),
+            ConstantsStatus::kWouldOverflow);
+  words[5] = -25;  // alignment shift -4 - e = 21 beyond one SFTAC
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockAccelQuadratic, words, count),
+            ConstantsStatus::kOutOfRange);
+  // A GS row of 3 deg/s per m/s^2 overflows +-256 deg/s at the rated 99 m/s^2.
+  ImuConstantsReadBlock(&target, kImuBlockGs, words, kImuMaxBlockWords, &count);
+  words[0] = 0x6000;  // 0.75 * 2^2 = 3
+  words[1] = 0;
+  words[2] = 2;
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockGs, words, count), ConstantsStatus::kWouldOverflow);
+  EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
+}
+
 TEST(ConstantsBlocks, ImuRefusalsLeaveStateUnchanged) {
   ImuConstants c = ExportImuConstants(testing::RealisticImu(6)).constants;
   const ImuConstants before = c;

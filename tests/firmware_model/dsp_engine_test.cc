@@ -143,7 +143,8 @@ TEST(DspEngine, CycleCounterChargesDocumentedCosts) {
 }
 
 // MulQ31 against an independent int64 product: within [-3, 0] LSB of floor(a b / 2^31) (the
-// dropped low x low term and two floors, q31_kernels.h), 11 cycles each.
+// dropped low x low term and two floors, q31_kernels.h), 15 cycles each (11 of arithmetic, 4
+// MOVs of the operand words).
 TEST(Q31Kernels, MulQ31WithinThreeLsbOfExactProduct) {
   sensor_sim::Rng rng(31);
   for (int i = 0; i < 20000; ++i) {
@@ -155,7 +156,7 @@ TEST(Q31Kernels, MulQ31WithinThreeLsbOfExactProduct) {
     const int64_t expected = exact > INT32_MAX ? INT32_MAX : exact;
     ASSERT_LE(e.acc(Acc::kA), expected) << a << " * " << b;
     ASSERT_GE(e.acc(Acc::kA), expected - 3) << a << " * " << b;
-    ASSERT_EQ(e.cycles(), 11u);
+    ASSERT_EQ(e.cycles(), 15u);
   }
   DspEngine e;
   MulQ31(&e, Acc::kA, INT32_MIN, INT32_MIN);

@@ -17,10 +17,15 @@
 namespace adahrs::firmware_model {
 namespace {
 
+// Format 2 (blocks 0x01..0x0F) and format 3 (0x01..0x1B, the scale-temperature stages on).
 const char* const kGoldenPath = ADAHRS_SOURCE_DIR "/tests/firmware_model/data/compensator_golden.json";
+const char* const kGoldenFormat3Path =
+    ADAHRS_SOURCE_DIR "/tests/firmware_model/data/compensator_golden_format3.json";
 
-nlohmann::json Generate() {
-  const ImuCalibrationConstants imu_cal = testing::RealisticImu(2024);
+nlohmann::json Generate(bool format3 = false) {
+  const ImuCalibrationConstants imu_cal = format3
+                                              ? testing::WithScaleTemperature(testing::RealisticImu(2024), 2025)
+                                              : testing::RealisticImu(2024);
   sensor_sim::Rng rng(99);
   std::vector<ImuRawFrame> imu_frames;
   const double temps_c[] = {-40.0, 0.0, 25.0, 85.0};
@@ -44,14 +49,23 @@ nlohmann::json Generate() {
                                ads_frames);
 }
 
-TEST(GoldenVectors, ReplayBitExact) {
+class GoldenVectorsFormat : public ::testing::TestWithParam<bool> {
+ protected:
+  const char* Path() const { return GetParam() ? kGoldenFormat3Path : kGoldenPath; }
+};
+
+INSTANTIATE_TEST_SUITE_P(GoldenVectors, GoldenVectorsFormat, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "Format3" : "Format2"; });
+
+TEST_P(GoldenVectorsFormat, ReplayBitExact) {
   if (std::getenv("ADAHRS_WRITE_GOLDEN") != nullptr) {
-    std::ofstream(kGoldenPath) << Generate().dump(1) << "\n";
+    std::ofstream(Path()) << Generate(GetParam()).dump(1) << "\n";
   }
-  std::ifstream file(kGoldenPath);
-  ASSERT_TRUE(file.good()) << kGoldenPath;
+  std::ifstream file(Path());
+  ASSERT_TRUE(file.good()) << Path();
   const nlohmann::json golden = nlohmann::json::parse(file);
   ASSERT_EQ(golden.at("imu").at("frames").size(), 9u);
+  ASSERT_EQ(golden.at("imu").at("blocks").size(), GetParam() ? 27u : 15u);
   EXPECT_EQ(ReplayCompensatorGolden(golden), "");
   // The bad frame carries its flags: bad duty and input saturation.
   const auto& bad_modes = golden["imu"]["frames"][8]["modes"];
@@ -59,10 +73,10 @@ TEST(GoldenVectors, ReplayBitExact) {
             kFlagBadDuty | kFlagInputSaturated);
 }
 
-TEST(GoldenVectors, RegenerationMatchesCommittedFile) {
-  std::ifstream file(kGoldenPath);
-  ASSERT_TRUE(file.good()) << kGoldenPath;
-  EXPECT_EQ(nlohmann::json::parse(file), Generate());
+TEST_P(GoldenVectorsFormat, RegenerationMatchesCommittedFile) {
+  std::ifstream file(Path());
+  ASSERT_TRUE(file.good()) << Path();
+  EXPECT_EQ(nlohmann::json::parse(file), Generate(GetParam()));
 }
 
 TEST(GoldenVectors, ReplayDetectsAOneLsbChange) {

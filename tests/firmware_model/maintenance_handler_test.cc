@@ -11,6 +11,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "firmware_model/constants_exporter.h"
+#include "tests/firmware_model/realistic_constants.h"
+
 #include "firmware_model/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {
@@ -351,6 +354,60 @@ TEST(MaintenanceHandlerTest, CalibratedModesAndCommitNeedACompleteValidSet) {
   EXPECT_EQ(unit.Send(unit.client_.Commit()).result, ResultCode::kAck);
   EXPECT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kThermal)).result, ResultCode::kAck);
   EXPECT_EQ(unit.handler_.imu_mode(), ImuCompensationMode::kThermal);
+}
+
+// The format-3 blocks 0x10..0x1B are all or none: a commit with some of them is refused; with
+// all of them the image (27 blocks, 502 payload words) fits the page and survives a power cycle;
+// and an image of the format-2 blocks alone, as format-2 firmware committed it, still loads with
+// the format-3 stages off.
+TEST(MaintenanceHandlerTest, Format3BlocksAreAllOrNoneAndAFormat2ImageStillLoads) {
+  const ImuConstants exported =
+      ExportImuConstants(testing::WithScaleTemperature(testing::RealisticImu(21), 22)).constants;
+  auto words_of = [&](const ImuConstants& c, uint8_t id) {
+    std::vector<int16_t> words(kLargestBlockWords);
+    uint8_t count = 0;
+    EXPECT_EQ(ImuConstantsReadBlock(&c, id, words.data(), static_cast<uint8_t>(words.size()), &count),
+              ConstantsStatus::kOk);
+    words.resize(count);
+    return words;
+  };
+  Unit unit(kImuIdentity);
+  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockScaleSwitch; ++id) {
+    ASSERT_EQ(unit.Send(unit.client_.WriteBlock(id, words_of(exported, id))).result, ResultCode::kAck)
+        << "block " << +id;
+  }
+  EXPECT_EQ(unit.Send(unit.client_.Commit()).result, ResultCode::kIncompleteConstants);
+  EXPECT_EQ(unit.flash_.Inspect(UnitKind::kImu).status, FlashStatus::kErased);
+  for (uint8_t id = kImuBlockScaleFactorFirst; id <= kImuBlockLast; ++id) {
+    ASSERT_EQ(unit.Send(unit.client_.WriteBlock(id, words_of(exported, id))).result, ResultCode::kAck)
+        << "block " << +id;
+  }
+  ASSERT_EQ(unit.Send(unit.client_.Commit()).result, ResultCode::kAck);
+  EXPECT_EQ(unit.flash_.Inspect(UnitKind::kImu).payload_words, 502);
+  ASSERT_EQ(unit.Send(unit.client_.Reset()).data, std::vector<uint8_t>{1});
+  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockLast; ++id) {
+    EXPECT_EQ(unit.ReadBack(id), words_of(exported, id)) << "block " << +id;
+  }
+  EXPECT_EQ(unit.handler_.imu_constants().scale_temperature.enabled, 1);
+
+  // A format-2 image: blocks 0x01..0x0F only.
+  std::vector<int16_t> image;
+  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockCg; ++id) {
+    const std::vector<int16_t> words = words_of(exported, id);
+    image.push_back(id);
+    image.push_back(static_cast<int16_t>(words.size()));
+    image.insert(image.end(), words.begin(), words.end());
+  }
+  ASSERT_EQ(unit.flash_.Commit(UnitKind::kImu, image.data(), static_cast<uint16_t>(image.size())),
+            FlashStatus::kOk);
+  ASSERT_EQ(unit.Send(unit.client_.Reset()).data, std::vector<uint8_t>{1});
+  EXPECT_EQ(unit.handler_.imu_constants().scale_temperature.enabled, 0);
+  ImuConstants init;
+  ImuConstantsInit(&init);
+  for (uint8_t id = kImuBlockScaleSwitch; id <= kImuBlockLast; ++id) {
+    EXPECT_EQ(unit.ReadBack(id), words_of(init, id)) << "block " << +id;
+  }
+  EXPECT_EQ(unit.ReadBack(kImuBlockCa), words_of(exported, kImuBlockCa));
 }
 
 TEST(MaintenanceHandlerTest, AdsUnitModesBlocksAndPowerCycle) {

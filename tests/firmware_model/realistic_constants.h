@@ -69,6 +69,28 @@ inline ImuCalibrationConstants RealisticImu(uint64_t seed) {
   return c;
 }
 
+/// `c` with the format-3 terms of realistic magnitude drawn with `seed`: scale factors changing by
+/// up to +-1.2 % over -40..85 C (ADXRS150 sensitivity tempco, ADXL210E sensitivity tempco; the
+/// drift fixture's cubic shape), axis nonlinearity |q| <= 2e-3 g/g^2 (0.2 % FS at 10 g), and gyro
+/// g-sensitivity |GS| <= 0.2 deg/s per g on the diagonal-free terms too (physics.md 2.1).
+inline ImuCalibrationConstants WithScaleTemperature(ImuCalibrationConstants c, uint64_t seed) {
+  sensor_sim::Rng rng(seed);
+  ImuScaleTemperature& st = c.scale_temperature;
+  st.active = true;
+  const double t25 = std::nearbyint(TempCounts(25.0));
+  const double edge = TempCounts(85.0) - t25;
+  for (TempSensorSpan& span : st.sensor) span = {t25, TempCounts(-40.0), TempCounts(85.0)};
+  for (auto& f : st.scale) {
+    f = {1.0 + rng.Uniform(-0.002, 0.002), rng.Uniform(-0.010, 0.010) / edge,
+         rng.Uniform(-0.003, 0.003) / (edge * edge), rng.Uniform(-0.001, 0.001) / (edge * edge * edge)};
+  }
+  for (double& q : st.accel_quadratic_per_g) q = rng.Uniform(-2e-3, 2e-3);
+  for (auto& row : st.gs_dps_per_mps2) {
+    for (double& v : row) v = rng.Uniform(-0.2, 0.2) / 9.80665;
+  }
+  return c;
+}
+
 /// Raw frame for specific force f_B_g (body x, y, z), rate w_dps, temperature temp_c, with the
 /// sensors behaving as the constants `c` describe (so the calibrated output is near the truth).
 inline ImuRawFrame SynthesiseImu(const ImuCalibrationConstants& c, const std::array<double, 3>& f_B_g,
