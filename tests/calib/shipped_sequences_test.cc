@@ -34,6 +34,7 @@ TEST(ShippedSequences, EveryFileLoadsValidatesAndExpands) {
   EXPECT_EQ(names, (std::set<std::string>{"ads_acceptance", "ads_burn_in", "ads_calibration",
                                           "imu_acceptance", "imu_burn_in",
                                           "imu_sensor_calibration", "imu_thermal_calibration_full",
+                                          "imu_thermal_sensor_calibration",
                                           "imu_thermal_calibration_trial"}));
 }
 
@@ -82,6 +83,7 @@ TEST(ShippedSequences, ThermalSequencesCoverTheirRanges) {
   EXPECT_EQ(TemperatureSpanC(Load("imu_thermal_calibration_trial")),
             std::make_pair(-20.0, 65.0));  // thesis Fig. 17
   EXPECT_EQ(TemperatureSpanC(Load("imu_thermal_calibration_full")), std::make_pair(-40.0, 85.0));
+  EXPECT_EQ(TemperatureSpanC(Load("imu_thermal_sensor_calibration")), std::make_pair(-40.0, 85.0));
   EXPECT_EQ(TemperatureSpanC(Load("imu_burn_in")), std::make_pair(-40.0, 85.0));
   EXPECT_EQ(TemperatureSpanC(Load("ads_burn_in")), std::make_pair(-40.0, 85.0));
   EXPECT_EQ(TemperatureSpanC(Load("ads_calibration")), std::make_pair(-40.0, 85.0));
