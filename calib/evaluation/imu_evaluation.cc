@@ -149,17 +149,22 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   constexpr int n = kImuFirmwareNumbers;
   Eigen::MatrixXd crb = Eigen::MatrixXd::Zero(n, n);
   if (have_crb) {
+    // Files written before format 3 carry the format-2 numbers' covariance only.
     const json& rows = file.diagnostics["crb_covariance"];
-    if (!rows.is_array() || rows.size() != static_cast<size_t>(n)) {
+    const int size = rows.is_array() && rows.size() == static_cast<size_t>(kImuFormat2Numbers)
+                         ? kImuFormat2Numbers
+                         : n;
+    if (!rows.is_array() || rows.size() != static_cast<size_t>(size)) {
       throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance is not " +
-                                  std::to_string(n) + "x" + std::to_string(n));
+                                  std::to_string(n) + "x" + std::to_string(n) + " (or " +
+                                  std::to_string(kImuFormat2Numbers) + " square, format 2)");
     }
-    for (int r = 0; r < n; ++r) {
-      if (!rows[r].is_array() || rows[r].size() != static_cast<size_t>(n)) {
+    for (int r = 0; r < size; ++r) {
+      if (!rows[r].is_array() || rows[r].size() != static_cast<size_t>(size)) {
         throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance[" +
-                                    std::to_string(r) + "] is not " + std::to_string(n) + " long");
+                                    std::to_string(r) + "] is not " + std::to_string(size) + " long");
       }
-      for (int k = 0; k < n; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
+      for (int k = 0; k < size; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
     }
   }
   const sensor_sim::ImuUnitParams params = NoiseOff(truth);
@@ -175,6 +180,9 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   ImuJointOptions projection_options;
   projection_options.thermal_order = kMaxThermalOrder;
   projection_options.unit_weights = true;
+  // Format-3 constants are judged against the best format-3 constants.
+  projection_options.format3 = c.scale_temperature.active;
+  projection_options.scale_order = kMaxThermalOrder;
   const ImuFitResult truth_fit = FitImuJoint(file.serial + " (truth projection)", projection, projection_options);
   std::vector<std::array<double, 6>> errors;
   try {

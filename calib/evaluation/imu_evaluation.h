@@ -27,7 +27,8 @@
 //                                 minimax constants, nor those the recording's design leads to;
 //   "outside"                     none of these.
 // The firmware floor: the true unit projected onto the firmware's model (the joint model fitted
-// with the firmware's thermal order, 3, to the noise-free grid, equal weights) and run through
+// with the firmware's thermal order, 3, to the noise-free grid, equal weights; with the format-3
+// terms, scale factors of order 3, when the constants have them) and run through
 // the same compensator; its worst error is what no calibration into these constants can beat
 // (e.g. a scale factor that changes with temperature, which the firmware has no term for).
 // Without a CRB covariance (the reference strategy) only the specification is judged. Constants

@@ -31,20 +31,28 @@ constexpr double kInverseCubicSpan_dps = 150.0;  // the gyro's rated range (ADXR
 constexpr double kDScale_cnt = 3.0e6;            // ~ counts at 150 deg/s, conditions the cubic
 
 // One channel's linear model and its fit.
+// Terms: offset, tau^1..order, the stimulus 3-vector (f_B or w_B), gyro w^2 and w^3, then the
+// format-3 terms: tau^p times the channel's own stimulus (p = 1..scale_order), the accelerometer's
+// f_axis^2, the gyro's f_x, f_y, f_z (g-sensitivity).
 struct ChannelModel {
   int channel = 0;
   int order = 2;
-  bool scale_tempco = false;  // accelerometer only: extra tau * f_axis term
-  Eigen::VectorXd theta;
-  Eigen::MatrixXd cov;
-  Eigen::MatrixXd crb;
-  double residual_rms = 0.0;
-  int observations = 0;
+  int scale_order = 0;
+  bool quadratic = false;
+  bool g_sensitivity = false;
 
   bool gyro() const { return channel >= 6; }
   int sensor() const { return kThermalSensorOfChannel[channel]; }
-  int size() const { return 1 + order + (gyro() ? 5 : 3) + (scale_tempco ? 1 : 0); }
+  int stimulus_index() const { return 1 + order; }
+  int scale_index() const { return stimulus_index() + (gyro() ? 5 : 3); }
+  int extra_index() const { return scale_index() + scale_order; }
+  int size() const { return extra_index() + (quadratic ? 1 : 0) + (g_sensitivity ? 3 : 0); }
 };
+
+// The stimulus along the channel's own axis: f_axis in g, or the rate about the gyro's axis.
+double OwnStimulus(const ChannelModel& m, const ImuObservation& o) {
+  return m.gyro() ? o.w_B_dps[m.channel - 6] : o.f_B_g[kAxisOfChannel[m.channel]];
+}
 
 // Mean of tau^p over an observation's rows from its raw temperature moments E[t^i]:
 // E[((t - c)/s)^p] = sum_i C(p, i) E[t^i] (-c)^(p - i) / s^p.
@@ -66,12 +74,17 @@ Eigen::RowVectorXd DesignRow(const ChannelModel& m, const ImuObservation& o) {
   for (int p = 1; p <= m.order; ++p) row[k++] = TauPowerMean(o, m.sensor(), p);
   if (!m.gyro()) {
     for (int a = 0; a < 3; ++a) row[k++] = o.f_B_g[a];
-    if (m.scale_tempco) row[k++] = TauPowerMean(o, m.sensor(), 1) * o.f_B_g[kAxisOfChannel[m.channel]];
   } else {
     for (int a = 0; a < 3; ++a) row[k++] = o.w_B_dps[a];
     const double w = o.w_B_dps[m.channel - 6];
     row[k++] = w * w;
     row[k++] = w * w * w;
+  }
+  const double own = OwnStimulus(m, o);
+  for (int p = 1; p <= m.scale_order; ++p) row[k++] = TauPowerMean(o, m.sensor(), p) * own;
+  if (m.quadratic) row[k++] = own * own;
+  if (m.g_sensitivity) {
+    for (int a = 0; a < 3; ++a) row[k++] = o.f_B_g[a];
   }
   return row;
 }
@@ -81,10 +94,15 @@ std::vector<std::string> TermNames(const ChannelModel& m) {
   for (int p = 1; p <= m.order; ++p) names.push_back(p == 1 ? "tau" : "tau^" + std::to_string(p));
   if (!m.gyro()) {
     names.insert(names.end(), {"f_x", "f_y", "f_z"});
-    if (m.scale_tempco) names.push_back("tau f_axis");
   } else {
     names.insert(names.end(), {"w_x", "w_y", "w_z", "w^2", "w^3"});
   }
+  const std::string own = m.gyro() ? "w_axis" : "f_axis";
+  for (int p = 1; p <= m.scale_order; ++p) {
+    names.push_back((p == 1 ? std::string("tau ") : "tau^" + std::to_string(p) + " ") + own);
+  }
+  if (m.quadratic) names.push_back("f_axis^2");
+  if (m.g_sensitivity) names.insert(names.end(), {"g f_x", "g f_y", "g f_z"});
   return names;
 }
 
@@ -215,7 +233,135 @@ int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservat
   return best_order;
 }
 
-// The channel models -> the 81 firmware numbers (the mapping of the header comment); each
+// The acquisitions' temperature levels for a channel's scale factor: observations (not thermal
+// bands) whose stimulus on the channel's own axis is at least 0.5 g or 0.5 deg/s, grouped by
+// their mean TEMP count within kScaleLevelGap_cnt (2 degC) of a level's first member.
+constexpr double kScaleLevelGap_cnt = 220.0;
+
+std::vector<int> ScaleLevels(const ChannelModel& m, const std::vector<ImuObservation>& obs,
+                             int* level_count) {
+  std::vector<double> levels;
+  std::vector<int> level_of(obs.size(), -1);
+  for (size_t i = 0; i < obs.size(); ++i) {
+    if (obs[i].thermal || std::abs(OwnStimulus(m, obs[i])) < 0.5) continue;
+    const double t = obs[i].t_mean_cnt[m.sensor()];
+    size_t l = 0;
+    while (l < levels.size() && std::abs(levels[l] - t) > kScaleLevelGap_cnt) ++l;
+    if (l == levels.size()) levels.push_back(t);
+    level_of[i] = static_cast<int>(l);
+  }
+  *level_count = static_cast<int>(levels.size());
+  return level_of;
+}
+
+// Scale-factor order 0..3 by leave-one-temperature-level-out error: each level's acquisitions
+// predicted by a fit without them (the thermal bands always in), normalised by their noise.
+int ChooseScaleOrder(const std::string& serial, const ChannelModel& base,
+                     const std::vector<ImuObservation>& obs, double n_thermal,
+                     const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2,
+                     BiasWander wander, json* report) {
+  int levels = 0;
+  const std::vector<int> level_of = ScaleLevels(base, obs, &levels);
+  (*report)["scale_temperature_levels"] = levels;
+  const int max_order = std::min(kMaxThermalOrder, levels - 2);
+  if (max_order < 1) return 0;
+  double best = std::numeric_limits<double>::infinity();
+  int best_order = 0;
+  json scores = json::array();
+  for (int order = 0; order <= max_order; ++order) {
+    ChannelModel m = base;
+    m.scale_order = order;
+    double sum = 0.0;
+    int tested = 0;
+    for (int level = 0; level < levels; ++level) {
+      std::vector<size_t> train, test;
+      for (size_t i = 0; i < obs.size(); ++i) (level_of[i] == level ? test : train).push_back(i);
+      const LinearFit fit = Solve(serial, m, obs, train, n_thermal, false, options, bias_cnt2, wander);
+      for (size_t i : test) {
+        const double r = obs[i].u_mean[m.channel] - DesignRow(m, obs[i]).dot(fit.coefficients);
+        const double wander_cnt2 = wander == BiasWander::kNone ? 0.0 : bias_cnt2(i, i);
+        sum += r * r / (Variance(obs[i], m.channel, n_thermal, false, options.noise) + wander_cnt2);
+        ++tested;
+      }
+    }
+    const double score = std::sqrt(sum / std::max(tested, 1));
+    scores.push_back(score);
+    if (score < best) {
+      best = score;
+      best_order = order;
+    }
+  }
+  (*report)["scale_held_out_normalised_rms_by_order"] = scores;
+  return best_order;
+}
+
+bool HasFormat3Terms(const std::array<ChannelModel, 9>& models) {
+  for (const ChannelModel& m : models) {
+    if (m.scale_order > 0 || m.quadratic || m.g_sensitivity) return true;
+  }
+  return false;
+}
+
+// F_c(t) = 1 / (1 + delta_c(tau) / S_c) as a least-squares cubic in (t - origin) over the
+// sensor's span, delta_c = sum_p theta_p tau^p and S_c the channel's own stimulus coefficient.
+std::array<double, 4> ScaleFactorCubic(const ChannelModel& m, const Eigen::VectorXd& theta,
+                                       double own_scale, const fm::TempSensorSpan& span) {
+  constexpr int kPoints = 41;
+  Eigen::MatrixXd a(kPoints, 4);
+  Eigen::VectorXd f(kPoints);
+  const double half = std::max(span.origin_cnt - span.min_cnt, span.max_cnt - span.origin_cnt);
+  for (int i = 0; i < kPoints; ++i) {
+    const double t = span.min_cnt + (span.max_cnt - span.min_cnt) * i / (kPoints - 1);
+    const double tau = (t - kTempCentre_cnt) / kTempSpan_cnt;
+    double delta = 0.0;
+    for (int p = m.scale_order; p >= 1; --p) delta = (delta + theta[m.scale_index() + p - 1]) * tau;
+    const double x = (t - span.origin_cnt) / half;
+    a.row(i) << 1.0, x, x * x, x * x * x;
+    f[i] = 1.0 / (1.0 + delta / own_scale);
+  }
+  const Eigen::Vector4d b = a.colPivHouseholderQr().solve(f);
+  return {b[0], b[1] / half, b[2] / (half * half), b[3] / (half * half * half)};
+}
+
+// The format-3 terms (calibration_constants.h ImuScaleTemperature): the scale factors, q_axis =
+// -(k2_i / S_i + k2_j / S_j) / 2 (the pair mean's f^2 coefficient, removed), and GS = -CG
+// diag(1 / n_gg) Gsens / g0 (Gsens in counts per g, A = g0 f).
+void MapScaleTemperature(const std::array<ChannelModel, 9>& models,
+                         const std::array<Eigen::VectorXd, 9>& theta,
+                         const std::array<std::array<double, 2>, 3>& temp_span_cnt,
+                         const Eigen::Matrix3d& cg, fm::ImuCalibrationConstants* c) {
+  fm::ImuScaleTemperature& st = c->scale_temperature;
+  st.active = true;
+  for (int s = 0; s < 3; ++s) {
+    const double lo = temp_span_cnt[s][0], hi = temp_span_cnt[s][1];
+    st.sensor[s] = {std::nearbyint(0.5 * (lo + hi)), lo, hi};
+  }
+  std::array<double, 9> own{};
+  for (int ch = 0; ch < 9; ++ch) {
+    const ChannelModel& m = models[ch];
+    own[ch] = theta[ch][m.stimulus_index() + (m.gyro() ? ch - 6 : kAxisOfChannel[ch])];
+    st.scale[ch] = ScaleFactorCubic(m, theta[ch], own[ch], st.sensor[m.sensor()]);
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    double q = 0.0;
+    for (int ch : kPairOfAxis[axis]) {
+      if (models[ch].quadratic) q -= 0.5 * theta[ch][models[ch].extra_index()] / own[ch];
+    }
+    st.accel_quadratic_per_g[axis] = q;
+  }
+  Eigen::Matrix3d gsens_dps_per_g = Eigen::Matrix3d::Zero();
+  for (int g = 0; g < 3; ++g) {
+    const ChannelModel& m = models[6 + g];
+    if (!m.g_sensitivity) continue;
+    for (int a = 0; a < 3; ++a) gsens_dps_per_g(g, a) = theta[6 + g][m.extra_index() + a] / own[6 + g];
+  }
+  const Eigen::Matrix3d gs = -cg * gsens_dps_per_g / sensor_sim::kStandardGravity_mps2;
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) st.gs_dps_per_mps2[r][k] = gs(r, k);
+  }
+}
+
+// The channel models -> the firmware numbers (the mapping of the header comment); each
 // channel's thermal span is `temp_span_cnt[sensor]`.
 fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
                                 const std::array<Eigen::VectorXd, 9>& theta,
@@ -285,6 +431,7 @@ fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
       c.cg[r][k] = cg(r, k);
     }
   }
+  if (HasFormat3Terms(models)) MapScaleTemperature(models, theta, temp_span_cnt, cg, &c);
   return c;
 }
 
@@ -351,6 +498,14 @@ Eigen::VectorXd FlattenConstants(const fm::ImuCalibrationConstants& c) {
   for (const auto& row : c.cg) {
     for (double x : row) v[k++] = x;
   }
+  const fm::ImuScaleTemperature& st = c.scale_temperature;
+  for (const auto& f : st.scale) {
+    for (double x : f) v[k++] = st.active ? x : 0.0;
+  }
+  for (double q : st.accel_quadratic_per_g) v[k++] = st.active ? q : 0.0;
+  for (const auto& row : st.gs_dps_per_mps2) {
+    for (double x : row) v[k++] = st.active ? x : 0.0;
+  }
   return v;
 }
 
@@ -373,6 +528,14 @@ fm::ImuCalibrationConstants UnflattenConstants(const Eigen::VectorXd& v,
     for (double& x : row) x = v[k++];
   }
   for (auto& row : c.cg) {
+    for (double& x : row) x = v[k++];
+  }
+  fm::ImuScaleTemperature& st = c.scale_temperature;
+  for (auto& f : st.scale) {
+    for (double& x : f) x = v[k++];
+  }
+  for (double& q : st.accel_quadratic_per_g) q = v[k++];
+  for (auto& row : st.gs_dps_per_mps2) {
     for (double& x : row) x = v[k++];
   }
   return c;
@@ -400,6 +563,20 @@ std::vector<std::string> ConstantNames() {
       for (int k = 0; k < 3; ++k) {
         names.push_back(std::string(m) + "[" + std::to_string(r) + "][" + std::to_string(k) + "]");
       }
+    }
+  }
+  for (int ch = 0; ch < 9; ++ch) {
+    for (int i = 0; i < 4; ++i) {
+      names.push_back("scale_temperature.scale[" + std::to_string(ch) + "][" + std::to_string(i) + "]");
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    names.push_back("scale_temperature.accel_quadratic_per_g[" + std::to_string(a) + "]");
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      names.push_back("scale_temperature.gs_dps_per_mps2[" + std::to_string(r) + "][" +
+                      std::to_string(k) + "]");
     }
   }
   return names;
@@ -451,6 +628,14 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     if (estimate && !options.thermal_order) {
       m.order = ChooseOrder(serial, ch, obs, n_thermal, options, bias_cnt2, diagonal, &report);
     }
+    if (options.format3) {
+      m.quadratic = !m.gyro();
+      m.g_sensitivity = m.gyro();
+      m.scale_order = options.scale_order ? *options.scale_order
+                                          : ChooseScaleOrder(serial, m, obs, n_thermal, options,
+                                                             bias_cnt2, diagonal, &report);
+      report["scale_order"] = m.scale_order;
+    }
     // Model error (drift the thermal polynomial cannot follow) is shared by every observation:
     // its variance, the thermal bands' mean squared residual beyond their noise, is added to
     // every observation's variance and the fit repeated, so that the 25 degC acquisitions (tiny
@@ -476,12 +661,12 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     report["observations"] = fit.observations;
     report["residual_rms"] = fit.residual_rms;
     report["sigma_ratio_to_datasheet"] = fit.sigma;
-    if (ch < 6) {
+    if (ch < 6 && !options.format3) {
       ChannelModel with = m;
-      with.scale_tempco = true;
+      with.scale_order = 1;
       try {
         const LinearFit t = Solve(serial, with, obs, all, n_thermal, false, options, bias_cnt2, BiasWander::kNone);
-        const double s_axis = t.coefficients[1 + m.order + kAxisOfChannel[ch]];
+        const double s_axis = t.coefficients[with.stimulus_index() + kAxisOfChannel[ch]];
         // tau per degC: 110 counts per degC / 4096 counts per tau unit (thermal_drift_fit.h).
         const double per_c = 110.0 / kTempSpan_cnt / s_axis * 1e6;
         report["scale_tempco_ppm_per_c"] = t.coefficients[t.coefficients.size() - 1] * per_c;
@@ -529,8 +714,10 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
                         {"crb_parameters", ConstantNames()},
                         {"crb_covariance", crb_rows},
                         {"firmware_cannot_hold",
-                         "accelerometer scale vs temperature, accelerometer nonlinearity, gyro "
-                         "g-sensitivity, thermal orders above 3"}};
+                         options.format3
+                             ? "thermal and scale-factor orders above 3, the tempco of cross-axis terms"
+                             : "accelerometer scale vs temperature, accelerometer nonlinearity, gyro "
+                               "g-sensitivity, thermal orders above 3"}};
   return result;
 }
 

@@ -41,10 +41,15 @@
 // gyros (for Gaussian noise and a linear model the Fisher information is exactly A' Sigma^-1 A). Both are carried to the 81 firmware numbers by
 // the mapping's Jacobian (central differences): Cov_fw = J Cov J'. l0 is fixed at zero by the
 // mapping (the null holds the offset) and reported as not estimated.
-// Also estimated and reported, not held by the firmware: accelerometer scale vs temperature
-// (an extra t (m_i . f) term; identifiable only when the six positions or the thermal profile
-// visit several temperatures in several orientations, otherwise reported as not identifiable).
-// Not modelled: accelerometer nonlinearity, g-sensitivity of the gyros, die lag, supply.
+// Format 3 (options.format3, the firmware's scale-temperature stages) adds, linear in its
+// parameters: sum_p s_p tau^p times the channel's own stimulus (f_axis or w_g; p = 1..P, P chosen
+// by leave-one-temperature-out error over the acquisitions, 0 when they were taken at one
+// temperature), k2 f_axis^2 (accelerometers), G . f_B_g (gyro g-sensitivity). Mapped to
+// F_c(t) = 1 / (1 + delta_c(tau) / S_c) (a least-squares cubic in t over the span),
+// q_axis = -(k2_i / S_i + k2_j / S_j) / 2, GS = -CG diag(1 / n_gg) G / g0. The tempco scales
+// the channel's own axis only, so cross-axis terms times the tempco (1e-2 x 1e-2) are left out.
+// Without format 3 the accelerometer scale vs temperature is estimated and reported only.
+// Not modelled: die lag, supply.
 #pragma once
 
 #include <optional>
@@ -75,24 +80,36 @@ struct ImuJointOptions {
   /// 1). Off by default: measured on 20 units it did not make the bound more honest
   /// (docs/calibration-strategies.md "Model-form mismatch").
   bool estimate_gyro_wander = false;
+  /// Fit the firmware's format-3 terms too (calibration_constants.h ImuScaleTemperature): scale
+  /// factors as polynomials in temperature (order by held-out error over the acquisitions'
+  /// temperatures), the accelerometers' f_axis^2 and the gyros' g-sensitivity.
+  bool format3 = false;
+  /// Format 3: the scale factors' order in temperature, 0..3; empty = chosen by held-out error.
+  std::optional<int> scale_order;
   ImuDatasheetNoise noise;
 };
 
 /// Highest thermal order the firmware holds (firmware_model::kImuThermalDegree).
 inline constexpr int kMaxThermalOrder = 3;
-/// How many firmware numbers FlattenConstants gives.
-inline constexpr int kImuFirmwareNumbers = 9 * (kMaxThermalOrder + 1) + 6 * 2 + 3 * 5 + 9 + 9;
+/// How many firmware numbers FlattenConstants gives: every number of a constants set, format-3 terms last (zeros for a format-2 set): thermal,
+/// accelerometer, gyro, CA, CG, then scale factors, q and GS.
+inline constexpr int kImuFirmwareNumbers = 9 * (kMaxThermalOrder + 1) + 6 * 2 + 3 * 5 + 9 + 9 + 9 * 4 + 3 + 9;
 
-/// The 81 firmware numbers in a fixed order (thermal k 9x4, accel O,S 6x2, gyro null,l0..l3 3x5,
-/// CA 3x3, CG 3x3) and back; names for reports ("thermal[0].k[1]").
+/// The numbers of a format-2 set (the first kImuFormat2Numbers of the flattened vector): constants
+/// files written before format 3 carry a CRB covariance of this size.
+inline constexpr int kImuFormat2Numbers = 9 * (kMaxThermalOrder + 1) + 6 * 2 + 3 * 5 + 9 + 9;
+
+/// The firmware numbers in a fixed order (thermal k 9x4, accel O,S 6x2, gyro null,l0..l3 3x5,
+/// CA 3x3, CG 3x3, scale factors 9x4, q 3, GS 3x3) and back; names for reports
+/// ("thermal[0].k[1]"). Unflatten keeps `like`'s scale_temperature.active and spans.
 Eigen::VectorXd FlattenConstants(const firmware_model::ImuCalibrationConstants& c);
 firmware_model::ImuCalibrationConstants UnflattenConstants(const Eigen::VectorXd& v,
                                                            const firmware_model::ImuCalibrationConstants& like);
 std::vector<std::string> ConstantNames();
 
 /// Fits the joint model to `observations` (named `serial` in messages); diagnostics hold the
-/// chosen orders, residuals, the CRB covariance ("crb_covariance", 81x81) and the scale-vs-
-/// temperature estimate. Throws DegenerateDesignError with the reason.
+/// chosen orders, residuals, the CRB covariance ("crb_covariance", kImuFirmwareNumbers square)
+/// and, for a format-2 fit, the scale-vs-temperature estimate the firmware would not hold. Throws DegenerateDesignError with the reason.
 ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObservation>& observations,
                          const ImuJointOptions& options = {});
 

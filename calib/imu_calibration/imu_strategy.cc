@@ -47,6 +47,10 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
     }
     s.estimate_gyro_wander = w == "estimated";
   }
+  if (r.Has("firmware_format")) {
+    if (s.name != "joint") r.Fail("$.firmware_format", "only the joint strategy fits format-3 terms");
+    s.format3 = r.Integer("firmware_format", 2, 3) == 3;
+  }
   r.ExpectAllKeysUsed();
   return s;
 }
@@ -66,6 +70,7 @@ std::vector<ConstantsFile> FitImuRuns(const std::vector<std::filesystem::path>& 
       ImuJointOptions options;
       options.thermal_order = strategy.thermal_order;
       options.estimate_gyro_wander = strategy.estimate_gyro_wander;
+      options.format3 = strategy.format3;
       fit = FitImuJoint(serial, ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt), options);
       fit.diagnostics["excluded_rows"] = unit.exclusions.size();
       fit.diagnostics["rejected_interval_rows"] = unit.rejected_interval_rows;

@@ -3,7 +3,8 @@
 //
 //   {"format": "adahrs-imu-strategy", "format_version": 1, "strategy": "reference" | "joint",
 //    "thermal_order": "auto" | 0 | 1 | 2,     (joint only; "auto" = held-out choice, default)
-//    "thermal_band_width_cnt": 110}            (optional, both)
+//    "thermal_band_width_cnt": 110,            (optional, both)
+//    "firmware_format": 2 | 3}                 (joint only; 3 fits the scale-temperature terms)
 //
 // "reference" is the reference method exactly (imu_reference_fit.h); "joint" is the improved
 // strategy (imu_joint_fit.h). The strict reader names the file and JSON path of a bad key.
@@ -23,6 +24,7 @@ struct ImuStrategy {
   std::optional<int> thermal_order;    ///< joint: empty = chosen by held-out error
   double band_width_cnt = 110.0;
   bool estimate_gyro_wander = false;   ///< joint: the wander from the recording, else datasheet's
+  bool format3 = false;                ///< joint: fit the firmware's format-3 terms too
 
   static ImuStrategy Reference();
   static ImuStrategy Improved();
