@@ -202,8 +202,7 @@ int RunDemo(const DemoOptions& options) {
   campaign.imu_station_file = station_file(rig_sim::RigBench::kImu, "station-imu.json");
   campaign.ads_station_file = station_file(rig_sim::RigBench::kAds, "station-ads.json");
   const std::filesystem::path dir = options.sequences;
-  campaign.sequences = {(dir / "imu_thermal_calibration_full.json").string(),
-                        (dir / "imu_sensor_calibration.json").string(),
+  campaign.sequences = {{(dir / "imu_thermal_sensor_calibration.json").string()},
                         (dir / "ads_calibration.json").string(),
                         (dir / "imu_acceptance.json").string(),
                         (dir / "ads_acceptance.json").string()};

@@ -71,26 +71,27 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   result.records_file = o.out_dir / "records.sqlite";
   RecordsStore records(result.records_file);
 
-  observer.Stage("1/8 calibration runs: IMU thermal + sensor calibration on the IMU bench, ADS "
-                 "calibration on the ADS bench, concurrently");
-  const auto calibration =
-      RunBenches(o, observer, {seq.imu_thermal, seq.imu_sensor}, {seq.ads_calibration}, stop);
+  observer.Stage("1/8 calibration runs: IMU calibration on the IMU bench, ADS calibration on the "
+                 "ADS bench, concurrently");
+  const auto calibration = RunBenches(o, observer, seq.imu_calibration, {seq.ads_calibration}, stop);
   observer.Stage("calibration runs done:" + RunsText(calibration));
   for (const auto& bench : calibration) result.runs.insert(result.runs.end(), bench.begin(), bench.end());
-  const std::filesystem::path thermal_run = RunDir(o, seq.imu_thermal);
-  const std::filesystem::path sensor_run = RunDir(o, seq.imu_sensor);
+  std::vector<std::filesystem::path> imu_runs;
+  for (const std::string& s : seq.imu_calibration) imu_runs.push_back(RunDir(o, s));
   const std::filesystem::path ads_run = RunDir(o, seq.ads_calibration);
 
-  observer.Stage("2/8 fits: IMU reference and improved (joint) strategies, ADS reference and "
-                 "improved (hysteresis-compensated pressure surfaces, ISA / CAS laws) strategies");
+  observer.Stage("2/8 fits: IMU reference and improved (joint, firmware format 3) strategies, ADS "
+                 "reference and improved (hysteresis-compensated pressure surfaces, ISA / CAS "
+                 "laws) strategies");
   const std::filesystem::path imu_reference_dir = o.out_dir / "fits" / "imu-reference";
   const std::filesystem::path imu_joint_dir = o.out_dir / "fits" / "imu-joint";
   const std::filesystem::path ads_reference_dir = o.out_dir / "fits" / "ads-reference";
   const std::filesystem::path ads_improved_dir = o.out_dir / "fits" / "ads-hysteresis-compensated";
-  const auto imu_reference = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Reference(),
+  const auto imu_reference = FitImuIntoDirectory(imu_runs, ImuStrategy::Reference(),
                                                  imu_reference_dir, o.software_version);
-  const auto imu_joint = FitImuIntoDirectory({thermal_run, sensor_run}, ImuStrategy::Improved(),
-                                             imu_joint_dir, o.software_version);
+  ImuStrategy improved = ImuStrategy::Improved();
+  improved.format3 = true;
+  const auto imu_joint = FitImuIntoDirectory(imu_runs, improved, imu_joint_dir, o.software_version);
   const auto ads_reference = FitAdsIntoDirectory(ads_run, kReferenceAdsStrategyName,
                                                  ads_reference_dir, o.software_version);
   const auto ads_improved = FitAdsIntoDirectory(ads_run, kHysteresisAdsStrategyName,
@@ -140,7 +141,9 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   observer.Stage("6/8 diagnosis: the IMU and ADS calibration runs against the pipeline's nominal model "
                  "(adahrs diagnose) -> " + (o.out_dir / "diagnosis").string());
   result.diagnosis_dir = o.out_dir / "diagnosis";
-  const DiagnosisRun diagnosed = DiagnoseRuns({thermal_run, sensor_run, ads_run}, std::nullopt);
+  std::vector<std::filesystem::path> diagnosed_runs = imu_runs;
+  diagnosed_runs.push_back(ads_run);
+  const DiagnosisRun diagnosed = DiagnoseRuns(diagnosed_runs, std::nullopt);
   WriteDiagnosis(diagnosed, result.diagnosis_dir);
   result.diagnosis = diagnosed.units;
   if (o.truth_dir) result.diagnosis_truth = CompareDiagnosisWithTruth(diagnosed.units, *o.truth_dir);
@@ -152,12 +155,11 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   }
 
   observer.Stage("7/8 report.html per run");
-  const std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports = {
-      {thermal_run, imu_joint_dir},
-      {sensor_run, imu_joint_dir},
-      {ads_run, ads_improved_dir},
-      {imu_acceptance_run, imu_joint_dir},
-      {ads_acceptance_run, ads_improved_dir}};
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports;
+  for (const std::filesystem::path& run : imu_runs) reports.emplace_back(run, imu_joint_dir);
+  reports.emplace_back(ads_run, ads_improved_dir);
+  reports.emplace_back(imu_acceptance_run, imu_joint_dir);
+  reports.emplace_back(ads_acceptance_run, ads_improved_dir);
   for (const auto& [run, fit] : reports) {
     const bool judged = run == imu_acceptance_run || run == ads_acceptance_run;
     WriteRunReport(run, fit, run / "report.html",

@@ -1,8 +1,10 @@
 // A calibration campaign: the production chain over two benches, each stage a call into its own
 // library, each stage's output a directory under `out_dir` (docs/demo.md):
 //   1. calibration runs, IMU bench and ADS bench concurrently (bench_runs.h):
-//      IMU thermal calibration then IMU sensor calibration; ADS calibration;   -> runs/<sequence>/
-//   2. fits (campaign_fits.h): IMU reference and improved (joint) strategies, ADS reference and
+//      the IMU calibration sequences in order (one thermal + sensor run, or a thermal calibration
+//      then a sensor calibration); ADS calibration;                            -> runs/<sequence>/
+//   2. fits (campaign_fits.h): IMU reference and improved (joint, firmware format 3: scale
+//      factors in temperature, axis nonlinearity, g-sensitivity) strategies, ADS reference and
 //      improved (hysteresis_compensated: pressure surfaces with the firmware's ISA / CAS laws and
 //      hysteresis operators, tolerance_ads_strategy.h) strategies
 //                                                                -> fits/<kind>-<strategy>/
@@ -50,8 +52,7 @@
 namespace adahrs::calib {
 
 struct CampaignSequences {
-  std::string imu_thermal;
-  std::string imu_sensor;
+  std::vector<std::string> imu_calibration;  ///< run in order, fitted together
   std::string ads_calibration;
   std::string imu_acceptance;
   std::string ads_acceptance;

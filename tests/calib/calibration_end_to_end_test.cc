@@ -131,11 +131,10 @@ TEST(CalibrationEndToEndTest, FourImusAndOneAdsCalibratedConcurrentlyWithinBudge
   std::string ads_sequence = kSequenceDir + "ads_calibration.json";
   if (kSanitized) {
     const CampaignSequences quick =
-        WriteQuickSequences({kSequenceDir + "imu_thermal_calibration_trial.json", imu_sequence,
-                             ads_sequence, kSequenceDir + "imu_acceptance.json",
+        WriteQuickSequences({{imu_sequence}, ads_sequence, kSequenceDir + "imu_acceptance.json",
                              kSequenceDir + "ads_acceptance.json"},
                             rig.dir() / "quick");
-    imu_sequence = quick.imu_sensor;
+    imu_sequence = quick.imu_calibration.front();
     ads_sequence = quick.ads_calibration;
   }
   SilentProgress imu_progress, ads_progress;
