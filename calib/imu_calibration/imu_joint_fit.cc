@@ -40,13 +40,15 @@ struct ChannelModel {
   int scale_order = 0;
   bool quadratic = false;
   bool g_sensitivity = false;
+  bool lag = false;  // accelerometer: tau_dot and tau_dot tau (die lag behind the thermometer)
 
   bool gyro() const { return channel >= 6; }
   int sensor() const { return kThermalSensorOfChannel[channel]; }
   int stimulus_index() const { return 1 + order; }
   int scale_index() const { return stimulus_index() + (gyro() ? 5 : 3); }
   int extra_index() const { return scale_index() + scale_order; }
-  int size() const { return extra_index() + (quadratic ? 1 : 0) + (g_sensitivity ? 3 : 0); }
+  int lag_index() const { return extra_index() + (quadratic ? 1 : 0) + (g_sensitivity ? 3 : 0); }
+  int size() const { return lag_index() + (lag ? 2 : 0); }
 };
 
 // The stimulus along the channel's own axis: f_axis in g, or the rate about the gyro's axis.
@@ -86,6 +88,13 @@ Eigen::RowVectorXd DesignRow(const ChannelModel& m, const ImuObservation& o) {
   if (m.g_sensitivity) {
     for (int a = 0; a < 3; ++a) row[k++] = o.f_B_g[a];
   }
+  if (m.lag) {
+    // A die lagging its thermometer by L reads xi(tau - L tau_dot) ~ xi(tau) - L tau_dot xi'(tau):
+    // tau_dot and tau_dot tau (per s; xi' taken as linear in tau).
+    const double tau_dot = o.t_rate_cnt_per_s[m.sensor()] / kTempSpan_cnt;
+    row[k++] = tau_dot;
+    row[k++] = tau_dot * TauPowerMean(o, m.sensor(), 1);
+  }
   return row;
 }
 
@@ -103,6 +112,7 @@ std::vector<std::string> TermNames(const ChannelModel& m) {
   }
   if (m.quadratic) names.push_back("f_axis^2");
   if (m.g_sensitivity) names.insert(names.end(), {"g f_x", "g f_y", "g f_z"});
+  if (m.lag) names.insert(names.end(), {"tau_dot", "tau_dot tau"});
   return names;
 }
 
@@ -195,10 +205,13 @@ LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<Im
   return fit;
 }
 
-// 5-fold held-out error over the thermal bands for each order; the order with the least.
-int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservation>& obs,
-                double n_thermal, const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2,
-                BiasWander wander, json* report) {
+// 5-fold held-out error over the thermal bands for each order; the order with the least. The
+// other terms are `base`'s.
+int ChooseOrder(const std::string& serial, const ChannelModel& base,
+                const std::vector<ImuObservation>& obs, double n_thermal,
+                const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2, BiasWander wander,
+                json* report) {
+  const int ch = base.channel;
   std::vector<size_t> thermal, other;
   for (size_t i = 0; i < obs.size(); ++i) (obs[i].thermal ? thermal : other).push_back(i);
   if (static_cast<int>(thermal.size()) < 4 * options.folds) return 2;
@@ -609,7 +622,7 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     const BiasWander diagonal = wanders ? BiasWander::kDiagonal : BiasWander::kNone;
     m.order = options.thermal_order
                   ? *options.thermal_order
-                  : ChooseOrder(serial, ch, obs, n_thermal, options, prior_cnt2, diagonal, &report);
+                  : ChooseOrder(serial, m, obs, n_thermal, options, prior_cnt2, diagonal, &report);
     std::optional<GyroWanderEstimate> estimate;
     if (wanders && options.estimate_gyro_wander) {
       estimate = EstimateWander(m, obs, n_thermal, options);
@@ -626,11 +639,12 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     }
     const Eigen::MatrixXd& bias_cnt2 = estimate ? estimate->covariance_cnt2 : prior_cnt2;
     if (estimate && !options.thermal_order) {
-      m.order = ChooseOrder(serial, ch, obs, n_thermal, options, bias_cnt2, diagonal, &report);
+      m.order = ChooseOrder(serial, m, obs, n_thermal, options, bias_cnt2, diagonal, &report);
     }
     if (options.format3) {
       m.quadratic = !m.gyro();
       m.g_sensitivity = m.gyro();
+      m.lag = !m.gyro();
       m.scale_order = options.scale_order ? *options.scale_order
                                           : ChooseScaleOrder(serial, m, obs, n_thermal, options,
                                                              bias_cnt2, diagonal, &report);

@@ -48,8 +48,13 @@
 // F_c(t) = 1 / (1 + delta_c(tau) / S_c) (a least-squares cubic in t over the span),
 // q_axis = -(k2_i / S_i + k2_j / S_j) / 2, GS = -CG diag(1 / n_gg) G / g0. The tempco scales
 // the channel's own axis only, so cross-axis terms times the tempco (1e-2 x 1e-2) are left out.
+// Format 3 also gives each accelerometer two nuisance terms for its die lagging the gyro die
+// whose TEMP it is fitted on: tau_dot and tau_dot tau (xi(tau - L tau_dot) ~ xi - L tau_dot xi',
+// xi' linear in tau; tau_dot the observation's pooled dt/dtime, ImuObservation::
+// t_rate_cnt_per_s), so the logged ramps do not bend the thermal polynomial; the firmware holds
+// no lag term (the unit runs at the die temperature it is at).
 // Without format 3 the accelerometer scale vs temperature is estimated and reported only.
-// Not modelled: die lag, supply.
+// Not modelled: supply; die lag without format 3.
 #pragma once
 
 #include <optional>

@@ -12,9 +12,15 @@ namespace adahrs::calib {
 void ObservationBuilder::Add(const firmware_model::ImuRawFrame& raw, double t_s) {
   if (windows_.empty() || t_s < windows_.back().last_s || t_s - windows_.back().last_s > kWindowMergeGap_s) {
     windows_.push_back({t_s, t_s, 0});
+    slope_.emplace_back();
   }
   windows_.back().last_s = t_s;
   ++windows_.back().rows;
+  SlopeSums& w = slope_.back();
+  const double since_s = t_s - windows_.back().first_s;
+  w.n += 1.0;
+  w.u += since_s;
+  w.uu += since_s * since_s;
   for (int i = 0; i < 6; ++i) {
     const double u = static_cast<double>(raw.t1_cnt[i]) / static_cast<double>(raw.t2_cnt[i]) - 0.5;
     sum_[i] += u;
@@ -29,6 +35,8 @@ void ObservationBuilder::Add(const firmware_model::ImuRawFrame& raw, double t_s)
     t_sum_[g] += t;
     t2_sum_[g] += t * t;
     t3_sum_[g] += t * t * t;
+    w.t[g] += t;
+    w.ut[g] += since_s * t;
   }
   ++n_;
 }
@@ -53,6 +61,12 @@ ImuObservation ObservationBuilder::Finish(std::string source, bool thermal, int 
     o.t_mean_cnt[g] = t_sum_[g] / n;
     o.t2_mean_cnt2[g] = t2_sum_[g] / n;
     o.t3_mean_cnt3[g] = t3_sum_[g] / n;
+    double sxx = 0.0, sxy = 0.0;
+    for (const SlopeSums& w : slope_) {
+      sxx += w.uu - w.u * w.u / w.n;
+      sxy += w.ut[g] - w.u * w.t[g] / w.n;
+    }
+    o.t_rate_cnt_per_s[g] = sxx > 0.0 ? sxy / sxx : 0.0;
   }
   o.f_B_g = f_B_g;
   o.w_B_dps = w_B_dps;

@@ -46,6 +46,9 @@ struct ImuObservation {
   std::array<double, 3> t_mean_cnt{};   ///< per TEMP sensor
   std::array<double, 3> t2_mean_cnt2{}; ///< mean of t^2 per TEMP sensor
   std::array<double, 3> t3_mean_cnt3{}; ///< mean of t^3 per TEMP sensor
+  /// dt/dtime per TEMP sensor, counts per s: the least-squares slope of t against the rows' times
+  /// within each window, pooled over the windows (0 with fewer than 2 rows per window).
+  std::array<double, 3> t_rate_cnt_per_s{};
   Eigen::Vector3d f_B_g = Eigen::Vector3d::Zero();
   Eigen::Vector3d w_B_dps = Eigen::Vector3d::Zero();
 };
@@ -60,8 +63,14 @@ class ObservationBuilder {
                         const Eigen::Vector3d& w_B_dps) const;
 
  private:
+  // Sums of one window for the temperature slope: u = time since the window's first row.
+  struct SlopeSums {
+    double n = 0.0, u = 0.0, uu = 0.0;
+    std::array<double, 3> t{}, ut{};
+  };
   int n_ = 0;
   std::vector<TimeWindow> windows_;
+  std::vector<SlopeSums> slope_;
   std::array<double, 9> sum_{}, sum2_{};
   std::array<double, 3> t_sum_{}, t2_sum_{}, t3_sum_{};
 };
