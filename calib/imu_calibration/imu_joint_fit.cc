@@ -205,13 +205,26 @@ LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<Im
   return fit;
 }
 
-// 5-fold held-out error over the thermal bands for each order; the order with the least. The
-// other terms are `base`'s.
-int ChooseOrder(const std::string& serial, const ChannelModel& base,
-                const std::vector<ImuObservation>& obs, double n_thermal,
-                const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2, BiasWander wander,
-                json* report) {
-  const int ch = base.channel;
+// Sum over `test` of the squared residuals of `m` fitted to `train`, each over its observation's
+// variance (white noise, plus the bias wander unless `wander` is kNone).
+double HeldOutSquares(const std::string& serial, ChannelModel& m, const std::vector<ImuObservation>& obs,
+                      const std::vector<size_t>& train, const std::vector<size_t>& test,
+                      double n_thermal, const ImuJointOptions& options,
+                      const Eigen::MatrixXd& bias_cnt2, BiasWander wander) {
+  const LinearFit fit = Solve(serial, m, obs, train, n_thermal, false, options, bias_cnt2, wander);
+  double sum = 0.0;
+  for (size_t i : test) {
+    const double r = obs[i].u_mean[m.channel] - DesignRow(m, obs[i]).dot(fit.coefficients);
+    const double wander_cnt2 = wander == BiasWander::kNone ? 0.0 : bias_cnt2(i, i);
+    sum += r * r / (Variance(obs[i], m.channel, n_thermal, false, options.noise) + wander_cnt2);
+  }
+  return sum;
+}
+
+// 5-fold held-out error over the thermal bands for each order; the order with the least.
+int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservation>& obs,
+                double n_thermal, const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2,
+                BiasWander wander, json* report) {
   std::vector<size_t> thermal, other;
   for (size_t i = 0; i < obs.size(); ++i) (obs[i].thermal ? thermal : other).push_back(i);
   if (static_cast<int>(thermal.size()) < 4 * options.folds) return 2;
@@ -228,12 +241,7 @@ int ChooseOrder(const std::string& serial, const ChannelModel& base,
       ChannelModel m;
       m.channel = ch;
       m.order = order;
-      const LinearFit fit = Solve(serial, m, obs, train, n_thermal, false, options, bias_cnt2, wander);
-      for (size_t i : test) {
-        const double r = obs[i].u_mean[ch] - DesignRow(m, obs[i]).dot(fit.coefficients);
-        const double wander_cnt2 = wander == BiasWander::kNone ? 0.0 : bias_cnt2(i, i);
-        sum += r * r / (Variance(obs[i], ch, n_thermal, false, options.noise) + wander_cnt2);
-      }
+      sum += HeldOutSquares(serial, m, obs, train, test, n_thermal, options, bias_cnt2, wander);
     }
     const double score = std::sqrt(sum / static_cast<double>(thermal.size()));
     scores.push_back(score);
@@ -289,13 +297,8 @@ int ChooseScaleOrder(const std::string& serial, const ChannelModel& base,
     for (int level = 0; level < levels; ++level) {
       std::vector<size_t> train, test;
       for (size_t i = 0; i < obs.size(); ++i) (level_of[i] == level ? test : train).push_back(i);
-      const LinearFit fit = Solve(serial, m, obs, train, n_thermal, false, options, bias_cnt2, wander);
-      for (size_t i : test) {
-        const double r = obs[i].u_mean[m.channel] - DesignRow(m, obs[i]).dot(fit.coefficients);
-        const double wander_cnt2 = wander == BiasWander::kNone ? 0.0 : bias_cnt2(i, i);
-        sum += r * r / (Variance(obs[i], m.channel, n_thermal, false, options.noise) + wander_cnt2);
-        ++tested;
-      }
+      sum += HeldOutSquares(serial, m, obs, train, test, n_thermal, options, bias_cnt2, wander);
+      tested += static_cast<int>(test.size());
     }
     const double score = std::sqrt(sum / std::max(tested, 1));
     scores.push_back(score);
@@ -622,7 +625,7 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     const BiasWander diagonal = wanders ? BiasWander::kDiagonal : BiasWander::kNone;
     m.order = options.thermal_order
                   ? *options.thermal_order
-                  : ChooseOrder(serial, m, obs, n_thermal, options, prior_cnt2, diagonal, &report);
+                  : ChooseOrder(serial, ch, obs, n_thermal, options, prior_cnt2, diagonal, &report);
     std::optional<GyroWanderEstimate> estimate;
     if (wanders && options.estimate_gyro_wander) {
       estimate = EstimateWander(m, obs, n_thermal, options);
@@ -639,7 +642,7 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     }
     const Eigen::MatrixXd& bias_cnt2 = estimate ? estimate->covariance_cnt2 : prior_cnt2;
     if (estimate && !options.thermal_order) {
-      m.order = ChooseOrder(serial, m, obs, n_thermal, options, bias_cnt2, diagonal, &report);
+      m.order = ChooseOrder(serial, ch, obs, n_thermal, options, bias_cnt2, diagonal, &report);
     }
     if (options.format3) {
       m.quadratic = !m.gyro();

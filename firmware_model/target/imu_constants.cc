@@ -165,7 +165,7 @@ void ScaleTemperatureInit(ScaleTemperatureConstantsQ31* st) {
   }
   for (CoeffQ31& q : st->accel_quadratic) q = kZeroCoeff;
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) st->gs[r][c] = CoeffQ31{0, 0};
+    for (int c = 0; c < 3; ++c) st->gs[r][c] = kZeroCoeff;
   }
 }
 
