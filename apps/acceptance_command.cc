@@ -1,5 +1,6 @@
-// adahrs acceptance --run DIR [--out DIR] [--db FILE]: judges an acceptance run against the
-// specification (calib/acceptance/, docs/acceptance.md), writes <out>/<serial>/acceptance.json per
+// adahrs acceptance --run DIR [--out DIR] [--db FILE] [--since-calibration-h H]: judges an
+// acceptance run against the specification (calib/acceptance/, docs/acceptance.md), and its rate
+// points against the physical limit of bias wander over H hours since calibration; writes <out>/<serial>/acceptance.json per
 // unit (default out: DIR/acceptance), prints the table and, with --db, records every point in the
 // production records. Exit code 0 when every point passes, 1 when any fails, 2 on bad input (or
 // when the files or the records cannot be written: no verdict reached its destination).
@@ -27,15 +28,21 @@ void RegisterAcceptanceCommand(CLI::App& app) {
   auto run = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto db = std::make_shared<std::string>();
+  auto options = std::make_shared<calib::AcceptanceOptions>();
   cmd->add_option("--run", *run, "Acceptance run directory (recording in a calibrated mode)")->required();
   cmd->add_option("--out", *out, "Output directory for <serial>/acceptance.json (default: RUN/acceptance)");
   cmd->add_option("--db", *db, "Production records database to record the points in");
-  cmd->callback([run, out, db] {
+  cmd->add_option("--since-calibration-h", options->since_calibration_h,
+                  "Hours between the calibration and this run: the bias wander the rate points' "
+                  "physical limit counts")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e5));
+  cmd->callback([run, out, db, options] {
     const calib::Specification spec = calib::Specification::Reference();
     calib::AcceptanceRun result;
     std::vector<std::filesystem::path> files;
     try {
-      result = calib::JudgeAcceptance(*run, spec);
+      result = calib::JudgeAcceptance(*run, spec, *options);
       const std::filesystem::path out_dir =
           out->empty() ? std::filesystem::path(*run) / "acceptance" : std::filesystem::path(*out);
       files = calib::WriteAcceptanceFiles(result, spec, ADAHRS_VERSION, out_dir);

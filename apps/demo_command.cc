@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 
 #include "apps/commands.h"
+#include "calib/acceptance/acceptance_file.h"
 #include "calib/campaign/campaign.h"
 #include "calib/campaign/quick_sequences.h"
 #include "rig_sim/recording_replay.h"
@@ -126,6 +127,9 @@ void PrintSummary(const calib::CampaignResult& result, double wall_s, sensor_sim
       for (const calib::WorstMargin& w : u.acceptance->WorstMargins()) {
         std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n", w.quantity,
                                  w.margin, w.unit, w.step, w.point);
+      }
+      if (const std::string line = calib::RateVerdictLine(*u.acceptance); !line.empty()) {
+        std::cout << "    " << line;
       }
     } else {
       std::cout << "  acceptance against the specification: the unit is not in the acceptance run\n";

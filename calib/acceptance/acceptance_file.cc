@@ -25,9 +25,13 @@ json PointJson(const AcceptancePoint& p) {
   j["reference"] = p.reference;
   j["error"] = p.error;
   j["std_error"] = p.std_error;
+  j["duration_s"] = p.duration_s;
+  j["noise"] = p.noise;
   j["tolerance"] = p.tolerance;
   j["margin"] = p.margin();
+  if (p.physical_limit) j["physical_limit"] = *p.physical_limit;
   j["pass"] = p.pass;
+  j["verdict"] = PointVerdictText(p.verdict());
   j["beyond_noise"] = p.beyond_noise;
   return j;
 }
@@ -74,6 +78,22 @@ json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit, const 
       {"altitude", "ISA pressure altitude of ps_ref_pa"},
       {"airspeed", "calibrated airspeed of qc_ref_pa"}};
   if (unit.kind == "imu") reference["local_gravity_mps2"] = run.local_gravity_mps2;
+  json verdicts = json::object();
+  for (const std::string family : {"acceleration", "body_rate", "altitude", "airspeed"}) {
+    json counts = json::object();
+    for (PointVerdict v : {PointVerdict::kWithinSpecification, PointVerdict::kWithinPhysicalLimit,
+                           PointVerdict::kOutsideBoth, PointVerdict::kOutsideSpecification}) {
+      if (const int n = unit.Count(family, v); n > 0) counts[PointVerdictText(v)] = n;
+    }
+    if (!counts.empty()) verdicts[family] = counts;
+  }
+  json physical_limit = nullptr;
+  if (unit.rest) {
+    physical_limit = {{"since_calibration_h", run.since_calibration_h},
+                      {"rest_record", unit.rest->ToJson()},
+                      {"law", "3 sqrt(sigma_point^2 + 2 B2(T/tau) sigma_floor^2), flicker floor "
+                              "from the rest record's Allan deviation"}};
+  }
   return {{"format", kAcceptanceFormatName},
           {"format_version", kAcceptanceFormatVersion},
           {"serial", unit.serial},
@@ -89,6 +109,8 @@ json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit, const 
           {"verdict", unit.pass() ? "pass" : "fail"},
           {"points_total", unit.points.size()},
           {"points_failed", unit.failed()},
+          {"point_verdicts", verdicts},
+          {"physical_limit", physical_limit},
           {"worst_margin", worst},
           {"points", points}};
 }
@@ -124,8 +146,8 @@ json ReadAcceptanceFile(const std::filesystem::path& file) {
                                           kAcceptanceFormatName, format));
   }
   const int version = Require(j, "format_version", &json::is_number_integer, "an integer", "$", source);
-  if (version != kAcceptanceFormatVersion) {
-    throw AcceptanceFileError(fmt::format("{}: $.format_version: {} is not {}", source, version,
+  if (version < 1 || version > kAcceptanceFormatVersion) {
+    throw AcceptanceFileError(fmt::format("{}: $.format_version: {} is not 1...{}", source, version,
                                           kAcceptanceFormatVersion));
   }
   Require(j, "serial", &json::is_string, "a string", "$", source);
@@ -160,24 +182,57 @@ std::vector<std::filesystem::path> FindAcceptanceFiles(const std::filesystem::pa
   return files;
 }
 
+std::string RateVerdictLine(const UnitAcceptance& unit) {
+  const auto count = [&](PointVerdict v) { return unit.Count("body_rate", v); };
+  const int total = count(PointVerdict::kWithinSpecification) + count(PointVerdict::kWithinPhysicalLimit) +
+                    count(PointVerdict::kOutsideBoth) + count(PointVerdict::kOutsideSpecification);
+  if (total == 0) return "";
+  double lo = 0.0, hi = 0.0;
+  bool any = false;
+  for (const AcceptancePoint& p : unit.points) {
+    if (QuantityFamily(p.quantity) != "body_rate" || !p.physical_limit) continue;
+    lo = any ? std::min(lo, *p.physical_limit) : *p.physical_limit;
+    hi = any ? std::max(hi, *p.physical_limit) : *p.physical_limit;
+    any = true;
+  }
+  std::string line = fmt::format("body-rate points: {} of {} {}", count(PointVerdict::kWithinSpecification),
+                                 total, PointVerdictText(PointVerdict::kWithinSpecification));
+  if (any) {
+    line += fmt::format(", {} {}, {} {} (physical limit {:.3g}...{:.3g} deg/s)",
+                        count(PointVerdict::kWithinPhysicalLimit),
+                        PointVerdictText(PointVerdict::kWithinPhysicalLimit),
+                        count(PointVerdict::kOutsideBoth), PointVerdictText(PointVerdict::kOutsideBoth),
+                        lo, hi);
+  } else {
+    line += fmt::format(", {} {} (no rest record: no physical limit)",
+                        count(PointVerdict::kOutsideSpecification),
+                        PointVerdictText(PointVerdict::kOutsideSpecification));
+  }
+  return line + "\n";
+}
+
 std::string AcceptanceText(const AcceptanceRun& run) {
   std::string out = fmt::format("acceptance of run {} ({}), sequence {}\n", run.run_id, run.run_dir,
                                 run.sequence_name);
   for (const UnitAcceptance& unit : run.units) {
     out += fmt::format("\n{} ({}, mode {})\n", unit.serial, unit.kind, unit.mode);
-    out += fmt::format("{:>4} {:<15} {:<9} {:<38} {:>12} {:>10} {:>10} {:>9} {:<5} {}\n", "step",
-                       "kind", "quantity", "condition", "measured", "error", "std err",
-                       "tol", "unit", "verdict");
+    out += fmt::format("{:>4} {:<15} {:<9} {:<38} {:>12} {:>10} {:>10} {:>9} {:>9} {:<5} {}\n",
+                       "step", "kind", "quantity", "condition", "measured", "error", "noise",
+                       "tol", "phys lim", "unit", "verdict");
     for (const AcceptancePoint& p : unit.points) {
-      out += fmt::format("{:>4} {:<15} {:<9} {:<38} {:>12.4f} {:>10.4f} {:>10.4f} {:>9.4f} {:<5} {}{}\n",
-                         p.step, p.kind, p.quantity, p.Condition(), p.measured, p.error, p.std_error,
-                         p.tolerance, p.unit, p.pass ? "PASS" : "FAIL",
-                         p.beyond_noise ? "" : " (within noise of the limit)");
+      out += fmt::format("{:>4} {:<15} {:<9} {:<38} {:>12.4f} {:>10.4f} {:>10.4f} {:>9.4f} {:>9} {:<5} {}{}{}\n",
+                         p.step, p.kind, p.quantity, p.Condition(), p.measured, p.error, p.noise,
+                         p.tolerance,
+                         p.physical_limit ? fmt::format("{:.4f}", *p.physical_limit) : "-", p.unit,
+                         p.pass ? "PASS" : "FAIL",
+                         p.pass ? "" : std::string(" (") + PointVerdictText(p.verdict()) + ")",
+                         p.beyond_noise ? "" : " (within noise of the tolerance)");
     }
     for (const WorstMargin& w : unit.WorstMargins()) {
       out += fmt::format("worst {} margin {:.4f} {} (step {}, {})\n", w.quantity, w.margin, w.unit,
                          w.step, w.point);
     }
+    out += RateVerdictLine(unit);
     out += fmt::format("{}: {} ({} of {} points failed)\n", unit.serial, unit.pass() ? "PASS" : "FAIL",
                        unit.failed(), unit.points.size());
   }

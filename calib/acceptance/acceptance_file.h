@@ -22,7 +22,7 @@
 namespace adahrs::calib {
 
 inline constexpr const char* kAcceptanceFormatName = "adahrs-acceptance";
-inline constexpr int kAcceptanceFormatVersion = 1;
+inline constexpr int kAcceptanceFormatVersion = 2;  ///< 2 adds noise, physical limits, verdicts
 inline constexpr const char* kAcceptanceFileName = "acceptance.json";
 
 class AcceptanceFileError : public std::runtime_error {
@@ -45,6 +45,11 @@ nlohmann::json ReadAcceptanceFile(const std::filesystem::path& file);
 
 /// Every acceptance.json under `dir` (the layout WriteAcceptanceFiles makes), sorted by path.
 std::vector<std::filesystem::path> FindAcceptanceFiles(const std::filesystem::path& dir);
+
+/// "body-rate points: 12 of 63 within specification, 51 outside specification, within the physical
+/// limit, 0 outside specification and the physical limit (physical limit 0.1...0.2 deg/s)\n", or
+/// "" for a unit without rate points: the line the acceptance table and the demo summary share.
+std::string RateVerdictLine(const UnitAcceptance& unit);
 
 /// One line per judged point and a verdict line per unit, for the terminal.
 std::string AcceptanceText(const AcceptanceRun& run);

@@ -21,6 +21,7 @@ using nlohmann::json;
 
 constexpr double kRateMatch_dps = 1.0;  // a reported rate belongs to the command within this
 constexpr double kMgPerG = 1000.0;
+constexpr double kDefaultSampleRate_hz = 100.0;  // the units' frame rate when meta.json omits it
 constexpr const char* kAxisNames[3] = {"x", "y", "z"};
 
 // Where an error happened: run, unit, step and its kind and TAG.
@@ -68,15 +69,30 @@ struct Series {
   }
 };
 
-AcceptancePoint Judge(AcceptancePoint p, const Series& s, double tolerance) {
+// The rest record's curve of one quantity and the time the limit counts wander over; `terms` is
+// null without a rest record, `rate` says whether the point gets a physical limit.
+struct NoiseModel {
+  const AllanTerms* terms = nullptr;
+  bool rate = false;
+  double since_calibration_s = 0.0;
+};
+
+AcceptancePoint Judge(AcceptancePoint p, const Series& s, double tolerance, const NoiseModel& noise = {}) {
   p.samples = s.error.n;
   p.measured = s.measured.Mean();
   p.reference = s.reference.Mean();
   p.error = s.error.Mean();
   p.std_error = s.error.StdError();
+  p.noise = p.std_error;
+  if (noise.terms != nullptr) {
+    p.noise = PointSigma(*noise.terms, p.std_error, p.duration_s);
+    if (noise.rate) {
+      p.physical_limit = PointLimit(*noise.terms, p.std_error, p.duration_s, noise.since_calibration_s);
+    }
+  }
   p.tolerance = tolerance;
   p.pass = std::abs(p.error) <= tolerance;
-  p.beyond_noise = std::abs(std::abs(p.error) - tolerance) > 2.0 * p.std_error;
+  p.beyond_noise = std::abs(std::abs(p.error) - tolerance) > 2.0 * p.noise;
   return p;
 }
 
@@ -100,6 +116,8 @@ double ToleranceAt(const Where& where, const ToleranceTable& table, double input
 
 struct RunContext {
   std::string run;
+  double packet_period_s = 0.0;
+  double since_calibration_s = 0.0;
   hil::Recording recording;
   Sequence sequence;
   std::vector<uint8_t> tags;
@@ -160,28 +178,6 @@ int StepMode(const Where& where, const std::vector<const Row*>& rows, bool imu) 
 }
 
 // --- IMU ---
-
-struct ImuPacket {
-  std::array<double, 3> f_B_g{};
-  std::array<double, 3> w_B_dps{};
-};
-
-ImuPacket MeasuredImu(const hil::ImuRecordRow& row) {
-  const std::array<double, 9>& c = *row.comp;
-  ImuPacket p;
-  if (row.mode == 3) {
-    for (int i = 0; i < 3; ++i) {
-      p.f_B_g[i] = sensor_sim::Mps2ToG(c[i]);
-      p.w_B_dps[i] = c[3 + i];
-    }
-  } else {
-    // Mode 2 channels az1 ax1 ay1 az2 ax2 ay2, each in g along its body axis: an axis is the mean
-    // of its pair, as the firmware forms Ca before the cross-axis matrix.
-    p.f_B_g = {(c[1] + c[4]) / 2.0, (c[2] + c[5]) / 2.0, (c[0] + c[3]) / 2.0};
-    p.w_B_dps = {c[6], c[7], c[8]};
-  }
-  return p;
-}
 
 std::array<double, 3> UpAxis(const Where& where, int orientation) {
   if (!IsOrientationCode(orientation)) {
@@ -257,14 +253,14 @@ std::vector<ImuGroup> GroupImuStep(const Where& where, const StepBody& body,
 }
 
 void JudgeImuGroup(const Where& where, const ImuGroup& group, const Specification& spec,
-                   double g_local_g, UnitAcceptance* unit) {
+                   double g_local_g, const RunContext& ctx, UnitAcceptance* unit) {
   if (group.rows.size() < 2) Refuse(where, "fewer than 2 rows in an acquisition");
   if (group.orientation == 0) Refuse(where, "rows carry no orientation (0: not mounted)");
   const std::array<double, 3> up = UpAxis(where, group.orientation);
   std::array<Series, 3> accel_mg, rate_dps;
   Moments chamber;
   for (const hil::ImuRecordRow* row : group.rows) {
-    const ImuPacket m = MeasuredImu(*row);
+    const ImuBodyOutput m = BodyOutput(*row);
     for (size_t i = 0; i < 3; ++i) {
       accel_mg[i].Add(m.f_B_g[i] * kMgPerG, up[i] * g_local_g * kMgPerG);
       rate_dps[i].Add(m.w_B_dps[i], up[i] * row->table_rate_dps);
@@ -277,6 +273,7 @@ void JudgeImuGroup(const Where& where, const ImuGroup& group, const Specificatio
   base.orientation = group.orientation;
   base.rate_dps = group.rate_cmd_dps;
   base.chamber_c = CheckedChamberC(where, chamber, spec);
+  base.duration_s = static_cast<double>(group.rows.size()) * ctx.packet_period_s;
   if (group.rate_cmd_dps && std::abs(*group.rate_cmd_dps) > spec.rated_rate_dps) {
     Refuse(where, fmt::format("commanded rate {} deg/s is outside the rated +-{} deg/s",
                               *group.rate_cmd_dps, spec.rated_rate_dps));
@@ -286,7 +283,8 @@ void JudgeImuGroup(const Where& where, const ImuGroup& group, const Specificatio
       AcceptancePoint p = base;
       p.quantity = std::string("accel_") + kAxisNames[i];
       p.unit = "mg";
-      unit->points.push_back(Judge(p, accel_mg[i], spec.accel_mg));
+      const NoiseModel noise{unit->rest ? &unit->rest->accel_mg[i] : nullptr, false, 0.0};
+      unit->points.push_back(Judge(p, accel_mg[i], spec.accel_mg, noise));
     }
   }
   for (size_t i = 0; i < 3; ++i) {
@@ -294,7 +292,9 @@ void JudgeImuGroup(const Where& where, const ImuGroup& group, const Specificatio
       AcceptancePoint p = base;
       p.quantity = std::string("rate_") + kAxisNames[i];
       p.unit = "deg/s";
-      unit->points.push_back(Judge(p, rate_dps[i], spec.body_rate_dps));
+      const NoiseModel noise{unit->rest ? &unit->rest->rate_dps[i] : nullptr, true,
+                             ctx.since_calibration_s};
+      unit->points.push_back(Judge(p, rate_dps[i], spec.body_rate_dps, noise));
     }
   }
 }
@@ -302,6 +302,11 @@ void JudgeImuGroup(const Where& where, const ImuGroup& group, const Specificatio
 void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_local_mps2,
                   const std::map<std::pair<std::string, int>, std::vector<const hil::ImuRecordRow*>>& selected,
                   UnitAcceptance* unit) {
+  std::vector<const hil::ImuRecordRow*> own;
+  for (const hil::ImuRecordRow& row : ctx.recording.imu) {
+    if (row.unit == unit->serial) own.push_back(&row);
+  }
+  unit->rest = ReadRestStability(own, ctx.packet_period_s);
   for (size_t s = 0; s < ctx.sequence.steps.size(); ++s) {
     const StepBody& body = ctx.sequence.steps[s].body;
     const bool acquires = std::holds_alternative<AccelStep>(body) ||
@@ -331,7 +336,7 @@ void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_loc
       if (std::holds_alternative<ThermalProfileStep>(body) && group.rows.size() < kMinThermalBinPackets) {
         continue;
       }
-      JudgeImuGroup(where, group, spec, sensor_sim::Mps2ToG(g_local_mps2), unit);
+      JudgeImuGroup(where, group, spec, sensor_sim::Mps2ToG(g_local_mps2), ctx, unit);
     }
   }
 }
@@ -354,6 +359,7 @@ void JudgeAdsUnit(const RunContext& ctx, const Specification& spec,
     unit->mode = StepMode(where, rows, false);
     Series alt_ft, cas_kt;
     Moments chamber;
+    const double duration_s = rows.back()->t_s - rows.front()->t_s + ctx.packet_period_s;
     for (const hil::AdsRecordRow* row : rows) {
       double ref_alt_ft = 0.0;
       double ref_cas_kt = 0.0;
@@ -372,6 +378,7 @@ void JudgeAdsUnit(const RunContext& ctx, const Specification& spec,
     base.step = where.step;
     base.kind = where.kind;
     base.chamber_c = CheckedChamberC(where, chamber, spec);
+    base.duration_s = duration_s;
     base.alt_ft = alt_aim_ft.value_or(alt_ft.reference.Mean());
     base.cas_kt = cas_aim_kt.value_or(cas_kt.reference.Mean());
     AcceptancePoint alt = base;
@@ -389,7 +396,30 @@ void JudgeAdsUnit(const RunContext& ctx, const Specification& spec,
 
 }  // namespace
 
+const char* PointVerdictText(PointVerdict verdict) {
+  switch (verdict) {
+    case PointVerdict::kWithinSpecification: return "within specification";
+    case PointVerdict::kWithinPhysicalLimit: return "outside specification, within the physical limit";
+    case PointVerdict::kOutsideBoth: return "outside specification and the physical limit";
+    case PointVerdict::kOutsideSpecification: return "outside specification";
+  }
+  return "?";
+}
+
+std::string QuantityFamily(const std::string& quantity) {
+  if (quantity.starts_with("accel_")) return "acceleration";
+  if (quantity.starts_with("rate_")) return "body_rate";
+  return quantity;
+}
+
 double AcceptancePoint::margin() const { return tolerance - std::abs(error); }
+
+PointVerdict AcceptancePoint::verdict() const {
+  if (pass) return PointVerdict::kWithinSpecification;
+  if (!physical_limit) return PointVerdict::kOutsideSpecification;
+  return std::abs(error) <= *physical_limit ? PointVerdict::kWithinPhysicalLimit
+                                            : PointVerdict::kOutsideBoth;
+}
 
 std::string AcceptancePoint::Condition() const {
   std::string text;
@@ -407,12 +437,16 @@ int UnitAcceptance::failed() const {
                                         [](const AcceptancePoint& p) { return !p.pass; }));
 }
 
+int UnitAcceptance::Count(const std::string& family, PointVerdict verdict) const {
+  return static_cast<int>(std::count_if(points.begin(), points.end(), [&](const AcceptancePoint& p) {
+    return QuantityFamily(p.quantity) == family && p.verdict() == verdict;
+  }));
+}
+
 std::vector<WorstMargin> UnitAcceptance::WorstMargins() const {
   std::vector<WorstMargin> out;
   for (const AcceptancePoint& p : points) {
-    const std::string family = p.quantity.starts_with("accel_")  ? "acceleration"
-                               : p.quantity.starts_with("rate_") ? "body_rate"
-                                                                 : p.quantity;
+    const std::string family = QuantityFamily(p.quantity);
     auto it = std::find_if(out.begin(), out.end(), [&](const WorstMargin& w) { return w.quantity == family; });
     const WorstMargin candidate{family, p.unit, p.margin(), p.step, p.quantity + " at " + p.Condition()};
     if (it == out.end()) {
@@ -428,14 +462,26 @@ bool AcceptanceRun::pass() const {
   return std::all_of(units.begin(), units.end(), [](const UnitAcceptance& u) { return u.pass(); });
 }
 
-AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specification& spec) {
+AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specification& spec,
+                              const AcceptanceOptions& options) {
   RunContext ctx;
   ctx.run = run_dir.string();
-  ctx.recording = hil::ReadRecording(run_dir);
-  const json& meta = ctx.recording.meta;
   const auto fail = [&](const std::string& message) {
     throw AcceptanceInputError(ctx.run + ": " + message);
   };
+  if (!(options.since_calibration_h >= 0.0 && options.since_calibration_h < 1e6)) {
+    fail(fmt::format("the time since calibration {} h is not a duration", options.since_calibration_h));
+  }
+  ctx.since_calibration_s = options.since_calibration_h * 3600.0;
+  ctx.recording = hil::ReadRecording(run_dir);
+  const json& meta = ctx.recording.meta;
+  ctx.packet_period_s = 1.0 / kDefaultSampleRate_hz;
+  if (meta.contains("sample_rate_hz")) {
+    if (!meta["sample_rate_hz"].is_number() || !(meta["sample_rate_hz"].get<double>() > 0.0)) {
+      fail("meta.json: $.sample_rate_hz is not a positive number");
+    }
+    ctx.packet_period_s = 1.0 / meta["sample_rate_hz"].get<double>();
+  }
   if (!meta.contains("sequence")) fail("meta.json: $.sequence missing");
   ctx.sequence = SequenceFromJson(meta["sequence"], ctx.run + "/meta.json $.sequence");
   ctx.tags = EffectiveTags(ctx.sequence);
@@ -446,6 +492,7 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specif
                                                                       : run_dir.filename().string();
   run.recording_sha256 = RecordingSha256(run_dir);
   run.sequence_name = ctx.sequence.name;
+  run.since_calibration_h = options.since_calibration_h;
   if (!meta.contains("units") || !meta["units"].is_array()) fail("meta.json: $.units missing");
   for (size_t i = 0; i < meta["units"].size(); ++i) {
     const json& u = meta["units"][i];
@@ -454,7 +501,7 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specif
     const std::string kind = u.value("kind", "");
     if (kind != "imu" && kind != "ads") fail(path + ".kind: \"" + kind + "\" is neither imu nor ads");
     if (kind == UnitKindName(ctx.sequence.unit_kind)) {
-      run.units.push_back({u["serial"].get<std::string>(), kind, 0, {}});
+      run.units.push_back({u["serial"].get<std::string>(), kind, 0, {}, std::nullopt});
     }
   }
   if (run.units.empty()) {

@@ -1,4 +1,4 @@
-// Acceptance judging (issue 6, docs/acceptance.md): a calibrated unit's own compensated output,
+// Acceptance judging (docs/acceptance.md): a calibrated unit's own compensated output,
 // recorded during an acceptance sequence (recording format 2, docs/recording-format.md), against
 // the REFERENCE the instruments report — never simulator truth — and the specification
 // (specification.h). Rows of a step are those with the step's TAG, of the step's index, outside
@@ -24,7 +24,14 @@
 // Statistic: the mean over the point's packets of (measured - reference) per packet, with its
 // standard error s/sqrt(n) (packets taken as independent: the units' output filters, 3.2 ms
 // accel and 4 ms gyro, are shorter than the 10 ms packet period). Verdict: pass when
-// |mean error| <= tolerance; "beyond_noise" says the verdict holds with 2 standard errors to spare.
+// |mean error| <= tolerance. When the unit has a rest record in the run (rest_stability.h), the
+// point's noise is max(s/sqrt(n), the rest record's Allan deviation at the point's duration),
+// which counts the correlated part the independent-packet error misses, and each rate point
+// carries its physical limit: the 3-sigma error point noise and bias wander since calibration
+// impose on a unit with no systematic residual. A rate point outside the specification is then
+// "outside specification, within the physical limit" or "outside specification and the physical
+// limit"; the specification stays the verdict (pass), the limit says what it can be held to.
+// "beyond_noise" says the verdict holds with 2 noise sigmas to spare.
 // Measured quantities by mode: IMU mode 3 (fully calibrated) A (m/s^2) and G (deg/s); IMU mode 2
 // (sensor calibrated) the mean of each axis's two channels (g) and the Eq. 23 rates — judged
 // without the cross-axis correction, which mode 2 does not apply; ADS mode 1 alt_ft and cas_kt.
@@ -49,6 +56,7 @@
 #include <string>
 #include <vector>
 
+#include "calib/acceptance/rest_stability.h"
 #include "calib/acceptance/specification.h"
 
 namespace adahrs::calib {
@@ -66,6 +74,23 @@ inline constexpr double kThermalBinWidthC = 5.0;
 /// A thermal bin with fewer packets is not judged (the chamber only touched it).
 inline constexpr size_t kMinThermalBinPackets = 10;
 
+/// Bias wander is counted over this time between calibration and acceptance unless told otherwise:
+/// a production line accepts within a day of calibrating. The limit grows as ln(T), so a factor
+/// of 10 in T moves it by about 15 %.
+inline constexpr double kDefaultSinceCalibration_h = 24.0;
+
+struct AcceptanceOptions {
+  double since_calibration_h = kDefaultSinceCalibration_h;
+};
+
+/// The verdict of a point against the specification and, for rate points, its physical limit.
+enum class PointVerdict { kWithinSpecification, kWithinPhysicalLimit, kOutsideBoth, kOutsideSpecification };
+
+/// "within specification", "outside specification, within the physical limit", "outside
+/// specification and the physical limit", "outside specification" (no limit known): the wording
+/// the acceptance table, acceptance.json, the report and the demo summary share.
+const char* PointVerdictText(PointVerdict verdict);
+
 /// One quantity judged at one acquisition.
 struct AcceptancePoint {
   int step = 0;                    ///< step index in the run's sequence
@@ -81,11 +106,15 @@ struct AcceptancePoint {
   double measured = 0.0;   ///< mean of the unit's output
   double reference = 0.0;  ///< mean of the instruments' reference
   double error = 0.0;      ///< mean of (measured - reference) per packet
-  double std_error = 0.0;  ///< standard error of `error`
+  double std_error = 0.0;  ///< standard error of `error`, packets taken as independent
+  double duration_s = 0.0;  ///< IMU: packets x frame period; ADS: first to last arrival
+  double noise = 0.0;      ///< 1-sigma noise of `error`: std_error, or the rest record's if larger
   double tolerance = 0.0;  ///< +- at the input, from the specification
+  std::optional<double> physical_limit;  ///< rate points with a rest record (rest_stability.h)
   bool pass = false;
-  bool beyond_noise = false;  ///< | |error| - tolerance | > 2 std_error
+  bool beyond_noise = false;  ///< | |error| - tolerance | > 2 noise
 
+  PointVerdict verdict() const;
   double margin() const;  ///< tolerance - |error| (negative when failing)
   /// "orientation 11, 62.5 deg/s, 25.0 degC" / "5000 ft, 60 kt, -20.0 degC": where it was judged.
   std::string Condition() const;
@@ -105,9 +134,12 @@ struct UnitAcceptance {
   std::string kind;  ///< "imu" | "ads"
   int mode = 0;      ///< the compensated mode its rows were recorded in
   std::vector<AcceptancePoint> points;
+  std::optional<RestStability> rest;  ///< IMU: the rest record the noise and limits come from
 
   bool pass() const;
   int failed() const;
+  /// Points of `family` ("acceleration", "body_rate", "altitude", "airspeed") with `verdict`.
+  int Count(const std::string& family, PointVerdict verdict) const;
   std::vector<WorstMargin> WorstMargins() const;
 };
 
@@ -116,6 +148,7 @@ struct AcceptanceRun {
   std::string run_id;
   std::string recording_sha256;
   std::string sequence_name;
+  double since_calibration_h = kDefaultSinceCalibration_h;  ///< of the physical limits
   double local_gravity_mps2 = 0.0;  ///< 0 for an ADS run
   std::vector<UnitAcceptance> units;  ///< in meta.json's order
 
@@ -124,6 +157,10 @@ struct AcceptanceRun {
 
 /// Judges every unit of the run in `run_dir` against `spec`; throws AcceptanceInputError or
 /// hil::RecordingError with the reason.
-AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specification& spec);
+AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specification& spec,
+                              const AcceptanceOptions& options = {});
+
+/// "acceleration" for accel_x..z, "body_rate" for rate_x..z, else the quantity itself.
+std::string QuantityFamily(const std::string& quantity);
 
 }  // namespace adahrs::calib

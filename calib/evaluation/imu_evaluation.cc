@@ -21,7 +21,7 @@ using nlohmann::json;
 constexpr double kTempMin_c = -40.0, kTempMax_c = 85.0, kTempStep_c = 12.5;
 constexpr double kRates_dps[] = {-150, -100, -50, 50, 100, 150};
 constexpr double kSigmaLimit = 3.0;   // CRB limit per point: 3 sigma
-constexpr double kCrbMargin = 1.5;    // issue 6: within 1.5x the CRB-implied limit
+constexpr double kCrbMargin = 1.5;    // within 1.5x the CRB-implied limit
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 sensor_sim::ImuUnitParams NoiseOff(sensor_sim::ImuUnitParams p) {
@@ -132,9 +132,9 @@ struct QuantitySummary {
 
 std::string Verdict(const QuantitySummary& q, bool have_crb) {
   if (q.all_in_spec) return "within specification";
-  if (have_crb && q.all_in_crb) return "within 1.5x the CRB limit";
-  if (have_crb && q.worst <= kCrbMargin * (q.worst_floor + q.max_crb_limit)) return "within 1.5x the firmware floor plus the CRB limit";
-  return "outside";
+  if (have_crb && q.all_in_crb) return "outside specification, within 1.5x the physical limit";
+  if (have_crb && q.worst <= kCrbMargin * (q.worst_floor + q.max_crb_limit)) return "outside specification, within 1.5x the firmware floor plus the physical limit";
+  return "outside specification and the physical limit";
 }
 
 }  // namespace

@@ -12,20 +12,23 @@
 // air temperature plus its self-heating); every other effect of the truth model stays as drawn,
 // including T2 jitter, which dithers the capture quantisation so that the mean is the steady-state
 // output, not a quantisation artefact.
-// Verdict per quantity (acceleration, body rate):
+// Verdict per quantity (acceleration, body rate), worded as acceptance words its points
+// (acceptance_judge.h); the physical limit here is the calibration design's, 3 sigma_p:
 //   "within specification"        every point's error is within the specification;
-//   "within 1.5x the CRB limit"   every point outside it is within 1.5 x 3 sigma_p, sigma_p the
+//   "outside specification, within 1.5x the physical limit"
+//                                 every point outside it is within 1.5 x 3 sigma_p, sigma_p the
 //                                 standard deviation of that output implied by the Cramer-Rao
 //                                 covariance of the constants (diagnostics.crb_covariance of the
 //                                 joint strategy) through the compensator's Jacobian,
 //                                 sigma_p^2 = j' CRB j (3 sigma: a per-point 99.7 % bound);
-//   "within 1.5x the firmware floor plus the CRB limit"  the worst error is within 1.5 x (the
+//   "outside specification, within 1.5x the firmware floor plus the physical limit"
+//                                 the worst error is within 1.5 x (the
 //                                 worst error of the best constants the firmware's structure can
 //                                 hold — the firmware floor, below — plus the largest 3 sigma_p);
 //                                 the 1.5 is the margin, applied to the floor because the
 //                                 floor is the equal-weight projection over the grid, not the
 //                                 minimax constants, nor those the recording's design leads to;
-//   "outside"                     none of these.
+//   "outside specification and the physical limit"   none of these.
 // The firmware floor: the true unit projected onto the firmware's model (the joint model fitted
 // with the firmware's thermal order, 3, to the noise-free grid, equal weights; with the format-3
 // terms, scale factors of order 3, when the constants have them) and run through

@@ -137,6 +137,73 @@ TEST_F(AcceptanceJudgeTest, ImuVerdictsFollowTheInjectedErrors) {
   EXPECT_NEAR(worst[1].margin, 0.015 - 0.020, 0.0015);
 }
 
+// Barnes's B2 for flicker noise against its closed form's checkpoints and against a simulated 1/f
+// process (4 M samples, averages of 64: 1.565 at r = 2, 2.083 at r = 4, 3.118 at r = 16).
+TEST(FlickerSeparationRatioTest, MatchesBarnesBiasFunction) {
+  EXPECT_DOUBLE_EQ(FlickerSeparationRatio(1.0), 1.0);
+  EXPECT_DOUBLE_EQ(FlickerSeparationRatio(0.2), 1.0);
+  EXPECT_NEAR(FlickerSeparationRatio(2.0), 1.565, 0.01);
+  EXPECT_NEAR(FlickerSeparationRatio(4.0), 2.083, 0.01);
+  EXPECT_NEAR(FlickerSeparationRatio(16.0), 3.118, 0.05);
+  // The asymptote takes over without a step.
+  EXPECT_NEAR(FlickerSeparationRatio(1000.0), FlickerSeparationRatio(1000.0 + 1e-9), 1e-6);
+}
+
+// Rate points of units with known white noise and a rest record: the limit follows the noise, and
+// the two-level verdict separates an error inside it from one outside it. Points of 25 s and a rest
+// record of 30 s: the point's sigma is the rest curve's end (sigma / sqrt(300)), and so is the
+// floor; the limit is about 34 standard errors, read with the curve end's own ~25 % scatter.
+TEST_F(AcceptanceJudgeTest, RatePointsCarryTheirPhysicalLimitAndTwoLevelVerdict) {
+  AcceptanceRecordingMaker maker;
+  maker.packets = 2500;
+  maker.rest_packets = 3000;
+  ImuErrors quiet, inside, outside;
+  quiet.noise_dps = 0.02;
+  inside.noise_dps = outside.noise_dps = 0.1;
+  inside.rate_dps = {0.028, 0.028, 0.028};
+  outside.rate_dps = {0.3, 0.3, 0.3};
+  maker.RunImu(testing::ImuAcceptanceSequence(),
+               {{"IMU-0001", quiet}, {"IMU-0002", inside}, {"IMU-0003", outside}}, dir_ / "run");
+  const AcceptanceRun run = JudgeAcceptance(dir_ / "run", Specification::Reference());
+  EXPECT_EQ(run.since_calibration_h, kDefaultSinceCalibration_h);
+  const std::map<std::string, PointVerdict> expected = {
+      {"IMU-0001", PointVerdict::kWithinSpecification},
+      {"IMU-0002", PointVerdict::kWithinPhysicalLimit},
+      {"IMU-0003", PointVerdict::kOutsideBoth}};
+  for (const UnitAcceptance& unit : run.units) {
+    ASSERT_TRUE(unit.rest.has_value()) << unit.serial;
+    EXPECT_NEAR(unit.rest->record_s, 30.0, 0.02);
+    const double noise_dps = unit.serial == "IMU-0001" ? 0.02 : 0.1;
+    for (const AcceptancePoint& p : unit.points) {
+      SCOPED_TRACE(unit.serial + " " + p.quantity + " " + p.Condition());
+      if (!p.quantity.starts_with("rate_")) {
+        EXPECT_FALSE(p.physical_limit.has_value());
+        continue;
+      }
+      ASSERT_TRUE(p.physical_limit.has_value());
+      EXPECT_NEAR(p.duration_s, 25.0, 1e-6);
+      const AllanTerms& terms = unit.rest->rate_dps[static_cast<size_t>(p.quantity.back() - 'x')];
+      const double floor = noise_dps / std::sqrt(static_cast<double>(terms.curve.back().cluster_size));
+      const double expected_limit =
+          3.0 * floor * std::sqrt(1.0 + 2.0 * FlickerSeparationRatio(86400.0 / 25.0));
+      EXPECT_GT(*p.physical_limit, 0.6 * expected_limit);
+      EXPECT_LT(*p.physical_limit, 1.5 * expected_limit);
+      EXPECT_GT(p.noise, 0.6 * floor);
+      EXPECT_LT(p.noise, 1.5 * floor);
+      EXPECT_EQ(p.verdict(), expected.at(unit.serial));
+    }
+  }
+  // The counts and the wording reach acceptance.json and the terminal.
+  const Specification spec = Specification::Reference();
+  const nlohmann::json doc = AcceptanceJson(run, Unit(run, "IMU-0002"), spec, "test");
+  EXPECT_EQ(doc["format_version"], 2);
+  EXPECT_EQ(doc["point_verdicts"]["body_rate"]["outside specification, within the physical limit"], 27);
+  EXPECT_EQ(doc["physical_limit"]["since_calibration_h"], 24.0);
+  EXPECT_THAT(RateVerdictLine(Unit(run, "IMU-0003")),
+              HasSubstr("0 of 27 within specification, 0 outside specification, within the physical "
+                        "limit, 27 outside specification and the physical limit"));
+}
+
 TEST_F(AcceptanceJudgeTest, AdsVerdictsUseTheTestSetReferenceAndInterpolatedTolerance) {
   AcceptanceRecordingMaker maker;
   maker.RunAds(testing::AdsAcceptanceSequence(), AdsUnits(), dir_ / "run");

@@ -62,6 +62,9 @@ class AcceptanceRecordingMaker {
   double reference_offset_kt = 0.3;
   double thermal_step_c = 0.05;   ///< chamber change per packet on a thermal profile ramp
   int thermal_orientation = 31;
+  /// IMU: packets logged at rest (tag 0, thermal_orientation) at each target temperature step,
+  /// as a soak logs them: the rest record the judge reads the units' noise from.
+  int rest_packets = 0;
   ImuRowEdit imu_edit;
   AdsRowEdit ads_edit;
 
@@ -71,7 +74,13 @@ class AcceptanceRecordingMaker {
     const std::vector<uint8_t> tags = EffectiveTags(sequence);
     for (size_t s = 0; s < sequence.steps.size(); ++s) {
       const StepBody& body = sequence.steps[s].body;
-      if (const auto* t = std::get_if<TargetTemperatureStep>(&body)) chamber_c = t->target_c;
+      if (const auto* t = std::get_if<TargetTemperatureStep>(&body)) {
+        chamber_c = t->target_c;
+        const int saved = packets;
+        packets = rest_packets;
+        ImuFrames(units, static_cast<int>(s), 0, thermal_orientation, 0.0);
+        packets = saved;
+      }
       if (const auto* a = std::get_if<AccelStep>(&body)) {
         ImuFrames(units, static_cast<int>(s), tags[s], a->orientation, 0.0);
       }
