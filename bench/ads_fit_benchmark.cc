@@ -1,5 +1,5 @@
-// The reference ADS surface fit (calib/solvers/ads_surface_fit.h) over one million points, the
-// issue-6 budget being <= 1 s. The points are a noiseless typical static bridge over the
+// The reference ADS surface fit (calib/solvers/ads_surface_fit.h) over one million points, its
+// budget being <= 1 s. The points are a noiseless typical static bridge over the
 // calibration envelope (-1,000...50,000 ft x -40...+85 degC), synthesised in closed form here so
 // that only the fit is timed. And the whole pressure_minimax and hysteresis_compensated
 // strategies (tolerance_ads_strategy.h: order selection by held-out temperatures, then two Lawson

@@ -1,6 +1,6 @@
 // Throughput of the sensor physics: frames of a 4-IMU + 1-ADS batch with every effect on (the
-// "truth" profile). One unit frame = one unit's full 100 Hz frame. Target (issue 2): at least
-// 5 million unit-frames per second per core, i.e. ≥ 10,000x real time for the batch.
+// "truth" profile). One unit frame = one unit's full 100 Hz frame. Target: at least 5 million
+// unit-frames per second per core, i.e. ≥ 10,000x real time for the batch.
 #include <benchmark/benchmark.h>
 
 #include <vector>

@@ -95,7 +95,7 @@ struct XyPowers {
 inline constexpr XyPowers kReferenceCubicTerm[10] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2},
                                                      {1, 1}, {3, 0}, {0, 3}, {1, 2}, {2, 1}};
 
-/// The branch terms the unit adds to a surface's z (target/ads_constants.h "Hysteresis"):
+/// The branch terms the unit adds to a surface's z (target/ads_constants.h HysteresisTermQ):
 /// z + gain_P(T) s_P + gain_T(T) s_T, gain(T) = gain + gain_per_degc (T - kHysteresisGainReferenceC),
 /// each state from a Preisach operator: the pressure one driven by z, the thermal one by the
 /// die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j of the surface's y

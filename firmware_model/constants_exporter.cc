@@ -306,7 +306,7 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
 namespace {
 
 // One operator's inv_span: 0 for a term that is off; otherwise the input exponent plus its
-// exponent must lie in -31..31 (ads_constants.h).
+// exponent must lie in -31..31 (docs/firmware-compensator.md "Hysteresis compensation").
 CoeffQ31 InverseSpan(double span, int input_exponent, const std::string& what) {
   if (span == 0.0) return CoeffQ31{0, 0};
   const CoeffQ31 inv = Quantise(1.0L / span, kMinExponent, what);

@@ -4,8 +4,8 @@
 // Model: the controlled air approaches the set point as a first-order system whose slope is
 // limited by the chamber's heating and cooling capacity,
 //   dT/dt = clamp((SP − T)/tau_s, −cool_rate, +heat_rate),
-// plus the controller's residual cycling, a slow sinusoid of amplitude control_band_c (±0.3 °C,
-// issue 4) once the air is near the set point. Integrated exactly per step for the linear part.
+// plus the controller's residual cycling, a slow sinusoid of amplitude control_band_c (±0.3 °C)
+// once the air is near the set point. Integrated exactly per step for the linear part.
 // Left out: load-dependent capacity, humidity, spatial gradients in the workspace, compressor
 // on/off dynamics beyond the residual cycling, a failed heater (faults are injected by the rig).
 #pragma once

@@ -50,7 +50,7 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
                                     const std::vector<AdsCalibrationPoint>& points);
 
 /// pressure_minimax's surfaces for a unit that compensates its hysteresis itself
-/// (target/ads_constants.h "Hysteresis") and linearises its bridge codes (target/
+/// (target/ads_constants.h HysteresisTermQ) and linearises its bridge codes (target/
 /// bridge_linearisation.h; the linearisation fitted per bridge by bridge_linearisation_fit.h, and
 /// every surface, order choice and die-temperature cubic then in the linearised code): the
 /// temperature order chosen as there but with the states as recorded; one least-squares fit

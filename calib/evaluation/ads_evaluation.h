@@ -1,5 +1,5 @@
-// Evaluation of ADS calibration constants against a simulated unit's TRUE model (issue 6,
-// "adahrs evaluate"): the constants go through the exporter and the fixed-point firmware
+// Evaluation of ADS calibration constants against a simulated unit's TRUE model
+// (`adahrs evaluate`): the constants go through the exporter and the fixed-point firmware
 // compensator (firmware_model/target/ads_compensator.h), fed with the codes the unit's true model
 // (sensor_sim::AdsUnitParams from truth/<serial>.json) produces on a dense grid, noise off; the
 // outputs are compared with the true altitude (ISA of the applied static pressure) and calibrated

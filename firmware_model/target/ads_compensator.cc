@@ -38,8 +38,8 @@ int32_t EvaluateSurface(DspEngine* engine, const SurfaceQ31& s, int8_t out_expon
   return result;
 }
 
-// tau(y) = ((t3 y + t2) y + t1) y in Q15 (ads_constants.h: the exporter keeps every partial sum
-// within Q15), y the normalised bridge code's high word.
+// tau(y) = ((t3 y + t2) y + t1) y in Q15, y the normalised bridge code's high word (the exporter
+// keeps every partial sum within Q15: docs/firmware-compensator.md "Hysteresis compensation").
 int16_t DieTemperatureQ15(DspEngine* engine, const SurfaceQ31& s, int32_t y_q31) {
   const int16_t y_q15 = HighWord(y_q31);
   engine->ChargeMov(1);

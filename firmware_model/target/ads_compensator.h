@@ -1,6 +1,6 @@
 // The ADS compensator as the dsPIC runs it: one raw frame of ADS1254 codes in, altitude and
-// airspeed out as Q31 values, every operation an instruction of the DSP engine model (issue 3;
-// reference-method.md step 6, thesis section 2.9).
+// airspeed out as Q31 values, every operation an instruction of the DSP engine model
+// (reference-method.md step 6, thesis section 2.9).
 //
 // Each output is the degree (3, 5) surface of ads_constants.h in x = normalised pressure
 // code and y = normalised bridge-voltage (temperature) code, by nested Horner: the four b_k(y)

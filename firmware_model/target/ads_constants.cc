@@ -52,7 +52,7 @@ ConstantsStatus ValidateOuter(const SurfaceQ31& s, int8_t out_exponent) {
   return ConstantsStatus::kOk;
 }
 
-// A hysteresis term from its 6 words (see ads_constants.h "Hysteresis").
+// A hysteresis term from its 6 words (docs/firmware-compensator.md "Hysteresis compensation").
 ConstantsStatus TermFromWords(const int16_t* words, int8_t input_exponent, int8_t result_exponent,
                               HysteresisTermQ* term) {
   const ConstantsStatus s = CoeffFromWords(words, &term->inv_span);

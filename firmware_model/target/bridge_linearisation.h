@@ -1,5 +1,5 @@
-// The bridge-voltage thermometer's linearisation (issue 6): what the ADS firmware makes of a
-// pressure bridge's voltage code y before the surface sees it (ads_constants.h).
+// The bridge-voltage thermometer's linearisation: what the ADS firmware makes of a pressure
+// bridge's voltage code y before the surface sees it (ads_constants.h).
 //
 // Under constant current the bridge voltage is nearly a quadratic of the die temperature
 // (sensor_sim/pressure_bridge.h: R_B = R_B0 (1 + alpha dT + beta dT^2)), so the code's slope

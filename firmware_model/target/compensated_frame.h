@@ -1,4 +1,4 @@
-// Raw input frames and compensated output frames of the IM3 and ADS compensators (issue 3).
+// Raw input frames and compensated output frames of the IM3 and ADS compensators.
 //
 // Every compensated value is an int32 Q31 mantissa of a power-of-two full scale,
 //   value = word * 2^(exponent - 31),  |value| < 2^exponent,

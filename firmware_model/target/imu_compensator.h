@@ -1,5 +1,5 @@
 // The IM3 compensator as the dsPIC runs it: one raw frame in, nine Q31 values out, every operation
-// an instruction of the DSP engine model so the frame's cycle cost is counted (issue 3).
+// an instruction of the DSP engine model so the frame's cycle cost is counted.
 //
 // Stages (reference-method.md steps 2-5; formats in imu_constants.h, outputs in
 // compensated_frame.h):

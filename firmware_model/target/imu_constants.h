@@ -1,5 +1,5 @@
 // The IM3 unit's calibration constants in target (fixed-point) form, and the block-wise access the
-// maintenance port uses to write and read them (issue 3; reference-method.md, Chapter 2 steps 2-5).
+// maintenance port uses to write and read them (reference-method.md, Chapter 2 steps 2-5).
 //
 // Channels, in this order everywhere (reference-method.md, "The unit"):
 //   0 az1, 1 ax1, 2 ay1, 3 az2, 4 ax2, 5 ay2   ADXL210E duty-cycle channels, two per body axis with

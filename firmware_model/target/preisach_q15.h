@@ -1,4 +1,4 @@
-// The Preisach hysteresis operator as the dsPIC runs it (issue 6): the fixed-point twin of the law
+// The Preisach hysteresis operator as the dsPIC runs it: the fixed-point twin of the law
 // sensor_sim/preisach_hysteresis.h gives the pressure bridges (shared/physics.md section 6 rows 4
 // and 7), driven by what the unit itself sees, so that the compensator can subtract the branch a
 // bridge is on (ads_compensator.h).

@@ -14,7 +14,7 @@ worst over -40...+85 degC (0.25 degC grid), in ppm of the scale factor.
 Choice. The figure of merit (FoM) is that worst standard error times the square root of the
 sequence's rig time: a variance times a time, the standard error the design would reach in one
 hour if it could be repeated to fill it. The chosen set has the smallest FoM among the candidates
-with at least 5 distinct temperatures (issue 19) whose rig time is no longer than that of the
+with at least 5 distinct temperatures (required) whose rig time is no longer than that of the
 present imu_thermal_calibration_full + imu_sensor_calibration (read from their files). The bound
 is needed: the ramps (25 -> -40 -> 85 -> 25 degC, 4.2 h) are a fixed cost, so without it the FoM
 keeps falling as blocks are added. Candidates: equally spaced, Chebyshev-Lobatto (the extrema,

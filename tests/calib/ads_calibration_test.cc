@@ -1,6 +1,6 @@
-// ADS calibration from recordings (issue 6, ADS half): point selection by TAG and rejected
-// interval, refusal of bad rows naming line and column, the reference strategy on simulated units
-// run through the shipped ads_calibration sequence, and the evaluation against the true model.
+// ADS calibration from recordings: point selection by TAG and rejected interval, refusal of bad
+// rows naming line and column, the reference strategy on simulated units run through the shipped
+// ads_calibration sequence, and the evaluation against the true model.
 // Truth: the simulated unit's drawn parameters and the ISA pressures the test applies.
 #include <algorithm>
 #include <cmath>
@@ -72,7 +72,7 @@ TEST(AdsCalibrationPoints, SelectsTaggedRowsOutsideRejectedIntervals) {
   EXPECT_FALSE(points[0].airspeed_point);
 }
 
-// The case a demo run showed (step 121, 2026-11-23): the first rows of an acquisition carry the
+// A reference that moved within an acquisition (step 121 of a demo run): the first rows carry the
 // test set's reading from before it settled (13,513.8 Pa against 11,597). The mean would pair the
 // unit's codes at 11,597 Pa with a reference 370 Pa higher; the point is refused naming the lines,
 // and rejecting the stale rows' interval in meta.json (what an operator would do) makes it usable.
@@ -303,14 +303,12 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
               worst_pressure[0], worst_pressure[1], passes[0], unreachable[0], fails[2][0], passes[1],
               unreachable[1], fails[2][1], least_band_at_a_fail, worst_thermal_loop_error,
               worst_pressure_loop_error);
-  // Measured (2026-11-26, spans drawn per bridge and estimated from the recording),
-  // docs/calibration-strategies.md: failing grid points over the 20 units, altitude 463 / 594 /
-  // 90, airspeed 15,092 / 16,165 / 1,609 (of 27,040 and 22,360); the pressure_minimax failures
-  // all where the band's half-width is 0.70 of the tolerance or more; half loops within 0.01
-  // (thermal) and 0.03 (pressure) of the truth. Required: each improvement on every unit
-  // (no-history worst ratio); the tolerance form by a fifth (altitude) and a tenth (airspeed) on
-  // average; pressure_minimax failing at most a quarter of the reference's altitude points and a
-  // seventh of its airspeed points, only where hysteresis takes 0.65 of the tolerance or more,
+  // Measured: failing grid points per strategy and the band at pressure_minimax's failures in
+  // docs/calibration-strategies.md; the fitted half loops within 0.01 (thermal) and 0.03
+  // (pressure) of the truth (2026-11-26, the 2-core build VM). Required: each improvement on every
+  // unit (no-history worst ratio); the tolerance form by a fifth (altitude) and a tenth (airspeed)
+  // on average; pressure_minimax failing at most a quarter of the reference's altitude points and
+  // a seventh of its airspeed points, only where hysteresis takes 0.65 of the tolerance or more,
   // and separating the loops within 5 % of the truth.
   EXPECT_EQ(better[0][0], kUnits);
   EXPECT_EQ(better[0][1], kUnits);
@@ -333,10 +331,9 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
               chosen_degree[0][3], chosen_degree[0][4], chosen_degree[0][5], chosen_degree[1][3],
               chosen_degree[1][4], chosen_degree[1][5]);
   // hysteresis_compensated (the firmware runs the operators and linearises the bridge codes,
-  // target/ads_constants.h; the spans estimated from the recording): measured (2026-11-26) no grid
-  // point failing on the 20 units, worst 0.15 (altitude) and 0.12 (airspeed) tolerances under the
-  // nine histories. Required: every grid point of every unit inside its tolerance with half of it
-  // to spare; nothing called unreachable (the surfaces are not static).
+  // docs/firmware-compensator.md; the spans estimated from the recording; measured figures in
+  // docs/calibration-strategies.md). Required: every grid point of every unit inside its tolerance
+  // with half of it to spare; nothing called unreachable (the surfaces are not static).
   EXPECT_EQ(fails[3][0], 0);
   EXPECT_EQ(fails[3][1], 0);
   EXPECT_LT(worst_compensated[0], 0.5);

@@ -1,7 +1,7 @@
-// Issue 5 "Done when": the full reference IMU sensor-calibration sequence for the rig's 4 IMUs and
-// the ADS calibration sequence for its ADS unit, run concurrently on two benches (two station
-// files over one rig started as a separate process, tests/support/rig_process.h) by the real
-// pipeline (calib/campaign/bench_runs.h -> StartRun), in at most 120 s of wall time on 2 cores.
+// The full reference IMU sensor-calibration sequence for the rig's 4 IMUs and the ADS calibration
+// sequence for its ADS unit, run concurrently on two benches (two station files over one rig
+// started as a separate process, tests/support/rig_process.h) by the real pipeline
+// (calib/campaign/bench_runs.h -> StartRun), in at most 120 s of wall time on 2 cores.
 // Truth checked, none of it from the code under test:
 //   - zero lost packets three ways: the links' sequence-counter loss counts (RunSummary), the
 //     units listed in meta.json each having rows, and the recorded `seq` column stepping by
@@ -41,7 +41,7 @@ constexpr bool kSanitized = false;
 // lost (docs/performance.md); 600 leaves margin for the pipeline sharing the cores.
 constexpr double kTimeScale = 600.0;
 #endif
-// The issue's wall-time budget for both sequences.
+// The wall-time budget for both sequences on 2 cores.
 constexpr double kBudgetWallS = 120.0;
 
 const std::string kSequenceDir = std::string(ADAHRS_SOURCE_DIR) + "/calib/sequences/";

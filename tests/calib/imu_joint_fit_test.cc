@@ -28,8 +28,8 @@ std::string Verdict(const ImuEvaluation& e, const std::string& quantity) {
   return e.report[quantity]["verdict"].get<std::string>();
 }
 
-// Issue 6 done-when: on >= 20 units the improved strategy's evaluated worst errors are within
-// the specification or within 1.5x the CRB-implied limit, and the evaluation says which.
+// Required: on >= 20 units the improved strategy's evaluated worst errors are within the
+// specification or within 1.5x the CRB-implied limit, and the evaluation says which.
 // With the firmware's cubic thermal term and the exporter's span normalisation every unit exports
 // and the firmware floor is far below the specification (accel ~0.1-0.2 mg, rate ~0.005 deg/s).
 // Acceleration: within the specification on all 20 units (0.15-0.29 mg against 1.0 mg).

@@ -1,7 +1,7 @@
-// "Reproduces the reference" (issue 6) from recordings: four simulated IM3 units with the
-// reference hardware magnitudes (ModelProfile::kNominal) are taken through the shipped thermal
-// calibration (-40...85 degC, time-compressed) and sensor calibration sequences by the recording
-// maker, written as the executor writes them, read back by LoadImuRuns and fitted by the
+// "Reproduces the reference" from recordings: four simulated IM3 units with the reference hardware
+// magnitudes (ModelProfile::kNominal) are taken through the shipped thermal calibration (-40...85
+// degC, time-compressed) and sensor calibration sequences by the recording maker, written as the
+// executor writes them, read back by LoadImuRuns and fitted by the
 // reference strategy. Expected magnitudes come from the datasheets and the reference tables.
 #include <cmath>
 #include <filesystem>

@@ -1,7 +1,6 @@
-// Bad input to the IMU calibration (issue 6 done-when): a truncated or malformed recording, a
-// wrong format version, a unit missing from a step, NaN or saturated samples, a design missing
-// an orientation or rates — each refused or excluded with a message naming row and column (or
-// step, unit and the reason).
+// Bad input to the IMU calibration: a truncated or malformed recording, a wrong format version, a
+// unit missing from a step, NaN or saturated samples, a design missing an orientation or rates —
+// each refused or excluded with a message naming row and column (or step, unit and the reason).
 #include <filesystem>
 #include <fstream>
 #include <string>

@@ -1,9 +1,9 @@
-// "Reproduces the reference" (issue 6): a simulated IM3 unit (nominal profile: the terms the
-// reference method compensates, plus noise and bias instability) is taken through the reference
-// procedure in-process — thermal profile in orientation 31, six orientations at 25 degC, seven
-// rates on each axis, cross-axis from orientations 11/21/31 — the reference solvers produce the
-// firmware constants, and the unit's outputs through firmware_model::ImuReference are compared
-// with the true inputs of fresh acquisitions.
+// "Reproduces the reference": a simulated IM3 unit (nominal profile: the terms the reference method
+// compensates, plus noise and bias instability) is taken through the reference procedure in-process
+// — thermal profile in orientation 31, six orientations at 25 degC, seven rates on each axis,
+// cross-axis from orientations 11/21/31 — the reference solvers produce the firmware constants, and
+// the unit's outputs through firmware_model::ImuReference are compared with the true inputs of
+// fresh acquisitions.
 #include <cmath>
 #include <vector>
 

@@ -1,6 +1,6 @@
-// Envelope sweeps of the fixed-point compensators against the double reference (issue 3 "Done
-// when"): temperature -40..85 C, rates +-150 deg/s, +-10 g, altitude -1,000..50,000 ft, airspeed
-// 30..450 kt, with realistic constants. Budgets (10 % of the accuracy budget, asserted): 0.1 mg,
+// Envelope sweeps of the fixed-point compensators against the double reference: temperature
+// -40..85 C, rates +-150 deg/s, +-10 g, altitude -1,000..50,000 ft, airspeed 30..450 kt, with
+// realistic constants. Budgets (10 % of the accuracy budget, asserted): 0.1 mg,
 // 0.0015 deg/s, 1.5 ft, 0.1 kt; thermal mode: 0.1 mg at 25 g/duty = 4e-6 duty, 0.0015 deg/s at
 // 20,972 counts per deg/s = 31 counts. Cycle budgets (docs/firmware-compensator.md "Cycle table"):
 // <= 2,500 per format-2 IMU frame, <= 4,000 with the format-3 scale-temperature stages, <= 3,000

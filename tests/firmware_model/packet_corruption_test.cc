@@ -1,7 +1,7 @@
-// Randomised corruption of a long packet stream (issue 3 "Done when"): bit flips, truncation and
-// garbage between packets, with a fixed seed. Truth by construction: the test knows which packets
-// went out intact, and the decoder must return exactly those, in order: no corrupt packet
-// accepted, every intact packet recovered (so it always resynchronises).
+// Randomised corruption of a long packet stream: bit flips, truncation and garbage between packets,
+// with a fixed seed. Truth by construction: the test knows which packets went out intact, and the
+// decoder must return exactly those, in order: no corrupt packet accepted, every intact packet
+// recovered (so it always resynchronises).
 #include <cstdint>
 #include <cstdio>
 #include <vector>

@@ -1,6 +1,6 @@
-// The same OpenStation path drives ports made by an outside process (issue 5, "Done when"): two
-// roles reach the rig through `socat` pty relays, so the drivers see pseudo-terminals that neither
-// the rig nor the pipeline created.
+// The same OpenStation path drives ports made by an outside process: two roles reach the rig
+// through `socat` pty relays, so the drivers see pseudo-terminals that neither the rig nor the
+// pipeline created.
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>

@@ -26,7 +26,7 @@ TEST(ChamberAir, SettlesInsideTheControlBand) {
     chamber.Step(65.0, 1.0);
     if (i > 3 * 3600) worst_c = std::max(worst_c, std::abs(chamber.air_c() - 65.0));
   }
-  // ±0.3 °C control (issue 4): the residual cycling reaches but never exceeds the band.
+  // ±0.3 °C control: the residual cycling reaches but never exceeds the band.
   EXPECT_LE(worst_c, p.control_band_c + 1e-9);
   EXPECT_GT(worst_c, 0.5 * p.control_band_c);
 }

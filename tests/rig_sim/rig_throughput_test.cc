@@ -1,5 +1,5 @@
-// Issue 4 "Done when": 4 IMU + 1 ADS stream over their ports with zero packet loss for a
-// simulated 10-hour profile at the chosen time scale. The highest loss-free scale is measured by
+// 4 IMU + 1 ADS stream over their ports with zero packet loss for a simulated 10-hour profile at
+// the chosen time scale. The highest loss-free scale is measured by
 // bench/rig_throughput_benchmark.cc and recorded in docs/performance.md ("Rig throughput").
 #include <cstdlib>
 

@@ -1,5 +1,5 @@
 // Outside Modbus masters nobody here wrote talk to the virtual F4 through a real pseudo-terminal:
-// libmodbus's C API in-process and the mbpoll program as a child process (issue 4, "Done when").
+// libmodbus's C API in-process and the mbpoll program as a child process.
 #include <modbus.h>
 
 #include <cerrno>
