@@ -1,5 +1,6 @@
 #include "calib/evaluation/imu_evaluation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -120,6 +121,41 @@ std::vector<std::array<double, 6>> GridErrors(const fm::ImuCalibrationConstants&
   return out;
 }
 
+// The true unit projected onto the firmware's model (the joint model fitted to the noise-free
+// grid, thermal order 3, equal weights; with the format-3 terms, scale order 3, when `format3`):
+// the best constants the structure can hold. No die-lag terms: the grid's TEMP counts are steady,
+// and the rounding residue of their slope would be fitted as a regressor.
+fm::ImuCalibrationConstants TruthProjection(const std::string& serial, const std::vector<GridPoint>& grid,
+                                            double g_l, bool format3) {
+  std::vector<ImuObservation> observations;
+  for (const GridPoint& p : grid) {
+    ObservationBuilder builder;
+    for (size_t i = 0; i < p.frames.size(); ++i) builder.Add(p.frames[i], static_cast<double>(i) * 0.01);
+    observations.push_back(builder.Finish("grid", false, 0, g_l * p.up, p.rate_dps * p.up));
+  }
+  ImuJointOptions options;
+  options.thermal_order = kMaxThermalOrder;
+  options.unit_weights = true;
+  options.format3 = format3;
+  options.scale_order = kMaxThermalOrder;
+  options.die_lag_terms = false;
+  return FitImuJoint(serial + " (truth projection)", observations, options).constants;
+}
+
+// The projection's errors at every grid point (the firmware floor). The projection can need a
+// thermal block the exporter cannot hold: then the floor is unknown (NaN everywhere).
+std::vector<std::array<double, 6>> FloorErrors(const fm::ImuCalibrationConstants& projection,
+                                               const std::vector<GridPoint>& grid, double g_local_mps2) {
+  try {
+    return GridErrors(projection, grid, g_local_mps2);
+  } catch (const std::invalid_argument&) {
+    return std::vector<std::array<double, 6>>(grid.size(), {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN});
+  }
+}
+
+// mg per m/s^2 (acceleration errors at rest).
+constexpr double kMgPerMps2 = 1e3 / sensor_sim::kStandardGravity_mps2;
+
 struct QuantitySummary {
   double worst = 0.0;
   double worst_floor = 0.0;
@@ -167,23 +203,11 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
       for (int k = 0; k < size; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
     }
   }
-  const sensor_sim::ImuUnitParams params = NoiseOff(truth);
   const double g_l = sensor_sim::Mps2ToG(options.g_local_mps2);
-  const std::vector<GridPoint> grid = SimulateGrid(params, g_l, options);
-  std::vector<ImuObservation> projection;
-  for (const GridPoint& p : grid) {
-    ObservationBuilder builder;
-    for (size_t i = 0; i < p.frames.size(); ++i) builder.Add(p.frames[i], static_cast<double>(i) * 0.01);
-    projection.push_back(builder.Finish("grid", false, 0, g_l * p.up, p.rate_dps * p.up));
-  }
-  // The true unit projected onto the firmware model: the best constants the structure can hold.
-  ImuJointOptions projection_options;
-  projection_options.thermal_order = kMaxThermalOrder;
-  projection_options.unit_weights = true;
+  const std::vector<GridPoint> grid = SimulateGrid(NoiseOff(truth), g_l, options);
   // Format-3 constants are judged against the best format-3 constants.
-  projection_options.format3 = c.scale_temperature.active;
-  projection_options.scale_order = kMaxThermalOrder;
-  const ImuFitResult truth_fit = FitImuJoint(file.serial + " (truth projection)", projection, projection_options);
+  const fm::ImuCalibrationConstants projection =
+      TruthProjection(file.serial, grid, g_l, c.scale_temperature.active);
   std::vector<std::array<double, 6>> errors;
   try {
     errors = GridErrors(c, grid, options.g_local_mps2);
@@ -191,14 +215,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
     throw ConstantsNotExportable("evaluate: constants of " + file.serial +
                                  " cannot be exported to the firmware: " + e.what());
   }
-  // The projection can need a thermal block the exporter cannot hold either: then the floor is
-  // unknown (NaN) and only the specification and the CRB are judged.
-  std::vector<std::array<double, 6>> floor;
-  try {
-    floor = GridErrors(truth_fit.constants, grid, options.g_local_mps2);
-  } catch (const std::invalid_argument&) {
-    floor.assign(grid.size(), {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN});
-  }
+  const std::vector<std::array<double, 6>> floor = FloorErrors(projection, grid, options.g_local_mps2);
 
   QuantitySummary accel, rate;
   json points = json::array();
@@ -210,7 +227,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
     for (int k = 0; k < 3; ++k) {
       const bool at_rest = p.rate_dps == 0.0;
       const int slot = at_rest ? k : 3 + k;
-      const double to_unit = at_rest ? 1e3 / sensor_sim::kStandardGravity_mps2 : 1.0;  // mg or deg/s
+      const double to_unit = at_rest ? kMgPerMps2 : 1.0;  // mg or deg/s
       const double err = errors[i][slot] * to_unit;
       const double fl = floor[i][slot] * to_unit;
       const double lim = kSigmaLimit * sigma[slot] * to_unit;
@@ -238,7 +255,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
 
   // Parameters against the projection of the true unit.
   const Eigen::VectorXd value = FlattenConstants(c);
-  const Eigen::VectorXd true_value = FlattenConstants(truth_fit.constants);
+  const Eigen::VectorXd true_value = FlattenConstants(projection);
   const std::vector<std::string> names = ConstantNames();
   json parameters = json::array();
   double sum_se = 0.0, sum_crb = 0.0;
@@ -291,6 +308,24 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
                              {"compared_with_se", n_se}, {"compared_with_crb", n_crb}}},
       {"points", points}};
   return e;
+}
+
+ImuFirmwareFloor EvaluateImuFirmwareFloor(const sensor_sim::ImuUnitParams& truth, bool format3,
+                                          const ImuEvaluationOptions& options) {
+  const double g_l = sensor_sim::Mps2ToG(options.g_local_mps2);
+  const std::vector<GridPoint> grid = SimulateGrid(NoiseOff(truth), g_l, options);
+  const std::vector<std::array<double, 6>> floor =
+      FloorErrors(TruthProjection(truth.serial, grid, g_l, format3), grid, options.g_local_mps2);
+  ImuFirmwareFloor out;
+  for (size_t i = 0; i < grid.size(); ++i) {
+    const bool at_rest = grid[i].rate_dps == 0.0;
+    double& worst = at_rest ? out.worst_accel_mg : out.worst_rate_dps;
+    for (int k = 0; k < 3; ++k) {
+      const double fl = at_rest ? floor[i][k] * kMgPerMps2 : floor[i][3 + k];
+      worst = std::isnan(fl) || std::isnan(worst) ? kNaN : std::max(worst, std::abs(fl));
+    }
+  }
+  return out;
 }
 
 }  // namespace adahrs::calib

@@ -31,9 +31,11 @@
 //   "outside specification and the physical limit"   none of these.
 // The firmware floor: the true unit projected onto the firmware's model (the joint model fitted
 // with the firmware's thermal order, 3, to the noise-free grid, equal weights; with the format-3
-// terms, scale factors of order 3, when the constants have them) and run through
-// the same compensator; its worst error is what no calibration into these constants can beat
-// (e.g. a scale factor that changes with temperature, which the firmware has no term for).
+// terms, scale factors of order 3, when the constants have them, but not the die-lag nuisance
+// terms: the grid is steady state) and run through the same compensator; its worst error is what
+// these constants leave at best in the least-squares sense (e.g. a scale factor that changes with
+// temperature, which format 2 has no term for; docs/calibration-strategies.md "The firmware floor,
+// effect by effect"). Not the minimax: a fit's worst error can fall somewhat below it.
 // Without a CRB covariance (the reference strategy) only the specification is judged. Constants
 // the exporter refuses are refused here (std::invalid_argument with the exporter's reason); a
 // projection it refuses leaves the floor unknown (NaN).
@@ -79,5 +81,16 @@ class ConstantsNotExportable : public std::invalid_argument {
 /// exporter refuses them, std::invalid_argument when they are not an IMU's or malformed.
 ImuEvaluation EvaluateImu(const ConstantsFile& constants, const sensor_sim::ImuUnitParams& truth,
                           const Specification& spec, const ImuEvaluationOptions& options = {});
+
+/// The firmware floor alone (no constants to judge): the worst |error| over the grid of the true
+/// unit projected onto the format-2 model, or the format-3 model when `format3`, as EvaluateImu
+/// reports it (worst_firmware_floor_mg, worst_firmware_floor_dps); NaN when the exporter cannot
+/// hold the projection.
+struct ImuFirmwareFloor {
+  double worst_accel_mg = 0.0;
+  double worst_rate_dps = 0.0;
+};
+ImuFirmwareFloor EvaluateImuFirmwareFloor(const sensor_sim::ImuUnitParams& truth, bool format3,
+                                          const ImuEvaluationOptions& options = {});
 
 }  // namespace adahrs::calib

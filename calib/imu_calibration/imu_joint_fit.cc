@@ -647,7 +647,7 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     if (options.format3) {
       m.quadratic = !m.gyro();
       m.g_sensitivity = m.gyro();
-      m.lag = !m.gyro();
+      m.lag = !m.gyro() && options.die_lag_terms;
       m.scale_order = options.scale_order ? *options.scale_order
                                           : ChooseScaleOrder(serial, m, obs, n_thermal, options,
                                                              bias_cnt2, diagonal, &report);

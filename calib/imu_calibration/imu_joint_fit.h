@@ -91,6 +91,10 @@ struct ImuJointOptions {
   bool format3 = false;
   /// Format 3: the scale factors' order in temperature, 0..3; empty = chosen by held-out error.
   std::optional<int> scale_order;
+  /// Format 3: each accelerometer's die-lag nuisance terms (tau_dot, tau_dot tau). Off for
+  /// steady-state observations (a noise-free grid, e.g. projecting a true unit): their TEMP slope
+  /// is zero, and its rounding residue is no regressor.
+  bool die_lag_terms = true;
   ImuDatasheetNoise noise;
 };
 
