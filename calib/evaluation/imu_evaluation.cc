@@ -168,8 +168,9 @@ struct QuantitySummary {
 
 std::string Verdict(const QuantitySummary& q, bool have_crb) {
   if (q.all_in_spec) return "within specification";
-  if (have_crb && q.all_in_crb) return "outside specification, within 1.5x the physical limit";
-  if (have_crb && q.worst <= kCrbMargin * (q.worst_floor + q.max_crb_limit)) return "outside specification, within 1.5x the firmware floor plus the physical limit";
+  if (!have_crb) return "outside specification";  // no limit known: the specification alone
+  if (q.all_in_crb) return "outside specification, within 1.5x the physical limit";
+  if (q.worst <= kCrbMargin * (q.worst_floor + q.max_crb_limit)) return "outside specification, within 1.5x the firmware floor plus the physical limit";
   return "outside specification and the physical limit";
 }
 

@@ -25,10 +25,11 @@
 //                                 the worst error is within 1.5 x (the
 //                                 worst error of the best constants the firmware's structure can
 //                                 hold — the firmware floor, below — plus the largest 3 sigma_p);
-//                                 the 1.5 is the margin, applied to the floor because the
+//                                 the 1.5 is the required margin, applied to the floor because the
 //                                 floor is the equal-weight projection over the grid, not the
 //                                 minimax constants, nor those the recording's design leads to;
-//   "outside specification and the physical limit"   none of these.
+//   "outside specification and the physical limit"   none of these;
+//   "outside specification"       no CRB covariance (the reference strategy): no limit to judge.
 // The firmware floor: the true unit projected onto the firmware's model (the joint model fitted
 // with the firmware's thermal order, 3, to the noise-free grid, equal weights; with the format-3
 // terms, scale factors of order 3, when the constants have them, but not the die-lag nuisance
