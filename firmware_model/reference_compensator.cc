@@ -39,21 +39,22 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensa
   }
   if (mode == ImuCompensationMode::kThermal) return t;
 
+  // Format 3: F scales each channel's sensed input, so an accelerometer's linear value is scaled
+  // and a gyro's count before its cubic (the cubic then inverts a temperature-free response).
+  const ImuScaleTemperature& st = c.scale_temperature;
+  std::array<double, 9> factor{};
+  for (int i = 0; i < 9; ++i) {
+    const int sensor = c.thermal[i].temp_sensor;
+    factor[i] = st.active ? ScaleFactor(st, sensor, st.scale[i], raw.temp_cnt[sensor]) : 1.0;
+  }
   std::array<double, 9> cal{};
   for (int i = 0; i < 6; ++i) {
-    cal[i] = (t[i] - c.accel[i].offset_duty) / c.accel[i].scale_duty_per_g;
+    cal[i] = (t[i] - c.accel[i].offset_duty) / c.accel[i].scale_duty_per_g * factor[i];
   }
   for (int g = 0; g < 3; ++g) {
-    const double d = t[6 + g] - c.gyro[g].null_cnt;
+    const double d = (t[6 + g] - c.gyro[g].null_cnt) * factor[6 + g];
     const auto& l = c.gyro[g].l;
     cal[6 + g] = l[0] + l[1] * d + l[2] * d * d + l[3] * d * d * d;
-  }
-  const ImuScaleTemperature& st = c.scale_temperature;
-  if (st.active) {
-    for (int i = 0; i < 9; ++i) {
-      const int sensor = c.thermal[i].temp_sensor;
-      cal[i] *= ScaleFactor(st, sensor, st.scale[i], raw.temp_cnt[sensor]);
-    }
   }
   if (mode == ImuCompensationMode::kSensorCalibrated) return cal;
 

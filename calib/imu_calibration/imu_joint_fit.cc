@@ -32,7 +32,9 @@ constexpr double kDScale_cnt = 3.0e6;            // ~ counts at 150 deg/s, condi
 
 // One channel's linear model and its fit.
 // Terms: offset, tau^1..order, the stimulus 3-vector (f_B or w_B), gyro w^2 and w^3, then the
-// format-3 terms: tau^p times the channel's own stimulus (p = 1..scale_order), the accelerometer's
+// format-3 terms: tau^p times the channel's own stimulus (p = 1..scale_order; a gyro's with its
+// nonlinearity, w + (q2 w^2 + q3 w^3) / S from a provisional fit, as the sensitivity tempco scales
+// the whole response and the firmware's F scales the count before the cubic), the accelerometer's
 // f_axis^2, the gyro's f_x, f_y, f_z (g-sensitivity).
 struct ChannelModel {
   int channel = 0;
@@ -41,6 +43,8 @@ struct ChannelModel {
   bool quadratic = false;
   bool g_sensitivity = false;
   bool lag = false;  // accelerometer: tau_dot and tau_dot tau (die lag behind the thermometer)
+  double nl2_per_dps = 0.0;   // gyro: q2 / S and q3 / S of a provisional fit (the scale terms'
+  double nl3_per_dps2 = 0.0;  // stimulus is w + nl2 w^2 + nl3 w^3)
 
   bool gyro() const { return channel >= 6; }
   int sensor() const { return kThermalSensorOfChannel[channel]; }
@@ -54,6 +58,12 @@ struct ChannelModel {
 // The stimulus along the channel's own axis: f_axis in g, or the rate about the gyro's axis.
 double OwnStimulus(const ChannelModel& m, const ImuObservation& o) {
   return m.gyro() ? o.w_B_dps[m.channel - 6] : o.f_B_g[kAxisOfChannel[m.channel]];
+}
+
+// What the scale terms multiply: the own stimulus, a gyro's through its nonlinearity.
+double ScaledStimulus(const ChannelModel& m, const ImuObservation& o) {
+  const double s = OwnStimulus(m, o);
+  return m.gyro() ? s + m.nl2_per_dps * s * s + m.nl3_per_dps2 * s * s * s : s;
 }
 
 // Mean of tau^p over an observation's rows from its raw temperature moments E[t^i]:
@@ -83,7 +93,8 @@ Eigen::RowVectorXd DesignRow(const ChannelModel& m, const ImuObservation& o) {
     row[k++] = w * w * w;
   }
   const double own = OwnStimulus(m, o);
-  for (int p = 1; p <= m.scale_order; ++p) row[k++] = TauPowerMean(o, m.sensor(), p) * own;
+  const double scaled = ScaledStimulus(m, o);
+  for (int p = 1; p <= m.scale_order; ++p) row[k++] = TauPowerMean(o, m.sensor(), p) * scaled;
   if (m.quadratic) row[k++] = own * own;
   if (m.g_sensitivity) {
     for (int a = 0; a < 3; ++a) row[k++] = o.f_B_g[a];
@@ -652,6 +663,12 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
                                           : ChooseScaleOrder(serial, m, obs, n_thermal, options,
                                                              bias_cnt2, diagonal, &report);
       report["scale_order"] = m.scale_order;
+      if (m.gyro() && m.scale_order > 0) {
+        const LinearFit provisional = Solve(serial, m, obs, all, n_thermal, false, options, bias_cnt2, diagonal);
+        const double s_own = provisional.coefficients[m.stimulus_index() + ch - 6];
+        m.nl2_per_dps = provisional.coefficients[m.stimulus_index() + 3] / s_own;
+        m.nl3_per_dps2 = provisional.coefficients[m.stimulus_index() + 4] / s_own;
+      }
     }
     // Model error (drift the thermal polynomial cannot follow) is shared by every observation:
     // its variance, the thermal bands' mean squared residual beyond their noise, is added to

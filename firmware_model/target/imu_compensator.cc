@@ -65,12 +65,24 @@ int32_t AccelCalibratedQ31(DspEngine* engine, const AccelScaleConstantsQ31& c, i
   return ReadQ31(engine, Acc::kA);
 }
 
-// Eq. 23 in deg/s.
-int32_t GyroCalibratedQ31(DspEngine* engine, const GyroCubicConstantsQ31& c, int32_t t,
-                          uint16_t* flags) {
+// y F(tau), at y's exponent (F at kScaleFactorExponent).
+int32_t ScaledQ31(DspEngine* engine, const PolyQ31& factor, int32_t tau, int32_t y) {
   engine->ChargeCallReturn();
-  const int32_t x = NormaliseQ31(engine, t, kGyroCountExponent, c.count_norm);
+  const int32_t f = HornerQ31(engine, Acc::kA, factor, kImuScaleFactorDegree, tau);
+  MulQ31(engine, Acc::kA, y, f);
+  engine->Sftac(Acc::kA, static_cast<int8_t>(-kScaleFactorExponent));
+  return ReadQ31(engine, Acc::kA);
+}
+
+// Eq. 23 in deg/s; format 3 (`factor` not null): the normalised count times F(tau) first, so the
+// cubic inverts the response at the calibration's scale whatever the temperature.
+int32_t GyroCalibratedQ31(DspEngine* engine, const GyroCubicConstantsQ31& c, int32_t t,
+                          const PolyQ31* factor, int32_t tau, uint16_t* flags) {
+  engine->ChargeCallReturn();
+  int32_t x = NormaliseQ31(engine, t, kGyroCountExponent, c.count_norm);
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
+  engine->ChargeBranch(1);
+  if (factor != nullptr) x = ScaledQ31(engine, *factor, tau, x);
   return HornerQ31(engine, Acc::kA, c.rate, 3, x);
 }
 
@@ -119,14 +131,6 @@ void ScaleTemperaturesQ31(DspEngine* engine, const ScaleTemperatureConstantsQ31&
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
 }
 
-// y F(tau), at y's exponent (F at kScaleFactorExponent).
-int32_t ScaledQ31(DspEngine* engine, const PolyQ31& factor, int32_t tau, int32_t y) {
-  engine->ChargeCallReturn();
-  const int32_t f = HornerQ31(engine, Acc::kA, factor, kImuScaleFactorDegree, tau);
-  MulQ31(engine, Acc::kA, y, f);
-  engine->Sftac(Acc::kA, static_cast<int8_t>(-kScaleFactorExponent));
-  return ReadQ31(engine, Acc::kA);
-}
 
 // ca + q ca^2 in g: ca^2 at 2 kAccelGExponent, times q, brought back to kAccelGExponent.
 int32_t AccelQuadraticQ31(DspEngine* engine, const CoeffQ31& q, int32_t ca) {
@@ -198,27 +202,28 @@ void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensa
     return;
   }
 
-  int32_t cal[kImuChannels];
-  for (uint8_t c = 0; c < kAccelChannels; ++c) {
-    cal[c] = AccelCalibratedQ31(engine, constants.accel[c], t[c]);
-    ChargeLoopStep(engine);
-  }
-  for (uint8_t g = 0; g < kGyroChannels; ++g) {
-    const uint8_t c = static_cast<uint8_t>(kAccelChannels + g);
-    cal[c] = GyroCalibratedQ31(engine, constants.gyro[g], t[c], &flags);
-    ChargeLoopStep(engine);
-  }
+  // Format 3: the temperature sensors normalised once, then F scales each accelerometer's value
+  // and each gyro's count before its cubic.
   const ScaleTemperatureConstantsQ31& st = constants.scale_temperature;
   engine->ChargeMov(1);  // enabled flag
   engine->ChargeBranch(1);
-  if (st.enabled != 0) {
-    if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
-    int32_t tau[kTempSensors];
-    ScaleTemperaturesQ31(engine, st, raw.temp_cnt, tau, &flags);
-    for (uint8_t c = 0; c < kImuChannels; ++c) {
-      cal[c] = ScaledQ31(engine, st.scale[c], tau[constants.thermal[c].temp_sensor], cal[c]);
-      ChargeLoopStep(engine);
-    }
+  int32_t tau[kTempSensors] = {0, 0, 0};
+  if (st.enabled != 0) ScaleTemperaturesQ31(engine, st, raw.temp_cnt, tau, &flags);
+  int32_t cal[kImuChannels];
+  for (uint8_t c = 0; c < kAccelChannels; ++c) {
+    cal[c] = AccelCalibratedQ31(engine, constants.accel[c], t[c]);
+    engine->ChargeBranch(1);
+    if (st.enabled != 0) cal[c] = ScaledQ31(engine, st.scale[c], tau[constants.thermal[c].temp_sensor], cal[c]);
+    ChargeLoopStep(engine);
+  }
+  // Format 3: a saturated accelerometer product is an output's, not the gyro inputs' below.
+  if (st.enabled != 0 && engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
+  for (uint8_t g = 0; g < kGyroChannels; ++g) {
+    const uint8_t c = static_cast<uint8_t>(kAccelChannels + g);
+    const PolyQ31* factor = st.enabled != 0 ? &st.scale[c] : nullptr;
+    cal[c] = GyroCalibratedQ31(engine, constants.gyro[g], t[c], factor,
+                               tau[constants.thermal[c].temp_sensor], &flags);
+    ChargeLoopStep(engine);
   }
   if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
   if (mode == ImuCompensationMode::kSensorCalibrated) {

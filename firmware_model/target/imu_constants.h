@@ -24,8 +24,11 @@
 // Scale-temperature stages (constants format 3; run only when block 0x10 enables them, so a
 // format-2 set computes bit for bit what it did before):
 //   tau_s = (t_cnt[s] - centre_s) * 2^-shift_s, one normalisation per temperature sensor s
-//   Ca_i *= F_i(tau_s(i)), Cg_g *= F_g(tau_s(g)): a dimensionless scale factor, cubic in tau of the
-//       sensor the channel's thermal block names, evaluated at kScaleFactorExponent (|F| < 2)
+//   Ca_i *= F_i(tau_s(i)); the gyro's x *= F_g(tau_s(g)) before its cubic: a dimensionless scale
+//       factor, cubic in tau of the sensor the channel's thermal block names, evaluated at
+//       kScaleFactorExponent (|F| < 2); scaling the count first leaves the cubic a
+//       temperature-free response to invert (the sensitivity tempco scales the gyro's
+//       nonlinearity with its rate)
 //   ca_axis += q_axis ca_axis^2 after the pair mean (accelerometer second-order nonlinearity)
 //   G = CG * Cg + GS * A, GS in deg/s per m/s^2 (gyro g-sensitivity on the compensated A)
 //
