@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include <boost/crc.hpp>
+
 namespace adahrs::hil::modbus {
 namespace {
 
@@ -70,14 +72,10 @@ Response ExceptionResponse(uint8_t address, uint8_t function, ExceptionCode code
 }
 
 uint16_t Crc16(std::span<const uint8_t> bytes) {
-  uint16_t crc = 0xFFFF;
-  for (uint8_t byte : bytes) {
-    crc ^= byte;
-    for (int bit = 0; bit < 8; ++bit) {
-      crc = (crc & 1) ? static_cast<uint16_t>((crc >> 1) ^ 0xA001) : static_cast<uint16_t>(crc >> 1);
-    }
-  }
-  return crc;
+  // Polynomial 0x8005 reflected in and out (0xA001 in the spec's reflected form), init 0xFFFF.
+  boost::crc_optimal<16, 0x8005, 0xFFFF, 0, true, true> crc;
+  crc.process_bytes(bytes.data(), bytes.size());
+  return crc.checksum();
 }
 
 void AppendCrc(std::vector<uint8_t>& frame) {
