@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include <boost/crc.hpp>
+
 namespace adahrs::hil::modbus {
 namespace {
 
@@ -28,36 +30,37 @@ void CheckCount(uint8_t function, size_t count) {
   throw std::invalid_argument("Modbus: unsupported function code " + std::to_string(function));
 }
 
+// The request fields in one place; the builders below fill them for one function code each.
+Request MakeRequest(uint8_t address, uint8_t function, uint16_t start_register, uint16_t count,
+                    std::vector<uint16_t> values) {
+  return {.address = address,
+          .function = function,
+          .start_register = start_register,
+          .count = count,
+          .values = std::move(values)};
+}
+
+// How a CRC-checked frame fits the length its function code gives (`expected`, -1 for a code the
+// codec does not know): kOk, kIllegalFunction or kMalformed.
+DecodeStatus LengthStatus(int expected, size_t frame_bytes) {
+  if (expected < 0) return DecodeStatus::kIllegalFunction;
+  return static_cast<size_t>(expected) == frame_bytes ? DecodeStatus::kOk : DecodeStatus::kMalformed;
+}
+
 }  // namespace
 
 Request ReadRequest(uint8_t address, uint16_t start_register, uint16_t count) {
-  Request request;
-  request.address = address;
-  request.function = kReadHoldingRegisters;
-  request.start_register = start_register;
-  request.count = count;
-  return request;
+  return MakeRequest(address, kReadHoldingRegisters, start_register, count, {});
 }
 
 Request WriteSingleRequest(uint8_t address, uint16_t reg, uint16_t value) {
-  Request request;
-  request.address = address;
-  request.function = kWriteSingleRegister;
-  request.start_register = reg;
-  request.count = 1;
-  request.values = {value};
-  return request;
+  return MakeRequest(address, kWriteSingleRegister, reg, 1, {value});
 }
 
 Request WriteMultipleRequest(uint8_t address, uint16_t start_register,
                              std::vector<uint16_t> values) {
-  Request request;
-  request.address = address;
-  request.function = kWriteMultipleRegisters;
-  request.start_register = start_register;
-  request.count = static_cast<uint16_t>(values.size());
-  request.values = std::move(values);
-  return request;
+  const auto count = static_cast<uint16_t>(values.size());  // before the values are moved
+  return MakeRequest(address, kWriteMultipleRegisters, start_register, count, std::move(values));
 }
 
 Response ExceptionResponse(uint8_t address, uint8_t function, ExceptionCode code) {
@@ -70,14 +73,10 @@ Response ExceptionResponse(uint8_t address, uint8_t function, ExceptionCode code
 }
 
 uint16_t Crc16(std::span<const uint8_t> bytes) {
-  uint16_t crc = 0xFFFF;
-  for (uint8_t byte : bytes) {
-    crc ^= byte;
-    for (int bit = 0; bit < 8; ++bit) {
-      crc = (crc & 1) ? static_cast<uint16_t>((crc >> 1) ^ 0xA001) : static_cast<uint16_t>(crc >> 1);
-    }
-  }
-  return crc;
+  // Polynomial 0x8005 reflected in and out (0xA001 in the spec's reflected form), init 0xFFFF.
+  boost::crc_optimal<16, 0x8005, 0xFFFF, 0, true, true> crc;
+  crc.process_bytes(bytes.data(), bytes.size());
+  return crc.checksum();
 }
 
 void AppendCrc(std::vector<uint8_t>& frame) {
@@ -189,17 +188,9 @@ DecodedRequest DecodeRequest(std::span<const uint8_t> frame) {
   Request& request = out.request;
   request.address = frame[0];
   request.function = frame[1];
-  const int expected = RequestFrameLength(frame);
-  if (expected < 0) {
-    out.status = DecodeStatus::kIllegalFunction;
-    return out;
-  }
-  if (static_cast<size_t>(expected) != frame.size()) {
-    out.status = DecodeStatus::kMalformed;
-    return out;
-  }
+  out.status = LengthStatus(RequestFrameLength(frame), frame.size());
+  if (out.status != DecodeStatus::kOk) return out;
   request.start_register = GetU16(frame, 2);
-  out.status = DecodeStatus::kOk;
   switch (request.function) {
     case kReadHoldingRegisters:
       request.count = GetU16(frame, 4);
@@ -231,16 +222,8 @@ DecodedResponse DecodeResponse(std::span<const uint8_t> frame) {
   Response& response = out.response;
   response.address = frame[0];
   response.function = static_cast<uint8_t>(frame[1] & ~kExceptionFlag);
-  const int expected = ResponseFrameLength(frame);
-  if (expected < 0) {
-    out.status = DecodeStatus::kIllegalFunction;
-    return out;
-  }
-  if (static_cast<size_t>(expected) != frame.size()) {
-    out.status = DecodeStatus::kMalformed;
-    return out;
-  }
-  out.status = DecodeStatus::kOk;
+  out.status = LengthStatus(ResponseFrameLength(frame), frame.size());
+  if (out.status != DecodeStatus::kOk) return out;
   if (frame[1] & kExceptionFlag) {
     response.is_exception = true;
     response.exception = static_cast<ExceptionCode>(frame[2]);

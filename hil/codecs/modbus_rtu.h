@@ -65,7 +65,8 @@ Request WriteMultipleRequest(uint8_t address, uint16_t start_register, std::vect
 /// An exception reply to `function` from `address`.
 Response ExceptionResponse(uint8_t address, uint8_t function, ExceptionCode code);
 
-/// CRC-16/MODBUS of `bytes` (check value of "123456789" is 0x4B37).
+/// CRC-16/MODBUS of `bytes` (check value of "123456789" is 0x4B37), computed with Boost.CRC
+/// (crc_optimal<16, 0x8005, 0xFFFF, 0, true, true>) as the unit protocol's HostCrc16 is.
 uint16_t Crc16(std::span<const uint8_t> bytes);
 
 /// Appends the CRC (low byte first) to `frame`.

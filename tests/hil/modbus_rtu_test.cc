@@ -17,6 +17,23 @@ std::span<const uint8_t> AsBytes(std::string_view text) {
 TEST(ModbusRtuCrc, MatchesTheCatalogueCheckValue) {
   // CRC-16/MODBUS check value over ASCII "123456789" (Williams/"CRC RevEng" catalogue): 0x4B37.
   EXPECT_EQ(Crc16(AsBytes("123456789")), 0x4B37);
+  // Same catalogue: the register starts at 0xFFFF with no final XOR (so the CRC of nothing is
+  // 0xFFFF), and a frame followed by its CRC, low byte first, leaves the residue 0x0000.
+  EXPECT_EQ(Crc16({}), 0xFFFF);
+  const Bytes framed = {0x01, 0x03, 0x00, 0x00, 0x00, 0x0A, 0xC5, 0xCD};
+  EXPECT_EQ(Crc16(framed), 0x0000);
+}
+
+TEST(ModbusRtuCrc, MatchesPublishedRequestFrames) {
+  // The request examples of the Simply Modbus function-code pages (slave 0x11):
+  // FC 03 read 3 from 0x006B: 11 03 00 6B 00 03 76 87; FC 06 write 3 to 0x0001:
+  // 11 06 00 01 00 03 9A 9B; FC 16 write {0x000A, 0x0102} from 0x0001: ... 01 02 C6 F0.
+  EXPECT_EQ(EncodeRequest(ReadRequest(0x11, 0x006B, 3)),
+            (Bytes{0x11, 0x03, 0x00, 0x6B, 0x00, 0x03, 0x76, 0x87}));
+  EXPECT_EQ(EncodeRequest(WriteSingleRequest(0x11, 0x0001, 0x0003)),
+            (Bytes{0x11, 0x06, 0x00, 0x01, 0x00, 0x03, 0x9A, 0x9B}));
+  EXPECT_EQ(EncodeRequest(WriteMultipleRequest(0x11, 0x0001, {0x000A, 0x0102})),
+            (Bytes{0x11, 0x10, 0x00, 0x01, 0x00, 0x02, 0x04, 0x00, 0x0A, 0x01, 0x02, 0xC6, 0xF0}));
 }
 
 TEST(ModbusRtuRequest, EncodesTheTextbookReadFrame) {
