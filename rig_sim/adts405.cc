@@ -13,7 +13,6 @@
 namespace adahrs::rig_sim {
 
 using hil::ScpiCommand;
-using hil::ScpiHeadersMatch;
 namespace ss = sensor_sim;
 
 namespace {
@@ -134,133 +133,173 @@ std::optional<std::string> Adts405::Execute(std::string_view message) {
   return response;
 }
 
-std::optional<std::string> Adts405::ExecuteOne(const ScpiCommand& c, const std::string& text) {
-  const size_t argc = c.args.size();
-  auto want_args = [&](size_t n) {
-    if (argc == n) return true;
-    PushError(argc < n ? hil::kScpiMissingParameter : hil::kScpiParameterNotAllowed);
-    return false;
-  };
-  auto is = [&](std::initializer_list<std::string_view> patterns) {
-    return ScpiHeadersMatch(c, std::vector<std::string_view>(patterns));
-  };
-  if (c.common) {
-    const std::string& h = c.headers[0];
-    if (h == "IDN" && c.query && want_args(0)) return params_.idn;
-    if (h == "OPC" && c.query && want_args(0)) return "1";
-    if (h == "ESR" && c.query && want_args(0)) return std::to_string(std::exchange(esr_, 0));
-    if (h == "STB" && c.query && want_args(0)) return std::to_string(StatusByte());
-    if ((h == "ESE" || h == "SRE") && c.query && want_args(0)) return std::to_string(h == "ESE" ? ese_ : sre_);
-    if ((h == "ESE" || h == "SRE") && !c.query && want_args(1)) {
-      if (h == "ESE") SetEnableRegister(c.args[0], &ese_, 0xFF);
-      if (h == "SRE") SetEnableRegister(c.args[0], &sre_, 0xFF & ~kStbMasterSummary);
-      return std::nullopt;
+// The command set (docs/rig/adts.md, shared/protocols.md §4.2-4.5). A form a command does not
+// list is an undefined header (−113, logged in unrecognised()), except that a common command in a
+// form it lacks (`*IDN`, `*CLS?`) is ignored without an error. A wrong number of arguments is
+// −109 (too few) or −108 (too many), and the command is not performed.
+const Adts405::CommandSpec Adts405::kCommands[] = {
+    {true, {"IDN"}, {}, Query{0, &Adts405::Identity}},
+    {true, {"OPC"}, {}, Query{0, &Adts405::OperationComplete}},
+    {true, {"ESR"}, {}, Query{0, &Adts405::EventStatus}},
+    {true, {"STB"}, {}, Query{0, &Adts405::StatusByteQuery}},
+    {true, {"ESE"}, Action{1, &Adts405::SetEse}, Query{0, &Adts405::Ese}},
+    {true, {"SRE"}, Action{1, &Adts405::SetSre}, Query{0, &Adts405::Sre}},
+    {true, {"CLS"}, Action{0, &Adts405::ClearStatus}, {}},
+    {true, {"RST"}, Action{0, &Adts405::Reset}, {}},
+    {false, {"SOURce", "STATe"}, Action{1, &Adts405::SetControl}, Query{0, &Adts405::ControlQuery}},
+    {false, {"SOURce", "PRESsure"}, Action{2, &Adts405::SetAim}, Query{1, &Adts405::Aim}},
+    {false, {"SOURce", "RATE"}, Action{2, &Adts405::SetRate}, Query{1, &Adts405::RateQuery}},
+    {false, {"SOURce", "GTGRound"}, Action{0, &Adts405::GoToGround}, Query{0, &Adts405::AtGround}},
+    {false, {"MEASure", "PRESsure"}, {}, Query{1, &Adts405::Measure}},
+    {false, {"STATus", "OPERation", "EVENt"}, {}, Query{0, &Adts405::OperationEvent}},
+    {false, {"STATus", "OPERation", "CONDition"}, {}, Query{0, &Adts405::OperationCondition}},
+    {false, {"STATus", "OPERation", "CON"}, {}, Query{0, &Adts405::OperationCondition}},  // DRV
+    {false, {"UNIT", "PRESsure"}, Action{1, &Adts405::SetPresUnit}, Query{0, &Adts405::PresUnit}},
+    {false, {"UNIT", "ALTitude"}, Action{1, &Adts405::SetAltUnit}, Query{0, &Adts405::AltUnit}},
+    {false, {"UNIT", "SPEed"}, Action{1, &Adts405::SetSpeedUnit}, Query{0, &Adts405::SpeedUnit}},
+    {false, {"SYSTem", "ERRor"}, {}, Query{0, &Adts405::NextError}},
+};
+
+const Adts405::CommandSpec* Adts405::FindCommand(const ScpiCommand& c) {
+  for (const CommandSpec& spec : kCommands) {
+    if (spec.common != c.common) continue;
+    const auto& h = spec.headers;
+    const auto end = std::find(h.begin(), h.end(), std::string_view());
+    if (std::equal(h.begin(), end, c.headers.begin(), c.headers.end(), hil::ScpiHeaderMatches)) {
+      return &spec;
     }
-    if (h == "CLS" && !c.query && want_args(0)) {
-      errors_.clear();
-      esr_ = 0;
-      event_ = 0;
-      return std::nullopt;
-    }
-    if (h == "RST" && !c.query && want_args(0)) {
-      control_ = Control::kOff;
-      pressure_unit_ = "MBAR";
-      speed_unit_ = "KTS";
-      altitude_in_m_ = false;
-      ps_ = {ps_pa_, Rate::kAltitude, params_.initial_alt_rate_ft_per_min / 60.0};
-      qc_ = {qc_pa_, Rate::kAirspeed, params_.initial_cas_rate_kt_per_min / 60.0};
-      return std::nullopt;
-    }
-    if (h == "IDN" || h == "OPC" || h == "ESR" || h == "STB" || h == "CLS" || h == "RST" || h == "ESE" ||
-        h == "SRE") {
-      return std::nullopt;
-    }
-  } else if (is({"SOURce", "STATe"})) {
-    if (c.query) {
-      if (!want_args(0)) return std::nullopt;
-      return control_ == Control::kOn ? "ON" : control_ == Control::kOff ? "OFF" : "HOLD";
-    }
-    if (!want_args(1)) return std::nullopt;
-    const std::string state = Upper(c.args[0]);
-    if (state == "ON" || state == "1") {
-      control_ = Control::kOn;
-    } else if (state == "OFF" || state == "0") {
-      control_ = Control::kOff;
-    } else if (state == "HOLD") {
-      control_ = Control::kHold;
-    } else {
-      PushError(hil::kScpiIllegalParameterValue);
-    }
-    return std::nullopt;
-  } else if (is({"SOURce", "PRESsure"})) {
-    if (c.query) return want_args(1) ? Aim(Upper(c.args[0])) : std::nullopt;
-    if (want_args(2)) SetAim(c.args);
-    return std::nullopt;
-  } else if (is({"SOURce", "RATE"})) {
-    if (c.query) return want_args(1) ? RateQuery(Upper(c.args[0])) : std::nullopt;
-    if (want_args(2)) SetRate(c.args);
-    return std::nullopt;
-  } else if (is({"SOURce", "GTGRound"})) {
-    if (!want_args(0)) return std::nullopt;
-    if (c.query) return (condition_ & kSafeAtGround) ? "1" : "0";
-    if (control_ != Control::kOn) {
-      PushError(hil::kScpiSettingsConflict);  // go-to-ground needs control mode (§4.3)
-    } else {
-      ps_.aim_pa = params_.ground_ps_pa;
-      qc_.aim_pa = 0.0;
-    }
-    return std::nullopt;
-  } else if (is({"MEASure", "PRESsure"}) && c.query) {
-    return want_args(1) ? Measure(Upper(c.args[0])) : std::nullopt;
-  } else if (is({"STATus", "OPERation", "EVENt"}) && c.query) {
-    if (!want_args(0)) return std::nullopt;
-    if (!params_.oper_event_latched) return std::to_string(condition_);
-    return std::to_string(std::exchange(event_, 0));
-  } else if ((is({"STATus", "OPERation", "CONDition"}) ||
-              (c.headers.size() == 3 && is({"STATus", "OPERation", "CON"}))) && c.query) {
-    return want_args(0) ? std::optional(std::to_string(condition_)) : std::nullopt;
-  } else if (is({"UNIT", "PRESsure"})) {
-    if (c.query) return want_args(0) ? std::optional(pressure_unit_) : std::nullopt;
-    if (!want_args(1)) return std::nullopt;
-    const std::string unit = Upper(c.args[0]);
-    const bool known = std::any_of(kPressureUnits.begin(), kPressureUnits.end(),
-                                   [&](const auto& u) { return u.first == unit; });
-    if (known) {
-      pressure_unit_ = unit;
-    } else {
-      PushError(hil::kScpiIllegalParameterValue);
-    }
-    return std::nullopt;
-  } else if (is({"UNIT", "ALTitude"})) {
-    if (c.query) return want_args(0) ? std::optional<std::string>(altitude_in_m_ ? "M" : "FT") : std::nullopt;
-    if (!want_args(1)) return std::nullopt;
-    const std::string unit = Upper(c.args[0]);
-    if (unit == "FT" || unit == "M") {
-      altitude_in_m_ = unit == "M";
-    } else {
-      PushError(hil::kScpiIllegalParameterValue);
-    }
-    return std::nullopt;
-  } else if (is({"UNIT", "SPEed"})) {
-    if (c.query) return want_args(0) ? std::optional(speed_unit_) : std::nullopt;
-    if (!want_args(1)) return std::nullopt;
-    const std::string unit = Upper(c.args[0]);
-    if (unit == "KTS" || unit == "KMH" || unit == "MPH") {
-      speed_unit_ = unit;
-    } else {
-      PushError(hil::kScpiIllegalParameterValue);
-    }
-    return std::nullopt;
-  } else if (is({"SYSTem", "ERRor"}) && c.query) {
-    if (!want_args(0)) return std::nullopt;
-    const int code = errors_.empty() ? hil::kScpiNoError : errors_.front();
-    if (!errors_.empty()) errors_.pop_front();
-    return std::to_string(code) + ",\"" + std::string(hil::ScpiErrorMessage(code)) + "\"";
   }
+  return nullptr;
+}
+
+Adts405::Reply Adts405::ExecuteOne(const ScpiCommand& c, const std::string& text) {
+  const CommandSpec* spec = FindCommand(c);
+  const bool has_form =
+      spec != nullptr && (c.query ? spec->query.has_value() : spec->action.has_value());
+  if (!has_form) {
+    if (spec == nullptr || !spec->common) Unrecognised(text);
+    return std::nullopt;
+  }
+  if (!c.query) {
+    if (WantArgs(c.args, spec->action->args)) (this->*spec->action->run)(c.args);
+    return std::nullopt;
+  }
+  if (!WantArgs(c.args, spec->query->args)) return std::nullopt;
+  return (this->*spec->query->run)(c.args);
+}
+
+bool Adts405::WantArgs(const Args& args, size_t n) {
+  if (args.size() == n) return true;
+  PushError(args.size() < n ? hil::kScpiMissingParameter : hil::kScpiParameterNotAllowed);
+  return false;
+}
+
+void Adts405::Unrecognised(const std::string& text) {
   PushError(hil::kScpiUndefinedHeader);
   if (unrecognised_.size() == kMaxUnrecognised) unrecognised_.pop_front();
   unrecognised_.push_back(text);
-  return std::nullopt;
+}
+
+Adts405::Reply Adts405::Identity(const Args&) { return params_.idn; }
+Adts405::Reply Adts405::OperationComplete(const Args&) { return "1"; }
+Adts405::Reply Adts405::EventStatus(const Args&) { return std::to_string(std::exchange(esr_, 0)); }
+Adts405::Reply Adts405::StatusByteQuery(const Args&) { return std::to_string(StatusByte()); }
+Adts405::Reply Adts405::Ese(const Args&) { return std::to_string(ese_); }
+Adts405::Reply Adts405::Sre(const Args&) { return std::to_string(sre_); }
+void Adts405::SetEse(const Args& args) { SetEnableRegister(args[0], &ese_, 0xFF); }
+void Adts405::SetSre(const Args& args) {
+  SetEnableRegister(args[0], &sre_, 0xFF & ~kStbMasterSummary);
+}
+
+void Adts405::ClearStatus(const Args&) {
+  errors_.clear();
+  esr_ = 0;
+  event_ = 0;
+}
+
+void Adts405::Reset(const Args&) {
+  control_ = Control::kOff;
+  pressure_unit_ = "MBAR";
+  speed_unit_ = "KTS";
+  altitude_in_m_ = false;
+  ps_ = {ps_pa_, Rate::kAltitude, params_.initial_alt_rate_ft_per_min / 60.0};
+  qc_ = {qc_pa_, Rate::kAirspeed, params_.initial_cas_rate_kt_per_min / 60.0};
+}
+
+Adts405::Reply Adts405::ControlQuery(const Args&) {
+  return control_ == Control::kOn ? "ON" : control_ == Control::kOff ? "OFF" : "HOLD";
+}
+
+void Adts405::SetControl(const Args& args) {
+  const std::string state = Upper(args[0]);
+  if (state == "ON" || state == "1") {
+    control_ = Control::kOn;
+  } else if (state == "OFF" || state == "0") {
+    control_ = Control::kOff;
+  } else if (state == "HOLD") {
+    control_ = Control::kHold;
+  } else {
+    PushError(hil::kScpiIllegalParameterValue);
+  }
+}
+
+Adts405::Reply Adts405::AtGround(const Args&) { return (condition_ & kSafeAtGround) ? "1" : "0"; }
+
+void Adts405::GoToGround(const Args&) {
+  if (control_ != Control::kOn) {
+    PushError(hil::kScpiSettingsConflict);  // go-to-ground needs control mode (§4.3)
+    return;
+  }
+  ps_.aim_pa = params_.ground_ps_pa;
+  qc_.aim_pa = 0.0;
+}
+
+Adts405::Reply Adts405::OperationEvent(const Args&) {
+  if (!params_.oper_event_latched) return std::to_string(condition_);
+  return std::to_string(std::exchange(event_, 0));
+}
+
+Adts405::Reply Adts405::OperationCondition(const Args&) { return std::to_string(condition_); }
+
+Adts405::Reply Adts405::PresUnit(const Args&) { return pressure_unit_; }
+
+void Adts405::SetPresUnit(const Args& args) {
+  const std::string unit = Upper(args[0]);
+  const bool known = std::any_of(
+      kPressureUnits.begin(), kPressureUnits.end(), [&](const auto& u) { return u.first == unit; });
+  if (known) {
+    pressure_unit_ = unit;
+  } else {
+    PushError(hil::kScpiIllegalParameterValue);
+  }
+}
+
+Adts405::Reply Adts405::AltUnit(const Args&) { return altitude_in_m_ ? "M" : "FT"; }
+
+void Adts405::SetAltUnit(const Args& args) {
+  const std::string unit = Upper(args[0]);
+  if (unit == "FT" || unit == "M") {
+    altitude_in_m_ = unit == "M";
+  } else {
+    PushError(hil::kScpiIllegalParameterValue);
+  }
+}
+
+Adts405::Reply Adts405::SpeedUnit(const Args&) { return speed_unit_; }
+
+void Adts405::SetSpeedUnit(const Args& args) {
+  const std::string unit = Upper(args[0]);
+  if (unit == "KTS" || unit == "KMH" || unit == "MPH") {
+    speed_unit_ = unit;
+  } else {
+    PushError(hil::kScpiIllegalParameterValue);
+  }
+}
+
+Adts405::Reply Adts405::NextError(const Args&) {
+  const int code = errors_.empty() ? hil::kScpiNoError : errors_.front();
+  if (!errors_.empty()) errors_.pop_front();
+  return std::to_string(code) + ",\"" + std::string(hil::ScpiErrorMessage(code)) + "\"";
 }
 
 std::optional<double> Adts405::PressureUnitToPa(double value) const {
@@ -270,7 +309,8 @@ std::optional<double> Adts405::PressureUnitToPa(double value) const {
   return std::nullopt;
 }
 
-std::optional<std::string> Adts405::Measure(std::string_view p) {
+Adts405::Reply Adts405::Measure(const Args& args) {
+  const std::string p = Upper(args[0]);
   const double ps = ps_pa();
   const double qc = qc_pa();
   const double pa_per_unit = *PressureUnitToPa(1.0);
@@ -304,7 +344,8 @@ std::optional<std::string> Adts405::Measure(std::string_view p) {
   return hil::FormatScpiNumber(value, kReplyDigits);
 }
 
-std::optional<std::string> Adts405::Aim(std::string_view p) {
+Adts405::Reply Adts405::Aim(const Args& args) {
+  const std::string p = Upper(args[0]);
   const double pa_per_unit = *PressureUnitToPa(1.0);
   double value;
   if (p == "PS") {
@@ -325,7 +366,7 @@ std::optional<std::string> Adts405::Aim(std::string_view p) {
   return hil::FormatScpiNumber(value, kReplyDigits);
 }
 
-void Adts405::SetAim(const std::vector<std::string>& args) {
+void Adts405::SetAim(const Args& args) {
   const std::string p = Upper(args[0]);
   const std::optional<double> value = hil::ParseScpiNumber(args[1]);
   if (!value) {
@@ -369,7 +410,7 @@ void Adts405::SetAim(const std::vector<std::string>& args) {
   qc_.aim_pa = qc_aim;
 }
 
-void Adts405::SetRate(const std::vector<std::string>& args) {
+void Adts405::SetRate(const Args& args) {
   const std::string p = Upper(args[0]);
   const std::optional<double> value = hil::ParseScpiNumber(args[1]);
   if (!value) {
@@ -404,7 +445,8 @@ void Adts405::SetRate(const std::vector<std::string>& args) {
   channel.rate_per_s = per_min / 60.0;
 }
 
-std::optional<std::string> Adts405::RateQuery(std::string_view p) {
+Adts405::Reply Adts405::RateQuery(const Args& args) {
+  const std::string p = Upper(args[0]);
   const bool ps_side = p == "ALT" || p == "PS";
   const Channel& channel = ps_side ? ps_ : qc_;
   const Rate wanted = p == "ALT" ? Rate::kAltitude : p == "CAS" ? Rate::kAirspeed : Rate::kPressure;

@@ -22,6 +22,7 @@
 // measurement uncertainty, volume effects on the rates, QFE/QNH.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -90,12 +91,64 @@ class Adts405 {
     double rate_per_s;  // ft/s, kt/s or Pa/s
   };
 
-  std::optional<std::string> ExecuteOne(const hil::ScpiCommand& command, const std::string& text);
-  std::optional<std::string> Measure(std::string_view parameter);
-  std::optional<std::string> Aim(std::string_view parameter);
-  void SetAim(const std::vector<std::string>& args);
-  void SetRate(const std::vector<std::string>& args);
-  std::optional<std::string> RateQuery(std::string_view parameter);
+  // The command table (kCommands in adts405.cc), shaped like the ATL table (hil::AtlCommandSpec):
+  // each command's header and its two forms, the bare form (an action) and the `?` form (a
+  // query), each with the number of arguments it takes and the member that performs it.
+  using Args = std::vector<std::string>;
+  using Reply = std::optional<std::string>;
+  struct Action {
+    size_t args;
+    void (Adts405::*run)(const Args&);
+  };
+  struct Query {
+    size_t args;
+    Reply (Adts405::*run)(const Args&);
+  };
+  struct CommandSpec {
+    bool common;                              ///< `*XXX`
+    std::array<std::string_view, 3> headers;  ///< patterns ("SOURce", "PRESsure"), then ""
+    std::optional<Action> action;
+    std::optional<Query> query;
+  };
+  static const CommandSpec kCommands[];
+
+  Reply ExecuteOne(const hil::ScpiCommand& command, const std::string& text);
+  static const CommandSpec* FindCommand(const hil::ScpiCommand& command);
+  bool WantArgs(const Args& args, size_t n);
+  void Unrecognised(const std::string& text);
+
+  // IEEE 488.2 common commands.
+  Reply Identity(const Args&);
+  Reply OperationComplete(const Args&);
+  Reply EventStatus(const Args&);
+  Reply StatusByteQuery(const Args&);
+  Reply Ese(const Args&);
+  Reply Sre(const Args&);
+  void SetEse(const Args& args);
+  void SetSre(const Args& args);
+  void ClearStatus(const Args&);
+  void Reset(const Args&);
+  // SOURce: the controllers.
+  Reply ControlQuery(const Args&);
+  void SetControl(const Args& args);
+  Reply Aim(const Args& args);
+  void SetAim(const Args& args);
+  Reply RateQuery(const Args& args);
+  void SetRate(const Args& args);
+  Reply AtGround(const Args&);
+  void GoToGround(const Args&);
+  // MEASure, STATus, UNIT, SYSTem.
+  Reply Measure(const Args& args);
+  Reply OperationEvent(const Args&);
+  Reply OperationCondition(const Args&);
+  Reply PresUnit(const Args&);
+  void SetPresUnit(const Args& args);
+  Reply AltUnit(const Args&);
+  void SetAltUnit(const Args& args);
+  Reply SpeedUnit(const Args&);
+  void SetSpeedUnit(const Args& args);
+  Reply NextError(const Args&);
+
   void Tick();
   void Slew(Channel& channel, double& value_pa, bool is_ps);
   void UpdateCondition();

@@ -171,22 +171,29 @@ void WriteJsonFile(const fs::path& path, const nlohmann::json& j) {
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
-}  // namespace
-
-ReplaySummary ReplayRecording(const fs::path& run_dir, const std::vector<fs::path>& unit_files,
-                              const fs::path& out_dir, const ReplayOptions& options) {
-  const hil::Recording meta_only = hil::ReadRecordingMeta(run_dir);
-  const nlohmann::json& meta = meta_only.meta;
+// The unit files by serial; two files of one serial are refused.
+std::map<std::string, UnitFile> ReadUnitFiles(const std::vector<fs::path>& unit_files) {
   std::map<std::string, UnitFile> files;
   for (const fs::path& p : unit_files) {
     UnitFile u = ReadUnitFile(p);
     if (files.count(u.serial) != 0) {
-      throw std::runtime_error(fmt::format("{}: a second unit file for {} (the first: {})", p.string(), u.serial,
+      throw std::runtime_error(fmt::format("{}: a second unit file for {} (the first: {})",
+                                           p.string(),
+                                           u.serial,
                                            files.at(u.serial).path.string()));
     }
     files.emplace(u.serial, std::move(u));
   }
-  ReplaySummary summary;
+  return files;
+}
+
+// The recording's units that have a unit file (meta.json "units" of the replay), noted in
+// `summary` as replayed or skipped. A unit file of another kind than the recorded unit, or of a
+// serial the recording does not hold, is refused.
+nlohmann::json ReplayedUnits(const nlohmann::json& meta,
+                             const std::map<std::string, UnitFile>& files,
+                             const fs::path& run_dir,
+                             ReplaySummary& summary) {
   nlohmann::json units = nlohmann::json::array();
   std::map<std::string, std::string> recorded_kind;
   for (const nlohmann::json& u : meta.value("units", nlohmann::json::array())) {
@@ -199,8 +206,12 @@ ReplaySummary ReplayRecording(const fs::path& run_dir, const std::vector<fs::pat
       continue;
     }
     if (f->second.kind != kind) {
-      throw std::runtime_error(fmt::format("{}: kind '{}' but {} is an {} unit in {}", f->second.path.string(),
-                                           f->second.kind, serial, kind, (run_dir / "meta.json").string()));
+      throw std::runtime_error(fmt::format("{}: kind '{}' but {} is an {} unit in {}",
+                                           f->second.path.string(),
+                                           f->second.kind,
+                                           serial,
+                                           kind,
+                                           (run_dir / "meta.json").string()));
     }
     units.push_back(u);
     summary.replayed.push_back(serial);
@@ -209,67 +220,113 @@ ReplaySummary ReplayRecording(const fs::path& run_dir, const std::vector<fs::pat
     if (recorded_kind.count(serial) == 0) {
       std::string held;
       for (const auto& [s, k] : recorded_kind) held += (held.empty() ? "" : ", ") + s;
-      throw std::runtime_error(fmt::format("{}: unit {} is not in {} (it holds {})", f.path.string(), serial,
-                                           (run_dir / "meta.json").string(), held.empty() ? "none" : held));
+      throw std::runtime_error(fmt::format("{}: unit {} is not in {} (it holds {})",
+                                           f.path.string(),
+                                           serial,
+                                           (run_dir / "meta.json").string(),
+                                           held.empty() ? "none" : held));
     }
   }
-  if (fs::exists(out_dir)) throw std::runtime_error(out_dir.string() + ": exists; the replay writes a new run directory");
+  return units;
+}
 
-  bool any_imu = false;
-  std::map<std::string, ImuReplayer> imus;
-  std::map<std::string, AdsReplayer> adss;
+// What drives each unit: its model parameters and noise seed, and the IMU's gravity in g.
+struct UnitModels {
   std::map<std::string, sensor_sim::ImuUnitParams> imu_params;
   std::map<std::string, sensor_sim::AdsUnitParams> ads_params;
   std::map<std::string, uint64_t> noise_seeds;
+  double g_ratio = 1.0;  ///< local gravity / standard gravity
+};
+
+UnitModels LoadUnitModels(const std::map<std::string, UnitFile>& files,
+                          const ReplayOptions& options,
+                          const nlohmann::json& meta,
+                          const fs::path& run_dir) {
+  UnitModels m;
+  bool any_imu = false;
   for (const auto& [serial, f] : files) {
     if (options.noise_from_unit_file && !f.seed) {
-      throw std::runtime_error(f.path.string() + ": $.seed: missing (the same noise as the rig needs a truth file's seed)");
+      throw std::runtime_error(
+          f.path.string() +
+          ": $.seed: missing (the same noise as the rig needs a truth file's seed)");
     }
-    noise_seeds[serial] = options.noise_from_unit_file ? sensor_sim::Rng::Derive(*f.seed, kNoiseStream)
-                                                       : sensor_sim::Rng::Derive(options.noise_seed, SerialStream(serial));
+    m.noise_seeds[serial] = options.noise_from_unit_file
+                                ? sensor_sim::Rng::Derive(*f.seed, kNoiseStream)
+                                : sensor_sim::Rng::Derive(options.noise_seed, SerialStream(serial));
     const sensor_sim::ParamReader params(f.file["params"], f.path.string(), "$.params");
     if (f.kind == "imu") {
-      imu_params.emplace(serial, sensor_sim::ImuUnitParams::FromJson(params));
+      m.imu_params.emplace(serial, sensor_sim::ImuUnitParams::FromJson(params));
       any_imu = true;
     } else {
-      ads_params.emplace(serial, sensor_sim::AdsUnitParams::FromJson(params));
+      m.ads_params.emplace(serial, sensor_sim::AdsUnitParams::FromJson(params));
     }
   }
-  const double g_ratio = any_imu ? LocalGravity(meta, run_dir) / sensor_sim::kStandardGravity_mps2 : 1.0;
+  m.g_ratio = any_imu ? LocalGravity(meta, run_dir) / sensor_sim::kStandardGravity_mps2 : 1.0;
+  return m;
+}
 
-  hil::RecordingWriter writer(out_dir);
+// meta.json (the recording's, with "replay" and only the replayed units) and truth/<serial>.json.
+void WriteReplayMeta(hil::RecordingWriter& writer,
+                     const nlohmann::json& meta,
+                     const nlohmann::json& units,
+                     const std::map<std::string, UnitFile>& files,
+                     const fs::path& run_dir,
+                     const fs::path& out_dir,
+                     const ReplayOptions& options) {
   nlohmann::json out_meta = meta;
   out_meta.erase("format_version");
   out_meta["units"] = units;
   nlohmann::json file_list = nlohmann::json::array();
   for (const auto& [serial, f] : files) file_list.push_back(fs::absolute(f.path).string());
   out_meta["replay"] = {{"of", fs::absolute(run_dir).string()},
-                        {"noise", options.noise_from_unit_file ? nlohmann::json("the unit files' seeds")
-                                                               : nlohmann::json(options.noise_seed)},
+                        {"noise",
+                         options.noise_from_unit_file ? nlohmann::json("the unit files' seeds")
+                                                      : nlohmann::json(options.noise_seed)},
                         {"unit_files", file_list}};
   writer.WriteMeta(out_meta);
   fs::create_directories(out_dir / "truth");
-  for (const auto& [serial, f] : files) WriteJsonFile(out_dir / "truth" / (serial + ".json"), f.file);
+  for (const auto& [serial, f] : files) {
+    WriteJsonFile(out_dir / "truth" / (serial + ".json"), f.file);
+  }
+}
 
-  const std::string imu_csv = (run_dir / "imu.csv").string();
-  const std::string ads_csv = (run_dir / "ads.csv").string();
-  auto emit_imu = [&](hil::ImuRecordRow&& row, int line, const hil::ImuRecordRow* first) {
-    const auto p = imu_params.find(row.unit);
-    if (p == imu_params.end()) return;
-    auto it = imus.find(row.unit);
-    const double air_c = first != nullptr && row.chamber_c == 0.0 ? first->chamber_c : row.chamber_c;
-    if (it == imus.end()) {
-      it = imus.emplace(row.unit, ImuReplayer{sensor_sim::ImuUnit(p->second, noise_seeds.at(row.unit), air_c),
-                                              FrameClock(p->second.frame_period_s, imu_csv + " (" + row.unit + ")"), {}, {}})
-               .first;
+// Writes the replayed rows: each row's unit, powered on at its first row, stepped over the frames
+// the row spans with the row's stimulus; the row takes the last frame's raw outputs. `first` is the
+// first reporting row of the file when `row` was held before it (LeadingZeros), else null.
+class RowReplayer {
+ public:
+  RowReplayer(const UnitModels& models,
+              const fs::path& run_dir,
+              hil::RecordingWriter& writer,
+              ReplaySummary& summary)
+      : models_(models),
+        imu_csv_((run_dir / "imu.csv").string()),
+        ads_csv_((run_dir / "ads.csv").string()),
+        writer_(writer),
+        summary_(summary) {}
+
+  void Imu(hil::ImuRecordRow&& row, int line, const hil::ImuRecordRow* first) {
+    const auto p = models_.imu_params.find(row.unit);
+    if (p == models_.imu_params.end()) return;
+    auto it = imus_.find(row.unit);
+    const double air_c =
+        first != nullptr && row.chamber_c == 0.0 ? first->chamber_c : row.chamber_c;
+    if (it == imus_.end()) {
+      ImuReplayer fresh{sensor_sim::ImuUnit(p->second, models_.noise_seeds.at(row.unit), air_c),
+                        FrameClock(p->second.frame_period_s, imu_csv_ + " (" + row.unit + ")"),
+                        {},
+                        {}};
+      it = imus_.emplace(row.unit, std::move(fresh)).first;
     }
     ImuReplayer& r = it->second;
     if (IsValidOrientation(row.orientation)) r.up_B = UpAxis_B(row.orientation);
     sensor_sim::ImuStimulus in;
-    in.f_B_g = r.up_B * g_ratio;
+    in.f_B_g = r.up_B * models_.g_ratio;
     in.w_B_dps = r.up_B * row.table_rate_dps;
     in.air_temp_c = air_c;
-    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, line); n > 0; --n) r.last = r.unit.Step(in);
+    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, line); n > 0; --n) {
+      r.last = r.unit.Step(in);
+    }
     const sensor_sim::ImuRawFrame& f = r.last;
     for (size_t ch = 0; ch < 6; ++ch) {
       row.accel_ticks[2 * ch] = f.accel[ch].t1_cnt;
@@ -280,18 +337,21 @@ ReplaySummary ReplayRecording(const fs::path& run_dir, const std::vector<fs::pat
     row.mode = 0;
     row.comp.reset();
     row.comp_flags = 0;
-    writer.Append(row);
-    ++summary.imu_rows;
-  };
-  auto emit_ads = [&](hil::AdsRecordRow&& row, int line, const hil::AdsRecordRow* first) {
-    const auto p = ads_params.find(row.unit);
-    if (p == ads_params.end()) return;
-    const double air_c = first != nullptr && row.chamber_c == 0.0 ? first->chamber_c : row.chamber_c;
-    auto it = adss.find(row.unit);
-    if (it == adss.end()) {
-      it = adss.emplace(row.unit, AdsReplayer{sensor_sim::AdsUnit(p->second, noise_seeds.at(row.unit), air_c),
-                                              FrameClock(p->second.frame_period_s, ads_csv + " (" + row.unit + ")"), {}})
-               .first;
+    writer_.Append(row);
+    ++summary_.imu_rows;
+  }
+
+  void Ads(hil::AdsRecordRow&& row, int line, const hil::AdsRecordRow* first) {
+    const auto p = models_.ads_params.find(row.unit);
+    if (p == models_.ads_params.end()) return;
+    const double air_c =
+        first != nullptr && row.chamber_c == 0.0 ? first->chamber_c : row.chamber_c;
+    auto it = adss_.find(row.unit);
+    if (it == adss_.end()) {
+      AdsReplayer fresh{sensor_sim::AdsUnit(p->second, models_.noise_seeds.at(row.unit), air_c),
+                        FrameClock(p->second.frame_period_s, ads_csv_ + " (" + row.unit + ")"),
+                        {}};
+      it = adss_.emplace(row.unit, std::move(fresh)).first;
     }
     sensor_sim::AdsStimulus in;
     in.ps_pa = first != nullptr ? first->ps_ref_pa : row.ps_ref_pa;
@@ -299,7 +359,9 @@ ReplaySummary ReplayRecording(const fs::path& run_dir, const std::vector<fs::pat
     in.air_temp_c = air_c;
     in.oat_c = air_c;
     AdsReplayer& r = it->second;
-    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, line); n > 0; --n) r.last = r.unit.Step(in);
+    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, line); n > 0; --n) {
+      r.last = r.unit.Step(in);
+    }
     const sensor_sim::AdsRawFrame& f = r.last;
     row.ps_counts = f.ps_cnt;
     row.pt_counts = f.pt_cnt;
@@ -310,21 +372,58 @@ ReplaySummary ReplayRecording(const fs::path& run_dir, const std::vector<fs::pat
     row.alt_ft.reset();
     row.cas_kt.reset();
     row.comp_flags = 0;
-    writer.Append(row);
-    ++summary.ads_rows;
+    writer_.Append(row);
+    ++summary_.ads_rows;
+  }
+
+ private:
+  const UnitModels& models_;
+  const std::string imu_csv_;
+  const std::string ads_csv_;
+  hil::RecordingWriter& writer_;
+  ReplaySummary& summary_;
+  std::map<std::string, ImuReplayer> imus_;
+  std::map<std::string, AdsReplayer> adss_;
+};
+
+}  // namespace
+
+ReplaySummary ReplayRecording(const fs::path& run_dir,
+                              const std::vector<fs::path>& unit_files,
+                              const fs::path& out_dir,
+                              const ReplayOptions& options) {
+  const hil::Recording meta_only = hil::ReadRecordingMeta(run_dir);
+  const nlohmann::json& meta = meta_only.meta;
+  const std::map<std::string, UnitFile> files = ReadUnitFiles(unit_files);
+  ReplaySummary summary;
+  const nlohmann::json units = ReplayedUnits(meta, files, run_dir, summary);
+  if (fs::exists(out_dir)) {
+    throw std::runtime_error(out_dir.string() + ": exists; the replay writes a new run directory");
+  }
+  const UnitModels models = LoadUnitModels(files, options, meta, run_dir);
+
+  hil::RecordingWriter writer(out_dir);
+  WriteReplayMeta(writer, meta, units, files, run_dir, out_dir, options);
+  RowReplayer replayer(models, run_dir, writer, summary);
+  auto emit_imu = [&](hil::ImuRecordRow&& row, int line, const hil::ImuRecordRow* first) {
+    replayer.Imu(std::move(row), line, first);
+  };
+  auto emit_ads = [&](hil::AdsRecordRow&& row, int line, const hil::AdsRecordRow* first) {
+    replayer.Ads(std::move(row), line, first);
   };
 
   // Reported: an IMU row once the chamber reads other than 0 or the fixture holds a code (after
   // that, 0 °C is a temperature); an ADS row once the test set reads a static pressure (never 0).
   LeadingZeros<hil::ImuRecordRow> imu_hold(
       [](const hil::ImuRecordRow& r) { return r.chamber_c != 0.0 || r.orientation != 0; });
-  LeadingZeros<hil::AdsRecordRow> ads_hold([](const hil::AdsRecordRow& r) { return r.ps_ref_pa != 0.0; });
+  LeadingZeros<hil::AdsRecordRow> ads_hold(
+      [](const hil::AdsRecordRow& r) { return r.ps_ref_pa != 0.0; });
   hil::RowSinks sinks;
   sinks.imu = [&](hil::ImuRecordRow&& row, int line) {
-    if (imu_params.count(row.unit) != 0) imu_hold.Add(std::move(row), line, emit_imu);
+    if (models.imu_params.count(row.unit) != 0) imu_hold.Add(std::move(row), line, emit_imu);
   };
   sinks.ads = [&](hil::AdsRecordRow&& row, int line) {
-    if (ads_params.count(row.unit) != 0) ads_hold.Add(std::move(row), line, emit_ads);
+    if (models.ads_params.count(row.unit) != 0) ads_hold.Add(std::move(row), line, emit_ads);
   };
   hil::StreamRecording(run_dir, sinks);
   imu_hold.Release(emit_imu);

@@ -111,6 +111,110 @@ nlohmann::json UnitJson(const std::string& serial, const char* kind, int index) 
           {"mode", 0}};
 }
 
+void CheckConfig(const StaticThermalRunConfig& config) {
+  if (config.imu_units < 0 || config.imu_units > 4) {
+    throw std::invalid_argument(fmt::format("imu_units {} not in 0..4", config.imu_units));
+  }
+  if (config.ads_units < 0 || config.ads_units > 4) {
+    throw std::invalid_argument(fmt::format("ads_units {} not in 0..4", config.ads_units));
+  }
+  if (config.steps.empty()) throw std::invalid_argument("the thermal profile has no steps");
+  if (config.log_every < 1) throw std::invalid_argument("log_every must be at least 1");
+}
+
+// The batch on the bench: its units, drawn from the run's seed with their truth files written,
+// their stimulus (static in the fixture, at the set pressures) and the rows they log.
+class StaticBatch {
+ public:
+  StaticBatch(const StaticThermalRunConfig& config,
+              const std::filesystem::path& run_dir,
+              const Eigen::Vector3d& f_B_g) {
+    Draw<sensor_sim::ImuUnitParams>(config, run_dir, "imu", "IMU", config.imu_units, 1000, imus_);
+    Draw<sensor_sim::AdsUnitParams>(config, run_dir, "ads", "ADS", config.ads_units, 2000, adss_);
+    imu_in_.f_B_g = f_B_g;
+    ads_in_.ps_pa = config.ads_ps_pa;
+    ads_in_.qc_pa = config.ads_qc_pa;
+    imu_row_.orientation = config.orientation;
+    ads_row_.ps_ref_pa = config.ads_ps_pa;
+    ads_row_.qc_ref_pa = config.ads_qc_pa;
+  }
+
+  /// meta.json's "units".
+  const nlohmann::json& units() const { return units_; }
+
+  /// Steps every unit one frame in the chamber air `air_c`; writes their rows when `log`.
+  void Frame(double air_c, uint64_t frame, size_t step, bool log, hil::RecordingWriter& writer) {
+    const double t_s = static_cast<double>(frame) * kFramePeriod_s;
+    imu_in_.air_temp_c = air_c;
+    ads_in_.air_temp_c = air_c;
+    ads_in_.oat_c = air_c;
+    for (sensor_sim::ImuUnit& imu : imus_) {
+      const sensor_sim::ImuRawFrame raw = imu.Step(imu_in_);
+      if (!log) continue;
+      Stamp(imu_row_, imu.params().serial, t_s, frame, step, air_c);
+      for (int ch = 0; ch < 6; ++ch) {
+        imu_row_.accel_ticks[2 * ch] = raw.accel[ch].t1_cnt;
+        imu_row_.accel_ticks[2 * ch + 1] = raw.accel[ch].t2_cnt;
+      }
+      imu_row_.gyro_cnt = raw.gyro_cnt;
+      imu_row_.temp_cnt = raw.temp_cnt;
+      writer.Append(imu_row_);
+    }
+    for (sensor_sim::AdsUnit& ads : adss_) {
+      const sensor_sim::AdsRawFrame raw = ads.Step(ads_in_);
+      if (!log) continue;
+      Stamp(ads_row_, ads.params().serial, t_s, frame, step, air_c);
+      ads_row_.ps_counts = raw.ps_cnt;
+      ads_row_.pt_counts = raw.pt_cnt;
+      ads_row_.ps_temp_counts = raw.ps_temp_cnt;
+      ads_row_.pt_temp_counts = raw.pt_temp_cnt;
+      ads_row_.oat_counts = raw.oat_cnt;
+      writer.Append(ads_row_);
+    }
+  }
+
+ private:
+  // Draws `count` units of one kind (serials PREFIX-0001…, each seed from the batch seed's stream
+  // `first_stream` + index), writes their truth files and lists them in units_.
+  template <typename Params, typename Unit>
+  void Draw(const StaticThermalRunConfig& config,
+            const std::filesystem::path& run_dir,
+            const char* kind,
+            const char* prefix,
+            int count,
+            uint64_t first_stream,
+            std::vector<Unit>& units) {
+    for (int i = 0; i < count; ++i) {
+      const std::string serial = fmt::format("{}-{:04d}", prefix, i + 1);
+      const uint64_t seed = sensor_sim::Rng::Derive(config.seed, first_stream + i);
+      const auto params = Params::Draw(serial, seed, config.profile);
+      WriteTruth(run_dir / "truth", serial, kind, seed, config.profile, params.ToJson());
+      units.emplace_back(params, sensor_sim::Rng::Derive(seed, 1), config.start_c);
+      units_.push_back(UnitJson(serial, kind, i));
+    }
+  }
+
+  // The columns every row has: time, unit, packet counter, profile step and chamber air.
+  template <typename Row>
+  static void Stamp(
+      Row& row, const std::string& serial, double t_s, uint64_t frame, size_t step, double air_c) {
+    row.t_s = t_s;
+    row.unit = serial;
+    row.seq = UnitSequence(frame);
+    row.step = static_cast<int>(step);
+    row.tag = static_cast<uint8_t>(step + 1);
+    row.chamber_c = air_c;
+  }
+
+  std::vector<sensor_sim::ImuUnit> imus_;
+  std::vector<sensor_sim::AdsUnit> adss_;
+  nlohmann::json units_ = nlohmann::json::array();
+  sensor_sim::ImuStimulus imu_in_;
+  sensor_sim::AdsStimulus ads_in_;
+  hil::ImuRecordRow imu_row_;
+  hil::AdsRecordRow ads_row_;
+};
+
 }  // namespace
 
 StaticThermalRunConfig StaticThermalRunConfig::Demo() {
@@ -123,104 +227,27 @@ StaticThermalRunConfig StaticThermalRunConfig::Demo() {
 StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
                                          const std::filesystem::path& run_dir,
                                          const std::function<void(int, double)>& on_step) {
-  if (config.imu_units < 0 || config.imu_units > 4) {
-    throw std::invalid_argument(fmt::format("imu_units {} not in 0..4", config.imu_units));
-  }
-  if (config.ads_units < 0 || config.ads_units > 4) {
-    throw std::invalid_argument(fmt::format("ads_units {} not in 0..4", config.ads_units));
-  }
-  if (config.steps.empty()) throw std::invalid_argument("the thermal profile has no steps");
-  if (config.log_every < 1) throw std::invalid_argument("log_every must be at least 1");
-
+  CheckConfig(config);
   const double g_local_mps2 = sensor_sim::NormalGravityMps2(config.latitude_deg, config.height_m);
   const Eigen::Vector3d f_B_g =
       UpAxis_B(config.orientation) * (g_local_mps2 / sensor_sim::kStandardGravity_mps2);
-
-  std::vector<sensor_sim::ImuUnit> imus;
-  std::vector<sensor_sim::AdsUnit> adss;
-  nlohmann::json units = nlohmann::json::array();
-  for (int i = 0; i < config.imu_units; ++i) {
-    const std::string serial = fmt::format("IMU-{:04d}", i + 1);
-    const uint64_t seed = sensor_sim::Rng::Derive(config.seed, 1000 + i);
-    const auto params = sensor_sim::ImuUnitParams::Draw(serial, seed, config.profile);
-    WriteTruth(run_dir / "truth", serial, "imu", seed, config.profile, params.ToJson());
-    imus.emplace_back(params, sensor_sim::Rng::Derive(seed, 1), config.start_c);
-    units.push_back(UnitJson(serial, "imu", i));
-  }
-  for (int i = 0; i < config.ads_units; ++i) {
-    const std::string serial = fmt::format("ADS-{:04d}", i + 1);
-    const uint64_t seed = sensor_sim::Rng::Derive(config.seed, 2000 + i);
-    const auto params = sensor_sim::AdsUnitParams::Draw(serial, seed, config.profile);
-    WriteTruth(run_dir / "truth", serial, "ads", seed, config.profile, params.ToJson());
-    adss.emplace_back(params, sensor_sim::Rng::Derive(seed, 1), config.start_c);
-    units.push_back(UnitJson(serial, "ads", i));
-  }
-
+  StaticBatch batch(config, run_dir, f_B_g);
   hil::RecordingWriter writer(run_dir);
-  nlohmann::json meta = RunMetaJson(config, run_dir, g_local_mps2, units);
+  nlohmann::json meta = RunMetaJson(config, run_dir, g_local_mps2, batch.units());
   writer.WriteMeta(meta);
 
   ChamberAir chamber(config.chamber, config.start_c);
-  StaticThermalRunSummary summary;
-  sensor_sim::ImuStimulus imu_in;
-  imu_in.f_B_g = f_B_g;
-  sensor_sim::AdsStimulus ads_in;
-  ads_in.ps_pa = config.ads_ps_pa;
-  ads_in.qc_pa = config.ads_qc_pa;
-  hil::ImuRecordRow imu_row;
-  imu_row.orientation = config.orientation;
-  hil::AdsRecordRow ads_row;
-  ads_row.ps_ref_pa = config.ads_ps_pa;
-  ads_row.qc_ref_pa = config.ads_qc_pa;
-
   double from_c = config.start_c;
   uint64_t frame = 0;
   for (size_t step = 0; step < config.steps.size(); ++step) {
     const ThermalProfileStep& s = config.steps[step];
-    const auto tag = static_cast<uint8_t>(step + 1);
     double t_in_step_s = 0.0, soaked_s = 0.0;
     while (soaked_s < s.soak_s) {
       const double air_c = chamber.Step(SetPoint(from_c, s, t_in_step_s), kFramePeriod_s);
       t_in_step_s += kFramePeriod_s;
       if (std::abs(air_c - s.target_c) <= config.soak_band_c) soaked_s += kFramePeriod_s;
-      const double t_s = static_cast<double>(++frame) * kFramePeriod_s;
-      const bool log = frame % static_cast<uint64_t>(config.log_every) == 0;
-      imu_in.air_temp_c = air_c;
-      ads_in.air_temp_c = air_c;
-      ads_in.oat_c = air_c;
-      for (size_t u = 0; u < imus.size(); ++u) {
-        const sensor_sim::ImuRawFrame raw = imus[u].Step(imu_in);
-        if (!log) continue;
-        imu_row.t_s = t_s;
-        imu_row.unit = imus[u].params().serial;
-        imu_row.seq = UnitSequence(frame);
-        imu_row.step = static_cast<int>(step);
-        imu_row.tag = tag;
-        imu_row.chamber_c = air_c;
-        for (int ch = 0; ch < 6; ++ch) {
-          imu_row.accel_ticks[2 * ch] = raw.accel[ch].t1_cnt;
-          imu_row.accel_ticks[2 * ch + 1] = raw.accel[ch].t2_cnt;
-        }
-        imu_row.gyro_cnt = raw.gyro_cnt;
-        imu_row.temp_cnt = raw.temp_cnt;
-        writer.Append(imu_row);
-      }
-      for (size_t u = 0; u < adss.size(); ++u) {
-        const sensor_sim::AdsRawFrame raw = adss[u].Step(ads_in);
-        if (!log) continue;
-        ads_row.t_s = t_s;
-        ads_row.unit = adss[u].params().serial;
-        ads_row.seq = UnitSequence(frame);
-        ads_row.step = static_cast<int>(step);
-        ads_row.tag = tag;
-        ads_row.chamber_c = air_c;
-        ads_row.ps_counts = raw.ps_cnt;
-        ads_row.pt_counts = raw.pt_cnt;
-        ads_row.ps_temp_counts = raw.ps_temp_cnt;
-        ads_row.pt_temp_counts = raw.pt_temp_cnt;
-        ads_row.oat_counts = raw.oat_cnt;
-        writer.Append(ads_row);
-      }
+      ++frame;
+      batch.Frame(air_c, frame, step, frame % static_cast<uint64_t>(config.log_every) == 0, writer);
     }
     from_c = s.target_c;
     writer.Flush(true);
@@ -228,6 +255,7 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
   }
   meta["status"] = "complete";
   writer.WriteMeta(meta);
+  StaticThermalRunSummary summary;
   summary.frames = frame;
   summary.duration_s = static_cast<double>(frame) * kFramePeriod_s;
   summary.imu_rows = writer.imu_rows();
