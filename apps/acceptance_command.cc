@@ -36,7 +36,7 @@ void RegisterAcceptanceCommand(CLI::App& app) {
                   "Hours between the calibration and this run: the bias wander the rate points' "
                   "physical limit counts")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1e5));
+      ->check(CLI::Range(0.0, calib::kMaxSinceCalibration_h));
   cmd->callback([run, out, db, options] {
     const calib::Specification spec = calib::Specification::Reference();
     calib::AcceptanceRun result;

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "hil/recording/frame_count.h"
 #include "hil/recording/recording_reader.h"
 #include "hil/recording/recording_writer.h"
 #include "rig_sim/fixture_orientation.h"
@@ -73,9 +74,8 @@ uint64_t SerialStream(const std::string& serial) {
   return h;
 }
 
-// Frames a unit ran between its rows: the 8-bit packet counter's step (lost packets are frames
-// too), plus the whole counter turns the arrival times say passed; the first row counts from
-// power-on at t = 0. Arrival times jitter (packets come in bursts); the counter does not.
+// Frames a unit ran between its rows (hil::FramesBetween); the first row counts from power-on at
+// t = 0.
 class FrameClock {
  public:
   FrameClock(double period_s, std::string where) : period_s_(period_s), where_(std::move(where)) {}
@@ -91,9 +91,7 @@ class FrameClock {
         throw std::runtime_error(fmt::format("{} line {}: t_s {} after the unit's row at {} s", where_, line, t_s,
                                              last_t_s_));
       }
-      const int64_t dseq = (static_cast<int64_t>(seq) - static_cast<int64_t>(last_seq_)) & 0xFF;
-      const int64_t turns = std::max<int64_t>(0, std::llround((dt_s / period_s_ - static_cast<double>(dseq)) / 256.0));
-      n = dseq + 256 * turns;  // 0: the same packet logged twice
+      n = hil::FramesBetween(last_seq_, seq, dt_s, period_s_);  // 0: the same packet logged twice
     }
     last_t_s_ = t_s;
     last_seq_ = seq;

@@ -469,8 +469,9 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specif
   const auto fail = [&](const std::string& message) {
     throw AcceptanceInputError(ctx.run + ": " + message);
   };
-  if (!(options.since_calibration_h >= 0.0 && options.since_calibration_h < 1e6)) {
-    fail(fmt::format("the time since calibration {} h is not a duration", options.since_calibration_h));
+  if (!(options.since_calibration_h >= 0.0 && options.since_calibration_h <= kMaxSinceCalibration_h)) {
+    fail(fmt::format("the time since calibration {} h is outside 0...{} h", options.since_calibration_h,
+                     kMaxSinceCalibration_h));
   }
   ctx.since_calibration_s = options.since_calibration_h * 3600.0;
   ctx.recording = hil::ReadRecording(run_dir);

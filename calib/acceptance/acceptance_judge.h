@@ -78,6 +78,8 @@ inline constexpr size_t kMinThermalBinPackets = 10;
 /// a production line accepts within a day of calibrating. The limit grows as ln(T), so a factor
 /// of 10 in T moves it by about 15 %.
 inline constexpr double kDefaultSinceCalibration_h = 24.0;
+/// The longest time since calibration accepted (about 11 years).
+inline constexpr double kMaxSinceCalibration_h = 1e5;
 
 struct AcceptanceOptions {
   double since_calibration_h = kDefaultSinceCalibration_h;

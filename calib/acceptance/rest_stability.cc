@@ -3,17 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hil/recording/frame_count.h"
 #include "sensor_sim/units.h"
 
 namespace adahrs::calib {
 namespace {
 
 constexpr double kMgPerG = 1000.0;
-// Consecutive packets: the unit's sequence counter (8 bits on the wire) steps by one and they
-// arrived less than this many frame periods apart, so the counter cannot have wrapped between
-// them. Arrival times come in bursts (the host reads its ports in turn), so time alone cannot say.
-constexpr double kMaxArrivalGapPeriods = 100.0;
-constexpr uint32_t kSeqModulo = 256;
+
 constexpr double kThreeSigma = 3.0;
 // Above this separation ratio B2 takes its asymptote: the exact form cancels large terms.
 constexpr double kAsymptoticRatio = 1e3;
@@ -33,8 +30,8 @@ std::pair<size_t, size_t> LongestStretch(const std::vector<const hil::ImuRecordR
                            rows[i]->orientation == rows[first]->orientation &&
                            rows[i]->mode == rows[first]->mode &&
                            std::abs(rows[i]->chamber_c - rows[first]->chamber_c) <= kRestBand_c &&
-                           (rows[i]->seq + kSeqModulo - rows[i - 1]->seq) % kSeqModulo == 1 &&
-                           rows[i]->t_s - rows[i - 1]->t_s <= kMaxArrivalGapPeriods * packet_period_s;
+                           hil::FramesBetween(rows[i - 1]->seq, rows[i]->seq,
+                                              rows[i]->t_s - rows[i - 1]->t_s, packet_period_s) == 1;
     if (continues) continue;
     if (i > first && AtRest(*rows[first]) && i - first > best.second - best.first) best = {first, i};
     first = i;

@@ -1,8 +1,8 @@
 // How still a calibrated IMU's own output is at rest, read from an acceptance recording, and the
 // error limit that noise and bias wander impose on an acceptance point (docs/acceptance.md).
 //
-// Rest record: the unit's longest run of consecutive compensated packets (mode 2 or 3; the
-// sequence counter steps by one, arrivals less than 100 frame periods apart) with the table at rest
+// Rest record: the unit's longest run of consecutive compensated packets (mode 2 or 3; one frame
+// apart by hil::FramesBetween) with the table at rest
 // (|reported rate| <= kRestRate_dps) in one orientation, the chamber within kRestBand_c of the
 // stretch's first packet (a soak, not a ramp); its last kRestRecordMax_s only (the end of a soak
 // is the stillest part). The samples are one frame period apart (the unit's clock, not the

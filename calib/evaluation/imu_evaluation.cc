@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "calib/acceptance/acceptance_judge.h"
 #include "calib/evaluation/simulated_raw_frame.h"
 #include "calib/imu_calibration/imu_joint_fit.h"
 #include "calib/imu_calibration/imu_observations.h"
@@ -167,11 +168,14 @@ struct QuantitySummary {
 };
 
 std::string Verdict(const QuantitySummary& q, bool have_crb) {
-  if (q.all_in_spec) return "within specification";
-  if (!have_crb) return "outside specification";  // no limit known: the specification alone
+  if (q.all_in_spec) return PointVerdictText(PointVerdict::kWithinSpecification);
+  // No CRB covariance (the reference strategy): no limit to judge against.
+  if (!have_crb) return PointVerdictText(PointVerdict::kOutsideSpecification);
   if (q.all_in_crb) return "outside specification, within 1.5x the physical limit";
-  if (q.worst <= kCrbMargin * (q.worst_floor + q.max_crb_limit)) return "outside specification, within 1.5x the firmware floor plus the physical limit";
-  return "outside specification and the physical limit";
+  if (q.worst <= kCrbMargin * (q.worst_floor + q.max_crb_limit)) {
+    return "outside specification, within 1.5x the firmware floor plus the physical limit";
+  }
+  return PointVerdictText(PointVerdict::kOutsideBoth);
 }
 
 }  // namespace
