@@ -288,6 +288,8 @@ std::vector<int> ScaleLevels(const ChannelModel& m, const std::vector<ImuObserva
 
 // Scale-factor order 0..3 by leave-one-temperature-level-out error: each level's acquisitions
 // predicted by a fit without them (the thermal bands always in), normalised by their noise.
+constexpr int kGyroMinScaleOrder = 2;
+
 int ChooseScaleOrder(const std::string& serial, const ChannelModel& base,
                      const std::vector<ImuObservation>& obs, double n_thermal,
                      const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2,
@@ -297,10 +299,17 @@ int ChooseScaleOrder(const std::string& serial, const ChannelModel& base,
   (*report)["scale_temperature_levels"] = levels;
   const int max_order = std::min(kMaxThermalOrder, levels - 2);
   if (max_order < 1) return 0;
+  // The gyro's sensitivity tempco is quadratic in temperature (physics.md: regressors w*dT and
+  // w*dT^2); held-out error only decides whether a cubic is wanted. Leaving out an end level
+  // extrapolates, which penalises the quadratic against a line even where the line misses the
+  // curvature by several hundred ppm at the range's ends and middle.
+  const int min_order = base.gyro() ? std::min(kGyroMinScaleOrder, max_order) : 0;
+  (*report)["scale_min_order"] = min_order;
   double best = std::numeric_limits<double>::infinity();
-  int best_order = 0;
+  int best_order = min_order;
   json scores = json::array();
-  for (int order = 0; order <= max_order; ++order) {
+  for (int order = 0; order < min_order; ++order) scores.push_back(nullptr);  // not tried
+  for (int order = min_order; order <= max_order; ++order) {
     ChannelModel m = base;
     m.scale_order = order;
     double sum = 0.0;
@@ -687,7 +696,10 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
         options.unit_weights || n_bands == 0 ? 0.0 : std::max(0.0, excess / n_bands);
     const LinearFit fit = Solve(serial, m, obs, all, n_thermal, false, options, bias_cnt2, correlated, model_variance);
     report["model_error_rms"] = std::sqrt(model_variance);
-    const LinearFit bound = Solve(serial, m, obs, all, n_thermal, true, options, bias_cnt2, correlated);
+    // The bound carries the same excess: scatter the datasheet's noise leaves out (rate random
+    // walk, TEMP quantisation, drift between a level's visits) limits any estimator of this
+    // design on this unit, and a bound without it is beaten by 5-80 standard errors.
+    const LinearFit bound = Solve(serial, m, obs, all, n_thermal, true, options, bias_cnt2, correlated, model_variance);
     theta[ch] = fit.coefficients;
     cov[ch] = fit.covariance;
     crb[ch] = bound.covariance;

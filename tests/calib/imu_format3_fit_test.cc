@@ -65,6 +65,9 @@ TEST_P(ImuFormat3Fit, TruthUnitsMeetTheAccelerationSpecificationAndBeatFormat2An
   for (size_t u = 0; u < params.size(); ++u) {
     SCOPED_TRACE(params[u].serial);
     ASSERT_TRUE(fits3[u].imu->scale_temperature.active);
+    for (const char* gyro : {"gx", "gy", "gz"}) {  // quadratic sensitivity tempco at least
+      EXPECT_GE(fits3[u].diagnostics["channels"][gyro]["scale_order"].get<int>(), 2) << gyro;
+    }
     const Specification spec = Specification::Reference();
     const ImuEvaluation e3 = EvaluateImu(fits3[u], params[u], spec, evaluation);
     const ImuEvaluation e2 = EvaluateImu(fits2[u], params[u], spec, evaluation);
@@ -77,10 +80,12 @@ TEST_P(ImuFormat3Fit, TruthUnitsMeetTheAccelerationSpecificationAndBeatFormat2An
                 er.worst_accel_mg, er.worst_rate_dps);
     EXPECT_EQ(e3.accel_verdict, "within specification");
     EXPECT_LE(e3.worst_accel_mg, 1.0);
-    // The body-rate specification (0.015 deg/s) is below the gyro's own bias instability: the
-    // fit must come within 1.5x of the limit its design allows (plus, on some units, the
-    // format-3 floor), and that limit must be below 0.2 deg/s.
-    EXPECT_NE(e3.rate_verdict, "outside specification and the physical limit");
+    // The body-rate specification (0.015 deg/s) is below the gyro's own bias instability: every
+    // point must come within 1.5x of the limit its design allows on this unit, and that limit
+    // must be below 0.2 deg/s.
+    EXPECT_TRUE(e3.rate_verdict == "within specification" ||
+                e3.rate_verdict == "outside specification, within 1.5x the physical limit")
+        << e3.rate_verdict;
     EXPECT_LE(e3.worst_rate_dps, 0.2);
     EXPECT_LE(limit_dps, 0.2);
     EXPECT_LT(e3.worst_accel_mg, e2.worst_accel_mg);
