@@ -178,56 +178,48 @@ std::string Verdict(const QuantitySummary& q, bool have_crb) {
   return PointVerdictText(PointVerdict::kOutsideBoth);
 }
 
-}  // namespace
 
-ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitParams& truth,
-                          const Specification& spec, const ImuEvaluationOptions& options) {
-  if (file.kind != hil::UnitKind::kImu || !file.imu) {
-    throw std::invalid_argument("evaluate: constants of " + file.serial + " are not an IMU's");
-  }
-  const fm::ImuCalibrationConstants& c = *file.imu;
-  const bool have_crb = file.diagnostics.contains("crb_covariance");
+// The CRB covariance of the constants' numbers (zero when the file carries none); files written
+// before format 3 carry the format-2 numbers' covariance only.
+Eigen::MatrixXd CrbCovariance(const ConstantsFile& file) {
   constexpr int n = kImuFirmwareNumbers;
   Eigen::MatrixXd crb = Eigen::MatrixXd::Zero(n, n);
-  if (have_crb) {
-    // Files written before format 3 carry the format-2 numbers' covariance only.
-    const json& rows = file.diagnostics["crb_covariance"];
-    const int size = rows.is_array() && rows.size() == static_cast<size_t>(kImuFormat2Numbers)
-                         ? kImuFormat2Numbers
-                         : n;
-    if (!rows.is_array() || rows.size() != static_cast<size_t>(size)) {
-      throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance is not " +
-                                  std::to_string(n) + "x" + std::to_string(n) + " (or " +
-                                  std::to_string(kImuFormat2Numbers) + " square, format 2)");
-    }
-    for (int r = 0; r < size; ++r) {
-      if (!rows[r].is_array() || rows[r].size() != static_cast<size_t>(size)) {
-        throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance[" +
-                                    std::to_string(r) + "] is not " + std::to_string(size) + " long");
-      }
-      for (int k = 0; k < size; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
-    }
+  if (!file.diagnostics.contains("crb_covariance")) return crb;
+  const json& rows = file.diagnostics["crb_covariance"];
+  const int size = rows.is_array() && rows.size() == static_cast<size_t>(kImuFormat2Numbers)
+                       ? kImuFormat2Numbers
+                       : n;
+  if (!rows.is_array() || rows.size() != static_cast<size_t>(size)) {
+    throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance is not " +
+                                std::to_string(n) + "x" + std::to_string(n) + " (or " +
+                                std::to_string(kImuFormat2Numbers) + " square, format 2)");
   }
-  const double g_l = sensor_sim::Mps2ToG(options.g_local_mps2);
-  const std::vector<GridPoint> grid = SimulateGrid(NoiseOff(truth), g_l, options);
-  // Format-3 constants are judged against the best format-3 constants.
-  const fm::ImuCalibrationConstants projection =
-      TruthProjection(file.serial, grid, g_l, c.scale_temperature.active);
-  std::vector<std::array<double, 6>> errors;
-  try {
-    errors = GridErrors(c, grid, options.g_local_mps2);
-  } catch (const std::invalid_argument& e) {
-    throw ConstantsNotExportable("evaluate: constants of " + file.serial +
-                                 " cannot be exported to the firmware: " + e.what());
+  for (int r = 0; r < size; ++r) {
+    if (!rows[r].is_array() || rows[r].size() != static_cast<size_t>(size)) {
+      throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance[" +
+                                  std::to_string(r) + "] is not " + std::to_string(size) + " long");
+    }
+    for (int k = 0; k < size; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
   }
-  const std::vector<std::array<double, 6>> floor = FloorErrors(projection, grid, options.g_local_mps2);
+  return crb;
+}
 
+// Every grid point's errors against the specification, the firmware floor and the CRB limit,
+// summarised per quantity (acceleration at rest, body rate on the table).
+struct GridJudgement {
   QuantitySummary accel, rate;
   json points = json::array();
+};
+
+GridJudgement JudgeGrid(const fm::ImuCalibrationConstants& c, const std::vector<GridPoint>& grid,
+                        const std::vector<std::array<double, 6>>& errors,
+                        const std::vector<std::array<double, 6>>& floor, const Eigen::MatrixXd* crb,
+                        const Specification& spec) {
   static constexpr const char* kAxis[] = {"x", "y", "z"};
+  GridJudgement out;
   for (size_t i = 0; i < grid.size(); ++i) {
     const GridPoint& p = grid[i];
-    const std::array<double, 6> sigma = have_crb ? OutputSigma(c, crb, p.frames.back()) : std::array<double, 6>{};
+    const std::array<double, 6> sigma = crb ? OutputSigma(c, *crb, p.frames.back()) : std::array<double, 6>{};
     json point = {{"temp_c", p.temp_c}, {"orientation", p.orientation}, {"rate_dps", p.rate_dps}};
     for (int k = 0; k < 3; ++k) {
       const bool at_rest = p.rate_dps == 0.0;
@@ -236,7 +228,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
       const double err = errors[i][slot] * to_unit;
       const double fl = floor[i][slot] * to_unit;
       const double lim = kSigmaLimit * sigma[slot] * to_unit;
-      QuantitySummary& q = at_rest ? accel : rate;
+      QuantitySummary& q = at_rest ? out.accel : out.rate;
       const double tol = at_rest ? spec.accel_mg : spec.body_rate_dps;
       const bool in_spec = std::abs(err) <= tol;
       q.all_in_spec &= in_spec;
@@ -255,20 +247,29 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
       point[std::string("firmware_floor") + unit + kAxis[k]] = fl;
       point[std::string("crb_limit") + unit + kAxis[k]] = lim;
     }
-    points.push_back(point);
+    out.points.push_back(point);
   }
+  return out;
+}
 
-  // Parameters against the projection of the true unit.
-  const Eigen::VectorXd value = FlattenConstants(c);
+// Each constant against the projection of the true unit, in its standard errors and CRB ones.
+struct ParameterComparison {
+  json parameters = json::array();
+  json summary;
+};
+
+ParameterComparison CompareParameters(const ConstantsFile& file, const fm::ImuCalibrationConstants& projection,
+                                      const Eigen::MatrixXd* crb) {
+  const Eigen::VectorXd value = FlattenConstants(*file.imu);
   const Eigen::VectorXd true_value = FlattenConstants(projection);
   const std::vector<std::string> names = ConstantNames();
-  json parameters = json::array();
+  const Eigen::VectorXd se = FlattenConstants(ImuStandardErrors(file));
+  ParameterComparison out;
   double sum_se = 0.0, sum_crb = 0.0;
   int n_se = 0, n_crb = 0;
-  const Eigen::VectorXd se = FlattenConstants(ImuStandardErrors(file));
   for (int i = 0; i < kImuFirmwareNumbers; ++i) {
     const double err = value[i] - true_value[i];
-    const double crb_se = have_crb ? std::sqrt(std::max(crb(i, i), 0.0)) : 0.0;
+    const double crb_se = crb ? std::sqrt(std::max((*crb)(i, i), 0.0)) : 0.0;
     json p = {{"name", names[i]}, {"value", value[i]}, {"truth_projection", true_value[i]}, {"error", err}};
     if (std::isfinite(se[i]) && se[i] > 0.0) {
       p["standard_error"] = se[i];
@@ -282,14 +283,51 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
       sum_crb += err * err / (crb_se * crb_se);
       ++n_crb;
     }
-    parameters.push_back(p);
+    out.parameters.push_back(p);
   }
+  out.summary = {{"rms_error_over_se", n_se ? std::sqrt(sum_se / n_se) : 0.0},
+                 {"rms_error_over_crb", n_crb ? std::sqrt(sum_crb / n_crb) : 0.0},
+                 {"compared_with_se", n_se}, {"compared_with_crb", n_crb}};
+  return out;
+}
+
+json QuantityReport(const QuantitySummary& q, const char* unit, double spec, const std::string& verdict) {
+  const std::string u(unit);
+  return {{"worst_error_" + u, q.worst}, {"spec_" + u, spec}, {"crb_limit_" + u + "_at_worst", q.worst_crb_limit},
+          {"worst_firmware_floor_" + u, q.worst_floor}, {"worst_point", q.worst_point}, {"verdict", verdict}};
+}
+
+}  // namespace
+
+ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitParams& truth,
+                          const Specification& spec, const ImuEvaluationOptions& options) {
+  if (file.kind != hil::UnitKind::kImu || !file.imu) {
+    throw std::invalid_argument("evaluate: constants of " + file.serial + " are not an IMU's");
+  }
+  const fm::ImuCalibrationConstants& c = *file.imu;
+  const bool have_crb = file.diagnostics.contains("crb_covariance");
+  const Eigen::MatrixXd crb = CrbCovariance(file);
+  const double g_l = sensor_sim::Mps2ToG(options.g_local_mps2);
+  const std::vector<GridPoint> grid = SimulateGrid(NoiseOff(truth), g_l, options);
+  // Format-3 constants are judged against the best format-3 constants.
+  const fm::ImuCalibrationConstants projection =
+      TruthProjection(file.serial, grid, g_l, c.scale_temperature.active);
+  std::vector<std::array<double, 6>> errors;
+  try {
+    errors = GridErrors(c, grid, options.g_local_mps2);
+  } catch (const std::invalid_argument& e) {
+    throw ConstantsNotExportable("evaluate: constants of " + file.serial +
+                                 " cannot be exported to the firmware: " + e.what());
+  }
+  const std::vector<std::array<double, 6>> floor = FloorErrors(projection, grid, options.g_local_mps2);
+  const GridJudgement judged = JudgeGrid(c, grid, errors, floor, have_crb ? &crb : nullptr, spec);
+  const ParameterComparison parameters = CompareParameters(file, projection, have_crb ? &crb : nullptr);
 
   ImuEvaluation e;
-  e.worst_accel_mg = accel.worst;
-  e.worst_rate_dps = rate.worst;
-  e.accel_verdict = Verdict(accel, have_crb);
-  e.rate_verdict = Verdict(rate, have_crb);
+  e.worst_accel_mg = judged.accel.worst;
+  e.worst_rate_dps = judged.rate.worst;
+  e.accel_verdict = Verdict(judged.accel, have_crb);
+  e.rate_verdict = Verdict(judged.rate, have_crb);
   e.report = {
       {"format", "adahrs-imu-evaluation"},
       {"format_version", 1},
@@ -299,19 +337,11 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
       {"grid", {{"temp_c", {kTempMin_c, kTempMax_c, kTempStep_c}}, {"rates_dps", kRates_dps},
                 {"frames_per_point", options.frames},
                 {"switched_off", "accelerometer and gyro noise, gyro bias instability and rate random walk, die lag"}}},
-      {"acceleration", {{"worst_error_mg", accel.worst}, {"spec_mg", spec.accel_mg},
-                        {"crb_limit_mg_at_worst", accel.worst_crb_limit},
-                        {"worst_firmware_floor_mg", accel.worst_floor}, {"worst_point", accel.worst_point},
-                        {"verdict", e.accel_verdict}}},
-      {"body_rate", {{"worst_error_dps", rate.worst}, {"spec_dps", spec.body_rate_dps},
-                     {"crb_limit_dps_at_worst", rate.worst_crb_limit},
-                     {"worst_firmware_floor_dps", rate.worst_floor}, {"worst_point", rate.worst_point},
-                     {"verdict", e.rate_verdict}}},
-      {"parameters", parameters},
-      {"parameter_summary", {{"rms_error_over_se", n_se ? std::sqrt(sum_se / n_se) : 0.0},
-                             {"rms_error_over_crb", n_crb ? std::sqrt(sum_crb / n_crb) : 0.0},
-                             {"compared_with_se", n_se}, {"compared_with_crb", n_crb}}},
-      {"points", points}};
+      {"acceleration", QuantityReport(judged.accel, "mg", spec.accel_mg, e.accel_verdict)},
+      {"body_rate", QuantityReport(judged.rate, "dps", spec.body_rate_dps, e.rate_verdict)},
+      {"parameters", parameters.parameters},
+      {"parameter_summary", parameters.summary},
+      {"points", judged.points}};
   return e;
 }
 

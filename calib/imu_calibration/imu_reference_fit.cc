@@ -65,20 +65,15 @@ ChannelMeans MeansOf(const fm::ImuCalibrationConstants& constants, fm::ImuCompen
   return m;
 }
 
-ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
-                             const ImuReferenceOptions& options) {
-  const std::string who = "unit " + unit.serial;
-  ImuFitResult result;
-  result.standard_errors = NotEstimated();
-  fm::ImuCalibrationConstants& c = result.constants;
-  c = Identity();
-  json& diag = result.diagnostics;
-  diag["strategy_steps"] = "thermal (order 2), six-position, gyro cubic, cross-axis";
+namespace {
 
-  // 1. Thermal.
+// Stage 1: each channel's drift, a quadratic in its TEMP count over the thermal profile's rows.
+void FitThermalStage(const ImuUnitData& unit, const std::string& who, const ImuReferenceOptions& options,
+                     ImuFitResult* result) {
   if (unit.thermal.empty()) {
     throw ImuInputError(who + ": no thermal_profile rows (give the thermal-calibration run)");
   }
+  fm::ImuCalibrationConstants& c = result->constants;
   json thermal_diag = json::object();
   for (int ch = 0; ch < 9; ++ch) {
     std::vector<ThermalSample> samples;
@@ -95,13 +90,17 @@ ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
     c.thermal[ch].k = {r.all.k[0], r.all.k[1], r.all.k[2], 0.0};
     c.thermal[ch].temp_min_cnt = r.all.temp_min_cnt;
     c.thermal[ch].temp_max_cnt = r.all.temp_max_cnt;
-    result.standard_errors.thermal[ch].k = {r.all.k_se[0], r.all.k_se[1], r.all.k_se[2],
-                                            std::numeric_limits<double>::quiet_NaN()};
+    result->standard_errors.thermal[ch].k = {r.all.k_se[0], r.all.k_se[1], r.all.k_se[2],
+                                             std::numeric_limits<double>::quiet_NaN()};
     thermal_diag[kChannelNames[ch]] = ThermalDiagnostics(r);
   }
-  diag["thermal"] = thermal_diag;
+  result->diagnostics["thermal"] = thermal_diag;
+}
 
-  // 2. Six-position, pooled per orientation.
+// Stage 2: six-position offsets and scales, the acquisitions pooled per orientation.
+void FitSixPositionStage(const ImuUnitData& unit, const std::string& who, double g_local_mps2,
+                         ImuFitResult* result) {
+  fm::ImuCalibrationConstants& c = result->constants;
   std::map<int, std::vector<ImuSample>> by_orientation;
   for (const ImuAcquisition& a : unit.accel) {
     auto& pool = by_orientation[a.orientation];
@@ -123,14 +122,17 @@ ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
   json accel_diag = json::array();
   for (int ch = 0; ch < 6; ++ch) {
     c.accel[ch] = accel[ch].fit;
-    result.standard_errors.accel[ch] = {accel[ch].offset_se_duty, accel[ch].scale_se_duty_per_g};
+    result->standard_errors.accel[ch] = {accel[ch].offset_se_duty, accel[ch].scale_se_duty_per_g};
     accel_diag.push_back({{"channel", kChannelNames[ch]},
                           {"inverse_scale_g_per_duty", accel[ch].inverse_scale_g_per_duty},
                           {"inverse_scale_se_g_per_duty", accel[ch].inverse_scale_se_g_per_duty}});
   }
-  diag["accel"] = accel_diag;
+  result->diagnostics["accel"] = accel_diag;
+}
 
-  // 3. Gyro cubic per axis.
+// Stage 3: each gyro's cubic over the rate steps about its axis.
+void FitGyroStage(const ImuUnitData& unit, const std::string& who, ImuFitResult* result) {
+  fm::ImuCalibrationConstants& c = result->constants;
   json gyro_diag = json::array();
   for (int g = 0; g < 3; ++g) {
     std::vector<GyroRateMean> steps;
@@ -142,14 +144,34 @@ ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
     }
     const GyroScaleEstimate e = FitGyroScale(who + " " + kChannelNames[6 + g], steps);
     c.gyro[g] = e.fit;
-    result.standard_errors.gyro[g] = {e.null_se_cnt, e.l_se};
+    result->standard_errors.gyro[g] = {e.null_se_cnt, e.l_se};
     gyro_diag.push_back({{"channel", kChannelNames[6 + g]},
                          {"rates", e.rates},
                          {"residual_rms_dps", e.residual_rms_dps}});
   }
-  diag["gyro"] = gyro_diag;
+  result->diagnostics["gyro"] = gyro_diag;
+}
 
-  // 4. Cross-axis on sensor-calibrated means (CA = CG = I gives Ca and Cg in slots 0..5).
+// The sensor-calibrated means of one cross-axis acquisition: the accelerometers' (slots 0..2)
+// at rest, or the gyros' (slots 3..5) scaled to the reference rate.
+AxisStepMean CrossAxisMean(const fm::ImuCalibrationConstants& c, const ImuAcquisition& a, bool rate,
+                           const std::string& context) {
+  const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kFullyCalibrated, a.samples, context);
+  const double k = rate ? kCrossAxisRate_dps / a.rate_dps : 1.0;
+  const int first = rate ? 3 : 0;
+  AxisStepMean s{a.orientation, {}, {}};
+  for (int i = 0; i < 3; ++i) {
+    s.mean[i] = k * m.mean[first + i];
+    s.standard_error[i] = k * m.standard_error[first + i];
+  }
+  return s;
+}
+
+// Stage 4: cross-axis on sensor-calibrated means (CA = CG = I gives Ca and Cg in slots 0..5),
+// from the cross_axis step or else the six positions and the fastest rate steps.
+void FitCrossAxisStage(const ImuUnitData& unit, const std::string& who, double g_local_mps2,
+                       ImuFitResult* result) {
+  fm::ImuCalibrationConstants& c = result->constants;
   const bool have_step = !unit.cross_axis.empty();
   const std::vector<ImuAcquisition>& rest_source = have_step ? unit.cross_axis : unit.accel;
   const std::vector<ImuAcquisition>& rate_source = have_step ? unit.cross_axis : unit.gyro;
@@ -161,31 +183,15 @@ ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
       if (a.orientation == orientation && std::abs(a.rate_dps) < 1.0) rest = &a;
     }
     for (const ImuAcquisition& a : rate_source) {
-      if (a.orientation == orientation && a.rate_dps > 1.0 &&
-          (!fast || a.rate_dps > fast->rate_dps)) {
+      if (a.orientation == orientation && a.rate_dps > 1.0 && (!fast || a.rate_dps > fast->rate_dps)) {
         fast = &a;
       }
     }
     if (rest) {
-      const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kFullyCalibrated, rest->samples,
-                                     who + " cross-axis rest " + std::to_string(orientation));
-      AxisStepMean s{orientation, {}, {}};
-      for (int i = 0; i < 3; ++i) {
-        s.mean[i] = m.mean[i];
-        s.standard_error[i] = m.standard_error[i];
-      }
-      accel_steps.push_back(s);
+      accel_steps.push_back(CrossAxisMean(c, *rest, false, who + " cross-axis rest " + std::to_string(orientation)));
     }
     if (fast) {
-      const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kFullyCalibrated, fast->samples,
-                                     who + " cross-axis rate " + std::to_string(orientation));
-      const double k = kCrossAxisRate_dps / fast->rate_dps;
-      AxisStepMean s{orientation, {}, {}};
-      for (int i = 0; i < 3; ++i) {
-        s.mean[i] = k * m.mean[3 + i];
-        s.standard_error[i] = k * m.standard_error[3 + i];
-      }
-      gyro_steps.push_back(s);
+      gyro_steps.push_back(CrossAxisMean(c, *fast, true, who + " cross-axis rate " + std::to_string(orientation)));
     }
   }
   const CrossAxisEstimate ca = FitCrossAxis(who + " accelerometer cross-axis", accel_steps, g_local_mps2);
@@ -194,21 +200,40 @@ ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
     for (int k = 0; k < 3; ++k) {
       c.ca_mps2_per_g[r][k] = ca.matrix(r, k);
       c.cg[r][k] = cg.matrix(r, k);
-      result.standard_errors.ca_mps2_per_g[r][k] = ca.standard_error(r, k);
-      result.standard_errors.cg[r][k] = cg.standard_error(r, k);
+      result->standard_errors.ca_mps2_per_g[r][k] = ca.standard_error(r, k);
+      result->standard_errors.cg[r][k] = cg.standard_error(r, k);
     }
   }
-  diag["cross_axis"] = {{"source", have_step ? "cross_axis step" : "accel and gyro steps"},
-                        {"ca_condition", ca.condition_number},
-                        {"cg_condition", cg.condition_number}};
-  diag["excluded_rows"] = unit.exclusions.size();
+  result->diagnostics["cross_axis"] = {{"source", have_step ? "cross_axis step" : "accel and gyro steps"},
+                                       {"ca_condition", ca.condition_number},
+                                       {"cg_condition", cg.condition_number}};
+}
+
+void ReportExclusions(const ImuUnitData& unit, json* diag) {
+  (*diag)["excluded_rows"] = unit.exclusions.size();
   if (!unit.exclusions.empty()) {
     constexpr size_t kListed = 100;  // the count above is complete; the list names the first ones
-    diag["exclusions"] = std::vector<std::string>(
+    (*diag)["exclusions"] = std::vector<std::string>(
         unit.exclusions.begin(),
         unit.exclusions.begin() + static_cast<long>(std::min(kListed, unit.exclusions.size())));
   }
-  diag["rejected_interval_rows"] = unit.rejected_interval_rows;
+  (*diag)["rejected_interval_rows"] = unit.rejected_interval_rows;
+}
+
+}  // namespace
+
+ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
+                             const ImuReferenceOptions& options) {
+  const std::string who = "unit " + unit.serial;
+  ImuFitResult result;
+  result.standard_errors = NotEstimated();
+  result.constants = Identity();
+  result.diagnostics["strategy_steps"] = "thermal (order 2), six-position, gyro cubic, cross-axis";
+  FitThermalStage(unit, who, options, &result);
+  FitSixPositionStage(unit, who, g_local_mps2, &result);
+  FitGyroStage(unit, who, &result);
+  FitCrossAxisStage(unit, who, g_local_mps2, &result);
+  ReportExclusions(unit, &result.diagnostics);
   return result;
 }
 
