@@ -7,7 +7,7 @@
 // stretch's first packet (a soak, not a ramp); its last kRestRecordMax_s only (the end of a soak
 // is the stillest part). The samples are one frame period apart (the unit's clock, not the
 // bursty arrival times). Per body axis the overlapping Allan deviation of f_B (mg) and w_B (deg/s)
-// (calib/evaluation/allan_terms.h).
+// (calib/solvers/allan_terms.h).
 //
 // Limit of a point of duration tau_p judged T after calibration, per axis:
 //   sigma_point  = max(s / sqrt(n), sigma_A(tau_p))   the point's mean against the unit's long-run
@@ -30,7 +30,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calib/evaluation/allan_terms.h"
+#include "calib/solvers/allan_terms.h"
 #include "hil/recording/recording_format.h"
 
 namespace adahrs::calib {

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "calib/evaluation/allan_terms.h"
+#include "calib/solvers/allan_terms.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
 #include "firmware_model/reference_compensator.h"

@@ -2,7 +2,7 @@
 // 952-1997 Annex C) of the fully calibrated outputs (firmware_model/reference_compensator.h with
 // the unit's constants) over its longest acquisition at rest (an accel step, the 0 deg/s rate of
 // a gyro step, or a cross-axis acquisition at rest), and the terms read off it
-// (calib/evaluation/allan_terms.h):
+// (calib/solvers/allan_terms.h):
 //   gyro            G x y z: Allan deviation in deg/s; angle random walk in deg/sqrt(h) (IEEE 952's
 //                   N, read at tau = 1 s), the one-sided density in deg/s/sqrt(Hz) (the datasheets'
 //                   convention, sqrt(2) N), bias instability in deg/h with the tau it was read at;

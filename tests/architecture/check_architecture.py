@@ -8,6 +8,9 @@
    judge against truth or draw units, may); calib/diagnosis/ includes nothing of sensor_sim/.
 3. firmware_model/target/ is target-clean for the 16-bit dsPIC: no floating point, heap,
    exceptions or STL containers.
+4. Inside calib/, a subfolder includes only the calib subfolders its CMakeLists.txt declares
+   (adahrs_calib_<folder> among its DEPS, followed transitively), so the order between them is
+   the one the build states, and the declared graph has no cycle.
 Prints every violation as file:line and exits 1 if there is any.
 """
 import pathlib
@@ -44,6 +47,48 @@ def sources(folder):
 
 def strip_comment(line):
     return line.split("//", 1)[0]
+
+CALIB_DEP = re.compile(r"adahrs_calib_([a-z_]+)")
+CALIB_INCLUDE = re.compile(r'^\s*#\s*include\s*"calib/([a-z_]+)/')
+
+
+def calib_declared(root):
+    """Each calib subfolder's declared calib dependencies, followed transitively."""
+    direct = {}
+    for cmake in sorted((root / "calib").glob("*/CMakeLists.txt")):
+        direct[cmake.parent.name] = set(CALIB_DEP.findall(cmake.read_text()))
+    closure = {}
+
+    def visit(folder, path):
+        if folder in path:
+            raise ValueError("calib subfolders declare a cycle: " + " -> ".join(path + [folder]))
+        if folder not in closure:
+            reach = set()
+            for dep in direct.get(folder, ()):
+                reach |= {dep} | visit(dep, path + [folder])
+            closure[folder] = reach
+        return closure[folder]
+
+    for folder in direct:
+        visit(folder, [])
+    return closure
+
+
+def calib_order_violations(root):
+    violations = []
+    try:
+        declared = calib_declared(root)
+    except ValueError as e:
+        return [f"calib/*/CMakeLists.txt: {e}"]
+    for path in sources(root / "calib"):
+        folder = path.relative_to(root / "calib").parts[0]
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            match = CALIB_INCLUDE.match(line)
+            if match and match.group(1) != folder and match.group(1) not in declared.get(folder, set()):
+                violations.append(f"{path.relative_to(root)}:{number}: calib/{folder}/ includes "
+                                  f"calib/{match.group(1)}/, which calib/{folder}/CMakeLists.txt "
+                                  f"does not declare (adahrs_calib_{match.group(1)})")
+    return violations
 
 
 def main(root):
@@ -88,6 +133,7 @@ def main(root):
             if TARGET_BANNED.search(code):
                 violations.append(f"{path.relative_to(root)}:{number}: firmware_model/target/ must "
                                   f"stay target-clean: {stripped}")
+    violations += calib_order_violations(root)
     for v in violations:
         print(v)
     if violations:

@@ -1,4 +1,4 @@
-#include "calib/evaluation/allan_terms.h"
+#include "calib/solvers/allan_terms.h"
 
 #include <cmath>
 #include <stdexcept>
