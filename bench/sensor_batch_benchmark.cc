@@ -7,7 +7,7 @@
 
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -50,7 +50,7 @@ BENCHMARK(BM_AdsUnitFrame);
 void BM_Batch4Imu1Ads(benchmark::State& state) {
   std::vector<ImuUnit> imus;
   for (int k = 0; k < 4; ++k) {
-    imus.emplace_back(ImuUnitParams::Draw("IMU-" + std::to_string(k), Rng::Derive(7, k),
+    imus.emplace_back(ImuUnitParams::Draw("IMU-" + std::to_string(k), common::Rng::Derive(7, k),
                                           ModelProfile::kTruth),
                       k, kStartC);
   }

@@ -12,7 +12,7 @@
 namespace adahrs::hil {
 namespace {
 
-using sensor_sim::ParamReader;
+using common::ParamReader;
 
 struct InstrumentRole {
   const char* role;

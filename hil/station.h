@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hil/transport/serial_port.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::hil {
 
@@ -59,9 +59,9 @@ struct Station {
   std::vector<UnitEntry> units;
   OperatorEntry op;  ///< the console when the file has no "operator" entry
 
-  /// Loads and validates a station file; throws sensor_sim::ParamError naming file and path.
+  /// Loads and validates a station file; throws common::ParamError naming file and path.
   static Station Load(const std::string& file_path);
-  static Station FromJson(const sensor_sim::ParamReader& reader);
+  static Station FromJson(const common::ParamReader& reader);
   nlohmann::json ToJson() const;
 
   /// The instrument in `role`, if the station has one.

@@ -8,7 +8,7 @@
 
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::rig_sim {
 
@@ -41,15 +41,15 @@ constexpr size_t kMaxUnrecognised = 100;
 
 // Pressure units of UNIT:PRES (protocols.md §4.3) with their size in Pa: conventional mmHg
 // 133.322387415 Pa, kgf/cm² 98066.5 Pa (exact), inH2O at 4 °C 249.082 Pa and at 60 °F 248.84 Pa
-// (NIST SP 811 appendix B.8); mbar/hPa/Pa and psi/inHg by definition (sensor_sim/units.h).
+// (NIST SP 811 appendix B.8); mbar/hPa/Pa and psi/inHg by definition (common/units.h).
 // `INH2O20`, `MMH2O4` and `%FS` are not emulated (refused with −224).
 constexpr std::array<std::pair<std::string_view, double>, 9> kPressureUnits{{
     {"MBAR", 100.0},
     {"HPA", 100.0},
     {"PA", 1.0},
-    {"INHG", ss::kPaPerInHg},
+    {"INHG", common::kPaPerInHg},
     {"MMHG", 133.322387415},
-    {"PSI", ss::kPaPerPsi},
+    {"PSI", common::kPaPerPsi},
     {"KGCM2", 98066.5},
     {"INH2O4", 249.082},
     {"INH2O60F", 248.84},
@@ -323,7 +323,7 @@ Adts405::Reply Adts405::Measure(const Args& args) {
     value = (ps + qc) / pa_per_unit;
   } else if (p == "ALT") {
     const double alt_ft = ss::IsaPressureAltitudeFt(ps);
-    value = altitude_in_m_ ? ss::FtToM(alt_ft) : alt_ft;
+    value = altitude_in_m_ ? common::FtToM(alt_ft) : alt_ft;
   } else if (p == "CAS") {
     value = CasKt(qc) / KtPerSpeedUnit(speed_unit_);
   } else if (p == "EPR") {
@@ -336,7 +336,7 @@ Adts405::Reply Adts405::Measure(const Args& args) {
     const double mach = ss::MachNumber(std::max(qc, 0.0), ps);
     const double static_k = ss::IsaTemperatureK(ss::IsaPressureAltitudeM(ps));
     value = p == "MACH" ? mach
-                        : ss::MpsToKt(ss::TrueAirspeedMps(mach, static_k)) / KtPerSpeedUnit(speed_unit_);
+                        : common::MpsToKt(ss::TrueAirspeedMps(mach, static_k)) / KtPerSpeedUnit(speed_unit_);
   } else {
     PushError(hil::kScpiIllegalParameterValue);
     return std::nullopt;
@@ -356,7 +356,7 @@ Adts405::Reply Adts405::Aim(const Args& args) {
     value = (ps_.aim_pa + qc_.aim_pa) / pa_per_unit;
   } else if (p == "ALT") {
     const double alt_ft = ss::IsaPressureAltitudeFt(ps_.aim_pa);
-    value = altitude_in_m_ ? ss::FtToM(alt_ft) : alt_ft;
+    value = altitude_in_m_ ? common::FtToM(alt_ft) : alt_ft;
   } else if (p == "CAS") {
     value = CasKt(qc_.aim_pa) / KtPerSpeedUnit(speed_unit_);
   } else {
@@ -377,15 +377,15 @@ void Adts405::SetAim(const Args& args) {
   double qc_aim = qc_.aim_pa;
   const double pa = *PressureUnitToPa(*value);
   if (p == "ALT") {
-    const double alt_ft = altitude_in_m_ ? ss::MToFt(*value) : *value;
-    if (alt_ft < ss::MToFt(ss::kIsaMinAltitude_m) || alt_ft > ss::MToFt(ss::kIsaMaxAltitude_m)) {
+    const double alt_ft = altitude_in_m_ ? common::MToFt(*value) : *value;
+    if (alt_ft < common::MToFt(ss::kIsaMinAltitude_m) || alt_ft > common::MToFt(ss::kIsaMaxAltitude_m)) {
       PushError(hil::kScpiDataOutOfRange);
       return;
     }
     ps_aim = ss::IsaStaticPressurePaFromFt(alt_ft);
   } else if (p == "CAS") {
     const double cas_kt = *value * KtPerSpeedUnit(speed_unit_);
-    if (cas_kt < 0.0 || cas_kt > ss::MpsToKt(ss::SeaLevelSpeedOfSoundMps())) {
+    if (cas_kt < 0.0 || cas_kt > common::MpsToKt(ss::SeaLevelSpeedOfSoundMps())) {
       PushError(hil::kScpiDataOutOfRange);
       return;
     }
@@ -421,7 +421,7 @@ void Adts405::SetRate(const Args& args) {
   double max_per_min;
   Rate kind;
   if (p == "ALT") {
-    per_min = altitude_in_m_ ? ss::MToFt(per_min) : per_min;
+    per_min = altitude_in_m_ ? common::MToFt(per_min) : per_min;
     max_per_min = params_.max_alt_rate_ft_per_min;
     kind = Rate::kAltitude;
   } else if (p == "CAS") {
@@ -459,7 +459,7 @@ Adts405::Reply Adts405::RateQuery(const Args& args) {
     return std::nullopt;
   }
   double per_min = channel.rate_per_s * 60.0;
-  if (wanted == Rate::kAltitude && altitude_in_m_) per_min = ss::FtToM(per_min);
+  if (wanted == Rate::kAltitude && altitude_in_m_) per_min = common::FtToM(per_min);
   if (wanted == Rate::kAirspeed) per_min /= KtPerSpeedUnit(speed_unit_);
   if (wanted == Rate::kPressure) per_min /= *PressureUnitToPa(1.0);
   return hil::FormatScpiNumber(per_min, kReplyDigits);

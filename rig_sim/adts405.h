@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "hil/codecs/scpi.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::rig_sim {
 
@@ -155,7 +155,7 @@ class Adts405 {
   std::optional<double> PressureUnitToPa(double value) const;
 
   Adts405Params params_;
-  sensor_sim::Rng rng_;
+  common::Rng rng_;
   Control control_ = Control::kOff;
   double ps_pa_, qc_pa_ = 0.0;
   double ps_noise_pa_ = 0.0, qc_noise_pa_ = 0.0;

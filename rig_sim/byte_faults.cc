@@ -7,8 +7,8 @@ namespace adahrs::rig_sim {
 
 ByteFaultDevice::ByteFaultDevice(std::unique_ptr<SerialDevice> inner, uint64_t seed)
     : inner_(std::move(inner)),
-      to_device_rng_(sensor_sim::Rng::Derive(seed, 1)),
-      to_client_rng_(sensor_sim::Rng::Derive(seed, 2)) {
+      to_device_rng_(common::Rng::Derive(seed, 1)),
+      to_client_rng_(common::Rng::Derive(seed, 2)) {
   if (!inner_) throw std::invalid_argument("ByteFaultDevice around no device");
 }
 
@@ -46,7 +46,7 @@ void ByteFaultDevice::SetRate(const std::string& fault, double rate) {
 }
 
 void ByteFaultDevice::ApplyLineNoise(std::vector<uint8_t>& bytes, size_t from,
-                                     sensor_sim::Rng& rng) {
+                                     common::Rng& rng) {
   if (state_.drop_rate == 0.0 && state_.corrupt_rate == 0.0) return;
   size_t kept = from;
   for (size_t i = from; i < bytes.size(); ++i) {

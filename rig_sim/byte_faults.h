@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "rig_sim/serial_device.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::rig_sim {
 
@@ -73,13 +73,13 @@ class ByteFaultDevice : public SerialDevice {
 
  private:
   // Applies drop and corrupt to bytes[from, end) in place, using `rng`.
-  void ApplyLineNoise(std::vector<uint8_t>& bytes, size_t from, sensor_sim::Rng& rng);
+  void ApplyLineNoise(std::vector<uint8_t>& bytes, size_t from, common::Rng& rng);
 
   std::unique_ptr<SerialDevice> inner_;
   ByteFaultState state_;
   ByteFaultCounters counters_;
-  sensor_sim::Rng to_device_rng_;
-  sensor_sim::Rng to_client_rng_;
+  common::Rng to_device_rng_;
+  common::Rng to_client_rng_;
   std::vector<uint8_t> in_;
 };
 

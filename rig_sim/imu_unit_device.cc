@@ -6,7 +6,7 @@
 #include "firmware_model/target/dsp_engine.h"
 #include "firmware_model/target/imu_compensator.h"
 #include "rig_sim/fixture_orientation.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::rig_sim {
 
@@ -35,7 +35,7 @@ uint16_t ImuUnitDevice::Acquire(double, const RigEnvironment& env, bool encode,
                                 uint16_t capacity) {
   const Eigen::Vector3d up_B = UpAxis_B(env.imu_orientation[static_cast<size_t>(slot_)]);
   sensor_sim::ImuStimulus stimulus;
-  stimulus.f_B_g = up_B * (env.local_gravity_mps2 / sensor_sim::kStandardGravity_mps2);
+  stimulus.f_B_g = up_B * (env.local_gravity_mps2 / common::kStandardGravity_mps2);
   stimulus.w_B_dps = up_B * env.table_rate_dps;
   stimulus.air_temp_c = env.imu_chamber_air_c;
   stimulus.supply_v = env.supply_v;

@@ -135,13 +135,13 @@ void PrologixAdtsDevice::SetPhysicalFault(const std::string& fault, bool on) {
   adts_.SetNeverStable(on);
 }
 
-std::unique_ptr<SerialDevice> MakePrologixAdtsDevice(const sensor_sim::ParamReader& config) {
+std::unique_ptr<SerialDevice> MakePrologixAdtsDevice(const common::ParamReader& config) {
   PrologixAdtsParams p;
   p.gpib_address = static_cast<int>(config.Integer("gpib_address", 0, 30));
   p.version_text = config.String("version_text");
   p.adapter_reply_delay_s = config.Number("adapter_reply_delay_s", 0.0, 1.0, "s");
   p.response_delay_s = config.Number("response_delay_s", 0.0, 0.4, "s");  // §4.7: within 400 ms
-  const sensor_sim::ParamReader a = config.Child("adts");
+  const common::ParamReader a = config.Child("adts");
   Adts405Params& q = p.adts;
   // The ISA model covers −5 km … 20 km (sensor_sim/atmosphere.h): Ps limits stay inside it.
   const double isa_low_pa = sensor_sim::IsaStaticPressurePa(sensor_sim::kIsaMaxAltitude_m);

@@ -25,7 +25,7 @@
 #include "hil/codecs/prologix.h"
 #include "rig_sim/adts405.h"
 #include "rig_sim/serial_device.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 
@@ -80,7 +80,7 @@ class PrologixAdtsDevice : public SerialDevice {
 
 /// Builds the device from its rig-config section (keys as in DefaultPrologixAdtsConfig, all
 /// required and range-checked; ParamError names the JSON path).
-std::unique_ptr<SerialDevice> MakePrologixAdtsDevice(const sensor_sim::ParamReader& config);
+std::unique_ptr<SerialDevice> MakePrologixAdtsDevice(const common::ParamReader& config);
 
 /// A complete default section for the rig config (documented in docs/rig/adts.md).
 nlohmann::json DefaultPrologixAdtsConfig();

@@ -5,14 +5,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
 
-using sensor_sim::DegToRad;
-using sensor_sim::kPi;
-using sensor_sim::RadToDeg;
+using common::DegToRad;
+using common::kPi;
+using common::RadToDeg;
 
 constexpr double kDegPerRev = 360.0;
 // Below this the exponential tail of a stopped platter is called rest (far below any band).

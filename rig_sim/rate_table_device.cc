@@ -17,8 +17,8 @@ using hil::AtlArgument;
 using hil::AtlForm;
 using hil::AtlParsed;
 using hil::AtlParseStatus;
-using sensor_sim::ParamError;
-using sensor_sim::ParamReader;
+using common::ParamError;
+using common::ParamReader;
 
 // 8N1: a start bit, eight data bits and a stop bit per byte.
 constexpr double kBitsPerByte = 10.0;

@@ -32,7 +32,7 @@
 #include "hil/codecs/atl_command_table.h"
 #include "rig_sim/rate_table.h"
 #include "rig_sim/serial_device.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 
@@ -46,7 +46,7 @@ struct RateTableDeviceConfig {
 
 class RateTableDevice : public SerialDevice {
  public:
-  /// Throws sensor_sim::ParamError naming the command table's source when the table binds an
+  /// Throws common::ParamError naming the command table's source when the table binds an
   /// operation this controller does not have, or gives a form an argument or a reply the
   /// operation cannot take.
   RateTableDevice(const RateTableDeviceConfig& config,
@@ -103,7 +103,7 @@ std::string DefaultAtlCommandTablePath();
 /// Builds the device from the rig config's rate-table section (every key required and checked;
 /// see docs/rig/rate-table.md). A relative `command_table` path is taken relative to the config
 /// file's folder.
-std::unique_ptr<SerialDevice> MakeRateTableDevice(const sensor_sim::ParamReader& config);
+std::unique_ptr<SerialDevice> MakeRateTableDevice(const common::ParamReader& config);
 
 /// A complete default section for MakeRateTableDevice.
 nlohmann::json DefaultRateTableConfig();

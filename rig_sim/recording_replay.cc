@@ -18,9 +18,9 @@
 #include "rig_sim/fixture_orientation.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/param_reader.h"
-#include "sensor_sim/random.h"
-#include "sensor_sim/units.h"
+#include "common/param_reader.h"
+#include "common/random.h"
+#include "common/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -48,15 +48,15 @@ struct UnitFile {
 };
 
 UnitFile ReadUnitFile(const fs::path& path) {
-  UnitFile u{path, sensor_sim::ParamReader::LoadFile(path.string()), "", "", std::nullopt};
-  const sensor_sim::ParamReader top(u.file, path.string());
+  UnitFile u{path, common::ParamReader::LoadFile(path.string()), "", "", std::nullopt};
+  const common::ParamReader top(u.file, path.string());
   u.kind = top.String("kind");
   if (top.Has("seed")) {
     const nlohmann::json& seed = u.file["seed"];
     if (!seed.is_number_unsigned()) top.Fail("$.seed", "not an unsigned 64-bit integer");
     u.seed = seed.get<uint64_t>();
   }
-  const sensor_sim::ParamReader params = top.Child("params");
+  const common::ParamReader params = top.Child("params");
   if (u.kind == "imu") {
     u.serial = sensor_sim::ImuUnitParams::FromJson(params).serial;
   } else if (u.kind == "ads") {
@@ -249,9 +249,9 @@ UnitModels LoadUnitModels(const std::map<std::string, UnitFile>& files,
           ": $.seed: missing (the same noise as the rig needs a truth file's seed)");
     }
     m.noise_seeds[serial] = options.noise_from_unit_file
-                                ? sensor_sim::Rng::Derive(*f.seed, kNoiseStream)
-                                : sensor_sim::Rng::Derive(options.noise_seed, SerialStream(serial));
-    const sensor_sim::ParamReader params(f.file["params"], f.path.string(), "$.params");
+                                ? common::Rng::Derive(*f.seed, kNoiseStream)
+                                : common::Rng::Derive(options.noise_seed, SerialStream(serial));
+    const common::ParamReader params(f.file["params"], f.path.string(), "$.params");
     if (f.kind == "imu") {
       m.imu_params.emplace(serial, sensor_sim::ImuUnitParams::FromJson(params));
       any_imu = true;
@@ -259,7 +259,7 @@ UnitModels LoadUnitModels(const std::map<std::string, UnitFile>& files,
       m.ads_params.emplace(serial, sensor_sim::AdsUnitParams::FromJson(params));
     }
   }
-  m.g_ratio = any_imu ? LocalGravity(meta, run_dir) / sensor_sim::kStandardGravity_mps2 : 1.0;
+  m.g_ratio = any_imu ? LocalGravity(meta, run_dir) / common::kStandardGravity_mps2 : 1.0;
   return m;
 }
 

@@ -45,7 +45,7 @@ struct ReplaySummary {
 /// Replays `run_dir` into `out_dir` (which must not exist yet) with one unit file per unit to
 /// replay. Writes meta.json (the recording's, with "replay": {of, noise, unit_files} and only
 /// the replayed units), imu.csv, ads.csv and truth/<serial>.json (the unit file's content).
-/// Throws sensor_sim::ParamError for a bad unit file, hil::RecordingError for a bad recording, and
+/// Throws common::ParamError for a bad unit file, hil::RecordingError for a bad recording, and
 /// std::runtime_error naming the file for a unit file whose serial the recording does not hold,
 /// two files of one serial, an existing `out_dir`, or a unit's time going backwards.
 ReplaySummary ReplayRecording(const std::filesystem::path& run_dir,

@@ -11,7 +11,7 @@
 
 #include "rig_sim/ads_unit_device.h"
 #include "rig_sim/imu_unit_device.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -20,7 +20,7 @@ namespace {
 template <typename Params>
 Params SlotParams(const UnitSlotConfig& slot, const std::string& serial, const RigConfig& config) {
   if (!slot.model_params.is_null()) {
-    return Params::FromJson(sensor_sim::ParamReader(slot.model_params, slot.model_file, "$.params"));
+    return Params::FromJson(common::ParamReader(slot.model_params, slot.model_file, "$.params"));
   }
   Params p = Params::Draw(serial, slot.seed, config.model_profile);
   p.ApplyVariant(config.truth_variant);
@@ -76,7 +76,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
       host_(std::make_unique<DeviceHost>(config.time_scale, InitialEnvironment(config))) {
   std::filesystem::create_directories(run_dir_);
   uint64_t fault_stream = 0;
-  const sensor_sim::ParamReader root(config_.instruments, config_.source, "$.instruments");
+  const common::ParamReader root(config_.instruments, config_.source, "$.instruments");
   for (const InstrumentKind& kind : InstrumentKinds()) {
     if (!config.instruments.contains(kind.name)) continue;
     auto device = kind.make(root.Child(kind.name));
@@ -92,7 +92,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     unit.slot = static_cast<int>(i);
     unit.serial_number = slot.serial_number;
     unit.params = SlotParams<sensor_sim::ImuUnitParams>(slot, ImuSerial(slot.serial_number), config);
-    unit.noise_seed = sensor_sim::Rng::Derive(slot.seed, kNoiseStream);
+    unit.noise_seed = common::Rng::Derive(slot.seed, kNoiseStream);
     unit.baud = slot.baud;
     unit.initial_air_c = config.initial_air_c;
     WriteTruth(run_dir_ / "truth", unit.params.serial, "imu", slot.seed, config.model_profile,
@@ -109,7 +109,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     unit.role = fmt::format("ads{}", i + 1);
     unit.serial_number = slot.serial_number;
     unit.params = SlotParams<sensor_sim::AdsUnitParams>(slot, AdsSerial(slot.serial_number), config);
-    unit.noise_seed = sensor_sim::Rng::Derive(slot.seed, kNoiseStream);
+    unit.noise_seed = common::Rng::Derive(slot.seed, kNoiseStream);
     unit.baud = slot.baud;
     unit.initial_air_c = config.initial_air_c;
     WriteTruth(run_dir_ / "truth", unit.params.serial, "ads", slot.seed, config.model_profile,
@@ -126,7 +126,7 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
   ports_["control"] = host_->Add(std::make_unique<ControlPortDevice>(control_.get()));
 
   const nlohmann::json no_keys = nlohmann::json::object();
-  const sensor_sim::ParamReader faults_reader(no_keys, config_.source);
+  const common::ParamReader faults_reader(no_keys, config_.source);
   for (const FaultSetting& fault : config.faults) {
     try {
       control_->SetFault(fault.role, fault.fault,
@@ -143,11 +143,11 @@ void Rig::AddDevice(std::unique_ptr<SerialDevice> device, const std::string& kin
                     uint64_t fault_stream) {
   const std::string role = device->role();
   if (role == "control" || ports_.count(role)) {
-    throw sensor_sim::ParamError(config_.source + ": " + kind + " role '" + role +
+    throw common::ParamError(config_.source + ": " + kind + " role '" + role +
                                  "' is used twice");
   }
   auto wrapped = std::make_unique<ByteFaultDevice>(
-      std::move(device), sensor_sim::Rng::Derive(kByteFaultSeedBase, fault_stream));
+      std::move(device), common::Rng::Derive(kByteFaultSeedBase, fault_stream));
   targets_.push_back({role, wrapped.get(), imu_slot});
   ports_[role] = host_->Add(std::move(wrapped));
 }

@@ -42,7 +42,7 @@ std::string ClaimManifestPath(const std::filesystem::path& manifest_path);
 class Rig {
  public:
   /// Builds every device, opens the ptys and writes truth/ into `run_dir` (created if needed).
-  /// Throws sensor_sim::ParamError naming the config's JSON path for an unknown role or fault in
+  /// Throws common::ParamError naming the config's JSON path for an unknown role or fault in
   /// the start faults, std::runtime_error for files that cannot be written.
   Rig(const RigConfig& config, const std::filesystem::path& run_dir);
   ~Rig();

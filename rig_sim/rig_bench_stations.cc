@@ -90,7 +90,7 @@ hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const 
   nlohmann::json with_clock = station;
   const nlohmann::json clock = manifest.value("clock", nlohmann::json::object());
   if (clock.value("lockstep", false)) with_clock["clock_file"] = clock.at("file");
-  return hil::Station::FromJson(sensor_sim::ParamReader(with_clock, source));
+  return hil::Station::FromJson(common::ParamReader(with_clock, source));
 }
 
 hil::Station WriteStationFile(const hil::Station& station, const std::filesystem::path& path) {

@@ -26,7 +26,7 @@ namespace adahrs::rig_sim {
 enum class RigBench { kImu, kAds };
 
 /// The bench's station for the rig of `manifest` (manifest.json as the rig wrote it) started with
-/// `config`; throws sensor_sim::ParamError naming `source` and the JSON path if it is not valid.
+/// `config`; throws common::ParamError naming `source` and the JSON path if it is not valid.
 hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const RigConfig& config,
                           const std::string& source);
 

@@ -16,7 +16,7 @@
 
 namespace adahrs::rig_sim {
 
-using sensor_sim::ParamReader;
+using common::ParamReader;
 
 const std::vector<InstrumentKind>& InstrumentKinds() {
   // Keys are the station file's instrument types (docs/station.md).

@@ -14,7 +14,7 @@
 //   instruments  one section per instrument kind present (InstrumentKinds()), read by that
 //                instrument's own factory; a kind left out is not on this rig
 //   faults       [{role, fault, on} | {role, fault, rate}] applied before the clock starts
-// Every value is read through sensor_sim::ParamReader: unknown keys, wrong types and values out
+// Every value is read through common::ParamReader: unknown keys, wrong types and values out
 // of range are refused with the file and JSON path. Roles and fault names are checked when the
 // rig is built (rig.h), against the devices themselves.
 #pragma once
@@ -29,14 +29,14 @@
 
 #include "rig_sim/serial_device.h"
 #include "sensor_sim/model_profile.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 
 /// One kind of virtual instrument the rig can serve: its config key, factory and defaults.
 struct InstrumentKind {
   std::string name;  ///< key under "instruments", the station file's `type` (docs/station.md)
-  std::function<std::unique_ptr<SerialDevice>(const sensor_sim::ParamReader&)> make;
+  std::function<std::unique_ptr<SerialDevice>(const common::ParamReader&)> make;
   std::function<nlohmann::json()> default_config;
   std::string doc_page;  ///< docs/rig/<instrument>.md
 };
@@ -88,7 +88,7 @@ struct RigConfig {
   /// Station gravity from latitude and height.
   double LocalGravityMps2() const;
 
-  /// Parses and validates; throws sensor_sim::ParamError naming `source` and the JSON path.
+  /// Parses and validates; throws common::ParamError naming `source` and the JSON path.
   static RigConfig FromJson(const nlohmann::json& json, const std::string& source);
   /// Loads a file and parses it.
   static RigConfig Load(const std::string& path);

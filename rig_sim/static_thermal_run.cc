@@ -14,8 +14,8 @@
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/gravity.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/random.h"
-#include "sensor_sim/units.h"
+#include "common/random.h"
+#include "common/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -186,10 +186,10 @@ class StaticBatch {
             std::vector<Unit>& units) {
     for (int i = 0; i < count; ++i) {
       const std::string serial = fmt::format("{}-{:04d}", prefix, i + 1);
-      const uint64_t seed = sensor_sim::Rng::Derive(config.seed, first_stream + i);
+      const uint64_t seed = common::Rng::Derive(config.seed, first_stream + i);
       const auto params = Params::Draw(serial, seed, config.profile);
       WriteTruth(run_dir / "truth", serial, kind, seed, config.profile, params.ToJson());
-      units.emplace_back(params, sensor_sim::Rng::Derive(seed, 1), config.start_c);
+      units.emplace_back(params, common::Rng::Derive(seed, 1), config.start_c);
       units_.push_back(UnitJson(serial, kind, i));
     }
   }
@@ -230,7 +230,7 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
   CheckConfig(config);
   const double g_local_mps2 = sensor_sim::NormalGravityMps2(config.latitude_deg, config.height_m);
   const Eigen::Vector3d f_B_g =
-      UpAxis_B(config.orientation) * (g_local_mps2 / sensor_sim::kStandardGravity_mps2);
+      UpAxis_B(config.orientation) * (g_local_mps2 / common::kStandardGravity_mps2);
   StaticBatch batch(config, run_dir, f_B_g);
   hil::RecordingWriter writer(run_dir);
   nlohmann::json meta = RunMetaJson(config, run_dir, g_local_mps2, batch.units());

@@ -50,9 +50,9 @@ void Watlow942Device::SetPhysicalFault(const std::string& fault, bool on) {
   controller_.SetCannotReachSetPoint(on);
 }
 
-std::unique_ptr<SerialDevice> MakeWatlow942Device(const sensor_sim::ParamReader& config) {
+std::unique_ptr<SerialDevice> MakeWatlow942Device(const common::ParamReader& config) {
   Watlow942Params p;
-  const sensor_sim::ParamReader air = config.Child("air");
+  const common::ParamReader air = config.Child("air");
   p.air.tau_s = air.Number("tau_s", 1.0, 1e5, "s");
   p.air.heat_rate_c_per_min = air.Number("heat_rate_c_per_min", 0.01, 100.0, "°C/min");
   p.air.cool_rate_c_per_min = air.Number("cool_rate_c_per_min", 0.01, 100.0, "°C/min");

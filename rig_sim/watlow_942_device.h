@@ -21,7 +21,7 @@
 #include "hil/codecs/watlow942_codec.h"
 #include "rig_sim/serial_device.h"
 #include "rig_sim/watlow_942.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 
@@ -54,7 +54,7 @@ class Watlow942Device : public SerialDevice {
 
 /// Builds the device from its rig-config section (keys as in DefaultWatlow942Config, all
 /// required and range-checked; ParamError names the JSON path).
-std::unique_ptr<SerialDevice> MakeWatlow942Device(const sensor_sim::ParamReader& config);
+std::unique_ptr<SerialDevice> MakeWatlow942Device(const common::ParamReader& config);
 
 /// A complete default section for the rig config (documented in docs/rig/watlow-942.md).
 nlohmann::json DefaultWatlow942Config();

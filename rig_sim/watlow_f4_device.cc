@@ -146,7 +146,7 @@ void WatlowF4Device::TakeOutput(double now_s, std::vector<uint8_t>& out) {
   }
 }
 
-WatlowF4DeviceConfig ReadWatlowF4DeviceConfig(const sensor_sim::ParamReader& config) {
+WatlowF4DeviceConfig ReadWatlowF4DeviceConfig(const common::ParamReader& config) {
   WatlowF4DeviceConfig c;
   c.role = config.String("role");
   c.modbus_address = static_cast<uint8_t>(config.Integer("modbus_address", 1, 247));
@@ -155,7 +155,7 @@ WatlowF4DeviceConfig ReadWatlowF4DeviceConfig(const sensor_sim::ParamReader& con
   c.partial_frame_timeout_s = config.Number("partial_frame_timeout_s", 0.001, 1.0, "s");
   c.control_tick_s = config.Number("control_tick_s", 0.01, 1.0, "s");
 
-  const sensor_sim::ParamReader controller = config.Child("controller");
+  const common::ParamReader controller = config.Child("controller");
   c.controller.decimals = static_cast<int>(controller.Integer("decimals", 0, 1));
   c.controller.set_point_low_limit_c = controller.Number("set_point_low_limit_c", -200.0, 800.0, "°C");
   c.controller.set_point_high_limit_c =
@@ -172,7 +172,7 @@ WatlowF4DeviceConfig ReadWatlowF4DeviceConfig(const sensor_sim::ParamReader& con
                     "must lie within the set-point limits");
   }
 
-  const sensor_sim::ParamReader chamber = config.Child("chamber");
+  const common::ParamReader chamber = config.Child("chamber");
   c.chamber.tau_s = chamber.Number("tau_s", 1.0, 36000.0, "s");
   c.chamber.heat_rate_c_per_min = chamber.Number("heat_rate_c_per_min", 0.01, 100.0, "°C/min");
   c.chamber.cool_rate_c_per_min = chamber.Number("cool_rate_c_per_min", 0.01, 100.0, "°C/min");
@@ -192,7 +192,7 @@ WatlowF4DeviceConfig ReadWatlowF4DeviceConfig(const sensor_sim::ParamReader& con
   return c;
 }
 
-std::unique_ptr<SerialDevice> MakeWatlowF4Device(const sensor_sim::ParamReader& config) {
+std::unique_ptr<SerialDevice> MakeWatlowF4Device(const common::ParamReader& config) {
   return std::make_unique<WatlowF4Device>(ReadWatlowF4DeviceConfig(config));
 }
 

@@ -39,7 +39,7 @@
 #include "rig_sim/chamber_air.h"
 #include "rig_sim/serial_device.h"
 #include "rig_sim/watlow_f4.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 
@@ -101,10 +101,10 @@ class WatlowF4Device : public SerialDevice {
 
 /// The rig's factory: reads the chamber's section of the rig config (keys as in
 /// DefaultWatlowF4Config(), every one required and range-checked; ParamError names the path).
-std::unique_ptr<SerialDevice> MakeWatlowF4Device(const sensor_sim::ParamReader& config);
+std::unique_ptr<SerialDevice> MakeWatlowF4Device(const common::ParamReader& config);
 
 /// Parses a config section into the device's settings (used by MakeWatlowF4Device).
-WatlowF4DeviceConfig ReadWatlowF4DeviceConfig(const sensor_sim::ParamReader& config);
+WatlowF4DeviceConfig ReadWatlowF4DeviceConfig(const common::ParamReader& config);
 
 /// A complete default section (documented in docs/rig/watlow-f4.md).
 nlohmann::json DefaultWatlowF4Config();

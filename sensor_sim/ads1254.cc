@@ -42,7 +42,7 @@ Ads1254Params Ads1254Params::Typical() {
 }
 
 Ads1254Params Ads1254Params::Draw(uint64_t seed) {
-  Rng rng(Rng::Derive(seed, 0x1254));
+  common::Rng rng(common::Rng::Derive(seed, 0x1254));
   Ads1254Params p = Typical();
   p.reference_error_ppm = rng.Tolerance(0.0, kReferenceTolerance_ppm);
   p.inl_ppm_fsr = rng.Tolerance(0.0, kMaxInl_ppm_fsr);
@@ -62,14 +62,14 @@ nlohmann::json Ads1254Params::ToJson() const {
             {"reference_error", effects.reference_error}}}};
 }
 
-Ads1254Params Ads1254Params::FromJson(const ParamReader& reader) {
+Ads1254Params Ads1254Params::FromJson(const common::ParamReader& reader) {
   Ads1254Params p;
   p.vref_v = reader.Number("vref_v", 0.5, 5.0, "V");
   p.reference_error_ppm = reader.Number("reference_error_ppm", -10000.0, 10000.0, "ppm");
   p.noise_uv_rms = reader.Number("noise_uv_rms", 0.0, 1000.0, "uV rms");
   p.averaging_count = static_cast<int>(reader.Integer("averaging_count", 1, kMaxAveragingCount));
   p.inl_ppm_fsr = reader.Number("inl_ppm_fsr", -kMaxInl_ppm_fsr, kMaxInl_ppm_fsr, "ppm FSR");
-  const ParamReader effects = reader.Child("effects");
+  const common::ParamReader effects = reader.Child("effects");
   p.effects.noise = effects.Flag("noise");
   p.effects.inl = effects.Flag("inl");
   p.effects.reference_error = effects.Flag("reference_error");

@@ -33,8 +33,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sensor_sim/param_reader.h"
-#include "sensor_sim/random.h"
+#include "common/param_reader.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 
@@ -66,7 +66,7 @@ struct Ads1254Params {
   static Ads1254Params Draw(uint64_t seed);
   nlohmann::json ToJson() const;
   /// Reads every key with its allowed range; throws ParamError naming the JSON path.
-  static Ads1254Params FromJson(const ParamReader& reader);
+  static Ads1254Params FromJson(const common::ParamReader& reader);
   bool operator==(const Ads1254Params&) const = default;
 };
 
@@ -89,7 +89,7 @@ class Ads1254 {
 
  private:
   Ads1254Params params_;
-  Rng rng_;
+  common::Rng rng_;
   double true_vref_v_;
   double codes_per_v_;
   double nominal_lsb_v_;

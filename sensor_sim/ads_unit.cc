@@ -1,6 +1,6 @@
 #include "sensor_sim/ads_unit.h"
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -24,15 +24,15 @@ AdsUnitParams AdsUnitParams::Draw(const std::string& serial, uint64_t seed, Mode
   AdsUnitParams p;
   p.serial = serial;
   p.static_bridge = PressureBridgeParams::Draw(PressureBridgeKind::kAbsolute,
-                                               Rng::Derive(seed, kStaticBridge));
+                                               common::Rng::Derive(seed, kStaticBridge));
   p.pitot_bridge = PressureBridgeParams::Draw(PressureBridgeKind::kDifferential,
-                                              Rng::Derive(seed, kPitotBridge));
-  p.adc = Ads1254Params::Draw(Rng::Derive(seed, kAdc));
-  p.oat = OatProbeParams::Draw(RtdElement::kPt1000, Rng::Derive(seed, kOat));
-  p.static_thermal = DieThermalParams::Draw(Rng::Derive(seed, kStaticThermal));
-  p.pitot_thermal = DieThermalParams::Draw(Rng::Derive(seed, kPitotThermal));
+                                              common::Rng::Derive(seed, kPitotBridge));
+  p.adc = Ads1254Params::Draw(common::Rng::Derive(seed, kAdc));
+  p.oat = OatProbeParams::Draw(RtdElement::kPt1000, common::Rng::Derive(seed, kOat));
+  p.static_thermal = DieThermalParams::Draw(common::Rng::Derive(seed, kStaticThermal));
+  p.pitot_thermal = DieThermalParams::Draw(common::Rng::Derive(seed, kPitotThermal));
   // A 0.1 % resistor pair: the ratio is within ±0.2 % (E).
-  Rng divider(Rng::Derive(seed, kDivider));
+  common::Rng divider(common::Rng::Derive(seed, kDivider));
   p.bridge_divider_ratio = divider.Tolerance(0.5, 0.001);
   p.ApplyProfile(profile);
   return p;
@@ -67,7 +67,7 @@ nlohmann::json AdsUnitParams::ToJson() const {
           {"pitot_thermal", pitot_thermal.ToJson()}};
 }
 
-AdsUnitParams AdsUnitParams::FromJson(const ParamReader& reader) {
+AdsUnitParams AdsUnitParams::FromJson(const common::ParamReader& reader) {
   AdsUnitParams p;
   p.serial = reader.String("serial");
   p.frame_period_s = reader.Number("frame_period_s", 0.001, 1.0, "s");
@@ -84,13 +84,13 @@ AdsUnitParams AdsUnitParams::FromJson(const ParamReader& reader) {
 
 AdsUnit::AdsUnit(const AdsUnitParams& params, uint64_t noise_seed, double initial_air_temp_c)
     : params_(params),
-      static_bridge_(params.static_bridge, Rng::Derive(noise_seed, kNoiseStatic)),
-      pitot_bridge_(params.pitot_bridge, Rng::Derive(noise_seed, kNoisePitot)),
-      ps_adc_(params.adc, Rng::Derive(noise_seed, kNoiseAdc + 0)),
-      pt_adc_(params.adc, Rng::Derive(noise_seed, kNoiseAdc + 1)),
-      ps_temp_adc_(params.adc, Rng::Derive(noise_seed, kNoiseAdc + 2)),
-      pt_temp_adc_(params.adc, Rng::Derive(noise_seed, kNoiseAdc + 3)),
-      oat_adc_(params.adc, Rng::Derive(noise_seed, kNoiseAdc + 4)),
+      static_bridge_(params.static_bridge, common::Rng::Derive(noise_seed, kNoiseStatic)),
+      pitot_bridge_(params.pitot_bridge, common::Rng::Derive(noise_seed, kNoisePitot)),
+      ps_adc_(params.adc, common::Rng::Derive(noise_seed, kNoiseAdc + 0)),
+      pt_adc_(params.adc, common::Rng::Derive(noise_seed, kNoiseAdc + 1)),
+      ps_temp_adc_(params.adc, common::Rng::Derive(noise_seed, kNoiseAdc + 2)),
+      pt_temp_adc_(params.adc, common::Rng::Derive(noise_seed, kNoiseAdc + 3)),
+      oat_adc_(params.adc, common::Rng::Derive(noise_seed, kNoiseAdc + 4)),
       oat_(params.oat),
       static_die_(params.static_thermal, params.frame_period_s, initial_air_temp_c),
       pitot_die_(params.pitot_thermal, params.frame_period_s, initial_air_temp_c) {}

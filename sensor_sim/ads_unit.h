@@ -20,7 +20,7 @@
 #include "sensor_sim/die_thermal.h"
 #include "sensor_sim/model_profile.h"
 #include "sensor_sim/oat_probe.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 #include "sensor_sim/pressure_bridge.h"
 
 namespace adahrs::sensor_sim {
@@ -57,7 +57,7 @@ struct AdsUnitParams {
   /// kPlayHysteresis puts both bridges on the play-operator law; the other variants leave the ADS as is.
   void ApplyVariant(TruthVariant variant);
   nlohmann::json ToJson() const;
-  static AdsUnitParams FromJson(const ParamReader& reader);
+  static AdsUnitParams FromJson(const common::ParamReader& reader);
 };
 
 class AdsUnit {

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "sensor_sim/fast_math.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -51,7 +51,7 @@ nlohmann::json AxisToJson(const Adxl210eAxisParams& p) {
 
 // Allowed ranges are physical plausibility limits, several times the datasheet spreads
 // (docs/models/adxl210e.md), not acceptance limits.
-Adxl210eAxisParams AxisFromJson(const ParamReader& r) {
+Adxl210eAxisParams AxisFromJson(const common::ParamReader& r) {
   Adxl210eAxisParams p;
   p.zero_g_duty_ratio = r.Number("zero_g_duty_ratio", 0.2, 0.8, "ratio");
   p.sensitivity_pct_per_g = r.Number("sensitivity_pct_per_g", 2.0, 6.0, "%/g");
@@ -89,7 +89,7 @@ Adxl210eParams Adxl210eParams::Typical() { return Adxl210eParams{}; }
 Adxl210eParams Adxl210eParams::Draw(uint64_t seed) {
   // Convention (docs/models/adxl210e.md): a datasheet min/max or "tolerance" is the 3σ bound of
   // Rng::Tolerance; a datasheet "typ" spread is one σ, so its tolerance argument is 3× the figure.
-  Rng rng(seed);
+  common::Rng rng(seed);
   Adxl210eParams p;
   const double filter_r_lot_ohm = rng.Tolerance(32e3, 4.8e3);  // ±15 %, R
   auto draw_axis = [&](Adxl210eAxisParams& a) {
@@ -141,7 +141,7 @@ nlohmann::json Adxl210eParams::ToJson() const {
             {"filter", effects.filter}}}};
 }
 
-Adxl210eParams Adxl210eParams::FromJson(const ParamReader& reader) {
+Adxl210eParams Adxl210eParams::FromJson(const common::ParamReader& reader) {
   Adxl210eParams p;
   p.x = AxisFromJson(reader.Child("x"));
   p.y = AxisFromJson(reader.Child("y"));
@@ -152,7 +152,7 @@ Adxl210eParams Adxl210eParams::FromJson(const ParamReader& reader) {
   p.t2_tc_ppm_per_c = reader.Number("t2_tc_ppm_per_c", -2000.0, 2000.0, "ppm/degC");
   p.t2_jitter_ppm = reader.Number("t2_jitter_ppm", 0.0, 1000.0, "ppm");
   p.timer_clock_hz = reader.Number("timer_clock_hz", 1e5, 40e6, "Hz");  // dsPIC ≤ 40 MIPS
-  const ParamReader e = reader.Child("effects");
+  const common::ParamReader e = reader.Child("effects");
   p.effects.noise = e.Flag("noise");
   p.effects.zero_g_tempco = e.Flag("zero_g_tempco");
   p.effects.sensitivity_tempco = e.Flag("sensitivity_tempco");
@@ -199,7 +199,7 @@ Adxl210e::Axes Adxl210e::MakeAxes(const Adxl210eParams& params, double frame_per
   const bool cross = params.effects.cross_axis;
   a.cross_other_ratio = cross ? DoublePair{params.x.cross_other_ratio,
                                            params.y.cross_other_ratio +
-                                               std::sin(DegToRad(params.xy_nonorthogonality_deg))}
+                                               std::sin(common::DegToRad(params.xy_nonorthogonality_deg))}
                               : DoublePair{0.0, 0.0};
   a.cross_z_ratio = cross ? DoublePair{params.x.cross_z_ratio, params.y.cross_z_ratio}
                           : DoublePair{0.0, 0.0};
@@ -214,8 +214,8 @@ Adxl210e::Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double fra
       t2_tc_per_c_(params.effects.t2_tempco ? params.t2_tc_ppm_per_c * kRatioPerPpm : 0.0),
       t2_jitter_ratio_(params.effects.t2_jitter ? params.t2_jitter_ppm * kRatioPerPpm : 0.0),
       dcm_(0.0, 0.0, 0.0),
-      noise_rng_(Rng::Derive(noise_seed, 0)),
-      jitter_rng_(Rng::Derive(noise_seed, 1)) {
+      noise_rng_(common::Rng::Derive(noise_seed, 0)),
+      jitter_rng_(common::Rng::Derive(noise_seed, 1)) {
   if (!(frame_period_s > 0.0) || !std::isfinite(frame_period_s)) {
     throw std::invalid_argument("Adxl210e: " + Describe("frame_period_s", frame_period_s) +
                                 " must be positive");
@@ -230,7 +230,7 @@ Adxl210e::Adxl210e(const Adxl210eParams& params, uint64_t noise_seed, double fra
     throw std::invalid_argument("Adxl210e: T2 must fit the 16-bit timer with 25 % margin (" +
                                 Describe("t2_cnt", t2_25_cnt_) + "); use a timer prescaler");
   }
-  Rng phase_rng(Rng::Derive(noise_seed, 2));
+  common::Rng phase_rng(common::Rng::Derive(noise_seed, 2));
   const double initial_end_cnt = -phase_rng.Uniform() * t2_25_cnt_;
   dcm_ = DutyCycleModulator(frame_cnt, initial_end_cnt, phase_rng.Uniform());
 }

@@ -38,8 +38,8 @@
 
 #include "sensor_sim/double_pair.h"
 #include "sensor_sim/duty_cycle_modulator.h"
-#include "sensor_sim/param_reader.h"
-#include "sensor_sim/random.h"
+#include "common/param_reader.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 
@@ -121,7 +121,7 @@ struct Adxl210eParams {
   /// One chip drawn from the datasheet distributions (docs/models/adxl210e.md), fixed per seed.
   static Adxl210eParams Draw(uint64_t seed);
   nlohmann::json ToJson() const;
-  static Adxl210eParams FromJson(const ParamReader& reader);
+  static Adxl210eParams FromJson(const common::ParamReader& reader);
   bool operator==(const Adxl210eParams&) const = default;
 };
 
@@ -183,8 +183,8 @@ class Adxl210e {
   double t2_tc_per_c_;
   double t2_jitter_ratio_;
   DutyCycleModulator dcm_;
-  Rng noise_rng_;
-  Rng jitter_rng_;
+  common::Rng noise_rng_;
+  common::Rng jitter_rng_;
   bool started_ = false;
 };
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -50,10 +50,10 @@ Adxrs150::Adxrs150(const Adxrs150Params& params, uint64_t noise_seed, double fra
             params.rate_random_walk_dph_per_rth * kDpsPerRtsPerDphPerRth,
             params.effects.rate_random_walk,
             frame_period_s,
-            Rng::Derive(noise_seed, kBiasProcessStream),
+            common::Rng::Derive(noise_seed, kBiasProcessStream),
             params.bias_correlation_time_scale),
-      rate_rng_(Rng::Derive(noise_seed, kRateNoiseStream)),
-      temp_rng_(Rng::Derive(noise_seed, kTempNoiseStream)) {
+      rate_rng_(common::Rng::Derive(noise_seed, kRateNoiseStream)),
+      temp_rng_(common::Rng::Derive(noise_seed, kTempNoiseStream)) {
   if (!(frame_period_s > 0.0) || !std::isfinite(frame_period_s)) {
     throw std::invalid_argument("Adxrs150: frame_period_s must be positive and finite, got " +
                                 std::to_string(frame_period_s));
@@ -163,7 +163,7 @@ Adxrs150Output Adxrs150::Step(const Adxrs150Input& in) {
   filter_state_v_ = a16_ * filter_state_v_ + (1.0 - a16_) * u_v + l11_v_ * z1;
 
   const double temp_v = ratio * (params_.temp_out_v_at_298k +
-                                 temp_out_v_per_k_ * (CToK(in.die_temp_c) - kTempOutReference_k)) +
+                                 temp_out_v_per_k_ * (common::CToK(in.die_temp_c) - kTempOutReference_k)) +
                         temp_noise_sigma_v_ * z_temp;
   return Adxrs150Output{static_cast<int32_t>(rate_adc_.SumCounts(mean_v)),
                         static_cast<uint16_t>(temp_adc_.SumCounts(temp_v))};
@@ -174,7 +174,7 @@ double Adxrs150::RateCountsPerDps() const { return s25_v_per_dps_ * rate_adc_.Su
 double Adxrs150::NullCounts() const { return params_.null_v * rate_adc_.SumCountsPerVolt(); }
 
 double Adxrs150::OutputFilterCutoff_hz() const {
-  return 1.0 / (2.0 * kPi * params_.output_filter_r_kohm * kOhmsPerKiloohm *
+  return 1.0 / (2.0 * common::kPi * params_.output_filter_r_kohm * kOhmsPerKiloohm *
                 params_.output_filter_c_nf * kFaradsPerNanofarad);
 }
 

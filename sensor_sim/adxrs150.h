@@ -33,7 +33,7 @@
 
 #include "sensor_sim/adxrs150_params.h"
 #include "sensor_sim/gyro_bias_process.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 #include "sensor_sim/summed_adc.h"
 
 namespace adahrs::sensor_sim {
@@ -103,8 +103,8 @@ class Adxrs150 {
   SummedAdc rate_adc_;
   SummedAdc temp_adc_;
   GyroBiasProcess bias_;
-  Rng rate_rng_;
-  Rng temp_rng_;
+  common::Rng rate_rng_;
+  common::Rng temp_rng_;
 };
 
 }  // namespace adahrs::sensor_sim

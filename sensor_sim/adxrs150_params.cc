@@ -1,6 +1,6 @@
 #include "sensor_sim/adxrs150_params.h"
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -40,7 +40,7 @@ constexpr double kTempSlopeTypical_mv_per_k = 8.4;         // R
 constexpr double kTempSlopeTolerance_mv_per_k = 0.4;       // E
 constexpr double kTempAdcNoise_lsb = 0.5;                  // E, dsPIC 12-bit ADC
 
-double RandomSign(Rng& rng) { return rng.Uniform() < 0.5 ? -1.0 : 1.0; }
+double RandomSign(common::Rng& rng) { return rng.Uniform() < 0.5 ? -1.0 : 1.0; }
 
 }  // namespace
 
@@ -81,7 +81,7 @@ Adxrs150Params Adxrs150Params::Typical() {
 }
 
 Adxrs150Params Adxrs150Params::Draw(uint64_t seed) {
-  Rng rng(seed);
+  common::Rng rng(seed);
   Adxrs150Params p = Typical();
   p.sensitivity_mv_per_dps =
       rng.Tolerance(kSensitivityTypical_mv_per_dps, kSensitivityTolerance_mv_per_dps);
@@ -152,9 +152,9 @@ nlohmann::json Adxrs150Params::ToJson() const {
   };
 }
 
-Adxrs150Params Adxrs150Params::FromJson(const ParamReader& reader) {
+Adxrs150Params Adxrs150Params::FromJson(const common::ParamReader& reader) {
   Adxrs150Params p;
-  const ParamReader er = reader.Child("effects");
+  const common::ParamReader er = reader.Child("effects");
   Adxrs150Effects& e = p.effects;
   e.noise = er.Flag("noise");
   e.bias_instability = er.Flag("bias_instability");

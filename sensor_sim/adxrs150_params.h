@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::sensor_sim {
 
@@ -74,7 +74,7 @@ struct Adxrs150Params {
 
   nlohmann::json ToJson() const;
   /// Reads every key with its allowed range and unit; refuses unknown keys.
-  static Adxrs150Params FromJson(const ParamReader& reader);
+  static Adxrs150Params FromJson(const common::ParamReader& reader);
 
   bool operator==(const Adxrs150Params&) const = default;
 };

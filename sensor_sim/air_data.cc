@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -59,9 +59,9 @@ double CalibratedAirspeedMps(double qc_pa) {
   return SeaLevelSpeedOfSoundMps() * SpeedRatioOfPressureRatio(qc_pa / kIsaSeaLevelPressure_pa);
 }
 
-double ImpactPressurePaFromKt(double cas_kt) { return ImpactPressurePa(KtToMps(cas_kt)); }
+double ImpactPressurePaFromKt(double cas_kt) { return ImpactPressurePa(common::KtToMps(cas_kt)); }
 
-double CalibratedAirspeedKt(double qc_pa) { return MpsToKt(CalibratedAirspeedMps(qc_pa)); }
+double CalibratedAirspeedKt(double qc_pa) { return common::MpsToKt(CalibratedAirspeedMps(qc_pa)); }
 
 double MachNumber(double qc_pa, double ps_pa) {
   if (!(ps_pa > 0.0 && std::isfinite(ps_pa))) {

@@ -5,14 +5,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
 
 // g0/(R·L) = 5.255880 (physics.md §4.1).
 const double kTroposphereExponent =
-    kStandardGravity_mps2 / (kIsaGasConstant_j_per_kg_k * kIsaLapseRate_k_per_m);
+    common::kStandardGravity_mps2 / (kIsaGasConstant_j_per_kg_k * kIsaLapseRate_k_per_m);
 const double kTropopauseTemperature_k =
     kIsaSeaLevelTemperature_k - kIsaLapseRate_k_per_m * kIsaTropopauseAltitude_m;
 const double kTropopausePressure_pa =
@@ -20,7 +20,7 @@ const double kTropopausePressure_pa =
     std::pow(kTropopauseTemperature_k / kIsaSeaLevelTemperature_k, kTroposphereExponent);
 // R·T11/g0 = 6341.62 m (physics.md §4.1).
 const double kStratosphereScaleHeight_m =
-    kIsaGasConstant_j_per_kg_k * kTropopauseTemperature_k / kStandardGravity_mps2;
+    kIsaGasConstant_j_per_kg_k * kTropopauseTemperature_k / common::kStandardGravity_mps2;
 
 [[noreturn]] void ThrowOutOfRange(const char* function, const char* name, double value,
                                   double min, double max, const char* unit) {
@@ -78,14 +78,14 @@ double IsaPressureAltitudeM(double ps_pa) {
 }
 
 double IsaStaticPressurePaFromFt(double alt_ft) {
-  if (!(FtToM(alt_ft) >= kIsaMinAltitude_m && FtToM(alt_ft) <= kIsaMaxAltitude_m)) {
-    ThrowOutOfRange("IsaStaticPressurePaFromFt", "alt_ft", alt_ft, MToFt(kIsaMinAltitude_m),
-                    MToFt(kIsaMaxAltitude_m), "ft");
+  if (!(common::FtToM(alt_ft) >= kIsaMinAltitude_m && common::FtToM(alt_ft) <= kIsaMaxAltitude_m)) {
+    ThrowOutOfRange("IsaStaticPressurePaFromFt", "alt_ft", alt_ft, common::MToFt(kIsaMinAltitude_m),
+                    common::MToFt(kIsaMaxAltitude_m), "ft");
   }
-  return PressureAt(FtToM(alt_ft));
+  return PressureAt(common::FtToM(alt_ft));
 }
 
-double IsaPressureAltitudeFt(double ps_pa) { return MToFt(IsaPressureAltitudeM(ps_pa)); }
+double IsaPressureAltitudeFt(double ps_pa) { return common::MToFt(IsaPressureAltitudeM(ps_pa)); }
 
 double SpeedOfSoundMps(double static_temp_k) {
   if (!(static_temp_k > 0.0 && std::isfinite(static_temp_k))) {

@@ -3,14 +3,14 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 
 DieThermalParams DieThermalParams::Typical() { return DieThermalParams{}; }
 
 DieThermalParams DieThermalParams::Draw(uint64_t seed) {
-  Rng rng(seed);
+  common::Rng rng(seed);
   DieThermalParams p;
   p.tau_s = rng.Tolerance(300.0, 150.0);
   p.self_heating_c = rng.Tolerance(3.0, 2.0);
@@ -23,11 +23,11 @@ nlohmann::json DieThermalParams::ToJson() const {
           {"effects", {{"lag", effects.lag}, {"self_heating", effects.self_heating}}}};
 }
 
-DieThermalParams DieThermalParams::FromJson(const ParamReader& reader) {
+DieThermalParams DieThermalParams::FromJson(const common::ParamReader& reader) {
   DieThermalParams p;
   p.tau_s = reader.Number("tau_s", 1.0, 7200.0, "s");
   p.self_heating_c = reader.Number("self_heating_c", 0.0, 30.0, "degC");
-  const ParamReader effects = reader.Child("effects");
+  const common::ParamReader effects = reader.Child("effects");
   p.effects.lag = effects.Flag("lag");
   p.effects.self_heating = effects.Flag("self_heating");
   effects.ExpectAllKeysUsed();

@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::sensor_sim {
 
@@ -38,7 +38,7 @@ struct DieThermalParams {
   /// One sensor's values: tau 300 s ± 50 %, self-heating 3 °C ± 2 °C (E), deterministic per seed.
   static DieThermalParams Draw(uint64_t seed);
   nlohmann::json ToJson() const;
-  static DieThermalParams FromJson(const ParamReader& reader);
+  static DieThermalParams FromJson(const common::ParamReader& reader);
   bool operator==(const DieThermalParams&) const = default;
 };
 

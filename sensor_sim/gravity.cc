@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -36,7 +36,7 @@ double NormalGravityMps2(double geodetic_latitude_deg, double height_m) {
             << kMinHeight_m << ", " << kMaxHeight_m << "] m";
     throw std::domain_error(message.str());
   }
-  const double sin_lat = std::sin(DegToRad(geodetic_latitude_deg));
+  const double sin_lat = std::sin(common::DegToRad(geodetic_latitude_deg));
   const double sin2_lat = sin_lat * sin_lat;
   const double surface_mps2 = kEquatorGravity_mps2 * (1.0 + kSomiglianaK * sin2_lat) /
                               std::sqrt(1.0 - kFirstEccentricitySquared * sin2_lat);

@@ -63,8 +63,8 @@ GyroBiasProcess::GyroBiasProcess(double bias_instability_dps,
     : time_scale_(correlation_time_scale),
       bias_instability_on_(bias_instability_on && bias_instability_dps > 0.0),
       rate_random_walk_on_(rate_random_walk_on && rate_random_walk_dps_per_rts > 0.0),
-      bi_rng_(Rng::Derive(seed, kBiasInstabilityStream)),
-      rrw_rng_(Rng::Derive(seed, kRateRandomWalkStream)) {
+      bi_rng_(common::Rng::Derive(seed, kBiasInstabilityStream)),
+      rrw_rng_(common::Rng::Derive(seed, kRateRandomWalkStream)) {
   if (bias_instability_on_) {
     pole_sigma_dps_ = PoleSigmaForFloor(bias_instability_dps, time_scale_);
     for (size_t k = 0; k < poles_.size(); ++k) {

@@ -24,7 +24,7 @@
 #include <array>
 #include <cstdint>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 
@@ -97,8 +97,8 @@ class GyroBiasProcess {
   int64_t frames_between_updates_ = 1;  // from the last update to the next one
   int64_t frames_to_next_update_ = 1;
   double bias_dps_ = 0.0;               // sum of the poles and the walk since the last update
-  Rng bi_rng_;
-  Rng rrw_rng_;
+  common::Rng bi_rng_;
+  common::Rng rrw_rng_;
 };
 
 }  // namespace adahrs::sensor_sim

@@ -3,8 +3,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "sensor_sim/random.h"
-#include "sensor_sim/units.h"
+#include "common/random.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -19,7 +19,7 @@ Eigen::Matrix3d Rows(const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
 }
 
 Eigen::Matrix3d SmallRotation(const Eigen::Vector3d& theta_deg) {
-  const double angle_rad = DegToRad(theta_deg.norm());
+  const double angle_rad = common::DegToRad(theta_deg.norm());
   if (angle_rad == 0.0) return Eigen::Matrix3d::Identity();
   return Eigen::AngleAxisd(angle_rad, theta_deg.normalized()).toRotationMatrix();
 }
@@ -77,7 +77,7 @@ Eigen::Matrix3d Im3Geometry::R_GB(int gyro) const {
 }
 
 Im3Geometry Im3Geometry::Draw(uint64_t seed) {
-  Rng rng(seed);
+  common::Rng rng(seed);
   Im3Geometry g;
   for (auto* set : {&g.accel_misalignment_deg, &g.gyro_misalignment_deg}) {
     for (Eigen::Vector3d& theta : *set) {
@@ -96,7 +96,7 @@ nlohmann::json Im3Geometry::ToJson() const {
           {"effects", {{"misalignment", misalignment}}}};
 }
 
-Im3Geometry Im3Geometry::FromJson(const ParamReader& reader) {
+Im3Geometry Im3Geometry::FromJson(const common::ParamReader& reader) {
   Im3Geometry g;
   std::array<std::array<double, 3>, 3> accel{}, gyro{};
   reader.NumberMatrix("accel_misalignment_deg", -5.0, 5.0, "deg", accel);
@@ -105,7 +105,7 @@ Im3Geometry Im3Geometry::FromJson(const ParamReader& reader) {
     g.accel_misalignment_deg[i] = Eigen::Vector3d(accel[i][0], accel[i][1], accel[i][2]);
     g.gyro_misalignment_deg[i] = Eigen::Vector3d(gyro[i][0], gyro[i][1], gyro[i][2]);
   }
-  const ParamReader effects = reader.Child("effects");
+  const common::ParamReader effects = reader.Child("effects");
   g.misalignment = effects.Flag("misalignment");
   effects.ExpectAllKeysUsed();
   reader.ExpectAllKeysUsed();

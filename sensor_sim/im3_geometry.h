@@ -23,7 +23,7 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::sensor_sim {
 
@@ -55,7 +55,7 @@ struct Im3Geometry {
   /// Misalignments drawn within ±1° per component, deterministic per seed.
   static Im3Geometry Draw(uint64_t seed);
   nlohmann::json ToJson() const;
-  static Im3Geometry FromJson(const ParamReader& reader);
+  static Im3Geometry FromJson(const common::ParamReader& reader);
   bool operator==(const Im3Geometry&) const = default;
 
   /// R_CB of accelerometer chip `chip` (0..2), misalignment included when switched on.

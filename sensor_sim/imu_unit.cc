@@ -3,7 +3,7 @@
 #include <string>
 
 #include "sensor_sim/make_array.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -28,7 +28,7 @@ nlohmann::json ArrayJson(const std::array<Params, N>& items) {
 
 // Reads a JSON array of exactly N objects, each through Params::FromJson with its own path.
 template <typename Params, size_t N>
-std::array<Params, N> ArrayFromJson(const ParamReader& reader, const char* key) {
+std::array<Params, N> ArrayFromJson(const common::ParamReader& reader, const char* key) {
   std::array<Params, N> out;
   for (size_t i = 0; i < N; ++i) {
     out[i] = Params::FromJson(reader.Element(key, i, N));
@@ -42,12 +42,12 @@ ImuUnitParams ImuUnitParams::Draw(const std::string& serial, uint64_t seed, Mode
   ImuUnitParams p;
   p.serial = serial;
   for (int k = 0; k < 3; ++k) {
-    p.accel_chips[k] = Adxl210eParams::Draw(Rng::Derive(seed, kAccelChip + k));
-    p.gyros[k] = Adxrs150Params::Draw(Rng::Derive(seed, kGyro + k));
-    p.accel_thermal[k] = DieThermalParams::Draw(Rng::Derive(seed, kAccelThermal + k));
-    p.gyro_thermal[k] = DieThermalParams::Draw(Rng::Derive(seed, kGyroThermal + k));
+    p.accel_chips[k] = Adxl210eParams::Draw(common::Rng::Derive(seed, kAccelChip + k));
+    p.gyros[k] = Adxrs150Params::Draw(common::Rng::Derive(seed, kGyro + k));
+    p.accel_thermal[k] = DieThermalParams::Draw(common::Rng::Derive(seed, kAccelThermal + k));
+    p.gyro_thermal[k] = DieThermalParams::Draw(common::Rng::Derive(seed, kGyroThermal + k));
   }
-  p.geometry = Im3Geometry::Draw(Rng::Derive(seed, kGeometry));
+  p.geometry = Im3Geometry::Draw(common::Rng::Derive(seed, kGeometry));
   p.ApplyProfile(profile);
   return p;
 }
@@ -82,7 +82,7 @@ nlohmann::json ImuUnitParams::ToJson() const {
           {"gyro_thermal", ArrayJson(gyro_thermal)}};
 }
 
-ImuUnitParams ImuUnitParams::FromJson(const ParamReader& reader) {
+ImuUnitParams ImuUnitParams::FromJson(const common::ParamReader& reader) {
   ImuUnitParams p;
   p.serial = reader.String("serial");
   p.frame_period_s = reader.Number("frame_period_s", 0.001, 1.0, "s");
@@ -100,11 +100,11 @@ ImuUnit::ImuUnit(const ImuUnitParams& params, uint64_t noise_seed, double initia
       R_CB_(MakeArray<3>([&](int k) { return params.geometry.R_CB(k); })),
       R_GB_(MakeArray<3>([&](int k) { return params.geometry.R_GB(k); })),
       chips_(MakeArray<3>([&](int k) {
-        return Adxl210e(params.accel_chips[k], Rng::Derive(noise_seed, kNoiseAccel + k),
+        return Adxl210e(params.accel_chips[k], common::Rng::Derive(noise_seed, kNoiseAccel + k),
                         params.frame_period_s);
       })),
       gyros_(MakeArray<3>([&](int k) {
-        return Adxrs150(params.gyros[k], Rng::Derive(noise_seed, kNoiseGyro + k),
+        return Adxrs150(params.gyros[k], common::Rng::Derive(noise_seed, kNoiseGyro + k),
                         params.frame_period_s);
       })),
       accel_die_(MakeArray<3>([&](int k) {

@@ -25,7 +25,7 @@
 #include "sensor_sim/die_thermal.h"
 #include "sensor_sim/im3_geometry.h"
 #include "sensor_sim/model_profile.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::sensor_sim {
 
@@ -67,7 +67,7 @@ struct ImuUnitParams {
   /// Draw (and after ApplyProfile).
   void ApplyVariant(TruthVariant variant);
   nlohmann::json ToJson() const;
-  static ImuUnitParams FromJson(const ParamReader& reader);
+  static ImuUnitParams FromJson(const common::ParamReader& reader);
 };
 
 class ImuUnit {

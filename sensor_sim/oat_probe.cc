@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -61,7 +61,7 @@ OatProbeParams OatProbeParams::Typical(RtdElement element) {
 }
 
 OatProbeParams OatProbeParams::Draw(RtdElement element, uint64_t seed) {
-  Rng rng(Rng::Derive(seed, element == RtdElement::kPt500 ? 0x0A7500 : 0x0A71000));
+  common::Rng rng(common::Rng::Derive(seed, element == RtdElement::kPt500 ? 0x0A7500 : 0x0A71000));
   OatProbeParams p = Typical(element);
   p.r0_error_pct = rng.Tolerance(0.0, kClassBR0Tolerance_pct);
   p.series_resistance_ohm =
@@ -88,7 +88,7 @@ nlohmann::json OatProbeParams::ToJson() const {
             {"self_heating", effects.self_heating}}}};
 }
 
-OatProbeParams OatProbeParams::FromJson(const ParamReader& r) {
+OatProbeParams OatProbeParams::FromJson(const common::ParamReader& r) {
   OatProbeParams p;
   const std::string element = r.String("element");
   if (element == "PT500") {
@@ -108,7 +108,7 @@ OatProbeParams OatProbeParams::FromJson(const ParamReader& r) {
   p.excitation_v = r.Number("excitation_v", 0.1, 5.0, "V");
   p.lead_resistance_ohm = r.Number("lead_resistance_ohm", 0.0, 100.0, "ohm");
   p.dissipation_mw_per_c = r.Number("dissipation_mw_per_c", 0.1, 1000.0, "mW/degC");
-  const ParamReader e = r.Child("effects");
+  const common::ParamReader e = r.Child("effects");
   p.effects.rtd_tolerance = e.Flag("rtd_tolerance");
   p.effects.lead_resistance = e.Flag("lead_resistance");
   p.effects.self_heating = e.Flag("self_heating");

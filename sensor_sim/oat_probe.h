@@ -25,7 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::sensor_sim {
 
@@ -63,7 +63,7 @@ struct OatProbeParams {
   static OatProbeParams Draw(RtdElement element, uint64_t seed);
   nlohmann::json ToJson() const;
   /// Reads every key with its allowed range; throws ParamError naming the JSON path.
-  static OatProbeParams FromJson(const ParamReader& reader);
+  static OatProbeParams FromJson(const common::ParamReader& reader);
   bool operator==(const OatProbeParams&) const = default;
 };
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -68,7 +68,7 @@ PressureBridgeEffects PressureBridgeEffects::All() {
 PressureBridgeParams PressureBridgeParams::Typical(PressureBridgeKind kind) {
   PressureBridgeParams p;
   p.kind = kind;
-  p.full_scale_pa = PsiToPa(kFullScale_psi);
+  p.full_scale_pa = common::PsiToPa(kFullScale_psi);
   p.reference_temp_c = kReferenceTemp_c;
   p.excitation_current_ma = kExcitation_ma;
   p.excitation_tempco_ppm_per_c = 0.0;
@@ -96,7 +96,7 @@ PressureBridgeParams PressureBridgeParams::Typical(PressureBridgeKind kind) {
 PressureBridgeParams PressureBridgeParams::Draw(PressureBridgeKind kind, uint64_t seed) {
   // Each ± below is a 3-sigma screening limit (Rng::Tolerance); the spreads are E unless the
   // doc says otherwise.
-  Rng rng(Rng::Derive(seed, kind == PressureBridgeKind::kAbsolute ? 0x1230A : 0x1230D));
+  common::Rng rng(common::Rng::Derive(seed, kind == PressureBridgeKind::kAbsolute ? 0x1230A : 0x1230D));
   PressureBridgeParams p = Typical(kind);
   p.excitation_current_ma = rng.Tolerance(kExcitation_ma, 0.005 * kExcitation_ma);
   p.excitation_tempco_ppm_per_c = rng.Tolerance(0.0, 25.0);
@@ -158,7 +158,7 @@ nlohmann::json PressureBridgeParams::ToJson() const {
             {"self_heating", e.self_heating}}}};
 }
 
-PressureBridgeParams PressureBridgeParams::FromJson(const ParamReader& r) {
+PressureBridgeParams PressureBridgeParams::FromJson(const common::ParamReader& r) {
   PressureBridgeParams p;
   const std::string kind = r.String("kind");
   if (kind == "absolute") {
@@ -203,7 +203,7 @@ PressureBridgeParams PressureBridgeParams::FromJson(const ParamReader& r) {
              "\"" + law + "\" is not one of \"travel_preisach\", \"play_operators\"");
     }
   }
-  const ParamReader e = r.Child("effects");
+  const common::ParamReader e = r.Child("effects");
   p.effects.noise = e.Flag("noise");
   p.effects.bridge_tcr = e.Flag("bridge_tcr");
   p.effects.excitation_tempco = e.Flag("excitation_tempco");

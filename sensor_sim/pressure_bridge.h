@@ -53,9 +53,9 @@
 
 #include <optional>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 #include "sensor_sim/preisach_hysteresis.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 #include "sensor_sim/play_hysteresis.h"
 
 namespace adahrs::sensor_sim {
@@ -136,7 +136,7 @@ struct PressureBridgeParams {
   nlohmann::json ToJson() const;
   /// Reads every key with its allowed range; throws ParamError naming the JSON path. A file
   /// without "hysteresis_law" (written before the key existed) reads as the travel law.
-  static PressureBridgeParams FromJson(const ParamReader& reader);
+  static PressureBridgeParams FromJson(const common::ParamReader& reader);
   bool operator==(const PressureBridgeParams&) const = default;
 };
 
@@ -158,7 +158,7 @@ class PressureBridge {
 
  private:
   PressureBridgeParams params_;
-  Rng rng_;
+  common::Rng rng_;
   PreisachHysteresis pressure_hysteresis_;
   PreisachHysteresis thermal_hysteresis_;
   std::optional<PlayHysteresis> pressure_play_;  // set under the play-operator law

@@ -12,7 +12,7 @@
 #include "hil/recording/recording_reader.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -336,7 +336,7 @@ void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_loc
       if (std::holds_alternative<ThermalProfileStep>(body) && group.rows.size() < kMinThermalBinPackets) {
         continue;
       }
-      JudgeImuGroup(where, group, spec, sensor_sim::Mps2ToG(g_local_mps2), ctx, unit);
+      JudgeImuGroup(where, group, spec, common::Mps2ToG(g_local_mps2), ctx, unit);
     }
   }
 }

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "hil/recording/frame_count.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -46,7 +46,7 @@ ImuBodyOutput BodyOutput(const hil::ImuRecordRow& row) {
   ImuBodyOutput p;
   if (row.mode == 3) {
     for (size_t i = 0; i < 3; ++i) {
-      p.f_B_g[i] = sensor_sim::Mps2ToG(c[i]);
+      p.f_B_g[i] = common::Mps2ToG(c[i]);
       p.w_B_dps[i] = c[3 + i];
     }
   } else {

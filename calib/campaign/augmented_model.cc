@@ -7,13 +7,13 @@
 
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
 
-using sensor_sim::ParamError;
-using sensor_sim::ParamReader;
+using common::ParamError;
+using common::ParamReader;
 
 int ImuChannel(const std::string& name) {
   for (int ch = 0; ch < kImuChannels; ++ch) {

@@ -33,12 +33,12 @@ struct AugmentedModel {
 };
 
 /// `base_file` is a unit file of the truth schema whose serial is `diagnosis.serial`. Throws
-/// sensor_sim::ParamError naming the file and JSON path when it is not one, or when the result
+/// common::ParamError naming the file and JSON path when it is not one, or when the result
 /// would be out of the schema's ranges.
 AugmentedModel AugmentUnitModel(const UnitDiagnosis& diagnosis, const std::filesystem::path& base_file);
 
 /// The unit of `run` whose serial is the base file's, augmented and written as `out_dir`/model.json
-/// (atomically). Throws sensor_sim::ParamError when no diagnosed unit is the base file's.
+/// (atomically). Throws common::ParamError when no diagnosed unit is the base file's.
 AugmentedModel WriteAugmentedModel(const DiagnosisRun& run, const std::filesystem::path& base_file,
                                    const std::filesystem::path& out_dir);
 

@@ -32,7 +32,7 @@ struct DiagnosisTruthLine {
 };
 
 /// One line per (unit, channel, effect) the truth has and the nominal model lacks, or that the
-/// diagnosis reported. Throws sensor_sim::ParamError naming a missing or malformed truth file.
+/// diagnosis reported. Throws common::ParamError naming a missing or malformed truth file.
 std::vector<DiagnosisTruthLine> CompareDiagnosisWithTruth(const std::vector<UnitDiagnosis>& units,
                                                           const std::filesystem::path& truth_dir);
 
@@ -40,7 +40,7 @@ std::vector<DiagnosisTruthLine> CompareDiagnosisWithTruth(const std::vector<Unit
 /// switched off (IMU: gyro g-sensitivity, scale factor vs temperature, each accelerometer die's own
 /// lag, which takes its thermometer die's time constant; ADS: pressure and thermal hysteresis): a
 /// unit model that lacks exactly what the diagnosis can add, from which the campaign's
-/// re-simulation check starts. Throws sensor_sim::ParamError naming a missing or malformed file.
+/// re-simulation check starts. Throws common::ParamError naming a missing or malformed file.
 nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir, const std::string& serial);
 
 /// The campaign's held-out check of its diagnosis: per diagnosed unit, the base model

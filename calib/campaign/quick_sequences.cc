@@ -5,13 +5,13 @@
 #include <stdexcept>
 
 #include "calib/sequence/sequence_json.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
 
 std::string WriteQuick(const std::string& file, const std::filesystem::path& dir) {
-  nlohmann::json document = sensor_sim::ParamReader::LoadFile(file);
+  nlohmann::json document = common::ParamReader::LoadFile(file);
   for (nlohmann::json& step : document.at("steps")) {
     if (step.contains("soak_s")) {
       step["soak_s"] = std::min(step["soak_s"].get<double>(), kQuickSoakS);

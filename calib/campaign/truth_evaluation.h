@@ -5,7 +5,7 @@
 // caller that made the rig knows where its truth is; no pipeline stage reads it.
 // Writes `<fit_dir>/evaluation.json` ({"units": [one row per unit and quantity]}, the table the
 // report shows) and each unit's full evaluation to `<fit_dir>/evaluation/<serial>.json`.
-// Errors: a missing or malformed truth file throws sensor_sim::ParamError naming it and the JSON
+// Errors: a missing or malformed truth file throws common::ParamError naming it and the JSON
 // path; constants the exporter refuses throw std::invalid_argument with its reason.
 // Left out: units without a constants file in `constants` (not evaluated).
 #pragma once

@@ -5,14 +5,14 @@
 #include <fstream>
 #include <limits>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
 
 using nlohmann::json;
-using sensor_sim::ParamError;
-using sensor_sim::ParamReader;
+using common::ParamError;
+using common::ParamReader;
 
 // NaN numbers become null, recursively.
 json NullForNaN(json j) {

@@ -12,7 +12,7 @@
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/reference_compensator.h"
 #include "firmware_model/target/imu_compensator.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -155,7 +155,7 @@ std::vector<std::array<double, 6>> FloorErrors(const fm::ImuCalibrationConstants
 }
 
 // mg per m/s^2 (acceleration errors at rest).
-constexpr double kMgPerMps2 = 1e3 / sensor_sim::kStandardGravity_mps2;
+constexpr double kMgPerMps2 = 1e3 / common::kStandardGravity_mps2;
 
 struct QuantitySummary {
   double worst = 0.0;
@@ -307,7 +307,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   const fm::ImuCalibrationConstants& c = *file.imu;
   const bool have_crb = file.diagnostics.contains("crb_covariance");
   const Eigen::MatrixXd crb = CrbCovariance(file);
-  const double g_l = sensor_sim::Mps2ToG(options.g_local_mps2);
+  const double g_l = common::Mps2ToG(options.g_local_mps2);
   const std::vector<GridPoint> grid = SimulateGrid(NoiseOff(truth), g_l, options);
   // Format-3 constants are judged against the best format-3 constants.
   const fm::ImuCalibrationConstants projection =
@@ -347,7 +347,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
 
 ImuFirmwareFloor EvaluateImuFirmwareFloor(const sensor_sim::ImuUnitParams& truth, bool format3,
                                           const ImuEvaluationOptions& options) {
-  const double g_l = sensor_sim::Mps2ToG(options.g_local_mps2);
+  const double g_l = common::Mps2ToG(options.g_local_mps2);
   const std::vector<GridPoint> grid = SimulateGrid(NoiseOff(truth), g_l, options);
   const std::vector<std::array<double, 6>> floor =
       FloorErrors(TruthProjection(truth.serial, grid, g_l, format3), grid, options.g_local_mps2);

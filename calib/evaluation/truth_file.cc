@@ -2,13 +2,13 @@
 
 #include <fmt/format.h>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
 
-using sensor_sim::ParamError;
-using sensor_sim::ParamReader;
+using common::ParamError;
+using common::ParamReader;
 
 void RequireKind(const TruthFile& t, const char* kind) {
   if (t.kind != kind) {

@@ -21,7 +21,7 @@ struct TruthFile {
   nlohmann::json file;  ///< the whole file
 };
 
-/// Reads `path`. Throws sensor_sim::ParamError naming the file and the JSON path.
+/// Reads `path`. Throws common::ParamError naming the file and the JSON path.
 TruthFile ReadTruthFile(const std::filesystem::path& path);
 
 /// The IMU's parameters; `serial` non-empty: refused unless the file is that unit's.

@@ -225,7 +225,7 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progres
   const std::filesystem::path meta_path = run_dir / hil::kMetaJsonName;
   if (!std::filesystem::exists(meta_path)) throw RunError(meta_path.string() + ": no run to resume here");
   const RunDirectoryLock lock(run_dir);  // before anything of the run is read or moved
-  const nlohmann::json meta = sensor_sim::ParamReader::LoadFile(meta_path.string());
+  const nlohmann::json meta = common::ParamReader::LoadFile(meta_path.string());
   if (!meta.contains("format_version") || meta["format_version"] != hil::kRecordingFormatVersion ||
       !meta.contains("station") || !meta.contains("sequence")) {
     throw RunError(meta_path.string() + ": not an executor run of recording format version " +
@@ -234,7 +234,7 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progres
   const SequenceLimits limits;
   Session s;
   s.station = hil::Station::FromJson(
-      sensor_sim::ParamReader(meta["station"], meta_path.string(), "$.station"));
+      common::ParamReader(meta["station"], meta_path.string(), "$.station"));
   s.sequence = SequenceFromJson(meta["sequence"], meta_path.string() + " $.sequence");
   s.plan = ExpandSequence(s.sequence, limits, TimingFor(s.station));
   s.run_dir = run_dir;

@@ -10,7 +10,7 @@
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/solvers/linear_least_squares.h"
 #include "firmware_model/target/imu_constants.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -391,7 +391,7 @@ void MapScaleTemperature(const std::array<ChannelModel, 9>& models,
     if (!m.g_sensitivity) continue;
     for (int a = 0; a < 3; ++a) gsens_dps_per_g(g, a) = theta[6 + g][m.extra_index() + a] / own[6 + g];
   }
-  const Eigen::Matrix3d gs = -cg * gsens_dps_per_g / sensor_sim::kStandardGravity_mps2;
+  const Eigen::Matrix3d gs = -cg * gsens_dps_per_g / common::kStandardGravity_mps2;
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) st.gs_dps_per_mps2[r][k] = gs(r, k);
   }
@@ -435,7 +435,7 @@ fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
   for (int axis = 0; axis < 3; ++axis) {
     pair.row(axis) = 0.5 * (m_over_s[kPairOfAxis[axis][0]] + m_over_s[kPairOfAxis[axis][1]]).transpose();
   }
-  const Eigen::Matrix3d ca = sensor_sim::kStandardGravity_mps2 * pair.inverse();
+  const Eigen::Matrix3d ca = common::kStandardGravity_mps2 * pair.inverse();
   Eigen::Matrix3d n_rows;
   for (int g = 0; g < 3; ++g) {
     const int ch = 6 + g;

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 
@@ -75,7 +75,7 @@ ImuObservation ObservationBuilder::Finish(std::string source, bool thermal, int 
 
 std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit, double g_local_mps2,
                                             double band_width_cnt) {
-  const double g_l = sensor_sim::Mps2ToG(g_local_mps2);
+  const double g_l = common::Mps2ToG(g_local_mps2);
   std::vector<ImuObservation> out;
   auto up_of = [](int orientation) {
     const auto up = UpAxisOf(orientation);

@@ -4,7 +4,7 @@
 #include "calib/imu_calibration/imu_observations.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/imu_calibration/imu_run_data.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 
@@ -17,8 +17,8 @@ ImuStrategy ImuStrategy::Reference() {
 ImuStrategy ImuStrategy::Improved() { return ImuStrategy{}; }
 
 ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
-  const nlohmann::json j = sensor_sim::ParamReader::LoadFile(path.string());
-  const sensor_sim::ParamReader r(j, path.string());
+  const nlohmann::json j = common::ParamReader::LoadFile(path.string());
+  const common::ParamReader r(j, path.string());
   if (r.String("format") != "adahrs-imu-strategy") r.Fail("$.format", "expected \"adahrs-imu-strategy\"");
   if (r.Integer("format_version", 1, 1) != 1) r.Fail("$.format_version", "expected 1");
   ImuStrategy s;

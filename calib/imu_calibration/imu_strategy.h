@@ -28,7 +28,7 @@ struct ImuStrategy {
 
   static ImuStrategy Reference();
   static ImuStrategy Improved();
-  /// Reads a strategy file; throws sensor_sim::ParamError naming the file and JSON path.
+  /// Reads a strategy file; throws common::ParamError naming the file and JSON path.
   static ImuStrategy Load(const std::filesystem::path& path);
 };
 

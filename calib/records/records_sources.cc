@@ -16,7 +16,7 @@
 #include "calib/sequence/sequence_json.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_reader.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -64,8 +64,8 @@ std::string FileSha256(const std::filesystem::path& file) {
 
 RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
   const std::filesystem::path meta_path = run_dir / hil::kMetaJsonName;
-  const nlohmann::json meta_json = sensor_sim::ParamReader::LoadFile(meta_path.string());
-  const sensor_sim::ParamReader meta(meta_json, meta_path.string());
+  const nlohmann::json meta_json = common::ParamReader::LoadFile(meta_path.string());
+  const common::ParamReader meta(meta_json, meta_path.string());
   const int64_t version = meta.Integer("format_version", 1, 1000);
   if (version != kMetaFormatVersion) {
     meta.Fail("$.format_version", fmt::format("recording format {} cannot be recorded; the "
@@ -91,7 +91,7 @@ RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
   }
   const size_t rejected = meta.ArrayLength("rejected_intervals", 0, 1000000);
   for (size_t i = 0; i < rejected; ++i) {
-    const sensor_sim::ParamReader interval = meta.Element("rejected_intervals", i, rejected);
+    const common::ParamReader interval = meta.Element("rejected_intervals", i, rejected);
     const int64_t step = interval.Integer("step", 0, static_cast<int64_t>(run.steps.size()) - 1);
     const double t_start_s = interval.Number("t_start_s", 0.0, 1e9, "s");
     const double t_end_s = interval.Number("t_end_s", t_start_s, 1e9, "s");
@@ -99,7 +99,7 @@ RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
   }
   const size_t units = meta.ArrayLength("units", 0, 64);
   for (size_t i = 0; i < units; ++i) {
-    const sensor_sim::ParamReader unit = meta.Element("units", i, units);
+    const common::ParamReader unit = meta.Element("units", i, units);
     RunUnitRecord record;
     record.role = unit.String("role");
     record.kind = unit.String("kind");

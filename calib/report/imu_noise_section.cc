@@ -10,15 +10,15 @@
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
 #include "firmware_model/reference_compensator.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
 
 namespace fm = firmware_model;
 
-constexpr double kMpsPerMg = sensor_sim::kMpsPerMilliG;
-constexpr double kMpsPerUg = sensor_sim::kMpsPerMicroG;
+constexpr double kMpsPerMg = common::kMpsPerMilliG;
+constexpr double kMpsPerUg = common::kMpsPerMicroG;
 constexpr double kSqrtSecondsPerHour = 60.0;  // x unit/sqrt(s) -> unit/sqrt(h)
 constexpr double kSecondsPerHour = 3600.0;
 constexpr double kAtRestDps = 0.5;             // a gyro acquisition at the table's 0 deg/s

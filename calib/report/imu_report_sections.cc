@@ -12,7 +12,7 @@
 #include "calib/report/imu_noise_section.h"
 #include "calib/report/svg_plot.h"
 #include "firmware_model/reference_compensator.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -24,7 +24,7 @@ constexpr const char* kChannels[9] = {"az1", "ax1", "ay1", "az2", "ax2", "ay2", 
 constexpr int kAxisOfAccelChannel[6] = {2, 0, 1, 2, 0, 1};
 constexpr const char* kAxes[3] = {"x", "y", "z"};
 constexpr size_t kMaxPlotPoints = 400;
-constexpr double kMpsPerMg = sensor_sim::kMpsPerMilliG;
+constexpr double kMpsPerMg = common::kMpsPerMilliG;
 
 std::array<double, 9> Mean(const fm::ImuCalibrationConstants& c, Mode mode,
                            const std::vector<ImuSample>& samples) {

@@ -16,7 +16,7 @@
 #include "calib/report/json_tables.h"
 #include "calib/report/svg_plot.h"
 #include "hil/recording/recording_reader.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -48,11 +48,11 @@ FitInputs LoadFit(const std::optional<std::filesystem::path>& fit_dir) {
     if (entry.path().extension() != ".json") continue;
     const std::string name = entry.path().filename().string();
     if (name == "acceptance.json") {
-      fit.acceptance = sensor_sim::ParamReader::LoadFile(entry.path().string());
+      fit.acceptance = common::ParamReader::LoadFile(entry.path().string());
     } else if (name == "evaluation.json") {
-      fit.evaluation = sensor_sim::ParamReader::LoadFile(entry.path().string());
+      fit.evaluation = common::ParamReader::LoadFile(entry.path().string());
     } else {
-      const nlohmann::json document = sensor_sim::ParamReader::LoadFile(entry.path().string());
+      const nlohmann::json document = common::ParamReader::LoadFile(entry.path().string());
       if (document.is_object() && document.value("format", "") == kConstantsFormatName) {
         ConstantsFile file = ReadConstantsFile(entry.path());
         fit.constants[file.serial] = std::move(file);

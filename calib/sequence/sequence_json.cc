@@ -4,13 +4,13 @@
 #include <functional>
 #include <string_view>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
 
-using sensor_sim::ParamError;
-using sensor_sim::ParamReader;
+using common::ParamError;
+using common::ParamReader;
 
 // The reader checks form; limits are validation's. Any finite value within this is well formed.
 constexpr double kAnyFinite = 1e9;

@@ -4,7 +4,7 @@
 //    "steps": [{"kind": "<kind>", "tag": 1…255 (optional), <the kind's fields>}, ...]}
 //
 // Fields carry their units in their names (`target_c`, `rate_max_dps`, `rate_ft_per_min`). The
-// reader is strict (sensor_sim/param_reader.h): a missing key, a wrong type, an unknown key (how
+// reader is strict (common/param_reader.h): a missing key, a wrong type, an unknown key (how
 // a wrong unit suffix shows) is a problem naming the file and JSON path. It checks form only —
 // limits are validation.h's — and it does not stop at the first bad step: every step is read and
 // every structural problem reported. Saving writes the same form, so load → save → load is the

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <string>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 
@@ -34,9 +34,9 @@ struct SequenceLimits {
   /// 0–15 psi part (physics.md §3.1, R), but the unit is specified down to −1,000 ft (15.24 psi)
   /// and the reference calibrated down to −2,000 ft (15.79 psi, thesis Table 25): the limit
   /// allows 1 psi over the rated range. E: the 1230's proof pressure was not retrieved.
-  double ads_static_max_pa = sensor_sim::PsiToPa(16.0);
+  double ads_static_max_pa = common::PsiToPa(16.0);
   /// Highest impact pressure qc on the 0–15 psid pitot sensor (physics.md §3.1, R).
-  double ads_pitot_max_pa = sensor_sim::PsiToPa(15.0);
+  double ads_pitot_max_pa = common::PsiToPa(15.0);
   /// Safe slew rates of the ADS sensors. E: no datasheet figure was found; these are the rates
   /// the ADTS 405 controls smoothly at (6,000 ft/min) and its standard airspeed rate
   /// (protocols.md §4.7, DOC), which a test set operator would use on a unit.

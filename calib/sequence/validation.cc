@@ -237,9 +237,9 @@ class Checker {
         Add(alt_path,
             fmt::format("altitude {:g} ft is a static pressure of {:.0f} Pa ({:.3f} psi), above "
                         "the ADS static sensor's limit",
-                        s.alt_ft, ps_pa, sensor_sim::PaToPsi(ps_pa)),
+                        s.alt_ft, ps_pa, common::PaToPsi(ps_pa)),
             fmt::format("ADS static pressure {:.0f} Pa ({:.3f} psi)", limits_.ads_static_max_pa,
-                        sensor_sim::PaToPsi(limits_.ads_static_max_pa)));
+                        common::PaToPsi(limits_.ads_static_max_pa)));
       }
     }
     const double max_rate = std::min(limits_.ads_max_alt_rate_ft_per_min,
@@ -266,7 +266,7 @@ class Checker {
           fmt::format("{} 0…{:g} kt", limits_.adts_name, limits_.adts_cas_max_kt));
     }
     // The subsonic relation holds to a0 = 661.5 kt; beyond it the unit check has refused.
-    const double a0_kt = sensor_sim::MpsToKt(sensor_sim::SeaLevelSpeedOfSoundMps());
+    const double a0_kt = common::MpsToKt(sensor_sim::SeaLevelSpeedOfSoundMps());
     if (s.cas_kt >= 0.0 && s.cas_kt <= a0_kt) {
       const double qc_pa = sensor_sim::ImpactPressurePaFromKt(s.cas_kt);
       if (qc_pa > limits_.ads_pitot_max_pa) {

@@ -22,12 +22,12 @@ AllanTerms ReadAllanTerms(const std::vector<double>& samples, double dt_s) {
                                 " s");
   }
   AllanTerms t;
-  t.curve = sensor_sim::OverlappingAllanDeviation(samples, dt_s);
+  t.curve = common::OverlappingAllanDeviation(samples, dt_s);
   t.record_s = static_cast<double>(samples.size()) * dt_s;
 
   // White term: log-log interpolation between the points around 1 s (the slope there is -1/2 for
   // white noise, so sigma * sqrt(tau) is the same from either point), else the longest tau.
-  const std::vector<sensor_sim::AllanPoint>& c = t.curve;
+  const std::vector<common::AllanPoint>& c = t.curve;
   t.white_tau_s = c.back().tau_s;
   double sigma_at_white = c.back().adev;
   for (size_t i = 0; i + 1 < c.size(); ++i) {

@@ -1,5 +1,5 @@
 // The noise terms of a record taken at rest, read off its overlapping Allan deviation (IEEE Std
-// 952-1997 Annex C; the estimator and its conventions are sensor_sim/allan.h):
+// 952-1997 Annex C; the estimator and its conventions are common/allan.h):
 //   white noise        read at tau = 1 s: N_952 = sigma(1 s) * sqrt(1 s) is IEEE 952's random-walk
 //                      coefficient (unit/sqrt(s); x60 gives unit/sqrt(h): deg/sqrt(h) for a gyro's
 //                      angle random walk, m/s/sqrt(h) for an accelerometer's velocity random walk);
@@ -18,12 +18,12 @@
 
 #include <vector>
 
-#include "sensor_sim/allan.h"
+#include "common/allan.h"
 
 namespace adahrs::calib {
 
 struct AllanTerms {
-  std::vector<sensor_sim::AllanPoint> curve;  ///< about 10 points per decade, m = 1 ... N/10
+  std::vector<common::AllanPoint> curve;  ///< about 10 points per decade, m = 1 ... N/10
   double record_s = 0.0;                      ///< N * dt
   double white_tau_s = 0.0;                   ///< tau at which the white term was read
   double random_walk_per_rts = 0.0;           ///< N_952, unit/sqrt(s)

@@ -4,7 +4,7 @@
 
 #include "calib/solvers/linear_least_squares.h"
 #include "sensor_sim/im3_geometry.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -36,7 +36,7 @@ const AccelOrientationMeans& FindStep(const std::vector<AccelOrientationMeans>& 
 
 std::array<AccelScaleEstimate, 6> FitSixPosition(const std::vector<AccelOrientationMeans>& steps,
                                                   double g_local_mps2) {
-  const double g_local_g = sensor_sim::Mps2ToG(g_local_mps2);
+  const double g_local_g = common::Mps2ToG(g_local_mps2);
   std::array<AccelScaleEstimate, 6> out;
   for (int ch = 0; ch < 6; ++ch) {
     const int axis = kAxisOfChannel[ch];

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <set>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::hil {
 namespace {
 
-using sensor_sim::ParamReader;
+using common::ParamReader;
 
 // The widest argument limits a table may declare; beyond them a number means a typo.
 constexpr double kLimitBound = 1e9;

@@ -12,7 +12,7 @@
 // device binds operations, not spellings, so a renamed mnemonic needs only a new table.
 // Reply templates hold `{value}`, printed with the entry's `decimals`; error templates may hold
 // `{line}`, `{mnemonic}`, `{argument}`, `{min}`, `{max}`, `{unit}`.
-// Loading is strict (sensor_sim::ParamReader): a missing or unknown key, a bad type, limits in the
+// Loading is strict (common::ParamReader): a missing or unknown key, a bad type, limits in the
 // wrong order, an unknown argument type or confidence, a duplicate mnemonic or a template without
 // `{value}` throws ParamError naming the file and JSON path.
 #pragma once
@@ -68,7 +68,7 @@ struct AtlFraming {
 
 class AtlCommandTable {
  public:
-  /// Reads a table file; throws sensor_sim::ParamError naming the file and JSON path.
+  /// Reads a table file; throws common::ParamError naming the file and JSON path.
   static AtlCommandTable Load(const std::string& file_path);
   /// Reads a table already parsed; `source` names it in messages.
   static AtlCommandTable FromJson(const nlohmann::json& table, const std::string& source);

@@ -27,7 +27,7 @@
 #include "hil/recording/recording_writer.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib::testing {
 
@@ -210,7 +210,7 @@ class AcceptanceRecordingMaker {
         row.mode = static_cast<uint8_t>(e.mode);
         std::array<double, 3> f_g{}, w_dps{};
         for (size_t k = 0; k < 3; ++k) {
-          f_g[k] = up[k] * sensor_sim::Mps2ToG(kTestGLocal_mps2) +
+          f_g[k] = up[k] * common::Mps2ToG(kTestGLocal_mps2) +
                    (e.accel_mg[k] + e.accel_mg_per_c * (chamber_c - 25.0) + e.noise_mg * normal_(rng_)) /
                        1000.0;
           w_dps[k] = up[k] * reported_dps + e.rate_dps[k] + e.noise_dps * normal_(rng_);
@@ -218,7 +218,7 @@ class AcceptanceRecordingMaker {
         std::array<double, 9> comp{};
         if (e.mode == 3) {
           for (size_t k = 0; k < 3; ++k) {
-            comp[k] = sensor_sim::GToMps2(f_g[k]);
+            comp[k] = common::GToMps2(f_g[k]);
             comp[3 + k] = w_dps[k];
           }
         } else {

@@ -13,7 +13,7 @@
 #include "firmware_model/reference_compensator.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -24,7 +24,7 @@ constexpr int kFrames = 50;  // per point, 0.5 s at 100 Hz
 // Mean (ps code, static bridge-voltage code) of kFrames frames at altitude and chamber temperature.
 SurfaceSample Point(sensor_sim::AdsUnit& unit, double alt_ft, double temp_c) {
   sensor_sim::AdsStimulus s;
-  s.ps_pa = sensor_sim::IsaStaticPressurePa(sensor_sim::FtToM(alt_ft));
+  s.ps_pa = sensor_sim::IsaStaticPressurePa(common::FtToM(alt_ft));
   s.air_temp_c = temp_c;
   s.oat_c = temp_c;
   std::vector<double> x, y;

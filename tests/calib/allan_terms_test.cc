@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "sensor_sim/adxrs150.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {
@@ -57,7 +57,7 @@ TEST(AllanTerms, ShortRecordIsReadAtItsLongestTau) {
 TEST(AllanTerms, BiasInstabilityFloorIsFoundWhereTheCurveTurnsUp) {
   // White noise plus a rate random walk: the curve falls, reaches its minimum and rises again.
   std::vector<double> x(200000);
-  sensor_sim::Rng rng(5);
+  common::Rng rng(5);
   double walk = 0.0;
   for (double& v : x) {
     walk += 2e-4 * rng.Normal();

@@ -15,7 +15,7 @@
 #include "calib/diagnosis/ads_diagnosis.h"
 #include "calib/diagnosis/diagnosis_cells.h"
 #include "hil/recording/recording_reader.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 #include "tests/calib/ads_recording_sim.h"
 #include "tests/calib/imu_diagnosis_scenario.h"
 
@@ -64,9 +64,9 @@ TEST(AugmentedModel, AdsPressureHysteresisReproducesTheRecording) {
   const AugmentedModel m = WriteAugmentedModel(run, WriteUnitFile(dir, "ads", base.ToJson()), dir / "out");
   for (const std::string& a : m.applied) std::printf("applied: %s\n", a.c_str());
   for (const std::string& n : m.not_applied) std::printf("not applied: %s\n", n.c_str());
-  const nlohmann::json written = sensor_sim::ParamReader::LoadFile((dir / "out/model.json").string());
+  const nlohmann::json written = common::ParamReader::LoadFile((dir / "out/model.json").string());
   const AdsUnitParams augmented =
-      AdsUnitParams::FromJson(sensor_sim::ParamReader(written["params"], "model.json", "$.params"));
+      AdsUnitParams::FromJson(common::ParamReader(written["params"], "model.json", "$.params"));
   ASSERT_TRUE(augmented.static_bridge.effects.pressure_hysteresis);
   const Finding* f = nullptr;
   for (const Finding& x : d.findings) {
@@ -107,9 +107,9 @@ TEST(AugmentedModel, ImuGyroGSensitivityInThePackageFrame) {
   fs::remove_all(dir);
   const AugmentedModel m = WriteAugmentedModel(run, WriteUnitFile(dir, "imu", base.ToJson()), dir / "out");
   for (const std::string& a : m.applied) std::printf("applied: %s\n", a.c_str());
-  const nlohmann::json written = sensor_sim::ParamReader::LoadFile((dir / "out/model.json").string());
+  const nlohmann::json written = common::ParamReader::LoadFile((dir / "out/model.json").string());
   const ImuUnitParams augmented =
-      ImuUnitParams::FromJson(sensor_sim::ParamReader(written["params"], "model.json", "$.params"));
+      ImuUnitParams::FromJson(common::ParamReader(written["params"], "model.json", "$.params"));
   int checked = 0;
   for (const Finding& f : d.findings) {
     if (f.effect != "gyro_g_sensitivity") continue;
@@ -137,7 +137,7 @@ TEST(AugmentedModel, RefusesABaseFileOfAnotherUnit) {
   try {
     WriteAugmentedModel(run, base, dir / "out");
     ADD_FAILURE() << "accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_NE(std::string(e.what()).find("'ADS-0001' is not a unit of the diagnosed recordings"), std::string::npos) << e.what();
   }
   fs::remove_all(dir);

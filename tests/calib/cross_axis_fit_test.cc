@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/solvers/linear_least_squares.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {

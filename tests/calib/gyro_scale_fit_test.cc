@@ -6,7 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {
@@ -21,7 +21,7 @@ double Counts(double rate_dps) {
   return kNull_cnt + kCntPerDps * (rate_dps + 0.15 * (x * x * x - x));
 }
 
-std::vector<GyroRateMean> Steps(sensor_sim::Rng* rng, double noise_cnt) {
+std::vector<GyroRateMean> Steps(common::Rng* rng, double noise_cnt) {
   std::vector<GyroRateMean> steps;
   for (double r : {-150.0, -100.0, -50.0, 0.0, 50.0, 100.0, 150.0}) {
     const double e = rng ? noise_cnt * rng->Normal() : 0.0;
@@ -49,7 +49,7 @@ TEST(GyroScaleFit, RecoversTheCubicMapping) {
 // sqrt(3) = 1.73; we check the median |z| instead, 0.765 for t3, within 0.6..0.95 over 300 sets:
 // > 3 sigma of the median's sampling error ~ 0.05).
 TEST(GyroScaleFit, StandardErrorsFollowTheResiduals) {
-  sensor_sim::Rng rng(41);
+  common::Rng rng(41);
   std::vector<double> abs_z;
   for (int k = 0; k < 300; ++k) {
     const GyroScaleEstimate e = FitGyroScale("gy", Steps(&rng, 300.0));

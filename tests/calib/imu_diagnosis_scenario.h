@@ -13,7 +13,7 @@
 
 #include "calib/imu_calibration/imu_run_data.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib::testing {
 

@@ -25,7 +25,7 @@
 #include "calib/sequence/sequence_json.h"
 #include "hil/recording/recording_writer.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib::testing {
 
@@ -91,7 +91,7 @@ class ImuRecordingMaker {
       if (orientation_ != 0) {
         up[orientation_ / 10 - 1] = orientation_ % 10 == 1 ? 1.0 : -1.0;
       }
-      stimulus.f_B_g = up * sensor_sim::Mps2ToG(g_local_mps2_);
+      stimulus.f_B_g = up * common::Mps2ToG(g_local_mps2_);
       stimulus.w_B_dps = up * rate_dps_;
       stimulus.air_temp_c = air_c_;
       for (size_t u = 0; u < units_.size(); ++u) {
@@ -183,7 +183,7 @@ class ImuRecordingMaker {
 /// `packets` (short recordings for tests).
 inline Sequence ShippedSequence(const std::string& name, int64_t packets) {
   Sequence s = SequenceFromJson(
-      sensor_sim::ParamReader::LoadFile(std::string(ADAHRS_SOURCE_DIR) + "/calib/sequences/" + name + ".json"),
+      common::ParamReader::LoadFile(std::string(ADAHRS_SOURCE_DIR) + "/calib/sequences/" + name + ".json"),
       name);
   for (Step& step : s.steps) {
     if (auto* a = std::get_if<AccelStep>(&step.body)) a->packets = packets;

@@ -77,7 +77,7 @@ TEST(ImuReferenceFit, ConstantsHaveTheReferenceMagnitudes) {
     double largest_off = 0.0;
     for (int r = 0; r < 3; ++r) {
       for (int k = 0; k < 3; ++k) {
-        const double ca = fit.constants.ca_mps2_per_g[r][k] / sensor_sim::kStandardGravity_mps2;
+        const double ca = fit.constants.ca_mps2_per_g[r][k] / common::kStandardGravity_mps2;
         const double cg = fit.constants.cg[r][k];
         if (r == k) {
           EXPECT_NEAR(ca, 1.0, 0.01);

@@ -8,7 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -25,7 +25,7 @@ std::filesystem::path Write(const std::string& text) {
 std::string LoadError(const std::string& text) {
   try {
     ImuStrategy::Load(Write(text));
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "no error";

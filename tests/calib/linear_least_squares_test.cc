@@ -7,13 +7,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {
 
 using ::testing::HasSubstr;
-using sensor_sim::Rng;
+using common::Rng;
 
 // y = 2 + 3 x + e, x uniform on [0, 10], e ~ N(0, sigma^2).
 LinearLeastSquaresProblem Line(Rng& rng, int n, double sigma) {

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {
@@ -20,7 +20,7 @@ TEST(PolynomialBasis, TermNamesFollowTheReferenceLetterOrder) {
 }
 
 TEST(PolynomialBasis, RawExpansionMatchesNormalisedEvaluation) {
-  sensor_sim::Rng rng(21);
+  common::Rng rng(21);
   const PolynomialBasis basis = PolynomialBasis::ReferenceCubicSurface("x", "y");
   // Code box of a static bridge: x 2.0e6..6.5e6, y 3.1e6..3.6e6 (ADS1254 codes).
   const InputScaling sx = InputScaling::FromRange(2.0e6, 6.5e6);

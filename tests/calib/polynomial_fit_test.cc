@@ -15,7 +15,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {
@@ -23,7 +23,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
-using sensor_sim::Rng;
+using common::Rng;
 
 // sum_k c[k] x^k.
 double Polynomial(const std::vector<double>& c, double x) {

@@ -18,7 +18,7 @@
 #include "firmware_model/reference_compensator.h"
 #include "sensor_sim/gravity.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -59,7 +59,7 @@ class Rig {
  private:
   static sensor_sim::ImuStimulus Stimulus(int orientation, double rate_dps, double air_temp_c) {
     sensor_sim::ImuStimulus s;
-    s.f_B_g = UpAxis(orientation) * sensor_sim::Mps2ToG(kGLocal_mps2);
+    s.f_B_g = UpAxis(orientation) * common::Mps2ToG(kGLocal_mps2);
     s.w_B_dps = UpAxis(orientation) * rate_dps;
     s.air_temp_c = air_temp_c;
     return s;
@@ -228,7 +228,7 @@ TEST_F(ReferenceImuCalibration, ConstantsHaveTheReferenceMagnitudes) {
   double largest_off = 0.0;
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) {
-      const double ca = cal.ca.matrix(r, k) / sensor_sim::kStandardGravity_mps2;
+      const double ca = cal.ca.matrix(r, k) / common::kStandardGravity_mps2;
       const double cg = cal.cg.matrix(r, k);
       if (r == k) {
         EXPECT_NEAR(ca, 1.0, 0.01);
@@ -278,7 +278,7 @@ TEST_F(ReferenceImuCalibration, CalibratedAccelerationMatchesTruth) {
       const double limit = 4.5 * s_a * std::sqrt(1.0 / kEvalFrames + 4.0 / kCalFrames);
       const double err = m[i].mean - truth_mps2[i];
       EXPECT_LT(std::abs(err), limit) << "orientation " << o << " axis " << i;
-      EXPECT_LT(std::abs(sensor_sim::Mps2ToG(err)), 1.0e-3) << "orientation " << o << " axis " << i;
+      EXPECT_LT(std::abs(common::Mps2ToG(err)), 1.0e-3) << "orientation " << o << " axis " << i;
     }
   }
 }

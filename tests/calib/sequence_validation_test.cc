@@ -142,7 +142,7 @@ TEST(SequenceValidation, AltitudeOutsideUnitRangeAndStaticPressureLimit) {
   // With the rated 15 psi as the static limit, −1,000 ft is refused: ISA gives 1050.41 hPa
   // = 15.235 psi there (physics.md §4.1 table).
   SequenceLimits limits;
-  limits.ads_static_max_pa = sensor_sim::PsiToPa(15.0);
+  limits.ads_static_max_pa = common::PsiToPa(15.0);
   p = OnlyProblem(Ads({{std::nullopt, AltitudeStep{-1000.0, 3000.0}}}), limits);
   EXPECT_THAT(p.rule, HasSubstr("static pressure of 105041 Pa (15.235 psi)"));
   EXPECT_EQ(p.limit, "ADS static pressure 103421 Pa (15.000 psi)");
@@ -163,7 +163,7 @@ TEST(SequenceValidation, AirspeedBeyondUnitAndPitotLimit) {
   EXPECT_EQ(p.limit, "unit airspeed 0…450 kt");
   // A 5 psid pitot sensor (34.5 kPa) cannot take 450 kt: qc = 36,801 Pa (physics.md §4.1).
   SequenceLimits limits;
-  limits.ads_pitot_max_pa = sensor_sim::PsiToPa(5.0);
+  limits.ads_pitot_max_pa = common::PsiToPa(5.0);
   p = OnlyProblem(Ads({{std::nullopt, AirspeedStep{450.0, 100.0}}}), limits);
   EXPECT_THAT(p.rule, HasSubstr("impact pressure of 36801 Pa"));
   EXPECT_EQ(p.limit, "ADS pitot pressure 34474 Pa");

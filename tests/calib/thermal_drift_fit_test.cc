@@ -7,7 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {
@@ -20,7 +20,7 @@ constexpr double kK0 = -1.2e6, kK1 = 770.0, kK2 = -0.0089;  // magnitudes of Tab
 double Quadratic(double t) { return kK0 + kK1 * t + kK2 * t * t; }
 
 std::vector<ThermalSample> Ramp(double t0, double t1, int n, ThermalSegment segment,
-                                sensor_sim::Rng& rng, double noise, double (*f)(double)) {
+                                common::Rng& rng, double noise, double (*f)(double)) {
   std::vector<ThermalSample> out;
   for (int i = 0; i < n; ++i) {
     const double t = t0 + (t1 - t0) * i / (n - 1);
@@ -30,7 +30,7 @@ std::vector<ThermalSample> Ramp(double t0, double t1, int n, ThermalSegment segm
 }
 
 TEST(ThermalDriftFit, RecoversQuadraticWithinStandardErrors) {
-  sensor_sim::Rng rng(31);
+  common::Rng rng(31);
   auto samples = Ramp(27000, 38000, 3000, ThermalSegment::kUpRamp, rng, 8000.0, Quadratic);
   const auto down = Ramp(38000, 27000, 3000, ThermalSegment::kDownRamp, rng, 8000.0, Quadratic);
   samples.insert(samples.end(), down.begin(), down.end());
@@ -61,7 +61,7 @@ double Cubic(double t) {
 // the fit equals the fit of the ramp alone (the soak adds one band among ~100, so the difference is
 // ~1 % of the fit's model error, while the unweighted fit moves by a large fraction of it).
 TEST(ThermalDriftFit, EveryTemperatureBandWeighsTheSame) {
-  sensor_sim::Rng rng(32);
+  common::Rng rng(32);
   const auto ramp = Ramp(27000, 38000, 2000, ThermalSegment::kUpRamp, rng, 0.0, Cubic);
   auto with_soak = ramp;
   const auto soak = Ramp(37950, 38000, 20000, ThermalSegment::kSoak, rng, 0.0, Cubic);
@@ -87,7 +87,7 @@ double UpCurve(double t) { return Quadratic(t) + 3000.0; }
 double DownCurve(double t) { return Quadratic(t) - 3000.0; }
 
 TEST(ThermalDriftFit, ReportsHysteresisBetweenRamps) {
-  sensor_sim::Rng rng(33);
+  common::Rng rng(33);
   auto samples = Ramp(27000, 38000, 2000, ThermalSegment::kUpRamp, rng, 100.0, UpCurve);
   const auto down = Ramp(38000, 27000, 2000, ThermalSegment::kDownRamp, rng, 100.0, DownCurve);
   samples.insert(samples.end(), down.begin(), down.end());
@@ -99,7 +99,7 @@ TEST(ThermalDriftFit, ReportsHysteresisBetweenRamps) {
 }
 
 TEST(ThermalDriftFit, RefusesTooFewTemperatures) {
-  sensor_sim::Rng rng(34);
+  common::Rng rng(34);
   // Three soaks, 110-count bands: 3 bands < 4.
   std::vector<ThermalSample> samples;
   for (double t : {28060.0, 32010.0, 36080.0}) {  // 20-count soaks inside one band each
@@ -113,7 +113,7 @@ TEST(ThermalDriftFit, RefusesTooFewTemperatures) {
 }
 
 TEST(ThermalDriftFit, MissingRampDirectionIsReportedNotRefused) {
-  sensor_sim::Rng rng(35);
+  common::Rng rng(35);
   const auto samples = Ramp(27000, 38000, 500, ThermalSegment::kUpRamp, rng, 10.0, Quadratic);
   const ThermalDriftResult r = FitThermalDrift("gz", samples);
   EXPECT_TRUE(r.up.has_value());

@@ -13,7 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -24,7 +24,7 @@ using ::testing::HasSubstr;
 std::string ErrorOf(const std::function<void()>& f) {
   try {
     f();
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "";

@@ -49,7 +49,7 @@ TEST_P(ImuSweep, WithinBudgetOverEnvelope) {
         GetParam() ? testing::WithScaleTemperature(RealisticImu(1000 + unit), 500 + unit)
                    : RealisticImu(1000 + unit);
     const ImuExport exported = ExportImuConstants(cal);
-    sensor_sim::Rng rng(sensor_sim::Rng::Derive(77, unit));
+    common::Rng rng(common::Rng::Derive(77, unit));
     for (int i = 0; i < 1500; ++i) {
       // Corners of the envelope first, then uniform draws inside it.
       const double temp_c = i < 2 ? (i == 0 ? -40.0 : 85.0) : rng.Uniform(-40.0, 85.0);
@@ -105,7 +105,7 @@ INSTANTIATE_TEST_SUITE_P(CompensatorSweep, AdsSweep, ::testing::Values(false, tr
 TEST_P(AdsSweep, WithinBudgetOverEnvelope) {
   const AdsCalibrationConstants cal = GetParam() ? testing::RealisticPressureAds() : RealisticAds();
   const AdsExport exported = ExportAdsConstants(cal);
-  sensor_sim::Rng rng(4242);
+  common::Rng rng(4242);
   double worst_alt_ft = 0, worst_cas_kt = 0;
   uint32_t max_cycles = 0;
   AdsHysteresisState state;
@@ -165,7 +165,7 @@ TEST(ThermalSpan, NormalisedToTheFittedSpanAndHeldBeyondIt) {
   }
 
   const InputNormQ31& norm = exported.constants.thermal[0].temp_norm;
-  sensor_sim::Rng rng(8);
+  common::Rng rng(8);
   ImuRawFrame raw = SynthesiseImu(cal, {0.0, 0.0, 1.0}, {0.0, 0.0, 0.0}, 85.0, &rng);
   auto thermal_frame = [&](uint16_t temp_cnt) {
     for (uint16_t& t : raw.temp_cnt) t = temp_cnt;
@@ -221,7 +221,7 @@ DspEngine ImuFrameMix(const char* title, const ImuConstants& constants, const Im
 }
 
 TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
-  sensor_sim::Rng rng(5);
+  common::Rng rng(5);
   const ImuRawFrame raw = testing::SynthesiseImu(testing::RealisticImu(1), {0.0, 0.0, 1.0},
                                                  {10.0, 0.0, 0.0}, 25.0, &rng);
   const DspEngine engine =

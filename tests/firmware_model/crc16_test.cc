@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "firmware_model/unit_protocol_client.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -29,7 +29,7 @@ TEST(Crc16Test, EmptyMessageIsTheInitialValue) {
 }
 
 TEST(Crc16Test, AgreesWithBoostCrcOnRandomMessages) {
-  sensor_sim::Rng rng(20260301);
+  common::Rng rng(20260301);
   for (int trial = 0; trial < 2000; ++trial) {
     const auto length = static_cast<uint16_t>(rng.NextU64() % 300);
     std::vector<uint8_t> message(length);

@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "firmware_model/target/q31_kernels.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -146,7 +146,7 @@ TEST(DspEngine, CycleCounterChargesDocumentedCosts) {
 // dropped low x low term and two floors, q31_kernels.h), 15 cycles each (11 of arithmetic, 4
 // MOVs of the operand words).
 TEST(Q31Kernels, MulQ31WithinThreeLsbOfExactProduct) {
-  sensor_sim::Rng rng(31);
+  common::Rng rng(31);
   for (int i = 0; i < 20000; ++i) {
     const int32_t a = static_cast<int32_t>(rng.NextU64() >> 32);
     const int32_t b = static_cast<int32_t>(rng.NextU64() >> 32);

@@ -26,7 +26,7 @@ nlohmann::json Generate(bool format3 = false) {
   const ImuCalibrationConstants imu_cal = format3
                                               ? testing::WithScaleTemperature(testing::RealisticImu(2024), 2025)
                                               : testing::RealisticImu(2024);
-  sensor_sim::Rng rng(99);
+  common::Rng rng(99);
   std::vector<ImuRawFrame> imu_frames;
   const double temps_c[] = {-40.0, 0.0, 25.0, 85.0};
   for (int i = 0; i < 8; ++i) {

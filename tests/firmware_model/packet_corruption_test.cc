@@ -10,14 +10,14 @@
 
 #include "firmware_model/target/data_payloads.h"
 #include "firmware_model/target/packet_codec.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::firmware_model {
 namespace {
 
 enum class Fault { kNone, kBitFlips, kTruncation, kGarbageAfter };
 
-std::vector<uint8_t> RandomFrame(sensor_sim::Rng& rng, uint8_t sequence) {
+std::vector<uint8_t> RandomFrame(common::Rng& rng, uint8_t sequence) {
   std::vector<uint8_t> payload;
   uint8_t type = 0;
   switch (rng.NextU64() % 4) {
@@ -51,7 +51,7 @@ std::vector<uint8_t> RandomFrame(sensor_sim::Rng& rng, uint8_t sequence) {
 }
 
 // Garbage that often looks like the start of a frame: a sync pair, then a plausible header.
-std::vector<uint8_t> RandomGarbage(sensor_sim::Rng& rng) {
+std::vector<uint8_t> RandomGarbage(common::Rng& rng) {
   std::vector<uint8_t> garbage(1 + rng.NextU64() % 40);
   for (uint8_t& byte : garbage) {
     byte = static_cast<uint8_t>(rng.NextU64());
@@ -65,7 +65,7 @@ std::vector<uint8_t> RandomGarbage(sensor_sim::Rng& rng) {
 }
 
 TEST(PacketCorruptionTest, NoCorruptPacketAcceptedAndEveryIntactPacketRecovered) {
-  sensor_sim::Rng rng(0xC0FFEE);
+  common::Rng rng(0xC0FFEE);
   constexpr int kPackets = 20000;
   std::vector<uint8_t> stream;
   std::vector<std::vector<uint8_t>> intact;  // frames sent unmodified, in order

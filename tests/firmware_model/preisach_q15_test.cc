@@ -11,7 +11,7 @@
 #include "firmware_model/target/air_data_tables.h"
 #include "firmware_model/target/preisach_q15.h"
 #include "sensor_sim/preisach_hysteresis.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -65,7 +65,7 @@ struct OperatorBesideLaw {
 // carried through reversals by convex combinations, so they do not grow).
 TEST(PreisachQ15, FollowsTheSimulatorsLawOverRandomPressureHistories) {
   constexpr double kSpanPa = 20684.0;  // 20 % FS of a 15 psi bridge
-  sensor_sim::Rng rng(5150);
+  common::Rng rng(5150);
   double worst = 0.0;
   uint32_t max_cycles = 0;
   uint64_t moving_cycles = 0, moving_frames = 0;
@@ -124,7 +124,7 @@ TEST(PreisachQ15, NegativeInverseSpanKeepsTheTemperatureConvention) {
 // with the law.
 TEST(PreisachQ15, NoiseReversalsDoNotWearTheStateDown) {
   OperatorBesideLaw pair(20684.0);
-  sensor_sim::Rng rng(99);
+  common::Rng rng(99);
   for (double p = 30000.0; p <= 80000.0; p += 250.0) pair.Step(p);
   const int16_t after_climb = pair.op.state_q15;
   EXPECT_LE(after_climb, -32767);
@@ -142,7 +142,7 @@ TEST(PreisachQ15, NoisySweepDevelopsLikeTheCleanSweep) {
   constexpr double kSpanPa = 20684.0;
   OperatorBesideLaw pair(kSpanPa);
   sensor_sim::PreisachHysteresis clean(kSpanPa);
-  sensor_sim::Rng rng(7);
+  common::Rng rng(7);
   uint8_t deepest = 0;
   int reversals = 0, last_direction = 0;
   double previous = 100000.0;
@@ -175,7 +175,7 @@ TEST(PreisachQ15, NoisySweepDevelopsLikeTheCleanSweep) {
 TEST(PreisachQ15, FullExcursionForgetsThePowerOnState) {
   constexpr double kSpanPa = 6895.0;  // 20 % FS of a 5 psid bridge
   OperatorBesideLaw pair(kSpanPa);
-  sensor_sim::Rng rng(11);
+  common::Rng rng(11);
   EXPECT_EQ(pair.Step(0.0), 0);
   for (double qc = 0.0; qc <= 33000.0; qc += 300.0) pair.Step(qc);
   EXPECT_LE(pair.op.state_q15, -32767);

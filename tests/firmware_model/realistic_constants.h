@@ -16,7 +16,7 @@
 #include "firmware_model/calibration_constants.h"
 #include "firmware_model/reference_compensator.h"
 #include "firmware_model/target/compensated_frame.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::firmware_model::testing {
 
@@ -30,7 +30,7 @@ inline double TempCounts(double temp_c) { return 13107.0 * (2.50 + 0.0084 * (tem
 
 /// A realistic IMU calibration drawn with `seed`.
 inline ImuCalibrationConstants RealisticImu(uint64_t seed) {
-  sensor_sim::Rng rng(seed);
+  common::Rng rng(seed);
   ImuCalibrationConstants c;
   const double t25 = TempCounts(25.0);
   const double counts_per_c = TempCounts(26.0) - t25;
@@ -74,7 +74,7 @@ inline ImuCalibrationConstants RealisticImu(uint64_t seed) {
 /// drift fixture's cubic shape), axis nonlinearity |q| <= 2e-3 g/g^2 (0.2 % FS at 10 g), and gyro
 /// g-sensitivity |GS| <= 0.2 deg/s per g on the diagonal-free terms too (physics.md 2.1).
 inline ImuCalibrationConstants WithScaleTemperature(ImuCalibrationConstants c, uint64_t seed) {
-  sensor_sim::Rng rng(seed);
+  common::Rng rng(seed);
   ImuScaleTemperature& st = c.scale_temperature;
   st.active = true;
   const double t25 = std::nearbyint(TempCounts(25.0));
@@ -95,7 +95,7 @@ inline ImuCalibrationConstants WithScaleTemperature(ImuCalibrationConstants c, u
 /// sensors behaving as the constants `c` describe (so the calibrated output is near the truth).
 inline ImuRawFrame SynthesiseImu(const ImuCalibrationConstants& c, const std::array<double, 3>& f_B_g,
                                  const std::array<double, 3>& w_dps, double temp_c,
-                                 sensor_sim::Rng* rng) {
+                                 common::Rng* rng) {
   ImuRawFrame raw{};
   for (int s = 0; s < 3; ++s) {
     raw.temp_cnt[s] = static_cast<uint16_t>(std::lround(TempCounts(temp_c) + rng->Uniform(-20, 20)));

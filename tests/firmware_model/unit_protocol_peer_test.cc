@@ -14,7 +14,7 @@
 
 #include "firmware_model/target/data_payloads.h"
 #include "firmware_model/unit_protocol_client.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -33,7 +33,7 @@ std::string RunPeer(const std::string& stream_path) {
 }
 
 TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
-  sensor_sim::Rng rng(777);
+  common::Rng rng(777);
   std::vector<uint8_t> stream;
   std::vector<ImuDataPayload> imu_sent;
   std::vector<AdsDataPayload> ads_sent;

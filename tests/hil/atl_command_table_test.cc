@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::hil {
 namespace {
@@ -15,14 +15,14 @@ using ::testing::HasSubstr;
 
 const std::string kDefaultTable = ADAHRS_SOURCE_DIR "/rig_sim/data/atl_commands.json";
 
-nlohmann::json DefaultJson() { return sensor_sim::ParamReader::LoadFile(kDefaultTable); }
+nlohmann::json DefaultJson() { return common::ParamReader::LoadFile(kDefaultTable); }
 
 // Expects FromJson to refuse `table` with a message holding every one of `parts`.
 void ExpectRefused(const nlohmann::json& table, const std::vector<std::string>& parts) {
   try {
     AtlCommandTable::FromJson(table, "edited.json");
     FAIL() << "accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     for (const std::string& part : parts) EXPECT_THAT(e.what(), HasSubstr(part));
   }
 }
@@ -119,7 +119,7 @@ TEST(AtlCommandTable, AMissingFileIsNamed) {
   try {
     AtlCommandTable::Load("/nonexistent/atl.json");
     FAIL() << "accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), HasSubstr("/nonexistent/atl.json"));
   }
 }

@@ -2,7 +2,7 @@
 
 #include "hil/codecs/prologix.h"
 #include "hil/codecs/scpi.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::hil {
 namespace {
@@ -78,7 +78,7 @@ TEST(PrologixCodec, CommandsSetAndQuerySettings) {
 }
 
 TEST(ScpiPrologixCodec, SurviveRandomGarbage) {
-  sensor_sim::Rng rng(488);
+  common::Rng rng(488);
   PrologixLineSplitter splitter(64);
   PrologixController controller("v");
   const std::string alphabet = "+*:;?, .0123456789ABCDEFGHIMNOPRSTUVaeiorstd\"\x1b\r\n";

@@ -17,12 +17,12 @@ using ::testing::HasSubstr;
 
 const std::string kExample = std::string(ADAHRS_SOURCE_DIR) + "/docs/examples/station-virtual-rig.json";
 
-nlohmann::json Example() { return sensor_sim::ParamReader::LoadFile(kExample); }
+nlohmann::json Example() { return common::ParamReader::LoadFile(kExample); }
 
 std::string ErrorOf(const nlohmann::json& j) {
   try {
-    Station::FromJson(sensor_sim::ParamReader(j, "station.json"));
-  } catch (const sensor_sim::ParamError& e) {
+    Station::FromJson(common::ParamReader(j, "station.json"));
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "accepted";
@@ -50,10 +50,10 @@ TEST(Station, OperatorIsTheVirtualFixtureOrTheConsole) {
 
   nlohmann::json j = Example();
   j.erase("operator");
-  EXPECT_EQ(Station::FromJson(sensor_sim::ParamReader(j, "station.json")).op.type,
+  EXPECT_EQ(Station::FromJson(common::ParamReader(j, "station.json")).op.type,
             OperatorType::kConsole);
   j["operator"] = {{"type", "console"}};
-  EXPECT_EQ(Station::FromJson(sensor_sim::ParamReader(j, "station.json")).op.type,
+  EXPECT_EQ(Station::FromJson(common::ParamReader(j, "station.json")).op.type,
             OperatorType::kConsole);
 
   j["operator"] = {{"type", "person"}};
@@ -69,7 +69,7 @@ TEST(Station, OperatorIsTheVirtualFixtureOrTheConsole) {
 TEST(Station, RoundTripsThroughJson) {
   const Station st = Station::Load(kExample);
   const nlohmann::json j = st.ToJson();
-  EXPECT_EQ(Station::FromJson(sensor_sim::ParamReader(j, "again")).ToJson(), j);
+  EXPECT_EQ(Station::FromJson(common::ParamReader(j, "again")).ToJson(), j);
 }
 
 TEST(Station, RefusesWhatARealLabWouldGetWrong) {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::hil {
 namespace {
@@ -97,7 +97,7 @@ TEST(Watlow942Codec, SurvivesRandomGarbage) {
   const std::set<Watlow942Error> known = {
       Watlow942Error::kCommandNotFound, Watlow942Error::kIncompleteCommandLine,
       Watlow942Error::kInvalidCharacter, Watlow942Error::kTooManyCharacters};
-  sensor_sim::Rng rng(942);
+  common::Rng rng(942);
   const std::string alphabet = "?= 0123456789.-+ABCDSPTMRL\t";
   int messages = 0;
   for (int i = 0; i < 20000; ++i) {

@@ -28,7 +28,7 @@ std::string RunClient(const std::string& script, const std::string& port) {
 TEST(AdsBenchPty, PyvisaStylePrologixSessionGetsAdtsAnswers) {
   DeviceHost host(1.0);
   const nlohmann::json config = DefaultPrologixAdtsConfig();
-  const std::string path = host.Add(MakePrologixAdtsDevice(sensor_sim::ParamReader(config, "default")));
+  const std::string path = host.Add(MakePrologixAdtsDevice(common::ParamReader(config, "default")));
   host.Start();
   const std::string output = RunClient("adts_pyvisa_session.py", path);
   host.Stop();
@@ -42,7 +42,7 @@ TEST(AdsBenchPty, PyvisaStylePrologixSessionGetsAdtsAnswers) {
 TEST(AdsBenchPty, PyserialXonXoffSessionSpeaks942) {
   DeviceHost host(1.0);
   const nlohmann::json config = DefaultWatlow942Config();
-  const std::string path = host.Add(MakeWatlow942Device(sensor_sim::ParamReader(config, "default")));
+  const std::string path = host.Add(MakeWatlow942Device(common::ParamReader(config, "default")));
   host.Start();
   const std::string output = RunClient("watlow942_session.py", path);
   host.Stop();

@@ -7,7 +7,7 @@
 
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -17,7 +17,7 @@ class Bench {
  public:
   explicit Bench(nlohmann::json config = DefaultPrologixAdtsConfig(), double frame_s = 0.01)
       : config_(std::move(config)),
-        device_(MakePrologixAdtsDevice(sensor_sim::ParamReader(config_, "test"))),
+        device_(MakePrologixAdtsDevice(common::ParamReader(config_, "test"))),
         frame_s_(frame_s) {}
 
   void Send(const std::string& text) {
@@ -236,7 +236,7 @@ TEST(PrologixAdtsDevice, SameTimelineWhateverTheAdvanceGranularity) {
 
 TEST(PrologixAdtsDevice, SurvivesGarbageAndKeepsAnswering) {
   Bench bench;
-  sensor_sim::Rng rng(405);
+  common::Rng rng(405);
   const std::string alphabet = "+*:;?, .0123456789ABCDEFGHILMNOPRSTUV\x1b\r\n";
   for (int burst = 0; burst < 300; ++burst) {
     std::string garbage;
@@ -277,9 +277,9 @@ TEST(PrologixAdtsDevice, ConfigIsValidatedWithItsPath) {
   nlohmann::json config = DefaultPrologixAdtsConfig();
   config["adts"]["qc_max_pa"] = 120000.0;  // supersonic: refused
   try {
-    MakePrologixAdtsDevice(sensor_sim::ParamReader(config, "rig.json"));
+    MakePrologixAdtsDevice(common::ParamReader(config, "rig.json"));
     FAIL() << "a supersonic Qc limit was accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), testing::HasSubstr("qc_max_pa"));
   }
 }

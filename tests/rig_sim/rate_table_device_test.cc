@@ -11,8 +11,8 @@
 
 #include "hil/codecs/atl_codec.h"
 #include "rig_sim/device_host.h"
-#include "sensor_sim/random.h"
-#include "sensor_sim/units.h"
+#include "common/random.h"
+#include "common/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -23,7 +23,7 @@ using ::testing::HasSubstr;
 constexpr double kByte_s = 10.0 / 9600.0;
 
 std::unique_ptr<SerialDevice> MakeDevice(const nlohmann::json& config = DefaultRateTableConfig()) {
-  return MakeRateTableDevice(sensor_sim::ParamReader(config, "test config"));
+  return MakeRateTableDevice(common::ParamReader(config, "test config"));
 }
 
 // Drives a device through the SerialDevice interface in world frames, as the rig does.
@@ -168,7 +168,7 @@ TEST(RateTableDevice, PositionMoveEndsAtTheCommandedAngle) {
   EXPECT_EQ(bench.Ask("PPO?\r\n"), "90.0000\r\n>\r\n");
   EXPECT_EQ(std::stoi(bench.Ask("STA?\r\n")), 1 | 4);  // servo on, in position
   // The world sees the true angle: the encoder error k·sin θ = 1e-5 rad·1 = 5.7e-4 deg at 90°.
-  EXPECT_NEAR(bench.env.table_angle_deg, 90.0 + sensor_sim::RadToDeg(1e-5), 1e-9);
+  EXPECT_NEAR(bench.env.table_angle_deg, 90.0 + common::RadToDeg(1e-5), 1e-9);
   EXPECT_EQ(bench.Ask("HOM\r\n"), "\r\n>\r\n");
   bench.RunFor(3.0);
   EXPECT_EQ(bench.Ask("PPO\r\n"), "0.0000\r\n>\r\n");
@@ -213,7 +213,7 @@ TEST(RateTableDevice, SameTimelineWhateverTheFrameLength) {
 
 TEST(RateTableDevice, SurvivesRandomGarbageAndAnswersEveryLine) {
   Bench bench(MakeDevice());
-  sensor_sim::Rng rng(0xA71);
+  common::Rng rng(0xA71);
   const std::string alphabet = "JOGSTPACLRVUHMFQYZ?0123456789 .-+\t";
   int lines_sent = 0;  // lines the framing rules say the controller must answer
   size_t line_chars = 0;
@@ -263,27 +263,27 @@ TEST(RateTableDevice, SurvivesRandomGarbageAndAnswersEveryLine) {
 TEST(RateTableDevice, ConfigIsCheckedKeyByKey) {
   nlohmann::json config = DefaultRateTableConfig();
   config["physics"]["max_rate_dps"] = 50.0;  // below move_rate_dps = 60
-  EXPECT_THROW(MakeDevice(config), sensor_sim::ParamError);
+  EXPECT_THROW(MakeDevice(config), common::ParamError);
   config = DefaultRateTableConfig();
   config["baud_rate"] = 9600;
   try {
     MakeDevice(config);
     FAIL() << "accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), HasSubstr("test config: $.baud_rate: unknown key"));
   }
   config = DefaultRateTableConfig();
   config["command_table"] = "/nonexistent/atl.json";
-  EXPECT_THROW(MakeDevice(config), sensor_sim::ParamError);
+  EXPECT_THROW(MakeDevice(config), common::ParamError);
 }
 
 TEST(RateTableDevice, ATableBindingAnUnknownOperationIsRefused) {
-  nlohmann::json table = sensor_sim::ParamReader::LoadFile(DefaultAtlCommandTablePath());
+  nlohmann::json table = common::ParamReader::LoadFile(DefaultAtlCommandTablePath());
   table["commands"][2]["operation"] = "levitate";
   try {
     RateTableDevice device({}, hil::AtlCommandTable::FromJson(table, "lab.json"), "lab.json");
     FAIL() << "accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(),
                 HasSubstr("lab.json: $.commands[2] (HOM): the rate table has no operation"));
   }

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "sensor_sim/random.h"
-#include "sensor_sim/units.h"
+#include "common/random.h"
+#include "common/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -98,7 +98,7 @@ TEST(RateTable, AMoveStartedWhileTurningStillEndsAtTheTarget) {
 TEST(RateTable, TheTimelineDoesNotDependOnTheCallPattern) {
   const RateTableParams p;
   RateTable frames(p, 0.0), random_steps(p, 0.0);
-  sensor_sim::Rng rng(20240604);
+  common::Rng rng(20240604);
   // Commands at fixed times; one table advanced in 10 ms frames, the other in random steps
   // (0.1…37 ms) that also land on the command times.
   struct Command {
@@ -234,8 +234,8 @@ TEST(RateTable, SineMotionStaysInsideItsEnvelopeAndReturnsToTheStart) {
   EXPECT_GT(lo, 30.0 - 0.05);
   EXPECT_LT(hi, 32.0 + 1e-9);
   EXPECT_GT(hi, 31.9);
-  EXPECT_LT(peak_dps, 2 * sensor_sim::kPi);
-  EXPECT_GT(peak_dps, 0.95 * 2 * sensor_sim::kPi);
+  EXPECT_LT(peak_dps, 2 * common::kPi);
+  EXPECT_GT(peak_dps, 0.95 * 2 * common::kPi);
   const double t_s = TimeUntil(table, 5.0, [&] { return table.status().in_position; });
   EXPECT_GT(t_s, 2.0);
   EXPECT_NEAR(table.measured_angle_deg(), 30.0, p.in_position_band_deg);

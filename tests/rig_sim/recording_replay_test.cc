@@ -17,7 +17,7 @@
 #include "hil/recording/recording_writer.h"
 #include "rig_sim/static_thermal_run.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -109,7 +109,7 @@ TEST(RecordingReplay, TheRigsOwnModelAndNoiseReproduceTheRecording) {
 TEST(RecordingReplay, RefusesUnitFilesItCannotUseByName) {
   const fs::path dir = TempDir("refuse");
   const fs::path rec = RecordEveryFrame(dir);
-  nlohmann::json other = sensor_sim::ParamReader::LoadFile((rec / "truth/IMU-0001.json").string());
+  nlohmann::json other = common::ParamReader::LoadFile((rec / "truth/IMU-0001.json").string());
   other["params"]["serial"] = "IMU-0042";
   std::ofstream(dir / "other.json") << other.dump();
   try {
@@ -120,7 +120,7 @@ TEST(RecordingReplay, RefusesUnitFilesItCannotUseByName) {
     EXPECT_NE(std::string(e.what()).find("ADS-0001, IMU-0001"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(dir / "out"));
-  nlohmann::json no_seed = sensor_sim::ParamReader::LoadFile((rec / "truth/IMU-0001.json").string());
+  nlohmann::json no_seed = common::ParamReader::LoadFile((rec / "truth/IMU-0001.json").string());
   no_seed.erase("seed");
   std::ofstream(dir / "no_seed.json") << no_seed.dump();
   ReplayOptions same_noise;

@@ -18,7 +18,7 @@ using ::testing::HasSubstr;
 std::string ErrorOf(const nlohmann::json& json) {
   try {
     RigConfig::FromJson(json, "test.json");
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "no error";
@@ -80,7 +80,7 @@ TEST(RigConfig, ASlotTakesItsUnitFromAModelFile) {
   const RigConfig c = RigConfig::FromJson(j, (dir / "rig.json").string());
   ASSERT_FALSE(c.ads[0].model_params.is_null());
   const sensor_sim::AdsUnitParams read = sensor_sim::AdsUnitParams::FromJson(
-      sensor_sim::ParamReader(c.ads[0].model_params, c.ads[0].model_file, "$.params"));
+      common::ParamReader(c.ads[0].model_params, c.ads[0].model_file, "$.params"));
   EXPECT_TRUE(read.static_bridge.effects.pressure_hysteresis);
   EXPECT_DOUBLE_EQ(read.static_bridge.pressure_hysteresis_pct_fso, 0.0615);
   EXPECT_TRUE(c.imus[0].model_params.is_null());
@@ -89,7 +89,7 @@ TEST(RigConfig, ASlotTakesItsUnitFromAModelFile) {
   try {
     RigConfig::FromJson(j, (dir / "rig.json").string());
     ADD_FAILURE() << "accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), HasSubstr("$.units.ads[0].model"));
     EXPECT_THAT(e.what(), HasSubstr("$.params.serial 'ADS-0001' is not this slot's ADS-0002"));
   }
@@ -98,7 +98,7 @@ TEST(RigConfig, ASlotTakesItsUnitFromAModelFile) {
   try {
     RigConfig::FromJson(j, "rig.json");
     ADD_FAILURE() << "accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), HasSubstr("$.units.imu[0].model"));
     EXPECT_THAT(e.what(), HasSubstr("kind 'ads' in an imu slot"));
   }

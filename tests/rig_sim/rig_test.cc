@@ -287,11 +287,11 @@ TEST(Rig, StartFaultsFromTheConfigAreAppliedAndCheckedAgainstTheDevices) {
   try {
     Rig rig(RigConfig::FromJson(j, "rig.json"), dir);
     FAIL();
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), HasSubstr("rig.json: $.faults[0]: imu1: no fault 'melting'"));
   }
   j["faults"] = {{{"role", "rate_table9"}, {"fault", "silent"}, {"on", true}}};
-  EXPECT_THROW(Rig(RigConfig::FromJson(j, "rig.json"), dir), sensor_sim::ParamError);
+  EXPECT_THROW(Rig(RigConfig::FromJson(j, "rig.json"), dir), common::ParamError);
   std::filesystem::remove_all(dir);
 }
 

@@ -10,7 +10,7 @@
 
 #include "hil/recording/recording_reader.h"
 #include "sensor_sim/imu_unit.h"
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -52,10 +52,10 @@ TEST(StaticThermalRun, WritesARecordingWhoseTemperatureCountsFollowTheChamber) {
   for (const auto& [unit, fl] : first_last_tx) EXPECT_GT(fl.second - fl.first, 110.0 * 10) << unit;
 
   // Truth files load back through the strict reader.
-  const auto truth = sensor_sim::ParamReader::LoadFile((dir / "truth" / "IMU-0001.json").string());
-  const sensor_sim::ParamReader reader(truth, "IMU-0001.json");
+  const auto truth = common::ParamReader::LoadFile((dir / "truth" / "IMU-0001.json").string());
+  const common::ParamReader reader(truth, "IMU-0001.json");
   EXPECT_EQ(sensor_sim::ImuUnitParams::FromJson(reader.Child("params")).serial, "IMU-0001");
-  const auto meta = sensor_sim::ParamReader::LoadFile((dir / "meta.json").string());
+  const auto meta = common::ParamReader::LoadFile((dir / "meta.json").string());
   EXPECT_EQ(meta["units"].size(), 3u);
   EXPECT_EQ(meta["log_every"], 100);
   std::filesystem::remove_all(dir);

@@ -9,8 +9,8 @@
 #include "rig_sim/ads_unit_device.h"
 #include "rig_sim/fixture_orientation.h"
 #include "rig_sim/imu_unit_device.h"
-#include "sensor_sim/random.h"
-#include "sensor_sim/units.h"
+#include "common/random.h"
+#include "common/units.h"
 #include "tests/firmware_model/realistic_constants.h"
 
 namespace adahrs::rig_sim {
@@ -26,7 +26,7 @@ ImuUnitDeviceConfig ImuConfig(int baud = 115200) {
   c.slot = 0;
   c.serial_number = 7;
   c.params = sensor_sim::ImuUnitParams::Draw("IMU-0007", kSeed, sensor_sim::ModelProfile::kTruth);
-  c.noise_seed = sensor_sim::Rng::Derive(kSeed, 1);
+  c.noise_seed = common::Rng::Derive(kSeed, 1);
   c.baud = baud;
   return c;
 }
@@ -275,7 +275,7 @@ TEST(AdsUnitDevice, PacketsCarryTheTestSetPressuresAndTheBenchChamberAir) {
   AdsUnitDeviceConfig config;
   config.serial_number = 3;
   config.params = sensor_sim::AdsUnitParams::Draw("ADS-0003", 77, sensor_sim::ModelProfile::kTruth);
-  config.noise_seed = sensor_sim::Rng::Derive(77, 1);
+  config.noise_seed = common::Rng::Derive(77, 1);
   AdsUnitDevice device(config);
   sensor_sim::AdsUnit reference(config.params, config.noise_seed, 25.0);
   RigEnvironment env;

@@ -5,8 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
-#include "sensor_sim/units.h"
+#include "common/random.h"
+#include "common/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -17,7 +17,7 @@ class Bench {
  public:
   explicit Bench(nlohmann::json config = DefaultWatlow942Config(), double frame_s = 0.01)
       : config_(std::move(config)),
-        device_(MakeWatlow942Device(sensor_sim::ParamReader(config_, "test"))),
+        device_(MakeWatlow942Device(common::ParamReader(config_, "test"))),
         frame_s_(frame_s) {}
 
   // Sends `text` now and runs frames until the reply's CR (or an XON after a write) arrives;
@@ -160,7 +160,7 @@ TEST(Watlow942Device, FollowsAProfileWithRampSoakJumpAndEnd) {
   bench.RunUntil(t0_s + 600.0);
   const double mean_c = 35.0 - lag_c * std::exp(-2.5);
   const double cycling_c = 0.3 * std::exp(-(35.0 - mean_c) / 0.9) *
-                           std::sin(2.0 * sensor_sim::kPi * bench.now_s() / 90.0);
+                           std::sin(2.0 * common::kPi * bench.now_s() / 90.0);
   EXPECT_NEAR(bench.env_.ads_chamber_air_c, mean_c + cycling_c, 0.02);
   bench.RunUntil(t0_s + 1050.0);  // second pass, mid-ramp up
   EXPECT_EQ(bench.Ask("? CSP"), "30.0");
@@ -223,7 +223,7 @@ TEST(Watlow942Device, CannotReachSetPointFault) {
 
 TEST(Watlow942Device, SurvivesGarbageAndKeepsAnswering) {
   Bench bench;
-  sensor_sim::Rng rng(19942);
+  common::Rng rng(19942);
   for (int burst = 0; burst < 200; ++burst) {
     std::string garbage;
     const int length = static_cast<int>(rng.Uniform(1.0, 200.0));
@@ -243,15 +243,15 @@ TEST(Watlow942Device, ConfigIsValidatedWithItsPath) {
   nlohmann::json config = DefaultWatlow942Config();
   config["air"]["heat_rate_c_per_s"] = 1.0;
   try {
-    MakeWatlow942Device(sensor_sim::ParamReader(config, "rig.json"));
+    MakeWatlow942Device(common::ParamReader(config, "rig.json"));
     FAIL() << "an unknown key was accepted";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), testing::HasSubstr("rig.json"));
     EXPECT_THAT(e.what(), testing::HasSubstr("heat_rate_c_per_s"));
   }
   config = DefaultWatlow942Config();
   config["profile_type"] = "ramp";
-  EXPECT_THROW(MakeWatlow942Device(sensor_sim::ParamReader(config, "rig.json")), sensor_sim::ParamError);
+  EXPECT_THROW(MakeWatlow942Device(common::ParamReader(config, "rig.json")), common::ParamError);
 }
 
 }  // namespace

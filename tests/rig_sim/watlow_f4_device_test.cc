@@ -7,7 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -328,7 +328,7 @@ TEST(WatlowF4Device, RequestSplitAcrossWorldFramesIsStillServed) {
 
 TEST(WatlowF4Device, RandomGarbageIsNeverAnsweredAndTheNextGoodFrameAlwaysIs) {
   Line line;
-  sensor_sim::Rng rng(20240604);
+  common::Rng rng(20240604);
   int bad_frames = 0;
   for (int i = 0; i < 2000; ++i) {
     Bytes garbage;
@@ -366,24 +366,24 @@ TEST(WatlowF4Device, RandomGarbageIsNeverAnsweredAndTheNextGoodFrameAlwaysIs) {
 
 TEST(WatlowF4DeviceConfig, DefaultSectionBuildsAndEveryKeyIsChecked) {
   const nlohmann::json config = DefaultWatlowF4Config();
-  const auto device = MakeWatlowF4Device(sensor_sim::ParamReader(config, "rig.json", "$.chamber"));
+  const auto device = MakeWatlowF4Device(common::ParamReader(config, "rig.json", "$.chamber"));
   EXPECT_EQ(device->role(), "imu_chamber");
 
   nlohmann::json typo = config;
   typo["chamber"]["heat_rate_c_per_s"] = 1.0;
   try {
-    MakeWatlowF4Device(sensor_sim::ParamReader(typo, "rig.json", "$.chamber"));
+    MakeWatlowF4Device(common::ParamReader(typo, "rig.json", "$.chamber"));
     FAIL() << "no exception";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), testing::HasSubstr("rig.json"));
     EXPECT_THAT(e.what(), testing::HasSubstr("heat_rate_c_per_s"));
   }
   nlohmann::json crossed = config;
   crossed["controller"]["set_point_low_limit_c"] = 200.0;
   try {
-    MakeWatlowF4Device(sensor_sim::ParamReader(crossed, "rig.json", "$.chamber"));
+    MakeWatlowF4Device(common::ParamReader(crossed, "rig.json", "$.chamber"));
     FAIL() << "no exception";
-  } catch (const sensor_sim::ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_THAT(e.what(), testing::HasSubstr("$.chamber.controller"));
     EXPECT_THAT(e.what(), testing::HasSubstr("below set_point_high_limit_c"));
   }

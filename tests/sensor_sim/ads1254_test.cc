@@ -172,7 +172,7 @@ TEST(Ads1254, NonFiniteInputThrows) {
 TEST(Ads1254, JsonRoundTripIsExact) {
   for (const Ads1254Params& p : {Ads1254Params::Typical(), Ads1254Params::Draw(3)}) {
     const nlohmann::json j = nlohmann::json::parse(p.ToJson().dump());
-    EXPECT_EQ(Ads1254Params::FromJson(ParamReader(j, "test")), p);
+    EXPECT_EQ(Ads1254Params::FromJson(common::ParamReader(j, "test")), p);
   }
 }
 
@@ -185,8 +185,8 @@ std::string FromJsonError(const std::function<void(nlohmann::json&)>& edit) {
   nlohmann::json j = Ads1254Params::Typical().ToJson();
   edit(j);
   try {
-    Ads1254Params::FromJson(ParamReader(j, "adc.json"));
-  } catch (const ParamError& e) {
+    Ads1254Params::FromJson(common::ParamReader(j, "adc.json"));
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "no error";

@@ -98,7 +98,7 @@ TEST(AdsUnit, DeterministicAndRoundTrips) {
     EXPECT_EQ(fa.pt_temp_cnt, fb.pt_temp_cnt);
   }
   const nlohmann::json j = nlohmann::json::parse(p.ToJson().dump());
-  EXPECT_EQ(AdsUnitParams::FromJson(ParamReader(j, "truth.json")).ToJson(), p.ToJson());
+  EXPECT_EQ(AdsUnitParams::FromJson(common::ParamReader(j, "truth.json")).ToJson(), p.ToJson());
 }
 
 TEST(AdsUnit, NominalAndTruthDifferOnlyByEffects) {
@@ -118,9 +118,9 @@ TEST(AdsUnit, BadDividerIsRefusedWithPath) {
   nlohmann::json j = AdsUnitParams::Draw("A", 35, ModelProfile::kTruth).ToJson();
   j["bridge_divider_ratio"] = 2.0;
   try {
-    AdsUnitParams::FromJson(ParamReader(j, "ads.json"));
+    AdsUnitParams::FromJson(common::ParamReader(j, "ads.json"));
     FAIL();
-  } catch (const ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_NE(std::string(e.what()).find("$.bridge_divider_ratio"), std::string::npos);
   }
 }

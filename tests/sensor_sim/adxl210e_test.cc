@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "sensor_sim/duty_cycle_modulator.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -304,8 +304,8 @@ TEST(Adxl210e, PerSampleNoiseRmsIsDensityTimesRootHalfPiBandwidth) {
   // physics.md §1.2: rms = N·√(π/2·f−3dB) with f−3dB = 1/(2π·32 kΩ·0.1 µF) = 49.7 Hz: 1.78 mg,
   // plus the rounding variance (0.24 mg rms). 200 000 nearly independent samples estimate the rms
   // within 0.16 % (1σ); tolerance 1 % is over 6σ.
-  const double f3db_hz = 1.0 / (2.0 * kPi * 32e3 * 0.1e-6);
-  const double expected_g = std::sqrt(std::pow(kDensity_g_per_rthz, 2) * kPi / 2.0 * f3db_hz +
+  const double f3db_hz = 1.0 / (2.0 * common::kPi * 32e3 * 0.1e-6);
+  const double expected_g = std::sqrt(std::pow(kDensity_g_per_rthz, 2) * common::kPi / 2.0 * f3db_hz +
                                       kQuantVar_g2);
   EXPECT_NEAR(MeasureNoise(0.1e-6, 200000, 100).rms_g, expected_g, 0.01 * expected_g);
 }
@@ -412,7 +412,7 @@ TEST(Adxl210e, CrossAxisAddsTransverseAndNonOrthogonalTerms) {
   p.effects.cross_axis = true;
   const MeanReading on = Average(p, At(3.0, 2.0, -4.0));
   EXPECT_NEAR((on.duty_x - off.duty_x) / 0.04, 0.08, kDutyTick_ratio / 0.04);
-  EXPECT_NEAR((on.duty_y - off.duty_y) / 0.04, 3.0 * (0.015 + std::sin(DegToRad(0.5))) - 0.04,
+  EXPECT_NEAR((on.duty_y - off.duty_y) / 0.04, 3.0 * (0.015 + std::sin(common::DegToRad(0.5))) - 0.04,
               kDutyTick_ratio / 0.04);
 }
 
@@ -558,19 +558,19 @@ TEST(Adxl210e, StepEachMatchesSteppingEachChipInTurn) {
 TEST(Adxl210e, JsonRoundTripAndStableDraw) {
   for (uint64_t seed : {0u, 1u, 99u}) {
     const Adxl210eParams p = Adxl210eParams::Draw(seed);
-    EXPECT_EQ(Adxl210eParams::FromJson(ParamReader(p.ToJson(), "test")), p);
+    EXPECT_EQ(Adxl210eParams::FromJson(common::ParamReader(p.ToJson(), "test")), p);
     EXPECT_EQ(p.ToJson().dump(), Adxl210eParams::Draw(seed).ToJson().dump());
   }
   EXPECT_NE(Adxl210eParams::Draw(1), Adxl210eParams::Draw(2));
   Adxl210eParams typical = Adxl210eParams::Typical();
   typical.effects = Adxl210eEffects::Nominal();
-  EXPECT_EQ(Adxl210eParams::FromJson(ParamReader(typical.ToJson(), "test")), typical);
+  EXPECT_EQ(Adxl210eParams::FromJson(common::ParamReader(typical.ToJson(), "test")), typical);
 }
 
 std::string ErrorOf(const nlohmann::json& j) {
   try {
-    Adxl210eParams::FromJson(ParamReader(j, "chip.json", "$.accel[0]"));
-  } catch (const ParamError& e) {
+    Adxl210eParams::FromJson(common::ParamReader(j, "chip.json", "$.accel[0]"));
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "no error";

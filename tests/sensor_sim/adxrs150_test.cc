@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sensor_sim/allan.h"
+#include "common/allan.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -175,7 +175,7 @@ TEST(Adxrs150, WhiteRateNoiseMatchesDatasheetDensity) {
   const std::vector<double> rate_dps = StaticRecordDps(TypicalWith(e), 42, 360000);  // 1 h
   constexpr double kDensity = 0.05;
   for (size_t m : {20u, 100u, 500u}) {  // 0.2, 1, 5 s: white region (filter pole at 4 ms)
-    const AllanPoint p = OverlappingAllanDeviationAt(rate_dps, kFrame_s, m);
+    const common::AllanPoint p = common::OverlappingAllanDeviationAt(rate_dps, kFrame_s, m);
     // Requirement 10 %; statistical 1-sigma at 5 s is 2.6 %.
     EXPECT_NEAR(
         p.adev, kDensity / std::sqrt(2.0 * p.tau_s), 0.10 * kDensity / std::sqrt(2.0 * p.tau_s))
@@ -184,7 +184,7 @@ TEST(Adxrs150, WhiteRateNoiseMatchesDatasheetDensity) {
   // One-sided low-frequency PSD of the per-frame rate = density^2 (filter and frame averaging have
   // unit DC gain; aliasing adds < 0.3 %). Below 2 Hz the 40 Hz pole and the 10 ms average take
   // < 0.4 %. Welch over 175 segments x 82 bins: ~1 % standard error. Requirement 10 %.
-  EXPECT_NEAR(LowFrequencyPsd(rate_dps, kFrame_s, 4096, 2.0),
+  EXPECT_NEAR(common::LowFrequencyPsd(rate_dps, kFrame_s, 4096, 2.0),
               kDensity * kDensity,
               0.10 * kDensity * kDensity);
 }
@@ -199,7 +199,7 @@ TEST(Adxrs150, BiasInstabilityFloorHasConfiguredMagnitude) {
   p.effects.bias_instability = false;
   const std::vector<double> off = StaticRecordDps(p, 7, 3000000);
   for (size_t m : {3000u, 10000u, 30000u}) {  // 30, 100, 300 s
-    const AllanPoint with = OverlappingAllanDeviationAt(on, kFrame_s, m);
+    const common::AllanPoint with = common::OverlappingAllanDeviationAt(on, kFrame_s, m);
     const double white_dps = kDensity / std::sqrt(2.0 * with.tau_s);
     // Expected: the floor and the white part in quadrature. Tolerance 15 %: the floor's +-4 %
     // ripple (gyro_bias_process.h) plus the estimator's scatter for flicker noise with 100..1000
@@ -207,7 +207,7 @@ TEST(Adxrs150, BiasInstabilityFloorHasConfiguredMagnitude) {
     const double expected = std::hypot(floor_dps, white_dps);
     EXPECT_NEAR(with.adev, expected, 0.15 * expected) << "tau " << with.tau_s;
     // Without it only white noise remains, 4..10x below the floor.
-    const AllanPoint without = OverlappingAllanDeviationAt(off, kFrame_s, m);
+    const common::AllanPoint without = common::OverlappingAllanDeviationAt(off, kFrame_s, m);
     EXPECT_NEAR(without.adev, white_dps, 0.25 * white_dps) << "tau " << with.tau_s;
   }
 }
@@ -220,7 +220,7 @@ TEST(Adxrs150, RateRandomWalkGrowsAsSqrtTauOverThree) {
   const double k_dps_per_rts = 600.0 / 3600.0 / 60.0;
   const std::vector<double> rate_dps = StaticRecordDps(p, 3, 1000000);  // 10^4 s
   for (size_t m : {1000u, 10000u}) {                                    // 10, 100 s
-    const AllanPoint a = OverlappingAllanDeviationAt(rate_dps, kFrame_s, m);
+    const common::AllanPoint a = common::OverlappingAllanDeviationAt(rate_dps, kFrame_s, m);
     const double expected = k_dps_per_rts * std::sqrt(a.tau_s / 3.0);
     // Random-walk Allan estimates scatter more than white ones; 100 clusters: ~15 % 1-sigma.
     EXPECT_NEAR(a.adev, expected, 0.35 * expected) << "tau " << a.tau_s;
@@ -446,7 +446,7 @@ TEST(Adxrs150, JsonRoundTripIsExact) {
     const nlohmann::json j = p.ToJson();
     // Through text, as a file would carry it.
     const nlohmann::json reparsed = nlohmann::json::parse(j.dump());
-    const Adxrs150Params q = Adxrs150Params::FromJson(ParamReader(reparsed, "unit.json"));
+    const Adxrs150Params q = Adxrs150Params::FromJson(common::ParamReader(reparsed, "unit.json"));
     EXPECT_EQ(q, p);
     EXPECT_EQ(q.ToJson(), j);
   }
@@ -454,8 +454,8 @@ TEST(Adxrs150, JsonRoundTripIsExact) {
 
 std::string FromJsonError(const nlohmann::json& j) {
   try {
-    Adxrs150Params::FromJson(ParamReader(j, "gyro_x.json"));
-  } catch (const ParamError& e) {
+    Adxrs150Params::FromJson(common::ParamReader(j, "gyro_x.json"));
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "no error";

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "sensor_sim/atmosphere.h"
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -45,10 +45,10 @@ TEST(AirData, ProtocolCheckValues) {
   // shared/protocols.md §5, quoted in hPa to 0.001 hPa: 100 kt → 16.303, 350 kt → 212.862;
   // at Vc = a0, qc = 904.76 hPa; a0 = 661.479 kt. The 350 kt value is truncated, not rounded
   // (physics.md §4.1 gives 21 286.3 Pa), so the tolerance is one last digit (0.1 Pa).
-  EXPECT_NEAR(ImpactPressurePaFromKt(100.0), HpaToPa(16.303), 0.1);
-  EXPECT_NEAR(ImpactPressurePaFromKt(350.0), HpaToPa(212.862), 0.1);
-  EXPECT_NEAR(MpsToKt(SeaLevelSpeedOfSoundMps()), 661.479, 0.0005);
-  EXPECT_NEAR(ImpactPressurePa(SeaLevelSpeedOfSoundMps()), HpaToPa(904.76), 0.5);
+  EXPECT_NEAR(ImpactPressurePaFromKt(100.0), common::HpaToPa(16.303), 0.1);
+  EXPECT_NEAR(ImpactPressurePaFromKt(350.0), common::HpaToPa(212.862), 0.1);
+  EXPECT_NEAR(common::MpsToKt(SeaLevelSpeedOfSoundMps()), 661.479, 0.0005);
+  EXPECT_NEAR(ImpactPressurePa(SeaLevelSpeedOfSoundMps()), common::HpaToPa(904.76), 0.5);
 }
 
 TEST(AirData, RoundTripOverTheSpeedRange) {
@@ -64,9 +64,9 @@ TEST(AirData, Fl350At250KcasCheckValue) {
   const double ps_pa = IsaStaticPressurePaFromFt(35000.0);
   const double qc_pa = ImpactPressurePaFromKt(250.0);
   const double mach = MachNumber(qc_pa, ps_pa);
-  const double tas_kt = MpsToKt(TrueAirspeedMps(mach, IsaTemperatureK(FtToM(35000.0))));
-  EXPECT_NEAR(ps_pa, HpaToPa(238.4), 5.0);
-  EXPECT_NEAR(qc_pa, HpaToPa(105.0), 5.0);
+  const double tas_kt = common::MpsToKt(TrueAirspeedMps(mach, IsaTemperatureK(common::FtToM(35000.0))));
+  EXPECT_NEAR(ps_pa, common::HpaToPa(238.4), 5.0);
+  EXPECT_NEAR(qc_pa, common::HpaToPa(105.0), 5.0);
   EXPECT_NEAR(mach, 0.741, 0.0005);
   EXPECT_NEAR(tas_kt, 427.0, 0.5);
 }
@@ -81,7 +81,7 @@ TEST(AirData, MachEqualsCasRatioAtSeaLevel) {
   // At ps = p0 the Mach and CAS formulas coincide: M = Vc/a0 exactly (up to rounding).
   for (double cas_kt : {50.0, 200.0, 600.0}) {
     EXPECT_NEAR(MachNumber(ImpactPressurePaFromKt(cas_kt), kIsaSeaLevelPressure_pa),
-                KtToMps(cas_kt) / SeaLevelSpeedOfSoundMps(), 1e-12);
+                common::KtToMps(cas_kt) / SeaLevelSpeedOfSoundMps(), 1e-12);
   }
 }
 

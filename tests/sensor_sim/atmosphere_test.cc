@@ -7,7 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -34,7 +34,7 @@ constexpr AltitudePressure kIsaTable[] = {
 
 TEST(Atmosphere, StaticPressureMatchesPublishedTable) {
   for (const AltitudePressure& row : kIsaTable) {
-    const double expected_pa = HpaToPa(row.ps_hpa);
+    const double expected_pa = common::HpaToPa(row.ps_hpa);
     EXPECT_NEAR(IsaStaticPressurePaFromFt(row.alt_ft), expected_pa,
                 kTableRelativeTolerance * expected_pa)
         << "alt_ft " << row.alt_ft;
@@ -45,9 +45,9 @@ TEST(Atmosphere, PressureAltitudeMatchesPublishedTable) {
   // Inverse direction: 0.01 % of pressure corresponds to at most 3 ft (dh/dp ≤ 1.79 ft/Pa at
   // 50 000 ft, physics.md §4.1, times 0.01 % of 11 597 Pa); allow that in feet.
   for (const AltitudePressure& row : kIsaTable) {
-    const double ps_pa = HpaToPa(row.ps_hpa);
-    const double dh_dp_ft_per_pa = MToFt(1.0) * kIsaGasConstant_j_per_kg_k * 288.15 /
-                                   (kStandardGravity_mps2 * ps_pa);
+    const double ps_pa = common::HpaToPa(row.ps_hpa);
+    const double dh_dp_ft_per_pa = common::MToFt(1.0) * kIsaGasConstant_j_per_kg_k * 288.15 /
+                                   (common::kStandardGravity_mps2 * ps_pa);
     EXPECT_NEAR(IsaPressureAltitudeFt(ps_pa), row.alt_ft,
                 kTableRelativeTolerance * ps_pa * dh_dp_ft_per_pa)
         << "ps_hpa " << row.ps_hpa;

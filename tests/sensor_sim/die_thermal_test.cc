@@ -55,16 +55,16 @@ TEST(DieThermal, JsonRoundTripAndDrawDeterminism) {
   EXPECT_EQ(a, DieThermalParams::Draw(7));
   EXPECT_NE(a, DieThermalParams::Draw(8));
   const nlohmann::json j = a.ToJson();
-  EXPECT_EQ(DieThermalParams::FromJson(ParamReader(j, "test")), a);
+  EXPECT_EQ(DieThermalParams::FromJson(common::ParamReader(j, "test")), a);
 }
 
 TEST(DieThermal, BadParameterNamesPath) {
   nlohmann::json j = DieThermalParams::Typical().ToJson();
   j["tau_s"] = -3.0;
   try {
-    DieThermalParams::FromJson(ParamReader(j, "unit.json", "$.thermal"));
+    DieThermalParams::FromJson(common::ParamReader(j, "unit.json", "$.thermal"));
     FAIL() << "accepted a negative time constant";
-  } catch (const ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_NE(std::string(e.what()).find("$.thermal.tau_s"), std::string::npos) << e.what();
   }
 }

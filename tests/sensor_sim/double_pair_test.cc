@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -26,7 +26,7 @@ TEST(DoublePair, FloorPairIsStdFloorInBothLanes) {
       x.push_back(std::nextafter(s * base, -std::numeric_limits<double>::infinity()));
     }
   }
-  Rng rng(41);
+  common::Rng rng(41);
   for (int i = 0; i < 100000; ++i) x.push_back(rng.Uniform(-4e5, 4e5));
   for (size_t i = 0; i + 1 < x.size(); ++i) {
     const DoublePair floor = FloorPair(DoublePair{x[i], x[i + 1]});
@@ -36,7 +36,7 @@ TEST(DoublePair, FloorPairIsStdFloorInBothLanes) {
 }
 
 TEST(DoublePair, SqrtPairIsStdSqrtInBothLanes) {
-  Rng rng(42);
+  common::Rng rng(42);
   for (int i = 0; i < 100000; ++i) {
     const double a = rng.Uniform(0.0, 1.0), b = rng.Uniform(0.0, 1e6);
     const DoublePair root = SqrtPair(DoublePair{a, b});
@@ -48,7 +48,7 @@ TEST(DoublePair, SqrtPairIsStdSqrtInBothLanes) {
 // Within 1 ulp of std::exp over the range the ADXL210E uses it on (−Δ/τ down to −700) and the
 // positive side, as BoundedExp itself (fast_math_test).
 TEST(DoublePair, BoundedExpPairWithinOneUlpOfStdExp) {
-  Rng rng(43);
+  common::Rng rng(43);
   auto ulps = [](double a, double b) {
     const auto ia = std::bit_cast<int64_t>(a), ib = std::bit_cast<int64_t>(b);
     return ia > ib ? ia - ib : ib - ia;

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -42,7 +42,7 @@ TEST(FastMath, FloorToInt64MatchesStdFloor) {
   for (double x : EdgeCases()) {
     EXPECT_EQ(FloorToInt64(x), static_cast<int64_t>(std::floor(x))) << std::hexfloat << x;
   }
-  Rng rng(11);
+  common::Rng rng(11);
   for (int i = 0; i < 1000000; ++i) {
     // Magnitudes spread over 0 … 2^40 so every fraction length occurs.
     const double x = (rng.Uniform() - 0.5) * std::ldexp(1.0, static_cast<int>(rng.Uniform() * 40));
@@ -54,7 +54,7 @@ TEST(FastMath, RoundHalfAwayToInt64MatchesLlround) {
   for (double x : EdgeCases()) {
     EXPECT_EQ(RoundHalfAwayToInt64(x), std::llround(x)) << std::hexfloat << x;
   }
-  Rng rng(12);
+  common::Rng rng(12);
   for (int i = 0; i < 1000000; ++i) {
     const double x = (rng.Uniform() - 0.5) * std::ldexp(1.0, static_cast<int>(rng.Uniform() * 40));
     ASSERT_EQ(RoundHalfAwayToInt64(x), std::llround(x)) << std::hexfloat << x;
@@ -69,7 +69,7 @@ TEST(FastMath, RoundHalfEvenMatchesNearbyint) {
     if (std::fabs(x) >= 0x1p51) continue;  // outside the documented range
     EXPECT_EQ(RoundHalfEven(x), std::nearbyint(x)) << std::hexfloat << x;
   }
-  Rng rng(14);
+  common::Rng rng(14);
   for (int i = 0; i < 1000000; ++i) {
     const double x = (rng.Uniform() - 0.5) * std::ldexp(1.0, static_cast<int>(rng.Uniform() * 40));
     ASSERT_EQ(RoundHalfEven(x), std::nearbyint(x)) << std::hexfloat << x;
@@ -93,7 +93,7 @@ TEST(FastMath, BoundedExpWithinOneUlpOfStdExpOverItsRange) {
     if (ulp > 1) ++beyond_one_ulp;
   }
   // The range the sensors use most, [−10, 0], sampled finely and at random points.
-  Rng rng(13);
+  common::Rng rng(13);
   for (int i = 0; i < kSweep; ++i) {
     const double x = -10.0 * rng.Uniform();
     const int64_t ulp = UlpDistance(BoundedExp(x), std::exp(x));

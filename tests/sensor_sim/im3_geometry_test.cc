@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -54,13 +54,13 @@ TEST(Im3Geometry, DrawnMisalignmentStaysWithinOneDegreePerComponent) {
     for (int k = 0; k < 3; ++k) {
       EXPECT_LE(g.accel_misalignment_deg[k].cwiseAbs().maxCoeff(), 1.0);
       const Eigen::Matrix3d delta = g.R_CB(k) * Im3Geometry::NominalR_CB(k).transpose();
-      const double angle_deg = RadToDeg(std::acos(std::clamp(delta(0, 0), -1.0, 1.0)));
+      const double angle_deg = common::RadToDeg(std::acos(std::clamp(delta(0, 0), -1.0, 1.0)));
       EXPECT_LE(angle_deg, std::sqrt(2.0) + 1e-9);
       max_cross = std::max(max_cross, std::abs(delta(0, 1)));
     }
   }
   EXPECT_GT(max_cross, 0.005);
-  EXPECT_LT(max_cross, DegToRad(std::sqrt(2.0)));
+  EXPECT_LT(max_cross, common::DegToRad(std::sqrt(2.0)));
 }
 
 TEST(Im3Geometry, MisalignmentEffectOffGivesNominal) {
@@ -74,16 +74,16 @@ TEST(Im3Geometry, MisalignmentEffectOffGivesNominal) {
 TEST(Im3Geometry, JsonRoundTripIsExact) {
   const Im3Geometry g = Im3Geometry::Draw(5);
   const nlohmann::json j = g.ToJson();
-  EXPECT_EQ(Im3Geometry::FromJson(ParamReader(j, "t")), g);
+  EXPECT_EQ(Im3Geometry::FromJson(common::ParamReader(j, "t")), g);
 }
 
 TEST(Im3Geometry, OutOfRangeMisalignmentIsRefusedWithPath) {
   nlohmann::json j = Im3Geometry::Typical().ToJson();
   j["gyro_misalignment_deg"][1][2] = 12.0;
   try {
-    Im3Geometry::FromJson(ParamReader(j, "u.json", "$.geometry"));
+    Im3Geometry::FromJson(common::ParamReader(j, "u.json", "$.geometry"));
     FAIL();
-  } catch (const ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_NE(std::string(e.what()).find("$.geometry.gyro_misalignment_deg[1][2]"),
               std::string::npos)
         << e.what();

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -137,7 +137,7 @@ TEST(ImuUnit, ProfilesDifferOnlyByEffects) {
 TEST(ImuUnit, TruthJsonRoundTripsExactly) {
   const ImuUnitParams p = ImuUnitParams::Draw("IMU-0042", 26, ModelProfile::kTruth);
   const nlohmann::json j = nlohmann::json::parse(p.ToJson().dump());
-  const ImuUnitParams q = ImuUnitParams::FromJson(ParamReader(j, "truth.json"));
+  const ImuUnitParams q = ImuUnitParams::FromJson(common::ParamReader(j, "truth.json"));
   EXPECT_EQ(q.ToJson(), p.ToJson());
   EXPECT_EQ(q.serial, "IMU-0042");
 }
@@ -146,9 +146,9 @@ TEST(ImuUnit, BadTruthFileNamesTheNestedPath) {
   nlohmann::json j = ImuUnitParams::Draw("IMU-1", 27, ModelProfile::kTruth).ToJson();
   j["gyro_thermal"][2]["tau_s"] = "NaN";
   try {
-    ImuUnitParams::FromJson(ParamReader(j, "truth.json"));
+    ImuUnitParams::FromJson(common::ParamReader(j, "truth.json"));
     FAIL();
-  } catch (const ParamError& e) {
+  } catch (const common::ParamError& e) {
     EXPECT_NE(std::string(e.what()).find("truth.json: $.gyro_thermal[2].tau_s"), std::string::npos)
         << e.what();
   }

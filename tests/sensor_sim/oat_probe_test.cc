@@ -148,7 +148,7 @@ TEST(OatProbe, JsonRoundTripIsExactAndStable) {
   for (const OatProbeParams& p :
        {OatProbeParams::Typical(RtdElement::kPt500), OatProbeParams::Draw(RtdElement::kPt1000, 2)}) {
     const nlohmann::json j = nlohmann::json::parse(p.ToJson().dump());
-    EXPECT_EQ(OatProbeParams::FromJson(ParamReader(j, "oat.json")), p);
+    EXPECT_EQ(OatProbeParams::FromJson(common::ParamReader(j, "oat.json")), p);
   }
   EXPECT_EQ(OatProbeParams::Draw(RtdElement::kPt1000, 4).ToJson().dump(),
             OatProbeParams::Draw(RtdElement::kPt1000, 4).ToJson().dump());
@@ -158,8 +158,8 @@ std::string FromJsonError(const std::function<void(nlohmann::json&)>& edit) {
   nlohmann::json j = OatProbeParams::Typical(RtdElement::kPt1000).ToJson();
   edit(j);
   try {
-    OatProbeParams::FromJson(ParamReader(j, "oat.json"));
-  } catch (const ParamError& e) {
+    OatProbeParams::FromJson(common::ParamReader(j, "oat.json"));
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "no error";

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -86,7 +86,7 @@ TEST(PreisachHysteresis, FullExcursionForgetsTheVirginState) {
   h.Update(0.0);
   h.Update(33000.0);
   EXPECT_DOUBLE_EQ(h.Update(0.0), 1.0);
-  Rng rng(3);
+  common::Rng rng(3);
   // Inside the noise a loop of travel a leaves the branch by at most 2 F(a / span) ~ 6 (a/span)^2.
   for (int i = 0; i < 10000; ++i) {
     EXPECT_GE(h.Update(rng.Uniform(-20.0, 20.0)), 1.0 - 6.0 * std::pow(40.0 / 6895.0, 2));
@@ -100,7 +100,7 @@ TEST(PreisachHysteresis, NoisyRampDevelopsLikeACleanOne) {
   PreisachHysteresis noisy(10.0), clean(10.0);
   noisy.Update(0.0);
   clean.Update(0.0);
-  Rng rng(12345);
+  common::Rng rng(12345);
   double worst = 0.0;
   for (int i = 1; i <= 700; ++i) {
     const double x = 0.01 * i;
@@ -113,7 +113,7 @@ TEST(PreisachHysteresis, NoisyRampDevelopsLikeACleanOne) {
 // Bounded and continuous under random histories of every size: no step of the input moves the
 // state by more than the steepest slope (virgin curve: 6/span) times the step.
 TEST(PreisachHysteresis, BoundedAndLipschitzOverRandomHistories) {
-  Rng rng(77);
+  common::Rng rng(77);
   double worst_slope = 0.0;
   for (int history = 0; history < 200; ++history) {
     PreisachHysteresis h(10.0);

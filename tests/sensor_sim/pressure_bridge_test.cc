@@ -8,7 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -37,7 +37,7 @@ TEST(PressureBridge, FullScaleOutputAsConfigured) {
   // every nominal term but noise on: FSO is defined to include the nonlinearity.
   PressureBridgeParams p = PressureBridgeParams::Typical(kStatic);
   p.effects.noise = false;
-  const double fs_pa = PsiToPa(15.0);
+  const double fs_pa = common::PsiToPa(15.0);
   const double fso_v = Once(p, fs_pa, 25.0).signal_v - Once(p, 0.0, 25.0).signal_v;
   EXPECT_NEAR(fso_v, 0.090, 1e-12);
   // Zero output: o0·V_B = 0.1 mV/V · 5 V.
@@ -352,7 +352,7 @@ TEST(PressureBridge, JsonRoundTripIsExactAndStable) {
        {PressureBridgeParams::Typical(kStatic), PressureBridgeParams::Typical(kPitot),
         PressureBridgeParams::Draw(kStatic, 5), PressureBridgeParams::Draw(kPitot, 5), play}) {
     const nlohmann::json j = nlohmann::json::parse(p.ToJson().dump());
-    EXPECT_EQ(PressureBridgeParams::FromJson(ParamReader(j, "bridge.json")), p);
+    EXPECT_EQ(PressureBridgeParams::FromJson(common::ParamReader(j, "bridge.json")), p);
   }
   EXPECT_EQ(PressureBridgeParams::Draw(kPitot, 77).ToJson().dump(),
             PressureBridgeParams::Draw(kPitot, 77).ToJson().dump());
@@ -362,8 +362,8 @@ std::string FromJsonError(const std::function<void(nlohmann::json&)>& edit) {
   nlohmann::json j = PressureBridgeParams::Typical(kPitot).ToJson();
   edit(j);
   try {
-    PressureBridgeParams::FromJson(ParamReader(j, "pitot.json"));
-  } catch (const ParamError& e) {
+    PressureBridgeParams::FromJson(common::ParamReader(j, "pitot.json"));
+  } catch (const common::ParamError& e) {
     return e.what();
   }
   return "no error";
@@ -388,7 +388,7 @@ TEST(PressureBridge, BadJsonNamesPathAndRange) {
   // A file written before the key existed reads as the travel law.
   nlohmann::json old = PressureBridgeParams::Typical(kPitot).ToJson();
   old.erase("hysteresis_law");
-  EXPECT_EQ(PressureBridgeParams::FromJson(ParamReader(old, "old.json")).hysteresis_law,
+  EXPECT_EQ(PressureBridgeParams::FromJson(common::ParamReader(old, "old.json")).hysteresis_law,
             HysteresisLaw::kTravelPreisach);
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["effects"].erase("nonlinearity"); }),
               AllOf(HasSubstr("$.effects.nonlinearity"), HasSubstr("missing")));

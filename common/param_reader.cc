@@ -1,10 +1,10 @@
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 
 ParamReader::ParamReader(const nlohmann::json& object, std::string source, std::string path)
     : object_(&object),
@@ -127,4 +127,4 @@ void ParamReader::ExpectAllKeysUsed() const {
   }
 }
 
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common

@@ -1,4 +1,4 @@
-#include "sensor_sim/param_reader.h"
+#include "common/param_reader.h"
 
 #include <filesystem>
 #include <fstream>
@@ -7,7 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 namespace {
 
 using ::testing::AllOf;
@@ -80,4 +80,4 @@ TEST(ParamReader, NumberBeyondDoubleRangeNamesTheFile) {
 }
 
 }  // namespace
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common

@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 
 /// Thrown for any invalid parameter input; what() names source, JSON path and the rule broken.
 class ParamError : public std::runtime_error {
@@ -103,4 +103,4 @@ class ParamReader {
   std::shared_ptr<std::set<std::string>> used_;
 };
 
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common

@@ -16,7 +16,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 
 /// One point of an Allan-deviation curve.
 struct AllanPoint {
@@ -59,4 +59,4 @@ double LowFrequencyPsd(const std::vector<double>& samples,
                        size_t segment_length,
                        double f_max_hz);
 
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common

@@ -1,4 +1,4 @@
-#include "sensor_sim/random.h"
+#include "common/random.h"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 namespace {
 
 double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
@@ -132,4 +132,4 @@ TEST(Rng, ToleranceDrawsStayInsideTheTolerance) {
 }
 
 }  // namespace
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common

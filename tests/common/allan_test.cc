@@ -1,4 +1,4 @@
-#include "sensor_sim/allan.h"
+#include "common/allan.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "sensor_sim/random.h"
-#include "sensor_sim/units.h"
+#include "common/random.h"
+#include "common/units.h"
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 namespace {
 
 using ::testing::AllOf;
@@ -122,4 +122,4 @@ TEST(Allan, BadArgumentsAreRefusedWithValues) {
 }
 
 }  // namespace
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common

@@ -1,4 +1,4 @@
-#include "sensor_sim/allan.h"
+#include "common/allan.h"
 
 #include <cmath>
 #include <complex>
@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "sensor_sim/units.h"
+#include "common/units.h"
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 namespace {
 
 [[noreturn]] void Invalid(const std::string& what) { throw std::invalid_argument(what); }
@@ -165,4 +165,4 @@ double LowFrequencyPsd(const std::vector<double>& samples,
   return sum / static_cast<double>(bins);
 }
 
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common

@@ -1,9 +1,9 @@
 // Named unit conversions and physical constants that are definitions, not measurements.
 // Formulas use these names instead of bare factors. Local gravity is NOT here: it is a parameter
-// of the station (see gravity.h); kStandardGravity is only the definition of the unit "g".
+// of the station (sensor_sim/gravity.h); kStandardGravity is only the definition of the unit "g".
 #pragma once
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 
 inline constexpr double kPi = 3.14159265358979323846;
 /// Standard gravity, the definition of 1 g (CGPM 1901); not the local gravity of any lab.
@@ -33,4 +33,4 @@ constexpr double RadToDeg(double rad) { return rad * 180.0 / kPi; }
 constexpr double GToMps2(double g) { return g * kStandardGravity_mps2; }
 constexpr double Mps2ToG(double mps2) { return mps2 / kStandardGravity_mps2; }
 
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 
-namespace adahrs::sensor_sim {
+namespace adahrs::common {
 
 class Rng {
  public:
@@ -157,4 +157,4 @@ class Rng {
   uint64_t state_[4];
 };
 
-}  // namespace adahrs::sensor_sim
+}  // namespace adahrs::common
