@@ -167,6 +167,7 @@ int64_t Units47(const CoeffQ31& c) {
 // round(value 2^(31 - shift_from_47)) of values held as value 2^47: the mantissa at exponent e is
 // RoundShift(units47, 16 + e) in Q31, RoundShift(units47, 32 + e) in Q15.
 int64_t RoundShift(int64_t units47, int32_t shift) {
+  if (shift <= 0) return units47;
   return (units47 + (INT64_C(1) << (shift - 1))) >> shift;
 }
 
