@@ -164,8 +164,9 @@ int64_t Units47(const CoeffQ31& c) {
   return static_cast<int64_t>(c.mantissa_q31) >> (-shift);
 }
 
-// round(value 2^(31 - shift_from_47)) of values held as value 2^47: the mantissa at exponent e is
-// RoundShift(units47, 16 + e) in Q31, RoundShift(units47, 32 + e) in Q15.
+// units47 / 2^shift rounded to nearest (halves up). A value held as value 2^47 has the Q31
+// mantissa RoundShift(units47, 16 + e) and the Q15 mantissa RoundShift(units47, 32 + e) at
+// exponent e.
 int64_t RoundShift(int64_t units47, int32_t shift) {
   if (shift <= 0) return units47;
   return (units47 + (INT64_C(1) << (shift - 1))) >> shift;
@@ -254,8 +255,8 @@ void DeriveScaleDelta(const PolyQ31& scale, ScaleDeltaQ15* delta) {
   int64_t units47[kImuScaleFactorDegree + 1];
   for (uint8_t k = 0; k <= kImuScaleFactorDegree; ++k) units47[k] = Units47(scale.coeff[k]);
   units47[0] -= INT64_C(1) << 47;  // delta = F - 1
-  // delta's exponent: the smallest whose Q31 holds |d0| + sum_k |d_k| (each k >= 1 at most
-  // 2^-16 of it coarser in the tempco exponent's rounding, hence the margin of 4 Q31 LSB).
+  // delta's exponent: the smallest whose Q31 holds |d0| + sum_k |d_k| with a margin of 4 2^16
+  // LSB, which covers d1..d3 rounded to Q15 at an exponent no coarser (2^15 LSB each at most).
   int64_t sum_abs47 = 0;
   for (int64_t v : units47) sum_abs47 += v < 0 ? -v : v;
   int8_t exponent = kMinQ15Exponent;
