@@ -144,6 +144,23 @@ struct ScaleTemperatureBounds {
   double quadratic_g = 0.0;     // quantisation of q at the rated input, g
 };
 
+// What the target's Q15 form of GS adds (deg/s): each element's rounding at its row's exponent
+// times the rated input, A rounded to Q15 (1/2 LSB at kAccelMps2Exponent) times the row, and the
+// row sum's alignment (1 LSB).
+double GSensitivityQ15Bound(const ScaleTemperatureConstantsQ31& st,
+                            const std::array<std::array<double, 3>, 3>& gs) {
+  double worst = 0;
+  for (int r = 0; r < 3; ++r) {
+    const double lsb = std::ldexp(1.0, st.gs_q15.row_exponent[r] - 15);
+    double row_abs = 0;
+    for (int c = 0; c < 3; ++c) row_abs += std::fabs(gs[r][c]);
+    worst = std::max(worst, 3 * 0.5 * lsb * kRatedAccel_mps2 +
+                                row_abs * 0.5 * std::ldexp(1.0, kAccelMps2Exponent - 15) +
+                                Lsb(kRateExponent));
+  }
+  return worst;
+}
+
 ScaleTemperatureBounds ExportScaleTemperature(const ImuScaleTemperature& in,
                                               const ThermalConstantsQ31 thermal[kImuChannels],
                                               ScaleTemperatureConstantsQ31* out) {
@@ -165,7 +182,12 @@ ScaleTemperatureBounds ExportScaleTemperature(const ImuScaleTemperature& in,
     out->scale[ch] = poly.poly;
     Real sum_abs = 0;
     for (Real v : c) sum_abs += std::fabs(v);
-    b.factor = std::max(b.factor, poly.bound);
+    // The target runs F as 1 + delta at delta's Q15 exponent: d1..d3 rounded (1/2 LSB each, at
+    // most as coarse), tau rounded (1/2 2^-16 for shift 16) and its square and cube (2^-16 and
+    // 2^-15, times sum |d_k| < 2^exponent: 1.5 LSB) and delta itself (1/2 LSB): within 4 LSB.
+    ScaleDeltaQ15 delta{};
+    DeriveScaleDelta(poly.poly, &delta);
+    b.factor = std::max(b.factor, poly.bound + 4 * std::ldexp(1.0, delta.exponent - 15));
     b.factor_max = std::max(b.factor_max, static_cast<double>(sum_abs));
   }
   const double rated_g = kRatedAccel_g;
@@ -179,7 +201,13 @@ ScaleTemperatureBounds ExportScaleTemperature(const ImuScaleTemperature& in,
     out->accel_quadratic[axis] = Quantise(q, -kAccelGExponent - kMaxAlignShift, what);
     const double dq = static_cast<double>(std::fabs(Value(out->accel_quadratic[axis]) - q));
     b.quadratic_gain = std::max(b.quadratic_gain, 1.0 + 2.0 * std::fabs(q) * rated_g);
-    b.quadratic_g = std::max(b.quadratic_g, dq * rated_g * rated_g + 8 * Lsb(kAccelGExponent));
+    // The target's Q15 form: q rounded (1/2 LSB of its high word), ca rounded to Q15 before the
+    // square (2 |ca| times 1/2 LSB at kAccelGExponent) and the square rounded (1/2 LSB at twice it).
+    const double q15 = std::ldexp(1.0, out->accel_quadratic[axis].exponent - 16);
+    const double square_g2 = 2 * rated_g * std::ldexp(1.0, kAccelGExponent - 16) +
+                             std::ldexp(1.0, 2 * kAccelGExponent - 16);
+    b.quadratic_g = std::max(b.quadratic_g, (dq + q15) * rated_g * rated_g +
+                                                std::fabs(q) * square_g2 + 8 * Lsb(kAccelGExponent));
   }
   return b;
 }
@@ -205,6 +233,7 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
                                t.temp_norm.shift);
     const QuantisedPoly poly = QuantisePoly(c, u_e - kMaxAlignShift, u_e, what);
     t.drift = poly.poly;
+    DeriveThermalAligned(&t);
     thermal_bound[ch] = poly.bound + 2 * Lsb(u_e);
   }
   double accel_g = 0;
@@ -285,6 +314,8 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
     cg_bound += export_matrix(in.scale_temperature.gs_dps_per_mps2, q.scale_temperature.gs,
                               kRateExponent, kRatedAccel_mps2, ca_bound, "GS block 0x1B") +
                 4 * Lsb(kRateExponent);
+    DeriveScaleTemperatureQ15(&q.scale_temperature);
+    cg_bound += GSensitivityQ15Bound(q.scale_temperature, in.scale_temperature.gs_dps_per_mps2);
   }
   // Every block must pass the target's own validation, so host and target agree on what is valid.
   ImuConstants check{};

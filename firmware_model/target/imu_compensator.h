@@ -8,14 +8,16 @@
 //      = floor(U 2^31). A 16-bit DIVF alone resolves only 3e-5 duty (0.76 mg at 25 g/duty), 8x
 //      the 0.1 mg budget, so the 32-bit quotient is needed (38 cycles per channel).
 //      Gyro U = counts << 8 (exponent 23), saturating for |counts| >= 2^23.
-//   2. Thermal (Eq. 4-5): tau = (t - centre) 2^-shift, xi(tau) by Horner (degree 3), T = U - xi.
+//   2. Thermal (Eq. 4-5): tau = (t - centre) 2^-shift, xi(tau) by Horner (degree 3), T = U - xi;
+//      format 2 in Q31 x Q31 steps, format 3 in Q31 x Q15 steps (tau rounded to Q15).
 //   3. Sensor calibration: accel Ca = (T - O) (1/S) in g (Eq. 12); gyro Eq. 23 cubic in
 //      x = (T - centre) 2^-shift, deg/s.
-//      Format 3: each channel times its scale factor F(tau_s), tau_s the normalised count of the
-//      temperature sensor its thermal block names.
+//      Format 3: each channel times its scale factor F(tau_s) = 1 + delta, tau_s the normalised
+//      count of the temperature sensor its thermal block names, delta a MAC chain on tau_s's Q15
+//      powers (imu_constants.h ScaleDeltaQ15).
 //   4. Full calibration: Ca_axis = (ch1 + ch2)/2 (pair mean), format 3: + q ca_axis^2;
-//      A = CA Ca (Eq. 26) in m/s^2, G = CG Cg (Eq. 29), format 3: + GS A; slots 6..8 carry the
-//      pair half-difference (ch1 - ch2)/2 in g.
+//      A = CA Ca (Eq. 26) in m/s^2, G = CG Cg (Eq. 29), format 3: + GS A (q, GS, ca and A in
+//      Q15 there); slots 6..8 carry the pair half-difference (ch1 - ch2)/2 in g.
 // The engine is put in fractional mode with 1.31 saturation and convergent rounding at entry
 // (one CORCON write). Saturation anywhere sets a flag in the frame; values are never wrapped.
 // Not modelled: the capture ISR that produces t1/t2, the gyro ADC driver, and run-time bias

@@ -68,6 +68,7 @@ ConstantsStatus ThermalFromWords(const int16_t* words, uint8_t channel, ThermalC
   const int8_t u_exponent = channel < kAccelChannels ? kDutyExponent : kGyroCountExponent;
   const int32_t bring = decoded.drift.work_exponent - u_exponent;
   if (bring < -kMaxAlignShift || bring > kMaxAlignShift) return ConstantsStatus::kOutOfRange;
+  DeriveThermalAligned(&decoded);
   *out = decoded;
   return ConstantsStatus::kOk;
 }
@@ -156,6 +157,46 @@ ConstantsStatus AccelQuadraticFromWords(const int16_t* words, CoeffQ31 out[3]) {
   return ConstantsStatus::kOk;
 }
 
+// value * 2^47 of a coefficient with exponent <= 16 (exact for exponent >= -16, floor below).
+int64_t Units47(const CoeffQ31& c) {
+  const int32_t shift = c.exponent + 16;
+  if (shift >= 0) return static_cast<int64_t>(c.mantissa_q31) * (INT64_C(1) << shift);
+  return static_cast<int64_t>(c.mantissa_q31) >> (-shift);
+}
+
+// units47 / 2^shift rounded to nearest (halves up). A value held as value 2^47 has the Q31
+// mantissa RoundShift(units47, 16 + e) and the Q15 mantissa RoundShift(units47, 32 + e) at
+// exponent e.
+int64_t RoundShift(int64_t units47, int32_t shift) {
+  if (shift <= 0) return units47;
+  return (units47 + (INT64_C(1) << (shift - 1))) >> shift;
+}
+
+int16_t SatInt16(int64_t v) {
+  return static_cast<int16_t>(v > INT16_MAX ? INT16_MAX : (v < INT16_MIN ? INT16_MIN : v));
+}
+
+// Sum of |Q15 mantissas| of `count` values at `exponent`.
+int64_t SumAbsQ15(const int64_t* units47, uint8_t count, int32_t exponent) {
+  int64_t sum_abs = 0;
+  for (uint8_t k = 0; k < count; ++k) {
+    const int64_t m = RoundShift(units47[k], 32 + exponent);
+    sum_abs += m < 0 ? -m : m;
+  }
+  return sum_abs;
+}
+
+// Q15 mantissas at the smallest exponent, from `min_exponent` to kMaxQ15Exponent, whose rounded
+// mantissas sum to at most 32767 in magnitude; returns that exponent.
+constexpr int8_t kMinQ15Exponent = -16;
+constexpr int8_t kMaxQ15Exponent = 2;
+int8_t BlockQ15(const int64_t* units47, uint8_t count, int8_t min_exponent, int16_t* m_q15) {
+  int8_t exponent = min_exponent;
+  while (exponent < kMaxQ15Exponent && SumAbsQ15(units47, count, exponent) > INT16_MAX) ++exponent;
+  for (uint8_t k = 0; k < count; ++k) m_q15[k] = SatInt16(RoundShift(units47[k], 32 + exponent));
+  return exponent;
+}
+
 void ScaleTemperatureInit(ScaleTemperatureConstantsQ31* st) {
   st->enabled = 0;
   for (InputNormQ31& n : st->temp_norm) n = InputNormQ31{INT32_C(32768), 16};
@@ -167,16 +208,22 @@ void ScaleTemperatureInit(ScaleTemperatureConstantsQ31* st) {
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) st->gs[r][c] = kZeroCoeff;
   }
+  DeriveScaleTemperatureQ15(st);
 }
 
 ConstantsStatus ScaleTemperatureWriteBlock(ScaleTemperatureConstantsQ31* st, uint8_t block_id,
                                            const int16_t* words) {
   if (block_id == kImuBlockScaleSwitch) return ScaleSwitchFromWords(words, st);
+  ConstantsStatus s = ConstantsStatus::kOk;
   if (block_id <= kImuBlockScaleFactorLast) {
-    return ScaleFactorFromWords(words, &st->scale[block_id - kImuBlockScaleFactorFirst]);
+    s = ScaleFactorFromWords(words, &st->scale[block_id - kImuBlockScaleFactorFirst]);
+  } else if (block_id == kImuBlockAccelQuadratic) {
+    s = AccelQuadraticFromWords(words, st->accel_quadratic);
+  } else {
+    s = MatrixFromWords(words, kRatedAccel_mps2, kRateExponent, st->gs);
   }
-  if (block_id == kImuBlockAccelQuadratic) return AccelQuadraticFromWords(words, st->accel_quadratic);
-  return MatrixFromWords(words, kRatedAccel_mps2, kRateExponent, st->gs);
+  if (s == ConstantsStatus::kOk) DeriveScaleTemperatureQ15(st);
+  return s;
 }
 
 void ScaleTemperatureReadBlock(const ScaleTemperatureConstantsQ31& st, uint8_t block_id,
@@ -197,6 +244,56 @@ void ScaleTemperatureReadBlock(const ScaleTemperatureConstantsQ31& st, uint8_t b
 
 }  // namespace
 
+void DeriveThermalAligned(ThermalConstantsQ31* thermal) {
+  for (uint8_t k = 0; k <= kImuThermalDegree; ++k) {
+    const CoeffQ31& c = thermal->drift.coeff[k];
+    thermal->drift_aligned_q31[k] = c.mantissa_q31 >> (thermal->drift.work_exponent - c.exponent);
+  }
+}
+
+void DeriveScaleDelta(const PolyQ31& scale, ScaleDeltaQ15* delta) {
+  int64_t units47[kImuScaleFactorDegree + 1];
+  for (uint8_t k = 0; k <= kImuScaleFactorDegree; ++k) units47[k] = Units47(scale.coeff[k]);
+  units47[0] -= INT64_C(1) << 47;  // delta = F - 1
+  // delta's exponent: the smallest whose Q31 holds |d0| + sum_k |d_k| with a margin of 4 2^16
+  // LSB, which covers d1..d3 rounded to Q15 at an exponent no coarser (2^15 LSB each at most).
+  int64_t sum_abs47 = 0;
+  for (int64_t v : units47) sum_abs47 += v < 0 ? -v : v;
+  int8_t exponent = kMinQ15Exponent;
+  while (exponent < kMaxQ15Exponent &&
+         RoundShift(sum_abs47, 16 + exponent) + 4 * (INT64_C(1) << 16) > INT32_MAX) {
+    ++exponent;
+  }
+  const int8_t lowest = static_cast<int8_t>(exponent - 16);
+  delta->tempco_exponent = BlockQ15(units47 + 1, kImuScaleFactorDegree,
+                                    lowest < kMinQ15Exponent ? kMinQ15Exponent : lowest,
+                                    delta->d_q15);
+  if (delta->tempco_exponent > exponent) exponent = delta->tempco_exponent;
+  delta->exponent = exponent;
+  delta->d0_q31 = static_cast<int32_t>(RoundShift(units47[0], 16 + exponent));
+}
+
+void DeriveGSensitivity(const CoeffQ31 gs[3][3], GSensitivityQ15* out) {
+  for (uint8_t r = 0; r < 3; ++r) {
+    int64_t units47[3];
+    for (uint8_t c = 0; c < 3; ++c) units47[c] = Units47(gs[r][c]);
+    out->row_exponent[r] = BlockQ15(units47, 3, kMinQ15Exponent, out->m_q15[r]);
+  }
+}
+
+int16_t DeriveQ15(const CoeffQ31& coeff) {
+  const int64_t m = (static_cast<int64_t>(coeff.mantissa_q31) + (INT64_C(1) << 15)) >> 16;
+  return static_cast<int16_t>(m > INT16_MAX ? INT16_MAX : m);
+}
+
+void DeriveScaleTemperatureQ15(ScaleTemperatureConstantsQ31* st) {
+  for (uint8_t c = 0; c < kImuChannels; ++c) DeriveScaleDelta(st->scale[c], &st->delta[c]);
+  for (uint8_t axis = 0; axis < 3; ++axis) {
+    st->accel_quadratic_q15[axis] = DeriveQ15(st->accel_quadratic[axis]);
+  }
+  DeriveGSensitivity(st->gs, &st->gs_q15);
+}
+
 void ImuConstantsInit(ImuConstants* constants) {
   for (uint8_t c = 0; c < kImuChannels; ++c) {
     ThermalConstantsQ31& t = constants->thermal[c];
@@ -204,6 +301,7 @@ void ImuConstantsInit(ImuConstants* constants) {
                                                             : c - kAccelChannels);
     t.temp_norm = InputNormQ31{INT32_C(32768), 16};
     ZeroPoly(&t.drift, c < kAccelChannels ? kDutyExponent : kGyroCountExponent);
+    DeriveThermalAligned(&t);
   }
   for (AccelScaleConstantsQ31& a : constants->accel) a = AccelScaleConstantsQ31{0, {0, 5}};
   for (GyroCubicConstantsQ31& g : constants->gyro) {

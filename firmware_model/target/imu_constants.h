@@ -31,6 +31,8 @@
 //       nonlinearity with its rate)
 //   ca_axis += q_axis ca_axis^2 after the pair mean (accelerometer second-order nonlinearity)
 //   G = CG * Cg + GS * A, GS in deg/s per m/s^2 (gyro g-sensitivity on the compensated A)
+//   The blocks hold Q31 words; a write derives the Q15 forms the compensator runs (F - 1, q, GS)
+//   and the thermal coefficients aligned to their working exponent.
 //
 // Blocks (id: content, length in int16 words; layouts in fixed_coeff.h):
 //   0x01..0x09 thermal, channel id-1: [temperature sensor 0..2][InputNormQ31 tau (shift <= 16)]
@@ -87,6 +89,9 @@ struct ThermalConstantsQ31 {
   uint8_t temp_sensor;     ///< 0..2: which temperature count drives this channel
   InputNormQ31 temp_norm;  ///< tau = (t_cnt - centre) * 2^-shift, shift <= 16
   PolyQ31 drift;           ///< xi(tau), degree kImuThermalDegree, in the channel's U units
+  /// drift's mantissas aligned to its working exponent (floor, as Horner's SFTAC does), derived on
+  /// write (DeriveThermalAligned): the format-3 path evaluates xi as a dot product on tau's powers.
+  int32_t drift_aligned_q31[kImuThermalDegree + 1];
 };
 
 struct AccelScaleConstantsQ31 {
@@ -99,13 +104,35 @@ struct GyroCubicConstantsQ31 {
   PolyQ31 rate;             ///< Eq. 23 in x, deg/s, work_exponent == kRateExponent
 };
 
-/// The format-3 stages (blocks 0x10..0x1B).
+/// Run-time form of a scale factor, derived from its block on write: F = 1 + delta,
+/// delta(tau) = d0 + d1 tau + d2 tau^2 + d3 tau^3 at `exponent`, d0 a Q31 mantissa there and the
+/// tempco terms d1..d3 Q15 mantissas at the finer `tempco_exponent` (value = d 2^(e - 15)), with
+/// |d0| + sum_k |d_k| below 2^exponent so no partial sum overflows for |tau| <= 1.
+struct ScaleDeltaQ15 {
+  int32_t d0_q31;
+  int16_t d_q15[kImuScaleFactorDegree];  ///< d1..d3
+  int8_t exponent;                       ///< -16..2
+  int8_t tempco_exponent;                ///< exponent - 16 .. exponent
+};
+
+/// Run-time form of GS, derived from block 0x1B on write: Q15 mantissas at one exponent per row
+/// (value = m 2^(row_exponent - 15)), each row's sum_j |m| <= 32767.
+struct GSensitivityQ15 {
+  int16_t m_q15[3][3];
+  int8_t row_exponent[3];  ///< -16..2
+};
+
+/// The format-3 stages (blocks 0x10..0x1B), and the Q15 forms the compensator runs, derived on
+/// write (DeriveScaleDelta, DeriveGSensitivity).
 struct ScaleTemperatureConstantsQ31 {
   uint8_t enabled;                          ///< 0: skipped (a format-2 set), 1: run
   InputNormQ31 temp_norm[kTempSensors];     ///< tau_s, shift <= 16
   PolyQ31 scale[kImuChannels];              ///< F_c(tau), work_exponent == kScaleFactorExponent
   CoeffQ31 accel_quadratic[3];              ///< q per body axis, g per g^2
   CoeffQ31 gs[3][3];                        ///< GS, deg/s per m/s^2
+  ScaleDeltaQ15 delta[kImuChannels];        ///< F_c - 1, derived from scale[c]
+  int16_t accel_quadratic_q15[3];           ///< q rounded to Q15 at accel_quadratic[axis].exponent
+  GSensitivityQ15 gs_q15;                   ///< derived from gs
 };
 
 struct ImuConstants {
@@ -144,6 +171,15 @@ inline constexpr uint8_t kImuScaleFactorBlockWords = PolyWords(kImuScaleFactorDe
 inline constexpr uint8_t kImuAccelQuadraticBlockWords = 3 * kCoeffWords;
 /// Longest IMU block, for callers sizing a buffer.
 inline constexpr uint8_t kImuMaxBlockWords = kImuAccelBlockWords;
+
+/// The Q15 run-time forms of the format-3 blocks (ScaleTemperatureConstantsQ31). A write of
+/// block 0x11..0x1B derives them; a caller that fills the Q31 fields itself (the exporter) calls
+/// DeriveScaleTemperatureQ15 afterwards. Rounding: to nearest, |error| <= 1/2 LSB of each mantissa.
+void DeriveThermalAligned(ThermalConstantsQ31* thermal);
+void DeriveScaleDelta(const PolyQ31& scale, ScaleDeltaQ15* delta);
+void DeriveGSensitivity(const CoeffQ31 gs[3][3], GSensitivityQ15* out);
+int16_t DeriveQ15(const CoeffQ31& coeff);
+void DeriveScaleTemperatureQ15(ScaleTemperatureConstantsQ31* st);
 
 /// Puts the set into its uncalibrated state: zero drift, zero offsets, zero scales, zero gyro
 /// polynomials, identity matrices (so every calibrated output of an unconfigured unit reads zero),

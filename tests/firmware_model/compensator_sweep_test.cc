@@ -3,8 +3,9 @@
 // realistic constants. Budgets (10 % of the accuracy budget, asserted): 0.1 mg,
 // 0.0015 deg/s, 1.5 ft, 0.1 kt; thermal mode: 0.1 mg at 25 g/duty = 4e-6 duty, 0.0015 deg/s at
 // 20,972 counts per deg/s = 31 counts. Cycle budgets (docs/firmware-compensator.md "Cycle table"):
-// <= 2,500 per format-2 IMU frame, <= 4,000 with the format-3 scale-temperature stages, <= 3,000
-// per ADS frame, with operand MOVs, loop control and shift loads charged as a compiler emits them.
+// <= 2,500 per IMU frame, format 2 or 3, <= 3,000 per ADS frame, with operand MOVs, loop control
+// and shift loads charged as a compiler emits them. The IMU sweep also holds the exporter's
+// worst-case bounds against the measured errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -43,12 +44,17 @@ TEST_P(ImuSweep, WithinBudgetOverEnvelope) {
                                             ImuCompensationMode::kSensorCalibrated,
                                             ImuCompensationMode::kFullyCalibrated};
   double worst[4][9] = {};
+  ImuExportReport bound{};  // the exporter's worst-case bounds, largest over the units
   uint32_t max_cycles = 0;
   for (uint64_t unit = 0; unit < 4; ++unit) {
     const ImuCalibrationConstants cal =
         GetParam() ? testing::WithScaleTemperature(RealisticImu(1000 + unit), 500 + unit)
                    : RealisticImu(1000 + unit);
     const ImuExport exported = ExportImuConstants(cal);
+    bound.accel_g = std::max(bound.accel_g, exported.report.accel_g);
+    bound.rate_dps = std::max(bound.rate_dps, exported.report.rate_dps);
+    bound.accel_mps2 = std::max(bound.accel_mps2, exported.report.accel_mps2);
+    bound.rate_full_dps = std::max(bound.rate_full_dps, exported.report.rate_full_dps);
     common::Rng rng(common::Rng::Derive(77, unit));
     for (int i = 0; i < 1500; ++i) {
       // Corners of the envelope first, then uniform draws inside it.
@@ -91,7 +97,14 @@ TEST_P(ImuSweep, WithinBudgetOverEnvelope) {
   EXPECT_LE(max_of(3, 0, 3), kBudgetAccel_mps2);
   EXPECT_LE(max_of(3, 3, 6), kBudgetRate_dps);
   EXPECT_LE(max_of(3, 6, 9), kBudgetAccel_g);
-  EXPECT_LE(max_cycles, GetParam() ? 4000u : 2500u);
+  std::printf("IMU (format %d) exporter bounds: sensor accel %.3g g, rate %.3g dps; full A %.3g "
+              "m/s^2, G %.3g dps\n",
+              GetParam() ? 3 : 2, bound.accel_g, bound.rate_dps, bound.accel_mps2, bound.rate_full_dps);
+  EXPECT_LE(max_of(2, 0, 6), bound.accel_g);
+  EXPECT_LE(max_of(2, 6, 9), bound.rate_dps);
+  EXPECT_LE(max_of(3, 0, 3), bound.accel_mps2);
+  EXPECT_LE(max_of(3, 3, 6), bound.rate_full_dps);
+  EXPECT_LE(max_cycles, 2500u);
 }
 
 // Both forms: surfaces of altitude and airspeed themselves (the reference method), and surfaces of
@@ -229,12 +242,16 @@ TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
   EXPECT_EQ(engine.op_count(DspOp::kMpy), 60u);
   EXPECT_EQ(engine.op_count(DspOp::kMulSU), 120u);
   EXPECT_EQ(engine.op_count(DspOp::kDivUD), 12u);
-  // Format 3 adds 9 x (3 Horner + 1) scale-factor, 3 x 2 nonlinearity and 9 GS multiplies: 111.
+  // Format 3: the thermal Horner steps become Q31 x Q15 (one MPY and one MUL.SU each, 27 + 27);
+  // tau^2 and tau^3 per sensor (6 MPY); per channel delta's MPY and two MACs, and y delta's MUL.SU
+  // and MAC; q's two MPYs per axis; GS's MPY and two MACs per row. The 6 accel-scale, 9 gyro-cubic
+  // and 18 matrix Q31 multiplies are format 2's.
   const DspEngine engine3 = ImuFrameMix(
       "format 3",
       ExportImuConstants(testing::WithScaleTemperature(testing::RealisticImu(1), 2)).constants, raw);
-  EXPECT_EQ(engine3.op_count(DspOp::kMpy), 111u);
-  EXPECT_EQ(engine3.op_count(DspOp::kMulSU), 222u);
+  EXPECT_EQ(engine3.op_count(DspOp::kMpy), 27u + 6u + 9u + 6u + 3u + 33u);
+  EXPECT_EQ(engine3.op_count(DspOp::kMulSU), 27u + 9u + 2u * 33u);
+  EXPECT_EQ(engine3.op_count(DspOp::kMac), 9u * 3u + 3u * 2u);
   AdsCalibrationConstants with_hysteresis = testing::RealisticAds();
   with_hysteresis.altitude_ft.hysteresis = testing::RealisticPressureAds().altitude_ft.hysteresis;
   with_hysteresis.altitude_ft.hysteresis.pressure_gain = -2.0;  // ft: the surface is direct

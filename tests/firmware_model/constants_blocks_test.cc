@@ -5,6 +5,7 @@
 
 #include <climits>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <initializer_list>
 #include <utility>
@@ -90,6 +91,66 @@ TEST(ConstantsBlocks, Format3RoundTripAndRefusals) {
   words[2] = 2;
   EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockGs, words, count), ConstantsStatus::kWouldOverflow);
   EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
+}
+
+double ValueOf(const CoeffQ31& c) { return std::ldexp(static_cast<double>(c.mantissa_q31), c.exponent - 31); }
+
+// The Q15 forms the compensator runs hold the blocks' values within half an LSB of each mantissa,
+// sum within their chains' range, and the exporter derives the same forms as a block write does.
+TEST(ConstantsBlocks, Format3RunTimeFormsHoldTheBlocksWithinHalfAnLsb) {
+  const ImuConstants source =
+      ExportImuConstants(testing::WithScaleTemperature(testing::RealisticImu(5), 6)).constants;
+  ImuConstants target;
+  ImuConstantsInit(&target);
+  for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockLast; ++id) {
+    int16_t words[kImuMaxBlockWords];
+    uint8_t count = 0;
+    ImuConstantsReadBlock(&source, id, words, kImuMaxBlockWords, &count);
+    ASSERT_EQ(ImuConstantsWriteBlock(&target, id, words, count), ConstantsStatus::kOk) << int(id);
+  }
+  const ScaleTemperatureConstantsQ31& st = target.scale_temperature;
+  for (int c = 0; c < kImuChannels; ++c) {
+    const ScaleDeltaQ15& d = st.delta[c];
+    EXPECT_EQ(std::memcmp(&d, &source.scale_temperature.delta[c], sizeof(d)), 0) << c;
+    ASSERT_GE(d.exponent - d.tempco_exponent, 0);
+    ASSERT_LE(d.exponent - d.tempco_exponent, 16);
+    EXPECT_NEAR(std::ldexp(static_cast<double>(d.d0_q31), d.exponent - 31),
+                ValueOf(st.scale[c].coeff[0]) - 1.0, std::ldexp(1.0, d.exponent - 32));
+    double sum_abs_q31 = std::fabs(static_cast<double>(d.d0_q31));
+    for (int k = 1; k <= kImuScaleFactorDegree; ++k) {
+      EXPECT_NEAR(std::ldexp(static_cast<double>(d.d_q15[k - 1]), d.tempco_exponent - 15),
+                  ValueOf(st.scale[c].coeff[k]), std::ldexp(1.0, d.tempco_exponent - 16));
+      sum_abs_q31 += std::ldexp(std::fabs(static_cast<double>(d.d_q15[k - 1])),
+                                16 + d.tempco_exponent - d.exponent);
+    }
+    EXPECT_LT(sum_abs_q31, std::ldexp(1.0, 31)) << c;
+    for (int k = 0; k <= kImuThermalDegree; ++k) {
+      const CoeffQ31& coeff = target.thermal[c].drift.coeff[k];
+      EXPECT_EQ(target.thermal[c].drift_aligned_q31[k],
+                coeff.mantissa_q31 >> (target.thermal[c].drift.work_exponent - coeff.exponent));
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    const CoeffQ31& q = st.accel_quadratic[axis];
+    EXPECT_NEAR(std::ldexp(static_cast<double>(st.accel_quadratic_q15[axis]), q.exponent - 15),
+                ValueOf(q), std::ldexp(1.0, q.exponent - 16));
+  }
+  for (int r = 0; r < 3; ++r) {
+    const int e = st.gs_q15.row_exponent[r];
+    int sum_abs = 0;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(std::ldexp(static_cast<double>(st.gs_q15.m_q15[r][c]), e - 15), ValueOf(st.gs[r][c]),
+                  std::ldexp(1.0, e - 16));
+      sum_abs += std::abs(st.gs_q15.m_q15[r][c]);
+    }
+    EXPECT_LE(sum_abs, INT16_MAX) << r;
+    EXPECT_GT(sum_abs, INT16_MAX / 2) << r;  // the smallest exponent that holds the row
+  }
+  // The power-on set: F = 1 is delta = 0 at the finest exponent.
+  ImuConstants init;
+  ImuConstantsInit(&init);
+  EXPECT_EQ(init.scale_temperature.delta[0].d0_q31, 0);
+  EXPECT_EQ(init.scale_temperature.delta[0].exponent, -16);
 }
 
 TEST(ConstantsBlocks, ImuRefusalsLeaveStateUnchanged) {
