@@ -60,136 +60,222 @@ AcceptanceRun JudgeIntoRecords(const std::filesystem::path& run, const std::stri
   return judged;
 }
 
-}  // namespace
+void AddRuns(const std::vector<std::vector<RunSummary>>& benches, CampaignResult& result) {
+  for (const auto& bench : benches) {
+    result.runs.insert(result.runs.end(), bench.begin(), bench.end());
+  }
+}
 
-CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
-                           const std::atomic<bool>& stop) {
-  CampaignResult result;
+// Stage 1: the calibration runs on both benches; returns the IMU runs' directories in order.
+std::vector<std::filesystem::path> CalibrationRuns(const CampaignOptions& o,
+                                                   CampaignObserver& observer,
+                                                   const std::atomic<bool>& stop,
+                                                   CampaignResult& result) {
   const CampaignSequences& seq = o.sequences;
-  const hil::Station imu_station = hil::Station::Load(o.imu_station_file);
-  const hil::Station ads_station = hil::Station::Load(o.ads_station_file);
-  result.records_file = o.out_dir / "records.sqlite";
-  RecordsStore records(result.records_file);
-
   observer.Stage("1/8 calibration runs: IMU calibration on the IMU bench, ADS calibration on the "
                  "ADS bench, concurrently");
   const auto calibration = RunBenches(o, observer, seq.imu_calibration, {seq.ads_calibration}, stop);
   observer.Stage("calibration runs done:" + RunsText(calibration));
-  for (const auto& bench : calibration) result.runs.insert(result.runs.end(), bench.begin(), bench.end());
+  AddRuns(calibration, result);
   std::vector<std::filesystem::path> imu_runs;
   for (const std::string& s : seq.imu_calibration) imu_runs.push_back(RunDir(o, s));
-  const std::filesystem::path ads_run = RunDir(o, seq.ads_calibration);
+  return imu_runs;
+}
 
+// The fits of both strategies per unit kind, each written into its own directory.
+struct CampaignFits {
+  std::filesystem::path imu_reference_dir, imu_joint_dir, ads_reference_dir, ads_improved_dir;
+  std::vector<WrittenConstants> imu_reference, imu_joint, ads_reference, ads_improved;
+};
+
+// Stage 2: fits every strategy and records every constants file.
+CampaignFits FitStrategies(const CampaignOptions& o, CampaignObserver& observer,
+                           const std::vector<std::filesystem::path>& imu_runs,
+                           const std::filesystem::path& ads_run, RecordsStore& records) {
   observer.Stage("2/8 fits: IMU reference and improved (joint, firmware format 3) strategies, ADS "
                  "reference and improved (hysteresis-compensated pressure surfaces, ISA / CAS "
                  "laws) strategies");
-  const std::filesystem::path imu_reference_dir = o.out_dir / "fits" / "imu-reference";
-  const std::filesystem::path imu_joint_dir = o.out_dir / "fits" / "imu-joint";
-  const std::filesystem::path ads_reference_dir = o.out_dir / "fits" / "ads-reference";
-  const std::filesystem::path ads_improved_dir = o.out_dir / "fits" / "ads-hysteresis-compensated";
-  const auto imu_reference = FitImuIntoDirectory(imu_runs, ImuStrategy::Reference(),
-                                                 imu_reference_dir, o.software_version);
+  CampaignFits f;
+  f.imu_reference_dir = o.out_dir / "fits" / "imu-reference";
+  f.imu_joint_dir = o.out_dir / "fits" / "imu-joint";
+  f.ads_reference_dir = o.out_dir / "fits" / "ads-reference";
+  f.ads_improved_dir = o.out_dir / "fits" / "ads-hysteresis-compensated";
+  f.imu_reference = FitImuIntoDirectory(imu_runs, ImuStrategy::Reference(), f.imu_reference_dir,
+                                        o.software_version);
   ImuStrategy improved = ImuStrategy::Improved();
   improved.format3 = true;
-  const auto imu_joint = FitImuIntoDirectory(imu_runs, improved, imu_joint_dir, o.software_version);
-  const auto ads_reference = FitAdsIntoDirectory(ads_run, kReferenceAdsStrategyName,
-                                                 ads_reference_dir, o.software_version);
-  const auto ads_improved = FitAdsIntoDirectory(ads_run, kHysteresisAdsStrategyName,
-                                                ads_improved_dir, o.software_version);
-  for (const auto* fits : {&imu_reference, &imu_joint, &ads_reference, &ads_improved}) {
+  f.imu_joint = FitImuIntoDirectory(imu_runs, improved, f.imu_joint_dir, o.software_version);
+  f.ads_reference = FitAdsIntoDirectory(ads_run, kReferenceAdsStrategyName, f.ads_reference_dir,
+                                        o.software_version);
+  f.ads_improved = FitAdsIntoDirectory(ads_run, kHysteresisAdsStrategyName, f.ads_improved_dir,
+                                       o.software_version);
+  for (const auto* fits : {&f.imu_reference, &f.imu_joint, &f.ads_reference, &f.ads_improved}) {
     for (const WrittenConstants& w : *fits) records.AddConstants(ConstantsRecordFromFile(w.path));
   }
   observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
-                             imu_joint.size(), ads_reference.size()));
+                             f.imu_joint.size(), f.ads_reference.size()));
+  return f;
+}
 
+struct ImprovedDownloads {
+  std::vector<UnitDownload> imu, ads;
+};
+
+// Stage 3: the improved constants into every unit of both stations.
+ImprovedDownloads DownloadImprovedConstants(CampaignObserver& observer,
+                                            const hil::Station& imu_station,
+                                            const hil::Station& ads_station, const CampaignFits& f,
+                                            RecordsStore& records) {
   observer.Stage("3/8 download: improved IMU and ADS constants into every unit, read back bit for "
                  "bit, committed");
-  const std::vector<UnitDownload> imu_downloads =
-      DownloadStation(imu_station, imu_joint_dir, records);
-  const std::vector<UnitDownload> ads_downloads =
-      DownloadStation(ads_station, ads_improved_dir, records);
+  ImprovedDownloads d;
+  d.imu = DownloadStation(imu_station, f.imu_joint_dir, records);
+  d.ads = DownloadStation(ads_station, f.ads_improved_dir, records);
+  return d;
+}
 
+// The acceptance runs and their judgements.
+struct CampaignAcceptance {
+  std::filesystem::path imu_run, ads_run;
+  AcceptanceRun imu_judged, ads_judged;
+};
+
+// Stage 4: the acceptance runs on both benches, judged and recorded.
+CampaignAcceptance AcceptanceRuns(const CampaignOptions& o, CampaignObserver& observer,
+                                  const std::atomic<bool>& stop, RecordsStore& records,
+                                  CampaignResult& result) {
+  const CampaignSequences& seq = o.sequences;
   observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
   const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
   observer.Stage("acceptance runs done:" + RunsText(acceptance));
-  for (const auto& bench : acceptance) result.runs.insert(result.runs.end(), bench.begin(), bench.end());
-  const std::filesystem::path imu_acceptance_run = RunDir(o, seq.imu_acceptance);
-  const std::filesystem::path ads_acceptance_run = RunDir(o, seq.ads_acceptance);
-  const AcceptanceRun imu_judged = JudgeIntoRecords(imu_acceptance_run, o.software_version, records);
-  const AcceptanceRun ads_judged = JudgeIntoRecords(ads_acceptance_run, o.software_version, records);
+  AddRuns(acceptance, result);
+  CampaignAcceptance a;
+  a.imu_run = RunDir(o, seq.imu_acceptance);
+  a.ads_run = RunDir(o, seq.ads_acceptance);
+  a.imu_judged = JudgeIntoRecords(a.imu_run, o.software_version, records);
+  a.ads_judged = JudgeIntoRecords(a.ads_run, o.software_version, records);
   observer.Stage(fmt::format("acceptance against the specification: IMU batch {}, ADS {}",
-                             imu_judged.pass() ? "PASS" : "FAIL",
-                             ads_judged.pass() ? "PASS" : "FAIL"));
+                             a.imu_judged.pass() ? "PASS" : "FAIL",
+                             a.ads_judged.pass() ? "PASS" : "FAIL"));
+  return a;
+}
 
-  std::vector<EvaluatedQuantity> imu_eval, ads_eval;
-  if (o.truth_dir) {
-    observer.Stage("5/8 evaluation against the rig's truth: every fit through the firmware "
-                   "compensator on the envelope grid");
-    result.reference_evaluation = EvaluateAgainstTruth(imu_reference, *o.truth_dir,
-                                                       imu_station.local_gravity_mps2,
-                                                       imu_reference_dir);
-    imu_eval = EvaluateAgainstTruth(imu_joint, *o.truth_dir, imu_station.local_gravity_mps2,
-                                    imu_joint_dir);
-    result.ads_reference_evaluation = EvaluateAgainstTruth(
-        ads_reference, *o.truth_dir, ads_station.local_gravity_mps2, ads_reference_dir);
-    ads_eval = EvaluateAgainstTruth(ads_improved, *o.truth_dir, ads_station.local_gravity_mps2,
-                                    ads_improved_dir);
-  } else {
+// The evaluation of the downloaded (improved) constants against the truth; empty without one.
+struct ImprovedEvaluation {
+  std::vector<EvaluatedQuantity> imu, ads;
+};
+
+// Stage 5: every fit through the firmware compensator against the rig's truth, when there is one.
+ImprovedEvaluation EvaluateFits(const CampaignOptions& o, CampaignObserver& observer,
+                                const CampaignFits& f, const hil::Station& imu_station,
+                                const hil::Station& ads_station, CampaignResult& result) {
+  ImprovedEvaluation eval;
+  if (!o.truth_dir) {
     result.not_run.push_back("evaluation against truth: no truth directory (not a simulated rig)");
+    return eval;
   }
+  observer.Stage("5/8 evaluation against the rig's truth: every fit through the firmware "
+                 "compensator on the envelope grid");
+  const double imu_g = imu_station.local_gravity_mps2;
+  const double ads_g = ads_station.local_gravity_mps2;
+  result.reference_evaluation =
+      EvaluateAgainstTruth(f.imu_reference, *o.truth_dir, imu_g, f.imu_reference_dir);
+  eval.imu = EvaluateAgainstTruth(f.imu_joint, *o.truth_dir, imu_g, f.imu_joint_dir);
+  result.ads_reference_evaluation =
+      EvaluateAgainstTruth(f.ads_reference, *o.truth_dir, ads_g, f.ads_reference_dir);
+  eval.ads = EvaluateAgainstTruth(f.ads_improved, *o.truth_dir, ads_g, f.ads_improved_dir);
+  return eval;
+}
 
+// Stage 6: the calibration runs diagnosed against the nominal model, beside the truth and checked
+// by replaying the acceptance runs when the rig's truth and a replay function are given.
+void DiagnoseCalibrationRuns(const CampaignOptions& o, CampaignObserver& observer,
+                             std::vector<std::filesystem::path> diagnosed_runs,
+                             const CampaignAcceptance& acceptance, CampaignResult& result) {
   observer.Stage("6/8 diagnosis: the IMU and ADS calibration runs against the pipeline's nominal model "
                  "(adahrs diagnose) -> " + (o.out_dir / "diagnosis").string());
   result.diagnosis_dir = o.out_dir / "diagnosis";
-  std::vector<std::filesystem::path> diagnosed_runs = imu_runs;
-  diagnosed_runs.push_back(ads_run);
   const DiagnosisRun diagnosed = DiagnoseRuns(diagnosed_runs, std::nullopt);
   WriteDiagnosis(diagnosed, result.diagnosis_dir);
   result.diagnosis = diagnosed.units;
   if (o.truth_dir) result.diagnosis_truth = CompareDiagnosisWithTruth(diagnosed.units, *o.truth_dir);
   if (o.truth_dir && o.replay) {
-    result.replay_checks = CheckDiagnosisByReplay(diagnosed, *o.truth_dir, result.diagnosis_dir,
-                                                  {imu_acceptance_run, ads_acceptance_run}, o.replay);
+    result.replay_checks =
+        CheckDiagnosisByReplay(diagnosed, *o.truth_dir, result.diagnosis_dir,
+                               {acceptance.imu_run, acceptance.ads_run}, o.replay);
   } else {
     result.not_run.push_back("re-simulation check of the diagnosis: needs the rig's truth and a replay function");
   }
+}
 
+// Stage 7: report.html per run with the improved fit of its unit kind; the acceptance runs' with
+// their judgement.
+void WriteReports(CampaignObserver& observer, const std::vector<std::filesystem::path>& imu_runs,
+                  const std::filesystem::path& ads_run, const CampaignFits& f,
+                  const CampaignAcceptance& acceptance, CampaignResult& result) {
   observer.Stage("7/8 report.html per run");
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports;
-  for (const std::filesystem::path& run : imu_runs) reports.emplace_back(run, imu_joint_dir);
-  reports.emplace_back(ads_run, ads_improved_dir);
-  reports.emplace_back(imu_acceptance_run, imu_joint_dir);
-  reports.emplace_back(ads_acceptance_run, ads_improved_dir);
+  for (const std::filesystem::path& run : imu_runs) reports.emplace_back(run, f.imu_joint_dir);
+  reports.emplace_back(ads_run, f.ads_improved_dir);
+  reports.emplace_back(acceptance.imu_run, f.imu_joint_dir);
+  reports.emplace_back(acceptance.ads_run, f.ads_improved_dir);
   for (const auto& [run, fit] : reports) {
-    const bool judged = run == imu_acceptance_run || run == ads_acceptance_run;
+    const bool judged = run == acceptance.imu_run || run == acceptance.ads_run;
     WriteRunReport(run, fit, run / "report.html",
                    judged ? std::optional<std::filesystem::path>(run / "acceptance") : std::nullopt);
     result.run_dirs.push_back(run);
   }
+}
+
+// Each downloaded unit with its evaluation and acceptance judgement.
+void AddUnitOutcomes(const std::vector<UnitDownload>& downloads, const std::string& strategy,
+                     const std::vector<EvaluatedQuantity>& eval, const AcceptanceRun& judged,
+                     const std::filesystem::path& report, CampaignResult& result) {
+  for (const UnitDownload& d : downloads) {
+    UnitOutcome u{d.role, d.serial, strategy, d, {}, std::nullopt, report};
+    for (const EvaluatedQuantity& q : eval) {
+      if (q.serial == d.serial) u.evaluation.push_back(q);
+    }
+    for (const UnitAcceptance& a : judged.units) {
+      if (a.serial == d.serial) u.acceptance = a;
+    }
+    result.units.push_back(std::move(u));
+  }
+}
+
+}  // namespace
+
+CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
+                           const std::atomic<bool>& stop) {
+  CampaignResult result;
+  const hil::Station imu_station = hil::Station::Load(o.imu_station_file);
+  const hil::Station ads_station = hil::Station::Load(o.ads_station_file);
+  result.records_file = o.out_dir / "records.sqlite";
+  RecordsStore records(result.records_file);
+
+  const std::vector<std::filesystem::path> imu_runs = CalibrationRuns(o, observer, stop, result);
+  const std::filesystem::path ads_run = RunDir(o, o.sequences.ads_calibration);
+  const CampaignFits fits = FitStrategies(o, observer, imu_runs, ads_run, records);
+
+  const ImprovedDownloads downloads =
+      DownloadImprovedConstants(observer, imu_station, ads_station, fits, records);
+
+  const CampaignAcceptance acceptance = AcceptanceRuns(o, observer, stop, records, result);
+  const ImprovedEvaluation eval = EvaluateFits(o, observer, fits, imu_station, ads_station, result);
+  std::vector<std::filesystem::path> diagnosed_runs = imu_runs;
+  diagnosed_runs.push_back(ads_run);
+  DiagnoseCalibrationRuns(o, observer, std::move(diagnosed_runs), acceptance, result);
+  WriteReports(observer, imu_runs, ads_run, fits, acceptance, result);
 
   observer.Stage("8/8 production records: runs, constants versions, downloads -> " +
                  result.records_file.string());
   for (const std::filesystem::path& run : result.run_dirs) {
     records.AddRun(RunRecordFromDirectory(run));
   }
-
-  const auto outcomes = [&](const std::vector<UnitDownload>& downloads, const std::string& strategy,
-                            const std::vector<EvaluatedQuantity>& eval, const AcceptanceRun& judged,
-                            const std::filesystem::path& report) {
-    for (const UnitDownload& d : downloads) {
-      UnitOutcome u{d.role, d.serial, strategy, d, {}, std::nullopt, report};
-      for (const EvaluatedQuantity& q : eval) {
-        if (q.serial == d.serial) u.evaluation.push_back(q);
-      }
-      for (const UnitAcceptance& a : judged.units) {
-        if (a.serial == d.serial) u.acceptance = a;
-      }
-      result.units.push_back(std::move(u));
-    }
-  };
-  outcomes(imu_downloads, "joint", imu_eval, imu_judged, imu_acceptance_run / "report.html");
-  outcomes(ads_downloads, kHysteresisAdsStrategyName, ads_eval, ads_judged,
-           ads_acceptance_run / "report.html");
+  AddUnitOutcomes(downloads.imu, "joint", eval.imu, acceptance.imu_judged,
+                  acceptance.imu_run / "report.html", result);
+  AddUnitOutcomes(downloads.ads, kHysteresisAdsStrategyName, eval.ads, acceptance.ads_judged,
+                  acceptance.ads_run / "report.html", result);
   return result;
 }
 

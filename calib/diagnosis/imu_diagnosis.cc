@@ -480,114 +480,131 @@ void DiagnoseRipple(const DiagnosisData& data, int ch, double phys, double alpha
   out->findings.push_back(std::move(f));
 }
 
-ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const DiagnosisOptions& options, double alpha,
-                              std::vector<std::string>* notes) {
-  ChannelResult out;
+// A channel's model with its baseline fitted: the design under the baseline's state, with the
+// random intercept per segment that the baseline's residual sets.
+struct ChannelModel {
+  Layout layout;
+  ChannelData y;
+  BaselineState st;
+  ClusteredLeastSquares ls;
+  std::vector<int> base;  // the baseline's identifiable columns
+};
+
+ChannelModel FitBaseline(const DiagnosisData& data, int ch, const DiagnosisOptions& options,
+                         std::vector<std::string>* notes) {
   Layout layout = MakeLayout(ch, options.uncalibrated_candidates);
   ChannelData y = CentredOutput(data, ch);
-  BaselineState st;
-  ClusteredLeastSquares ls = Accumulate(data, layout, y, st);
-  const std::vector<int> base = BaselineSubset(ls, layout, notes);
-  const ClusteredFit base_fit0 = ls.Fit(base);
-  if (!base_fit0.ok) throw ImuInputError(data.serial + ": " + kImuChannelNames[ch] + ": the baseline cannot be fitted");
-  st = StateFrom(base_fit0, base);
+  const ClusteredLeastSquares ls0 = Accumulate(data, layout, y, BaselineState{});
+  std::vector<int> base = BaselineSubset(ls0, layout, notes);
+  const ClusteredFit base_fit0 = ls0.Fit(base);
+  if (!base_fit0.ok) {
+    throw ImuInputError(data.serial + ": " + kImuChannelNames[ch] + ": the baseline cannot be fitted");
+  }
+  const BaselineState st = StateFrom(base_fit0, base);
   y.offset_ratio = OffsetRatio(data, Residuals(data, layout, st, base_fit0, base, y));
-  ls = Accumulate(data, layout, y, st);
+  ClusteredLeastSquares ls = Accumulate(data, layout, y, st);
+  return ChannelModel{std::move(layout), std::move(y), st, std::move(ls), std::move(base)};
+}
 
-  std::vector<int> selected = base;
-  std::vector<const Candidate*> chosen;
-  ClusteredFit selected_fit = ls.Fit(selected);
-  while (static_cast<int>(chosen.size()) < options.max_findings_per_channel) {
-    const Candidate* best = nullptr;
-    TermTest best_test;
-    for (const Candidate& cand : layout.candidates) {
-      const bool taken = std::any_of(chosen.begin(), chosen.end(), [&](const Candidate* c) { return c->effect == cand.effect; });
-      if (taken) continue;
-      TermTest t = RunTest(ls, selected, selected_fit, cand);
-      if (!t.testable || t.p_value >= alpha || t.gain <= 0.0) continue;
-      if (best == nullptr || t.p_value < best_test.p_value) {
-        best = &cand;
-        best_test = std::move(t);
-      }
-    }
-    if (best == nullptr) break;
-    chosen.push_back(best);
-    selected = best_test.subset;
-    selected_fit = best_test.fit;
+// The dependent columns rebuilt from the final baseline once, kept when their fit holds.
+void RebuildFromFinalBaseline(const DiagnosisData& data, ChannelModel& m, TermSelection& sel) {
+  const BaselineState refined = StateFrom(sel.fit, sel.selected);
+  ClusteredLeastSquares ls2 = Accumulate(data, m.layout, m.y, refined);
+  ClusteredFit fit2 = ls2.Fit(sel.selected);
+  if (fit2.ok && fit2.jackknife_ok) {
+    m.st = refined;
+    m.ls = std::move(ls2);
+    sel.fit = std::move(fit2);
   }
-  // Rebuild the dependent columns from the final baseline once.
-  if (!chosen.empty()) {
-    const BaselineState refined = StateFrom(selected_fit, selected);
-    ClusteredLeastSquares ls2 = Accumulate(data, layout, y, refined);
-    ClusteredFit fit2 = ls2.Fit(selected);
-    if (fit2.ok && fit2.jackknife_ok) {
-      st = refined;
-      ls = std::move(ls2);
-      selected_fit = std::move(fit2);
-    }
-  }
-  const double phys = PhysicalScale(ch, st);
-  const ClusteredFit base_fit = ls.Fit(base);
+}
 
-  const double tcrit = TCritical(alpha, selected_fit.clusters);
-  for (const Candidate* cand : chosen) {
-    std::vector<int> without;
-    for (int col : selected) {
-      if (std::find(cand->columns.begin(), cand->columns.end(), col) == cand->columns.end()) without.push_back(col);
-    }
-    const ClusteredFit fit_without = ls.Fit(without);
-    std::vector<int> pos;
-    for (int col : cand->columns) pos.push_back(static_cast<int>(std::find(selected.begin(), selected.end(), col) - selected.begin()));
-    Eigen::VectorXd theta(static_cast<int>(pos.size())), se(static_cast<int>(pos.size()));
-    for (size_t i = 0; i < pos.size(); ++i) {
-      theta[static_cast<int>(i)] = selected_fit.theta[pos[i]];
-      se[static_cast<int>(i)] = std::sqrt(selected_fit.covariance(pos[i], pos[i]));
-    }
-    Finding f;
-    f.effect = EffectName(cand->effect);
-    f.channel = kImuChannelNames[ch];
-    f.components = Components(*cand, theta, se, ch, phys);
-    f.time_constant_s = cand->tau_s;
-    f.held_out_rms_before = HeldOutRms(fit_without, selected_fit, false, phys);
-    f.held_out_rms_after = HeldOutRms(fit_without, selected_fit, true, phys);
-    f.rms_unit = RmsUnit(ch);
-    f.evidence = Evidence(data, layout, st, *cand, theta);
-    f.words = Words(*cand, f.components, ch);
-    const TermTest t = RunTest(ls, without, fit_without, *cand);
-    f.wald_p_value = t.p_value;
-    out.findings.push_back(std::move(f));
-  }
-  for (const Candidate& cand : layout.candidates) {
-    DetectionLimit lim;
-    lim.effect = EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
-    lim.channel = kImuChannelNames[ch];
-    const bool is_chosen = std::find(chosen.begin(), chosen.end(), &cand) != chosen.end();
-    std::vector<int> others;
-    for (int col : selected) {
-      if (std::find(cand.columns.begin(), cand.columns.end(), col) == cand.columns.end()) others.push_back(col);
-    }
-    const TermTest t = RunTest(ls, others, is_chosen ? ls.Fit(others) : selected_fit, cand);
-    if (!t.fit.ok || !t.fit.jackknife_ok || !t.note.empty()) {
-      lim.note = t.note;
-    } else {
-      const int q = static_cast<int>(cand.columns.size());
-      const Eigen::VectorXd se = t.fit.covariance.bottomRightCorner(q, q).diagonal().cwiseSqrt();
-      const Eigen::VectorXd limit = se * (tcrit + options.power_z);
-      lim.limits = Components(cand, limit, se, ch, phys);
-      for (FindingComponent& c : lim.limits) c.magnitude = std::abs(c.magnitude);
-    }
-    out.limits.push_back(std::move(lim));
-  }
+// Forward selection over the layout's candidates, at most one per effect (one warm-up time
+// constant of several); `chosen` indexes m.layout.candidates.
+TermSelection SelectCandidates(const DiagnosisData& data, ChannelModel& m, double alpha,
+                               int max_findings) {
+  const std::vector<Candidate>& candidates = m.layout.candidates;
+  std::vector<std::vector<int>> columns;
+  for (const Candidate& c : candidates) columns.push_back(c.columns);
+  const auto one_per_effect = [&](int k, const std::vector<int>& chosen) {
+    return std::none_of(chosen.begin(), chosen.end(), [&](int c) {
+      return candidates[static_cast<size_t>(c)].effect == candidates[static_cast<size_t>(k)].effect;
+    });
+  };
+  TermSelection sel =
+      SelectTerms(m.ls, m.base, m.ls.Fit(m.base), columns, alpha, max_findings, one_per_effect);
+  if (!sel.chosen.empty()) RebuildFromFinalBaseline(data, m, sel);
+  return sel;
+}
+
+Finding ChosenFinding(const DiagnosisData& data, const ChannelModel& m, const TermSelection& sel,
+                      const Candidate& cand, double phys) {
+  const int ch = m.layout.channel;
+  const std::vector<int> without = WithoutColumns(sel.selected, cand.columns);
+  const ClusteredFit fit_without = m.ls.Fit(without);
+  Eigen::VectorXd theta, se;
+  ColumnEstimates(sel.fit, sel.selected, cand.columns, &theta, &se);
+  Finding f;
+  f.effect = EffectName(cand.effect);
+  f.channel = kImuChannelNames[ch];
+  f.components = Components(cand, theta, se, ch, phys);
+  f.time_constant_s = cand.tau_s;
+  f.held_out_rms_before = HeldOutRms(fit_without, sel.fit, false, phys);
+  f.held_out_rms_after = HeldOutRms(fit_without, sel.fit, true, phys);
+  f.rms_unit = RmsUnit(ch);
+  f.evidence = Evidence(data, m.layout, m.st, cand, theta);
+  f.words = Words(cand, f.components, ch);
+  f.wald_p_value = RunTest(m.ls, without, fit_without, cand).p_value;
+  return f;
+}
+
+// The smallest size of the candidate's components the test would find with power_z, or why the
+// recording cannot test it.
+DetectionLimit CandidateLimit(const ChannelModel& m, const TermSelection& sel, const Candidate& cand,
+                              double tcrit, double power_z, double phys) {
+  const int ch = m.layout.channel;
+  DetectionLimit lim;
+  lim.effect = EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
+  lim.channel = kImuChannelNames[ch];
+  Eigen::VectorXd se;
+  if (!LimitStandardErrors(m.ls, sel.selected, cand.columns, &se, &lim.note)) return lim;
+  const Eigen::VectorXd limit = se * (tcrit + power_z);
+  lim.limits = Components(cand, limit, se, ch, phys);
+  for (FindingComponent& c : lim.limits) c.magnitude = std::abs(c.magnitude);
+  return lim;
+}
+
+ChannelFitSummary FitSummary(const DiagnosisData& data, const ChannelModel& m, const ClusteredFit& base_fit,
+                             const ClusteredFit& final_fit, double phys) {
+  const int ch = m.layout.channel;
   std::vector<double> white;
   for (const DiagnosisCell& c : data.cells) white.push_back(std::sqrt(c.y_var[ch] / std::max(1, c.rows)));
-  out.summary.channel = kImuChannelNames[ch];
-  out.summary.unit = RmsUnit(ch);
-  out.summary.held_out_rms_baseline = HeldOutRms(base_fit, selected_fit, false, phys);
-  out.summary.held_out_rms_final = HeldOutRms(base_fit, selected_fit, true, phys);
-  out.summary.white_noise_rms = Median(white) * phys;
-  for (int col : base) out.summary.baseline_terms.push_back(layout.names[col]);
-  const std::vector<double> residual = Residuals(data, layout, st, selected_fit, selected, y);
-  FillPlot(data, Residuals(data, layout, st, base_fit, base, y), residual, ch, phys, &out.summary);
+  ChannelFitSummary summary;
+  summary.channel = kImuChannelNames[ch];
+  summary.unit = RmsUnit(ch);
+  summary.held_out_rms_baseline = HeldOutRms(base_fit, final_fit, false, phys);
+  summary.held_out_rms_final = HeldOutRms(base_fit, final_fit, true, phys);
+  summary.white_noise_rms = Median(white) * phys;
+  for (int col : m.base) summary.baseline_terms.push_back(m.layout.names[col]);
+  return summary;
+}
+
+ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const DiagnosisOptions& options, double alpha,
+                              std::vector<std::string>* notes) {
+  ChannelModel m = FitBaseline(data, ch, options, notes);
+  const TermSelection sel = SelectCandidates(data, m, alpha, options.max_findings_per_channel);
+  const double phys = PhysicalScale(ch, m.st);
+  const double tcrit = TCritical(alpha, sel.fit.clusters);
+  ChannelResult out;
+  for (int k : sel.chosen) {
+    out.findings.push_back(ChosenFinding(data, m, sel, m.layout.candidates[static_cast<size_t>(k)], phys));
+  }
+  for (const Candidate& cand : m.layout.candidates) {
+    out.limits.push_back(CandidateLimit(m, sel, cand, tcrit, options.power_z, phys));
+  }
+  const ClusteredFit base_fit = m.ls.Fit(m.base);
+  out.summary = FitSummary(data, m, base_fit, sel.fit, phys);
+  const std::vector<double> residual = Residuals(data, m.layout, m.st, sel.fit, sel.selected, m.y);
+  FillPlot(data, Residuals(data, m.layout, m.st, base_fit, m.base, m.y), residual, ch, phys, &out.summary);
   LocateStructure(data, ch, residual, phys, &out.unexplained);
   LocatePeriodic(data, ch, options.family_alpha / kImuChannels, phys, &out.unexplained, notes);
   if (IsGyroChannel(ch)) DiagnoseRipple(data, ch, phys, alpha, options.power_z, &out);

@@ -79,12 +79,9 @@ struct Session {
   std::string sequence_file;
 };
 
-RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nlohmann::json> old_meta,
-                   size_t first_step, std::optional<double> repeated_from_s,
-                   std::vector<nlohmann::json> resume_events, ProgressSink& progress,
-                   const std::atomic<bool>& stop, const NewRunOptions& options) {
-  hil::StationInstruments instruments = hil::OpenStation(s.station, clock);
-  if (options.wrap_operator) instruments.op = options.wrap_operator(std::move(instruments.op));
+// The station's units of the sequence's kind: the batch, 1 to 4 of them for IMUs.
+std::vector<hil::UnitLink*> BatchLinks(const hil::StationInstruments& instruments,
+                                       const Session& s) {
   const bool imu_batch = s.sequence.unit_kind == UnitKind::kImu;
   std::vector<hil::UnitLink*> links;
   for (const auto& link : instruments.units) {
@@ -95,28 +92,46 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
                                s.station.name, links.size(), UnitKindName(s.sequence.unit_kind),
                                imu_batch ? "4" : "any number"));
   }
+  return links;
+}
 
+// What the units say of themselves: meta.json's $.units and their serials, in batch order.
+struct BatchUnits {
   nlohmann::json units = nlohmann::json::array();
   std::vector<std::string> serials;
+};
+
+BatchUnits IdentifyUnits(const std::vector<hil::UnitLink*>& links, bool imu_batch) {
+  BatchUnits out;
   for (hil::UnitLink* link : links) {
     const firmware_model::IdentifyInfo id = link->Identify();
     const std::string serial = hil::UnitSerialText(link->entry().kind, id.serial_number);
-    serials.push_back(serial);
-    units.push_back({{"role", link->entry().role},
-                     {"kind", imu_batch ? "imu" : "ads"},
-                     {"serial", serial},
-                     {"serial_number", id.serial_number},
-                     {"firmware", fmt::format("{}.{}.{}", id.firmware_major, id.firmware_minor,
-                                              id.firmware_patch)},
-                     {"slot", link->entry().slot},
-                     {"constants_version", id.constants_version},
-                     {"mode", id.mode}});
+    out.serials.push_back(serial);
+    out.units.push_back({{"role", link->entry().role},
+                         {"kind", imu_batch ? "imu" : "ads"},
+                         {"serial", serial},
+                         {"serial_number", id.serial_number},
+                         {"firmware", fmt::format("{}.{}.{}", id.firmware_major, id.firmware_minor,
+                                                  id.firmware_patch)},
+                         {"slot", link->entry().slot},
+                         {"constants_version", id.constants_version},
+                         {"mode", id.mode}});
   }
+  return out;
+}
+
+// The instruments an IMU batch uses (rate table, IMU chamber) or an ADS batch (ADS chamber, ADTS).
+BatchInstruments BatchInstrumentsFor(const hil::StationInstruments& instruments, bool imu_batch) {
   BatchInstruments batch{instruments.rate_table.get(),
                          imu_batch ? instruments.imu_chamber.get() : instruments.ads_chamber.get(),
                          instruments.adts.get(), instruments.op.get()};
   if (!imu_batch) batch.rate_table = nullptr;
   if (imu_batch) batch.adts = nullptr;
+  return batch;
+}
+
+// meta.json's $.instruments: what each instrument of the batch says it is.
+nlohmann::json IdentifyInstruments(const BatchInstruments& batch, bool imu_batch) {
   nlohmann::json identities = nlohmann::json::array();
   // A crashed predecessor's late replies on a line are the drivers' business (they flush and
   // repeat a garbled exchange within their bounded retries).
@@ -128,57 +143,106 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
   identify("rate_table", batch.rate_table);
   identify(imu_batch ? "imu_chamber" : "ads_chamber", batch.chamber);
   identify("adts", batch.adts);
+  return identities;
+}
 
-  nlohmann::json meta;
-  if (old_meta) {
-    meta = *old_meta;
-    for (size_t u = 0; u < serials.size(); ++u) {
-      const auto& old_units = meta["units"];
-      if (old_units.size() != serials.size() || old_units[u]["serial"] != serials[u]) {
-        throw RunError(fmt::format(
-            "{}: the batch differs from the interrupted run's: {} is now {}, was {}",
-            (s.run_dir / hil::kMetaJsonName).string(), links[u]->entry().role, serials[u],
-            u < old_units.size() ? old_units[u]["serial"].dump() : "absent"));
-      }
+// The interrupted run's meta, refused when the batch is not the same units in the same order.
+nlohmann::json ResumedRunMeta(nlohmann::json meta, const Session& s,
+                              const std::vector<hil::UnitLink*>& links,
+                              const std::vector<std::string>& serials) {
+  for (size_t u = 0; u < serials.size(); ++u) {
+    const auto& old_units = meta["units"];
+    if (old_units.size() != serials.size() || old_units[u]["serial"] != serials[u]) {
+      throw RunError(fmt::format(
+          "{}: the batch differs from the interrupted run's: {} is now {}, was {}",
+          (s.run_dir / hil::kMetaJsonName).string(), links[u]->entry().role, serials[u],
+          u < old_units.size() ? old_units[u]["serial"].dump() : "absent"));
     }
-  } else {
-    meta = {{"run_id", s.run_dir.filename().string() + "-" + hil::UtcNowIso8601()},
-            {"started_utc", hil::UtcNowIso8601()},
-            {"station", s.station.ToJson()},
-            {"sequence", SequenceToJson(s.sequence)},
-            {"sequence_file", s.sequence_file},
-            {"time_base", kTimeBase},
-            {"sample_rate_hz", 100},
-            {"local_gravity_mps2", s.station.local_gravity_mps2},
-            {"units", units},
-            {"rejected_intervals", nlohmann::json::array()}};
   }
+  return meta;
+}
+
+nlohmann::json NewRunMeta(const Session& s, const nlohmann::json& units) {
+  return {{"run_id", s.run_dir.filename().string() + "-" + hil::UtcNowIso8601()},
+          {"started_utc", hil::UtcNowIso8601()},
+          {"station", s.station.ToJson()},
+          {"sequence", SequenceToJson(s.sequence)},
+          {"sequence_file", s.sequence_file},
+          {"time_base", kTimeBase},
+          {"sample_rate_hz", 100},
+          {"local_gravity_mps2", s.station.local_gravity_mps2},
+          {"units", units},
+          {"rejected_intervals", nlohmann::json::array()}};
+}
+
+// The run's meta as it starts: new, or the interrupted run's; either way running, with the
+// instruments of this session.
+nlohmann::json StartingRunMeta(const Session& s, const std::optional<nlohmann::json>& old_meta,
+                               const std::vector<hil::UnitLink*>& links, const BatchUnits& units,
+                               const nlohmann::json& identities) {
+  nlohmann::json meta =
+      old_meta ? ResumedRunMeta(*old_meta, s, links, units.serials) : NewRunMeta(s, units.units);
   meta["instruments"] = identities;
   meta["status"] = kStatusRunning;
+  return meta;
+}
 
-  hil::RecordingWriter writer(s.run_dir);
-  SharedRecording recording(writer);
-  RunMeta run_meta(meta, recording);
-  run_meta.Write();
-  Journal journal(s.run_dir);
-  journal.Append({{"event", old_meta ? "run_resumed" : "run_started"}, {"t_s", clock.NowS()},
+// The journal's first events of this session: the run started or resumed, then what resuming
+// found (each at the clock's time now).
+void JournalSessionStart(Journal& journal, const hil::Clock& clock, bool resumed, size_t first_step,
+                         std::vector<nlohmann::json> resume_events) {
+  journal.Append({{"event", resumed ? "run_resumed" : "run_started"}, {"t_s", clock.NowS()},
                   {"utc", hil::UtcNowIso8601()}, {"first_step", first_step}});
   for (nlohmann::json& e : resume_events) {
     e["t_s"] = clock.NowS();
     journal.Append(e);
   }
   journal.Sync();
+}
 
-  RunAnnotations annotations;
+std::vector<std::unique_ptr<UnitLogger>> StartUnitLoggers(const std::vector<hil::UnitLink*>& links,
+                                                          const std::vector<std::string>& serials,
+                                                          SharedRecording& recording,
+                                                          RunAnnotations& annotations) {
   std::vector<std::unique_ptr<UnitLogger>> loggers;
-  std::vector<UnitLogger*> logger_ptrs;
   for (size_t u = 0; u < links.size(); ++u) {
     loggers.push_back(std::make_unique<UnitLogger>(*links[u], serials[u], recording, annotations));
-    logger_ptrs.push_back(loggers.back().get());
     loggers.back()->Start();
   }
-  Executor executor(s.sequence, s.plan, batch, logger_ptrs, clock, annotations, recording, journal,
-                    run_meta, progress, stop, options.executor);
+  return loggers;
+}
+
+std::vector<UnitLogger*> Pointers(const std::vector<std::unique_ptr<UnitLogger>>& loggers) {
+  std::vector<UnitLogger*> out;
+  for (const auto& l : loggers) out.push_back(l.get());
+  return out;
+}
+
+RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nlohmann::json> old_meta,
+                   size_t first_step, std::optional<double> repeated_from_s,
+                   std::vector<nlohmann::json> resume_events, ProgressSink& progress,
+                   const std::atomic<bool>& stop, const NewRunOptions& options) {
+  hil::StationInstruments instruments = hil::OpenStation(s.station, clock);
+  if (options.wrap_operator) instruments.op = options.wrap_operator(std::move(instruments.op));
+  const bool imu_batch = s.sequence.unit_kind == UnitKind::kImu;
+  const std::vector<hil::UnitLink*> links = BatchLinks(instruments, s);
+  const BatchUnits units = IdentifyUnits(links, imu_batch);
+  const BatchInstruments batch = BatchInstrumentsFor(instruments, imu_batch);
+  const nlohmann::json meta =
+      StartingRunMeta(s, old_meta, links, units, IdentifyInstruments(batch, imu_batch));
+
+  hil::RecordingWriter writer(s.run_dir);
+  SharedRecording recording(writer);
+  RunMeta run_meta(meta, recording);
+  run_meta.Write();
+  Journal journal(s.run_dir);
+  JournalSessionStart(journal, clock, old_meta.has_value(), first_step, std::move(resume_events));
+
+  RunAnnotations annotations;
+  const std::vector<std::unique_ptr<UnitLogger>> loggers =
+      StartUnitLoggers(links, units.serials, recording, annotations);
+  Executor executor(s.sequence, s.plan, batch, Pointers(loggers), clock, annotations, recording,
+                    journal, run_meta, progress, stop, options.executor);
   const auto summary = [&] {
     RunSummary out{s.run_dir, run_meta.json()["status"].get<std::string>(), 0, 0};
     for (auto& l : loggers) {
