@@ -24,12 +24,6 @@ constexpr const char* kAccelColumns[12] = {"az1_t1", "az1_t2", "ax1_t1", "ax1_t2
 constexpr const char* kGyroColumns[3] = {"gx", "gy", "gz"};
 constexpr const char* kTempColumns[3] = {"tx", "ty", "tz"};
 
-struct Interval {
-  int step;
-  double t_start_s;
-  double t_end_s;
-};
-
 // The reason a row cannot be calibration data, with its column, or empty.
 std::string RowDefect(const hil::ImuRecordRow& row) {
   if (row.mode != 0) {
@@ -130,19 +124,8 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
     fail("meta.json: $.local_gravity_mps2 missing (the station's local gravity is needed)");
   }
   const double g = meta["local_gravity_mps2"].get<double>();
-  if (!(g > 9.7 && g < 9.9)) fail("meta.json: $.local_gravity_mps2 " + std::to_string(g) + " is not Earth's");
-  if (data->local_gravity_mps2 != 0.0 && std::abs(data->local_gravity_mps2 - g) > 1e-9) {
-    fail("local gravity " + std::to_string(g) + " m/s^2 differs from the first run's " +
-         std::to_string(data->local_gravity_mps2) + " (runs from different stations)");
-  }
-  data->local_gravity_mps2 = g;
   if (!meta.contains("sequence")) fail("meta.json: $.sequence missing");
   const Sequence sequence = SequenceFromJson(meta["sequence"], run + "/meta.json $.sequence");
-  const std::vector<uint8_t> tags = EffectiveTags(sequence);
-  const int run_index = static_cast<int>(data->recordings.size());
-  data->sequence_names.push_back(sequence.name);
-  data->recordings.push_back({run, RecordingSha256(dir)});
-
   std::vector<std::string> serials;
   if (meta.contains("units") && meta["units"].is_array()) {
     for (const json& u : meta["units"]) {
@@ -151,49 +134,79 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
       }
     }
   }
-  if (serials.empty()) fail("meta.json: $.units lists no IMU");
-  std::vector<Interval> rejected;
+  std::vector<RejectedInterval> rejected;
   if (meta.contains("rejected_intervals")) {
     for (const json& r : meta["rejected_intervals"]) {
       rejected.push_back({r.at("step").get<int>(), r.at("t_start_s").get<double>(),
                           r.at("t_end_s").get<double>()});
     }
   }
-
-  // Rows of each (unit, step) with the step's tag, in file order, streamed from imu.csv: a
-  // recording of ten million rows is never held twice.
-  std::map<std::pair<std::string, int>, std::vector<std::pair<int, ImuSample>>> selected;
-  auto take = [&](hil::ImuRecordRow&& row, int line) {
-    if (row.step < 0 || row.step >= static_cast<int>(tags.size()) || row.tag == 0 ||
-        row.tag != tags[static_cast<size_t>(row.step)]) {
-      return;
-    }
-    if (std::find(serials.begin(), serials.end(), row.unit) == serials.end()) return;
-    ImuUnitData& unit = data->units[row.unit];
-    unit.serial = row.unit;
-    bool inside = false;
-    for (const Interval& r : rejected) {
-      inside |= r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s;
-    }
-    if (inside) {
-      ++unit.rejected_interval_rows;
-      return;
-    }
-    const std::string defect = RowDefect(row);
-    if (!defect.empty()) {
-      unit.exclusions.push_back(run + "/imu.csv line " + std::to_string(line) + " " + defect);
-      return;
-    }
-    ImuSample sample = ToSample(row);
-    sample.run = run_index;
-    selected[{row.unit, row.step}].push_back({row.orientation, sample});
-  };
-  const hil::Recording read = hil::StreamRecording(dir, {take, {}});
+  ImuRunCollector collector(run, RecordingSha256(dir), sequence, g, serials, rejected, data);
+  // Rows streamed from imu.csv: a recording of ten million rows is never held twice.
+  const hil::Recording read =
+      hil::StreamRecording(dir, {[&](hil::ImuRecordRow&& row, int line) { collector.Take(row, line); }, {}});
   data->notes.insert(data->notes.end(), read.notes.begin(), read.notes.end());
+  collector.Finish();
+}
 
+}  // namespace
+
+ImuRunCollector::ImuRunCollector(std::string run, std::string sha256, const Sequence& sequence,
+                                 double local_gravity_mps2, std::vector<std::string> serials,
+                                 std::vector<RejectedInterval> rejected, ImuRunData* data)
+    : run_(std::move(run)),
+      sequence_(sequence),
+      tags_(EffectiveTags(sequence)),
+      serials_(std::move(serials)),
+      rejected_(std::move(rejected)),
+      data_(data) {
+  const double g = local_gravity_mps2;
+  if (!(g > 9.7 && g < 9.9)) Fail("meta.json: $.local_gravity_mps2 " + std::to_string(g) + " is not Earth's");
+  if (data_->local_gravity_mps2 != 0.0 && std::abs(data_->local_gravity_mps2 - g) > 1e-9) {
+    Fail("local gravity " + std::to_string(g) + " m/s^2 differs from the first run's " +
+         std::to_string(data_->local_gravity_mps2) + " (runs from different stations)");
+  }
+  if (serials_.empty()) Fail("meta.json: $.units lists no IMU");
+  data_->local_gravity_mps2 = g;
+  run_index_ = static_cast<int>(data_->recordings.size());
+  data_->sequence_names.push_back(sequence.name);
+  data_->recordings.push_back({run_, std::move(sha256)});
+}
+
+void ImuRunCollector::Fail(const std::string& message) const {
+  throw ImuInputError(run_ + ": " + message);
+}
+
+void ImuRunCollector::Take(const hil::ImuRecordRow& row, int line) {
+  if (row.step < 0 || row.step >= static_cast<int>(tags_.size()) || row.tag == 0 ||
+      row.tag != tags_[static_cast<size_t>(row.step)]) {
+    return;
+  }
+  if (std::find(serials_.begin(), serials_.end(), row.unit) == serials_.end()) return;
+  ImuUnitData& unit = data_->units[row.unit];
+  unit.serial = row.unit;
+  bool inside = false;
+  for (const RejectedInterval& r : rejected_) {
+    inside |= r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s;
+  }
+  if (inside) {
+    ++unit.rejected_interval_rows;
+    return;
+  }
+  const std::string defect = RowDefect(row);
+  if (!defect.empty()) {
+    unit.exclusions.push_back(run_ + "/imu.csv line " + std::to_string(line) + " " + defect);
+    return;
+  }
+  ImuSample sample = ToSample(row);
+  sample.run = run_index_;
+  selected_[{row.unit, row.step}].push_back({row.orientation, sample});
+}
+
+void ImuRunCollector::Finish() {
   int current_orientation = 0;
-  for (size_t step = 0; step < sequence.steps.size(); ++step) {
-    const StepBody& body = sequence.steps[step].body;
+  for (size_t step = 0; step < sequence_.steps.size(); ++step) {
+    const StepBody& body = sequence_.steps[step].body;
     if (const auto* a = std::get_if<AccelStep>(&body)) current_orientation = a->orientation;
     if (const auto* gs = std::get_if<GyroStep>(&body)) current_orientation = gs->orientation;
     const bool acquires = std::holds_alternative<AccelStep>(body) ||
@@ -202,21 +215,22 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
                           std::holds_alternative<ThermalProfileStep>(body);
     if (!acquires) continue;
     const std::string where = "step " + std::to_string(step) + " (" + StepKindName(body) +
-                              ", tag " + std::to_string(tags[step]) + ")";
-    for (const std::string& serial : serials) {
-      auto it = selected.find({serial, static_cast<int>(step)});
-      if (it == selected.end() || it->second.size() < 2) {
-        fail("unit " + serial + " is missing from " + where +
+                              ", tag " + std::to_string(tags_[step]) + ")";
+    for (const std::string& serial : serials_) {
+      auto it = selected_.find({serial, static_cast<int>(step)});
+      if (it == selected_.end() || it->second.size() < 2) {
+        Fail("unit " + serial + " is missing from " + where +
              ": fewer than 2 usable rows with the step's tag");
       }
-      ImuUnitData& unit = data->units[serial];
+      ImuUnitData& unit = data_->units[serial];
       unit.serial = serial;
       const std::vector<std::pair<int, ImuSample>> rows = std::move(it->second);  // freed after use
+      selected_.erase(it);
       if (const auto* a = std::get_if<AccelStep>(&body)) {
-        ImuAcquisition acq{run, static_cast<int>(step), "accel", a->orientation, 0.0, {}};
+        ImuAcquisition acq{run_, static_cast<int>(step), "accel", a->orientation, 0.0, {}};
         for (const auto& [orientation, s] : rows) {
           if (orientation != a->orientation) {
-            fail("unit " + serial + " " + where + ": a row carries orientation " +
+            Fail("unit " + serial + " " + where + ": a row carries orientation " +
                  std::to_string(orientation) + ", the step commands " +
                  std::to_string(a->orientation));
           }
@@ -224,19 +238,21 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
         }
         unit.accel.push_back(std::move(acq));
       } else if (std::holds_alternative<GyroStep>(body)) {
-        GroupByRate(run, static_cast<int>(step), "gyro", rows, &unit.gyro);
+        GroupByRate(run_, static_cast<int>(step), "gyro", rows, &unit.gyro);
       } else if (std::holds_alternative<CrossAxisStep>(body)) {
-        GroupByRate(run, static_cast<int>(step), "cross_axis", rows, &unit.cross_axis);
+        GroupByRate(run_, static_cast<int>(step), "cross_axis", rows, &unit.cross_axis);
       } else {
         for (const auto& [orientation, s] : rows) unit.thermal.push_back(s);
         unit.thermal_orientation = rows.front().first != 0 ? rows.front().first : current_orientation;
       }
     }
   }
-  for (auto& [serial, unit] : data->units) unit.thermal_segment = Segments(unit.thermal);
+  LabelThermalSegments(data_);
 }
 
-}  // namespace
+void LabelThermalSegments(ImuRunData* data) {
+  for (auto& [serial, unit] : data->units) unit.thermal_segment = Segments(unit.thermal);
+}
 
 std::array<double, 3> UpAxisOf(int orientation) {
   std::array<double, 3> up{};

@@ -1,0 +1,33 @@
+// One unit of the IMU study that docs/performance.md quotes: the reference against the improved
+// strategy (docs/examples/studies/imu_reference.json, imu_improved.json: the shipped
+// imu_thermal_sensor_calibration sequence, truth-profile units), per iteration one unit drawn,
+// run in process, fitted with both strategies and evaluated with both. Counter units_per_minute:
+// units per minute of one core (a study on T cores runs T units side by side).
+#include <filesystem>
+
+#include <benchmark/benchmark.h>
+
+#include "adahrs_build_paths.h"
+#include "calib/studies/imu_study.h"
+
+namespace adahrs::calib {
+namespace {
+
+void BM_ImuStudyUnit(benchmark::State& state) {
+  const std::filesystem::path examples = std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/examples/studies";
+  const std::vector<StudyDefinition> strategies = {
+      LoadStudyDefinition(examples / "imu_reference.json", ADAHRS_SEQUENCE_DIR),
+      LoadStudyDefinition(examples / "imu_improved.json", ADAHRS_SEQUENCE_DIR)};
+  StudySettings settings;
+  settings.seed = 7;
+  int index = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(RunImuStudyUnit(strategies, settings, index++));
+  state.counters["units_per_minute"] =
+      benchmark::Counter(60.0 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ImuStudyUnit)->Unit(benchmark::kSecond)->Iterations(5);
+
+}  // namespace
+}  // namespace adahrs::calib
+
+BENCHMARK_MAIN();
