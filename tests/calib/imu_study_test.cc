@@ -5,6 +5,7 @@
 // naming the file and JSON path (or the option). Under the sanitizers fewer units.
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "calib/studies/imu_study.h"
 #include "calib/studies/study_results.h"
 #include "sensor_sim/param_reader.h"
+#include "tests/calib/xml_tree.h"
 
 namespace adahrs::calib {
 namespace {
@@ -115,6 +117,28 @@ TEST_F(ImuStudy, ThermalOrderZeroYieldsLessThanTheImprovedStrategy) {
   ASSERT_TRUE(summary.paired.has_value());
   EXPECT_GT(summary.paired->worst_accel_mg.ci95_low, -1e9);
   EXPECT_LT(summary.paired->worst_accel_mg.ci95_high, 0.0);  // improved - order 0 < 0 for sure
+}
+
+TEST_F(ImuStudy, ReportShowsTheYieldAndTheDistributionsOfEveryStrategy) {
+  const auto dir = TempDir("report");
+  WriteStudyOutputs(dir, MakeStudyMeta(*strategies_, Settings()), *one_thread_);
+  const nlohmann::json html = testing::ParseXmlTree(dir / "report.html");
+  ASSERT_FALSE(html.is_null());
+  for (const char* id : {"settings", "yield", "paired", "acceleration", "body-rate"}) {
+    EXPECT_EQ(testing::FindAll(html, [&](const nlohmann::json& n) {
+                return n["tag"] == "section" && n["attrib"].value("id", "") == id;
+              }).size(), 1u) << id;
+  }
+  EXPECT_EQ(testing::FindTag(html, "svg").size(), 4u);  // histogram and CDF per quantity
+  // The yield table's acceleration column: order 0 passes no unit, the improved strategy all.
+  std::map<std::string, double> accel_yield;
+  for (const auto& row : testing::FindTag(html, "tr")) {
+    const auto cells = testing::FindTag(row, "td");
+    if (cells.size() == 13) accel_yield[cells[0]["text"]] = std::stod(cells[3]["text"].get<std::string>());
+  }
+  EXPECT_EQ(accel_yield["short_thermal_order0"], 0.0);
+  EXPECT_EQ(accel_yield["short_improved"], 1.0);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ImuStudyInput, UnknownStrategyIsRefusedNamingTheFileAndPath) {
