@@ -242,6 +242,7 @@ void ImuRunCollector::Finish() {
       } else if (std::holds_alternative<CrossAxisStep>(body)) {
         GroupByRate(run_, static_cast<int>(step), "cross_axis", rows, &unit.cross_axis);
       } else {
+        unit.thermal.reserve(unit.thermal.size() + rows.size());
         for (const auto& [orientation, s] : rows) unit.thermal.push_back(s);
         unit.thermal_orientation = rows.front().first != 0 ? rows.front().first : current_orientation;
       }
