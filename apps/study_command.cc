@@ -84,7 +84,8 @@ void RunStudy(const StudyArgs& a) {
     settings.population = *strategies[0].population;
   }
   for (const auto& d : strategies) {
-    if (a.profile.empty() && d.population && !(*d.population == settings.population)) {
+    const calib::StudyPopulation population = d.population.value_or(calib::StudyPopulation{});
+    if (a.profile.empty() && !(population == settings.population)) {
       throw CLI::ValidationError("--vs", d.file + ": $.population differs from " + strategies[0].file +
                                  " (a paired study draws one population; or give --profile)");
     }
