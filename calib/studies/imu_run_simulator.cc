@@ -9,6 +9,17 @@
 namespace adahrs::calib {
 namespace {
 constexpr double kFramePeriod_s = 0.01;
+
+// The instrument columns at the resolution imu.csv writes them (hil/recording/recording_writer.cc:
+// t_s to 0.1 ms, chamber_c to 0.001 degC, table_rate_dps to 0.0001 deg/s), so that the rows
+// handed over in memory equal those a reader gets back from the recording.
+hil::ImuRecordRow AtRecordedResolution(hil::ImuRecordRow row) {
+  row.t_s = std::round(row.t_s * 1e4) / 1e4;
+  row.chamber_c = std::round(row.chamber_c * 1e3) / 1e3;
+  row.table_rate_dps = std::round(row.table_rate_dps * 1e4) / 1e4;
+  return row;
+}
+
 }  // namespace
 
 ImuRunSimulator::ImuRunSimulator(std::vector<sensor_sim::ImuUnitParams> units, double g_local_mps2,
@@ -47,7 +58,7 @@ void ImuRunSimulator::Frames(int64_t n, uint8_t tag) {
         row.gyro_cnt[g] = f.gyro_cnt[g];
         row.temp_cnt[g] = f.temp_cnt[g];
       }
-      (*sink_)(row);
+      (*sink_)(AtRecordedResolution(row));
     }
     ++seq_;
     t_s_ += kFramePeriod_s;

@@ -3,7 +3,8 @@
 // fixture orientation, the table rate about the up axis, the chamber air temperature — and every
 // packet is handed to a sink as the executor records it: TAG = the step's TAG while acquiring,
 // 0 while settling before an acquisition, the orientation commanded, the chamber's reported
-// temperature (0.1 degC) and the table's reported rate (command + table_rate_error_dps).
+// temperature (0.1 degC) and the table's reported rate (command + table_rate_error_dps), each
+// column at the resolution a recording writes it.
 // Time: 100 frames/s. A chamber set point is reached at once and held for the step's soak; with
 // `soak_frames` empty the soak is simulated without frames (the die temperatures advance exactly,
 // the sensors' noise processes do not), otherwise as that many settling frames. Thermal profile
