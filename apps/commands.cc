@@ -17,6 +17,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterEvaluateCommand(app);
   RegisterDiagnoseCommand(app);
   RegisterAcceptanceCommand(app);
+  RegisterStudyCommand(app);
 }
 
 }  // namespace adahrs::apps

@@ -22,5 +22,6 @@ void RegisterFitCommand(CLI::App& app);
 void RegisterEvaluateCommand(CLI::App& app);
 void RegisterDiagnoseCommand(CLI::App& app);
 void RegisterAcceptanceCommand(CLI::App& app);
+void RegisterStudyCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

@@ -42,4 +42,11 @@ DieThermal::DieThermal(const DieThermalParams& params, double step_s, double ini
   if (!(step_s > 0.0)) throw std::invalid_argument("DieThermal: step_s must be positive");
 }
 
+void DieThermal::Hold(double air_temp_c, double duration_s) {
+  const double target_c =
+      air_temp_c + (params_.effects.self_heating ? params_.self_heating_c : 0.0);
+  const double decay = params_.effects.lag ? std::exp(-duration_s / params_.tau_s) : 0.0;
+  die_temp_c_ = target_c + (die_temp_c_ - target_c) * decay;
+}
+
 }  // namespace adahrs::sensor_sim

@@ -56,6 +56,9 @@ class DieThermal {
     return die_temp_c_;
   }
 
+  /// Holds the air at `air_temp_c` for `duration_s` in one exact step (a soak with no frame).
+  void Hold(double air_temp_c, double duration_s);
+
   double die_temp_c() const { return die_temp_c_; }
 
  private:

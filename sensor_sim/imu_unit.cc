@@ -140,4 +140,13 @@ ImuRawFrame ImuUnit::Step(const ImuStimulus& s) {
   return frame;
 }
 
+void ImuUnit::SoakWithoutFrames(double air_temp_c, double duration_s) {
+  for (int k = 0; k < 3; ++k) {
+    accel_die_[k].Hold(air_temp_c, duration_s);
+    die_.accel_chip_c[k] = accel_die_[k].die_temp_c();
+    gyro_die_[k].Hold(air_temp_c, duration_s);
+    die_.gyro_c[k] = gyro_die_[k].die_temp_c();
+  }
+}
+
 }  // namespace adahrs::sensor_sim

@@ -78,6 +78,11 @@ class ImuUnit {
   /// Advances one frame (params.frame_period_s).
   ImuRawFrame Step(const ImuStimulus& stimulus);
 
+  /// Advances every die through `duration_s` with the air at `air_temp_c`, producing no frame:
+  /// the die temperatures are exact (DieThermal::Hold); the sensors' noise processes (bias
+  /// instability, rate random walk) do not advance over the interval.
+  void SoakWithoutFrames(double air_temp_c, double duration_s);
+
   const ImuUnitParams& params() const { return params_; }
   const ImuDieTemperatures& die_temperatures() const { return die_; }
 

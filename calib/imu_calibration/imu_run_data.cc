@@ -24,12 +24,6 @@ constexpr const char* kAccelColumns[12] = {"az1_t1", "az1_t2", "ax1_t1", "ax1_t2
 constexpr const char* kGyroColumns[3] = {"gx", "gy", "gz"};
 constexpr const char* kTempColumns[3] = {"tx", "ty", "tz"};
 
-struct Interval {
-  int step;
-  double t_start_s;
-  double t_end_s;
-};
-
 // The reason a row cannot be calibration data, with its column, or empty.
 std::string RowDefect(const hil::ImuRecordRow& row) {
   if (row.mode != 0) {
@@ -121,28 +115,17 @@ std::vector<ThermalSegment> Segments(const std::vector<ImuSample>& rows) {
   return out;
 }
 
-[[noreturn]] void FailRun(const std::string& run, const std::string& message) {
-  throw ImuInputError(run + ": " + message);
-}
-
-// meta.json's local gravity: Earth's, and the first run's when there was one before.
-double LocalGravity_mps2(const json& meta, const std::string& run, double first_run_mps2) {
+void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
+  const hil::Recording rec = hil::ReadRecordingMeta(dir);  // the rows are streamed below
+  const std::string run = dir.string();
+  auto fail = [&](const std::string& message) { throw ImuInputError(run + ": " + message); };
+  const json& meta = rec.meta;
   if (!meta.contains("local_gravity_mps2") || !meta["local_gravity_mps2"].is_number()) {
-    FailRun(run, "meta.json: $.local_gravity_mps2 missing (the station's local gravity is needed)");
+    fail("meta.json: $.local_gravity_mps2 missing (the station's local gravity is needed)");
   }
   const double g = meta["local_gravity_mps2"].get<double>();
-  if (!(g > 9.7 && g < 9.9)) {
-    FailRun(run, "meta.json: $.local_gravity_mps2 " + std::to_string(g) + " is not Earth's");
-  }
-  if (first_run_mps2 != 0.0 && std::abs(first_run_mps2 - g) > 1e-9) {
-    FailRun(run, "local gravity " + std::to_string(g) + " m/s^2 differs from the first run's " +
-                     std::to_string(first_run_mps2) + " (runs from different stations)");
-  }
-  return g;
-}
-
-// The serials of the run's IMUs as meta.json lists them; at least one.
-std::vector<std::string> ImuSerials(const json& meta, const std::string& run) {
+  if (!meta.contains("sequence")) fail("meta.json: $.sequence missing");
+  const Sequence sequence = SequenceFromJson(meta["sequence"], run + "/meta.json $.sequence");
   std::vector<std::string> serials;
   if (meta.contains("units") && meta["units"].is_array()) {
     for (const json& u : meta["units"]) {
@@ -151,154 +134,126 @@ std::vector<std::string> ImuSerials(const json& meta, const std::string& run) {
       }
     }
   }
-  if (serials.empty()) FailRun(run, "meta.json: $.units lists no IMU");
-  return serials;
-}
-
-std::vector<Interval> RejectedIntervals(const json& meta) {
-  std::vector<Interval> rejected;
+  std::vector<RejectedInterval> rejected;
   if (meta.contains("rejected_intervals")) {
     for (const json& r : meta["rejected_intervals"]) {
       rejected.push_back({r.at("step").get<int>(), r.at("t_start_s").get<double>(),
                           r.at("t_end_s").get<double>()});
     }
   }
-  return rejected;
-}
-
-// What selects the rows of one run: the steps' tags, the batch's IMUs, the rejected intervals.
-struct RunRowRules {
-  std::string run;
-  int run_index = 0;
-  std::vector<uint8_t> tags;
-  std::vector<std::string> serials;
-  std::vector<Interval> rejected;
-};
-
-bool InRejectedInterval(const std::vector<Interval>& rejected, const hil::ImuRecordRow& row) {
-  bool inside = false;
-  for (const Interval& r : rejected) {
-    inside |= r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s;
-  }
-  return inside;
-}
-
-// Rows of one (unit, step) with their orientation, in file order.
-using SelectedRows = std::map<std::pair<std::string, int>, std::vector<std::pair<int, ImuSample>>>;
-
-// Rows of each (unit, step) with the step's tag, in file order, streamed from imu.csv: a
-// recording of ten million rows is never held twice. Rows in a rejected interval and defective
-// rows are counted and listed in their unit's data.
-SelectedRows StreamSelectedRows(const std::filesystem::path& dir, const RunRowRules& rules,
-                                ImuRunData* data) {
-  SelectedRows selected;
-  auto take = [&](hil::ImuRecordRow&& row, int line) {
-    if (row.step < 0 || row.step >= static_cast<int>(rules.tags.size()) || row.tag == 0 ||
-        row.tag != rules.tags[static_cast<size_t>(row.step)]) {
-      return;
-    }
-    if (std::find(rules.serials.begin(), rules.serials.end(), row.unit) == rules.serials.end()) {
-      return;
-    }
-    ImuUnitData& unit = data->units[row.unit];
-    unit.serial = row.unit;
-    if (InRejectedInterval(rules.rejected, row)) {
-      ++unit.rejected_interval_rows;
-      return;
-    }
-    const std::string defect = RowDefect(row);
-    if (!defect.empty()) {
-      unit.exclusions.push_back(rules.run + "/imu.csv line " + std::to_string(line) + " " + defect);
-      return;
-    }
-    ImuSample sample = ToSample(row);
-    sample.run = rules.run_index;
-    selected[{row.unit, row.step}].push_back({row.orientation, sample});
-  };
-  const hil::Recording read = hil::StreamRecording(dir, {take, {}});
+  ImuRunCollector collector(run, RecordingSha256(dir), sequence, g, serials, rejected, data);
+  // Rows streamed from imu.csv: a recording of ten million rows is never held twice.
+  const hil::Recording read =
+      hil::StreamRecording(dir, {[&](hil::ImuRecordRow&& row, int line) { collector.Take(row, line); }, {}});
   data->notes.insert(data->notes.end(), read.notes.begin(), read.notes.end());
-  return selected;
-}
-
-bool Acquires(const StepBody& body) {
-  return std::holds_alternative<AccelStep>(body) || std::holds_alternative<GyroStep>(body) ||
-         std::holds_alternative<CrossAxisStep>(body) ||
-         std::holds_alternative<ThermalProfileStep>(body);
-}
-
-// An accelerometer step's rows as one acquisition; every row must carry the commanded orientation.
-ImuAcquisition AccelAcquisition(const std::string& run, int step, const AccelStep& a,
-                                const std::string& serial, const std::string& where,
-                                const std::vector<std::pair<int, ImuSample>>& rows) {
-  ImuAcquisition acq{run, step, "accel", a.orientation, 0.0, {}};
-  for (const auto& [orientation, s] : rows) {
-    if (orientation != a.orientation) {
-      FailRun(run, "unit " + serial + " " + where + ": a row carries orientation " +
-                       std::to_string(orientation) + ", the step commands " +
-                       std::to_string(a.orientation));
-    }
-    acq.samples.push_back(s);
-  }
-  return acq;
-}
-
-// Every unit's acquisitions of one acquiring step; each unit needs at least 2 usable rows in it.
-void AddStepAcquisitions(const RunRowRules& rules, size_t step, const StepBody& body,
-                         int current_orientation, SelectedRows& selected, ImuRunData* data) {
-  const std::string& run = rules.run;
-  const int step_index = static_cast<int>(step);
-  const std::string where = "step " + std::to_string(step) + " (" + StepKindName(body) + ", tag " +
-                            std::to_string(rules.tags[step]) + ")";
-  for (const std::string& serial : rules.serials) {
-    auto it = selected.find({serial, step_index});
-    if (it == selected.end() || it->second.size() < 2) {
-      FailRun(run, "unit " + serial + " is missing from " + where +
-                       ": fewer than 2 usable rows with the step's tag");
-    }
-    ImuUnitData& unit = data->units[serial];
-    unit.serial = serial;
-    const std::vector<std::pair<int, ImuSample>> rows = std::move(it->second);  // freed after use
-    if (const auto* a = std::get_if<AccelStep>(&body)) {
-      unit.accel.push_back(AccelAcquisition(run, step_index, *a, serial, where, rows));
-    } else if (std::holds_alternative<GyroStep>(body)) {
-      GroupByRate(run, step_index, "gyro", rows, &unit.gyro);
-    } else if (std::holds_alternative<CrossAxisStep>(body)) {
-      GroupByRate(run, step_index, "cross_axis", rows, &unit.cross_axis);
-    } else {
-      for (const auto& [orientation, s] : rows) unit.thermal.push_back(s);
-      unit.thermal_orientation = rows.front().first != 0 ? rows.front().first : current_orientation;
-    }
-  }
-}
-
-void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
-  const hil::Recording rec = hil::ReadRecordingMeta(dir);  // the rows are streamed below
-  const json& meta = rec.meta;
-  RunRowRules rules;
-  rules.run = dir.string();
-  data->local_gravity_mps2 = LocalGravity_mps2(meta, rules.run, data->local_gravity_mps2);
-  if (!meta.contains("sequence")) FailRun(rules.run, "meta.json: $.sequence missing");
-  const Sequence sequence = SequenceFromJson(meta["sequence"], rules.run + "/meta.json $.sequence");
-  rules.tags = EffectiveTags(sequence);
-  rules.run_index = static_cast<int>(data->recordings.size());
-  data->sequence_names.push_back(sequence.name);
-  data->recordings.push_back({rules.run, RecordingSha256(dir)});
-  rules.serials = ImuSerials(meta, rules.run);
-  rules.rejected = RejectedIntervals(meta);
-
-  SelectedRows selected = StreamSelectedRows(dir, rules, data);
-  int current_orientation = 0;
-  for (size_t step = 0; step < sequence.steps.size(); ++step) {
-    const StepBody& body = sequence.steps[step].body;
-    if (const auto* a = std::get_if<AccelStep>(&body)) current_orientation = a->orientation;
-    if (const auto* gs = std::get_if<GyroStep>(&body)) current_orientation = gs->orientation;
-    if (!Acquires(body)) continue;
-    AddStepAcquisitions(rules, step, body, current_orientation, selected, data);
-  }
-  for (auto& [serial, unit] : data->units) unit.thermal_segment = Segments(unit.thermal);
+  collector.Finish();
 }
 
 }  // namespace
+
+ImuRunCollector::ImuRunCollector(std::string run, std::string sha256, const Sequence& sequence,
+                                 double local_gravity_mps2, std::vector<std::string> serials,
+                                 std::vector<RejectedInterval> rejected, ImuRunData* data)
+    : run_(std::move(run)),
+      sequence_(sequence),
+      tags_(EffectiveTags(sequence)),
+      serials_(std::move(serials)),
+      rejected_(std::move(rejected)),
+      data_(data) {
+  const double g = local_gravity_mps2;
+  if (!(g > 9.7 && g < 9.9)) Fail("meta.json: $.local_gravity_mps2 " + std::to_string(g) + " is not Earth's");
+  if (data_->local_gravity_mps2 != 0.0 && std::abs(data_->local_gravity_mps2 - g) > 1e-9) {
+    Fail("local gravity " + std::to_string(g) + " m/s^2 differs from the first run's " +
+         std::to_string(data_->local_gravity_mps2) + " (runs from different stations)");
+  }
+  if (serials_.empty()) Fail("meta.json: $.units lists no IMU");
+  data_->local_gravity_mps2 = g;
+  run_index_ = static_cast<int>(data_->recordings.size());
+  data_->sequence_names.push_back(sequence.name);
+  data_->recordings.push_back({run_, std::move(sha256)});
+}
+
+void ImuRunCollector::Fail(const std::string& message) const {
+  throw ImuInputError(run_ + ": " + message);
+}
+
+void ImuRunCollector::Take(const hil::ImuRecordRow& row, int line) {
+  if (row.step < 0 || row.step >= static_cast<int>(tags_.size()) || row.tag == 0 ||
+      row.tag != tags_[static_cast<size_t>(row.step)]) {
+    return;
+  }
+  if (std::find(serials_.begin(), serials_.end(), row.unit) == serials_.end()) return;
+  ImuUnitData& unit = data_->units[row.unit];
+  unit.serial = row.unit;
+  bool inside = false;
+  for (const RejectedInterval& r : rejected_) {
+    inside |= r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s;
+  }
+  if (inside) {
+    ++unit.rejected_interval_rows;
+    return;
+  }
+  const std::string defect = RowDefect(row);
+  if (!defect.empty()) {
+    unit.exclusions.push_back(run_ + "/imu.csv line " + std::to_string(line) + " " + defect);
+    return;
+  }
+  ImuSample sample = ToSample(row);
+  sample.run = run_index_;
+  selected_[{row.unit, row.step}].push_back({row.orientation, sample});
+}
+
+void ImuRunCollector::Finish() {
+  int current_orientation = 0;
+  for (size_t step = 0; step < sequence_.steps.size(); ++step) {
+    const StepBody& body = sequence_.steps[step].body;
+    if (const auto* a = std::get_if<AccelStep>(&body)) current_orientation = a->orientation;
+    if (const auto* gs = std::get_if<GyroStep>(&body)) current_orientation = gs->orientation;
+    const bool acquires = std::holds_alternative<AccelStep>(body) ||
+                          std::holds_alternative<GyroStep>(body) ||
+                          std::holds_alternative<CrossAxisStep>(body) ||
+                          std::holds_alternative<ThermalProfileStep>(body);
+    if (!acquires) continue;
+    const std::string where = "step " + std::to_string(step) + " (" + StepKindName(body) +
+                              ", tag " + std::to_string(tags_[step]) + ")";
+    for (const std::string& serial : serials_) {
+      auto it = selected_.find({serial, static_cast<int>(step)});
+      if (it == selected_.end() || it->second.size() < 2) {
+        Fail("unit " + serial + " is missing from " + where +
+             ": fewer than 2 usable rows with the step's tag");
+      }
+      ImuUnitData& unit = data_->units[serial];
+      unit.serial = serial;
+      const std::vector<std::pair<int, ImuSample>> rows = std::move(it->second);  // freed after use
+      selected_.erase(it);
+      if (const auto* a = std::get_if<AccelStep>(&body)) {
+        ImuAcquisition acq{run_, static_cast<int>(step), "accel", a->orientation, 0.0, {}};
+        for (const auto& [orientation, s] : rows) {
+          if (orientation != a->orientation) {
+            Fail("unit " + serial + " " + where + ": a row carries orientation " +
+                 std::to_string(orientation) + ", the step commands " +
+                 std::to_string(a->orientation));
+          }
+          acq.samples.push_back(s);
+        }
+        unit.accel.push_back(std::move(acq));
+      } else if (std::holds_alternative<GyroStep>(body)) {
+        GroupByRate(run_, static_cast<int>(step), "gyro", rows, &unit.gyro);
+      } else if (std::holds_alternative<CrossAxisStep>(body)) {
+        GroupByRate(run_, static_cast<int>(step), "cross_axis", rows, &unit.cross_axis);
+      } else {
+        unit.thermal.reserve(unit.thermal.size() + rows.size());
+        for (const auto& [orientation, s] : rows) unit.thermal.push_back(s);
+        unit.thermal_orientation = rows.front().first != 0 ? rows.front().first : current_orientation;
+      }
+    }
+  }
+  LabelThermalSegments(data_);
+}
+
+void LabelThermalSegments(ImuRunData* data) {
+  for (auto& [serial, unit] : data->units) unit.thermal_segment = Segments(unit.thermal);
+}
 
 std::array<double, 3> UpAxisOf(int orientation) {
   std::array<double, 3> up{};

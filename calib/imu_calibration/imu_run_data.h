@@ -28,8 +28,10 @@
 #include <vector>
 
 #include "calib/constants/constants_file.h"
+#include "calib/sequence/sequence.h"
 #include "calib/solvers/thermal_drift_fit.h"
 #include "firmware_model/target/compensated_frame.h"
+#include "hil/recording/recording_format.h"
 
 namespace adahrs::calib {
 
@@ -81,6 +83,42 @@ struct ImuRunData {
 /// Reads every run directory and collects each IMU's calibration data; throws ImuInputError or
 /// hil::RecordingError with the reason.
 ImuRunData LoadImuRuns(const std::vector<std::filesystem::path>& run_dirs);
+
+/// A stretch of one step whose rows the operator rejected (meta.json $.rejected_intervals).
+struct RejectedInterval {
+  int step = 0;
+  double t_start_s = 0.0;
+  double t_end_s = 0.0;
+};
+
+/// Collects one run's rows into `data` by the rules above, from rows handed over one at a time:
+/// a recording streamed from disk (LoadImuRuns) or a run simulated in memory (calib/studies).
+/// The constructor and Finish throw ImuInputError naming `run`.
+class ImuRunCollector {
+ public:
+  ImuRunCollector(std::string run, std::string sha256, const Sequence& sequence,
+                  double local_gravity_mps2, std::vector<std::string> serials,
+                  std::vector<RejectedInterval> rejected, ImuRunData* data);
+  /// Selects or excludes one row (`line`: its line in imu.csv, for exclusion messages).
+  void Take(const hil::ImuRecordRow& row, int line);
+  /// Groups the selected rows into acquisitions and labels the thermal rows.
+  void Finish();
+
+ private:
+  [[noreturn]] void Fail(const std::string& message) const;
+
+  std::string run_;
+  Sequence sequence_;
+  std::vector<uint8_t> tags_;
+  std::vector<std::string> serials_;
+  std::vector<RejectedInterval> rejected_;
+  ImuRunData* data_;
+  int run_index_ = 0;
+  std::map<std::pair<std::string, int>, std::vector<std::pair<int, ImuSample>>> selected_;
+};
+
+/// Labels every unit's thermal rows up-ramp, down-ramp or soak (the rule above).
+void LabelThermalSegments(ImuRunData* data);
 
 /// Unit vector of the up axis of `orientation` in B (11 -> +x_B, 12 -> -x_B, ..., 32 -> -z_B).
 std::array<double, 3> UpAxisOf(int orientation);

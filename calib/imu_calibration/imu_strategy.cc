@@ -55,38 +55,44 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
   return s;
 }
 
+ConstantsFile FitImuUnit(const ImuUnitData& unit, const ImuRunData& data, const ImuStrategy& strategy,
+                         const std::string& software_version) {
+  ImuFitResult fit;
+  if (strategy.name == "reference") {
+    ImuReferenceOptions options;
+    options.thermal.band_width_cnt = strategy.band_width_cnt;
+    fit = FitImuReference(unit, data.local_gravity_mps2, options);
+  } else {
+    ImuJointOptions options;
+    options.thermal_order = strategy.thermal_order;
+    options.estimate_gyro_wander = strategy.estimate_gyro_wander;
+    options.format3 = strategy.format3;
+    fit = FitImuJoint(unit.serial, ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt),
+                      options);
+    fit.diagnostics["excluded_rows"] = unit.exclusions.size();
+    fit.diagnostics["rejected_interval_rows"] = unit.rejected_interval_rows;
+  }
+  fit.diagnostics["local_gravity_mps2"] = data.local_gravity_mps2;
+  ConstantsFile f;
+  f.serial = unit.serial;
+  f.kind = hil::UnitKind::kImu;
+  f.strategy = strategy.name;
+  f.created_utc = UtcNowIso8601();
+  f.software_version = software_version;
+  f.imu = fit.constants;
+  f.standard_errors = ImuStandardErrorsJson(fit.standard_errors);
+  f.provenance = {data.recordings, data.sequence_names};
+  f.diagnostics = fit.diagnostics;
+  return f;
+}
+
 std::vector<ConstantsFile> FitImuRuns(const std::vector<std::filesystem::path>& run_dirs,
                                       const ImuStrategy& strategy,
                                       const std::string& software_version) {
   const ImuRunData data = LoadImuRuns(run_dirs);
   std::vector<ConstantsFile> files;
   for (const auto& [serial, unit] : data.units) {
-    ImuFitResult fit;
-    if (strategy.name == "reference") {
-      ImuReferenceOptions options;
-      options.thermal.band_width_cnt = strategy.band_width_cnt;
-      fit = FitImuReference(unit, data.local_gravity_mps2, options);
-    } else {
-      ImuJointOptions options;
-      options.thermal_order = strategy.thermal_order;
-      options.estimate_gyro_wander = strategy.estimate_gyro_wander;
-      options.format3 = strategy.format3;
-      fit = FitImuJoint(serial, ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt), options);
-      fit.diagnostics["excluded_rows"] = unit.exclusions.size();
-      fit.diagnostics["rejected_interval_rows"] = unit.rejected_interval_rows;
-    }
-    fit.diagnostics["local_gravity_mps2"] = data.local_gravity_mps2;
-    ConstantsFile f;
-    f.serial = serial;
-    f.kind = hil::UnitKind::kImu;
-    f.strategy = strategy.name;
-    f.created_utc = UtcNowIso8601();
-    f.software_version = software_version;
-    f.imu = fit.constants;
-    f.standard_errors = ImuStandardErrorsJson(fit.standard_errors);
-    f.provenance = {data.recordings, data.sequence_names};
-    f.diagnostics = fit.diagnostics;
-    files.push_back(std::move(f));
+    files.push_back(FitImuUnit(unit, data, strategy, software_version));
   }
   return files;
 }

@@ -32,6 +32,14 @@ struct ImuStrategy {
   static ImuStrategy Load(const std::filesystem::path& path);
 };
 
+struct ImuUnitData;
+struct ImuRunData;
+
+/// Fits one IMU of `data` (its gravity and provenance) with `strategy`. Throws
+/// DegenerateDesignError when the data cannot determine the constants.
+ConstantsFile FitImuUnit(const ImuUnitData& unit, const ImuRunData& data, const ImuStrategy& strategy,
+                         const std::string& software_version);
+
 /// Fits every IMU of the runs with `strategy`; one constants file per unit, serial order.
 /// Throws ImuInputError, hil::RecordingError or DegenerateDesignError with the reason.
 std::vector<ConstantsFile> FitImuRuns(const std::vector<std::filesystem::path>& run_dirs,

@@ -10,6 +10,14 @@
 namespace adahrs::calib {
 namespace {
 
+// std::pow(v, p) for a whole power, with the powers 0 and 1 (whose results pow returns exactly:
+// 1 and v) taken without the call. Design matrices of a million rows call this per cell.
+double WholePower(double v, int p) {
+  if (p == 0) return 1.0;
+  if (p == 1) return v;
+  return std::pow(v, p);
+}
+
 double Binomial(int n, int k) {
   double out = 1.0;
   for (int i = 1; i <= k; ++i) out = out * (n - k + i) / i;
@@ -82,7 +90,7 @@ std::vector<std::string> PolynomialBasis::TermNames() const {
 Eigen::RowVectorXd PolynomialBasis::Row(double x, double y) const {
   Eigen::RowVectorXd row(size());
   for (int k = 0; k < size(); ++k) {
-    row[k] = std::pow(x, terms_[k].x_power) * std::pow(y, terms_[k].y_power);
+    row[k] = WholePower(x, terms_[k].x_power) * WholePower(y, terms_[k].y_power);
   }
   return row;
 }

@@ -50,6 +50,21 @@ TEST(DieThermal, EffectsOffFollowAirAtOnce) {
   EXPECT_DOUBLE_EQ(die.Step(85.0), 85.0);
 }
 
+TEST(DieThermal, HoldEqualsSteppingThroughTheSameTime) {
+  DieThermalParams p = DieThermalParams::Typical();
+  DieThermal stepped(p, kStep_s, 25.0);
+  DieThermal held(p, kStep_s, 25.0);
+  const int steps = 180000;  // 30 min of 10 ms frames
+  for (int i = 0; i < steps; ++i) stepped.Step(-40.0);
+  held.Hold(-40.0, steps * kStep_s);
+  EXPECT_NEAR(held.die_temp_c(), stepped.die_temp_c(), 1e-9);
+  const double target_c = -40.0 + p.self_heating_c;
+  EXPECT_NEAR(held.die_temp_c(), target_c + (25.0 - target_c) * std::exp(-1800.0 / p.tau_s), 1e-9);
+  DieThermal short_hold(p, kStep_s, 25.0);
+  short_hold.Hold(-40.0, p.tau_s);  // one time constant: 1/e of the step left
+  EXPECT_NEAR(short_hold.die_temp_c(), target_c + (25.0 - target_c) * std::exp(-1.0), 1e-9);
+}
+
 TEST(DieThermal, JsonRoundTripAndDrawDeterminism) {
   const DieThermalParams a = DieThermalParams::Draw(7);
   EXPECT_EQ(a, DieThermalParams::Draw(7));

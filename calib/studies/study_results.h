@@ -1,0 +1,112 @@
+// What a study writes (docs/studies.md "Outputs"): study.json (the settings and strategies, with
+// the shard), results.csv (one row per unit and strategy, unit index order; numbers in their
+// shortest exact decimal form so a reader gets the same doubles back), and summary.json (per
+// strategy: yield per criterion and all, distributions of the worst errors, rig time; with two
+// strategies, the paired difference second − first with a bootstrap 95 % interval).
+// The summary is a function of study.json and results.csv alone, so merged shards summarise
+// exactly as the unsharded study. Errors reading them throw std::runtime_error naming the file
+// and, for results.csv, the line and column.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "calib/studies/imu_study.h"
+
+namespace adahrs::calib {
+
+struct StudyStrategyInfo {
+  std::string name;           ///< the study file's stem
+  std::string file;
+  std::string sequence;       ///< the sequence's name
+  std::string sequence_file;
+  std::string strategy;       ///< "reference", "improved" or the strategy file
+  double rig_time_s = 0.0;
+  nlohmann::json ToJson() const;
+  static StudyStrategyInfo FromJson(const nlohmann::json& j);
+  bool operator==(const StudyStrategyInfo&) const = default;
+};
+
+struct StudyMeta {
+  int units = 0;
+  uint64_t seed = 0;
+  std::string population;
+  double g_local_mps2 = 0.0;
+  int evaluation_frames = 0;
+  std::vector<StudyStrategyInfo> strategies;
+  StudyShard shard;
+  nlohmann::json ToJson() const;
+  static StudyMeta Read(const std::filesystem::path& file);
+  /// Equal in everything but the shard.
+  bool SameStudy(const StudyMeta& other) const;
+};
+
+StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies, const StudySettings& settings);
+
+/// Percentiles by nearest rank over the finite values (units whose fit failed are left out).
+struct ErrorDistribution {
+  int count = 0;
+  double mean = 0.0, p50 = 0.0, p90 = 0.0, p95 = 0.0, p99 = 0.0, max = 0.0;
+  nlohmann::json ToJson() const;
+};
+
+struct StrategySummary {
+  StudyStrategyInfo info;
+  int units = 0;
+  int fitted = 0;
+  double yield_acceleration = 0.0;  ///< fraction of units passing
+  double yield_body_rate = 0.0;
+  double yield_body_rate_limit = 0.0;  ///< informative (StrategyOutcome::pass_body_rate_limit)
+  double yield_all = 0.0;
+  ErrorDistribution worst_accel_mg;
+  ErrorDistribution worst_rate_dps;
+  nlohmann::json ToJson() const;
+};
+
+/// The mean of a paired difference with its bootstrap 95 % interval (percentile method).
+struct PairedInterval {
+  int units = 0;
+  double mean = 0.0, ci95_low = 0.0, ci95_high = 0.0;
+  nlohmann::json ToJson() const;
+};
+
+struct PairedSummary {
+  std::string first, second;
+  int resamples = 0;
+  PairedInterval yield_all;       ///< pass (1/0) second − first, every unit
+  PairedInterval yield_acceleration;
+  PairedInterval worst_accel_mg;  ///< second − first, units both fitted
+  PairedInterval worst_rate_dps;
+  nlohmann::json ToJson() const;
+};
+
+struct StudySummary {
+  int units = 0;
+  uint64_t seed = 0;
+  std::string population;
+  std::vector<StrategySummary> strategies;
+  std::optional<PairedSummary> paired;
+  nlohmann::json ToJson() const;
+};
+
+StudySummary Summarise(const StudyMeta& meta, const std::vector<StudyUnitResult>& results);
+
+void WriteResultsCsv(const std::filesystem::path& file, const StudyMeta& meta,
+                     const std::vector<StudyUnitResult>& results);
+std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file, const StudyMeta& meta);
+
+/// Writes study.json, results.csv, summary.json and report.html into `dir`.
+void WriteStudyOutputs(const std::filesystem::path& dir, const StudyMeta& meta,
+                       const std::vector<StudyUnitResult>& results);
+
+/// Combines the shard directories of one study (every shard 1/n...n/n exactly once) into `out`:
+/// the outputs the unsharded study writes. Throws std::runtime_error naming the directory and
+/// what does not fit (another study, a shard missing or repeated, a unit missing).
+void MergeStudies(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out);
+
+}  // namespace adahrs::calib
