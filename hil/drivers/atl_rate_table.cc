@@ -48,7 +48,7 @@ double AtlRateTable::QueryNumber(const std::string& mnemonic) {
     if (used == data.size()) return value;
   } catch (const std::exception&) {
   }
-  port_.Fail(Kind::kBadReply, mnemonic + "?", PrintableReply(data), "expected a number");
+  port_.Fail(Kind::kBadReply, mnemonic + "?", data, "expected a number");
 }
 
 int AtlRateTable::Status() {

@@ -56,7 +56,4 @@ class InstrumentPort {
   std::unique_ptr<SerialPort> port_;
 };
 
-/// `text` with control characters shown as <CR>, <LF>, <XON>… (for error messages).
-std::string PrintableReply(std::string_view text);
-
 }  // namespace adahrs::hil
