@@ -42,12 +42,19 @@ void InstrumentPort::Send(const std::string& command, std::string_view request) 
 
 std::string InstrumentPort::Exchange(const std::string& command, std::string_view request,
                                      std::string_view terminator) {
+  return ExchangeUntil(command, request, terminator, [](std::string_view) { return true; }).back();
+}
+
+std::vector<std::string> InstrumentPort::ExchangeUntil(
+    const std::string& command, std::string_view request, std::string_view terminator,
+    const std::function<bool(std::string_view)>& is_answer) {
   std::string received;
   const int attempts = entry_.retries + 1;
   for (int attempt = 0; attempt < attempts; ++attempt) {
     port_->DiscardInput();
     Send(command, request);
     received.clear();
+    std::vector<std::string> replies;
     const ReplyDeadline deadline(clock_, entry_.timeout_ms / 1000.0, reply_timeout());
     std::array<uint8_t, 256> chunk{};
     while (!deadline.Passed()) {
@@ -58,9 +65,14 @@ std::string InstrumentPort::Exchange(const std::string& command, std::string_vie
         Fail(InstrumentError::Kind::kNoReply, command, received, e.what());
       }
       received.append(reinterpret_cast<const char*>(chunk.data()), n);
-      const size_t at = received.find(terminator);
-      if (at != std::string::npos) return received.substr(0, at + terminator.size());
+      for (size_t at = received.find(terminator); at != std::string::npos;
+           at = received.find(terminator)) {
+        replies.push_back(received.substr(0, at + terminator.size()));
+        received.erase(0, at + terminator.size());
+        if (is_answer(replies.back())) return replies;
+      }
     }
+    if (!replies.empty()) return replies;
   }
   Fail(InstrumentError::Kind::kNoReply, command, received,
        fmt::format("{} attempts of {} ms wall each", attempts, reply_timeout().count()));
