@@ -52,10 +52,18 @@ std::string Escape(std::string_view bytes, bool whole_message) {
       }
     }
     switch (byte) {
-      case '\r': out += "\\r"; break;
-      case '\n': out += whole_message ? "\n" : "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\\': out += whole_message ? "\\" : "\\\\"; break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\n':
+        out += whole_message ? "\n" : "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\\':
+        out += whole_message ? "\\" : "\\\\";
+        break;
       default:
         if (byte < 0x20 || byte >= 0x7F) {
           char hex[5];

@@ -248,7 +248,9 @@ DecodedResponse DecodeResponse(std::span<const uint8_t> frame) {
     default:  // kWriteMultipleRegisters
       response.start_register = GetU16(frame, 2);
       response.count = GetU16(frame, 4);
-      if (response.count < 1 || response.count > kMaxWriteCount) out.status = DecodeStatus::kMalformed;
+      if (response.count < 1 || response.count > kMaxWriteCount) {
+        out.status = DecodeStatus::kMalformed;
+      }
       break;
   }
   return out;

@@ -26,7 +26,7 @@ class InstrumentError : public std::runtime_error {
   const std::string& role() const { return role_; }
   const std::string& port() const { return port_; }
   const std::string& command() const { return command_; }
-  /// What came back as PrintableText (drivers of binary protocols pass hex); empty when nothing did.
+  /// What came back, as PrintableText (binary protocols pass hex); empty when nothing did.
   const std::string& reply() const { return reply_; }
 
  private:

@@ -12,6 +12,9 @@
 #include <sstream>
 
 namespace adahrs::hil {
+
+using sensor_sim::PrintableText;
+
 namespace {
 
 std::vector<std::string> SplitHeader(std::string_view header) {
@@ -85,7 +88,8 @@ class CsvCursor {
     const std::string& cell = cells_[column_of_[column]];
     const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
     if (ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v)) {
-      throw RecordingError(Where(column) + ": '" + sensor_sim::PrintableText(cell) + "' is not a finite number");
+      throw RecordingError(Where(column) + ": '" + PrintableText(cell) +
+                           "' is not a finite number");
     }
     return v;
   }
@@ -98,7 +102,8 @@ class CsvCursor {
     if (ec != std::errc() || end != cell.data() + cell.size() ||
         v < static_cast<long long>(std::numeric_limits<Int>::min()) ||
         v > static_cast<long long>(std::numeric_limits<Int>::max())) {
-      throw RecordingError(Where(column) + ": '" + sensor_sim::PrintableText(cell) + "' is not an integer in [" +
+      throw RecordingError(Where(column) + ": '" + PrintableText(cell) +
+                           "' is not an integer in [" +
                            std::to_string(std::numeric_limits<Int>::min()) + ", " +
                            std::to_string(std::numeric_limits<Int>::max()) + "]");
     }
@@ -137,7 +142,7 @@ class CsvCursor {
     for (size_t i = 0; i < file_names.size(); ++i) {
       for (size_t j = 0; j < i; ++j) {
         if (file_names[j] == file_names[i]) {
-          throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + sensor_sim::PrintableText(file_names[i]) +
+          throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
                                "' repeats column " + std::to_string(j + 1));
         }
       }
@@ -152,11 +157,11 @@ class CsvCursor {
     for (size_t i = 0; i < file_names.size(); ++i) {
       if (std::find(names_.begin(), names_.end(), file_names[i]) != names_.end()) continue;
       if (std::find(latest_names.begin(), latest_names.end(), file_names[i]) != latest_names.end()) {
-        throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + sensor_sim::PrintableText(file_names[i]) +
+        throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
                              "' belongs to recording format version " + std::to_string(kRecordingFormatVersion) +
                              ", but meta.json says version " + std::to_string(version));
       }
-      notes->push_back(path_.string() + ": column " + std::to_string(i + 1) + " '" + sensor_sim::PrintableText(file_names[i]) +
+      notes->push_back(path_.string() + ": column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
                        "' is not in the recording format" + format + "; ignored");
     }
     file_columns_ = file_names.size();
@@ -333,7 +338,7 @@ class RowOrder {
   }
   [[noreturn]] void Fail(int line, const std::string& what) const {
     throw RecordingError(file_.string() + ":" + std::to_string(line) + ": " +
-                         sensor_sim::PrintableText(what));
+                         PrintableText(what));
   }
   std::filesystem::path file_;
   std::map<std::string, Last> last_;

@@ -28,8 +28,8 @@ std::filesystem::path WriteScratchFile(std::string_view name, const uint8_t* dat
 }
 
 void CopyToScratch(const std::filesystem::path& source, std::string_view name) {
-  std::filesystem::copy_file(source, ScratchDir() / name,
-                             std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(
+      source, ScratchDir() / name, std::filesystem::copy_options::overwrite_existing);
 }
 
 }  // namespace adahrs::fuzz

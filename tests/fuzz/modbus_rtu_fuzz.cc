@@ -21,7 +21,8 @@ void Decode(std::span<const uint8_t> frame) {
   }
   const modbus::DecodedResponse response = modbus::DecodeResponse(frame);
   if (response.status == modbus::DecodeStatus::kOk &&
-      modbus::EncodeResponse(response.response) != std::vector<uint8_t>(frame.begin(), frame.end())) {
+      modbus::EncodeResponse(response.response) !=
+          std::vector<uint8_t>(frame.begin(), frame.end())) {
     __builtin_trap();  // a reply that does not survive decode -> encode
   }
 }

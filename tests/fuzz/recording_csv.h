@@ -12,8 +12,10 @@
 
 namespace adahrs::fuzz {
 
-inline void ReadRecordingWithCsv(const std::string& fuzzed_csv, const std::string& fixture_csv,
-                                 const uint8_t* data, size_t size) {
+inline void ReadRecordingWithCsv(const std::string& fuzzed_csv,
+                                 const std::string& fixture_csv,
+                                 const uint8_t* data,
+                                 size_t size) {
   static const bool fixtures = [&] {
     CopyToScratch(ADAHRS_FUZZ_FIXTURES "/meta.json", "meta.json");
     CopyToScratch(ADAHRS_FUZZ_FIXTURES "/" + fixture_csv, fixture_csv);

@@ -13,18 +13,25 @@ namespace fm = adahrs::firmware_model;
 
 namespace {
 
-void ParseResponse(const fm::Frame& frame) {
-  const fm::MaintenanceResponse response = fm::ParseMaintenanceResponse(frame);
-  try { (void)fm::ParseIdentify(response); } catch (const fm::ProtocolError&) {}
-  try { (void)fm::ParseCommit(response); } catch (const fm::ProtocolError&) {}
-  try { (void)fm::ParseReadBlock(response); } catch (const fm::ProtocolError&) {}
-  try { (void)fm::ParseCounters(response); } catch (const fm::ProtocolError&) {}
+/// Runs `parse`; a ProtocolError is the parser's refusal, not a finding.
+template <typename Parse>
+void Refusable(Parse parse) {
+  try {
+    parse();
+  } catch (const fm::ProtocolError&) {
+  }
 }
 
 void ParseFrame(const fm::Frame& frame) {
-  try { ParseResponse(frame); } catch (const fm::ProtocolError&) {}
-  try { (void)fm::ParseImuData(frame); } catch (const fm::ProtocolError&) {}
-  try { (void)fm::ParseAdsData(frame); } catch (const fm::ProtocolError&) {}
+  Refusable([&] {
+    const fm::MaintenanceResponse response = fm::ParseMaintenanceResponse(frame);
+    Refusable([&] { (void)fm::ParseIdentify(response); });
+    Refusable([&] { (void)fm::ParseCommit(response); });
+    Refusable([&] { (void)fm::ParseReadBlock(response); });
+    Refusable([&] { (void)fm::ParseCounters(response); });
+  });
+  Refusable([&] { (void)fm::ParseImuData(frame); });
+  Refusable([&] { (void)fm::ParseAdsData(frame); });
 }
 
 }  // namespace
@@ -35,7 +42,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::span<const uint8_t> stream(data + 1, size - 1);
   fm::StreamReader reader;
   for (size_t at = 0; at < stream.size(); at += chunk_bytes) {
-    for (const fm::Frame& frame : reader.Push(stream.subspan(at, std::min(chunk_bytes, stream.size() - at)))) {
+    for (const fm::Frame& frame :
+         reader.Push(stream.subspan(at, std::min(chunk_bytes, stream.size() - at)))) {
       ParseFrame(frame);
     }
   }

@@ -11,6 +11,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (size_t i = 0; i < size; ++i) {
     if (auto line = splitter.Feed(data[i])) (void)adahrs::hil::DecodeWatlow942Line(line->text);
   }
-  (void)adahrs::hil::DecodeWatlow942Line(std::string_view(reinterpret_cast<const char*>(data), size));
+  (void)adahrs::hil::DecodeWatlow942Line(
+      std::string_view(reinterpret_cast<const char*>(data), size));
   return 0;
 }

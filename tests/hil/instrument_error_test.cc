@@ -2,10 +2,10 @@
 // binary noise or a stray CR cannot rewrite the operator's terminal line.
 #include "hil/instruments/instrument_error.h"
 
-#include <string>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <string>
 
 namespace adahrs::hil {
 namespace {
@@ -13,8 +13,12 @@ namespace {
 using ::testing::HasSubstr;
 
 TEST(InstrumentError, QuotesTheReplyWithControlBytesEscaped) {
-  const InstrumentError error(InstrumentError::Kind::kBadReply, "rate_table", "/dev/ttyS0", "RAT?",
-                              "12.5\r\n>\x1b[2K\xff", "expected a number");
+  const InstrumentError error(InstrumentError::Kind::kBadReply,
+                              "rate_table",
+                              "/dev/ttyS0",
+                              "RAT?",
+                              "12.5\r\n>\x1b[2K\xff",
+                              "expected a number");
   const std::string text = error.what();
   EXPECT_THAT(text, HasSubstr("rate_table on /dev/ttyS0: RAT?: unexpected reply"));
   EXPECT_THAT(text, HasSubstr("reply '12.5\\r\\n>\\x1B[2K\\xFF'"));
@@ -23,8 +27,12 @@ TEST(InstrumentError, QuotesTheReplyWithControlBytesEscaped) {
 }
 
 TEST(InstrumentError, PrintableReplyIsQuotedAsIs) {
-  const InstrumentError error(InstrumentError::Kind::kRefused, "adts", "/dev/ttyUSB1", "SOUR:PRES",
-                              "-222,\"Data out of range\"", "");
+  const InstrumentError error(InstrumentError::Kind::kRefused,
+                              "adts",
+                              "/dev/ttyUSB1",
+                              "SOUR:PRES",
+                              "-222,\"Data out of range\"",
+                              "");
   EXPECT_THAT(std::string(error.what()), HasSubstr("reply '-222,\"Data out of range\"'"));
 }
 

@@ -3,14 +3,14 @@
 // every row on its first try (nothing the wrong client sent or was sent is left on the lines).
 #include "hil/drivers/port_check.h"
 
+#include <gtest/gtest.h>
+
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
+#include "../support/rig_process.h"
 #include "hil/clock.h"
 #include "hil/station.h"
-#include "../support/rig_process.h"
 
 namespace adahrs::hil {
 namespace {
@@ -35,8 +35,8 @@ TEST_P(PortCheckAfterSwap, NextCorrectCheckPassesFirstTime) {
   const auto& [a, b] = GetParam();
   testing::RigProcess rig(kTimeScale);
   ScaledClock clock(kTimeScale);
-  const Station swapped = Station::Load(rig.WriteStation(
-      "swapped.json", [&](nlohmann::json& station) { SwapPorts(station, a, b); }));
+  const Station swapped = Station::Load(
+      rig.WriteStation("swapped.json", [&](nlohmann::json& station) { SwapPorts(station, a, b); }));
   const std::vector<PortCheckRow> swapped_rows = CheckPorts(swapped, clock);
   EXPECT_NE(FailedRows(swapped_rows), "") << "a check with " << a << " and " << b << " swapped";
 
@@ -45,7 +45,8 @@ TEST_P(PortCheckAfterSwap, NextCorrectCheckPassesFirstTime) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Instruments, PortCheckAfterSwap,
+    Instruments,
+    PortCheckAfterSwap,
     ::testing::Values(std::pair<std::string, std::string>{"rate_table", "imu_chamber"},
                       std::pair<std::string, std::string>{"rate_table", "ads_chamber"},
                       std::pair<std::string, std::string>{"rate_table", "adts"}),

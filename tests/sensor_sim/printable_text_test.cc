@@ -2,16 +2,19 @@
 // written out by hand.
 #include "sensor_sim/printable_text.h"
 
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <string>
 
 namespace adahrs::sensor_sim {
 namespace {
 
 TEST(PrintableText, KeepsPrintableAsciiAndUtf8) {
   EXPECT_EQ(PrintableText("JOG -100 'ok'"), "JOG -100 'ok'");
-  EXPECT_EQ(PrintableText("25 \xC2\xB0" "C \xE2\x80\xA6"), "25 \xC2\xB0" "C \xE2\x80\xA6");  // ° …
+  EXPECT_EQ(PrintableText("25 \xC2\xB0"
+                          "C \xE2\x80\xA6"),
+            "25 \xC2\xB0"
+            "C \xE2\x80\xA6");  // ° …
   EXPECT_EQ(PrintableText(""), "");
 }
 
@@ -28,9 +31,11 @@ TEST(PrintableText, EscapesControlBytesAsHex) {
 
 TEST(PrintableText, EscapesBytesThatAreNotUtf8OrAreC1Controls) {
   EXPECT_EQ(PrintableText("\xff\xfe"), "\\xFF\\xFE");
-  EXPECT_EQ(PrintableText("\xC2\x9B" "31m"), "\\xC2\\x9B31m");  // U+009B, the 8-bit CSI
-  EXPECT_EQ(PrintableText("\xC0\xAF"), "\\xC0\\xAF");          // overlong '/'
-  EXPECT_EQ(PrintableText("\xE2\x80"), "\\xE2\\x80");          // cut short
+  EXPECT_EQ(PrintableText("\xC2\x9B"
+                          "31m"),
+            "\\xC2\\x9B31m");                                   // U+009B, the 8-bit CSI
+  EXPECT_EQ(PrintableText("\xC0\xAF"), "\\xC0\\xAF");           // overlong '/'
+  EXPECT_EQ(PrintableText("\xE2\x80"), "\\xE2\\x80");           // cut short
   EXPECT_EQ(PrintableText("\xED\xA0\x80"), "\\xED\\xA0\\x80");  // a surrogate
 }
 
