@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/commands.h"
+#include "common/printable_text.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"adahrs: ADAHRS calibration HIL simulator and production calibration pipeline"};
@@ -16,7 +17,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {
-    std::cerr << "adahrs: " << e.what() << "\n";
+    // Messages quote what files, instruments and operators gave; nothing of it reaches the
+    // terminal as a control sequence, whichever layer forgot to quote it.
+    std::cerr << "adahrs: " << adahrs::common::PrintableMessage(e.what()) << "\n";
     return 1;
   }
   return 0;

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/printable_text.h"
+
 namespace adahrs::common {
 
 ParamReader::ParamReader(const nlohmann::json& object, std::string source, std::string path)
@@ -21,14 +23,15 @@ nlohmann::json ParamReader::LoadFile(const std::string& file_path) {
     return nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
     throw ParamError(file_path + ": not valid JSON at byte " + std::to_string(e.byte) + ": " +
-                     e.what());
+                     PrintableText(e.what()));
   } catch (const nlohmann::json::exception& e) {  // a number beyond double's range (1e400)
-    throw ParamError(file_path + ": not valid JSON: " + e.what());
+    throw ParamError(file_path + ": not valid JSON: " + PrintableText(e.what()));
   }
 }
 
 void ParamReader::Fail(const std::string& where, const std::string& message) const {
-  throw ParamError(source_ + ": " + where + ": " + message);
+  // `where` holds the file's own keys and `message` may quote its values.
+  throw ParamError(source_ + ": " + PrintableText(where) + ": " + PrintableText(message));
 }
 
 std::string ParamReader::PathOf(std::string_view key) const {

@@ -15,6 +15,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// The deduction guide C++20 makes implicit; clang 14 (the fuzz build) still needs it written.
+template <typename... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // Waits for every unit's request (one per logger, in order); throws a RunError naming every
 // unit whose request failed, after all have finished.

@@ -4,6 +4,7 @@
 
 #include "calib/constants/constants_file.h"
 #include "calib/records/records_schema.h"
+#include "common/printable_text.h"
 
 namespace adahrs::calib {
 namespace {
@@ -13,7 +14,7 @@ std::string KindOfSerial(const std::filesystem::path& file, const std::string& s
   if (serial.rfind("IMU-", 0) == 0) return "imu";
   if (serial.rfind("ADS-", 0) == 0) return "ads";
   throw RecordsError(fmt::format("records database {}: unit serial '{}' is neither IMU-… nor ADS-…",
-                                 file.string(), serial));
+                                 file.string(), common::PrintableText(serial)));
 }
 
 }  // namespace

@@ -20,6 +20,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// The deduction guide C++20 makes implicit; clang 14 (the fuzz build) still needs it written.
+template <typename... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // ParamError::what() is "<source>: <path>: <message>"; split it back into a problem.
 SequenceProblem ProblemFromParamError(const ParamError& error, const std::string& source) {

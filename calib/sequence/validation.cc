@@ -23,6 +23,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// The deduction guide C++20 makes implicit; clang 14 (the fuzz build) still needs it written.
+template <typename... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 std::string JoinProblems(const std::string& source, const std::vector<SequenceProblem>& problems) {
   std::string text = fmt::format("{}: sequence refused, {} problem{}:", source, problems.size(),

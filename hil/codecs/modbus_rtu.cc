@@ -231,11 +231,11 @@ DecodedResponse DecodeResponse(std::span<const uint8_t> frame) {
   }
   switch (response.function) {
     case kReadHoldingRegisters:
-      if (frame[2] % 2 != 0) {
+      response.count = static_cast<uint16_t>(frame[2] / 2);
+      if (frame[2] % 2 != 0 || response.count < 1 || response.count > kMaxReadCount) {
         out.status = DecodeStatus::kMalformed;
         break;
       }
-      response.count = static_cast<uint16_t>(frame[2] / 2);
       for (size_t i = 0; i < response.count; ++i) {
         response.values.push_back(GetU16(frame, 3 + 2 * i));
       }
@@ -248,6 +248,9 @@ DecodedResponse DecodeResponse(std::span<const uint8_t> frame) {
     default:  // kWriteMultipleRegisters
       response.start_register = GetU16(frame, 2);
       response.count = GetU16(frame, 4);
+      if (response.count < 1 || response.count > kMaxWriteCount) {
+        out.status = DecodeStatus::kMalformed;
+      }
       break;
   }
   return out;

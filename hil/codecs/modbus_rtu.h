@@ -112,7 +112,8 @@ struct DecodedResponse {
 };
 
 /// Decodes one complete reply frame (client side). kIllegalFunction here means a function code
-/// the codec does not know; kMalformed a length that does not fit the function code.
+/// the codec does not know; kMalformed a length that does not fit the function code, or a register
+/// count outside the protocol's (FC 03 byte count 2..250 and even, FC 16 echoed count 1..123).
 DecodedResponse DecodeResponse(std::span<const uint8_t> frame);
 
 }  // namespace adahrs::hil::modbus

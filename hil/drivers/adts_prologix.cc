@@ -47,7 +47,7 @@ std::string AdtsPrologix::Query(const std::string& scpi) {
 double AdtsPrologix::QueryNumber(const std::string& scpi) {
   const std::string text = Query(scpi);
   if (const std::optional<double> value = ParseScpiNumber(text)) return *value;
-  port_.Fail(Kind::kBadReply, scpi, PrintableReply(text), "expected a number");
+  port_.Fail(Kind::kBadReply, scpi, text, "expected a number");
 }
 
 void AdtsPrologix::Command(const std::string& scpi) {
@@ -56,7 +56,7 @@ void AdtsPrologix::Command(const std::string& scpi) {
   port_.Send(scpi, EscapePrologixData(scpi) + "\n");
   const std::string error = Query("SYST:ERR?");
   const std::optional<double> code = ParseScpiNumber(error.substr(0, error.find(',')));
-  if (!code) port_.Fail(Kind::kBadReply, scpi + "; SYST:ERR?", PrintableReply(error), "");
+  if (!code) port_.Fail(Kind::kBadReply, scpi + "; SYST:ERR?", error, "");
   if (*code != 0.0) port_.Fail(Kind::kRefused, scpi, error, "");
 }
 
@@ -65,7 +65,7 @@ InstrumentIdentity AdtsPrologix::Identify() {
   const std::string version = Trim(port_.Exchange("++ver", "++ver\n", "\n"));
   const std::string idn = Query("*IDN?");
   if (idn.find("ADTS") == std::string::npos) {
-    port_.Fail(Kind::kWrongIdentity, "*IDN?", PrintableReply(idn), "not a Druck ADTS");
+    port_.Fail(Kind::kWrongIdentity, "*IDN?", idn, "not a Druck ADTS");
   }
   return {"Druck ADTS via Prologix", idn + "; adapter: " + version};
 }

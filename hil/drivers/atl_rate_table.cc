@@ -1,6 +1,8 @@
 #include "hil/drivers/atl_rate_table.h"
 
 #include <stdexcept>
+#include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -34,7 +36,15 @@ std::string AtlRateTable::Command(const std::string& mnemonic, std::optional<dou
   }
   const AtlFraming& framing = table.framing();
   const std::string terminator = framing.line_end + framing.prompt + framing.line_end;
-  const std::string reply = port_.Exchange(text, request, terminator);
+  // A client that wrote here by mistake (a station with its ports swapped; Modbus bytes hold no
+  // line end) leaves a partial line in the table's input. The first command leads with a line
+  // end, which ends that line; the table refuses it before it answers the command.
+  const bool resync = !line_synced_;
+  const std::vector<std::string> replies = port_.ExchangeUntil(
+      text, (resync ? framing.line_end : "") + request, terminator,
+      [resync](std::string_view reply) { return !resync || !reply.starts_with('?'); });
+  line_synced_ = true;
+  const std::string& reply = replies.back();
   const std::string data = reply.substr(0, reply.size() - terminator.size());
   if (!data.empty() && data.front() == '?') port_.Fail(Kind::kRefused, text, data, "");
   return data;
@@ -48,7 +58,7 @@ double AtlRateTable::QueryNumber(const std::string& mnemonic) {
     if (used == data.size()) return value;
   } catch (const std::exception&) {
   }
-  port_.Fail(Kind::kBadReply, mnemonic + "?", PrintableReply(data), "expected a number");
+  port_.Fail(Kind::kBadReply, mnemonic + "?", data, "expected a number");
 }
 
 int AtlRateTable::Status() {

@@ -8,6 +8,9 @@
 // as is a rate or acceleration beyond the table's command limits.
 // A status word with bit 4 (interlock open) makes AtRate throw kFault: the table cannot reach a
 // rate until someone closes the door and re-enables the servo.
+// The first command after opening leads with a line end: bytes another client left in the table's
+// input without one (a station with swapped ports) form a line the table refuses first; that
+// refusal is read and dropped, so the driver's first command is answered as if the line were clean.
 // Timeouts and retries: the station entry's (instrument_port.h); a repeated JOG or STO is harmless.
 // Left out: position mode, sine motion, servo control, echo (off in the lab's table).
 #pragma once
@@ -40,6 +43,8 @@ class AtlRateTable : public RateTable {
   int Status();
 
   InstrumentPort port_;
+  /// Whether a command has ended any partial line a previous client left in the table's input.
+  bool line_synced_ = false;
 };
 
 }  // namespace adahrs::hil

@@ -11,25 +11,6 @@ std::chrono::milliseconds WallReplyTimeout(const Clock& clock, int timeout_ms) {
   return std::max(kMinWallReplyTimeout, clock.WallTimeout(timeout_ms / 1000.0));
 }
 
-std::string PrintableReply(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '\r': out += "<CR>"; break;
-      case '\n': out += "<LF>"; break;
-      case 0x11: out += "<XON>"; break;
-      case 0x13: out += "<XOFF>"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) {
-          out += fmt::format("<{:02X}>", static_cast<unsigned char>(c));
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out;
-}
-
 namespace {
 
 std::unique_ptr<SerialPort> OpenInstrumentPort(const InstrumentEntry& entry) {
@@ -61,12 +42,19 @@ void InstrumentPort::Send(const std::string& command, std::string_view request) 
 
 std::string InstrumentPort::Exchange(const std::string& command, std::string_view request,
                                      std::string_view terminator) {
+  return ExchangeUntil(command, request, terminator, [](std::string_view) { return true; }).back();
+}
+
+std::vector<std::string> InstrumentPort::ExchangeUntil(
+    const std::string& command, std::string_view request, std::string_view terminator,
+    const std::function<bool(std::string_view)>& is_answer) {
   std::string received;
   const int attempts = entry_.retries + 1;
   for (int attempt = 0; attempt < attempts; ++attempt) {
     port_->DiscardInput();
     Send(command, request);
     received.clear();
+    std::vector<std::string> replies;
     const ReplyDeadline deadline(clock_, entry_.timeout_ms / 1000.0, reply_timeout());
     std::array<uint8_t, 256> chunk{};
     while (!deadline.Passed()) {
@@ -74,14 +62,19 @@ std::string InstrumentPort::Exchange(const std::string& command, std::string_vie
       try {
         n = port_->ReadSome(chunk, deadline.WaitLeft());
       } catch (const TransportError& e) {
-        Fail(InstrumentError::Kind::kNoReply, command, PrintableReply(received), e.what());
+        Fail(InstrumentError::Kind::kNoReply, command, received, e.what());
       }
       received.append(reinterpret_cast<const char*>(chunk.data()), n);
-      const size_t at = received.find(terminator);
-      if (at != std::string::npos) return received.substr(0, at + terminator.size());
+      for (size_t at = received.find(terminator); at != std::string::npos;
+           at = received.find(terminator)) {
+        replies.push_back(received.substr(0, at + terminator.size()));
+        received.erase(0, at + terminator.size());
+        if (is_answer(replies.back())) return replies;
+      }
     }
+    if (!replies.empty()) return replies;
   }
-  Fail(InstrumentError::Kind::kNoReply, command, PrintableReply(received),
+  Fail(InstrumentError::Kind::kNoReply, command, received,
        fmt::format("{} attempts of {} ms wall each", attempts, reply_timeout().count()));
 }
 

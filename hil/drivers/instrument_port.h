@@ -9,9 +9,11 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "hil/clock.h"
 #include "hil/instruments/instrument_error.h"
@@ -47,6 +49,15 @@ class InstrumentPort {
   std::string Exchange(const std::string& command, std::string_view request,
                        std::string_view terminator);
 
+  /// Exchange that reads on past replies `is_answer` rejects (each ending in `terminator`), for
+  /// a request that makes the instrument answer something else first (a line end that ends a
+  /// stale partial line). Returns every reply read, the accepted one last; when the wait ends
+  /// with replies but none accepted, returns them (the caller judges the last). Retries and
+  /// kNoReply as Exchange.
+  std::vector<std::string> ExchangeUntil(const std::string& command, std::string_view request,
+                                         std::string_view terminator,
+                                         const std::function<bool(std::string_view)>& is_answer);
+
   [[noreturn]] void Fail(InstrumentError::Kind kind, const std::string& command,
                          const std::string& reply, const std::string& detail) const;
 
@@ -55,8 +66,5 @@ class InstrumentPort {
   const Clock& clock_;
   std::unique_ptr<SerialPort> port_;
 };
-
-/// `text` with control characters shown as <CR>, <LF>, <XON>… (for error messages).
-std::string PrintableReply(std::string_view text);
 
 }  // namespace adahrs::hil

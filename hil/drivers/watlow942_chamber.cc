@@ -44,7 +44,7 @@ double Watlow942Chamber::QueryNumber(const std::string& mnemonic) {
     if (used == text.size()) return value;
   } catch (const std::exception&) {
   }
-  port_.Fail(Kind::kBadReply, "? " + mnemonic, PrintableReply(text), "expected a number");
+  port_.Fail(Kind::kBadReply, "? " + mnemonic, text, "expected a number");
 }
 
 void Watlow942Chamber::Set(const std::string& mnemonic, double value) {
@@ -71,7 +71,7 @@ void Watlow942Chamber::Set(const std::string& mnemonic, double value) {
 InstrumentIdentity Watlow942Chamber::Identify() {
   const std::string model = Query("MDL");
   if (model.rfind("942", 0) != 0) {
-    port_.Fail(Kind::kWrongIdentity, "? MDL", PrintableReply(model), "a Watlow 942 answers 942 <rev>");
+    port_.Fail(Kind::kWrongIdentity, "? MDL", model, "a Watlow 942 answers 942 <rev>");
   }
   return {"Watlow 942", "MDL " + model};
 }

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "common/printable_text.h"
+
 namespace adahrs::hil {
 
 namespace {
@@ -9,9 +11,11 @@ namespace {
 std::string Compose(InstrumentError::Kind kind, const std::string& role, const std::string& port,
                     const std::string& command, const std::string& reply,
                     const std::string& detail) {
-  std::string text = fmt::format("{} on {}: {}: {}", role, port, command, ToString(kind));
-  if (!detail.empty()) text += fmt::format(" ({})", detail);
-  text += reply.empty() ? std::string("; nothing came back") : fmt::format("; reply '{}'", reply);
+  std::string text = fmt::format("{} on {}: {}: {}", role, port, common::PrintableText(command),
+                                 ToString(kind));
+  if (!detail.empty()) text += fmt::format(" ({})", common::PrintableText(detail));
+  text += reply.empty() ? std::string("; nothing came back")
+                        : fmt::format("; reply '{}'", common::PrintableText(reply));
   return text;
 }
 
@@ -25,7 +29,7 @@ InstrumentError::InstrumentError(Kind kind, std::string role, std::string port,
       role_(std::move(role)),
       port_(std::move(port)),
       command_(std::move(command)),
-      reply_(std::move(reply)) {}
+      reply_(common::PrintableText(reply)) {}
 
 const char* ToString(InstrumentError::Kind kind) {
   switch (kind) {

@@ -1,6 +1,7 @@
 // The typed error every instrument and unit driver throws: which instrument (role and port), which
 // command, and what came back (or that nothing did). The executor turns it into the message that
-// stops a run ("rate_table on /dev/ttyS0: JOG 200: replied 'ERR 3 out of range'").
+// stops a run ("rate_table on /dev/ttyS0: JOG 200: replied 'ERR 3 out of range'"). The command,
+// the reply and the detail are quoted as common::PrintableText (a CR shows as \r).
 #pragma once
 
 #include <stdexcept>
@@ -25,7 +26,7 @@ class InstrumentError : public std::runtime_error {
   const std::string& role() const { return role_; }
   const std::string& port() const { return port_; }
   const std::string& command() const { return command_; }
-  /// What came back, printable (hex for binary protocols); empty when nothing did.
+  /// What came back, as PrintableText (binary protocols pass hex); empty when nothing did.
   const std::string& reply() const { return reply_; }
 
  private:

@@ -1,5 +1,6 @@
 #include "hil/recording/recording_reader.h"
 
+#include "common/printable_text.h"
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -11,6 +12,9 @@
 #include <sstream>
 
 namespace adahrs::hil {
+
+using common::PrintableText;
+
 namespace {
 
 std::vector<std::string> SplitHeader(std::string_view header) {
@@ -84,7 +88,8 @@ class CsvCursor {
     const std::string& cell = cells_[column_of_[column]];
     const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
     if (ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v)) {
-      throw RecordingError(Where(column) + ": '" + cell + "' is not a finite number");
+      throw RecordingError(Where(column) + ": '" + PrintableText(cell) +
+                           "' is not a finite number");
     }
     return v;
   }
@@ -97,7 +102,8 @@ class CsvCursor {
     if (ec != std::errc() || end != cell.data() + cell.size() ||
         v < static_cast<long long>(std::numeric_limits<Int>::min()) ||
         v > static_cast<long long>(std::numeric_limits<Int>::max())) {
-      throw RecordingError(Where(column) + ": '" + cell + "' is not an integer in [" +
+      throw RecordingError(Where(column) + ": '" + PrintableText(cell) +
+                           "' is not an integer in [" +
                            std::to_string(std::numeric_limits<Int>::min()) + ", " +
                            std::to_string(std::numeric_limits<Int>::max()) + "]");
     }
@@ -136,7 +142,7 @@ class CsvCursor {
     for (size_t i = 0; i < file_names.size(); ++i) {
       for (size_t j = 0; j < i; ++j) {
         if (file_names[j] == file_names[i]) {
-          throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + file_names[i] +
+          throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
                                "' repeats column " + std::to_string(j + 1));
         }
       }
@@ -151,11 +157,11 @@ class CsvCursor {
     for (size_t i = 0; i < file_names.size(); ++i) {
       if (std::find(names_.begin(), names_.end(), file_names[i]) != names_.end()) continue;
       if (std::find(latest_names.begin(), latest_names.end(), file_names[i]) != latest_names.end()) {
-        throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + file_names[i] +
+        throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
                              "' belongs to recording format version " + std::to_string(kRecordingFormatVersion) +
                              ", but meta.json says version " + std::to_string(version));
       }
-      notes->push_back(path_.string() + ": column " + std::to_string(i + 1) + " '" + file_names[i] +
+      notes->push_back(path_.string() + ": column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
                        "' is not in the recording format" + format + "; ignored");
     }
     file_columns_ = file_names.size();
@@ -331,7 +337,8 @@ class RowOrder {
     return text;
   }
   [[noreturn]] void Fail(int line, const std::string& what) const {
-    throw RecordingError(file_.string() + ":" + std::to_string(line) + ": " + what);
+    throw RecordingError(file_.string() + ":" + std::to_string(line) + ": " +
+                         PrintableText(what));
   }
   std::filesystem::path file_;
   std::map<std::string, Last> last_;

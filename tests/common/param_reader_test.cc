@@ -54,6 +54,24 @@ TEST(ParamReader, NanAsStringIsRefused) {
               AllOf(HasSubstr("$.x_v"), HasSubstr("expected a number")));
 }
 
+TEST(ParamReader, QuotedKeysAndValuesHaveTheirControlBytesEscaped) {
+  nlohmann::json j;
+  j["x_v"] = "1\x1b[2J\r";
+  j["y\x1b]0;title\x07"] = 1;
+  ParamReader r(j, "f.json");
+  EXPECT_THAT(ErrorOf([&] { r.Number("x_v", 0, 1, "V"); }), HasSubstr("\"1\\x1B[2J\\r\""));
+  EXPECT_THAT(ErrorOf([&] { r.ExpectAllKeysUsed(); }), HasSubstr("y\\x1B]0;title\\x07"));
+}
+
+TEST(ParamReader, InvalidUtf8InAFileIsEscapedInTheParseError) {
+  const auto path = std::filesystem::temp_directory_path() / "adahrs_param_reader_binary.json";
+  std::ofstream(path, std::ios::binary) << "{\"a\": \xff\xfe\r}";
+  const std::string error = ErrorOf([&] { ParamReader::LoadFile(path.string()); });
+  std::filesystem::remove(path);
+  EXPECT_THAT(error, HasSubstr("not valid JSON"));
+  EXPECT_EQ(error.find_first_of("\xff\xfe\r"), std::string::npos) << error;
+}
+
 TEST(ParamReader, WrongUnitSuffixIsAnUnknownKey) {
   const auto j = nlohmann::json::parse(R"({"offset_v": 0.1, "offset_mv": 100})");
   ParamReader r(j, "f.json");

@@ -137,6 +137,25 @@ TEST(ModbusRtuFraming, LengthIsKnownOnceTheHeaderHasArrived) {
   EXPECT_EQ(ResponseFrameLength(Bytes{0x01, 0x03, 0x04}), 9);
 }
 
+Bytes WithCrc(Bytes frame) {
+  AppendCrc(frame);
+  return frame;
+}
+
+TEST(ModbusRtuDecode, RepliesWithRegisterCountsOutsideTheProtocolAreMalformed) {
+  // FC 03 byte count 0 and 252 (126 registers), FC 16 echoing 0 and 124 registers: each frame's
+  // length fits its header, none is a reply the protocol allows (nor one EncodeResponse writes).
+  Bytes too_many_read = {0x01, 0x03, 252};
+  too_many_read.resize(3 + 252, 0x00);
+  for (const Bytes& frame : {WithCrc({0x01, 0x03, 0x00}), WithCrc(too_many_read),
+                             WithCrc({0x01, 0x10, 0x00, 0x64, 0x00, 0x00}),
+                             WithCrc({0x01, 0x10, 0x00, 0x64, 0x00, 124})}) {
+    EXPECT_EQ(DecodeResponse(frame).status, DecodeStatus::kMalformed) << frame.size() << " bytes";
+  }
+  EXPECT_EQ(DecodeResponse(WithCrc({0x01, 0x03, 0x02, 0x00, 0xFA})).status, DecodeStatus::kOk);
+  EXPECT_EQ(DecodeResponse(WithCrc({0x01, 0x10, 0x00, 0x64, 0x00, 123})).status, DecodeStatus::kOk);
+}
+
 TEST(ModbusRtuEncode, RefusesCountsOutsideTheProtocolNamingThem) {
   try {
     EncodeRequest(ReadRequest(1, 0, 126));

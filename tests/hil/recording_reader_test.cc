@@ -103,6 +103,13 @@ TEST_F(RecordingReaderTest, BadCellNamesFileLineAndColumn) {
   EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:2"), HasSubstr("column 22 (gy)"), HasSubstr("'nan'")));
 }
 
+TEST_F(RecordingReaderTest, BadCellIsQuotedWithItsControlBytesEscaped) {
+  ReplaceInFile("imu.csv", ",4194304,-3,", ",4194304,\x1b[2J\r,");
+  const std::string error = ErrorOf();
+  EXPECT_THAT(error, AllOf(HasSubstr("imu.csv:2"), HasSubstr("'\\x1B[2J\\r'")));
+  EXPECT_EQ(error.find_first_of("\x1b\r"), std::string::npos) << error;
+}
+
 TEST_F(RecordingReaderTest, OutOfRangeTicksAreRefused) {
   ReplaceInFile("imu.csv", ",30001,", ",70000,");
   EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:3"), HasSubstr("az1_t1"), HasSubstr("[0, 65535]")));
