@@ -212,13 +212,10 @@ ScaleTemperatureBounds ExportScaleTemperature(const ImuScaleTemperature& in,
   return b;
 }
 
-}  // namespace
-
-ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
-  ImuExport out{};
-  ImuConstantsInit(&out.constants);
-  ImuConstants& q = out.constants;
-  std::array<double, 9> thermal_bound{};  // in U units
+// The thermal blocks 0x01-0x09; each channel's bound on its drift-corrected output, in its own
+// units (duty or counts).
+std::array<double, kImuChannels> ExportThermal(const ImuCalibrationConstants& in, ImuConstants& q) {
+  std::array<double, kImuChannels> thermal_bound{};
   for (int ch = 0; ch < kImuChannels; ++ch) {
     const std::string what = fmt::format("thermal block 0x{:02X} (channel {})", ch + 1, ch);
     const ThermalFit& f = in.thermal[ch];
@@ -236,6 +233,12 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
     DeriveThermalAligned(&t);
     thermal_bound[ch] = poly.bound + 2 * Lsb(u_e);
   }
+  return thermal_bound;
+}
+
+// The accelerometer block 0x0A; the worst sensor-calibrated acceleration bound, g.
+double ExportAccel(const ImuCalibrationConstants& in, const std::array<double, kImuChannels>& thermal_bound,
+                   ImuConstants& q) {
   double accel_g = 0;
   for (int ch = 0; ch < kAccelChannels; ++ch) {
     const std::string what = fmt::format("accelerometer block 0x0A (channel {})", ch);
@@ -257,6 +260,12 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
                          4 * Lsb(kAccelGExponent);
     accel_g = std::max(accel_g, bound);
   }
+  return accel_g;
+}
+
+// The gyro cubic blocks; the worst sensor-calibrated rate bound, deg/s.
+double ExportGyro(const ImuCalibrationConstants& in, const std::array<double, kImuChannels>& thermal_bound,
+                  ImuConstants& q) {
   double rate_dps = 0;
   for (int g = 0; g < kGyroChannels; ++g) {
     const std::string what = fmt::format("gyro block 0x{:02X}", kImuBlockGyroCubicFirst + g);
@@ -277,47 +286,34 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
                                              3 * std::fabs(f.l[3]) * span * span);
     rate_dps = std::max(rate_dps, poly.bound + thermal_bound[kAccelChannels + g] * slope);
   }
-  const ScaleTemperatureBounds st = ExportScaleTemperature(in.scale_temperature, q.thermal,
-                                                           &q.scale_temperature);
-  if (in.scale_temperature.active) {
-    // y F: the error of y grows by |F|, F's own error by the largest |y|; the product's rounding
-    // and the one-bit alignment are 4 LSB.
-    accel_g = accel_g * st.factor_max + kRatedAccel_g * st.factor + 4 * Lsb(kAccelGExponent);
-    rate_dps = rate_dps * st.factor_max + kRatedRate_dps * st.factor + 4 * Lsb(kRateExponent);
-  }
-  const double ca_in_g = accel_g * st.quadratic_gain + st.quadratic_g;
-  auto export_matrix = [&](const std::array<std::array<double, 3>, 3>& m, CoeffQ31 out_m[3][3],
-                           int out_e, double rated, double in_bound, const std::string& what) {
-    double worst = 0;
-    for (int r = 0; r < 3; ++r) {
-      double row_abs = 0;
-      double row_err = 0;
-      for (int c = 0; c < 3; ++c) {
-        out_m[r][c] = Quantise(m[r][c], out_e - kMaxAlignShift, what);
-        row_abs += std::fabs(m[r][c]);
-        row_err += static_cast<double>(std::fabs(Value(out_m[r][c]) - m[r][c]));
-      }
-      if (row_abs * rated >= std::ldexp(1.0, out_e)) {
-        throw std::invalid_argument(fmt::format(
-            "{}: row {} sum |C| = {:.6g} times the rated input {} overflows +-2^{}", what, r,
-            row_abs, rated, out_e));
-      }
-      worst = std::max(worst, row_err * rated + row_abs * in_bound + 6 * Lsb(out_e));
+  return rate_dps;
+}
+
+// A 3x3 matrix block at exponent out_e; its output's worst bound for inputs up to `rated` known to
+// within in_bound.
+double ExportMatrix(const std::array<std::array<double, 3>, 3>& m, CoeffQ31 out_m[3][3], int out_e,
+                    double rated, double in_bound, const std::string& what) {
+  double worst = 0;
+  for (int r = 0; r < 3; ++r) {
+    double row_abs = 0;
+    double row_err = 0;
+    for (int c = 0; c < 3; ++c) {
+      out_m[r][c] = Quantise(m[r][c], out_e - kMaxAlignShift, what);
+      row_abs += std::fabs(m[r][c]);
+      row_err += static_cast<double>(std::fabs(Value(out_m[r][c]) - m[r][c]));
     }
-    return worst;
-  };
-  const double ca_bound = export_matrix(in.ca_mps2_per_g, q.ca, kAccelMps2Exponent, kRatedAccel_g,
-                                        ca_in_g, "CA block 0x0E");
-  double cg_bound =
-      export_matrix(in.cg, q.cg, kRateExponent, kRatedRate_dps, rate_dps, "CG block 0x0F");
-  if (in.scale_temperature.active) {
-    cg_bound += export_matrix(in.scale_temperature.gs_dps_per_mps2, q.scale_temperature.gs,
-                              kRateExponent, kRatedAccel_mps2, ca_bound, "GS block 0x1B") +
-                4 * Lsb(kRateExponent);
-    DeriveScaleTemperatureQ15(&q.scale_temperature);
-    cg_bound += GSensitivityQ15Bound(q.scale_temperature, in.scale_temperature.gs_dps_per_mps2);
+    if (row_abs * rated >= std::ldexp(1.0, out_e)) {
+      throw std::invalid_argument(fmt::format(
+          "{}: row {} sum |C| = {:.6g} times the rated input {} overflows +-2^{}", what, r,
+          row_abs, rated, out_e));
+    }
+    worst = std::max(worst, row_err * rated + row_abs * in_bound + 6 * Lsb(out_e));
   }
-  // Every block must pass the target's own validation, so host and target agree on what is valid.
+  return worst;
+}
+
+// Every block must pass the target's own validation, so host and target agree on what is valid.
+void CheckAgainstTarget(const ImuConstants& q) {
   ImuConstants check{};
   ImuConstantsInit(&check);
   for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockLast; ++id) {
@@ -330,6 +326,37 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
                                               "(status {})", id, static_cast<int>(status)));
     }
   }
+}
+
+}  // namespace
+
+ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
+  ImuExport out{};
+  ImuConstantsInit(&out.constants);
+  ImuConstants& q = out.constants;
+  const std::array<double, kImuChannels> thermal_bound = ExportThermal(in, q);
+  double accel_g = ExportAccel(in, thermal_bound, q);
+  double rate_dps = ExportGyro(in, thermal_bound, q);
+  const ScaleTemperatureBounds st = ExportScaleTemperature(in.scale_temperature, q.thermal,
+                                                           &q.scale_temperature);
+  if (in.scale_temperature.active) {
+    // y F: the error of y grows by |F|, F's own error by the largest |y|; the product's rounding
+    // and the one-bit alignment are 4 LSB.
+    accel_g = accel_g * st.factor_max + kRatedAccel_g * st.factor + 4 * Lsb(kAccelGExponent);
+    rate_dps = rate_dps * st.factor_max + kRatedRate_dps * st.factor + 4 * Lsb(kRateExponent);
+  }
+  const double ca_in_g = accel_g * st.quadratic_gain + st.quadratic_g;
+  const double ca_bound = ExportMatrix(in.ca_mps2_per_g, q.ca, kAccelMps2Exponent, kRatedAccel_g,
+                                       ca_in_g, "CA block 0x0E");
+  double cg_bound = ExportMatrix(in.cg, q.cg, kRateExponent, kRatedRate_dps, rate_dps, "CG block 0x0F");
+  if (in.scale_temperature.active) {
+    cg_bound += ExportMatrix(in.scale_temperature.gs_dps_per_mps2, q.scale_temperature.gs,
+                             kRateExponent, kRatedAccel_mps2, ca_bound, "GS block 0x1B") +
+                4 * Lsb(kRateExponent);
+    DeriveScaleTemperatureQ15(&q.scale_temperature);
+    cg_bound += GSensitivityQ15Bound(q.scale_temperature, in.scale_temperature.gs_dps_per_mps2);
+  }
+  CheckAgainstTarget(q);
   out.report = ImuExportReport{accel_g, rate_dps, ca_bound, cg_bound};
   return out;
 }
