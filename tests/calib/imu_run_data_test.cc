@@ -172,8 +172,8 @@ class MissingOrientation : public ImuRunDataTest {
   calib::Sequence Sequence() override {
     calib::Sequence s = testing::ShippedSequence("imu_sensor_calibration", 40);
     s.steps.erase(s.steps.begin() + 5);  // accel 22
-    // A quick thermal profile so the fit reaches the six-position step.
-    ThermalProfileStep profile{"T", {F4RampRate{-20.0, 600.0}, F4RampRate{60.0, 600.0}, F4RampRate{25.0, 600.0}}};
+    // A thermal profile the F4 can run, so the fit reaches the six-position step.
+    ThermalProfileStep profile{"T", {F4RampRate{-20.0, 5.0}, F4RampRate{60.0, 5.0}, F4RampRate{25.0, 5.0}, F4End{}}};
     s.steps.insert(s.steps.begin() + 2, Step{std::nullopt, profile});
     return s;
   }
