@@ -1,9 +1,10 @@
 // adahrs acceptance --run DIR [--out DIR] [--db FILE] [--since-calibration-h H]: judges an
 // acceptance run against the specification (calib/acceptance/, docs/acceptance.md), and its rate
-// points against the physical limit of bias wander over H hours since calibration; writes <out>/<serial>/acceptance.json per
-// unit (default out: DIR/acceptance), prints the table and, with --db, records every point in the
-// production records. Exit code 0 when every point passes, 1 when any fails, 2 on bad input (or
-// when the files or the records cannot be written: no verdict reached its destination).
+// points against the physical limit of bias wander over H hours since calibration; writes
+// <out>/<serial>/acceptance.json per unit (default out: DIR/acceptance), prints the table and, with
+// --db, records every point in the production records. Exit code 0 when every point passes, 1 when
+// any fails, 2 on bad input (or when the files or the records cannot be written: no verdict reached
+// its destination).
 #include <iostream>
 #include <memory>
 #include <string>
@@ -24,15 +25,19 @@ constexpr int kExitBadInput = 2;
 }  // namespace
 
 void RegisterAcceptanceCommand(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("acceptance", "Judge an acceptance run against the specification");
+  CLI::App* cmd =
+      app.add_subcommand("acceptance", "Judge an acceptance run against the specification");
   auto run = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto db = std::make_shared<std::string>();
   auto options = std::make_shared<calib::AcceptanceOptions>();
-  cmd->add_option("--run", *run, "Acceptance run directory (recording in a calibrated mode)")->required();
-  cmd->add_option("--out", *out, "Output directory for <serial>/acceptance.json (default: RUN/acceptance)");
+  cmd->add_option("--run", *run, "Acceptance run directory (recording in a calibrated mode)")
+      ->required();
+  cmd->add_option(
+      "--out", *out, "Output directory for <serial>/acceptance.json (default: RUN/acceptance)");
   cmd->add_option("--db", *db, "Production records database to record the points in");
-  cmd->add_option("--since-calibration-h", options->since_calibration_h,
+  cmd->add_option("--since-calibration-h",
+                  options->since_calibration_h,
                   "Hours between the calibration and this run: the bias wander the rate points' "
                   "physical limit counts")
       ->capture_default_str()
@@ -58,7 +63,9 @@ void RegisterAcceptanceCommand(CLI::App& app) {
         for (const auto& file : files) {
           const calib::AcceptanceRecords records = calib::AcceptanceRecordsFromFile(file);
           const bool added = store.AddAcceptance(records.source_sha256, records.points);
-          std::cout << fmt::format("{}: {} points {}\n", file.string(), records.points.size(),
+          std::cout << fmt::format("{}: {} points {}\n",
+                                   file.string(),
+                                   records.points.size(),
                                    added ? "recorded" : "already recorded");
         }
       } catch (const std::exception& e) {

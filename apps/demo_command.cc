@@ -5,8 +5,8 @@
 // and always stops the rig. Thin: the rig process and the stations are rig_sim's, the chain is
 // calib's; this file picks the files, prints, and handles SIGINT, SIGTERM and SIGHUP alike (exit
 // 128 + the signal's number).
-#include "adahrs_build_paths.h"
 #include <signal.h>
+#include "adahrs_build_paths.h"
 
 #include <atomic>
 #include <chrono>
@@ -67,8 +67,14 @@ class ConsoleObserver : public calib::CampaignObserver {
       for (const calib::UnitProgress& u : r.units) lost += u.lost;
       std::lock_guard lock(mutex_);
       std::cout << fmt::format("  [{}] t={:.0f} s step {}/{} {} | {} | ETA {:.0f} s | lost {}\n",
-                               name_, r.t_s, r.step + 1, r.step_count, r.step_kind, r.action_text,
-                               r.eta_s, lost)
+                               name_,
+                               r.t_s,
+                               r.step + 1,
+                               r.step_count,
+                               r.step_kind,
+                               r.action_text,
+                               r.eta_s,
+                               lost)
                 << std::flush;
     }
     void Note(const std::string& text) override {
@@ -102,66 +108,99 @@ class ConsoleObserver : public calib::CampaignObserver {
 uint64_t PrintRuns(const std::vector<calib::RunSummary>& runs) {
   uint64_t lost = 0;
   for (const calib::RunSummary& r : runs) {
-    std::cout << fmt::format("run {}: {}, {} rows, {}\n", r.run_dir.filename().string(), r.status,
-                             r.rows,
-                             r.lost == 0 ? std::string("no packet lost")
-                                         : fmt::format("{} PACKETS LOST", r.lost));
+    std::cout << fmt::format(
+        "run {}: {}, {} rows, {}\n",
+        r.run_dir.filename().string(),
+        r.status,
+        r.rows,
+        r.lost == 0 ? std::string("no packet lost") : fmt::format("{} PACKETS LOST", r.lost));
     lost += r.lost;
   }
   return lost;
 }
 
-void PrintSummary(const calib::CampaignResult& result, double wall_s, sensor_sim::TruthVariant variant) {
+void PrintSummary(const calib::CampaignResult& result,
+                  double wall_s,
+                  sensor_sim::TruthVariant variant) {
   std::cout << fmt::format("\ndemo finished in {:.0f} s wall\n", wall_s);
   std::cout << fmt::format("truth: every modelled effect on, variant {}: {}\n",
-                           sensor_sim::ToString(variant), sensor_sim::Describe(variant));
+                           sensor_sim::ToString(variant),
+                           sensor_sim::Describe(variant));
   for (const calib::UnitOutcome& u : result.units) {
-    std::cout << fmt::format("{} {}: constants version {} (records v{}, {} strategy, {} blocks "
-                             "verified)\n",
-                             u.role, u.serial, u.download.unit_constants_version,
-                             u.download.records_version, u.strategy, u.download.blocks);
+    std::cout << fmt::format(
+        "{} {}: constants version {} (records v{}, {} strategy, {} blocks "
+        "verified)\n",
+        u.role,
+        u.serial,
+        u.download.unit_constants_version,
+        u.download.records_version,
+        u.strategy,
+        u.download.blocks);
     if (u.acceptance) {
-      std::cout << fmt::format("  acceptance against the specification: {} ({} of {} points fail)\n",
-                               u.acceptance->pass() ? "PASS" : "FAIL", u.acceptance->failed(),
-                               u.acceptance->points.size());
+      std::cout << fmt::format(
+          "  acceptance against the specification: {} ({} of {} points fail)\n",
+          u.acceptance->pass() ? "PASS" : "FAIL",
+          u.acceptance->failed(),
+          u.acceptance->points.size());
       for (const calib::WorstMargin& w : u.acceptance->WorstMargins()) {
-        std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n", w.quantity,
-                                 w.margin, w.unit, w.step, w.point);
+        std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n",
+                                 w.quantity,
+                                 w.margin,
+                                 w.unit,
+                                 w.step,
+                                 w.point);
       }
       if (const std::string line = calib::RateVerdictLine(*u.acceptance); !line.empty()) {
         std::cout << "    " << line;
       }
     } else {
-      std::cout << "  acceptance against the specification: the unit is not in the acceptance run\n";
+      std::cout
+          << "  acceptance against the specification: the unit is not in the acceptance run\n";
     }
     for (const calib::EvaluatedQuantity& q : u.evaluation) {
-      std::cout << fmt::format("  evaluated worst {}: {:.4g} {} (spec {:g}) -> {}\n", q.quantity,
-                               q.worst, q.unit, q.tolerance, q.verdict);
+      std::cout << fmt::format("  evaluated worst {}: {:.4g} {} (spec {:g}) -> {}\n",
+                               q.quantity,
+                               q.worst,
+                               q.unit,
+                               q.tolerance,
+                               q.verdict);
     }
     std::cout << "  report: " << u.report.string() << "\n";
   }
   for (const auto* evaluation : {&result.reference_evaluation, &result.ads_reference_evaluation}) {
     for (const calib::EvaluatedQuantity& q : *evaluation) {
-      std::cout << fmt::format("reference strategy, {} worst {}: {:.4g} {} -> {}\n", q.serial,
-                               q.quantity, q.worst, q.unit, q.verdict);
+      std::cout << fmt::format("reference strategy, {} worst {}: {:.4g} {} -> {}\n",
+                               q.serial,
+                               q.quantity,
+                               q.worst,
+                               q.unit,
+                               q.verdict);
     }
   }
   std::cout << "diagnosis of the IMU and ADS calibration runs against the nominal model ("
             << (result.diagnosis_dir / "report.html").string() << "):\n";
   for (const calib::UnitDiagnosis& u : result.diagnosis) {
-    std::cout << fmt::format("  {}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(),
-                             u.unexplained.size());
+    std::cout << fmt::format(
+        "  {}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());
   }
   for (const calib::DiagnosisTruthLine& l : result.diagnosis_truth) {
     std::cout << fmt::format("  {} {} {}: {}\n", l.serial, l.channel, l.effect, l.text);
   }
   for (const calib::ReplayComparison& c : result.replay_checks) {
-    std::cout << fmt::format("held-out check: {} re-simulated, RMS of its acquisition means, recorded - replayed:\n",
-                             c.recording.filename().string());
+    std::cout << fmt::format(
+        "held-out check: {} re-simulated, RMS of its acquisition means, recorded - replayed:\n",
+        c.recording.filename().string());
     for (const calib::UnitReplayFit& u : c.units) {
       for (const calib::ChannelReplayFit& ch : u.channels) {
-        std::cout << fmt::format("  {} {:<3}: {:.3g} {} with the base model, {:.3g} with model.json (noise alone {:.2g})\n",
-                                 u.serial, ch.channel, ch.rms_base, ch.unit, ch.rms_model, ch.rms_noise);
+        std::cout << fmt::format(
+            "  {} {:<3}: {:.3g} {} with the base model, {:.3g} with model.json (noise alone "
+            "{:.2g})\n",
+            u.serial,
+            ch.channel,
+            ch.rms_base,
+            ch.unit,
+            ch.rms_model,
+            ch.rms_noise);
       }
     }
   }
@@ -184,7 +223,8 @@ int RunDemo(const DemoOptions& options) {
   std::filesystem::create_directories(rig_dir);
   nlohmann::json rig_json = rig_sim::DefaultRigConfig();
   rig_json["units"]["truth_variant"] = options.truth_variant;
-  const rig_sim::RigConfig rig_config = rig_sim::RigConfig::FromJson(rig_json, "built-in rig config");
+  const rig_sim::RigConfig rig_config =
+      rig_sim::RigConfig::FromJson(rig_json, "built-in rig config");
   std::ofstream(rig_dir / "rig.json") << rig_json.dump(2) << "\n";
   std::cout << fmt::format("truth: every modelled effect on, variant {}: {}\n",
                            sensor_sim::ToString(rig_config.truth_variant),
@@ -192,13 +232,18 @@ int RunDemo(const DemoOptions& options) {
 
   std::cout << fmt::format("starting the virtual rig {} {:g}x in {}\n",
                            options.free_running ? "free-running at" : "in lockstep, at most",
-                           options.time_scale, rig_dir.string());
-  rig_sim::RigChildProcess rig({"/proc/self/exe", rig_dir, rig_dir / "rig.json",
-                                options.time_scale, 30.0, !options.free_running});
+                           options.time_scale,
+                           rig_dir.string());
+  rig_sim::RigChildProcess rig({"/proc/self/exe",
+                                rig_dir,
+                                rig_dir / "rig.json",
+                                options.time_scale,
+                                30.0,
+                                !options.free_running});
   const auto station_file = [&](rig_sim::RigBench bench, const char* name) {
     const std::filesystem::path path = out / name;
-    rig_sim::WriteStationFile(rig_sim::BenchStation(bench, rig.manifest(), rig_config, path.string()),
-                              path);
+    rig_sim::WriteStationFile(
+        rig_sim::BenchStation(bench, rig.manifest(), rig_config, path.string()), path);
     return path.string();
   };
   calib::CampaignOptions campaign;
@@ -215,8 +260,11 @@ int RunDemo(const DemoOptions& options) {
   }
   campaign.truth_dir = rig.truth_dir();
   campaign.software_version = ADAHRS_VERSION;
-  campaign.replay = [](const std::filesystem::path& run, const std::vector<std::filesystem::path>& files,
-                       const std::filesystem::path& to) { rig_sim::ReplayRecording(run, files, to); };
+  campaign.replay = [](const std::filesystem::path& run,
+                       const std::vector<std::filesystem::path>& files,
+                       const std::filesystem::path& to) {
+    rig_sim::ReplayRecording(run, files, to);
+  };
   ConsoleObserver observer;
   try {
     const calib::CampaignResult result = calib::RunCampaign(campaign, observer, g_demo_stop);
@@ -245,21 +293,25 @@ int RunDemo(const DemoOptions& options) {
 
 void RegisterDemoCommand(CLI::App& app) {
   CLI::App* demo = app.add_subcommand(
-      "demo", "The main job on the virtual lab: rig, calibration, fits, download, acceptance, "
-              "evaluation, reports, records (docs/demo.md)");
+      "demo",
+      "The main job on the virtual lab: rig, calibration, fits, download, acceptance, "
+      "evaluation, reports, records (docs/demo.md)");
   auto options = std::make_shared<DemoOptions>();
   demo->add_option("--out", options->out, "Demo directory (must be new or empty)")
       ->capture_default_str();
   demo->add_option("--time-scale", options->time_scale, "Rig speed, simulated s per wall s")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 900.0));
-  demo->add_flag("--free-running", options->free_running,
+  demo->add_flag("--free-running",
+                 options->free_running,
                  "Run the rig on the wall clock (it may outrun a slow machine and lose packets) "
                  "instead of in lockstep with its readers");
-  demo->add_flag("--quick", options->quick, "Shorter sequences (docs/demo.md says what is trimmed)");
+  demo->add_flag(
+      "--quick", options->quick, "Shorter sequences (docs/demo.md says what is trimmed)");
   demo->add_option("--sequences", options->sequences, "Directory of the reference sequences")
       ->capture_default_str();
-  demo->add_option("--truth-variant", options->truth_variant,
+  demo->add_option("--truth-variant",
+                   options->truth_variant,
                    "The units' truth in model form: standard, play_hysteresis or slow_bias_wander "
                    "(docs/sensor-models.md)")
       ->capture_default_str()

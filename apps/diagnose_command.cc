@@ -23,13 +23,22 @@ namespace adahrs::apps {
 namespace {
 
 void PrintReplayCheck(const calib::ReplayComparison& c) {
-  std::cout << fmt::format("re-simulation of {} ({}): RMS of the acquisition means, recorded - replayed\n",
-                           c.recording.string(), c.held_out ? "held out: not a diagnosed run" : "a diagnosed run");
+  std::cout << fmt::format(
+      "re-simulation of {} ({}): RMS of the acquisition means, recorded - replayed\n",
+      c.recording.string(),
+      c.held_out ? "held out: not a diagnosed run" : "a diagnosed run");
   for (const calib::UnitReplayFit& u : c.units) {
     for (const calib::ChannelReplayFit& ch : u.channels) {
-      std::cout << fmt::format("  {} {:<3} base model {:9.4g}  model.json {:9.4g}  noise alone {:9.4g} {} ({} acquisitions)\n",
-                               u.serial, ch.channel, ch.rms_base, ch.rms_model, ch.rms_noise, ch.unit,
-                               ch.acquisitions.size());
+      std::cout << fmt::format(
+          "  {} {:<3} base model {:9.4g}  model.json {:9.4g}  noise alone {:9.4g} {} ({} "
+          "acquisitions)\n",
+          u.serial,
+          ch.channel,
+          ch.rms_base,
+          ch.rms_model,
+          ch.rms_noise,
+          ch.unit,
+          ch.acquisitions.size());
     }
   }
 }
@@ -37,7 +46,8 @@ void PrintReplayCheck(const calib::ReplayComparison& c) {
 }  // namespace
 
 void RegisterDiagnoseCommand(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("diagnose", "Locate and name the physics a recording shows and the model leaves out");
+  CLI::App* cmd = app.add_subcommand(
+      "diagnose", "Locate and name the physics a recording shows and the model leaves out");
   auto runs = std::make_shared<std::vector<std::string>>();
   auto csvs = std::make_shared<std::vector<std::string>>();
   auto unit = std::make_shared<std::string>();
@@ -45,37 +55,50 @@ void RegisterDiagnoseCommand(CLI::App& app) {
   auto model = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto check_runs = std::make_shared<std::vector<std::string>>();
-  CLI::Option* run_opt = cmd->add_option("--run", *runs, "run directory (repeatable: the runs of one batch)");
-  CLI::Option* csv_opt =
-      cmd->add_option("--csv", *csvs, "generic channel recording: its JSON sidecar (repeatable; docs/diagnose.md)");
+  CLI::Option* run_opt =
+      cmd->add_option("--run", *runs, "run directory (repeatable: the runs of one batch)");
+  CLI::Option* csv_opt = cmd->add_option(
+      "--csv", *csvs, "generic channel recording: its JSON sidecar (repeatable; docs/diagnose.md)");
   run_opt->excludes(csv_opt);
   csv_opt->excludes(run_opt);
   cmd->add_option("--unit", *unit, "diagnose only this unit (IMU or ADS serial)");
-  cmd->add_option("--profile", *profile, "the model to compare with: nominal (the pipeline's forward model)")
+  cmd->add_option(
+         "--profile", *profile, "the model to compare with: nominal (the pipeline's forward model)")
       ->check(CLI::IsMember({"nominal"}));
-  cmd->add_option("--model", *model,
-                  "unit file of the rig's truth schema: write OUT/model.json, it with the findings switched on");
-  cmd->add_option("--check-run", *check_runs,
-                  "with --model: re-simulate this run with the base file and with model.json and compare "
-                  "(repeatable; a run not diagnosed is a held-out check)")
+  cmd->add_option("--model",
+                  *model,
+                  "unit file of the rig's truth schema: write OUT/model.json, it with the findings "
+                  "switched on");
+  cmd->add_option(
+         "--check-run",
+         *check_runs,
+         "with --model: re-simulate this run with the base file and with model.json and compare "
+         "(repeatable; a run not diagnosed is a held-out check)")
       ->needs("--model");
   cmd->add_option("--out", *out, "output directory (diagnosis.json, report.html)")->required();
   cmd->callback([runs, csvs, unit, model, out, check_runs] {
-    if (runs->empty() && csvs->empty()) throw std::runtime_error("diagnose: give --run DIR or --csv SIDECAR.json");
+    if (runs->empty() && csvs->empty())
+      throw std::runtime_error("diagnose: give --run DIR or --csv SIDECAR.json");
     std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
     std::vector<std::filesystem::path> sidecars(csvs->begin(), csvs->end());
     const calib::DiagnosisRun run =
-        sidecars.empty() ? calib::DiagnoseRuns(dirs, unit->empty() ? std::nullopt : std::optional<std::string>(*unit))
-                         : calib::DiagnoseChannelFiles(sidecars);
+        sidecars.empty()
+            ? calib::DiagnoseRuns(dirs,
+                                  unit->empty() ? std::nullopt : std::optional<std::string>(*unit))
+            : calib::DiagnoseChannelFiles(sidecars);
     calib::WriteDiagnosis(run, *out);
     for (const std::string& n : run.notes) std::cout << "note: " << n << "\n";
     for (const calib::UnitDiagnosis& u : run.units) {
-      std::cout << fmt::format("{}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());
+      std::cout << fmt::format(
+          "{}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());
       for (const calib::Finding& f : u.findings) std::cout << "  " << f.words << "\n";
-      for (const calib::Unexplained& x : u.unexplained) std::cout << "  unexplained: " << x.channel << " " << x.where << ": " << x.description << "\n";
+      for (const calib::Unexplained& x : u.unexplained)
+        std::cout << "  unexplained: " << x.channel << " " << x.where << ": " << x.description
+                  << "\n";
       if (u.findings.empty() && u.unexplained.empty()) std::cout << "  no missing physics found\n";
     }
-    std::cout << "wrote " << (std::filesystem::path(*out) / "diagnosis.json").string() << " and report.html\n";
+    std::cout << "wrote " << (std::filesystem::path(*out) / "diagnosis.json").string()
+              << " and report.html\n";
     if (!model->empty()) {
       const calib::AugmentedModel m = calib::WriteAugmentedModel(run, *model, *out);
       for (const std::string& a : m.applied) std::cout << "  model: " << a << "\n";
@@ -88,16 +111,21 @@ void RegisterDiagnoseCommand(CLI::App& app) {
       bool diagnosed = false;
       for (const std::string& r : *runs) diagnosed |= std::filesystem::equivalent(r, dir);
       const calib::ReplayComparison c = calib::CheckByReplay(
-          dir, {*model}, {std::filesystem::path(*out) / "model.json"},
-          std::filesystem::path(*out) / "replay" / dir.filename(), !diagnosed,
-          [](const std::filesystem::path& r, const std::vector<std::filesystem::path>& files,
+          dir,
+          {*model},
+          {std::filesystem::path(*out) / "model.json"},
+          std::filesystem::path(*out) / "replay" / dir.filename(),
+          !diagnosed,
+          [](const std::filesystem::path& r,
+             const std::vector<std::filesystem::path>& files,
              const std::filesystem::path& o) { rig_sim::ReplayRecording(r, files, o); });
       PrintReplayCheck(c);
       checks.push_back(c);
     }
     if (!check_runs->empty()) {
       calib::WriteReplayCheck(checks, *out);
-      std::cout << "wrote " << (std::filesystem::path(*out) / "replay_check.json").string() << " and replay_check.html\n";
+      std::cout << "wrote " << (std::filesystem::path(*out) / "replay_check.json").string()
+                << " and replay_check.html\n";
     }
   });
 }

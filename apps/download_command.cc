@@ -41,7 +41,8 @@ void Download(const DownloadOptions& options) {
         fmt::format("{}: the station has no unit with role '{}'", options.station, options.unit));
   }
   const calib::ConstantsFile file = calib::ReadConstantsFile(options.constants);
-  for (const calib::RecordingCheck& c : calib::RequireUnchangedRecordings(file, options.constants)) {
+  for (const calib::RecordingCheck& c :
+       calib::RequireUnchangedRecordings(file, options.constants)) {
     if (!c.current_sha256) std::cout << "provenance: recording " << c.Describe() << "\n";
   }
   std::optional<calib::RecordsStore> store;
@@ -49,27 +50,35 @@ void Download(const DownloadOptions& options) {
   // Recorded once the outcome is known: a refused file never becomes a constants version.
   const auto record_attempt = [&](const calib::DownloadRecord& attempt) {
     if (!store) return;
-    if (!calib::RecordDownloadAttempt(*store, calib::ConstantsRecordFromFile(options.constants), attempt)) {
-      std::cout << fmt::format("records: nothing recorded in {}: the unit refused a file that is no constants "
-                               "version of {} yet\n", options.db, file.serial);
+    if (!calib::RecordDownloadAttempt(
+            *store, calib::ConstantsRecordFromFile(options.constants), attempt)) {
+      std::cout << fmt::format(
+          "records: nothing recorded in {}: the unit refused a file that is no constants "
+          "version of {} yet\n",
+          options.db,
+          file.serial);
     }
   };
-  const std::unique_ptr<hil::Clock> clock =
-      hil::MakeClock(station.time_scale, station.clock_file);
+  const std::unique_ptr<hil::Clock> clock = hil::MakeClock(station.time_scale, station.clock_file);
   hil::UnitLink link(*entry, *clock);
-  calib::DownloadRecord record{file.serial, 0, station.name, entry->role,
-                               false, false, std::nullopt, std::nullopt, ""};
+  calib::DownloadRecord record{
+      file.serial, 0, station.name, entry->role, false, false, std::nullopt, std::nullopt, ""};
   try {
     const calib::DownloadResult result = calib::DownloadConstants(link, file, options.constants);
-    std::cout << fmt::format("{} ({} on {}): {} blocks written and read back equal\n", file.serial,
-                             entry->role, entry->port.path, result.blocks.blocks.size());
+    std::cout << fmt::format("{} ({} on {}): {} blocks written and read back equal\n",
+                             file.serial,
+                             entry->role,
+                             entry->port.path,
+                             result.blocks.blocks.size());
     for (const calib::ExportErrorBound& bound : result.blocks.error_bounds) {
-      std::cout << fmt::format("  fixed-point error bound {}: {:.3g}\n", bound.quantity, bound.bound);
+      std::cout << fmt::format(
+          "  fixed-point error bound {}: {:.3g}\n", bound.quantity, bound.bound);
     }
-    std::cout << fmt::format(
-        "committed: constants version {} -> {}, crc 0x{:04X}; mode {}\n",
-        result.before.constants_version, result.after.constants_version, result.after.constants_crc,
-        file.kind == hil::UnitKind::kImu ? "fully calibrated" : "surface");
+    std::cout << fmt::format("committed: constants version {} -> {}, crc 0x{:04X}; mode {}\n",
+                             result.before.constants_version,
+                             result.after.constants_version,
+                             result.after.constants_crc,
+                             file.kind == hil::UnitKind::kImu ? "fully calibrated" : "surface");
     record.verified = record.committed = true;
     record.unit_constants_version = result.after.constants_version;
     record.unit_constants_crc = result.after.constants_crc;
@@ -91,7 +100,8 @@ void RegisterDownloadCommand(CLI::App& app) {
   auto options = std::make_shared<DownloadOptions>();
   download->add_option("--station", options->station, "Station file")->required();
   download->add_option("--unit", options->unit, "Unit role in the station, e.g. imu1")->required();
-  download->add_option("--constants", options->constants, "constants.json of that unit")->required();
+  download->add_option("--constants", options->constants, "constants.json of that unit")
+      ->required();
   download->add_option("--db", options->db, "Records database to record the download in");
   download->callback([options] { Download(*options); });
 }

@@ -16,7 +16,8 @@
 namespace adahrs::apps {
 
 void RegisterEvaluateCommand(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("evaluate", "Evaluate IMU constants against a simulated unit's truth");
+  CLI::App* cmd =
+      app.add_subcommand("evaluate", "Evaluate IMU constants against a simulated unit's truth");
   auto constants = std::make_shared<std::string>();
   auto truth = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
@@ -25,7 +26,8 @@ void RegisterEvaluateCommand(CLI::App& app) {
   cmd->add_option("--out", *out, "evaluation.json (default: <constants>.evaluation.json)");
   cmd->callback([constants, truth, out] {
     const calib::ConstantsFile file = calib::ReadConstantsFile(*constants);
-    const sensor_sim::ImuUnitParams params = calib::ImuTruth(calib::ReadTruthFile(*truth), file.serial);
+    const sensor_sim::ImuUnitParams params =
+        calib::ImuTruth(calib::ReadTruthFile(*truth), file.serial);
     calib::ImuEvaluationOptions options;
     options.g_local_mps2 = file.diagnostics.value("local_gravity_mps2", options.g_local_mps2);
     const calib::ImuEvaluation e =
@@ -35,9 +37,14 @@ void RegisterEvaluateCommand(CLI::App& app) {
     written << e.report.dump(2) << "\n";
     written.flush();
     if (!written) throw std::runtime_error(path + ": cannot write the evaluation");
-    std::cout << fmt::format("{}: acceleration worst {:.3f} mg ({}), body rate worst {:.4f} deg/s ({}) -> {}\n",
-                             file.serial, e.worst_accel_mg, e.accel_verdict, e.worst_rate_dps,
-                             e.rate_verdict, path);
+    std::cout << fmt::format(
+        "{}: acceleration worst {:.3f} mg ({}), body rate worst {:.4f} deg/s ({}) -> {}\n",
+        file.serial,
+        e.worst_accel_mg,
+        e.accel_verdict,
+        e.worst_rate_dps,
+        e.rate_verdict,
+        path);
   });
 }
 

@@ -27,9 +27,10 @@ void RegisterFitCommand(CLI::App& app) {
   auto ads_strategy = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   cmd->add_option("--run", *runs, "Run directory (repeat for several)")->required();
-  CLI::Option* imu_option =
-      cmd->add_option("--strategy", *strategy_file, "IMU strategy file (default: joint, auto order)");
-  cmd->add_option("--ads-strategy", *ads_strategy,
+  CLI::Option* imu_option = cmd->add_option(
+      "--strategy", *strategy_file, "IMU strategy file (default: joint, auto order)");
+  cmd->add_option("--ads-strategy",
+                  *ads_strategy,
                   "Fit the ADS units of one ADS calibration run with this strategy: reference, "
                   "tolerance_minimax, pressure_minimax or hysteresis_compensated")
       ->excludes(imu_option);
@@ -37,12 +38,16 @@ void RegisterFitCommand(CLI::App& app) {
   cmd->callback([runs, strategy_file, ads_strategy, out] {
     if (!ads_strategy->empty()) {
       if (runs->size() != 1) {
-        throw CLI::ValidationError("--ads-strategy", "takes exactly one --run (an ADS calibration run)");
+        throw CLI::ValidationError("--ads-strategy",
+                                   "takes exactly one --run (an ADS calibration run)");
       }
-      const auto written = calib::FitAdsIntoDirectory(runs->front(), *ads_strategy, *out, ADAHRS_VERSION);
-      if (written.empty()) throw std::runtime_error(runs->front() + "/meta.json: the run has no ADS unit");
+      const auto written =
+          calib::FitAdsIntoDirectory(runs->front(), *ads_strategy, *out, ADAHRS_VERSION);
+      if (written.empty())
+        throw std::runtime_error(runs->front() + "/meta.json: the run has no ADS unit");
       for (const calib::WrittenConstants& w : written) {
-        std::cout << fmt::format("{}: strategy {} -> {}\n", w.file.serial, w.file.strategy, w.path.string());
+        std::cout << fmt::format(
+            "{}: strategy {} -> {}\n", w.file.serial, w.file.strategy, w.path.string());
       }
       return;
     }
@@ -55,8 +60,11 @@ void RegisterFitCommand(CLI::App& app) {
     for (const calib::ConstantsFile& f : files) {
       const auto path = std::filesystem::path(*out) / (f.serial + ".constants.json");
       calib::WriteConstantsFile(path, f);
-      std::cout << fmt::format("{}: strategy {}, {} excluded rows -> {}\n", f.serial, f.strategy,
-                               f.diagnostics.value("excluded_rows", 0), path.string());
+      std::cout << fmt::format("{}: strategy {}, {} excluded rows -> {}\n",
+                               f.serial,
+                               f.strategy,
+                               f.diagnostics.value("excluded_rows", 0),
+                               path.string());
     }
   });
 }

@@ -16,7 +16,8 @@ void RegisterPortsCommand(CLI::App& app) {
   CLI::App* ports = app.add_subcommand("ports", "The station's serial ports");
   ports->require_subcommand(1);
   CLI::App* check = ports->add_subcommand(
-      "check", "Identify every instrument and unit of a station; print role, port, identity, status");
+      "check",
+      "Identify every instrument and unit of a station; print role, port, identity, status");
   auto station_path = std::make_shared<std::string>();
   check->add_option("--station", *station_path, "Station JSON file (docs/station.md)")->required();
   check->callback([station_path] {
@@ -27,7 +28,9 @@ void RegisterPortsCommand(CLI::App& app) {
     std::cout << fmt::format("{:<12} {:<32} {:<60} {}\n", "role", "port", "identity", "status");
     bool all_ok = true;
     for (const hil::PortCheckRow& row : rows) {
-      std::cout << fmt::format("{:<12} {:<32} {:<60} {}\n", row.role, row.port,
+      std::cout << fmt::format("{:<12} {:<32} {:<60} {}\n",
+                               row.role,
+                               row.port,
                                row.identity.empty() ? "-" : row.identity,
                                row.ok ? "ok" : "FAILED: " + row.status);
       all_ok = all_ok && row.ok;

@@ -30,8 +30,11 @@ void RegisterRecordsCommand(CLI::App& app) {
     const calib::RunRecord run = calib::RunRecordFromDirectory(*run_dir);
     calib::RecordsStore store(*db);
     const bool added = store.AddRun(run);
-    std::cout << fmt::format("run {} ({} units, {} steps, recording sha256 {}): {}\n", run.run_id,
-                             run.units.size(), run.steps.size(), run.recording_sha256,
+    std::cout << fmt::format("run {} ({} units, {} steps, recording sha256 {}): {}\n",
+                             run.run_id,
+                             run.units.size(),
+                             run.steps.size(),
+                             run.recording_sha256,
                              added ? "recorded" : "already recorded");
   });
 
@@ -44,8 +47,8 @@ void RegisterRecordsCommand(CLI::App& app) {
     calib::RecordsStore store(*db);
     for (const std::string& file : *files) {
       const calib::ConstantsRecord record = calib::ConstantsRecordFromFile(file);
-      std::cout << fmt::format("{}: {} constants version {}\n", file, record.serial,
-                               store.AddConstants(record));
+      std::cout << fmt::format(
+          "{}: {} constants version {}\n", file, record.serial, store.AddConstants(record));
     }
   });
 

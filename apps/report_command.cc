@@ -17,9 +17,12 @@ void RegisterReportCommand(CLI::App& app) {
   auto out = std::make_shared<std::string>();
   auto acceptance = std::make_shared<std::string>();
   report->add_option("--run", *run, "Run directory (recording)")->required();
-  report->add_option("--fit", *fit, "Fit directory (constants.json files, acceptance.json, evaluation.json)");
-  report->add_option("--acceptance", *acceptance,
-                     "Acceptance directory (<serial>/acceptance.json; default: RUN/acceptance if it exists)");
+  report->add_option(
+      "--fit", *fit, "Fit directory (constants.json files, acceptance.json, evaluation.json)");
+  report->add_option(
+      "--acceptance",
+      *acceptance,
+      "Acceptance directory (<serial>/acceptance.json; default: RUN/acceptance if it exists)");
   report->add_option("--out", *out, "Output HTML file")->required();
   report->callback([run, fit, out, acceptance] {
     const auto optional_path = [](const std::string& text) {

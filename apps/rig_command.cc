@@ -24,16 +24,21 @@ void RegisterRigCommand(CLI::App& app) {
   };
   auto options = std::make_shared<Options>();
   cmd->add_option("--config", options->config_path, "Rig configuration JSON (default: built in)");
-  cmd->add_option("--manifest", options->manifest_path,
+  cmd->add_option("--manifest",
+                  options->manifest_path,
                   "Where to write the manifest (role -> port) once every port is open");
-  cmd->add_option("--time-scale", options->time_scale,
+  cmd->add_option("--time-scale",
+                  options->time_scale,
                   "Simulated seconds per wall second (overrides the config)")
       ->check(CLI::Range(0.01, 100000.0));
-  cmd->add_flag("--lockstep", options->lockstep,
+  cmd->add_flag("--lockstep",
+                options->lockstep,
                 "The clock waits for every reading client; --time-scale is its top speed");
-  cmd->add_option("--run-dir", options->run_dir,
+  cmd->add_option("--run-dir",
+                  options->run_dir,
                   "Run directory for truth/ and ports/ (default: the manifest's directory)");
-  cmd->add_flag("--print-default-config", options->print_default,
+  cmd->add_flag("--print-default-config",
+                options->print_default,
                 "Print the built-in configuration and exit");
   cmd->callback([options] {
     if (options->print_default) {
@@ -68,14 +73,15 @@ void RegisterRigCommand(CLI::App& app) {
       std::cout << fmt::format("{:<14} {}\n", role, path);
     }
     std::cout << fmt::format("rig running at {}{:g}x; manifest {}; stop with SIGINT or SIGTERM\n",
-                             config.lockstep ? "lockstep, up to " : "", config.time_scale,
+                             config.lockstep ? "lockstep, up to " : "",
+                             config.time_scale,
                              manifest.string())
               << std::flush;
     int signal_number = 0;
     sigwait(&stop_signals, &signal_number);
     rig.Stop();
-    std::cout << fmt::format("rig stopped by signal {} at simulated t = {:.2f} s\n", signal_number,
-                             rig.host().now_s());
+    std::cout << fmt::format(
+        "rig stopped by signal {} at simulated t = {:.2f} s\n", signal_number, rig.host().now_s());
     for (const std::string& line : rig.host().Report()) std::cout << line << "\n";
   });
 }

@@ -31,10 +31,14 @@ extern "C" void OnStopSignal(int signal_number) {
 
 const char* SignalName(int signal_number) {
   switch (signal_number) {
-    case SIGINT: return "SIGINT";
-    case SIGTERM: return "SIGTERM";
-    case SIGHUP: return "SIGHUP";
-    default: return "a signal";
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    default:
+      return "a signal";
   }
 }
 
@@ -43,11 +47,20 @@ class ConsoleProgress : public calib::ProgressSink {
   void Report(const calib::ProgressReport& r) override {
     std::string units;
     for (const calib::UnitProgress& u : r.units) {
-      units += fmt::format(" {}:{}/{}{}", u.role, u.packets, u.acquired,
+      units += fmt::format(" {}:{}/{}{}",
+                           u.role,
+                           u.packets,
+                           u.acquired,
                            u.lost > 0 ? fmt::format(" lost {}", u.lost) : "");
     }
-    std::cout << fmt::format("t={:.1f}s step {}/{} {} | {} | ETA {:.0f} s |{}\n", r.t_s, r.step + 1,
-                             r.step_count, r.step_kind, r.action_text, r.eta_s, units);
+    std::cout << fmt::format("t={:.1f}s step {}/{} {} | {} | ETA {:.0f} s |{}\n",
+                             r.t_s,
+                             r.step + 1,
+                             r.step_count,
+                             r.step_kind,
+                             r.action_text,
+                             r.eta_s,
+                             units);
   }
   void Note(const std::string& text) override { std::cout << "note: " << text << "\n"; }
 };
@@ -77,13 +90,19 @@ int RunAndReport(const RunArgs& a) {
                                           ? calib::StartRun(options, progress, g_stop_requested)
                                           : calib::ResumeRun(a.resume, progress, g_stop_requested);
     std::cout << fmt::format("run {}: {}; {} rows recorded, {} packets lost\n",
-                             summary.run_dir.string(), summary.status, summary.rows, summary.lost);
+                             summary.run_dir.string(),
+                             summary.status,
+                             summary.rows,
+                             summary.lost);
     return 0;
   } catch (const calib::RunInterrupted& e) {
     const int signal_number = g_stop_signal.load();
-    std::cerr << fmt::format("adahrs run: interrupted by {} ({}); the rig is safe. Resume with: "
-                             "adahrs run --resume {}\n",
-                             SignalName(signal_number), e.what(), dir);
+    std::cerr << fmt::format(
+        "adahrs run: interrupted by {} ({}); the rig is safe. Resume with: "
+        "adahrs run --resume {}\n",
+        SignalName(signal_number),
+        e.what(),
+        dir);
     return 128 + (signal_number != 0 ? signal_number : SIGINT);
   } catch (const calib::RunError& e) {
     std::cerr << "adahrs run: aborted: " << e.what() << "\n";
@@ -94,16 +113,20 @@ int RunAndReport(const RunArgs& a) {
 }  // namespace
 
 void RegisterRunCommand(CLI::App& app) {
-  CLI::App* run = app.add_subcommand("run", "Run a calibration sequence on a station, or resume one");
+  CLI::App* run =
+      app.add_subcommand("run", "Run a calibration sequence on a station, or resume one");
   auto args = std::make_shared<RunArgs>();
   auto* station = run->add_option("--station", args->station, "Station file (docs/station.md)");
-  auto* sequence = run->add_option("--sequence", args->sequence, "Sequence file (docs/sequences.md)");
+  auto* sequence =
+      run->add_option("--sequence", args->sequence, "Sequence file (docs/sequences.md)");
   auto* run_dir = run->add_option("--run-dir", args->run_dir, "Run directory to create");
   auto* resume = run->add_option("--resume", args->resume, "Resume the run in this directory");
   resume->excludes(station)->excludes(sequence)->excludes(run_dir);
   run->callback([args] {
-    if (args->resume.empty() && (args->station.empty() || args->sequence.empty() || args->run_dir.empty())) {
-      throw CLI::ValidationError("run", "--station, --sequence and --run-dir are required (or --resume DIR)");
+    if (args->resume.empty() &&
+        (args->station.empty() || args->sequence.empty() || args->run_dir.empty())) {
+      throw CLI::ValidationError(
+          "run", "--station, --sequence and --run-dir are required (or --resume DIR)");
     }
     const int status = RunAndReport(*args);
     if (status != 0) std::exit(status);

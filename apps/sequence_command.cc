@@ -20,17 +20,21 @@ std::string Hms(double s) {
 }
 
 void PrintPlan(const calib::Sequence& sequence, const calib::ExecutionPlan& plan) {
-  std::cout << fmt::format("{} ({} sequence, {} steps): valid\n", sequence.name,
-                           calib::UnitKindName(sequence.unit_kind), sequence.steps.size());
+  std::cout << fmt::format("{} ({} sequence, {} steps): valid\n",
+                           sequence.name,
+                           calib::UnitKindName(sequence.unit_kind),
+                           sequence.steps.size());
   std::cout << fmt::format("{:>9}  {:>4}  {:>3}  {}\n", "start", "step", "tag", "action");
   double t_s = 0.0;
   for (const calib::PlannedAction& a : plan.actions) {
-    std::cout << fmt::format("{:>9}  {:>4}  {:>3}  {}\n", Hms(t_s), a.step, a.tag,
-                             calib::Describe(a.action));
+    std::cout << fmt::format(
+        "{:>9}  {:>4}  {:>3}  {}\n", Hms(t_s), a.step, a.tag, calib::Describe(a.action));
     t_s += a.estimate_s;
   }
-  std::cout << fmt::format("{} actions, estimated duration {} ({:.0f} s)\n", plan.actions.size(),
-                           Hms(plan.duration_estimate_s), plan.duration_estimate_s);
+  std::cout << fmt::format("{} actions, estimated duration {} ({:.0f} s)\n",
+                           plan.actions.size(),
+                           Hms(plan.duration_estimate_s),
+                           plan.duration_estimate_s);
 }
 
 }  // namespace

@@ -25,12 +25,15 @@ void RegisterReplay(CLI::App* sim) {
   };
   auto o = std::make_shared<Options>();
   cmd->add_option("--run", o->run, "Run directory whose stimulus is replayed")->required();
-  cmd->add_option("--unit", o->units,
-                  "Unit file of the truth schema (truth/<serial>.json, a diagnosis's model.json); repeatable")
+  cmd->add_option("--unit",
+                  o->units,
+                  "Unit file of the truth schema (truth/<serial>.json, a diagnosis's model.json); "
+                  "repeatable")
       ->required();
   cmd->add_option("--out", o->out, "New run directory to write")->required();
   cmd->add_option("--seed", o->replay.noise_seed, "Noise seed")->capture_default_str();
-  cmd->add_flag("--same-noise", o->replay.noise_from_unit_file,
+  cmd->add_flag("--same-noise",
+                o->replay.noise_from_unit_file,
                 "Each unit's noise as the rig drew it (the unit file's seed)");
   cmd->callback([o] {
     const auto start = std::chrono::steady_clock::now();
@@ -38,10 +41,14 @@ void RegisterReplay(CLI::App* sim) {
     const rig_sim::ReplaySummary s = rig_sim::ReplayRecording(o->run, files, o->out, o->replay);
     std::string skipped;
     for (const std::string& x : s.skipped) skipped += (skipped.empty() ? "" : ", ") + x;
-    std::cout << fmt::format("replayed {} unit(s): {} IMU rows, {} ADS rows into {} in {:.1f} s{}\n",
-                             s.replayed.size(), s.imu_rows, s.ads_rows, o->out,
-                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                             skipped.empty() ? "" : "; not replayed (no unit file): " + skipped);
+    std::cout << fmt::format(
+        "replayed {} unit(s): {} IMU rows, {} ADS rows into {} in {:.1f} s{}\n",
+        s.replayed.size(),
+        s.imu_rows,
+        s.ads_rows,
+        o->out,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+        skipped.empty() ? "" : "; not replayed (no unit file): " + skipped);
   });
 }
 
@@ -84,19 +91,27 @@ void RegisterSimulateCommand(CLI::App& app) {
   cmd->callback([options] {
     options->config.profile = sensor_sim::ModelProfileFromString(options->profile);
     const auto start = std::chrono::steady_clock::now();
-    const auto summary = rig_sim::RunStaticThermal(
-        options->config, options->out_dir, [&](int step, double t_s) {
+    const auto summary =
+        rig_sim::RunStaticThermal(options->config, options->out_dir, [&](int step, double t_s) {
           const auto& s = options->config.steps[static_cast<size_t>(step)];
           std::cout << fmt::format("step {} done: {:+.1f} degC reached and soaked, t = {:.0f} s\n",
-                                   step, s.target_c, t_s);
+                                   step,
+                                   s.target_c,
+                                   t_s);
         });
     const double wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << fmt::format(
         "recorded {:.1f} h of {} IMU + {} ADS units ({} IMU rows, {} ADS rows) into {} in {:.1f} s "
         "({:.0f}x real time)\n",
-        summary.duration_s / 3600.0, options->config.imu_units, options->config.ads_units,
-        summary.imu_rows, summary.ads_rows, options->out_dir, wall_s, summary.duration_s / wall_s);
+        summary.duration_s / 3600.0,
+        options->config.imu_units,
+        options->config.ads_units,
+        summary.imu_rows,
+        summary.ads_rows,
+        options->out_dir,
+        wall_s,
+        summary.duration_s / wall_s);
   });
 }
 

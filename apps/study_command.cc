@@ -46,7 +46,11 @@ calib::StudyProgress ProgressPrinter() {
     const double per_minute = done / std::max(minutes, 1e-9);
     const double eta_min = (total - done) / std::max(per_minute, 1e-9);
     const std::string line = fmt::format("study: {}/{} units, {:.1f} units/min, ETA {:.0f} min{}",
-                                         done, total, per_minute, eta_min, tty ? "" : "\n");
+                                         done,
+                                         total,
+                                         per_minute,
+                                         eta_min,
+                                         tty ? "" : "\n");
     if (tty) {
       std::cerr << "\r" << line << (done == total ? "\n" : "") << std::flush;
     } else if (done == total || (done * 20) / total != ((done - 1) * 20) / total) {
@@ -68,39 +72,45 @@ void RunStudy(const StudyArgs& a) {
   if (a.strategy.empty()) throw CLI::ValidationError("--strategy", "required (a study file)");
   if (a.out.empty()) throw CLI::ValidationError("--out", "required (the output directory)");
   if (a.units < 1) throw CLI::ValidationError("--units", "required, at least 1");
-  std::vector<calib::StudyDefinition> strategies{calib::LoadStudyDefinition(a.strategy, ADAHRS_SEQUENCE_DIR)};
+  std::vector<calib::StudyDefinition> strategies{
+      calib::LoadStudyDefinition(a.strategy, ADAHRS_SEQUENCE_DIR)};
   if (!a.vs.empty()) strategies.push_back(calib::LoadStudyDefinition(a.vs, ADAHRS_SEQUENCE_DIR));
   if (strategies.size() == 2 && strategies[0].name == strategies[1].name) {
-    throw CLI::ValidationError("--vs", "the two study files have the same name \"" + strategies[0].name + "\"");
+    throw CLI::ValidationError(
+        "--vs", "the two study files have the same name \"" + strategies[0].name + "\"");
   }
   calib::StudySettings settings;
   settings.units = a.units;
   settings.seed = a.seed;
   settings.shard = calib::StudyShard::Parse(a.shard, "--shard");
   if (!a.profile.empty()) {
-    settings.population = calib::ParsePopulation(a.profile, std::filesystem::current_path(),
-                                                 "command line", "--profile");
+    settings.population = calib::ParsePopulation(
+        a.profile, std::filesystem::current_path(), "command line", "--profile");
   } else if (strategies[0].population) {
     settings.population = *strategies[0].population;
   }
   for (const auto& d : strategies) {
     const calib::StudyPopulation population = d.population.value_or(calib::StudyPopulation{});
     if (a.profile.empty() && !(population == settings.population)) {
-      throw CLI::ValidationError("--vs", d.file + ": $.population differs from " + strategies[0].file +
-                                 " (a paired study draws one population; or give --profile)");
+      throw CLI::ValidationError("--vs",
+                                 d.file + ": $.population differs from " + strategies[0].file +
+                                     " (a paired study draws one population; or give --profile)");
     }
   }
   KeepLargeBlocksForReuse();
   const auto results = calib::RunImuStudy(strategies, settings, a.threads, ProgressPrinter());
   calib::WriteStudyOutputs(a.out, calib::MakeStudyMeta(strategies, settings), results);
   std::cout << fmt::format("{} units, shard {}: {}/results.csv, summary.json, report.html\n",
-                           results.size(), settings.shard.Label(), a.out);
+                           results.size(),
+                           settings.shard.Label(),
+                           a.out);
 }
 
 }  // namespace
 
 void RegisterStudyCommand(CLI::App& app) {
-  CLI::App* study = app.add_subcommand("study", "Monte Carlo yield of calibration strategies (docs/studies.md)");
+  CLI::App* study =
+      app.add_subcommand("study", "Monte Carlo yield of calibration strategies (docs/studies.md)");
   study->require_subcommand(0, 1);
   auto a = std::make_shared<StudyArgs>();
   study->add_option("--strategy", a->strategy, "Study file of the strategy (docs/studies.md)");

@@ -17,8 +17,8 @@
 
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/solvers/ads_surface_fit.h"
-#include "sensor_sim/air_data.h"
 #include "sensor_sim/ads_unit.h"
+#include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
 #include "sensor_sim/pressure_bridge.h"
 
@@ -58,7 +58,8 @@ std::vector<AdsCalibrationPoint> ShippedSequencePoints() {
   params.static_thermal.effects.lag = false;  // every point a soak, as the sequence's are
   params.pitot_thermal.effects.lag = false;
   sensor_sim::AdsUnit unit(params, 1, 25.0);
-  std::vector<double> alts_ft = {-1000, 0, 1000, 2000, 3500, 5000, 7500, 10000, 15000, 20000, 30000, 40000, 50000};
+  std::vector<double> alts_ft = {
+      -1000, 0, 1000, 2000, 3500, 5000, 7500, 10000, 15000, 20000, 30000, 40000, 50000};
   std::vector<double> cas_kt = {30, 45, 60, 80, 100, 150, 250, 350, 450};
   std::vector<AdsCalibrationPoint> points;
   int step = 0;
@@ -79,7 +80,8 @@ std::vector<AdsCalibrationPoint> ShippedSequencePoints() {
       points.push_back(p);
     };
     for (double alt_ft : alts_ft) take(sensor_sim::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
-    for (double alt_ft : {20000.0, 7500.0}) take(sensor_sim::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
+    for (double alt_ft : {20000.0, 7500.0})
+      take(sensor_sim::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
     for (double kt : cas_kt) {
       take(sensor_sim::kIsaSeaLevelPressure_pa, sensor_sim::ImpactPressurePaFromKt(kt), true);
     }

@@ -61,11 +61,21 @@ void BM_AdsSurfaceFrame(benchmark::State& state) {
     k[2][0] = d;
     return k;
   };
-  c.altitude_ft = {letters(1000.0, -0.2, 1e-4, 1e-9), 30000, 200000, 5e6, 8e6,
-                   SurfaceLaw::kDirect, {-2.0, 0.005, 3000.0, -3.0, 0.0075, 20.0, 6.5e6, {25.0, 5.7e-5, 1e-13, 0.0}},
+  c.altitude_ft = {letters(1000.0, -0.2, 1e-4, 1e-9),
+                   30000,
+                   200000,
+                   5e6,
+                   8e6,
+                   SurfaceLaw::kDirect,
+                   {-2.0, 0.005, 3000.0, -3.0, 0.0075, 20.0, 6.5e6, {25.0, 5.7e-5, 1e-13, 0.0}},
                    {6.5e6, 1.5e-7}};
-  c.airspeed_kt = {letters(30.0, 0.001, 0.0, -1e-9), 30000, 100000, 5e6, 8e6,
-                   SurfaceLaw::kDirect, {-0.1, 0.0003, 40.0, -0.2, 0.0005, 20.0, 6.5e6, {25.0, 5.7e-5, 1e-13, 0.0}},
+  c.airspeed_kt = {letters(30.0, 0.001, 0.0, -1e-9),
+                   30000,
+                   100000,
+                   5e6,
+                   8e6,
+                   SurfaceLaw::kDirect,
+                   {-0.1, 0.0003, 40.0, -0.2, 0.0005, 20.0, 6.5e6, {25.0, 5.7e-5, 1e-13, 0.0}},
                    {6.5e6, 1.5e-7}};
   const AdsConstants constants = ExportAdsConstants(c).constants;
   const AdsRawFrame raw{150000, 50000, 6700000, 6800000, 0};

@@ -16,12 +16,13 @@ namespace adahrs::calib {
 namespace {
 
 std::filesystem::path Runs(int speedup) {
-  const auto dir = std::filesystem::temp_directory_path() / ("adahrs_diagnosis_benchmark_" + std::to_string(speedup));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("adahrs_diagnosis_benchmark_" + std::to_string(speedup));
   if (std::filesystem::exists(dir / "sensor" / "meta.json")) return dir;
   std::vector<sensor_sim::ImuUnitParams> params;
   for (int i = 0; i < 4; ++i) {
-    params.push_back(sensor_sim::ImuUnitParams::Draw("IMU-000" + std::to_string(i + 1), 60 + i,
-                                                     sensor_sim::ModelProfile::kTruth));
+    params.push_back(sensor_sim::ImuUnitParams::Draw(
+        "IMU-000" + std::to_string(i + 1), 60 + i, sensor_sim::ModelProfile::kTruth));
   }
   testing::MakerOptions options;
   options.thermal_speedup = speedup;
@@ -42,7 +43,8 @@ void BM_DiagnoseFourUnits(benchmark::State& state) {
     benchmark::DoNotOptimize(run);
   }
   state.counters["rows"] = rows;
-  state.counters["rows_per_s"] = benchmark::Counter(rows, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rows_per_s"] =
+      benchmark::Counter(rows, benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_DiagnoseFourUnits)->Arg(60)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
 

@@ -18,12 +18,13 @@ const std::filesystem::path& Runs() {
     const auto dir = std::filesystem::temp_directory_path() / "adahrs_imu_fit_benchmark";
     std::vector<sensor_sim::ImuUnitParams> params;
     for (int i = 0; i < 4; ++i) {
-      params.push_back(sensor_sim::ImuUnitParams::Draw("IMU-000" + std::to_string(i + 1), 40 + i,
-                                                       sensor_sim::ModelProfile::kNominal));
+      params.push_back(sensor_sim::ImuUnitParams::Draw(
+          "IMU-000" + std::to_string(i + 1), 40 + i, sensor_sim::ModelProfile::kNominal));
     }
     testing::MakerOptions options;
     options.thermal_speedup = 60.0;
-    testing::ImuRecordingMaker maker(params, sensor_sim::NormalGravityMps2(32.6, 200.0), 7, options);
+    testing::ImuRecordingMaker maker(
+        params, sensor_sim::NormalGravityMps2(32.6, 200.0), 7, options);
     maker.Run(testing::ShippedSequence("imu_thermal_calibration_full", 1000), dir / "thermal");
     maker.Run(testing::ShippedSequence("imu_sensor_calibration", 1000), dir / "sensor");
     return dir;
@@ -35,7 +36,8 @@ void BM_FitFourUnits(benchmark::State& state, const ImuStrategy& strategy) {
   const std::vector<std::filesystem::path> runs = {Runs() / "thermal", Runs() / "sensor"};
   for (auto _ : state) benchmark::DoNotOptimize(FitImuRuns(runs, strategy, "bench"));
 }
-BENCHMARK_CAPTURE(BM_FitFourUnits, reference, ImuStrategy::Reference())->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitFourUnits, reference, ImuStrategy::Reference())
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FitFourUnits, joint, ImuStrategy::Improved())->Unit(benchmark::kMillisecond);
 
 }  // namespace

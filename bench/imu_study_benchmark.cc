@@ -17,7 +17,8 @@ namespace adahrs::calib {
 namespace {
 
 void BM_ImuStudyUnit(benchmark::State& state) {
-  const std::filesystem::path examples = std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/examples/studies";
+  const std::filesystem::path examples =
+      std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/examples/studies";
   const std::vector<StudyDefinition> strategies = {
       LoadStudyDefinition(examples / "imu_reference.json", ADAHRS_SEQUENCE_DIR),
       LoadStudyDefinition(examples / "imu_improved.json", ADAHRS_SEQUENCE_DIR)};

@@ -20,8 +20,15 @@ void BM_RigThroughput(benchmark::State& state) {
   state.counters["host_lost"] = static_cast<double>(r.host_bytes_lost);
 }
 BENCHMARK(BM_RigThroughput)
-    ->Arg(250)->Arg(500)->Arg(1000)->Arg(2000)->Arg(4000)->Arg(100000)
-    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+    ->Arg(250)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Arg(4000)
+    ->Arg(100000)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
 }  // namespace
 

@@ -5,9 +5,9 @@
 
 #include <vector>
 
+#include "common/random.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
-#include "common/random.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -26,8 +26,8 @@ void BM_ImuUnitFrame(benchmark::State& state) {
   ImuUnit unit(ImuUnitParams::Draw("IMU-B", 1, ModelProfile::kTruth), 2, kStartC);
   int64_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(unit.Step(Stimulus(i++)));
-  state.counters["unit_frames_per_s"] = benchmark::Counter(static_cast<double>(i),
-                                                           benchmark::Counter::kIsRate);
+  state.counters["unit_frames_per_s"] =
+      benchmark::Counter(static_cast<double>(i), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ImuUnitFrame);
 
@@ -42,17 +42,19 @@ void BM_AdsUnitFrame(benchmark::State& state) {
     s.air_temp_c = kStartC + 1e-4 * static_cast<double>(i++ % 100000);
     benchmark::DoNotOptimize(unit.Step(s));
   }
-  state.counters["unit_frames_per_s"] = benchmark::Counter(static_cast<double>(i),
-                                                           benchmark::Counter::kIsRate);
+  state.counters["unit_frames_per_s"] =
+      benchmark::Counter(static_cast<double>(i), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_AdsUnitFrame);
 
 void BM_Batch4Imu1Ads(benchmark::State& state) {
   std::vector<ImuUnit> imus;
   for (int k = 0; k < 4; ++k) {
-    imus.emplace_back(ImuUnitParams::Draw("IMU-" + std::to_string(k), common::Rng::Derive(7, k),
-                                          ModelProfile::kTruth),
-                      k, kStartC);
+    imus.emplace_back(
+        ImuUnitParams::Draw(
+            "IMU-" + std::to_string(k), common::Rng::Derive(7, k), ModelProfile::kTruth),
+        k,
+        kStartC);
   }
   AdsUnit ads(AdsUnitParams::Draw("ADS-1", 9, ModelProfile::kTruth), 9, kStartC);
   AdsStimulus a;

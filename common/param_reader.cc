@@ -38,9 +38,7 @@ std::string ParamReader::PathOf(std::string_view key) const {
   return path_ + "." + std::string(key);
 }
 
-bool ParamReader::Has(std::string_view key) const {
-  return object_->contains(std::string(key));
-}
+bool ParamReader::Has(std::string_view key) const { return object_->contains(std::string(key)); }
 
 const nlohmann::json& ParamReader::Require(std::string_view key) const {
   const std::string name(key);
@@ -50,14 +48,17 @@ const nlohmann::json& ParamReader::Require(std::string_view key) const {
   return *it;
 }
 
-double ParamReader::CheckNumber(const nlohmann::json& value, const std::string& where, double min,
-                                double max, std::string_view unit) const {
+double ParamReader::CheckNumber(const nlohmann::json& value,
+                                const std::string& where,
+                                double min,
+                                double max,
+                                std::string_view unit) const {
   std::ostringstream range;
   range << "allowed range [" << min << ", " << max << "] " << unit;
   if (value.is_string()) {
     // JSON has no NaN; a string "nan"/"inf" is how such values usually arrive.
-    Fail(where, "expected a number, got the string \"" + value.get<std::string>() + "\"; " +
-                    range.str());
+    Fail(where,
+         "expected a number, got the string \"" + value.get<std::string>() + "\"; " + range.str());
   }
   if (!value.is_number()) Fail(where, "expected a number; " + range.str());
   const double x = value.get<double>();
@@ -70,7 +71,9 @@ double ParamReader::CheckNumber(const nlohmann::json& value, const std::string& 
   return x;
 }
 
-double ParamReader::Number(std::string_view key, double min, double max,
+double ParamReader::Number(std::string_view key,
+                           double min,
+                           double max,
                            std::string_view unit) const {
   return CheckNumber(Require(key), PathOf(key), min, max, unit);
 }
@@ -78,13 +81,14 @@ double ParamReader::Number(std::string_view key, double min, double max,
 int64_t ParamReader::Integer(std::string_view key, int64_t min, int64_t max) const {
   const nlohmann::json& value = Require(key);
   if (!value.is_number_integer()) {
-    Fail(PathOf(key), "expected an integer in [" + std::to_string(min) + ", " +
-                          std::to_string(max) + "]");
+    Fail(PathOf(key),
+         "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
   }
   const int64_t x = value.get<int64_t>();
   if (x < min || x > max) {
-    Fail(PathOf(key), "value " + std::to_string(x) + " out of range; allowed range [" +
-                          std::to_string(min) + ", " + std::to_string(max) + "]");
+    Fail(PathOf(key),
+         "value " + std::to_string(x) + " out of range; allowed range [" + std::to_string(min) +
+             ", " + std::to_string(max) + "]");
   }
   return x;
 }
@@ -108,8 +112,8 @@ ParamReader ParamReader::Child(std::string_view key) const {
 size_t ParamReader::ArrayLength(std::string_view key, size_t min, size_t max) const {
   const nlohmann::json& array = Require(key);
   if (!array.is_array() || array.size() < min || array.size() > max) {
-    Fail(PathOf(key), "expected an array of " + std::to_string(min) + " to " +
-                          std::to_string(max) + " items");
+    Fail(PathOf(key),
+         "expected an array of " + std::to_string(min) + " to " + std::to_string(max) + " items");
   }
   return array.size();
 }
@@ -125,7 +129,8 @@ ParamReader ParamReader::Element(std::string_view key, size_t index, size_t coun
 void ParamReader::ExpectAllKeysUsed() const {
   for (auto it = object_->begin(); it != object_->end(); ++it) {
     if (!used_->count(it.key())) {
-      Fail(PathOf(it.key()), "unknown key (misspelt, or a unit suffix other than the one expected)");
+      Fail(PathOf(it.key()),
+           "unknown key (misspelt, or a unit suffix other than the one expected)");
     }
   }
 }

@@ -23,7 +23,8 @@ class ParamError : public std::runtime_error {
 };
 
 /// Reads one JSON object and records which of its keys were read, so that `ExpectAllKeysUsed()`
-/// can refuse keys nobody asked for. `Child()` gives a reader of a nested object with its own record.
+/// can refuse keys nobody asked for. `Child()` gives a reader of a nested object with its own
+/// record.
 class ParamReader {
  public:
   /// `source` names where the JSON came from (a file path, or a description) for messages.
@@ -50,8 +51,8 @@ class ParamReader {
   bool Has(std::string_view key) const;
   /// A fixed-length array of finite numbers in [min, max].
   template <typename Out>
-  void NumberArray(std::string_view key, double min, double max, std::string_view unit,
-                   Out& out) const {
+  void NumberArray(
+      std::string_view key, double min, double max, std::string_view unit, Out& out) const {
     const nlohmann::json& array = Require(key);
     const std::string where = PathOf(key);
     if (!array.is_array() || array.size() != std::size(out)) {
@@ -64,7 +65,10 @@ class ParamReader {
 
   /// A fixed-size array of fixed-length arrays (rows) of finite numbers in [min, max].
   template <typename Row, size_t kRows>
-  void NumberMatrix(std::string_view key, double min, double max, std::string_view unit,
+  void NumberMatrix(std::string_view key,
+                    double min,
+                    double max,
+                    std::string_view unit,
                     std::array<Row, kRows>& out) const {
     const nlohmann::json& rows = Require(key);
     const std::string where = PathOf(key);
@@ -77,7 +81,8 @@ class ParamReader {
         Fail(row_where, "expected an array of " + std::to_string(std::size(out[r])) + " numbers");
       }
       for (size_t c = 0; c < std::size(out[r]); ++c) {
-        out[r][c] = CheckNumber(rows[r][c], row_where + "[" + std::to_string(c) + "]", min, max, unit);
+        out[r][c] =
+            CheckNumber(rows[r][c], row_where + "[" + std::to_string(c) + "]", min, max, unit);
       }
     }
   }
@@ -94,7 +99,10 @@ class ParamReader {
  private:
   const nlohmann::json& Require(std::string_view key) const;
   std::string PathOf(std::string_view key) const;
-  double CheckNumber(const nlohmann::json& value, const std::string& where, double min, double max,
+  double CheckNumber(const nlohmann::json& value,
+                     const std::string& where,
+                     double min,
+                     double max,
                      std::string_view unit) const;
 
   const nlohmann::json* object_;

@@ -53,7 +53,8 @@ class Rng {
     const int layer = static_cast<int>(bits & 127);
     const auto hz = static_cast<int32_t>(bits >> 32);
     const ZigguratTables& t = Tables();
-    if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) [[likely]] return hz * t.w[layer];
+    if (std::abs(static_cast<int64_t>(hz)) < t.k[layer]) [[likely]]
+      return hz * t.w[layer];
     return NormalOutsideBox(layer, hz);
   }
 

@@ -12,11 +12,14 @@ using nlohmann::json;
 
 // Reads object `j` at `path`: every key must be in `keys` or `optional`, and every key in `keys`
 // present.
-void ExpectKeys(const json& j, const std::string& path, const std::set<std::string>& keys,
+void ExpectKeys(const json& j,
+                const std::string& path,
+                const std::set<std::string>& keys,
                 const std::set<std::string>& optional = {}) {
   if (!j.is_object()) throw std::runtime_error(path + ": expected an object");
   for (const auto& [key, value] : j.items()) {
-    if (!keys.count(key) && !optional.count(key)) throw std::runtime_error(path + "." + key + ": unexpected key");
+    if (!keys.count(key) && !optional.count(key))
+      throw std::runtime_error(path + "." + key + ": unexpected key");
   }
   for (const std::string& key : keys) {
     if (!j.contains(key)) throw std::runtime_error(path + "." + key + ": missing");
@@ -53,16 +56,21 @@ const json& Array(const json& j, const std::string& path, size_t n) {
 }
 
 constexpr std::pair<SurfaceLaw, const char*> kLawNames[] = {
-    {SurfaceLaw::kDirect, "direct"}, {SurfaceLaw::kIsaAltitude, "isa_altitude"}, {SurfaceLaw::kCas, "cas"}};
+    {SurfaceLaw::kDirect, "direct"},
+    {SurfaceLaw::kIsaAltitude, "isa_altitude"},
+    {SurfaceLaw::kCas, "cas"}};
 
 json SurfaceToJson(const SurfaceFit& s) {
   const char* law = "";
   for (const auto& [value, name] : kLawNames) {
     if (value == s.law) law = name;
   }
-  json out{{"coeff_x_y", s.coeff_xy},    {"x_min_code", s.x_min_code},
-           {"x_max_code", s.x_max_code}, {"y_min_code", s.y_min_code},
-           {"y_max_code", s.y_max_code}, {"law", law}};
+  json out{{"coeff_x_y", s.coeff_xy},
+           {"x_min_code", s.x_min_code},
+           {"x_max_code", s.x_max_code},
+           {"y_min_code", s.y_min_code},
+           {"y_max_code", s.y_max_code},
+           {"law", law}};
   if (s.hysteresis.active()) {
     const HysteresisCompensation& h = s.hysteresis;
     out["hysteresis"] = {{"pressure_gain", h.pressure_gain},
@@ -97,9 +105,16 @@ BridgeLinearisation LinearisationFromJson(const json& j, const std::string& path
 // zero span with a non-zero gain is refused (the state would never move, so the gain would be a
 // constant offset in disguise), as are negative spans and a thermal span without a temperature.
 HysteresisCompensation HysteresisFromJson(const json& j, const std::string& path) {
-  ExpectKeys(j, path, {"pressure_gain", "pressure_gain_per_degc", "pressure_span", "thermal_gain",
-                       "thermal_gain_per_degc", "thermal_span_c", "die_temp_origin_code",
-                       "die_temp_c"});
+  ExpectKeys(j,
+             path,
+             {"pressure_gain",
+              "pressure_gain_per_degc",
+              "pressure_span",
+              "thermal_gain",
+              "thermal_gain_per_degc",
+              "thermal_span_c",
+              "die_temp_origin_code",
+              "die_temp_c"});
   HysteresisCompensation h;
   h.pressure_gain = Number(j["pressure_gain"], path + ".pressure_gain");
   h.pressure_gain_per_degc = Number(j["pressure_gain_per_degc"], path + ".pressure_gain_per_degc");
@@ -119,8 +134,10 @@ HysteresisCompensation HysteresisFromJson(const json& j, const std::string& path
   }
   const bool needs_temperature =
       h.thermal_span_c != 0.0 || h.pressure_gain_per_degc != 0.0 || h.thermal_gain_per_degc != 0.0;
-  if (needs_temperature && h.die_temp_c[1] == 0.0 && h.die_temp_c[2] == 0.0 && h.die_temp_c[3] == 0.0) {
-    throw std::runtime_error(path + ".die_temp_c: no temperature dependence, but a thermal span or "
+  if (needs_temperature && h.die_temp_c[1] == 0.0 && h.die_temp_c[2] == 0.0 &&
+      h.die_temp_c[3] == 0.0) {
+    throw std::runtime_error(path +
+                             ".die_temp_c: no temperature dependence, but a thermal span or "
                              "a gain's temperature slope needs one");
   }
   return h;
@@ -150,7 +167,9 @@ SurfaceCoefficients CoefficientsFromJson(const json& j, const std::string& path)
 // `pressure_law` the one law this surface may carry besides "direct"; a surface without "law"
 // (files written before it existed) is direct.
 SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pressure_law) {
-  ExpectKeys(j, path, {"x_min_code", "x_max_code", "y_min_code", "y_max_code"},
+  ExpectKeys(j,
+             path,
+             {"x_min_code", "x_max_code", "y_min_code", "y_max_code"},
              {"law", "coeff_x_y", "coeff_a_to_j", "hysteresis", "y_linearisation"});
   SurfaceFit s;
   if (j.contains("law")) {
@@ -161,7 +180,8 @@ SurfaceFit SurfaceFromJson(const json& j, const std::string& path, SurfaceLaw pr
     s.law = j["law"] == "direct" ? SurfaceLaw::kDirect : pressure_law;
   }
   s.coeff_xy = CoefficientsFromJson(j, path);
-  if (j.contains("hysteresis")) s.hysteresis = HysteresisFromJson(j["hysteresis"], path + ".hysteresis");
+  if (j.contains("hysteresis"))
+    s.hysteresis = HysteresisFromJson(j["hysteresis"], path + ".hysteresis");
   if (j.contains("y_linearisation")) {
     s.y_linearisation = LinearisationFromJson(j["y_linearisation"], path + ".y_linearisation");
   }
@@ -203,9 +223,11 @@ ImuScaleTemperature ScaleTemperatureFromJson(const json& j, const std::string& p
     if (span.origin_cnt != std::nearbyint(span.origin_cnt)) {
       throw std::runtime_error(sp + ".origin_cnt: must be a whole count");
     }
-    if (!(span.min_cnt >= 0.0 && span.min_cnt <= span.origin_cnt && span.origin_cnt <= span.max_cnt &&
-          span.min_cnt < span.max_cnt && span.max_cnt <= 65535.0)) {
-      throw std::runtime_error(sp + ": min_cnt <= origin_cnt <= max_cnt must be an increasing span "
+    if (!(span.min_cnt >= 0.0 && span.min_cnt <= span.origin_cnt &&
+          span.origin_cnt <= span.max_cnt && span.min_cnt < span.max_cnt &&
+          span.max_cnt <= 65535.0)) {
+      throw std::runtime_error(sp +
+                               ": min_cnt <= origin_cnt <= max_cnt must be an increasing span "
                                "inside 0..65535");
     }
   }
@@ -213,7 +235,8 @@ ImuScaleTemperature ScaleTemperatureFromJson(const json& j, const std::string& p
   for (size_t c = 0; c < 9; ++c) {
     st.scale[c] = Numbers<4>(scale[c], path + ".scale[" + std::to_string(c) + "]");
   }
-  st.accel_quadratic_per_g = Numbers<3>(j["accel_quadratic_per_g"], path + ".accel_quadratic_per_g");
+  st.accel_quadratic_per_g =
+      Numbers<3>(j["accel_quadratic_per_g"], path + ".accel_quadratic_per_g");
   st.gs_dps_per_mps2 = Matrix(j["gs_dps_per_mps2"], path + ".gs_dps_per_mps2");
   return st;
 }
@@ -239,7 +262,8 @@ json ToJson(const ImuCalibrationConstants& c) {
            {"gyro", gyro},
            {"ca_mps2_per_g", c.ca_mps2_per_g},
            {"cg", c.cg}};
-  if (c.scale_temperature.active) out["scale_temperature"] = ScaleTemperatureToJson(c.scale_temperature);
+  if (c.scale_temperature.active)
+    out["scale_temperature"] = ScaleTemperatureToJson(c.scale_temperature);
   return out;
 }
 
@@ -259,10 +283,12 @@ ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j) {
     c.thermal[i].k = Numbers<4>(thermal[i]["k"], path + ".k");
     c.thermal[i].temp_min_cnt = Number(thermal[i]["temp_min_cnt"], path + ".temp_min_cnt");
     c.thermal[i].temp_max_cnt = Number(thermal[i]["temp_max_cnt"], path + ".temp_max_cnt");
-    if (!(c.thermal[i].temp_min_cnt >= 0.0 && c.thermal[i].temp_min_cnt < c.thermal[i].temp_max_cnt &&
+    if (!(c.thermal[i].temp_min_cnt >= 0.0 &&
+          c.thermal[i].temp_min_cnt < c.thermal[i].temp_max_cnt &&
           c.thermal[i].temp_max_cnt <= 65535.0)) {
-      throw std::runtime_error(path + ": temp_min_cnt " + std::to_string(c.thermal[i].temp_min_cnt) +
-                               " .. temp_max_cnt " + std::to_string(c.thermal[i].temp_max_cnt) +
+      throw std::runtime_error(path + ": temp_min_cnt " +
+                               std::to_string(c.thermal[i].temp_min_cnt) + " .. temp_max_cnt " +
+                               std::to_string(c.thermal[i].temp_max_cnt) +
                                " must be an increasing span inside 0..65535");
     }
   }

@@ -32,10 +32,10 @@
 namespace adahrs::firmware_model {
 
 struct ThermalFit {
-  int temp_sensor = 0;           ///< 0..2
-  std::array<double, 4> k = {};  ///< U units per count^i
-  double temp_min_cnt = 0.0;     ///< lowest temperature count the fit covers
-  double temp_max_cnt = 65535.0; ///< highest temperature count the fit covers
+  int temp_sensor = 0;            ///< 0..2
+  std::array<double, 4> k = {};   ///< U units per count^i
+  double temp_min_cnt = 0.0;      ///< lowest temperature count the fit covers
+  double temp_max_cnt = 65535.0;  ///< highest temperature count the fit covers
 };
 
 struct AccelScaleFit {
@@ -92,16 +92,16 @@ struct XyPowers {
   int p;
   int q;
 };
-inline constexpr XyPowers kReferenceCubicTerm[10] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2},
-                                                     {1, 1}, {3, 0}, {0, 3}, {1, 2}, {2, 1}};
+inline constexpr XyPowers kReferenceCubicTerm[10] = {
+    {0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2}, {1, 1}, {3, 0}, {0, 3}, {1, 2}, {2, 1}};
 
 /// The branch terms the unit adds to a surface's z (target/ads_constants.h HysteresisTermQ):
-/// z + gain_P(T) s_P + gain_T(T) s_T, gain(T) = gain + gain_per_degc (T - kHysteresisGainReferenceC),
-/// each state from a Preisach operator: the pressure one driven by z, the thermal one by the
-/// die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j of the surface's y
-/// (the bridge-voltage code, or its linearised code), which also gives the gains' T. A span of 0
-/// switches its operator off (its gains must then be 0). Absent from a constants file: both off,
-/// the static surface.
+/// z + gain_P(T) s_P + gain_T(T) s_T, gain(T) = gain + gain_per_degc (T -
+/// kHysteresisGainReferenceC), each state from a Preisach operator: the pressure one driven by z,
+/// the thermal one by the die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j
+/// of the surface's y (the bridge-voltage code, or its linearised code), which also gives the
+/// gains' T. A span of 0 switches its operator off (its gains must then be 0). Absent from a
+/// constants file: both off, the static surface.
 inline constexpr double kHysteresisGainReferenceC = 25.0;
 
 struct HysteresisCompensation {
@@ -110,7 +110,7 @@ struct HysteresisCompensation {
   double pressure_span = 0.0;           ///< z travel after a reversal to the full state
   double thermal_gain = 0.0;            ///< z units per unit state at 25 degC
   double thermal_gain_per_degc = 0.0;
-  double thermal_span_c = 0.0;          ///< die-temperature travel to the full state, degC
+  double thermal_span_c = 0.0;  ///< die-temperature travel to the full state, degC
   double die_temp_origin_code = 0.0;
   std::array<double, 4> die_temp_c = {};  ///< degC per code^j
   bool active() const { return pressure_span != 0.0 || thermal_span_c != 0.0; }

@@ -37,13 +37,18 @@ CoeffQ31 Quantise(Real v, int min_e, const std::string& what) {
   }
   if (e > kMaxExponent || e < kMinExponent) {
     throw std::invalid_argument(fmt::format("{}: value {:.6g} needs exponent {} outside {}..{}",
-                                            what, static_cast<double>(v), e, kMinExponent,
+                                            what,
+                                            static_cast<double>(v),
+                                            e,
+                                            kMinExponent,
                                             kMaxExponent));
   }
   return CoeffQ31{static_cast<int32_t>(m), static_cast<int8_t>(e)};
 }
 
-Real Value(const CoeffQ31& c) { return std::ldexp(static_cast<Real>(c.mantissa_q31), c.exponent - 31); }
+Real Value(const CoeffQ31& c) {
+  return std::ldexp(static_cast<Real>(c.mantissa_q31), c.exponent - 31);
+}
 
 Real Binomial(int n, int k) {
   Real r = 1;
@@ -57,8 +62,8 @@ std::vector<Real> Renormalise(const std::vector<Real>& k, Real centre_minus_v0, 
   std::vector<Real> c(n, 0);
   for (int m = 0; m < n; ++m) {
     for (int j = m; j < n; ++j) {
-      c[m] += k[j] * Binomial(j, m) * std::pow(centre_minus_v0, j - m) *
-              std::ldexp(Real{1}, shift * m);
+      c[m] +=
+          k[j] * Binomial(j, m) * std::pow(centre_minus_v0, j - m) * std::ldexp(Real{1}, shift * m);
     }
   }
   return c;
@@ -74,9 +79,12 @@ constexpr Real kThermalSpanMargin = 1.25;
 
 InputNormQ31 ThermalNorm(const ThermalFit& f, const std::string& what) {
   if (!(f.temp_min_cnt >= 0 && f.temp_min_cnt < f.temp_max_cnt && f.temp_max_cnt <= 65535)) {
-    throw std::invalid_argument(fmt::format("{}: temperature span {} .. {} counts is not an "
-                                            "increasing span inside 0..65535",
-                                            what, f.temp_min_cnt, f.temp_max_cnt));
+    throw std::invalid_argument(
+        fmt::format("{}: temperature span {} .. {} counts is not an "
+                    "increasing span inside 0..65535",
+                    what,
+                    f.temp_min_cnt,
+                    f.temp_max_cnt));
   }
   const Real centre = std::nearbyint((Real{f.temp_min_cnt} + Real{f.temp_max_cnt}) / 2);
   const Real half_width =
@@ -93,7 +101,9 @@ struct QuantisedPoly {
 
 // Quantises c (degree = size - 1) with the smallest working exponent in [min_work, max_work] that
 // satisfies the target's overflow rule after rounding.
-QuantisedPoly QuantisePoly(const std::vector<Real>& c, int min_work, int max_work,
+QuantisedPoly QuantisePoly(const std::vector<Real>& c,
+                           int min_work,
+                           int max_work,
                            const std::string& what) {
   Real sum_abs = 0;
   for (Real v : c) sum_abs += std::fabs(v);
@@ -115,8 +125,10 @@ QuantisedPoly QuantisePoly(const std::vector<Real>& c, int min_work, int max_wor
     }
   }
   throw std::invalid_argument(fmt::format(
-      "{}: sum of |coefficients| {:.6g} over the normalised span does not fit below 2^{}", what,
-      static_cast<double>(sum_abs), max_work));
+      "{}: sum of |coefficients| {:.6g} over the normalised span does not fit below 2^{}",
+      what,
+      static_cast<double>(sum_abs),
+      max_work));
 }
 
 // A scale-factor sensor's normalisation: centred at the origin, the smallest power-of-two
@@ -125,12 +137,17 @@ InputNormQ31 ScaleSensorNorm(const TempSensorSpan& span, const std::string& what
   if (!(span.min_cnt >= 0 && span.min_cnt <= span.origin_cnt && span.origin_cnt <= span.max_cnt &&
         span.min_cnt < span.max_cnt && span.max_cnt <= 65535 &&
         span.origin_cnt == std::nearbyint(span.origin_cnt))) {
-    throw std::invalid_argument(fmt::format("{}: span {} .. {} about origin {} counts is not an "
-                                            "increasing span in 0..65535 about a whole count",
-                                            what, span.min_cnt, span.max_cnt, span.origin_cnt));
+    throw std::invalid_argument(
+        fmt::format("{}: span {} .. {} about origin {} counts is not an "
+                    "increasing span in 0..65535 about a whole count",
+                    what,
+                    span.min_cnt,
+                    span.max_cnt,
+                    span.origin_cnt));
   }
   const Real half_width = std::max(Real{span.origin_cnt} - Real{span.min_cnt},
-                                   Real{span.max_cnt} - Real{span.origin_cnt}) * kThermalSpanMargin;
+                                   Real{span.max_cnt} - Real{span.origin_cnt}) *
+                          kThermalSpanMargin;
   int shift = 0;
   while (shift < 16 && std::ldexp(Real{1}, shift) < half_width) ++shift;
   return InputNormQ31{static_cast<int32_t>(span.origin_cnt), static_cast<uint8_t>(shift)};
@@ -138,8 +155,8 @@ InputNormQ31 ScaleSensorNorm(const TempSensorSpan& span, const std::string& what
 
 // Error bounds the format-3 stages add, in output units.
 struct ScaleTemperatureBounds {
-  double factor = 0.0;      // worst |F - F_exported| over the normalised span
-  double factor_max = 1.0;  // worst |F| over it
+  double factor = 0.0;          // worst |F - F_exported| over the normalised span
+  double factor_max = 1.0;      // worst |F| over it
   double quadratic_gain = 1.0;  // d(ca + q ca^2)/d(ca) at the rated input
   double quadratic_g = 0.0;     // quantisation of q at the rated input, g
 };
@@ -154,9 +171,10 @@ double GSensitivityQ15Bound(const ScaleTemperatureConstantsQ31& st,
     const double lsb = std::ldexp(1.0, st.gs_q15.row_exponent[r] - 15);
     double row_abs = 0;
     for (int c = 0; c < 3; ++c) row_abs += std::fabs(gs[r][c]);
-    worst = std::max(worst, 3 * 0.5 * lsb * kRatedAccel_mps2 +
-                                row_abs * 0.5 * std::ldexp(1.0, kAccelMps2Exponent - 15) +
-                                Lsb(kRateExponent));
+    worst =
+        std::max(worst,
+                 3 * 0.5 * lsb * kRatedAccel_mps2 +
+                     row_abs * 0.5 * std::ldexp(1.0, kAccelMps2Exponent - 15) + Lsb(kRateExponent));
   }
   return worst;
 }
@@ -169,7 +187,8 @@ ScaleTemperatureBounds ExportScaleTemperature(const ImuScaleTemperature& in,
   out->enabled = 1;
   for (int s = 0; s < kTempSensors; ++s) {
     out->temp_norm[s] = ScaleSensorNorm(
-        in.sensor[s], fmt::format("scale switch block 0x{:02X} (sensor {})", kImuBlockScaleSwitch, s));
+        in.sensor[s],
+        fmt::format("scale switch block 0x{:02X} (sensor {})", kImuBlockScaleSwitch, s));
   }
   b.factor_max = 0.0;
   for (int ch = 0; ch < kImuChannels; ++ch) {
@@ -192,8 +211,8 @@ ScaleTemperatureBounds ExportScaleTemperature(const ImuScaleTemperature& in,
   }
   const double rated_g = kRatedAccel_g;
   for (int axis = 0; axis < 3; ++axis) {
-    const std::string what = fmt::format("accelerometer nonlinearity block 0x{:02X} (axis {})",
-                                         kImuBlockAccelQuadratic, axis);
+    const std::string what = fmt::format(
+        "accelerometer nonlinearity block 0x{:02X} (axis {})", kImuBlockAccelQuadratic, axis);
     const double q = in.accel_quadratic_per_g[axis];
     if (std::fabs(q) >= 1.0 / 16.0) {
       throw std::invalid_argument(fmt::format("{}: |q| = {:.4g} g/g^2 is not below 1/16", what, q));
@@ -202,12 +221,14 @@ ScaleTemperatureBounds ExportScaleTemperature(const ImuScaleTemperature& in,
     const double dq = static_cast<double>(std::fabs(Value(out->accel_quadratic[axis]) - q));
     b.quadratic_gain = std::max(b.quadratic_gain, 1.0 + 2.0 * std::fabs(q) * rated_g);
     // The target's Q15 form: q rounded (1/2 LSB of its high word), ca rounded to Q15 before the
-    // square (2 |ca| times 1/2 LSB at kAccelGExponent) and the square rounded (1/2 LSB at twice it).
+    // square (2 |ca| times 1/2 LSB at kAccelGExponent) and the square rounded (1/2 LSB at twice
+    // it).
     const double q15 = std::ldexp(1.0, out->accel_quadratic[axis].exponent - 16);
     const double square_g2 = 2 * rated_g * std::ldexp(1.0, kAccelGExponent - 16) +
                              std::ldexp(1.0, 2 * kAccelGExponent - 16);
-    b.quadratic_g = std::max(b.quadratic_g, (dq + q15) * rated_g * rated_g +
-                                                std::fabs(q) * square_g2 + 8 * Lsb(kAccelGExponent));
+    b.quadratic_g = std::max(
+        b.quadratic_g,
+        (dq + q15) * rated_g * rated_g + std::fabs(q) * square_g2 + 8 * Lsb(kAccelGExponent));
   }
   return b;
 }
@@ -226,8 +247,8 @@ std::array<double, kImuChannels> ExportThermal(const ImuCalibrationConstants& in
     t.temp_sensor = static_cast<uint8_t>(f.temp_sensor);
     t.temp_norm = ThermalNorm(f, what);
     const int u_e = ch < kAccelChannels ? kDutyExponent : kGyroCountExponent;
-    const auto c = Renormalise({f.k[0], f.k[1], f.k[2], f.k[3]}, t.temp_norm.centre,
-                               t.temp_norm.shift);
+    const auto c =
+        Renormalise({f.k[0], f.k[1], f.k[2], f.k[3]}, t.temp_norm.centre, t.temp_norm.shift);
     const QuantisedPoly poly = QuantisePoly(c, u_e - kMaxAlignShift, u_e, what);
     t.drift = poly.poly;
     DeriveThermalAligned(&t);
@@ -237,7 +258,8 @@ std::array<double, kImuChannels> ExportThermal(const ImuCalibrationConstants& in
 }
 
 // The accelerometer block 0x0A; the worst sensor-calibrated acceleration bound, g.
-double ExportAccel(const ImuCalibrationConstants& in, const std::array<double, kImuChannels>& thermal_bound,
+double ExportAccel(const ImuCalibrationConstants& in,
+                   const std::array<double, kImuChannels>& thermal_bound,
                    ImuConstants& q) {
   double accel_g = 0;
   for (int ch = 0; ch < kAccelChannels; ++ch) {
@@ -245,26 +267,30 @@ double ExportAccel(const ImuCalibrationConstants& in, const std::array<double, k
     const AccelScaleFit& a = in.accel[ch];
     if (std::fabs(a.offset_duty) >= 0.5 || a.scale_duty_per_g == 0) {
       throw std::invalid_argument(fmt::format("{}: offset {} duty or scale {} duty/g unusable",
-                                              what, a.offset_duty, a.scale_duty_per_g));
+                                              what,
+                                              a.offset_duty,
+                                              a.scale_duty_per_g));
     }
     const Real inv_scale = Real{1} / a.scale_duty_per_g;
     q.accel[ch].offset_duty_q31 =
         static_cast<int32_t>(std::nearbyint(std::ldexp(a.offset_duty, 31)));
     q.accel[ch].inv_scale_g = Quantise(inv_scale, kAccelGExponent - kMaxAlignShift, what);
     if (std::fabs(inv_scale) * 0.5 >= 16.0) {
-      throw std::invalid_argument(fmt::format("{}: |1/S| = {:.4g} g/duty overflows +-16 g", what,
-                                              static_cast<double>(inv_scale)));
+      throw std::invalid_argument(fmt::format(
+          "{}: |1/S| = {:.4g} g/duty overflows +-16 g", what, static_cast<double>(inv_scale)));
     }
-    const double bound = (thermal_bound[ch] + Lsb(kDutyExponent)) * std::fabs(1 / a.scale_duty_per_g) +
-                         0.5 * static_cast<double>(std::fabs(Value(q.accel[ch].inv_scale_g) - inv_scale)) +
-                         4 * Lsb(kAccelGExponent);
+    const double bound =
+        (thermal_bound[ch] + Lsb(kDutyExponent)) * std::fabs(1 / a.scale_duty_per_g) +
+        0.5 * static_cast<double>(std::fabs(Value(q.accel[ch].inv_scale_g) - inv_scale)) +
+        4 * Lsb(kAccelGExponent);
     accel_g = std::max(accel_g, bound);
   }
   return accel_g;
 }
 
 // The gyro cubic blocks; the worst sensor-calibrated rate bound, deg/s.
-double ExportGyro(const ImuCalibrationConstants& in, const std::array<double, kImuChannels>& thermal_bound,
+double ExportGyro(const ImuCalibrationConstants& in,
+                  const std::array<double, kImuChannels>& thermal_bound,
                   ImuConstants& q) {
   double rate_dps = 0;
   for (int g = 0; g < kGyroChannels; ++g) {
@@ -273,7 +299,8 @@ double ExportGyro(const ImuCalibrationConstants& in, const std::array<double, kI
     GyroCubicConstantsQ31& gq = q.gyro[g];
     const Real centre_q = std::nearbyint(std::ldexp(static_cast<Real>(f.null_cnt), 8));
     if (std::fabs(centre_q) >= std::ldexp(Real{1}, 31)) {
-      throw std::invalid_argument(fmt::format("{}: null {} counts outside +-2^23", what, f.null_cnt));
+      throw std::invalid_argument(
+          fmt::format("{}: null {} counts outside +-2^23", what, f.null_cnt));
     }
     gq.count_norm = InputNormQ31{static_cast<int32_t>(centre_q), 22};
     const Real centre_cnt = std::ldexp(centre_q, -8);
@@ -291,8 +318,12 @@ double ExportGyro(const ImuCalibrationConstants& in, const std::array<double, kI
 
 // A 3x3 matrix block at exponent out_e; its output's worst bound for inputs up to `rated` known to
 // within in_bound.
-double ExportMatrix(const std::array<std::array<double, 3>, 3>& m, CoeffQ31 out_m[3][3], int out_e,
-                    double rated, double in_bound, const std::string& what) {
+double ExportMatrix(const std::array<std::array<double, 3>, 3>& m,
+                    CoeffQ31 out_m[3][3],
+                    int out_e,
+                    double rated,
+                    double in_bound,
+                    const std::string& what) {
   double worst = 0;
   for (int r = 0; r < 3; ++r) {
     double row_abs = 0;
@@ -303,9 +334,13 @@ double ExportMatrix(const std::array<std::array<double, 3>, 3>& m, CoeffQ31 out_
       row_err += static_cast<double>(std::fabs(Value(out_m[r][c]) - m[r][c]));
     }
     if (row_abs * rated >= std::ldexp(1.0, out_e)) {
-      throw std::invalid_argument(fmt::format(
-          "{}: row {} sum |C| = {:.6g} times the rated input {} overflows +-2^{}", what, r,
-          row_abs, rated, out_e));
+      throw std::invalid_argument(
+          fmt::format("{}: row {} sum |C| = {:.6g} times the rated input {} overflows +-2^{}",
+                      what,
+                      r,
+                      row_abs,
+                      rated,
+                      out_e));
     }
     worst = std::max(worst, row_err * rated + row_abs * in_bound + 6 * Lsb(out_e));
   }
@@ -322,8 +357,11 @@ void CheckAgainstTarget(const ImuConstants& q) {
     ImuConstantsReadBlock(&q, id, words, kImuMaxBlockWords, &count);
     const ConstantsStatus status = ImuConstantsWriteBlock(&check, id, words, count);
     if (status != ConstantsStatus::kOk) {
-      throw std::invalid_argument(fmt::format("IMU block 0x{:02X}: target validation refuses it "
-                                              "(status {})", id, static_cast<int>(status)));
+      throw std::invalid_argument(
+          fmt::format("IMU block 0x{:02X}: target validation refuses it "
+                      "(status {})",
+                      id,
+                      static_cast<int>(status)));
     }
   }
 }
@@ -337,8 +375,8 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
   const std::array<double, kImuChannels> thermal_bound = ExportThermal(in, q);
   double accel_g = ExportAccel(in, thermal_bound, q);
   double rate_dps = ExportGyro(in, thermal_bound, q);
-  const ScaleTemperatureBounds st = ExportScaleTemperature(in.scale_temperature, q.thermal,
-                                                           &q.scale_temperature);
+  const ScaleTemperatureBounds st =
+      ExportScaleTemperature(in.scale_temperature, q.thermal, &q.scale_temperature);
   if (in.scale_temperature.active) {
     // y F: the error of y grows by |F|, F's own error by the largest |y|; the product's rounding
     // and the one-bit alignment are 4 LSB.
@@ -346,12 +384,17 @@ ImuExport ExportImuConstants(const ImuCalibrationConstants& in) {
     rate_dps = rate_dps * st.factor_max + kRatedRate_dps * st.factor + 4 * Lsb(kRateExponent);
   }
   const double ca_in_g = accel_g * st.quadratic_gain + st.quadratic_g;
-  const double ca_bound = ExportMatrix(in.ca_mps2_per_g, q.ca, kAccelMps2Exponent, kRatedAccel_g,
-                                       ca_in_g, "CA block 0x0E");
-  double cg_bound = ExportMatrix(in.cg, q.cg, kRateExponent, kRatedRate_dps, rate_dps, "CG block 0x0F");
+  const double ca_bound = ExportMatrix(
+      in.ca_mps2_per_g, q.ca, kAccelMps2Exponent, kRatedAccel_g, ca_in_g, "CA block 0x0E");
+  double cg_bound =
+      ExportMatrix(in.cg, q.cg, kRateExponent, kRatedRate_dps, rate_dps, "CG block 0x0F");
   if (in.scale_temperature.active) {
-    cg_bound += ExportMatrix(in.scale_temperature.gs_dps_per_mps2, q.scale_temperature.gs,
-                             kRateExponent, kRatedAccel_mps2, ca_bound, "GS block 0x1B") +
+    cg_bound += ExportMatrix(in.scale_temperature.gs_dps_per_mps2,
+                             q.scale_temperature.gs,
+                             kRateExponent,
+                             kRatedAccel_mps2,
+                             ca_bound,
+                             "GS block 0x1B") +
                 4 * Lsb(kRateExponent);
     DeriveScaleTemperatureQ15(&q.scale_temperature);
     cg_bound += GSensitivityQ15Bound(q.scale_temperature, in.scale_temperature.gs_dps_per_mps2);
@@ -383,10 +426,16 @@ GainQ15 QuantiseGain(double at_centre, double per_tau, int result_e, const std::
   int e = result_e - kMaxAlignShift;
   while (e <= result_e && std::fabs(q15(at_centre, e)) + std::fabs(q15(per_tau, e)) > 32767.0) ++e;
   if (e > result_e) {
-    throw std::invalid_argument(fmt::format("{}: gain {:.6g} + {:.6g} tau exceeds the result's full "
-                                            "scale 2^{}", what, at_centre, per_tau, result_e));
+    throw std::invalid_argument(
+        fmt::format("{}: gain {:.6g} + {:.6g} tau exceeds the result's full "
+                    "scale 2^{}",
+                    what,
+                    at_centre,
+                    per_tau,
+                    result_e));
   }
-  return GainQ15{static_cast<int16_t>(q15(at_centre, e)), static_cast<int16_t>(q15(per_tau, e)),
+  return GainQ15{static_cast<int16_t>(q15(at_centre, e)),
+                 static_cast<int16_t>(q15(per_tau, e)),
                  static_cast<int8_t>(e)};
 }
 
@@ -400,23 +449,27 @@ double Q15Lsb(int exponent) { return std::ldexp(1.0, exponent - 15); }
 // contribution to the error bound against the double reference fed the same states and the exact
 // die temperature: per gain, its rounding (1 LSB each part), tau's (Horner, 3 LSB of K degC) times
 // its slope, the Q15 gain's and state's roundings (2 + 4 LSB of the gain), the alignment (1 LSB).
-double ExportHysteresis(const HysteresisCompensation& h, int result_e, const std::string& what,
+double ExportHysteresis(const HysteresisCompensation& h,
+                        int result_e,
+                        const std::string& what,
                         SurfaceQ31* q) {
   for (int16_t& t : q->die_temp_q15) t = 0;
   Real centre_c = kHysteresisGainReferenceC;
   Real scale_c = 1;
   if (h.die_temp_c[1] != 0.0 || h.die_temp_c[2] != 0.0 || h.die_temp_c[3] != 0.0) {
     const std::vector<Real> k(h.die_temp_c.begin(), h.die_temp_c.end());
-    const std::vector<Real> c = Renormalise(
-        k, static_cast<Real>(q->y_norm.centre) - static_cast<Real>(h.die_temp_origin_code),
-        q->y_norm.shift);
+    const std::vector<Real> c =
+        Renormalise(k,
+                    static_cast<Real>(q->y_norm.centre) - static_cast<Real>(h.die_temp_origin_code),
+                    q->y_norm.shift);
     const Real sum = std::fabs(c[1]) + std::fabs(c[2]) + std::fabs(c[3]);
     int scale_e = -8;
     while (sum >= 0.99L * std::ldexp(Real{1}, scale_e)) ++scale_e;
     if (scale_e > 16) {
-      throw std::invalid_argument(fmt::format(
-          "{}: die temperature spans {:.6g} degC over the code box, beyond tau's range", what,
-          static_cast<double>(sum)));
+      throw std::invalid_argument(
+          fmt::format("{}: die temperature spans {:.6g} degC over the code box, beyond tau's range",
+                      what,
+                      static_cast<double>(sum)));
     }
     for (int m = 1; m <= 3; ++m) {
       q->die_temp_q15[m - 1] = static_cast<int16_t>(std::nearbyint(std::ldexp(c[m], 15 - scale_e)));
@@ -424,21 +477,30 @@ double ExportHysteresis(const HysteresisCompensation& h, int result_e, const std
     centre_c = c[0];
     scale_c = std::ldexp(Real{1}, scale_e);
   }
-  auto term = [&](double gain, double per_degc, double inv_span_input, int input_e,
+  auto term = [&](double gain,
+                  double per_degc,
+                  double inv_span_input,
+                  int input_e,
                   const std::string& name) {
     const Real at_centre = Real{gain} + Real{per_degc} * (centre_c - kHysteresisGainReferenceC);
-    const HysteresisTermQ t{
-        InverseSpan(inv_span_input, input_e, what + " " + name + " span"),
-        QuantiseGain(static_cast<double>(at_centre), static_cast<double>(per_degc * scale_c),
-                     result_e, what + " " + name)};
+    const HysteresisTermQ t{InverseSpan(inv_span_input, input_e, what + " " + name + " span"),
+                            QuantiseGain(static_cast<double>(at_centre),
+                                         static_cast<double>(per_degc * scale_c),
+                                         result_e,
+                                         what + " " + name)};
     return t;
   };
-  q->pressure = term(h.pressure_gain, h.pressure_gain_per_degc, h.pressure_span, result_e, "pressure");
-  q->thermal = term(h.thermal_gain, h.thermal_gain_per_degc,
-                    static_cast<double>(h.thermal_span_c / scale_c), 0, "thermal");
+  q->pressure =
+      term(h.pressure_gain, h.pressure_gain_per_degc, h.pressure_span, result_e, "pressure");
+  q->thermal = term(h.thermal_gain,
+                    h.thermal_gain_per_degc,
+                    static_cast<double>(h.thermal_span_c / scale_c),
+                    0,
+                    "thermal");
   double bound = 0.0;
-  for (const auto& [g, slope, c] : {std::tuple{h.pressure_gain, h.pressure_gain_per_degc, q->pressure.gain},
-                                    std::tuple{h.thermal_gain, h.thermal_gain_per_degc, q->thermal.gain}}) {
+  for (const auto& [g, slope, c] :
+       {std::tuple{h.pressure_gain, h.pressure_gain_per_degc, q->pressure.gain},
+        std::tuple{h.thermal_gain, h.thermal_gain_per_degc, q->thermal.gain}}) {
     const double lsb = Q15Lsb(c.exponent);
     bound += 2.0 * lsb + std::fabs(slope) * 3.0 * static_cast<double>(scale_c) / 32768.0 +
              6.0 * lsb + (std::fabs(g) + std::fabs(slope) * 65.0) * 4.0 / 32768.0 + Lsb(result_e);
@@ -462,15 +524,15 @@ BridgeLinearisationQ ExportLinearisation(const SurfaceFit& s, const std::string&
   if (!l.active()) return BridgeLinearisationQ{InputNormQ31{0, 23}, 0};
   constexpr double kCodeLimit = 16777216.0;  // the ADS1254's 2^24
   if (l.origin_code != std::nearbyint(l.origin_code) || std::fabs(l.origin_code) >= kCodeLimit) {
-    throw std::invalid_argument(fmt::format("{}: linearisation origin {} is not a whole 24-bit code",
-                                            what, l.origin_code));
+    throw std::invalid_argument(
+        fmt::format("{}: linearisation origin {} is not a whole 24-bit code", what, l.origin_code));
   }
   auto raw_offset = [&](double s_code) {
     const double d = s_code - l.origin_code;
     return d + l.curvature_per_code * d * d / 4.0;
   };
-  const int shift =
-      HalfWidthShift(std::max(std::fabs(raw_offset(s.y_min_code)), std::fabs(raw_offset(s.y_max_code))));
+  const int shift = HalfWidthShift(
+      std::max(std::fabs(raw_offset(s.y_min_code)), std::fabs(raw_offset(s.y_max_code))));
   const double k_q13 = std::nearbyint(std::ldexp(l.curvature_per_code, shift + 13));
   // sqrt(1 + kappa (y - origin)) = 1 + kappa d / 2 must stay positive over the box (the root's
   // own branch).
@@ -479,11 +541,14 @@ BridgeLinearisationQ ExportLinearisation(const SurfaceFit& s, const std::string&
   if (shift > 24 || std::fabs(k_q13) > INT16_MAX || !principal) {
     throw std::invalid_argument(fmt::format(
         "{}: bridge curvature {:.4g} per code over a half-width of 2^{} codes is beyond the "
-        "target's |k| < 4 (or its 2^24 codes, or turns inside the y box)", what,
-        l.curvature_per_code, shift));
+        "target's |k| < 4 (or its 2^24 codes, or turns inside the y box)",
+        what,
+        l.curvature_per_code,
+        shift));
   }
-  return BridgeLinearisationQ{InputNormQ31{static_cast<int32_t>(l.origin_code), static_cast<uint8_t>(shift)},
-                              static_cast<int16_t>(k_q13)};
+  return BridgeLinearisationQ{
+      InputNormQ31{static_cast<int32_t>(l.origin_code), static_cast<uint8_t>(shift)},
+      static_cast<int16_t>(k_q13)};
 }
 
 // The linearised code's error against the double's, in codes: the quotient's LSB 2^(shift - 14),
@@ -498,13 +563,13 @@ double LinearisedCodeError(const SurfaceFit& s, const BridgeLinearisationQ& l) {
 AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
   AdsExport out{};
   AdsConstantsInit(&out.constants);
-  auto export_surface = [](const SurfaceFit& s, int out_e, const std::string& what,
-                           SurfaceQ31* q) {
+  auto export_surface = [](const SurfaceFit& s, int out_e, const std::string& what, SurfaceQ31* q) {
     auto norm = [&](double lo, double hi, const char* axis) {
       const double centre = std::nearbyint(0.5 * (lo + hi));
       const int shift = HalfWidthShift(std::max(hi - centre, centre - lo));
       if (shift > 31 || std::fabs(centre) >= std::ldexp(1.0, 31)) {
-        throw std::invalid_argument(fmt::format("{}: {} code box [{}, {}] too wide", what, axis, lo, hi));
+        throw std::invalid_argument(
+            fmt::format("{}: {} code box [{}, {}] too wide", what, axis, lo, hi));
       }
       return InputNormQ31{static_cast<int32_t>(centre), static_cast<uint8_t>(shift)};
     };
@@ -521,7 +586,8 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
         for (int p = m; p <= kPx; ++p) {
           for (int r = n; r <= kQy; ++r) {
             norm_c[m][n] += Real{s.coeff_xy[p][r]} * Binomial(p, m) * std::pow(cx, p - m) *
-                            std::pow(hx, m) * Binomial(r, n) * std::pow(cy, r - n) * std::pow(hy, n);
+                            std::pow(hx, m) * Binomial(r, n) * std::pow(cy, r - n) *
+                            std::pow(hy, n);
           }
         }
       }
@@ -552,13 +618,16 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
         for (int m = 0; m <= kPx; ++m) {
           for (int n = 1; n <= kQy; ++n) slope_per_code += n * std::fabs(norm_c[m][n]) / hy;
         }
-        return bound + 4 * kPx * Lsb(e) + Lsb(out_e) + ExportHysteresis(s.hysteresis, out_e, what, q) +
+        return bound + 4 * kPx * Lsb(e) + Lsb(out_e) +
+               ExportHysteresis(s.hysteresis, out_e, what, q) +
                static_cast<double>(slope_per_code) * LinearisedCodeError(s, q->y_linearisation);
       }
     }
-    throw std::invalid_argument(fmt::format(
-        "{}: the surface's partial sums need more than 2^{} (output format 2^{})", what,
-        out_e + kMaxAlignShift, out_e));
+    throw std::invalid_argument(
+        fmt::format("{}: the surface's partial sums need more than 2^{} (output format 2^{})",
+                    what,
+                    out_e + kMaxAlignShift,
+                    out_e));
   };
   // Under a law the surface gives Pa; its bound is carried to the output through the law's
   // steepest slope in the envelope (at 51,000 ft, and at 25 kt: the envelope's 30 kt less a margin
@@ -567,18 +636,25 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
   // 0.007 kt at 25 kt), the square root's 1/128 kt and the output's resolution.
   const bool isa = in.altitude_ft.law == SurfaceLaw::kIsaAltitude;
   const bool cas = in.airspeed_kt.law == SurfaceLaw::kCas;
-  const double alt_bound = export_surface(in.altitude_ft, isa ? kPressureExponent : kAltitudeExponent,
-                                          "altitude block 0x21", &out.constants.altitude);
-  const double cas_bound = export_surface(in.airspeed_kt, cas ? kPressureExponent : kAirspeedExponent,
-                                          "airspeed block 0x22", &out.constants.airspeed);
+  const double alt_bound = export_surface(in.altitude_ft,
+                                          isa ? kPressureExponent : kAltitudeExponent,
+                                          "altitude block 0x21",
+                                          &out.constants.altitude);
+  const double cas_bound = export_surface(in.airspeed_kt,
+                                          cas ? kPressureExponent : kAirspeedExponent,
+                                          "airspeed block 0x22",
+                                          &out.constants.airspeed);
   out.constants.altitude.law = isa ? kAdsLawIsaAltitude : kAdsLawDirect;
   out.constants.airspeed.law = cas ? kAdsLawCas : kAdsLawDirect;
   constexpr double kLowestStaticPa = 11000.0, kLowestImpactPa = 101.0, kLowestCasKt = 25.0;
-  const double ft_per_pa = IsaAltitudeFtFromStaticPa(kLowestStaticPa - 0.5) - IsaAltitudeFtFromStaticPa(kLowestStaticPa + 0.5);
-  const double kt_per_pa = CasKtFromImpactPa(kLowestImpactPa + 0.5) - CasKtFromImpactPa(kLowestImpactPa - 0.5);
+  const double ft_per_pa = IsaAltitudeFtFromStaticPa(kLowestStaticPa - 0.5) -
+                           IsaAltitudeFtFromStaticPa(kLowestStaticPa + 0.5);
+  const double kt_per_pa =
+      CasKtFromImpactPa(kLowestImpactPa + 0.5) - CasKtFromImpactPa(kLowestImpactPa - 0.5);
   out.report.altitude_ft = isa ? alt_bound * ft_per_pa + 0.36 + Lsb(kAltitudeExponent) : alt_bound;
-  out.report.airspeed_kt =
-      cas ? cas_bound * kt_per_pa + 0.36 / (2.0 * kLowestCasKt) + 1.0 / 128.0 + Lsb(kAirspeedExponent) : cas_bound;
+  out.report.airspeed_kt = cas ? cas_bound * kt_per_pa + 0.36 / (2.0 * kLowestCasKt) + 1.0 / 128.0 +
+                                     Lsb(kAirspeedExponent)
+                               : cas_bound;
   AdsConstants check{};
   AdsConstantsInit(&check);
   for (uint8_t id : {uint8_t{kAdsBlockAltitude}, uint8_t{kAdsBlockAirspeed}}) {
@@ -587,8 +663,11 @@ AdsExport ExportAdsConstants(const AdsCalibrationConstants& in) {
     AdsConstantsReadBlock(&out.constants, id, words, kAdsMaxBlockWords, &count);
     const ConstantsStatus status = AdsConstantsWriteBlock(&check, id, words, count);
     if (status != ConstantsStatus::kOk) {
-      throw std::invalid_argument(fmt::format("ADS block 0x{:02X}: target validation refuses it "
-                                              "(status {})", id, static_cast<int>(status)));
+      throw std::invalid_argument(
+          fmt::format("ADS block 0x{:02X}: target validation refuses it "
+                      "(status {})",
+                      id,
+                      static_cast<int>(status)));
     }
   }
   return out;

@@ -26,10 +26,10 @@
 namespace adahrs::firmware_model {
 
 struct ImuExportReport {
-  double accel_g = 0.0;       ///< worst case |error| of a sensor-calibrated accel channel, g
-  double rate_dps = 0.0;      ///< of a sensor-calibrated gyro channel, deg/s
-  double accel_mps2 = 0.0;    ///< of a fully calibrated A component, m/s^2
-  double rate_full_dps = 0.0; ///< of a fully calibrated G component, deg/s
+  double accel_g = 0.0;        ///< worst case |error| of a sensor-calibrated accel channel, g
+  double rate_dps = 0.0;       ///< of a sensor-calibrated gyro channel, deg/s
+  double accel_mps2 = 0.0;     ///< of a fully calibrated A component, m/s^2
+  double rate_full_dps = 0.0;  ///< of a fully calibrated G component, deg/s
 };
 
 struct AdsExportReport {

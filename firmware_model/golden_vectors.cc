@@ -73,7 +73,8 @@ std::string Compare(const json& expected, const json& got, const std::string& wh
 
 }  // namespace
 
-json MakeCompensatorGolden(const ImuConstants& imu, const AdsConstants& ads,
+json MakeCompensatorGolden(const ImuConstants& imu,
+                           const AdsConstants& ads,
                            const std::vector<ImuRawFrame>& imu_frames,
                            const std::vector<AdsRawFrame>& ads_frames) {
   json doc;
@@ -111,16 +112,16 @@ std::string ReplayCompensatorGolden(const json& golden) {
   ImuConstantsInit(&imu);
   for (const json& b : golden.at("imu").at("blocks")) {
     const std::vector<int16_t> words = b.at("words").get<std::vector<int16_t>>();
-    const ConstantsStatus s = ImuConstantsWriteBlock(&imu, b.at("id").get<uint8_t>(), words.data(),
-                                                     static_cast<uint8_t>(words.size()));
+    const ConstantsStatus s = ImuConstantsWriteBlock(
+        &imu, b.at("id").get<uint8_t>(), words.data(), static_cast<uint8_t>(words.size()));
     if (s != ConstantsStatus::kOk) return "IMU block " + b.at("id").dump() + " refused";
   }
   AdsConstants ads;
   AdsConstantsInit(&ads);
   for (const json& b : golden.at("ads").at("blocks")) {
     const std::vector<int16_t> words = b.at("words").get<std::vector<int16_t>>();
-    const ConstantsStatus s = AdsConstantsWriteBlock(&ads, b.at("id").get<uint8_t>(), words.data(),
-                                                     static_cast<uint8_t>(words.size()));
+    const ConstantsStatus s = AdsConstantsWriteBlock(
+        &ads, b.at("id").get<uint8_t>(), words.data(), static_cast<uint8_t>(words.size()));
     if (s != ConstantsStatus::kOk) return "ADS block " + b.at("id").dump() + " refused";
   }
   const json& imu_frames = golden.at("imu").at("frames");
@@ -135,7 +136,8 @@ std::string ReplayCompensatorGolden(const json& golden) {
       raw.gyro_cnt[k] = f.at("gyro_cnt")[k].get<int32_t>();
       raw.temp_cnt[k] = f.at("temp_cnt")[k].get<uint16_t>();
     }
-    const std::string diff = Compare(f.at("modes"), ImuModes(imu, raw), "IMU frame " + std::to_string(i));
+    const std::string diff =
+        Compare(f.at("modes"), ImuModes(imu, raw), "IMU frame " + std::to_string(i));
     if (!diff.empty()) return diff;
   }
   const json& ads_frames = golden.at("ads").at("frames");
@@ -143,10 +145,13 @@ std::string ReplayCompensatorGolden(const json& golden) {
   AdsHysteresisReset(&state);
   for (size_t i = 0; i < ads_frames.size(); ++i) {
     const json& f = ads_frames[i];
-    const AdsRawFrame raw{f.at("ps_code").get<int32_t>(), f.at("pt_code").get<int32_t>(),
+    const AdsRawFrame raw{f.at("ps_code").get<int32_t>(),
+                          f.at("pt_code").get<int32_t>(),
                           f.at("ps_bridge_code").get<int32_t>(),
-                          f.at("pt_bridge_code").get<int32_t>(), f.at("oat_code").get<int32_t>()};
-    const std::string diff = Compare(f.at("modes"), AdsModes(ads, raw, &state), "ADS frame " + std::to_string(i));
+                          f.at("pt_bridge_code").get<int32_t>(),
+                          f.at("oat_code").get<int32_t>()};
+    const std::string diff =
+        Compare(f.at("modes"), AdsModes(ads, raw, &state), "ADS frame " + std::to_string(i));
     if (!diff.empty()) return diff;
   }
   return "";

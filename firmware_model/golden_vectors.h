@@ -22,7 +22,8 @@
 namespace adahrs::firmware_model {
 
 /// Runs every frame in every mode and records inputs, constants (as block words) and outputs.
-nlohmann::json MakeCompensatorGolden(const ImuConstants& imu, const AdsConstants& ads,
+nlohmann::json MakeCompensatorGolden(const ImuConstants& imu,
+                                     const AdsConstants& ads,
                                      const std::vector<ImuRawFrame>& imu_frames,
                                      const std::vector<AdsRawFrame>& ads_frames);
 

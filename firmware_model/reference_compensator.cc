@@ -14,7 +14,9 @@ constexpr int kPairOfAxis[3][2] = {{1, 4}, {2, 5}, {0, 3}};  // x, y, z: (ch1, c
 double Scale(int8_t exponent) { return std::ldexp(1.0, exponent - 31); }
 
 // F(t) of one channel (calibration_constants.h ImuScaleTemperature).
-double ScaleFactor(const ImuScaleTemperature& st, int sensor, const std::array<double, 4>& f,
+double ScaleFactor(const ImuScaleTemperature& st,
+                   int sensor,
+                   const std::array<double, 4>& f,
                    double temp_cnt) {
   const double d = temp_cnt - st.sensor[sensor].origin_cnt;
   return f[0] + d * (f[1] + d * (f[2] + d * f[3]));
@@ -22,7 +24,8 @@ double ScaleFactor(const ImuScaleTemperature& st, int sensor, const std::array<d
 
 }  // namespace
 
-std::array<double, 9> ImuReference(const ImuCalibrationConstants& c, ImuCompensationMode mode,
+std::array<double, 9> ImuReference(const ImuCalibrationConstants& c,
+                                   ImuCompensationMode mode,
                                    const ImuRawFrame& raw) {
   std::array<double, 9> u{};
   for (int i = 0; i < 6; ++i) {
@@ -107,19 +110,27 @@ double EvaluateSurfaceFit(const SurfaceFit& s, double x_code, double y_code) {
   return SurfaceAt(s, x_code, LinearisedBridgeCode(s.y_linearisation, y_code));
 }
 
-std::array<double, 2> AdsReference(const AdsCalibrationConstants& c, AdsCompensationMode mode,
-                                   const AdsRawFrame& raw, const AdsReferenceStates& states) {
+std::array<double, 2> AdsReference(const AdsCalibrationConstants& c,
+                                   AdsCompensationMode mode,
+                                   const AdsRawFrame& raw,
+                                   const AdsReferenceStates& states) {
   if (mode == AdsCompensationMode::kRaw) {
     return {static_cast<double>(raw.ps_code), static_cast<double>(raw.pt_code)};
   }
-  return {SurfaceOutput(c.altitude_ft, raw.ps_code, raw.ps_bridge_code, states.static_pressure,
+  return {SurfaceOutput(c.altitude_ft,
+                        raw.ps_code,
+                        raw.ps_bridge_code,
+                        states.static_pressure,
                         states.static_thermal),
-          SurfaceOutput(c.airspeed_kt, raw.pt_code, raw.pt_bridge_code, states.pitot_pressure,
+          SurfaceOutput(c.airspeed_kt,
+                        raw.pt_code,
+                        raw.pt_bridge_code,
+                        states.pitot_pressure,
                         states.pitot_thermal)};
 }
 
-double SurfaceOutput(const SurfaceFit& s, double x_code, double y_code, double s_pressure,
-                     double s_thermal) {
+double SurfaceOutput(
+    const SurfaceFit& s, double x_code, double y_code, double s_pressure, double s_thermal) {
   const HysteresisCompensation& h = s.hysteresis;
   const double y = LinearisedBridgeCode(s.y_linearisation, y_code);
   double die_c = 0.0;  // T(y): only the gains' slopes use it
@@ -147,12 +158,25 @@ std::array<double, 9> ImuFrameToDouble(ImuCompensationMode mode, const ImuCompen
       e = {0, 0, 0, 0, 0, 0, kGyroCountExponent, kGyroCountExponent, kGyroCountExponent};
       break;
     case ImuCompensationMode::kSensorCalibrated:
-      e = {kAccelGExponent, kAccelGExponent, kAccelGExponent, kAccelGExponent, kAccelGExponent,
-           kAccelGExponent, kRateExponent,   kRateExponent,   kRateExponent};
+      e = {kAccelGExponent,
+           kAccelGExponent,
+           kAccelGExponent,
+           kAccelGExponent,
+           kAccelGExponent,
+           kAccelGExponent,
+           kRateExponent,
+           kRateExponent,
+           kRateExponent};
       break;
     case ImuCompensationMode::kFullyCalibrated:
-      e = {kAccelMps2Exponent, kAccelMps2Exponent, kAccelMps2Exponent, kRateExponent,
-           kRateExponent,      kRateExponent,      kAccelGExponent,    kAccelGExponent,
+      e = {kAccelMps2Exponent,
+           kAccelMps2Exponent,
+           kAccelMps2Exponent,
+           kRateExponent,
+           kRateExponent,
+           kRateExponent,
+           kAccelGExponent,
+           kAccelGExponent,
            kAccelGExponent};
       break;
   }

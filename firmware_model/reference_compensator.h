@@ -16,7 +16,8 @@ namespace adahrs::firmware_model {
 
 /// The nine IMU outputs of `mode`, in the physical units of compensated_frame.h.
 std::array<double, 9> ImuReference(const ImuCalibrationConstants& constants,
-                                   ImuCompensationMode mode, const ImuRawFrame& raw);
+                                   ImuCompensationMode mode,
+                                   const ImuRawFrame& raw);
 
 /// The hysteresis states the reference is given (it runs no operator: the target's are checked
 /// against the simulator's law on their own, tests/firmware_model/preisach_q15_test.cc).
@@ -30,7 +31,8 @@ struct AdsReferenceStates {
 /// Altitude (ft) and airspeed (kt) from the surfaces and their hysteresis terms at `states`; in
 /// kRaw mode the ps and pt codes.
 std::array<double, 2> AdsReference(const AdsCalibrationConstants& constants,
-                                   AdsCompensationMode mode, const AdsRawFrame& raw,
+                                   AdsCompensationMode mode,
+                                   const AdsRawFrame& raw,
                                    const AdsReferenceStates& states = {});
 
 /// The linearised code s(y) of a bridge-voltage code (calibration_constants.h); y itself when the
@@ -42,8 +44,11 @@ double EvaluateSurfaceFit(const SurfaceFit& surface, double x_code, double y_cod
 /// The output of a surface, its hysteresis terms at states (s_pressure, s_thermal) with the gains
 /// at the die temperature of the (linearised) y_code, and its law (air_data_law.h, exact in
 /// double): ft or kt.
-double SurfaceOutput(const SurfaceFit& surface, double x_code, double y_code,
-                     double s_pressure = 0.0, double s_thermal = 0.0);
+double SurfaceOutput(const SurfaceFit& surface,
+                     double x_code,
+                     double y_code,
+                     double s_pressure = 0.0,
+                     double s_thermal = 0.0);
 
 /// Converts a fixed-point frame to the same physical units (value = word * 2^(exponent - 31)).
 std::array<double, 9> ImuFrameToDouble(ImuCompensationMode mode, const ImuCompensatedFrame& frame);

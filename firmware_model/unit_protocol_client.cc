@@ -25,29 +25,40 @@ constexpr size_t kMaxBlockWords = (kMaxPayloadBytes - kWriteBlockHeaderBytes) / 
 
 std::string CommandName(MaintenanceCommand command) {
   switch (command) {
-    case MaintenanceCommand::kNone: return "NONE";
-    case MaintenanceCommand::kSetMode: return "SET_MODE";
-    case MaintenanceCommand::kSetTag: return "SET_TAG";
-    case MaintenanceCommand::kWriteBlock: return "WRITE_BLOCK";
-    case MaintenanceCommand::kReadBlock: return "READ_BLOCK";
-    case MaintenanceCommand::kCommit: return "COMMIT";
-    case MaintenanceCommand::kIdentify: return "IDENTIFY";
-    case MaintenanceCommand::kReset: return "RESET";
-    case MaintenanceCommand::kReadCounters: return "READ_COUNTERS";
+    case MaintenanceCommand::kNone:
+      return "NONE";
+    case MaintenanceCommand::kSetMode:
+      return "SET_MODE";
+    case MaintenanceCommand::kSetTag:
+      return "SET_TAG";
+    case MaintenanceCommand::kWriteBlock:
+      return "WRITE_BLOCK";
+    case MaintenanceCommand::kReadBlock:
+      return "READ_BLOCK";
+    case MaintenanceCommand::kCommit:
+      return "COMMIT";
+    case MaintenanceCommand::kIdentify:
+      return "IDENTIFY";
+    case MaintenanceCommand::kReset:
+      return "RESET";
+    case MaintenanceCommand::kReadCounters:
+      return "READ_COUNTERS";
   }
   return "command 0x" + Hex2(static_cast<unsigned>(command));
 }
 
 // Checks that `response` is an ACK of `expected` carrying `data_bytes` bytes (any length if 0).
-void ExpectAck(const MaintenanceResponse& response, MaintenanceCommand expected, size_t data_bytes) {
+void ExpectAck(const MaintenanceResponse& response,
+               MaintenanceCommand expected,
+               size_t data_bytes) {
   if (response.command != expected) {
     throw ProtocolError("expected a response to " + CommandName(expected) + ", got one to " +
                         CommandName(response.command) + " (sequence " +
                         std::to_string(response.sequence) + ")");
   }
   if (response.result != ResultCode::kAck) {
-    throw ProtocolError(CommandName(expected) + " refused by the unit: " +
-                        ResultCodeName(response.result) + " (sequence " +
+    throw ProtocolError(CommandName(expected) +
+                        " refused by the unit: " + ResultCodeName(response.result) + " (sequence " +
                         std::to_string(response.sequence) + ")");
   }
   if (data_bytes != 0 && response.data.size() != data_bytes) {
@@ -60,7 +71,8 @@ void ExpectAck(const MaintenanceResponse& response, MaintenanceCommand expected,
 void ExpectFrameType(const Frame& frame, PacketType type, const char* what) {
   if (frame.type != static_cast<uint8_t>(type)) {
     throw ProtocolError(std::string("expected ") + what + " (type 0x" +
-                        Hex2(static_cast<unsigned>(type)) + "), got packet type 0x" + Hex2(frame.type));
+                        Hex2(static_cast<unsigned>(type)) + "), got packet type 0x" +
+                        Hex2(frame.type));
   }
 }
 
@@ -72,11 +84,14 @@ uint16_t HostCrc16(std::span<const uint8_t> bytes) {
   return crc.checksum();
 }
 
-std::vector<uint8_t> BuildFrame(uint8_t type, uint8_t sequence, uint8_t tag,
+std::vector<uint8_t> BuildFrame(uint8_t type,
+                                uint8_t sequence,
+                                uint8_t tag,
                                 std::span<const uint8_t> payload) {
   if (payload.size() > kMaxPayloadBytes) {
     throw ProtocolError("payload of " + std::to_string(payload.size()) +
-                        " bytes exceeds the protocol maximum of " + std::to_string(kMaxPayloadBytes));
+                        " bytes exceeds the protocol maximum of " +
+                        std::to_string(kMaxPayloadBytes));
   }
   std::vector<uint8_t> frame;
   frame.reserve(kFrameHeaderBytes + payload.size() + kFrameTrailerBytes);
@@ -96,18 +111,30 @@ std::vector<uint8_t> BuildFrame(uint8_t type, uint8_t sequence, uint8_t tag,
 
 std::string ResultCodeName(ResultCode code) {
   switch (code) {
-    case ResultCode::kAck: return "ACK";
-    case ResultCode::kBadCrc: return "NAK bad CRC";
-    case ResultCode::kBadLength: return "NAK bad length";
-    case ResultCode::kUnknownCommand: return "NAK unknown command";
-    case ResultCode::kBadArgument: return "NAK bad argument";
-    case ResultCode::kNoValidConstants: return "NAK no valid constants";
-    case ResultCode::kUnknownBlock: return "NAK unknown block";
-    case ResultCode::kBlockWrongLength: return "NAK block wrong length";
-    case ResultCode::kConstantOutOfRange: return "NAK constant out of range";
-    case ResultCode::kConstantOverflow: return "NAK constant overflows fixed-point format";
-    case ResultCode::kIncompleteConstants: return "NAK incomplete constants";
-    case ResultCode::kFlashError: return "NAK flash error";
+    case ResultCode::kAck:
+      return "ACK";
+    case ResultCode::kBadCrc:
+      return "NAK bad CRC";
+    case ResultCode::kBadLength:
+      return "NAK bad length";
+    case ResultCode::kUnknownCommand:
+      return "NAK unknown command";
+    case ResultCode::kBadArgument:
+      return "NAK bad argument";
+    case ResultCode::kNoValidConstants:
+      return "NAK no valid constants";
+    case ResultCode::kUnknownBlock:
+      return "NAK unknown block";
+    case ResultCode::kBlockWrongLength:
+      return "NAK block wrong length";
+    case ResultCode::kConstantOutOfRange:
+      return "NAK constant out of range";
+    case ResultCode::kConstantOverflow:
+      return "NAK constant overflows fixed-point format";
+    case ResultCode::kIncompleteConstants:
+      return "NAK incomplete constants";
+    case ResultCode::kFlashError:
+      return "NAK flash error";
   }
   return "NAK code 0x" + Hex2(static_cast<unsigned>(code));
 }
@@ -141,7 +168,8 @@ std::vector<Frame> StreamReader::Push(std::span<const uint8_t> bytes) {
   }
 }
 
-std::vector<uint8_t> UnitProtocolClient::Request(uint8_t command, std::span<const uint8_t> arguments) {
+std::vector<uint8_t> UnitProtocolClient::Request(uint8_t command,
+                                                 std::span<const uint8_t> arguments) {
   std::vector<uint8_t> payload = {command};
   payload.insert(payload.end(), arguments.begin(), arguments.end());
   const uint8_t sequence = next_sequence_++;
@@ -163,7 +191,8 @@ std::vector<uint8_t> UnitProtocolClient::SetTag(uint8_t tag) {
   return Request(static_cast<uint8_t>(MaintenanceCommand::kSetTag), arguments);
 }
 
-std::vector<uint8_t> UnitProtocolClient::WriteBlock(uint8_t block_id, std::span<const int16_t> words) {
+std::vector<uint8_t> UnitProtocolClient::WriteBlock(uint8_t block_id,
+                                                    std::span<const int16_t> words) {
   if (words.size() > kMaxBlockWords) {
     throw ProtocolError("constant block " + std::to_string(block_id) + " has " +
                         std::to_string(words.size()) + " words; one request carries at most " +
@@ -269,7 +298,8 @@ ImuDataPayload ParseImuData(const Frame& frame) {
   if (!DecodeImuPayload(frame.payload, frame.payload_length, &data)) {
     throw ProtocolError("IMU data payload of " + std::to_string(frame.payload_length) +
                         " bytes is malformed (length must be 43 in raw mode, 81 otherwise, with a "
-                        "mode byte 0..3): " + HexTrace({frame.payload, frame.payload_length}));
+                        "mode byte 0..3): " +
+                        HexTrace({frame.payload, frame.payload_length}));
   }
   return data;
 }
@@ -280,7 +310,8 @@ AdsDataPayload ParseAdsData(const Frame& frame) {
   if (!DecodeAdsPayload(frame.payload, frame.payload_length, &data)) {
     throw ProtocolError("ADS data payload of " + std::to_string(frame.payload_length) +
                         " bytes is malformed (length must be 21 in raw mode, 31 otherwise, with a "
-                        "mode byte 0..1): " + HexTrace({frame.payload, frame.payload_length}));
+                        "mode byte 0..1): " +
+                        HexTrace({frame.payload, frame.payload_length}));
   }
   return data;
 }

@@ -30,7 +30,9 @@ class ProtocolError : public std::runtime_error {
 uint16_t HostCrc16(std::span<const uint8_t> bytes);
 
 /// One complete frame (sync to CRC). Throws ProtocolError if the payload exceeds 250 bytes.
-std::vector<uint8_t> BuildFrame(uint8_t type, uint8_t sequence, uint8_t tag,
+std::vector<uint8_t> BuildFrame(uint8_t type,
+                                uint8_t sequence,
+                                uint8_t tag,
                                 std::span<const uint8_t> payload);
 
 /// Human-readable name of a result code ("ACK", "NAK bad CRC", ...), for messages and logs.
@@ -90,7 +92,7 @@ struct IdentifyInfo {
   uint8_t firmware_major;
   uint8_t firmware_minor;
   uint8_t firmware_patch;
-  bool constants_valid;        ///< a valid committed image was loaded at power-on or committed since
+  bool constants_valid;  ///< a valid committed image was loaded at power-on or committed since
   uint16_t constants_version;  ///< commits so far, 0 if none
   uint16_t constants_crc;      ///< CRC of the committed image, 0 if none
   uint8_t mode;                ///< ImuCompensationMode or AdsCompensationMode value, per unit_kind
@@ -129,7 +131,8 @@ AdsDataPayload ParseAdsData(const Frame& frame);
 /// consecutive observations, assuming fewer than 256 are lost in a row.
 class SequenceTracker {
  public:
-  /// Records `sequence`; returns the number of packets lost since the previous one (0 for the first).
+  /// Records `sequence`; returns the number of packets lost since the previous one (0 for the
+  /// first).
   uint32_t Observe(uint8_t sequence);
   uint64_t lost_total() const { return lost_total_; }
 

@@ -43,7 +43,8 @@ void ScaledClock::SleepS(double duration_s) const {
   }
 }
 
-ReplyDeadline::ReplyDeadline(const Clock& clock, double timeout_s,
+ReplyDeadline::ReplyDeadline(const Clock& clock,
+                             double timeout_s,
                              std::chrono::milliseconds wall_timeout)
     : clock_(clock), timeout_s_(timeout_s), wall_timeout_(wall_timeout) {
   Restart();

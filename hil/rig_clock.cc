@@ -82,7 +82,9 @@ RigClock::RigClock(const std::filesystem::path& path, double stall_limit_wall_s)
   ::close(fd);
   if (map == MAP_FAILED) {
     throw std::runtime_error(fmt::format("rig clock {}: {} bytes, not a {}-byte clock file",
-                                         path.string(), static_cast<long long>(size), kFileBytes));
+                                         path.string(),
+                                         static_cast<long long>(size),
+                                         kFileBytes));
   }
   map_ = map;
   const char* bytes = static_cast<const char*>(map_);
@@ -129,7 +131,9 @@ void RigClock::SleepS(double duration_s) const {
     } else if (std::chrono::duration<double>(now - moved_at).count() > stall_limit_wall_s_) {
       throw std::runtime_error(fmt::format(
           "rig clock {} has stood at {:.2f} s for {:g} s of wall time: the rig has stopped",
-          path_.string(), static_cast<double>(frames) * frame_s_, stall_limit_wall_s_));
+          path_.string(),
+          static_cast<double>(frames) * frame_s_,
+          stall_limit_wall_s_));
     }
     // At the nominal speed the wait ends after remaining/scale; wake at least every 20 ms to
     // follow a rig that runs slower, and no more often than every 0.2 ms.

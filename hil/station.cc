@@ -19,8 +19,8 @@ struct InstrumentRole {
   InstrumentType type;
   unsigned default_baud;
 };
-// The instrument each role holds (reference-method.md: Aero 812 via ATL, Watlow F4 via Modbus on the
-// IMU rig, Watlow 942 on the ADS bench, Druck ADTS via GPIB through a Prologix-style adapter).
+// The instrument each role holds (reference-method.md: Aero 812 via ATL, Watlow F4 via Modbus on
+// the IMU rig, Watlow 942 on the ADS bench, Druck ADTS via GPIB through a Prologix-style adapter).
 constexpr InstrumentRole kRoles[] = {
     {"rate_table", InstrumentType::kAerosmithAtl, 9600},
     {"imu_chamber", InstrumentType::kWatlowF4, 9600},
@@ -30,10 +30,14 @@ constexpr InstrumentRole kRoles[] = {
 
 const char* TypeName(InstrumentType type) {
   switch (type) {
-    case InstrumentType::kAerosmithAtl: return "aerosmith_atl";
-    case InstrumentType::kWatlowF4: return "watlow_f4";
-    case InstrumentType::kWatlow942: return "watlow_942";
-    case InstrumentType::kDruckAdtsPrologix: return "druck_adts_prologix";
+    case InstrumentType::kAerosmithAtl:
+      return "aerosmith_atl";
+    case InstrumentType::kWatlowF4:
+      return "watlow_f4";
+    case InstrumentType::kWatlow942:
+      return "watlow_942";
+    case InstrumentType::kDruckAdtsPrologix:
+      return "druck_adts_prologix";
   }
   return "?";
 }
@@ -51,10 +55,15 @@ SerialSettings ReadPort(const ParamReader& r) {
   s.parity = parity[0];
   s.stop_bits = static_cast<unsigned>(r.Integer("stop_bits", 1, 2));
   const std::string flow = r.String("flow");
-  if (flow == "none") s.flow = SerialSettings::Flow::kNone;
-  else if (flow == "xonxoff") s.flow = SerialSettings::Flow::kSoftware;
-  else if (flow == "rtscts") s.flow = SerialSettings::Flow::kHardware;
-  else r.Fail(r.path() + ".flow", "expected \"none\", \"xonxoff\" or \"rtscts\", got \"" + flow + "\"");
+  if (flow == "none")
+    s.flow = SerialSettings::Flow::kNone;
+  else if (flow == "xonxoff")
+    s.flow = SerialSettings::Flow::kSoftware;
+  else if (flow == "rtscts")
+    s.flow = SerialSettings::Flow::kHardware;
+  else
+    r.Fail(r.path() + ".flow",
+           "expected \"none\", \"xonxoff\" or \"rtscts\", got \"" + flow + "\"");
   r.ExpectAllKeysUsed();
   return s;
 }
@@ -63,8 +72,12 @@ nlohmann::json PortJson(const SerialSettings& s) {
   const char* flow = s.flow == SerialSettings::Flow::kSoftware   ? "xonxoff"
                      : s.flow == SerialSettings::Flow::kHardware ? "rtscts"
                                                                  : "none";
-  return {{"path", s.path},          {"baud", s.baud},        {"data_bits", s.data_bits},
-          {"parity", std::string(1, s.parity)}, {"stop_bits", s.stop_bits}, {"flow", flow}};
+  return {{"path", s.path},
+          {"baud", s.baud},
+          {"data_bits", s.data_bits},
+          {"parity", std::string(1, s.parity)},
+          {"stop_bits", s.stop_bits},
+          {"flow", flow}};
 }
 
 // What makes two port paths one port: the device they lead to (a symlink and its /dev/pts target,
@@ -131,8 +144,8 @@ Station Station::FromJson(const ParamReader& r) {
     e.type = role.type;
     const std::string type = ir.String("type");
     if (type != TypeName(role.type)) {
-      ir.Fail(ir.path() + ".type", "role " + e.role + " holds a " + TypeName(role.type) +
-                                       ", not \"" + type + "\"");
+      ir.Fail(ir.path() + ".type",
+              "role " + e.role + " holds a " + TypeName(role.type) + ", not \"" + type + "\"");
     }
     e.port = ReadPort(ir.Child("port"));
     claim_path(ir, e.port.path);
@@ -153,9 +166,12 @@ Station Station::FromJson(const ParamReader& r) {
     u.role = ur.String("role");
     if (!roles.insert(u.role).second) ur.Fail(ur.path() + ".role", "duplicate role " + u.role);
     const std::string kind = ur.String("kind");
-    if (kind == "imu") u.kind = UnitKind::kImu;
-    else if (kind == "ads") u.kind = UnitKind::kAds;
-    else ur.Fail(ur.path() + ".kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
+    if (kind == "imu")
+      u.kind = UnitKind::kImu;
+    else if (kind == "ads")
+      u.kind = UnitKind::kAds;
+    else
+      ur.Fail(ur.path() + ".kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
     if (u.kind == UnitKind::kImu && ++imus > 4) {
       ur.Fail(ur.path(), "a batch holds at most 4 IMU units (the fixture has 4 slots)");
     }
@@ -164,7 +180,8 @@ Station Station::FromJson(const ParamReader& r) {
     u.slot = static_cast<int>(ur.Integer("slot", 1, 4));
     for (const UnitEntry& other : st.units) {
       if (other.kind == u.kind && other.slot == u.slot) {
-        ur.Fail(ur.path() + ".slot", "slot " + std::to_string(u.slot) + " already holds " + other.role);
+        ur.Fail(ur.path() + ".slot",
+                "slot " + std::to_string(u.slot) + " already holds " + other.role);
       }
     }
     u.timeout_ms = static_cast<int>(ur.Integer("timeout_ms", 10, 60000));
@@ -191,8 +208,10 @@ Station Station::FromJson(const ParamReader& r) {
 nlohmann::json Station::ToJson() const {
   nlohmann::json instruments = nlohmann::json::object();
   for (const InstrumentEntry& e : this->instruments) {
-    instruments[e.role] = {{"type", TypeName(e.type)},   {"port", PortJson(e.port)},
-                           {"address", e.address},       {"timeout_ms", e.timeout_ms},
+    instruments[e.role] = {{"type", TypeName(e.type)},
+                           {"port", PortJson(e.port)},
+                           {"address", e.address},
+                           {"timeout_ms", e.timeout_ms},
                            {"retries", e.retries}};
   }
   nlohmann::json units = nlohmann::json::array();

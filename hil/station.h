@@ -9,20 +9,20 @@
 #include <string>
 #include <vector>
 
-#include "hil/transport/serial_port.h"
 #include "common/param_reader.h"
+#include "hil/transport/serial_port.h"
 
 namespace adahrs::hil {
 
 enum class InstrumentType { kAerosmithAtl, kWatlowF4, kWatlow942, kDruckAdtsPrologix };
 
 struct InstrumentEntry {
-  std::string role;          ///< "rate_table", "imu_chamber", "ads_chamber", "adts"
+  std::string role;  ///< "rate_table", "imu_chamber", "ads_chamber", "adts"
   InstrumentType type{};
   SerialSettings port;
-  int address = 0;           ///< Modbus slave address (F4), controller address (942), GPIB (ADTS)
-  int timeout_ms = 1000;     ///< per reply, wall-clock milliseconds at time scale 1
-  int retries = 2;           ///< bounded retries of an unanswered command
+  int address = 0;        ///< Modbus slave address (F4), controller address (942), GPIB (ADTS)
+  int timeout_ms = 1000;  ///< per reply, wall-clock milliseconds at time scale 1
+  int retries = 2;        ///< bounded retries of an unanswered command
 };
 
 enum class UnitKind { kImu, kAds };
@@ -31,7 +31,7 @@ struct UnitEntry {
   std::string role;  ///< "imu1" … "imu4", "ads1" …
   UnitKind kind{};
   SerialSettings port;
-  int slot = 0;      ///< fixture slot (IMU) or pneumatic manifold position (ADS), 1-based
+  int slot = 0;  ///< fixture slot (IMU) or pneumatic manifold position (ADS), 1-based
   int timeout_ms = 500;
 };
 
@@ -48,7 +48,7 @@ struct OperatorEntry {
 
 struct Station {
   std::string name;
-  double time_scale = 1.0;       ///< clock seconds per wall second (1 on a real lab)
+  double time_scale = 1.0;  ///< clock seconds per wall second (1 on a real lab)
   /// A lockstep virtual rig's clock file (hil/rig_clock.h); empty: the clock is the wall's,
   /// scaled by time_scale.
   std::string clock_file;

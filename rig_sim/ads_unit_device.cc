@@ -10,13 +10,19 @@ namespace fm = firmware_model;
 
 AdsUnitDevice::AdsUnitDevice(const AdsUnitDeviceConfig& config)
     : UnitDevice(config.role,
-                 {fm::UnitKind::kAds, config.serial_number, kSimulatedFirmwareMajor,
-                  kSimulatedFirmwareMinor, kSimulatedFirmwarePatch},
+                 {fm::UnitKind::kAds,
+                  config.serial_number,
+                  kSimulatedFirmwareMajor,
+                  kSimulatedFirmwareMinor,
+                  kSimulatedFirmwarePatch},
                  config.baud),
       unit_(config.params, config.noise_seed, config.initial_air_c) {}
 
-uint16_t AdsUnitDevice::Acquire(double, const RigEnvironment& env, bool encode,
-                                fm::MaintenanceHandler& handler, uint8_t* frame,
+uint16_t AdsUnitDevice::Acquire(double,
+                                const RigEnvironment& env,
+                                bool encode,
+                                fm::MaintenanceHandler& handler,
+                                uint8_t* frame,
                                 uint16_t capacity) {
   sensor_sim::AdsStimulus stimulus;
   stimulus.ps_pa = env.ps_pa;
@@ -30,7 +36,10 @@ uint16_t AdsUnitDevice::Acquire(double, const RigEnvironment& env, bool encode,
   }
 
   fm::AdsDataPayload payload{};
-  payload.raw = {measured.ps_cnt, measured.pt_cnt, measured.ps_temp_cnt, measured.pt_temp_cnt,
+  payload.raw = {measured.ps_cnt,
+                 measured.pt_cnt,
+                 measured.ps_temp_cnt,
+                 measured.pt_temp_cnt,
                  measured.oat_cnt};
   payload.mode = handler.ads_mode();
   if (payload.mode == fm::AdsCompensationMode::kRaw) {
@@ -39,7 +48,11 @@ uint16_t AdsUnitDevice::Acquire(double, const RigEnvironment& env, bool encode,
     if (!compensating_) fm::AdsHysteresisReset(&hysteresis_);
     compensating_ = true;
     fm::DspEngine engine;
-    fm::AdsCompensate(&engine, handler.ads_constants(), payload.mode, payload.raw, &hysteresis_,
+    fm::AdsCompensate(&engine,
+                      handler.ads_constants(),
+                      payload.mode,
+                      payload.raw,
+                      &hysteresis_,
                       &payload.compensated);
   }
   const uint8_t tag = handler.tag();

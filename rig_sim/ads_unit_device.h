@@ -28,7 +28,7 @@ struct AdsUnitDeviceConfig {
   sensor_sim::AdsUnitParams params;  ///< the unit's drawn parameters (its truth)
   uint64_t noise_seed = 1;
   int baud = 115200;
-  double initial_air_c = 25.0;       ///< die temperatures at power-on
+  double initial_air_c = 25.0;  ///< die temperatures at power-on
 };
 
 class AdsUnitDevice : public UnitDevice {
@@ -39,8 +39,11 @@ class AdsUnitDevice : public UnitDevice {
   const sensor_sim::AdsUnit& unit() const { return unit_; }
 
  protected:
-  uint16_t Acquire(double sample_s, const RigEnvironment& env, bool encode,
-                   firmware_model::MaintenanceHandler& handler, uint8_t* frame,
+  uint16_t Acquire(double sample_s,
+                   const RigEnvironment& env,
+                   bool encode,
+                   firmware_model::MaintenanceHandler& handler,
+                   uint8_t* frame,
                    uint16_t capacity) override;
 
  private:

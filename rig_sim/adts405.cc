@@ -6,9 +6,9 @@
 #include <cmath>
 #include <utility>
 
+#include "common/units.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "common/units.h"
 
 namespace adahrs::rig_sim {
 
@@ -99,7 +99,8 @@ void Adts405::PushError(int code) {
 }
 
 int Adts405::StatusByte(bool message_available) const {
-  const int stb = (errors_.empty() ? 0 : kStbErrorQueue) | (message_available ? kStbMessageAvailable : 0) |
+  const int stb = (errors_.empty() ? 0 : kStbErrorQueue) |
+                  (message_available ? kStbMessageAvailable : 0) |
                   ((esr_ & ese_) ? kStbEventSummary : 0);
   return stb | ((stb & sre_) ? kStbMasterSummary : 0);
 }
@@ -336,7 +337,8 @@ Adts405::Reply Adts405::Measure(const Args& args) {
     const double mach = ss::MachNumber(std::max(qc, 0.0), ps);
     const double static_k = ss::IsaTemperatureK(ss::IsaPressureAltitudeM(ps));
     value = p == "MACH" ? mach
-                        : common::MpsToKt(ss::TrueAirspeedMps(mach, static_k)) / KtPerSpeedUnit(speed_unit_);
+                        : common::MpsToKt(ss::TrueAirspeedMps(mach, static_k)) /
+                              KtPerSpeedUnit(speed_unit_);
   } else {
     PushError(hil::kScpiIllegalParameterValue);
     return std::nullopt;
@@ -378,7 +380,8 @@ void Adts405::SetAim(const Args& args) {
   const double pa = *PressureUnitToPa(*value);
   if (p == "ALT") {
     const double alt_ft = altitude_in_m_ ? common::MToFt(*value) : *value;
-    if (alt_ft < common::MToFt(ss::kIsaMinAltitude_m) || alt_ft > common::MToFt(ss::kIsaMaxAltitude_m)) {
+    if (alt_ft < common::MToFt(ss::kIsaMinAltitude_m) ||
+        alt_ft > common::MToFt(ss::kIsaMaxAltitude_m)) {
       PushError(hil::kScpiDataOutOfRange);
       return;
     }
@@ -400,8 +403,9 @@ void Adts405::SetAim(const Args& args) {
     PushError(hil::kScpiIllegalParameterValue);  // TAS, MACH, EPR aims are not emulated
     return;
   }
-  const bool in_limits = ps_aim >= params_.ps_min_pa && ps_aim <= params_.ps_max_pa && qc_aim >= 0.0 &&
-                         qc_aim <= params_.qc_max_pa && qc_aim / ps_aim <= kSonicQcOverPs;
+  const bool in_limits = ps_aim >= params_.ps_min_pa && ps_aim <= params_.ps_max_pa &&
+                         qc_aim >= 0.0 && qc_aim <= params_.qc_max_pa &&
+                         qc_aim / ps_aim <= kSonicQcOverPs;
   if (!in_limits) {
     PushError(hil::kScpiDataOutOfRange);
     return;
@@ -482,10 +486,15 @@ void Adts405::Slew(Channel& channel, double& value_pa, bool is_ps) {
   }
   // Linear in altitude (ft) or in calibrated airspeed (kt), mapped back to pressure.
   const bool altitude = channel.rate_kind == Rate::kAltitude && is_ps;
-  auto to_x = [&](double pa) { return altitude ? ss::IsaPressureAltitudeFt(pa) : ss::CalibratedAirspeedKt(pa); };
-  auto to_pa = [&](double x) { return altitude ? ss::IsaStaticPressurePaFromFt(x) : ss::ImpactPressurePaFromKt(x); };
+  auto to_x = [&](double pa) {
+    return altitude ? ss::IsaPressureAltitudeFt(pa) : ss::CalibratedAirspeedKt(pa);
+  };
+  auto to_pa = [&](double x) {
+    return altitude ? ss::IsaStaticPressurePaFromFt(x) : ss::ImpactPressurePaFromKt(x);
+  };
   const double error = to_x(channel.aim_pa) - to_x(value_pa);
-  value_pa = std::abs(error) <= step ? channel.aim_pa : to_pa(to_x(value_pa) + std::copysign(step, error));
+  value_pa =
+      std::abs(error) <= step ? channel.aim_pa : to_pa(to_x(value_pa) + std::copysign(step, error));
 }
 
 void Adts405::Tick() {
@@ -508,13 +517,15 @@ void Adts405::UpdateCondition() {
     cond |= qc_pa_ == qc_.aim_pa ? kPtAtSetPoint : kPtRamping;
     if (cond & (kPsRamping | kPtRamping)) cond |= kRamping;
   }
-  if (std::abs(ps_pa_ - params_.ground_ps_pa) < params_.ground_band_pa && std::abs(qc_pa_) < params_.ground_band_pa) {
+  if (std::abs(ps_pa_ - params_.ground_ps_pa) < params_.ground_band_pa &&
+      std::abs(qc_pa_) < params_.ground_band_pa) {
     cond |= kSafeAtGround;
   }
   const double now_s = static_cast<double>(ticks_) * kTick_s;
   if ((cond & kPsAtSetPoint) && (cond & kPtAtSetPoint)) {
     if (both_at_set_point_since_s_ < 0.0) both_at_set_point_since_s_ = now_s;
-    if (!never_stable_ && now_s - both_at_set_point_since_s_ >= params_.stable_delay_s - 1e-9) cond |= kStableAtAim;
+    if (!never_stable_ && now_s - both_at_set_point_since_s_ >= params_.stable_delay_s - 1e-9)
+      cond |= kStableAtAim;
   } else {
     both_at_set_point_since_s_ = -1.0;
   }

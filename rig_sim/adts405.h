@@ -30,27 +30,27 @@
 #include <string_view>
 #include <vector>
 
-#include "hil/codecs/scpi.h"
 #include "common/random.h"
+#include "hil/codecs/scpi.h"
 
 namespace adahrs::rig_sim {
 
 struct Adts405Params {
-  double ps_min_pa = 7500.0;        ///< ≈ 60 000 ft
-  double ps_max_pa = 135500.0;      ///< the 1355 mbar Ps range (§4.7)
-  double qc_max_pa = 90000.0;       ///< subsonic (< 90 476 Pa = qc at a0)
-  double max_alt_rate_ft_per_min = 100000.0;       ///< §4.7
-  double max_cas_rate_kt_per_min = 2000.0;         ///< §4.7
-  double max_pressure_rate_pa_per_min = 1.0e6;     ///< 10 000 mbar/min (§4.7)
-  double initial_alt_rate_ft_per_min = 6000.0;     ///< smooth-control figure (§4.7)
+  double ps_min_pa = 7500.0;                    ///< ≈ 60 000 ft
+  double ps_max_pa = 135500.0;                  ///< the 1355 mbar Ps range (§4.7)
+  double qc_max_pa = 90000.0;                   ///< subsonic (< 90 476 Pa = qc at a0)
+  double max_alt_rate_ft_per_min = 100000.0;    ///< §4.7
+  double max_cas_rate_kt_per_min = 2000.0;      ///< §4.7
+  double max_pressure_rate_pa_per_min = 1.0e6;  ///< 10 000 mbar/min (§4.7)
+  double initial_alt_rate_ft_per_min = 6000.0;  ///< smooth-control figure (§4.7)
   double initial_cas_rate_kt_per_min = 200.0;
-  double ps_stability_pa = 3.8;     ///< ±0.038 mbar (§4.7), taken as 3σ
-  double qc_stability_pa = 4.5;     ///< ±0.045 mbar (§4.7), taken as 3σ
+  double ps_stability_pa = 3.8;  ///< ±0.038 mbar (§4.7), taken as 3σ
+  double qc_stability_pa = 4.5;  ///< ±0.045 mbar (§4.7), taken as 3σ
   double noise_tau_s = 1.0;
-  double ground_ps_pa = 101325.0;   ///< the lab's barometric pressure (vent)
-  double ground_band_pa = 50.0;     ///< |Ps − ground| and |Qc| below this: safe at ground
-  double stable_delay_s = 15.0;     ///< §4.4
-  bool oper_event_latched = true;   ///< STAT:OPER:EVEN? as a latched SCPI event register
+  double ground_ps_pa = 101325.0;  ///< the lab's barometric pressure (vent)
+  double ground_band_pa = 50.0;    ///< |Ps − ground| and |Qc| below this: safe at ground
+  double stable_delay_s = 15.0;    ///< §4.4
+  bool oper_event_latched = true;  ///< STAT:OPER:EVEN? as a latched SCPI event register
   std::string idn = "DRUCK,ADTS405,0000000,V1.00";
   uint64_t seed = 405;
 };

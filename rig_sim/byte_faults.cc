@@ -39,14 +39,12 @@ void ByteFaultDevice::SetRate(const std::string& fault, double rate) {
     throw std::invalid_argument(role() + ": '" + fault + "' is not a byte fault rate");
   }
   if (!(rate >= 0.0 && rate <= 1.0)) {
-    throw std::invalid_argument(role() + ": " + fault + " " + std::to_string(rate) +
-                                " not in 0…1");
+    throw std::invalid_argument(role() + ": " + fault + " " + std::to_string(rate) + " not in 0…1");
   }
   (fault == kDropRate ? state_.drop_rate : state_.corrupt_rate) = rate;
 }
 
-void ByteFaultDevice::ApplyLineNoise(std::vector<uint8_t>& bytes, size_t from,
-                                     common::Rng& rng) {
+void ByteFaultDevice::ApplyLineNoise(std::vector<uint8_t>& bytes, size_t from, common::Rng& rng) {
   if (state_.drop_rate == 0.0 && state_.corrupt_rate == 0.0) return;
   size_t kept = from;
   for (size_t i = from; i < bytes.size(); ++i) {
@@ -87,7 +85,8 @@ void ByteFaultDevice::TakeOutput(double now_s, std::vector<uint8_t>& out) {
     return;
   }
   if (state_.garbage) {
-    for (size_t i = from; i < out.size(); ++i) out[i] = static_cast<uint8_t>(to_client_rng_.NextU64());
+    for (size_t i = from; i < out.size(); ++i)
+      out[i] = static_cast<uint8_t>(to_client_rng_.NextU64());
   }
   ApplyLineNoise(out, from, to_client_rng_);
 }

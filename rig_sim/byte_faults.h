@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "rig_sim/serial_device.h"
 #include "common/random.h"
+#include "rig_sim/serial_device.h"
 
 namespace adahrs::rig_sim {
 

@@ -15,13 +15,13 @@
 namespace adahrs::rig_sim {
 
 struct ChamberAirParams {
-  double tau_s = 120.0;                   ///< closed-loop time constant near the set point
-  double heat_rate_c_per_min = 5.0;       ///< heating capacity
-  double cool_rate_c_per_min = 3.5;       ///< cooling capacity
-  double control_band_c = 0.3;            ///< amplitude of the residual control cycling
-  double control_period_s = 90.0;         ///< period of the residual control cycling
-  double min_c = -70.0;                   ///< lowest reachable air temperature
-  double max_c = 180.0;                   ///< highest reachable air temperature
+  double tau_s = 120.0;              ///< closed-loop time constant near the set point
+  double heat_rate_c_per_min = 5.0;  ///< heating capacity
+  double cool_rate_c_per_min = 3.5;  ///< cooling capacity
+  double control_band_c = 0.3;       ///< amplitude of the residual control cycling
+  double control_period_s = 90.0;    ///< period of the residual control cycling
+  double min_c = -70.0;              ///< lowest reachable air temperature
+  double max_c = 180.0;              ///< highest reachable air temperature
 };
 
 class ChamberAir {
@@ -39,7 +39,7 @@ class ChamberAir {
 
  private:
   ChamberAirParams params_;
-  double air_c_;        // the controlled mean
+  double air_c_;  // the controlled mean
   double cycling_c_ = 0.0;
   double heat_fraction_ = 0.0;
   double cool_fraction_ = 0.0;

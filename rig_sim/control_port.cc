@@ -44,7 +44,8 @@ const ControlTarget& RigControl::Target(const std::string& role) const {
   throw std::invalid_argument("no role '" + role + "' (roles: " + roles + ")");
 }
 
-void RigControl::SetFault(const std::string& role, const std::string& fault,
+void RigControl::SetFault(const std::string& role,
+                          const std::string& fault,
                           const std::string& value) {
   ByteFaultDevice& device = *Target(role).device;
   if (ByteFaultDevice::IsRate(fault)) {
@@ -87,8 +88,11 @@ std::string RigControl::Status(double now_s) const {
   for (const auto& [key, value] : active_faults_) {
     faults += (faults.empty() ? "" : ",") + key + "=" + value;
   }
-  return fmt::format("OK time_s={:.2f} time_scale={:g} roles={} faults={}", now_s, time_scale_,
-                     roles, faults.empty() ? "none" : faults);
+  return fmt::format("OK time_s={:.2f} time_scale={:g} roles={} faults={}",
+                     now_s,
+                     time_scale_,
+                     roles,
+                     faults.empty() ? "none" : faults);
 }
 
 std::string RigControl::Execute(std::string_view line, double now_s, RigEnvironment& env) {
@@ -107,9 +111,18 @@ std::string RigControl::Execute(std::string_view line, double now_s, RigEnvironm
           "OK time_s={:.3f} imu_chamber_air_c={:.3f} ads_chamber_air_c={:.3f} "
           "table_angle_deg={:.3f} table_rate_dps={:.4f} ps_pa={:.2f} qc_pa={:.2f} "
           "local_gravity_mps2={:.6f} supply_v={:.3f} imu_orientation={},{},{},{}",
-          now_s, env.imu_chamber_air_c, env.ads_chamber_air_c, env.table_angle_deg,
-          env.table_rate_dps, env.ps_pa, env.qc_pa, env.local_gravity_mps2, env.supply_v,
-          env.imu_orientation[0], env.imu_orientation[1], env.imu_orientation[2],
+          now_s,
+          env.imu_chamber_air_c,
+          env.ads_chamber_air_c,
+          env.table_angle_deg,
+          env.table_rate_dps,
+          env.ps_pa,
+          env.qc_pa,
+          env.local_gravity_mps2,
+          env.supply_v,
+          env.imu_orientation[0],
+          env.imu_orientation[1],
+          env.imu_orientation[2],
           env.imu_orientation[3]);
     }
     if (cmd == "faults" && w.size() == 2) {

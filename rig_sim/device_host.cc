@@ -4,13 +4,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/posix/stream_descriptor.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <deque>
 #include <future>
 #include <stdexcept>
@@ -66,8 +66,8 @@ struct DeviceHost::Port {
 DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
     : impl_(std::make_unique<Impl>()),
       time_scale_(time_scale),
-      backlog_limit_bytes_(static_cast<size_t>(
-          static_cast<double>(kMinBacklogBytes) * std::clamp(time_scale / 5.0, 1.0, 512.0))),
+      backlog_limit_bytes_(static_cast<size_t>(static_cast<double>(kMinBacklogBytes) *
+                                               std::clamp(time_scale / 5.0, 1.0, 512.0))),
       env_(initial),
       env_snapshot_(initial) {
   if (!(time_scale >= 0.01)) {
@@ -87,17 +87,16 @@ std::string DeviceHost::Add(std::unique_ptr<SerialDevice> device) {
 }
 
 void DeviceHost::ArmRead(Port& port) {
-  port.stream.async_read_some(asio::buffer(port.read_buffer),
-                              [this, &port](const boost::system::error_code& ec, size_t n) {
-                                if (impl_->stopping) return;
-                                if (!ec) {
-                                  port.pending_in.insert(port.pending_in.end(),
-                                                         port.read_buffer.begin(),
-                                                         port.read_buffer.begin() + n);
-                                }
-                                // EIO and friends are transient on a pty between client sessions.
-                                ArmRead(port);
-                              });
+  port.stream.async_read_some(
+      asio::buffer(port.read_buffer), [this, &port](const boost::system::error_code& ec, size_t n) {
+        if (impl_->stopping) return;
+        if (!ec) {
+          port.pending_in.insert(
+              port.pending_in.end(), port.read_buffer.begin(), port.read_buffer.begin() + n);
+        }
+        // EIO and friends are transient on a pty between client sessions.
+        ArmRead(port);
+      });
 }
 
 void DeviceHost::RunFrame() {
@@ -137,7 +136,8 @@ size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point 
   // A full queue (nobody is reading it now) shows no more than it holds: bytes written beyond it
   // wait in the kernel's flip buffers however old they are, so they are not evidence of a reader.
   const bool queue_full = unread + kPtyQueueSlackBytes >= kPtyQueueBytes;
-  const uint64_t taken = !queue_full && port.total_written > in_line ? port.total_written - in_line : 0;
+  const uint64_t taken =
+      !queue_full && port.total_written > in_line ? port.total_written - in_line : 0;
   const bool shrank = unread < port.unread_at_last_look;
   port.unread_at_last_look = unread;
   // A client that has taken every byte written is waiting, not stalled: while another port holds
@@ -207,8 +207,9 @@ void DeviceHost::WriteOutputs() {
 void DeviceHost::OnTick() {
   if (impl_->stopping) return;
   const auto now = std::chrono::steady_clock::now();
-  if (impl_->held) held_wall_s_.store(held_wall_s_.load() +
-                                      std::chrono::duration<double>(now - impl_->last_tick).count());
+  if (impl_->held)
+    held_wall_s_.store(held_wall_s_.load() +
+                       std::chrono::duration<double>(now - impl_->last_tick).count());
   impl_->last_tick = now;
   const double wall_s = std::chrono::duration<double>(now - impl_->wall_start).count();
   const auto target = static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s);
@@ -224,9 +225,10 @@ void DeviceHost::OnTick() {
   if (held) {
     // The clock waited for a reader: restart the pacing from here, so the world does not race
     // to catch up with the wall once the reader is back.
-    impl_->wall_start = now - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                  std::chrono::duration<double>(static_cast<double>(frames_done_.load()) *
-                                                                kWorldFrame_s / time_scale_));
+    impl_->wall_start =
+        now - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                  std::chrono::duration<double>(static_cast<double>(frames_done_.load()) *
+                                                kWorldFrame_s / time_scale_));
   }
   impl_->held = held;
   {
@@ -273,8 +275,9 @@ void DeviceHost::Start() {
     impl_->last_tick = impl_->wall_start;
     // Free-running, every port starts as read; in lockstep none does until a client reads, so
     // a port nobody opens never holds the clock.
-    const auto never = impl_->wall_start - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                               std::chrono::duration<double>(kLockstepStallLimit_s + 1.0));
+    const auto never =
+        impl_->wall_start - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                std::chrono::duration<double>(kLockstepStallLimit_s + 1.0));
     for (auto& port : ports_) port->last_progress = lockstep_ ? never : impl_->wall_start;
     OnTick();
   });
@@ -334,14 +337,20 @@ std::vector<std::string> DeviceHost::Report() {
       overflowed += port->bytes_overflowed;
       const std::string device = port->device->LineReport();
       lines.push_back(fmt::format("{:<14} host_bytes_unread={} host_bytes_overflowed={}{}{}",
-                                  port->device->role(), port->bytes_unread,
-                                  port->bytes_overflowed, device.empty() ? "" : " ", device));
+                                  port->device->role(),
+                                  port->bytes_unread,
+                                  port->bytes_overflowed,
+                                  device.empty() ? "" : " ",
+                                  device));
     }
   });
-  lines.push_back(fmt::format("host: {} bytes discarded with no client reading, {} bytes cut beyond the backlog "
-                              "while a client read; worst lag {} frames ({:.2f} s simulated)",
-                              unread, overflowed, max_frames_behind_.load(),
-                              static_cast<double>(max_frames_behind_.load()) * kWorldFrame_s));
+  lines.push_back(fmt::format(
+      "host: {} bytes discarded with no client reading, {} bytes cut beyond the backlog "
+      "while a client read; worst lag {} frames ({:.2f} s simulated)",
+      unread,
+      overflowed,
+      max_frames_behind_.load(),
+      static_cast<double>(max_frames_behind_.load()) * kWorldFrame_s));
   if (lockstep_) {
     lines.push_back(fmt::format("host: lockstep, clock held {:.2f} s of wall time for its readers",
                                 held_wall_s_.load()));

@@ -13,9 +13,9 @@
 // 200 frames); what the pty does not take waits in a per-port backlog (the PC's receive buffer),
 // and bytes beyond it are lost, as on a real line whose client does not read (bytes_lost()).
 // The backlog is kMinBacklogBytes (≈ 12 s of a raw IMU stream at 1x) scaled by time_scale/5
-// above 5x, up to 512 times (32 MiB; at 1000x, 12.8 MiB ≈ 2.5 s of wall time of an IMU stream), so a
-// reading client descheduled for a second on a busy machine loses nothing. A port whose client has
-// taken no bytes for kClientStallLimit_s of wall time counts as unread: its output is discarded
+// above 5x, up to 512 times (32 MiB; at 1000x, 12.8 MiB ≈ 2.5 s of wall time of an IMU stream), so
+// a reading client descheduled for a second on a busy machine loses nothing. A port whose client
+// has taken no bytes for kClientStallLimit_s of wall time counts as unread: its output is discarded
 // until a client reads again, as on a line with no listener, so a client that opens the port late
 // and flushes the kernel's buffer (pyserial's reset_input_buffer) reads current data. Report()
 // says, per port, how many bytes were lost that way and what the device itself dropped.
@@ -26,8 +26,9 @@
 // top speed. A port counts as read from the moment its client reads or flushes the pty's queue,
 // and as unread again after kLockstepStallLimit_s of wall time without that while bytes wait for
 // it (a client that has taken everything is waiting, however long another port holds the clock):
-// a port nobody opens never holds the clock, and one whose client went away holds it that long. The clock file
-// (SetClockFile, hil/rig_clock.h) publishes the frame count for pipelines that follow the rig.
+// a port nobody opens never holds the clock, and one whose client went away holds it that long. The
+// clock file (SetClockFile, hil/rig_clock.h) publishes the frame count for pipelines that follow
+// the rig.
 #pragma once
 
 #include <atomic>

@@ -2,11 +2,11 @@
 
 #include <stdexcept>
 
+#include "common/units.h"
 #include "firmware_model/target/data_payloads.h"
 #include "firmware_model/target/dsp_engine.h"
 #include "firmware_model/target/imu_compensator.h"
 #include "rig_sim/fixture_orientation.h"
-#include "common/units.h"
 
 namespace adahrs::rig_sim {
 
@@ -19,8 +19,11 @@ fm::UnitIdentity ImuIdentity(const ImuUnitDeviceConfig& config) {
     throw std::invalid_argument(config.role + ": IMU slot " + std::to_string(config.slot) +
                                 " not in 0…" + std::to_string(kMaxImuUnits - 1));
   }
-  return {fm::UnitKind::kImu, config.serial_number, kSimulatedFirmwareMajor,
-          kSimulatedFirmwareMinor, kSimulatedFirmwarePatch};
+  return {fm::UnitKind::kImu,
+          config.serial_number,
+          kSimulatedFirmwareMajor,
+          kSimulatedFirmwareMinor,
+          kSimulatedFirmwarePatch};
 }
 
 }  // namespace
@@ -30,8 +33,11 @@ ImuUnitDevice::ImuUnitDevice(const ImuUnitDeviceConfig& config)
       slot_(config.slot),
       unit_(config.params, config.noise_seed, config.initial_air_c) {}
 
-uint16_t ImuUnitDevice::Acquire(double, const RigEnvironment& env, bool encode,
-                                fm::MaintenanceHandler& handler, uint8_t* frame,
+uint16_t ImuUnitDevice::Acquire(double,
+                                const RigEnvironment& env,
+                                bool encode,
+                                fm::MaintenanceHandler& handler,
+                                uint8_t* frame,
                                 uint16_t capacity) {
   const Eigen::Vector3d up_B = UpAxis_B(env.imu_orientation[static_cast<size_t>(slot_)]);
   sensor_sim::ImuStimulus stimulus;
@@ -54,8 +60,8 @@ uint16_t ImuUnitDevice::Acquire(double, const RigEnvironment& env, bool encode,
   payload.mode = handler.imu_mode();
   if (payload.mode != fm::ImuCompensationMode::kRaw) {
     fm::DspEngine engine;
-    fm::ImuCompensate(&engine, handler.imu_constants(), payload.mode, payload.raw,
-                      &payload.compensated);
+    fm::ImuCompensate(
+        &engine, handler.imu_constants(), payload.mode, payload.raw, &payload.compensated);
   }
   const uint8_t tag = handler.tag();
   return fm::EncodeImuDataFrame(payload, handler.TakeDataSequence(), tag, frame, capacity);

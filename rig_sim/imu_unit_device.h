@@ -22,12 +22,12 @@ namespace adahrs::rig_sim {
 
 struct ImuUnitDeviceConfig {
   std::string role = "imu1";
-  int slot = 0;                       ///< index into RigEnvironment::imu_orientation, 0…3
-  uint32_t serial_number = 1;         ///< reported by IDENTIFY
-  sensor_sim::ImuUnitParams params;   ///< the unit's drawn parameters (its truth)
+  int slot = 0;                      ///< index into RigEnvironment::imu_orientation, 0…3
+  uint32_t serial_number = 1;        ///< reported by IDENTIFY
+  sensor_sim::ImuUnitParams params;  ///< the unit's drawn parameters (its truth)
   uint64_t noise_seed = 1;
   int baud = 115200;
-  double initial_air_c = 25.0;        ///< die temperatures at power-on
+  double initial_air_c = 25.0;  ///< die temperatures at power-on
 };
 
 class ImuUnitDevice : public UnitDevice {
@@ -39,8 +39,11 @@ class ImuUnitDevice : public UnitDevice {
   int slot() const { return slot_; }
 
  protected:
-  uint16_t Acquire(double sample_s, const RigEnvironment& env, bool encode,
-                   firmware_model::MaintenanceHandler& handler, uint8_t* frame,
+  uint16_t Acquire(double sample_s,
+                   const RigEnvironment& env,
+                   bool encode,
+                   firmware_model::MaintenanceHandler& handler,
+                   uint8_t* frame,
                    uint16_t capacity) override;
 
  private:

@@ -12,11 +12,14 @@ constexpr size_t kMaxIgnored = 100;
 }  // namespace
 
 PrologixAdtsDevice::PrologixAdtsDevice(std::string role, const PrologixAdtsParams& params)
-    : role_(std::move(role)), params_(params), controller_(params.version_text), adts_(params.adts) {}
+    : role_(std::move(role)),
+      params_(params),
+      controller_(params.version_text),
+      adts_(params.adts) {}
 
 void PrologixAdtsDevice::Queue(double at_s, std::string bytes) {
-  const auto later = std::upper_bound(output_.begin(), output_.end(), at_s,
-                                      [](double t, const Pending& p) { return t < p.at_s; });
+  const auto later = std::upper_bound(
+      output_.begin(), output_.end(), at_s, [](double t, const Pending& p) { return t < p.at_s; });
   output_.insert(later, Pending{at_s, std::move(bytes)});
 }
 
@@ -152,8 +155,10 @@ std::unique_ptr<SerialDevice> MakePrologixAdtsDevice(const common::ParamReader& 
   q.max_alt_rate_ft_per_min = a.Number("max_alt_rate_ft_per_min", 1.0, 100000.0, "ft/min");
   q.max_cas_rate_kt_per_min = a.Number("max_cas_rate_kt_per_min", 1.0, 2000.0, "kt/min");
   q.max_pressure_rate_pa_per_min = a.Number("max_pressure_rate_pa_per_min", 1.0, 1.0e6, "Pa/min");
-  q.initial_alt_rate_ft_per_min = a.Number("initial_alt_rate_ft_per_min", 1.0, q.max_alt_rate_ft_per_min, "ft/min");
-  q.initial_cas_rate_kt_per_min = a.Number("initial_cas_rate_kt_per_min", 1.0, q.max_cas_rate_kt_per_min, "kt/min");
+  q.initial_alt_rate_ft_per_min =
+      a.Number("initial_alt_rate_ft_per_min", 1.0, q.max_alt_rate_ft_per_min, "ft/min");
+  q.initial_cas_rate_kt_per_min =
+      a.Number("initial_cas_rate_kt_per_min", 1.0, q.max_cas_rate_kt_per_min, "kt/min");
   q.ps_stability_pa = a.Number("ps_stability_pa", 0.0, 100.0, "Pa");
   q.qc_stability_pa = a.Number("qc_stability_pa", 0.0, 100.0, "Pa");
   q.noise_tau_s = a.Number("noise_tau_s", 0.01, 100.0, "s");

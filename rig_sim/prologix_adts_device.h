@@ -22,10 +22,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/param_reader.h"
 #include "hil/codecs/prologix.h"
 #include "rig_sim/adts405.h"
 #include "rig_sim/serial_device.h"
-#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 

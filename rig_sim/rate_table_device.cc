@@ -13,12 +13,12 @@
 namespace adahrs::rig_sim {
 namespace {
 
+using common::ParamError;
+using common::ParamReader;
 using hil::AtlArgument;
 using hil::AtlForm;
 using hil::AtlParsed;
 using hil::AtlParseStatus;
-using common::ParamError;
-using common::ParamReader;
 
 // 8N1: a start bit, eight data bits and a stop bit per byte.
 constexpr double kBitsPerByte = 10.0;
@@ -226,7 +226,8 @@ std::string RateTableDevice::Perform(const AtlParsed& parsed, const std::string&
   return hil::FormatAtlValue(form, value);
 }
 
-std::string RateTableDevice::SineRefusal(const AtlParsed& parsed, const std::string& line_text) const {
+std::string RateTableDevice::SineRefusal(const AtlParsed& parsed,
+                                         const std::string& line_text) const {
   const double omega_radps = 2.0 * M_PI * sine_frequency_hz_;
   const double peak_rate_dps = sine_amplitude_deg_ * omega_radps;
   const double peak_accel_dps2 = peak_rate_dps * omega_radps;
@@ -237,11 +238,15 @@ std::string RateTableDevice::SineRefusal(const AtlParsed& parsed, const std::str
   AtlParsed peak = parsed;
   peak.argument_text = fmt::format("{:.4f}", rate ? peak_rate_dps : peak_accel_dps2);
   std::string error_template = commands_.errors().out_of_range;
-  for (size_t at = error_template.find("{unit}"); at != std::string::npos; at = error_template.find("{unit}")) {
+  for (size_t at = error_template.find("{unit}"); at != std::string::npos;
+       at = error_template.find("{unit}")) {
     error_template.replace(at, 6, rate ? "deg/s" : "deg/s^2");
   }
-  return hil::FormatAtlError(error_template, peak, line_text,
-                             std::make_pair(0.0, rate ? config_.physics.max_rate_dps : config_.physics.max_accel_dps2));
+  return hil::FormatAtlError(
+      error_template,
+      peak,
+      line_text,
+      std::make_pair(0.0, rate ? config_.physics.max_rate_dps : config_.physics.max_accel_dps2));
 }
 
 std::optional<std::pair<double, double>> RateTableDevice::EnforcedLimits(
@@ -277,7 +282,8 @@ double RateTableDevice::Value(const std::string& operation, const std::string& m
 std::string DefaultAtlCommandTablePath() {
   // In the source tree (the generated header holds its absolute path, so the path does not depend
   // on how the compiler was invoked: a compiler cache rewrites source paths relative).
-  return (std::filesystem::path(ADAHRS_SOURCE_DIR) / "rig_sim" / "data" / "atl_commands.json").string();
+  return (std::filesystem::path(ADAHRS_SOURCE_DIR) / "rig_sim" / "data" / "atl_commands.json")
+      .string();
 }
 
 std::unique_ptr<SerialDevice> MakeRateTableDevice(const ParamReader& config) {

@@ -28,11 +28,11 @@
 #include <utility>
 #include <vector>
 
+#include "common/param_reader.h"
 #include "hil/codecs/atl_codec.h"
 #include "hil/codecs/atl_command_table.h"
 #include "rig_sim/rate_table.h"
 #include "rig_sim/serial_device.h"
-#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 

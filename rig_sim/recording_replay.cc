@@ -12,15 +12,15 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "common/param_reader.h"
+#include "common/random.h"
+#include "common/units.h"
 #include "hil/recording/frame_count.h"
 #include "hil/recording/recording_reader.h"
 #include "hil/recording/recording_writer.h"
 #include "rig_sim/fixture_orientation.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
-#include "common/param_reader.h"
-#include "common/random.h"
-#include "common/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -88,8 +88,8 @@ class FrameClock {
     } else {
       const double dt_s = t_s - last_t_s_;
       if (dt_s < -kBackwardsTolerance_s || dt_s > kMaxGap_s) {
-        throw std::runtime_error(fmt::format("{} line {}: t_s {} after the unit's row at {} s", where_, line, t_s,
-                                             last_t_s_));
+        throw std::runtime_error(fmt::format(
+            "{} line {}: t_s {} after the unit's row at {} s", where_, line, t_s, last_t_s_));
       }
       n = hil::FramesBetween(last_seq_, seq, dt_s, period_s_);  // 0: the same packet logged twice
     }
@@ -123,7 +123,8 @@ struct AdsReplayer {
 template <typename Row>
 class LeadingZeros {
  public:
-  explicit LeadingZeros(std::function<bool(const Row&)> reported) : reported_(std::move(reported)) {}
+  explicit LeadingZeros(std::function<bool(const Row&)> reported)
+      : reported_(std::move(reported)) {}
 
   // Hands `row` (and the rows held before it) to `emit` once the instruments have reported. A held
   // row goes with the first reporting row, whose instrument values it takes; the others with null.
@@ -155,12 +156,14 @@ class LeadingZeros {
 
 double LocalGravity(const nlohmann::json& meta, const fs::path& run_dir) {
   for (const nlohmann::json* j : {&meta, meta.contains("station") ? &meta["station"] : nullptr}) {
-    if (j != nullptr && j->is_object() && j->contains("local_gravity_mps2") && (*j)["local_gravity_mps2"].is_number()) {
+    if (j != nullptr && j->is_object() && j->contains("local_gravity_mps2") &&
+        (*j)["local_gravity_mps2"].is_number()) {
       return (*j)["local_gravity_mps2"].get<double>();
     }
   }
   throw std::runtime_error((run_dir / "meta.json").string() +
-                           ": no local_gravity_mps2 (top level or in station): an IMU replay needs the station's gravity");
+                           ": no local_gravity_mps2 (top level or in station): an IMU replay needs "
+                           "the station's gravity");
 }
 
 void WriteJsonFile(const fs::path& path, const nlohmann::json& j) {

@@ -11,14 +11,14 @@
 // counter (seq) moved since the unit's previous row, lost packets included, with the counter's
 // 256-frame turns that the arrival times say passed (arrival times jitter, the counter does not).
 // A row whose counter did not move is the same packet logged twice: it repeats the last frame.
-// Before an instrument's first report the recording holds 0 in its column (docs/recording-format.md):
-// IMU rows before the first with a chamber value other than 0 or a fixture code, and ADS rows
-// before the first with a static pressure (a test set never reads 0 Pa), are replayed at that
-// row's values (their chamber column only where it reads 0). After it, 0 °C is a temperature.
-// A row with no fixture code (0) keeps the last one, z up before any.
-// Left out: the rig's own errors (fixture levelling, table wobble, the chamber air's difference
-// from its controller's probe, the test set's pressure error), the firmware (rows are written in
-// raw mode, mode 0, without compensated values).
+// Before an instrument's first report the recording holds 0 in its column
+// (docs/recording-format.md): IMU rows before the first with a chamber value other than 0 or a
+// fixture code, and ADS rows before the first with a static pressure (a test set never reads 0 Pa),
+// are replayed at that row's values (their chamber column only where it reads 0). After it, 0 °C is
+// a temperature. A row with no fixture code (0) keeps the last one, z up before any. Left out: the
+// rig's own errors (fixture levelling, table wobble, the chamber air's difference from its
+// controller's probe, the test set's pressure error), the firmware (rows are written in raw mode,
+// mode 0, without compensated values).
 #pragma once
 
 #include <cstdint>
@@ -39,7 +39,8 @@ struct ReplaySummary {
   uint64_t imu_rows = 0;
   uint64_t ads_rows = 0;
   std::vector<std::string> replayed;  ///< serials replayed
-  std::vector<std::string> skipped;   ///< serials of the recording without a unit file (rows not written)
+  std::vector<std::string>
+      skipped;  ///< serials of the recording without a unit file (rows not written)
 };
 
 /// Replays `run_dir` into `out_dir` (which must not exist yet) with one unit file per unit to
@@ -50,6 +51,7 @@ struct ReplaySummary {
 /// two files of one serial, an existing `out_dir`, or a unit's time going backwards.
 ReplaySummary ReplayRecording(const std::filesystem::path& run_dir,
                               const std::vector<std::filesystem::path>& unit_files,
-                              const std::filesystem::path& out_dir, const ReplayOptions& options = {});
+                              const std::filesystem::path& out_dir,
+                              const ReplayOptions& options = {});
 
 }  // namespace adahrs::rig_sim

@@ -9,9 +9,9 @@
 
 #include <fmt/format.h>
 
+#include "common/random.h"
 #include "rig_sim/ads_unit_device.h"
 #include "rig_sim/imu_unit_device.h"
-#include "common/random.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -43,8 +43,12 @@ void WriteFileAtomically(const std::filesystem::path& path, const std::string& t
   std::filesystem::rename(tmp, path);
 }
 
-void WriteTruth(const std::filesystem::path& dir, const std::string& serial, const char* kind,
-                uint64_t seed, sensor_sim::ModelProfile profile, const nlohmann::json& params) {
+void WriteTruth(const std::filesystem::path& dir,
+                const std::string& serial,
+                const char* kind,
+                uint64_t seed,
+                sensor_sim::ModelProfile profile,
+                const nlohmann::json& params) {
   std::filesystem::create_directories(dir);
   WriteFileAtomically(dir / (serial + ".json"),
                       nlohmann::json{{"serial", serial},
@@ -80,9 +84,9 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
   for (const InstrumentKind& kind : InstrumentKinds()) {
     if (!config.instruments.contains(kind.name)) continue;
     auto device = kind.make(root.Child(kind.name));
-    instruments_.push_back({{"role", device->role()}, {"kind", kind.name},
-                            {"doc", kind.doc_page}});
-    if (const std::optional<int> address = device->GpibAddress()) instruments_.back()["gpib_address"] = *address;
+    instruments_.push_back({{"role", device->role()}, {"kind", kind.name}, {"doc", kind.doc_page}});
+    if (const std::optional<int> address = device->GpibAddress())
+      instruments_.back()["gpib_address"] = *address;
     AddDevice(std::move(device), kind.name, -1, fault_stream++);
   }
   for (size_t i = 0; i < config.imus.size(); ++i) {
@@ -91,15 +95,24 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     unit.role = fmt::format("imu{}", i + 1);
     unit.slot = static_cast<int>(i);
     unit.serial_number = slot.serial_number;
-    unit.params = SlotParams<sensor_sim::ImuUnitParams>(slot, ImuSerial(slot.serial_number), config);
+    unit.params =
+        SlotParams<sensor_sim::ImuUnitParams>(slot, ImuSerial(slot.serial_number), config);
     unit.noise_seed = common::Rng::Derive(slot.seed, kNoiseStream);
     unit.baud = slot.baud;
     unit.initial_air_c = config.initial_air_c;
-    WriteTruth(run_dir_ / "truth", unit.params.serial, "imu", slot.seed, config.model_profile,
+    WriteTruth(run_dir_ / "truth",
+               unit.params.serial,
+               "imu",
+               slot.seed,
+               config.model_profile,
                unit.params.ToJson());
-    units_.push_back({{"role", unit.role}, {"kind", "imu"}, {"slot", i + 1},
-                      {"orientation", slot.orientation}, {"serial", unit.params.serial},
-                      {"serial_number", slot.serial_number}, {"baud", slot.baud},
+    units_.push_back({{"role", unit.role},
+                      {"kind", "imu"},
+                      {"slot", i + 1},
+                      {"orientation", slot.orientation},
+                      {"serial", unit.params.serial},
+                      {"serial_number", slot.serial_number},
+                      {"baud", slot.baud},
                       {"truth", "truth/" + unit.params.serial + ".json"}});
     AddDevice(std::make_unique<ImuUnitDevice>(unit), "imu", unit.slot, fault_stream++);
   }
@@ -108,15 +121,23 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
     AdsUnitDeviceConfig unit;
     unit.role = fmt::format("ads{}", i + 1);
     unit.serial_number = slot.serial_number;
-    unit.params = SlotParams<sensor_sim::AdsUnitParams>(slot, AdsSerial(slot.serial_number), config);
+    unit.params =
+        SlotParams<sensor_sim::AdsUnitParams>(slot, AdsSerial(slot.serial_number), config);
     unit.noise_seed = common::Rng::Derive(slot.seed, kNoiseStream);
     unit.baud = slot.baud;
     unit.initial_air_c = config.initial_air_c;
-    WriteTruth(run_dir_ / "truth", unit.params.serial, "ads", slot.seed, config.model_profile,
+    WriteTruth(run_dir_ / "truth",
+               unit.params.serial,
+               "ads",
+               slot.seed,
+               config.model_profile,
                unit.params.ToJson());
-    units_.push_back({{"role", unit.role}, {"kind", "ads"}, {"slot", i + 1},
+    units_.push_back({{"role", unit.role},
+                      {"kind", "ads"},
+                      {"slot", i + 1},
                       {"serial", unit.params.serial},
-                      {"serial_number", slot.serial_number}, {"baud", slot.baud},
+                      {"serial_number", slot.serial_number},
+                      {"baud", slot.baud},
                       {"truth", "truth/" + unit.params.serial + ".json"}});
     AddDevice(std::make_unique<AdsUnitDevice>(unit), "ads", -1, fault_stream++);
   }
@@ -129,7 +150,8 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
   const common::ParamReader faults_reader(no_keys, config_.source);
   for (const FaultSetting& fault : config.faults) {
     try {
-      control_->SetFault(fault.role, fault.fault,
+      control_->SetFault(fault.role,
+                         fault.fault,
                          fault.is_rate ? fmt::format("{}", fault.rate) : (fault.on ? "on" : "off"));
     } catch (const std::invalid_argument& e) {
       faults_reader.Fail(fault.where, e.what());
@@ -139,12 +161,13 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
 
 Rig::~Rig() { Stop(); }
 
-void Rig::AddDevice(std::unique_ptr<SerialDevice> device, const std::string& kind, int imu_slot,
+void Rig::AddDevice(std::unique_ptr<SerialDevice> device,
+                    const std::string& kind,
+                    int imu_slot,
                     uint64_t fault_stream) {
   const std::string role = device->role();
   if (role == "control" || ports_.count(role)) {
-    throw common::ParamError(config_.source + ": " + kind + " role '" + role +
-                                 "' is used twice");
+    throw common::ParamError(config_.source + ": " + kind + " role '" + role + "' is used twice");
   }
   auto wrapped = std::make_unique<ByteFaultDevice>(
       std::move(device), common::Rng::Derive(kByteFaultSeedBase, fault_stream));
@@ -167,29 +190,31 @@ void Rig::WriteLinks() const {
 nlohmann::json Rig::Manifest() const {
   nlohmann::json links = nlohmann::json::object();
   for (const auto& [role, path] : ports_) links[role] = (run_dir_ / "ports" / role).string();
-  return {{"format", "adahrs-rig-manifest"},
-          {"version", kManifestVersion},
-          {"pid", static_cast<int64_t>(::getpid())},
-          {"time_scale", config_.time_scale},
-          {"clock", {{"file", (run_dir_ / kClockFileName).string()},
-                     {"lockstep", config_.lockstep}}},
-          {"station", {{"name", config_.station.name},
-                       {"latitude_deg", config_.station.latitude_deg},
-                       {"height_m", config_.station.height_m},
-                       {"local_gravity_mps2", config_.LocalGravityMps2()}}},
-          {"model_profile", sensor_sim::ToString(config_.model_profile)},
-          {"truth_variant", sensor_sim::ToString(config_.truth_variant)},
-          {"run_dir", run_dir_.string()},
-          {"ports", ports_},
-          {"links", links},
-          {"units", units_},
-          {"instruments", instruments_}};
+  return {
+      {"format", "adahrs-rig-manifest"},
+      {"version", kManifestVersion},
+      {"pid", static_cast<int64_t>(::getpid())},
+      {"time_scale", config_.time_scale},
+      {"clock", {{"file", (run_dir_ / kClockFileName).string()}, {"lockstep", config_.lockstep}}},
+      {"station",
+       {{"name", config_.station.name},
+        {"latitude_deg", config_.station.latitude_deg},
+        {"height_m", config_.station.height_m},
+        {"local_gravity_mps2", config_.LocalGravityMps2()}}},
+      {"model_profile", sensor_sim::ToString(config_.model_profile)},
+      {"truth_variant", sensor_sim::ToString(config_.truth_variant)},
+      {"run_dir", run_dir_.string()},
+      {"ports", ports_},
+      {"links", links},
+      {"units", units_},
+      {"instruments", instruments_}};
 }
 
 void Rig::Start(const std::filesystem::path& manifest_path) {
   host_->Start();
   WriteLinks();
-  if (manifest_path.has_parent_path()) std::filesystem::create_directories(manifest_path.parent_path());
+  if (manifest_path.has_parent_path())
+    std::filesystem::create_directories(manifest_path.parent_path());
   WriteFileAtomically(manifest_path, Manifest().dump(2) + "\n");
   manifest_path_ = manifest_path;
 }
@@ -203,7 +228,8 @@ void Rig::RemoveManifestAndLinks() {
   if (manifest_path_.empty()) return;
   std::error_code ignored;
   std::filesystem::remove(manifest_path_, ignored);
-  for (const auto& [role, path] : ports_) std::filesystem::remove(run_dir_ / "ports" / role, ignored);
+  for (const auto& [role, path] : ports_)
+    std::filesystem::remove(run_dir_ / "ports" / role, ignored);
   std::filesystem::remove(run_dir_ / "ports", ignored);  // only when empty
   manifest_path_.clear();
 }
@@ -219,10 +245,15 @@ std::string ClaimManifestPath(const std::filesystem::path& manifest_path) {
     std::filesystem::remove(manifest_path, ec);
     return fmt::format("removed {}: not a readable manifest", manifest_path.string());
   }
-  const int64_t pid = old.is_object() && old.contains("pid") && old["pid"].is_number_integer() ? old["pid"].get<int64_t>() : 0;
+  const int64_t pid = old.is_object() && old.contains("pid") && old["pid"].is_number_integer()
+                          ? old["pid"].get<int64_t>()
+                          : 0;
   if (pid > 0 && pid != ::getpid() && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM)) {
-    throw std::runtime_error(fmt::format("{}: the rig of pid {} still runs with this manifest; stop it or give another "
-                                         "--manifest", manifest_path.string(), pid));
+    throw std::runtime_error(
+        fmt::format("{}: the rig of pid {} still runs with this manifest; stop it or give another "
+                    "--manifest",
+                    manifest_path.string(),
+                    pid));
   }
   if (old.is_object() && old.contains("links") && old["links"].is_object()) {
     for (const auto& [role, link] : old["links"].items()) {
@@ -232,7 +263,8 @@ std::string ClaimManifestPath(const std::filesystem::path& manifest_path) {
     }
   }
   std::filesystem::remove(manifest_path, ec);
-  return fmt::format("removed {}, left by the rig of pid {}, which no longer runs", manifest_path.string(), pid);
+  return fmt::format(
+      "removed {}, left by the rig of pid {}, which no longer runs", manifest_path.string(), pid);
 }
 
 std::string Rig::Control(const std::string& command) {

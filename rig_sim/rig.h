@@ -67,7 +67,9 @@ class Rig {
   const std::filesystem::path& run_dir() const { return run_dir_; }
 
  private:
-  void AddDevice(std::unique_ptr<SerialDevice> device, const std::string& kind, int imu_slot,
+  void AddDevice(std::unique_ptr<SerialDevice> device,
+                 const std::string& kind,
+                 int imu_slot,
                  uint64_t fault_seed);
   void WriteLinks() const;
   void RemoveManifestAndLinks();

@@ -18,8 +18,8 @@ constexpr int kInstrumentRetries = 2;
 constexpr int kUnitTimeoutMs = 500;
 
 int TimeoutMs(int minimum_ms, double time_scale) {
-  return static_cast<int>(
-      std::clamp(kWallReplyTimeoutS * 1000.0 * time_scale, double(minimum_ms), double(kMaxTimeoutMs)));
+  return static_cast<int>(std::clamp(
+      kWallReplyTimeoutS * 1000.0 * time_scale, double(minimum_ms), double(kMaxTimeoutMs)));
 }
 // The Prologix GPIB-USB adapter's virtual serial port; other instruments at their config's
 // `baud`, 9600 when it has none (docs/rig/adts.md, docs/rig/).
@@ -28,8 +28,12 @@ constexpr unsigned kInstrumentBaud = 9600;
 constexpr unsigned kControlBaud = 115200;
 
 nlohmann::json Port(const std::string& path, unsigned baud, const char* flow) {
-  return {{"path", path}, {"baud", baud},    {"data_bits", 8},
-          {"parity", "N"}, {"stop_bits", 1}, {"flow", flow}};
+  return {{"path", path},
+          {"baud", baud},
+          {"data_bits", 8},
+          {"parity", "N"},
+          {"stop_bits", 1},
+          {"flow", flow}};
 }
 
 bool OnBench(RigBench bench, const std::string& kind) {
@@ -39,7 +43,9 @@ bool OnBench(RigBench bench, const std::string& kind) {
 
 }  // namespace
 
-hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const RigConfig& config,
+hil::Station BenchStation(RigBench bench,
+                          const nlohmann::json& manifest,
+                          const RigConfig& config,
                           const std::string& source) {
   const nlohmann::json& links = manifest.at("links");
   const double time_scale = manifest.at("time_scale").get<double>();
@@ -69,12 +75,13 @@ hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const 
   for (const nlohmann::json& unit : manifest.at("units")) {
     if (unit.at("kind") != unit_kind) continue;
     const std::string role = unit.at("role");
-    units.push_back({{"role", role},
-                     {"kind", unit_kind},
-                     {"slot", unit.at("slot")},
-                     {"timeout_ms", TimeoutMs(kUnitTimeoutMs, time_scale)},
-                     {"port", Port(links.at(role).get<std::string>(),
-                                   unit.at("baud").get<unsigned>(), "none")}});
+    units.push_back(
+        {{"role", role},
+         {"kind", unit_kind},
+         {"slot", unit.at("slot")},
+         {"timeout_ms", TimeoutMs(kUnitTimeoutMs, time_scale)},
+         {"port",
+          Port(links.at(role).get<std::string>(), unit.at("baud").get<unsigned>(), "none")}});
   }
   const nlohmann::json station = {
       {"name", config.station.name + (bench == RigBench::kImu ? " IMU bench" : " ADS bench")},

@@ -27,7 +27,9 @@ enum class RigBench { kImu, kAds };
 
 /// The bench's station for the rig of `manifest` (manifest.json as the rig wrote it) started with
 /// `config`; throws common::ParamError naming `source` and the JSON path if it is not valid.
-hil::Station BenchStation(RigBench bench, const nlohmann::json& manifest, const RigConfig& config,
+hil::Station BenchStation(RigBench bench,
+                          const nlohmann::json& manifest,
+                          const RigConfig& config,
                           const std::string& source);
 
 /// Writes `station` as JSON (Station::ToJson) to `path` and loads it back with Station::Load.

@@ -60,8 +60,8 @@ void RigChildProcess::Spawn() {
   const std::string log = log_file().string();
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(
+      &actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   const int rc = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ);
@@ -90,8 +90,8 @@ void RigChildProcess::WaitForManifest() {
   // The rig writes the manifest atomically (temporary file + rename) once every port is open; one
   // holding another pid is a dead rig's, which this rig removes before writing its own.
   const std::filesystem::path path = options_.run_dir / "manifest.json";
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::duration<double>(options_.start_timeout_s);
+  const auto end =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(options_.start_timeout_s);
   while (!ManifestOf(path, pid_)) {
     if (const std::optional<std::string> exit = ExitDescription()) {
       throw RigProcessError("the rig " + *exit + " before writing its manifest " + path.string());
@@ -112,8 +112,8 @@ std::optional<std::string> RigChildProcess::ExitDescription() {
     int status = 0;
     if (::waitpid(pid_, &status, WNOHANG) == pid_) {
       pid_ = -1;
-      exit_description_ = DescribeStatus(status) + "; " + log_file().string() + " ends: " +
-                          LogTail();
+      exit_description_ =
+          DescribeStatus(status) + "; " + log_file().string() + " ends: " + LogTail();
     }
   }
   return exit_description_;
@@ -123,8 +123,8 @@ void RigChildProcess::Stop() {
   if (pid_ <= 0) return;
   ::kill(pid_, SIGTERM);
   int status = 0;
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::duration<double>(kRigStopTimeoutS);
+  const auto end =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(kRigStopTimeoutS);
   while (::waitpid(pid_, &status, WNOHANG) == 0) {
     if (std::chrono::steady_clock::now() > end) {
       ::kill(pid_, SIGKILL);

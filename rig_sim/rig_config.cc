@@ -24,7 +24,9 @@ const std::vector<InstrumentKind>& InstrumentKinds() {
       {"aerosmith_atl", MakeRateTableDevice, DefaultRateTableConfig, "docs/rig/rate-table.md"},
       {"watlow_f4", MakeWatlowF4Device, DefaultWatlowF4Config, "docs/rig/watlow-f4.md"},
       {"watlow_942", MakeWatlow942Device, DefaultWatlow942Config, "docs/rig/watlow-942.md"},
-      {"druck_adts_prologix", MakePrologixAdtsDevice, DefaultPrologixAdtsConfig,
+      {"druck_adts_prologix",
+       MakePrologixAdtsDevice,
+       DefaultPrologixAdtsConfig,
        "docs/rig/adts.md"},
   };
   return kinds;
@@ -37,7 +39,9 @@ constexpr int kMaxBaud = 921600;
 
 // Size of the array under `key` of `object` (the reader's JSON), refused unless an array of
 // 0…max_count elements.
-size_t ArraySize(const ParamReader& reader, const nlohmann::json& object, const char* key,
+size_t ArraySize(const ParamReader& reader,
+                 const nlohmann::json& object,
+                 const char* key,
                  size_t max_count) {
   if (!reader.Has(key)) reader.Fail(reader.path() + "." + key, "missing key");
   const nlohmann::json& array = object.at(key);
@@ -59,21 +63,29 @@ std::string AdsSerialName(uint32_t n) { return fmt::format("ADS-{:04d}", n); }
 // The slot's "model" file, relative to the rig config's folder: its kind must be the slot's and
 // its serial the slot's; its params are read in full here so a bad file is refused before the rig
 // starts.
-void ReadUnitModel(const ParamReader& unit, bool imu, const std::filesystem::path& base_dir, UnitSlotConfig* slot) {
+void ReadUnitModel(const ParamReader& unit,
+                   bool imu,
+                   const std::filesystem::path& base_dir,
+                   UnitSlotConfig* slot) {
   std::filesystem::path file = unit.String("model");
   if (file.is_relative()) file = base_dir / file;
   const nlohmann::json model = ParamReader::LoadFile(file.string());
   const ParamReader top(model, file.string());
   const std::string kind = top.String("kind");
   if (kind != (imu ? "imu" : "ads")) {
-    unit.Fail(unit.path() + ".model", fmt::format("{}: kind '{}' in an {} slot", file.string(), kind, imu ? "imu" : "ads"));
+    unit.Fail(unit.path() + ".model",
+              fmt::format("{}: kind '{}' in an {} slot", file.string(), kind, imu ? "imu" : "ads"));
   }
   const ParamReader params = top.Child("params");
   const std::string serial = imu ? sensor_sim::ImuUnitParams::FromJson(params).serial
                                  : sensor_sim::AdsUnitParams::FromJson(params).serial;
-  const std::string expected = imu ? ImuSerialName(slot->serial_number) : AdsSerialName(slot->serial_number);
+  const std::string expected =
+      imu ? ImuSerialName(slot->serial_number) : AdsSerialName(slot->serial_number);
   if (serial != expected) {
-    unit.Fail(unit.path() + ".model", fmt::format("{}: $.params.serial '{}' is not this slot's {}", file.string(), serial, expected));
+    unit.Fail(
+        unit.path() + ".model",
+        fmt::format(
+            "{}: $.params.serial '{}' is not this slot's {}", file.string(), serial, expected));
   }
   slot->model_params = model["params"];
   slot->model_file = file.string();
@@ -202,11 +214,12 @@ RigConfig RigConfig::Load(const std::string& path) {
 nlohmann::json DefaultRigConfig() {
   nlohmann::json imus = nlohmann::json::array();
   for (int i = 1; i <= kMaxImuUnits; ++i) {
-    imus.push_back({{"serial_number", i}, {"seed", 1000 + i}, {"orientation", 31},
-                    {"baud", 115200}});
+    imus.push_back(
+        {{"serial_number", i}, {"seed", 1000 + i}, {"orientation", 31}, {"baud", 115200}});
   }
   nlohmann::json instruments = nlohmann::json::object();
-  for (const InstrumentKind& kind : InstrumentKinds()) instruments[kind.name] = kind.default_config();
+  for (const InstrumentKind& kind : InstrumentKinds())
+    instruments[kind.name] = kind.default_config();
   return {
       {"station",
        {{"name", "virtual lab"}, {"latitude_deg", 45.0}, {"height_m", 0.0}, {"supply_v", 5.0}}},
@@ -216,8 +229,8 @@ nlohmann::json DefaultRigConfig() {
        {{"model_profile", "truth"},
         {"truth_variant", "standard"},
         {"imu", imus},
-        {"ads", nlohmann::json::array(
-                    {{{"serial_number", 1}, {"seed", 2001}, {"baud", 115200}}})}}},
+        {"ads",
+         nlohmann::json::array({{{"serial_number", 1}, {"seed", 2001}, {"baud", 115200}}})}}},
       {"instruments", instruments},
       {"faults", nlohmann::json::array()},
   };

@@ -27,9 +27,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/param_reader.h"
 #include "rig_sim/serial_device.h"
 #include "sensor_sim/model_profile.h"
-#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 
@@ -53,8 +53,8 @@ struct StationConfig {
 
 struct UnitSlotConfig {
   uint32_t serial_number = 1;
-  uint64_t seed = 1;      ///< parameter draw; the noise stream is derived from it
-  int orientation = 31;   ///< fixture code (IMU only)
+  uint64_t seed = 1;     ///< parameter draw; the noise stream is derived from it
+  int orientation = 31;  ///< fixture code (IMU only)
   int baud = 115200;
   /// A unit file of the truth schema ("model": a rig's truth/<serial>.json, or the model.json of
   /// `adahrs diagnose --model`) whose params replace the draw; null when the slot names none. The

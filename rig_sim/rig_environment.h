@@ -18,15 +18,15 @@ inline constexpr int kMaxImuUnits = 4;
 inline constexpr int kMaxAdsUnits = 4;
 
 struct RigEnvironment {
-  double time_s = 0.0;                   ///< simulated time since the rig started
-  double imu_chamber_air_c = 25.0;       ///< air around the IMU units (F4 chamber on the table)
-  double ads_chamber_air_c = 25.0;       ///< air around the ADS units (942 bench chamber)
-  double table_angle_deg = 0.0;          ///< platter angle about the table axis
-  double table_rate_dps = 0.0;           ///< platter rate about the (up) table axis
-  double ps_pa = 101325.0;               ///< static pressure delivered to the ADS static ports
-  double qc_pa = 0.0;                    ///< impact pressure (pitot − static) delivered
-  double local_gravity_mps2 = 9.80665;   ///< station gravity (a station parameter)
-  double supply_v = 5.0;                 ///< units' supply rail
+  double time_s = 0.0;                  ///< simulated time since the rig started
+  double imu_chamber_air_c = 25.0;      ///< air around the IMU units (F4 chamber on the table)
+  double ads_chamber_air_c = 25.0;      ///< air around the ADS units (942 bench chamber)
+  double table_angle_deg = 0.0;         ///< platter angle about the table axis
+  double table_rate_dps = 0.0;          ///< platter rate about the (up) table axis
+  double ps_pa = 101325.0;              ///< static pressure delivered to the ADS static ports
+  double qc_pa = 0.0;                   ///< impact pressure (pitot − static) delivered
+  double local_gravity_mps2 = 9.80665;  ///< station gravity (a station parameter)
+  double supply_v = 5.0;                ///< units' supply rail
   std::array<int, kMaxImuUnits> imu_orientation{31, 31, 31, 31};  ///< fixture code per IMU slot
 };
 

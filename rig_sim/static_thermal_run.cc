@@ -8,22 +8,26 @@
 
 #include <fmt/format.h>
 
+#include "common/random.h"
+#include "common/units.h"
 #include "hil/recording/recording_writer.h"
 #include "hil/utc_time.h"
 #include "rig_sim/fixture_orientation.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/gravity.h"
 #include "sensor_sim/imu_unit.h"
-#include "common/random.h"
-#include "common/units.h"
 
 namespace adahrs::rig_sim {
 namespace {
 
 constexpr double kFramePeriod_s = 0.01;
 
-void WriteTruth(const std::filesystem::path& dir, const std::string& serial, const char* kind,
-                uint64_t seed, sensor_sim::ModelProfile profile, const nlohmann::json& params) {
+void WriteTruth(const std::filesystem::path& dir,
+                const std::string& serial,
+                const char* kind,
+                uint64_t seed,
+                sensor_sim::ModelProfile profile,
+                const nlohmann::json& params) {
   std::filesystem::create_directories(dir);
   std::ofstream out(dir / (serial + ".json"));
   out << nlohmann::json{{"serial", serial},
@@ -62,22 +66,28 @@ nlohmann::json ProfileSequence(const StaticThermalRunConfig& config) {
   }
   return {{"format_version", 1},
           {"name", "static_thermal"},
-          {"description", fmt::format("adahrs simulate static-thermal: units static in orientation "
-                                      "{}, the chamber through {} set points",
-                                      config.orientation, config.steps.size())},
+          {"description",
+           fmt::format("adahrs simulate static-thermal: units static in orientation "
+                       "{}, the chamber through {} set points",
+                       config.orientation,
+                       config.steps.size())},
           {"unit_kind", config.imu_units > 0 ? "imu" : "ads"},
           {"steps", steps}};
 }
 
 // meta.json as the executor writes it (docs/recording-format.md), so fit, records and report take
 // the simulator's recordings as they take a rig's, plus what only a simulation knows.
-nlohmann::json RunMetaJson(const StaticThermalRunConfig& config, const std::filesystem::path& run_dir,
-                           double g_local_mps2, const nlohmann::json& units) {
+nlohmann::json RunMetaJson(const StaticThermalRunConfig& config,
+                           const std::filesystem::path& run_dir,
+                           double g_local_mps2,
+                           const nlohmann::json& units) {
   nlohmann::json ramps = nlohmann::json::array();
   for (const auto& s : config.steps) ramps.push_back(s.ramp_c_per_min);
   const std::string started_utc = hil::UtcNowIso8601();
-  const std::filesystem::path name = std::filesystem::absolute(run_dir).lexically_normal().filename();
-  return {{"run_id", (name.empty() ? std::string("static-thermal") : name.string()) + "-" + started_utc},
+  const std::filesystem::path name =
+      std::filesystem::absolute(run_dir).lexically_normal().filename();
+  return {{"run_id",
+           (name.empty() ? std::string("static-thermal") : name.string()) + "-" + started_utc},
           {"started_utc", started_utc},
           {"status", "running"},
           {"station",

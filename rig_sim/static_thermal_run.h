@@ -31,13 +31,13 @@ struct StaticThermalRunConfig {
   uint64_t seed = 1;
   sensor_sim::ModelProfile profile = sensor_sim::ModelProfile::kTruth;
   int orientation = 31;
-  double latitude_deg = 45.0;   ///< station latitude, for local gravity
-  double height_m = 0.0;        ///< station height, for local gravity
+  double latitude_deg = 45.0;  ///< station latitude, for local gravity
+  double height_m = 0.0;       ///< station height, for local gravity
   double start_c = 25.0;
   double soak_band_c = 1.0;
   double ads_ps_pa = 101325.0;
-  double ads_qc_pa = 1630.3;    ///< 100 kt CAS
-  int log_every = 1;            ///< log every Nth packet (1 = all)
+  double ads_qc_pa = 1630.3;  ///< 100 kt CAS
+  int log_every = 1;          ///< log every Nth packet (1 = all)
   std::vector<ThermalProfileStep> steps;
   ChamberAirParams chamber;
 
@@ -47,7 +47,7 @@ struct StaticThermalRunConfig {
 
 struct StaticThermalRunSummary {
   double duration_s = 0.0;
-  uint64_t frames = 0;        ///< 100 Hz frames simulated per unit
+  uint64_t frames = 0;  ///< 100 Hz frames simulated per unit
   uint64_t imu_rows = 0;
   uint64_t ads_rows = 0;
 };
@@ -55,7 +55,8 @@ struct StaticThermalRunSummary {
 /// Runs the profile and writes `run_dir` (meta.json, imu.csv, ads.csv, truth/<serial>.json).
 /// `on_step` is called at each step boundary with the step index and the simulated time.
 StaticThermalRunSummary RunStaticThermal(
-    const StaticThermalRunConfig& config, const std::filesystem::path& run_dir,
+    const StaticThermalRunConfig& config,
+    const std::filesystem::path& run_dir,
     const std::function<void(int step, double t_s)>& on_step = {});
 
 }  // namespace adahrs::rig_sim

@@ -34,9 +34,10 @@ void UnitDevice::Receive(std::span<const uint8_t> bytes, double now_s) {
     const uint8_t* chunk = bytes.data() + start;
     uint16_t consumed = 0;
     while (true) {
-      const fm::PortResult result =
-          handler_.Receive(chunk + consumed, static_cast<uint16_t>(count - consumed),
-                           frame_.data(), static_cast<uint16_t>(frame_.size()));
+      const fm::PortResult result = handler_.Receive(chunk + consumed,
+                                                     static_cast<uint16_t>(count - consumed),
+                                                     frame_.data(),
+                                                     static_cast<uint16_t>(frame_.size()));
       consumed = static_cast<uint16_t>(consumed + result.consumed_bytes);
       if (result.response_bytes == 0) break;
       // RESET is a power cycle before its ACK: whatever the line still held is lost.
@@ -53,8 +54,8 @@ void UnitDevice::Advance(double now_s, double, RigEnvironment& env) {
   while (samples_done_ < due) {
     ++samples_done_;
     const double sample_s = static_cast<double>(samples_done_) * kUnitSamplePeriod_s;
-    const uint16_t length = Acquire(sample_s, env, powered_, handler_, frame_.data(),
-                                    static_cast<uint16_t>(frame_.size()));
+    const uint16_t length = Acquire(
+        sample_s, env, powered_, handler_, frame_.data(), static_cast<uint16_t>(frame_.size()));
     if (length == 0) continue;
     if (line_.Queue({frame_.data(), length}, sample_s)) {
       ++counters_.packets_sent;

@@ -73,8 +73,11 @@ class UnitDevice : public SerialDevice {
 
   /// Steps the unit's physics one sample at `sample_s` in `env`; if `encode`, writes the data
   /// packet (handler's mode, constants, sequence and TAG) into `frame` and returns its length.
-  virtual uint16_t Acquire(double sample_s, const RigEnvironment& env, bool encode,
-                           firmware_model::MaintenanceHandler& handler, uint8_t* frame,
+  virtual uint16_t Acquire(double sample_s,
+                           const RigEnvironment& env,
+                           bool encode,
+                           firmware_model::MaintenanceHandler& handler,
+                           uint8_t* frame,
                            uint16_t capacity) = 0;
 
  private:

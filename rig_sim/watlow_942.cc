@@ -16,12 +16,16 @@ constexpr int kModeHoldBits = 2;
 constexpr int kModeOffBits = 34;
 
 bool IsInteger(double value) { return value == std::floor(value); }
-bool IntegerIn(double value, int lo, int hi) { return IsInteger(value) && value >= lo && value <= hi; }
+bool IntegerIn(double value, int lo, int hi) {
+  return IsInteger(value) && value >= lo && value <= hi;
+}
 
 }  // namespace
 
 Watlow942::Watlow942(const Watlow942Params& params)
-    : params_(params), air_(params.air, params.initial_air_c), set_point_c_(params.initial_set_point_c) {
+    : params_(params),
+      air_(params.air, params.initial_air_c),
+      set_point_c_(params.initial_set_point_c) {
   jumps_left_.fill(-1);
 }
 
@@ -55,7 +59,8 @@ std::vector<std::string> Watlow942::StepFields(int number) const {
       add_int(s.event1), add_int(s.event2);
       break;
     case 2:
-      add_int(s.hours), add_int(s.minutes), add_int(s.seconds), add_int(s.event1), add_int(s.event2);
+      add_int(s.hours), add_int(s.minutes), add_int(s.seconds), add_int(s.event1),
+          add_int(s.event2);
       break;
     case 3:
       add_int(s.jump_step), add_int(s.jump_count);
@@ -81,9 +86,12 @@ std::optional<std::vector<std::string>> Watlow942::Read(const hil::Watlow942Mess
     er2_ = Watlow942Error::kNone;  // cleared when read (p. 25)
     return std::vector{std::to_string(code)};
   }
-  if (mn == "MDL") return std::vector<std::string>{"942", std::to_string(params_.software_revision)};
+  if (mn == "MDL")
+    return std::vector<std::string>{"942", std::to_string(params_.software_revision)};
   if (mn == "MODE") {
-    const int bits = mode_ == Mode::kRun ? kModeRunBits : mode_ == Mode::kHold ? kModeHoldBits : kModeOffBits;
+    const int bits = mode_ == Mode::kRun    ? kModeRunBits
+                     : mode_ == Mode::kHold ? kModeHoldBits
+                                            : kModeOffBits;
     return std::vector{std::to_string(bits)};
   }
   if (mn == "MTR") return StepFields(step_);
@@ -175,7 +183,10 @@ void Watlow942::WriteStep(const std::vector<double>& d) {
   const int number = static_cast<int>(d[0]);
   Step s;
   s.type = static_cast<int>(d[1]);
-  const size_t fields_wanted = s.type == 1 ? (params_.profile_by_rate ? 4 : 6) : s.type == 2 ? 5 : s.type == 3 ? 2 : 1;
+  const size_t fields_wanted = s.type == 1   ? (params_.profile_by_rate ? 4 : 6)
+                               : s.type == 2 ? 5
+                               : s.type == 3 ? 2
+                                             : 1;
   if (d.size() - 2 != fields_wanted) {
     er2_ = d.size() - 2 < fields_wanted ? Watlow942Error::kIncompleteCommandLine
                                         : Watlow942Error::kTooManyCharacters;
@@ -185,7 +196,8 @@ void Watlow942::WriteStep(const std::vector<double>& d) {
   bool ok = true;
   auto time_fields = [&](const double* t) {
     ok = ok && IntegerIn(t[0], 0, 99) && IntegerIn(t[1], 0, 59) && IntegerIn(t[2], 0, 59);
-    s.hours = static_cast<int>(t[0]), s.minutes = static_cast<int>(t[1]), s.seconds = static_cast<int>(t[2]);
+    s.hours = static_cast<int>(t[0]), s.minutes = static_cast<int>(t[1]),
+    s.seconds = static_cast<int>(t[2]);
   };
   auto events = [&](const double* e) {
     ok = ok && IntegerIn(e[0], 0, 1) && IntegerIn(e[1], 0, 1);
@@ -275,7 +287,8 @@ void Watlow942::RunProfile(double dt_s) {
         left_s -= remaining_s;
       } else {
         step_elapsed_s_ += left_s;
-        if (s.type == 1) set_point_c_ = step_start_c_ + (s.sp_c - step_start_c_) * step_elapsed_s_ / duration_s;
+        if (s.type == 1)
+          set_point_c_ = step_start_c_ + (s.sp_c - step_start_c_) * step_elapsed_s_ / duration_s;
         left_s = 0.0;
         continue;
       }

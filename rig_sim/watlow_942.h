@@ -34,14 +34,14 @@ namespace adahrs::rig_sim {
 struct Watlow942Params {
   ChamberAirParams air;
   double initial_air_c = 25.0;
-  double ambient_c = 25.0;             ///< where the air drifts with control off or failed
+  double ambient_c = 25.0;  ///< where the air drifts with control off or failed
   double initial_set_point_c = 25.0;
-  double range_low_c = -50.0;          ///< rL: lowest set point accepted
-  double range_high_c = 100.0;         ///< rH: highest set point accepted
+  double range_low_c = -50.0;   ///< rL: lowest set point accepted
+  double range_high_c = 100.0;  ///< rH: highest set point accepted
   double max_ramp_rate_c_per_min = 30.0;
-  bool profile_by_rate = true;         ///< PtYP = rAtE (true) or tI (false)
-  int decimals = 1;                    ///< decimal places in replies (the 942's dEC setting)
-  int software_revision = 1;           ///< the X of the `? MDL` reply `942 X`
+  bool profile_by_rate = true;  ///< PtYP = rAtE (true) or tI (false)
+  int decimals = 1;             ///< decimal places in replies (the 942's dEC setting)
+  int software_revision = 1;    ///< the X of the `? MDL` reply `942 X`
 };
 
 class Watlow942 {

@@ -2,7 +2,9 @@
 
 namespace adahrs::rig_sim {
 
-Watlow942Device::Watlow942Device(std::string role, const Watlow942Params& params, double reply_delay_s)
+Watlow942Device::Watlow942Device(std::string role,
+                                 const Watlow942Params& params,
+                                 double reply_delay_s)
     : role_(std::move(role)), controller_(params), reply_delay_s_(reply_delay_s) {}
 
 void Watlow942Device::Queue(double at_s, std::string bytes) {
@@ -69,7 +71,8 @@ std::unique_ptr<SerialDevice> MakeWatlow942Device(const common::ParamReader& con
   p.max_ramp_rate_c_per_min = config.Number("max_ramp_rate_c_per_min", 0.1, 999.9, "°C/min");
   const std::string profile_type = config.String("profile_type");
   if (profile_type != "rate" && profile_type != "time") {
-    config.Fail(config.path() + ".profile_type", "expected \"rate\" or \"time\", got \"" + profile_type + "\"");
+    config.Fail(config.path() + ".profile_type",
+                "expected \"rate\" or \"time\", got \"" + profile_type + "\"");
   }
   p.profile_by_rate = profile_type == "rate";
   p.decimals = static_cast<int>(config.Integer("decimals", 0, 2));

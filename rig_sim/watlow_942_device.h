@@ -18,10 +18,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/param_reader.h"
 #include "hil/codecs/watlow942_codec.h"
 #include "rig_sim/serial_device.h"
 #include "rig_sim/watlow_942.h"
-#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 

@@ -10,9 +10,9 @@ namespace {
 using hil::modbus::ExceptionCode;
 
 // Register numbers, shared/protocols.md §2.3–2.4.
-constexpr uint16_t kRegModel = 0;           // 5270: '4' (52) and 'F' (70), DRV
+constexpr uint16_t kRegModel = 0;  // 5270: '4' (52) and 'F' (70), DRV
 constexpr uint16_t kModelF4 = 5270;
-constexpr uint16_t kRegIdentLast = 5;       // serial number (1, 2), software (3, 4), date (5)
+constexpr uint16_t kRegIdentLast = 5;  // serial number (1, 2), software (3, 4), date (5)
 constexpr uint16_t kRegAlarm1Status = 102;
 constexpr uint16_t kRegHeatPower = 103;
 constexpr uint16_t kRegCoolPower = 107;
@@ -209,19 +209,45 @@ WatlowF4::Exception WatlowF4::Read(uint16_t reg, uint16_t& value) const {
     const double remaining_s = std::max(0.0, std::ceil(StepRemainingS()));
     const int remaining = static_cast<int>(remaining_s);
     switch (reg) {
-      case 4100: value = static_cast<uint16_t>(profile_ + 1); break;
-      case 4101: value = static_cast<uint16_t>(step_ + 1); break;
-      case 4102: value = step.Reg(kRegStepType); break;
-      case 4103: value = guaranteed_soak_waiting_ ? 1 : 0; break;
-      case 4119: value = static_cast<uint16_t>(remaining / 3600); break;
-      case 4120: value = static_cast<uint16_t>(remaining / 60 % 60); break;
-      case 4121: value = static_cast<uint16_t>(remaining % 60); break;
-      case 4122: value = ToReg(profile_set_point_c_); break;
-      case 4124: value = step.Reg(kRegPidSet); break;
-      case 4126: value = last_jump_done_; break;
-      case 4127: value = last_jump_profile_; break;
-      case 4128: value = last_jump_step_; break;
-      case 4129: value = ToReg(end_set_point_c_); break;
+      case 4100:
+        value = static_cast<uint16_t>(profile_ + 1);
+        break;
+      case 4101:
+        value = static_cast<uint16_t>(step_ + 1);
+        break;
+      case 4102:
+        value = step.Reg(kRegStepType);
+        break;
+      case 4103:
+        value = guaranteed_soak_waiting_ ? 1 : 0;
+        break;
+      case 4119:
+        value = static_cast<uint16_t>(remaining / 3600);
+        break;
+      case 4120:
+        value = static_cast<uint16_t>(remaining / 60 % 60);
+        break;
+      case 4121:
+        value = static_cast<uint16_t>(remaining % 60);
+        break;
+      case 4122:
+        value = ToReg(profile_set_point_c_);
+        break;
+      case 4124:
+        value = step.Reg(kRegPidSet);
+        break;
+      case 4126:
+        value = last_jump_done_;
+        break;
+      case 4127:
+        value = last_jump_profile_;
+        break;
+      case 4128:
+        value = last_jump_step_;
+        break;
+      case 4129:
+        value = ToReg(end_set_point_c_);
+        break;
       default:
         if (reg >= 4111 && reg <= 4118) value = step.Reg(kRegEventFirst + (reg - 4111));
         break;
@@ -233,31 +259,63 @@ WatlowF4::Exception WatlowF4::Read(uint16_t reg, uint16_t& value) const {
     return std::nullopt;
   }
   switch (reg) {
-    case kRegAlarm1Status: return std::nullopt;
-    case kRegHeatPower: value = heat_power_; return std::nullopt;
-    case kRegCoolPower: value = cool_power_; return std::nullopt;
-    case kRegSensor: return std::nullopt;
-    case kRegInputErrorLatch: return std::nullopt;
-    case kRegPv: value = ToReg(pv_c_); return std::nullopt;
-    case kRegInputError: return std::nullopt;  // 0: no sensor error
-    case kRegMode: value = static_cast<uint16_t>(mode_); return std::nullopt;
-    case kRegSetPoint: value = ToReg(static_set_point_c_); return std::nullopt;
-    case kRegSpLowLimit: value = ToReg(settings_.set_point_low_limit_c); return std::nullopt;
-    case kRegSpHighLimit: value = ToReg(settings_.set_point_high_limit_c); return std::nullopt;
-    case kRegDecimals: value = static_cast<uint16_t>(settings_.decimals); return std::nullopt;
-    case kRegProcessUnits: return std::nullopt;  // 0: temperature
-    case kRegCelsius: value = 1; return std::nullopt;
-    case kRegSoakBand: value = ToReg(settings_.guaranteed_soak_band_c); return std::nullopt;
+    case kRegAlarm1Status:
+      return std::nullopt;
+    case kRegHeatPower:
+      value = heat_power_;
+      return std::nullopt;
+    case kRegCoolPower:
+      value = cool_power_;
+      return std::nullopt;
+    case kRegSensor:
+      return std::nullopt;
+    case kRegInputErrorLatch:
+      return std::nullopt;
+    case kRegPv:
+      value = ToReg(pv_c_);
+      return std::nullopt;
+    case kRegInputError:
+      return std::nullopt;  // 0: no sensor error
+    case kRegMode:
+      value = static_cast<uint16_t>(mode_);
+      return std::nullopt;
+    case kRegSetPoint:
+      value = ToReg(static_set_point_c_);
+      return std::nullopt;
+    case kRegSpLowLimit:
+      value = ToReg(settings_.set_point_low_limit_c);
+      return std::nullopt;
+    case kRegSpHighLimit:
+      value = ToReg(settings_.set_point_high_limit_c);
+      return std::nullopt;
+    case kRegDecimals:
+      value = static_cast<uint16_t>(settings_.decimals);
+      return std::nullopt;
+    case kRegProcessUnits:
+      return std::nullopt;  // 0: temperature
+    case kRegCelsius:
+      value = 1;
+      return std::nullopt;
+    case kRegSoakBand:
+      value = ToReg(settings_.guaranteed_soak_band_c);
+      return std::nullopt;
     case kRegProfilesLeft: {
-      const auto existing = std::count_if(profiles_.begin(), profiles_.end(),
-                                          [](const Profile& p) { return p.exists; });
+      const auto existing = std::count_if(
+          profiles_.begin(), profiles_.end(), [](const Profile& p) { return p.exists; });
       value = static_cast<uint16_t>(kProfiles - existing);
       return std::nullopt;
     }
-    case kRegStepsLeft: value = static_cast<uint16_t>(kTotalSteps - StepsUsed()); return std::nullopt;
-    case kRegProfile: value = selected_profile_; return std::nullopt;
-    case kRegStep: value = selected_step_; return std::nullopt;
-    default: return ExceptionCode::kIllegalDataAddress;
+    case kRegStepsLeft:
+      value = static_cast<uint16_t>(kTotalSteps - StepsUsed());
+      return std::nullopt;
+    case kRegProfile:
+      value = selected_profile_;
+      return std::nullopt;
+    case kRegStep:
+      value = selected_step_;
+      return std::nullopt;
+    default:
+      return ExceptionCode::kIllegalDataAddress;
   }
 }
 
@@ -326,7 +384,8 @@ WatlowF4::Exception WatlowF4::Write(uint16_t reg, uint16_t value) {
 }
 
 WatlowF4::Exception WatlowF4::WriteStepRegister(uint16_t reg, uint16_t value) {
-  const auto* range = std::find_if(std::begin(kStepRanges), std::end(kStepRanges),
+  const auto* range = std::find_if(std::begin(kStepRanges),
+                                   std::end(kStepRanges),
                                    [reg](const StepRegisterRange& r) { return r.reg == reg; });
   const bool is_set_point = reg == kRegTarget || reg == kRegIdleSetPoint;
   const bool is_analog_value = reg == 4022 || reg == 4024 || reg == 4026;
@@ -352,8 +411,8 @@ WatlowF4::Exception WatlowF4::EditAction(uint16_t action) {
   const bool profile_running = running_ && selected_profile_ == profile_ + 1;
   switch (action) {
     case kCreateProfile: {
-      auto free = std::find_if(profiles_.begin(), profiles_.end(),
-                               [](const Profile& p) { return !p.exists; });
+      auto free = std::find_if(
+          profiles_.begin(), profiles_.end(), [](const Profile& p) { return !p.exists; });
       if (free == profiles_.end() || StepsUsed() >= kTotalSteps) {
         return ExceptionCode::kIllegalDataValue;
       }

@@ -13,10 +13,10 @@
 // Units: temperatures °C (register 901 reads 1); times s; rates °C/min.
 // Choices where the drivers are silent (INF, documented): FC 16 writes register by register in
 // order and stops at the first refused register (earlier ones stay written), as a sequence of FC 06
-// would; a profile starts ramping from the process value; a soak holds the set point it starts with;
-// a jump with repeat count N is taken N times, then the profile goes on with the next step; the
-// running profile cannot be edited (03); editing registers for a step or profile that does not exist
-// gives 03; hold/resume without a running profile give 03, terminate is always accepted.
+// would; a profile starts ramping from the process value; a soak holds the set point it starts
+// with; a jump with repeat count N is taken N times, then the profile goes on with the next step;
+// the running profile cannot be edited (03); editing registers for a step or profile that does not
+// exist gives 03; hold/resume without a running profile give 03, terminate is always accepted.
 // Identification (registers 0-5): model 5270, which a public F4 client decodes as "F4" (DRV);
 // serial number, software and date of manufacture read 0 (their values were not found: UNKNOWN).
 // Input 1 sensor (600) and error latching (607) read 0. Alarm 1 status (102) reads 0: no alarm is
@@ -40,25 +40,31 @@ namespace adahrs::rig_sim {
 
 /// Controller settings (the F4's setup pages), validated by the device factory.
 struct WatlowF4Settings {
-  int decimals = 1;                     ///< implied decimals of temperatures (register 606), 0 or 1
-  double set_point_low_limit_c = -70.0;  ///< register 602
-  double set_point_high_limit_c = 180.0; ///< register 603
-  double static_set_point_c = 25.0;      ///< register 300 at power-up
-  double guaranteed_soak_band_c = 1.0;   ///< register 1205
+  int decimals = 1;  ///< implied decimals of temperatures (register 606), 0 or 1
+  double set_point_low_limit_c = -70.0;   ///< register 602
+  double set_point_high_limit_c = 180.0;  ///< register 603
+  double static_set_point_c = 25.0;       ///< register 300 at power-up
+  double guaranteed_soak_band_c = 1.0;    ///< register 1205
 };
 
 class WatlowF4 {
  public:
-  static constexpr int kProfiles = 40;      // §2.3 register 1218: "of 40"
-  static constexpr int kTotalSteps = 256;   // §2.3 register 1219: "of 256 total"
+  static constexpr int kProfiles = 40;     // §2.3 register 1218: "of 40"
+  static constexpr int kTotalSteps = 256;  // §2.3 register 1219: "of 256 total"
   static constexpr uint16_t kStepBlockFirst = 4003;
   static constexpr uint16_t kStepBlockLast = 4062;
 
   /// Register 200 values (§2.3 DRV: 2 running, 3 holding; ChamberConnect treats 0/1 as constant).
   enum class Mode : uint16_t { kStatic = 0, kRunning = 2, kHolding = 3 };
   /// Step types, register 4003 (§2.4 DRV).
-  enum StepType : uint16_t { kAutostart = 0, kRampTime = 1, kRampRate = 2, kSoak = 3, kJump = 4,
-                             kEnd = 5 };
+  enum StepType : uint16_t {
+    kAutostart = 0,
+    kRampTime = 1,
+    kRampRate = 2,
+    kSoak = 3,
+    kJump = 4,
+    kEnd = 5
+  };
   /// End actions, register 4060 (§2.4 DRV).
   enum EndAction : uint16_t { kHold = 0, kControlOff = 1, kAllOff = 2, kIdle = 3 };
 
@@ -126,8 +132,8 @@ class WatlowF4 {
   Mode mode_ = Mode::kStatic;
   bool running_ = false;
   bool control_on_ = true;
-  int profile_ = 0;            // 0-based index of the running profile
-  int step_ = 0;               // 0-based index of the running step
+  int profile_ = 0;  // 0-based index of the running profile
+  int step_ = 0;     // 0-based index of the running step
   double step_elapsed_s_ = 0.0;
   double step_duration_s_ = 0.0;
   double ramp_start_c_ = 0.0;

@@ -14,9 +14,7 @@ constexpr double kBitsPerCharacter = 10.0;  // 8N1: start, 8 data, stop
 constexpr double kTimeEpsilon_s = 1e-9;
 
 // Serial Line §2.5.1.1: t3.5 = 3.5 characters, fixed at 1.75 ms above 19200 baud.
-double InterFrameGapS(int baud) {
-  return baud > 19200 ? 1.75e-3 : 3.5 * kBitsPerCharacter / baud;
-}
+double InterFrameGapS(int baud) { return baud > 19200 ? 1.75e-3 : 3.5 * kBitsPerCharacter / baud; }
 
 }  // namespace
 
@@ -56,14 +54,17 @@ void WatlowF4Device::Receive(std::span<const uint8_t> bytes, double now_s) {
 }
 
 void WatlowF4Device::EndFrameOnSilence(double now_s) {
-  if ((rx_.empty() && !discarding_) || now_s - last_rx_s_ < config_.partial_frame_timeout_s - kTimeEpsilon_s) return;
+  if ((rx_.empty() && !discarding_) ||
+      now_s - last_rx_s_ < config_.partial_frame_timeout_s - kTimeEpsilon_s)
+    return;
   // The line fell silent: what is left is one frame. Only an unknown function code with a good
   // CRC deserves a reply (exception 01); a partial known frame or garbage is dropped.
   if (!discarding_ && hil::modbus::RequestFrameLength(rx_) < 0) {
     const hil::modbus::DecodedRequest decoded = hil::modbus::DecodeRequest(rx_);
     if (decoded.status == DecodeStatus::kIllegalFunction &&
         decoded.request.address == config_.modbus_address) {
-      Reply(hil::modbus::ExceptionResponse(decoded.request.address, decoded.request.function,
+      Reply(hil::modbus::ExceptionResponse(decoded.request.address,
+                                           decoded.request.function,
                                            hil::modbus::ExceptionCode::kIllegalFunction),
             now_s);
     }
@@ -93,8 +94,8 @@ void WatlowF4Device::ParseBuffer(double now_s) {
     if (decoded.status == DecodeStatus::kOk) {
       Serve(decoded.request, now_s);
     } else if (decoded.status == DecodeStatus::kIllegalDataValue && address != 0) {
-      Reply(hil::modbus::ExceptionResponse(address, decoded.request.function,
-                                           hil::modbus::ExceptionCode::kIllegalDataValue),
+      Reply(hil::modbus::ExceptionResponse(
+                address, decoded.request.function, hil::modbus::ExceptionCode::kIllegalDataValue),
             now_s);
     }
   }
@@ -157,14 +158,17 @@ WatlowF4DeviceConfig ReadWatlowF4DeviceConfig(const common::ParamReader& config)
 
   const common::ParamReader controller = config.Child("controller");
   c.controller.decimals = static_cast<int>(controller.Integer("decimals", 0, 1));
-  c.controller.set_point_low_limit_c = controller.Number("set_point_low_limit_c", -200.0, 800.0, "°C");
+  c.controller.set_point_low_limit_c =
+      controller.Number("set_point_low_limit_c", -200.0, 800.0, "°C");
   c.controller.set_point_high_limit_c =
       controller.Number("set_point_high_limit_c", -200.0, 800.0, "°C");
   c.controller.static_set_point_c = controller.Number("static_set_point_c", -200.0, 800.0, "°C");
-  c.controller.guaranteed_soak_band_c = controller.Number("guaranteed_soak_band_c", 0.0, 100.0, "°C");
+  c.controller.guaranteed_soak_band_c =
+      controller.Number("guaranteed_soak_band_c", 0.0, 100.0, "°C");
   controller.ExpectAllKeysUsed();
   if (c.controller.set_point_low_limit_c >= c.controller.set_point_high_limit_c) {
-    controller.Fail(controller.path(), "set_point_low_limit_c must be below set_point_high_limit_c");
+    controller.Fail(controller.path(),
+                    "set_point_low_limit_c must be below set_point_high_limit_c");
   }
   if (c.controller.static_set_point_c < c.controller.set_point_low_limit_c ||
       c.controller.static_set_point_c > c.controller.set_point_high_limit_c) {

@@ -36,10 +36,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/param_reader.h"
 #include "rig_sim/chamber_air.h"
 #include "rig_sim/serial_device.h"
 #include "rig_sim/watlow_f4.h"
-#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 
@@ -47,14 +47,14 @@ struct WatlowF4DeviceConfig {
   std::string role = "imu_chamber";
   uint8_t modbus_address = 1;
   int baud = 9600;
-  double reply_latency_s = 0.005;        ///< controller turnaround beyond 3.5 characters (UNKNOWN)
+  double reply_latency_s = 0.005;         ///< controller turnaround beyond 3.5 characters (UNKNOWN)
   double partial_frame_timeout_s = 0.05;  ///< silence that abandons a partial frame
   double control_tick_s = 0.1;            ///< controller scan and physics step
   WatlowF4Settings controller;
   ChamberAirParams chamber;
   double initial_air_c = 25.0;
-  double ambient_c = 23.0;               ///< lab air the chamber drifts to with control off
-  double control_off_tau_s = 1800.0;     ///< passive drift time constant with control off
+  double ambient_c = 23.0;                ///< lab air the chamber drifts to with control off
+  double control_off_tau_s = 1800.0;      ///< passive drift time constant with control off
   double capacity_ratio_in_fault = 0.05;  ///< heating/cooling capacity left in the fault
 };
 

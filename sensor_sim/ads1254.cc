@@ -30,7 +30,9 @@ Ads1254Effects Ads1254Effects::Nominal() {
   return {.noise = true, .inl = false, .reference_error = true};
 }
 
-Ads1254Effects Ads1254Effects::All() { return {.noise = true, .inl = true, .reference_error = true}; }
+Ads1254Effects Ads1254Effects::All() {
+  return {.noise = true, .inl = true, .reference_error = true};
+}
 
 Ads1254Params Ads1254Params::Typical() {
   return {.vref_v = kTypicalVref_v,

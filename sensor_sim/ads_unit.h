@@ -16,11 +16,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/param_reader.h"
 #include "sensor_sim/ads1254.h"
 #include "sensor_sim/die_thermal.h"
 #include "sensor_sim/model_profile.h"
 #include "sensor_sim/oat_probe.h"
-#include "common/param_reader.h"
 #include "sensor_sim/pressure_bridge.h"
 
 namespace adahrs::sensor_sim {
@@ -54,7 +54,8 @@ struct AdsUnitParams {
 
   static AdsUnitParams Draw(const std::string& serial, uint64_t seed, ModelProfile profile);
   void ApplyProfile(ModelProfile profile);
-  /// kPlayHysteresis puts both bridges on the play-operator law; the other variants leave the ADS as is.
+  /// kPlayHysteresis puts both bridges on the play-operator law; the other variants leave the ADS
+  /// as is.
   void ApplyVariant(TruthVariant variant);
   nlohmann::json ToJson() const;
   static AdsUnitParams FromJson(const common::ParamReader& reader);

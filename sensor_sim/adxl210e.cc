@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sensor_sim/fast_math.h"
 #include "common/units.h"
+#include "sensor_sim/fast_math.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -93,29 +93,29 @@ Adxl210eParams Adxl210eParams::Draw(uint64_t seed) {
   Adxl210eParams p;
   const double filter_r_lot_ohm = rng.Tolerance(32e3, 4.8e3);  // ±15 %, R
   auto draw_axis = [&](Adxl210eAxisParams& a) {
-    a.zero_g_duty_ratio = rng.Tolerance(0.5, 0.08);              // ±2 g at 4 %/g, R
-    a.sensitivity_pct_per_g = rng.Tolerance(4.0, 0.8);           // 3.2 … 4.8 %/g, R
-    a.zero_g_tc1_mg_per_c = rng.Tolerance(0.0, 6.0);             // ±2 mg/°C typ, R
-    a.zero_g_tc2_mg_per_c2 = rng.Tolerance(0.0, 0.015);          // E
-    a.zero_g_tc3_mg_per_c3 = rng.Tolerance(0.0, 1.5e-4);         // E
-    a.sensitivity_tc1_ppm_per_c = rng.Tolerance(0.0, 240.0);     // ±0.5 % over 60 °C typ, R
-    a.sensitivity_tc2_ppm_per_c2 = rng.Tolerance(0.0, 0.9);      // E
-    a.sensitivity_tc3_ppm_per_c3 = rng.Tolerance(0.0, 0.015);    // E
-    a.zero_g_supply_pct_per_v = rng.Tolerance(1.0, 3.0);         // 1 %/V typ, 4 %/V max, R
-    a.nonlinearity_pct_fs = rng.Tolerance(0.0, 0.6);             // 0.2 % FS typ, R
-    a.cross_other_ratio = rng.Tolerance(0.0, 0.06);              // ±2 % typ, R
-    a.cross_z_ratio = rng.Tolerance(0.0, 0.06);                  // ±2 % typ, R
-    a.noise_density_ug_per_rthz = rng.Tolerance(200.0, 60.0);    // E spread about the V typ
+    a.zero_g_duty_ratio = rng.Tolerance(0.5, 0.08);                // ±2 g at 4 %/g, R
+    a.sensitivity_pct_per_g = rng.Tolerance(4.0, 0.8);             // 3.2 … 4.8 %/g, R
+    a.zero_g_tc1_mg_per_c = rng.Tolerance(0.0, 6.0);               // ±2 mg/°C typ, R
+    a.zero_g_tc2_mg_per_c2 = rng.Tolerance(0.0, 0.015);            // E
+    a.zero_g_tc3_mg_per_c3 = rng.Tolerance(0.0, 1.5e-4);           // E
+    a.sensitivity_tc1_ppm_per_c = rng.Tolerance(0.0, 240.0);       // ±0.5 % over 60 °C typ, R
+    a.sensitivity_tc2_ppm_per_c2 = rng.Tolerance(0.0, 0.9);        // E
+    a.sensitivity_tc3_ppm_per_c3 = rng.Tolerance(0.0, 0.015);      // E
+    a.zero_g_supply_pct_per_v = rng.Tolerance(1.0, 3.0);           // 1 %/V typ, 4 %/V max, R
+    a.nonlinearity_pct_fs = rng.Tolerance(0.0, 0.6);               // 0.2 % FS typ, R
+    a.cross_other_ratio = rng.Tolerance(0.0, 0.06);                // ±2 % typ, R
+    a.cross_z_ratio = rng.Tolerance(0.0, 0.06);                    // ±2 % typ, R
+    a.noise_density_ug_per_rthz = rng.Tolerance(200.0, 60.0);      // E spread about the V typ
     a.filter_r_ohm = filter_r_lot_ohm * rng.Tolerance(1.0, 0.01);  // on-die match ±1 %, E
-    a.filter_c_f = rng.Tolerance(0.1e-6, 0.01e-6);               // ±10 % capacitor, E
+    a.filter_c_f = rng.Tolerance(0.1e-6, 0.01e-6);                 // ±10 % capacitor, E
   };
   draw_axis(p.x);
   draw_axis(p.y);
-  p.xy_nonorthogonality_deg = rng.Tolerance(0.0, 0.03);  // 0.01° typ, R
-  p.rset_ohm = rng.Tolerance(125e3, 1.25e3);             // 1 % resistor, E
+  p.xy_nonorthogonality_deg = rng.Tolerance(0.0, 0.03);   // 0.01° typ, R
+  p.rset_ohm = rng.Tolerance(125e3, 1.25e3);              // 1 % resistor, E
   p.t2_oscillator_error_ratio = rng.Tolerance(0.0, 0.3);  // ±30 %, R
-  p.t2_tc_ppm_per_c = rng.Tolerance(0.0, 300.0);         // E
-  p.t2_jitter_ppm = rng.Tolerance(20.0, 15.0);           // E
+  p.t2_tc_ppm_per_c = rng.Tolerance(0.0, 300.0);          // E
+  p.t2_jitter_ppm = rng.Tolerance(20.0, 15.0);            // E
   return p;
 }
 
@@ -197,12 +197,13 @@ Adxl210e::Axes Adxl210e::MakeAxes(const Adxl210eParams& params, double frame_per
     a.quadratic_per_g[lane] = 1.5 * p.nonlinearity_pct_fs * kRatioPerPct / kFullScale_g;
   }
   const bool cross = params.effects.cross_axis;
-  a.cross_other_ratio = cross ? DoublePair{params.x.cross_other_ratio,
-                                           params.y.cross_other_ratio +
-                                               std::sin(common::DegToRad(params.xy_nonorthogonality_deg))}
-                              : DoublePair{0.0, 0.0};
-  a.cross_z_ratio = cross ? DoublePair{params.x.cross_z_ratio, params.y.cross_z_ratio}
-                          : DoublePair{0.0, 0.0};
+  a.cross_other_ratio =
+      cross ? DoublePair{params.x.cross_other_ratio,
+                         params.y.cross_other_ratio +
+                             std::sin(common::DegToRad(params.xy_nonorthogonality_deg))}
+            : DoublePair{0.0, 0.0};
+  a.cross_z_ratio =
+      cross ? DoublePair{params.x.cross_z_ratio, params.y.cross_z_ratio} : DoublePair{0.0, 0.0};
   return a;
 }
 
@@ -325,8 +326,8 @@ inline Adxl210eOutput Adxl210e::FinishFrame(const Frame& frame) const {
         FloorPair(period.grid_phase_cnt + fall_cnt) -
         static_cast<double>(FloorToInt64(period.grid_phase_cnt + period.start_cnt));
     for (int lane = 0; lane < 2; ++lane) {
-      t1_capture_cnt[lane] = static_cast<uint16_t>(
-          static_cast<uint64_t>(static_cast<int64_t>(ticks[lane])) & 0xFFFFu);
+      t1_capture_cnt[lane] =
+          static_cast<uint16_t>(static_cast<uint64_t>(static_cast<int64_t>(ticks[lane])) & 0xFFFFu);
     }
   } else {
     for (int lane = 0; lane < 2; ++lane) {
@@ -343,7 +344,8 @@ Adxl210eOutput Adxl210e::Step(const Adxl210eInput& input) {
   return FinishFrame(frame);
 }
 
-void Adxl210e::StepEach(std::span<Adxl210e> chips, std::span<const Adxl210eInput> inputs,
+void Adxl210e::StepEach(std::span<Adxl210e> chips,
+                        std::span<const Adxl210eInput> inputs,
                         std::span<Adxl210eOutput> outputs) {
   constexpr size_t kMaxChipsPerPass = 4;  // a unit has 3; the frames stay on the stack
   for (size_t first = 0; first < chips.size(); first += kMaxChipsPerPass) {

@@ -36,10 +36,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sensor_sim/double_pair.h"
-#include "sensor_sim/duty_cycle_modulator.h"
 #include "common/param_reader.h"
 #include "common/random.h"
+#include "sensor_sim/double_pair.h"
+#include "sensor_sim/duty_cycle_modulator.h"
 
 namespace adahrs::sensor_sim {
 
@@ -86,33 +86,33 @@ struct Adxl210eEffects {
 
 /// One sensitive axis' parameters. "Other" is the chip's other in-plane axis (Y for X, X for Y).
 struct Adxl210eAxisParams {
-  double zero_g_duty_ratio = 0.5;           ///< D0 at 25 °C and 5 V
-  double sensitivity_pct_per_g = 4.0;       ///< S at 25 °C, duty % per g
-  double zero_g_tc1_mg_per_c = 0.0;         ///< b1, as acceleration at S_25
-  double zero_g_tc2_mg_per_c2 = 0.0;        ///< b2
-  double zero_g_tc3_mg_per_c3 = 0.0;        ///< b3
-  double sensitivity_tc1_ppm_per_c = 0.0;   ///< s1
-  double sensitivity_tc2_ppm_per_c2 = 0.0;  ///< s2
-  double sensitivity_tc3_ppm_per_c3 = 0.0;  ///< s3
-  double zero_g_supply_pct_per_v = 1.0;     ///< k_V, duty % per V
-  double nonlinearity_pct_fs = 0.2;         ///< signed BFSL deviation over ±10 g, % of 10 g
-  double cross_other_ratio = 0.0;           ///< c_io, output g per g along the other axis
-  double cross_z_ratio = 0.0;               ///< c_iz, output g per g along z_C
-  double noise_density_ug_per_rthz = 200.0; ///< N, one-sided, µg/√Hz
-  double filter_r_ohm = 32e3;               ///< on-chip filter resistor
-  double filter_c_f = 0.1e-6;               ///< external filter capacitor
+  double zero_g_duty_ratio = 0.5;            ///< D0 at 25 °C and 5 V
+  double sensitivity_pct_per_g = 4.0;        ///< S at 25 °C, duty % per g
+  double zero_g_tc1_mg_per_c = 0.0;          ///< b1, as acceleration at S_25
+  double zero_g_tc2_mg_per_c2 = 0.0;         ///< b2
+  double zero_g_tc3_mg_per_c3 = 0.0;         ///< b3
+  double sensitivity_tc1_ppm_per_c = 0.0;    ///< s1
+  double sensitivity_tc2_ppm_per_c2 = 0.0;   ///< s2
+  double sensitivity_tc3_ppm_per_c3 = 0.0;   ///< s3
+  double zero_g_supply_pct_per_v = 1.0;      ///< k_V, duty % per V
+  double nonlinearity_pct_fs = 0.2;          ///< signed BFSL deviation over ±10 g, % of 10 g
+  double cross_other_ratio = 0.0;            ///< c_io, output g per g along the other axis
+  double cross_z_ratio = 0.0;                ///< c_iz, output g per g along z_C
+  double noise_density_ug_per_rthz = 200.0;  ///< N, one-sided, µg/√Hz
+  double filter_r_ohm = 32e3;                ///< on-chip filter resistor
+  double filter_c_f = 0.1e-6;                ///< external filter capacitor
   bool operator==(const Adxl210eAxisParams&) const = default;
 };
 
 struct Adxl210eParams {
   Adxl210eAxisParams x;
   Adxl210eAxisParams y;
-  double xy_nonorthogonality_deg = 0.0;  ///< δ_xy: y_C tilted towards x_C
-  double rset_ohm = 125e3;               ///< RSET, sets T2 = RSET/125 MΩ
-  double t2_oscillator_error_ratio = 0.0;///< δ_osc: oscillator tolerance for a given RSET
-  double t2_tc_ppm_per_c = 0.0;          ///< α
-  double t2_jitter_ppm = 20.0;           ///< rms error of one period, ppm of T2
-  double timer_clock_hz = 29.4912e6;     ///< capture timer tick rate (Fcy / prescaler)
+  double xy_nonorthogonality_deg = 0.0;    ///< δ_xy: y_C tilted towards x_C
+  double rset_ohm = 125e3;                 ///< RSET, sets T2 = RSET/125 MΩ
+  double t2_oscillator_error_ratio = 0.0;  ///< δ_osc: oscillator tolerance for a given RSET
+  double t2_tc_ppm_per_c = 0.0;            ///< α
+  double t2_jitter_ppm = 20.0;             ///< rms error of one period, ppm of T2
+  double timer_clock_hz = 29.4912e6;       ///< capture timer tick rate (Fcy / prescaler)
   Adxl210eEffects effects;
 
   /// The datasheet typical part: every signed term at 0, D0 50 %, S 4 %/g, supply 1 %/V,
@@ -140,16 +140,17 @@ class Adxl210e {
   /// captures) runs for all chips before the next, so the chips' independent dependency chains sit
   /// side by side in the instruction stream and the processor overlaps them.
   /// Precondition: the three spans have the same size.
-  static void StepEach(std::span<Adxl210e> chips, std::span<const Adxl210eInput> inputs,
+  static void StepEach(std::span<Adxl210e> chips,
+                       std::span<const Adxl210eInput> inputs,
                        std::span<Adxl210eOutput> outputs);
 
  private:
   // What one frame's step carries from one stage to the next.
   struct Frame {
     DcmPeriod period;
-    DoublePair z;        // the filter noise's standard normals
-    DoublePair a_in_g;   // input after the cross-axis matrix
-    DoublePair a_g;      // filtered, noisy acceleration at the sample instant
+    DoublePair z;       // the filter noise's standard normals
+    DoublePair a_in_g;  // input after the cross-axis matrix
+    DoublePair a_g;     // filtered, noisy acceleration at the sample instant
     double dtemp_c;
     double dsupply_v;
   };
@@ -166,11 +167,11 @@ class Adxl210e {
     DoublePair zero_g_tc_ratio[3];  // D0 change per °C^k, duty ratio
     DoublePair sensitivity_tc[3];   // relative S change per °C^k
     DoublePair supply_ratio_per_v;
-    DoublePair quadratic_per_g;     // k2
-    DoublePair cross_other_ratio;   // c_xy on X; c_yx + sin(δ_xy) on Y (0 with cross_axis off)
-    DoublePair cross_z_ratio;       // c_xz, c_yz (0 with cross_axis off)
-    DoublePair filter_g = {};       // a_f signal at the frame start
-    DoublePair noise_g = {};        // noise at the previous sample instant
+    DoublePair quadratic_per_g;    // k2
+    DoublePair cross_other_ratio;  // c_xy on X; c_yx + sin(δ_xy) on Y (0 with cross_axis off)
+    DoublePair cross_z_ratio;      // c_xz, c_yz (0 with cross_axis off)
+    DoublePair filter_g = {};      // a_f signal at the frame start
+    DoublePair noise_g = {};       // noise at the previous sample instant
     DoublePair decay_to_frame_end = {};  // exp(−(Δ − s_prev)/τ)
   };
   static Axes MakeAxes(const Adxl210eParams& params, double frame_period_s);

@@ -162,9 +162,10 @@ Adxrs150Output Adxrs150::Step(const Adxrs150Input& in) {
   const double mean_v = beta_ * filter_state_v_ + (1.0 - beta_) * u_v + l21_v_ * z1 + l22_v_ * z2;
   filter_state_v_ = a16_ * filter_state_v_ + (1.0 - a16_) * u_v + l11_v_ * z1;
 
-  const double temp_v = ratio * (params_.temp_out_v_at_298k +
-                                 temp_out_v_per_k_ * (common::CToK(in.die_temp_c) - kTempOutReference_k)) +
-                        temp_noise_sigma_v_ * z_temp;
+  const double temp_v =
+      ratio * (params_.temp_out_v_at_298k +
+               temp_out_v_per_k_ * (common::CToK(in.die_temp_c) - kTempOutReference_k)) +
+      temp_noise_sigma_v_ * z_temp;
   return Adxrs150Output{static_cast<int32_t>(rate_adc_.SumCounts(mean_v)),
                         static_cast<uint16_t>(temp_adc_.SumCounts(temp_v))};
 }

@@ -31,9 +31,9 @@
 
 #include <cstdint>
 
+#include "common/random.h"
 #include "sensor_sim/adxrs150_params.h"
 #include "sensor_sim/gyro_bias_process.h"
-#include "common/random.h"
 #include "sensor_sim/summed_adc.h"
 
 namespace adahrs::sensor_sim {

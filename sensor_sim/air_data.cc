@@ -4,8 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sensor_sim/atmosphere.h"
 #include "common/units.h"
+#include "sensor_sim/atmosphere.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -18,7 +18,9 @@ constexpr double kGammaMinusOneOverGamma = (kIsaHeatCapacityRatio - 1.0) / kIsaH
 // Pressure ratio pt/ps (or (qc + p0)/p0) at Mach (or Vc/a0) one: 1.2^3.5 = 1.892929.
 const double kSonicPressureRatio = std::pow(1.0 + kHalfGammaMinusOne, kGammaOverGammaMinusOne);
 
-[[noreturn]] void ThrowDomain(const char* function, const char* name, double value,
+[[noreturn]] void ThrowDomain(const char* function,
+                              const char* name,
+                              double value,
                               const char* rule) {
   std::ostringstream message;
   message << function << ": " << name << " = " << value << " " << rule;

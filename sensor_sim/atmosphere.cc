@@ -22,8 +22,12 @@ const double kTropopausePressure_pa =
 const double kStratosphereScaleHeight_m =
     kIsaGasConstant_j_per_kg_k * kTropopauseTemperature_k / common::kStandardGravity_mps2;
 
-[[noreturn]] void ThrowOutOfRange(const char* function, const char* name, double value,
-                                  double min, double max, const char* unit) {
+[[noreturn]] void ThrowOutOfRange(const char* function,
+                                  const char* name,
+                                  double value,
+                                  double min,
+                                  double max,
+                                  const char* unit) {
   std::ostringstream message;
   message << function << ": " << name << " = " << value << " " << unit
           << " is outside the modelled ISA range [" << min << ", " << max << "] " << unit;
@@ -79,8 +83,12 @@ double IsaPressureAltitudeM(double ps_pa) {
 
 double IsaStaticPressurePaFromFt(double alt_ft) {
   if (!(common::FtToM(alt_ft) >= kIsaMinAltitude_m && common::FtToM(alt_ft) <= kIsaMaxAltitude_m)) {
-    ThrowOutOfRange("IsaStaticPressurePaFromFt", "alt_ft", alt_ft, common::MToFt(kIsaMinAltitude_m),
-                    common::MToFt(kIsaMaxAltitude_m), "ft");
+    ThrowOutOfRange("IsaStaticPressurePaFromFt",
+                    "alt_ft",
+                    alt_ft,
+                    common::MToFt(kIsaMinAltitude_m),
+                    common::MToFt(kIsaMaxAltitude_m),
+                    "ft");
   }
   return PressureAt(common::FtToM(alt_ft));
 }

@@ -3,13 +3,13 @@
 // Model (a single thermal node, first order):
 //   tau_s · dT_die/dt = (T_air + ΔT_self) − T_die
 // with ΔT_self = P_dissipated · θ, the steady-state rise of the die above the air from the
-// unit's own dissipation (sensor, regulator, dsPIC: physics.md §6 row 6, an E estimate of a few °C).
-// Discretised exactly for a piecewise-constant air temperature over each step:
+// unit's own dissipation (sensor, regulator, dsPIC: physics.md §6 row 6, an E estimate of a few
+// °C). Discretised exactly for a piecewise-constant air temperature over each step:
 //   T_die ← T_target + (T_die − T_target) · exp(−dt/tau).
-// Named effects: `lag` (off: the die follows the air at once) and `self_heating` (off: ΔT_self = 0).
-// At power-on the die starts at the air temperature, so self-heating gives the warm-up transient.
-// Left out: gradients inside one die, radiation, the housing as a second node (the fitted tau lumps
-// housing and board), dependence of tau on chamber air speed or orientation.
+// Named effects: `lag` (off: the die follows the air at once) and `self_heating` (off: ΔT_self =
+// 0). At power-on the die starts at the air temperature, so self-heating gives the warm-up
+// transient. Left out: gradients inside one die, radiation, the housing as a second node (the
+// fitted tau lumps housing and board), dependence of tau on chamber air speed or orientation.
 #pragma once
 
 #include <cstdint>
@@ -29,8 +29,8 @@ struct DieThermalEffects {
 };
 
 struct DieThermalParams {
-  double tau_s = 300.0;          ///< air → die time constant (E: minutes for a board in a housing)
-  double self_heating_c = 3.0;   ///< steady-state die rise above air when powered (E)
+  double tau_s = 300.0;         ///< air → die time constant (E: minutes for a board in a housing)
+  double self_heating_c = 3.0;  ///< steady-state die rise above air when powered (E)
   DieThermalEffects effects;
 
   /// Typical values: tau 300 s, self-heating 3 °C (physics.md §6 rows 3 and 6, E).

@@ -2,7 +2,8 @@
 
 namespace adahrs::sensor_sim {
 
-DutyCycleModulator::DutyCycleModulator(double frame_cnt, double initial_end_cnt,
+DutyCycleModulator::DutyCycleModulator(double frame_cnt,
+                                       double initial_end_cnt,
                                        double initial_grid_phase_cnt)
     : frame_cnt_(frame_cnt),
       last_end_cnt_(initial_end_cnt),

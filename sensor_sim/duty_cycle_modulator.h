@@ -43,7 +43,8 @@ struct DcmPeriod {
 class DutyCycleModulator {
  public:
   /// `frame_cnt`: frame length in ticks. `initial_end_cnt` in (−T2, 0]: the last rising edge
-  /// before the first frame. `initial_grid_phase_cnt` in [0, 1): tick phase of the first frame start.
+  /// before the first frame. `initial_grid_phase_cnt` in [0, 1): tick phase of the first frame
+  /// start.
   DutyCycleModulator(double frame_cnt, double initial_end_cnt, double initial_grid_phase_cnt);
 
   /// Advances one frame with the (mean) period `period_cnt` and returns the last complete period.
@@ -94,11 +95,13 @@ class DutyCycleModulator {
 /// frame start whose tick phase is `grid_phase_cnt`), modulo 2^16. With `quantize`, each edge is
 /// floored to the tick grid; without, the exact interval is rounded to the nearest tick (halves
 /// away from zero). Arguments are tick counts well inside ±2^62 (a frame is ~3·10^5 ticks).
-inline uint16_t CaptureIntervalCnt(double grid_phase_cnt, double from_cnt, double to_cnt,
+inline uint16_t CaptureIntervalCnt(double grid_phase_cnt,
+                                   double from_cnt,
+                                   double to_cnt,
                                    bool quantize) {
-  const int64_t ticks = quantize ? FloorToInt64(grid_phase_cnt + to_cnt) -
-                                       FloorToInt64(grid_phase_cnt + from_cnt)
-                                 : RoundHalfAwayToInt64(to_cnt - from_cnt);
+  const int64_t ticks =
+      quantize ? FloorToInt64(grid_phase_cnt + to_cnt) - FloorToInt64(grid_phase_cnt + from_cnt)
+               : RoundHalfAwayToInt64(to_cnt - from_cnt);
   return static_cast<uint16_t>(static_cast<uint64_t>(ticks) & 0xFFFFu);
 }
 

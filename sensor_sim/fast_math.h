@@ -6,13 +6,16 @@
 //   FloorToInt64(x)          == (int64_t)std::floor(x)   exactly, for |x| < 2^62
 //   RoundHalfAwayToInt64(x)  == std::llround(x)          exactly, for |x| < 2^62
 //   RoundHalfEven(x)         == std::nearbyint(x)        exactly, for |x| < 2^51, in the default
-//                                                        rounding mode (the simulator never changes it)
-//   BoundedExp(x)            ≈ std::exp(x) within 1 ulp, for x in [−kBoundedExpMaxArg, kBoundedExpMaxArg]
+//                                                        rounding mode (the simulator never changes
+//                                                        it)
+//   BoundedExp(x)            ≈ std::exp(x) within 1 ulp, for x in [−kBoundedExpMaxArg,
+//   kBoundedExpMaxArg]
 //
 // The first three are exact (no approximation): the truncating conversion cvttsd2si is exact for an
 // in-range double, x − trunc(x) is exactly representable (it is x's own low mantissa bits), and the
 // correction compares exact quantities; adding and subtracting 1.5·2^52 makes the FPU's own
-// round-to-nearest-even drop x's fraction bits, the rounding nearbyint performs. BoundedExp is Tang's table method (ACM TOMS 15(2), 1989):
+// round-to-nearest-even drop x's fraction bits, the rounding nearbyint performs. BoundedExp is
+// Tang's table method (ACM TOMS 15(2), 1989):
 //   x = k·ln2/64 + r,  k = round(64·x/ln2),  |r| ≤ ln2/128 (plus rounding, < 2^-60 relative),
 //   e^x = 2^(k div 64) · 2^((k mod 64)/64) · e^r,
 // with 2^(j/64) from a table of correctly rounded doubles, the power of two built in the exponent
@@ -38,8 +41,8 @@ inline int64_t FloorToInt64(double x) {
 
 /// Nearest integer, halves away from zero (std::llround), exact for |x| < 2^62.
 inline int64_t RoundHalfAwayToInt64(double x) {
-  const auto truncated = static_cast<int64_t>(x);                 // toward zero
-  const double fraction = x - static_cast<double>(truncated);     // exact, same sign as x
+  const auto truncated = static_cast<int64_t>(x);              // toward zero
+  const double fraction = x - static_cast<double>(truncated);  // exact, same sign as x
   return truncated + (fraction >= 0.5 ? 1 : 0) - (fraction <= -0.5 ? 1 : 0);
 }
 
@@ -97,8 +100,7 @@ inline double BoundedExp(double x) {
   const auto k_int = static_cast<int64_t>(k);
   const double r = (x - k * kLn2Over64Head) - k * kLn2Over64Tail;
   // e^r − 1 = r + r²/2 + r³/6 + r⁴/24 + r⁵/120 (Horner).
-  const double q =
-      r + r * r * (1.0 / 2 + r * (1.0 / 6 + r * (1.0 / 24 + r * (1.0 / 120))));
+  const double q = r + r * r * (1.0 / 2 + r * (1.0 / 6 + r * (1.0 / 24 + r * (1.0 / 120))));
   const double table = kExp2Table[k_int & (kExpTableSize - 1)];
   // 2^(k div 64) (arithmetic shift: floor division) placed in the exponent field.
   const double power_of_two =

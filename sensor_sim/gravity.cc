@@ -32,8 +32,8 @@ double NormalGravityMps2(double geodetic_latitude_deg, double height_m) {
   }
   if (!(height_m >= kMinHeight_m && height_m <= kMaxHeight_m)) {
     std::ostringstream message;
-    message << "NormalGravityMps2: height_m = " << height_m << " m is outside ["
-            << kMinHeight_m << ", " << kMaxHeight_m << "] m";
+    message << "NormalGravityMps2: height_m = " << height_m << " m is outside [" << kMinHeight_m
+            << ", " << kMaxHeight_m << "] m";
     throw std::domain_error(message.str());
   }
   const double sin_lat = std::sin(common::DegToRad(geodetic_latitude_deg));

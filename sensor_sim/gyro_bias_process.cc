@@ -49,7 +49,8 @@ int64_t FramesFor(double interval_s, double frame_period_s) {
 
 }  // namespace
 
-double GyroBiasProcess::PoleSigmaForFloor(double bias_instability_dps, double correlation_time_scale) {
+double GyroBiasProcess::PoleSigmaForFloor(double bias_instability_dps,
+                                          double correlation_time_scale) {
   return bias_instability_dps / UnitPolesFloor(correlation_time_scale);
 }
 

@@ -96,7 +96,7 @@ class GyroBiasProcess {
   int64_t rrw_frames_to_update_ = 1;
   int64_t frames_between_updates_ = 1;  // from the last update to the next one
   int64_t frames_to_next_update_ = 1;
-  double bias_dps_ = 0.0;               // sum of the poles and the walk since the last update
+  double bias_dps_ = 0.0;  // sum of the poles and the walk since the last update
   common::Rng bi_rng_;
   common::Rng rrw_rng_;
 };

@@ -1,12 +1,12 @@
 // Geometry of the IM³ inertial cube: where each sensor package sits relative to the unit case.
 //
-// Frames (docs/frames-and-units.md): B unit case (axes as marked), C_k accelerometer chip k's package
-// frame (x_C, y_C sensitive axes, z_C package normal), G_k gyro k's package frame (z_G sensitive).
-// A vector is taken from B into a package frame by R_CB (f_C = R_CB · f_B).
+// Frames (docs/frames-and-units.md): B unit case (axes as marked), C_k accelerometer chip k's
+// package frame (x_C, y_C sensitive axes, z_C package normal), G_k gyro k's package frame (z_G
+// sensitive). A vector is taken from B into a package frame by R_CB (f_C = R_CB · f_B).
 //
-// Nominal mounting (reference-method.md "The unit"): three dual-axis ADXL210E chips give six channels
-// az1 ax1 ay1 az2 ax2 ay2, every body axis sensed twice with opposite polarity, with the reference's
-// signs (az1 −, ax1 −, ay1 +, az2 +, ax2 +, ay2 −):
+// Nominal mounting (reference-method.md "The unit"): three dual-axis ADXL210E chips give six
+// channels az1 ax1 ay1 az2 ax2 ay2, every body axis sensed twice with opposite polarity, with the
+// reference's signs (az1 −, ax1 −, ay1 +, az2 +, ax2 +, ay2 −):
 //   chip 0: x_C = −z_B (az1), y_C = −x_B (ax1)      chip 1: x_C = +y_B (ay1), y_C = +z_B (az2)
 //   chip 2: x_C = +x_B (ax2), y_C = −y_B (ay2)
 // and gyros gx gy gz with z_G along +x_B, +y_B, +z_B.
@@ -29,8 +29,8 @@ namespace adahrs::sensor_sim {
 
 /// The six accelerometer channels in the order the unit reports them.
 enum class AccelChannel : int { kAz1 = 0, kAx1, kAy1, kAz2, kAx2, kAy2 };
-inline constexpr std::array<const char*, 6> kAccelChannelNames = {"az1", "ax1", "ay1",
-                                                                  "az2", "ax2", "ay2"};
+inline constexpr std::array<const char*, 6> kAccelChannelNames = {
+    "az1", "ax1", "ay1", "az2", "ax2", "ay2"};
 inline constexpr std::array<const char*, 3> kGyroChannelNames = {"gx", "gy", "gz"};
 
 /// Chip and sensitive axis (0 = x_C, 1 = y_C) of each accelerometer channel.

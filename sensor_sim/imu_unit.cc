@@ -2,21 +2,21 @@
 
 #include <string>
 
-#include "sensor_sim/make_array.h"
 #include "common/random.h"
+#include "sensor_sim/make_array.h"
 
 namespace adahrs::sensor_sim {
 namespace {
 
 // Stream ids for Rng::Derive: one per drawn part, so adding a part never shifts another's draw.
 enum Stream : uint64_t {
-  kAccelChip = 0,     // + chip index
-  kGyro = 10,         // + gyro index
+  kAccelChip = 0,  // + chip index
+  kGyro = 10,      // + gyro index
   kGeometry = 20,
-  kAccelThermal = 30, // + chip index
-  kGyroThermal = 40,  // + gyro index
-  kNoiseAccel = 100,  // + chip index
-  kNoiseGyro = 110,   // + gyro index
+  kAccelThermal = 30,  // + chip index
+  kGyroThermal = 40,   // + gyro index
+  kNoiseAccel = 100,   // + chip index
+  kNoiseGyro = 110,    // + gyro index
 };
 
 template <typename Params, size_t N>
@@ -100,11 +100,13 @@ ImuUnit::ImuUnit(const ImuUnitParams& params, uint64_t noise_seed, double initia
       R_CB_(MakeArray<3>([&](int k) { return params.geometry.R_CB(k); })),
       R_GB_(MakeArray<3>([&](int k) { return params.geometry.R_GB(k); })),
       chips_(MakeArray<3>([&](int k) {
-        return Adxl210e(params.accel_chips[k], common::Rng::Derive(noise_seed, kNoiseAccel + k),
+        return Adxl210e(params.accel_chips[k],
+                        common::Rng::Derive(noise_seed, kNoiseAccel + k),
                         params.frame_period_s);
       })),
       gyros_(MakeArray<3>([&](int k) {
-        return Adxrs150(params.gyros[k], common::Rng::Derive(noise_seed, kNoiseGyro + k),
+        return Adxrs150(params.gyros[k],
+                        common::Rng::Derive(noise_seed, kNoiseGyro + k),
                         params.frame_period_s);
       })),
       accel_die_(MakeArray<3>([&](int k) {
@@ -132,8 +134,8 @@ ImuRawFrame ImuUnit::Step(const ImuStimulus& s) {
     die_.gyro_c[g] = gyro_die_[g].Step(s.air_temp_c);
     const Eigen::Vector3d w_G_dps = R_GB_[g] * s.w_B_dps;
     const Eigen::Vector3d f_G_g = R_GB_[g] * s.f_B_g;
-    const Adxrs150Output out = gyros_[g].Step(Adxrs150Input{
-        w_G_dps.z(), f_G_g.x(), f_G_g.y(), f_G_g.z(), die_.gyro_c[g], s.supply_v});
+    const Adxrs150Output out = gyros_[g].Step(
+        Adxrs150Input{w_G_dps.z(), f_G_g.x(), f_G_g.y(), f_G_g.z(), die_.gyro_c[g], s.supply_v});
     frame.gyro_cnt[g] = out.rate_cnt;
     frame.temp_cnt[g] = out.temp_cnt;
   }

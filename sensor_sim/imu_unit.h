@@ -20,12 +20,12 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
+#include "common/param_reader.h"
 #include "sensor_sim/adxl210e.h"
 #include "sensor_sim/adxrs150.h"
 #include "sensor_sim/die_thermal.h"
 #include "sensor_sim/im3_geometry.h"
 #include "sensor_sim/model_profile.h"
-#include "common/param_reader.h"
 
 namespace adahrs::sensor_sim {
 

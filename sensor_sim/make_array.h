@@ -11,7 +11,8 @@ template <size_t N, typename Make>
 auto MakeArray(Make&& make) {
   return [&]<size_t... I>(std::index_sequence<I...>) {
     return std::array{make(static_cast<int>(I))...};
-  }(std::make_index_sequence<N>{});
+  }
+  (std::make_index_sequence<N>{});
 }
 
 }  // namespace adahrs::sensor_sim

@@ -33,9 +33,12 @@ enum class TruthVariant { kStandard, kPlayHysteresis, kSlowBiasWander };
 
 inline std::string ToString(TruthVariant variant) {
   switch (variant) {
-    case TruthVariant::kPlayHysteresis: return "play_hysteresis";
-    case TruthVariant::kSlowBiasWander: return "slow_bias_wander";
-    case TruthVariant::kStandard: break;
+    case TruthVariant::kPlayHysteresis:
+      return "play_hysteresis";
+    case TruthVariant::kSlowBiasWander:
+      return "slow_bias_wander";
+    case TruthVariant::kStandard:
+      break;
   }
   return "standard";
 }
@@ -49,14 +52,16 @@ inline std::string Describe(TruthVariant variant) {
     case TruthVariant::kSlowBiasWander:
       return "gyro bias wander ten times slower than the datasheet form, rate random walk on at "
              "three times the drawn one";
-    case TruthVariant::kStandard: break;
+    case TruthVariant::kStandard:
+      break;
   }
-  return "travel-law hysteresis with spans drawn per bridge, gyro bias wander of the datasheet form";
+  return "travel-law hysteresis with spans drawn per bridge, gyro bias wander of the datasheet "
+         "form";
 }
 
 inline TruthVariant TruthVariantFromString(std::string_view name) {
-  for (TruthVariant v : {TruthVariant::kStandard, TruthVariant::kPlayHysteresis,
-                         TruthVariant::kSlowBiasWander}) {
+  for (TruthVariant v :
+       {TruthVariant::kStandard, TruthVariant::kPlayHysteresis, TruthVariant::kSlowBiasWander}) {
     if (name == ToString(v)) return v;
   }
   throw std::invalid_argument("unknown truth variant '" + std::string(name) +

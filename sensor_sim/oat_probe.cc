@@ -21,11 +21,11 @@ constexpr double kMaxTemp_c = 850.0;
 
 // Class B tolerance at 0 °C, ±0.3 °C, as a fraction of R0: 0.3·A = 0.117 %.
 constexpr double kClassBR0Tolerance_pct = 0.3 * kCvdA_per_c / kPercent;
-constexpr double kSeriesToR0Ratio = 10.0;          // E: design choice, keeps I²R < 0.2 mW
-constexpr double kSeriesTolerance_pct = 0.1;       // E: 0.1 % resistor
-constexpr double kExcitation_v = 4.096;            // the ADS1254 reference (ratiometric)
-constexpr double kLeadResistance_ohm = 0.5;        // E: two wires, ~1 m of AWG 26 each way
-constexpr double kDissipation_mw_per_c = 5.0;      // E: ventilated probe
+constexpr double kSeriesToR0Ratio = 10.0;      // E: design choice, keeps I²R < 0.2 mW
+constexpr double kSeriesTolerance_pct = 0.1;   // E: 0.1 % resistor
+constexpr double kExcitation_v = 4.096;        // the ADS1254 reference (ratiometric)
+constexpr double kLeadResistance_ohm = 0.5;    // E: two wires, ~1 m of AWG 26 each way
+constexpr double kDissipation_mw_per_c = 5.0;  // E: ventilated probe
 
 const char* ElementName(RtdElement element) {
   return element == RtdElement::kPt500 ? "PT500" : "PT1000";
@@ -64,8 +64,8 @@ OatProbeParams OatProbeParams::Draw(RtdElement element, uint64_t seed) {
   common::Rng rng(common::Rng::Derive(seed, element == RtdElement::kPt500 ? 0x0A7500 : 0x0A71000));
   OatProbeParams p = Typical(element);
   p.r0_error_pct = rng.Tolerance(0.0, kClassBR0Tolerance_pct);
-  p.series_resistance_ohm =
-      rng.Tolerance(p.series_resistance_ohm, kSeriesTolerance_pct * kPercent * p.series_resistance_ohm);
+  p.series_resistance_ohm = rng.Tolerance(
+      p.series_resistance_ohm, kSeriesTolerance_pct * kPercent * p.series_resistance_ohm);
   p.lead_resistance_ohm = rng.Tolerance(kLeadResistance_ohm, 0.2);
   p.dissipation_mw_per_c = rng.Tolerance(kDissipation_mw_per_c, 2.0);
   p.effects = OatProbeEffects::All();
@@ -145,7 +145,8 @@ double OatProbe::SignalV(double air_temp_c) const {
   if (params_.effects.self_heating) {
     for (int i = 0; i < 2; ++i) {
       const double current_a = v_exc / (series_ohm + rtd_ohm + lead_ohm_);
-      rtd_ohm = RtdResistanceOhm(air_temp_c + current_a * current_a * rtd_ohm / dissipation_w_per_c_);
+      rtd_ohm =
+          RtdResistanceOhm(air_temp_c + current_a * current_a * rtd_ohm / dissipation_w_per_c_);
     }
   }
   const double measured_ohm = rtd_ohm + lead_ohm_;

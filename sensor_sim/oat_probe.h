@@ -4,9 +4,8 @@
 // (ads1254.h) digitises.
 //
 //   R_T(t)  = R0·(1 + e_R0)·(1 + A·t + B·t² + C·(t − 100)·t³),  C = 0 for t ≥ 0 °C  [rtd_tolerance]
-//   R_meas  = R_T(t_rtd) + R_lead                                                   [lead_resistance]
-//   t_rtd   = t_air + I²·R_T/δ,   I = V_exc/(R_s + R_meas)                          [self_heating]
-//   SignalV = V_exc·R_meas/(R_s + R_meas)
+//   R_meas  = R_T(t_rtd) + R_lead [lead_resistance] t_rtd   = t_air + I²·R_T/δ,   I = V_exc/(R_s +
+//   R_meas)                          [self_heating] SignalV = V_exc·R_meas/(R_s + R_meas)
 //
 // IEC 60751 coefficients A = 3.9083e-3 /°C, B = −5.775e-7 /°C², C = −4.183e-12 /°C⁴ (the
 // standard's definition, valid −200…850 °C). Parameters, units in the names: R0 nominal from the

@@ -16,28 +16,29 @@ constexpr double kVoltsPerMillivolt = 1e-3;
 constexpr double kVoltsPerMicrovolt = 1e-6;
 
 // Typical part (physics.md §3.1/§3.2; status tags in docs/models/pressure-bridge.md).
-constexpr double kFullScale_psi = 15.0;             // brief / R
-constexpr double kReferenceTemp_c = 25.0;           // datasheet reference condition
-constexpr double kExcitation_ma = 1.0;              // R (1.0 mA keeps I·R_B inside 5 V)
-constexpr double kBridgeResistance_ohm = 5000.0;    // V [MAX1450]
-constexpr double kTcr_ppm_per_c = 2600.0;           // V [MAX1450]
-constexpr double kTcr2_ppm_per_c2 = 8.0;            // E
-constexpr double kResistancePressure_ppm = 200.0;   // E
-constexpr double kSensitivity_mv_per_v = 18.0;      // D: FSO 90 mV (R/E) at V_B = 5 V
-constexpr double kSpanTc_ppm_per_c = -2500.0;       // D: net span tempco +100 ppm/°C
-constexpr double kSpanTc2_ppm_per_c2 = 1.0;         // E
-constexpr double kOffset_mv_per_v = 0.1;            // R/E: ±1…2 mV zero offset
-constexpr double kOffsetTc_uv_per_v_per_c = 1.0;    // R/E: ±0.5…1 % FSO over 0…70 °C
-constexpr double kOffsetTc2_uv_per_v_per_c2 = 0.01; // E
-constexpr double kNonlinearity_pct_fso = 0.15;      // R/E: ±0.1…0.25 % FSO BFSL
-constexpr double kPressureHysteresis_pct_fso = 0.075;  // E (KPY33 ±0.1 % V)
+constexpr double kFullScale_psi = 15.0;                  // brief / R
+constexpr double kReferenceTemp_c = 25.0;                // datasheet reference condition
+constexpr double kExcitation_ma = 1.0;                   // R (1.0 mA keeps I·R_B inside 5 V)
+constexpr double kBridgeResistance_ohm = 5000.0;         // V [MAX1450]
+constexpr double kTcr_ppm_per_c = 2600.0;                // V [MAX1450]
+constexpr double kTcr2_ppm_per_c2 = 8.0;                 // E
+constexpr double kResistancePressure_ppm = 200.0;        // E
+constexpr double kSensitivity_mv_per_v = 18.0;           // D: FSO 90 mV (R/E) at V_B = 5 V
+constexpr double kSpanTc_ppm_per_c = -2500.0;            // D: net span tempco +100 ppm/°C
+constexpr double kSpanTc2_ppm_per_c2 = 1.0;              // E
+constexpr double kOffset_mv_per_v = 0.1;                 // R/E: ±1…2 mV zero offset
+constexpr double kOffsetTc_uv_per_v_per_c = 1.0;         // R/E: ±0.5…1 % FSO over 0…70 °C
+constexpr double kOffsetTc2_uv_per_v_per_c2 = 0.01;      // E
+constexpr double kNonlinearity_pct_fso = 0.15;           // R/E: ±0.1…0.25 % FSO BFSL
+constexpr double kPressureHysteresis_pct_fso = 0.075;    // E (KPY33 ±0.1 % V)
 constexpr double kPressureHysteresisSpan_pct_fs = 20.0;  // E
-constexpr double kThermalHysteresis_pct_fso = 0.15;    // E (KPY33 ±0.1 typ V)
-constexpr double kThermalHysteresisSpan_c = 20.0;      // E
-constexpr double kNoise_uv_rms = 1.0;  // D: Johnson noise of 5 kΩ at 300 K over ~10 kHz
+constexpr double kThermalHysteresis_pct_fso = 0.15;      // E (KPY33 ±0.1 typ V)
+constexpr double kThermalHysteresisSpan_c = 20.0;        // E
+constexpr double kNoise_uv_rms = 1.0;           // D: Johnson noise of 5 kΩ at 300 K over ~10 kHz
 constexpr double kSelfHeating_c_per_w = 150.0;  // E: 100…200 °C/W
 
-// The play-operator law's working range of die temperature: the range FromJson accepts for a reference.
+// The play-operator law's working range of die temperature: the range FromJson accepts for a
+// reference.
 constexpr double kPlayLawMinTemp_c = -55.0;
 constexpr double kPlayLawMaxTemp_c = 125.0;
 
@@ -96,7 +97,8 @@ PressureBridgeParams PressureBridgeParams::Typical(PressureBridgeKind kind) {
 PressureBridgeParams PressureBridgeParams::Draw(PressureBridgeKind kind, uint64_t seed) {
   // Each ± below is a 3-sigma screening limit (Rng::Tolerance); the spreads are E unless the
   // doc says otherwise.
-  common::Rng rng(common::Rng::Derive(seed, kind == PressureBridgeKind::kAbsolute ? 0x1230A : 0x1230D));
+  common::Rng rng(
+      common::Rng::Derive(seed, kind == PressureBridgeKind::kAbsolute ? 0x1230A : 0x1230D));
   PressureBridgeParams p = Typical(kind);
   p.excitation_current_ma = rng.Tolerance(kExcitation_ma, 0.005 * kExcitation_ma);
   p.excitation_tempco_ppm_per_c = rng.Tolerance(0.0, 25.0);
@@ -182,8 +184,7 @@ PressureBridgeParams PressureBridgeParams::FromJson(const common::ParamReader& r
   p.span_tc2_ppm_per_c2 = r.Number("span_tc2_ppm_per_c2", -100.0, 100.0, "ppm/degC^2");
   p.offset_mv_per_v = r.Number("offset_mv_per_v", -20.0, 20.0, "mV/V");
   p.offset_tc_uv_per_v_per_c = r.Number("offset_tc_uv_per_v_per_c", -100.0, 100.0, "uV/V/degC");
-  p.offset_tc2_uv_per_v_per_c2 =
-      r.Number("offset_tc2_uv_per_v_per_c2", -10.0, 10.0, "uV/V/degC^2");
+  p.offset_tc2_uv_per_v_per_c2 = r.Number("offset_tc2_uv_per_v_per_c2", -10.0, 10.0, "uV/V/degC^2");
   p.nonlinearity_bfsl_pct_fso = r.Number("nonlinearity_bfsl_pct_fso", -2.0, 2.0, "% FSO");
   p.pressure_hysteresis_pct_fso = r.Number("pressure_hysteresis_pct_fso", -2.0, 2.0, "% FSO");
   p.pressure_hysteresis_span_pct_fs =
@@ -222,12 +223,13 @@ PressureBridgeParams PressureBridgeParams::FromJson(const common::ParamReader& r
 PressureBridge::PressureBridge(const PressureBridgeParams& params, uint64_t noise_seed)
     : params_(params),
       rng_(noise_seed),
-      pressure_hysteresis_(params.pressure_hysteresis_span_pct_fs * kPercent * params.full_scale_pa),
+      pressure_hysteresis_(params.pressure_hysteresis_span_pct_fs * kPercent *
+                           params.full_scale_pa),
       thermal_hysteresis_(params.thermal_hysteresis_span_c) {
   const PressureBridgeParams& p = params_;
   if (p.hysteresis_law == HysteresisLaw::kPlayOperators) {
-    pressure_play_.emplace(p.pressure_hysteresis_span_pct_fs * kPercent * p.full_scale_pa, 0.0,
-                             p.full_scale_pa);
+    pressure_play_.emplace(
+        p.pressure_hysteresis_span_pct_fs * kPercent * p.full_scale_pa, 0.0, p.full_scale_pa);
     thermal_play_.emplace(p.thermal_hysteresis_span_c, kPlayLawMinTemp_c, kPlayLawMaxTemp_c);
   }
   const PressureBridgeEffects& on = p.effects;
@@ -259,14 +261,15 @@ PressureBridge::PressureBridge(const PressureBridgeParams& params, uint64_t nois
 
 PressureBridgeOutput PressureBridge::Step(const PressureBridgeInput& input) {
   if (!std::isfinite(input.pressure_pa) || !std::isfinite(input.die_temp_c)) {
-    throw std::invalid_argument("PressureBridge::Step: pressure_pa = " +
-                                std::to_string(input.pressure_pa) + " Pa, die_temp_c = " +
-                                std::to_string(input.die_temp_c) + " degC must be finite");
+    throw std::invalid_argument(
+        "PressureBridge::Step: pressure_pa = " + std::to_string(input.pressure_pa) +
+        " Pa, die_temp_c = " + std::to_string(input.die_temp_c) + " degC must be finite");
   }
   const double dt_c = input.die_temp_c - params_.reference_temp_c;
   const double u = input.pressure_pa * inv_full_scale_per_pa_;
   const double current_a = current0_a_ * (1.0 + current_tc_per_c_ * dt_c);
-  const double resistance_ohm = resistance0_ohm_ * (1.0 + (tcr_per_c_ + tcr2_per_c2_ * dt_c) * dt_c) *
+  const double resistance_ohm = resistance0_ohm_ *
+                                (1.0 + (tcr_per_c_ + tcr2_per_c2_ * dt_c) * dt_c) *
                                 (1.0 + resistance_pressure_per_fs_ * u);
   const double bridge_v = current_a * resistance_ohm;
 
@@ -275,12 +278,12 @@ PressureBridgeOutput PressureBridge::Step(const PressureBridgeInput& input) {
                  quadratic_ * u * u;
   if (pressure_hysteresis_half_ != 0.0) {
     const double s_p = pressure_play_ ? pressure_play_->Update(input.pressure_pa)
-                                        : pressure_hysteresis_.Update(input.pressure_pa);
+                                      : pressure_hysteresis_.Update(input.pressure_pa);
     ratio += pressure_hysteresis_half_ * s_p;
   }
   if (thermal_hysteresis_half_ != 0.0) {
     const double s_t = thermal_play_ ? thermal_play_->Update(input.die_temp_c)
-                                       : thermal_hysteresis_.Update(input.die_temp_c);
+                                     : thermal_hysteresis_.Update(input.die_temp_c);
     ratio += thermal_hysteresis_half_ * s_t;
   }
   double signal_v = bridge_v * ratio;

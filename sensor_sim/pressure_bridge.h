@@ -7,13 +7,12 @@
 // Model (physics.md §3.2 "suggested model"), with ΔT = die_temp_c − reference_temp_c and
 // u = pressure_pa / full_scale_pa:
 //
-//   R_B   = R_B0·(1 + α·ΔT + β·ΔT²)·(1 + γ_P·u)                        [bridge_tcr, resistance_pressure]
-//   I     = I_0·(1 + k_I·ΔT)                                            [excitation_tempco]
-//   V_B   = I·R_B
-//   signal_v = V_B·[ o0 + o1·ΔT + o2·ΔT²                                 [offset_tempco: o1, o2]
+//   R_B   = R_B0·(1 + α·ΔT + β·ΔT²)·(1 + γ_P·u)                        [bridge_tcr,
+//   resistance_pressure] I     = I_0·(1 + k_I·ΔT) [excitation_tempco] V_B   = I·R_B signal_v =
+//   V_B·[ o0 + o1·ΔT + o2·ΔT²                                 [offset_tempco: o1, o2]
 //                  + S_lin·(1 + t1·ΔT + t2·ΔT²)·u                        [span_tempco: t1, t2]
 //                  + K·u²                                                [nonlinearity]
-//                  + S·(h_P/2)·s_P + S·(h_T/2)·s_T ]                     [pressure_/thermal_hysteresis]
+//                  + S·(h_P/2)·s_P + S·(h_T/2)·s_T ] [pressure_/thermal_hysteresis]
 //            + noise                                                     [noise]
 //
 // S = sensitivity_mv_per_v is the full-scale output per volt of V_B at the reference temperature
@@ -54,9 +53,9 @@
 #include <optional>
 
 #include "common/param_reader.h"
-#include "sensor_sim/preisach_hysteresis.h"
 #include "common/random.h"
 #include "sensor_sim/play_hysteresis.h"
+#include "sensor_sim/preisach_hysteresis.h"
 
 namespace adahrs::sensor_sim {
 
@@ -123,7 +122,7 @@ struct PressureBridgeParams {
   double thermal_hysteresis_pct_fso = 0.0;       ///< h_T: after cooling minus after heating
   double thermal_hysteresis_span_c = 0.0;        ///< temperature travel to full h_T
   double noise_uv_rms = 0.0;                     ///< output noise per sample
-  double self_heating_c_per_w = 0.0;            ///< die-to-case thermal resistance
+  double self_heating_c_per_w = 0.0;             ///< die-to-case thermal resistance
   HysteresisLaw hysteresis_law = HysteresisLaw::kTravelPreisach;
   PressureBridgeEffects effects;
 

@@ -5,7 +5,6 @@
 
 #include <fmt/format.h>
 
-
 namespace adahrs::calib {
 namespace {
 
@@ -48,8 +47,12 @@ void WriteAtomically(const std::filesystem::path& out, const std::string& text) 
 }
 
 // Checks that `j[key]` exists and has the type `is`; returns it.
-const json& Require(const json& j, const std::string& key, bool (json::*is)() const noexcept,
-                    const char* type, const std::string& path, const std::string& source) {
+const json& Require(const json& j,
+                    const std::string& key,
+                    bool (json::*is)() const noexcept,
+                    const char* type,
+                    const std::string& path,
+                    const std::string& source) {
   if (!j.is_object() || !j.contains(key)) {
     throw AcceptanceFileError(fmt::format("{}: {}.{}: missing", source, path, key));
   }
@@ -63,14 +66,20 @@ const json& Require(const json& j, const std::string& key, bool (json::*is)() co
 
 }  // namespace
 
-json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit, const Specification& spec,
+json AcceptanceJson(const AcceptanceRun& run,
+                    const UnitAcceptance& unit,
+                    const Specification& spec,
                     const std::string& software_version) {
   json points = json::array();
   for (const AcceptancePoint& p : unit.points) points.push_back(PointJson(p));
   json worst = json::array();
   for (const WorstMargin& w : unit.WorstMargins()) {
-    worst.push_back({{"quantity", w.quantity}, {"unit", w.unit}, {"margin", w.margin},
-                     {"step", w.step}, {"point", w.point}, {"pass", w.margin >= 0.0}});
+    worst.push_back({{"quantity", w.quantity},
+                     {"unit", w.unit},
+                     {"margin", w.margin},
+                     {"step", w.step},
+                     {"point", w.point},
+                     {"pass", w.margin >= 0.0}});
   }
   json reference = {
       {"accel", "orientation's up axis times local gravity, in g (1 g = 9.80665 m/s^2)"},
@@ -81,8 +90,10 @@ json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit, const 
   json verdicts = json::object();
   for (const std::string family : {"acceleration", "body_rate", "altitude", "airspeed"}) {
     json counts = json::object();
-    for (PointVerdict v : {PointVerdict::kWithinSpecification, PointVerdict::kWithinPhysicalLimit,
-                           PointVerdict::kOutsideBoth, PointVerdict::kOutsideSpecification}) {
+    for (PointVerdict v : {PointVerdict::kWithinSpecification,
+                           PointVerdict::kWithinPhysicalLimit,
+                           PointVerdict::kOutsideBoth,
+                           PointVerdict::kOutsideSpecification}) {
       if (const int n = unit.Count(family, v); n > 0) counts[PointVerdictText(v)] = n;
     }
     if (!counts.empty()) verdicts[family] = counts;
@@ -91,8 +102,9 @@ json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit, const 
   if (unit.rest) {
     physical_limit = {{"since_calibration_h", run.since_calibration_h},
                       {"rest_record", unit.rest->ToJson()},
-                      {"law", "3 sqrt(sigma_point^2 + 2 B2(T/tau) sigma_floor^2), flicker floor "
-                              "from the rest record's Allan deviation"}};
+                      {"law",
+                       "3 sqrt(sigma_point^2 + 2 B2(T/tau) sigma_floor^2), flicker floor "
+                       "from the rest record's Allan deviation"}};
   }
   return {{"format", kAcceptanceFormatName},
           {"format_version", kAcceptanceFormatVersion},
@@ -100,10 +112,11 @@ json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit, const 
           {"kind", unit.kind},
           {"mode", unit.mode},
           {"software_version", software_version},
-          {"run", {{"dir", run.run_dir},
-                   {"run_id", run.run_id},
-                   {"sequence", run.sequence_name},
-                   {"recording_sha256", run.recording_sha256}}},
+          {"run",
+           {{"dir", run.run_dir},
+            {"run_id", run.run_id},
+            {"sequence", run.sequence_name},
+            {"recording_sha256", run.recording_sha256}}},
           {"specification", spec.ToJson()},
           {"reference", reference},
           {"verdict", unit.pass() ? "pass" : "fail"},
@@ -142,13 +155,14 @@ json ReadAcceptanceFile(const std::filesystem::path& file) {
   }
   const std::string format = Require(j, "format", &json::is_string, "a string", "$", source);
   if (format != kAcceptanceFormatName) {
-    throw AcceptanceFileError(fmt::format("{}: $.format: expected \"{}\", got \"{}\"", source,
-                                          kAcceptanceFormatName, format));
+    throw AcceptanceFileError(fmt::format(
+        "{}: $.format: expected \"{}\", got \"{}\"", source, kAcceptanceFormatName, format));
   }
-  const int version = Require(j, "format_version", &json::is_number_integer, "an integer", "$", source);
+  const int version =
+      Require(j, "format_version", &json::is_number_integer, "an integer", "$", source);
   if (version < 1 || version > kAcceptanceFormatVersion) {
-    throw AcceptanceFileError(fmt::format("{}: $.format_version: {} is not 1...{}", source, version,
-                                          kAcceptanceFormatVersion));
+    throw AcceptanceFileError(fmt::format(
+        "{}: $.format_version: {} is not 1...{}", source, version, kAcceptanceFormatVersion));
   }
   Require(j, "serial", &json::is_string, "a string", "$", source);
   Require(j, "kind", &json::is_string, "a string", "$", source);
@@ -163,7 +177,8 @@ json ReadAcceptanceFile(const std::filesystem::path& file) {
     for (const char* key : {"kind", "quantity", "unit", "condition"}) {
       Require(points[i], key, &json::is_string, "a string", path, source);
     }
-    for (const char* key : {"chamber_c", "measured", "reference", "error", "std_error", "tolerance"}) {
+    for (const char* key :
+         {"chamber_c", "measured", "reference", "error", "std_error", "tolerance"}) {
       Require(points[i], key, &json::is_number, "a number", path, source);
     }
     Require(points[i], "pass", &json::is_boolean, "a boolean", path, source);
@@ -184,8 +199,9 @@ std::vector<std::filesystem::path> FindAcceptanceFiles(const std::filesystem::pa
 
 std::string RateVerdictLine(const UnitAcceptance& unit) {
   const auto count = [&](PointVerdict v) { return unit.Count("body_rate", v); };
-  const int total = count(PointVerdict::kWithinSpecification) + count(PointVerdict::kWithinPhysicalLimit) +
-                    count(PointVerdict::kOutsideBoth) + count(PointVerdict::kOutsideSpecification);
+  const int total = count(PointVerdict::kWithinSpecification) +
+                    count(PointVerdict::kWithinPhysicalLimit) + count(PointVerdict::kOutsideBoth) +
+                    count(PointVerdict::kOutsideSpecification);
   if (total == 0) return "";
   double lo = 0.0, hi = 0.0;
   bool any = false;
@@ -195,14 +211,18 @@ std::string RateVerdictLine(const UnitAcceptance& unit) {
     hi = any ? std::max(hi, *p.physical_limit) : *p.physical_limit;
     any = true;
   }
-  std::string line = fmt::format("body-rate points: {} of {} {}", count(PointVerdict::kWithinSpecification),
-                                 total, PointVerdictText(PointVerdict::kWithinSpecification));
+  std::string line = fmt::format("body-rate points: {} of {} {}",
+                                 count(PointVerdict::kWithinSpecification),
+                                 total,
+                                 PointVerdictText(PointVerdict::kWithinSpecification));
   if (any) {
     line += fmt::format(", {} {}, {} {} (physical limit {:.3g}...{:.3g} deg/s)",
                         count(PointVerdict::kWithinPhysicalLimit),
                         PointVerdictText(PointVerdict::kWithinPhysicalLimit),
-                        count(PointVerdict::kOutsideBoth), PointVerdictText(PointVerdict::kOutsideBoth),
-                        lo, hi);
+                        count(PointVerdict::kOutsideBoth),
+                        PointVerdictText(PointVerdict::kOutsideBoth),
+                        lo,
+                        hi);
   } else {
     line += fmt::format(", {} {} (no rest record: no physical limit)",
                         count(PointVerdict::kOutsideSpecification),
@@ -212,29 +232,53 @@ std::string RateVerdictLine(const UnitAcceptance& unit) {
 }
 
 std::string AcceptanceText(const AcceptanceRun& run) {
-  std::string out = fmt::format("acceptance of run {} ({}), sequence {}\n", run.run_id, run.run_dir,
-                                run.sequence_name);
+  std::string out = fmt::format(
+      "acceptance of run {} ({}), sequence {}\n", run.run_id, run.run_dir, run.sequence_name);
   for (const UnitAcceptance& unit : run.units) {
     out += fmt::format("\n{} ({}, mode {})\n", unit.serial, unit.kind, unit.mode);
     out += fmt::format("{:>4} {:<15} {:<9} {:<38} {:>12} {:>10} {:>10} {:>9} {:>9} {:<5} {}\n",
-                       "step", "kind", "quantity", "condition", "measured", "error", "noise",
-                       "tol", "phys lim", "unit", "verdict");
+                       "step",
+                       "kind",
+                       "quantity",
+                       "condition",
+                       "measured",
+                       "error",
+                       "noise",
+                       "tol",
+                       "phys lim",
+                       "unit",
+                       "verdict");
     for (const AcceptancePoint& p : unit.points) {
-      out += fmt::format("{:>4} {:<15} {:<9} {:<38} {:>12.4f} {:>10.4f} {:>10.4f} {:>9.4f} {:>9} {:<5} {}{}{}\n",
-                         p.step, p.kind, p.quantity, p.Condition(), p.measured, p.error, p.noise,
-                         p.tolerance,
-                         p.physical_limit ? fmt::format("{:.4f}", *p.physical_limit) : "-", p.unit,
-                         p.pass ? "PASS" : "FAIL",
-                         p.pass ? "" : std::string(" (") + PointVerdictText(p.verdict()) + ")",
-                         p.beyond_noise ? "" : " (within noise of the tolerance)");
+      out += fmt::format(
+          "{:>4} {:<15} {:<9} {:<38} {:>12.4f} {:>10.4f} {:>10.4f} {:>9.4f} {:>9} {:<5} {}{}{}\n",
+          p.step,
+          p.kind,
+          p.quantity,
+          p.Condition(),
+          p.measured,
+          p.error,
+          p.noise,
+          p.tolerance,
+          p.physical_limit ? fmt::format("{:.4f}", *p.physical_limit) : "-",
+          p.unit,
+          p.pass ? "PASS" : "FAIL",
+          p.pass ? "" : std::string(" (") + PointVerdictText(p.verdict()) + ")",
+          p.beyond_noise ? "" : " (within noise of the tolerance)");
     }
     for (const WorstMargin& w : unit.WorstMargins()) {
-      out += fmt::format("worst {} margin {:.4f} {} (step {}, {})\n", w.quantity, w.margin, w.unit,
-                         w.step, w.point);
+      out += fmt::format("worst {} margin {:.4f} {} (step {}, {})\n",
+                         w.quantity,
+                         w.margin,
+                         w.unit,
+                         w.step,
+                         w.point);
     }
     out += RateVerdictLine(unit);
-    out += fmt::format("{}: {} ({} of {} points failed)\n", unit.serial, unit.pass() ? "PASS" : "FAIL",
-                       unit.failed(), unit.points.size());
+    out += fmt::format("{}: {} ({} of {} points failed)\n",
+                       unit.serial,
+                       unit.pass() ? "PASS" : "FAIL",
+                       unit.failed(),
+                       unit.points.size());
   }
   return out;
 }

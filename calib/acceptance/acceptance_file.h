@@ -31,8 +31,10 @@ class AcceptanceFileError : public std::runtime_error {
 };
 
 /// The acceptance.json document of `unit` from `run`.
-nlohmann::json AcceptanceJson(const AcceptanceRun& run, const UnitAcceptance& unit,
-                              const Specification& spec, const std::string& software_version);
+nlohmann::json AcceptanceJson(const AcceptanceRun& run,
+                              const UnitAcceptance& unit,
+                              const Specification& spec,
+                              const std::string& software_version);
 
 /// Writes <out_dir>/<serial>/acceptance.json for every unit of `run`; returns the paths.
 std::vector<std::filesystem::path> WriteAcceptanceFiles(const AcceptanceRun& run,

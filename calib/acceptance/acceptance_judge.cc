@@ -9,10 +9,10 @@
 
 #include "calib/constants/recording_checksum.h"
 #include "calib/sequence/sequence_json.h"
+#include "common/units.h"
 #include "hil/recording/recording_reader.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -77,7 +77,10 @@ struct NoiseModel {
   double since_calibration_s = 0.0;
 };
 
-AcceptancePoint Judge(AcceptancePoint p, const Series& s, double tolerance, const NoiseModel& noise = {}) {
+AcceptancePoint Judge(AcceptancePoint p,
+                      const Series& s,
+                      double tolerance,
+                      const NoiseModel& noise = {}) {
   p.samples = s.error.n;
   p.measured = s.measured.Mean();
   p.reference = s.reference.Mean();
@@ -87,7 +90,8 @@ AcceptancePoint Judge(AcceptancePoint p, const Series& s, double tolerance, cons
   if (noise.terms != nullptr) {
     p.noise = PointSigma(*noise.terms, p.std_error, p.duration_s);
     if (noise.rate) {
-      p.physical_limit = PointLimit(*noise.terms, p.std_error, p.duration_s, noise.since_calibration_s);
+      p.physical_limit =
+          PointLimit(*noise.terms, p.std_error, p.duration_s, noise.since_calibration_s);
     }
   }
   p.tolerance = tolerance;
@@ -99,9 +103,13 @@ AcceptancePoint Judge(AcceptancePoint p, const Series& s, double tolerance, cons
 double CheckedChamberC(const Where& where, const Moments& chamber, const Specification& spec) {
   const double c = chamber.Mean();
   if (c < spec.temp_min_c - kRatingMarginC || c > spec.temp_max_c + kRatingMarginC) {
-    Refuse(where, fmt::format("chamber temperature {:.2f} degC is outside the rating {}...{} degC "
-                              "(margin {} degC): no tolerance is specified there",
-                              c, spec.temp_min_c, spec.temp_max_c, kRatingMarginC));
+    Refuse(where,
+           fmt::format("chamber temperature {:.2f} degC is outside the rating {}...{} degC "
+                       "(margin {} degC): no tolerance is specified there",
+                       c,
+                       spec.temp_min_c,
+                       spec.temp_max_c,
+                       kRatingMarginC));
   }
   return c;
 }
@@ -167,12 +175,14 @@ int StepMode(const Where& where, const std::vector<const Row*>& rows, bool imu) 
     }
   }
   if (mode == 0) {
-    Refuse(where, "rows are in raw mode (0): no compensated output to judge; an acceptance run "
-                  "needs the unit in its calibrated mode");
+    Refuse(where,
+           "rows are in raw mode (0): no compensated output to judge; an acceptance run "
+           "needs the unit in its calibrated mode");
   }
   if (imu && mode == 1) {
-    Refuse(where, "rows are in thermal mode (1), which has no engineering units; an acceptance "
-                  "run needs mode 2 or 3");
+    Refuse(where,
+           "rows are in thermal mode (1), which has no engineering units; an acceptance "
+           "run needs mode 2 or 3");
   }
   return mode;
 }
@@ -181,7 +191,8 @@ int StepMode(const Where& where, const std::vector<const Row*>& rows, bool imu) 
 
 std::array<double, 3> UpAxis(const Where& where, int orientation) {
   if (!IsOrientationCode(orientation)) {
-    Refuse(where, fmt::format("orientation {} is not a fixture orientation code (11...32)", orientation));
+    Refuse(where,
+           fmt::format("orientation {} is not a fixture orientation code (11...32)", orientation));
   }
   std::array<double, 3> up{};
   up[static_cast<size_t>(orientation / 10 - 1)] = orientation % 10 == 1 ? 1.0 : -1.0;
@@ -197,7 +208,8 @@ struct ImuGroup {
   std::vector<const hil::ImuRecordRow*> rows;
 };
 
-std::vector<ImuGroup> GroupImuStep(const Where& where, const StepBody& body,
+std::vector<ImuGroup> GroupImuStep(const Where& where,
+                                   const StepBody& body,
                                    const std::vector<const hil::ImuRecordRow*>& rows) {
   std::vector<ImuGroup> groups;
   std::vector<double> commands;
@@ -209,12 +221,15 @@ std::vector<ImuGroup> GroupImuStep(const Where& where, const StepBody& body,
     double key = 0.0;
     std::optional<double> rate_cmd;
     if (!commands.empty()) {
-      const auto nearest = std::min_element(commands.begin(), commands.end(), [&](double a, double b) {
-        return std::abs(a - row->table_rate_dps) < std::abs(b - row->table_rate_dps);
-      });
+      const auto nearest =
+          std::min_element(commands.begin(), commands.end(), [&](double a, double b) {
+            return std::abs(a - row->table_rate_dps) < std::abs(b - row->table_rate_dps);
+          });
       if (std::abs(*nearest - row->table_rate_dps) > kRateMatch_dps) {
-        Refuse(where, fmt::format("t_s {}: reported table rate {} deg/s matches no commanded rate",
-                                  row->t_s, row->table_rate_dps));
+        Refuse(where,
+               fmt::format("t_s {}: reported table rate {} deg/s matches no commanded rate",
+                           row->t_s,
+                           row->table_rate_dps));
       }
       key = *nearest;
       rate_cmd = *nearest;
@@ -244,7 +259,8 @@ std::vector<ImuGroup> GroupImuStep(const Where& where, const StepBody& body,
     for (int o : orientations) {
       for (double r : commands) {
         if (!index.count({o, r})) {
-          Refuse(where, fmt::format("no rows at the commanded rate {} deg/s in orientation {}", r, o));
+          Refuse(where,
+                 fmt::format("no rows at the commanded rate {} deg/s in orientation {}", r, o));
         }
       }
     }
@@ -252,8 +268,12 @@ std::vector<ImuGroup> GroupImuStep(const Where& where, const StepBody& body,
   return groups;
 }
 
-void JudgeImuGroup(const Where& where, const ImuGroup& group, const Specification& spec,
-                   double g_local_g, const RunContext& ctx, UnitAcceptance* unit) {
+void JudgeImuGroup(const Where& where,
+                   const ImuGroup& group,
+                   const Specification& spec,
+                   double g_local_g,
+                   const RunContext& ctx,
+                   UnitAcceptance* unit) {
   if (group.rows.size() < 2) Refuse(where, "fewer than 2 rows in an acquisition");
   if (group.orientation == 0) Refuse(where, "rows carry no orientation (0: not mounted)");
   const std::array<double, 3> up = UpAxis(where, group.orientation);
@@ -275,8 +295,10 @@ void JudgeImuGroup(const Where& where, const ImuGroup& group, const Specificatio
   base.chamber_c = CheckedChamberC(where, chamber, spec);
   base.duration_s = static_cast<double>(group.rows.size()) * ctx.packet_period_s;
   if (group.rate_cmd_dps && std::abs(*group.rate_cmd_dps) > spec.rated_rate_dps) {
-    Refuse(where, fmt::format("commanded rate {} deg/s is outside the rated +-{} deg/s",
-                              *group.rate_cmd_dps, spec.rated_rate_dps));
+    Refuse(where,
+           fmt::format("commanded rate {} deg/s is outside the rated +-{} deg/s",
+                       *group.rate_cmd_dps,
+                       spec.rated_rate_dps));
   }
   for (size_t i = 0; i < 3; ++i) {
     if (group.judge_accel) {
@@ -292,16 +314,19 @@ void JudgeImuGroup(const Where& where, const ImuGroup& group, const Specificatio
       AcceptancePoint p = base;
       p.quantity = std::string("rate_") + kAxisNames[i];
       p.unit = "deg/s";
-      const NoiseModel noise{unit->rest ? &unit->rest->rate_dps[i] : nullptr, true,
-                             ctx.since_calibration_s};
+      const NoiseModel noise{
+          unit->rest ? &unit->rest->rate_dps[i] : nullptr, true, ctx.since_calibration_s};
       unit->points.push_back(Judge(p, rate_dps[i], spec.body_rate_dps, noise));
     }
   }
 }
 
-void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_local_mps2,
-                  const std::map<std::pair<std::string, int>, std::vector<const hil::ImuRecordRow*>>& selected,
-                  UnitAcceptance* unit) {
+void JudgeImuUnit(
+    const RunContext& ctx,
+    const Specification& spec,
+    double g_local_mps2,
+    const std::map<std::pair<std::string, int>, std::vector<const hil::ImuRecordRow*>>& selected,
+    UnitAcceptance* unit) {
   std::vector<const hil::ImuRecordRow*> own;
   for (const hil::ImuRecordRow& row : ctx.recording.imu) {
     if (row.unit == unit->serial) own.push_back(&row);
@@ -318,7 +343,8 @@ void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_loc
     const auto& rows = RowsOf(selected, where);
     const int mode = StepMode(where, rows, true);
     if (unit->mode != 0 && unit->mode != mode) {
-      Refuse(where, fmt::format("rows in mode {} where earlier steps were in mode {}", mode, unit->mode));
+      Refuse(where,
+             fmt::format("rows in mode {} where earlier steps were in mode {}", mode, unit->mode));
     }
     unit->mode = mode;
     std::optional<int> commanded;
@@ -326,14 +352,18 @@ void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_loc
     if (const auto* g = std::get_if<GyroStep>(&body)) commanded = g->orientation;
     for (const hil::ImuRecordRow* row : rows) {
       if (commanded && row->orientation != *commanded) {
-        Refuse(where, fmt::format("t_s {}: orientation {} where the step commands {}", row->t_s,
-                                  row->orientation, *commanded));
+        Refuse(where,
+               fmt::format("t_s {}: orientation {} where the step commands {}",
+                           row->t_s,
+                           row->orientation,
+                           *commanded));
       }
     }
     for (const ImuGroup& group : GroupImuStep(where, body, rows)) {
       // A thermal bin the chamber only touched (a turning point, the profile's last value) holds
       // too few packets for a mean and its standard error; it is not judged.
-      if (std::holds_alternative<ThermalProfileStep>(body) && group.rows.size() < kMinThermalBinPackets) {
+      if (std::holds_alternative<ThermalProfileStep>(body) &&
+          group.rows.size() < kMinThermalBinPackets) {
         continue;
       }
       JudgeImuGroup(where, group, spec, common::Mps2ToG(g_local_mps2), ctx, unit);
@@ -343,9 +373,11 @@ void JudgeImuUnit(const RunContext& ctx, const Specification& spec, double g_loc
 
 // --- ADS ---
 
-void JudgeAdsUnit(const RunContext& ctx, const Specification& spec,
-                  const std::map<std::pair<std::string, int>, std::vector<const hil::AdsRecordRow*>>& selected,
-                  UnitAcceptance* unit) {
+void JudgeAdsUnit(
+    const RunContext& ctx,
+    const Specification& spec,
+    const std::map<std::pair<std::string, int>, std::vector<const hil::AdsRecordRow*>>& selected,
+    UnitAcceptance* unit) {
   std::optional<double> alt_aim_ft;
   std::optional<double> cas_aim_kt;
   for (size_t s = 0; s < ctx.sequence.steps.size(); ++s) {
@@ -367,8 +399,12 @@ void JudgeAdsUnit(const RunContext& ctx, const Specification& spec,
         ref_alt_ft = sensor_sim::IsaPressureAltitudeFt(row->ps_ref_pa);
         ref_cas_kt = sensor_sim::CalibratedAirspeedKt(std::max(0.0, row->qc_ref_pa));
       } catch (const std::exception& e) {
-        Refuse(where, fmt::format("t_s {}: reference ps_ref_pa {} / qc_ref_pa {}: {}", row->t_s,
-                                  row->ps_ref_pa, row->qc_ref_pa, e.what()));
+        Refuse(where,
+               fmt::format("t_s {}: reference ps_ref_pa {} / qc_ref_pa {}: {}",
+                           row->t_s,
+                           row->ps_ref_pa,
+                           row->qc_ref_pa,
+                           e.what()));
       }
       alt_ft.Add(*row->alt_ft, ref_alt_ft);
       cas_kt.Add(*row->cas_kt, ref_cas_kt);
@@ -389,7 +425,8 @@ void JudgeAdsUnit(const RunContext& ctx, const Specification& spec,
       AcceptancePoint cas = base;
       cas.quantity = "airspeed";
       cas.unit = "kt";
-      unit->points.push_back(Judge(cas, cas_kt, ToleranceAt(where, spec.airspeed_kt, *base.cas_kt)));
+      unit->points.push_back(
+          Judge(cas, cas_kt, ToleranceAt(where, spec.airspeed_kt, *base.cas_kt)));
     }
   }
 }
@@ -398,10 +435,14 @@ void JudgeAdsUnit(const RunContext& ctx, const Specification& spec,
 
 const char* PointVerdictText(PointVerdict verdict) {
   switch (verdict) {
-    case PointVerdict::kWithinSpecification: return "within specification";
-    case PointVerdict::kWithinPhysicalLimit: return "outside specification, within the physical limit";
-    case PointVerdict::kOutsideBoth: return "outside specification and the physical limit";
-    case PointVerdict::kOutsideSpecification: return "outside specification";
+    case PointVerdict::kWithinSpecification:
+      return "within specification";
+    case PointVerdict::kWithinPhysicalLimit:
+      return "outside specification, within the physical limit";
+    case PointVerdict::kOutsideBoth:
+      return "outside specification and the physical limit";
+    case PointVerdict::kOutsideSpecification:
+      return "outside specification";
   }
   return "?";
 }
@@ -433,22 +474,25 @@ std::string AcceptancePoint::Condition() const {
 bool UnitAcceptance::pass() const { return failed() == 0; }
 
 int UnitAcceptance::failed() const {
-  return static_cast<int>(std::count_if(points.begin(), points.end(),
-                                        [](const AcceptancePoint& p) { return !p.pass; }));
+  return static_cast<int>(std::count_if(
+      points.begin(), points.end(), [](const AcceptancePoint& p) { return !p.pass; }));
 }
 
 int UnitAcceptance::Count(const std::string& family, PointVerdict verdict) const {
-  return static_cast<int>(std::count_if(points.begin(), points.end(), [&](const AcceptancePoint& p) {
-    return QuantityFamily(p.quantity) == family && p.verdict() == verdict;
-  }));
+  return static_cast<int>(
+      std::count_if(points.begin(), points.end(), [&](const AcceptancePoint& p) {
+        return QuantityFamily(p.quantity) == family && p.verdict() == verdict;
+      }));
 }
 
 std::vector<WorstMargin> UnitAcceptance::WorstMargins() const {
   std::vector<WorstMargin> out;
   for (const AcceptancePoint& p : points) {
     const std::string family = QuantityFamily(p.quantity);
-    auto it = std::find_if(out.begin(), out.end(), [&](const WorstMargin& w) { return w.quantity == family; });
-    const WorstMargin candidate{family, p.unit, p.margin(), p.step, p.quantity + " at " + p.Condition()};
+    auto it = std::find_if(
+        out.begin(), out.end(), [&](const WorstMargin& w) { return w.quantity == family; });
+    const WorstMargin candidate{
+        family, p.unit, p.margin(), p.step, p.quantity + " at " + p.Condition()};
     if (it == out.end()) {
       out.push_back(candidate);
     } else if (p.margin() < it->margin) {
@@ -462,15 +506,18 @@ bool AcceptanceRun::pass() const {
   return std::all_of(units.begin(), units.end(), [](const UnitAcceptance& u) { return u.pass(); });
 }
 
-AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specification& spec,
+AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir,
+                              const Specification& spec,
                               const AcceptanceOptions& options) {
   RunContext ctx;
   ctx.run = run_dir.string();
   const auto fail = [&](const std::string& message) {
     throw AcceptanceInputError(ctx.run + ": " + message);
   };
-  if (!(options.since_calibration_h >= 0.0 && options.since_calibration_h <= kMaxSinceCalibration_h)) {
-    fail(fmt::format("the time since calibration {} h is outside 0...{} h", options.since_calibration_h,
+  if (!(options.since_calibration_h >= 0.0 &&
+        options.since_calibration_h <= kMaxSinceCalibration_h)) {
+    fail(fmt::format("the time since calibration {} h is outside 0...{} h",
+                     options.since_calibration_h,
                      kMaxSinceCalibration_h));
   }
   ctx.since_calibration_s = options.since_calibration_h * 3600.0;
@@ -489,8 +536,9 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specif
 
   AcceptanceRun run;
   run.run_dir = ctx.run;
-  run.run_id = meta.contains("run_id") && meta["run_id"].is_string() ? meta["run_id"].get<std::string>()
-                                                                      : run_dir.filename().string();
+  run.run_id = meta.contains("run_id") && meta["run_id"].is_string()
+                   ? meta["run_id"].get<std::string>()
+                   : run_dir.filename().string();
   run.recording_sha256 = RecordingSha256(run_dir);
   run.sequence_name = ctx.sequence.name;
   run.since_calibration_h = options.since_calibration_h;
@@ -500,7 +548,8 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specif
     const std::string path = fmt::format("meta.json: $.units[{}]", i);
     if (!u.contains("serial") || !u["serial"].is_string()) fail(path + ".serial missing");
     const std::string kind = u.value("kind", "");
-    if (kind != "imu" && kind != "ads") fail(path + ".kind: \"" + kind + "\" is neither imu nor ads");
+    if (kind != "imu" && kind != "ads")
+      fail(path + ".kind: \"" + kind + "\" is neither imu nor ads");
     if (kind == UnitKindName(ctx.sequence.unit_kind)) {
       run.units.push_back({u["serial"].get<std::string>(), kind, 0, {}, std::nullopt});
     }
@@ -509,16 +558,18 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specif
     fail(fmt::format("meta.json: $.units lists no {} unit (the sequence's unit kind)",
                      UnitKindName(ctx.sequence.unit_kind)));
   }
-  const bool has_imu = std::any_of(run.units.begin(), run.units.end(),
-                                   [](const UnitAcceptance& u) { return u.kind == "imu"; });
+  const bool has_imu = std::any_of(
+      run.units.begin(), run.units.end(), [](const UnitAcceptance& u) { return u.kind == "imu"; });
   if (has_imu) {
     if (!meta.contains("local_gravity_mps2") || !meta["local_gravity_mps2"].is_number()) {
-      fail("meta.json: $.local_gravity_mps2 missing (the station's local gravity is the "
-           "accelerometers' reference)");
+      fail(
+          "meta.json: $.local_gravity_mps2 missing (the station's local gravity is the "
+          "accelerometers' reference)");
     }
     run.local_gravity_mps2 = meta["local_gravity_mps2"].get<double>();
     if (!(run.local_gravity_mps2 > 9.7 && run.local_gravity_mps2 < 9.9)) {
-      fail(fmt::format("meta.json: $.local_gravity_mps2 {} is not Earth's", run.local_gravity_mps2));
+      fail(
+          fmt::format("meta.json: $.local_gravity_mps2 {} is not Earth's", run.local_gravity_mps2));
     }
   }
   const auto imu_rows = SelectRows(ctx, ctx.recording.imu);
@@ -530,7 +581,8 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specif
       JudgeAdsUnit(ctx, spec, ads_rows, &unit);
     }
     if (unit.points.empty()) {
-      fail("unit " + unit.serial + ": the sequence has no step that acquires " + unit.kind + " data");
+      fail("unit " + unit.serial + ": the sequence has no step that acquires " + unit.kind +
+           " data");
     }
   }
   return run;

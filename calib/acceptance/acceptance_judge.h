@@ -67,7 +67,8 @@ class AcceptanceInputError : public std::runtime_error {
 };
 
 /// A point's mean chamber temperature may lie this far outside the rating (-40...+85 degC) and
-/// still be judged: the shipped acceptance sequences soak at the rating's ends with a 0.5 degC band.
+/// still be judged: the shipped acceptance sequences soak at the rating's ends with a 0.5 degC
+/// band.
 inline constexpr double kRatingMarginC = 0.5;
 /// Width of the chamber temperature bins a thermal_profile step is judged in.
 inline constexpr double kThermalBinWidthC = 5.0;
@@ -86,7 +87,12 @@ struct AcceptanceOptions {
 };
 
 /// The verdict of a point against the specification and, for rate points, its physical limit.
-enum class PointVerdict { kWithinSpecification, kWithinPhysicalLimit, kOutsideBoth, kOutsideSpecification };
+enum class PointVerdict {
+  kWithinSpecification,
+  kWithinPhysicalLimit,
+  kOutsideBoth,
+  kOutsideSpecification
+};
 
 /// "within specification", "outside specification, within the physical limit", "outside
 /// specification and the physical limit", "outside specification" (no limit known): the wording
@@ -95,23 +101,23 @@ const char* PointVerdictText(PointVerdict verdict);
 
 /// One quantity judged at one acquisition.
 struct AcceptancePoint {
-  int step = 0;                    ///< step index in the run's sequence
-  std::string kind;                ///< the step's kind: accel, gyro, cross_axis, thermal_profile, log
-  std::string quantity;            ///< accel_x..z, rate_x..z, altitude, airspeed
-  std::string unit;                ///< of measured, reference, error, std_error, tolerance
-  int orientation = 0;             ///< IMU: fixture orientation code; 0 for ADS
+  int step = 0;          ///< step index in the run's sequence
+  std::string kind;      ///< the step's kind: accel, gyro, cross_axis, thermal_profile, log
+  std::string quantity;  ///< accel_x..z, rate_x..z, altitude, airspeed
+  std::string unit;      ///< of measured, reference, error, std_error, tolerance
+  int orientation = 0;   ///< IMU: fixture orientation code; 0 for ADS
   std::optional<double> rate_dps;  ///< IMU: commanded table rate about the up axis
   std::optional<double> alt_ft;    ///< ADS: aimed pressure altitude
   std::optional<double> cas_kt;    ///< ADS: aimed calibrated airspeed
   double chamber_c = 0.0;          ///< mean chamber temperature as the controller reported it
   int samples = 0;
-  double measured = 0.0;   ///< mean of the unit's output
-  double reference = 0.0;  ///< mean of the instruments' reference
-  double error = 0.0;      ///< mean of (measured - reference) per packet
-  double std_error = 0.0;  ///< standard error of `error`, packets taken as independent
+  double measured = 0.0;    ///< mean of the unit's output
+  double reference = 0.0;   ///< mean of the instruments' reference
+  double error = 0.0;       ///< mean of (measured - reference) per packet
+  double std_error = 0.0;   ///< standard error of `error`, packets taken as independent
   double duration_s = 0.0;  ///< IMU: packets x frame period; ADS: first to last arrival
-  double noise = 0.0;      ///< 1-sigma noise of `error`: std_error, or the rest record's if larger
-  double tolerance = 0.0;  ///< +- at the input, from the specification
+  double noise = 0.0;       ///< 1-sigma noise of `error`: std_error, or the rest record's if larger
+  double tolerance = 0.0;   ///< +- at the input, from the specification
   std::optional<double> physical_limit;  ///< rate points with a rest record (rest_stability.h)
   bool pass = false;
   bool beyond_noise = false;  ///< | |error| - tolerance | > 2 noise
@@ -126,9 +132,9 @@ struct AcceptancePoint {
 struct WorstMargin {
   std::string quantity;  ///< "acceleration", "body_rate", "altitude", "airspeed"
   std::string unit;
-  double margin = 0.0;   ///< tolerance - |error| at the worst point
+  double margin = 0.0;  ///< tolerance - |error| at the worst point
   int step = 0;
-  std::string point;     ///< the worst point's quantity and condition
+  std::string point;  ///< the worst point's quantity and condition
 };
 
 struct UnitAcceptance {
@@ -151,15 +157,16 @@ struct AcceptanceRun {
   std::string recording_sha256;
   std::string sequence_name;
   double since_calibration_h = kDefaultSinceCalibration_h;  ///< of the physical limits
-  double local_gravity_mps2 = 0.0;  ///< 0 for an ADS run
-  std::vector<UnitAcceptance> units;  ///< in meta.json's order
+  double local_gravity_mps2 = 0.0;                          ///< 0 for an ADS run
+  std::vector<UnitAcceptance> units;                        ///< in meta.json's order
 
   bool pass() const;
 };
 
 /// Judges every unit of the run in `run_dir` against `spec`; throws AcceptanceInputError or
 /// hil::RecordingError with the reason.
-AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir, const Specification& spec,
+AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir,
+                              const Specification& spec,
                               const AcceptanceOptions& options = {});
 
 /// "acceleration" for accel_x..z, "body_rate" for rate_x..z, else the quantity itself.

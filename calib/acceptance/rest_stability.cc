@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hil/recording/frame_count.h"
 #include "common/units.h"
+#include "hil/recording/frame_count.h"
 
 namespace adahrs::calib {
 namespace {
@@ -26,14 +26,15 @@ std::pair<size_t, size_t> LongestStretch(const std::vector<const hil::ImuRecordR
   std::pair<size_t, size_t> best{0, 0};
   size_t first = 0;
   for (size_t i = 0; i <= rows.size(); ++i) {
-    const bool continues = i < rows.size() && AtRest(*rows[i]) && i > first &&
-                           rows[i]->orientation == rows[first]->orientation &&
-                           rows[i]->mode == rows[first]->mode &&
-                           std::abs(rows[i]->chamber_c - rows[first]->chamber_c) <= kRestBand_c &&
-                           hil::FramesBetween(rows[i - 1]->seq, rows[i]->seq,
-                                              rows[i]->t_s - rows[i - 1]->t_s, packet_period_s) == 1;
+    const bool continues =
+        i < rows.size() && AtRest(*rows[i]) && i > first &&
+        rows[i]->orientation == rows[first]->orientation && rows[i]->mode == rows[first]->mode &&
+        std::abs(rows[i]->chamber_c - rows[first]->chamber_c) <= kRestBand_c &&
+        hil::FramesBetween(
+            rows[i - 1]->seq, rows[i]->seq, rows[i]->t_s - rows[i - 1]->t_s, packet_period_s) == 1;
     if (continues) continue;
-    if (i > first && AtRest(*rows[first]) && i - first > best.second - best.first) best = {first, i};
+    if (i > first && AtRest(*rows[first]) && i - first > best.second - best.first)
+      best = {first, i};
     first = i;
   }
   return best;
@@ -89,8 +90,11 @@ nlohmann::json RestStability::ToJson() const {
         {"floor_tau_s", accel_mg[i].bias_instability_tau_s},
         {"floor_is_upper_bound", accel_mg[i].minimum_at_longest_tau}};
   }
-  return {{"t_start_s", t_start_s}, {"record_s", record_s}, {"orientation", orientation},
-          {"chamber_c", chamber_c}, {"allan_floor", axes}};
+  return {{"t_start_s", t_start_s},
+          {"record_s", record_s},
+          {"orientation", orientation},
+          {"chamber_c", chamber_c},
+          {"allan_floor", axes}};
 }
 
 double FlickerSeparationRatio(double r) {
@@ -138,11 +142,14 @@ double PointSigma(const AllanTerms& terms, double iid_std_error, double point_s)
   return std::max(iid_std_error, RestStability::SigmaAt(terms, point_s));
 }
 
-double PointLimit(const AllanTerms& terms, double iid_std_error, double point_s,
+double PointLimit(const AllanTerms& terms,
+                  double iid_std_error,
+                  double point_s,
                   double since_calibration_s) {
   const double point = PointSigma(terms, iid_std_error, point_s);
   const double floor = RestStability::Floor(terms);
-  const double wander_sq = 2.0 * FlickerSeparationRatio(since_calibration_s / point_s) * floor * floor;
+  const double wander_sq =
+      2.0 * FlickerSeparationRatio(since_calibration_s / point_s) * floor * floor;
   return kThreeSigma * std::sqrt(point * point + wander_sq);
 }
 

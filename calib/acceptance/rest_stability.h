@@ -58,8 +58,8 @@ struct RestStability {
   double t_start_s = 0.0;  ///< first packet of the record, run time
   double record_s = 0.0;
   int orientation = 0;
-  double chamber_c = 0.0;                 ///< mean over the record
-  std::array<AllanTerms, 3> accel_mg;     ///< x, y, z
+  double chamber_c = 0.0;              ///< mean over the record
+  std::array<AllanTerms, 3> accel_mg;  ///< x, y, z
   std::array<AllanTerms, 3> rate_dps;
 
   /// Allan deviation of one axis at `tau_s`, log-log interpolated; held at the curve's ends.
@@ -80,7 +80,9 @@ std::optional<RestStability> ReadRestStability(const std::vector<const hil::ImuR
                                                double packet_period_s);
 
 /// The 3-sigma limit of a point's mean error (see the header comment), in the terms' unit.
-double PointLimit(const AllanTerms& terms, double iid_std_error, double point_s,
+double PointLimit(const AllanTerms& terms,
+                  double iid_std_error,
+                  double point_s,
                   double since_calibration_s);
 
 /// sigma_point of the header comment.

@@ -5,8 +5,10 @@
 
 namespace adahrs::calib {
 
-ToleranceTable::ToleranceTable(std::string quantity, std::string unit,
-                               std::vector<TolerancePoint> points, double input_min,
+ToleranceTable::ToleranceTable(std::string quantity,
+                               std::string unit,
+                               std::vector<TolerancePoint> points,
+                               double input_min,
                                double input_max)
     : quantity_(std::move(quantity)),
       unit_(std::move(unit)),
@@ -50,13 +52,14 @@ Specification Specification::Reference() {
       .rated_rate_dps = 150.0,
       .temp_min_c = -40.0,
       .temp_max_c = 85.0,
-      .altitude_ft = ToleranceTable("altitude", "ft",
-                                    {{-1000.0, 15.0}, {10000.0, 15.0}, {30000.0, 20.0},
-                                     {50000.0, 80.0}},
-                                    -1000.0, 50000.0),
-      .airspeed_kt = ToleranceTable("airspeed", "kt",
-                                    {{60.0, 5.0}, {100.0, 2.0}, {300.0, 1.0}, {450.0, 1.0}}, 30.0,
-                                    450.0),
+      .altitude_ft =
+          ToleranceTable("altitude",
+                         "ft",
+                         {{-1000.0, 15.0}, {10000.0, 15.0}, {30000.0, 20.0}, {50000.0, 80.0}},
+                         -1000.0,
+                         50000.0),
+      .airspeed_kt = ToleranceTable(
+          "airspeed", "kt", {{60.0, 5.0}, {100.0, 2.0}, {300.0, 1.0}, {450.0, 1.0}}, 30.0, 450.0),
   };
 }
 
@@ -64,11 +67,12 @@ namespace {
 nlohmann::json TableJson(const ToleranceTable& t) {
   nlohmann::json points = nlohmann::json::array();
   for (const TolerancePoint& p : t.points()) points.push_back({p.input, p.tolerance});
-  return {{"unit", t.unit()},
-          {"points", points},
-          {"input_min", t.input_min()},
-          {"input_max", t.input_max()},
-          {"interpolation", "linear between stated points (assumption); first point held below it"}};
+  return {
+      {"unit", t.unit()},
+      {"points", points},
+      {"input_min", t.input_min()},
+      {"input_max", t.input_max()},
+      {"interpolation", "linear between stated points (assumption); first point held below it"}};
 }
 }  // namespace
 

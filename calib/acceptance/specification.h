@@ -39,8 +39,11 @@ class ToleranceTable {
  public:
   /// `points` strictly increasing in input; the tolerance below the first point is held down to
   /// `input_min` (which is <= the first point), the last point must equal `input_max`.
-  ToleranceTable(std::string quantity, std::string unit, std::vector<TolerancePoint> points,
-                 double input_min, double input_max);
+  ToleranceTable(std::string quantity,
+                 std::string unit,
+                 std::vector<TolerancePoint> points,
+                 double input_min,
+                 double input_max);
 
   /// The tolerance at `input` by the rule in the header comment; throws std::out_of_range naming
   /// the quantity and the limits outside [input_min, input_max].
@@ -66,8 +69,8 @@ struct Specification {
   double rated_rate_dps = 150.0;  ///< operating limit of the body rates
   double temp_min_c = -40.0;
   double temp_max_c = 85.0;
-  ToleranceTable altitude_ft;     ///< tolerance in ft vs pressure altitude in ft
-  ToleranceTable airspeed_kt;     ///< tolerance in kt vs calibrated airspeed in kt
+  ToleranceTable altitude_ft;  ///< tolerance in ft vs pressure altitude in ft
+  ToleranceTable airspeed_kt;  ///< tolerance in kt vs calibrated airspeed in kt
 
   /// The reference specification (Tables 1-5) with the interpolation rule above.
   static Specification Reference();

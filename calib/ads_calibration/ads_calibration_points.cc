@@ -49,8 +49,8 @@ bool Rejected(const std::vector<RejectedInterval>& intervals, const hil::AdsReco
 
 void CheckFinite(double value, const char* column, int line, const std::string& source) {
   if (!std::isfinite(value)) {
-    throw std::runtime_error(fmt::format("{}/ads.csv line {} column {}: value {} is not finite",
-                                         source, line, column, value));
+    throw std::runtime_error(fmt::format(
+        "{}/ads.csv line {} column {}: value {} is not finite", source, line, column, value));
   }
 }
 
@@ -61,8 +61,11 @@ constexpr int32_t kAdcMinCode = -(1 << 23);
 void CheckNotSaturated(int32_t code, const char* column, int line, const std::string& source) {
   if (code >= kAdcMaxCode || code <= kAdcMinCode) {
     throw std::runtime_error(fmt::format(
-        "{}/ads.csv line {} column {}: code {} is at the ADS1254 rail (saturated input)", source,
-        line, column, code));
+        "{}/ads.csv line {} column {}: code {} is at the ADS1254 rail (saturated input)",
+        source,
+        line,
+        column,
+        code));
   }
 }
 
@@ -91,8 +94,15 @@ void CheckSteady(const Extremes& e, const char* column, int step, const std::str
       "{}/ads.csv lines {} and {} column {}: the test set's reference moved {:.1f} Pa within step "
       "{}'s acquisition ({:.1f} to {:.1f} Pa; limit {:.0f} Pa): not a steady point (reject the "
       "interval in meta.json or repeat the step)",
-      source, std::min(e.min_line, e.max_line), std::max(e.min_line, e.max_line), column,
-      e.max - e.min, step, e.min, e.max, kMaxReferenceSpanPa));
+      source,
+      std::min(e.min_line, e.max_line),
+      std::max(e.min_line, e.max_line),
+      column,
+      e.max - e.min,
+      step,
+      e.min,
+      e.max,
+      kMaxReferenceSpanPa));
 }
 
 }  // namespace
@@ -124,7 +134,13 @@ std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording
     } else if (s.point.tag != row.tag) {
       throw std::runtime_error(fmt::format(
           "{}/ads.csv line {} column tag: unit {} step {} carries tag {} after tag {} (line {})",
-          source, line, serial, row.step, row.tag, s.point.tag, s.point.first_line));
+          source,
+          line,
+          serial,
+          row.step,
+          row.tag,
+          s.point.tag,
+          s.point.first_line));
     }
     s.ps_ref_range.Add(row.ps_ref_pa, line, s.point.rows == 0);
     s.qc_ref_range.Add(row.qc_ref_pa, line, s.point.rows == 0);
@@ -160,7 +176,10 @@ std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording
     } catch (const std::domain_error& e) {
       throw std::runtime_error(fmt::format(
           "{}/ads.csv line {} columns ps_ref_pa/qc_ref_pa: step {} reference outside ISA: {}",
-          source, p.first_line, step, e.what()));
+          source,
+          p.first_line,
+          step,
+          e.what()));
     }
     p.airspeed_point = p.cas_kt >= kMinAirspeedPointKt;
     out.push_back(p);

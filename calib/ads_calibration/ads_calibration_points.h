@@ -12,9 +12,9 @@
 // Refused, naming ads.csv, the line and the column: a non-finite reference or chamber value, a
 // code at the converter's rail (saturated), a recording without rows of the unit, a reference
 // pressure that moved more than kMaxReferenceSpanPa within one step's acquisition (the point's
-// truth is then unknown: a test set still settling, or a stale reading on the first rows). Not modelled:
-// outlier rejection inside a step (the executor's rejected intervals do that), the test set's own
-// uncertainty (taken as exact).
+// truth is then unknown: a test set still settling, or a stale reading on the first rows). Not
+// modelled: outlier rejection inside a step (the executor's rejected intervals do that), the test
+// set's own uncertainty (taken as exact).
 #pragma once
 
 #include <cstdint>
@@ -34,18 +34,18 @@ inline constexpr double kMaxReferenceSpanPa = 25.0;
 struct AdsCalibrationPoint {
   int step = 0;
   uint8_t tag = 0;
-  int rows = 0;                ///< packets averaged
-  int first_line = 0;          ///< ads.csv line of the first row (1 = header)
-  double ps_code = 0.0;        ///< static bridge output, ADC code
-  double pt_code = 0.0;        ///< pitot bridge output, ADC code
-  double ps_temp_code = 0.0;   ///< static bridge voltage, ADC code
-  double pt_temp_code = 0.0;   ///< pitot bridge voltage, ADC code
-  double ps_ref_pa = 0.0;      ///< test set static pressure
-  double qc_ref_pa = 0.0;      ///< test set impact pressure
-  double chamber_c = 0.0;      ///< chamber reading
-  double alt_ft = 0.0;         ///< ISA pressure altitude of ps_ref_pa
-  double cas_kt = 0.0;         ///< ISA calibrated airspeed of qc_ref_pa
-  bool airspeed_point = false; ///< cas_kt >= kMinAirspeedPointKt
+  int rows = 0;                 ///< packets averaged
+  int first_line = 0;           ///< ads.csv line of the first row (1 = header)
+  double ps_code = 0.0;         ///< static bridge output, ADC code
+  double pt_code = 0.0;         ///< pitot bridge output, ADC code
+  double ps_temp_code = 0.0;    ///< static bridge voltage, ADC code
+  double pt_temp_code = 0.0;    ///< pitot bridge voltage, ADC code
+  double ps_ref_pa = 0.0;       ///< test set static pressure
+  double qc_ref_pa = 0.0;       ///< test set impact pressure
+  double chamber_c = 0.0;       ///< chamber reading
+  double alt_ft = 0.0;          ///< ISA pressure altitude of ps_ref_pa
+  double cas_kt = 0.0;          ///< ISA calibrated airspeed of qc_ref_pa
+  bool airspeed_point = false;  ///< cas_kt >= kMinAirspeedPointKt
 };
 
 /// The calibration points of unit `serial` in `recording` (read from `source`, named in errors),

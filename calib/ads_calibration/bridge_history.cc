@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
+#include "calib/ads_calibration/unit_hysteresis_operator.h"
 #include "calib/evaluation/ads_tolerance.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "calib/ads_calibration/unit_hysteresis_operator.h"
 
 namespace adahrs::calib {
 namespace {
@@ -21,7 +21,9 @@ constexpr double kThermalSpanC = 20.0;
 }  // namespace
 
 HysteresisSpans HysteresisSpans::Nominal() {
-  return {kPressureSpanFractionFs * kFullScalePa, kPressureSpanFractionFs * kFullScalePa, kThermalSpanC,
+  return {kPressureSpanFractionFs * kFullScalePa,
+          kPressureSpanFractionFs * kFullScalePa,
+          kThermalSpanC,
           kThermalSpanC};
 }
 

@@ -6,8 +6,8 @@
 // fitted to points recorded on one branch returns that branch, not the loop's centre; with the
 // states as regressors (tolerance_ads_strategy.h) it returns the centre.
 //
-// The states are those of the Preisach operator the unit runs (unit_hysteresis_operator.h) driven by
-// the reference history in step order: the test set's static pressure (static bridge) and impact
+// The states are those of the Preisach operator the unit runs (unit_hysteresis_operator.h) driven
+// by the reference history in step order: the test set's static pressure (static bridge) and impact
 // pressure (pitot bridge), and the chamber temperature (both dies; after a soak the die sits at
 // the chamber's temperature). Between calibration points the test set and the chamber move
 // monotonically from one aim to the next (the sequence's steps), so every reversal that matters
@@ -52,8 +52,9 @@ struct PointHistory {
 };
 
 /// The states at each of `points` (in step order, as SelectAdsCalibrationPoints returns them).
-std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>& points,
-                                          const HysteresisSpans& spans = HysteresisSpans::Nominal());
+std::vector<PointHistory> BridgeHistoryOf(
+    const std::vector<AdsCalibrationPoint>& points,
+    const HysteresisSpans& spans = HysteresisSpans::Nominal());
 
 /// The band of states that the operating envelope's histories can leave at input `x`: fresh (0),
 /// after a major loop low -> high -> x, and after high -> low -> x (the histories

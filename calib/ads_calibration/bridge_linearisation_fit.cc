@@ -3,8 +3,8 @@
 #include <cmath>
 #include <set>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include "calib/solvers/polynomial_fit.h"
 #include "firmware_model/reference_compensator.h"
@@ -17,7 +17,8 @@ BridgeLinearisationFit FitBridgeLinearisation(const std::string& context,
   if (temperatures_dc.size() < 3) {
     throw DegenerateDesignError(fmt::format(
         "{}: the bridge code's quadratic in temperature needs 3 chamber temperatures, got {}",
-        context, temperatures_dc.size()));
+        context,
+        temperatures_dc.size()));
   }
   double mean_c = 0.0;
   for (const SurfaceSample& s : samples) mean_c += s.chamber_c;
@@ -27,16 +28,19 @@ BridgeLinearisationFit FitBridgeLinearisation(const std::string& context,
     obs.x.push_back(s.chamber_c - mean_c);
     obs.z.push_back(s.y_code);
   }
-  const PolynomialFit fit = FitPolynomial(
-      context + ": bridge code against chamber temperature", PolynomialBasis::Univariate(2, "t"),
-      obs, WeightKind::kInverseVariance, ErrorScale::kResidualVariance);
+  const PolynomialFit fit = FitPolynomial(context + ": bridge code against chamber temperature",
+                                          PolynomialBasis::Univariate(2, "t"),
+                                          obs,
+                                          WeightKind::kInverseVariance,
+                                          ErrorScale::kResidualVariance);
   const Eigen::VectorXd& c = fit.raw_coefficients;  // y = c0 + c1 t + c2 t^2
   const double slope = c(1), curve = c(2);
   const double travel_c = (*temperatures_dc.rbegin() - *temperatures_dc.begin()) / 10.0;
   if (!(std::abs(slope) * travel_c >= 1.0)) {
     throw DegenerateDesignError(fmt::format(
         "{}: the bridge code changes by less than a code over {:.1f} degC of chamber temperature",
-        context, travel_c));
+        context,
+        travel_c));
   }
   BridgeLinearisationFit out;
   out.linearisation.origin_code = std::nearbyint(c(0));
@@ -52,7 +56,9 @@ BridgeLinearisationFit FitBridgeLinearisation(const std::string& context,
       throw DegenerateDesignError(fmt::format(
           "{}: the bridge code's fitted quadratic in temperature turns inside the calibrated "
           "range (at code {:.0f}, {:.1f} degC)",
-          context, s.y_code, s.chamber_c));
+          context,
+          s.y_code,
+          s.chamber_c));
     }
   }
   return out;

@@ -51,8 +51,10 @@ double SpanSe(double span, double minus, double centre, double plus, double h, i
 
 }  // namespace
 
-SpanFit FitHysteresisSpans(const std::function<double(double, double)>& cost, double start_pressure_span,
-                           double start_thermal_span_c, int dof) {
+SpanFit FitHysteresisSpans(const std::function<double(double, double)>& cost,
+                           double start_pressure_span,
+                           double start_thermal_span_c,
+                           int dof) {
   const double lp0 = std::log(start_pressure_span), lt0 = std::log(start_thermal_span_c);
   const double lo = std::log(kSpanSearchMin), hi = std::log(kSpanSearchMax);
   const Box outer{lp0 + lo, lp0 + hi, lt0 + lo, lt0 + hi};
@@ -76,12 +78,18 @@ SpanFit FitHysteresisSpans(const std::function<double(double, double)>& cost, do
   out.at_search_edge = best.log_p < outer.log_p_min + edge || best.log_p > outer.log_p_max - edge ||
                        best.log_t < outer.log_t_min + edge || best.log_t > outer.log_t_max - edge;
   const double hp = best.step_p, ht = best.step_t;
-  out.pressure_span_se =
-      SpanSe(out.pressure_span, cost(std::exp(best.log_p - hp), out.thermal_span_c), best.cost,
-             cost(std::exp(best.log_p + hp), out.thermal_span_c), hp, dof);
-  out.thermal_span_c_se =
-      SpanSe(out.thermal_span_c, cost(out.pressure_span, std::exp(best.log_t - ht)), best.cost,
-             cost(out.pressure_span, std::exp(best.log_t + ht)), ht, dof);
+  out.pressure_span_se = SpanSe(out.pressure_span,
+                                cost(std::exp(best.log_p - hp), out.thermal_span_c),
+                                best.cost,
+                                cost(std::exp(best.log_p + hp), out.thermal_span_c),
+                                hp,
+                                dof);
+  out.thermal_span_c_se = SpanSe(out.thermal_span_c,
+                                 cost(out.pressure_span, std::exp(best.log_t - ht)),
+                                 best.cost,
+                                 cost(out.pressure_span, std::exp(best.log_t + ht)),
+                                 ht,
+                                 dof);
   return out;
 }
 

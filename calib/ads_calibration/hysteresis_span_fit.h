@@ -30,14 +30,16 @@ struct SpanFit {
   double thermal_span_c = 0.0;
   double pressure_span_se = 0.0;  ///< one standard error; infinite when the profile is flat
   double thermal_span_c_se = 0.0;
-  double cost = 0.0;             ///< at the estimate
-  double cost_at_start = 0.0;    ///< at the starting spans
-  bool at_search_edge = false;   ///< the estimate lies on the search box's boundary
+  double cost = 0.0;            ///< at the estimate
+  double cost_at_start = 0.0;   ///< at the starting spans
+  bool at_search_edge = false;  ///< the estimate lies on the search box's boundary
 };
 
 /// Minimises `cost(pressure_span, thermal_span_c)` as described above, from the starting spans;
 /// `dof` = points - fitted parameters (> 0) scales the standard errors.
-SpanFit FitHysteresisSpans(const std::function<double(double, double)>& cost, double start_pressure_span,
-                           double start_thermal_span_c, int dof);
+SpanFit FitHysteresisSpans(const std::function<double(double, double)>& cost,
+                           double start_pressure_span,
+                           double start_thermal_span_c,
+                           int dof);
 
 }  // namespace adahrs::calib

@@ -35,8 +35,10 @@ AdsSurfaceSamples SurfaceSamplesOf(const std::vector<AdsCalibrationPoint>& point
   return out;
 }
 
-AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstimate& alt,
-                                const SurfaceEstimate& cas, bool pressure_laws) {
+AdsFitResult AdsFitFromSurfaces(const std::string& strategy,
+                                const SurfaceEstimate& alt,
+                                const SurfaceEstimate& cas,
+                                bool pressure_laws) {
   AdsFitResult out;
   out.strategy = strategy;
   out.constants.altitude_ft = alt.surface;

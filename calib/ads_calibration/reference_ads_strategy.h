@@ -46,7 +46,9 @@ AdsSurfaceSamples SurfaceSamplesOf(const std::vector<AdsCalibrationPoint>& point
 /// The result of any 10-term cubic strategy from its two fitted surfaces: constants, standard
 /// errors (null for the code box) and diagnostics, labelled `strategy`. With `pressure_laws` the
 /// surfaces are of static and impact pressure (Pa) and the firmware's ISA and CAS laws follow.
-AdsFitResult AdsFitFromSurfaces(const std::string& strategy, const SurfaceEstimate& altitude,
-                                const SurfaceEstimate& airspeed, bool pressure_laws = false);
+AdsFitResult AdsFitFromSurfaces(const std::string& strategy,
+                                const SurfaceEstimate& altitude,
+                                const SurfaceEstimate& airspeed,
+                                bool pressure_laws = false);
 
 }  // namespace adahrs::calib

@@ -13,11 +13,11 @@
 #include <fmt/format.h>
 
 #include "calib/ads_calibration/bridge_history.h"
-#include "calib/ads_calibration/hysteresis_span_fit.h"
 #include "calib/ads_calibration/bridge_linearisation_fit.h"
+#include "calib/ads_calibration/hysteresis_span_fit.h"
+#include "calib/constants/constants_file.h"
 #include "calib/evaluation/ads_tolerance.h"
 #include "calib/solvers/polynomial_fit.h"
-#include "calib/constants/constants_file.h"
 #include "firmware_model/air_data_law.h"
 #include "firmware_model/reference_compensator.h"
 
@@ -45,8 +45,10 @@ double Predicted(const SurfaceEstimate& e, const SurfaceSample& s) {
   return z;
 }
 
-double WorstRatio(const SurfaceEstimate& e, const std::vector<SurfaceSample>& samples,
-                  const std::vector<double>& tolerance, std::vector<double>& ratio) {
+double WorstRatio(const SurfaceEstimate& e,
+                  const std::vector<SurfaceSample>& samples,
+                  const std::vector<double>& tolerance,
+                  std::vector<double>& ratio) {
   double worst = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
     ratio[i] = std::abs(Predicted(e, samples[i]) - samples[i].z) / tolerance[i];
@@ -64,12 +66,15 @@ std::vector<double> Tolerances(const std::vector<SurfaceSample>& samples,
 
 // Each sample weighted 1/tol^2 (the tolerance-weighted mean-square fit).
 void WeighByTolerance(std::vector<SurfaceSample>& samples, const std::vector<double>& tolerance) {
-  for (size_t i = 0; i < samples.size(); ++i) samples[i].weight = 1.0 / (tolerance[i] * tolerance[i]);
+  for (size_t i = 0; i < samples.size(); ++i)
+    samples[i].weight = 1.0 / (tolerance[i] * tolerance[i]);
 }
 
 // Minimises max_i |r_i| / tolerance[i] (Lawson, from the 1/tol^2 fit).
-MinimaxSurface FitMinimax(const std::string& context, const PolynomialBasis& basis,
-                          HistoryTerms history, std::vector<SurfaceSample> samples,
+MinimaxSurface FitMinimax(const std::string& context,
+                          const PolynomialBasis& basis,
+                          HistoryTerms history,
+                          std::vector<SurfaceSample> samples,
                           const std::vector<double>& tolerance) {
   WeighByTolerance(samples, tolerance);
   std::vector<double> ratio(samples.size());
@@ -105,19 +110,22 @@ struct OrderChoice {
   nlohmann::json held_out_worst_ratio = nlohmann::json::object();  ///< per candidate degree
 };
 
-OrderChoice ChooseYDegree(const std::string& context, std::vector<SurfaceSample> samples,
+OrderChoice ChooseYDegree(const std::string& context,
+                          std::vector<SurfaceSample> samples,
                           const std::function<double(double)>& tolerance_of) {
   const std::vector<double> tolerance = Tolerances(samples, tolerance_of);
   WeighByTolerance(samples, tolerance);
   const std::set<long long> temperatures_dc = ChamberTemperaturesDc(samples);
-  const int max_degree = std::min<int>(firmware_model::kSurfaceYDegree,
-                                       static_cast<int>(temperatures_dc.size()) - 2);
+  const int max_degree =
+      std::min<int>(firmware_model::kSurfaceYDegree, static_cast<int>(temperatures_dc.size()) - 2);
   OrderChoice choice;
   double best_score = std::numeric_limits<double>::infinity();
   for (int q = 3; q <= max_degree; ++q) {
-    const PolynomialBasis basis = PolynomialBasis::TensorSurface(firmware_model::kSurfaceXDegree, q, "x", "y");
+    const PolynomialBasis basis =
+        PolynomialBasis::TensorSurface(firmware_model::kSurfaceXDegree, q, "x", "y");
     double score = 0.0;
-    for (auto it = std::next(temperatures_dc.begin()); it != std::prev(temperatures_dc.end()); ++it) {
+    for (auto it = std::next(temperatures_dc.begin()); it != std::prev(temperatures_dc.end());
+         ++it) {
       std::vector<SurfaceSample> kept;
       std::vector<size_t> held;
       for (size_t i = 0; i < samples.size(); ++i) {
@@ -127,9 +135,11 @@ OrderChoice ChooseYDegree(const std::string& context, std::vector<SurfaceSample>
           kept.push_back(samples[i]);
         }
       }
-      const SurfaceEstimate e = FitSurface(
-          fmt::format("{} (y degree {}, {:.1f} degC held out)", context, q, *it / 10.0), basis,
-          kept, HistoryTerms::kPressureAndThermal);
+      const SurfaceEstimate e =
+          FitSurface(fmt::format("{} (y degree {}, {:.1f} degC held out)", context, q, *it / 10.0),
+                     basis,
+                     kept,
+                     HistoryTerms::kPressureAndThermal);
       for (size_t i : held) {
         score = std::max(score, std::abs(Predicted(e, samples[i]) - samples[i].z) / tolerance[i]);
       }
@@ -149,16 +159,22 @@ AdsFitResult FitToleranceAdsStrategy(const std::string& context,
                                      const std::vector<AdsCalibrationPoint>& points) {
   const AdsSurfaceSamples samples = SurfaceSamplesOf(points);
   const PolynomialBasis cubic = PolynomialBasis::ReferenceCubicSurface("x", "y");
-  const MinimaxSurface alt = FitMinimax(
-      context + ": altitude surface", cubic, HistoryTerms::kNone, samples.altitude,
-      Tolerances(samples.altitude, [](double ft) {
-        return AltitudeToleranceFt(std::clamp(ft, kAdsMinAltitudeFt, kAdsMaxAltitudeFt));
-      }));
-  const MinimaxSurface cas = FitMinimax(
-      context + ": airspeed surface", cubic, HistoryTerms::kNone, samples.airspeed,
-      Tolerances(samples.airspeed, [](double kt) {
-        return AirspeedToleranceKt(std::clamp(kt, kAdsMinAirspeedKt, kAdsMaxAirspeedKt));
-      }));
+  const MinimaxSurface alt =
+      FitMinimax(context + ": altitude surface",
+                 cubic,
+                 HistoryTerms::kNone,
+                 samples.altitude,
+                 Tolerances(samples.altitude, [](double ft) {
+                   return AltitudeToleranceFt(std::clamp(ft, kAdsMinAltitudeFt, kAdsMaxAltitudeFt));
+                 }));
+  const MinimaxSurface cas =
+      FitMinimax(context + ": airspeed surface",
+                 cubic,
+                 HistoryTerms::kNone,
+                 samples.airspeed,
+                 Tolerances(samples.airspeed, [](double kt) {
+                   return AirspeedToleranceKt(std::clamp(kt, kAdsMinAirspeedKt, kAdsMaxAirspeedKt));
+                 }));
   AdsFitResult out = AdsFitFromSurfaces(kToleranceAdsStrategyName, alt.estimate, cas.estimate);
   for (const auto& [key, m] : {std::pair{"altitude_ft", &alt}, std::pair{"airspeed_kt", &cas}}) {
     out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->first_worst_ratio;
@@ -185,11 +201,13 @@ PressureSamples PressureSamplesOf(const std::vector<AdsCalibrationPoint>& points
     const AdsCalibrationPoint& p = points[i];
     const PointBands bands = EnvelopeBands(p, spans);
     const BridgeStates& s = history[i].static_bridge;
-    out.ps.push_back({p.ps_code, p.ps_temp_code, p.ps_ref_pa, p.chamber_c, 1.0, s.s_pressure, s.s_thermal});
+    out.ps.push_back(
+        {p.ps_code, p.ps_temp_code, p.ps_ref_pa, p.chamber_c, 1.0, s.s_pressure, s.s_thermal});
     out.ps_bands.push_back(bands.static_bridge);
     if (p.airspeed_point) {
       const BridgeStates& t = history[i].pitot_bridge;
-      out.qc.push_back({p.pt_code, p.pt_temp_code, p.qc_ref_pa, p.chamber_c, 1.0, t.s_pressure, t.s_thermal});
+      out.qc.push_back(
+          {p.pt_code, p.pt_temp_code, p.qc_ref_pa, p.chamber_c, 1.0, t.s_pressure, t.s_thermal});
       out.qc_bands.push_back(bands.pitot_bridge);
     }
   }
@@ -197,8 +215,10 @@ PressureSamples PressureSamplesOf(const std::vector<AdsCalibrationPoint>& points
 }
 
 double StaticTolerancePa(double pa) {
-  const double ft = std::clamp(fm::IsaAltitudeFtFromStaticPa(pa), kAdsMinAltitudeFt, kAdsMaxAltitudeFt);
-  const double ft_per_pa = fm::IsaAltitudeFtFromStaticPa(pa - 0.5) - fm::IsaAltitudeFtFromStaticPa(pa + 0.5);
+  const double ft =
+      std::clamp(fm::IsaAltitudeFtFromStaticPa(pa), kAdsMinAltitudeFt, kAdsMaxAltitudeFt);
+  const double ft_per_pa =
+      fm::IsaAltitudeFtFromStaticPa(pa - 0.5) - fm::IsaAltitudeFtFromStaticPa(pa + 0.5);
   return AltitudeToleranceFt(ft) / ft_per_pa;
 }
 
@@ -224,7 +244,8 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
   const std::function<double(double)> qc_tolerance = ImpactTolerancePa;
   const std::string ps_context = context + ": static pressure surface";
   const std::string qc_context = context + ": impact pressure surface";
-  auto relative_to_mid = [](std::vector<SurfaceSample> samples, const std::vector<BridgeBands>& bands) {
+  auto relative_to_mid = [](std::vector<SurfaceSample> samples,
+                            const std::vector<BridgeBands>& bands) {
     for (size_t i = 0; i < samples.size(); ++i) {
       samples[i].s_pressure -= bands[i].pressure.mid;
       samples[i].s_thermal -= bands[i].thermal.mid;
@@ -238,29 +259,34 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
   // Two fits with the states as regressors. The first takes them as recorded, weighted 1/tol^2
   // (least squares, not minimax: the minimax's final weights rest on a few points and leave the
   // half loops barely determined): its surface is the loop's centre, and its coefficients the half
-  // loops with standard errors (diagnostics, checked against the truth in the tests). The second takes each point's state relative to the middle of its envelope band,
-  // so that its surface reads that middle: the smallest worst error over the envelope's
-  // histories. The second's surface is the one exported; its history coefficients also absorb
-  // what the polynomial cannot follow of the band's middle, so they are not reported.
+  // loops with standard errors (diagnostics, checked against the truth in the tests). The second
+  // takes each point's state relative to the middle of its envelope band, so that its surface reads
+  // that middle: the smallest worst error over the envelope's histories. The second's surface is
+  // the one exported; its history coefficients also absorb what the polynomial cannot follow of the
+  // band's middle, so they are not reported.
   struct CentreAndSurface {
     SurfaceEstimate centre;
     MinimaxSurface surface;
   };
-  auto fit = [](const std::string& what, const OrderChoice& order, std::vector<SurfaceSample> recorded,
-                const std::vector<SurfaceSample>& mid, const std::function<double(double)>& tolerance_of) {
+  auto fit = [](const std::string& what,
+                const OrderChoice& order,
+                std::vector<SurfaceSample> recorded,
+                const std::vector<SurfaceSample>& mid,
+                const std::function<double(double)>& tolerance_of) {
     const PolynomialBasis basis =
         PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, order.y_degree, "x", "y");
     const std::vector<double> tolerance = Tolerances(recorded, tolerance_of);
     WeighByTolerance(recorded, tolerance);
-    return CentreAndSurface{FitSurface(what, basis, recorded, HistoryTerms::kPressureAndThermal),
-                  FitMinimax(what, basis, HistoryTerms::kPressureAndThermal, mid, tolerance)};
+    return CentreAndSurface{
+        FitSurface(what, basis, recorded, HistoryTerms::kPressureAndThermal),
+        FitMinimax(what, basis, HistoryTerms::kPressureAndThermal, mid, tolerance)};
   };
   const CentreAndSurface alt = fit(ps_context, ps_order, ps, ps_mid, ps_tolerance);
   const CentreAndSurface cas = fit(qc_context, qc_order, qc, qc_mid, qc_tolerance);
-  AdsFitResult out =
-      AdsFitFromSurfaces(kPressureAdsStrategyName, alt.surface.estimate, cas.surface.estimate, true);
-  for (const auto& [key, m, order] : {std::tuple{"altitude_ft", &alt, &ps_order},
-                                      std::tuple{"airspeed_kt", &cas, &qc_order}}) {
+  AdsFitResult out = AdsFitFromSurfaces(
+      kPressureAdsStrategyName, alt.surface.estimate, cas.surface.estimate, true);
+  for (const auto& [key, m, order] :
+       {std::tuple{"altitude_ft", &alt, &ps_order}, std::tuple{"airspeed_kt", &cas, &qc_order}}) {
     out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->surface.first_worst_ratio;
     out.diagnostics[key]["worst_ratio_at_points"] = m->surface.worst_ratio;
     out.diagnostics[key]["lawson_iterations"] = kLawsonIterations;
@@ -268,13 +294,15 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
     // The half loops the centre fit separated, Pa per unit state (c = -FS h / 2 for a loop of
     // h FSO between the branches), and how far its centre fits the points.
     const HysteresisEstimate& h = *m->centre.history;
-    out.diagnostics[key]["hysteresis"] = {
-        {"pressure_half_loop_Pa", h.pressure}, {"pressure_half_loop_se_Pa", h.pressure_se},
-        {"thermal_half_loop_Pa", h.thermal},   {"thermal_half_loop_se_Pa", h.thermal_se},
-        {"centre_fit_residual_rms_Pa", m->centre.residual_rms}};
+    out.diagnostics[key]["hysteresis"] = {{"pressure_half_loop_Pa", h.pressure},
+                                          {"pressure_half_loop_se_Pa", h.pressure_se},
+                                          {"thermal_half_loop_Pa", h.thermal},
+                                          {"thermal_half_loop_se_Pa", h.thermal_se},
+                                          {"centre_fit_residual_rms_Pa", m->centre.residual_rms}};
     out.diagnostics[key]["hysteresis_spans"] = span_diagnostics[key]["hysteresis_spans"];
-    out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
-                                                                    : "CAS from impact pressure";
+    out.diagnostics[key]["law"] = key == std::string("altitude_ft")
+                                      ? "ISA altitude from static pressure"
+                                      : "CAS from impact pressure";
   }
   return out;
 }
@@ -292,12 +320,14 @@ struct DieTemperature {
   double residual_rms_c = 0.0;
 };
 
-DieTemperature FitDieTemperature(const std::string& context, const std::vector<SurfaceSample>& samples) {
+DieTemperature FitDieTemperature(const std::string& context,
+                                 const std::vector<SurfaceSample>& samples) {
   const size_t temperatures = ChamberTemperaturesDc(samples).size();
   if (temperatures < 4) {
     throw DegenerateDesignError(fmt::format(
         "{}: the die temperature's cubic in the bridge code needs 4 chamber temperatures, got {}",
-        context, temperatures));
+        context,
+        temperatures));
   }
   double y0 = 0.0;
   for (const SurfaceSample& s : samples) y0 += s.y_code;
@@ -308,8 +338,10 @@ DieTemperature FitDieTemperature(const std::string& context, const std::vector<S
     obs.z.push_back(s.chamber_c);
   }
   const PolynomialFit fit = FitPolynomial(context + ": die temperature against the bridge code",
-                                          PolynomialBasis::Univariate(3, "y"), obs,
-                                          WeightKind::kInverseVariance, ErrorScale::kResidualVariance);
+                                          PolynomialBasis::Univariate(3, "y"),
+                                          obs,
+                                          WeightKind::kInverseVariance,
+                                          ErrorScale::kResidualVariance);
   DieTemperature out;
   out.origin_code = y0;
   for (int j = 0; j < 4; ++j) out.degc_per_code_power[j] = fit.raw_coefficients(j);
@@ -321,17 +353,21 @@ struct CompensatedSurface {
   SurfaceEstimate centre;  ///< least squares with the recorded states: surface and gains
   fm::HysteresisCompensation hysteresis;
   BridgeLinearisationFit linearisation;  ///< of the bridge code: the surface's y is linearised
-  double worst_ratio_at_points = 0.0;  ///< |surface + gains . states - z| / tolerance
+  double worst_ratio_at_points = 0.0;    ///< |surface + gains . states - z| / tolerance
   double die_temp_residual_rms_c = 0.0;
 };
 
-CompensatedSurface FitCompensated(const std::string& context, const std::vector<SurfaceSample>& samples,
+CompensatedSurface FitCompensated(const std::string& context,
+                                  const std::vector<SurfaceSample>& samples,
                                   const std::function<double(double)>& tolerance_of,
-                                  double pressure_span_pa, double thermal_span_c, OrderChoice* order) {
+                                  double pressure_span_pa,
+                                  double thermal_span_c,
+                                  OrderChoice* order) {
   const BridgeLinearisationFit linearisation = FitBridgeLinearisation(context, samples);
   const std::vector<SurfaceSample> recorded = Linearised(samples, linearisation.linearisation);
   *order = ChooseYDegree(context, recorded, tolerance_of);
-  const PolynomialBasis basis = PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, order->y_degree, "x", "y");
+  const PolynomialBasis basis =
+      PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, order->y_degree, "x", "y");
   const std::vector<double> tolerance = Tolerances(recorded, tolerance_of);
   std::vector<SurfaceSample> weighted = recorded;
   WeighByTolerance(weighted, tolerance);
@@ -342,13 +378,19 @@ CompensatedSurface FitCompensated(const std::string& context, const std::vector<
   const HysteresisEstimate& h = *out.centre.history;
   for (size_t i = 0; i < samples.size(); ++i) {
     const SurfaceSample& s = samples[i];
-    out.worst_ratio_at_points =
-        std::max(out.worst_ratio_at_points, std::abs(Predicted(out.centre, s) - s.z) / tolerance[i]);
+    out.worst_ratio_at_points = std::max(out.worst_ratio_at_points,
+                                         std::abs(Predicted(out.centre, s) - s.z) / tolerance[i]);
   }
   const DieTemperature die = FitDieTemperature(context, recorded);
   static_assert(kHysteresisReferenceC == fm::kHysteresisGainReferenceC);
-  out.hysteresis = {h.pressure,         h.pressure_per_degc, pressure_span_pa, h.thermal,
-                    h.thermal_per_degc, thermal_span_c,      die.origin_code,  die.degc_per_code_power};
+  out.hysteresis = {h.pressure,
+                    h.pressure_per_degc,
+                    pressure_span_pa,
+                    h.thermal,
+                    h.thermal_per_degc,
+                    thermal_span_c,
+                    die.origin_code,
+                    die.degc_per_code_power};
   out.die_temp_residual_rms_c = die.residual_rms_c;
   return out;
 }
@@ -360,13 +402,17 @@ namespace {
 // One bridge's spans: the cost of a candidate is the tolerance-weighted residual sum of squares
 // of the bridge's centre fit (surface of degree (3, q) in the linearised code, q chosen at the
 // starting spans; gains and their temperature slopes) with the states those spans give.
-SpanFit FitBridgeSpans(const std::string& context, const std::vector<AdsCalibrationPoint>& points,
-                       std::vector<SurfaceSample> samples, const std::function<double(double)>& tolerance_of,
-                       const HysteresisSpans& start, bool static_bridge) {
+SpanFit FitBridgeSpans(const std::string& context,
+                       const std::vector<AdsCalibrationPoint>& points,
+                       std::vector<SurfaceSample> samples,
+                       const std::function<double(double)>& tolerance_of,
+                       const HysteresisSpans& start,
+                       bool static_bridge) {
   const BridgeLinearisationFit linearisation = FitBridgeLinearisation(context, samples);
   samples = Linearised(samples, linearisation.linearisation);
   const int y_degree = ChooseYDegree(context, samples, tolerance_of).y_degree;
-  const PolynomialBasis basis = PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, y_degree, "x", "y");
+  const PolynomialBasis basis =
+      PolynomialBasis::TensorSurface(fm::kSurfaceXDegree, y_degree, "x", "y");
   WeighByTolerance(samples, Tolerances(samples, tolerance_of));
   auto cost = [&](double pressure_span, double thermal_span_c) {
     HysteresisSpans spans = start;
@@ -381,13 +427,15 @@ SpanFit FitBridgeSpans(const std::string& context, const std::vector<AdsCalibrat
       samples[k].s_thermal = b.s_thermal;
       ++k;
     }
-    const SurfaceEstimate e = FitSurface(context, basis, samples, HistoryTerms::kWithTemperatureSlopes);
+    const SurfaceEstimate e =
+        FitSurface(context, basis, samples, HistoryTerms::kWithTemperatureSlopes);
     double sum = 0.0;
     for (const SurfaceSample& s : samples) sum += s.weight * std::pow(Predicted(e, s) - s.z, 2);
     return sum;
   };
   const int parameters = static_cast<int>(basis.size()) + 4 + 2;  // surface, gains, slopes, spans
-  return FitHysteresisSpans(cost, static_bridge ? start.static_pressure_pa : start.impact_pressure_pa,
+  return FitHysteresisSpans(cost,
+                            static_bridge ? start.static_pressure_pa : start.impact_pressure_pa,
                             static_bridge ? start.static_temperature_c : start.pitot_temperature_c,
                             std::max(1, static_cast<int>(samples.size()) - parameters));
 }
@@ -406,12 +454,21 @@ nlohmann::json SpanFitJson(const SpanFit& f, const char* pressure_unit) {
 
 HysteresisSpans EstimateHysteresisSpans(const std::string& context,
                                         const std::vector<AdsCalibrationPoint>& points,
-                                        const HysteresisSpans& start, nlohmann::json* diagnostics) {
+                                        const HysteresisSpans& start,
+                                        nlohmann::json* diagnostics) {
   const PressureSamples samples = PressureSamplesOf(points, start);
-  const SpanFit ps = FitBridgeSpans(context + ": static bridge's hysteresis spans", points, samples.ps,
-                                    StaticTolerancePa, start, true);
-  const SpanFit qc = FitBridgeSpans(context + ": pitot bridge's hysteresis spans", points, samples.qc,
-                                    ImpactTolerancePa, start, false);
+  const SpanFit ps = FitBridgeSpans(context + ": static bridge's hysteresis spans",
+                                    points,
+                                    samples.ps,
+                                    StaticTolerancePa,
+                                    start,
+                                    true);
+  const SpanFit qc = FitBridgeSpans(context + ": pitot bridge's hysteresis spans",
+                                    points,
+                                    samples.qc,
+                                    ImpactTolerancePa,
+                                    start,
+                                    false);
   if (diagnostics != nullptr) {
     (*diagnostics)["altitude_ft"]["hysteresis_spans"] = SpanFitJson(ps, "Pa");
     (*diagnostics)["airspeed_kt"]["hysteresis_spans"] = SpanFitJson(qc, "Pa");
@@ -421,27 +478,35 @@ HysteresisSpans EstimateHysteresisSpans(const std::string& context,
 
 AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
                                       const std::vector<AdsCalibrationPoint>& points,
-                                      const HysteresisSpans& start, SpanChoice span_choice) {
+                                      const HysteresisSpans& start,
+                                      SpanChoice span_choice) {
   nlohmann::json span_diagnostics;
-  const HysteresisSpans spans = span_choice == SpanChoice::kEstimated
-                                    ? EstimateHysteresisSpans(context, points, start, &span_diagnostics)
-                                    : start;
+  const HysteresisSpans spans =
+      span_choice == SpanChoice::kEstimated
+          ? EstimateHysteresisSpans(context, points, start, &span_diagnostics)
+          : start;
   const PressureSamples samples = PressureSamplesOf(points, spans);
   OrderChoice ps_order, qc_order;
-  const CompensatedSurface alt =
-      FitCompensated(context + ": static pressure surface", samples.ps, StaticTolerancePa,
-                     spans.static_pressure_pa, spans.static_temperature_c, &ps_order);
-  const CompensatedSurface cas =
-      FitCompensated(context + ": impact pressure surface", samples.qc, ImpactTolerancePa,
-                     spans.impact_pressure_pa, spans.pitot_temperature_c, &qc_order);
-  AdsFitResult out =
-      AdsFitFromSurfaces(kHysteresisAdsStrategyName, alt.centre, cas.centre, true);
+  const CompensatedSurface alt = FitCompensated(context + ": static pressure surface",
+                                                samples.ps,
+                                                StaticTolerancePa,
+                                                spans.static_pressure_pa,
+                                                spans.static_temperature_c,
+                                                &ps_order);
+  const CompensatedSurface cas = FitCompensated(context + ": impact pressure surface",
+                                                samples.qc,
+                                                ImpactTolerancePa,
+                                                spans.impact_pressure_pa,
+                                                spans.pitot_temperature_c,
+                                                &qc_order);
+  AdsFitResult out = AdsFitFromSurfaces(kHysteresisAdsStrategyName, alt.centre, cas.centre, true);
   out.constants.altitude_ft.hysteresis = alt.hysteresis;
   out.constants.airspeed_kt.hysteresis = cas.hysteresis;
   fm::AdsCalibrationConstants se = out.constants;
   se.altitude_ft.coeff_xy = alt.centre.coeff_se;
   se.airspeed_kt.coeff_xy = cas.centre.coeff_se;
-  for (const auto& [surface, c] : {std::pair{&se.altitude_ft, &alt}, std::pair{&se.airspeed_kt, &cas}}) {
+  for (const auto& [surface, c] :
+       {std::pair{&se.altitude_ft, &alt}, std::pair{&se.airspeed_kt, &cas}}) {
     const HysteresisEstimate& h = *c->centre.history;
     surface->hysteresis.pressure_gain = h.pressure_se;
     surface->hysteresis.pressure_gain_per_degc = h.pressure_per_degc_se;
@@ -451,14 +516,16 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
     surface->y_linearisation.curvature_per_code = c->linearisation.curvature_se_per_code;
   }
   out.standard_errors = AdsStandardErrorsJson(se);
-  for (const auto& [key, c, order] : {std::tuple{"altitude_ft", &alt, &ps_order},
-                                      std::tuple{"airspeed_kt", &cas, &qc_order}}) {
+  for (const auto& [key, c, order] :
+       {std::tuple{"altitude_ft", &alt, &ps_order}, std::tuple{"airspeed_kt", &cas, &qc_order}}) {
     out.diagnostics[key]["worst_ratio_at_points"] = c->worst_ratio_at_points;
     out.diagnostics[key]["held_out_worst_ratio_by_y_degree"] = order->held_out_worst_ratio;
     const HysteresisEstimate& h = *c->centre.history;
     out.diagnostics[key]["hysteresis"] = {
-        {"pressure_half_loop_Pa", h.pressure}, {"pressure_half_loop_se_Pa", h.pressure_se},
-        {"thermal_half_loop_Pa", h.thermal},   {"thermal_half_loop_se_Pa", h.thermal_se},
+        {"pressure_half_loop_Pa", h.pressure},
+        {"pressure_half_loop_se_Pa", h.pressure_se},
+        {"thermal_half_loop_Pa", h.thermal},
+        {"thermal_half_loop_se_Pa", h.thermal_se},
         {"pressure_half_loop_per_degC_Pa", h.pressure_per_degc},
         {"thermal_half_loop_per_degC_Pa", h.thermal_per_degc},
         {"centre_fit_residual_rms_Pa", c->centre.residual_rms},
@@ -469,8 +536,9 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
         {"curvature_se_per_code", l.curvature_se_per_code},
         {"slope_code_per_degC", l.slope_code_per_degc},
         {"quadratic_residual_rms_degC", l.residual_rms_c}};
-    out.diagnostics[key]["law"] = key == std::string("altitude_ft") ? "ISA altitude from static pressure"
-                                                                    : "CAS from impact pressure";
+    out.diagnostics[key]["law"] = key == std::string("altitude_ft")
+                                      ? "ISA altitude from static pressure"
+                                      : "CAS from impact pressure";
     if (span_diagnostics.contains(key)) {
       out.diagnostics[key]["hysteresis_spans"] = span_diagnostics[key]["hysteresis_spans"];
     }
@@ -478,7 +546,8 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
   return out;
 }
 
-AdsFitResult FitAdsStrategy(const std::string& name, const std::string& context,
+AdsFitResult FitAdsStrategy(const std::string& name,
+                            const std::string& context,
                             const std::vector<AdsCalibrationPoint>& points) {
   if (name == kReferenceAdsStrategyName) return FitReferenceAdsStrategy(context, points);
   if (name == kToleranceAdsStrategyName) return FitToleranceAdsStrategy(context, points);

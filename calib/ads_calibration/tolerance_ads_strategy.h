@@ -1,7 +1,7 @@
 // Improved ADS strategies that the firmware runs: surfaces fitted for the specification rather
-// than for the mean square. The tolerance is tight at low altitude (+-15 ft) and loose at 50,000 ft (+-80 ft),
-// tight at 300-450 kt (+-1 kt) and loose at 60 kt (+-5 kt); an equal-weight fit spends its
-// freedom evenly and leaves the tight end far outside. Here the quantity minimised is the worst
+// than for the mean square. The tolerance is tight at low altitude (+-15 ft) and loose at 50,000 ft
+// (+-80 ft), tight at 300-450 kt (+-1 kt) and loose at 60 kt (+-5 kt); an equal-weight fit spends
+// its freedom evenly and leaves the tight end far outside. Here the quantity minimised is the worst
 // error in units of the tolerance at the calibration points, max_i |r_i| / tol_i, by Lawson's
 // iteratively reweighted least squares (C. L. Lawson, 1961; Rice and Usow, Math. Comp. 22, 1968):
 // start from w_i = 1/tol_i^2 (the weighted mean-square fit), then w_i <- w_i |r_i| / tol_i,
@@ -79,12 +79,14 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
 /// at `start` and at the estimate).
 HysteresisSpans EstimateHysteresisSpans(const std::string& context,
                                         const std::vector<AdsCalibrationPoint>& points,
-                                        const HysteresisSpans& start, nlohmann::json* diagnostics);
+                                        const HysteresisSpans& start,
+                                        nlohmann::json* diagnostics);
 
 /// The ADS strategy called `name` ("reference", "tolerance_minimax", "pressure_minimax" or
 /// "hysteresis_compensated");
 /// throws std::invalid_argument naming the known strategies for any other name.
-AdsFitResult FitAdsStrategy(const std::string& name, const std::string& context,
+AdsFitResult FitAdsStrategy(const std::string& name,
+                            const std::string& context,
                             const std::vector<AdsCalibrationPoint>& points);
 
 }  // namespace adahrs::calib

@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
+#include "common/param_reader.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
-#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -26,7 +26,8 @@ double Component(const Finding& f, const std::string& name) {
   for (const FindingComponent& c : f.components) {
     if (c.name == name) return c.magnitude;
   }
-  throw ParamError(fmt::format("finding {} on {} has no component '{}'", f.effect, f.channel, name));
+  throw ParamError(
+      fmt::format("finding {} on {} has no component '{}'", f.effect, f.channel, name));
 }
 
 struct Weighted {
@@ -44,8 +45,13 @@ void ApplyImu(const UnitDiagnosis& d, sensor_sim::ImuUnitParams* p, AugmentedMod
       auto& gyro = p->gyros[static_cast<size_t>(ch - 6)];
       for (int k = 0; k < 3; ++k) gyro.g_sensitivity_dps_per_g[static_cast<size_t>(k)] = g[k];
       gyro.effects.g_sensitivity = true;
-      out->applied.push_back(fmt::format("gyros[{}].g_sensitivity_dps_per_g = [{:.4g}, {:.4g}, {:.4g}] ({})", ch - 6,
-                                         g[0], g[1], g[2], what));
+      out->applied.push_back(
+          fmt::format("gyros[{}].g_sensitivity_dps_per_g = [{:.4g}, {:.4g}, {:.4g}] ({})",
+                      ch - 6,
+                      g[0],
+                      g[1],
+                      g[2],
+                      what));
     } else if (f.effect == "scale_factor_tempco" && ch >= 0) {
       const double tc1 = Component(f, "tc1"), tc2 = Component(f, "tc2");
       std::string key;
@@ -64,28 +70,39 @@ void ApplyImu(const UnitDiagnosis& d, sensor_sim::ImuUnitParams* p, AugmentedMod
         chip.effects.sensitivity_tempco = true;
         key = fmt::format("accel_chips[{}].{}", ch / 2, ch % 2 == 0 ? "x" : "y");
       }
-      out->applied.push_back(fmt::format("{}.sensitivity_tc1, tc2 = {:.4g} ppm/degC, {:.4g} ppm/degC^2 ({})", key, tc1, tc2, what));
+      out->applied.push_back(
+          fmt::format("{}.sensitivity_tc1, tc2 = {:.4g} ppm/degC, {:.4g} ppm/degC^2 ({})",
+                      key,
+                      tc1,
+                      tc2,
+                      what));
     } else if (f.effect == "die_thermal_lag" && ch >= 0 && ch < 6) {
       const double se = std::max(f.components[0].standard_error, 1e-9);
       lag[ch / 2].sum += Component(f, "delay") / (se * se);
       lag[ch / 2].weight += 1.0 / (se * se);
     } else if (f.effect == "table_rate_ripple") {
-      out->not_applied.push_back(what + ": the rate table's, not the unit's (rig.json rate_table.rate_ripple_ratio)");
+      out->not_applied.push_back(
+          what + ": the rate table's, not the unit's (rig.json rate_table.rate_ripple_ratio)");
     } else {
       out->not_applied.push_back(what + ": the unit schema has no parameter of this form");
     }
   }
   for (const auto& [chip, w] : lag) {
-    const auto& thermometer = p->gyro_thermal[static_cast<size_t>(kChannelThermometer[static_cast<size_t>(2 * chip)])];
+    const auto& thermometer =
+        p->gyro_thermal[static_cast<size_t>(kChannelThermometer[static_cast<size_t>(2 * chip)])];
     const double tau = (thermometer.effects.lag ? thermometer.tau_s : 0.0) + w.sum / w.weight;
     if (!(tau > 0.0)) {
-      out->not_applied.push_back(fmt::format("accelerometer chip {} die_thermal_lag: the die would lead the air ({:.3g} s)", chip, tau));
+      out->not_applied.push_back(fmt::format(
+          "accelerometer chip {} die_thermal_lag: the die would lead the air ({:.3g} s)",
+          chip,
+          tau));
       continue;
     }
     auto& die = p->accel_thermal[static_cast<size_t>(chip)];
     die.tau_s = tau;
     die.effects.lag = true;
-    out->applied.push_back(fmt::format("accel_thermal[{}].tau_s = {:.4g} s (die_thermal_lag)", chip, tau));
+    out->applied.push_back(
+        fmt::format("accel_thermal[{}].tau_s = {:.4g} s (die_thermal_lag)", chip, tau));
   }
 }
 
@@ -93,7 +110,8 @@ void ApplyAds(const UnitDiagnosis& d, sensor_sim::AdsUnitParams* p, AugmentedMod
   for (const Finding& f : d.findings) {
     const std::string what = f.channel + " " + f.effect;
     const bool pitot = f.channel == "pt";
-    if ((f.channel != "ps" && !pitot) || (f.effect != "pressure_hysteresis" && f.effect != "thermal_hysteresis")) {
+    if ((f.channel != "ps" && !pitot) ||
+        (f.effect != "pressure_hysteresis" && f.effect != "thermal_hysteresis")) {
       out->not_applied.push_back(what + ": the unit schema has no parameter of this form");
       continue;
     }
@@ -105,26 +123,36 @@ void ApplyAds(const UnitDiagnosis& d, sensor_sim::AdsUnitParams* p, AugmentedMod
       b.pressure_hysteresis_pct_fso = h_pct;
       b.pressure_hysteresis_span_pct_fs = Component(f, "span") / b.full_scale_pa * 100.0;
       b.effects.pressure_hysteresis = true;
-      out->applied.push_back(fmt::format("{}.pressure_hysteresis_pct_fso = {:.4g}, span {:.4g} % FS ({})", key, h_pct,
-                                         b.pressure_hysteresis_span_pct_fs, what));
+      out->applied.push_back(
+          fmt::format("{}.pressure_hysteresis_pct_fso = {:.4g}, span {:.4g} % FS ({})",
+                      key,
+                      h_pct,
+                      b.pressure_hysteresis_span_pct_fs,
+                      what));
     } else {
       b.thermal_hysteresis_pct_fso = h_pct;
       b.thermal_hysteresis_span_c = Component(f, "span");
       b.effects.thermal_hysteresis = true;
-      out->applied.push_back(fmt::format("{}.thermal_hysteresis_pct_fso = {:.4g}, span {:.4g} degC ({})", key, h_pct,
-                                         b.thermal_hysteresis_span_c, what));
+      out->applied.push_back(
+          fmt::format("{}.thermal_hysteresis_pct_fso = {:.4g}, span {:.4g} degC ({})",
+                      key,
+                      h_pct,
+                      b.thermal_hysteresis_span_c,
+                      what));
     }
   }
 }
 
 }  // namespace
 
-AugmentedModel AugmentUnitModel(const UnitDiagnosis& diagnosis, const std::filesystem::path& base_file) {
+AugmentedModel AugmentUnitModel(const UnitDiagnosis& diagnosis,
+                                const std::filesystem::path& base_file) {
   const std::string path = base_file.string();
   const nlohmann::json base = ParamReader::LoadFile(path);
   const ParamReader top(base, path);
   const std::string kind = top.String("kind");
-  if (kind != "imu" && kind != "ads") throw ParamError(path + ": $.kind: '" + kind + "' is not imu or ads");
+  if (kind != "imu" && kind != "ads")
+    throw ParamError(path + ": $.kind: '" + kind + "' is not imu or ads");
   AugmentedModel out;
   out.model = base;
   const ParamReader params = top.Child("params");
@@ -139,7 +167,10 @@ AugmentedModel AugmentUnitModel(const UnitDiagnosis& diagnosis, const std::files
   }
   const std::string serial = out.model["params"]["serial"].get<std::string>();
   if (serial != diagnosis.serial) {
-    throw ParamError(fmt::format("{}: $.params.serial: '{}' is not the diagnosed unit '{}'", path, serial, diagnosis.serial));
+    throw ParamError(fmt::format("{}: $.params.serial: '{}' is not the diagnosed unit '{}'",
+                                 path,
+                                 serial,
+                                 diagnosis.serial));
   }
   // The range checks of the schema: a fitted value no part could have is refused here.
   const std::string written = path + " with the findings applied";
@@ -151,7 +182,8 @@ AugmentedModel AugmentUnitModel(const UnitDiagnosis& diagnosis, const std::files
   return out;
 }
 
-AugmentedModel WriteAugmentedModel(const DiagnosisRun& run, const std::filesystem::path& base_file,
+AugmentedModel WriteAugmentedModel(const DiagnosisRun& run,
+                                   const std::filesystem::path& base_file,
                                    const std::filesystem::path& out_dir) {
   const nlohmann::json base = ParamReader::LoadFile(base_file.string());
   const ParamReader top(base, base_file.string());
@@ -163,7 +195,10 @@ AugmentedModel WriteAugmentedModel(const DiagnosisRun& run, const std::filesyste
     WriteTextAtomically(out_dir / "model.json", m.model.dump(2) + "\n");
     return m;
   }
-  throw ParamError(fmt::format("{}: $.params.serial: '{}' is not a unit of the diagnosed recordings", base_file.string(), serial));
+  throw ParamError(
+      fmt::format("{}: $.params.serial: '{}' is not a unit of the diagnosed recordings",
+                  base_file.string(),
+                  serial));
 }
 
 }  // namespace adahrs::calib

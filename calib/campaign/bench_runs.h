@@ -22,7 +22,7 @@ struct BenchSequenceRun {
 };
 
 struct BenchPlan {
-  std::string name;          ///< "IMU bench", for messages
+  std::string name;  ///< "IMU bench", for messages
   std::string station_file;
   std::vector<BenchSequenceRun> runs;  ///< run in this order
   ProgressSink* progress = nullptr;    ///< this bench's reports (must be thread-safe with others)

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "calib/acceptance/acceptance_file.h"
-#include "calib/campaign/bench_runs.h"
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
+#include "calib/campaign/bench_runs.h"
 #include "calib/campaign/campaign_fits.h"
 #include "calib/diagnosis/diagnosis_output.h"
 #include "calib/records/acceptance_records.h"
@@ -24,7 +24,8 @@ std::filesystem::path RunDir(const CampaignOptions& o, const std::string& sequen
   return o.out_dir / "runs" / ParseSequenceFile(sequence_file).sequence.name;
 }
 
-std::vector<std::vector<RunSummary>> RunBenches(const CampaignOptions& o, CampaignObserver& observer,
+std::vector<std::vector<RunSummary>> RunBenches(const CampaignOptions& o,
+                                                CampaignObserver& observer,
                                                 const std::vector<std::string>& imu_sequences,
                                                 const std::vector<std::string>& ads_sequences,
                                                 const std::atomic<bool>& stop) {
@@ -39,8 +40,8 @@ std::string RunsText(const std::vector<std::vector<RunSummary>>& benches) {
   std::string text;
   for (const auto& bench : benches) {
     for (const RunSummary& s : bench) {
-      text += fmt::format("\n  {}: {}, {} rows, {} packets lost", s.run_dir.string(), s.status,
-                          s.rows, s.lost);
+      text += fmt::format(
+          "\n  {}: {}, {} rows, {} packets lost", s.run_dir.string(), s.status, s.rows, s.lost);
     }
   }
   return text;
@@ -48,7 +49,8 @@ std::string RunsText(const std::vector<std::vector<RunSummary>>& benches) {
 
 // Judges an acceptance run, writes acceptance.json per unit into `run`/acceptance and records
 // every point; returns the judgement.
-AcceptanceRun JudgeIntoRecords(const std::filesystem::path& run, const std::string& software_version,
+AcceptanceRun JudgeIntoRecords(const std::filesystem::path& run,
+                               const std::string& software_version,
                                RecordsStore& records) {
   const Specification spec = Specification::Reference();
   const AcceptanceRun judged = JudgeAcceptance(run, spec);
@@ -72,9 +74,11 @@ std::vector<std::filesystem::path> CalibrationRuns(const CampaignOptions& o,
                                                    const std::atomic<bool>& stop,
                                                    CampaignResult& result) {
   const CampaignSequences& seq = o.sequences;
-  observer.Stage("1/8 calibration runs: IMU calibration on the IMU bench, ADS calibration on the "
-                 "ADS bench, concurrently");
-  const auto calibration = RunBenches(o, observer, seq.imu_calibration, {seq.ads_calibration}, stop);
+  observer.Stage(
+      "1/8 calibration runs: IMU calibration on the IMU bench, ADS calibration on the "
+      "ADS bench, concurrently");
+  const auto calibration =
+      RunBenches(o, observer, seq.imu_calibration, {seq.ads_calibration}, stop);
   observer.Stage("calibration runs done:" + RunsText(calibration));
   AddRuns(calibration, result);
   std::vector<std::filesystem::path> imu_runs;
@@ -89,31 +93,35 @@ struct CampaignFits {
 };
 
 // Stage 2: fits every strategy and records every constants file.
-CampaignFits FitStrategies(const CampaignOptions& o, CampaignObserver& observer,
+CampaignFits FitStrategies(const CampaignOptions& o,
+                           CampaignObserver& observer,
                            const std::vector<std::filesystem::path>& imu_runs,
-                           const std::filesystem::path& ads_run, RecordsStore& records) {
-  observer.Stage("2/8 fits: IMU reference and improved (joint, firmware format 3) strategies, ADS "
-                 "reference and improved (hysteresis-compensated pressure surfaces, ISA / CAS "
-                 "laws) strategies");
+                           const std::filesystem::path& ads_run,
+                           RecordsStore& records) {
+  observer.Stage(
+      "2/8 fits: IMU reference and improved (joint, firmware format 3) strategies, ADS "
+      "reference and improved (hysteresis-compensated pressure surfaces, ISA / CAS "
+      "laws) strategies");
   CampaignFits f;
   f.imu_reference_dir = o.out_dir / "fits" / "imu-reference";
   f.imu_joint_dir = o.out_dir / "fits" / "imu-joint";
   f.ads_reference_dir = o.out_dir / "fits" / "ads-reference";
   f.ads_improved_dir = o.out_dir / "fits" / "ads-hysteresis-compensated";
-  f.imu_reference = FitImuIntoDirectory(imu_runs, ImuStrategy::Reference(), f.imu_reference_dir,
-                                        o.software_version);
+  f.imu_reference = FitImuIntoDirectory(
+      imu_runs, ImuStrategy::Reference(), f.imu_reference_dir, o.software_version);
   ImuStrategy improved = ImuStrategy::Improved();
   improved.format3 = true;
   f.imu_joint = FitImuIntoDirectory(imu_runs, improved, f.imu_joint_dir, o.software_version);
-  f.ads_reference = FitAdsIntoDirectory(ads_run, kReferenceAdsStrategyName, f.ads_reference_dir,
-                                        o.software_version);
-  f.ads_improved = FitAdsIntoDirectory(ads_run, kHysteresisAdsStrategyName, f.ads_improved_dir,
-                                       o.software_version);
+  f.ads_reference = FitAdsIntoDirectory(
+      ads_run, kReferenceAdsStrategyName, f.ads_reference_dir, o.software_version);
+  f.ads_improved = FitAdsIntoDirectory(
+      ads_run, kHysteresisAdsStrategyName, f.ads_improved_dir, o.software_version);
   for (const auto* fits : {&f.imu_reference, &f.imu_joint, &f.ads_reference, &f.ads_improved}) {
     for (const WrittenConstants& w : *fits) records.AddConstants(ConstantsRecordFromFile(w.path));
   }
   observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
-                             f.imu_joint.size(), f.ads_reference.size()));
+                             f.imu_joint.size(),
+                             f.ads_reference.size()));
   return f;
 }
 
@@ -124,10 +132,12 @@ struct ImprovedDownloads {
 // Stage 3: the improved constants into every unit of both stations.
 ImprovedDownloads DownloadImprovedConstants(CampaignObserver& observer,
                                             const hil::Station& imu_station,
-                                            const hil::Station& ads_station, const CampaignFits& f,
+                                            const hil::Station& ads_station,
+                                            const CampaignFits& f,
                                             RecordsStore& records) {
-  observer.Stage("3/8 download: improved IMU and ADS constants into every unit, read back bit for "
-                 "bit, committed");
+  observer.Stage(
+      "3/8 download: improved IMU and ADS constants into every unit, read back bit for "
+      "bit, committed");
   ImprovedDownloads d;
   d.imu = DownloadStation(imu_station, f.imu_joint_dir, records);
   d.ads = DownloadStation(ads_station, f.ads_improved_dir, records);
@@ -141,8 +151,10 @@ struct CampaignAcceptance {
 };
 
 // Stage 4: the acceptance runs on both benches, judged and recorded.
-CampaignAcceptance AcceptanceRuns(const CampaignOptions& o, CampaignObserver& observer,
-                                  const std::atomic<bool>& stop, RecordsStore& records,
+CampaignAcceptance AcceptanceRuns(const CampaignOptions& o,
+                                  CampaignObserver& observer,
+                                  const std::atomic<bool>& stop,
+                                  RecordsStore& records,
                                   CampaignResult& result) {
   const CampaignSequences& seq = o.sequences;
   observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
@@ -166,16 +178,20 @@ struct ImprovedEvaluation {
 };
 
 // Stage 5: every fit through the firmware compensator against the rig's truth, when there is one.
-ImprovedEvaluation EvaluateFits(const CampaignOptions& o, CampaignObserver& observer,
-                                const CampaignFits& f, const hil::Station& imu_station,
-                                const hil::Station& ads_station, CampaignResult& result) {
+ImprovedEvaluation EvaluateFits(const CampaignOptions& o,
+                                CampaignObserver& observer,
+                                const CampaignFits& f,
+                                const hil::Station& imu_station,
+                                const hil::Station& ads_station,
+                                CampaignResult& result) {
   ImprovedEvaluation eval;
   if (!o.truth_dir) {
     result.not_run.push_back("evaluation against truth: no truth directory (not a simulated rig)");
     return eval;
   }
-  observer.Stage("5/8 evaluation against the rig's truth: every fit through the firmware "
-                 "compensator on the envelope grid");
+  observer.Stage(
+      "5/8 evaluation against the rig's truth: every fit through the firmware "
+      "compensator on the envelope grid");
   const double imu_g = imu_station.local_gravity_mps2;
   const double ads_g = ads_station.local_gravity_mps2;
   result.reference_evaluation =
@@ -189,30 +205,41 @@ ImprovedEvaluation EvaluateFits(const CampaignOptions& o, CampaignObserver& obse
 
 // Stage 6: the calibration runs diagnosed against the nominal model, beside the truth and checked
 // by replaying the acceptance runs when the rig's truth and a replay function are given.
-void DiagnoseCalibrationRuns(const CampaignOptions& o, CampaignObserver& observer,
+void DiagnoseCalibrationRuns(const CampaignOptions& o,
+                             CampaignObserver& observer,
                              std::vector<std::filesystem::path> diagnosed_runs,
-                             const CampaignAcceptance& acceptance, CampaignResult& result) {
-  observer.Stage("6/8 diagnosis: the IMU and ADS calibration runs against the pipeline's nominal model "
-                 "(adahrs diagnose) -> " + (o.out_dir / "diagnosis").string());
+                             const CampaignAcceptance& acceptance,
+                             CampaignResult& result) {
+  observer.Stage(
+      "6/8 diagnosis: the IMU and ADS calibration runs against the pipeline's nominal model "
+      "(adahrs diagnose) -> " +
+      (o.out_dir / "diagnosis").string());
   result.diagnosis_dir = o.out_dir / "diagnosis";
   const DiagnosisRun diagnosed = DiagnoseRuns(diagnosed_runs, std::nullopt);
   WriteDiagnosis(diagnosed, result.diagnosis_dir);
   result.diagnosis = diagnosed.units;
-  if (o.truth_dir) result.diagnosis_truth = CompareDiagnosisWithTruth(diagnosed.units, *o.truth_dir);
+  if (o.truth_dir)
+    result.diagnosis_truth = CompareDiagnosisWithTruth(diagnosed.units, *o.truth_dir);
   if (o.truth_dir && o.replay) {
-    result.replay_checks =
-        CheckDiagnosisByReplay(diagnosed, *o.truth_dir, result.diagnosis_dir,
-                               {acceptance.imu_run, acceptance.ads_run}, o.replay);
+    result.replay_checks = CheckDiagnosisByReplay(diagnosed,
+                                                  *o.truth_dir,
+                                                  result.diagnosis_dir,
+                                                  {acceptance.imu_run, acceptance.ads_run},
+                                                  o.replay);
   } else {
-    result.not_run.push_back("re-simulation check of the diagnosis: needs the rig's truth and a replay function");
+    result.not_run.push_back(
+        "re-simulation check of the diagnosis: needs the rig's truth and a replay function");
   }
 }
 
 // Stage 7: report.html per run with the improved fit of its unit kind; the acceptance runs' with
 // their judgement.
-void WriteReports(CampaignObserver& observer, const std::vector<std::filesystem::path>& imu_runs,
-                  const std::filesystem::path& ads_run, const CampaignFits& f,
-                  const CampaignAcceptance& acceptance, CampaignResult& result) {
+void WriteReports(CampaignObserver& observer,
+                  const std::vector<std::filesystem::path>& imu_runs,
+                  const std::filesystem::path& ads_run,
+                  const CampaignFits& f,
+                  const CampaignAcceptance& acceptance,
+                  CampaignResult& result) {
   observer.Stage("7/8 report.html per run");
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports;
   for (const std::filesystem::path& run : imu_runs) reports.emplace_back(run, f.imu_joint_dir);
@@ -221,16 +248,22 @@ void WriteReports(CampaignObserver& observer, const std::vector<std::filesystem:
   reports.emplace_back(acceptance.ads_run, f.ads_improved_dir);
   for (const auto& [run, fit] : reports) {
     const bool judged = run == acceptance.imu_run || run == acceptance.ads_run;
-    WriteRunReport(run, fit, run / "report.html",
-                   judged ? std::optional<std::filesystem::path>(run / "acceptance") : std::nullopt);
+    WriteRunReport(
+        run,
+        fit,
+        run / "report.html",
+        judged ? std::optional<std::filesystem::path>(run / "acceptance") : std::nullopt);
     result.run_dirs.push_back(run);
   }
 }
 
 // Each downloaded unit with its evaluation and acceptance judgement.
-void AddUnitOutcomes(const std::vector<UnitDownload>& downloads, const std::string& strategy,
-                     const std::vector<EvaluatedQuantity>& eval, const AcceptanceRun& judged,
-                     const std::filesystem::path& report, CampaignResult& result) {
+void AddUnitOutcomes(const std::vector<UnitDownload>& downloads,
+                     const std::string& strategy,
+                     const std::vector<EvaluatedQuantity>& eval,
+                     const AcceptanceRun& judged,
+                     const std::filesystem::path& report,
+                     CampaignResult& result) {
   for (const UnitDownload& d : downloads) {
     UnitOutcome u{d.role, d.serial, strategy, d, {}, std::nullopt, report};
     for (const EvaluatedQuantity& q : eval) {
@@ -245,7 +278,8 @@ void AddUnitOutcomes(const std::vector<UnitDownload>& downloads, const std::stri
 
 }  // namespace
 
-CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
+CampaignResult RunCampaign(const CampaignOptions& o,
+                           CampaignObserver& observer,
                            const std::atomic<bool>& stop) {
   CampaignResult result;
   const hil::Station imu_station = hil::Station::Load(o.imu_station_file);
@@ -272,10 +306,18 @@ CampaignResult RunCampaign(const CampaignOptions& o, CampaignObserver& observer,
   for (const std::filesystem::path& run : result.run_dirs) {
     records.AddRun(RunRecordFromDirectory(run));
   }
-  AddUnitOutcomes(downloads.imu, "joint", eval.imu, acceptance.imu_judged,
-                  acceptance.imu_run / "report.html", result);
-  AddUnitOutcomes(downloads.ads, kHysteresisAdsStrategyName, eval.ads, acceptance.ads_judged,
-                  acceptance.ads_run / "report.html", result);
+  AddUnitOutcomes(downloads.imu,
+                  "joint",
+                  eval.imu,
+                  acceptance.imu_judged,
+                  acceptance.imu_run / "report.html",
+                  result);
+  AddUnitOutcomes(downloads.ads,
+                  kHysteresisAdsStrategyName,
+                  eval.ads,
+                  acceptance.ads_judged,
+                  acceptance.ads_run / "report.html",
+                  result);
   return result;
 }
 

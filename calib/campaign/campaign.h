@@ -12,7 +12,8 @@
 //      verified, recorded (station_download.h)
 //   4. acceptance runs in the calibrated modes, both benches concurrently      -> runs/<sequence>/
 //      each judged against the reference specification (calib/acceptance/acceptance_judge.h)
-//                                                -> runs/<sequence>/acceptance/<serial>/acceptance.json
+//                                                ->
+//                                                runs/<sequence>/acceptance/<serial>/acceptance.json
 //   5. evaluation against the simulator's truth when `truth_dir` is given (truth_evaluation.h),
 //      for every fit                                     -> fits/<…>/evaluation.json
 //   6. diagnosis of the IMU and ADS calibration runs against the pipeline's nominal model
@@ -21,7 +22,8 @@
 //      and, with a truth directory and a replay function, the held-out check: each unit's truth
 //      without the vocabulary's effects (the base) and it with the findings (model.json), the
 //      acceptance runs re-simulated with either and compared with their recordings
-//                          -> diagnosis/models/<serial>/{base,model}.json, diagnosis/replay_check.{json,html}
+//                          -> diagnosis/models/<serial>/{base,model}.json,
+//                          diagnosis/replay_check.{json,html}
 //   7. report.html per run (run_report.h) with the fit of its unit kind
 //   8. production records: every run, every constants file, every download -> records.sqlite
 // Stages that cannot run are listed in CampaignResult::not_run with the reason, never faked
@@ -84,11 +86,11 @@ class CampaignObserver {
 struct UnitOutcome {
   std::string role;
   std::string serial;
-  std::string strategy;            ///< of the downloaded constants
+  std::string strategy;  ///< of the downloaded constants
   UnitDownload download;
   std::vector<EvaluatedQuantity> evaluation;  ///< of the downloaded constants (empty: no truth)
   std::optional<UnitAcceptance> acceptance;   ///< the unit's acceptance judgement
-  std::filesystem::path report;    ///< the acceptance run's report.html
+  std::filesystem::path report;               ///< the acceptance run's report.html
 };
 
 struct CampaignResult {
@@ -109,7 +111,8 @@ struct CampaignResult {
   std::filesystem::path records_file;
 };
 
-CampaignResult RunCampaign(const CampaignOptions& options, CampaignObserver& observer,
+CampaignResult RunCampaign(const CampaignOptions& options,
+                           CampaignObserver& observer,
                            const std::atomic<bool>& stop);
 
 }  // namespace adahrs::calib

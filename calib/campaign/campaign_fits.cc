@@ -17,10 +17,11 @@ WrittenConstants Write(const std::filesystem::path& fit_dir, ConstantsFile file)
 
 }  // namespace
 
-std::vector<WrittenConstants> FitImuIntoDirectory(const std::vector<std::filesystem::path>& run_dirs,
-                                                  const ImuStrategy& strategy,
-                                                  const std::filesystem::path& fit_dir,
-                                                  const std::string& software_version) {
+std::vector<WrittenConstants> FitImuIntoDirectory(
+    const std::vector<std::filesystem::path>& run_dirs,
+    const ImuStrategy& strategy,
+    const std::filesystem::path& fit_dir,
+    const std::string& software_version) {
   std::vector<WrittenConstants> written;
   for (ConstantsFile& file : FitImuRuns(run_dirs, strategy, software_version)) {
     written.push_back(Write(fit_dir, std::move(file)));

@@ -25,10 +25,11 @@ struct WrittenConstants {
 };
 
 /// Fits every IMU of `run_dirs` with `strategy` and writes the files into `fit_dir`.
-std::vector<WrittenConstants> FitImuIntoDirectory(const std::vector<std::filesystem::path>& run_dirs,
-                                                  const ImuStrategy& strategy,
-                                                  const std::filesystem::path& fit_dir,
-                                                  const std::string& software_version);
+std::vector<WrittenConstants> FitImuIntoDirectory(
+    const std::vector<std::filesystem::path>& run_dirs,
+    const ImuStrategy& strategy,
+    const std::filesystem::path& fit_dir,
+    const std::string& software_version);
 
 /// Fits every ADS unit of `run_dir` with the ADS strategy named `strategy` (FitAdsStrategy:
 /// "reference", "tolerance_minimax", "pressure_minimax" or "hysteresis_compensated") and writes

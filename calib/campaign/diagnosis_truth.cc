@@ -8,10 +8,10 @@
 #include "calib/campaign/augmented_model.h"
 #include "calib/diagnosis/replay_check_report.h"
 #include "calib/evaluation/truth_file.h"
+#include "common/param_reader.h"
 #include "hil/recording/recording_reader.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/imu_unit.h"
-#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -20,19 +20,24 @@ nlohmann::json TruthJson(const std::filesystem::path& truth_dir, const std::stri
   return calib::ReadTruthFile(truth_dir / (serial + ".json")).file;
 }
 
-sensor_sim::ImuUnitParams ReadTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
+sensor_sim::ImuUnitParams ReadTruth(const std::filesystem::path& truth_dir,
+                                    const std::string& serial) {
   return ImuTruth(calib::ReadTruthFile(truth_dir / (serial + ".json")), serial);
 }
 
-sensor_sim::AdsUnitParams ReadAdsTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
+sensor_sim::AdsUnitParams ReadAdsTruth(const std::filesystem::path& truth_dir,
+                                       const std::string& serial) {
   return AdsTruth(calib::ReadTruthFile(truth_dir / (serial + ".json")), serial);
 }
 
 // The truth's half loop (Pa) and span (Pa or degC) of a bridge's hysteresis, empty when it is off.
-std::vector<double> AdsTruthOf(const sensor_sim::AdsUnitParams& p, const std::string& effect, const std::string& ch) {
+std::vector<double> AdsTruthOf(const sensor_sim::AdsUnitParams& p,
+                               const std::string& effect,
+                               const std::string& ch) {
   const sensor_sim::PressureBridgeParams& b = ch == "ps" ? p.static_bridge : p.pitot_bridge;
   if (effect == "pressure_hysteresis" && b.effects.pressure_hysteresis) {
-    return {b.pressure_hysteresis_pct_fso / 200.0 * b.full_scale_pa, b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa};
+    return {b.pressure_hysteresis_pct_fso / 200.0 * b.full_scale_pa,
+            b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa};
   }
   if (effect == "thermal_hysteresis" && b.effects.thermal_hysteresis) {
     return {b.thermal_hysteresis_pct_fso / 200.0 * b.full_scale_pa, b.thermal_hysteresis_span_c};
@@ -56,7 +61,8 @@ std::vector<double> TruthOf(const sensor_sim::ImuUnitParams& p, const std::strin
   if (effect == "gyro_g_sensitivity" && ch >= 6) {
     const auto& g = p.gyros[ch - 6];
     if (!g.effects.g_sensitivity) return {};
-    const Eigen::Vector3d b = p.geometry.R_GB(ch - 6).transpose() * Eigen::Vector3d(g.g_sensitivity_dps_per_g.data());
+    const Eigen::Vector3d b =
+        p.geometry.R_GB(ch - 6).transpose() * Eigen::Vector3d(g.g_sensitivity_dps_per_g.data());
     return {b[0], b[1], b[2]};
   }
   if (effect == "scale_factor_tempco") {
@@ -78,15 +84,21 @@ std::string Values(const std::vector<double>& v) {
 }
 
 // The line of one (unit, channel, effect): the finding beside the truth, or why it was not found.
-DiagnosisTruthLine TruthLine(const UnitDiagnosis& u, const std::string& effect, const std::string& channel,
-                             const std::vector<double>& t, const Finding* found) {
+DiagnosisTruthLine TruthLine(const UnitDiagnosis& u,
+                             const std::string& effect,
+                             const std::string& channel,
+                             const std::vector<double>& t,
+                             const Finding* found) {
   DiagnosisTruthLine line{u.serial, effect, channel, found != nullptr, ""};
   if (found != nullptr) {
     std::string comps;
     for (const FindingComponent& c : found->components) {
-      comps += fmt::format("{}{:.3g} ± {:.2g}", comps.empty() ? "" : ", ", c.magnitude, c.standard_error);
+      comps += fmt::format(
+          "{}{:.3g} ± {:.2g}", comps.empty() ? "" : ", ", c.magnitude, c.standard_error);
     }
-    line.text = fmt::format("found {} {}; truth {}", comps, found->components[0].unit,
+    line.text = fmt::format("found {} {}; truth {}",
+                            comps,
+                            found->components[0].unit,
                             t.empty() ? "does not have it" : Values(t));
     return line;
   }
@@ -96,13 +108,17 @@ DiagnosisTruthLine TruthLine(const UnitDiagnosis& u, const std::string& effect, 
     std::vector<double> limits;
     for (const FindingComponent& c : l.limits) limits.push_back(c.magnitude);
     why = l.limits.empty() ? l.note
-                           : fmt::format("below this recording's detection limit ({} {})", Values(limits), l.limits[0].unit);
+                           : fmt::format("below this recording's detection limit ({} {})",
+                                         Values(limits),
+                                         l.limits[0].unit);
   }
   line.text = fmt::format("not found (truth {}): {}", Values(t), why);
   return line;
 }
 
-const Finding* FindingOf(const UnitDiagnosis& u, const std::string& effect, const std::string& channel) {
+const Finding* FindingOf(const UnitDiagnosis& u,
+                         const std::string& effect,
+                         const std::string& channel) {
   for (const Finding& f : u.findings) {
     if (f.effect == effect && f.channel == channel) return &f;
   }
@@ -132,14 +148,16 @@ std::vector<DiagnosisTruthLine> CompareDiagnosisWithTruth(const std::vector<Unit
       for (const char* effect : {"die_thermal_lag", "gyro_g_sensitivity", "scale_factor_tempco"}) {
         const std::vector<double> t = TruthOf(truth, effect, ch);
         const Finding* found = FindingOf(u, effect, kImuChannelNames[ch]);
-        if (found != nullptr || !t.empty()) out.push_back(TruthLine(u, effect, kImuChannelNames[ch], t, found));
+        if (found != nullptr || !t.empty())
+          out.push_back(TruthLine(u, effect, kImuChannelNames[ch], t, found));
       }
     }
   }
   return out;
 }
 
-nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir, const std::string& serial) {
+nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir,
+                                  const std::string& serial) {
   nlohmann::json file = TruthJson(truth_dir, serial);
   if (file.value("kind", "") == "ads") {
     sensor_sim::AdsUnitParams p = ReadAdsTruth(truth_dir, serial);
@@ -166,12 +184,14 @@ nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir, const 
   return file;
 }
 
-std::vector<ReplayComparison> CheckDiagnosisByReplay(const DiagnosisRun& diagnosed,
-                                                     const std::filesystem::path& truth_dir,
-                                                     const std::filesystem::path& diagnosis_dir,
-                                                     const std::vector<std::filesystem::path>& check_runs,
-                                                     const ReplayFunction& replay) {
-  std::map<std::string, std::pair<std::filesystem::path, std::filesystem::path>> files;  // base, model
+std::vector<ReplayComparison> CheckDiagnosisByReplay(
+    const DiagnosisRun& diagnosed,
+    const std::filesystem::path& truth_dir,
+    const std::filesystem::path& diagnosis_dir,
+    const std::vector<std::filesystem::path>& check_runs,
+    const ReplayFunction& replay) {
+  std::map<std::string, std::pair<std::filesystem::path, std::filesystem::path>>
+      files;  // base, model
   for (const UnitDiagnosis& u : diagnosed.units) {
     const std::filesystem::path dir = diagnosis_dir / "models" / u.serial;
     std::filesystem::create_directories(dir);
@@ -182,7 +202,8 @@ std::vector<ReplayComparison> CheckDiagnosisByReplay(const DiagnosisRun& diagnos
   std::vector<ReplayComparison> out;
   for (const std::filesystem::path& run : check_runs) {
     std::vector<std::filesystem::path> bases, models;
-    for (const nlohmann::json& unit : hil::ReadRecordingMeta(run).meta.value("units", nlohmann::json::array())) {
+    for (const nlohmann::json& unit :
+         hil::ReadRecordingMeta(run).meta.value("units", nlohmann::json::array())) {
       const auto f = files.find(unit.value("serial", ""));
       if (f == files.end()) continue;
       bases.push_back(f->second.first);

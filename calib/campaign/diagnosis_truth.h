@@ -41,18 +41,20 @@ std::vector<DiagnosisTruthLine> CompareDiagnosisWithTruth(const std::vector<Unit
 /// lag, which takes its thermometer die's time constant; ADS: pressure and thermal hysteresis): a
 /// unit model that lacks exactly what the diagnosis can add, from which the campaign's
 /// re-simulation check starts. Throws common::ParamError naming a missing or malformed file.
-nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir, const std::string& serial);
+nlohmann::json BaseModelFromTruth(const std::filesystem::path& truth_dir,
+                                  const std::string& serial);
 
 /// The campaign's held-out check of its diagnosis: per diagnosed unit, the base model
 /// (BaseModelFromTruth) and the base with the findings switched on (WriteAugmentedModel), written
 /// as `diagnosis_dir`/models/<serial>/{base,model}.json; each run of `check_runs` (runs the
 /// diagnosis did not see) re-simulated with the bases and with the models of the units it holds
-/// and compared with its recording -> `diagnosis_dir`/replay_check.json, replay_check.html. The re-simulated runs,
-/// the size of their recordings, are removed once compared.
-std::vector<ReplayComparison> CheckDiagnosisByReplay(const DiagnosisRun& diagnosed,
-                                                     const std::filesystem::path& truth_dir,
-                                                     const std::filesystem::path& diagnosis_dir,
-                                                     const std::vector<std::filesystem::path>& check_runs,
-                                                     const ReplayFunction& replay);
+/// and compared with its recording -> `diagnosis_dir`/replay_check.json, replay_check.html. The
+/// re-simulated runs, the size of their recordings, are removed once compared.
+std::vector<ReplayComparison> CheckDiagnosisByReplay(
+    const DiagnosisRun& diagnosed,
+    const std::filesystem::path& truth_dir,
+    const std::filesystem::path& diagnosis_dir,
+    const std::vector<std::filesystem::path>& check_runs,
+    const ReplayFunction& replay);
 
 }  // namespace adahrs::calib

@@ -33,9 +33,11 @@ std::string WriteQuick(const std::string& file, const std::filesystem::path& dir
 
 }  // namespace
 
-CampaignSequences WriteQuickSequences(const CampaignSequences& s, const std::filesystem::path& dir) {
+CampaignSequences WriteQuickSequences(const CampaignSequences& s,
+                                      const std::filesystem::path& dir) {
   CampaignSequences quick;
-  for (const std::string& file : s.imu_calibration) quick.imu_calibration.push_back(WriteQuick(file, dir));
+  for (const std::string& file : s.imu_calibration)
+    quick.imu_calibration.push_back(WriteQuick(file, dir));
   quick.ads_calibration = WriteQuick(s.ads_calibration, dir);
   quick.imu_acceptance = WriteQuick(s.imu_acceptance, dir);
   quick.ads_acceptance = WriteQuick(s.ads_acceptance, dir);

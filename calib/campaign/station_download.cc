@@ -14,8 +14,7 @@ namespace adahrs::calib {
 std::vector<UnitDownload> DownloadStation(const hil::Station& station,
                                           const std::filesystem::path& fit_dir,
                                           RecordsStore& records) {
-  const std::unique_ptr<hil::Clock> clock =
-      hil::MakeClock(station.time_scale, station.clock_file);
+  const std::unique_ptr<hil::Clock> clock = hil::MakeClock(station.time_scale, station.clock_file);
   std::vector<UnitDownload> downloads;
   for (const hil::UnitEntry& entry : station.units) {
     hil::UnitLink link(entry, *clock);
@@ -31,8 +30,15 @@ std::vector<UnitDownload> DownloadStation(const hil::Station& station,
     }
     const ConstantsFile file = ReadConstantsFile(d.constants_file);
     d.records_version = records.AddConstants(ConstantsRecordFromFile(d.constants_file));
-    DownloadRecord record{d.serial, d.records_version, station.name, entry.role, false, false,
-                          std::nullopt, std::nullopt, ""};
+    DownloadRecord record{d.serial,
+                          d.records_version,
+                          station.name,
+                          entry.role,
+                          false,
+                          false,
+                          std::nullopt,
+                          std::nullopt,
+                          ""};
     try {
       const DownloadResult result = DownloadConstants(link, file, d.constants_file.string());
       d.unit_constants_version = result.after.constants_version;

@@ -23,7 +23,7 @@ struct UnitDownload {
   std::string role;
   std::string serial;
   std::filesystem::path constants_file;
-  int64_t records_version = 0;    ///< version of the constants in the records
+  int64_t records_version = 0;          ///< version of the constants in the records
   uint16_t unit_constants_version = 0;  ///< the unit's commit count after the download
   uint16_t unit_constants_crc = 0;
   size_t blocks = 0;

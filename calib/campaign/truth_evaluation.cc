@@ -24,11 +24,14 @@ void WriteJson(const std::filesystem::path& path, const nlohmann::json& json) {
 // ADS verdict over the grid: the evaluation's own classes counted.
 std::string AdsVerdictText(const AdsQuantityEvaluation& q) {
   if (q.fail == 0 && q.unreachable == 0) return "within specification";
-  return fmt::format("{} of {} grid points fail, {} unreachable by any static calibration", q.fail,
-                     q.grid.size(), q.unreachable);
+  return fmt::format("{} of {} grid points fail, {} unreachable by any static calibration",
+                     q.fail,
+                     q.grid.size(),
+                     q.unreachable);
 }
 
-EvaluatedQuantity AdsRow(const std::string& serial, const std::string& name,
+EvaluatedQuantity AdsRow(const std::string& serial,
+                         const std::string& name,
                          const AdsQuantityEvaluation& q) {
   return {serial, name, "x tolerance", q.worst_ratio_no_history, 1.0, AdsVerdictText(q)};
 }
@@ -49,11 +52,14 @@ std::vector<EvaluatedQuantity> EvaluateAgainstTruth(const std::vector<WrittenCon
       ImuEvaluationOptions options;
       options.g_local_mps2 = g_local_mps2;
       try {
-        const ImuEvaluation e =
-            EvaluateImu(file, ImuTruth(truth, file.serial), spec, options);
-        rows.push_back({file.serial, "acceleration", "mg", e.worst_accel_mg, spec.accel_mg,
-                        e.accel_verdict});
-        rows.push_back({file.serial, "body rate", "deg/s", e.worst_rate_dps, spec.body_rate_dps,
+        const ImuEvaluation e = EvaluateImu(file, ImuTruth(truth, file.serial), spec, options);
+        rows.push_back(
+            {file.serial, "acceleration", "mg", e.worst_accel_mg, spec.accel_mg, e.accel_verdict});
+        rows.push_back({file.serial,
+                        "body rate",
+                        "deg/s",
+                        e.worst_rate_dps,
+                        spec.body_rate_dps,
                         e.rate_verdict});
         detail = e.report;
       } catch (const ConstantsNotExportable& e) {
@@ -66,8 +72,7 @@ std::vector<EvaluatedQuantity> EvaluateAgainstTruth(const std::vector<WrittenCon
         detail = {{"serial", file.serial}, {"error", e.what()}};
       }
     } else {
-      const AdsEvaluation e =
-          EvaluateAdsConstants(*file.ads, AdsTruth(truth, file.serial));
+      const AdsEvaluation e = EvaluateAdsConstants(*file.ads, AdsTruth(truth, file.serial));
       rows.push_back(AdsRow(file.serial, "altitude", e.altitude));
       rows.push_back(AdsRow(file.serial, "airspeed", e.airspeed));
       detail = e.ToJson();
@@ -83,10 +88,9 @@ std::vector<EvaluatedQuantity> EvaluateAgainstTruth(const std::vector<WrittenCon
                      {"unit", r.unit},
                      {"verdict", r.verdict}});
   }
-  WriteJson(fit_dir / "evaluation.json",
-            {{"truth_dir", truth_dir.string()},
-             {"specification", spec.ToJson()},
-             {"units", table}});
+  WriteJson(
+      fit_dir / "evaluation.json",
+      {{"truth_dir", truth_dir.string()}, {"specification", spec.ToJson()}, {"units", table}});
   return rows;
 }
 

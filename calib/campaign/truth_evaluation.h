@@ -21,9 +21,9 @@ namespace adahrs::calib {
 /// One evaluated quantity of one unit.
 struct EvaluatedQuantity {
   std::string serial;
-  std::string quantity;   ///< "acceleration", "body rate", "altitude", "airspeed"
-  std::string unit;       ///< of worst and tolerance: "mg", "deg/s", "x tolerance"
-  double worst = 0.0;     ///< worst error over the envelope grid
+  std::string quantity;  ///< "acceleration", "body rate", "altitude", "airspeed"
+  std::string unit;      ///< of worst and tolerance: "mg", "deg/s", "x tolerance"
+  double worst = 0.0;    ///< worst error over the envelope grid
   double tolerance = 0.0;
   std::string verdict;
 };

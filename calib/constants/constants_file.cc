@@ -10,9 +10,9 @@
 namespace adahrs::calib {
 namespace {
 
-using nlohmann::json;
 using common::ParamError;
 using common::ParamReader;
+using nlohmann::json;
 
 // NaN numbers become null, recursively.
 json NullForNaN(json j) {
@@ -25,7 +25,10 @@ json NullForNaN(json j) {
 
 // Checks that `se` has the shape of `value` (objects with the same keys, arrays of the same
 // length) and that every number of `value` faces a non-negative finite number or null.
-void CheckShape(const json& value, const json& se, const std::string& where, const std::string& source) {
+void CheckShape(const json& value,
+                const json& se,
+                const std::string& where,
+                const std::string& source) {
   auto fail = [&](const std::string& message) {
     throw ConstantsFileError(source + ": " + where + ": " + message);
   };
@@ -49,7 +52,8 @@ void CheckShape(const json& value, const json& se, const std::string& where, con
     if (se.is_null()) return;
     if (!se.is_number()) fail("expected a standard error (number) or null");
     const double x = se.get<double>();
-    if (!std::isfinite(x) || x < 0.0) fail("a standard error must be finite and >= 0, got " + se.dump());
+    if (!std::isfinite(x) || x < 0.0)
+      fail("a standard error must be finite and >= 0, got " + se.dump());
   } else if (value.is_string()) {
     // A named choice (an ADS surface's law), not an estimate: its standard error is null.
     if (!se.is_null()) fail("expected null (a named choice has no standard error)");
@@ -68,10 +72,12 @@ bool IsSha256Hex(const std::string& s) {
 
 json ConstantsJson(const ConstantsFile& file, const std::string& source) {
   if (file.kind == hil::UnitKind::kImu) {
-    if (!file.imu || file.ads) throw ConstantsFileError(source + ": kind imu needs IMU constants only");
+    if (!file.imu || file.ads)
+      throw ConstantsFileError(source + ": kind imu needs IMU constants only");
     return firmware_model::ToJson(*file.imu);
   }
-  if (!file.ads || file.imu) throw ConstantsFileError(source + ": kind ads needs ADS constants only");
+  if (!file.ads || file.imu)
+    throw ConstantsFileError(source + ": kind ads needs ADS constants only");
   return firmware_model::ToJson(*file.ads);
 }
 
@@ -80,15 +86,16 @@ ConstantsFile Parse(const json& j, const std::string& source) {
   ConstantsFile file;
   const std::string format = reader.String("format");
   if (format != kConstantsFormatName) {
-    reader.Fail("$.format", "expected \"" + std::string(kConstantsFormatName) + "\", got \"" +
-                                format + "\"");
+    reader.Fail("$.format",
+                "expected \"" + std::string(kConstantsFormatName) + "\", got \"" + format + "\"");
   }
   const int64_t version = reader.Integer("format_version", 0, 1 << 20);
   if (version < kConstantsOldestFormatVersion || version > kConstantsFormatVersion) {
-    reader.Fail("$.format_version", "version " + std::to_string(version) +
-                                        " is not supported (this software reads versions " +
-                                        std::to_string(kConstantsOldestFormatVersion) + " to " +
-                                        std::to_string(kConstantsFormatVersion) + ")");
+    reader.Fail("$.format_version",
+                "version " + std::to_string(version) +
+                    " is not supported (this software reads versions " +
+                    std::to_string(kConstantsOldestFormatVersion) + " to " +
+                    std::to_string(kConstantsFormatVersion) + ")");
   }
   file.serial = reader.String("serial");
   if (file.serial.empty()) reader.Fail("$.serial", "empty");
@@ -107,8 +114,8 @@ ConstantsFile Parse(const json& j, const std::string& source) {
   reader.Child("constants");
   const json& constants = j.at("constants");
   if (version < 3 && constants.is_object() && constants.contains("scale_temperature")) {
-    reader.Fail("$.constants.scale_temperature", "needs format_version 3, the file says " +
-                                                     std::to_string(version));
+    reader.Fail("$.constants.scale_temperature",
+                "needs format_version 3, the file says " + std::to_string(version));
   }
   try {
     if (file.kind == hil::UnitKind::kImu) {
@@ -192,7 +199,8 @@ firmware_model::ImuCalibrationConstants ImuStandardErrors(const ConstantsFile& f
     for (size_t i = 0; i < 4; ++i) se.thermal[ch].k[i] = number(j["thermal"][ch]["k"][i]);
   }
   for (size_t ch = 0; ch < 6; ++ch) {
-    se.accel[ch] = {number(j["accel"][ch]["offset_duty"]), number(j["accel"][ch]["scale_duty_per_g"])};
+    se.accel[ch] = {number(j["accel"][ch]["offset_duty"]),
+                    number(j["accel"][ch]["scale_duty_per_g"])};
   }
   for (size_t g = 0; g < 3; ++g) {
     se.gyro[g].null_cnt = number(j["gyro"][g]["null_cnt"]);

@@ -12,7 +12,10 @@ namespace adahrs::calib {
 std::string RecordingCheck::Describe() const {
   if (!current_sha256) return fmt::format("{}: not checked, {}", path, why_unreadable);
   if (changed()) {
-    return fmt::format("{}: CHANGED since the fit (sha256 {} then, {} now)", path, recorded_sha256, *current_sha256);
+    return fmt::format("{}: CHANGED since the fit (sha256 {} then, {} now)",
+                       path,
+                       recorded_sha256,
+                       *current_sha256);
   }
   return fmt::format("{}: unchanged since the fit", path);
 }
@@ -36,12 +39,17 @@ std::vector<RecordingCheck> CheckRecordings(const ConstantsProvenance& provenanc
   return checks;
 }
 
-std::vector<RecordingCheck> RequireUnchangedRecordings(const ConstantsFile& file, const std::string& constants_path) {
+std::vector<RecordingCheck> RequireUnchangedRecordings(const ConstantsFile& file,
+                                                       const std::string& constants_path) {
   std::vector<RecordingCheck> checks = CheckRecordings(file.provenance);
   for (const RecordingCheck& c : checks) {
     if (c.changed()) {
-      throw std::runtime_error(fmt::format("{}: the constants of {} were fitted on a recording that changed since: {}; "
-                                           "fit again", constants_path, file.serial, c.Describe()));
+      throw std::runtime_error(
+          fmt::format("{}: the constants of {} were fitted on a recording that changed since: {}; "
+                      "fit again",
+                      constants_path,
+                      file.serial,
+                      c.Describe()));
     }
   }
   return checks;

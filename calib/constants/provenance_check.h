@@ -18,7 +18,8 @@ struct RecordingCheck {
   std::optional<std::string> current_sha256;  ///< nullopt: not readable here
   std::string why_unreadable;
   bool changed() const { return current_sha256 && *current_sha256 != recorded_sha256; }
-  std::string Describe() const;  ///< "PATH: unchanged" / "PATH: changed since the fit (a -> b)" / ...
+  std::string Describe()
+      const;  ///< "PATH: unchanged" / "PATH: changed since the fit (a -> b)" / ...
 };
 
 /// Checks every recording of `provenance`, in its order.
@@ -26,6 +27,7 @@ std::vector<RecordingCheck> CheckRecordings(const ConstantsProvenance& provenanc
 
 /// Throws std::runtime_error naming `constants_path`, the recording and both checksums when one of
 /// the recordings changed since the fit; returns the checks (unreadable ones for a note).
-std::vector<RecordingCheck> RequireUnchangedRecordings(const ConstantsFile& file, const std::string& constants_path);
+std::vector<RecordingCheck> RequireUnchangedRecordings(const ConstantsFile& file,
+                                                       const std::string& constants_path);
 
 }  // namespace adahrs::calib

@@ -19,21 +19,25 @@ namespace {
 
 constexpr double kNewSweepTempC = 2.0;  // a chamber change this large starts a sweep
 constexpr int kMinSweeps = 4;
-constexpr int kMinTemperatures = 4;  // two interior ones to choose the degree in the voltage code by
+constexpr int kMinTemperatures =
+    4;  // two interior ones to choose the degree in the voltage code by
 constexpr std::array<int, 2> kPressureDegrees = {2, 3};
 constexpr int kMinVoltageDegree = 1;
 constexpr int kMaxVoltageDegree = 7;
 constexpr int kStartVoltageDegree = 3;
 
 enum class Effect { kPressureHysteresis, kThermalHysteresis, kNonlinearity };
-constexpr std::array<Effect, 3> kEffects = {Effect::kPressureHysteresis, Effect::kThermalHysteresis,
-                                            Effect::kNonlinearity};
+constexpr std::array<Effect, 3> kEffects = {
+    Effect::kPressureHysteresis, Effect::kThermalHysteresis, Effect::kNonlinearity};
 
 std::string EffectName(Effect e) {
   switch (e) {
-    case Effect::kPressureHysteresis: return "pressure_hysteresis";
-    case Effect::kThermalHysteresis: return "thermal_hysteresis";
-    case Effect::kNonlinearity: return "bridge_nonlinearity";
+    case Effect::kPressureHysteresis:
+      return "pressure_hysteresis";
+    case Effect::kThermalHysteresis:
+      return "thermal_hysteresis";
+    case Effect::kNonlinearity:
+      return "bridge_nonlinearity";
   }
   return "?";
 }
@@ -57,16 +61,20 @@ void Scale(const std::vector<double>& x, double* mid, double* half) {
 }
 
 // Sweep index per point, and a label per sweep.
-std::vector<int> Sweeps(const std::vector<AdsCalibrationPoint>& pts, std::vector<std::string>* labels) {
+std::vector<int> Sweeps(const std::vector<AdsCalibrationPoint>& pts,
+                        std::vector<std::string>* labels) {
   std::vector<int> sweep(pts.size(), 0);
   int moving = -1, sense = 0;
   auto label = [&](size_t first) {
-    labels->push_back(fmt::format("sweep {} from step {} at {:.0f} degC", labels->size() + 1, pts[first].step,
+    labels->push_back(fmt::format("sweep {} from step {} at {:.0f} degC",
+                                  labels->size() + 1,
+                                  pts[first].step,
                                   pts[first].chamber_c));
   };
   label(0);
   for (size_t i = 1; i < pts.size(); ++i) {
-    const double dps = pts[i].ps_ref_pa - pts[i - 1].ps_ref_pa, dqc = pts[i].qc_ref_pa - pts[i - 1].qc_ref_pa;
+    const double dps = pts[i].ps_ref_pa - pts[i - 1].ps_ref_pa,
+                 dqc = pts[i].qc_ref_pa - pts[i - 1].qc_ref_pa;
     const int m = std::abs(dps) >= std::abs(dqc) ? 0 : 1;
     const int s = (m == 0 ? dps : dqc) >= 0.0 ? 1 : -1;
     const bool hotter = std::abs(pts[i].chamber_c - pts[i - 1].chamber_c) > kNewSweepTempC;
@@ -83,7 +91,9 @@ std::vector<int> Sweeps(const std::vector<AdsCalibrationPoint>& pts, std::vector
   return sweep;
 }
 
-Bridge MakeBridge(bool pitot, const std::vector<AdsCalibrationPoint>& pts, const std::vector<PointHistory>& hist,
+Bridge MakeBridge(bool pitot,
+                  const std::vector<AdsCalibrationPoint>& pts,
+                  const std::vector<PointHistory>& hist,
                   const std::vector<int>& sweep) {
   Bridge b;
   b.channel = pitot ? "pt" : "ps";
@@ -107,7 +117,9 @@ Bridge MakeBridge(bool pitot, const std::vector<AdsCalibrationPoint>& pts, const
   }
   for (double t : b.chamber_c) {
     int k = 0;
-    while (k + 1 < static_cast<int>(levels.size()) && t - levels[static_cast<size_t>(k) + 1] >= -kNewSweepTempC) ++k;
+    while (k + 1 < static_cast<int>(levels.size()) &&
+           t - levels[static_cast<size_t>(k) + 1] >= -kNewSweepTempC)
+      ++k;
     b.block.push_back(k);
   }
   b.blocks = static_cast<int>(levels.size());
@@ -115,7 +127,10 @@ Bridge MakeBridge(bool pitot, const std::vector<AdsCalibrationPoint>& pts, const
 }
 
 // The bridge's hysteresis states under its own spans (the other bridge's are irrelevant here).
-void SetStates(Bridge* b, bool pitot, const std::vector<AdsCalibrationPoint>& pts, double pressure_span_pa,
+void SetStates(Bridge* b,
+               bool pitot,
+               const std::vector<AdsCalibrationPoint>& pts,
+               double pressure_span_pa,
                double thermal_span_c) {
   HysteresisSpans spans = HysteresisSpans::Nominal();
   (pitot ? spans.impact_pressure_pa : spans.static_pressure_pa) = pressure_span_pa;
@@ -128,11 +143,12 @@ void SetStates(Bridge* b, bool pitot, const std::vector<AdsCalibrationPoint>& pt
   }
 }
 
-// Column layout: the baseline terms u^a v^c, c <= dv[a], for a <= dp, then each candidate's columns.
+// Column layout: the baseline terms u^a v^c, c <= dv[a], for a <= dp, then each candidate's
+// columns.
 struct Layout {
   int dp = 0;
-  std::vector<int> dv;                      ///< per power of u
-  std::vector<std::pair<int, int>> terms;   ///< (a, c) of each baseline column
+  std::vector<int> dv;                     ///< per power of u
+  std::vector<std::pair<int, int>> terms;  ///< (a, c) of each baseline column
   int baseline = 0;
   std::array<std::vector<int>, 3> candidate;
   int columns = 0;
@@ -169,7 +185,8 @@ Eigen::VectorXd Row(const Layout& l, const Bridge& b, size_t i) {
 
 ClusteredLeastSquares Accumulate(const Layout& l, const Bridge& b, int sweeps, double y_mid) {
   ClusteredLeastSquares ls(l.columns, sweeps);
-  for (size_t i = 0; i < b.code.size(); ++i) ls.Add(b.sweep[i], Row(l, b, i), b.code[i] - y_mid, 1.0);
+  for (size_t i = 0; i < b.code.size(); ++i)
+    ls.Add(b.sweep[i], Row(l, b, i), b.code[i] - y_mid, 1.0);
   return ls;
 }
 
@@ -192,7 +209,6 @@ double Sensitivity(const Layout& l, const Bridge& b, const ClusteredFit& fit) {
   return sum / static_cast<double>(b.code.size()) / b.p_half;
 }
 
-
 struct BaselineChoice {
   Layout layout;
   ClusteredLeastSquares ls{1, 1};
@@ -204,11 +220,13 @@ struct BaselineChoice {
 // The score is the error at each interior temperature under the fit made without it (the
 // coldest and hottest are extrapolation): a degree in the voltage code is chosen by temperatures
 // it did not see, as the calibration chooses it, never by sweeps that share a temperature.
-bool TryBaseline(const Bridge& b, int sweeps, double y_mid, const std::vector<int>& dv, BaselineChoice* out) {
+bool TryBaseline(
+    const Bridge& b, int sweeps, double y_mid, const std::vector<int>& dv, BaselineChoice* out) {
   const Layout l = MakeLayout(dv);
   const std::vector<int> base = Range(l.baseline);
   ClusteredLeastSquares by_temp(l.columns, b.blocks);
-  for (size_t i = 0; i < b.code.size(); ++i) by_temp.Add(b.block[i], Row(l, b, i), b.code[i] - y_mid, 1.0);
+  for (size_t i = 0; i < b.code.size(); ++i)
+    by_temp.Add(b.block[i], Row(l, b, i), b.code[i] - y_mid, 1.0);
   if (!by_temp.FullRank(base)) return false;
   const ClusteredFit held = by_temp.Fit(base);
   if (!held.ok) return false;
@@ -238,7 +256,9 @@ BaselineChoice ChooseBaseline(const Bridge& b, int sweeps, double y_mid) {
           std::vector<int> trial = dv;
           trial[a] = d;
           BaselineChoice c;
-          if (trial == dv || !TryBaseline(b, sweeps, y_mid, trial, &c) || c.held_out_ss >= current.held_out_ss) continue;
+          if (trial == dv || !TryBaseline(b, sweeps, y_mid, trial, &c) ||
+              c.held_out_ss >= current.held_out_ss)
+            continue;
           current = std::move(c);
           dv = trial;
           improved = true;
@@ -248,13 +268,20 @@ BaselineChoice ChooseBaseline(const Bridge& b, int sweeps, double y_mid) {
     if (!found || current.held_out_ss < best.held_out_ss) best = std::move(current);
     found = true;
   }
-  if (!found) throw std::runtime_error(fmt::format("{}: no baseline polynomial can be fitted to these points", b.channel));
+  if (!found)
+    throw std::runtime_error(
+        fmt::format("{}: no baseline polynomial can be fitted to these points", b.channel));
   return best;
 }
 
-std::vector<FindingComponent> Components(Effect e, const Eigen::VectorXd& theta, const Eigen::VectorXd& se,
-                                         double sens, const Layout& l, const Bridge& b) {
-  if (e != Effect::kNonlinearity) return {{"half_loop", theta[0] / sens, se[0] / std::abs(sens), "Pa"}};
+std::vector<FindingComponent> Components(Effect e,
+                                         const Eigen::VectorXd& theta,
+                                         const Eigen::VectorXd& se,
+                                         double sens,
+                                         const Layout& l,
+                                         const Bridge& b) {
+  if (e != Effect::kNonlinearity)
+    return {{"half_loop", theta[0] / sens, se[0] / std::abs(sens), "Pa"}};
   double u_max = 0.0;
   for (size_t i = 0; i < b.p_pa.size(); ++i) u_max = std::max(u_max, std::abs(b.u(i)));
   const double k = std::pow(u_max, l.dp + 1) / sens;
@@ -263,39 +290,64 @@ std::vector<FindingComponent> Components(Effect e, const Eigen::VectorXd& theta,
           {"change_across_temperature_span", 2.0 * theta[1] * k, 2.0 * se[1] * std::abs(k), "Pa"}};
 }
 
-std::string Words(Effect e, const std::vector<FindingComponent>& c, const Bridge& b, const Layout& l) {
+std::string Words(Effect e,
+                  const std::vector<FindingComponent>& c,
+                  const Bridge& b,
+                  const Layout& l) {
   const std::string name = b.channel == "ps" ? "the static bridge (ps)" : "the pitot bridge (pt)";
-  auto pm = [](const FindingComponent& x) { return fmt::format("{:.3g} ± {:.2g} {}", x.magnitude, x.standard_error, x.unit); };
+  auto pm = [](const FindingComponent& x) {
+    return fmt::format("{:.3g} ± {:.2g} {}", x.magnitude, x.standard_error, x.unit);
+  };
   switch (e) {
     case Effect::kPressureHysteresis:
-      return fmt::format("{} reads {} higher after a pressure fall than after a rise (half the loop): pressure "
-                         "hysteresis is missing from the model", name, pm(c[0]));
+      return fmt::format(
+          "{} reads {} higher after a pressure fall than after a rise (half the loop): pressure "
+          "hysteresis is missing from the model",
+          name,
+          pm(c[0]));
     case Effect::kThermalHysteresis:
-      return fmt::format("{} reads {} higher after cooling than after heating (half the loop): thermal hysteresis "
-                         "is missing from the model", name, pm(c[0]));
+      return fmt::format(
+          "{} reads {} higher after cooling than after heating (half the loop): thermal hysteresis "
+          "is missing from the model",
+          name,
+          pm(c[0]));
     case Effect::kNonlinearity:
-      return fmt::format("{} departs from a degree-{} polynomial in pressure by {} at its largest travel ({} across "
-                         "the temperature span): bridge nonlinearity beyond the modelled order is missing from the "
-                         "model", name, l.dp, pm(c[0]), pm(c[1]));
+      return fmt::format(
+          "{} departs from a degree-{} polynomial in pressure by {} at its largest travel ({} "
+          "across "
+          "the temperature span): bridge nonlinearity beyond the modelled order is missing from "
+          "the "
+          "model",
+          name,
+          l.dp,
+          pm(c[0]),
+          pm(c[1]));
   }
   return "";
 }
 
-std::vector<double> Residuals(const Layout& l, const Bridge& b, const ClusteredFit& fit, const std::vector<int>& subset,
+std::vector<double> Residuals(const Layout& l,
+                              const Bridge& b,
+                              const ClusteredFit& fit,
+                              const std::vector<int>& subset,
                               double y_mid) {
   std::vector<double> r;
   for (size_t i = 0; i < b.code.size(); ++i) {
     const Eigen::VectorXd x = Row(l, b, i);
     double pred = 0.0;
-    for (size_t k = 0; k < subset.size(); ++k) pred += x[subset[k]] * fit.theta[static_cast<int>(k)];
+    for (size_t k = 0; k < subset.size(); ++k)
+      pred += x[subset[k]] * fit.theta[static_cast<int>(k)];
     r.push_back(b.code[i] - y_mid - pred);
   }
   return r;
 }
 
 // Sweeps where the term's contribution |x theta| is largest on average.
-std::vector<std::string> Evidence(const Layout& l, const Bridge& b, const std::vector<int>& columns,
-                                  const Eigen::VectorXd& theta, const std::vector<std::string>& labels) {
+std::vector<std::string> Evidence(const Layout& l,
+                                  const Bridge& b,
+                                  const std::vector<int>& columns,
+                                  const Eigen::VectorXd& theta,
+                                  const std::vector<std::string>& labels) {
   std::vector<double> sum(labels.size(), 0.0), n(labels.size(), 0.0);
   for (size_t i = 0; i < b.code.size(); ++i) {
     const Eigen::VectorXd x = Row(l, b, i);
@@ -305,9 +357,12 @@ std::vector<std::string> Evidence(const Layout& l, const Bridge& b, const std::v
     n[static_cast<size_t>(b.sweep[i])] += 1.0;
   }
   std::vector<int> order = Range(static_cast<int>(labels.size()));
-  std::sort(order.begin(), order.end(), [&](int x, int y) { return sum[x] / std::max(1.0, n[x]) > sum[y] / std::max(1.0, n[y]); });
+  std::sort(order.begin(), order.end(), [&](int x, int y) {
+    return sum[x] / std::max(1.0, n[x]) > sum[y] / std::max(1.0, n[y]);
+  });
   std::vector<std::string> out;
-  for (size_t i = 0; i < order.size() && i < 3; ++i) out.push_back(labels[static_cast<size_t>(order[i])]);
+  for (size_t i = 0; i < order.size() && i < 3; ++i)
+    out.push_back(labels[static_cast<size_t>(order[i])]);
   return out;
 }
 
@@ -318,10 +373,15 @@ struct BridgeResult {
 };
 
 // Forward selection over the candidates; returns the chosen effects in order.
-std::vector<Effect> Select(const BaselineChoice& bc, double alpha, int max_findings, std::vector<int>* selected,
+std::vector<Effect> Select(const BaselineChoice& bc,
+                           double alpha,
+                           int max_findings,
+                           std::vector<int>* selected,
                            ClusteredFit* selected_fit) {
-  const std::vector<std::vector<int>> candidates(bc.layout.candidate.begin(), bc.layout.candidate.end());
-  TermSelection sel = SelectTerms(bc.ls, Range(bc.layout.baseline), bc.fit, candidates, alpha, max_findings);
+  const std::vector<std::vector<int>> candidates(bc.layout.candidate.begin(),
+                                                 bc.layout.candidate.end());
+  TermSelection sel =
+      SelectTerms(bc.ls, Range(bc.layout.baseline), bc.fit, candidates, alpha, max_findings);
   *selected = std::move(sel.selected);
   *selected_fit = std::move(sel.fit);
   std::vector<Effect> chosen;
@@ -329,8 +389,13 @@ std::vector<Effect> Select(const BaselineChoice& bc, double alpha, int max_findi
   return chosen;
 }
 
-Finding MakeFinding(Effect e, const BaselineChoice& bc, const Bridge& b, const std::vector<int>& selected,
-                    const ClusteredFit& selected_fit, double sens, const std::vector<std::string>& labels,
+Finding MakeFinding(Effect e,
+                    const BaselineChoice& bc,
+                    const Bridge& b,
+                    const std::vector<int>& selected,
+                    const ClusteredFit& selected_fit,
+                    double sens,
+                    const std::vector<std::string>& labels,
                     const std::optional<SpanFit>& spans) {
   const std::vector<int>& cols = bc.layout.candidate[static_cast<int>(e)];
   const std::vector<int> without = WithoutColumns(selected, cols);
@@ -358,9 +423,15 @@ Finding MakeFinding(Effect e, const BaselineChoice& bc, const Bridge& b, const s
 
 // The spans of the bridge's chosen hysteresis effects that let the selected model explain the
 // points best (hysteresis_span_fit.h); the bridge's states and the fits are then redone with them.
-std::optional<SpanFit> RefitSpans(Bridge* b, bool pitot, const std::vector<AdsCalibrationPoint>& pts,
-                                  const std::vector<Effect>& chosen, const std::vector<int>& selected, int sweeps,
-                                  double y_mid, BaselineChoice* bc, ClusteredFit* selected_fit,
+std::optional<SpanFit> RefitSpans(Bridge* b,
+                                  bool pitot,
+                                  const std::vector<AdsCalibrationPoint>& pts,
+                                  const std::vector<Effect>& chosen,
+                                  const std::vector<int>& selected,
+                                  int sweeps,
+                                  double y_mid,
+                                  BaselineChoice* bc,
+                                  ClusteredFit* selected_fit,
                                   std::vector<std::string>* notes) {
   auto has = [&](Effect e) { return std::find(chosen.begin(), chosen.end(), e) != chosen.end(); };
   if (!has(Effect::kPressureHysteresis) && !has(Effect::kThermalHysteresis)) return std::nullopt;
@@ -380,29 +451,46 @@ std::optional<SpanFit> RefitSpans(Bridge* b, bool pitot, const std::vector<AdsCa
   bc->ls = Accumulate(bc->layout, *b, sweeps, y_mid);
   bc->fit = bc->ls.Fit(Range(bc->layout.baseline));
   *selected_fit = bc->ls.Fit(selected);
-  notes->push_back(fmt::format("{}: hysteresis spans fitted to the points: pressure {:.0f} Pa, thermal {:.1f} degC{}",
-                               b->channel, p, t, spans.at_search_edge ? " (on the search box's edge)" : ""));
+  notes->push_back(fmt::format(
+      "{}: hysteresis spans fitted to the points: pressure {:.0f} Pa, thermal {:.1f} degC{}",
+      b->channel,
+      p,
+      t,
+      spans.at_search_edge ? " (on the search box's edge)" : ""));
   return spans;
 }
 
 // The spans the bridge's states were set with after RefitSpans: the fitted one of each chosen
 // hysteresis effect, the nominal one of the other.
-std::pair<double, double> UsedSpans(bool pitot, const SpanFit& spans, const std::vector<Effect>& chosen) {
+std::pair<double, double> UsedSpans(bool pitot,
+                                    const SpanFit& spans,
+                                    const std::vector<Effect>& chosen) {
   auto has = [&](Effect e) { return std::find(chosen.begin(), chosen.end(), e) != chosen.end(); };
   const HysteresisSpans nominal = HysteresisSpans::Nominal();
-  return {has(Effect::kPressureHysteresis) ? spans.pressure_span
-                                           : (pitot ? nominal.impact_pressure_pa : nominal.static_pressure_pa),
-          has(Effect::kThermalHysteresis) ? spans.thermal_span_c
-                                          : (pitot ? nominal.pitot_temperature_c : nominal.static_temperature_c)};
+  return {has(Effect::kPressureHysteresis)
+              ? spans.pressure_span
+              : (pitot ? nominal.impact_pressure_pa : nominal.static_pressure_pa),
+          has(Effect::kThermalHysteresis)
+              ? spans.thermal_span_c
+              : (pitot ? nominal.pitot_temperature_c : nominal.static_temperature_c)};
 }
 
 // A hysteresis finding's half loop is fitted at its span; the span's own uncertainty moves it too.
 // The half loop refitted with the span at ± one standard error (the other span fixed): half the
 // change is added in quadrature to the half loop's standard error, which otherwise holds the span
 // exact (a loop that never saturates, the pitot's, trades loop height for span).
-void AddSpanUncertainty(Finding* f, Effect e, const Bridge& b, bool pitot, const std::vector<AdsCalibrationPoint>& pts,
-                        const std::pair<double, double>& used, const SpanFit& spans, const BaselineChoice& bc,
-                        const std::vector<int>& selected, int sweeps, double y_mid, double sens) {
+void AddSpanUncertainty(Finding* f,
+                        Effect e,
+                        const Bridge& b,
+                        bool pitot,
+                        const std::vector<AdsCalibrationPoint>& pts,
+                        const std::pair<double, double>& used,
+                        const SpanFit& spans,
+                        const BaselineChoice& bc,
+                        const std::vector<int>& selected,
+                        int sweeps,
+                        double y_mid,
+                        double sens) {
   const bool pressure = e == Effect::kPressureHysteresis;
   const double se_span = pressure ? spans.pressure_span_se : spans.thermal_span_c_se;
   const double span = pressure ? used.first : used.second;
@@ -424,15 +512,21 @@ void AddSpanUncertainty(Finding* f, Effect e, const Bridge& b, bool pitot, const
   f->words = Words(e, f->components, b, bc.layout);
 }
 
-BridgeResult DiagnoseBridge(Bridge b, bool pitot, const std::vector<AdsCalibrationPoint>& pts,
-                            const std::vector<std::string>& labels, double alpha, const DiagnosisOptions& options,
+BridgeResult DiagnoseBridge(Bridge b,
+                            bool pitot,
+                            const std::vector<AdsCalibrationPoint>& pts,
+                            const std::vector<std::string>& labels,
+                            double alpha,
+                            const DiagnosisOptions& options,
                             std::vector<std::string>* notes) {
   const int sweeps = static_cast<int>(labels.size());
-  const double y_mid = std::accumulate(b.code.begin(), b.code.end(), 0.0) / static_cast<double>(b.code.size());
+  const double y_mid =
+      std::accumulate(b.code.begin(), b.code.end(), 0.0) / static_cast<double>(b.code.size());
   BaselineChoice bc = ChooseBaseline(b, sweeps, y_mid);
   std::vector<int> selected;
   ClusteredFit selected_fit;
-  const std::vector<Effect> first = Select(bc, alpha, options.max_findings_per_channel, &selected, &selected_fit);
+  const std::vector<Effect> first =
+      Select(bc, alpha, options.max_findings_per_channel, &selected, &selected_fit);
   const std::optional<SpanFit> spans =
       RefitSpans(&b, pitot, pts, first, selected, sweeps, y_mid, &bc, &selected_fit, notes);
   // With the spans fitted, the selection is made again: a term that stood in for the nominal
@@ -441,16 +535,31 @@ BridgeResult DiagnoseBridge(Bridge b, bool pitot, const std::vector<AdsCalibrati
       spans ? Select(bc, alpha, options.max_findings_per_channel, &selected, &selected_fit) : first;
   const double sens = Sensitivity(bc.layout, b, selected_fit);
   const double pa = 1.0 / std::abs(sens);
-  notes->push_back(fmt::format("{}: baseline of degree {} in pressure, of degrees {} in the bridge-voltage code "
-                               "per power of pressure (least leave-one-sweep-out error); sensitivity {:.4g} codes/Pa",
-                               b.channel, bc.layout.dp, fmt::join(bc.layout.dv, ", "), sens));
+  notes->push_back(fmt::format(
+      "{}: baseline of degree {} in pressure, of degrees {} in the bridge-voltage code "
+      "per power of pressure (least leave-one-sweep-out error); sensitivity {:.4g} codes/Pa",
+      b.channel,
+      bc.layout.dp,
+      fmt::join(bc.layout.dv, ", "),
+      sens));
   BridgeResult out;
   for (Effect e : chosen) {
     const bool refit = std::find(first.begin(), first.end(), e) != first.end();
-    out.findings.push_back(MakeFinding(e, bc, b, selected, selected_fit, sens, labels, refit ? spans : std::nullopt));
+    out.findings.push_back(
+        MakeFinding(e, bc, b, selected, selected_fit, sens, labels, refit ? spans : std::nullopt));
     if (refit && spans && e != Effect::kNonlinearity) {
-      AddSpanUncertainty(&out.findings.back(), e, b, pitot, pts, UsedSpans(pitot, *spans, first), *spans, bc, selected,
-                         sweeps, y_mid, sens);
+      AddSpanUncertainty(&out.findings.back(),
+                         e,
+                         b,
+                         pitot,
+                         pts,
+                         UsedSpans(pitot, *spans, first),
+                         *spans,
+                         bc,
+                         selected,
+                         sweeps,
+                         y_mid,
+                         sens);
     }
   }
   const double tcrit = TCritical(alpha, selected_fit.clusters);
@@ -470,7 +579,8 @@ BridgeResult DiagnoseBridge(Bridge b, bool pitot, const std::vector<AdsCalibrati
   out.summary.unit = "Pa";
   out.summary.held_out_rms_baseline = HeldOutRms(bc.fit, selected_fit, false, pa);
   out.summary.held_out_rms_final = HeldOutRms(bc.fit, selected_fit, true, pa);
-  for (const auto& [a, c] : bc.layout.terms) out.summary.baseline_terms.push_back(fmt::format("u^{} v^{}", a, c));
+  for (const auto& [a, c] : bc.layout.terms)
+    out.summary.baseline_terms.push_back(fmt::format("u^{} v^{}", a, c));
   const std::vector<double> r_base = Residuals(bc.layout, b, bc.fit, base, y_mid);
   const std::vector<double> r_final = Residuals(bc.layout, b, selected_fit, selected, y_mid);
   for (size_t i = 0; i < b.code.size(); ++i) {
@@ -484,19 +594,28 @@ BridgeResult DiagnoseBridge(Bridge b, bool pitot, const std::vector<AdsCalibrati
 
 }  // namespace
 
-UnitDiagnosis DiagnoseAds(const std::string& serial, const std::vector<AdsCalibrationPoint>& points,
+UnitDiagnosis DiagnoseAds(const std::string& serial,
+                          const std::vector<AdsCalibrationPoint>& points,
                           const DiagnosisOptions& options) {
   std::vector<std::string> labels;
-  if (points.empty()) throw std::runtime_error(fmt::format("{}: no calibration points to diagnose", serial));
+  if (points.empty())
+    throw std::runtime_error(fmt::format("{}: no calibration points to diagnose", serial));
   const std::vector<int> sweep = Sweeps(points, &labels);
   if (static_cast<int>(labels.size()) < kMinSweeps) {
-    throw std::runtime_error(fmt::format("{}: {} sweep(s) of calibration points; diagnosis needs at least {} to hold "
-                                         "one out", serial, labels.size(), kMinSweeps));
+    throw std::runtime_error(
+        fmt::format("{}: {} sweep(s) of calibration points; diagnosis needs at least {} to hold "
+                    "one out",
+                    serial,
+                    labels.size(),
+                    kMinSweeps));
   }
   const std::vector<PointHistory> hist = BridgeHistoryOf(points);
   if (MakeBridge(false, points, hist, sweep).blocks < kMinTemperatures) {
-    throw std::runtime_error(fmt::format("{}: the points visit fewer than {} chamber temperatures; the baseline's "
-                                         "temperature degree cannot be chosen", serial, kMinTemperatures));
+    throw std::runtime_error(
+        fmt::format("{}: the points visit fewer than {} chamber temperatures; the baseline's "
+                    "temperature degree cannot be chosen",
+                    serial,
+                    kMinTemperatures));
   }
   UnitDiagnosis out;
   out.serial = serial;
@@ -511,10 +630,17 @@ UnitDiagnosis DiagnoseAds(const std::string& serial, const std::vector<AdsCalibr
   out.temp_span_c = hi - lo;
   out.tests = 2 * static_cast<int>(kEffects.size());
   out.test_alpha = options.family_alpha / out.tests;
-  out.notes.push_back("points are step means after a soak: die lag and self-heating leave no trace in them and are not tested");
+  out.notes.push_back(
+      "points are step means after a soak: die lag and self-heating leave no trace in them and are "
+      "not tested");
   for (bool pitot : {false, true}) {
-    BridgeResult r =
-        DiagnoseBridge(MakeBridge(pitot, points, hist, sweep), pitot, points, labels, out.test_alpha, options, &out.notes);
+    BridgeResult r = DiagnoseBridge(MakeBridge(pitot, points, hist, sweep),
+                                    pitot,
+                                    points,
+                                    labels,
+                                    out.test_alpha,
+                                    options,
+                                    &out.notes);
     for (Finding& f : r.findings) out.findings.push_back(std::move(f));
     for (DetectionLimit& l : r.limits) out.detection_limits.push_back(std::move(l));
     out.channels.push_back(std::move(r.summary));

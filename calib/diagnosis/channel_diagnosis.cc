@@ -89,8 +89,11 @@ void Segment(const ChannelRecording& r, Prepared* p) {
         cell_start = k;
       }
     }
-    p->labels.push_back(fmt::format("segment {} (t = {:.0f}-{:.0f} s, {:.1f} degC)", segment + 1, r.t_s[seg_start],
-                                    r.t_s[i - 1], r.temp_c[seg_start]));
+    p->labels.push_back(fmt::format("segment {} (t = {:.0f}-{:.0f} s, {:.1f} degC)",
+                                    segment + 1,
+                                    r.t_s[seg_start],
+                                    r.t_s[i - 1],
+                                    r.temp_c[seg_start]));
     seg_start = i;
   }
 }
@@ -99,12 +102,16 @@ void Segment(const ChannelRecording& r, Prepared* p) {
 void ThermalState(Prepared* p) {
   std::vector<double> starts;
   for (const Cell& c : p->cells) {
-    if (starts.empty() || c.segment != p->cells[&c - p->cells.data() - 1].segment) starts.push_back(c.t_s);
+    if (starts.empty() || c.segment != p->cells[&c - p->cells.data() - 1].segment)
+      starts.push_back(c.t_s);
   }
   std::vector<double> spacing;
   for (size_t i = 1; i < starts.size(); ++i) spacing.push_back(starts[i] - starts[i - 1]);
-  std::nth_element(spacing.begin(), spacing.begin() + static_cast<std::ptrdiff_t>(spacing.size() / 2), spacing.end());
-  const double w = std::max(kMinRateWindow_s, spacing.empty() ? 0.0 : 1.1 * spacing[spacing.size() / 2]);
+  std::nth_element(spacing.begin(),
+                   spacing.begin() + static_cast<std::ptrdiff_t>(spacing.size() / 2),
+                   spacing.end());
+  const double w =
+      std::max(kMinRateWindow_s, spacing.empty() ? 0.0 : 1.1 * spacing[spacing.size() / 2]);
   size_t lo = 0, hi = 0;
   double sense = 0;
   for (Cell& c : p->cells) {
@@ -113,7 +120,11 @@ void ThermalState(Prepared* p) {
     double sw = 0, st = 0, sv = 0, stt = 0, stv = 0;
     for (size_t j = lo; j <= hi; ++j) {
       const double wt = p->cells[j].rows, dt = p->cells[j].t_s - c.t_s, v = p->cells[j].temp_c;
-      sw += wt; st += wt * dt; sv += wt * v; stt += wt * dt * dt; stv += wt * dt * v;
+      sw += wt;
+      st += wt * dt;
+      sv += wt * v;
+      stt += wt * dt * dt;
+      stv += wt * dt * v;
     }
     const double den = sw * stt - st * st;
     c.rate_c_per_s = den > 0.0 ? (sw * stv - st * sv) / den : 0.0;
@@ -127,8 +138,11 @@ Prepared Prepare(const ChannelRecording& r) {
   Prepared p;
   Segment(r, &p);
   if (static_cast<int>(p.segment_rows.size()) < kMinSegments) {
-    throw ChannelInputError(fmt::format("{}: {} segment(s); diagnosis needs at least {} to hold one out", r.csv,
-                                        p.segment_rows.size(), kMinSegments));
+    throw ChannelInputError(
+        fmt::format("{}: {} segment(s); diagnosis needs at least {} to hold one out",
+                    r.csv,
+                    p.segment_rows.size(),
+                    kMinSegments));
   }
   ThermalState(&p);
   bool rose = false, fell = false;
@@ -153,7 +167,10 @@ struct Columns {
   int count() const { return Cand(kCandidates); }
 };
 
-Eigen::VectorXd Row(const Columns& cols, const Prepared& p, const Cell& c, const std::array<double, 4>& bias) {
+Eigen::VectorXd Row(const Columns& cols,
+                    const Prepared& p,
+                    const Cell& c,
+                    const std::array<double, 4>& bias) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(cols.count());
   const double s = (c.temp_c - p.t_mid) / p.t_half;
   for (int k = 0; k <= kMaxBiasDegree; ++k) x[cols.Bias(k)] = std::pow(s, k);
@@ -170,9 +187,13 @@ Eigen::VectorXd Row(const Columns& cols, const Prepared& p, const Cell& c, const
   return x;
 }
 
-ClusteredLeastSquares Accumulate(const Columns& cols, const Prepared& p, int out, const std::array<double, 4>& bias) {
+ClusteredLeastSquares Accumulate(const Columns& cols,
+                                 const Prepared& p,
+                                 int out,
+                                 const std::array<double, 4>& bias) {
   ClusteredLeastSquares ls(cols.count(), static_cast<int>(p.segment_rows.size()));
-  for (const Cell& c : p.cells) ls.Add(c.segment, Row(cols, p, c, bias), c.y[static_cast<size_t>(out)], c.rows);
+  for (const Cell& c : p.cells)
+    ls.Add(c.segment, Row(cols, p, c, bias), c.y[static_cast<size_t>(out)], c.rows);
   return ls;
 }
 
@@ -189,7 +210,8 @@ std::vector<int> BaseColumns(const Columns& cols, int degree) {
 std::array<double, 4> BiasOf(const ClusteredFit& fit, const std::vector<int>& subset) {
   std::array<double, 4> b{};
   for (size_t i = 0; i < subset.size(); ++i) {
-    if (subset[i] <= kMaxBiasDegree) b[static_cast<size_t>(subset[i])] = fit.theta[static_cast<int>(i)];
+    if (subset[i] <= kMaxBiasDegree)
+      b[static_cast<size_t>(subset[i])] = fit.theta[static_cast<int>(i)];
   }
   return b;
 }
@@ -200,7 +222,9 @@ std::string EffectName(int k) {
   return "self_heating_warm_up";
 }
 
-std::vector<FindingComponent> Components(int k, const Eigen::VectorXd& theta, const Eigen::VectorXd& se,
+std::vector<FindingComponent> Components(int k,
+                                         const Eigen::VectorXd& theta,
+                                         const Eigen::VectorXd& se,
                                          const std::string& unit) {
   if (k == kLag) return {{"delay", theta[0], se[0], "s"}};
   if (k == kHysteresis) return {{"half_loop", theta[0], se[0], unit}};
@@ -208,18 +232,30 @@ std::vector<FindingComponent> Components(int k, const Eigen::VectorXd& theta, co
 }
 
 std::string Words(int k, const std::vector<FindingComponent>& c, const std::string& name) {
-  const std::string v = fmt::format("{:.3g} ± {:.2g} {}", c[0].magnitude, c[0].standard_error, c[0].unit);
+  const std::string v =
+      fmt::format("{:.3g} ± {:.2g} {}", c[0].magnitude, c[0].standard_error, c[0].unit);
   if (k == kLag) {
-    return fmt::format("{} follows the temperature {} late: thermal lag between the sensing element and the "
-                       "thermometer is missing from the model", name, v);
+    return fmt::format(
+        "{} follows the temperature {} late: thermal lag between the sensing element and the "
+        "thermometer is missing from the model",
+        name,
+        v);
   }
   if (k == kHysteresis) {
-    return fmt::format("{} reads {} higher after heating than after cooling (half the loop): thermal hysteresis is "
-                       "missing from the model", name, v);
+    return fmt::format(
+        "{} reads {} higher after heating than after cooling (half the loop): thermal hysteresis "
+        "is "
+        "missing from the model",
+        name,
+        v);
   }
-  return fmt::format("{}'s element starts {} above the thermometer at the first row and settles with tau ≈ {:.0f} s: "
-                     "self-heating warm-up is missing from the model", name, v,
-                     kWarmUpTau_s[static_cast<size_t>(k - kWarmUp0)]);
+  return fmt::format(
+      "{}'s element starts {} above the thermometer at the first row and settles with tau ≈ {:.0f} "
+      "s: "
+      "self-heating warm-up is missing from the model",
+      name,
+      v,
+      kWarmUpTau_s[static_cast<size_t>(k - kWarmUp0)]);
 }
 
 struct OutputResult {
@@ -229,7 +265,9 @@ struct OutputResult {
 };
 
 // The bias degree with the smallest leave-one-segment-out error.
-int ChooseDegree(const Columns& cols, const ClusteredLeastSquares& ls, std::vector<std::string>* notes,
+int ChooseDegree(const Columns& cols,
+                 const ClusteredLeastSquares& ls,
+                 std::vector<std::string>* notes,
                  const std::string& name) {
   int best = -1;
   double best_ss = 0.0;
@@ -244,25 +282,37 @@ int ChooseDegree(const Columns& cols, const ClusteredLeastSquares& ls, std::vect
       best_ss = ss;
     }
   }
-  if (best < 0) throw ChannelInputError(name + ": no bias polynomial in temperature can be fitted and held out");
-  notes->push_back(fmt::format("{}: bias of degree {} in temperature (least leave-one-segment-out error)", name, best));
+  if (best < 0)
+    throw ChannelInputError(name +
+                            ": no bias polynomial in temperature can be fitted and held out");
+  notes->push_back(fmt::format(
+      "{}: bias of degree {} in temperature (least leave-one-segment-out error)", name, best));
   return best;
 }
 
-std::vector<double> Residuals(const Columns& cols, const Prepared& p, int out, const std::array<double, 4>& bias,
-                              const ClusteredFit& fit, const std::vector<int>& subset) {
+std::vector<double> Residuals(const Columns& cols,
+                              const Prepared& p,
+                              int out,
+                              const std::array<double, 4>& bias,
+                              const ClusteredFit& fit,
+                              const std::vector<int>& subset) {
   std::vector<double> r;
   for (const Cell& c : p.cells) {
     const Eigen::VectorXd x = Row(cols, p, c, bias);
     double pred = 0.0;
-    for (size_t k = 0; k < subset.size(); ++k) pred += x[subset[k]] * fit.theta[static_cast<int>(k)];
+    for (size_t k = 0; k < subset.size(); ++k)
+      pred += x[subset[k]] * fit.theta[static_cast<int>(k)];
     r.push_back(c.y[static_cast<size_t>(out)] - pred);
   }
   return r;
 }
 
-OutputResult DiagnoseOutput(const ChannelRecording& rec, const Prepared& p, int out, double alpha,
-                            const DiagnosisOptions& options, std::vector<std::string>* notes) {
+OutputResult DiagnoseOutput(const ChannelRecording& rec,
+                            const Prepared& p,
+                            int out,
+                            double alpha,
+                            const DiagnosisOptions& options,
+                            std::vector<std::string>* notes) {
   const ChannelSeries& series = rec.outputs[static_cast<size_t>(out)];
   const Columns cols{static_cast<int>(rec.references.size())};
   ClusteredLeastSquares ls = Accumulate(cols, p, out, {});
@@ -273,9 +323,11 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec, const Prepared& p, int 
   std::vector<std::vector<int>> candidates;
   for (int k = 0; k < kCandidates; ++k) candidates.push_back({cols.Cand(k)});
   auto one_warm_up = [](int k, const std::vector<int>& chosen) {
-    return k < kWarmUp0 || std::none_of(chosen.begin(), chosen.end(), [](int c) { return c >= kWarmUp0; });
+    return k < kWarmUp0 ||
+           std::none_of(chosen.begin(), chosen.end(), [](int c) { return c >= kWarmUp0; });
   };
-  TermSelection sel = SelectTerms(ls, base, ls.Fit(base), candidates, alpha, options.max_findings_per_channel, one_warm_up);
+  TermSelection sel = SelectTerms(
+      ls, base, ls.Fit(base), candidates, alpha, options.max_findings_per_channel, one_warm_up);
   if (!sel.chosen.empty()) {  // the dependent columns rebuilt from the final bias once
     const std::array<double, 4> refined = BiasOf(sel.fit, sel.selected);
     ClusteredLeastSquares ls2 = Accumulate(cols, p, out, refined);
@@ -288,7 +340,8 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec, const Prepared& p, int 
   }
   OutputResult r;
   for (int k : sel.chosen) {
-    const std::vector<int> without = WithoutColumns(sel.selected, candidates[static_cast<size_t>(k)]);
+    const std::vector<int> without =
+        WithoutColumns(sel.selected, candidates[static_cast<size_t>(k)]);
     const ClusteredFit fit_without = ls.Fit(without);
     Eigen::VectorXd theta, se;
     ColumnEstimates(sel.fit, sel.selected, candidates[static_cast<size_t>(k)], &theta, &se);
@@ -307,7 +360,10 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec, const Prepared& p, int 
   const double tcrit = TCritical(alpha, sel.fit.clusters);
   for (int k = 0; k < kCandidates; ++k) {
     DetectionLimit lim;
-    lim.effect = EffectName(k) + (k >= kWarmUp0 ? fmt::format(" (tau_w {:.0f} s)", kWarmUpTau_s[static_cast<size_t>(k - kWarmUp0)]) : "");
+    lim.effect = EffectName(k) + (k >= kWarmUp0
+                                      ? fmt::format(" (tau_w {:.0f} s)",
+                                                    kWarmUpTau_s[static_cast<size_t>(k - kWarmUp0)])
+                                      : "");
     lim.channel = series.name;
     Eigen::VectorXd se;
     if (LimitStandardErrors(ls, sel.selected, candidates[static_cast<size_t>(k)], &se, &lim.note)) {
@@ -321,10 +377,13 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec, const Prepared& p, int 
   r.summary.held_out_rms_baseline = HeldOutRms(base_fit, sel.fit, false, 1.0);
   r.summary.held_out_rms_final = HeldOutRms(base_fit, sel.fit, true, 1.0);
   std::vector<double> white;
-  for (const Cell& c : p.cells) white.push_back(std::sqrt(c.var[static_cast<size_t>(out)] / c.rows));
-  std::nth_element(white.begin(), white.begin() + static_cast<std::ptrdiff_t>(white.size() / 2), white.end());
+  for (const Cell& c : p.cells)
+    white.push_back(std::sqrt(c.var[static_cast<size_t>(out)] / c.rows));
+  std::nth_element(
+      white.begin(), white.begin() + static_cast<std::ptrdiff_t>(white.size() / 2), white.end());
   r.summary.white_noise_rms = white[white.size() / 2];
-  for (int c : base) r.summary.baseline_terms.push_back(c <= kMaxBiasDegree ? fmt::format("s^{}", c) : "reference");
+  for (int c : base)
+    r.summary.baseline_terms.push_back(c <= kMaxBiasDegree ? fmt::format("s^{}", c) : "reference");
   const std::vector<double> rb = Residuals(cols, p, out, bias, base_fit, base);
   const std::vector<double> rf = Residuals(cols, p, out, bias, sel.fit, sel.selected);
   for (size_t i = 0; i < p.cells.size() && static_cast<int>(i) < kPlotCells; ++i) {
@@ -337,30 +396,51 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec, const Prepared& p, int 
 }
 
 // Periodic lines in the rows of each output (row_spectrum.h).
-void LocatePeriodic(const ChannelRecording& rec, const Prepared& p, double alpha, UnitDiagnosis* out) {
+void LocatePeriodic(const ChannelRecording& rec,
+                    const Prepared& p,
+                    double alpha,
+                    UnitDiagnosis* out) {
   std::vector<double> rows;
   for (const auto& [a, b] : p.segment_rows) rows.push_back(static_cast<double>(b - a));
-  std::nth_element(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(rows.size() / 2), rows.end());
+  std::nth_element(
+      rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(rows.size() / 2), rows.end());
   int window = 64;
   while (window * 2 <= std::min(512.0, rows[rows.size() / 2])) window *= 2;
   RowSpectra spectra(static_cast<int>(rec.outputs.size()), MedianInterval(rec.t_s), window);
   for (size_t s = 0; s < p.segment_rows.size(); ++s) {
     const size_t a = p.segment_rows[s].first;
-    spectra.AddSegment(static_cast<int>(s), p.segment_rows[s].second - a, [&](size_t i) { return rec.t_s[a + i]; },
-                       [&](size_t i, int c) { return rec.outputs[static_cast<size_t>(c)].values[a + i]; });
+    spectra.AddSegment(
+        static_cast<int>(s),
+        p.segment_rows[s].second - a,
+        [&](size_t i) { return rec.t_s[a + i]; },
+        [&](size_t i, int c) { return rec.outputs[static_cast<size_t>(c)].values[a + i]; });
   }
   for (size_t c = 0; c < rec.outputs.size(); ++c) {
     const ChannelSeries& o = rec.outputs[c];
     for (const PeriodicLine& line : FindPeriodicLines(spectra, static_cast<int>(c), alpha)) {
-      const std::string what = fmt::format("periodic {:.3g} Hz, amplitude {:.3g} {}, {:.1f} times the noise floor at that "
-                                           "frequency", line.frequency_hz, line.amplitude, o.unit, line.floor_ratio);
+      const std::string what = fmt::format(
+          "periodic {:.3g} Hz, amplitude {:.3g} {}, {:.1f} times the noise floor at that "
+          "frequency",
+          line.frequency_hz,
+          line.amplitude,
+          o.unit,
+          line.floor_ratio);
       if (line.amplitude < 0.5 * o.resolution) {
-        out->notes.push_back(fmt::format("{}: {}: below half the output's resolution ({:.3g} {})", o.name, what, o.resolution, o.unit));
+        out->notes.push_back(fmt::format("{}: {}: below half the output's resolution ({:.3g} {})",
+                                         o.name,
+                                         what,
+                                         o.resolution,
+                                         o.unit));
         continue;
       }
-      out->unexplained.push_back({o.name, fmt::format("rows of {} of {} segments with {}-row windows", line.segments.size(),
-                                                      line.segments_with_windows, window),
-                                  what + "; no candidate term explains it", line.amplitude, o.unit});
+      out->unexplained.push_back({o.name,
+                                  fmt::format("rows of {} of {} segments with {}-row windows",
+                                              line.segments.size(),
+                                              line.segments_with_windows,
+                                              window),
+                                  what + "; no candidate term explains it",
+                                  line.amplitude,
+                                  o.unit});
     }
   }
 }
@@ -379,7 +459,8 @@ UnitDiagnosis DiagnoseChannels(const ChannelRecording& rec, const DiagnosisOptio
   out.test_alpha = options.family_alpha / out.tests;
   out.notes = rec.notes;
   for (size_t o = 0; o < rec.outputs.size(); ++o) {
-    OutputResult r = DiagnoseOutput(rec, p, static_cast<int>(o), out.test_alpha, options, &out.notes);
+    OutputResult r =
+        DiagnoseOutput(rec, p, static_cast<int>(o), out.test_alpha, options, &out.notes);
     for (Finding& f : r.findings) out.findings.push_back(std::move(f));
     for (DetectionLimit& l : r.limits) out.detection_limits.push_back(std::move(l));
     out.channels.push_back(std::move(r.summary));

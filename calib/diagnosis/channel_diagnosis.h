@@ -6,7 +6,8 @@
 // input x_r, a scale and its temperature coefficient. Candidates, each in its own unit:
 //   thermal_lag           -dU/dT * dT/dt            the element lags the thermometer: delay, s
 //   thermal_hysteresis    sense of the last change  half the loop, output unit
-//   self_heating_warm_up  dU/dT * exp(-t/tau)       the element's excess over the thermometer at the
+//   self_heating_warm_up  dU/dT * exp(-t/tau)       the element's excess over the thermometer at
+//   the
 //                                                   first row, degC (tau in 150, 300, 600, 1200 s)
 // Segments: stretches without a gap longer than max_gap_s (10 median intervals unless the
 // sidecar says), cut every kChannelSegment_s; cells of 1 s. A cell's temperature rate is the
@@ -25,7 +26,9 @@ namespace adahrs::calib {
 
 inline constexpr double kChannelSegment_s = 120.0;
 
-/// Throws ChannelInputError when the recording has fewer than 3 segments or a baseline cannot be fitted.
-UnitDiagnosis DiagnoseChannels(const ChannelRecording& recording, const DiagnosisOptions& options = {});
+/// Throws ChannelInputError when the recording has fewer than 3 segments or a baseline cannot be
+/// fitted.
+UnitDiagnosis DiagnoseChannels(const ChannelRecording& recording,
+                               const DiagnosisOptions& options = {});
 
 }  // namespace adahrs::calib

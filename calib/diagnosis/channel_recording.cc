@@ -42,9 +42,13 @@ class Sidecar {
     if (!v.is_string()) Fail(where + "." + key, "expected a string");
     return v.get<std::string>();
   }
-  double Number(const json& obj, const std::string& key, double fallback, const std::string& where) const {
+  double Number(const json& obj,
+                const std::string& key,
+                double fallback,
+                const std::string& where) const {
     if (!obj.contains(key)) return fallback;
-    if (!obj[key].is_number() || !std::isfinite(obj[key].get<double>())) Fail(where + "." + key, "expected a finite number");
+    if (!obj[key].is_number() || !std::isfinite(obj[key].get<double>()))
+      Fail(where + "." + key, "expected a finite number");
     return obj[key].get<double>();
   }
   ColumnMap Column(const json& obj, const std::string& where) const {
@@ -86,19 +90,31 @@ std::vector<std::string> SplitCsv(const std::string& line) {
   return cells;
 }
 
-double Cell(const std::vector<std::string>& cells, const ColumnMap& m, const std::string& csv, int line) {
+double Cell(const std::vector<std::string>& cells,
+            const ColumnMap& m,
+            const std::string& csv,
+            int line) {
   const std::string& text = cells[static_cast<size_t>(m.index)];
   char* end = nullptr;
   errno = 0;
   double v = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) {
-    throw ChannelInputError(fmt::format("{} line {} column {} ('{}'): '{}' is not a finite number", csv, line,
-                                        m.index + 1, m.column, text));
+    throw ChannelInputError(fmt::format("{} line {} column {} ('{}'): '{}' is not a finite number",
+                                        csv,
+                                        line,
+                                        m.index + 1,
+                                        m.column,
+                                        text));
   }
   if (m.int16) {
     if (v != std::floor(v) || v < -32768.0 || v > 65535.0) {
-      throw ChannelInputError(fmt::format("{} line {} column {} ('{}'): '{}' is not a 16-bit integer", csv, line,
-                                          m.index + 1, m.column, text));
+      throw ChannelInputError(
+          fmt::format("{} line {} column {} ('{}'): '{}' is not a 16-bit integer",
+                      csv,
+                      line,
+                      m.index + 1,
+                      m.column,
+                      text));
     }
     if (v > 32767.0) v -= 65536.0;
   }
@@ -112,18 +128,23 @@ struct Layout {
 
 void Locate(const std::vector<std::string>& header, ColumnMap* m, const std::string& csv) {
   const auto it = std::find(header.begin(), header.end(), m->column);
-  if (it == header.end()) throw ChannelInputError(fmt::format("{} line 1: no column '{}'", csv, m->column));
+  if (it == header.end())
+    throw ChannelInputError(fmt::format("{} line 1: no column '{}'", csv, m->column));
   m->index = static_cast<int>(it - header.begin());
 }
 
-std::vector<ChannelSeries> Series(const Sidecar& sc, const std::string& key, bool required, std::vector<ColumnMap>* maps) {
+std::vector<ChannelSeries> Series(const Sidecar& sc,
+                                  const std::string& key,
+                                  bool required,
+                                  std::vector<ColumnMap>* maps) {
   std::vector<ChannelSeries> out;
   if (!sc.root().contains(key)) {
     if (required) sc.Fail("$", "missing key '" + key + "'");
     return out;
   }
   const json& arr = sc.root()[key];
-  if (!arr.is_array() || (required && arr.empty())) sc.Fail("$." + key, "expected a non-empty array");
+  if (!arr.is_array() || (required && arr.empty()))
+    sc.Fail("$." + key, "expected a non-empty array");
   for (size_t i = 0; i < arr.size(); ++i) {
     const std::string where = fmt::format("$.{}[{}]", key, i);
     maps->push_back(sc.Column(arr[i], where));
@@ -144,7 +165,11 @@ double TimeScale(const Sidecar& sc) {
   return it->second;
 }
 
-void ReadRows(std::ifstream& in, const Layout& l, const std::string& csv, size_t header_size, ChannelRecording* r) {
+void ReadRows(std::ifstream& in,
+              const Layout& l,
+              const std::string& csv,
+              size_t header_size,
+              ChannelRecording* r) {
   std::string line;
   int number = 1;
   while (std::getline(in, line)) {
@@ -152,16 +177,25 @@ void ReadRows(std::ifstream& in, const Layout& l, const std::string& csv, size_t
     if (line.empty() || line == "\r") continue;
     const std::vector<std::string> cells = SplitCsv(line);
     if (cells.size() < header_size) {
-      throw ChannelInputError(fmt::format("{} line {}: {} cells where the header has {}", csv, number, cells.size(), header_size));
+      throw ChannelInputError(fmt::format(
+          "{} line {}: {} cells where the header has {}", csv, number, cells.size(), header_size));
     }
     const double t = Cell(cells, l.time, csv, number);
     if (!r->t_s.empty() && !(t > r->t_s.back())) {
-      throw ChannelInputError(fmt::format("{} line {} column {} ('{}'): time {:.6g} s does not increase (previous "
-                                          "{:.6g} s)", csv, number, l.time.index + 1, l.time.column, t, r->t_s.back()));
+      throw ChannelInputError(
+          fmt::format("{} line {} column {} ('{}'): time {:.6g} s does not increase (previous "
+                      "{:.6g} s)",
+                      csv,
+                      number,
+                      l.time.index + 1,
+                      l.time.column,
+                      t,
+                      r->t_s.back()));
     }
     r->t_s.push_back(t);
     r->temp_c.push_back(Cell(cells, l.temp, csv, number));
-    for (size_t k = 0; k < l.outputs.size(); ++k) r->outputs[k].values.push_back(Cell(cells, l.outputs[k], csv, number));
+    for (size_t k = 0; k < l.outputs.size(); ++k)
+      r->outputs[k].values.push_back(Cell(cells, l.outputs[k], csv, number));
     for (size_t k = 0; k < l.references.size(); ++k) {
       r->references[k].values.push_back(Cell(cells, l.references[k], csv, number));
     }
@@ -175,14 +209,18 @@ ChannelRecording ReadChannelRecording(const std::filesystem::path& sidecar_path)
   std::ifstream f(sidecar_path);
   if (!f) throw ChannelInputError(sidecar_path.string() + ": cannot be read");
   json j = json::parse(f, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) throw ChannelInputError(sidecar_path.string() + ": not a JSON object");
+  if (j.is_discarded() || !j.is_object())
+    throw ChannelInputError(sidecar_path.string() + ": not a JSON object");
   const Sidecar sc(std::move(j), sidecar_path.string());
   if (sc.String(sc.root(), "format", "$") != kChannelCsvFormat) {
     sc.Fail("$.format", fmt::format("expected '{}'", kChannelCsvFormat));
   }
   const json& version = sc.Require(sc.root(), "format_version", "$");
   if (!version.is_number_integer() || version.get<int>() != kChannelCsvFormatVersion) {
-    sc.Fail("$.format_version", fmt::format("{} is not a version this reader knows ({})", version.dump(), kChannelCsvFormatVersion));
+    sc.Fail("$.format_version",
+            fmt::format("{} is not a version this reader knows ({})",
+                        version.dump(),
+                        kChannelCsvFormatVersion));
   }
   ChannelRecording r;
   r.sidecar = sidecar_path.string();
@@ -200,7 +238,8 @@ ChannelRecording ReadChannelRecording(const std::filesystem::path& sidecar_path)
   if (!in) throw ChannelInputError(r.csv + ": cannot be read (named by " + r.sidecar + " $.csv)");
   std::string header_line;
   std::getline(in, header_line);
-  if (header_line.rfind("\xEF\xBB\xBF", 0) == 0) header_line.erase(0, 3);  // a UTF-8 byte-order mark
+  if (header_line.rfind("\xEF\xBB\xBF", 0) == 0)
+    header_line.erase(0, 3);  // a UTF-8 byte-order mark
   const std::vector<std::string> header = SplitCsv(header_line);
   std::vector<bool> used(header.size(), false);
   for (ColumnMap* m : {&l.time, &l.temp}) Locate(header, m, r.csv);
@@ -212,7 +251,9 @@ ChannelRecording ReadChannelRecording(const std::filesystem::path& sidecar_path)
     for (const ColumnMap& m : *group) used[static_cast<size_t>(m.index)] = true;
   }
   for (size_t i = 0; i < header.size(); ++i) {
-    if (!used[i] && !header[i].empty()) r.notes.push_back(fmt::format("{}: column '{}' ignored (not in the sidecar)", r.csv, header[i]));
+    if (!used[i] && !header[i].empty())
+      r.notes.push_back(
+          fmt::format("{}: column '{}' ignored (not in the sidecar)", r.csv, header[i]));
   }
   ReadRows(in, l, r.csv, header.size(), &r);
   r.sha256 = FileSha256(r.csv);

@@ -27,15 +27,16 @@ class ChannelInputError : public std::runtime_error {
 struct ChannelSeries {
   std::string name;
   std::string unit;
-  double resolution = 0.0;     ///< the output's step in its unit, when the sidecar gives it (0: unknown)
+  double resolution =
+      0.0;  ///< the output's step in its unit, when the sidecar gives it (0: unknown)
   std::vector<double> values;  ///< per row
 };
 
 struct ChannelRecording {
-  std::string unit;      ///< the sidecar's name for the device
-  std::string sidecar;   ///< path as given
-  std::string csv;       ///< path of the CSV
-  std::string sha256;    ///< of the CSV's bytes
+  std::string unit;     ///< the sidecar's name for the device
+  std::string sidecar;  ///< path as given
+  std::string csv;      ///< path of the CSV
+  std::string sha256;   ///< of the CSV's bytes
   std::vector<double> t_s;
   std::vector<double> temp_c;
   std::vector<ChannelSeries> outputs;

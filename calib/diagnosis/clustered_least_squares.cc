@@ -50,8 +50,10 @@ ClusteredLeastSquares::ClusteredLeastSquares(int columns, int clusters) : column
 }
 
 void ClusteredLeastSquares::Add(int cluster, const Eigen::VectorXd& x, double y, double w) {
-  if (cluster < 0 || cluster >= static_cast<int>(clusters_.size()) || x.size() != columns_ || !(w > 0.0)) {
-    throw std::invalid_argument("ClusteredLeastSquares::Add: cluster, row size or weight out of range");
+  if (cluster < 0 || cluster >= static_cast<int>(clusters_.size()) || x.size() != columns_ ||
+      !(w > 0.0)) {
+    throw std::invalid_argument(
+        "ClusteredLeastSquares::Add: cluster, row size or weight out of range");
   }
   Cluster& c = clusters_[static_cast<size_t>(cluster)];
   c.gram.selfadjointView<Eigen::Lower>().rankUpdate(x, w);
@@ -113,7 +115,8 @@ ClusteredFit ClusteredLeastSquares::Fit(const std::vector<int>& subset) const {
     Eigen::VectorXd mean = Eigen::VectorXd::Zero(p);
     for (const Eigen::VectorXd& t : leave_out) mean += t;
     mean /= static_cast<double>(leave_out.size());
-    for (const Eigen::VectorXd& t : leave_out) fit.covariance += (t - mean) * (t - mean).transpose();
+    for (const Eigen::VectorXd& t : leave_out)
+      fit.covariance += (t - mean) * (t - mean).transpose();
     const double n = static_cast<double>(leave_out.size());
     fit.covariance *= (n - 1.0) / n;
   }

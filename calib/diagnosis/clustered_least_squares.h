@@ -28,9 +28,9 @@ struct ClusteredFit {
   bool ok = false;            ///< the design of the chosen columns has full rank
   bool jackknife_ok = false;  ///< every leave-one-cluster-out design has full rank too
   Eigen::VectorXd theta;
-  Eigen::MatrixXd covariance;  ///< jackknife over clusters (valid when jackknife_ok)
-  double rss = 0.0;            ///< weighted in-sample residual sum of squares
-  double weight = 0.0;         ///< total weight
+  Eigen::MatrixXd covariance;       ///< jackknife over clusters (valid when jackknife_ok)
+  double rss = 0.0;                 ///< weighted in-sample residual sum of squares
+  double weight = 0.0;              ///< total weight
   std::vector<double> held_out_ss;  ///< per cluster; NaN where the leave-out fit is singular
   std::vector<double> cluster_weight;
   int clusters = 0;  ///< clusters holding observations
@@ -60,7 +60,7 @@ class ClusteredLeastSquares {
     Eigen::VectorXd xty;
     Eigen::VectorXd xtw;  ///< X' W 1
     double yty = 0.0;
-    double ysum = 0.0;    ///< 1' W y
+    double ysum = 0.0;  ///< 1' W y
     double weight = 0.0;
   };
   int columns_;

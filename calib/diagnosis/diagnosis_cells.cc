@@ -9,13 +9,14 @@
 namespace adahrs::calib {
 namespace {
 
-constexpr double kMaxRowGap_s = 0.05;      // a longer gap (lost packets) closes a cell
-constexpr double kMaxTrendGap_s = 120.0;   // the rate window never bridges a longer gap
-constexpr double kMinFittedSpan_c = 5.0;   // soaks this far apart fit the thermometer's slope
+constexpr double kMaxRowGap_s = 0.05;     // a longer gap (lost packets) closes a cell
+constexpr double kMaxTrendGap_s = 120.0;  // the rate window never bridges a longer gap
+constexpr double kMinFittedSpan_c = 5.0;  // soaks this far apart fit the thermometer's slope
 
 double Output(const ImuSample& s, int channel) {
   if (channel < 6) {
-    return static_cast<double>(s.raw.t1_cnt[channel]) / static_cast<double>(s.raw.t2_cnt[channel]) - 0.5;
+    return static_cast<double>(s.raw.t1_cnt[channel]) / static_cast<double>(s.raw.t2_cnt[channel]) -
+           0.5;
   }
   return static_cast<double>(s.raw.gyro_cnt[channel - 6]);
 }
@@ -34,8 +35,10 @@ class CellCutter {
   CellCutter(DiagnosisData* data, double cell_s, double frame_period_s)
       : data_(data), cell_s_(cell_s), frame_period_s_(frame_period_s) {}
 
-  void Segment(DiagnosisSegment segment, const std::vector<const ImuSample*>& rows,
-               const Eigen::Vector3d& f_B_g, const Eigen::Vector3d& w_B_dps) {
+  void Segment(DiagnosisSegment segment,
+               const std::vector<const ImuSample*>& rows,
+               const Eigen::Vector3d& f_B_g,
+               const Eigen::Vector3d& w_B_dps) {
     if (rows.empty()) return;
     const int index = static_cast<int>(data_->segments.size());
     segment.t_first_s = rows.front()->t_s;
@@ -56,12 +59,16 @@ class CellCutter {
     CountSequenceGaps(rows);
     std::vector<double> t(rows.size());
     for (size_t i = 0; i < rows.size(); ++i) {
-      t[i] = frame_period_s_ > 0.0 && i > 0
-                 ? t[i - 1] + static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq) * frame_period_s_
-                 : rows[i]->t_s;
+      t[i] =
+          frame_period_s_ > 0.0 && i > 0
+              ? t[i - 1] + static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq) * frame_period_s_
+              : rows[i]->t_s;
     }
     data_->spectra.AddSegment(
-        index, rows.size(), [&](size_t i) { return t[i]; }, [&](size_t i, int ch) { return Output(*rows[i], ch); });
+        index,
+        rows.size(),
+        [&](size_t i) { return t[i]; },
+        [&](size_t i, int ch) { return Output(*rows[i], ch); });
     MeasureRippleOfSegment(index, rows, t, w_B_dps);
     data_->rows += segment.rows;
     data_->segments.push_back(std::move(segment));
@@ -69,21 +76,26 @@ class CellCutter {
 
  private:
   // Lock-ins at the table's revolution frequency for each gyro whose axis is the table axis.
-  void MeasureRippleOfSegment(int index, const std::vector<const ImuSample*>& rows, const std::vector<double>& t,
+  void MeasureRippleOfSegment(int index,
+                              const std::vector<const ImuSample*>& rows,
+                              const std::vector<double>& t,
                               const Eigen::Vector3d& w_B_dps) {
     std::vector<double> y(rows.size());
     for (int g = 0; g < 3; ++g) {
       if (std::abs(w_B_dps[g]) < 0.5 * w_B_dps.norm() || w_B_dps[g] == 0.0) continue;
       for (size_t i = 0; i < rows.size(); ++i) y[i] = Output(*rows[i], 6 + g);  // gx, gy, gz
-      if (std::optional<RippleSegment> r = MeasureRipple(index, w_B_dps[g], t, y)) data_->ripple[g].push_back(*r);
+      if (std::optional<RippleSegment> r = MeasureRipple(index, w_B_dps[g], t, y))
+        data_->ripple[g].push_back(*r);
     }
   }
 
   // Gaps of the packet counter against its most frequent step in the segment (1, or log_every).
   void CountSequenceGaps(const std::vector<const ImuSample*>& rows) {
     std::array<int, 256> steps{};
-    for (size_t i = 1; i < rows.size(); ++i) ++steps[static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq)];
-    const int usual = static_cast<int>(std::max_element(steps.begin(), steps.end()) - steps.begin());
+    for (size_t i = 1; i < rows.size(); ++i)
+      ++steps[static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq)];
+    const int usual =
+        static_cast<int>(std::max_element(steps.begin(), steps.end()) - steps.begin());
     if (usual == 0) return;
     for (size_t i = 1; i < rows.size(); ++i) {
       const int d = static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq);
@@ -98,8 +110,12 @@ class CellCutter {
     }
   }
 
-  void AddCell(int segment, const std::vector<const ImuSample*>& rows, size_t begin, size_t end,
-               const Eigen::Vector3d& f_B_g, const Eigen::Vector3d& w_B_dps) {
+  void AddCell(int segment,
+               const std::vector<const ImuSample*>& rows,
+               size_t begin,
+               size_t end,
+               const Eigen::Vector3d& f_B_g,
+               const Eigen::Vector3d& w_B_dps) {
     DiagnosisCell c;
     c.segment = segment;
     c.run = rows[begin]->run;
@@ -137,18 +153,24 @@ class CellCutter {
 
 const char* TrendName(ThermalSegment s) {
   switch (s) {
-    case ThermalSegment::kUpRamp: return "up-ramp";
-    case ThermalSegment::kDownRamp: return "down-ramp";
-    case ThermalSegment::kSoak: return "soak";
+    case ThermalSegment::kUpRamp:
+      return "up-ramp";
+    case ThermalSegment::kDownRamp:
+      return "down-ramp";
+    case ThermalSegment::kSoak:
+      return "soak";
   }
   return "?";
 }
 
 const char* TrendKind(ThermalSegment s) {
   switch (s) {
-    case ThermalSegment::kUpRamp: return "thermal_up";
-    case ThermalSegment::kDownRamp: return "thermal_down";
-    case ThermalSegment::kSoak: return "thermal_soak";
+    case ThermalSegment::kUpRamp:
+      return "thermal_up";
+    case ThermalSegment::kDownRamp:
+      return "thermal_down";
+    case ThermalSegment::kSoak:
+      return "thermal_soak";
   }
   return "?";
 }
@@ -166,28 +188,32 @@ void CutThermal(const ImuUnitData& unit, double g_scale, CellCutter* cutter) {
       s.run = unit.thermal[i].run;
       s.kind = TrendKind(unit.thermal_segment[i]);
       s.orientation = unit.thermal_orientation;
-      s.label = fmt::format("run {} thermal {} {}", s.run, TrendName(unit.thermal_segment[i]), ++count);
+      s.label =
+          fmt::format("run {} thermal {} {}", s.run, TrendName(unit.thermal_segment[i]), ++count);
       cutter->Segment(std::move(s), rows, f, Eigen::Vector3d::Zero());
       rows.clear();
     }
   }
 }
 
-void CutAcquisitions(const std::vector<ImuAcquisition>& acquisitions, double g_scale,
+void CutAcquisitions(const std::vector<ImuAcquisition>& acquisitions,
+                     double g_scale,
                      CellCutter* cutter) {
   for (const ImuAcquisition& a : acquisitions) {
     if (a.samples.empty()) continue;
     std::vector<const ImuSample*> rows;
     for (const ImuSample& s : a.samples) rows.push_back(&s);
-    std::stable_sort(rows.begin(), rows.end(),
-                     [](const ImuSample* x, const ImuSample* y) { return x->t_s < y->t_s; });
+    std::stable_sort(rows.begin(), rows.end(), [](const ImuSample* x, const ImuSample* y) {
+      return x->t_s < y->t_s;
+    });
     DiagnosisSegment s;
     s.run = a.samples.front().run;
     s.step = a.step;
     s.kind = a.step_kind;
     s.orientation = a.orientation;
     s.rate_dps = a.rate_dps;
-    s.label = fmt::format("run {} step {} {} orientation {}", s.run, a.step, a.step_kind, a.orientation);
+    s.label =
+        fmt::format("run {} step {} {} orientation {}", s.run, a.step, a.step_kind, a.orientation);
     if (a.rate_dps != 0.0) s.label += fmt::format(" rate {:.1f} dps", a.rate_dps);
     const Eigen::Vector3d up = Up(a.orientation);
     cutter->Segment(std::move(s), rows, up * g_scale, up * a.rate_dps);
@@ -196,7 +222,8 @@ void CutAcquisitions(const std::vector<ImuAcquisition>& acquisitions, double g_s
 
 // Least-squares slope of value(t) over the cells of one run within +-window/2 of each cell,
 // never across a gap longer than kMaxTrendGap_s. `order` lists the run's cells by time.
-std::vector<double> WindowSlopes(const std::vector<DiagnosisCell>& cells, const std::vector<int>& order,
+std::vector<double> WindowSlopes(const std::vector<DiagnosisCell>& cells,
+                                 const std::vector<int>& order,
                                  int sensor) {
   std::vector<double> slope(order.size(), 0.0);
   size_t lo = 0, hi = 0;
@@ -213,7 +240,11 @@ std::vector<double> WindowSlopes(const std::vector<DiagnosisCell>& cells, const 
     for (size_t j = lo; j <= hi; ++j) {
       const DiagnosisCell& c = cells[order[j]];
       const double w = c.rows, dt = c.t_mean_s - t, v = c.temp_cnt_mean[sensor];
-      sw += w; st += w * dt; sv += w * v; stt += w * dt * dt; stv += w * dt * v;
+      sw += w;
+      st += w * dt;
+      sv += w * v;
+      stt += w * dt * dt;
+      stv += w * dt * v;
     }
     const double den = sw * stt - st * st;
     if (hi > lo && den > 0.0) slope[i] = (sw * stv - st * sv) / den;
@@ -222,15 +253,22 @@ std::vector<double> WindowSlopes(const std::vector<DiagnosisCell>& cells, const 
 }
 
 ThermometerMap FitThermometer(const std::vector<DiagnosisCell>& cells,
-                              const std::vector<double>& slope_cnt_per_s, int sensor) {
+                              const std::vector<double>& slope_cnt_per_s,
+                              int sensor) {
   const double still = kTrendThreshold_c_per_s * kDatasheetTempCountsPerC;
   double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, lo = 1e9, hi = -1e9;
   double all_w = 0, all_x = 0, all_y = 0;
   for (size_t i = 0; i < cells.size(); ++i) {
     const double w = cells[i].rows, x = cells[i].chamber_c, y = cells[i].temp_cnt_mean[sensor];
-    all_w += w; all_x += w * x; all_y += w * y;
+    all_w += w;
+    all_x += w * x;
+    all_y += w * y;
     if (std::abs(slope_cnt_per_s[i]) > still) continue;
-    sw += w; sx += w * x; sy += w * y; sxx += w * x * x; sxy += w * x * y;
+    sw += w;
+    sx += w * x;
+    sy += w * y;
+    sxx += w * x * x;
+    sxy += w * x * y;
     lo = std::min(lo, x);
     hi = std::max(hi, x);
   }
@@ -252,10 +290,12 @@ void DeriveThermalState(DiagnosisData* data) {
   int runs = 0;
   for (const DiagnosisCell& c : cells) runs = std::max(runs, c.run + 1);
   std::vector<std::vector<int>> by_run(static_cast<size_t>(runs));
-  for (size_t i = 0; i < cells.size(); ++i) by_run[static_cast<size_t>(cells[i].run)].push_back(static_cast<int>(i));
+  for (size_t i = 0; i < cells.size(); ++i)
+    by_run[static_cast<size_t>(cells[i].run)].push_back(static_cast<int>(i));
   for (std::vector<int>& order : by_run) {
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int a, int b) { return cells[a].t_mean_s < cells[b].t_mean_s; });
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return cells[a].t_mean_s < cells[b].t_mean_s;
+    });
     for (int k = 0; k < 3; ++k) {
       const std::vector<double> s = WindowSlopes(cells, order, k);
       for (size_t i = 0; i < order.size(); ++i) slope_cnt[k][order[i]] = s[i];
@@ -315,10 +355,12 @@ double FramePeriod(const ImuUnitData& unit) {
 // The most frequent step of the packet counter between consecutive thermal rows (1, or log_every).
 int UsualCounterStep(const ImuUnitData& unit) {
   std::array<int, 256> steps{};
-  for (size_t i = 1; i < unit.thermal.size(); ++i) ++steps[static_cast<uint8_t>(unit.thermal[i].seq - unit.thermal[i - 1].seq)];
+  for (size_t i = 1; i < unit.thermal.size(); ++i)
+    ++steps[static_cast<uint8_t>(unit.thermal[i].seq - unit.thermal[i - 1].seq)];
   for (const auto* group : {&unit.accel, &unit.gyro, &unit.cross_axis}) {
     for (const ImuAcquisition& a : *group) {
-      for (size_t i = 1; i < a.samples.size(); ++i) ++steps[static_cast<uint8_t>(a.samples[i].seq - a.samples[i - 1].seq)];
+      for (size_t i = 1; i < a.samples.size(); ++i)
+        ++steps[static_cast<uint8_t>(a.samples[i].seq - a.samples[i - 1].seq)];
     }
   }
   return static_cast<int>(std::max_element(steps.begin() + 1, steps.end()) - steps.begin());
@@ -327,13 +369,15 @@ int UsualCounterStep(const ImuUnitData& unit) {
 double NominalInterval(const ImuUnitData& unit) {
   constexpr size_t kLook = 20000;
   std::vector<double> times;
-  for (size_t i = 0; i < std::min(kLook, unit.thermal.size()); ++i) times.push_back(unit.thermal[i].t_s);
+  for (size_t i = 0; i < std::min(kLook, unit.thermal.size()); ++i)
+    times.push_back(unit.thermal[i].t_s);
   double d = MedianInterval(times);
   for (const auto* group : {&unit.accel, &unit.gyro, &unit.cross_axis}) {
     for (const ImuAcquisition& a : *group) {
       if (d > 0.0) return d;
       times.clear();
-      for (size_t i = 0; i < std::min(kLook, a.samples.size()); ++i) times.push_back(a.samples[i].t_s);
+      for (size_t i = 0; i < std::min(kLook, a.samples.size()); ++i)
+        times.push_back(a.samples[i].t_s);
       d = MedianInterval(times);
     }
   }
@@ -361,21 +405,25 @@ std::array<double, kImuChannels> OutputQuantum(const ImuUnitData& unit) {
 
 }  // namespace
 
-DiagnosisData BuildDiagnosisData(const ImuUnitData& unit, double g_local_mps2, double cell_duration_s) {
+DiagnosisData BuildDiagnosisData(const ImuUnitData& unit,
+                                 double g_local_mps2,
+                                 double cell_duration_s) {
   DiagnosisData data;
   data.serial = unit.serial;
   const double g_scale = g_local_mps2 / 9.80665;
   const double frame_period_s = FramePeriod(unit);
-  data.spectra =
-      RowSpectra(kImuChannels, frame_period_s > 0.0 ? UsualCounterStep(unit) * frame_period_s : NominalInterval(unit));
+  data.spectra = RowSpectra(
+      kImuChannels,
+      frame_period_s > 0.0 ? UsualCounterStep(unit) * frame_period_s : NominalInterval(unit));
   CellCutter cutter(&data, cell_duration_s, frame_period_s);
   CutThermal(unit, g_scale, &cutter);
   CutAcquisitions(unit.accel, g_scale, &cutter);
   CutAcquisitions(unit.gyro, g_scale, &cutter);
   CutAcquisitions(unit.cross_axis, g_scale, &cutter);
   if (data.segments.size() < 2) {
-    throw ImuInputError(unit.serial + ": " + std::to_string(data.segments.size()) +
-                        " segment(s) of calibration data; diagnosis needs at least 2 to hold one out");
+    throw ImuInputError(
+        unit.serial + ": " + std::to_string(data.segments.size()) +
+        " segment(s) of calibration data; diagnosis needs at least 2 to hold one out");
   }
   DeriveThermalState(&data);
   data.output_quantum = OutputQuantum(unit);

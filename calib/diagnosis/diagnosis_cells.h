@@ -54,7 +54,8 @@ inline bool IsGyroChannel(int channel) { return channel >= 6; }
 
 struct DiagnosisSegment {
   std::string label;  ///< "run 0 step 4 accel orientation 11", "run 0 thermal down-ramp 2"
-  std::string kind;   ///< "thermal_up", "thermal_down", "thermal_soak", "accel", "gyro", "cross_axis"
+  std::string
+      kind;  ///< "thermal_up", "thermal_down", "thermal_soak", "accel", "gyro", "cross_axis"
   int run = 0;
   int step = -1;  ///< -1 for thermal stretches (the profile's step is in the label)
   int orientation = 0;
@@ -120,7 +121,8 @@ struct DiagnosisData {
 
 /// Cuts one unit's calibration data into segments and cells and derives the thermal state.
 /// Throws ImuInputError naming the unit when it has fewer than 2 segments.
-DiagnosisData BuildDiagnosisData(const ImuUnitData& unit, double g_local_mps2,
+DiagnosisData BuildDiagnosisData(const ImuUnitData& unit,
+                                 double g_local_mps2,
                                  double cell_duration_s = kCellDuration_s);
 
 }  // namespace adahrs::calib

@@ -20,11 +20,14 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kModel =
-    "pipeline forward model (nominal), fitted to this recording: IMU thermal polynomials, scale and cross-axis, "
-    "gyro span nonlinearity; ADS bivariate polynomial of each bridge's code in pressure and bridge voltage";
+    "pipeline forward model (nominal), fitted to this recording: IMU thermal polynomials, scale "
+    "and cross-axis, "
+    "gyro span nonlinearity; ADS bivariate polynomial of each bridge's code in pressure and bridge "
+    "voltage";
 
 constexpr const char* kChannelModel =
-    "generic thermal model, fitted to this recording: bias polynomial in temperature, scale and its tempco per "
+    "generic thermal model, fitted to this recording: bias polynomial in temperature, scale and "
+    "its tempco per "
     "reference input";
 
 // The unit kinds a run's meta.json lists ("imu", "ads"), read by the recording reader (which
@@ -34,19 +37,24 @@ std::set<std::string> UnitKinds(const std::filesystem::path& run) {
   const json meta = hil::ReadRecordingMeta(run).meta;
   if (!meta.contains("units") || !meta["units"].is_array()) return kinds;
   for (const json& u : meta["units"]) {
-    if (u.is_object() && u.contains("kind") && u["kind"].is_string()) kinds.insert(u["kind"].get<std::string>());
+    if (u.is_object() && u.contains("kind") && u["kind"].is_string())
+      kinds.insert(u["kind"].get<std::string>());
   }
   return kinds;
 }
 
 // Every ADS unit of `run` (or only `serial`), diagnosed from its calibration points.
-void DiagnoseAdsRun(const std::filesystem::path& run, const std::optional<std::string>& serial,
-                    const DiagnosisOptions& options, DiagnosisRun* out, std::vector<std::string>* seen) {
+void DiagnoseAdsRun(const std::filesystem::path& run,
+                    const std::optional<std::string>& serial,
+                    const DiagnosisOptions& options,
+                    DiagnosisRun* out,
+                    std::vector<std::string>* seen) {
   const hil::Recording rec = hil::ReadRecording(run);
   out->notes.insert(out->notes.end(), rec.notes.begin(), rec.notes.end());
   std::vector<std::string> serials;
   for (const hil::AdsRecordRow& r : rec.ads) {
-    if (std::find(serials.begin(), serials.end(), r.unit) == serials.end()) serials.push_back(r.unit);
+    if (std::find(serials.begin(), serials.end(), r.unit) == serials.end())
+      serials.push_back(r.unit);
   }
   out->recordings.push_back({run.string(), RecordingSha256(run)});
   for (const std::string& s : serials) {
@@ -66,59 +74,97 @@ std::string Figures(const UnitDiagnosis& u) {
     if (!found || c.plot_t_s.empty()) continue;
     Plot p;
     const bool points = c.unit == "Pa";
-    p.title = fmt::format("{} {}: residual of each {}", u.serial, c.channel, points ? "calibration point" : "1 s cell");
+    p.title = fmt::format("{} {}: residual of each {}",
+                          u.serial,
+                          c.channel,
+                          points ? "calibration point" : "1 s cell");
     p.x_label = points ? "chamber temperature (degC)" : "thermometer temperature (degC)";
     p.y_label = "residual (" + c.unit + ")";
-    p.series.push_back({"baseline model", c.plot_temp_c, c.plot_residual_baseline, PlotSeries::Style::kPoints});
-    p.series.push_back({"with the findings", c.plot_temp_c, c.plot_residual_final, PlotSeries::Style::kPoints});
+    p.series.push_back(
+        {"baseline model", c.plot_temp_c, c.plot_residual_baseline, PlotSeries::Style::kPoints});
+    p.series.push_back(
+        {"with the findings", c.plot_temp_c, c.plot_residual_final, PlotSeries::Style::kPoints});
     body += RenderSvg(p);
   }
   return body;
 }
 
 std::string UnitSection(const UnitDiagnosis& u) {
-  std::string body = "<p>" + XmlEscape(fmt::format("{} rows in {} segments ({} cells of 1 s), thermometers span {:.1f} degC.",
-                                                   u.rows, u.segments, u.cells, u.temp_span_c)) + "</p>";
+  std::string body = "<p>" +
+                     XmlEscape(fmt::format(
+                         "{} rows in {} segments ({} cells of 1 s), thermometers span {:.1f} degC.",
+                         u.rows,
+                         u.segments,
+                         u.cells,
+                         u.temp_span_c)) +
+                     "</p>";
   if (u.findings.empty()) {
-    body += "<p>No missing physics found: every candidate term stays below its detection limit (table below).</p>";
+    body +=
+        "<p>No missing physics found: every candidate term stays below its detection limit (table "
+        "below).</p>";
   } else {
     body += "<ul>";
     for (const Finding& f : u.findings) body += "<li>" + XmlEscape(f.words) + "</li>";
     body += "</ul>";
     HtmlTable t{"Findings: held-out RMS of the cell means without and with each term, channel unit",
-                {"effect", "channel", "magnitude", "held-out RMS before", "after", "unit", "evidence (largest contribution)"}, {}};
+                {"effect",
+                 "channel",
+                 "magnitude",
+                 "held-out RMS before",
+                 "after",
+                 "unit",
+                 "evidence (largest contribution)"},
+                {}};
     for (const Finding& f : u.findings) {
       std::string mag;
       for (const FindingComponent& c : f.components) {
-        mag += fmt::format("{}{} {} ± {} {}", mag.empty() ? "" : "; ", c.name, FormatNumber(c.magnitude, 3),
-                           FormatNumber(c.standard_error, 2), c.unit);
+        mag += fmt::format("{}{} {} ± {} {}",
+                           mag.empty() ? "" : "; ",
+                           c.name,
+                           FormatNumber(c.magnitude, 3),
+                           FormatNumber(c.standard_error, 2),
+                           c.unit);
       }
       std::string ev;
       for (const std::string& e : f.evidence) ev += (ev.empty() ? "" : "; ") + e;
-      t.rows.push_back({f.effect, f.channel, mag, FormatNumber(f.held_out_rms_before, 3),
-                        FormatNumber(f.held_out_rms_after, 3), f.rms_unit, ev});
+      t.rows.push_back({f.effect,
+                        f.channel,
+                        mag,
+                        FormatNumber(f.held_out_rms_before, 3),
+                        FormatNumber(f.held_out_rms_after, 3),
+                        f.rms_unit,
+                        ev});
     }
     body += RenderTable(t);
   }
   if (!u.unexplained.empty()) {
-    HtmlTable t{"Unexplained structure (located, not fitted)", {"channel", "where", "description"}, {}};
-    for (const Unexplained& x : u.unexplained) t.rows.push_back({x.channel, x.where, x.description});
+    HtmlTable t{
+        "Unexplained structure (located, not fitted)", {"channel", "where", "description"}, {}};
+    for (const Unexplained& x : u.unexplained)
+      t.rows.push_back({x.channel, x.where, x.description});
     body += RenderTable(t);
   }
   HtmlTable ch{"Per channel: held-out RMS of the 1 s cell means (leave one segment out)",
-               {"channel", "baseline", "final", "white noise alone", "unit"}, {}};
+               {"channel", "baseline", "final", "white noise alone", "unit"},
+               {}};
   for (const ChannelFitSummary& c : u.channels) {
-    ch.rows.push_back({c.channel, FormatNumber(c.held_out_rms_baseline, 3), FormatNumber(c.held_out_rms_final, 3),
-                       FormatNumber(c.white_noise_rms, 3), c.unit});
+    ch.rows.push_back({c.channel,
+                       FormatNumber(c.held_out_rms_baseline, 3),
+                       FormatNumber(c.held_out_rms_final, 3),
+                       FormatNumber(c.white_noise_rms, 3),
+                       c.unit});
   }
   body += RenderTable(ch);
   body += Figures(u);
-  HtmlTable lim{"Detection limits: the smallest magnitude this recording would have found (80 % power)",
-                {"effect", "channel", "smallest detectable"}, {}};
+  HtmlTable lim{
+      "Detection limits: the smallest magnitude this recording would have found (80 % power)",
+      {"effect", "channel", "smallest detectable"},
+      {}};
   for (const DetectionLimit& d : u.detection_limits) {
     std::string v;
     for (const FindingComponent& c : d.limits) {
-      v += fmt::format("{}{} {} {}", v.empty() ? "" : "; ", c.name, FormatNumber(c.magnitude, 2), c.unit);
+      v += fmt::format(
+          "{}{} {} {}", v.empty() ? "" : "; ", c.name, FormatNumber(c.magnitude, 2), c.unit);
     }
     lim.rows.push_back({d.effect, d.channel, d.limits.empty() ? "untestable: " + d.note : v});
   }
@@ -130,9 +176,10 @@ std::string UnitSection(const UnitDiagnosis& u) {
 }  // namespace
 
 json DiagnosisRun::ToJson() const {
-  json recs = json::array(), units_json = json::array(), findings = json::array(), unexplained = json::array(),
-       limits = json::array();
-  for (const RecordingReference& r : recordings) recs.push_back({{"path", r.path}, {"sha256", r.sha256}});
+  json recs = json::array(), units_json = json::array(), findings = json::array(),
+       unexplained = json::array(), limits = json::array();
+  for (const RecordingReference& r : recordings)
+    recs.push_back({{"path", r.path}, {"sha256", r.sha256}});
   for (const UnitDiagnosis& u : units) {
     units_json.push_back(u.ToJson());
     for (const Finding& f : u.findings) {
@@ -151,12 +198,19 @@ json DiagnosisRun::ToJson() const {
       limits.push_back(j);
     }
   }
-  return {{"format", "adahrs-diagnosis"}, {"format_version", kDiagnosisFormatVersion}, {"recording", recs},
-          {"model", model}, {"findings", findings}, {"unexplained", unexplained}, {"detection_limits", limits},
-          {"units", units_json}, {"notes", notes}};
+  return {{"format", "adahrs-diagnosis"},
+          {"format_version", kDiagnosisFormatVersion},
+          {"recording", recs},
+          {"model", model},
+          {"findings", findings},
+          {"unexplained", unexplained},
+          {"detection_limits", limits},
+          {"units", units_json},
+          {"notes", notes}};
 }
 
-DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const std::optional<std::string>& serial,
+DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs,
+                          const std::optional<std::string>& serial,
                           const DiagnosisOptions& options) {
   std::vector<std::filesystem::path> imu_runs, ads_runs;
   for (const std::filesystem::path& run : runs) {
@@ -177,7 +231,8 @@ DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const 
       out.units.push_back(DiagnoseImu(BuildDiagnosisData(unit, data.local_gravity_mps2), options));
     }
   }
-  for (const std::filesystem::path& run : ads_runs) DiagnoseAdsRun(run, serial, options, &out, &seen);
+  for (const std::filesystem::path& run : ads_runs)
+    DiagnoseAdsRun(run, serial, options, &out, &seen);
   if (serial && std::find(seen.begin(), seen.end(), *serial) == seen.end()) {
     std::string have;
     for (const std::string& s : seen) have += (have.empty() ? "" : ", ") + s;
@@ -187,7 +242,8 @@ DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const 
   return out;
 }
 
-DiagnosisRun DiagnoseChannelFiles(const std::vector<std::filesystem::path>& sidecars, const DiagnosisOptions& options) {
+DiagnosisRun DiagnoseChannelFiles(const std::vector<std::filesystem::path>& sidecars,
+                                  const DiagnosisOptions& options) {
   DiagnosisRun out;
   out.model = kChannelModel;
   for (const std::filesystem::path& sidecar : sidecars) {
@@ -199,15 +255,20 @@ DiagnosisRun DiagnoseChannelFiles(const std::vector<std::filesystem::path>& side
 }
 
 std::string DiagnosisHtml(const DiagnosisRun& run) {
-  std::string body = "<h1>Diagnosis</h1><p>" + XmlEscape("Compared with: " + run.model) + "</p><ul>";
-  for (const RecordingReference& r : run.recordings) body += "<li>" + XmlEscape(r.path + " (sha256 " + r.sha256 + ")") + "</li>";
+  std::string body =
+      "<h1>Diagnosis</h1><p>" + XmlEscape("Compared with: " + run.model) + "</p><ul>";
+  for (const RecordingReference& r : run.recordings)
+    body += "<li>" + XmlEscape(r.path + " (sha256 " + r.sha256 + ")") + "</li>";
   body += "</ul>";
   for (const std::string& n : run.notes) body += "<p class=\"note\">" + XmlEscape(n) + "</p>";
   for (const UnitDiagnosis& u : run.units) body += UnitSection(u);
-  return "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\"><head><meta charset=\"utf-8\"/>"
-         "<title>adahrs diagnosis</title><style>body{font-family:sans-serif;max-width:72em;margin:auto}"
+  return "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\"><head><meta "
+         "charset=\"utf-8\"/>"
+         "<title>adahrs "
+         "diagnosis</title><style>body{font-family:sans-serif;max-width:72em;margin:auto}"
          "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #999;padding:2px 6px}"
-         ".note{color:#555}</style></head><body>" + body + "</body></html>\n";
+         ".note{color:#555}</style></head><body>" +
+         body + "</body></html>\n";
 }
 
 void WriteTextAtomically(const std::filesystem::path& path, const std::string& text) {

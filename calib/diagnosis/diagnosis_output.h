@@ -1,11 +1,11 @@
-// `adahrs diagnose` end to end on run directories: every IMU and ADS unit of the recordings (or one)
-// diagnosed against the pipeline's forward model (imu_diagnosis.h, ads_diagnosis.h), written as OUT/diagnosis.json (format
-// "adahrs-diagnosis", docs/diagnose.md) and OUT/report.html (findings in words, located structure,
-// residual figures before and after, detection limits).
-// Runs whose meta.json lists ADS units are read for their calibration points
-// (SelectAdsCalibrationPoints) and each ADS unit is diagnosed per run (ads_diagnosis.h); the others
-// by LoadImuRuns (calibration rows of raw-mode steps). Refusals name the file, line and column.
-// Generic channel CSVs (a sidecar JSON each) go through DiagnoseChannelFiles.
+// `adahrs diagnose` end to end on run directories: every IMU and ADS unit of the recordings (or
+// one) diagnosed against the pipeline's forward model (imu_diagnosis.h, ads_diagnosis.h), written
+// as OUT/diagnosis.json (format "adahrs-diagnosis", docs/diagnose.md) and OUT/report.html (findings
+// in words, located structure, residual figures before and after, detection limits). Runs whose
+// meta.json lists ADS units are read for their calibration points (SelectAdsCalibrationPoints) and
+// each ADS unit is diagnosed per run (ads_diagnosis.h); the others by LoadImuRuns (calibration rows
+// of raw-mode steps). Refusals name the file, line and column. Generic channel CSVs (a sidecar JSON
+// each) go through DiagnoseChannelFiles.
 #pragma once
 
 #include <filesystem>
@@ -32,7 +32,8 @@ struct DiagnosisRun {
 /// Reads the runs and diagnoses every unit (or only `serial`); throws ImuInputError,
 /// hil::RecordingError or std::runtime_error with the reason, and ImuInputError when `serial` is
 /// not in the runs.
-DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs, const std::optional<std::string>& serial,
+DiagnosisRun DiagnoseRuns(const std::vector<std::filesystem::path>& runs,
+                          const std::optional<std::string>& serial,
                           const DiagnosisOptions& options = {});
 
 /// Diagnoses each generic channel recording (a JSON sidecar and the CSV it names,

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <limits>
+#include <map>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -28,16 +28,29 @@ constexpr int kStepWindowCells = 30;
 // Column indices of the baseline, per channel kind.
 enum Baseline { kOffset = 0, kTemp1, kTemp2, kTemp3, kStim0, kStim1, kStim2, kRate2, kRate3 };
 
-enum class Effect { kDieLag, kScaleTempco, kGSensitivity, kThermalHysteresis, kWarmUp, kAccelNonlinearity };
+enum class Effect {
+  kDieLag,
+  kScaleTempco,
+  kGSensitivity,
+  kThermalHysteresis,
+  kWarmUp,
+  kAccelNonlinearity
+};
 
 const char* EffectName(Effect e) {
   switch (e) {
-    case Effect::kDieLag: return "die_thermal_lag";
-    case Effect::kScaleTempco: return "scale_factor_tempco";
-    case Effect::kGSensitivity: return "gyro_g_sensitivity";
-    case Effect::kThermalHysteresis: return "thermal_hysteresis";
-    case Effect::kWarmUp: return "self_heating_warm_up";
-    case Effect::kAccelNonlinearity: return "accel_nonlinearity";
+    case Effect::kDieLag:
+      return "die_thermal_lag";
+    case Effect::kScaleTempco:
+      return "scale_factor_tempco";
+    case Effect::kGSensitivity:
+      return "gyro_g_sensitivity";
+    case Effect::kThermalHysteresis:
+      return "thermal_hysteresis";
+    case Effect::kWarmUp:
+      return "self_heating_warm_up";
+    case Effect::kAccelNonlinearity:
+      return "accel_nonlinearity";
   }
   return "?";
 }
@@ -51,7 +64,7 @@ struct Candidate {
 
 // What the dependent columns need from the current baseline fit.
 struct BaselineState {
-  std::array<double, 3> temp{};            // coefficients of s, s^2, s^3
+  std::array<double, 3> temp{};                    // coefficients of s, s^2, s^3
   Eigen::Vector3d stim = Eigen::Vector3d::Zero();  // m (duty/g) or n (counts per deg/s)
 };
 
@@ -80,14 +93,16 @@ Layout MakeLayout(int channel, bool uncalibrated) {
   if (uncalibrated) {
     l.candidates.push_back({Effect::kThermalHysteresis, {"half_loop"}, {}, {}});
     if (!gyro) {
-      for (double tau : kWarmUpTau_s) l.candidates.push_back({Effect::kWarmUp, {"initial_excess"}, tau, {}});
+      for (double tau : kWarmUpTau_s)
+        l.candidates.push_back({Effect::kWarmUp, {"initial_excess"}, tau, {}});
       l.candidates.push_back({Effect::kAccelNonlinearity, {"k2"}, {}, {}});
     }
   }
   for (Candidate& c : l.candidates) {
     for (const std::string& comp : c.components) {
       c.columns.push_back(static_cast<int>(l.names.size()));
-      l.names.push_back(EffectName(c.effect) + (c.tau_s ? fmt::format("_{:.0f}s", *c.tau_s) : "") + "." + comp);
+      l.names.push_back(EffectName(c.effect) + (c.tau_s ? fmt::format("_{:.0f}s", *c.tau_s) : "") +
+                        "." + comp);
     }
   }
   return l;
@@ -98,7 +113,8 @@ Layout MakeLayout(int channel, bool uncalibrated) {
 int CandidateTests(bool uncalibrated) {
   int n = 0;
   for (int ch = 0; ch < kImuChannels; ++ch) {
-    n += static_cast<int>(MakeLayout(ch, uncalibrated).candidates.size()) + (IsGyroChannel(ch) ? 1 : 0);
+    n += static_cast<int>(MakeLayout(ch, uncalibrated).candidates.size()) +
+         (IsGyroChannel(ch) ? 1 : 0);
   }
   return n;
 }
@@ -121,14 +137,16 @@ Eigen::VectorXd Row(const Layout& layout, const DiagnosisCell& c, const Baseline
     x[kRate2] = u * u;
     x[kRate3] = u * u * u;
   }
-  const double dudt_per_c = (state.temp[0] + 2.0 * state.temp[1] * s + 3.0 * state.temp[2] * s * s) / kTempHalfSpan_c;
+  const double dudt_per_c =
+      (state.temp[0] + 2.0 * state.temp[1] * s + 3.0 * state.temp[2] * s * s) / kTempHalfSpan_c;
   const double stim_part = state.stim.dot(stim);
   const double dt_c = c.temp_c[k] - kTempRef_c;
   for (const Candidate& cand : layout.candidates) {
     const int col = cand.columns[0];
     if (cand.effect == Effect::kDieLag) x[col] = -dudt_per_c * c.dtemp_dt_c_per_s[k];
     if (cand.effect == Effect::kThermalHysteresis) x[col] = c.last_change_sense[k];
-    if (cand.effect == Effect::kWarmUp) x[col] = dudt_per_c * std::exp(-c.t_since_start_s / *cand.tau_s);
+    if (cand.effect == Effect::kWarmUp)
+      x[col] = dudt_per_c * std::exp(-c.t_since_start_s / *cand.tau_s);
     if (cand.effect == Effect::kScaleTempco) {
       x[col] = stim_part * dt_c;
       x[col + 1] = stim_part * dt_c * dt_c;
@@ -147,7 +165,8 @@ Eigen::VectorXd Row(const Layout& layout, const DiagnosisCell& c, const Baseline
 struct ChannelData {
   std::vector<double> y;  // centred cell means
   double centre = 0.0;
-  double offset_ratio = std::numeric_limits<double>::infinity();  // sigma_e^2 / sigma_w^2 per row weight
+  double offset_ratio =
+      std::numeric_limits<double>::infinity();  // sigma_e^2 / sigma_w^2 per row weight
 };
 
 ChannelData CentredOutput(const DiagnosisData& data, int ch) {
@@ -162,9 +181,12 @@ ChannelData CentredOutput(const DiagnosisData& data, int ch) {
   return out;
 }
 
-ClusteredLeastSquares Accumulate(const DiagnosisData& data, const Layout& layout, const ChannelData& y,
+ClusteredLeastSquares Accumulate(const DiagnosisData& data,
+                                 const Layout& layout,
+                                 const ChannelData& y,
                                  const BaselineState& state) {
-  ClusteredLeastSquares ls(static_cast<int>(layout.names.size()), static_cast<int>(data.segments.size()));
+  ClusteredLeastSquares ls(static_cast<int>(layout.names.size()),
+                           static_cast<int>(data.segments.size()));
   ls.SetClusterOffsetRatio(y.offset_ratio);
   for (size_t i = 0; i < data.cells.size(); ++i) {
     const DiagnosisCell& c = data.cells[i];
@@ -196,25 +218,42 @@ double PhysicalScale(int ch, const BaselineState& st) {
 
 std::string RmsUnit(int ch) { return IsGyroChannel(ch) ? "dps" : "mg"; }
 
-TermTest RunTest(const ClusteredLeastSquares& ls, const std::vector<int>& selected, const ClusteredFit& selected_fit,
+TermTest RunTest(const ClusteredLeastSquares& ls,
+                 const std::vector<int>& selected,
+                 const ClusteredFit& selected_fit,
                  const Candidate& cand) {
   return TestTerm(ls, selected, selected_fit, cand.columns);
 }
 
 // Magnitudes of a candidate's components in their physical units.
-std::vector<FindingComponent> Components(const Candidate& cand, const Eigen::VectorXd& theta,
-                                         const Eigen::VectorXd& se, int ch, double phys) {
+std::vector<FindingComponent> Components(const Candidate& cand,
+                                         const Eigen::VectorXd& theta,
+                                         const Eigen::VectorXd& se,
+                                         int ch,
+                                         double phys) {
   std::vector<FindingComponent> out;
   for (size_t i = 0; i < cand.components.size(); ++i) {
     const int k = static_cast<int>(i);
     double scale = 1.0;
     std::string unit;
     if (cand.effect == Effect::kDieLag) unit = "s";
-    if (cand.effect == Effect::kThermalHysteresis) { scale = phys; unit = RmsUnit(ch); }
+    if (cand.effect == Effect::kThermalHysteresis) {
+      scale = phys;
+      unit = RmsUnit(ch);
+    }
     if (cand.effect == Effect::kWarmUp) unit = "degC";
-    if (cand.effect == Effect::kScaleTempco) { scale = 1e6; unit = i == 0 ? "ppm/degC" : "ppm/degC^2"; }
-    if (cand.effect == Effect::kAccelNonlinearity) { scale = 1000.0; unit = "mg/g^2"; }
-    if (cand.effect == Effect::kGSensitivity) { scale = phys; unit = "dps/g"; }
+    if (cand.effect == Effect::kScaleTempco) {
+      scale = 1e6;
+      unit = i == 0 ? "ppm/degC" : "ppm/degC^2";
+    }
+    if (cand.effect == Effect::kAccelNonlinearity) {
+      scale = 1000.0;
+      unit = "mg/g^2";
+    }
+    if (cand.effect == Effect::kGSensitivity) {
+      scale = phys;
+      unit = "dps/g";
+    }
     out.push_back({cand.components[i], theta[k] * scale, se[k] * scale, unit});
   }
   return out;
@@ -223,52 +262,85 @@ std::vector<FindingComponent> Components(const Candidate& cand, const Eigen::Vec
 std::string Words(const Candidate& cand, const std::vector<FindingComponent>& c, int ch) {
   const std::string name = kImuChannelNames[ch];
   const std::string thermometer = std::string("TEMP ") + "xyz"[kChannelThermometer[ch]];
-  auto pm = [](const FindingComponent& x) { return fmt::format("{:.3g} ± {:.2g} {}", x.magnitude, x.standard_error, x.unit); };
+  auto pm = [](const FindingComponent& x) {
+    return fmt::format("{:.3g} ± {:.2g} {}", x.magnitude, x.standard_error, x.unit);
+  };
   if (cand.effect == Effect::kDieLag) {
-    return fmt::format("{} follows its thermometer ({}) {} late: die thermal lag between the sensor and its "
-                       "thermometer is missing from the model", name, thermometer, pm(c[0]));
+    return fmt::format(
+        "{} follows its thermometer ({}) {} late: die thermal lag between the sensor and its "
+        "thermometer is missing from the model",
+        name,
+        thermometer,
+        pm(c[0]));
   }
   if (cand.effect == Effect::kThermalHysteresis) {
-    return fmt::format("{} reads {} higher after heating than after cooling (half the loop): thermal "
-                       "hysteresis is missing from the model", name, pm(c[0]));
+    return fmt::format(
+        "{} reads {} higher after heating than after cooling (half the loop): thermal "
+        "hysteresis is missing from the model",
+        name,
+        pm(c[0]));
   }
   if (cand.effect == Effect::kWarmUp) {
-    return fmt::format("{}'s die starts {} above its thermometer ({}) at power-on and settles with tau ≈ "
-                       "{:.0f} s: self-heating warm-up is missing from the model",
-                       name, pm(c[0]), thermometer, *cand.tau_s);
+    return fmt::format(
+        "{}'s die starts {} above its thermometer ({}) at power-on and settles with tau ≈ "
+        "{:.0f} s: self-heating warm-up is missing from the model",
+        name,
+        pm(c[0]),
+        thermometer,
+        *cand.tau_s);
   }
   if (cand.effect == Effect::kScaleTempco) {
-    return fmt::format("{}'s scale factor changes {} and {}: scale factor vs temperature is missing from "
-                       "the model", name, pm(c[0]), pm(c[1]));
+    return fmt::format(
+        "{}'s scale factor changes {} and {}: scale factor vs temperature is missing from "
+        "the model",
+        name,
+        pm(c[0]),
+        pm(c[1]));
   }
   if (cand.effect == Effect::kAccelNonlinearity) {
-    return fmt::format("{} deviates {} of its input squared: second-order accelerometer nonlinearity is "
-                       "missing from the model", name, pm(c[0]));
+    return fmt::format(
+        "{} deviates {} of its input squared: second-order accelerometer nonlinearity is "
+        "missing from the model",
+        name,
+        pm(c[0]));
   }
   size_t big = 0;
   for (size_t i = 1; i < c.size(); ++i) {
     if (std::abs(c[i].magnitude) > std::abs(c[big].magnitude)) big = i;
   }
-  return fmt::format("{} responds {:.3g} ± {:.2g} deg/s per g along {}{} (x {:.3g}, y {:.3g}, z {:.3g} dps/g): "
-                     "gyro g-sensitivity is missing from the model", name, std::abs(c[big].magnitude),
-                     c[big].standard_error, c[big].magnitude >= 0 ? "+" : "-", "XYZ"[big], c[0].magnitude,
-                     c[1].magnitude, c[2].magnitude);
+  return fmt::format(
+      "{} responds {:.3g} ± {:.2g} deg/s per g along {}{} (x {:.3g}, y {:.3g}, z {:.3g} dps/g): "
+      "gyro g-sensitivity is missing from the model",
+      name,
+      std::abs(c[big].magnitude),
+      c[big].standard_error,
+      c[big].magnitude >= 0 ? "+" : "-",
+      "XYZ"[big],
+      c[0].magnitude,
+      c[1].magnitude,
+      c[2].magnitude);
 }
 
 // Segments where the term's contribution is largest (mean |x theta| over the segment's cells).
-std::vector<std::string> Evidence(const DiagnosisData& data, const Layout& layout, const BaselineState& st,
-                                  const Candidate& cand, const Eigen::VectorXd& theta) {
+std::vector<std::string> Evidence(const DiagnosisData& data,
+                                  const Layout& layout,
+                                  const BaselineState& st,
+                                  const Candidate& cand,
+                                  const Eigen::VectorXd& theta) {
   std::vector<double> sum(data.segments.size(), 0.0), w(data.segments.size(), 0.0);
   for (const DiagnosisCell& c : data.cells) {
     const Eigen::VectorXd x = Row(layout, c, st);
     double v = 0.0;
-    for (size_t i = 0; i < cand.columns.size(); ++i) v += x[cand.columns[i]] * theta[static_cast<int>(i)];
+    for (size_t i = 0; i < cand.columns.size(); ++i)
+      v += x[cand.columns[i]] * theta[static_cast<int>(i)];
     sum[c.segment] += c.rows * std::abs(v);
     w[c.segment] += c.rows;
   }
   std::vector<int> order(data.segments.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return sum[a] / std::max(1.0, w[a]) > sum[b] / std::max(1.0, w[b]); });
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return sum[a] / std::max(1.0, w[a]) > sum[b] / std::max(1.0, w[b]);
+  });
   std::vector<std::string> out;
   for (size_t i = 0; i < order.size() && i < 3; ++i) out.push_back(data.segments[order[i]].label);
   return out;
@@ -280,20 +352,28 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-std::vector<double> Residuals(const DiagnosisData& data, const Layout& layout, const BaselineState& st,
-                              const ClusteredFit& fit, const std::vector<int>& subset, const ChannelData& y) {
+std::vector<double> Residuals(const DiagnosisData& data,
+                              const Layout& layout,
+                              const BaselineState& st,
+                              const ClusteredFit& fit,
+                              const std::vector<int>& subset,
+                              const ChannelData& y) {
   std::vector<double> r;
   for (size_t i = 0; i < data.cells.size(); ++i) {
     const Eigen::VectorXd x = Row(layout, data.cells[i], st);
     double pred = 0.0;
-    for (size_t j = 0; j < subset.size(); ++j) pred += x[subset[j]] * fit.theta[static_cast<int>(j)];
+    for (size_t j = 0; j < subset.size(); ++j)
+      pred += x[subset[j]] * fit.theta[static_cast<int>(j)];
     r.push_back(y.y[i] - pred);
   }
   return r;
 }
 
 // Segments far outside the others, and abrupt steps inside long segments, of the final residual.
-void LocateStructure(const DiagnosisData& data, int ch, const std::vector<double>& residual, double phys,
+void LocateStructure(const DiagnosisData& data,
+                     int ch,
+                     const std::vector<double>& residual,
+                     double phys,
                      std::vector<Unexplained>* out) {
   const size_t segs = data.segments.size();
   std::vector<double> sum(segs, 0.0), w(segs, 0.0), var(segs, 0.0);
@@ -315,11 +395,19 @@ void LocateStructure(const DiagnosisData& data, int ch, const std::vector<double
     if (!(w[s] > 0)) continue;
     const double white_se = std::sqrt(var[s] / w[s] / w[s]);
     const double d = mean[s] - med;
-    if (std::abs(d) > kOutlierRobustZ * robust && std::abs(d) > kOutlierNoiseZ * white_se && robust > 0.0) {
-      out->push_back({kImuChannelNames[ch], data.segments[s].label,
-                      fmt::format("segment mean {:+.3g} {} away from the other segments' (robust spread {:.2g}); "
-                                  "no candidate term explains it", d * phys, RmsUnit(ch), robust * phys),
-                      d * phys, RmsUnit(ch)});
+    if (std::abs(d) > kOutlierRobustZ * robust && std::abs(d) > kOutlierNoiseZ * white_se &&
+        robust > 0.0) {
+      out->push_back(
+          {kImuChannelNames[ch],
+           data.segments[s].label,
+           fmt::format(
+               "segment mean {:+.3g} {} away from the other segments' (robust spread {:.2g}); "
+               "no candidate term explains it",
+               d * phys,
+               RmsUnit(ch),
+               robust * phys),
+           d * phys,
+           RmsUnit(ch)});
     }
   }
   for (size_t s = 0; s < segs; ++s) {
@@ -358,10 +446,17 @@ void LocateStructure(const DiagnosisData& data, int ch, const std::vector<double
       for (const DiagnosisCell& c : data.cells) {
         if (c.segment == static_cast<int>(s) && k++ == static_cast<int>(at) + L) t_at = c.t_first_s;
       }
-      out->push_back({kImuChannelNames[ch], fmt::format("{} at t = {:.1f} s", data.segments[s].label, t_at),
-                      fmt::format("a step of {:+.3g} {} ({:.0f} times the segment's own wander over {} s); no "
-                                  "candidate term explains it", d[at] * phys, RmsUnit(ch), z, L),
-                      d[at] * phys, RmsUnit(ch)});
+      out->push_back(
+          {kImuChannelNames[ch],
+           fmt::format("{} at t = {:.1f} s", data.segments[s].label, t_at),
+           fmt::format("a step of {:+.3g} {} ({:.0f} times the segment's own wander over {} s); no "
+                       "candidate term explains it",
+                       d[at] * phys,
+                       RmsUnit(ch),
+                       z,
+                       L),
+           d[at] * phys,
+           RmsUnit(ch)});
     }
   }
 }
@@ -369,31 +464,54 @@ void LocateStructure(const DiagnosisData& data, int ch, const std::vector<double
 // Periodic lines in the rows' spectra: located, never fitted (no candidate is periodic). A line
 // below half the output's step is what capture quantisation makes of a slowly moving input (the
 // edges' tick phase beats against the frame), so it is noted, not reported.
-void LocatePeriodic(const DiagnosisData& data, int ch, double alpha, double phys, std::vector<Unexplained>* out,
+void LocatePeriodic(const DiagnosisData& data,
+                    int ch,
+                    double alpha,
+                    double phys,
+                    std::vector<Unexplained>* out,
                     std::vector<std::string>* notes) {
   const bool gyro = IsGyroChannel(ch);
   const double raw_scale = gyro ? 1.0 : 1e6;  // counts, or duty in ppm
   const char* raw_unit = gyro ? "counts" : "ppm of duty";
   for (const PeriodicLine& line : FindPeriodicLines(data.spectra, ch, alpha)) {
-    const std::string what =
-        fmt::format("periodic {:.3g} Hz, amplitude {:.3g} {} ({:.3g} {}), {:.1f} times the noise floor at that frequency",
-                    line.frequency_hz, line.amplitude * raw_scale, raw_unit, line.amplitude * phys, RmsUnit(ch),
-                    line.floor_ratio);
+    const std::string what = fmt::format(
+        "periodic {:.3g} Hz, amplitude {:.3g} {} ({:.3g} {}), {:.1f} times the noise floor at that "
+        "frequency",
+        line.frequency_hz,
+        line.amplitude * raw_scale,
+        raw_unit,
+        line.amplitude * phys,
+        RmsUnit(ch),
+        line.floor_ratio);
     if (line.amplitude < 0.5 * data.output_quantum[ch]) {
-      notes->push_back(fmt::format("{}: {}: below half the output step ({:.3g} {}), capture quantisation", kImuChannelNames[ch],
-                                   what, data.output_quantum[ch] * raw_scale, raw_unit));
+      notes->push_back(
+          fmt::format("{}: {}: below half the output step ({:.3g} {}), capture quantisation",
+                      kImuChannelNames[ch],
+                      what,
+                      data.output_quantum[ch] * raw_scale,
+                      raw_unit));
       continue;
     }
-    std::string where = fmt::format("rows of {} of {} segments with {}-row windows", line.segments.size(),
-                                    line.segments_with_windows, data.spectra.window_rows());
-    if (!line.segments.empty()) where += fmt::format(", first {}", data.segments[line.segments.front()].label);
-    out->push_back({kImuChannelNames[ch], where, what + "; no candidate term explains it", line.amplitude * phys,
+    std::string where = fmt::format("rows of {} of {} segments with {}-row windows",
+                                    line.segments.size(),
+                                    line.segments_with_windows,
+                                    data.spectra.window_rows());
+    if (!line.segments.empty())
+      where += fmt::format(", first {}", data.segments[line.segments.front()].label);
+    out->push_back({kImuChannelNames[ch],
+                    where,
+                    what + "; no candidate term explains it",
+                    line.amplitude * phys,
                     RmsUnit(ch)});
   }
 }
 
-void FillPlot(const DiagnosisData& data, const std::vector<double>& base, const std::vector<double>& final,
-              int ch, double phys, ChannelFitSummary* out) {
+void FillPlot(const DiagnosisData& data,
+              const std::vector<double>& base,
+              const std::vector<double>& final,
+              int ch,
+              double phys,
+              ChannelFitSummary* out) {
   const size_t stride = std::max<size_t>(1, data.cells.size() / kPlotCells + 1);
   for (size_t i = 0; i < data.cells.size(); i += stride) {
     out->plot_t_s.push_back(data.cells[i].t_mean_s);
@@ -403,18 +521,23 @@ void FillPlot(const DiagnosisData& data, const std::vector<double>& base, const 
   }
 }
 
-std::vector<int> BaselineSubset(const ClusteredLeastSquares& ls, const Layout& layout, std::vector<std::string>* notes) {
+std::vector<int> BaselineSubset(const ClusteredLeastSquares& ls,
+                                const Layout& layout,
+                                std::vector<std::string>* notes) {
   std::vector<int> subset;
   for (int j = 0; j < layout.baseline; ++j) {
     std::vector<int> trial = WithColumns(subset, {j});
     if (!ls.FullRank(trial)) {
-      notes->push_back(fmt::format("{}: baseline term {} is not identifiable from this recording (left out)",
-                                   kImuChannelNames[layout.channel], layout.names[j]));
+      notes->push_back(
+          fmt::format("{}: baseline term {} is not identifiable from this recording (left out)",
+                      kImuChannelNames[layout.channel],
+                      layout.names[j]));
       continue;
     }
     if (j > kOffset && !ls.Fit(trial).jackknife_ok) {
       notes->push_back(fmt::format("{}: baseline term {} rests on a single segment (left out)",
-                                   kImuChannelNames[layout.channel], layout.names[j]));
+                                   kImuChannelNames[layout.channel],
+                                   layout.names[j]));
       continue;
     }
     subset = trial;
@@ -430,7 +553,8 @@ double OffsetRatio(const DiagnosisData& data, const std::vector<double>& residua
   std::vector<double> sum(data.segments.size(), 0.0), w(data.segments.size(), 0.0);
   for (size_t i = 0; i < data.cells.size(); ++i) {
     const DiagnosisCell& c = data.cells[i];
-    if (i > 0 && data.cells[i - 1].segment == c.segment) diff.push_back(std::abs(residual[i] - residual[i - 1]));
+    if (i > 0 && data.cells[i - 1].segment == c.segment)
+      diff.push_back(std::abs(residual[i] - residual[i - 1]));
     rows.push_back(c.rows);
     sum[c.segment] += c.rows * residual[i];
     w[c.segment] += c.rows;
@@ -455,15 +579,22 @@ struct ChannelResult {
 
 // table_rate_ripple, a rig effect measured on the rows (rate_ripple.h), not a column of the cells'
 // model: its detection limit always, a finding when the test passes at `alpha`.
-void DiagnoseRipple(const DiagnosisData& data, int ch, double phys, double alpha, double power_z, ChannelResult* out) {
+void DiagnoseRipple(const DiagnosisData& data,
+                    int ch,
+                    double phys,
+                    double alpha,
+                    double power_z,
+                    ChannelResult* out) {
   const std::vector<RippleSegment>& segments = data.ripple[static_cast<size_t>(ch - 6)];
   const RippleTest r = TestRipple(segments, 1.0 / phys, alpha, power_z);
   DetectionLimit lim{"table_rate_ripple", kImuChannelNames[ch], {}, r.note};
-  if (r.testable) lim.limits.push_back({"ratio", r.smallest_detectable_ratio * 1e6, 0.0, "ppm of rate"});
+  if (r.testable)
+    lim.limits.push_back({"ratio", r.smallest_detectable_ratio * 1e6, 0.0, "ppm of rate"});
   out->limits.push_back(std::move(lim));
   if (!r.testable || r.p_value >= alpha) return;
   double fastest_dps = 0.0;
-  for (const RippleSegment& seg : segments) fastest_dps = std::max(fastest_dps, std::abs(seg.rate_dps));
+  for (const RippleSegment& seg : segments)
+    fastest_dps = std::max(fastest_dps, std::abs(seg.rate_dps));
   Finding f;
   f.effect = "table_rate_ripple";
   f.channel = kImuChannelNames[ch];
@@ -472,11 +603,18 @@ void DiagnoseRipple(const DiagnosisData& data, int ch, double phys, double alpha
   f.held_out_rms_before = r.held_out_rms_before_dps;
   f.held_out_rms_after = r.held_out_rms_after_dps;
   f.rms_unit = "dps (amplitude at the revolution frequency)";
-  for (int seg : r.strongest_segments) f.evidence.push_back(data.segments[static_cast<size_t>(seg)].label);
-  f.words = fmt::format("{} carries a line at the table's revolution frequency of {:.3g} ± {:.2g} ppm of the rate "
-                        "({:.3g} deg/s at {:.0f} deg/s, over {} segments): table rate ripple, the table turns "
-                        "unevenly once per revolution; a rig effect, not the unit's",
-                        f.channel, r.ratio * 1e6, r.ratio_se * 1e6, r.ratio * fastest_dps, fastest_dps, r.segments);
+  for (int seg : r.strongest_segments)
+    f.evidence.push_back(data.segments[static_cast<size_t>(seg)].label);
+  f.words = fmt::format(
+      "{} carries a line at the table's revolution frequency of {:.3g} ± {:.2g} ppm of the rate "
+      "({:.3g} deg/s at {:.0f} deg/s, over {} segments): table rate ripple, the table turns "
+      "unevenly once per revolution; a rig effect, not the unit's",
+      f.channel,
+      r.ratio * 1e6,
+      r.ratio_se * 1e6,
+      r.ratio * fastest_dps,
+      fastest_dps,
+      r.segments);
   out->findings.push_back(std::move(f));
 }
 
@@ -490,7 +628,9 @@ struct ChannelModel {
   std::vector<int> base;  // the baseline's identifiable columns
 };
 
-ChannelModel FitBaseline(const DiagnosisData& data, int ch, const DiagnosisOptions& options,
+ChannelModel FitBaseline(const DiagnosisData& data,
+                         int ch,
+                         const DiagnosisOptions& options,
                          std::vector<std::string>* notes) {
   Layout layout = MakeLayout(ch, options.uncalibrated_candidates);
   ChannelData y = CentredOutput(data, ch);
@@ -498,7 +638,8 @@ ChannelModel FitBaseline(const DiagnosisData& data, int ch, const DiagnosisOptio
   std::vector<int> base = BaselineSubset(ls0, layout, notes);
   const ClusteredFit base_fit0 = ls0.Fit(base);
   if (!base_fit0.ok) {
-    throw ImuInputError(data.serial + ": " + kImuChannelNames[ch] + ": the baseline cannot be fitted");
+    throw ImuInputError(data.serial + ": " + kImuChannelNames[ch] +
+                        ": the baseline cannot be fitted");
   }
   const BaselineState st = StateFrom(base_fit0, base);
   y.offset_ratio = OffsetRatio(data, Residuals(data, layout, st, base_fit0, base, y));
@@ -520,7 +661,9 @@ void RebuildFromFinalBaseline(const DiagnosisData& data, ChannelModel& m, TermSe
 
 // Forward selection over the layout's candidates, at most one per effect (one warm-up time
 // constant of several); `chosen` indexes m.layout.candidates.
-TermSelection SelectCandidates(const DiagnosisData& data, ChannelModel& m, double alpha,
+TermSelection SelectCandidates(const DiagnosisData& data,
+                               ChannelModel& m,
+                               double alpha,
                                int max_findings) {
   const std::vector<Candidate>& candidates = m.layout.candidates;
   std::vector<std::vector<int>> columns;
@@ -536,8 +679,11 @@ TermSelection SelectCandidates(const DiagnosisData& data, ChannelModel& m, doubl
   return sel;
 }
 
-Finding ChosenFinding(const DiagnosisData& data, const ChannelModel& m, const TermSelection& sel,
-                      const Candidate& cand, double phys) {
+Finding ChosenFinding(const DiagnosisData& data,
+                      const ChannelModel& m,
+                      const TermSelection& sel,
+                      const Candidate& cand,
+                      double phys) {
   const int ch = m.layout.channel;
   const std::vector<int> without = WithoutColumns(sel.selected, cand.columns);
   const ClusteredFit fit_without = m.ls.Fit(without);
@@ -559,11 +705,16 @@ Finding ChosenFinding(const DiagnosisData& data, const ChannelModel& m, const Te
 
 // The smallest size of the candidate's components the test would find with power_z, or why the
 // recording cannot test it.
-DetectionLimit CandidateLimit(const ChannelModel& m, const TermSelection& sel, const Candidate& cand,
-                              double tcrit, double power_z, double phys) {
+DetectionLimit CandidateLimit(const ChannelModel& m,
+                              const TermSelection& sel,
+                              const Candidate& cand,
+                              double tcrit,
+                              double power_z,
+                              double phys) {
   const int ch = m.layout.channel;
   DetectionLimit lim;
-  lim.effect = EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
+  lim.effect =
+      EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
   lim.channel = kImuChannelNames[ch];
   Eigen::VectorXd se;
   if (!LimitStandardErrors(m.ls, sel.selected, cand.columns, &se, &lim.note)) return lim;
@@ -573,11 +724,15 @@ DetectionLimit CandidateLimit(const ChannelModel& m, const TermSelection& sel, c
   return lim;
 }
 
-ChannelFitSummary FitSummary(const DiagnosisData& data, const ChannelModel& m, const ClusteredFit& base_fit,
-                             const ClusteredFit& final_fit, double phys) {
+ChannelFitSummary FitSummary(const DiagnosisData& data,
+                             const ChannelModel& m,
+                             const ClusteredFit& base_fit,
+                             const ClusteredFit& final_fit,
+                             double phys) {
   const int ch = m.layout.channel;
   std::vector<double> white;
-  for (const DiagnosisCell& c : data.cells) white.push_back(std::sqrt(c.y_var[ch] / std::max(1, c.rows)));
+  for (const DiagnosisCell& c : data.cells)
+    white.push_back(std::sqrt(c.y_var[ch] / std::max(1, c.rows)));
   ChannelFitSummary summary;
   summary.channel = kImuChannelNames[ch];
   summary.unit = RmsUnit(ch);
@@ -588,7 +743,10 @@ ChannelFitSummary FitSummary(const DiagnosisData& data, const ChannelModel& m, c
   return summary;
 }
 
-ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const DiagnosisOptions& options, double alpha,
+ChannelResult DiagnoseChannel(const DiagnosisData& data,
+                              int ch,
+                              const DiagnosisOptions& options,
+                              double alpha,
                               std::vector<std::string>* notes) {
   ChannelModel m = FitBaseline(data, ch, options, notes);
   const TermSelection sel = SelectCandidates(data, m, alpha, options.max_findings_per_channel);
@@ -596,7 +754,8 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
   const double tcrit = TCritical(alpha, sel.fit.clusters);
   ChannelResult out;
   for (int k : sel.chosen) {
-    out.findings.push_back(ChosenFinding(data, m, sel, m.layout.candidates[static_cast<size_t>(k)], phys));
+    out.findings.push_back(
+        ChosenFinding(data, m, sel, m.layout.candidates[static_cast<size_t>(k)], phys));
   }
   for (const Candidate& cand : m.layout.candidates) {
     out.limits.push_back(CandidateLimit(m, sel, cand, tcrit, options.power_z, phys));
@@ -604,7 +763,12 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
   const ClusteredFit base_fit = m.ls.Fit(m.base);
   out.summary = FitSummary(data, m, base_fit, sel.fit, phys);
   const std::vector<double> residual = Residuals(data, m.layout, m.st, sel.fit, sel.selected, m.y);
-  FillPlot(data, Residuals(data, m.layout, m.st, base_fit, m.base, m.y), residual, ch, phys, &out.summary);
+  FillPlot(data,
+           Residuals(data, m.layout, m.st, base_fit, m.base, m.y),
+           residual,
+           ch,
+           phys,
+           &out.summary);
   LocateStructure(data, ch, residual, phys, &out.unexplained);
   LocatePeriodic(data, ch, options.family_alpha / kImuChannels, phys, &out.unexplained, notes);
   if (IsGyroChannel(ch)) DiagnoseRipple(data, ch, phys, alpha, options.power_z, &out);
@@ -614,15 +778,21 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data, int ch, const Diagnosis
 }  // namespace
 
 json FindingComponent::ToJson() const {
-  return {{"name", name}, {"magnitude", magnitude}, {"standard_error", standard_error}, {"unit", unit}};
+  return {
+      {"name", name}, {"magnitude", magnitude}, {"standard_error", standard_error}, {"unit", unit}};
 }
 
 json Finding::ToJson() const {
   json comps = json::array();
   for (const FindingComponent& c : components) comps.push_back(c.ToJson());
-  json j = {{"effect", effect}, {"channels", json::array({channel})}, {"components", comps},
-            {"wald_p_value", wald_p_value}, {"held_out_rms_before", held_out_rms_before},
-            {"held_out_rms_after", held_out_rms_after}, {"rms_unit", rms_unit}, {"evidence", evidence},
+  json j = {{"effect", effect},
+            {"channels", json::array({channel})},
+            {"components", comps},
+            {"wald_p_value", wald_p_value},
+            {"held_out_rms_before", held_out_rms_before},
+            {"held_out_rms_after", held_out_rms_after},
+            {"rms_unit", rms_unit},
+            {"evidence", evidence},
             {"words", words}};
   if (!components.empty()) {
     j["magnitude"] = components[0].magnitude;
@@ -634,7 +804,11 @@ json Finding::ToJson() const {
 }
 
 json Unexplained::ToJson() const {
-  return {{"channel", channel}, {"where", where}, {"description", description}, {"size", size}, {"unit", unit}};
+  return {{"channel", channel},
+          {"where", where},
+          {"description", description},
+          {"size", size},
+          {"unit", unit}};
 }
 
 json DetectionLimit::ToJson() const {
@@ -644,15 +818,19 @@ json DetectionLimit::ToJson() const {
     j["note"] = note;
   } else {
     json l = json::array();
-    for (const FindingComponent& c : limits) l.push_back({{"name", c.name}, {"smallest_detectable", c.magnitude}, {"unit", c.unit}});
+    for (const FindingComponent& c : limits)
+      l.push_back({{"name", c.name}, {"smallest_detectable", c.magnitude}, {"unit", c.unit}});
     j["limits"] = l;
   }
   return j;
 }
 
 json ChannelFitSummary::ToJson() const {
-  return {{"channel", channel}, {"unit", unit}, {"held_out_rms_baseline", held_out_rms_baseline},
-          {"held_out_rms_final", held_out_rms_final}, {"white_noise_rms_per_cell", white_noise_rms},
+  return {{"channel", channel},
+          {"unit", unit},
+          {"held_out_rms_baseline", held_out_rms_baseline},
+          {"held_out_rms_final", held_out_rms_final},
+          {"white_noise_rms_per_cell", white_noise_rms},
           {"baseline_terms", baseline_terms}};
 }
 
@@ -662,10 +840,19 @@ json UnitDiagnosis::ToJson() const {
   for (const Unexplained& x : unexplained) u.push_back(x.ToJson());
   for (const DetectionLimit& x : detection_limits) d.push_back(x.ToJson());
   for (const ChannelFitSummary& x : channels) c.push_back(x.ToJson());
-  return {{"serial", serial}, {"rows", rows}, {"segments", segments}, {"cells", cells},
-          {"temperature_span_c", temp_span_c}, {"thermometers_fitted", thermometers_fitted},
-          {"tests", tests}, {"per_test_alpha", test_alpha}, {"findings", f}, {"unexplained", u},
-          {"detection_limits", d}, {"channels", c}, {"notes", notes}};
+  return {{"serial", serial},
+          {"rows", rows},
+          {"segments", segments},
+          {"cells", cells},
+          {"temperature_span_c", temp_span_c},
+          {"thermometers_fitted", thermometers_fitted},
+          {"tests", tests},
+          {"per_test_alpha", test_alpha},
+          {"findings", f},
+          {"unexplained", u},
+          {"detection_limits", d},
+          {"channels", c},
+          {"notes", notes}};
 }
 
 UnitDiagnosis DiagnoseImu(const DiagnosisData& data, const DiagnosisOptions& options) {
@@ -675,22 +862,33 @@ UnitDiagnosis DiagnoseImu(const DiagnosisData& data, const DiagnosisOptions& opt
   out.segments = static_cast<int>(data.segments.size());
   out.cells = static_cast<int>(data.cells.size());
   out.temp_span_c = data.temp_span_c;
-  out.thermometers_fitted = data.thermometers[0].fitted && data.thermometers[1].fitted && data.thermometers[2].fitted;
+  out.thermometers_fitted =
+      data.thermometers[0].fitted && data.thermometers[1].fitted && data.thermometers[2].fitted;
   if (!out.thermometers_fitted) {
-    out.notes.push_back("the recording's soaks span less than 5 degC: thermometers use the datasheet's 110.1 counts/degC");
+    out.notes.push_back(
+        "the recording's soaks span less than 5 degC: thermometers use the datasheet's 110.1 "
+        "counts/degC");
   }
-  out.notes.push_back(
-      data.seq_gaps == 0
-          ? "sequence counter: no packet missing inside a segment"
-          : fmt::format("sequence counter: {} gap(s) inside segments, {} packet(s) missing (the largest, {}, at t = {:.2f} s; "
-                        "a gap of 256 or more is counted modulo 256); cells close at a gap in time, nothing is interpolated",
-                        data.seq_gaps, data.seq_missing, data.largest_seq_gap, data.largest_seq_gap_at_s));
+  out.notes.push_back(data.seq_gaps == 0
+                          ? "sequence counter: no packet missing inside a segment"
+                          : fmt::format("sequence counter: {} gap(s) inside segments, {} packet(s) "
+                                        "missing (the largest, {}, at t = {:.2f} s; "
+                                        "a gap of 256 or more is counted modulo 256); cells close "
+                                        "at a gap in time, nothing is interpolated",
+                                        data.seq_gaps,
+                                        data.seq_missing,
+                                        data.largest_seq_gap,
+                                        data.largest_seq_gap_at_s));
   out.notes.push_back(
       data.spectra.windows() == 0
-          ? fmt::format("row spectra: no run of {} rows at a steady interval: periodic lines not searched",
-                        data.spectra.window_rows())
-          : fmt::format("row spectra: {} windows of {} rows at {:.4g} s (bins of {:.3g} Hz)", data.spectra.windows(),
-                        data.spectra.window_rows(), data.spectra.dt_s(), data.spectra.BinHz(1.0)));
+          ? fmt::format(
+                "row spectra: no run of {} rows at a steady interval: periodic lines not searched",
+                data.spectra.window_rows())
+          : fmt::format("row spectra: {} windows of {} rows at {:.4g} s (bins of {:.3g} Hz)",
+                        data.spectra.windows(),
+                        data.spectra.window_rows(),
+                        data.spectra.dt_s(),
+                        data.spectra.BinHz(1.0)));
   out.tests = CandidateTests(options.uncalibrated_candidates);
   out.test_alpha = options.family_alpha / out.tests;
   for (int ch = 0; ch < kImuChannels; ++ch) {

@@ -1,7 +1,8 @@
 // Diagnosis of one IMU recording against the pipeline's own forward model (docs/diagnose.md).
 //
-// Baseline, per channel, what the reference method and the joint calibration assume (imu_joint_fit.h),
-// fitted to this recording first so that only what the model cannot express remains:
+// Baseline, per channel, what the reference method and the joint calibration assume
+// (imu_joint_fit.h), fitted to this recording first so that only what the model cannot express
+// remains:
 //   accelerometer:  U = o + a1 s + a2 s^2 + a3 s^3 + m . f_B_g
 //   gyro:           U = c + b1 s + b2 s^2 + b3 s^3 + n . w_B_dps + q2 u^2 + q3 u^3
 // s = (T - 25 degC) / 62.5 degC of the channel's thermometer, u = w_axis / 150 deg/s.
@@ -9,11 +10,12 @@
 // (they share the simulator's vocabulary, not its code); the last three only with
 // DiagnosisOptions::uncalibrated_candidates, and lag and warm-up only for the accelerometers (a
 // gyro's thermometer is its own die's TEMP pin):
-//   die_thermal_lag         -dU/dT * dT/dt             delay of the channel's die behind its thermometer, s
-//   scale_factor_tempco     (stimulus part) * dT, dT^2  ppm/degC, ppm/degC^2
+//   die_thermal_lag         -dU/dT * dT/dt             delay of the channel's die behind its
+//   thermometer, s scale_factor_tempco     (stimulus part) * dT, dT^2  ppm/degC, ppm/degC^2
 //   gyro_g_sensitivity      f_B_g x, y, z              deg/s/g (gyros)
 //   thermal_hysteresis      sense of the last change   half the up/down loop, mg or deg/s
-//   self_heating_warm_up    dU/dT * exp(-t/tau_w)      the die's excess over its thermometer at power-on, degC
+//   self_heating_warm_up    dU/dT * exp(-t/tau_w)      the die's excess over its thermometer at
+//   power-on, degC
 //                                                      (tau_w from a grid: 150, 300, 600, 1200 s)
 //   accel_nonlinearity      |S| f_axis^2               mg/g^2 (accelerometers)
 // and, on the rows rather than the cells, table_rate_ripple: a line at the table's revolution
@@ -47,7 +49,7 @@ struct DiagnosisOptions {
   /// the 1 % aimed at: the jackknife over a few dozen segments is anti-conservative by about that
   /// (measured on clean units, docs/diagnose.md).
   double family_alpha = 0.001;
-  double power_z = 0.8416;     ///< z of 80 % power, for detection limits
+  double power_z = 0.8416;  ///< z of 80 % power, for detection limits
   int max_findings_per_channel = 4;
   /// Also test thermal_hysteresis, self_heating_warm_up and accel_nonlinearity, whose false
   /// discoveries on clean recordings are not yet controlled (docs/diagnose.md gives the rate).
@@ -115,8 +117,8 @@ struct UnitDiagnosis {
   int cells = 0;
   double temp_span_c = 0.0;
   bool thermometers_fitted = false;
-  int tests = 0;             ///< (channel, candidate) tests the Bonferroni level divides by
-  double test_alpha = 0.0;   ///< per test
+  int tests = 0;            ///< (channel, candidate) tests the Bonferroni level divides by
+  double test_alpha = 0.0;  ///< per test
   std::vector<Finding> findings;
   std::vector<Unexplained> unexplained;
   std::vector<DetectionLimit> detection_limits;

@@ -21,7 +21,10 @@ double Median(std::vector<double> v) {
 }
 
 // k^2 from every segment but `skip` (-1: none), their standard errors scaled by sqrt(inflation).
-double RatioSquared(const std::vector<RippleSegment>& s, double counts_per_dps, double inflation, int skip) {
+double RatioSquared(const std::vector<RippleSegment>& s,
+                    double counts_per_dps,
+                    double inflation,
+                    int skip) {
   double num = 0.0, den = 0.0;
   for (size_t i = 0; i < s.size(); ++i) {
     if (static_cast<int>(i) == skip) continue;
@@ -38,17 +41,22 @@ double RatioSquared(const std::vector<RippleSegment>& s, double counts_per_dps, 
 // the normal approximation of the noncentral chi^2 (mean df + lambda, variance 2 (df + 2 lambda)).
 double NeededNoncentrality(double df, double critical, double power_z) {
   double lambda = std::max(0.0, critical - df);
-  for (int i = 0; i < 50; ++i) lambda = std::max(0.0, critical - df + power_z * std::sqrt(2.0 * (df + 2.0 * lambda)));
+  for (int i = 0; i < 50; ++i)
+    lambda = std::max(0.0, critical - df + power_z * std::sqrt(2.0 * (df + 2.0 * lambda)));
   return lambda;
 }
 
 }  // namespace
 
-std::optional<LockIn> FitLockIn(const std::vector<double>& t_s, const std::vector<double>& y, double frequency_hz) {
+std::optional<LockIn> FitLockIn(const std::vector<double>& t_s,
+                                const std::vector<double>& y,
+                                double frequency_hz) {
   const size_t n = std::min(t_s.size(), y.size());
   if (n < static_cast<size_t>(kMinLockInRows)) return std::nullopt;
-  const double t_mean = std::accumulate(t_s.begin(), t_s.begin() + static_cast<long>(n), 0.0) / static_cast<double>(n);
-  const double y_mean = std::accumulate(y.begin(), y.begin() + static_cast<long>(n), 0.0) / static_cast<double>(n);
+  const double t_mean = std::accumulate(t_s.begin(), t_s.begin() + static_cast<long>(n), 0.0) /
+                        static_cast<double>(n);
+  const double y_mean =
+      std::accumulate(y.begin(), y.begin() + static_cast<long>(n), 0.0) / static_cast<double>(n);
   Eigen::Matrix4d xtx = Eigen::Matrix4d::Zero();
   Eigen::Vector4d xty = Eigen::Vector4d::Zero();
   double yty = 0.0;
@@ -74,7 +82,9 @@ std::optional<LockIn> FitLockIn(const std::vector<double>& t_s, const std::vecto
 
 std::vector<double> RippleControlRatios() { return {0.55, 0.65, 0.75, 1.3, 1.45, 1.6}; }
 
-std::optional<RippleSegment> MeasureRipple(int segment, double rate_dps, const std::vector<double>& t_s,
+std::optional<RippleSegment> MeasureRipple(int segment,
+                                           double rate_dps,
+                                           const std::vector<double>& t_s,
                                            const std::vector<double>& y) {
   const double f = std::abs(rate_dps) / 360.0;
   if (f < kMinRippleHz || t_s.size() < 2) return std::nullopt;
@@ -88,12 +98,16 @@ std::optional<RippleSegment> MeasureRipple(int segment, double rate_dps, const s
   return s;
 }
 
-RippleTest TestRipple(const std::vector<RippleSegment>& segments, double counts_per_dps, double alpha,
+RippleTest TestRipple(const std::vector<RippleSegment>& segments,
+                      double counts_per_dps,
+                      double alpha,
                       double power_z) {
   RippleTest out;
   out.segments = static_cast<int>(segments.size());
   if (segments.empty() || !(counts_per_dps > 0.0)) {
-    out.note = "no rate segment with this gyro on the table axis turning at 36 deg/s (0.1 Hz) or more for 3 turns";
+    out.note =
+        "no rate segment with this gyro on the table axis turning at 36 deg/s (0.1 Hz) or more for "
+        "3 turns";
     return out;
   }
   std::vector<double> control;
@@ -112,7 +126,8 @@ RippleTest TestRipple(const std::vector<RippleSegment>& segments, double counts_
   out.testable = true;
   out.p_value = boost::math::cdf(boost::math::complement(chi2, statistic));
   const double critical = boost::math::quantile(boost::math::complement(chi2, alpha));
-  out.smallest_detectable_ratio = std::sqrt(NeededNoncentrality(df, critical, power_z) / signal_per_k2);
+  out.smallest_detectable_ratio =
+      std::sqrt(NeededNoncentrality(df, critical, power_z) / signal_per_k2);
 
   const double k2 = RatioSquared(segments, counts_per_dps, out.inflation, -1);
   out.ratio = std::sqrt(std::max(0.0, k2));
@@ -132,16 +147,21 @@ RippleTest TestRipple(const std::vector<RippleSegment>& segments, double counts_
   for (size_t i = 0; i < segments.size(); ++i) {
     const LockIn& l = segments[i].at_revolution;
     const double r = std::hypot(l.cos_amp, l.sin_amp);
-    const double predicted = std::sqrt(std::max(0.0, RatioSquared(segments, counts_per_dps, out.inflation, static_cast<int>(i)))) *
-                             std::abs(segments[i].rate_dps) * counts_per_dps;
+    const double predicted =
+        std::sqrt(std::max(
+            0.0, RatioSquared(segments, counts_per_dps, out.inflation, static_cast<int>(i)))) *
+        std::abs(segments[i].rate_dps) * counts_per_dps;
     before += r * r;
     after += (r - predicted) * (r - predicted);
     strength.push_back({r, segments[i].segment});
   }
-  out.held_out_rms_before_dps = std::sqrt(before / static_cast<double>(segments.size())) / counts_per_dps;
-  out.held_out_rms_after_dps = std::sqrt(after / static_cast<double>(segments.size())) / counts_per_dps;
+  out.held_out_rms_before_dps =
+      std::sqrt(before / static_cast<double>(segments.size())) / counts_per_dps;
+  out.held_out_rms_after_dps =
+      std::sqrt(after / static_cast<double>(segments.size())) / counts_per_dps;
   std::sort(strength.rbegin(), strength.rend());
-  for (size_t i = 0; i < std::min<size_t>(3, strength.size()); ++i) out.strongest_segments.push_back(strength[i].second);
+  for (size_t i = 0; i < std::min<size_t>(3, strength.size()); ++i)
+    out.strongest_segments.push_back(strength[i].second);
   return out;
 }
 

@@ -2,8 +2,8 @@
 // axis is the table axis as a sinusoid at the revolution frequency f = |rate| / 360 Hz with an
 // amplitude k |rate| (k: the table's relative rate ripple; an encoder's once-per-revolution angle
 // error e sin(theta) gives k = e in radians). It averages away in 1 s cells, so it is measured on
-// the rows: per rate segment, a least-squares lock-in y = a + b t + c cos(2 pi f t) + d sin(2 pi f t)
-// (t from the packet counter; the phase is free per segment, since the table angle is not
+// the rows: per rate segment, a least-squares lock-in y = a + b t + c cos(2 pi f t) + d sin(2 pi f
+// t) (t from the packet counter; the phase is free per segment, since the table angle is not
 // recorded), and the same lock-in at control frequencies away from f and its harmonics.
 // Test, per gyro: T = sum over segments of (c^2 + d^2) / se^2 against chi^2 with 2 S degrees of
 // freedom, after dividing T by the control frequencies' inflation (their median statistic over
@@ -38,7 +38,8 @@ struct LockIn {
 
 /// Least-squares lock-in of `y` at `frequency_hz` with an offset and a slope; nullopt when the
 /// rows cannot support it (fewer than 8, or a singular design).
-std::optional<LockIn> FitLockIn(const std::vector<double>& t_s, const std::vector<double>& y,
+std::optional<LockIn> FitLockIn(const std::vector<double>& t_s,
+                                const std::vector<double>& y,
                                 double frequency_hz);
 
 /// One gyro's lock-ins over one rate segment whose axis is the table axis.
@@ -53,16 +54,18 @@ struct RippleSegment {
 std::vector<double> RippleControlRatios();
 
 /// The lock-ins of one segment's rows, or nullopt when the segment is too slow or too short.
-std::optional<RippleSegment> MeasureRipple(int segment, double rate_dps, const std::vector<double>& t_s,
+std::optional<RippleSegment> MeasureRipple(int segment,
+                                           double rate_dps,
+                                           const std::vector<double>& t_s,
                                            const std::vector<double>& y);
 
 struct RippleTest {
   bool testable = false;
-  std::string note;          ///< why not, when not testable
+  std::string note;  ///< why not, when not testable
   int segments = 0;
-  double inflation = 1.0;    ///< control statistic's median over chi^2_2's, at least 1
+  double inflation = 1.0;  ///< control statistic's median over chi^2_2's, at least 1
   double p_value = 1.0;
-  double ratio = 0.0;        ///< k
+  double ratio = 0.0;  ///< k
   double ratio_se = 0.0;
   double smallest_detectable_ratio = 0.0;  ///< at `alpha` with the given power
   double held_out_rms_before_dps = 0.0;
@@ -71,7 +74,9 @@ struct RippleTest {
 };
 
 /// Tests and sizes the ripple from one gyro's segments; `counts_per_dps` is the channel's scale.
-RippleTest TestRipple(const std::vector<RippleSegment>& segments, double counts_per_dps, double alpha,
+RippleTest TestRipple(const std::vector<RippleSegment>& segments,
+                      double counts_per_dps,
+                      double alpha,
                       double power_z);
 
 }  // namespace adahrs::calib

@@ -11,7 +11,8 @@ namespace {
 
 std::string ChannelFigure(const std::string& serial, const ChannelReplayFit& c) {
   Plot p;
-  p.title = fmt::format("{} {}: mean residual of each acquisition, recorded - replayed", serial, c.channel);
+  p.title = fmt::format(
+      "{} {}: mean residual of each acquisition, recorded - replayed", serial, c.channel);
   p.x_label = "acquisition (in run order)";
   p.y_label = "residual (" + c.unit + ")";
   PlotSeries base{"base model", {}, {}, PlotSeries::Style::kPoints};
@@ -34,18 +35,29 @@ std::string ChannelFigure(const std::string& serial, const ChannelReplayFit& c) 
 }
 
 std::string CheckSection(const ReplayComparison& c, size_t index) {
-  std::string body = "<p>" + XmlEscape(fmt::format("{} re-simulated with the base model ({}) and with model.json ({}); {}.",
-                                                   c.recording.string(), c.base_replay.string(), c.model_replay.string(),
-                                                   c.held_out ? "held out: the diagnosis did not see this run"
-                                                              : "a diagnosed run: not held out")) + "</p>";
+  std::string body = "<p>" +
+                     XmlEscape(fmt::format(
+                         "{} re-simulated with the base model ({}) and with model.json ({}); {}.",
+                         c.recording.string(),
+                         c.base_replay.string(),
+                         c.model_replay.string(),
+                         c.held_out ? "held out: the diagnosis did not see this run"
+                                    : "a diagnosed run: not held out")) +
+                     "</p>";
   for (const UnitReplayFit& u : c.units) {
     HtmlTable t{u.serial + ": RMS over the acquisitions of the mean residual, recorded - replayed",
-                {"channel", "base model", "model.json", "noise alone", "unit", "acquisitions"}, {}};
+                {"channel", "base model", "model.json", "noise alone", "unit", "acquisitions"},
+                {}};
     std::string figures;
     for (const ChannelReplayFit& ch : u.channels) {
-      t.rows.push_back({ch.channel, FormatNumber(ch.rms_base, 3), FormatNumber(ch.rms_model, 3),
-                        FormatNumber(ch.rms_noise, 2), ch.unit, std::to_string(ch.acquisitions.size())});
-      if (std::max(ch.rms_base, ch.rms_model) > 2.0 * ch.rms_noise) figures += ChannelFigure(u.serial, ch);
+      t.rows.push_back({ch.channel,
+                        FormatNumber(ch.rms_base, 3),
+                        FormatNumber(ch.rms_model, 3),
+                        FormatNumber(ch.rms_noise, 2),
+                        ch.unit,
+                        std::to_string(ch.acquisitions.size())});
+      if (std::max(ch.rms_base, ch.rms_model) > 2.0 * ch.rms_noise)
+        figures += ChannelFigure(u.serial, ch);
     }
     body += RenderTable(t) + figures;
   }
@@ -55,17 +67,23 @@ std::string CheckSection(const ReplayComparison& c, size_t index) {
 }  // namespace
 
 std::string ReplayCheckHtml(const std::vector<ReplayComparison>& checks) {
-  std::string body = "<h1>Re-simulation check</h1><p>Each run's stimulus replayed with the unit model the diagnosis "
-                     "started from and with the model it wrote (docs/diagnose.md).</p>";
+  std::string body =
+      "<h1>Re-simulation check</h1><p>Each run's stimulus replayed with the unit model the "
+      "diagnosis "
+      "started from and with the model it wrote (docs/diagnose.md).</p>";
   if (checks.empty()) body += NotAvailable("a check", "no run held a diagnosed unit");
   for (size_t i = 0; i < checks.size(); ++i) body += CheckSection(checks[i], i);
-  return "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\"><head><meta charset=\"utf-8\"/>"
-         "<title>adahrs re-simulation check</title><style>body{font-family:sans-serif;max-width:72em;margin:auto}"
-         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #999;padding:2px 6px}</style></head><body>" +
+  return "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\"><head><meta "
+         "charset=\"utf-8\"/>"
+         "<title>adahrs re-simulation "
+         "check</title><style>body{font-family:sans-serif;max-width:72em;margin:auto}"
+         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #999;padding:2px "
+         "6px}</style></head><body>" +
          body + "</body></html>\n";
 }
 
-void WriteReplayCheck(const std::vector<ReplayComparison>& checks, const std::filesystem::path& out_dir) {
+void WriteReplayCheck(const std::vector<ReplayComparison>& checks,
+                      const std::filesystem::path& out_dir) {
   nlohmann::json all = nlohmann::json::array();
   for (const ReplayComparison& c : checks) all.push_back(c.ToJson());
   std::filesystem::create_directories(out_dir);

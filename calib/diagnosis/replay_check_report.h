@@ -16,6 +16,7 @@ namespace adahrs::calib {
 std::string ReplayCheckHtml(const std::vector<ReplayComparison>& checks);
 
 /// Writes `out_dir`/replay_check.json and replay_check.html, each atomically.
-void WriteReplayCheck(const std::vector<ReplayComparison>& checks, const std::filesystem::path& out_dir);
+void WriteReplayCheck(const std::vector<ReplayComparison>& checks,
+                      const std::filesystem::path& out_dir);
 
 }  // namespace adahrs::calib

@@ -52,7 +52,8 @@ struct RunMeans {
   std::map<std::string, bool> imu;  // serial -> is an IMU
 };
 
-Acquisition& At(RunMeans* m, const std::string& serial, int step, int tag, long rate, size_t channels) {
+Acquisition& At(
+    RunMeans* m, const std::string& serial, int step, int tag, long rate, size_t channels) {
   Acquisition& a = m->acquisitions[{serial, step, tag, rate}];
   if (a.channels.empty()) a.channels.resize(channels);
   return a;
@@ -64,13 +65,15 @@ RunMeans ReadMeans(const fs::path& run) {
   sinks.imu = [&](hil::ImuRecordRow&& r, int) {
     if (r.tag == 0) return;
     m.imu[r.unit] = true;
-    Acquisition& a = At(&m, r.unit, r.step, r.tag, std::lround(r.table_rate_dps * 10.0), kImuChannels);
+    Acquisition& a =
+        At(&m, r.unit, r.step, r.tag, std::lround(r.table_rate_dps * 10.0), kImuChannels);
     for (size_t ch = 0; ch < 6; ++ch) {
       const double t2 = r.accel_ticks[2 * ch + 1];
       if (t2 <= 0.0) continue;
       a.channels[ch].Add((r.accel_ticks[2 * ch] / t2 - 0.5) / kAccelDatasheetDutyPerG * 1000.0);
     }
-    for (size_t g = 0; g < 3; ++g) a.channels[6 + g].Add(r.gyro_cnt[g] / kGyroDatasheetCountsPerDps);
+    for (size_t g = 0; g < 3; ++g)
+      a.channels[6 + g].Add(r.gyro_cnt[g] / kGyroDatasheetCountsPerDps);
   };
   sinks.ads = [&](hil::AdsRecordRow&& r, int) {
     if (r.tag == 0) return;
@@ -108,7 +111,11 @@ double Rms(const std::vector<AcquisitionResidual>& v, double AcquisitionResidual
   return v.empty() ? 0.0 : std::sqrt(s / static_cast<double>(v.size()));
 }
 
-ChannelReplayFit CompareChannel(const std::string& serial, bool imu, int ch, const RunMeans& rec, const RunMeans& base,
+ChannelReplayFit CompareChannel(const std::string& serial,
+                                bool imu,
+                                int ch,
+                                const RunMeans& rec,
+                                const RunMeans& base,
                                 const RunMeans& model) {
   ChannelReplayFit fit;
   fit.channel = imu ? kImuChannelNames[ch] : kAdsChannelNames[ch];
@@ -128,10 +135,12 @@ ChannelReplayFit CompareChannel(const std::string& serial, bool imu, int ch, con
     if (r.n == 0 || rb.n == 0 || rm.n == 0) continue;
     AcquisitionResidual res;
     res.label = fmt::format("step {} tag {}", std::get<1>(key), std::get<2>(key));
-    if (imu && std::get<3>(key) != 0) res.label += fmt::format(" at {:g} dps", 0.1 * static_cast<double>(std::get<3>(key)));
+    if (imu && std::get<3>(key) != 0)
+      res.label += fmt::format(" at {:g} dps", 0.1 * static_cast<double>(std::get<3>(key)));
     res.base = (r.Mean() - rb.Mean()) * scale;
     res.model = (r.Mean() - rm.Mean()) * scale;
-    res.noise_se = std::sqrt(r.VarianceOfMean() + 0.5 * (rb.VarianceOfMean() + rm.VarianceOfMean())) * scale;
+    res.noise_se =
+        std::sqrt(r.VarianceOfMean() + 0.5 * (rb.VarianceOfMean() + rm.VarianceOfMean())) * scale;
     fit.acquisitions.push_back(std::move(res));
   }
   fit.rms_base = Rms(fit.acquisitions, &AcquisitionResidual::base);
@@ -145,10 +154,15 @@ ChannelReplayFit CompareChannel(const std::string& serial, bool imu, int ch, con
 json ChannelReplayFit::ToJson() const {
   json acq = json::array();
   for (const AcquisitionResidual& a : acquisitions) {
-    acq.push_back({{"acquisition", a.label}, {"base", a.base}, {"model", a.model}, {"noise_se", a.noise_se}});
+    acq.push_back(
+        {{"acquisition", a.label}, {"base", a.base}, {"model", a.model}, {"noise_se", a.noise_se}});
   }
-  return {{"channel", channel},   {"unit", unit},           {"rms_base", rms_base},
-          {"rms_model", rms_model}, {"rms_noise", rms_noise}, {"acquisitions", acq}};
+  return {{"channel", channel},
+          {"unit", unit},
+          {"rms_base", rms_base},
+          {"rms_model", rms_model},
+          {"rms_noise", rms_noise},
+          {"acquisitions", acq}};
 }
 
 json UnitReplayFit::ToJson() const {
@@ -169,10 +183,13 @@ json ReplayComparison::ToJson() const {
           {"units", u}};
 }
 
-ReplayComparison CompareReplays(const fs::path& recording, const fs::path& base_replay, const fs::path& model_replay,
+ReplayComparison CompareReplays(const fs::path& recording,
+                                const fs::path& base_replay,
+                                const fs::path& model_replay,
                                 bool held_out) {
   ReplayComparison out{recording, base_replay, model_replay, held_out, {}};
-  const RunMeans rec = ReadMeans(recording), base = ReadMeans(base_replay), model = ReadMeans(model_replay);
+  const RunMeans rec = ReadMeans(recording), base = ReadMeans(base_replay),
+                 model = ReadMeans(model_replay);
   for (const auto& [serial, imu] : rec.imu) {
     if (base.imu.count(serial) == 0 || model.imu.count(serial) == 0) continue;
     UnitReplayFit unit{serial, {}};
@@ -183,14 +200,20 @@ ReplayComparison CompareReplays(const fs::path& recording, const fs::path& base_
     if (!unit.channels.empty()) out.units.push_back(std::move(unit));
   }
   if (out.units.empty()) {
-    throw std::runtime_error(fmt::format("{} and {}: no acquisition (step and TAG) of {} in both replays",
-                                         base_replay.string(), model_replay.string(), recording.string()));
+    throw std::runtime_error(
+        fmt::format("{} and {}: no acquisition (step and TAG) of {} in both replays",
+                    base_replay.string(),
+                    model_replay.string(),
+                    recording.string()));
   }
   return out;
 }
 
-ReplayComparison CheckByReplay(const fs::path& run, const std::vector<fs::path>& base_files,
-                               const std::vector<fs::path>& model_files, const fs::path& work_dir, bool held_out,
+ReplayComparison CheckByReplay(const fs::path& run,
+                               const std::vector<fs::path>& base_files,
+                               const std::vector<fs::path>& model_files,
+                               const fs::path& work_dir,
+                               bool held_out,
                                const ReplayFunction& replay) {
   fs::remove_all(work_dir / "base");
   fs::remove_all(work_dir / "model");

@@ -22,9 +22,9 @@
 namespace adahrs::calib {
 
 struct AcquisitionResidual {
-  std::string label;  ///< "step 12 tag 3", "step 5 tag 6 at -25 dps"
-  double base = 0.0;  ///< recorded − replayed with the base model, channel unit
-  double model = 0.0; ///< recorded − replayed with the augmented model
+  std::string label;      ///< "step 12 tag 3", "step 5 tag 6 at -25 dps"
+  double base = 0.0;      ///< recorded − replayed with the base model, channel unit
+  double model = 0.0;     ///< recorded − replayed with the augmented model
   double noise_se = 0.0;  ///< standard error of either difference from the rows' scatter
 };
 
@@ -54,8 +54,10 @@ struct ReplayComparison {
 /// Compares `recording` with its replays by the base and the augmented model. Units present in
 /// all three are compared. Throws hil::RecordingError for an unreadable run and
 /// std::runtime_error naming the replay when it shares no acquisition with the recording.
-ReplayComparison CompareReplays(const std::filesystem::path& recording, const std::filesystem::path& base_replay,
-                                const std::filesystem::path& model_replay, bool held_out);
+ReplayComparison CompareReplays(const std::filesystem::path& recording,
+                                const std::filesystem::path& base_replay,
+                                const std::filesystem::path& model_replay,
+                                bool held_out);
 
 /// Re-simulates run `run` with `unit_files` into the new directory `out` (the application hands in
 /// rig_sim::ReplayRecording: the pipeline itself never simulates).
@@ -65,8 +67,11 @@ using ReplayFunction = std::function<void(const std::filesystem::path& run,
 
 /// Replays `run` with the base files into `work_dir`/base and with the augmented models into
 /// `work_dir`/model (both replaced), and compares them with the recording.
-ReplayComparison CheckByReplay(const std::filesystem::path& run, const std::vector<std::filesystem::path>& base_files,
+ReplayComparison CheckByReplay(const std::filesystem::path& run,
+                               const std::vector<std::filesystem::path>& base_files,
                                const std::vector<std::filesystem::path>& model_files,
-                               const std::filesystem::path& work_dir, bool held_out, const ReplayFunction& replay);
+                               const std::filesystem::path& work_dir,
+                               bool held_out,
+                               const ReplayFunction& replay);
 
 }  // namespace adahrs::calib

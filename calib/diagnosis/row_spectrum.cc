@@ -5,9 +5,9 @@
 #include <complex>
 #include <numbers>
 
+#include <Eigen/Dense>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/special_functions/digamma.hpp>
-#include <Eigen/Dense>
 #include <unsupported/Eigen/FFT>
 
 namespace adahrs::calib {
@@ -29,7 +29,10 @@ double Median(std::vector<double> v) {
 // roll-off, is a line in these coordinates). A real series' periodogram is even about the
 // Nyquist bin, so neighbours beyond it are their mirror images; below bin 1 there are none.
 // Masked bins (lines already found) carry no floor: a strong line would bend the quadratic.
-std::vector<double> LogFloor(const std::vector<double>& log_p, const std::vector<bool>& masked, int first, int last) {
+std::vector<double> LogFloor(const std::vector<double>& log_p,
+                             const std::vector<bool>& masked,
+                             int first,
+                             int last) {
   const int nyquist = static_cast<int>(log_p.size()) - 1;
   std::vector<double> floor(log_p.size(), 0.0);
   for (int k = first; k <= last; ++k) {
@@ -55,7 +58,8 @@ RowSpectra::RowSpectra(int channels, double dt_s, int window_rows)
     : channels_(channels), dt_s_(dt_s), window_rows_(window_rows) {
   window_.resize(static_cast<size_t>(window_rows_));
   for (int i = 0; i < window_rows_; ++i) {
-    window_[static_cast<size_t>(i)] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * i / window_rows_);
+    window_[static_cast<size_t>(i)] =
+        0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * i / window_rows_);
   }
   sum_.assign(static_cast<size_t>(channels_ * bins()), 0.0);
 }
@@ -90,7 +94,8 @@ void RowSpectra::AddWindow(int segment, const std::vector<double>& y_by_channel)
     }
     const double slope = sxy / sxx, mean = sy / n;
     for (int i = 0; i < n; ++i) {
-      x[static_cast<size_t>(i)] = (y[i] - y[0] - mean - slope * (i - mean_i)) * window_[static_cast<size_t>(i)];
+      x[static_cast<size_t>(i)] =
+          (y[i] - y[0] - mean - slope * (i - mean_i)) * window_[static_cast<size_t>(i)];
     }
     fft.fwd(spectrum, x);
     const size_t base = static_cast<size_t>(c * bins());
@@ -113,7 +118,9 @@ std::vector<double> RowSpectra::MeanPower(int channel) const {
 }
 
 int RowSpectra::segment_windows(int segment) const {
-  return segment < static_cast<int>(segment_windows_.size()) ? segment_windows_[static_cast<size_t>(segment)] : 0;
+  return segment < static_cast<int>(segment_windows_.size())
+             ? segment_windows_[static_cast<size_t>(segment)]
+             : 0;
 }
 
 std::vector<double> RowSpectra::SegmentPower(int segment, int channel) const {
@@ -143,12 +150,16 @@ struct Excess {
   bool ok = false;
 };
 
-Excess ExcessOverFloor(const std::vector<double>& log_p, const std::vector<bool>& masked, int first, int last) {
+Excess ExcessOverFloor(const std::vector<double>& log_p,
+                       const std::vector<bool>& masked,
+                       int first,
+                       int last) {
   Excess out;
   out.floor = LogFloor(log_p, masked, first, last);
   std::vector<double> excess;
   for (int k = first; k <= last; ++k) {
-    if (!masked[static_cast<size_t>(k)]) excess.push_back(log_p[static_cast<size_t>(k)] - out.floor[static_cast<size_t>(k)]);
+    if (!masked[static_cast<size_t>(k)])
+      excess.push_back(log_p[static_cast<size_t>(k)] - out.floor[static_cast<size_t>(k)]);
   }
   const double med = Median(excess);
   std::vector<double> dev;
@@ -158,7 +169,8 @@ Excess ExcessOverFloor(const std::vector<double>& log_p, const std::vector<bool>
   if (!(spread > 0.0)) return out;
   for (int k = first; k <= last; ++k) {
     if (!masked[static_cast<size_t>(k)]) {
-      out.z[static_cast<size_t>(k)] = (log_p[static_cast<size_t>(k)] - out.floor[static_cast<size_t>(k)] - med) / spread;
+      out.z[static_cast<size_t>(k)] =
+          (log_p[static_cast<size_t>(k)] - out.floor[static_cast<size_t>(k)] - med) / spread;
     }
   }
   out.ok = true;
@@ -167,7 +179,10 @@ Excess ExcessOverFloor(const std::vector<double>& log_p, const std::vector<bool>
 
 }  // namespace
 
-std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra, int channel, double alpha, int max_lines) {
+std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra,
+                                            int channel,
+                                            double alpha,
+                                            int max_lines) {
   const std::vector<double> p = spectra.MeanPower(channel);
   const int last = spectra.bins() - 2;  // the Nyquist bin is left out
   if (p.empty() || last < kFloorHalfWidth) return {};
@@ -197,7 +212,8 @@ std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra, int chann
     const std::vector<double>& floor = ex.floor;
     const double level = std::exp(floor[static_cast<size_t>(best)] - log_bias);
     double power = 0.0, moment = 0.0;
-    for (int j = std::max(1, best - kLobeHalfWidth); j <= std::min(last, best + kLobeHalfWidth); ++j) {
+    for (int j = std::max(1, best - kLobeHalfWidth); j <= std::min(last, best + kLobeHalfWidth);
+         ++j) {
       const double e = std::max(0.0, p[static_cast<size_t>(j)] - level);
       power += e;
       moment += e * j;

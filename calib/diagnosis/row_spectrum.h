@@ -60,15 +60,17 @@ class RowSpectra {
 /// One periodic line of a channel: raw units.
 struct PeriodicLine {
   double frequency_hz = 0.0;
-  double amplitude = 0.0;       ///< of the sinusoid, raw output units
-  double floor_ratio = 0.0;     ///< peak bin power over the fitted floor
-  double z = 0.0;               ///< excess in the channel's robust spreads
-  std::vector<int> segments;    ///< segments whose own windows show it (excess > 3 of their SE)
+  double amplitude = 0.0;     ///< of the sinusoid, raw output units
+  double floor_ratio = 0.0;   ///< peak bin power over the fitted floor
+  double z = 0.0;             ///< excess in the channel's robust spreads
+  std::vector<int> segments;  ///< segments whose own windows show it (excess > 3 of their SE)
   int segments_with_windows = 0;
 };
 
 /// Lines of one channel at level `alpha` over its bins, strongest first, at most `max_lines`.
-std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra, int channel, double alpha,
+std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra,
+                                            int channel,
+                                            double alpha,
                                             int max_lines = 5);
 
 /// The median interval between consecutive times that are increasing (0 when there is none).

@@ -13,7 +13,9 @@ std::vector<int> WithColumns(std::vector<int> subset, const std::vector<int>& ex
   return subset;
 }
 
-TermTest TestTerm(const ClusteredLeastSquares& ls, const std::vector<int>& selected, const ClusteredFit& selected_fit,
+TermTest TestTerm(const ClusteredLeastSquares& ls,
+                  const std::vector<int>& selected,
+                  const ClusteredFit& selected_fit,
                   const std::vector<int>& columns) {
   TermTest t;
   t.subset = WithColumns(selected, columns);
@@ -37,15 +39,21 @@ TermTest TestTerm(const ClusteredLeastSquares& ls, const std::vector<int>& selec
   const double wald = theta.dot(ldlt.solve(theta));
   const double dof = std::max(1, t.fit.clusters - 1);
   const boost::math::fisher_f dist(q, dof);
-  t.p_value = std::isfinite(wald) && wald >= 0.0 ? boost::math::cdf(boost::math::complement(dist, wald / q)) : 1.0;
+  t.p_value = std::isfinite(wald) && wald >= 0.0
+                  ? boost::math::cdf(boost::math::complement(dist, wald / q))
+                  : 1.0;
   const HeldOutComparison cv = CompareHeldOut(selected_fit, t.fit);
   t.gain = cv.ss_a - cv.ss_b;
   t.testable = true;
   return t;
 }
 
-TermSelection SelectTerms(const ClusteredLeastSquares& ls, const std::vector<int>& base, const ClusteredFit& base_fit,
-                          const std::vector<std::vector<int>>& candidates, double alpha, int max_terms,
+TermSelection SelectTerms(const ClusteredLeastSquares& ls,
+                          const std::vector<int>& base,
+                          const ClusteredFit& base_fit,
+                          const std::vector<std::vector<int>>& candidates,
+                          double alpha,
+                          int max_terms,
                           const std::function<bool(int, const std::vector<int>&)>& allowed) {
   TermSelection out{{}, base, base_fit};
   while (static_cast<int>(out.chosen.size()) < max_terms) {
@@ -77,20 +85,27 @@ std::vector<int> WithoutColumns(const std::vector<int>& subset, const std::vecto
   return out;
 }
 
-void ColumnEstimates(const ClusteredFit& fit, const std::vector<int>& subset, const std::vector<int>& columns,
-                     Eigen::VectorXd* theta, Eigen::VectorXd* se) {
+void ColumnEstimates(const ClusteredFit& fit,
+                     const std::vector<int>& subset,
+                     const std::vector<int>& columns,
+                     Eigen::VectorXd* theta,
+                     Eigen::VectorXd* se) {
   const int q = static_cast<int>(columns.size());
   theta->resize(q);
   se->resize(q);
   for (int k = 0; k < q; ++k) {
-    const int pos = static_cast<int>(std::find(subset.begin(), subset.end(), columns[static_cast<size_t>(k)]) - subset.begin());
+    const int pos = static_cast<int>(
+        std::find(subset.begin(), subset.end(), columns[static_cast<size_t>(k)]) - subset.begin());
     (*theta)[k] = fit.theta[pos];
     (*se)[k] = std::sqrt(fit.covariance(pos, pos));
   }
 }
 
-bool LimitStandardErrors(const ClusteredLeastSquares& ls, const std::vector<int>& selected,
-                         const std::vector<int>& columns, Eigen::VectorXd* se, std::string* note) {
+bool LimitStandardErrors(const ClusteredLeastSquares& ls,
+                         const std::vector<int>& selected,
+                         const std::vector<int>& columns,
+                         Eigen::VectorXd* se,
+                         std::string* note) {
   const std::vector<int> others = WithoutColumns(selected, columns);
   const TermTest t = TestTerm(ls, others, ls.Fit(others), columns);
   if (!t.fit.ok || !t.fit.jackknife_ok || !t.note.empty()) {

@@ -15,8 +15,8 @@ struct TermTest {
   bool testable = false;
   std::string note;  ///< why it is not testable
   double p_value = 1.0;
-  double gain = 0.0;  ///< held-out sum of squares without minus with the columns
-  ClusteredFit fit;   ///< of `subset`
+  double gain = 0.0;        ///< held-out sum of squares without minus with the columns
+  ClusteredFit fit;         ///< of `subset`
   std::vector<int> subset;  ///< the selected columns, then the candidate's
 };
 
@@ -24,7 +24,9 @@ struct TermTest {
 std::vector<int> WithColumns(std::vector<int> subset, const std::vector<int>& extra);
 
 /// Tests `columns` added to `selected` (whose fit is `selected_fit`).
-TermTest TestTerm(const ClusteredLeastSquares& ls, const std::vector<int>& selected, const ClusteredFit& selected_fit,
+TermTest TestTerm(const ClusteredLeastSquares& ls,
+                  const std::vector<int>& selected,
+                  const ClusteredFit& selected_fit,
                   const std::vector<int>& columns);
 
 /// Forward selection: from `base` (fitted as `base_fit`), the candidate (a set of columns) with the
@@ -36,21 +38,31 @@ struct TermSelection {
   std::vector<int> selected;  ///< columns: base, then the chosen candidates'
   ClusteredFit fit;           ///< of `selected`
 };
-TermSelection SelectTerms(const ClusteredLeastSquares& ls, const std::vector<int>& base, const ClusteredFit& base_fit,
-                          const std::vector<std::vector<int>>& candidates, double alpha, int max_terms,
+TermSelection SelectTerms(const ClusteredLeastSquares& ls,
+                          const std::vector<int>& base,
+                          const ClusteredFit& base_fit,
+                          const std::vector<std::vector<int>>& candidates,
+                          double alpha,
+                          int max_terms,
                           const std::function<bool(int, const std::vector<int>&)>& allowed = {});
 
 /// `subset` without `columns`.
 std::vector<int> WithoutColumns(const std::vector<int>& subset, const std::vector<int>& columns);
 
 /// The estimates and jackknife standard errors of `columns` in `fit` of `subset`.
-void ColumnEstimates(const ClusteredFit& fit, const std::vector<int>& subset, const std::vector<int>& columns,
-                     Eigen::VectorXd* theta, Eigen::VectorXd* se);
+void ColumnEstimates(const ClusteredFit& fit,
+                     const std::vector<int>& subset,
+                     const std::vector<int>& columns,
+                     Eigen::VectorXd* theta,
+                     Eigen::VectorXd* se);
 
 /// Standard errors of `columns` added alone to `selected` less those columns (the detection limit's
 /// basis); false with `note` set when the recording cannot test them.
-bool LimitStandardErrors(const ClusteredLeastSquares& ls, const std::vector<int>& selected,
-                         const std::vector<int>& columns, Eigen::VectorXd* se, std::string* note);
+bool LimitStandardErrors(const ClusteredLeastSquares& ls,
+                         const std::vector<int>& selected,
+                         const std::vector<int>& columns,
+                         Eigen::VectorXd* se,
+                         std::string* note);
 
 /// Two-sided Student t quantile at `alpha` with clusters - 1 degrees of freedom.
 double TCritical(double alpha, int clusters);

@@ -12,8 +12,8 @@ namespace {
 
 namespace fm = firmware_model;
 
-constexpr const char* kChannelNames[fm::kImuChannels] = {"az1", "ax1", "ay1", "az2", "ax2",
-                                                         "ay2", "gx",  "gy",  "gz"};
+constexpr const char* kChannelNames[fm::kImuChannels] = {
+    "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
 
 std::string ImuBlockName(uint8_t id) {
   if (id >= fm::kImuBlockThermalFirst && id <= fm::kImuBlockThermalLast) {
@@ -51,8 +51,9 @@ ConstantsBlocks ExportConstantsBlocks(const ConstantsFile& file, const std::stri
       for (uint8_t id = fm::kImuBlockThermalFirst; id <= fm::kImuBlockLast; ++id) {
         std::array<int16_t, fm::kImuMaxBlockWords> words{};
         uint8_t count = 0;
-        if (fm::ImuConstantsReadBlock(&exported.constants, id, words.data(), words.size(),
-                                      &count) != fm::ConstantsStatus::kOk) {
+        if (fm::ImuConstantsReadBlock(
+                &exported.constants, id, words.data(), words.size(), &count) !=
+            fm::ConstantsStatus::kOk) {
           throw ConstantsBlocksError(fmt::format("block 0x{:02X} cannot be serialised", id));
         }
         out.blocks.push_back({id, ImuBlockName(id), {words.begin(), words.begin() + count}});
@@ -66,19 +67,23 @@ ConstantsBlocks ExportConstantsBlocks(const ConstantsFile& file, const std::stri
       for (const uint8_t id : {fm::kAdsBlockAltitude, fm::kAdsBlockAirspeed}) {
         std::array<int16_t, fm::kAdsMaxBlockWords> words{};
         uint8_t count = 0;
-        if (fm::AdsConstantsReadBlock(&exported.constants, id, words.data(), words.size(),
-                                      &count) != fm::ConstantsStatus::kOk) {
+        if (fm::AdsConstantsReadBlock(
+                &exported.constants, id, words.data(), words.size(), &count) !=
+            fm::ConstantsStatus::kOk) {
           throw ConstantsBlocksError(fmt::format("block 0x{:02X} cannot be serialised", id));
         }
-        out.blocks.push_back({id, id == fm::kAdsBlockAltitude ? "altitude surface"
-                                                              : "airspeed surface",
+        out.blocks.push_back({id,
+                              id == fm::kAdsBlockAltitude ? "altitude surface" : "airspeed surface",
                               {words.begin(), words.begin() + count}});
       }
     }
   } catch (const std::exception& e) {
-    throw ConstantsBlocksError(fmt::format("{} ({}): cannot be converted to the unit's fixed-point "
-                                           "blocks: {}",
-                                           source, file.serial, e.what()));
+    throw ConstantsBlocksError(
+        fmt::format("{} ({}): cannot be converted to the unit's fixed-point "
+                    "blocks: {}",
+                    source,
+                    file.serial,
+                    e.what()));
   }
   return out;
 }

@@ -30,7 +30,8 @@ struct ConstantsBlock {
 
 /// One exporter error bound, in the output quantity's unit.
 struct ExportErrorBound {
-  std::string quantity;  ///< "accel_g", "rate_dps", "accel_mps2", "rate_full_dps", "altitude_ft", ...
+  std::string
+      quantity;  ///< "accel_g", "rate_dps", "accel_mps2", "rate_full_dps", "altitude_ft", ...
   double bound = 0.0;
 };
 

@@ -14,14 +14,13 @@ namespace fm = firmware_model;
 class Context {
  public:
   Context(const hil::UnitLink& link, const std::string& source)
-      : prefix_(fmt::format("download of {} into {} on {}", source, link.entry().role,
-                            link.entry().port.path)) {}
+      : prefix_(fmt::format(
+            "download of {} into {} on {}", source, link.entry().role, link.entry().port.path)) {}
   // Before COMMIT nothing is committed; from COMMIT on the failure says what is known.
   [[noreturn]] void Fail(const std::string& step, const std::string& what, bool verified) const {
-    const char* state = !verified ? "nothing committed"
-                        : step == "commit"
-                            ? "commit state unknown (IDENTIFY the unit)"
-                            : "the unit reported a commit";
+    const char* state = !verified          ? "nothing committed"
+                        : step == "commit" ? "commit state unknown (IDENTIFY the unit)"
+                                           : "the unit reported a commit";
     throw DownloadError(fmt::format("{}: {}: {}; {}", prefix_, step, what, state), verified);
   }
   // Runs `action`, turning an instrument error into a DownloadError naming `step`.
@@ -40,7 +39,8 @@ class Context {
 
 }  // namespace
 
-DownloadResult DownloadConstants(hil::UnitLink& link, const ConstantsFile& file,
+DownloadResult DownloadConstants(hil::UnitLink& link,
+                                 const ConstantsFile& file,
                                  const std::string& source) {
   const Context context(link, source);
   DownloadResult result;
@@ -66,26 +66,32 @@ DownloadResult DownloadConstants(hil::UnitLink& link, const ConstantsFile& file,
     }
   });
   for (const ConstantsBlock& block : result.blocks.blocks) {
-    context.Run(fmt::format("write block 0x{:02X} ({})", block.block_id, block.name), false,
-                [&] { link.WriteBlock(block.block_id, block.words); });
+    context.Run(fmt::format("write block 0x{:02X} ({})", block.block_id, block.name), false, [&] {
+      link.WriteBlock(block.block_id, block.words);
+    });
   }
   for (const ConstantsBlock& block : result.blocks.blocks) {
-    const std::string step = fmt::format("read back block 0x{:02X} ({})", block.block_id, block.name);
-    const std::vector<int16_t> read = context.Run(step, false, [&] { return link.ReadBlock(block.block_id); });
+    const std::string step =
+        fmt::format("read back block 0x{:02X} ({})", block.block_id, block.name);
+    const std::vector<int16_t> read =
+        context.Run(step, false, [&] { return link.ReadBlock(block.block_id); });
     if (const auto mismatch = CompareReadback(block.words, read)) {
       context.Fail(step, "differs from what was written, " + mismatch->Describe(), false);
     }
   }
   result.commit = context.Run("commit", true, [&] { return link.Commit(); });
   result.after = context.Run("identify after commit", true, [&] { return link.Identify(); });
-  if (!result.after.constants_valid || result.after.constants_version != result.commit.constants_version ||
+  if (!result.after.constants_valid ||
+      result.after.constants_version != result.commit.constants_version ||
       result.after.constants_crc != result.commit.constants_crc) {
     context.Fail("identify after commit",
                  fmt::format("COMMIT answered version {} crc 0x{:04X}, IDENTIFY reports constants "
                              "{}, version {}, crc 0x{:04X}",
-                             result.commit.constants_version, result.commit.constants_crc,
+                             result.commit.constants_version,
+                             result.commit.constants_crc,
                              result.after.constants_valid ? "valid" : "invalid",
-                             result.after.constants_version, result.after.constants_crc),
+                             result.after.constants_version,
+                             result.after.constants_crc),
                  true);
   }
   context.Run("set calibrated mode", true, [&] {

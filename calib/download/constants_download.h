@@ -43,7 +43,8 @@ struct DownloadResult {
 };
 
 /// Runs steps 1-6 on `link` with `file` (read from `source`).
-DownloadResult DownloadConstants(hil::UnitLink& link, const ConstantsFile& file,
+DownloadResult DownloadConstants(hil::UnitLink& link,
+                                 const ConstantsFile& file,
                                  const std::string& source);
 
 }  // namespace adahrs::calib

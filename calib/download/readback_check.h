@@ -10,7 +10,7 @@
 namespace adahrs::calib {
 
 struct ReadbackMismatch {
-  size_t word_index = 0;        ///< first differing word (== the shorter length if lengths differ)
+  size_t word_index = 0;  ///< first differing word (== the shorter length if lengths differ)
   size_t written_words = 0;
   size_t read_words = 0;
   std::optional<int16_t> written;  ///< the word written there (none past the end)

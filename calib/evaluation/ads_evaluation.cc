@@ -40,7 +40,7 @@ sensor_sim::AdsUnitParams Noiseless(sensor_sim::AdsUnitParams p) {
 // Which input of the stimulus a quantity drives, and its true value at a grid value.
 struct Quantity {
   const char* name;
-  int output;  // compensated frame slot
+  int output;                                 // compensated frame slot
   std::function<double(double)> pressure_pa;  // grid value -> applied pressure
   std::function<double(double)> tolerance;
   bool is_static;
@@ -64,15 +64,17 @@ class Firmware {
   }
 
   // Compensates the frame `unit` produces at `stimulus`; returns output `slot`.
-  double Step(sensor_sim::AdsUnit& unit, const sensor_sim::AdsStimulus& stimulus, int slot,
+  double Step(sensor_sim::AdsUnit& unit,
+              const sensor_sim::AdsStimulus& stimulus,
+              int slot,
               int* saturated) {
     const sensor_sim::AdsRawFrame f = unit.Step(stimulus);
-    const firmware_model::AdsRawFrame raw{f.ps_cnt, f.pt_cnt, f.ps_temp_cnt, f.pt_temp_cnt,
-                                          f.oat_cnt};
+    const firmware_model::AdsRawFrame raw{
+        f.ps_cnt, f.pt_cnt, f.ps_temp_cnt, f.pt_temp_cnt, f.oat_cnt};
     firmware_model::DspEngine engine;
     firmware_model::AdsCompensatedFrame frame{};
-    firmware_model::AdsCompensate(&engine, constants_, AdsCompensationMode::kSurface, raw, &state_,
-                                  &frame);
+    firmware_model::AdsCompensate(
+        &engine, constants_, AdsCompensationMode::kSurface, raw, &state_, &frame);
     if (frame.flags != 0 && saturated != nullptr) ++*saturated;
     return firmware_model::AdsFrameToDouble(AdsCompensationMode::kSurface, frame)[slot];
   }
@@ -84,8 +86,12 @@ class Firmware {
 
 // Applies the thermal history at constant pressure `pressure_pa`, ending at `temp_c`; the
 // firmware sees every step.
-void ApplyThermalHistory(sensor_sim::AdsUnit& unit, Firmware& firmware, const Quantity& q,
-                         ThermalHistory h, double pressure_pa, double temp_c) {
+void ApplyThermalHistory(sensor_sim::AdsUnit& unit,
+                         Firmware& firmware,
+                         const Quantity& q,
+                         ThermalHistory h,
+                         double pressure_pa,
+                         double temp_c) {
   if (h == ThermalHistory::kHeating) {
     firmware.Step(unit, Stimulus(q, pressure_pa, kAdsMaxTempC), q.output, nullptr);
     firmware.Step(unit, Stimulus(q, pressure_pa, kAdsMinTempC), q.output, nullptr);
@@ -98,14 +104,18 @@ void ApplyThermalHistory(sensor_sim::AdsUnit& unit, Firmware& firmware, const Qu
 
 // Errors (compensated - true) at every grid value, for one temperature and one history pair.
 std::vector<double> Sweep(const sensor_sim::AdsUnitParams& params,
-                          const firmware_model::AdsConstants& constants, const Quantity& q,
-                          const std::vector<double>& values, double temp_c, PressureHistory ph,
-                          ThermalHistory th, int* saturated) {
+                          const firmware_model::AdsConstants& constants,
+                          const Quantity& q,
+                          const std::vector<double>& values,
+                          double temp_c,
+                          PressureHistory ph,
+                          ThermalHistory th,
+                          int* saturated) {
   std::vector<double> errors(values.size());
   auto error_at = [&](sensor_sim::AdsUnit& unit, Firmware& firmware, size_t i) {
-    errors[i] = firmware.Step(unit, Stimulus(q, q.pressure_pa(values[i]), temp_c), q.output,
-                              saturated) -
-                values[i];
+    errors[i] =
+        firmware.Step(unit, Stimulus(q, q.pressure_pa(values[i]), temp_c), q.output, saturated) -
+        values[i];
   };
   if (ph == PressureHistory::kNone) {
     for (size_t i = 0; i < values.size(); ++i) {
@@ -149,9 +159,11 @@ int Severity(AdsVerdict v) {
 
 AdsQuantityEvaluation Evaluate(const sensor_sim::AdsUnitParams& params,
                                const firmware_model::AdsConstants& constants,
-                               const Quantity& q, const std::vector<double>& values,
+                               const Quantity& q,
+                               const std::vector<double>& values,
                                const std::vector<double>& temps_c,
-                               const std::vector<AdsTolerancePoint>& table, bool static_surface) {
+                               const std::vector<AdsTolerancePoint>& table,
+                               bool static_surface) {
   AdsQuantityEvaluation out;
   out.quantity = q.name;
   for (double temp_c : temps_c) {
@@ -180,9 +192,9 @@ AdsQuantityEvaluation Evaluate(const sensor_sim::AdsUnitParams& params,
                                                                       : AdsVerdict::kFail;
       out.worst_ratio_no_history =
           std::max(out.worst_ratio_no_history, std::abs(g.error_no_history) / g.tolerance);
-      ++(g.verdict == AdsVerdict::kPass ? out.pass
+      ++(g.verdict == AdsVerdict::kPass   ? out.pass
          : g.verdict == AdsVerdict::kFail ? out.fail
-                                           : out.unreachable);
+                                          : out.unreachable);
       out.grid.push_back(g);
     }
   }
@@ -230,9 +242,12 @@ nlohmann::json QuantityJson(const AdsQuantityEvaluation& q) {
 
 const char* ToString(AdsVerdict verdict) {
   switch (verdict) {
-    case AdsVerdict::kPass: return "pass";
-    case AdsVerdict::kFail: return "fail";
-    case AdsVerdict::kUnreachable: return "unreachable";
+    case AdsVerdict::kPass:
+      return "pass";
+    case AdsVerdict::kFail:
+      return "fail";
+    case AdsVerdict::kUnreachable:
+      return "unreachable";
   }
   return "fail";
 }
@@ -245,21 +260,34 @@ AdsEvaluation EvaluateAdsConstants(const firmware_model::AdsCalibrationConstants
                                    const sensor_sim::AdsUnitParams& truth,
                                    const AdsEvaluationOptions& options) {
   const sensor_sim::AdsUnitParams params = Noiseless(truth);
-  const firmware_model::AdsConstants exported = firmware_model::ExportAdsConstants(constants).constants;
+  const firmware_model::AdsConstants exported =
+      firmware_model::ExportAdsConstants(constants).constants;
   const std::vector<double> temps_c = Range(kAdsMinTempC, kAdsMaxTempC, options.temp_step_c);
-  const Quantity altitude{"altitude_ft", 0,
+  const Quantity altitude{"altitude_ft",
+                          0,
                           [](double ft) { return sensor_sim::IsaStaticPressurePaFromFt(ft); },
-                          [](double ft) { return AltitudeToleranceFt(ft); }, true};
-  const Quantity airspeed{"airspeed_kt", 1,
+                          [](double ft) { return AltitudeToleranceFt(ft); },
+                          true};
+  const Quantity airspeed{"airspeed_kt",
+                          1,
                           [](double kt) { return sensor_sim::ImpactPressurePaFromKt(kt); },
-                          [](double kt) { return AirspeedToleranceKt(kt); }, false};
+                          [](double kt) { return AirspeedToleranceKt(kt); },
+                          false};
   AdsEvaluation out;
-  out.altitude = Evaluate(params, exported, altitude,
+  out.altitude = Evaluate(params,
+                          exported,
+                          altitude,
                           Range(kAdsMinAltitudeFt, kAdsMaxAltitudeFt, options.alt_step_ft),
-                          temps_c, AltitudeTolerancePoints(), !constants.altitude_ft.hysteresis.active());
-  out.airspeed = Evaluate(params, exported, airspeed,
+                          temps_c,
+                          AltitudeTolerancePoints(),
+                          !constants.altitude_ft.hysteresis.active());
+  out.airspeed = Evaluate(params,
+                          exported,
+                          airspeed,
                           Range(kAdsMinAirspeedKt, kAdsMaxAirspeedKt, options.cas_step_kt),
-                          temps_c, AirspeedTolerancePoints(), !constants.airspeed_kt.hysteresis.active());
+                          temps_c,
+                          AirspeedTolerancePoints(),
+                          !constants.airspeed_kt.hysteresis.active());
   return out;
 }
 

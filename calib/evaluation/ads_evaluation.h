@@ -16,7 +16,8 @@
 //   pressure: "none" (operator fresh, the loop centre), "rising" (after the opposite end of the
 //     envelope: static 50,000 -> -1,000 ft then climbing; pitot 450 -> 30 kt then accelerating is
 //     written "rising" for the impact pressure), "falling" (the reverse);
-//   temperature: "none", "heating" (85 -> -40 degC then heating), "cooling" (-40 -> 85 then cooling).
+//   temperature: "none", "heating" (85 -> -40 degC then heating), "cooling" (-40 -> 85 then
+//   cooling).
 // The firmware sees the whole history too: its hysteresis operators (ads_compensator.h) start
 // fresh with the unit and compensate every frame of it, as in a unit powered through the history.
 // Per grid point: the error without history (both operators fresh), the worst |error| over the
@@ -49,12 +50,12 @@ enum class AdsVerdict { kPass, kFail, kUnreachable };
 const char* ToString(AdsVerdict verdict);
 
 struct AdsGridPoint {
-  double value = 0.0;        ///< true altitude ft or airspeed kt
-  double temp_c = 0.0;       ///< chamber air
-  double tolerance = 0.0;    ///< +- ft or kt
-  double error_no_history = 0.0;   ///< compensated - true, operators fresh
-  double worst_with_history = 0.0; ///< max |error| over the nine histories
-  double loop_half_width = 0.0;    ///< (max - min)/2 of the error over the histories
+  double value = 0.0;               ///< true altitude ft or airspeed kt
+  double temp_c = 0.0;              ///< chamber air
+  double tolerance = 0.0;           ///< +- ft or kt
+  double error_no_history = 0.0;    ///< compensated - true, operators fresh
+  double worst_with_history = 0.0;  ///< max |error| over the nine histories
+  double loop_half_width = 0.0;     ///< (max - min)/2 of the error over the histories
   AdsVerdict verdict = AdsVerdict::kPass;
 };
 
@@ -62,7 +63,7 @@ struct AdsGridPoint {
 struct AdsTolerancePointResult {
   double at = 0.0;
   double tolerance = 0.0;
-  double worst_no_history = 0.0;    ///< max |error_no_history| over temperature
+  double worst_no_history = 0.0;  ///< max |error_no_history| over temperature
   double worst_no_history_temp_c = 0.0;
   double worst_with_history = 0.0;
   double max_loop_half_width = 0.0;

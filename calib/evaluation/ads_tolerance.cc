@@ -23,9 +23,12 @@ double Interpolate(const std::vector<AdsTolerancePoint>& knots, double at) {
 }  // namespace
 
 const std::vector<AdsTolerancePoint>& AltitudeTolerancePoints() {
-  static const std::vector<AdsTolerancePoint> points = {
-      {-1000.0, 15.0}, {0.0, 15.0}, {5000.0, 15.0}, {10000.0, 15.0}, {30000.0, 20.0},
-      {50000.0, 80.0}};
+  static const std::vector<AdsTolerancePoint> points = {{-1000.0, 15.0},
+                                                        {0.0, 15.0},
+                                                        {5000.0, 15.0},
+                                                        {10000.0, 15.0},
+                                                        {30000.0, 20.0},
+                                                        {50000.0, 80.0}};
   return points;
 }
 
@@ -38,7 +41,9 @@ const std::vector<AdsTolerancePoint>& AirspeedTolerancePoints() {
 double AltitudeToleranceFt(double alt_ft) {
   if (!(alt_ft >= kAdsMinAltitudeFt && alt_ft <= kAdsMaxAltitudeFt)) {
     throw std::out_of_range(fmt::format("altitude {} ft outside the operating limits {}..{} ft",
-                                        alt_ft, kAdsMinAltitudeFt, kAdsMaxAltitudeFt));
+                                        alt_ft,
+                                        kAdsMinAltitudeFt,
+                                        kAdsMaxAltitudeFt));
   }
   return Interpolate(AltitudeTolerancePoints(), alt_ft);
 }
@@ -46,7 +51,9 @@ double AltitudeToleranceFt(double alt_ft) {
 double AirspeedToleranceKt(double cas_kt) {
   if (!(cas_kt >= kAdsMinAirspeedKt && cas_kt <= kAdsMaxAirspeedKt)) {
     throw std::out_of_range(fmt::format("airspeed {} kt outside the operating limits {}..{} kt",
-                                        cas_kt, kAdsMinAirspeedKt, kAdsMaxAirspeedKt));
+                                        cas_kt,
+                                        kAdsMinAirspeedKt,
+                                        kAdsMaxAirspeedKt));
   }
   return Interpolate(AirspeedTolerancePoints(), cas_kt);
 }

@@ -9,10 +9,10 @@
 #include "calib/evaluation/simulated_raw_frame.h"
 #include "calib/imu_calibration/imu_joint_fit.h"
 #include "calib/imu_calibration/imu_observations.h"
+#include "common/units.h"
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/reference_compensator.h"
 #include "firmware_model/target/imu_compensator.h"
-#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -22,8 +22,8 @@ using nlohmann::json;
 
 constexpr double kTempMin_c = -40.0, kTempMax_c = 85.0, kTempStep_c = 12.5;
 constexpr double kRates_dps[] = {-150, -100, -50, 50, 100, 150};
-constexpr double kSigmaLimit = 3.0;   // CRB limit per point: 3 sigma
-constexpr double kCrbMargin = 1.5;    // within 1.5x the CRB-implied limit
+constexpr double kSigmaLimit = 3.0;  // CRB limit per point: 3 sigma
+constexpr double kCrbMargin = 1.5;   // within 1.5x the CRB-implied limit
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 sensor_sim::ImuUnitParams NoiseOff(sensor_sim::ImuUnitParams p) {
@@ -39,17 +39,21 @@ sensor_sim::ImuUnitParams NoiseOff(sensor_sim::ImuUnitParams p) {
 }
 
 // Standard deviation of the six outputs at `raw` implied by `cov` of the firmware numbers.
-std::array<double, 6> OutputSigma(const fm::ImuCalibrationConstants& c, const Eigen::MatrixXd& cov,
+std::array<double, 6> OutputSigma(const fm::ImuCalibrationConstants& c,
+                                  const Eigen::MatrixXd& cov,
                                   const fm::ImuRawFrame& raw) {
   const Eigen::VectorXd v = FlattenConstants(c);
   Eigen::MatrixXd jac(6, kImuFirmwareNumbers);
   for (int j = 0; j < kImuFirmwareNumbers; ++j) {
-    const double h = std::max(1e-3 * std::sqrt(std::max(cov(j, j), 0.0)), 1e-14 * std::max(1.0, std::abs(v[j])));
+    const double h =
+        std::max(1e-3 * std::sqrt(std::max(cov(j, j), 0.0)), 1e-14 * std::max(1.0, std::abs(v[j])));
     Eigen::VectorXd plus = v, minus = v;
     plus[j] += h;
     minus[j] -= h;
-    const auto a = fm::ImuReference(UnflattenConstants(plus, c), fm::ImuCompensationMode::kFullyCalibrated, raw);
-    const auto b = fm::ImuReference(UnflattenConstants(minus, c), fm::ImuCompensationMode::kFullyCalibrated, raw);
+    const auto a = fm::ImuReference(
+        UnflattenConstants(plus, c), fm::ImuCompensationMode::kFullyCalibrated, raw);
+    const auto b = fm::ImuReference(
+        UnflattenConstants(minus, c), fm::ImuCompensationMode::kFullyCalibrated, raw);
     for (int i = 0; i < 6; ++i) jac(i, j) = (a[i] - b[i]) / (2.0 * h);
   }
   const Eigen::MatrixXd out = jac * cov * jac.transpose();
@@ -67,7 +71,8 @@ struct GridPoint {
 };
 
 // The noise-free unit at every grid point: `frames` frames after settling.
-std::vector<GridPoint> SimulateGrid(const sensor_sim::ImuUnitParams& params, double g_l,
+std::vector<GridPoint> SimulateGrid(const sensor_sim::ImuUnitParams& params,
+                                    double g_l,
                                     const ImuEvaluationOptions& options) {
   std::vector<GridPoint> grid;
   for (double temp_c = kTempMin_c; temp_c <= kTempMax_c + 1e-9; temp_c += kTempStep_c) {
@@ -99,7 +104,8 @@ std::vector<GridPoint> SimulateGrid(const sensor_sim::ImuUnitParams& params, dou
 // Mean fixed-point outputs minus truth at every grid point: A in m/s^2 (slots 0..2), G in deg/s
 // (slots 3..5).
 std::vector<std::array<double, 6>> GridErrors(const fm::ImuCalibrationConstants& c,
-                                              const std::vector<GridPoint>& grid, double g_local_mps2) {
+                                              const std::vector<GridPoint>& grid,
+                                              double g_local_mps2) {
   const fm::ImuExport exported = fm::ExportImuConstants(c);
   std::vector<std::array<double, 6>> out;
   for (const GridPoint& p : grid) {
@@ -107,7 +113,8 @@ std::vector<std::array<double, 6>> GridErrors(const fm::ImuCalibrationConstants&
     for (const fm::ImuRawFrame& f : p.frames) {
       fm::DspEngine engine(fm::CompensatorDspConfig());
       fm::ImuCompensatedFrame frame{};
-      fm::ImuCompensate(&engine, exported.constants, fm::ImuCompensationMode::kFullyCalibrated, f, &frame);
+      fm::ImuCompensate(
+          &engine, exported.constants, fm::ImuCompensationMode::kFullyCalibrated, f, &frame);
       const auto v = fm::ImuFrameToDouble(fm::ImuCompensationMode::kFullyCalibrated, frame);
       for (int k = 0; k < 6; ++k) sum[k] += v[k];
     }
@@ -126,12 +133,15 @@ std::vector<std::array<double, 6>> GridErrors(const fm::ImuCalibrationConstants&
 // grid, thermal order 3, equal weights; with the format-3 terms, scale order 3, when `format3`):
 // the best constants the structure can hold. No die-lag terms: the grid's TEMP counts are steady,
 // and the rounding residue of their slope would be fitted as a regressor.
-fm::ImuCalibrationConstants TruthProjection(const std::string& serial, const std::vector<GridPoint>& grid,
-                                            double g_l, bool format3) {
+fm::ImuCalibrationConstants TruthProjection(const std::string& serial,
+                                            const std::vector<GridPoint>& grid,
+                                            double g_l,
+                                            bool format3) {
   std::vector<ImuObservation> observations;
   for (const GridPoint& p : grid) {
     ObservationBuilder builder;
-    for (size_t i = 0; i < p.frames.size(); ++i) builder.Add(p.frames[i], static_cast<double>(i) * 0.01);
+    for (size_t i = 0; i < p.frames.size(); ++i)
+      builder.Add(p.frames[i], static_cast<double>(i) * 0.01);
     observations.push_back(builder.Finish("grid", false, 0, g_l * p.up, p.rate_dps * p.up));
   }
   ImuJointOptions options;
@@ -146,7 +156,8 @@ fm::ImuCalibrationConstants TruthProjection(const std::string& serial, const std
 // The projection's errors at every grid point (the firmware floor). The projection can need a
 // thermal block the exporter cannot hold: then the floor is unknown (NaN everywhere).
 std::vector<std::array<double, 6>> FloorErrors(const fm::ImuCalibrationConstants& projection,
-                                               const std::vector<GridPoint>& grid, double g_local_mps2) {
+                                               const std::vector<GridPoint>& grid,
+                                               double g_local_mps2) {
   try {
     return GridErrors(projection, grid, g_local_mps2);
   } catch (const std::invalid_argument&) {
@@ -178,7 +189,6 @@ std::string Verdict(const QuantitySummary& q, bool have_crb) {
   return PointVerdictText(PointVerdict::kOutsideBoth);
 }
 
-
 // The CRB covariance of the constants' numbers (zero when the file carries none); files written
 // before format 3 carry the format-2 numbers' covariance only.
 Eigen::MatrixXd CrbCovariance(const ConstantsFile& file) {
@@ -199,7 +209,8 @@ Eigen::MatrixXd CrbCovariance(const ConstantsFile& file) {
       throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance[" +
                                   std::to_string(r) + "] is not " + std::to_string(size) + " long");
     }
-    for (int k = 0; k < size; ++k) crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
+    for (int k = 0; k < size; ++k)
+      crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
   }
   return crb;
 }
@@ -211,15 +222,18 @@ struct GridJudgement {
   json points = json::array();
 };
 
-GridJudgement JudgeGrid(const fm::ImuCalibrationConstants& c, const std::vector<GridPoint>& grid,
+GridJudgement JudgeGrid(const fm::ImuCalibrationConstants& c,
+                        const std::vector<GridPoint>& grid,
                         const std::vector<std::array<double, 6>>& errors,
-                        const std::vector<std::array<double, 6>>& floor, const Eigen::MatrixXd* crb,
+                        const std::vector<std::array<double, 6>>& floor,
+                        const Eigen::MatrixXd* crb,
                         const Specification& spec) {
   static constexpr const char* kAxis[] = {"x", "y", "z"};
   GridJudgement out;
   for (size_t i = 0; i < grid.size(); ++i) {
     const GridPoint& p = grid[i];
-    const std::array<double, 6> sigma = crb ? OutputSigma(c, *crb, p.frames.back()) : std::array<double, 6>{};
+    const std::array<double, 6> sigma =
+        crb ? OutputSigma(c, *crb, p.frames.back()) : std::array<double, 6>{};
     json point = {{"temp_c", p.temp_c}, {"orientation", p.orientation}, {"rate_dps", p.rate_dps}};
     for (int k = 0; k < 3; ++k) {
       const bool at_rest = p.rate_dps == 0.0;
@@ -234,7 +248,9 @@ GridJudgement JudgeGrid(const fm::ImuCalibrationConstants& c, const std::vector<
       q.all_in_spec &= in_spec;
       q.all_in_crb &= in_spec || std::abs(err) <= kCrbMargin * lim;
       q.max_crb_limit = std::max(q.max_crb_limit, lim);
-      q.worst_floor = std::isnan(fl) || std::isnan(q.worst_floor) ? kNaN : std::max(q.worst_floor, std::abs(fl));
+      q.worst_floor = std::isnan(fl) || std::isnan(q.worst_floor)
+                          ? kNaN
+                          : std::max(q.worst_floor, std::abs(fl));
       if (std::abs(err) > q.worst) {
         q.worst = std::abs(err);
         q.worst_crb_limit = lim;
@@ -258,7 +274,8 @@ struct ParameterComparison {
   json summary;
 };
 
-ParameterComparison CompareParameters(const ConstantsFile& file, const fm::ImuCalibrationConstants& projection,
+ParameterComparison CompareParameters(const ConstantsFile& file,
+                                      const fm::ImuCalibrationConstants& projection,
                                       const Eigen::MatrixXd* crb) {
   const Eigen::VectorXd value = FlattenConstants(*file.imu);
   const Eigen::VectorXd true_value = FlattenConstants(projection);
@@ -270,7 +287,10 @@ ParameterComparison CompareParameters(const ConstantsFile& file, const fm::ImuCa
   for (int i = 0; i < kImuFirmwareNumbers; ++i) {
     const double err = value[i] - true_value[i];
     const double crb_se = crb ? std::sqrt(std::max((*crb)(i, i), 0.0)) : 0.0;
-    json p = {{"name", names[i]}, {"value", value[i]}, {"truth_projection", true_value[i]}, {"error", err}};
+    json p = {{"name", names[i]},
+              {"value", value[i]},
+              {"truth_projection", true_value[i]},
+              {"error", err}};
     if (std::isfinite(se[i]) && se[i] > 0.0) {
       p["standard_error"] = se[i];
       p["error_over_se"] = err / se[i];
@@ -287,20 +307,30 @@ ParameterComparison CompareParameters(const ConstantsFile& file, const fm::ImuCa
   }
   out.summary = {{"rms_error_over_se", n_se ? std::sqrt(sum_se / n_se) : 0.0},
                  {"rms_error_over_crb", n_crb ? std::sqrt(sum_crb / n_crb) : 0.0},
-                 {"compared_with_se", n_se}, {"compared_with_crb", n_crb}};
+                 {"compared_with_se", n_se},
+                 {"compared_with_crb", n_crb}};
   return out;
 }
 
-json QuantityReport(const QuantitySummary& q, const char* unit, double spec, const std::string& verdict) {
+json QuantityReport(const QuantitySummary& q,
+                    const char* unit,
+                    double spec,
+                    const std::string& verdict) {
   const std::string u(unit);
-  return {{"worst_error_" + u, q.worst}, {"spec_" + u, spec}, {"crb_limit_" + u + "_at_worst", q.worst_crb_limit},
-          {"worst_firmware_floor_" + u, q.worst_floor}, {"worst_point", q.worst_point}, {"verdict", verdict}};
+  return {{"worst_error_" + u, q.worst},
+          {"spec_" + u, spec},
+          {"crb_limit_" + u + "_at_worst", q.worst_crb_limit},
+          {"worst_firmware_floor_" + u, q.worst_floor},
+          {"worst_point", q.worst_point},
+          {"verdict", verdict}};
 }
 
 }  // namespace
 
-ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitParams& truth,
-                          const Specification& spec, const ImuEvaluationOptions& options) {
+ImuEvaluation EvaluateImu(const ConstantsFile& file,
+                          const sensor_sim::ImuUnitParams& truth,
+                          const Specification& spec,
+                          const ImuEvaluationOptions& options) {
   if (file.kind != hil::UnitKind::kImu || !file.imu) {
     throw std::invalid_argument("evaluate: constants of " + file.serial + " are not an IMU's");
   }
@@ -319,9 +349,11 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
     throw ConstantsNotExportable("evaluate: constants of " + file.serial +
                                  " cannot be exported to the firmware: " + e.what());
   }
-  const std::vector<std::array<double, 6>> floor = FloorErrors(projection, grid, options.g_local_mps2);
+  const std::vector<std::array<double, 6>> floor =
+      FloorErrors(projection, grid, options.g_local_mps2);
   const GridJudgement judged = JudgeGrid(c, grid, errors, floor, have_crb ? &crb : nullptr, spec);
-  const ParameterComparison parameters = CompareParameters(file, projection, have_crb ? &crb : nullptr);
+  const ParameterComparison parameters =
+      CompareParameters(file, projection, have_crb ? &crb : nullptr);
 
   ImuEvaluation e;
   e.worst_accel_mg = judged.accel.worst;
@@ -334,9 +366,12 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
       {"serial", file.serial},
       {"strategy", file.strategy},
       {"specification", spec.ToJson()},
-      {"grid", {{"temp_c", {kTempMin_c, kTempMax_c, kTempStep_c}}, {"rates_dps", kRates_dps},
-                {"frames_per_point", options.frames},
-                {"switched_off", "accelerometer and gyro noise, gyro bias instability and rate random walk, die lag"}}},
+      {"grid",
+       {{"temp_c", {kTempMin_c, kTempMax_c, kTempStep_c}},
+        {"rates_dps", kRates_dps},
+        {"frames_per_point", options.frames},
+        {"switched_off",
+         "accelerometer and gyro noise, gyro bias instability and rate random walk, die lag"}}},
       {"acceleration", QuantityReport(judged.accel, "mg", spec.accel_mg, e.accel_verdict)},
       {"body_rate", QuantityReport(judged.rate, "dps", spec.body_rate_dps, e.rate_verdict)},
       {"parameters", parameters.parameters},
@@ -345,7 +380,8 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file, const sensor_sim::ImuUnitPa
   return e;
 }
 
-ImuFirmwareFloor EvaluateImuFirmwareFloor(const sensor_sim::ImuUnitParams& truth, bool format3,
+ImuFirmwareFloor EvaluateImuFirmwareFloor(const sensor_sim::ImuUnitParams& truth,
+                                          bool format3,
                                           const ImuEvaluationOptions& options) {
   const double g_l = common::Mps2ToG(options.g_local_mps2);
   const std::vector<GridPoint> grid = SimulateGrid(NoiseOff(truth), g_l, options);

@@ -80,8 +80,10 @@ class ConstantsNotExportable : public std::invalid_argument {
 
 /// Evaluates `constants` (kind imu) against `truth`; throws ConstantsNotExportable when the
 /// exporter refuses them, std::invalid_argument when they are not an IMU's or malformed.
-ImuEvaluation EvaluateImu(const ConstantsFile& constants, const sensor_sim::ImuUnitParams& truth,
-                          const Specification& spec, const ImuEvaluationOptions& options = {});
+ImuEvaluation EvaluateImu(const ConstantsFile& constants,
+                          const sensor_sim::ImuUnitParams& truth,
+                          const Specification& spec,
+                          const ImuEvaluationOptions& options = {});
 
 /// The firmware floor alone (no constants to judge): the worst |error| over the grid of the true
 /// unit projected onto the format-2 model, or the format-3 model when `format3`, as EvaluateImu
@@ -91,7 +93,8 @@ struct ImuFirmwareFloor {
   double worst_accel_mg = 0.0;
   double worst_rate_dps = 0.0;
 };
-ImuFirmwareFloor EvaluateImuFirmwareFloor(const sensor_sim::ImuUnitParams& truth, bool format3,
+ImuFirmwareFloor EvaluateImuFirmwareFloor(const sensor_sim::ImuUnitParams& truth,
+                                          bool format3,
                                           const ImuEvaluationOptions& options = {});
 
 }  // namespace adahrs::calib

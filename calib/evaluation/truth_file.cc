@@ -21,7 +21,8 @@ Params Read(const TruthFile& t, const char* kind, const std::string& serial) {
   RequireKind(t, kind);
   Params p = Params::FromJson(ParamReader(t.file["params"], t.path, "$.params"));
   if (!serial.empty() && p.serial != serial) {
-    throw ParamError(fmt::format("{}: $.params.serial: '{}' is not the unit judged, '{}'", t.path, p.serial, serial));
+    throw ParamError(fmt::format(
+        "{}: $.params.serial: '{}' is not the unit judged, '{}'", t.path, p.serial, serial));
   }
   return p;
 }

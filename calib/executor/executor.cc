@@ -21,15 +21,19 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // Waits for every unit's request (one per logger, in order); throws a RunError naming every
 // unit whose request failed, after all have finished.
-void WaitAll(std::vector<std::future<void>> requests, const std::vector<UnitLogger*>& loggers,
+void WaitAll(std::vector<std::future<void>> requests,
+             const std::vector<UnitLogger*>& loggers,
              const std::string& where) {
   std::string failures;
   for (size_t u = 0; u < requests.size(); ++u) {
     try {
       requests[u].get();
     } catch (const std::exception& e) {
-      failures += fmt::format("{}unit {} ({}): {}", failures.empty() ? "" : "; ",
-                              loggers[u]->role(), loggers[u]->serial(), e.what());
+      failures += fmt::format("{}unit {} ({}): {}",
+                              failures.empty() ? "" : "; ",
+                              loggers[u]->role(),
+                              loggers[u]->serial(),
+                              e.what());
     }
   }
   if (!failures.empty()) throw RunError(where + ": " + failures);
@@ -43,11 +47,18 @@ std::string JoinRoles(const std::vector<std::string>& items) {
 
 }  // namespace
 
-Executor::Executor(const Sequence& sequence, const ExecutionPlan& plan,
-                   BatchInstruments instruments, std::vector<UnitLogger*> loggers,
-                   const hil::Clock& clock, RunAnnotations& annotations,
-                   SharedRecording& recording, Journal& journal, RunMeta& meta,
-                   ProgressSink& progress, const std::atomic<bool>& stop, ExecutorOptions options)
+Executor::Executor(const Sequence& sequence,
+                   const ExecutionPlan& plan,
+                   BatchInstruments instruments,
+                   std::vector<UnitLogger*> loggers,
+                   const hil::Clock& clock,
+                   RunAnnotations& annotations,
+                   SharedRecording& recording,
+                   Journal& journal,
+                   RunMeta& meta,
+                   ProgressSink& progress,
+                   const std::atomic<bool>& stop,
+                   ExecutorOptions options)
     : sequence_(sequence),
       plan_(plan),
       instruments_(instruments),
@@ -76,16 +87,21 @@ void Executor::Run(size_t first_step, std::optional<double> resumed_from_s) {
     if (resumed_from_s) {
       const double now_s = clock_.NowS();
       meta_.AddRejectedInterval(first_step, *resumed_from_s, now_s, "repeated partial step");
-      journal_.Append({{"event", "step_repeated"}, {"t_s", now_s}, {"step", first_step},
+      journal_.Append({{"event", "step_repeated"},
+                       {"t_s", now_s},
+                       {"step", first_step},
                        {"first_attempt_t_start_s", *resumed_from_s}});
       journal_.Sync();
       progress_.Note(fmt::format("repeating step {} (its rows since t = {:.2f} s are rejected)",
-                                 first_step, *resumed_from_s));
+                                 first_step,
+                                 *resumed_from_s));
     }
     if (first_action > 0) RestoreState(first_action);
     RunActions(first_action);
   } catch (const RunInterrupted& e) {
-    journal_.Append({{"event", "interrupted"}, {"t_s", clock_.NowS()}, {"action", current_action_},
+    journal_.Append({{"event", "interrupted"},
+                     {"t_s", clock_.NowS()},
+                     {"action", current_action_},
                      {"reason", e.what()}});
     MakeSafe();
     meta_.SetStatus(kStatusInterrupted);
@@ -93,7 +109,9 @@ void Executor::Run(size_t first_step, std::optional<double> resumed_from_s) {
   } catch (const std::exception& e) {
     const std::string message =
         dynamic_cast<const RunError*>(&e) ? std::string(e.what()) : Where() + ": " + e.what();
-    journal_.Append({{"event", "aborted"}, {"t_s", clock_.NowS()}, {"action", current_action_},
+    journal_.Append({{"event", "aborted"},
+                     {"t_s", clock_.NowS()},
+                     {"action", current_action_},
                      {"reason", message}});
     MakeSafe();
     meta_.SetStatus(kStatusAborted);
@@ -111,12 +129,15 @@ void Executor::RunActions(size_t first_action) {
     current_action_ = i;
     action_started_s_ = clock_.NowS();
     annotations_.Update([&](RowAnnotations& r) { r.step = static_cast<int>(a.step); });
-    journal_.Append({{"event", "action_started"}, {"t_s", action_started_s_}, {"index", i},
-                     {"step", a.step}, {"action", Describe(a.action)}});
+    journal_.Append({{"event", "action_started"},
+                     {"t_s", action_started_s_},
+                     {"index", i},
+                     {"step", a.step},
+                     {"action", Describe(a.action)}});
     Report(true);
     Execute(a);
-    journal_.Append({{"event", "action_completed"}, {"t_s", clock_.NowS()}, {"index", i},
-                     {"step", a.step}});
+    journal_.Append(
+        {{"event", "action_completed"}, {"t_s", clock_.NowS()}, {"index", i}, {"step", a.step}});
     const bool step_ends = i + 1 == plan_.actions.size() || plan_.actions[i + 1].step != a.step;
     if (step_ends) {
       recording_.Flush(true);
@@ -127,33 +148,32 @@ void Executor::RunActions(size_t first_action) {
 }
 
 void Executor::Execute(const PlannedAction& a) {
-  std::visit(
-      Overloaded{
-          [&](const PromptOperator& x) { instruments_.op->Prompt(x.text); },
-          [&](const MountOrientation& x) { Mount(x.orientation); },
-          [&](const CheckGravity& x) { GravityInterlock(a, x.orientation); },
-          [&](const CheckGyroAxis& x) { GyroInterlock(a, x.orientation, x.jog_rate_dps); },
-          [&](const SetTableRate& x) { Table().CommandRate(x.rate_dps, x.accel_dps2); },
-          [&](const WaitTableAtRate& x) { WaitTableAt(x.rate_dps, a.estimate_s); },
-          [&](const StopTable& x) {
-            Table().Stop(x.accel_dps2);
-            WaitTableAt(0.0, a.estimate_s);
-          },
-          [&](const SetChamberSetPoint& x) { Chamber().SetSetPointC(x.temp_c); },
-          [&](const WaitChamberSoak& x) {
-            WaitChamberInBand(x.temp_c, x.band_c, x.soak_s, a.estimate_s);
-          },
-          [&](const DownloadProfile& x) {
-            Chamber().DownloadProfile(x.profile.profile_name, x.profile.steps);
-          },
-          [&](const RunProfileLogging& x) { RunProfile(a, x.profile_name); },
-          [&](const SetAltitude& x) { Adts().SetAltitude(x.alt_ft, x.rate_ft_per_min); },
-          [&](const SetAirspeed& x) { Adts().SetAirspeed(x.cas_kt, x.rate_kt_per_min); },
-          [&](const calib::WaitAdtsStable&) { WaitAdtsStable(a.estimate_s); },
-          [&](const AcquirePackets& x) { Acquire(a, x.packets); },
-          [&](const LogForDuration& x) { LogFor(a, x.duration_s); },
-      },
-      a.action);
+  std::visit(Overloaded{
+                 [&](const PromptOperator& x) { instruments_.op->Prompt(x.text); },
+                 [&](const MountOrientation& x) { Mount(x.orientation); },
+                 [&](const CheckGravity& x) { GravityInterlock(a, x.orientation); },
+                 [&](const CheckGyroAxis& x) { GyroInterlock(a, x.orientation, x.jog_rate_dps); },
+                 [&](const SetTableRate& x) { Table().CommandRate(x.rate_dps, x.accel_dps2); },
+                 [&](const WaitTableAtRate& x) { WaitTableAt(x.rate_dps, a.estimate_s); },
+                 [&](const StopTable& x) {
+                   Table().Stop(x.accel_dps2);
+                   WaitTableAt(0.0, a.estimate_s);
+                 },
+                 [&](const SetChamberSetPoint& x) { Chamber().SetSetPointC(x.temp_c); },
+                 [&](const WaitChamberSoak& x) {
+                   WaitChamberInBand(x.temp_c, x.band_c, x.soak_s, a.estimate_s);
+                 },
+                 [&](const DownloadProfile& x) {
+                   Chamber().DownloadProfile(x.profile.profile_name, x.profile.steps);
+                 },
+                 [&](const RunProfileLogging& x) { RunProfile(a, x.profile_name); },
+                 [&](const SetAltitude& x) { Adts().SetAltitude(x.alt_ft, x.rate_ft_per_min); },
+                 [&](const SetAirspeed& x) { Adts().SetAirspeed(x.cas_kt, x.rate_kt_per_min); },
+                 [&](const calib::WaitAdtsStable&) { WaitAdtsStable(a.estimate_s); },
+                 [&](const AcquirePackets& x) { Acquire(a, x.packets); },
+                 [&](const LogForDuration& x) { LogFor(a, x.duration_s); },
+             },
+             a.action);
 }
 
 // A resumed run starts at a step whose earlier steps set up the rig: re-establish what they left
@@ -171,7 +191,8 @@ void Executor::RestoreState(size_t first_action) {
     if (const auto* s = std::get_if<SetAltitude>(&action)) altitude = *s;
     if (const auto* s = std::get_if<SetAirspeed>(&action)) airspeed = *s;
   }
-  const bool mounts_itself = std::holds_alternative<MountOrientation>(plan_.actions[first_action].action);
+  const bool mounts_itself =
+      std::holds_alternative<MountOrientation>(plan_.actions[first_action].action);
   if (orientation && !mounts_itself) Mount(*orientation);
   if (set_point_c) {
     Chamber().SetSetPointC(*set_point_c);
@@ -191,9 +212,12 @@ void Executor::StopTableAndWait() {
   double rate_dps = table.ReadRateDps();
   while (std::abs(rate_dps) > options_.table_rate_tolerance_dps) {
     if (clock_.NowS() >= deadline_s) {
-      throw RunError(fmt::format("{}: the rate table did not come to rest: {:.3f} deg/s after "
-                                 "stopping at {:g} deg/s^2",
-                                 Where(), rate_dps, options_.safe_stop_accel_dps2));
+      throw RunError(
+          fmt::format("{}: the rate table did not come to rest: {:.3f} deg/s after "
+                      "stopping at {:g} deg/s^2",
+                      Where(),
+                      rate_dps,
+                      options_.safe_stop_accel_dps2));
     }
     clock_.SleepS(PollIntervalS());
     rate_dps = table.ReadRateDps();
@@ -206,8 +230,8 @@ void Executor::SafeStart() {
     const double found_dps = instruments_.rate_table->ReadRateDps();
     event["table_found_dps"] = found_dps;
     if (std::abs(found_dps) > options_.table_rate_tolerance_dps) {
-      progress_.Note(fmt::format("rate table found turning at {:.2f} deg/s: stopping it first",
-                                 found_dps));
+      progress_.Note(
+          fmt::format("rate table found turning at {:.2f} deg/s: stopping it first", found_dps));
     }
     StopTableAndWait();
   }
@@ -223,7 +247,9 @@ void Executor::MakeSafe() {
     try {
       f();
     } catch (const std::exception& e) {
-      journal_.Append({{"event", "safe_stop_failed"}, {"t_s", clock_.NowS()}, {"what", what},
+      journal_.Append({{"event", "safe_stop_failed"},
+                       {"t_s", clock_.NowS()},
+                       {"what", what},
                        {"reason", e.what()}});
       progress_.Note(fmt::format("safe stop: {} failed: {}", what, e.what()));
     }
@@ -231,8 +257,10 @@ void Executor::MakeSafe() {
   if (instruments_.rate_table != nullptr) {
     attempt("table stop", [&] { StopTableAndWait(); });
   }
-  if (instruments_.chamber != nullptr) attempt("chamber hold", [&] { instruments_.chamber->Hold(); });
-  if (instruments_.adts != nullptr) attempt("ADTS to ground", [&] { instruments_.adts->GoToGround(); });
+  if (instruments_.chamber != nullptr)
+    attempt("chamber hold", [&] { instruments_.chamber->Hold(); });
+  if (instruments_.adts != nullptr)
+    attempt("ADTS to ground", [&] { instruments_.adts->GoToGround(); });
   for (UnitLogger* l : loggers_) {
     attempt(l->role().c_str(), [&] { l->EndAcquisition().get(); });
   }
@@ -261,7 +289,8 @@ void Executor::Mount(int orientation) {
 void Executor::Acquire(const PlannedAction& a, int64_t packets) {
   StartAcquisitions(a.tag, packets);
   WaitFor(
-      fmt::format("{} packets tagged {} from every unit", packets, a.tag), a.estimate_s,
+      fmt::format("{} packets tagged {} from every unit", packets, a.tag),
+      a.estimate_s,
       [&] {
         for (const UnitLogger* l : loggers_) {
           if (l->acquired() < packets) return false;
@@ -272,8 +301,12 @@ void Executor::Acquire(const PlannedAction& a, int64_t packets) {
         std::vector<std::string> short_units;
         for (const UnitLogger* l : loggers_) {
           if (l->acquired() >= packets) continue;
-          short_units.push_back(fmt::format("{} ({}) has {} of {} (lost {})", l->role(),
-                                            l->serial(), l->acquired(), packets, l->lost()));
+          short_units.push_back(fmt::format("{} ({}) has {} of {} (lost {})",
+                                            l->role(),
+                                            l->serial(),
+                                            l->acquired(),
+                                            packets,
+                                            l->lost()));
         }
         return "unit " + JoinRoles(short_units);
       });
@@ -284,8 +317,10 @@ void Executor::LogFor(const PlannedAction& a, double duration_s) {
   StartAcquisitions(a.tag, -1);
   const double end_s = clock_.NowS() + duration_s;
   WaitFor(
-      fmt::format("logging for {:.1f} s", duration_s), a.estimate_s,
-      [&] { return clock_.NowS() >= end_s; }, [] { return std::string("clock"); });
+      fmt::format("logging for {:.1f} s", duration_s),
+      a.estimate_s,
+      [&] { return clock_.NowS() >= end_s; },
+      [] { return std::string("clock"); });
   EndAcquisitions();
 }
 
@@ -294,12 +329,16 @@ void Executor::RunProfile(const PlannedAction& a, const std::string& name) {
   Chamber().StartProfile(name);
   double pv_c = 0.0;
   WaitFor(
-      fmt::format("{} profile '{}' to end", ChamberRole(), name), a.estimate_s,
+      fmt::format("{} profile '{}' to end", ChamberRole(), name),
+      a.estimate_s,
       [&] {
         pv_c = annotations_.Get().chamber_c;
         return !Chamber().ProfileRunning();
       },
-      [&] { return fmt::format("{} still running the profile, process value {:.2f} degC", ChamberRole(), pv_c); });
+      [&] {
+        return fmt::format(
+            "{} still running the profile, process value {:.2f} degC", ChamberRole(), pv_c);
+      });
   EndAcquisitions();
 }
 
@@ -324,7 +363,8 @@ std::vector<RawAverage> Executor::AverageAll(const PlannedAction& a) {
       [&] {
         std::vector<std::string> missing;
         for (size_t u = 0; u < loggers_.size(); ++u) {
-          if (!averages[u]) missing.push_back(fmt::format("{} ({})", loggers_[u]->role(), loggers_[u]->serial()));
+          if (!averages[u])
+            missing.push_back(fmt::format("{} ({})", loggers_[u]->role(), loggers_[u]->serial()));
         }
         return "no packets from unit " + JoinRoles(missing);
       });
@@ -342,7 +382,9 @@ void Executor::GravityInterlock(const PlannedAction& a, int orientation) {
       const auto& reference = gravity_references_[u];
       const InterlockVerdict v =
           GravityVerdict(averages[u], orientation, reference ? &*reference : nullptr);
-      if (!v.ok) failures.push_back(fmt::format("{} ({}): {}", loggers_[u]->role(), loggers_[u]->serial(), v.detail));
+      if (!v.ok)
+        failures.push_back(
+            fmt::format("{} ({}): {}", loggers_[u]->role(), loggers_[u]->serial(), v.detail));
     }
     if (failures.empty()) {
       for (size_t u = 0; u < loggers_.size(); ++u) {
@@ -366,24 +408,38 @@ void Executor::GyroInterlock(const PlannedAction& a, int orientation, double jog
     std::vector<std::string> failures;
     for (size_t u = 0; u < loggers_.size(); ++u) {
       const InterlockVerdict v = GyroAxisVerdict(rest[u], jog[u], orientation, jog_rate_dps);
-      if (!v.ok) failures.push_back(fmt::format("{} ({}): {}", loggers_[u]->role(), loggers_[u]->serial(), v.detail));
+      if (!v.ok)
+        failures.push_back(
+            fmt::format("{} ({}): {}", loggers_[u]->role(), loggers_[u]->serial(), v.detail));
     }
     if (failures.empty()) return;
     InterlockFailed(a, "gyro axis", t_start_s, failures, attempt, orientation);
   }
 }
 
-void Executor::InterlockFailed(const PlannedAction& a, const std::string& kind, double t_start_s,
-                               const std::vector<std::string>& failures, int attempt,
+void Executor::InterlockFailed(const PlannedAction& a,
+                               const std::string& kind,
+                               double t_start_s,
+                               const std::vector<std::string>& failures,
+                               int attempt,
                                int orientation) {
-  if (instruments_.rate_table != nullptr) instruments_.rate_table->Stop(options_.safe_stop_accel_dps2);
+  if (instruments_.rate_table != nullptr)
+    instruments_.rate_table->Stop(options_.safe_stop_accel_dps2);
   const double t_end_s = clock_.NowS();
   meta_.AddRejectedInterval(a.step, t_start_s, t_end_s, kind + " interlock failed");
-  journal_.Append({{"event", "interlock_failed"}, {"t_s", t_end_s}, {"step", a.step},
-                   {"interlock", kind}, {"attempt", attempt}, {"units", failures}});
+  journal_.Append({{"event", "interlock_failed"},
+                   {"t_s", t_end_s},
+                   {"step", a.step},
+                   {"interlock", kind},
+                   {"attempt", attempt},
+                   {"units", failures}});
   journal_.Sync();
-  const std::string text = fmt::format("{}: {} interlock failed (attempt {} of {}): {}", Where(), kind,
-                                       attempt, options_.interlock_attempts, JoinRoles(failures));
+  const std::string text = fmt::format("{}: {} interlock failed (attempt {} of {}): {}",
+                                       Where(),
+                                       kind,
+                                       attempt,
+                                       options_.interlock_attempts,
+                                       JoinRoles(failures));
   progress_.Note(text);
   if (attempt >= options_.interlock_attempts) throw RunError(text);
   instruments_.op->Prompt(text + ". Check the mounting in orientation " +
@@ -394,7 +450,8 @@ void Executor::InterlockFailed(const PlannedAction& a, const std::string& kind, 
 void Executor::WaitTableAt(double rate_dps, double estimate_s) {
   double last_dps = 0.0;
   WaitFor(
-      fmt::format("rate_table at {:.2f} deg/s", rate_dps), estimate_s,
+      fmt::format("rate_table at {:.2f} deg/s", rate_dps),
+      estimate_s,
       [&] {
         last_dps = Table().ReadRateDps();
         annotations_.Update([&](RowAnnotations& r) { r.table_rate_dps = last_dps; });
@@ -408,11 +465,13 @@ void Executor::WaitChamberInBand(double target_c, double band_c, double soak_s, 
   // The plan estimated from where the sequence left the chamber; it may start elsewhere (a first
   // step 10 degC away, a resume after a crash mid-ramp), so the budget also counts from its PV.
   const double start_c = Chamber().ReadProcessC();
-  estimate_s = std::max(estimate_s, std::abs(target_c - start_c) / options_.chamber_ramp_c_per_min * 60.0 + soak_s);
+  estimate_s = std::max(
+      estimate_s, std::abs(target_c - start_c) / options_.chamber_ramp_c_per_min * 60.0 + soak_s);
   double pv_c = start_c;
   double inside_since_s = -1.0;  // clock time the value entered the band, < 0 when outside
   WaitFor(
-      fmt::format("{} inside {:.2f} +- {:.2f} degC for {:.0f} s", ChamberRole(), target_c, band_c, soak_s),
+      fmt::format(
+          "{} inside {:.2f} +- {:.2f} degC for {:.0f} s", ChamberRole(), target_c, band_c, soak_s),
       estimate_s,
       [&] {
         pv_c = Chamber().ReadProcessC();
@@ -431,7 +490,8 @@ void Executor::WaitChamberInBand(double target_c, double band_c, double soak_s, 
 void Executor::WaitAdtsStable(double estimate_s) {
   hil::AirDataReading last;
   WaitFor(
-      "adts (air data test set) stable", estimate_s,
+      "adts (air data test set) stable",
+      estimate_s,
       [&] {
         // Status first, then the reading: the reading the rows carry once the wait ends is then
         // taken after the test set said stable. Read first, it could predate the settling: in a
@@ -444,7 +504,10 @@ void Executor::WaitAdtsStable(double estimate_s) {
         });
         return stable;
       },
-      [&] { return fmt::format("adts reads ps {:.1f} Pa, qc {:.1f} Pa, not stable", last.ps_pa, last.qc_pa); });
+      [&] {
+        return fmt::format(
+            "adts reads ps {:.1f} Pa, qc {:.1f} Pa, not stable", last.ps_pa, last.qc_pa);
+      });
 }
 
 template <typename Done, typename State>
@@ -457,8 +520,14 @@ void Executor::WaitFor(const std::string& what, double estimate_s, Done done, St
     if (done()) return;
     if (clock_.NowS() - start_s > timeout_s) {
       throw RunError(fmt::format(
-          "{}: {} not reached within {:.0f} s ({:.0f} x estimate {:.1f} s + {:.0f} s): {}", Where(), what,
-          timeout_s, options_.timeout_factor, estimate_s, margin_s, state()));
+          "{}: {} not reached within {:.0f} s ({:.0f} x estimate {:.1f} s + {:.0f} s): {}",
+          Where(),
+          what,
+          timeout_s,
+          options_.timeout_factor,
+          estimate_s,
+          margin_s,
+          state()));
     }
     clock_.SleepS(PollIntervalS());
   }
@@ -478,7 +547,8 @@ void Executor::Tick() {
     try {
       l->CheckHealthy();
     } catch (const std::exception& e) {
-      throw RunError(fmt::format("{}: unit {} ({}): {}", Where(), l->role(), l->serial(), e.what()));
+      throw RunError(
+          fmt::format("{}: unit {} ({}): {}", Where(), l->role(), l->serial(), e.what()));
     }
   }
   RefreshReadings();
@@ -491,7 +561,8 @@ void Executor::RefreshReadings() {
   last_refresh_s_ = now_s;
   RowAnnotations fresh = annotations_.Get();
   if (instruments_.chamber != nullptr) fresh.chamber_c = instruments_.chamber->ReadProcessC();
-  if (instruments_.rate_table != nullptr) fresh.table_rate_dps = instruments_.rate_table->ReadRateDps();
+  if (instruments_.rate_table != nullptr)
+    fresh.table_rate_dps = instruments_.rate_table->ReadRateDps();
   if (instruments_.adts != nullptr) {
     const hil::AirDataReading r = instruments_.adts->Read();
     fresh.ps_ref_pa = r.ps_pa;
@@ -507,7 +578,8 @@ void Executor::RefreshReadings() {
 
 void Executor::Report(bool force) {
   const auto now = std::chrono::steady_clock::now();
-  if (!force && now - last_report_ < std::chrono::duration<double>(options_.progress_interval_s)) return;
+  if (!force && now - last_report_ < std::chrono::duration<double>(options_.progress_interval_s))
+    return;
   last_report_ = now;
   const PlannedAction& a = plan_.actions[current_action_];
   ProgressReport r;
@@ -519,7 +591,8 @@ void Executor::Report(bool force) {
   r.action_text = Describe(a.action);
   r.t_s = clock_.NowS();
   double remaining_s = std::max(0.0, a.estimate_s - (r.t_s - action_started_s_));
-  for (size_t i = current_action_ + 1; i < plan_.actions.size(); ++i) remaining_s += plan_.actions[i].estimate_s;
+  for (size_t i = current_action_ + 1; i < plan_.actions.size(); ++i)
+    remaining_s += plan_.actions[i].estimate_s;
   r.eta_s = remaining_s;
   for (const UnitLogger* l : loggers_) {
     r.units.push_back({l->role(), l->serial(), l->rows(), l->acquired(), l->lost()});
@@ -534,17 +607,23 @@ std::string Executor::ChamberRole() const {
 std::string Executor::Where() const {
   if (current_action_ >= plan_.actions.size()) return "after the last step";
   const PlannedAction& a = plan_.actions[current_action_];
-  return fmt::format("step {} ({}, tag {}), action {} '{}'", a.step, StepKindName(sequence_.steps[a.step].body),
-                     a.tag, current_action_, Describe(a.action));
+  return fmt::format("step {} ({}, tag {}), action {} '{}'",
+                     a.step,
+                     StepKindName(sequence_.steps[a.step].body),
+                     a.tag,
+                     current_action_,
+                     Describe(a.action));
 }
 
 hil::RateTable& Executor::Table() {
-  if (instruments_.rate_table == nullptr) throw RunError(Where() + ": the station has no rate_table");
+  if (instruments_.rate_table == nullptr)
+    throw RunError(Where() + ": the station has no rate_table");
   return *instruments_.rate_table;
 }
 
 hil::Chamber& Executor::Chamber() {
-  if (instruments_.chamber == nullptr) throw RunError(Where() + ": the station has no " + ChamberRole());
+  if (instruments_.chamber == nullptr)
+    throw RunError(Where() + ": the station has no " + ChamberRole());
   return *instruments_.chamber;
 }
 

@@ -57,22 +57,22 @@ class RunInterrupted : public std::runtime_error {
 };
 
 struct ExecutorOptions {
-  double poll_interval_s = 0.25;     ///< clock seconds between condition polls
-  double refresh_interval_s = 1.0;   ///< clock seconds between instrument readings for the rows
-  double timeout_factor = 3.0;       ///< wait timeout = factor × estimate + margin
+  double poll_interval_s = 0.25;    ///< clock seconds between condition polls
+  double refresh_interval_s = 1.0;  ///< clock seconds between instrument readings for the rows
+  double timeout_factor = 3.0;      ///< wait timeout = factor × estimate + margin
   /// The chamber's mean rate to a new set point, as the plan's model (PlanTiming): a chamber wait
   /// is budgeted from the process value it starts at, at this rate, when that is longer.
   double chamber_ramp_c_per_min = PlanTiming{}.chamber_ramp_c_per_min;
-  double timeout_margin_s = 60.0;     ///< clock seconds
-  double min_margin_wall_s = 3.0;     ///< wall seconds the margin never falls below
-  double min_poll_wall_s = 0.005;     ///< wall seconds between polls at least
-  int interlock_attempts = 3;        ///< interlock tries (with a prompt between) before aborting
-  double interlock_sample_s = 1.0;   ///< packets averaged by an interlock check
+  double timeout_margin_s = 60.0;   ///< clock seconds
+  double min_margin_wall_s = 3.0;   ///< wall seconds the margin never falls below
+  double min_poll_wall_s = 0.005;   ///< wall seconds between polls at least
+  int interlock_attempts = 3;       ///< interlock tries (with a prompt between) before aborting
+  double interlock_sample_s = 1.0;  ///< packets averaged by an interlock check
   double packet_rate_hz = 100.0;
-  double jog_accel_dps2 = 100.0;     ///< table acceleration of the gyro interlock's jog
+  double jog_accel_dps2 = 100.0;  ///< table acceleration of the gyro interlock's jog
   double safe_stop_accel_dps2 = 100.0;
   double table_rate_tolerance_dps = 0.01;  ///< at rate: reported rate within this of the command
-  double progress_interval_s = 0.5;  ///< wall seconds between progress reports
+  double progress_interval_s = 0.5;        ///< wall seconds between progress reports
 };
 
 /// The instruments a batch uses (not owned); null where the station has none.
@@ -86,10 +86,18 @@ struct BatchInstruments {
 class Executor {
  public:
   /// Everything must outlive the executor; `loggers` are running. `stop` is polled.
-  Executor(const Sequence& sequence, const ExecutionPlan& plan, BatchInstruments instruments,
-           std::vector<UnitLogger*> loggers, const hil::Clock& clock, RunAnnotations& annotations,
-           SharedRecording& recording, Journal& journal, RunMeta& meta, ProgressSink& progress,
-           const std::atomic<bool>& stop, ExecutorOptions options = {});
+  Executor(const Sequence& sequence,
+           const ExecutionPlan& plan,
+           BatchInstruments instruments,
+           std::vector<UnitLogger*> loggers,
+           const hil::Clock& clock,
+           RunAnnotations& annotations,
+           SharedRecording& recording,
+           Journal& journal,
+           RunMeta& meta,
+           ProgressSink& progress,
+           const std::atomic<bool>& stop,
+           ExecutorOptions options = {});
 
   /// Runs the plan from the first action of step `first_step` to the end, then makes the rig
   /// safe and sets status "complete". On a resume (`resumed_from_s` set) the rig state the
@@ -118,8 +126,12 @@ class Executor {
   void RunProfile(const PlannedAction& a, const std::string& name);
   void GravityInterlock(const PlannedAction& a, int orientation);
   void GyroInterlock(const PlannedAction& a, int orientation, double jog_rate_dps);
-  void InterlockFailed(const PlannedAction& a, const std::string& kind, double t_start_s,
-                       const std::vector<std::string>& failures, int attempt, int orientation);
+  void InterlockFailed(const PlannedAction& a,
+                       const std::string& kind,
+                       double t_start_s,
+                       const std::vector<std::string>& failures,
+                       int attempt,
+                       int orientation);
   std::vector<RawAverage> AverageAll(const PlannedAction& a);
   void WaitTableAt(double rate_dps, double estimate_s);
   void WaitChamberInBand(double target_c, double band_c, double soak_s, double estimate_s);

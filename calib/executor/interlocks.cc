@@ -47,7 +47,8 @@ Eigen::Vector3d NominalSpecificForce_B_g(const RawAverage& average) {
   return weighted.cwiseQuotient(count);
 }
 
-InterlockVerdict GravityVerdict(const RawAverage& average, int orientation,
+InterlockVerdict GravityVerdict(const RawAverage& average,
+                                int orientation,
                                 const GravityReference* reference) {
   const Eigen::Vector3d f_B_g = NominalSpecificForce_B_g(average);
   InterlockVerdict v;
@@ -59,8 +60,16 @@ InterlockVerdict GravityVerdict(const RawAverage& average, int orientation,
     v.detail = fmt::format(
         "f_B changed by ({:.2f}, {:.2f}, {:.2f}) g since orientation {}, expected ({:.0f}, {:.0f}, "
         "{:.0f}) g for orientation {} ({} up): off by {:.2f} g (tolerance {:.1f} g)",
-        change_g.x(), change_g.y(), change_g.z(), reference->orientation, expected_g.x(),
-        expected_g.y(), expected_g.z(), orientation, AxisText(orientation), worst_g,
+        change_g.x(),
+        change_g.y(),
+        change_g.z(),
+        reference->orientation,
+        expected_g.x(),
+        expected_g.y(),
+        expected_g.z(),
+        orientation,
+        AxisText(orientation),
+        worst_g,
         kRelativeTolerance_g);
     return v;
   }
@@ -78,16 +87,27 @@ InterlockVerdict GravityVerdict(const RawAverage& average, int orientation,
   v.detail = fmt::format(
       "measured f_B = ({:.2f}, {:.2f}, {:.2f}) g over {} packets: {:.2f} g along the commanded "
       "orientation {} ({} up), {:.2f} g along orientation {} ({} up)",
-      f_B_g.x(), f_B_g.y(), f_B_g.z(), average.packets, along_up_g, orientation,
-      AxisText(orientation), best_dot, best, AxisText(best));
+      f_B_g.x(),
+      f_B_g.y(),
+      f_B_g.z(),
+      average.packets,
+      along_up_g,
+      orientation,
+      AxisText(orientation),
+      best_dot,
+      best,
+      AxisText(best));
   return v;
 }
 
-InterlockVerdict GyroAxisVerdict(const RawAverage& rest, const RawAverage& jog, int orientation,
-                               double jog_rate_dps) {
+InterlockVerdict GyroAxisVerdict(const RawAverage& rest,
+                                 const RawAverage& jog,
+                                 int orientation,
+                                 double jog_rate_dps) {
   const Eigen::Vector3d up = UpAxis_B(orientation);
   Eigen::Vector3d response_dps;
-  for (int i = 0; i < 3; ++i) response_dps[i] = (jog.gyro_cnt[i] - rest.gyro_cnt[i]) / kGyroCountsPerDps;
+  for (int i = 0; i < 3; ++i)
+    response_dps[i] = (jog.gyro_cnt[i] - rest.gyro_cnt[i]) / kGyroCountsPerDps;
   const Eigen::Vector3d expected_dps = jog_rate_dps * up;
   Eigen::Index moved = 0;
   response_dps.cwiseAbs().maxCoeff(&moved);
@@ -98,8 +118,14 @@ InterlockVerdict GyroAxisVerdict(const RawAverage& rest, const RawAverage& jog, 
   v.detail = fmt::format(
       "table jog {:.0f} deg/s: gyro change (gx, gy, gz) = ({:.1f}, {:.1f}, {:.1f}) deg/s nominal; "
       "expected {:.0f} deg/s on g{} ({} up, orientation {})",
-      jog_rate_dps, response_dps.x(), response_dps.y(), response_dps.z(), expected_dps[axis],
-      "xyz"[axis], AxisText(orientation), orientation);
+      jog_rate_dps,
+      response_dps.x(),
+      response_dps.y(),
+      response_dps.z(),
+      expected_dps[axis],
+      "xyz"[axis],
+      AxisText(orientation),
+      orientation);
   return v;
 }
 

@@ -50,13 +50,16 @@ struct GravityReference {
 };
 
 /// The gravity interlock for one unit in `orientation`, relative to `reference` when given.
-InterlockVerdict GravityVerdict(const RawAverage& average, int orientation,
+InterlockVerdict GravityVerdict(const RawAverage& average,
+                                int orientation,
                                 const GravityReference* reference);
 
 /// The gyro-axis interlock for one unit: `rest` and `jog` averaged at rest and at `jog_rate_dps`.
 /// Passes when the gyro of the up axis changed most, in the expected direction, by 50…150 % of
 /// the nominal response (the ADXRS150's sensitivity tolerance is far inside that).
-InterlockVerdict GyroAxisVerdict(const RawAverage& rest, const RawAverage& jog, int orientation,
-                               double jog_rate_dps);
+InterlockVerdict GyroAxisVerdict(const RawAverage& rest,
+                                 const RawAverage& jog,
+                                 int orientation,
+                                 double jog_rate_dps);
 
 }  // namespace adahrs::calib

@@ -63,8 +63,8 @@ JournalContents ReadJournal(const std::filesystem::path& run_dir) {
       throw JournalError(path.string() + ":" + std::to_string(line) + ": not JSON (byte " +
                          std::to_string(e.byte) + ")");
     } catch (const nlohmann::json::exception& e) {  // a number beyond double's range
-      throw JournalError(path.string() + ":" + std::to_string(line) + ": not JSON: " +
-                         common::PrintableText(e.what()));
+      throw JournalError(path.string() + ":" + std::to_string(line) +
+                         ": not JSON: " + common::PrintableText(e.what()));
     }
     if (!event.is_object() || !event.contains("event") || !event["event"].is_string()) {
       throw JournalError(path.string() + ":" + std::to_string(line) +

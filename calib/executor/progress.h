@@ -14,16 +14,16 @@ namespace adahrs::calib {
 struct UnitProgress {
   std::string role;
   std::string serial;
-  uint64_t packets = 0;   ///< rows recorded in this session
-  int64_t acquired = 0;   ///< packets counted by the acquisition in progress
-  uint64_t lost = 0;      ///< lost packets by the sequence counter
+  uint64_t packets = 0;  ///< rows recorded in this session
+  int64_t acquired = 0;  ///< packets counted by the acquisition in progress
+  uint64_t lost = 0;     ///< lost packets by the sequence counter
 };
 
 struct ProgressReport {
-  size_t step = 0;         ///< 0-based step index
+  size_t step = 0;  ///< 0-based step index
   size_t step_count = 0;
-  std::string step_kind;   ///< "accel", "gyro", …
-  size_t action = 0;       ///< 0-based index into the plan
+  std::string step_kind;  ///< "accel", "gyro", …
+  size_t action = 0;      ///< 0-based index into the plan
   size_t action_count = 0;
   std::string action_text;  ///< Describe() of the action
   double t_s = 0.0;         ///< pipeline clock

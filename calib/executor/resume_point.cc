@@ -12,7 +12,8 @@ namespace {
 constexpr double kMaxRunTime_s = 365.0 * 86400.0;
 
 std::string Where(const nlohmann::json& event, size_t index) {
-  return "journal event " + std::to_string(index + 1) + " (" + event["event"].get<std::string>() + ")";
+  return "journal event " + std::to_string(index + 1) + " (" + event["event"].get<std::string>() +
+         ")";
 }
 
 double NumberOf(const nlohmann::json& event, const char* key, size_t index) {
@@ -26,20 +27,25 @@ double NumberOf(const nlohmann::json& event, const char* key, size_t index) {
 double TimeOf(const nlohmann::json& event, size_t index, double previous_s) {
   const double t_s = NumberOf(event, "t_s", index);
   if (!(t_s >= 0.0 && t_s <= kMaxRunTime_s)) {
-    throw JournalError(Where(event, index) + ": t_s " + event["t_s"].dump() + " is not a time of a run (0 ... 1 year)");
+    throw JournalError(Where(event, index) + ": t_s " + event["t_s"].dump() +
+                       " is not a time of a run (0 ... 1 year)");
   }
   if (t_s < previous_s) {
-    throw JournalError(Where(event, index) + ": t_s " + event["t_s"].dump() + " is before the previous event's");
+    throw JournalError(Where(event, index) + ": t_s " + event["t_s"].dump() +
+                       " is before the previous event's");
   }
   return t_s;
 }
 
 // The event's step: an integer index of the sequence.
 size_t StepOf(const nlohmann::json& event, size_t index, size_t step_count) {
-  if (!event.contains("step") || !event["step"].is_number_integer() || event["step"].get<int64_t>() < 0 ||
+  if (!event.contains("step") || !event["step"].is_number_integer() ||
+      event["step"].get<int64_t>() < 0 ||
       event["step"].get<int64_t>() >= static_cast<int64_t>(step_count)) {
-    throw JournalError(Where(event, index) + ": \"step\" " + (event.contains("step") ? event["step"].dump() : "missing") +
-                       " is not a step of the sequence (0 ... " + std::to_string(step_count - 1) + ")");
+    throw JournalError(Where(event, index) + ": \"step\" " +
+                       (event.contains("step") ? event["step"].dump() : "missing") +
+                       " is not a step of the sequence (0 ... " + std::to_string(step_count - 1) +
+                       ")");
   }
   return static_cast<size_t>(event["step"].get<int64_t>());
 }

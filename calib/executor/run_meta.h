@@ -31,7 +31,10 @@ class RunMeta {
     Write();
   }
   /// Rows with t_start_s <= t_s <= t_end_s are not calibration data.
-  void AddRejectedInterval(size_t step, double t_start_s, double t_end_s, const std::string& reason) {
+  void AddRejectedInterval(size_t step,
+                           double t_start_s,
+                           double t_end_s,
+                           const std::string& reason) {
     meta_["rejected_intervals"].push_back(
         {{"step", step}, {"t_start_s", t_start_s}, {"t_end_s", t_end_s}, {"reason", reason}});
     Write();

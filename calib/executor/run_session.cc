@@ -62,10 +62,14 @@ double LastRowTime(const std::filesystem::path& csv) {
   double t_s = 0.0;
   const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), t_s);
   constexpr double kMaxRunTime_s = 365.0 * 86400.0;  // as the journal's (resume_point.cc)
-  if (ec != std::errc() || end != cell.data() + cell.size() || !(t_s >= 0.0 && t_s <= kMaxRunTime_s)) {
-    throw std::runtime_error(fmt::format("{}:{}: column 1 (t_s) '{}' is not a time of the run: the last complete "
-                                         "row is corrupt, so the run cannot be resumed after it",
-                                         csv.string(), last_number, cell));
+  if (ec != std::errc() || end != cell.data() + cell.size() ||
+      !(t_s >= 0.0 && t_s <= kMaxRunTime_s)) {
+    throw std::runtime_error(
+        fmt::format("{}:{}: column 1 (t_s) '{}' is not a time of the run: the last complete "
+                    "row is corrupt, so the run cannot be resumed after it",
+                    csv.string(),
+                    last_number,
+                    cell));
   }
   return t_s;
 }
@@ -89,7 +93,9 @@ std::vector<hil::UnitLink*> BatchLinks(const hil::StationInstruments& instrument
   }
   if (links.empty() || (imu_batch && links.size() > 4)) {
     throw RunError(fmt::format("station '{}' has {} {} units; a batch is 1 to {} of them",
-                               s.station.name, links.size(), UnitKindName(s.sequence.unit_kind),
+                               s.station.name,
+                               links.size(),
+                               UnitKindName(s.sequence.unit_kind),
                                imu_batch ? "4" : "any number"));
   }
   return links;
@@ -107,15 +113,16 @@ BatchUnits IdentifyUnits(const std::vector<hil::UnitLink*>& links, bool imu_batc
     const firmware_model::IdentifyInfo id = link->Identify();
     const std::string serial = hil::UnitSerialText(link->entry().kind, id.serial_number);
     out.serials.push_back(serial);
-    out.units.push_back({{"role", link->entry().role},
-                         {"kind", imu_batch ? "imu" : "ads"},
-                         {"serial", serial},
-                         {"serial_number", id.serial_number},
-                         {"firmware", fmt::format("{}.{}.{}", id.firmware_major, id.firmware_minor,
-                                                  id.firmware_patch)},
-                         {"slot", link->entry().slot},
-                         {"constants_version", id.constants_version},
-                         {"mode", id.mode}});
+    out.units.push_back(
+        {{"role", link->entry().role},
+         {"kind", imu_batch ? "imu" : "ads"},
+         {"serial", serial},
+         {"serial_number", id.serial_number},
+         {"firmware",
+          fmt::format("{}.{}.{}", id.firmware_major, id.firmware_minor, id.firmware_patch)},
+         {"slot", link->entry().slot},
+         {"constants_version", id.constants_version},
+         {"mode", id.mode}});
   }
   return out;
 }
@@ -124,7 +131,8 @@ BatchUnits IdentifyUnits(const std::vector<hil::UnitLink*>& links, bool imu_batc
 BatchInstruments BatchInstrumentsFor(const hil::StationInstruments& instruments, bool imu_batch) {
   BatchInstruments batch{instruments.rate_table.get(),
                          imu_batch ? instruments.imu_chamber.get() : instruments.ads_chamber.get(),
-                         instruments.adts.get(), instruments.op.get()};
+                         instruments.adts.get(),
+                         instruments.op.get()};
   if (!imu_batch) batch.rate_table = nullptr;
   if (imu_batch) batch.adts = nullptr;
   return batch;
@@ -147,16 +155,19 @@ nlohmann::json IdentifyInstruments(const BatchInstruments& batch, bool imu_batch
 }
 
 // The interrupted run's meta, refused when the batch is not the same units in the same order.
-nlohmann::json ResumedRunMeta(nlohmann::json meta, const Session& s,
+nlohmann::json ResumedRunMeta(nlohmann::json meta,
+                              const Session& s,
                               const std::vector<hil::UnitLink*>& links,
                               const std::vector<std::string>& serials) {
   for (size_t u = 0; u < serials.size(); ++u) {
     const auto& old_units = meta["units"];
     if (old_units.size() != serials.size() || old_units[u]["serial"] != serials[u]) {
-      throw RunError(fmt::format(
-          "{}: the batch differs from the interrupted run's: {} is now {}, was {}",
-          (s.run_dir / hil::kMetaJsonName).string(), links[u]->entry().role, serials[u],
-          u < old_units.size() ? old_units[u]["serial"].dump() : "absent"));
+      throw RunError(
+          fmt::format("{}: the batch differs from the interrupted run's: {} is now {}, was {}",
+                      (s.run_dir / hil::kMetaJsonName).string(),
+                      links[u]->entry().role,
+                      serials[u],
+                      u < old_units.size() ? old_units[u]["serial"].dump() : "absent"));
     }
   }
   return meta;
@@ -177,8 +188,10 @@ nlohmann::json NewRunMeta(const Session& s, const nlohmann::json& units) {
 
 // The run's meta as it starts: new, or the interrupted run's; either way running, with the
 // instruments of this session.
-nlohmann::json StartingRunMeta(const Session& s, const std::optional<nlohmann::json>& old_meta,
-                               const std::vector<hil::UnitLink*>& links, const BatchUnits& units,
+nlohmann::json StartingRunMeta(const Session& s,
+                               const std::optional<nlohmann::json>& old_meta,
+                               const std::vector<hil::UnitLink*>& links,
+                               const BatchUnits& units,
                                const nlohmann::json& identities) {
   nlohmann::json meta =
       old_meta ? ResumedRunMeta(*old_meta, s, links, units.serials) : NewRunMeta(s, units.units);
@@ -189,10 +202,15 @@ nlohmann::json StartingRunMeta(const Session& s, const std::optional<nlohmann::j
 
 // The journal's first events of this session: the run started or resumed, then what resuming
 // found (each at the clock's time now).
-void JournalSessionStart(Journal& journal, const hil::Clock& clock, bool resumed, size_t first_step,
+void JournalSessionStart(Journal& journal,
+                         const hil::Clock& clock,
+                         bool resumed,
+                         size_t first_step,
                          std::vector<nlohmann::json> resume_events) {
-  journal.Append({{"event", resumed ? "run_resumed" : "run_started"}, {"t_s", clock.NowS()},
-                  {"utc", hil::UtcNowIso8601()}, {"first_step", first_step}});
+  journal.Append({{"event", resumed ? "run_resumed" : "run_started"},
+                  {"t_s", clock.NowS()},
+                  {"utc", hil::UtcNowIso8601()},
+                  {"first_step", first_step}});
   for (nlohmann::json& e : resume_events) {
     e["t_s"] = clock.NowS();
     journal.Append(e);
@@ -218,10 +236,15 @@ std::vector<UnitLogger*> Pointers(const std::vector<std::unique_ptr<UnitLogger>>
   return out;
 }
 
-RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nlohmann::json> old_meta,
-                   size_t first_step, std::optional<double> repeated_from_s,
-                   std::vector<nlohmann::json> resume_events, ProgressSink& progress,
-                   const std::atomic<bool>& stop, const NewRunOptions& options) {
+RunSummary Execute(const Session& s,
+                   const hil::Clock& clock,
+                   std::optional<nlohmann::json> old_meta,
+                   size_t first_step,
+                   std::optional<double> repeated_from_s,
+                   std::vector<nlohmann::json> resume_events,
+                   ProgressSink& progress,
+                   const std::atomic<bool>& stop,
+                   const NewRunOptions& options) {
   hil::StationInstruments instruments = hil::OpenStation(s.station, clock);
   if (options.wrap_operator) instruments.op = options.wrap_operator(std::move(instruments.op));
   const bool imu_batch = s.sequence.unit_kind == UnitKind::kImu;
@@ -241,8 +264,18 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
   RunAnnotations annotations;
   const std::vector<std::unique_ptr<UnitLogger>> loggers =
       StartUnitLoggers(links, units.serials, recording, annotations);
-  Executor executor(s.sequence, s.plan, batch, Pointers(loggers), clock, annotations, recording,
-                    journal, run_meta, progress, stop, options.executor);
+  Executor executor(s.sequence,
+                    s.plan,
+                    batch,
+                    Pointers(loggers),
+                    clock,
+                    annotations,
+                    recording,
+                    journal,
+                    run_meta,
+                    progress,
+                    stop,
+                    options.executor);
   const auto summary = [&] {
     RunSummary out{s.run_dir, run_meta.json()["status"].get<std::string>(), 0, 0};
     for (auto& l : loggers) {
@@ -264,7 +297,8 @@ RunSummary Execute(const Session& s, const hil::Clock& clock, std::optional<nloh
 
 }  // namespace
 
-RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
+RunSummary StartRun(const NewRunOptions& options,
+                    ProgressSink& progress,
                     const std::atomic<bool>& stop) {
   const SequenceLimits limits;
   Session s;
@@ -275,7 +309,8 @@ RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
   s.sequence_file = options.sequence_file;
   if (std::filesystem::exists(s.run_dir / hil::kMetaJsonName)) {
     throw RunError(fmt::format("{} already holds a run; resume it with adahrs run --resume {}",
-                               s.run_dir.string(), s.run_dir.string()));
+                               s.run_dir.string(),
+                               s.run_dir.string()));
   }
   std::filesystem::create_directories(s.run_dir);
   const RunDirectoryLock lock(s.run_dir);
@@ -284,10 +319,13 @@ RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
   return Execute(s, *clock, std::nullopt, 0, std::nullopt, {}, progress, stop, options);
 }
 
-RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progress,
-                     const std::atomic<bool>& stop, const NewRunOptions& options) {
+RunSummary ResumeRun(const std::filesystem::path& run_dir,
+                     ProgressSink& progress,
+                     const std::atomic<bool>& stop,
+                     const NewRunOptions& options) {
   const std::filesystem::path meta_path = run_dir / hil::kMetaJsonName;
-  if (!std::filesystem::exists(meta_path)) throw RunError(meta_path.string() + ": no run to resume here");
+  if (!std::filesystem::exists(meta_path))
+    throw RunError(meta_path.string() + ": no run to resume here");
   const RunDirectoryLock lock(run_dir);  // before anything of the run is read or moved
   const nlohmann::json meta = common::ParamReader::LoadFile(meta_path.string());
   if (!meta.contains("format_version") || meta["format_version"] != hil::kRecordingFormatVersion ||
@@ -297,8 +335,8 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progres
   }
   const SequenceLimits limits;
   Session s;
-  s.station = hil::Station::FromJson(
-      common::ParamReader(meta["station"], meta_path.string(), "$.station"));
+  s.station =
+      hil::Station::FromJson(common::ParamReader(meta["station"], meta_path.string(), "$.station"));
   s.sequence = SequenceFromJson(meta["sequence"], meta_path.string() + " $.sequence");
   s.plan = ExpandSequence(s.sequence, limits, TimingFor(s.station));
   s.run_dir = run_dir;
@@ -307,7 +345,8 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progres
   for (const std::filesystem::path& file :
        {run_dir / hil::kImuCsvName, run_dir / hil::kAdsCsvName, run_dir / kJournalName}) {
     if (const auto torn = hil::SetAsideTornTail(file)) {
-      events.push_back({{"event", "torn_tail_set_aside"}, {"file", file.filename().string()},
+      events.push_back({{"event", "torn_tail_set_aside"},
+                        {"file", file.filename().string()},
                         {"moved_to", torn->filename().string()}});
       progress.Note(fmt::format("torn last line of {} moved to {}", file.string(), torn->string()));
     }
@@ -317,15 +356,26 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progres
     throw RunError(run_dir.string() + ": the run is complete; nothing to resume");
   }
   // The clock continues one packet period after the latest time on record.
-  const double last_t_s = std::max({point.last_t_s, LastRowTime(run_dir / hil::kImuCsvName),
+  const double last_t_s = std::max({point.last_t_s,
+                                    LastRowTime(run_dir / hil::kImuCsvName),
                                     LastRowTime(run_dir / hil::kAdsCsvName)});
   const std::unique_ptr<hil::Clock> base =
       hil::MakeClock(s.station.time_scale, s.station.clock_file);
   const OffsetClock clock(*base, last_t_s + 1.0 / options.executor.packet_rate_hz);
-  progress.Note(fmt::format("resuming {} at step {} of {}, clock from t = {:.2f} s", run_dir.string(),
-                            point.first_incomplete_step + 1, s.sequence.steps.size(), clock.NowS()));
-  return Execute(s, clock, meta, point.first_incomplete_step, point.interrupted_step_started_s,
-                 std::move(events), progress, stop, options);
+  progress.Note(fmt::format("resuming {} at step {} of {}, clock from t = {:.2f} s",
+                            run_dir.string(),
+                            point.first_incomplete_step + 1,
+                            s.sequence.steps.size(),
+                            clock.NowS()));
+  return Execute(s,
+                 clock,
+                 meta,
+                 point.first_incomplete_step,
+                 point.interrupted_step_started_s,
+                 std::move(events),
+                 progress,
+                 stop,
+                 options);
 }
 
 }  // namespace adahrs::calib

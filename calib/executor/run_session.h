@@ -33,19 +33,22 @@ struct NewRunOptions {
 
 struct RunSummary {
   std::filesystem::path run_dir;
-  std::string status;      ///< meta.json status at the end
-  uint64_t rows = 0;       ///< rows recorded by this session
-  uint64_t lost = 0;       ///< packets lost in this session, all units
+  std::string status;  ///< meta.json status at the end
+  uint64_t rows = 0;   ///< rows recorded by this session
+  uint64_t lost = 0;   ///< packets lost in this session, all units
 };
 
 /// Starts a new run in `options.run_dir` (which must not hold a run already). Throws
 /// SequenceError / ParamError before anything moves, RunError or RunInterrupted after.
-RunSummary StartRun(const NewRunOptions& options, ProgressSink& progress,
+RunSummary StartRun(const NewRunOptions& options,
+                    ProgressSink& progress,
                     const std::atomic<bool>& stop);
 
 /// Resumes the run in `run_dir` from its first step not completed (`options.station_file`,
 /// `sequence_file` and `run_dir` are ignored: the run's meta.json has them).
-RunSummary ResumeRun(const std::filesystem::path& run_dir, ProgressSink& progress,
-                     const std::atomic<bool>& stop, const NewRunOptions& options = {});
+RunSummary ResumeRun(const std::filesystem::path& run_dir,
+                     ProgressSink& progress,
+                     const std::atomic<bool>& stop,
+                     const NewRunOptions& options = {});
 
 }  // namespace adahrs::calib

@@ -61,8 +61,8 @@ class SharedRecording {
   std::condition_variable queue_cv_;    // rows queued or stopping
   std::condition_variable written_cv_;  // rows written
   std::deque<Row> queue_;  // a deque: growing it never moves the queued rows under the lock
-  uint64_t queued_ = 0;   // rows ever appended
-  uint64_t written_ = 0;  // rows ever written and flushed to the kernel
+  uint64_t queued_ = 0;    // rows ever appended
+  uint64_t written_ = 0;   // rows ever written and flushed to the kernel
   bool stopping_ = false;
   std::exception_ptr error_;
   std::thread thread_;

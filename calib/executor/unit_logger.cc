@@ -14,7 +14,9 @@ constexpr std::chrono::milliseconds kPollWait{5};
 
 }  // namespace
 
-UnitLogger::UnitLogger(hil::UnitLink& link, std::string serial, SharedRecording& recording,
+UnitLogger::UnitLogger(hil::UnitLink& link,
+                       std::string serial,
+                       SharedRecording& recording,
                        const RunAnnotations& annotations)
     : link_(link),
       role_(link.entry().role),

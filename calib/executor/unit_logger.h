@@ -50,7 +50,9 @@ class UnitLogger {
  public:
   /// `link`, `recording` and `annotations` must outlive the logger. `serial` is the unit's serial
   /// text written in every row.
-  UnitLogger(hil::UnitLink& link, std::string serial, SharedRecording& recording,
+  UnitLogger(hil::UnitLink& link,
+             std::string serial,
+             SharedRecording& recording,
              const RunAnnotations& annotations);
   ~UnitLogger();
   UnitLogger(const UnitLogger&) = delete;

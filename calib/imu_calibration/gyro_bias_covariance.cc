@@ -27,7 +27,8 @@ double PoleSigmaForFloor(double floor_dps, double time_scale) {
   double sum = 0.0;
   for (int i = 0; i < kFloorBandPoints; ++i) {
     const double u = static_cast<double>(i) / (kFloorBandPoints - 1);
-    const double tau_s = std::exp(std::log(kFloorBandMin_s) + u * std::log(kFloorBandMax_s / kFloorBandMin_s));
+    const double tau_s =
+        std::exp(std::log(kFloorBandMin_s) + u * std::log(kFloorBandMax_s / kFloorBandMin_s));
     double avar = 0.0;
     for (double t_s : kPoleCorrelationTimes_s) avar += UnitPoleAvar(tau_s, time_scale * t_s);
     sum += std::sqrt(avar);
@@ -50,7 +51,8 @@ double WindowMeanCovariance(double a1, double b1, double a2, double b2, double t
 }  // namespace
 
 Eigen::MatrixXd GyroBiasCovariance_dps2(const std::vector<ImuObservation>& obs,
-                                        double bias_instability_dps, double frame_period_s,
+                                        double bias_instability_dps,
+                                        double frame_period_s,
                                         double time_scale) {
   const long n = static_cast<long>(obs.size());
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
@@ -62,10 +64,14 @@ Eigen::MatrixXd GyroBiasCovariance_dps2(const std::vector<ImuObservation>& obs,
       double sum = 0.0;
       for (const TimeWindow& w1 : obs[i].windows) {
         for (const TimeWindow& w2 : obs[j].windows) {
-          const double weight = (static_cast<double>(w1.rows) / obs[i].count) * (static_cast<double>(w2.rows) / obs[j].count);
+          const double weight = (static_cast<double>(w1.rows) / obs[i].count) *
+                                (static_cast<double>(w2.rows) / obs[j].count);
           for (double t_s : kPoleCorrelationTimes_s) {
-            sum += weight * WindowMeanCovariance(w1.first_s, w1.last_s + frame_period_s, w2.first_s,
-                                                 w2.last_s + frame_period_s, time_scale * t_s);
+            sum += weight * WindowMeanCovariance(w1.first_s,
+                                                 w1.last_s + frame_period_s,
+                                                 w2.first_s,
+                                                 w2.last_s + frame_period_s,
+                                                 time_scale * t_s);
           }
         }
       }

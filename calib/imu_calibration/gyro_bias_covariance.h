@@ -32,7 +32,8 @@ namespace adahrs::calib {
 /// the Allan floor `bias_instability_dps`, frame period `frame_period_s` and the poles'
 /// correlation times scaled by `time_scale`.
 Eigen::MatrixXd GyroBiasCovariance_dps2(const std::vector<ImuObservation>& obs,
-                                        double bias_instability_dps, double frame_period_s,
+                                        double bias_instability_dps,
+                                        double frame_period_s,
                                         double time_scale = 1.0);
 
 }  // namespace adahrs::calib

@@ -8,10 +8,10 @@
 namespace adahrs::calib {
 namespace {
 
-constexpr int kFloorSteps = 25;        // over a factor of 100, uniform in log B
-constexpr double kFloorRange = 10.0;   // B0 / 10 ... 10 B0
-constexpr int kWhiteSteps = 13;        // the white variances' scale s = 2^(w/2 - 2): 1/4 ... 16
-constexpr int kWhitePrior = 4;         // s = 1 exactly
+constexpr int kFloorSteps = 25;       // over a factor of 100, uniform in log B
+constexpr double kFloorRange = 10.0;  // B0 / 10 ... 10 B0
+constexpr int kWhiteSteps = 13;       // the white variances' scale s = 2^(w/2 - 2): 1/4 ... 16
+constexpr int kWhitePrior = 4;        // s = 1 exactly
 constexpr int kFloorPrior = (kFloorSteps - 1) / 2;  // B = B0 exactly
 constexpr double kDphPerDps = 3600.0;
 
@@ -25,7 +25,9 @@ struct Rotated {
   double log_det_d = 0.0;
 };
 
-Rotated Rotate(const Eigen::MatrixXd& k0, const Eigen::MatrixXd& design, const Eigen::VectorXd& y,
+Rotated Rotate(const Eigen::MatrixXd& k0,
+               const Eigen::MatrixXd& design,
+               const Eigen::VectorXd& y,
                const Eigen::VectorXd& white) {
   const Eigen::VectorXd inv_sqrt = white.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd w = inv_sqrt.asDiagonal() * k0 * inv_sqrt.asDiagonal();
@@ -53,9 +55,12 @@ double RestrictedLogLikelihood(const Rotated& r, double s, double f) {
 
 }  // namespace
 
-GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs, const Eigen::MatrixXd& design,
-                                      const Eigen::VectorXd& y, const Eigen::VectorXd& white_cnt2,
-                                      double prior_floor_dph, double counts_per_dps,
+GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs,
+                                      const Eigen::MatrixXd& design,
+                                      const Eigen::VectorXd& y,
+                                      const Eigen::VectorXd& white_cnt2,
+                                      double prior_floor_dph,
+                                      double counts_per_dps,
                                       double frame_period_s) {
   const double cnt2_per_dps2 = counts_per_dps * counts_per_dps;
   GyroWanderEstimate best;
@@ -64,9 +69,10 @@ GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs, co
   size_t best_c = 0;
   for (size_t c = 0; c < kWanderTimeScales.size(); ++c) {
     // K is quadratic in B: computed once per time scale at B0, scaled for each floor.
-    const Eigen::MatrixXd k0 = GyroBiasCovariance_dps2(obs, prior_floor_dph / kDphPerDps, frame_period_s,
-                                                       kWanderTimeScales[c]) *
-                               cnt2_per_dps2;
+    const Eigen::MatrixXd k0 =
+        GyroBiasCovariance_dps2(
+            obs, prior_floor_dph / kDphPerDps, frame_period_s, kWanderTimeScales[c]) *
+        cnt2_per_dps2;
     const Rotated rotated = Rotate(k0, design, y, white_cnt2);
     for (int w = 0; w < kWhiteSteps; ++w) {
       const double s = std::exp2(0.5 * w - 2.0);
@@ -91,7 +97,8 @@ GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs, co
   best.covariance_cnt2.diagonal() += (best.white_scale - 1.0) * white_cnt2;
   best.log_likelihood_gain = best_ll - prior_ll;
   best.at_grid_edge = best_b == 0 || best_b == kFloorSteps - 1 || best_c == 0 ||
-                      best_c + 1 == kWanderTimeScales.size() || best_w == 0 || best_w == kWhiteSteps - 1;
+                      best_c + 1 == kWanderTimeScales.size() || best_w == 0 ||
+                      best_w == kWhiteSteps - 1;
   return best;
 }
 

@@ -38,9 +38,12 @@ struct GyroWanderEstimate {
 
 /// `design` rows and `y` are the channel's observations in the order of `obs` (all of them),
 /// `white_cnt2` their own variances; `prior_floor_dph` the datasheet's B0.
-GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs, const Eigen::MatrixXd& design,
-                                      const Eigen::VectorXd& y, const Eigen::VectorXd& white_cnt2,
-                                      double prior_floor_dph, double counts_per_dps,
+GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs,
+                                      const Eigen::MatrixXd& design,
+                                      const Eigen::VectorXd& y,
+                                      const Eigen::VectorXd& white_cnt2,
+                                      double prior_floor_dph,
+                                      double counts_per_dps,
                                       double frame_period_s);
 
 }  // namespace adahrs::calib

@@ -9,8 +9,8 @@
 #include "calib/imu_calibration/gyro_wander_fit.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/solvers/linear_least_squares.h"
-#include "firmware_model/target/imu_constants.h"
 #include "common/units.h"
+#include "firmware_model/target/imu_constants.h"
 
 namespace adahrs::calib {
 namespace {
@@ -20,8 +20,8 @@ using nlohmann::json;
 
 static_assert(kMaxThermalOrder == fm::kImuThermalDegree);
 
-constexpr std::array<const char*, 9> kChannelNames = {"az1", "ax1", "ay1", "az2", "ax2",
-                                                      "ay2", "gx",  "gy",  "gz"};
+constexpr std::array<const char*, 9> kChannelNames = {
+    "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
 constexpr std::array<int, 6> kAxisOfChannel = {2, 0, 1, 2, 0, 1};
 constexpr int kPairOfAxis[3][2] = {{1, 4}, {2, 5}, {0, 3}};
 // Temperature counts are fitted in tau = (t - centre) / span (conditioning), re-expanded in Map.
@@ -69,8 +69,8 @@ double ScaledStimulus(const ChannelModel& m, const ImuObservation& o) {
 // Mean of tau^p over an observation's rows from its raw temperature moments E[t^i]:
 // E[((t - c)/s)^p] = sum_i C(p, i) E[t^i] (-c)^(p - i) / s^p.
 double TauPowerMean(const ImuObservation& o, int sensor, int p) {
-  const double moment[kMaxThermalOrder + 1] = {1.0, o.t_mean_cnt[sensor], o.t2_mean_cnt2[sensor],
-                                               o.t3_mean_cnt3[sensor]};
+  const double moment[kMaxThermalOrder + 1] = {
+      1.0, o.t_mean_cnt[sensor], o.t2_mean_cnt2[sensor], o.t3_mean_cnt3[sensor]};
   double sum = 0.0, binomial = 1.0;
   for (int i = p; i >= 0; --i) {
     sum += binomial * moment[i] * std::pow(-kTempCentre_cnt, p - i);
@@ -133,18 +133,23 @@ double MedianThermalCount(const std::vector<ImuObservation>& obs) {
     if (o.thermal) counts.push_back(o.count);
   }
   if (counts.empty()) return 1.0;
-  std::nth_element(counts.begin(), counts.begin() + static_cast<long>(counts.size() / 2), counts.end());
+  std::nth_element(
+      counts.begin(), counts.begin() + static_cast<long>(counts.size() / 2), counts.end());
   return counts[counts.size() / 2];
 }
 
 // Variance of an observation's mean from white noise: measured (fit weights) or datasheet (CRB).
 // The gyro bias wander is not in it: it correlates observations (gyro_bias_covariance.h).
-double Variance(const ImuObservation& o, int ch, double n_thermal, bool datasheet,
+double Variance(const ImuObservation& o,
+                int ch,
+                double n_thermal,
+                bool datasheet,
                 const ImuDatasheetNoise& noise) {
   const double n = o.thermal ? n_thermal : o.count;
   if (!datasheet) {
     // A measured spread below half the datasheet noise is not credible (few samples, or samples
-    // identical after quantisation): the variance is not allowed below a quarter of the datasheet's.
+    // identical after quantisation): the variance is not allowed below a quarter of the
+    // datasheet's.
     const double measured = o.u_sd[ch] * o.u_sd[ch] / n;
     return std::max(measured, 0.25 * Variance(o, ch, n_thermal, true, noise));
   }
@@ -152,7 +157,8 @@ double Variance(const ImuObservation& o, int ch, double n_thermal, bool datashee
     // Filtered white noise sampled every frame: stationary variance N^2 / (4 tau) with lag-one
     // correlation rho = exp(-T / tau); a mean of n such samples has variance
     // sigma^2 / n * (1 + rho) / (1 - rho).
-    const double sigma_g = noise.accel_density_ug_per_rthz * 1e-6 / std::sqrt(4.0 * noise.accel_filter_tau_s);
+    const double sigma_g =
+        noise.accel_density_ug_per_rthz * 1e-6 / std::sqrt(4.0 * noise.accel_filter_tau_s);
     const double rho = std::exp(-noise.frame_period_s / noise.accel_filter_tau_s);
     const double sigma_duty = sigma_g * noise.accel_sensitivity_duty_per_g;
     return sigma_duty * sigma_duty / n * (1.0 + rho) / (1.0 - rho);
@@ -169,9 +175,15 @@ double Variance(const ImuObservation& o, int ch, double n_thermal, bool datashee
 // its covariance between observations (generalised least squares: the fit and the bound).
 enum class BiasWander { kNone, kDiagonal, kCorrelated };
 
-LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<ImuObservation>& obs,
-                const std::vector<size_t>& use, double n_thermal, bool datasheet,
-                const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2, BiasWander wander,
+LinearFit Solve(const std::string& serial,
+                ChannelModel& m,
+                const std::vector<ImuObservation>& obs,
+                const std::vector<size_t>& use,
+                double n_thermal,
+                bool datasheet,
+                const ImuJointOptions& options,
+                const Eigen::MatrixXd& bias_cnt2,
+                BiasWander wander,
                 double model_variance = 0.0) {
   const ImuDatasheetNoise& noise = options.noise;
   const long n = static_cast<long>(use.size());
@@ -185,18 +197,21 @@ LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<Im
     design.row(r) = DesignRow(m, o);
     y[r] = o.u_mean[m.channel];
     variance[r] = Variance(o, m.channel, n_thermal, datasheet, noise) + model_variance;
-    if (wander != BiasWander::kNone) variance[r] += bias_cnt2(use[static_cast<size_t>(r)], use[static_cast<size_t>(r)]);
+    if (wander != BiasWander::kNone)
+      variance[r] += bias_cnt2(use[static_cast<size_t>(r)], use[static_cast<size_t>(r)]);
   }
   if (wander == BiasWander::kCorrelated) {
     // Whitening: with Sigma = L L', the rows L^-1 A and L^-1 y have unit independent errors.
     Eigen::MatrixXd sigma(n, n);
     for (long r = 0; r < n; ++r) {
-      for (long c = 0; c < n; ++c) sigma(r, c) = bias_cnt2(use[static_cast<size_t>(r)], use[static_cast<size_t>(c)]);
+      for (long c = 0; c < n; ++c)
+        sigma(r, c) = bias_cnt2(use[static_cast<size_t>(r)], use[static_cast<size_t>(c)]);
       sigma(r, r) = variance[r];
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(sigma);
     if (llt.info() != Eigen::Success) {
-      throw DegenerateDesignError(p.context + ": the observations' covariance (own variance plus gyro "
+      throw DegenerateDesignError(p.context +
+                                  ": the observations' covariance (own variance plus gyro "
                                   "bias wander) is not positive definite");
     }
     p.design = llt.matrixL().solve(design);
@@ -204,7 +219,8 @@ LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<Im
   } else {
     p.design = design;
     p.observations = y;
-    p.weights = options.unit_weights && !datasheet ? Eigen::VectorXd::Ones(n) : Eigen::VectorXd(variance.cwiseInverse());
+    p.weights = options.unit_weights && !datasheet ? Eigen::VectorXd::Ones(n)
+                                                   : Eigen::VectorXd(variance.cwiseInverse());
   }
   p.weight_kind = WeightKind::kInverseVariance;
   p.error_scale = datasheet ? ErrorScale::kKnownVariance : ErrorScale::kResidualVariance;
@@ -218,10 +234,15 @@ LinearFit Solve(const std::string& serial, ChannelModel& m, const std::vector<Im
 
 // Sum over `test` of the squared residuals of `m` fitted to `train`, each over its observation's
 // variance (white noise, plus the bias wander unless `wander` is kNone).
-double HeldOutSquares(const std::string& serial, ChannelModel& m, const std::vector<ImuObservation>& obs,
-                      const std::vector<size_t>& train, const std::vector<size_t>& test,
-                      double n_thermal, const ImuJointOptions& options,
-                      const Eigen::MatrixXd& bias_cnt2, BiasWander wander) {
+double HeldOutSquares(const std::string& serial,
+                      ChannelModel& m,
+                      const std::vector<ImuObservation>& obs,
+                      const std::vector<size_t>& train,
+                      const std::vector<size_t>& test,
+                      double n_thermal,
+                      const ImuJointOptions& options,
+                      const Eigen::MatrixXd& bias_cnt2,
+                      BiasWander wander) {
   const LinearFit fit = Solve(serial, m, obs, train, n_thermal, false, options, bias_cnt2, wander);
   double sum = 0.0;
   for (size_t i : test) {
@@ -233,9 +254,14 @@ double HeldOutSquares(const std::string& serial, ChannelModel& m, const std::vec
 }
 
 // 5-fold held-out error over the thermal bands for each order; the order with the least.
-int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservation>& obs,
-                double n_thermal, const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2,
-                BiasWander wander, json* report) {
+int ChooseOrder(const std::string& serial,
+                int ch,
+                const std::vector<ImuObservation>& obs,
+                double n_thermal,
+                const ImuJointOptions& options,
+                const Eigen::MatrixXd& bias_cnt2,
+                BiasWander wander,
+                json* report) {
   std::vector<size_t> thermal, other;
   for (size_t i = 0; i < obs.size(); ++i) (obs[i].thermal ? thermal : other).push_back(i);
   if (static_cast<int>(thermal.size()) < 4 * options.folds) return 2;
@@ -270,7 +296,8 @@ int ChooseOrder(const std::string& serial, int ch, const std::vector<ImuObservat
 // their mean TEMP count within kScaleLevelGap_cnt (2 degC) of a level's first member.
 constexpr double kScaleLevelGap_cnt = 220.0;
 
-std::vector<int> ScaleLevels(const ChannelModel& m, const std::vector<ImuObservation>& obs,
+std::vector<int> ScaleLevels(const ChannelModel& m,
+                             const std::vector<ImuObservation>& obs,
                              int* level_count) {
   std::vector<double> levels;
   std::vector<int> level_of(obs.size(), -1);
@@ -290,10 +317,14 @@ std::vector<int> ScaleLevels(const ChannelModel& m, const std::vector<ImuObserva
 // predicted by a fit without them (the thermal bands always in), normalised by their noise.
 constexpr int kGyroMinScaleOrder = 2;
 
-int ChooseScaleOrder(const std::string& serial, const ChannelModel& base,
-                     const std::vector<ImuObservation>& obs, double n_thermal,
-                     const ImuJointOptions& options, const Eigen::MatrixXd& bias_cnt2,
-                     BiasWander wander, json* report) {
+int ChooseScaleOrder(const std::string& serial,
+                     const ChannelModel& base,
+                     const std::vector<ImuObservation>& obs,
+                     double n_thermal,
+                     const ImuJointOptions& options,
+                     const Eigen::MatrixXd& bias_cnt2,
+                     BiasWander wander,
+                     json* report) {
   int levels = 0;
   const std::vector<int> level_of = ScaleLevels(base, obs, &levels);
   (*report)["scale_temperature_levels"] = levels;
@@ -340,8 +371,10 @@ bool HasFormat3Terms(const std::array<ChannelModel, 9>& models) {
 
 // F_c(t) = 1 / (1 + delta_c(tau) / S_c) as a least-squares cubic in (t - origin) over the
 // sensor's span, delta_c = sum_p theta_p tau^p and S_c the channel's own stimulus coefficient.
-std::array<double, 4> ScaleFactorCubic(const ChannelModel& m, const Eigen::VectorXd& theta,
-                                       double own_scale, const fm::TempSensorSpan& span) {
+std::array<double, 4> ScaleFactorCubic(const ChannelModel& m,
+                                       const Eigen::VectorXd& theta,
+                                       double own_scale,
+                                       const fm::TempSensorSpan& span) {
   constexpr int kPoints = 41;
   Eigen::MatrixXd a(kPoints, 4);
   Eigen::VectorXd f(kPoints);
@@ -365,7 +398,8 @@ std::array<double, 4> ScaleFactorCubic(const ChannelModel& m, const Eigen::Vecto
 void MapScaleTemperature(const std::array<ChannelModel, 9>& models,
                          const std::array<Eigen::VectorXd, 9>& theta,
                          const std::array<std::array<double, 2>, 3>& temp_span_cnt,
-                         const Eigen::Matrix3d& cg, fm::ImuCalibrationConstants* c) {
+                         const Eigen::Matrix3d& cg,
+                         fm::ImuCalibrationConstants* c) {
   fm::ImuScaleTemperature& st = c->scale_temperature;
   st.active = true;
   for (int s = 0; s < 3; ++s) {
@@ -389,7 +423,8 @@ void MapScaleTemperature(const std::array<ChannelModel, 9>& models,
   for (int g = 0; g < 3; ++g) {
     const ChannelModel& m = models[6 + g];
     if (!m.g_sensitivity) continue;
-    for (int a = 0; a < 3; ++a) gsens_dps_per_g(g, a) = theta[6 + g][m.extra_index() + a] / own[6 + g];
+    for (int a = 0; a < 3; ++a)
+      gsens_dps_per_g(g, a) = theta[6 + g][m.extra_index() + a] / own[6 + g];
   }
   const Eigen::Matrix3d gs = -cg * gsens_dps_per_g / common::kStandardGravity_mps2;
   for (int r = 0; r < 3; ++r) {
@@ -433,7 +468,8 @@ fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
   }
   Eigen::Matrix3d pair;
   for (int axis = 0; axis < 3; ++axis) {
-    pair.row(axis) = 0.5 * (m_over_s[kPairOfAxis[axis][0]] + m_over_s[kPairOfAxis[axis][1]]).transpose();
+    pair.row(axis) =
+        0.5 * (m_over_s[kPairOfAxis[axis][0]] + m_over_s[kPairOfAxis[axis][1]]).transpose();
   }
   const Eigen::Matrix3d ca = common::kStandardGravity_mps2 * pair.inverse();
   Eigen::Matrix3d n_rows;
@@ -456,7 +492,9 @@ fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
     }
     const Eigen::Vector3d lambda = a.colPivHouseholderQr().solve(w);
     c.gyro[g] = {null_cnt,
-                 {0.0, lambda[0] / kDScale_cnt, lambda[1] / (kDScale_cnt * kDScale_cnt),
+                 {0.0,
+                  lambda[0] / kDScale_cnt,
+                  lambda[1] / (kDScale_cnt * kDScale_cnt),
                   lambda[2] / (kDScale_cnt * kDScale_cnt * kDScale_cnt)}};
     n_rows.row(g) = n.transpose() / n[g];
   }
@@ -497,8 +535,10 @@ Eigen::MatrixXd Propagate(const std::array<ChannelModel, 9>& models,
 
 // The gyro channel's wander from the recording: its model's design over every observation, and
 // the observations' own variances (gyro_wander_fit.h).
-GyroWanderEstimate EstimateWander(const ChannelModel& m, const std::vector<ImuObservation>& obs,
-                                  double n_thermal, const ImuJointOptions& options) {
+GyroWanderEstimate EstimateWander(const ChannelModel& m,
+                                  const std::vector<ImuObservation>& obs,
+                                  double n_thermal,
+                                  const ImuJointOptions& options) {
   const long n = static_cast<long>(obs.size());
   Eigen::MatrixXd design(n, m.size());
   Eigen::VectorXd y(n), white(n);
@@ -508,8 +548,13 @@ GyroWanderEstimate EstimateWander(const ChannelModel& m, const std::vector<ImuOb
     y[r] = o.u_mean[m.channel];
     white[r] = Variance(o, m.channel, n_thermal, false, options.noise);
   }
-  return EstimateGyroWander(obs, design, y, white, options.noise.gyro_bias_floor_dph,
-                            options.noise.gyro_counts_per_dps, options.noise.frame_period_s);
+  return EstimateGyroWander(obs,
+                            design,
+                            y,
+                            white,
+                            options.noise.gyro_bias_floor_dph,
+                            options.noise.gyro_counts_per_dps,
+                            options.noise.frame_period_s);
 }
 
 }  // namespace
@@ -603,7 +648,8 @@ std::vector<std::string> ConstantNames() {
   }
   for (int ch = 0; ch < 9; ++ch) {
     for (int i = 0; i < 4; ++i) {
-      names.push_back("scale_temperature.scale[" + std::to_string(ch) + "][" + std::to_string(i) + "]");
+      names.push_back("scale_temperature.scale[" + std::to_string(ch) + "][" + std::to_string(i) +
+                      "]");
     }
   }
   for (int a = 0; a < 3; ++a) {
@@ -639,9 +685,12 @@ struct ChannelContext {
   const ImuJointOptions& options;
 };
 
-json WanderReport(const std::optional<GyroWanderEstimate>& estimate, const ImuDatasheetNoise& noise) {
+json WanderReport(const std::optional<GyroWanderEstimate>& estimate,
+                  const ImuDatasheetNoise& noise) {
   if (!estimate) {
-    return {{"floor_dph", noise.gyro_bias_floor_dph}, {"time_scale", 1.0}, {"source", "datasheet prior"}};
+    return {{"floor_dph", noise.gyro_bias_floor_dph},
+            {"time_scale", 1.0},
+            {"source", "datasheet prior"}};
   }
   return {{"floor_dph", estimate->floor_dph},
           {"time_scale", estimate->time_scale},
@@ -653,14 +702,19 @@ json WanderReport(const std::optional<GyroWanderEstimate>& estimate, const ImuDa
 
 // Format 3: the scale factors' order in temperature, the accelerometer's f_axis^2, the gyro's
 // g-sensitivity and the die-lag terms; a gyro's nonlinearity ratios from a provisional fit.
-void ChooseFormat3Terms(const ChannelContext& cx, const Eigen::MatrixXd& bias_cnt2, BiasWander diagonal,
-                        ChannelModel* m, json* report) {
+void ChooseFormat3Terms(const ChannelContext& cx,
+                        const Eigen::MatrixXd& bias_cnt2,
+                        BiasWander diagonal,
+                        ChannelModel* m,
+                        json* report) {
   m->quadratic = !m->gyro();
   m->g_sensitivity = m->gyro();
   m->lag = !m->gyro() && cx.options.die_lag_terms;
-  m->scale_order = cx.options.scale_order
-                       ? *cx.options.scale_order
-                       : ChooseScaleOrder(cx.serial, *m, cx.obs, cx.n_thermal, cx.options, bias_cnt2, diagonal, report);
+  m->scale_order =
+      cx.options.scale_order
+          ? *cx.options.scale_order
+          : ChooseScaleOrder(
+                cx.serial, *m, cx.obs, cx.n_thermal, cx.options, bias_cnt2, diagonal, report);
   (*report)["scale_order"] = m->scale_order;
   if (m->gyro() && m->scale_order > 0) {
     const LinearFit provisional =
@@ -675,16 +729,21 @@ void ChooseFormat3Terms(const ChannelContext& cx, const Eigen::MatrixXd& bias_cn
 // variance, the thermal bands' mean squared residual beyond their noise, is added to every
 // observation's variance and the fit repeated, so that the 25 degC acquisitions (tiny noise) do
 // not pin the polynomial's misfit at 25 degC instead of spreading it over the range.
-double ModelVariance(const ChannelContext& cx, ChannelModel& m, const Eigen::MatrixXd& bias_cnt2,
-                     bool wanders, BiasWander correlated) {
-  const LinearFit first = Solve(cx.serial, m, cx.obs, cx.all, cx.n_thermal, false, cx.options, bias_cnt2, correlated);
+double ModelVariance(const ChannelContext& cx,
+                     ChannelModel& m,
+                     const Eigen::MatrixXd& bias_cnt2,
+                     bool wanders,
+                     BiasWander correlated) {
+  const LinearFit first =
+      Solve(cx.serial, m, cx.obs, cx.all, cx.n_thermal, false, cx.options, bias_cnt2, correlated);
   double excess = 0.0;
   int n_bands = 0;
   for (size_t i : cx.all) {
     const ImuObservation& o = cx.obs[i];
     if (!o.thermal) continue;
     const double r = o.u_mean[m.channel] - DesignRow(m, o).dot(first.coefficients);
-    excess += r * r - Variance(o, m.channel, cx.n_thermal, false, cx.options.noise) - (wanders ? bias_cnt2(i, i) : 0.0);
+    excess += r * r - Variance(o, m.channel, cx.n_thermal, false, cx.options.noise) -
+              (wanders ? bias_cnt2(i, i) : 0.0);
     ++n_bands;
   }
   return cx.options.unit_weights || n_bands == 0 ? 0.0 : std::max(0.0, excess / n_bands);
@@ -692,18 +751,30 @@ double ModelVariance(const ChannelContext& cx, ChannelModel& m, const Eigen::Mat
 
 // Format 2: the accelerometer's scale tempco that the firmware cannot hold, estimated for the
 // record.
-void ReportFormat2ScaleTempco(const ChannelContext& cx, const ChannelModel& m, const Eigen::MatrixXd& bias_cnt2,
+void ReportFormat2ScaleTempco(const ChannelContext& cx,
+                              const ChannelModel& m,
+                              const Eigen::MatrixXd& bias_cnt2,
                               json* report) {
   ChannelModel with = m;
   with.scale_order = 1;
   try {
-    const LinearFit t = Solve(cx.serial, with, cx.obs, cx.all, cx.n_thermal, false, cx.options, bias_cnt2, BiasWander::kNone);
+    const LinearFit t = Solve(cx.serial,
+                              with,
+                              cx.obs,
+                              cx.all,
+                              cx.n_thermal,
+                              false,
+                              cx.options,
+                              bias_cnt2,
+                              BiasWander::kNone);
     const double s_axis = t.coefficients[with.stimulus_index() + kAxisOfChannel[m.channel]];
     // tau per degC: 110 counts per degC / 4096 counts per tau unit (thermal_drift_fit.h).
     const double per_c = 110.0 / kTempSpan_cnt / s_axis * 1e6;
     (*report)["scale_tempco_ppm_per_c"] = t.coefficients[t.coefficients.size() - 1] * per_c;
-    (*report)["scale_tempco_se_ppm_per_c"] = t.standard_errors[t.standard_errors.size() - 1] * std::abs(per_c);
-    (*report)["scale_tempco_note"] = "estimated, not held by the firmware (no scale-vs-temperature term)";
+    (*report)["scale_tempco_se_ppm_per_c"] =
+        t.standard_errors[t.standard_errors.size() - 1] * std::abs(per_c);
+    (*report)["scale_tempco_note"] =
+        "estimated, not held by the firmware (no scale-vs-temperature term)";
   } catch (const DegenerateDesignError& e) {
     (*report)["scale_tempco_note"] = std::string("not identifiable from this design: ") + e.what();
   }
@@ -717,28 +788,48 @@ ChannelFit FitChannel(const ChannelContext& cx, int ch, const Eigen::MatrixXd& p
   const bool wanders = ch >= 6 && !options.unit_weights;
   const BiasWander correlated = wanders ? BiasWander::kCorrelated : BiasWander::kNone;
   const BiasWander diagonal = wanders ? BiasWander::kDiagonal : BiasWander::kNone;
-  m.order = options.thermal_order
-                ? *options.thermal_order
-                : ChooseOrder(cx.serial, ch, cx.obs, cx.n_thermal, options, prior_cnt2, diagonal, &out.report);
+  m.order =
+      options.thermal_order
+          ? *options.thermal_order
+          : ChooseOrder(
+                cx.serial, ch, cx.obs, cx.n_thermal, options, prior_cnt2, diagonal, &out.report);
   // The gyro bias wander between observations: the datasheet's prior, or (if options say so)
   // each gyro's own, estimated from the recording (gyro_wander_fit.h).
   std::optional<GyroWanderEstimate> estimate;
-  if (wanders && options.estimate_gyro_wander) estimate = EstimateWander(m, cx.obs, cx.n_thermal, options);
+  if (wanders && options.estimate_gyro_wander)
+    estimate = EstimateWander(m, cx.obs, cx.n_thermal, options);
   if (wanders) out.report["bias_wander"] = WanderReport(estimate, options.noise);
   const Eigen::MatrixXd& bias_cnt2 = estimate ? estimate->covariance_cnt2 : prior_cnt2;
   if (estimate && !options.thermal_order) {
-    m.order = ChooseOrder(cx.serial, ch, cx.obs, cx.n_thermal, options, bias_cnt2, diagonal, &out.report);
+    m.order =
+        ChooseOrder(cx.serial, ch, cx.obs, cx.n_thermal, options, bias_cnt2, diagonal, &out.report);
   }
   if (options.format3) ChooseFormat3Terms(cx, bias_cnt2, diagonal, &m, &out.report);
   const double model_variance = ModelVariance(cx, m, bias_cnt2, wanders, correlated);
-  const LinearFit fit =
-      Solve(cx.serial, m, cx.obs, cx.all, cx.n_thermal, false, options, bias_cnt2, correlated, model_variance);
+  const LinearFit fit = Solve(cx.serial,
+                              m,
+                              cx.obs,
+                              cx.all,
+                              cx.n_thermal,
+                              false,
+                              options,
+                              bias_cnt2,
+                              correlated,
+                              model_variance);
   out.report["model_error_rms"] = std::sqrt(model_variance);
   // The bound carries the same excess: scatter the datasheet's noise leaves out (rate random
   // walk, TEMP quantisation, drift between a level's visits) limits any estimator of this
   // design on this unit, and a bound without it is beaten by 5-80 standard errors.
-  const LinearFit bound =
-      Solve(cx.serial, m, cx.obs, cx.all, cx.n_thermal, true, options, bias_cnt2, correlated, model_variance);
+  const LinearFit bound = Solve(cx.serial,
+                                m,
+                                cx.obs,
+                                cx.all,
+                                cx.n_thermal,
+                                true,
+                                options,
+                                bias_cnt2,
+                                correlated,
+                                model_variance);
   out.theta = fit.coefficients;
   out.cov = fit.covariance;
   out.crb = bound.covariance;
@@ -755,7 +846,8 @@ std::array<std::array<double, 2>, 3> TemperatureSpans(const std::string& serial,
                                                       const std::vector<ImuObservation>& obs) {
   std::array<std::array<double, 2>, 3> temp_span_cnt;
   for (int s = 0; s < 3; ++s) {
-    temp_span_cnt[s] = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    temp_span_cnt[s] = {std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
     for (const ImuObservation& o : obs) {
       temp_span_cnt[s][0] = std::min(temp_span_cnt[s][0], std::floor(o.t_mean_cnt[s]));
       temp_span_cnt[s][1] = std::max(temp_span_cnt[s][1], std::ceil(o.t_mean_cnt[s]));
@@ -771,7 +863,8 @@ std::array<std::array<double, 2>, 3> TemperatureSpans(const std::string& serial,
 }
 
 std::vector<std::vector<double>> Rows(const Eigen::MatrixXd& m) {
-  std::vector<std::vector<double>> rows(static_cast<size_t>(m.rows()), std::vector<double>(static_cast<size_t>(m.cols())));
+  std::vector<std::vector<double>> rows(static_cast<size_t>(m.rows()),
+                                        std::vector<double>(static_cast<size_t>(m.cols())));
   for (int r = 0; r < m.rows(); ++r) {
     for (int k = 0; k < m.cols(); ++k) rows[r][k] = m(r, k);
   }
@@ -780,7 +873,8 @@ std::vector<std::vector<double>> Rows(const Eigen::MatrixXd& m) {
 
 }  // namespace
 
-ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObservation>& obs,
+ImuFitResult FitImuJoint(const std::string& serial,
+                         const std::vector<ImuObservation>& obs,
                          const ImuJointOptions& options) {
   std::vector<size_t> all(obs.size());
   for (size_t i = 0; i < obs.size(); ++i) all[i] = i;
@@ -788,10 +882,12 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
   // The datasheet's gyro bias wander between observations, counts^2.
   const double cpd = options.noise.gyro_counts_per_dps;
   const Eigen::MatrixXd prior_cnt2 =
-      options.unit_weights ? Eigen::MatrixXd()
-                           : Eigen::MatrixXd(GyroBiasCovariance_dps2(obs, options.noise.gyro_bias_floor_dph / 3600.0,
-                                                                     options.noise.frame_period_s) *
-                                             (cpd * cpd));
+      options.unit_weights
+          ? Eigen::MatrixXd()
+          : Eigen::MatrixXd(GyroBiasCovariance_dps2(obs,
+                                                    options.noise.gyro_bias_floor_dph / 3600.0,
+                                                    options.noise.frame_period_s) *
+                            (cpd * cpd));
   std::array<ChannelModel, 9> models;
   std::array<Eigen::VectorXd, 9> theta;
   std::array<Eigen::MatrixXd, 9> cov, crb;
@@ -816,15 +912,15 @@ ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObserva
     se[kFirstGyroNumber + 5 * g + 1] = std::numeric_limits<double>::quiet_NaN();
   }
   result.standard_errors = UnflattenConstants(se, result.constants);
-  result.diagnostics = {{"channels", channels},
-                        {"observations", obs.size()},
-                        {"crb_parameters", ConstantNames()},
-                        {"crb_covariance", Rows(crb_fw)},
-                        {"firmware_cannot_hold",
-                         options.format3
-                             ? "thermal and scale-factor orders above 3, the tempco of cross-axis terms"
-                             : "accelerometer scale vs temperature, accelerometer nonlinearity, gyro "
-                               "g-sensitivity, thermal orders above 3"}};
+  result.diagnostics = {
+      {"channels", channels},
+      {"observations", obs.size()},
+      {"crb_parameters", ConstantNames()},
+      {"crb_covariance", Rows(crb_fw)},
+      {"firmware_cannot_hold",
+       options.format3 ? "thermal and scale-factor orders above 3, the tempco of cross-axis terms"
+                       : "accelerometer scale vs temperature, accelerometer nonlinearity, gyro "
+                         "g-sensitivity, thermal orders above 3"}};
   return result;
 }
 

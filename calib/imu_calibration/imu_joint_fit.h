@@ -5,7 +5,8 @@
 // Model, per channel, in the FORWARD direction (raw output from the known stimulus), written so
 // that it is linear in its parameters:
 //   accelerometer i:  U_i = o_i + a1_i t + a2_i t^2 + a3_i t^3 + m_i . f_B_g
-//   gyro g:           U_g = c_g + b1_g t + b2_g t^2 + b3_g t^3 + n_g . w_B_dps + q2_g w_g^2 + q3_g w_g^3
+//   gyro g:           U_g = c_g + b1_g t + b2_g t^2 + b3_g t^3 + n_g . w_B_dps + q2_g w_g^2 + q3_g
+//   w_g^3
 // t the TEMP counts of the channel's sensor (kThermalSensorOfChannel), m_i (duty per g) and n_g
 // (counts per deg/s) 3-vectors that hold scale, misalignment and cross-axis together, w_g the
 // rate about the gyro's own axis (the span nonlinearity). Every observation (imu_observations.h)
@@ -29,21 +30,21 @@
 // "auto"; the gyro bias wander enters only as each observation's extra variance there), or
 // fixed; the firmware holds at most order 3 (ThermalFit::k[4]).
 // Mapping to the firmware constants (calibration_constants.h):
-//   thermal xi(t) = alpha1 tau + alpha2 tau^2 + alpha3 tau^3 re-expanded in raw t (k0 follows: xi = 0 at the
-//   centre 32768 counts, keeping the exporter's thermal block small); O_i = o_i; S_i = m_i[axis_i] (the channel's nominal axis, signed);
-//   pair rows P_axis = (m_i/S_i + m_j/S_j)/2, CA = 9.80665 P^-1 (A = CA Ca = 9.80665 f_B_g);
-//   gyro thermal likewise; null = c_g; l = the cubic that inverts
-//   d = n_gg w + q2 w^2 + q3 w^3 over +-150 deg/s (least squares on 61 rates, l0 = 0);
+//   thermal xi(t) = alpha1 tau + alpha2 tau^2 + alpha3 tau^3 re-expanded in raw t (k0 follows: xi =
+//   0 at the centre 32768 counts, keeping the exporter's thermal block small); O_i = o_i; S_i =
+//   m_i[axis_i] (the channel's nominal axis, signed); pair rows P_axis = (m_i/S_i + m_j/S_j)/2, CA
+//   = 9.80665 P^-1 (A = CA Ca = 9.80665 f_B_g); gyro thermal likewise; null = c_g; l = the cubic
+//   that inverts d = n_gg w + q2 w^2 + q3 w^3 over +-150 deg/s (least squares on 61 rates, l0 = 0);
 //   rows N_g = n_g / n_gg, CG = N^-1.
 // Uncertainty: Cov(theta) per channel from the weighted fit (residual variance, so model error
 // shows); the Cramer-Rao bound of the design from the same design with the DATASHEET noise
 // (ImuDatasheetNoise): CRB = (A' Sigma^-1 A)^-1, Sigma = diag(var_datasheet), plus K for the
-// gyros (for Gaussian noise and a linear model the Fisher information is exactly A' Sigma^-1 A). Both are carried to the 81 firmware numbers by
-// the mapping's Jacobian (central differences): Cov_fw = J Cov J'. l0 is fixed at zero by the
-// mapping (the null holds the offset) and reported as not estimated.
-// Format 3 (options.format3, the firmware's scale-temperature stages) adds, linear in its
-// parameters: sum_p s_p tau^p times the channel's own stimulus (f_axis or w_g; p = 1..P, P chosen
-// by leave-one-temperature-out error over the acquisitions, 0 when they were taken at one
+// gyros (for Gaussian noise and a linear model the Fisher information is exactly A' Sigma^-1 A).
+// Both are carried to the 81 firmware numbers by the mapping's Jacobian (central differences):
+// Cov_fw = J Cov J'. l0 is fixed at zero by the mapping (the null holds the offset) and reported as
+// not estimated. Format 3 (options.format3, the firmware's scale-temperature stages) adds, linear
+// in its parameters: sum_p s_p tau^p times the channel's own stimulus (f_axis or w_g; p = 1..P, P
+// chosen by leave-one-temperature-out error over the acquisitions, 0 when they were taken at one
 // temperature), k2 f_axis^2 (accelerometers), G . f_B_g (gyro g-sensitivity). Mapped to
 // F_c(t) = 1 / (1 + delta_c(tau) / S_c) (a least-squares cubic in t over the span),
 // q_axis = -(k2_i / S_i + k2_j / S_j) / 2, GS = -CG diag(1 / n_gg) G / g0. The tempco scales
@@ -69,9 +70,9 @@ struct ImuDatasheetNoise {
   double accel_density_ug_per_rthz = 200.0;  ///< ADXL210E typical
   double accel_filter_tau_s = 3.2e-3;        ///< 32 kOhm x 0.1 uF
   double accel_sensitivity_duty_per_g = 0.04;
-  double gyro_density_dps_per_rthz = 0.05;   ///< ADXRS150 typical
-  double gyro_bias_floor_dph = 75.0;         ///< Allan floor (E)
-  double gyro_counts_per_dps = 20971.52;     ///< 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
+  double gyro_density_dps_per_rthz = 0.05;  ///< ADXRS150 typical
+  double gyro_bias_floor_dph = 75.0;        ///< Allan floor (E)
+  double gyro_counts_per_dps = 20971.52;    ///< 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
   double frame_period_s = 0.01;
 };
 
@@ -100,9 +101,11 @@ struct ImuJointOptions {
 
 /// Highest thermal order the firmware holds (firmware_model::kImuThermalDegree).
 inline constexpr int kMaxThermalOrder = 3;
-/// How many firmware numbers FlattenConstants gives: every number of a constants set, format-3 terms last (zeros for a format-2 set): thermal,
-/// accelerometer, gyro, CA, CG, then scale factors, q and GS.
-inline constexpr int kImuFirmwareNumbers = 9 * (kMaxThermalOrder + 1) + 6 * 2 + 3 * 5 + 9 + 9 + 9 * 4 + 3 + 9;
+/// How many firmware numbers FlattenConstants gives: every number of a constants set, format-3
+/// terms last (zeros for a format-2 set): thermal, accelerometer, gyro, CA, CG, then scale factors,
+/// q and GS.
+inline constexpr int kImuFirmwareNumbers =
+    9 * (kMaxThermalOrder + 1) + 6 * 2 + 3 * 5 + 9 + 9 + 9 * 4 + 3 + 9;
 
 /// The numbers of a format-2 set (the first kImuFormat2Numbers of the flattened vector): constants
 /// files written before format 3 carry a CRB covariance of this size.
@@ -112,14 +115,16 @@ inline constexpr int kImuFormat2Numbers = 9 * (kMaxThermalOrder + 1) + 6 * 2 + 3
 /// CA 3x3, CG 3x3, scale factors 9x4, q 3, GS 3x3) and back; names for reports
 /// ("thermal[0].k[1]"). Unflatten keeps `like`'s scale_temperature.active and spans.
 Eigen::VectorXd FlattenConstants(const firmware_model::ImuCalibrationConstants& c);
-firmware_model::ImuCalibrationConstants UnflattenConstants(const Eigen::VectorXd& v,
-                                                           const firmware_model::ImuCalibrationConstants& like);
+firmware_model::ImuCalibrationConstants UnflattenConstants(
+    const Eigen::VectorXd& v, const firmware_model::ImuCalibrationConstants& like);
 std::vector<std::string> ConstantNames();
 
 /// Fits the joint model to `observations` (named `serial` in messages); diagnostics hold the
 /// chosen orders, residuals, the CRB covariance ("crb_covariance", kImuFirmwareNumbers square)
-/// and, for a format-2 fit, the scale-vs-temperature estimate the firmware would not hold. Throws DegenerateDesignError with the reason.
-ImuFitResult FitImuJoint(const std::string& serial, const std::vector<ImuObservation>& observations,
+/// and, for a format-2 fit, the scale-vs-temperature estimate the firmware would not hold. Throws
+/// DegenerateDesignError with the reason.
+ImuFitResult FitImuJoint(const std::string& serial,
+                         const std::vector<ImuObservation>& observations,
                          const ImuJointOptions& options = {});
 
 }  // namespace adahrs::calib

@@ -10,7 +10,8 @@
 namespace adahrs::calib {
 
 void ObservationBuilder::Add(const firmware_model::ImuRawFrame& raw, double t_s) {
-  if (windows_.empty() || t_s < windows_.back().last_s || t_s - windows_.back().last_s > kWindowMergeGap_s) {
+  if (windows_.empty() || t_s < windows_.back().last_s ||
+      t_s - windows_.back().last_s > kWindowMergeGap_s) {
     windows_.push_back({t_s, t_s, 0});
     slope_.emplace_back();
   }
@@ -41,7 +42,9 @@ void ObservationBuilder::Add(const firmware_model::ImuRawFrame& raw, double t_s)
   ++n_;
 }
 
-ImuObservation ObservationBuilder::Finish(std::string source, bool thermal, int run,
+ImuObservation ObservationBuilder::Finish(std::string source,
+                                          bool thermal,
+                                          int run,
                                           const Eigen::Vector3d& f_B_g,
                                           const Eigen::Vector3d& w_B_dps) const {
   if (n_ < 2) throw ImuInputError(source + ": fewer than 2 rows");
@@ -73,7 +76,8 @@ ImuObservation ObservationBuilder::Finish(std::string source, bool thermal, int 
   return o;
 }
 
-std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit, double g_local_mps2,
+std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit,
+                                            double g_local_mps2,
                                             double band_width_cnt) {
   const double g_l = common::Mps2ToG(g_local_mps2);
   std::vector<ImuObservation> out;
@@ -89,7 +93,8 @@ std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit, double g_lo
       source << a.run << " step " << a.step << " (" << a.step_kind << ") orientation "
              << a.orientation << " rate " << a.rate_dps << " dps";
       const Eigen::Vector3d up = up_of(a.orientation);
-      out.push_back(b.Finish(source.str(), false, a.samples.front().run, g_l * up, a.rate_dps * up));
+      out.push_back(
+          b.Finish(source.str(), false, a.samples.front().run, g_l * up, a.rate_dps * up));
     }
   }
   if (!unit.thermal.empty()) {
@@ -108,9 +113,12 @@ std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit, double g_lo
     for (const auto& [key, b] : bands) {
       const auto& [run, band, segment] = key;
       try {
-        out.push_back(b.Finish("run " + std::to_string(run) + " thermal band " + std::to_string(band) +
-                                   " " + kSegment[segment],
-                               true, run, g_l * up, Eigen::Vector3d::Zero()));
+        out.push_back(b.Finish("run " + std::to_string(run) + " thermal band " +
+                                   std::to_string(band) + " " + kSegment[segment],
+                               true,
+                               run,
+                               g_l * up,
+                               Eigen::Vector3d::Zero()));
       } catch (const ImuInputError&) {
         // A band crossed by a single row carries no spread; its row is too few to weigh.
       }

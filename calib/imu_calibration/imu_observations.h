@@ -43,9 +43,9 @@ struct ImuObservation {
   std::vector<TimeWindow> windows;  ///< in time order within the run
   std::array<double, 9> u_mean{};
   std::array<double, 9> u_sd{};
-  std::array<double, 3> t_mean_cnt{};   ///< per TEMP sensor
-  std::array<double, 3> t2_mean_cnt2{}; ///< mean of t^2 per TEMP sensor
-  std::array<double, 3> t3_mean_cnt3{}; ///< mean of t^3 per TEMP sensor
+  std::array<double, 3> t_mean_cnt{};    ///< per TEMP sensor
+  std::array<double, 3> t2_mean_cnt2{};  ///< mean of t^2 per TEMP sensor
+  std::array<double, 3> t3_mean_cnt3{};  ///< mean of t^3 per TEMP sensor
   /// dt/dtime per TEMP sensor, counts per s: the least-squares slope of t against the rows' times
   /// within each window, pooled over the windows (0 with fewer than 2 rows per window).
   std::array<double, 3> t_rate_cnt_per_s{};
@@ -59,7 +59,10 @@ class ObservationBuilder {
   /// Adds a row taken at `t_s` (the run's clock; rows in time order).
   void Add(const firmware_model::ImuRawFrame& raw, double t_s);
   /// Needs at least 2 rows; throws ImuInputError naming `source` otherwise.
-  ImuObservation Finish(std::string source, bool thermal, int run, const Eigen::Vector3d& f_B_g,
+  ImuObservation Finish(std::string source,
+                        bool thermal,
+                        int run,
+                        const Eigen::Vector3d& f_B_g,
                         const Eigen::Vector3d& w_B_dps) const;
 
  private:
@@ -76,7 +79,8 @@ class ObservationBuilder {
 };
 
 /// Every acquisition of `unit` and its thermal bands as observations.
-std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit, double g_local_mps2,
+std::vector<ImuObservation> ImuObservations(const ImuUnitData& unit,
+                                            double g_local_mps2,
                                             double band_width_cnt = 110.0);
 
 }  // namespace adahrs::calib

@@ -18,8 +18,8 @@ namespace fm = firmware_model;
 using nlohmann::json;
 
 constexpr double kCrossAxisRate_dps = 150.0;  // CG's reference (thesis Eq. 28)
-constexpr std::array<const char*, 9> kChannelNames = {"az1", "ax1", "ay1", "az2", "ax2",
-                                                      "ay2", "gx",  "gy",  "gz"};
+constexpr std::array<const char*, 9> kChannelNames = {
+    "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
 
 int UpAxisIndex(int orientation) { return orientation / 10 - 1; }
 double UpSign(int orientation) { return orientation % 10 == 1 ? 1.0 : -1.0; }
@@ -48,8 +48,10 @@ json ThermalDiagnostics(const ThermalDriftResult& r) {
 
 }  // namespace
 
-ChannelMeans MeansOf(const fm::ImuCalibrationConstants& constants, fm::ImuCompensationMode mode,
-                     const std::vector<ImuSample>& samples, const std::string& context) {
+ChannelMeans MeansOf(const fm::ImuCalibrationConstants& constants,
+                     fm::ImuCompensationMode mode,
+                     const std::vector<ImuSample>& samples,
+                     const std::string& context) {
   std::array<std::vector<double>, 9> columns;
   for (const ImuSample& s : samples) {
     const auto out = fm::ImuReference(constants, mode, s.raw);
@@ -68,7 +70,9 @@ ChannelMeans MeansOf(const fm::ImuCalibrationConstants& constants, fm::ImuCompen
 namespace {
 
 // Stage 1: each channel's drift, a quadratic in its TEMP count over the thermal profile's rows.
-void FitThermalStage(const ImuUnitData& unit, const std::string& who, const ImuReferenceOptions& options,
+void FitThermalStage(const ImuUnitData& unit,
+                     const std::string& who,
+                     const ImuReferenceOptions& options,
                      ImuFitResult* result) {
   if (unit.thermal.empty()) {
     throw ImuInputError(who + ": no thermal_profile rows (give the thermal-calibration run)");
@@ -81,7 +85,8 @@ void FitThermalStage(const ImuUnitData& unit, const std::string& who, const ImuR
     for (size_t i = 0; i < unit.thermal.size(); ++i) {
       const ImuSample& s = unit.thermal[i];
       const double u = fm::ImuReference(c, fm::ImuCompensationMode::kRaw, s.raw)[ch];
-      samples.push_back({static_cast<double>(s.raw.temp_cnt[kThermalSensorOfChannel[ch]]), u,
+      samples.push_back({static_cast<double>(s.raw.temp_cnt[kThermalSensorOfChannel[ch]]),
+                         u,
                          unit.thermal_segment[i]});
     }
     const ThermalDriftResult r =
@@ -90,15 +95,17 @@ void FitThermalStage(const ImuUnitData& unit, const std::string& who, const ImuR
     c.thermal[ch].k = {r.all.k[0], r.all.k[1], r.all.k[2], 0.0};
     c.thermal[ch].temp_min_cnt = r.all.temp_min_cnt;
     c.thermal[ch].temp_max_cnt = r.all.temp_max_cnt;
-    result->standard_errors.thermal[ch].k = {r.all.k_se[0], r.all.k_se[1], r.all.k_se[2],
-                                             std::numeric_limits<double>::quiet_NaN()};
+    result->standard_errors.thermal[ch].k = {
+        r.all.k_se[0], r.all.k_se[1], r.all.k_se[2], std::numeric_limits<double>::quiet_NaN()};
     thermal_diag[kChannelNames[ch]] = ThermalDiagnostics(r);
   }
   result->diagnostics["thermal"] = thermal_diag;
 }
 
 // Stage 2: six-position offsets and scales, the acquisitions pooled per orientation.
-void FitSixPositionStage(const ImuUnitData& unit, const std::string& who, double g_local_mps2,
+void FitSixPositionStage(const ImuUnitData& unit,
+                         const std::string& who,
+                         double g_local_mps2,
                          ImuFitResult* result) {
   fm::ImuCalibrationConstants& c = result->constants;
   std::map<int, std::vector<ImuSample>> by_orientation;
@@ -108,7 +115,9 @@ void FitSixPositionStage(const ImuUnitData& unit, const std::string& who, double
   }
   std::vector<AccelOrientationMeans> six;
   for (const auto& [orientation, samples] : by_orientation) {
-    const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kThermal, samples,
+    const ChannelMeans m = MeansOf(c,
+                                   fm::ImuCompensationMode::kThermal,
+                                   samples,
                                    who + " orientation " + std::to_string(orientation));
     AccelOrientationMeans s;
     s.orientation = orientation;
@@ -138,7 +147,9 @@ void FitGyroStage(const ImuUnitData& unit, const std::string& who, ImuFitResult*
     std::vector<GyroRateMean> steps;
     for (const ImuAcquisition& a : unit.gyro) {
       if (UpAxisIndex(a.orientation) != g) continue;
-      const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kThermal, a.samples,
+      const ChannelMeans m = MeansOf(c,
+                                     fm::ImuCompensationMode::kThermal,
+                                     a.samples,
                                      who + " gyro step " + std::to_string(a.step));
       steps.push_back({a.rate_dps * UpSign(a.orientation), m.mean[6 + g], m.standard_error[6 + g]});
     }
@@ -154,7 +165,9 @@ void FitGyroStage(const ImuUnitData& unit, const std::string& who, ImuFitResult*
 
 // The sensor-calibrated means of one cross-axis acquisition: the accelerometers' (slots 0..2)
 // at rest, or the gyros' (slots 3..5) scaled to the reference rate.
-AxisStepMean CrossAxisMean(const fm::ImuCalibrationConstants& c, const ImuAcquisition& a, bool rate,
+AxisStepMean CrossAxisMean(const fm::ImuCalibrationConstants& c,
+                           const ImuAcquisition& a,
+                           bool rate,
                            const std::string& context) {
   const ChannelMeans m = MeansOf(c, fm::ImuCompensationMode::kFullyCalibrated, a.samples, context);
   const double k = rate ? kCrossAxisRate_dps / a.rate_dps : 1.0;
@@ -169,7 +182,9 @@ AxisStepMean CrossAxisMean(const fm::ImuCalibrationConstants& c, const ImuAcquis
 
 // Stage 4: cross-axis on sensor-calibrated means (CA = CG = I gives Ca and Cg in slots 0..5),
 // from the cross_axis step or else the six positions and the fastest rate steps.
-void FitCrossAxisStage(const ImuUnitData& unit, const std::string& who, double g_local_mps2,
+void FitCrossAxisStage(const ImuUnitData& unit,
+                       const std::string& who,
+                       double g_local_mps2,
                        ImuFitResult* result) {
   fm::ImuCalibrationConstants& c = result->constants;
   const bool have_step = !unit.cross_axis.empty();
@@ -183,19 +198,24 @@ void FitCrossAxisStage(const ImuUnitData& unit, const std::string& who, double g
       if (a.orientation == orientation && std::abs(a.rate_dps) < 1.0) rest = &a;
     }
     for (const ImuAcquisition& a : rate_source) {
-      if (a.orientation == orientation && a.rate_dps > 1.0 && (!fast || a.rate_dps > fast->rate_dps)) {
+      if (a.orientation == orientation && a.rate_dps > 1.0 &&
+          (!fast || a.rate_dps > fast->rate_dps)) {
         fast = &a;
       }
     }
     if (rest) {
-      accel_steps.push_back(CrossAxisMean(c, *rest, false, who + " cross-axis rest " + std::to_string(orientation)));
+      accel_steps.push_back(
+          CrossAxisMean(c, *rest, false, who + " cross-axis rest " + std::to_string(orientation)));
     }
     if (fast) {
-      gyro_steps.push_back(CrossAxisMean(c, *fast, true, who + " cross-axis rate " + std::to_string(orientation)));
+      gyro_steps.push_back(
+          CrossAxisMean(c, *fast, true, who + " cross-axis rate " + std::to_string(orientation)));
     }
   }
-  const CrossAxisEstimate ca = FitCrossAxis(who + " accelerometer cross-axis", accel_steps, g_local_mps2);
-  const CrossAxisEstimate cg = FitCrossAxis(who + " gyro cross-axis", gyro_steps, kCrossAxisRate_dps);
+  const CrossAxisEstimate ca =
+      FitCrossAxis(who + " accelerometer cross-axis", accel_steps, g_local_mps2);
+  const CrossAxisEstimate cg =
+      FitCrossAxis(who + " gyro cross-axis", gyro_steps, kCrossAxisRate_dps);
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) {
       c.ca_mps2_per_g[r][k] = ca.matrix(r, k);
@@ -204,9 +224,10 @@ void FitCrossAxisStage(const ImuUnitData& unit, const std::string& who, double g
       result->standard_errors.cg[r][k] = cg.standard_error(r, k);
     }
   }
-  result->diagnostics["cross_axis"] = {{"source", have_step ? "cross_axis step" : "accel and gyro steps"},
-                                       {"ca_condition", ca.condition_number},
-                                       {"cg_condition", cg.condition_number}};
+  result->diagnostics["cross_axis"] = {
+      {"source", have_step ? "cross_axis step" : "accel and gyro steps"},
+      {"ca_condition", ca.condition_number},
+      {"cg_condition", cg.condition_number}};
 }
 
 void ReportExclusions(const ImuUnitData& unit, json* diag) {
@@ -222,7 +243,8 @@ void ReportExclusions(const ImuUnitData& unit, json* diag) {
 
 }  // namespace
 
-ImuFitResult FitImuReference(const ImuUnitData& unit, double g_local_mps2,
+ImuFitResult FitImuReference(const ImuUnitData& unit,
+                             double g_local_mps2,
                              const ImuReferenceOptions& options) {
   const std::string who = "unit " + unit.serial;
   ImuFitResult result;

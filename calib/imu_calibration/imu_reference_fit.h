@@ -36,7 +36,8 @@ struct ImuReferenceOptions {
 };
 
 /// Sequential reference fit of one unit.
-ImuFitResult FitImuReference(const ImuUnitData& unit, double local_gravity_mps2,
+ImuFitResult FitImuReference(const ImuUnitData& unit,
+                             double local_gravity_mps2,
                              const ImuReferenceOptions& options = {});
 
 /// Per-channel means of `samples` through ImuReference(constants, mode): mean and standard error.
@@ -46,7 +47,8 @@ struct ChannelMeans {
   int count = 0;
 };
 ChannelMeans MeansOf(const firmware_model::ImuCalibrationConstants& constants,
-                     firmware_model::ImuCompensationMode mode, const std::vector<ImuSample>& samples,
+                     firmware_model::ImuCompensationMode mode,
+                     const std::vector<ImuSample>& samples,
                      const std::string& context);
 
 }  // namespace adahrs::calib

@@ -18,16 +18,26 @@ constexpr uint16_t kTempCountMax = 16 * 4095;            // 16 summed 12-bit con
 constexpr double kRateGroupWidth_dps = 1.0;
 constexpr double kTrendWindow_s = 30.0;
 constexpr double kTrendThreshold_c_per_s = 0.05 / 60.0;
-constexpr const char* kAccelColumns[12] = {"az1_t1", "az1_t2", "ax1_t1", "ax1_t2", "ay1_t1",
-                                           "ay1_t2", "az2_t1", "az2_t2", "ax2_t1", "ax2_t2",
-                                           "ay2_t1", "ay2_t2"};
+constexpr const char* kAccelColumns[12] = {"az1_t1",
+                                           "az1_t2",
+                                           "ax1_t1",
+                                           "ax1_t2",
+                                           "ay1_t1",
+                                           "ay1_t2",
+                                           "az2_t1",
+                                           "az2_t2",
+                                           "ax2_t1",
+                                           "ax2_t2",
+                                           "ay2_t1",
+                                           "ay2_t2"};
 constexpr const char* kGyroColumns[3] = {"gx", "gy", "gz"};
 constexpr const char* kTempColumns[3] = {"tx", "ty", "tz"};
 
 // The reason a row cannot be calibration data, with its column, or empty.
 std::string RowDefect(const hil::ImuRecordRow& row) {
   if (row.mode != 0) {
-    return "column mode: " + std::to_string(row.mode) + " (a compensated mode; calibration needs raw rows)";
+    return "column mode: " + std::to_string(row.mode) +
+           " (a compensated mode; calibration needs raw rows)";
   }
   for (int ch = 0; ch < 6; ++ch) {
     const uint16_t t1 = row.accel_ticks[2 * ch];
@@ -68,7 +78,9 @@ ImuSample ToSample(const hil::ImuRecordRow& row) {
 }
 
 // Groups samples by reported table rate (and orientation): one acquisition per group.
-void GroupByRate(const std::string& run, int step, const std::string& kind,
+void GroupByRate(const std::string& run,
+                 int step,
+                 const std::string& kind,
                  const std::vector<std::pair<int, ImuSample>>& samples,
                  std::vector<ImuAcquisition>* out) {
   std::vector<ImuAcquisition> groups;
@@ -137,23 +149,28 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
   std::vector<RejectedInterval> rejected;
   if (meta.contains("rejected_intervals")) {
     for (const json& r : meta["rejected_intervals"]) {
-      rejected.push_back({r.at("step").get<int>(), r.at("t_start_s").get<double>(),
+      rejected.push_back({r.at("step").get<int>(),
+                          r.at("t_start_s").get<double>(),
                           r.at("t_end_s").get<double>()});
     }
   }
   ImuRunCollector collector(run, RecordingSha256(dir), sequence, g, serials, rejected, data);
   // Rows streamed from imu.csv: a recording of ten million rows is never held twice.
-  const hil::Recording read =
-      hil::StreamRecording(dir, {[&](hil::ImuRecordRow&& row, int line) { collector.Take(row, line); }, {}});
+  const hil::Recording read = hil::StreamRecording(
+      dir, {[&](hil::ImuRecordRow&& row, int line) { collector.Take(row, line); }, {}});
   data->notes.insert(data->notes.end(), read.notes.begin(), read.notes.end());
   collector.Finish();
 }
 
 }  // namespace
 
-ImuRunCollector::ImuRunCollector(std::string run, std::string sha256, const Sequence& sequence,
-                                 double local_gravity_mps2, std::vector<std::string> serials,
-                                 std::vector<RejectedInterval> rejected, ImuRunData* data)
+ImuRunCollector::ImuRunCollector(std::string run,
+                                 std::string sha256,
+                                 const Sequence& sequence,
+                                 double local_gravity_mps2,
+                                 std::vector<std::string> serials,
+                                 std::vector<RejectedInterval> rejected,
+                                 ImuRunData* data)
     : run_(std::move(run)),
       sequence_(sequence),
       tags_(EffectiveTags(sequence)),
@@ -161,7 +178,8 @@ ImuRunCollector::ImuRunCollector(std::string run, std::string sha256, const Sequ
       rejected_(std::move(rejected)),
       data_(data) {
   const double g = local_gravity_mps2;
-  if (!(g > 9.7 && g < 9.9)) Fail("meta.json: $.local_gravity_mps2 " + std::to_string(g) + " is not Earth's");
+  if (!(g > 9.7 && g < 9.9))
+    Fail("meta.json: $.local_gravity_mps2 " + std::to_string(g) + " is not Earth's");
   if (data_->local_gravity_mps2 != 0.0 && std::abs(data_->local_gravity_mps2 - g) > 1e-9) {
     Fail("local gravity " + std::to_string(g) + " m/s^2 differs from the first run's " +
          std::to_string(data_->local_gravity_mps2) + " (runs from different stations)");
@@ -244,7 +262,8 @@ void ImuRunCollector::Finish() {
       } else {
         unit.thermal.reserve(unit.thermal.size() + rows.size());
         for (const auto& [orientation, s] : rows) unit.thermal.push_back(s);
-        unit.thermal_orientation = rows.front().first != 0 ? rows.front().first : current_orientation;
+        unit.thermal_orientation =
+            rows.front().first != 0 ? rows.front().first : current_orientation;
       }
     }
   }

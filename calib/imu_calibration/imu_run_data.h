@@ -46,17 +46,17 @@ struct ImuSample {
   double t_s = 0.0;
   double chamber_c = 0.0;
   double table_rate_dps = 0.0;
-  int run = 0;       ///< index of its run in LoadImuRuns' order (ImuRunData::recordings)
-  uint8_t seq = 0;   ///< the packet's 8-bit sequence counter
+  int run = 0;      ///< index of its run in LoadImuRuns' order (ImuRunData::recordings)
+  uint8_t seq = 0;  ///< the packet's 8-bit sequence counter
 };
 
 /// The rows of one acquisition (one orientation and one table rate).
 struct ImuAcquisition {
-  std::string run;          ///< run directory
-  int step = 0;             ///< step index in the run's sequence
-  std::string step_kind;    ///< "accel", "gyro", "cross_axis"
-  int orientation = 0;      ///< 11...32
-  double rate_dps = 0.0;    ///< mean reported table rate about the up axis (0 at rest)
+  std::string run;        ///< run directory
+  int step = 0;           ///< step index in the run's sequence
+  std::string step_kind;  ///< "accel", "gyro", "cross_axis"
+  int orientation = 0;    ///< 11...32
+  double rate_dps = 0.0;  ///< mean reported table rate about the up axis (0 at rest)
   std::vector<ImuSample> samples;
 };
 
@@ -76,8 +76,8 @@ struct ImuRunData {
   double local_gravity_mps2 = 0.0;
   std::vector<RecordingReference> recordings;  ///< with their SHA-256
   std::vector<std::string> sequence_names;
-  std::map<std::string, ImuUnitData> units;    ///< by serial
-  std::vector<std::string> notes;              ///< what the recording reader passed over
+  std::map<std::string, ImuUnitData> units;  ///< by serial
+  std::vector<std::string> notes;            ///< what the recording reader passed over
 };
 
 /// Reads every run directory and collects each IMU's calibration data; throws ImuInputError or
@@ -96,9 +96,13 @@ struct RejectedInterval {
 /// The constructor and Finish throw ImuInputError naming `run`.
 class ImuRunCollector {
  public:
-  ImuRunCollector(std::string run, std::string sha256, const Sequence& sequence,
-                  double local_gravity_mps2, std::vector<std::string> serials,
-                  std::vector<RejectedInterval> rejected, ImuRunData* data);
+  ImuRunCollector(std::string run,
+                  std::string sha256,
+                  const Sequence& sequence,
+                  double local_gravity_mps2,
+                  std::vector<std::string> serials,
+                  std::vector<RejectedInterval> rejected,
+                  ImuRunData* data);
   /// Selects or excludes one row (`line`: its line in imu.csv, for exclusion messages).
   void Take(const hil::ImuRecordRow& row, int line);
   /// Groups the selected rows into acquisitions and labels the thermal rows.

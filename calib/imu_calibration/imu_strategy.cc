@@ -19,7 +19,8 @@ ImuStrategy ImuStrategy::Improved() { return ImuStrategy{}; }
 ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
   const nlohmann::json j = common::ParamReader::LoadFile(path.string());
   const common::ParamReader r(j, path.string());
-  if (r.String("format") != "adahrs-imu-strategy") r.Fail("$.format", "expected \"adahrs-imu-strategy\"");
+  if (r.String("format") != "adahrs-imu-strategy")
+    r.Fail("$.format", "expected \"adahrs-imu-strategy\"");
   if (r.Integer("format_version", 1, 1) != 1) r.Fail("$.format_version", "expected 1");
   ImuStrategy s;
   s.name = r.String("strategy");
@@ -27,10 +28,12 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
     r.Fail("$.strategy", "expected \"reference\" or \"joint\", got \"" + s.name + "\"");
   }
   if (r.Has("thermal_order")) {
-    if (s.name != "joint") r.Fail("$.thermal_order", "only the joint strategy chooses a thermal order");
+    if (s.name != "joint")
+      r.Fail("$.thermal_order", "only the joint strategy chooses a thermal order");
     if (j["thermal_order"].is_string()) {
       if (r.String("thermal_order") != "auto") {
-        r.Fail("$.thermal_order", "expected \"auto\" or an order 0..." + std::to_string(kMaxThermalOrder));
+        r.Fail("$.thermal_order",
+               "expected \"auto\" or an order 0..." + std::to_string(kMaxThermalOrder));
       }
     } else {
       s.thermal_order = static_cast<int>(r.Integer("thermal_order", 0, kMaxThermalOrder));
@@ -40,7 +43,8 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
     s.band_width_cnt = r.Number("thermal_band_width_cnt", 10.0, 2000.0, "counts");
   }
   if (r.Has("gyro_bias_wander")) {
-    if (s.name != "joint") r.Fail("$.gyro_bias_wander", "only the joint strategy models the gyro bias wander");
+    if (s.name != "joint")
+      r.Fail("$.gyro_bias_wander", "only the joint strategy models the gyro bias wander");
     const std::string w = r.String("gyro_bias_wander");
     if (w != "estimated" && w != "datasheet") {
       r.Fail("$.gyro_bias_wander", "expected \"estimated\" or \"datasheet\", got \"" + w + "\"");
@@ -48,14 +52,17 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
     s.estimate_gyro_wander = w == "estimated";
   }
   if (r.Has("firmware_format")) {
-    if (s.name != "joint") r.Fail("$.firmware_format", "only the joint strategy fits format-3 terms");
+    if (s.name != "joint")
+      r.Fail("$.firmware_format", "only the joint strategy fits format-3 terms");
     s.format3 = r.Integer("firmware_format", 2, 3) == 3;
   }
   r.ExpectAllKeysUsed();
   return s;
 }
 
-ConstantsFile FitImuUnit(const ImuUnitData& unit, const ImuRunData& data, const ImuStrategy& strategy,
+ConstantsFile FitImuUnit(const ImuUnitData& unit,
+                         const ImuRunData& data,
+                         const ImuStrategy& strategy,
                          const std::string& software_version) {
   ImuFitResult fit;
   if (strategy.name == "reference") {
@@ -67,7 +74,8 @@ ConstantsFile FitImuUnit(const ImuUnitData& unit, const ImuRunData& data, const 
     options.thermal_order = strategy.thermal_order;
     options.estimate_gyro_wander = strategy.estimate_gyro_wander;
     options.format3 = strategy.format3;
-    fit = FitImuJoint(unit.serial, ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt),
+    fit = FitImuJoint(unit.serial,
+                      ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt),
                       options);
     fit.diagnostics["excluded_rows"] = unit.exclusions.size();
     fit.diagnostics["rejected_interval_rows"] = unit.rejected_interval_rows;

@@ -20,11 +20,11 @@
 namespace adahrs::calib {
 
 struct ImuStrategy {
-  std::string name = "joint";          ///< "reference" or "joint"
-  std::optional<int> thermal_order;    ///< joint: empty = chosen by held-out error
+  std::string name = "joint";        ///< "reference" or "joint"
+  std::optional<int> thermal_order;  ///< joint: empty = chosen by held-out error
   double band_width_cnt = 110.0;
-  bool estimate_gyro_wander = false;   ///< joint: the wander from the recording, else datasheet's
-  bool format3 = false;                ///< joint: fit the firmware's format-3 terms too
+  bool estimate_gyro_wander = false;  ///< joint: the wander from the recording, else datasheet's
+  bool format3 = false;               ///< joint: fit the firmware's format-3 terms too
 
   static ImuStrategy Reference();
   static ImuStrategy Improved();
@@ -37,7 +37,9 @@ struct ImuRunData;
 
 /// Fits one IMU of `data` (its gravity and provenance) with `strategy`. Throws
 /// DegenerateDesignError when the data cannot determine the constants.
-ConstantsFile FitImuUnit(const ImuUnitData& unit, const ImuRunData& data, const ImuStrategy& strategy,
+ConstantsFile FitImuUnit(const ImuUnitData& unit,
+                         const ImuRunData& data,
+                         const ImuStrategy& strategy,
                          const std::string& software_version);
 
 /// Fits every IMU of the runs with `strategy`; one constants file per unit, serial order.

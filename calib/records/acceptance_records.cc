@@ -12,11 +12,15 @@ AcceptanceRecords AcceptanceRecordsFromFile(const std::filesystem::path& accepta
   const std::string serial = file["serial"].get<std::string>();
   const std::string run_id = file["run"]["run_id"].get<std::string>();
   for (const nlohmann::json& p : file["points"]) {
-    records.points.push_back({serial, run_id, p["quantity"].get<std::string>(),
-                              "step " + std::to_string(p["step"].get<int>()) + ", " +
-                                  p["condition"].get<std::string>(),
-                              p["error"].get<double>(), p["tolerance"].get<double>(),
-                              p["unit"].get<std::string>(), p["pass"].get<bool>()});
+    records.points.push_back(
+        {serial,
+         run_id,
+         p["quantity"].get<std::string>(),
+         "step " + std::to_string(p["step"].get<int>()) + ", " + p["condition"].get<std::string>(),
+         p["error"].get<double>(),
+         p["tolerance"].get<double>(),
+         p["unit"].get<std::string>(),
+         p["pass"].get<bool>()});
   }
   return records;
 }

@@ -12,7 +12,8 @@ namespace adahrs::calib {
 
 /// Records `attempt` (its `verified` says whether the unit accepted the blocks) for the file
 /// `constants`; returns the version it was recorded against, or nullopt when nothing was recorded.
-std::optional<int64_t> RecordDownloadAttempt(RecordsStore& store, const ConstantsRecord& constants,
+std::optional<int64_t> RecordDownloadAttempt(RecordsStore& store,
+                                             const ConstantsRecord& constants,
                                              DownloadRecord attempt);
 
 }  // namespace adahrs::calib

@@ -114,13 +114,17 @@ int RecordsSchemaVersionOf(SqliteDatabase& database) {
 void RequireRecordsSchema(SqliteDatabase& database) {
   const int found = RecordsSchemaVersionOf(database);
   if (found == 0) {
-    throw RecordsError(fmt::format("records database {}: not an adahrs records database (no schema_version)",
-                                   database.file().string()));
+    throw RecordsError(
+        fmt::format("records database {}: not an adahrs records database (no schema_version)",
+                    database.file().string()));
   }
   if (found != kRecordsSchemaVersion) {
-    throw RecordsError(fmt::format("records database {}: schema version {}, this program reads {}{}",
-                                   database.file().string(), found, kRecordsSchemaVersion,
-                                   found < kRecordsSchemaVersion ? " (a records command that writes migrates it)" : ""));
+    throw RecordsError(fmt::format(
+        "records database {}: schema version {}, this program reads {}{}",
+        database.file().string(),
+        found,
+        kRecordsSchemaVersion,
+        found < kRecordsSchemaVersion ? " (a records command that writes migrates it)" : ""));
   }
 }
 
@@ -137,7 +141,9 @@ void MigrateRecordsSchema(SqliteDatabase& database) {
     throw RecordsError(fmt::format(
         "records database {}: schema version {} is newer than this program's ({}); use a newer "
         "adahrs",
-        database.file().string(), found, kRecordsSchemaVersion));
+        database.file().string(),
+        found,
+        kRecordsSchemaVersion));
   }
   for (int version = found; version < kRecordsSchemaVersion; ++version) {
     SqliteTransaction transaction(database);
@@ -146,7 +152,9 @@ void MigrateRecordsSchema(SqliteDatabase& database) {
     } catch (const RecordsError& e) {
       throw RecordsError(fmt::format("migration to schema version {}: {}", version + 1, e.what()));
     }
-    SqliteStatement(database, "UPDATE schema_version SET version = ?").Bind(1, int64_t{version + 1}).Run();
+    SqliteStatement(database, "UPDATE schema_version SET version = ?")
+        .Bind(1, int64_t{version + 1})
+        .Run();
     transaction.Commit();
   }
 }

@@ -14,9 +14,9 @@
 #include "calib/constants/provenance_check.h"
 #include "calib/constants/recording_checksum.h"
 #include "calib/sequence/sequence_json.h"
+#include "common/param_reader.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_reader.h"
-#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -68,9 +68,11 @@ RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
   const common::ParamReader meta(meta_json, meta_path.string());
   const int64_t version = meta.Integer("format_version", 1, 1000);
   if (version != kMetaFormatVersion) {
-    meta.Fail("$.format_version", fmt::format("recording format {} cannot be recorded; the "
-                                              "records need format {} (run id, status, units)",
-                                              version, kMetaFormatVersion));
+    meta.Fail("$.format_version",
+              fmt::format("recording format {} cannot be recorded; the "
+                          "records need format {} (run id, status, units)",
+                          version,
+                          kMetaFormatVersion));
   }
   RunRecord run;
   run.run_dir = std::filesystem::absolute(run_dir).lexically_normal().string();
@@ -83,7 +85,8 @@ RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
   }
   run.station_name = meta.Child("station").String("name");
   run.sequence_file = meta.String("sequence_file");
-  const Sequence sequence = SequenceFromJson(meta_json.at("sequence"), meta_path.string() + " $.sequence");
+  const Sequence sequence =
+      SequenceFromJson(meta_json.at("sequence"), meta_path.string() + " $.sequence");
   run.sequence_name = sequence.name;
   const std::vector<uint8_t> tags = EffectiveTags(sequence);
   for (size_t i = 0; i < sequence.steps.size(); ++i) {

@@ -14,7 +14,8 @@ std::string KindOfSerial(const std::filesystem::path& file, const std::string& s
   if (serial.rfind("IMU-", 0) == 0) return "imu";
   if (serial.rfind("ADS-", 0) == 0) return "ads";
   throw RecordsError(fmt::format("records database {}: unit serial '{}' is neither IMU-… nor ADS-…",
-                                 file.string(), common::PrintableText(serial)));
+                                 file.string(),
+                                 common::PrintableText(serial)));
 }
 
 }  // namespace
@@ -23,16 +24,22 @@ RecordsStore::RecordsStore(const std::filesystem::path& file) : database_(file, 
   MigrateRecordsSchema(database_);
 }
 
-RecordsStore::RecordsStore(const std::filesystem::path& file, ReadOnly) : database_(file, false, true) {
+RecordsStore::RecordsStore(const std::filesystem::path& file, ReadOnly)
+    : database_(file, false, true) {
   RequireRecordsSchema(database_);
 }
 
-RecordsStore RecordsStore::OpenForReading(const std::filesystem::path& file) { return RecordsStore(file, ReadOnly{}); }
+RecordsStore RecordsStore::OpenForReading(const std::filesystem::path& file) {
+  return RecordsStore(file, ReadOnly{});
+}
 
 void RecordsStore::EnsureUnit(const std::string& serial, const std::string& kind) {
   if (KindOfSerial(database_.file(), serial) != kind) {
-    throw RecordsError(fmt::format("records database {}: unit {} given kind '{}', but its serial names another kind",
-                                   database_.file().string(), serial, kind));
+    throw RecordsError(fmt::format(
+        "records database {}: unit {} given kind '{}', but its serial names another kind",
+        database_.file().string(),
+        serial,
+        kind));
   }
   SqliteStatement(database_,
                   "INSERT OR IGNORE INTO units (serial, kind, first_seen_utc) VALUES (?, ?, ?)")
@@ -44,7 +51,8 @@ void RecordsStore::EnsureUnit(const std::string& serial, const std::string& kind
 
 bool RecordsStore::AddRun(const RunRecord& run) {
   SqliteTransaction transaction(database_);
-  SqliteStatement existing(database_, "SELECT id FROM runs WHERE run_id = ? AND recording_sha256 = ?");
+  SqliteStatement existing(database_,
+                           "SELECT id FROM runs WHERE run_id = ? AND recording_sha256 = ?");
   existing.Bind(1, run.run_id).Bind(2, run.recording_sha256);
   if (existing.Step()) return false;
   SqliteStatement(database_,
@@ -78,8 +86,9 @@ bool RecordsStore::AddRun(const RunRecord& run) {
         .Run();
   }
   for (const StepRecord& step : run.steps) {
-    SqliteStatement(database_,
-                    "INSERT INTO steps (run, step_index, kind, tag, rejected_s) VALUES (?, ?, ?, ?, ?)")
+    SqliteStatement(
+        database_,
+        "INSERT INTO steps (run, step_index, kind, tag, rejected_s) VALUES (?, ?, ?, ?, ?)")
         .Bind(1, run_row)
         .Bind(2, int64_t{step.index})
         .Bind(3, step.kind)
@@ -92,8 +101,9 @@ bool RecordsStore::AddRun(const RunRecord& run) {
 }
 
 std::optional<int64_t> RecordsStore::FindConstantsVersion(const std::string& serial,
-                                                         const std::string& file_sha256) {
-  SqliteStatement find(database_, "SELECT version FROM constants WHERE serial = ? AND file_sha256 = ?");
+                                                          const std::string& file_sha256) {
+  SqliteStatement find(database_,
+                       "SELECT version FROM constants WHERE serial = ? AND file_sha256 = ?");
   find.Bind(1, serial).Bind(2, file_sha256);
   if (!find.Step()) return std::nullopt;
   return find.Int(0);
@@ -109,9 +119,10 @@ int64_t RecordsStore::AddConstants(const ConstantsRecord& constants) {
                        "SELECT coalesce(max(version), 0) + 1 FROM constants WHERE serial = ?");
   next.Bind(1, constants.serial).Step();
   const int64_t version = next.Int(0);
-  SqliteStatement(database_,
-                  "INSERT INTO constants (serial, version, strategy, created_utc, software_version, "
-                  "file_sha256, json, provenance_json, recorded_utc) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)")
+  SqliteStatement(
+      database_,
+      "INSERT INTO constants (serial, version, strategy, created_utc, software_version, "
+      "file_sha256, json, provenance_json, recorded_utc) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)")
       .Bind(1, constants.serial)
       .Bind(2, version)
       .Bind(3, constants.strategy)
@@ -132,7 +143,8 @@ void RecordsStore::AddDownload(const DownloadRecord& download) {
   find.Bind(1, download.serial).Bind(2, download.constants_version);
   if (!find.Step()) {
     throw RecordsError(fmt::format("records database {}: unit {} has no constants version {}",
-                                   database_.file().string(), download.serial,
+                                   database_.file().string(),
+                                   download.serial,
                                    download.constants_version));
   }
   const int64_t constants_row = find.Int(0);
@@ -187,8 +199,8 @@ UnitHistory RecordsStore::History(const std::string& serial) {
   SqliteStatement unit(database_, "SELECT kind, first_seen_utc FROM units WHERE serial = ?");
   unit.Bind(1, serial);
   if (!unit.Step()) {
-    throw RecordsError(fmt::format("records database {}: no unit {} recorded",
-                                   database_.file().string(), serial));
+    throw RecordsError(
+        fmt::format("records database {}: no unit {} recorded", database_.file().string(), serial));
   }
   history.serial = serial;
   history.kind = unit.Text(0);
@@ -200,8 +212,13 @@ UnitHistory RecordsStore::History(const std::string& serial) {
                        "WHERE u.serial = ? ORDER BY r.started_utc, r.id");
   runs.Bind(1, serial);
   while (runs.Step()) {
-    history.runs.push_back({runs.Text(0), runs.Text(1), runs.Text(2), runs.Text(3), runs.Text(4),
-                            runs.Text(5), runs.Text(6)});
+    history.runs.push_back({runs.Text(0),
+                            runs.Text(1),
+                            runs.Text(2),
+                            runs.Text(3),
+                            runs.Text(4),
+                            runs.Text(5),
+                            runs.Text(6)});
   }
 
   SqliteStatement constants(
@@ -242,9 +259,14 @@ UnitHistory RecordsStore::History(const std::string& serial) {
     ++verdict.points;
     if (acceptance.Int(7) == 0) {
       ++verdict.failed;
-      verdict.failures.push_back({serial, acceptance.Text(0), acceptance.Text(2),
-                                  acceptance.Text(3), acceptance.Real(4), acceptance.Real(5),
-                                  acceptance.Text(6), false});
+      verdict.failures.push_back({serial,
+                                  acceptance.Text(0),
+                                  acceptance.Text(2),
+                                  acceptance.Text(3),
+                                  acceptance.Real(4),
+                                  acceptance.Real(5),
+                                  acceptance.Text(6),
+                                  false});
     }
   }
   return history;

@@ -65,11 +65,11 @@ struct DownloadRecord {
   int64_t constants_version = 0;  ///< records version (ConstantsVersion::version)
   std::string station_name;
   std::string role;
-  bool verified = false;   ///< every block read back bit for bit
-  bool committed = false;  ///< COMMIT acknowledged
+  bool verified = false;                          ///< every block read back bit for bit
+  bool committed = false;                         ///< COMMIT acknowledged
   std::optional<int64_t> unit_constants_version;  ///< IDENTIFY after the commit
   std::optional<int64_t> unit_constants_crc;
-  std::string detail;      ///< why it was refused, or "ok"
+  std::string detail;  ///< why it was refused, or "ok"
 };
 
 struct AcceptancePointRecord {
@@ -79,7 +79,7 @@ struct AcceptancePointRecord {
   std::string condition;  ///< where it was judged: "orientation 11, 25 degC", "10000 ft, -40 degC"
   double error = 0.0;
   double tolerance = 0.0;
-  std::string unit;       ///< of error and tolerance
+  std::string unit;  ///< of error and tolerance
   bool pass = false;
 };
 
@@ -90,8 +90,8 @@ struct ConstantsVersion {
   std::string created_utc;
   std::string file_sha256;
   std::string json;
-  int downloads = 0;                          ///< attempts recorded
-  bool committed = false;                     ///< at least one attempt committed
+  int downloads = 0;                              ///< attempts recorded
+  bool committed = false;                         ///< at least one attempt committed
   std::optional<int64_t> unit_constants_version;  ///< of the latest committed download
   std::optional<int64_t> unit_constants_crc;
 };
@@ -140,7 +140,8 @@ class RecordsStore {
   void AddDownload(const DownloadRecord& download);
   /// Records the points of one acceptance file (`source_sha256` identifies it); returns false if
   /// that file was recorded before.
-  bool AddAcceptance(const std::string& source_sha256, const std::vector<AcceptancePointRecord>& points);
+  bool AddAcceptance(const std::string& source_sha256,
+                     const std::vector<AcceptancePointRecord>& points);
 
   /// The unit's version whose file checksum is `file_sha256`, if recorded.
   std::optional<int64_t> FindConstantsVersion(const std::string& serial,

@@ -6,11 +6,13 @@
 
 namespace adahrs::calib {
 
-SqliteDatabase::SqliteDatabase(const std::filesystem::path& file, bool create, bool read_only) : file_(file) {
+SqliteDatabase::SqliteDatabase(const std::filesystem::path& file, bool create, bool read_only)
+    : file_(file) {
   if (!create && !std::filesystem::exists(file)) {
     throw RecordsError(fmt::format("records database {}: no such file", file.string()));
   }
-  const int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
+  const int flags =
+      read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
   if (sqlite3_open_v2(file.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string message = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
@@ -42,8 +44,9 @@ void SqliteDatabase::Fail(const std::string& what) const {
 
 SqliteStatement::SqliteStatement(SqliteDatabase& database, std::string_view sql)
     : database_(&database), sql_(sql) {
-  if (sqlite3_prepare_v2(database.handle(), sql_.c_str(), static_cast<int>(sql_.size()),
-                         &statement_, nullptr) != SQLITE_OK) {
+  if (sqlite3_prepare_v2(
+          database.handle(), sql_.c_str(), static_cast<int>(sql_.size()), &statement_, nullptr) !=
+      SQLITE_OK) {
     Fail("prepare");
   }
 }
@@ -65,8 +68,9 @@ SqliteStatement& SqliteStatement::Bind(int index, double value) {
 }
 
 SqliteStatement& SqliteStatement::Bind(int index, std::string_view value) {
-  if (sqlite3_bind_text(statement_, index, value.data(), static_cast<int>(value.size()),
-                        SQLITE_TRANSIENT) != SQLITE_OK) {
+  if (sqlite3_bind_text(
+          statement_, index, value.data(), static_cast<int>(value.size()), SQLITE_TRANSIENT) !=
+      SQLITE_OK) {
     Fail("bind");
   }
   return *this;

@@ -5,12 +5,16 @@
 namespace adahrs::calib {
 
 std::string FormatUnitHistory(const UnitHistory& history) {
-  std::string out = fmt::format("{} ({}), first recorded {}\n", history.serial, history.kind,
-                                history.first_seen_utc);
+  std::string out = fmt::format(
+      "{} ({}), first recorded {}\n", history.serial, history.kind, history.first_seen_utc);
   out += fmt::format("runs: {}\n", history.runs.size());
   for (const UnitRunEntry& run : history.runs) {
-    out += fmt::format("  {}  {:<12} {:<34} {:<6} {}  recording sha256 {}\n", run.started_utc,
-                       run.status, run.sequence_name, run.role, run.run_id,
+    out += fmt::format("  {}  {:<12} {:<34} {:<6} {}  recording sha256 {}\n",
+                       run.started_utc,
+                       run.status,
+                       run.sequence_name,
+                       run.role,
+                       run.run_id,
                        run.recording_sha256.substr(0, 16));
   }
   out += fmt::format("constants versions: {}\n", history.constants.size());
@@ -21,16 +25,28 @@ std::string FormatUnitHistory(const UnitHistory& history) {
                                           v.unit_constants_version.value_or(0),
                                           v.unit_constants_crc.value_or(0))
                             : fmt::format("{} download attempt(s), none committed", v.downloads);
-    out += fmt::format("  v{}  {}  strategy {:<12} file sha256 {}  {}\n", v.version,
-                       v.created_utc, v.strategy, v.file_sha256.substr(0, 16), state);
+    out += fmt::format("  v{}  {}  strategy {:<12} file sha256 {}  {}\n",
+                       v.version,
+                       v.created_utc,
+                       v.strategy,
+                       v.file_sha256.substr(0, 16),
+                       state);
   }
   out += fmt::format("acceptance: {}\n", history.acceptance.size());
   for (const AcceptanceVerdict& a : history.acceptance) {
-    out += fmt::format("  {}  {}: {} of {} points within tolerance\n", a.run_id,
-                       a.failed == 0 ? "PASS" : "FAIL", a.points - a.failed, a.points);
+    out += fmt::format("  {}  {}: {} of {} points within tolerance\n",
+                       a.run_id,
+                       a.failed == 0 ? "PASS" : "FAIL",
+                       a.points - a.failed,
+                       a.points);
     for (const AcceptancePointRecord& p : a.failures) {
-      out += fmt::format("    FAIL {} at {}: error {:.6g} {} > tolerance {:.6g} {}\n", p.quantity,
-                         p.condition, p.error, p.unit, p.tolerance, p.unit);
+      out += fmt::format("    FAIL {} at {}: error {:.6g} {} > tolerance {:.6g} {}\n",
+                         p.quantity,
+                         p.condition,
+                         p.error,
+                         p.unit,
+                         p.tolerance,
+                         p.unit);
     }
   }
   return out;

@@ -39,15 +39,22 @@ bool Rejected(const nlohmann::json& meta, int step, double t_s) {
   return false;
 }
 
-std::string ErrorPlot(const std::string& serial, const std::vector<Acquisition>& points, bool altitude,
+std::string ErrorPlot(const std::string& serial,
+                      const std::vector<Acquisition>& points,
+                      bool altitude,
                       const std::string& source) {
   const Specification spec = Specification::Reference();
   const ToleranceTable& tol = altitude ? spec.altitude_ft : spec.airspeed_kt;
-  Plot plot{fmt::format("{} {} error vs {} by chamber temperature ({})", serial,
-                        altitude ? "altitude" : "airspeed", altitude ? "altitude" : "airspeed", source),
+  Plot plot{fmt::format("{} {} error vs {} by chamber temperature ({})",
+                        serial,
+                        altitude ? "altitude" : "airspeed",
+                        altitude ? "altitude" : "airspeed",
+                        source),
             altitude ? "pressure altitude from the test set's Ps, ISA (ft)"
                      : "calibrated airspeed from the test set's Qc (kt)",
-            altitude ? "altitude error (ft)" : "airspeed error (kt)", {}, {}};
+            altitude ? "altitude error (ft)" : "airspeed error (kt)",
+            {},
+            {}};
   PlotBand band{"specification tolerance (+-)", {}, {}, {}};
   const int samples = 60;
   for (int i = 0; i <= samples; ++i) {
@@ -58,10 +65,14 @@ std::string ErrorPlot(const std::string& serial, const std::vector<Acquisition>&
   }
   plot.bands.push_back(band);
   std::map<double, PlotSeries> by_temp;
-  HtmlTable table{fmt::format("{} {} error per acquisition", serial, altitude ? "altitude" : "airspeed"),
-                  {"chamber (degC)", altitude ? "reference (ft)" : "reference (kt)",
-                   altitude ? "error (ft)" : "error (kt)", "tolerance", "verdict"},
-                  {}};
+  HtmlTable table{
+      fmt::format("{} {} error per acquisition", serial, altitude ? "altitude" : "airspeed"),
+      {"chamber (degC)",
+       altitude ? "reference (ft)" : "reference (kt)",
+       altitude ? "error (ft)" : "error (kt)",
+       "tolerance",
+       "verdict"},
+      {}};
   for (const Acquisition& a : points) {
     const double x = altitude ? a.alt_ref_ft : a.cas_ref_kt;
     if (x < tol.input_min() || x > tol.input_max()) continue;
@@ -72,8 +83,11 @@ std::string ErrorPlot(const std::string& serial, const std::vector<Acquisition>&
     s.style = PlotSeries::Style::kPoints;
     s.x.push_back(x);
     s.y.push_back(error);
-    table.rows.push_back({FormatNumber(a.temp_c, 4), FormatNumber(x, 6), FormatNumber(error, 3),
-                          FormatNumber(tol.At(x), 3), std::abs(error) <= tol.At(x) ? "PASS" : "FAIL"});
+    table.rows.push_back({FormatNumber(a.temp_c, 4),
+                          FormatNumber(x, 6),
+                          FormatNumber(error, 3),
+                          FormatNumber(tol.At(x), 3),
+                          std::abs(error) <= tol.At(x) ? "PASS" : "FAIL"});
   }
   if (by_temp.empty()) {
     return NotAvailable(std::string(altitude ? "Altitude" : "Airspeed") + " error map",
@@ -85,13 +99,17 @@ std::string ErrorPlot(const std::string& serial, const std::vector<Acquisition>&
 
 }  // namespace
 
-std::string AdsReportSections(const std::string& serial, const std::vector<hil::AdsRecordRow>& rows,
-                              const nlohmann::json& meta, const ConstantsFile* constants) {
+std::string AdsReportSections(const std::string& serial,
+                              const std::vector<hil::AdsRecordRow>& rows,
+                              const nlohmann::json& meta,
+                              const ConstantsFile* constants) {
   std::string html = Section(
-      serial + "-constants", 3, serial + " constants",
-      constants != nullptr ? ConstantsSection(*constants)
-                           : NotAvailable("Constants", "no constants.json for " + serial +
-                                                           " in the fit directory"));
+      serial + "-constants",
+      3,
+      serial + " constants",
+      constants != nullptr
+          ? ConstantsSection(*constants)
+          : NotAvailable("Constants", "no constants.json for " + serial + " in the fit directory"));
   std::map<std::tuple<int, int, long, long>, Acquisition> groups;
   bool unit_values = false, reference_values = false;
   for (const hil::AdsRecordRow& row : rows) {
@@ -102,8 +120,8 @@ std::string AdsReportSections(const std::string& serial, const std::vector<hil::
       cas_kt = *row.cas_kt;
       unit_values = true;
     } else if (constants != nullptr) {
-      const fm::AdsRawFrame raw{row.ps_counts, row.pt_counts, row.ps_temp_counts,
-                                row.pt_temp_counts, row.oat_counts};
+      const fm::AdsRawFrame raw{
+          row.ps_counts, row.pt_counts, row.ps_temp_counts, row.pt_temp_counts, row.oat_counts};
       const auto v = fm::AdsReference(*constants->ads, fm::AdsCompensationMode::kSurface, raw);
       alt_ft = v[0];
       cas_kt = v[1];
@@ -111,7 +129,8 @@ std::string AdsReportSections(const std::string& serial, const std::vector<hil::
     } else {
       continue;
     }
-    Acquisition& a = groups[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
+    Acquisition& a =
+        groups[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
     a.alt_ref_ft += sensor_sim::IsaPressureAltitudeFt(row.ps_ref_pa);
     a.cas_ref_kt += row.qc_ref_pa > 0.0 ? sensor_sim::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
     a.temp_c += row.chamber_c;
@@ -126,16 +145,19 @@ std::string AdsReportSections(const std::string& serial, const std::vector<hil::
   }
   std::string map;
   if (points.empty()) {
-    map = NotAvailable("ADS error map", constants == nullptr
-                                            ? "raw rows only and no constants.json for " + serial
+    map = NotAvailable("ADS error map",
+                       constants == nullptr ? "raw rows only and no constants.json for " + serial
                                             : "no tagged acquisition rows for " + serial);
   } else {
-    const std::string source = unit_values && reference_values ? "unit output and reference compensator"
+    const std::string source = unit_values && reference_values
+                                   ? "unit output and reference compensator"
                                : unit_values ? "the unit's own surface output"
                                              : "reference compensator on raw codes";
     map = ErrorPlot(serial, points, true, source) + ErrorPlot(serial, points, false, source);
   }
-  return html + Section(serial + "-error-map", 3, serial + " error map against the tolerance envelope", map);
+  return html +
+         Section(
+             serial + "-error-map", 3, serial + " error map against the tolerance envelope", map);
 }
 
 }  // namespace adahrs::calib

@@ -19,7 +19,9 @@
 namespace adahrs::calib {
 
 /// Every ADS section for `serial`; `constants` may be null. `meta` supplies rejected intervals.
-std::string AdsReportSections(const std::string& serial, const std::vector<hil::AdsRecordRow>& rows,
-                              const nlohmann::json& meta, const ConstantsFile* constants);
+std::string AdsReportSections(const std::string& serial,
+                              const std::vector<hil::AdsRecordRow>& rows,
+                              const nlohmann::json& meta,
+                              const ConstantsFile* constants);
 
 }  // namespace adahrs::calib

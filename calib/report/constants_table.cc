@@ -12,7 +12,8 @@ HtmlTable ConstantsTable(const ConstantsFile& file) {
   const nlohmann::json values = document.at("constants").flatten();
   const nlohmann::json errors = document.at("standard_errors").flatten();
   HtmlTable table{fmt::format("{} constants ({} strategy), units of calibration_constants.h",
-                              file.serial, file.strategy),
+                              file.serial,
+                              file.strategy),
                   {"constant (JSON path)", "value", "standard error (1 sigma)"},
                   {}};
   for (const auto& [path, value] : values.items()) {
@@ -28,10 +29,12 @@ HtmlTable ConstantsTable(const ConstantsFile& file) {
 
 std::string ConstantsSection(const ConstantsFile& file) {
   std::string html = fmt::format("<p>strategy {}, created {}, software {}</p>\n<ul>\n",
-                                 XmlEscape(file.strategy), XmlEscape(file.created_utc),
+                                 XmlEscape(file.strategy),
+                                 XmlEscape(file.created_utc),
                                  XmlEscape(file.software_version));
   for (const RecordingCheck& c : CheckRecordings(file.provenance)) {
-    html += fmt::format("<li{}>recording {}</li>\n", c.changed() ? " class=\"fail\"" : "", XmlEscape(c.Describe()));
+    html += fmt::format(
+        "<li{}>recording {}</li>\n", c.changed() ? " class=\"fail\"" : "", XmlEscape(c.Describe()));
   }
   html += "</ul>\n";
   return html + RenderTable(ConstantsTable(file));

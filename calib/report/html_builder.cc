@@ -15,7 +15,9 @@ std::string RenderTable(const HtmlTable& table) {
   for (const auto& row : table.rows) {
     html += "<tr>";
     for (const std::string& cell : row) {
-      const char* css = cell == "PASS" ? " class=\"pass\"" : cell == "FAIL" ? " class=\"fail\"" : "";
+      const char* css = cell == "PASS"   ? " class=\"pass\""
+                        : cell == "FAIL" ? " class=\"fail\""
+                                         : "";
       html += fmt::format("<td{}>{}</td>", css, XmlEscape(cell));
     }
     html += "</tr>\n";
@@ -28,10 +30,16 @@ std::string NotAvailable(const std::string& what, const std::string& why) {
          ")</p>\n";
 }
 
-std::string Section(const std::string& id, int level, const std::string& title,
+std::string Section(const std::string& id,
+                    int level,
+                    const std::string& title,
                     const std::string& body) {
-  return fmt::format("<section id=\"{}\">\n<h{}>{}</h{}>\n{}</section>\n", XmlEscape(id), level,
-                     XmlEscape(title), level, body);
+  return fmt::format("<section id=\"{}\">\n<h{}>{}</h{}>\n{}</section>\n",
+                     XmlEscape(id),
+                     level,
+                     XmlEscape(title),
+                     level,
+                     body);
 }
 
 std::string FormatNumber(double value, int significant) {

@@ -23,7 +23,9 @@ std::string RenderTable(const HtmlTable& table);
 std::string NotAvailable(const std::string& what, const std::string& why);
 
 /// <section id=ID><hN>TITLE</hN>BODY</section>.
-std::string Section(const std::string& id, int level, const std::string& title,
+std::string Section(const std::string& id,
+                    int level,
+                    const std::string& title,
                     const std::string& body);
 
 /// A number to `significant` digits ("1.23e-05", "25.08"); NaN as "n/a".

@@ -6,11 +6,11 @@
 
 #include <fmt/format.h>
 
-#include "calib/solvers/allan_terms.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
-#include "firmware_model/reference_compensator.h"
+#include "calib/solvers/allan_terms.h"
 #include "common/units.h"
+#include "firmware_model/reference_compensator.h"
 
 namespace adahrs::calib {
 namespace {
@@ -21,7 +21,7 @@ constexpr double kMpsPerMg = common::kMpsPerMilliG;
 constexpr double kMpsPerUg = common::kMpsPerMicroG;
 constexpr double kSqrtSecondsPerHour = 60.0;  // x unit/sqrt(s) -> unit/sqrt(h)
 constexpr double kSecondsPerHour = 3600.0;
-constexpr double kAtRestDps = 0.5;             // a gyro acquisition at the table's 0 deg/s
+constexpr double kAtRestDps = 0.5;  // a gyro acquisition at the table's 0 deg/s
 constexpr size_t kMinRestSamples = 20;
 constexpr const char* kAxes[3] = {"x", "y", "z"};
 
@@ -41,7 +41,8 @@ const ImuAcquisition* LongestAtRest(const ImuUnitData& d) {
 }
 
 std::string TauNote(const AllanTerms& t) {
-  return FormatNumber(t.white_tau_s, 3) + (t.white_tau_s < 1.0 ? " (record too short for 1 s)" : "");
+  return FormatNumber(t.white_tau_s, 3) +
+         (t.white_tau_s < 1.0 ? " (record too short for 1 s)" : "");
 }
 
 std::string FloorText(double value, const AllanTerms& t) {
@@ -54,13 +55,14 @@ std::string FloorText(double value, const AllanTerms& t) {
 
 std::string ImuNoiseSection(const ImuUnitData& d, const ConstantsFile* constants) {
   if (constants == nullptr || !constants->imu) {
-    return NotAvailable("Noise", "no constants.json for " + d.serial +
-                                     " in the fit directory: the noise is read in calibrated units");
+    return NotAvailable("Noise",
+                        "no constants.json for " + d.serial +
+                            " in the fit directory: the noise is read in calibrated units");
   }
   const ImuAcquisition* rest = LongestAtRest(d);
   if (rest == nullptr || rest->samples.size() < kMinRestSamples) {
-    return NotAvailable("Noise", fmt::format("no acquisition at rest with at least {} packets",
-                                             kMinRestSamples));
+    return NotAvailable(
+        "Noise", fmt::format("no acquisition at rest with at least {} packets", kMinRestSamples));
   }
   const std::vector<ImuSample>& samples = rest->samples;
   const double dt_s =
@@ -70,7 +72,8 @@ std::string ImuNoiseSection(const ImuUnitData& d, const ConstantsFile* constants
   }
   std::array<std::vector<double>, 6> series;  // A x y z (mg), G x y z (deg/s)
   for (const ImuSample& s : samples) {
-    const auto full = fm::ImuReference(*constants->imu, fm::ImuCompensationMode::kFullyCalibrated, s.raw);
+    const auto full =
+        fm::ImuReference(*constants->imu, fm::ImuCompensationMode::kFullyCalibrated, s.raw);
     for (int i = 0; i < 3; ++i) {
       series[i].push_back(full[i] / kMpsPerMg);
       series[3 + i].push_back(full[3 + i]);
@@ -81,11 +84,17 @@ std::string ImuNoiseSection(const ImuUnitData& d, const ConstantsFile* constants
 
   const std::string record = fmt::format(
       "{}: step {} ({}), orientation {}, {} packets over {} s at rest (mean interval {} s)",
-      d.serial, rest->step, rest->step_kind, rest->orientation, samples.size(),
-      FormatNumber(terms[0].record_s, 4), FormatNumber(dt_s, 4));
+      d.serial,
+      rest->step,
+      rest->step_kind,
+      rest->orientation,
+      samples.size(),
+      FormatNumber(terms[0].record_s, 4),
+      FormatNumber(dt_s, 4));
   std::string html = "<p>" + XmlEscape(record) + "</p>\n";
   for (const bool gyro : {true, false}) {
-    Plot plot{fmt::format("{} {} Allan deviation at rest (overlapping, IEEE Std 952)", d.serial,
+    Plot plot{fmt::format("{} {} Allan deviation at rest (overlapping, IEEE Std 952)",
+                          d.serial,
                           gyro ? "gyro G" : "accelerometer A"),
               "cluster time tau (s)",
               gyro ? "Allan deviation (deg/s)" : "Allan deviation (mg)",
@@ -94,7 +103,8 @@ std::string ImuNoiseSection(const ImuUnitData& d, const ConstantsFile* constants
     plot.log_x = plot.log_y = true;
     for (int i = 0; i < 3; ++i) {
       const AllanTerms& t = terms[gyro ? 3 + i : i];
-      PlotSeries s{fmt::format("{} {}", gyro ? "G" : "A", kAxes[i]), {}, {}, PlotSeries::Style::kLine};
+      PlotSeries s{
+          fmt::format("{} {}", gyro ? "G" : "A", kAxes[i]), {}, {}, PlotSeries::Style::kLine};
       for (const auto& p : t.curve) {
         s.x.push_back(p.tau_s);
         s.y.push_back(p.adev);
@@ -103,25 +113,31 @@ std::string ImuNoiseSection(const ImuUnitData& d, const ConstantsFile* constants
     }
     html += RenderSvg(plot);
   }
-  HtmlTable gyro_table{
-      d.serial + " gyro noise terms (IEEE Std 952; density one-sided)",
-      {"axis", "white term read at tau (s)", "angle random walk N (deg/sqrt(h))",
-       "rate noise density (deg/s/sqrt(Hz), one-sided)", "bias instability (deg/h)"},
-      {}};
-  HtmlTable accel_table{
-      d.serial + " accelerometer noise terms (density one-sided)",
-      {"axis", "white term read at tau (s)", "velocity random walk (m/s/sqrt(h))",
-       "noise density (ug/sqrt(Hz), one-sided)", "bias instability (ug)"},
-      {}};
+  HtmlTable gyro_table{d.serial + " gyro noise terms (IEEE Std 952; density one-sided)",
+                       {"axis",
+                        "white term read at tau (s)",
+                        "angle random walk N (deg/sqrt(h))",
+                        "rate noise density (deg/s/sqrt(Hz), one-sided)",
+                        "bias instability (deg/h)"},
+                       {}};
+  HtmlTable accel_table{d.serial + " accelerometer noise terms (density one-sided)",
+                        {"axis",
+                         "white term read at tau (s)",
+                         "velocity random walk (m/s/sqrt(h))",
+                         "noise density (ug/sqrt(Hz), one-sided)",
+                         "bias instability (ug)"},
+                        {}};
   for (int i = 0; i < 3; ++i) {
     const AllanTerms& g = terms[3 + i];
-    gyro_table.rows.push_back({kAxes[i], TauNote(g),
+    gyro_table.rows.push_back({kAxes[i],
+                               TauNote(g),
                                FormatNumber(g.random_walk_per_rts * kSqrtSecondsPerHour, 4),
                                FormatNumber(g.density_one_sided_per_rthz, 4),
                                FloorText(g.bias_instability * kSecondsPerHour, g)});
     const AllanTerms& a = terms[i];  // in mg
     accel_table.rows.push_back(
-        {kAxes[i], TauNote(a),
+        {kAxes[i],
+         TauNote(a),
          FormatNumber(a.random_walk_per_rts * kMpsPerMg * kSqrtSecondsPerHour, 4),
          FormatNumber(a.density_one_sided_per_rthz * kMpsPerMg / kMpsPerUg, 4),
          FloorText(a.bias_instability * kMpsPerMg / kMpsPerUg, a)});

@@ -11,8 +11,8 @@
 #include "calib/report/html_builder.h"
 #include "calib/report/imu_noise_section.h"
 #include "calib/report/svg_plot.h"
-#include "firmware_model/reference_compensator.h"
 #include "common/units.h"
+#include "firmware_model/reference_compensator.h"
 
 namespace adahrs::calib {
 namespace {
@@ -26,7 +26,8 @@ constexpr const char* kAxes[3] = {"x", "y", "z"};
 constexpr size_t kMaxPlotPoints = 400;
 constexpr double kMpsPerMg = common::kMpsPerMilliG;
 
-std::array<double, 9> Mean(const fm::ImuCalibrationConstants& c, Mode mode,
+std::array<double, 9> Mean(const fm::ImuCalibrationConstants& c,
+                           Mode mode,
                            const std::vector<ImuSample>& samples) {
   std::array<double, 9> sum{};
   for (const ImuSample& s : samples) {
@@ -37,27 +38,31 @@ std::array<double, 9> Mean(const fm::ImuCalibrationConstants& c, Mode mode,
   return sum;
 }
 
-std::string Unavailable(const std::string& what, const ConstantsFile* constants,
+std::string Unavailable(const std::string& what,
+                        const ConstantsFile* constants,
                         const std::string& serial) {
-  return NotAvailable(what, constants == nullptr
-                                ? "no constants.json for " + serial + " in the fit directory"
-                                : "the recording holds no such step");
+  return NotAvailable(what,
+                      constants == nullptr
+                          ? "no constants.json for " + serial + " in the fit directory"
+                          : "the recording holds no such step");
 }
 
 std::string ThermalSection(const ImuUnitData& d, const ConstantsFile* constants) {
   if (d.thermal.empty()) {
-    return NotAvailable("Thermal drift", "the recording holds no thermal_profile rows for " + d.serial);
+    return NotAvailable("Thermal drift",
+                        "the recording holds no thermal_profile rows for " + d.serial);
   }
   const size_t stride = std::max<size_t>(1, d.thermal.size() / kMaxPlotPoints);
   const fm::ImuCalibrationConstants none{};
   std::string html;
   for (const bool gyro : {false, true}) {
-    Plot drift{fmt::format("{} {} raw output over the thermal profile", d.serial,
-                           gyro ? "gyro" : "accelerometer"),
-               "chamber air temperature (degC, as the controller reports it)",
-               gyro ? "U, mean removed (gyro counts)" : "U = T1/T2 - 0.5, mean removed (duty)",
-               {},
-               {}};
+    Plot drift{
+        fmt::format(
+            "{} {} raw output over the thermal profile", d.serial, gyro ? "gyro" : "accelerometer"),
+        "chamber air temperature (degC, as the controller reports it)",
+        gyro ? "U, mean removed (gyro counts)" : "U = T1/T2 - 0.5, mean removed (duty)",
+        {},
+        {}};
     for (int ch = gyro ? 6 : 0; ch < (gyro ? 9 : 6); ++ch) {
       PlotSeries s{kChannels[ch], {}, {}, PlotSeries::Style::kLine};
       double mean = 0.0;
@@ -72,14 +77,16 @@ std::string ThermalSection(const ImuUnitData& d, const ConstantsFile* constants)
     html += RenderSvg(drift);
     if (constants == nullptr) continue;
     Plot residual{fmt::format("{} {} thermal fit residual T = U - xi(t), up and down ramps",
-                              d.serial, gyro ? "gyro" : "accelerometer"),
+                              d.serial,
+                              gyro ? "gyro" : "accelerometer"),
                   "chamber air temperature (degC, as the controller reports it)",
                   gyro ? "residual, mean removed (gyro counts)" : "residual, mean removed (duty)",
                   {},
                   {}};
-    HtmlTable rms{fmt::format("{} thermal fit residual RMS ({})", d.serial, gyro ? "counts" : "duty"),
-                  {"channel", "up-ramp", "down-ramp", "soak"},
-                  {}};
+    HtmlTable rms{
+        fmt::format("{} thermal fit residual RMS ({})", d.serial, gyro ? "counts" : "duty"),
+        {"channel", "up-ramp", "down-ramp", "soak"},
+        {}};
     for (int ch = gyro ? 6 : 0; ch < (gyro ? 9 : 6); ++ch) {
       std::vector<double> t(d.thermal.size());
       double mean = 0.0;
@@ -90,9 +97,11 @@ std::string ThermalSection(const ImuUnitData& d, const ConstantsFile* constants)
       mean /= static_cast<double>(t.size());
       std::array<double, 3> sum_sq{}, count{};
       for (const ThermalSegment segment : {ThermalSegment::kUpRamp, ThermalSegment::kDownRamp}) {
-        PlotSeries s{fmt::format("{} {}", kChannels[ch],
-                                 segment == ThermalSegment::kUpRamp ? "up" : "down"),
-                     {}, {}, PlotSeries::Style::kPoints};
+        PlotSeries s{
+            fmt::format("{} {}", kChannels[ch], segment == ThermalSegment::kUpRamp ? "up" : "down"),
+            {},
+            {},
+            PlotSeries::Style::kPoints};
         for (size_t i = 0; i < t.size(); i += stride) {
           if (d.thermal_segment[i] != segment) continue;
           s.x.push_back(d.thermal[i].chamber_c);
@@ -114,28 +123,34 @@ std::string ThermalSection(const ImuUnitData& d, const ConstantsFile* constants)
     if (!residual.series.empty()) html += RenderSvg(residual);
     html += RenderTable(rms);
   }
-  if (constants == nullptr) html += NotAvailable("Thermal fit residuals", "no constants.json for " + d.serial);
+  if (constants == nullptr)
+    html += NotAvailable("Thermal fit residuals", "no constants.json for " + d.serial);
   return html;
 }
 
-std::string SixPositionSection(const ImuUnitData& d, const ConstantsFile* constants,
+std::string SixPositionSection(const ImuUnitData& d,
+                               const ConstantsFile* constants,
                                double g_local_mps2) {
   if (d.accel.empty() || constants == nullptr) {
     return Unavailable("Six-position data", constants, d.serial);
   }
-  HtmlTable ca{fmt::format("{} mean sensor-calibrated Ca per channel (g; +1 with its axis up)",
-                           d.serial),
-               {"orientation", "az1", "ax1", "ay1", "az2", "ax2", "ay2"},
-               {}};
+  HtmlTable ca{
+      fmt::format("{} mean sensor-calibrated Ca per channel (g; +1 with its axis up)", d.serial),
+      {"orientation", "az1", "ax1", "ay1", "az2", "ax2", "ay2"},
+      {}};
   HtmlTable residual{fmt::format("{} fully calibrated A - g_local * up (mg), g_local {} m/s^2",
-                                 d.serial, FormatNumber(g_local_mps2, 8)),
+                                 d.serial,
+                                 FormatNumber(g_local_mps2, 8)),
                      {"orientation", "x", "y", "z"},
                      {}};
   Plot plot{fmt::format("{} six-position residual of A per axis", d.serial),
             "fixture orientation (code: tens = axis up 1 x, 2 y, 3 z; units = 1 up, 2 down)",
-            "A - g_local * up (mg)", {}, {}};
+            "A - g_local * up (mg)",
+            {},
+            {}};
   std::array<PlotSeries, 3> series;
-  for (int a = 0; a < 3; ++a) series[a] = {std::string("A_") + kAxes[a], {}, {}, PlotSeries::Style::kPoints};
+  for (int a = 0; a < 3; ++a)
+    series[a] = {std::string("A_") + kAxes[a], {}, {}, PlotSeries::Style::kPoints};
   for (const ImuAcquisition& acq : d.accel) {
     const auto sensor = Mean(*constants->imu, Mode::kSensorCalibrated, acq.samples);
     const auto full = Mean(*constants->imu, Mode::kFullyCalibrated, acq.samples);
@@ -162,7 +177,9 @@ std::string GyroSection(const ImuUnitData& d, const ConstantsFile* constants) {
   }
   Plot plot{fmt::format("{} gyro scale-factor fit residual (Eq. 23)", d.serial),
             "table rate about the up axis (deg/s, as the table reports it)",
-            "Cg - table rate (deg/s)", {}, {}};
+            "Cg - table rate (deg/s)",
+            {},
+            {}};
   std::map<std::string, PlotSeries> series;
   HtmlTable table{fmt::format("{} mean sensor-calibrated rate residual (deg/s)", d.serial),
                   {"orientation", "table rate (deg/s)", "channel", "residual (deg/s)"},
@@ -180,14 +197,17 @@ std::string GyroSection(const ImuUnitData& d, const ConstantsFile* constants) {
     s.label = channel;
     s.x.push_back(acq.rate_dps * up[axis]);
     s.y.push_back(residual);
-    table.rows.push_back({std::to_string(acq.orientation), FormatNumber(acq.rate_dps, 6), channel,
+    table.rows.push_back({std::to_string(acq.orientation),
+                          FormatNumber(acq.rate_dps, 6),
+                          channel,
                           FormatNumber(residual, 3)});
   }
   for (auto& [name, s] : series) plot.series.push_back(std::move(s));
   return RenderSvg(plot) + RenderTable(table);
 }
 
-std::string MatrixTable(const std::string& caption, const std::array<std::array<double, 3>, 3>& m,
+std::string MatrixTable(const std::string& caption,
+                        const std::array<std::array<double, 3>, 3>& m,
                         const nlohmann::json& se) {
   HtmlTable table{caption, {"row", "col 1", "col 2", "col 3"}, {}};
   for (int r = 0; r < 3; ++r) {
@@ -202,20 +222,25 @@ std::string MatrixTable(const std::string& caption, const std::array<std::array<
   return RenderTable(table);
 }
 
-std::string CrossAxisSection(const ImuUnitData& d, const ConstantsFile* constants,
+std::string CrossAxisSection(const ImuUnitData& d,
+                             const ConstantsFile* constants,
                              double g_local_mps2) {
   if (constants == nullptr) return Unavailable("Cross-axis", constants, d.serial);
   const nlohmann::json& se = constants->standard_errors;
   std::string html =
       MatrixTable(d.serial + " CA (m/s^2 per g) ± 1-sigma standard error",
-                  constants->imu->ca_mps2_per_g, se.is_object() ? se.value("ca_mps2_per_g", nlohmann::json()) : nlohmann::json()) +
-      MatrixTable(d.serial + " CG (deg/s per deg/s) ± 1-sigma standard error", constants->imu->cg,
+                  constants->imu->ca_mps2_per_g,
+                  se.is_object() ? se.value("ca_mps2_per_g", nlohmann::json()) : nlohmann::json()) +
+      MatrixTable(d.serial + " CG (deg/s per deg/s) ± 1-sigma standard error",
+                  constants->imu->cg,
                   se.is_object() ? se.value("cg", nlohmann::json()) : nlohmann::json());
   if (d.cross_axis.empty()) {
     return html + NotAvailable("Cross-axis residuals", "the recording holds no cross_axis step");
   }
   HtmlTable table{d.serial + " fully calibrated residuals in the cross-axis acquisitions",
-                  {"orientation", "table rate (deg/s)", "A - g_local*up x, y, z (mg)",
+                  {"orientation",
+                   "table rate (deg/s)",
+                   "A - g_local*up x, y, z (mg)",
                    "G - rate*up x, y, z (deg/s)"},
                   {}};
   for (const ImuAcquisition& acq : d.cross_axis) {
@@ -226,32 +251,46 @@ std::string CrossAxisSection(const ImuUnitData& d, const ConstantsFile* constant
       a.push_back(FormatNumber((full[i] - g_local_mps2 * up[i]) / kMpsPerMg, 3));
       g.push_back(FormatNumber(full[3 + i] - acq.rate_dps * up[i], 3));
     }
-    table.rows.push_back({std::to_string(acq.orientation), FormatNumber(acq.rate_dps, 6),
-                          fmt::format("{}", fmt::join(a, ", ")), fmt::format("{}", fmt::join(g, ", "))});
+    table.rows.push_back({std::to_string(acq.orientation),
+                          FormatNumber(acq.rate_dps, 6),
+                          fmt::format("{}", fmt::join(a, ", ")),
+                          fmt::format("{}", fmt::join(g, ", "))});
   }
   return html + RenderTable(table);
 }
 
 }  // namespace
 
-std::string ImuReportSections(const ImuUnitData& data, const ConstantsFile* constants,
+std::string ImuReportSections(const ImuUnitData& data,
+                              const ConstantsFile* constants,
                               double local_gravity_mps2) {
   const std::string id = data.serial;
   std::string html;
-  html += Section(id + "-constants", 3, data.serial + " constants",
-                  constants != nullptr ? ConstantsSection(*constants)
-                                       : NotAvailable("Constants", "no constants.json for " +
-                                                                       data.serial +
-                                                                       " in the fit directory"));
-  html += Section(id + "-thermal", 3, data.serial + " thermal drift and fit residuals",
+  html +=
+      Section(id + "-constants",
+              3,
+              data.serial + " constants",
+              constants != nullptr
+                  ? ConstantsSection(*constants)
+                  : NotAvailable("Constants",
+                                 "no constants.json for " + data.serial + " in the fit directory"));
+  html += Section(id + "-thermal",
+                  3,
+                  data.serial + " thermal drift and fit residuals",
                   ThermalSection(data, constants));
-  html += Section(id + "-six-position", 3, data.serial + " six-position data",
+  html += Section(id + "-six-position",
+                  3,
+                  data.serial + " six-position data",
                   SixPositionSection(data, constants, local_gravity_mps2));
-  html += Section(id + "-gyro", 3, data.serial + " gyro nonlinearity fit",
-                  GyroSection(data, constants));
-  html += Section(id + "-cross-axis", 3, data.serial + " cross-axis",
+  html += Section(
+      id + "-gyro", 3, data.serial + " gyro nonlinearity fit", GyroSection(data, constants));
+  html += Section(id + "-cross-axis",
+                  3,
+                  data.serial + " cross-axis",
                   CrossAxisSection(data, constants, local_gravity_mps2));
-  html += Section(id + "-noise", 3, data.serial + " noise (Allan deviation at rest)",
+  html += Section(id + "-noise",
+                  3,
+                  data.serial + " noise (Allan deviation at rest)",
                   ImuNoiseSection(data, constants));
   return html;
 }

@@ -24,7 +24,8 @@
 namespace adahrs::calib {
 
 /// Every IMU section of `data`'s unit; `constants` may be null (no fit for this unit).
-std::string ImuReportSections(const ImuUnitData& data, const ConstantsFile* constants,
+std::string ImuReportSections(const ImuUnitData& data,
+                              const ConstantsFile* constants,
                               double local_gravity_mps2);
 
 }  // namespace adahrs::calib

@@ -20,10 +20,13 @@ std::string Cell(const std::string& key, const nlohmann::json& value) {
   return value.dump();
 }
 
-void Walk(const std::string& title, const std::string& path, const nlohmann::json& node,
+void Walk(const std::string& title,
+          const std::string& path,
+          const nlohmann::json& node,
           std::string* html) {
   if (node.is_array() && !node.empty() &&
-      std::all_of(node.begin(), node.end(), [](const nlohmann::json& e) { return e.is_object(); })) {
+      std::all_of(
+          node.begin(), node.end(), [](const nlohmann::json& e) { return e.is_object(); })) {
     HtmlTable table{fmt::format("{} {}", title, path), {}, {}};
     for (const auto& element : node) {
       for (const auto& [key, value] : element.items()) {
@@ -45,7 +48,8 @@ void Walk(const std::string& title, const std::string& path, const nlohmann::jso
   if (node.is_object()) {
     for (const auto& [key, value] : node.items()) Walk(title, path + "." + key, value, html);
   } else if (node.is_array()) {
-    for (size_t i = 0; i < node.size(); ++i) Walk(title, fmt::format("{}[{}]", path, i), node[i], html);
+    for (size_t i = 0; i < node.size(); ++i)
+      Walk(title, fmt::format("{}[{}]", path, i), node[i], html);
   }
 }
 

@@ -22,8 +22,8 @@ double NiceStepAtLeast(double raw) {
 
 AxisTicks NiceTicks(double min, double max, int max_ticks) {
   if (!std::isfinite(min) || !std::isfinite(max) || max_ticks < 2) {
-    throw std::invalid_argument(
-        fmt::format("NiceTicks: range [{}, {}] with {} ticks is not drawable", min, max, max_ticks));
+    throw std::invalid_argument(fmt::format(
+        "NiceTicks: range [{}, {}] with {} ticks is not drawable", min, max, max_ticks));
   }
   if (min > max) std::swap(min, max);
   if (max - min <= 1e-12 * std::max(1.0, std::abs(max))) {
@@ -49,8 +49,8 @@ AxisTicks NiceTicks(double min, double max, int max_ticks) {
 
 AxisTicks DecadeTicks(double log10_min, double log10_max) {
   if (!std::isfinite(log10_min) || !std::isfinite(log10_max)) {
-    throw std::invalid_argument(fmt::format("DecadeTicks: range 10^[{}, {}] is not drawable",
-                                            log10_min, log10_max));
+    throw std::invalid_argument(
+        fmt::format("DecadeTicks: range 10^[{}, {}] is not drawable", log10_min, log10_max));
   }
   if (log10_min > log10_max) std::swap(log10_min, log10_max);
   AxisTicks ticks;

@@ -15,8 +15,8 @@
 #include "calib/report/imu_report_sections.h"
 #include "calib/report/json_tables.h"
 #include "calib/report/svg_plot.h"
-#include "hil/recording/recording_reader.h"
 #include "common/param_reader.h"
+#include "hil/recording/recording_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -64,7 +64,8 @@ FitInputs LoadFit(const std::optional<std::filesystem::path>& fit_dir) {
 
 std::string Summary(const std::filesystem::path& run_dir, const nlohmann::json& meta) {
   const auto text = [&](const char* key) {
-    return meta.contains(key) && meta[key].is_string() ? meta[key].get<std::string>() : std::string("(not recorded)");
+    return meta.contains(key) && meta[key].is_string() ? meta[key].get<std::string>()
+                                                       : std::string("(not recorded)");
   };
   HtmlTable run{"run", {"item", "value"}, {}};
   run.rows.push_back({"run directory", run_dir.string()});
@@ -80,13 +81,18 @@ std::string Summary(const std::filesystem::path& run_dir, const nlohmann::json& 
   }
   run.rows.push_back({"time base", text("time_base")});
   if (meta.contains("local_gravity_mps2")) {
-    run.rows.push_back({"local gravity (m/s^2)", FormatNumber(meta["local_gravity_mps2"].get<double>(), 8)});
+    run.rows.push_back(
+        {"local gravity (m/s^2)", FormatNumber(meta["local_gravity_mps2"].get<double>(), 8)});
   }
   std::string html = RenderTable(run);
-  HtmlTable units{"units", {"role", "kind", "serial", "firmware", "slot", "constants version", "mode"}, {}};
+  HtmlTable units{
+      "units", {"role", "kind", "serial", "firmware", "slot", "constants version", "mode"}, {}};
   for (const auto& u : meta.value("units", nlohmann::json::array())) {
-    units.rows.push_back({u.value("role", ""), u.value("kind", ""), u.value("serial", ""),
-                          u.value("firmware", ""), std::to_string(u.value("slot", 0)),
+    units.rows.push_back({u.value("role", ""),
+                          u.value("kind", ""),
+                          u.value("serial", ""),
+                          u.value("firmware", ""),
+                          std::to_string(u.value("slot", 0)),
                           std::to_string(u.value("constants_version", 0)),
                           std::to_string(u.value("mode", 0))});
   }
@@ -102,7 +108,8 @@ std::string Summary(const std::filesystem::path& run_dir, const nlohmann::json& 
 
 // The acceptance section: per-unit acceptance files first, a fit directory's acceptance.json next.
 std::string Acceptance(const std::filesystem::path& run_dir,
-                       const std::optional<std::filesystem::path>& acceptance_dir, const FitInputs& fit) {
+                       const std::optional<std::filesystem::path>& acceptance_dir,
+                       const FitInputs& fit) {
   if (acceptance_dir && !std::filesystem::is_directory(*acceptance_dir)) {
     throw std::runtime_error(acceptance_dir->string() + ": acceptance directory does not exist");
   }
@@ -113,8 +120,9 @@ std::string Acceptance(const std::filesystem::path& run_dir,
   }
   if (!documents.empty()) return AcceptanceSectionBody(documents);
   if (fit.acceptance) return RenderJsonTables("acceptance", *fit.acceptance);
-  return NotAvailable("acceptance.json", "no <serial>/acceptance.json in " + dir.string() +
-                                             "; fit directory: " + fit.why_missing);
+  return NotAvailable(
+      "acceptance.json",
+      "no <serial>/acceptance.json in " + dir.string() + "; fit directory: " + fit.why_missing);
 }
 
 }  // namespace
@@ -130,7 +138,8 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
   std::optional<ImuRunData> imu;
   std::string imu_why;
   bool has_imu = false;
-  for (const auto& u : meta.value("units", nlohmann::json::array())) has_imu |= u.value("kind", "") == "imu";
+  for (const auto& u : meta.value("units", nlohmann::json::array()))
+    has_imu |= u.value("kind", "") == "imu";
   if (has_imu) {
     try {
       imu = LoadImuRuns({run_dir});
@@ -139,7 +148,8 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
     }
   }
 
-  const std::string title = fmt::format("Calibration report: run {}", meta.value("run_id", run_dir.filename().string()));
+  const std::string title =
+      fmt::format("Calibration report: run {}", meta.value("run_id", run_dir.filename().string()));
   std::string body = Section("summary", 2, "Run", Summary(run_dir, meta));
   std::string units;
   for (const auto& u : meta.value("units", nlohmann::json::array())) {
@@ -151,26 +161,34 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
       if (imu && imu->units.count(serial)) {
         unit_html = ImuReportSections(imu->units.at(serial), constants, g_local_mps2);
       } else {
-        unit_html = NotAvailable("IMU calibration data", imu ? "no calibration rows for " + serial : imu_why);
+        unit_html = NotAvailable("IMU calibration data",
+                                 imu ? "no calibration rows for " + serial : imu_why);
       }
     } else {
       unit_html = AdsReportSections(serial, recording.ads, meta, constants);
     }
-    units += Section(serial, 2, fmt::format("Unit {} ({})", serial, u.value("role", "")), unit_html);
+    units +=
+        Section(serial, 2, fmt::format("Unit {} ({})", serial, u.value("role", "")), unit_html);
   }
   body += units;
   body += Section("acceptance", 2, "Acceptance", Acceptance(run_dir, acceptance_dir, fit));
-  body += Section("evaluation", 2, "Evaluation against simulator truth",
+  body += Section("evaluation",
+                  2,
+                  "Evaluation against simulator truth",
                   fit.evaluation ? RenderJsonTables("evaluation", *fit.evaluation)
                                  : NotAvailable("evaluation.json", fit.why_missing));
   return fmt::format(
       "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\" lang=\"en\">\n<head>\n"
-      "<meta charset=\"utf-8\"/>\n<title>{}</title>\n<style>{}</style>\n</head>\n<body>\n<h1>{}</h1>\n"
+      "<meta "
+      "charset=\"utf-8\"/>\n<title>{}</title>\n<style>{}</style>\n</head>\n<body>\n<h1>{}</h1>\n"
       "<p>Units: accelerations in g or mg (1 mg = 9.80665e-3 m/s^2) or m/s^2, rates in deg/s, "
       "altitude in ft, airspeed in kt, temperatures in degC as the chamber controller reports "
       "them; raw channels in duty (T1/T2 - 0.5) and converter counts. Standard errors are 1 "
       "sigma.</p>\n{}</body>\n</html>\n",
-      XmlEscape(title), kStyle, XmlEscape(title), body);
+      XmlEscape(title),
+      kStyle,
+      XmlEscape(title),
+      body);
 }
 
 void WriteRunReport(const std::filesystem::path& run_dir,

@@ -20,9 +20,10 @@
 namespace adahrs::calib {
 
 /// The report's HTML.
-std::string BuildRunReport(const std::filesystem::path& run_dir,
-                           const std::optional<std::filesystem::path>& fit_dir,
-                           const std::optional<std::filesystem::path>& acceptance_dir = std::nullopt);
+std::string BuildRunReport(
+    const std::filesystem::path& run_dir,
+    const std::optional<std::filesystem::path>& fit_dir,
+    const std::optional<std::filesystem::path>& acceptance_dir = std::nullopt);
 
 /// BuildRunReport written to `out`.
 void WriteRunReport(const std::filesystem::path& run_dir,

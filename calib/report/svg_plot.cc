@@ -18,8 +18,8 @@ constexpr int kMarginTopPx = 30;
 constexpr int kMarginBottomPx = 48;
 constexpr int kLegendRowPx = 16;
 constexpr int kMaxTicks = 8;
-constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                    "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+constexpr const char* kColours[] = {
+    "#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
 
 struct Range {
   double lo = std::numeric_limits<double>::infinity();
@@ -41,8 +41,8 @@ struct Frame {
 
 void CheckLengths(const Plot& plot, const std::string& what, size_t x, size_t y) {
   if (x != y) {
-    throw std::invalid_argument(fmt::format("plot '{}': {} has {} x values and {} y values",
-                                            plot.title, what, x, y));
+    throw std::invalid_argument(
+        fmt::format("plot '{}': {} has {} x values and {} y values", plot.title, what, x, y));
   }
 }
 
@@ -128,11 +128,16 @@ std::string SvgHeader(const Plot& plot) {
   std::string svg = fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{}\" height=\"{}\" "
       "viewBox=\"0 0 {} {}\" font-family=\"sans-serif\" font-size=\"11\">\n",
-      plot.width_px, height_px, plot.width_px, height_px);
+      plot.width_px,
+      height_px,
+      plot.width_px,
+      height_px);
   svg += fmt::format("<title>{}</title>\n", XmlEscape(plot.title));
-  svg += fmt::format("<text class=\"title\" x=\"{}\" y=\"18\" text-anchor=\"middle\" "
-                     "font-size=\"13\">{}</text>\n",
-                     plot.width_px / 2, XmlEscape(plot.title));
+  svg += fmt::format(
+      "<text class=\"title\" x=\"{}\" y=\"18\" text-anchor=\"middle\" "
+      "font-size=\"13\">{}</text>\n",
+      plot.width_px / 2,
+      XmlEscape(plot.title));
   return svg;
 }
 
@@ -147,9 +152,11 @@ std::string BandPolygons(const Plot& plot, const Frame& f) {
     for (size_t k = b.x.size(); k-- > 0;) {
       points += fmt::format("{:.2f},{:.2f} ", f.Px(b.x[k]), f.Py(b.y_lo[k]));
     }
-    svg += fmt::format("<polygon class=\"band\" data-label=\"{}\" points=\"{}\" fill=\"#2ca02c\" "
-                       "fill-opacity=\"0.15\" stroke=\"none\"/>\n",
-                       XmlEscape(b.label), points);
+    svg += fmt::format(
+        "<polygon class=\"band\" data-label=\"{}\" points=\"{}\" fill=\"#2ca02c\" "
+        "fill-opacity=\"0.15\" stroke=\"none\"/>\n",
+        XmlEscape(b.label),
+        points);
   }
   return svg;
 }
@@ -157,34 +164,58 @@ std::string BandPolygons(const Plot& plot, const Frame& f) {
 // The frame around the plot area and the ticks with their labels on both axes.
 std::string FrameAndTicks(const Plot& plot, const Frame& f) {
   std::string svg;
-  svg += fmt::format("<rect class=\"frame\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
-                     "height=\"{:.2f}\" fill=\"none\" stroke=\"#333\"/>\n",
-                     f.left, f.top, f.right - f.left, f.bottom - f.top);
+  svg += fmt::format(
+      "<rect class=\"frame\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
+      "height=\"{:.2f}\" fill=\"none\" stroke=\"#333\"/>\n",
+      f.left,
+      f.top,
+      f.right - f.left,
+      f.bottom - f.top);
   for (const double v : f.x.values) {
-    svg += fmt::format("<line class=\"xtick\" data-value=\"{:.12g}\" x1=\"{:.2f}\" y1=\"{:.2f}\" "
-                       "x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>"
-                       "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"middle\">{}</text>\n",
-                       TickData(v, plot.log_x), f.Px(v), f.bottom, f.Px(v), f.bottom + 5, f.Px(v),
-                       f.bottom + 17, Label(v, f.x, plot.log_x));
+    svg += fmt::format(
+        "<line class=\"xtick\" data-value=\"{:.12g}\" x1=\"{:.2f}\" y1=\"{:.2f}\" "
+        "x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>"
+        "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"middle\">{}</text>\n",
+        TickData(v, plot.log_x),
+        f.Px(v),
+        f.bottom,
+        f.Px(v),
+        f.bottom + 5,
+        f.Px(v),
+        f.bottom + 17,
+        Label(v, f.x, plot.log_x));
   }
   for (const double v : f.y.values) {
-    svg += fmt::format("<line class=\"ytick\" data-value=\"{:.12g}\" x1=\"{:.2f}\" y1=\"{:.2f}\" "
-                       "x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>"
-                       "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"end\">{}</text>\n",
-                       TickData(v, plot.log_y), f.left - 5, f.Py(v), f.left, f.Py(v), f.left - 7,
-                       f.Py(v) + 4, Label(v, f.y, plot.log_y));
+    svg += fmt::format(
+        "<line class=\"ytick\" data-value=\"{:.12g}\" x1=\"{:.2f}\" y1=\"{:.2f}\" "
+        "x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>"
+        "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"end\">{}</text>\n",
+        TickData(v, plot.log_y),
+        f.left - 5,
+        f.Py(v),
+        f.left,
+        f.Py(v),
+        f.left - 7,
+        f.Py(v) + 4,
+        Label(v, f.y, plot.log_y));
   }
   return svg;
 }
 
 std::string AxisLabels(const Plot& plot, const Frame& f) {
   std::string svg;
-  svg += fmt::format("<text class=\"xlabel\" x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"middle\">{}"
-                     "</text>\n",
-                     (f.left + f.right) / 2, f.bottom + 36, XmlEscape(plot.x_label));
-  svg += fmt::format("<text class=\"ylabel\" x=\"14\" y=\"{:.2f}\" text-anchor=\"middle\" "
-                     "transform=\"rotate(-90 14 {:.2f})\">{}</text>\n",
-                     (f.top + f.bottom) / 2, (f.top + f.bottom) / 2, XmlEscape(plot.y_label));
+  svg += fmt::format(
+      "<text class=\"xlabel\" x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"middle\">{}"
+      "</text>\n",
+      (f.left + f.right) / 2,
+      f.bottom + 36,
+      XmlEscape(plot.x_label));
+  svg += fmt::format(
+      "<text class=\"ylabel\" x=\"14\" y=\"{:.2f}\" text-anchor=\"middle\" "
+      "transform=\"rotate(-90 14 {:.2f})\">{}</text>\n",
+      (f.top + f.bottom) / 2,
+      (f.top + f.bottom) / 2,
+      XmlEscape(plot.y_label));
   return svg;
 }
 
@@ -193,9 +224,12 @@ std::string LineSeries(const PlotSeries& s, const std::string& colour, const Fra
   std::string svg, points;
   auto flush = [&] {
     if (!points.empty()) {
-      svg += fmt::format("<polyline class=\"series\" data-label=\"{}\" points=\"{}\" "
-                         "fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n",
-                         XmlEscape(s.label), points, colour);
+      svg += fmt::format(
+          "<polyline class=\"series\" data-label=\"{}\" points=\"{}\" "
+          "fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n",
+          XmlEscape(s.label),
+          points,
+          colour);
     }
     points.clear();
   };
@@ -228,16 +262,26 @@ std::string Legend(const Plot& plot, const Frame& f) {
   std::string svg;
   double legend_y = plot.height_px - 4.0;
   for (size_t i = 0; i < plot.series.size(); ++i, legend_y += kLegendRowPx) {
-    svg += fmt::format("<g class=\"legend\"><rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"14\" "
-                       "height=\"4\" fill=\"{}\"/><text x=\"{:.2f}\" y=\"{:.2f}\">{}</text></g>\n",
-                       f.left, legend_y + 4, Colour(i), f.left + 20, legend_y + 10,
-                       XmlEscape(plot.series[i].label));
+    svg += fmt::format(
+        "<g class=\"legend\"><rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"14\" "
+        "height=\"4\" fill=\"{}\"/><text x=\"{:.2f}\" y=\"{:.2f}\">{}</text></g>\n",
+        f.left,
+        legend_y + 4,
+        Colour(i),
+        f.left + 20,
+        legend_y + 10,
+        XmlEscape(plot.series[i].label));
   }
   for (const PlotBand& b : plot.bands) {
-    svg += fmt::format("<g class=\"legend\"><rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"14\" "
-                       "height=\"10\" fill=\"#2ca02c\" fill-opacity=\"0.15\"/><text x=\"{:.2f}\" "
-                       "y=\"{:.2f}\">{}</text></g>\n",
-                       f.left, legend_y + 1, f.left + 20, legend_y + 10, XmlEscape(b.label));
+    svg += fmt::format(
+        "<g class=\"legend\"><rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"14\" "
+        "height=\"10\" fill=\"#2ca02c\" fill-opacity=\"0.15\"/><text x=\"{:.2f}\" "
+        "y=\"{:.2f}\">{}</text></g>\n",
+        f.left,
+        legend_y + 1,
+        f.left + 20,
+        legend_y + 10,
+        XmlEscape(b.label));
     legend_y += kLegendRowPx;
   }
   return svg;
@@ -250,12 +294,23 @@ std::string XmlEscape(const std::string& text) {
   out.reserve(text.size());
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;

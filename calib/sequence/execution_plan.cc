@@ -88,14 +88,16 @@ class Planner {
   void Altitude(const AltitudeStep& s) {
     Add(SetAltitude{s.alt_ft, s.rate_ft_per_min}, 0.0);
     Add(WaitAdtsStable{},
-        std::abs(s.alt_ft - alt_ft_) / s.rate_ft_per_min * kSecondsPerMinute + timing_.adts_stable_s);
+        std::abs(s.alt_ft - alt_ft_) / s.rate_ft_per_min * kSecondsPerMinute +
+            timing_.adts_stable_s);
     alt_ft_ = s.alt_ft;
   }
 
   void Airspeed(const AirspeedStep& s) {
     Add(SetAirspeed{s.cas_kt, s.rate_kt_per_min}, 0.0);
     Add(WaitAdtsStable{},
-        std::abs(s.cas_kt - cas_kt_) / s.rate_kt_per_min * kSecondsPerMinute + timing_.adts_stable_s);
+        std::abs(s.cas_kt - cas_kt_) / s.rate_kt_per_min * kSecondsPerMinute +
+            timing_.adts_stable_s);
     cas_kt_ = s.cas_kt;
   }
 
@@ -161,7 +163,8 @@ double ProfileDurationS(const ThermalProfileStep& profile, double start_c) {
   return total_s;
 }
 
-ExecutionPlan ExpandSequence(const Sequence& sequence, const SequenceLimits& limits,
+ExecutionPlan ExpandSequence(const Sequence& sequence,
+                             const SequenceLimits& limits,
                              const PlanTiming& timing) {
   std::vector<SequenceProblem> problems = ValidateSequence(sequence, limits);
   if (!problems.empty()) throw SequenceError("sequence " + sequence.name, std::move(problems));
@@ -170,49 +173,48 @@ ExecutionPlan ExpandSequence(const Sequence& sequence, const SequenceLimits& lim
   Planner planner(limits, timing, plan);
   for (size_t i = 0; i < sequence.steps.size(); ++i) {
     planner.BeginStep(i, tags[i]);
-    std::visit(
-        Overloaded{
-            [&](const AccelStep& s) {
-              planner.Mount(s.orientation);
-              planner.Add(CheckGravity{s.orientation}, timing.interlock_sample_s);
-              planner.Acquire(s.packets);
-            },
-            [&](const GyroStep& s) {
-              planner.Mount(s.orientation);
-              planner.CheckGyro(s.orientation, s.table_accel_dps2);
-              for (double rate_dps : GyroRates_dps(s)) {
-                planner.TableRate(rate_dps, s.table_accel_dps2);
-                planner.Acquire(s.packets);
-              }
-              planner.Stop(s.table_accel_dps2);
-            },
-            [&](const TargetTemperatureStep& s) { planner.Chamber(s); },
-            [&](const CrossAxisStep& s) {
-              for (int orientation : kCrossAxisOrientations) {
-                planner.Mount(orientation);
-                planner.Add(CheckGravity{orientation}, timing.interlock_sample_s);
-                planner.Acquire(s.packets);
-                planner.CheckGyro(orientation, s.table_accel_dps2);
-                planner.TableRate(s.rate_dps, s.table_accel_dps2);
-                planner.Acquire(s.packets);
-                planner.Stop(s.table_accel_dps2);
-              }
-            },
-            [&](const ThermalProfileStep& s) { planner.Profile(s); },
-            [&](const AltitudeStep& s) { planner.Altitude(s); },
-            [&](const AirspeedStep& s) { planner.Airspeed(s); },
-            [&](const LogStep& s) {
-              if (s.packets) {
-                planner.Acquire(*s.packets);
-              } else {
-                planner.Add(LogForDuration{*s.duration_s}, *s.duration_s);
-              }
-            },
-            [&](const PromptStep& s) {
-              planner.Add(PromptOperator{s.text}, timing.operator_prompt_s);
-            },
-        },
-        sequence.steps[i].body);
+    std::visit(Overloaded{
+                   [&](const AccelStep& s) {
+                     planner.Mount(s.orientation);
+                     planner.Add(CheckGravity{s.orientation}, timing.interlock_sample_s);
+                     planner.Acquire(s.packets);
+                   },
+                   [&](const GyroStep& s) {
+                     planner.Mount(s.orientation);
+                     planner.CheckGyro(s.orientation, s.table_accel_dps2);
+                     for (double rate_dps : GyroRates_dps(s)) {
+                       planner.TableRate(rate_dps, s.table_accel_dps2);
+                       planner.Acquire(s.packets);
+                     }
+                     planner.Stop(s.table_accel_dps2);
+                   },
+                   [&](const TargetTemperatureStep& s) { planner.Chamber(s); },
+                   [&](const CrossAxisStep& s) {
+                     for (int orientation : kCrossAxisOrientations) {
+                       planner.Mount(orientation);
+                       planner.Add(CheckGravity{orientation}, timing.interlock_sample_s);
+                       planner.Acquire(s.packets);
+                       planner.CheckGyro(orientation, s.table_accel_dps2);
+                       planner.TableRate(s.rate_dps, s.table_accel_dps2);
+                       planner.Acquire(s.packets);
+                       planner.Stop(s.table_accel_dps2);
+                     }
+                   },
+                   [&](const ThermalProfileStep& s) { planner.Profile(s); },
+                   [&](const AltitudeStep& s) { planner.Altitude(s); },
+                   [&](const AirspeedStep& s) { planner.Airspeed(s); },
+                   [&](const LogStep& s) {
+                     if (s.packets) {
+                       planner.Acquire(*s.packets);
+                     } else {
+                       planner.Add(LogForDuration{*s.duration_s}, *s.duration_s);
+                     }
+                   },
+                   [&](const PromptStep& s) {
+                     planner.Add(PromptOperator{s.text}, timing.operator_prompt_s);
+                   },
+               },
+               sequence.steps[i].body);
   }
   return plan;
 }
@@ -229,11 +231,12 @@ std::string Describe(const Action& action) {
           },
           [](const CheckGyroAxis& a) {
             return fmt::format("interlock: jog {:g} deg/s, check gyro axis for orientation {}",
-                               a.jog_rate_dps, a.orientation);
+                               a.jog_rate_dps,
+                               a.orientation);
           },
           [](const SetTableRate& a) {
-            return fmt::format("set table rate {:g} deg/s (accel {:g} deg/s^2)", a.rate_dps,
-                               a.accel_dps2);
+            return fmt::format(
+                "set table rate {:g} deg/s (accel {:g} deg/s^2)", a.rate_dps, a.accel_dps2);
           },
           [](const WaitTableAtRate& a) {
             return fmt::format("wait table at {:g} deg/s", a.rate_dps);
@@ -243,24 +246,24 @@ std::string Describe(const Action& action) {
             return fmt::format("set chamber set point {:g} degC", a.temp_c);
           },
           [](const WaitChamberSoak& a) {
-            return fmt::format("wait chamber within {:g} ± {:g} degC, soak {:g} s", a.temp_c,
-                               a.band_c, a.soak_s);
+            return fmt::format(
+                "wait chamber within {:g} ± {:g} degC, soak {:g} s", a.temp_c, a.band_c, a.soak_s);
           },
           [](const DownloadProfile& a) {
             return fmt::format("download chamber profile \"{}\" ({} steps)",
-                               a.profile.profile_name, a.profile.steps.size());
+                               a.profile.profile_name,
+                               a.profile.steps.size());
           },
           [](const RunProfileLogging& a) {
-            return fmt::format("run chamber profile \"{}\", logging until its end",
-                               a.profile_name);
+            return fmt::format("run chamber profile \"{}\", logging until its end", a.profile_name);
           },
           [](const SetAltitude& a) {
-            return fmt::format("set ADTS altitude {:g} ft at {:g} ft/min", a.alt_ft,
-                               a.rate_ft_per_min);
+            return fmt::format(
+                "set ADTS altitude {:g} ft at {:g} ft/min", a.alt_ft, a.rate_ft_per_min);
           },
           [](const SetAirspeed& a) {
-            return fmt::format("set ADTS airspeed {:g} kt at {:g} kt/min", a.cas_kt,
-                               a.rate_kt_per_min);
+            return fmt::format(
+                "set ADTS airspeed {:g} kt at {:g} kt/min", a.cas_kt, a.rate_kt_per_min);
           },
           [](const WaitAdtsStable&) { return std::string("wait ADTS stable"); },
           [](const AcquirePackets& a) { return fmt::format("acquire {} packets", a.packets); },

@@ -6,8 +6,8 @@
 // Expansions (reference-method.md Table 9 and thesis §3.5, Fig. 45–46):
 //   accel              [mount o] · check gravity o · acquire N
 //   gyro               [mount o] · check gyro axis o (jog at interlock_jog_rate) ·
-//                      for each rate r of GyroRates_dps: set table rate r · wait at rate · acquire N ·
-//                      stop table
+//                      for each rate r of GyroRates_dps: set table rate r · wait at rate · acquire
+//                      N · stop table
 //   target_temperature set chamber set point · wait inside band for the soak
 //   cross_axis         for o in 11, 21, 31: [mount o] · check gravity · acquire N at rest ·
 //                      check gyro axis · set rate · wait at rate · acquire N · stop table
@@ -98,28 +98,40 @@ struct LogForDuration {
   double duration_s = 0.0;
 };
 
-using Action = std::variant<PromptOperator, MountOrientation, CheckGravity, CheckGyroAxis,
-                            SetTableRate, WaitTableAtRate, StopTable, SetChamberSetPoint,
-                            WaitChamberSoak, DownloadProfile, RunProfileLogging, SetAltitude,
-                            SetAirspeed, WaitAdtsStable, AcquirePackets, LogForDuration>;
+using Action = std::variant<PromptOperator,
+                            MountOrientation,
+                            CheckGravity,
+                            CheckGyroAxis,
+                            SetTableRate,
+                            WaitTableAtRate,
+                            StopTable,
+                            SetChamberSetPoint,
+                            WaitChamberSoak,
+                            DownloadProfile,
+                            RunProfileLogging,
+                            SetAltitude,
+                            SetAirspeed,
+                            WaitAdtsStable,
+                            AcquirePackets,
+                            LogForDuration>;
 
 struct PlannedAction {
-  size_t step = 0;   ///< index of the sequence step it comes from
-  uint8_t tag = 0;   ///< that step's TAG, written into every packet acquired by this action
+  size_t step = 0;  ///< index of the sequence step it comes from
+  uint8_t tag = 0;  ///< that step's TAG, written into every packet acquired by this action
   Action action;
   double estimate_s = 0.0;
 };
 
 /// Rig behaviour assumed by the duration estimate (E unless stated).
 struct PlanTiming {
-  double operator_prompt_s = 60.0;        ///< operator reads and acts (0 for a virtual fixture)
-  double table_settle_s = 2.0;            ///< after a ramp, until the table reports at rate
-  double interlock_sample_s = 1.0;        ///< packets averaged by an interlock check
-  double chamber_ramp_c_per_min = 1.0;    ///< a loaded chamber's mean rate to a new set point
-  double adts_stable_s = 15.0;            ///< ADTS "stable" flag delay (protocols.md §4.4, DRV)
-  double profile_download_s = 10.0;       ///< Modbus transactions of a profile download
-  double initial_chamber_c = 25.0;        ///< chamber set point before the run
-  double initial_alt_ft = 0.0;            ///< ADTS at ground before the run
+  double operator_prompt_s = 60.0;      ///< operator reads and acts (0 for a virtual fixture)
+  double table_settle_s = 2.0;          ///< after a ramp, until the table reports at rate
+  double interlock_sample_s = 1.0;      ///< packets averaged by an interlock check
+  double chamber_ramp_c_per_min = 1.0;  ///< a loaded chamber's mean rate to a new set point
+  double adts_stable_s = 15.0;          ///< ADTS "stable" flag delay (protocols.md §4.4, DRV)
+  double profile_download_s = 10.0;     ///< Modbus transactions of a profile download
+  double initial_chamber_c = 25.0;      ///< chamber set point before the run
+  double initial_alt_ft = 0.0;          ///< ADTS at ground before the run
   double initial_cas_kt = 0.0;
 };
 
@@ -130,7 +142,8 @@ struct ExecutionPlan {
 
 /// Expands `sequence`. Throws SequenceError (validation.h) listing every problem when the
 /// sequence is not valid against `limits`.
-ExecutionPlan ExpandSequence(const Sequence& sequence, const SequenceLimits& limits,
+ExecutionPlan ExpandSequence(const Sequence& sequence,
+                             const SequenceLimits& limits,
                              const PlanTiming& timing = {});
 
 /// Duration of a profile run from the set point `start_c`, by the model in the header comment.

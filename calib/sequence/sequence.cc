@@ -50,10 +50,14 @@ const char* F4StepTypeName(const F4ProfileStep& step) {
 
 const char* F4EndActionName(F4EndAction action) {
   switch (action) {
-    case F4EndAction::kHold: return "hold";
-    case F4EndAction::kControlOff: return "control_off";
-    case F4EndAction::kAllOff: return "all_off";
-    case F4EndAction::kIdle: return "idle";
+    case F4EndAction::kHold:
+      return "hold";
+    case F4EndAction::kControlOff:
+      return "control_off";
+    case F4EndAction::kAllOff:
+      return "all_off";
+    case F4EndAction::kIdle:
+      return "idle";
   }
   return "hold";
 }

@@ -122,8 +122,15 @@ struct PromptStep {
   bool operator==(const PromptStep&) const = default;
 };
 
-using StepBody = std::variant<AccelStep, GyroStep, TargetTemperatureStep, CrossAxisStep,
-                              ThermalProfileStep, AltitudeStep, AirspeedStep, LogStep, PromptStep>;
+using StepBody = std::variant<AccelStep,
+                              GyroStep,
+                              TargetTemperatureStep,
+                              CrossAxisStep,
+                              ThermalProfileStep,
+                              AltitudeStep,
+                              AirspeedStep,
+                              LogStep,
+                              PromptStep>;
 
 struct Step {
   std::optional<int> tag;  ///< as written in the file; EffectiveTags() gives the one used

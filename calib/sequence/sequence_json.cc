@@ -34,7 +34,8 @@ SequenceProblem ProblemFromParamError(const ParamError& error, const std::string
 }
 
 // Runs `read`, turning a ParamError into a problem; returns whether it succeeded.
-bool Collect(const std::function<void()>& read, const std::string& source,
+bool Collect(const std::function<void()>& read,
+             const std::string& source,
              std::vector<SequenceProblem>& problems) {
   try {
     read();
@@ -59,8 +60,7 @@ F4ProfileStep ReadF4Step(const ParamReader& r) {
   if (type == "ramp_time") {
     step = F4RampTime{AnyNumber(r, "target_c", "degC"), AnyNumber(r, "duration_s", "s")};
   } else if (type == "ramp_rate") {
-    step = F4RampRate{AnyNumber(r, "target_c", "degC"),
-                      AnyNumber(r, "rate_c_per_min", "degC/min")};
+    step = F4RampRate{AnyNumber(r, "target_c", "degC"), AnyNumber(r, "rate_c_per_min", "degC/min")};
   } else if (type == "soak") {
     step = F4Soak{AnyNumber(r, "duration_s", "s")};
   } else if (type == "jump") {
@@ -83,8 +83,9 @@ F4ProfileStep ReadF4Step(const ParamReader& r) {
     }
     step = end;
   } else {
-    r.Fail(r.path() + ".type", "unknown profile step type \"" + type +
-                                   "\"; one of ramp_time, ramp_rate, soak, jump, end");
+    r.Fail(
+        r.path() + ".type",
+        "unknown profile step type \"" + type + "\"; one of ramp_time, ramp_rate, soak, jump, end");
   }
   r.ExpectAllKeysUsed();
   return step;
@@ -109,7 +110,8 @@ size_t ArraySize(const nlohmann::json& object, const ParamReader& r, std::string
   return it->size();
 }
 
-ThermalProfileStep ReadThermalProfile(const nlohmann::json& object, const ParamReader& r,
+ThermalProfileStep ReadThermalProfile(const nlohmann::json& object,
+                                      const ParamReader& r,
                                       const std::string& source,
                                       std::vector<SequenceProblem>& problems) {
   ThermalProfileStep profile;
@@ -117,13 +119,17 @@ ThermalProfileStep ReadThermalProfile(const nlohmann::json& object, const ParamR
   const size_t count = ArraySize(object, r, "profile_steps");
   for (size_t i = 0; i < count; ++i) {
     Collect([&] { profile.steps.push_back(ReadF4Step(r.Element("profile_steps", i, count))); },
-            source, problems);
+            source,
+            problems);
   }
   return profile;
 }
 
-StepBody ReadBody(const std::string& kind, const nlohmann::json& object, const ParamReader& r,
-                  const std::string& source, std::vector<SequenceProblem>& problems) {
+StepBody ReadBody(const std::string& kind,
+                  const nlohmann::json& object,
+                  const ParamReader& r,
+                  const std::string& source,
+                  std::vector<SequenceProblem>& problems) {
   if (kind == "accel") {
     return AccelStep{AnyInt(r, "orientation"), r.Integer("packets", -kAnyInteger, kAnyInteger)};
   }
@@ -138,7 +144,8 @@ StepBody ReadBody(const std::string& kind, const nlohmann::json& object, const P
     return s;
   }
   if (kind == "target_temperature") {
-    return TargetTemperatureStep{AnyNumber(r, "target_c", "degC"), AnyNumber(r, "band_c", "degC"),
+    return TargetTemperatureStep{AnyNumber(r, "target_c", "degC"),
+                                 AnyNumber(r, "band_c", "degC"),
                                  AnyNumber(r, "soak_s", "s")};
   }
   if (kind == "cross_axis") {
@@ -183,7 +190,8 @@ ParsedSequence ParseSequence(const nlohmann::json& document, const std::string& 
   }
   const ParamReader r(document, source);
   Collect([&] { r.Integer("format_version", Sequence::kFormatVersion, Sequence::kFormatVersion); },
-          source, problems);
+          source,
+          problems);
   Collect([&] { sequence.name = r.String("name"); }, source, problems);
   Collect([&] { sequence.description = r.String("description"); }, source, problems);
   Collect(
@@ -197,7 +205,8 @@ ParsedSequence ParseSequence(const nlohmann::json& document, const std::string& 
           r.Fail("$.unit_kind", "unknown unit kind \"" + kind + "\"; one of imu, ads");
         }
       },
-      source, problems);
+      source,
+      problems);
   size_t count = 0;
   Collect([&] { count = ArraySize(document, r, "steps"); }, source, problems);
   for (size_t i = 0; i < count; ++i) {
@@ -214,7 +223,8 @@ ParsedSequence ParseSequence(const nlohmann::json& document, const std::string& 
             parsed.file_step_index.push_back(i);
           }
         },
-        source, problems);
+        source,
+        problems);
   }
   Collect([&] { r.ExpectAllKeysUsed(); }, source, problems);
   return parsed;
@@ -251,74 +261,73 @@ nlohmann::ordered_json SequenceToJson(const Sequence& sequence) {
     nlohmann::ordered_json s;
     s["kind"] = StepKindName(step.body);
     if (step.tag) s["tag"] = *step.tag;
-    std::visit(
-        Overloaded{
-            [&](const AccelStep& a) {
-              s["orientation"] = a.orientation;
-              s["packets"] = a.packets;
-            },
-            [&](const GyroStep& g) {
-              s["orientation"] = g.orientation;
-              s["packets"] = g.packets;
-              s["rate_min_dps"] = g.rate_min_dps;
-              s["rate_max_dps"] = g.rate_max_dps;
-              s["rate_increment_dps"] = g.rate_increment_dps;
-              s["table_accel_dps2"] = g.table_accel_dps2;
-            },
-            [&](const TargetTemperatureStep& t) {
-              s["target_c"] = t.target_c;
-              s["band_c"] = t.band_c;
-              s["soak_s"] = t.soak_s;
-            },
-            [&](const CrossAxisStep& c) {
-              s["packets"] = c.packets;
-              s["rate_dps"] = c.rate_dps;
-              s["table_accel_dps2"] = c.table_accel_dps2;
-            },
-            [&](const ThermalProfileStep& p) {
-              s["profile_name"] = p.profile_name;
-              s["profile_steps"] = nlohmann::ordered_json::array();
-              for (const F4ProfileStep& f4 : p.steps) {
-                nlohmann::ordered_json e;
-                e["type"] = F4StepTypeName(f4);
-                std::visit(Overloaded{
-                               [&](const F4RampTime& x) {
-                                 e["target_c"] = x.target_c;
-                                 e["duration_s"] = x.duration_s;
-                               },
-                               [&](const F4RampRate& x) {
-                                 e["target_c"] = x.target_c;
-                                 e["rate_c_per_min"] = x.rate_c_per_min;
-                               },
-                               [&](const F4Soak& x) { e["duration_s"] = x.duration_s; },
-                               [&](const F4Jump& x) {
-                                 e["to_step"] = x.to_step;
-                                 e["count"] = x.count;
-                               },
-                               [&](const F4End& x) {
-                                 e["action"] = F4EndActionName(x.action);
-                                 if (x.action == F4EndAction::kIdle) e["idle_c"] = x.idle_c;
-                               },
-                           },
-                           f4);
-                s["profile_steps"].push_back(std::move(e));
-              }
-            },
-            [&](const AltitudeStep& a) {
-              s["alt_ft"] = a.alt_ft;
-              s["rate_ft_per_min"] = a.rate_ft_per_min;
-            },
-            [&](const AirspeedStep& a) {
-              s["cas_kt"] = a.cas_kt;
-              s["rate_kt_per_min"] = a.rate_kt_per_min;
-            },
-            [&](const LogStep& l) {
-              if (l.packets) s["packets"] = *l.packets;
-              if (l.duration_s) s["duration_s"] = *l.duration_s;
-            },
-            [&](const PromptStep& p) { s["text"] = p.text; },
-        },
-        step.body);
+    std::visit(Overloaded{
+                   [&](const AccelStep& a) {
+                     s["orientation"] = a.orientation;
+                     s["packets"] = a.packets;
+                   },
+                   [&](const GyroStep& g) {
+                     s["orientation"] = g.orientation;
+                     s["packets"] = g.packets;
+                     s["rate_min_dps"] = g.rate_min_dps;
+                     s["rate_max_dps"] = g.rate_max_dps;
+                     s["rate_increment_dps"] = g.rate_increment_dps;
+                     s["table_accel_dps2"] = g.table_accel_dps2;
+                   },
+                   [&](const TargetTemperatureStep& t) {
+                     s["target_c"] = t.target_c;
+                     s["band_c"] = t.band_c;
+                     s["soak_s"] = t.soak_s;
+                   },
+                   [&](const CrossAxisStep& c) {
+                     s["packets"] = c.packets;
+                     s["rate_dps"] = c.rate_dps;
+                     s["table_accel_dps2"] = c.table_accel_dps2;
+                   },
+                   [&](const ThermalProfileStep& p) {
+                     s["profile_name"] = p.profile_name;
+                     s["profile_steps"] = nlohmann::ordered_json::array();
+                     for (const F4ProfileStep& f4 : p.steps) {
+                       nlohmann::ordered_json e;
+                       e["type"] = F4StepTypeName(f4);
+                       std::visit(Overloaded{
+                                      [&](const F4RampTime& x) {
+                                        e["target_c"] = x.target_c;
+                                        e["duration_s"] = x.duration_s;
+                                      },
+                                      [&](const F4RampRate& x) {
+                                        e["target_c"] = x.target_c;
+                                        e["rate_c_per_min"] = x.rate_c_per_min;
+                                      },
+                                      [&](const F4Soak& x) { e["duration_s"] = x.duration_s; },
+                                      [&](const F4Jump& x) {
+                                        e["to_step"] = x.to_step;
+                                        e["count"] = x.count;
+                                      },
+                                      [&](const F4End& x) {
+                                        e["action"] = F4EndActionName(x.action);
+                                        if (x.action == F4EndAction::kIdle) e["idle_c"] = x.idle_c;
+                                      },
+                                  },
+                                  f4);
+                       s["profile_steps"].push_back(std::move(e));
+                     }
+                   },
+                   [&](const AltitudeStep& a) {
+                     s["alt_ft"] = a.alt_ft;
+                     s["rate_ft_per_min"] = a.rate_ft_per_min;
+                   },
+                   [&](const AirspeedStep& a) {
+                     s["cas_kt"] = a.cas_kt;
+                     s["rate_kt_per_min"] = a.rate_kt_per_min;
+                   },
+                   [&](const LogStep& l) {
+                     if (l.packets) s["packets"] = *l.packets;
+                     if (l.duration_s) s["duration_s"] = *l.duration_s;
+                   },
+                   [&](const PromptStep& p) { s["text"] = p.text; },
+               },
+               step.body);
     out["steps"].push_back(std::move(s));
   }
   return out;

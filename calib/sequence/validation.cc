@@ -18,7 +18,6 @@ namespace {
 // acquisition of its own in the plan.
 constexpr int kMaxGyroRatesPerStep = 1000;
 
-
 template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
@@ -28,7 +27,9 @@ template <typename... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;
 
 std::string JoinProblems(const std::string& source, const std::vector<SequenceProblem>& problems) {
-  std::string text = fmt::format("{}: sequence refused, {} problem{}:", source, problems.size(),
+  std::string text = fmt::format("{}: sequence refused, {} problem{}:",
+                                 source,
+                                 problems.size(),
                                  problems.size() == 1 ? "" : "s");
   for (const SequenceProblem& p : problems) text += "\n  " + p.Format(source);
   return text;
@@ -46,28 +47,31 @@ class Checker {
 
   void Packets(const std::string& path, int64_t packets) {
     if (packets < 1 || packets > limits_.max_packets) {
-      Add(path, fmt::format("packets must be 1…{}, got {}", limits_.max_packets, packets),
+      Add(path,
+          fmt::format("packets must be 1…{}, got {}", limits_.max_packets, packets),
           fmt::format("acquisition limit {} packets", limits_.max_packets));
     }
   }
 
   void Orientation(const std::string& path, int code) {
     if (!IsOrientationCode(code)) {
-      Add(path, fmt::format("orientation {} is not a fixture orientation code (11, 12, 21, 22, "
-                            "31, 32)",
-                            code));
+      Add(path,
+          fmt::format("orientation {} is not a fixture orientation code (11, 12, 21, 22, "
+                      "31, 32)",
+                      code));
     }
   }
 
   // A table rate, against the unit's gyro range and the table's rate limit.
   void TableRate(const std::string& path, double rate_dps) {
     if (std::abs(rate_dps) > limits_.unit_gyro_range_dps) {
-      Add(path, fmt::format("rate {:g} deg/s beyond the unit's gyro range", rate_dps),
+      Add(path,
+          fmt::format("rate {:g} deg/s beyond the unit's gyro range", rate_dps),
           fmt::format("unit gyro range ±{:g} deg/s", limits_.unit_gyro_range_dps));
     }
     if (std::abs(rate_dps) > limits_.table_max_rate_dps) {
-      Add(path, fmt::format("rate {:g} deg/s beyond the {}'s rate limit", rate_dps,
-                            limits_.table_name),
+      Add(path,
+          fmt::format("rate {:g} deg/s beyond the {}'s rate limit", rate_dps, limits_.table_name),
           fmt::format("{} ±{:g} deg/s", limits_.table_name, limits_.table_max_rate_dps));
     }
     TableResolution(path, rate_dps);
@@ -77,9 +81,12 @@ class Checker {
   void TableResolution(const std::string& path, double rate_dps) {
     const double steps = rate_dps / limits_.table_rate_resolution_dps;
     if (std::abs(steps - std::round(steps)) > 1e-9 * std::max(1.0, std::abs(steps))) {
-      Add(path, fmt::format("{:g} deg/s is not a multiple of the {}'s rate resolution", rate_dps,
-                            limits_.table_name),
-          fmt::format("{} commands rates in steps of {:g} deg/s", limits_.table_name,
+      Add(path,
+          fmt::format("{:g} deg/s is not a multiple of the {}'s rate resolution",
+                      rate_dps,
+                      limits_.table_name),
+          fmt::format("{} commands rates in steps of {:g} deg/s",
+                      limits_.table_name,
                       limits_.table_rate_resolution_dps));
     }
   }
@@ -88,23 +95,27 @@ class Checker {
     if (!(accel_dps2 > 0.0) || accel_dps2 > limits_.table_max_accel_dps2) {
       Add(path,
           fmt::format("table acceleration must be in (0, {:g}] deg/s^2, got {:g}",
-                      limits_.table_max_accel_dps2, accel_dps2),
-          fmt::format("{} acceleration {:g} deg/s^2", limits_.table_name,
-                      limits_.table_max_accel_dps2));
+                      limits_.table_max_accel_dps2,
+                      accel_dps2),
+          fmt::format(
+              "{} acceleration {:g} deg/s^2", limits_.table_name, limits_.table_max_accel_dps2));
     }
   }
 
   // A chamber set point, against the unit's rating and the chamber's range.
   void Temperature(const std::string& path, double temp_c) {
     if (temp_c < limits_.unit_temp_min_c || temp_c > limits_.unit_temp_max_c) {
-      Add(path, fmt::format("temperature {:g} degC beyond the unit's rating", temp_c),
-          fmt::format("unit rating {:g}…{:g} degC", limits_.unit_temp_min_c,
-                      limits_.unit_temp_max_c));
+      Add(path,
+          fmt::format("temperature {:g} degC beyond the unit's rating", temp_c),
+          fmt::format(
+              "unit rating {:g}…{:g} degC", limits_.unit_temp_min_c, limits_.unit_temp_max_c));
     }
     if (temp_c < limits_.chamber_min_c || temp_c > limits_.chamber_max_c) {
-      Add(path, fmt::format("temperature {:g} degC beyond the {}'s range", temp_c,
-                            limits_.chamber_name),
-          fmt::format("{} {:g}…{:g} degC", limits_.chamber_name, limits_.chamber_min_c,
+      Add(path,
+          fmt::format("temperature {:g} degC beyond the {}'s range", temp_c, limits_.chamber_name),
+          fmt::format("{} {:g}…{:g} degC",
+                      limits_.chamber_name,
+                      limits_.chamber_min_c,
                       limits_.chamber_max_c));
     }
   }
@@ -113,8 +124,10 @@ class Checker {
     if (!(rate_c_per_min > 0.0) || rate_c_per_min > limits_.chamber_max_ramp_c_per_min) {
       Add(path,
           fmt::format("ramp rate must be in (0, {:g}] degC/min, got {:g}",
-                      limits_.chamber_max_ramp_c_per_min, rate_c_per_min),
-          fmt::format("{} ramp rate {:g} degC/min", limits_.chamber_name,
+                      limits_.chamber_max_ramp_c_per_min,
+                      rate_c_per_min),
+          fmt::format("{} ramp rate {:g} degC/min",
+                      limits_.chamber_name,
                       limits_.chamber_max_ramp_c_per_min));
     }
   }
@@ -123,12 +136,14 @@ class Checker {
     if (!(duration_s > 0.0) || duration_s > limits_.chamber_max_step_duration_s) {
       Add(path,
           fmt::format("duration must be in (0, {:g}] s, got {:g}",
-                      limits_.chamber_max_step_duration_s, duration_s),
+                      limits_.chamber_max_step_duration_s,
+                      duration_s),
           fmt::format("{} step time 99:59:59", limits_.chamber_name));
     }
   }
 
-  void Profile(const std::string& path, const ThermalProfileStep& profile,
+  void Profile(const std::string& path,
+               const ThermalProfileStep& profile,
                std::optional<double>& set_point_c) {
     const std::string& name = profile.profile_name;
     const bool name_ok =
@@ -144,10 +159,11 @@ class Checker {
     const std::string steps_path = path + ".profile_steps";
     if (steps.empty() || steps.size() > static_cast<size_t>(limits_.chamber_max_profile_steps)) {
       Add(steps_path,
-          fmt::format("a profile holds 1…{} steps, got {}", limits_.chamber_max_profile_steps,
+          fmt::format("a profile holds 1…{} steps, got {}",
+                      limits_.chamber_max_profile_steps,
                       steps.size()),
-          fmt::format("{} {} profile steps", limits_.chamber_name,
-                      limits_.chamber_max_profile_steps));
+          fmt::format(
+              "{} {} profile steps", limits_.chamber_name, limits_.chamber_max_profile_steps));
     }
     if (!steps.empty() && !std::holds_alternative<F4End>(steps.back())) {
       Add(fmt::format("{}[{}]", steps_path, steps.size() - 1),
@@ -168,8 +184,12 @@ class Checker {
                     Add(p + ".duration_s",
                         fmt::format("ramp from {:g} to {:g} degC in {:g} s is {:.3g} degC/min, "
                                     "faster than the chamber ramps",
-                                    *set_point_c, s.target_c, s.duration_s, rate_c_per_min),
-                        fmt::format("{} ramp rate {:g} degC/min", limits_.chamber_name,
+                                    *set_point_c,
+                                    s.target_c,
+                                    s.duration_s,
+                                    rate_c_per_min),
+                        fmt::format("{} ramp rate {:g} degC/min",
+                                    limits_.chamber_name,
                                     limits_.chamber_max_ramp_c_per_min));
                   }
                 }
@@ -186,19 +206,23 @@ class Checker {
                   Add(p + ".to_step",
                       fmt::format("jump from step {} to step {}: a jump goes back to an earlier "
                                   "step (1…{})",
-                                  step_number, s.to_step, step_number - 1));
+                                  step_number,
+                                  s.to_step,
+                                  step_number - 1));
                 } else if (!std::holds_alternative<F4RampTime>(steps[s.to_step - 1]) &&
                            !std::holds_alternative<F4RampRate>(steps[s.to_step - 1]) &&
                            !std::holds_alternative<F4Soak>(steps[s.to_step - 1])) {
                   Add(p + ".to_step",
                       fmt::format("jump to step {}, a {} step: a jump lands on a ramp or soak",
-                                  s.to_step, F4StepTypeName(steps[s.to_step - 1])));
+                                  s.to_step,
+                                  F4StepTypeName(steps[s.to_step - 1])));
                 }
                 if (s.count < 1 || s.count > limits_.chamber_max_jump_count) {
                   Add(p + ".count",
-                      fmt::format("jump count {} outside 1…{}", s.count,
-                                  limits_.chamber_max_jump_count),
-                      fmt::format("{} jump count {}", limits_.chamber_name,
+                      fmt::format(
+                          "jump count {} outside 1…{}", s.count, limits_.chamber_max_jump_count),
+                      fmt::format("{} jump count {}",
+                                  limits_.chamber_name,
                                   limits_.chamber_max_jump_count));
                 }
               },
@@ -221,14 +245,17 @@ class Checker {
   void Altitude(const std::string& path, const AltitudeStep& s) {
     const std::string alt_path = path + ".alt_ft";
     if (s.alt_ft < limits_.unit_alt_min_ft || s.alt_ft > limits_.unit_alt_max_ft) {
-      Add(alt_path, fmt::format("altitude {:g} ft outside the unit's range", s.alt_ft),
-          fmt::format("unit altitude {:g}…{:g} ft", limits_.unit_alt_min_ft,
-                      limits_.unit_alt_max_ft));
+      Add(alt_path,
+          fmt::format("altitude {:g} ft outside the unit's range", s.alt_ft),
+          fmt::format(
+              "unit altitude {:g}…{:g} ft", limits_.unit_alt_min_ft, limits_.unit_alt_max_ft));
     }
     if (s.alt_ft < limits_.adts_alt_min_ft || s.alt_ft > limits_.adts_alt_max_ft) {
-      Add(alt_path, fmt::format("altitude {:g} ft outside the {}'s range", s.alt_ft,
-                                limits_.adts_name),
-          fmt::format("{} {:g}…{:g} ft", limits_.adts_name, limits_.adts_alt_min_ft,
+      Add(alt_path,
+          fmt::format("altitude {:g} ft outside the {}'s range", s.alt_ft, limits_.adts_name),
+          fmt::format("{} {:g}…{:g} ft",
+                      limits_.adts_name,
+                      limits_.adts_alt_min_ft,
                       limits_.adts_alt_max_ft));
     }
     // The ISA model covers −16,400…65,600 ft; beyond it the range checks above already refuse.
@@ -240,19 +267,23 @@ class Checker {
         Add(alt_path,
             fmt::format("altitude {:g} ft is a static pressure of {:.0f} Pa ({:.3f} psi), above "
                         "the ADS static sensor's limit",
-                        s.alt_ft, ps_pa, common::PaToPsi(ps_pa)),
-            fmt::format("ADS static pressure {:.0f} Pa ({:.3f} psi)", limits_.ads_static_max_pa,
+                        s.alt_ft,
+                        ps_pa,
+                        common::PaToPsi(ps_pa)),
+            fmt::format("ADS static pressure {:.0f} Pa ({:.3f} psi)",
+                        limits_.ads_static_max_pa,
                         common::PaToPsi(limits_.ads_static_max_pa)));
       }
     }
-    const double max_rate = std::min(limits_.ads_max_alt_rate_ft_per_min,
-                                     limits_.adts_max_alt_rate_ft_per_min);
+    const double max_rate =
+        std::min(limits_.ads_max_alt_rate_ft_per_min, limits_.adts_max_alt_rate_ft_per_min);
     if (!(s.rate_ft_per_min > 0.0) || s.rate_ft_per_min > max_rate) {
       Add(path + ".rate_ft_per_min",
-          fmt::format("altitude rate must be in (0, {:g}] ft/min, got {:g}", max_rate,
-                      s.rate_ft_per_min),
+          fmt::format(
+              "altitude rate must be in (0, {:g}] ft/min, got {:g}", max_rate, s.rate_ft_per_min),
           fmt::format("ADS safe slew {:g} ft/min, {} {:g} ft/min",
-                      limits_.ads_max_alt_rate_ft_per_min, limits_.adts_name,
+                      limits_.ads_max_alt_rate_ft_per_min,
+                      limits_.adts_name,
                       limits_.adts_max_alt_rate_ft_per_min));
     }
   }
@@ -260,12 +291,13 @@ class Checker {
   void Airspeed(const std::string& path, const AirspeedStep& s) {
     const std::string cas_path = path + ".cas_kt";
     if (s.cas_kt < 0.0 || s.cas_kt > limits_.unit_cas_max_kt) {
-      Add(cas_path, fmt::format("airspeed {:g} kt outside the unit's range", s.cas_kt),
+      Add(cas_path,
+          fmt::format("airspeed {:g} kt outside the unit's range", s.cas_kt),
           fmt::format("unit airspeed 0…{:g} kt", limits_.unit_cas_max_kt));
     }
     if (s.cas_kt < 0.0 || s.cas_kt > limits_.adts_cas_max_kt) {
-      Add(cas_path, fmt::format("airspeed {:g} kt outside the {}'s range", s.cas_kt,
-                                limits_.adts_name),
+      Add(cas_path,
+          fmt::format("airspeed {:g} kt outside the {}'s range", s.cas_kt, limits_.adts_name),
           fmt::format("{} 0…{:g} kt", limits_.adts_name, limits_.adts_cas_max_kt));
     }
     // The subsonic relation holds to a0 = 661.5 kt; beyond it the unit check has refused.
@@ -276,18 +308,20 @@ class Checker {
         Add(cas_path,
             fmt::format("airspeed {:g} kt is an impact pressure of {:.0f} Pa, above the ADS "
                         "pitot sensor's limit",
-                        s.cas_kt, qc_pa),
+                        s.cas_kt,
+                        qc_pa),
             fmt::format("ADS pitot pressure {:.0f} Pa", limits_.ads_pitot_max_pa));
       }
     }
-    const double max_rate = std::min(limits_.ads_max_cas_rate_kt_per_min,
-                                     limits_.adts_max_cas_rate_kt_per_min);
+    const double max_rate =
+        std::min(limits_.ads_max_cas_rate_kt_per_min, limits_.adts_max_cas_rate_kt_per_min);
     if (!(s.rate_kt_per_min > 0.0) || s.rate_kt_per_min > max_rate) {
       Add(path + ".rate_kt_per_min",
-          fmt::format("airspeed rate must be in (0, {:g}] kt/min, got {:g}", max_rate,
-                      s.rate_kt_per_min),
+          fmt::format(
+              "airspeed rate must be in (0, {:g}] kt/min, got {:g}", max_rate, s.rate_kt_per_min),
           fmt::format("ADS safe slew {:g} kt/min, {} {:g} kt/min",
-                      limits_.ads_max_cas_rate_kt_per_min, limits_.adts_name,
+                      limits_.ads_max_cas_rate_kt_per_min,
+                      limits_.adts_name,
                       limits_.adts_max_cas_rate_kt_per_min));
     }
   }
@@ -302,17 +336,20 @@ class Checker {
       return;
     }
     if (s.rate_min_dps > s.rate_max_dps) {
-      Add(path + ".rate_min_dps", fmt::format("rate_min {:g} deg/s above rate_max {:g} deg/s",
-                                              s.rate_min_dps, s.rate_max_dps));
+      Add(path + ".rate_min_dps",
+          fmt::format(
+              "rate_min {:g} deg/s above rate_max {:g} deg/s", s.rate_min_dps, s.rate_max_dps));
       return;
     }
     // At least one step of the table: a smaller increment would command the same rate over and
     // over (1e-9 deg/s once expanded 3e11 rates and ran out of memory).
     if (s.rate_increment_dps < limits_.table_rate_resolution_dps * (1.0 - 1e-9)) {
       Add(path + ".rate_increment_dps",
-          fmt::format("rate increment {:g} deg/s is below the {}'s rate resolution", s.rate_increment_dps,
+          fmt::format("rate increment {:g} deg/s is below the {}'s rate resolution",
+                      s.rate_increment_dps,
                       limits_.table_name),
-          fmt::format("{} commands rates in steps of {:g} deg/s", limits_.table_name,
+          fmt::format("{} commands rates in steps of {:g} deg/s",
+                      limits_.table_name,
                       limits_.table_rate_resolution_dps));
       return;
     }
@@ -321,15 +358,20 @@ class Checker {
     const double intervals = (s.rate_max_dps - s.rate_min_dps) / s.rate_increment_dps;
     if (intervals + 1.0 > kMaxGyroRatesPerStep) {
       Add(path + ".rate_increment_dps",
-          fmt::format("{:g}…{:g} deg/s by {:g} deg/s is {:.0f} rates", s.rate_min_dps, s.rate_max_dps,
-                      s.rate_increment_dps, std::floor(intervals) + 1.0),
+          fmt::format("{:g}…{:g} deg/s by {:g} deg/s is {:.0f} rates",
+                      s.rate_min_dps,
+                      s.rate_max_dps,
+                      s.rate_increment_dps,
+                      std::floor(intervals) + 1.0),
           fmt::format("at most {} rates in one gyro step", kMaxGyroRatesPerStep));
       return;
     }
     if (std::abs(intervals - std::round(intervals)) > 1e-9 * std::max(1.0, intervals)) {
       Add(path + ".rate_increment_dps",
           fmt::format("{:g}…{:g} deg/s is not a whole number of {:g} deg/s increments",
-                      s.rate_min_dps, s.rate_max_dps, s.rate_increment_dps));
+                      s.rate_min_dps,
+                      s.rate_max_dps,
+                      s.rate_increment_dps));
     }
     TableRate(path + ".rate_min_dps", s.rate_min_dps);
     TableRate(path + ".rate_max_dps", s.rate_max_dps);
@@ -344,8 +386,9 @@ class Checker {
                           std::holds_alternative<AirspeedStep>(body) ||
                           std::holds_alternative<LogStep>(body);
     if ((imu_only && kind != UnitKind::kImu) || (ads_only && kind != UnitKind::kAds)) {
-      Add(path + ".kind", fmt::format("a {} step has no place in an {} sequence",
-                                      StepKindName(body), UnitKindName(kind)));
+      Add(path + ".kind",
+          fmt::format(
+              "a {} step has no place in an {} sequence", StepKindName(body), UnitKindName(kind)));
     }
   }
 
@@ -361,7 +404,8 @@ class Checker {
       }
       if (first_user[static_cast<size_t>(*tag)] >= 0) {
         Add(step_paths[i] + ".tag",
-            fmt::format("TAG {} already used by {}", *tag,
+            fmt::format("TAG {} already used by {}",
+                        *tag,
                         step_paths[static_cast<size_t>(first_user[static_cast<size_t>(*tag)])]));
       } else {
         first_user[static_cast<size_t>(*tag)] = static_cast<int>(i);
@@ -381,7 +425,8 @@ class Checker {
   std::vector<SequenceProblem>& problems_;
 };
 
-std::vector<SequenceProblem> Validate(const Sequence& sequence, const SequenceLimits& limits,
+std::vector<SequenceProblem> Validate(const Sequence& sequence,
+                                      const SequenceLimits& limits,
                                       const std::vector<std::string>& step_paths) {
   std::vector<SequenceProblem> problems;
   Checker check(limits, problems);
@@ -405,8 +450,8 @@ std::vector<SequenceProblem> Validate(const Sequence& sequence, const SequenceLi
                 check.Add(p + ".band_c", fmt::format("band must be positive, got {:g}", s.band_c));
               }
               if (!(s.soak_s >= 0.0)) {
-                check.Add(p + ".soak_s", fmt::format("soak must not be negative, got {:g}",
-                                                     s.soak_s));
+                check.Add(p + ".soak_s",
+                          fmt::format("soak must not be negative, got {:g}", s.soak_s));
               }
               set_point_c = s.target_c;
             },
@@ -438,7 +483,8 @@ std::vector<SequenceProblem> Validate(const Sequence& sequence, const SequenceLi
                   (!(*s.duration_s > 0.0) || *s.duration_s > limits.max_log_duration_s)) {
                 check.Add(p + ".duration_s",
                           fmt::format("log duration must be in (0, {:g}] s, got {:g}",
-                                      limits.max_log_duration_s, *s.duration_s),
+                                      limits.max_log_duration_s,
+                                      *s.duration_s),
                           fmt::format("log duration {:g} s", limits.max_log_duration_s));
               }
             },
@@ -485,8 +531,9 @@ std::vector<SequenceProblem> CheckParsed(ParsedSequence& parsed, const SequenceL
   // The steps that could be read are checked too, under their paths in the file; an empty list
   // is only a problem of its own when the file really holds no step.
   const bool had_steps_error =
-      std::any_of(problems.begin(), problems.end(),
-                  [](const SequenceProblem& p) { return p.path.starts_with("$.steps"); });
+      std::any_of(problems.begin(), problems.end(), [](const SequenceProblem& p) {
+        return p.path.starts_with("$.steps");
+      });
   std::vector<SequenceProblem> limit_problems =
       Validate(parsed.sequence, limits, StepPaths(parsed.file_step_index));
   for (SequenceProblem& p : limit_problems) {

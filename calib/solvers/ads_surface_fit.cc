@@ -11,18 +11,25 @@ namespace adahrs::calib {
 
 std::set<long long> ChamberTemperaturesDc(const std::vector<SurfaceSample>& samples) {
   std::set<long long> temperatures_dc;
-  for (const SurfaceSample& s : samples) temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
+  for (const SurfaceSample& s : samples)
+    temperatures_dc.insert(ChamberTemperatureKeyDc(s.chamber_c));
   return temperatures_dc;
 }
 
-SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& basis,
-                           const std::vector<SurfaceSample>& samples, HistoryTerms history,
+SurfaceEstimate FitSurface(const std::string& context,
+                           const PolynomialBasis& basis,
+                           const std::vector<SurfaceSample>& samples,
+                           HistoryTerms history,
                            const LeastSquaresOptions& options) {
   namespace fm = firmware_model;
   if (basis.MaxXPower() > fm::kSurfaceXDegree || basis.MaxYPower() > fm::kSurfaceYDegree) {
-    throw std::invalid_argument(fmt::format(
-        "{}: a surface of degree ({}, {}) exceeds the firmware's ({}, {})", context,
-        basis.MaxXPower(), basis.MaxYPower(), fm::kSurfaceXDegree, fm::kSurfaceYDegree));
+    throw std::invalid_argument(
+        fmt::format("{}: a surface of degree ({}, {}) exceeds the firmware's ({}, {})",
+                    context,
+                    basis.MaxXPower(),
+                    basis.MaxYPower(),
+                    fm::kSurfaceXDegree,
+                    fm::kSurfaceYDegree));
   }
   const int min_temperatures = basis.MaxYPower() + 1;
   const std::set<long long> temperatures_dc = ChamberTemperaturesDc(samples);
@@ -30,7 +37,10 @@ SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& ba
     throw DegenerateDesignError(fmt::format(
         "{}: design refused: {} chamber temperature(s), the surface's terms up to y^{} need at "
         "least {} (too few temperatures)",
-        context, temperatures_dc.size(), basis.MaxYPower(), min_temperatures));
+        context,
+        temperatures_dc.size(),
+        basis.MaxYPower(),
+        min_temperatures));
   }
   const int min_references = basis.MaxXPower() + 1;
   std::set<double> references;
@@ -39,7 +49,10 @@ SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& ba
     throw DegenerateDesignError(fmt::format(
         "{}: design refused: {} distinct reference value(s), the surface's terms up to x^{} need "
         "at least {} (too few altitudes or airspeeds)",
-        context, references.size(), basis.MaxXPower(), min_references));
+        context,
+        references.size(),
+        basis.MaxXPower(),
+        min_references));
   }
   PolynomialObservations obs;
   bool weighted = false;
@@ -72,8 +85,8 @@ SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& ba
   }
   SurfaceEstimate out;
   for (auto& row : out.coeff_se) row.fill(std::numeric_limits<double>::quiet_NaN());
-  out.fit = FitPolynomial(context, basis, obs, WeightKind::kInverseVariance,
-                          ErrorScale::kResidualVariance, options);
+  out.fit = FitPolynomial(
+      context, basis, obs, WeightKind::kInverseVariance, ErrorScale::kResidualVariance, options);
   for (int i = 0; i < basis.size(); ++i) {
     const Monomial& m = basis.terms()[i];
     out.surface.coeff_xy[m.x_power][m.y_power] = out.fit.raw_coefficients[i];
@@ -106,8 +119,11 @@ SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& ba
 SurfaceEstimate FitReferenceSurface(const std::string& context,
                                     const std::vector<SurfaceSample>& samples,
                                     const LeastSquaresOptions& options) {
-  return FitSurface(context, PolynomialBasis::ReferenceCubicSurface("x", "y"), samples,
-                    HistoryTerms::kNone, options);
+  return FitSurface(context,
+                    PolynomialBasis::ReferenceCubicSurface("x", "y"),
+                    samples,
+                    HistoryTerms::kNone,
+                    options);
 }
 
 }  // namespace adahrs::calib

@@ -40,17 +40,19 @@
 namespace adahrs::calib {
 
 struct SurfaceSample {
-  double x_code = 0.0;  ///< pressure code
-  double y_code = 0.0;  ///< bridge-voltage (temperature) code
-  double z = 0.0;       ///< reference value: altitude ft, airspeed kt, or pressure Pa
-  double chamber_c = 0.0;  ///< the step's chamber temperature (reference instrument), degC
-  double weight = 1.0;     ///< > 0; all 1 in the reference strategy
-  double s_pressure = 0.0; ///< the bridge's pressure hysteresis state (bridge_history.h)
-  double s_thermal = 0.0;  ///< its thermal hysteresis state
+  double x_code = 0.0;      ///< pressure code
+  double y_code = 0.0;      ///< bridge-voltage (temperature) code
+  double z = 0.0;           ///< reference value: altitude ft, airspeed kt, or pressure Pa
+  double chamber_c = 0.0;   ///< the step's chamber temperature (reference instrument), degC
+  double weight = 1.0;      ///< > 0; all 1 in the reference strategy
+  double s_pressure = 0.0;  ///< the bridge's pressure hysteresis state (bridge_history.h)
+  double s_thermal = 0.0;   ///< its thermal hysteresis state
 };
 
 /// A chamber temperature as the key that tells calibration temperatures apart (0.1 degC).
-inline long long ChamberTemperatureKeyDc(double chamber_c) { return std::llround(10.0 * chamber_c); }
+inline long long ChamberTemperatureKeyDc(double chamber_c) {
+  return std::llround(10.0 * chamber_c);
+}
 
 /// The samples' distinct chamber temperatures, as keys (ascending).
 std::set<long long> ChamberTemperaturesDc(const std::vector<SurfaceSample>& samples);
@@ -67,9 +69,9 @@ enum class HistoryTerms { kNone, kPressureAndThermal, kWithTemperatureSlopes };
 inline constexpr double kHysteresisReferenceC = 25.0;
 
 struct HysteresisEstimate {
-  double pressure = 0.0;     ///< c_P, z units per unit state (at kHysteresisReferenceC)
+  double pressure = 0.0;  ///< c_P, z units per unit state (at kHysteresisReferenceC)
   double pressure_se = 0.0;
-  double thermal = 0.0;      ///< c_T
+  double thermal = 0.0;  ///< c_T
   double thermal_se = 0.0;
   double pressure_per_degc = 0.0;  ///< d c_P / dT (kWithTemperatureSlopes; else 0)
   double pressure_per_degc_se = 0.0;
@@ -78,22 +80,23 @@ struct HysteresisEstimate {
 };
 
 struct SurfaceEstimate {
-  firmware_model::SurfaceFit surface;           ///< raw-code coefficients and the code box
+  firmware_model::SurfaceFit surface;              ///< raw-code coefficients and the code box
   firmware_model::SurfaceCoefficients coeff_se{};  ///< standard errors of the raw coefficients
                                                    ///< (NaN for a term outside the basis: held
                                                    ///< at zero, not fitted; null in the file)
-  PolynomialFit fit;                      ///< normalised fit, covariance and diagnostics
-  int terms = 0;                          ///< the basis's size
-  int y_degree = 0;                       ///< its highest power of y
-  std::optional<HysteresisEstimate> history;  ///< with history terms
-  double residual_rms = 0.0;              ///< z units
-  double max_abs_residual = 0.0;          ///< z units
+  PolynomialFit fit;                               ///< normalised fit, covariance and diagnostics
+  int terms = 0;                                   ///< the basis's size
+  int y_degree = 0;                                ///< its highest power of y
+  std::optional<HysteresisEstimate> history;       ///< with history terms
+  double residual_rms = 0.0;                       ///< z units
+  double max_abs_residual = 0.0;                   ///< z units
 };
 
 /// Fits `basis` (its x and y are the pressure and temperature codes; powers within the firmware's
 /// 3 and 5); `context` ("altitude surface") leads every message; throws DegenerateDesignError with
 /// the reason, std::invalid_argument for a basis the firmware cannot hold.
-SurfaceEstimate FitSurface(const std::string& context, const PolynomialBasis& basis,
+SurfaceEstimate FitSurface(const std::string& context,
+                           const PolynomialBasis& basis,
                            const std::vector<SurfaceSample>& samples,
                            HistoryTerms history = HistoryTerms::kNone,
                            const LeastSquaresOptions& options = {});

@@ -32,7 +32,8 @@ AllanTerms ReadAllanTerms(const std::vector<double>& samples, double dt_s) {
   double sigma_at_white = c.back().adev;
   for (size_t i = 0; i + 1 < c.size(); ++i) {
     if (c[i].tau_s <= kWhiteReadTau_s && kWhiteReadTau_s <= c[i + 1].tau_s) {
-      const double f = std::log(kWhiteReadTau_s / c[i].tau_s) / std::log(c[i + 1].tau_s / c[i].tau_s);
+      const double f =
+          std::log(kWhiteReadTau_s / c[i].tau_s) / std::log(c[i + 1].tau_s / c[i].tau_s);
       sigma_at_white = std::exp(std::log(c[i].adev) + f * std::log(c[i + 1].adev / c[i].adev));
       t.white_tau_s = kWhiteReadTau_s;
       break;

@@ -23,14 +23,14 @@
 namespace adahrs::calib {
 
 struct AllanTerms {
-  std::vector<common::AllanPoint> curve;  ///< about 10 points per decade, m = 1 ... N/10
-  double record_s = 0.0;                      ///< N * dt
-  double white_tau_s = 0.0;                   ///< tau at which the white term was read
-  double random_walk_per_rts = 0.0;           ///< N_952, unit/sqrt(s)
-  double density_one_sided_per_rthz = 0.0;    ///< sqrt(2) * N_952, unit/sqrt(Hz)
-  double bias_instability = 0.0;              ///< sigma_min / 0.664, unit
-  double bias_instability_tau_s = 0.0;        ///< tau of sigma_min
-  bool minimum_at_longest_tau = false;        ///< the floor is not reached: B is an upper bound
+  std::vector<common::AllanPoint> curve;    ///< about 10 points per decade, m = 1 ... N/10
+  double record_s = 0.0;                    ///< N * dt
+  double white_tau_s = 0.0;                 ///< tau at which the white term was read
+  double random_walk_per_rts = 0.0;         ///< N_952, unit/sqrt(s)
+  double density_one_sided_per_rthz = 0.0;  ///< sqrt(2) * N_952, unit/sqrt(Hz)
+  double bias_instability = 0.0;            ///< sigma_min / 0.664, unit
+  double bias_instability_tau_s = 0.0;      ///< tau of sigma_min
+  bool minimum_at_longest_tau = false;      ///< the floor is not reached: B is an upper bound
 };
 
 /// The terms of `samples` (averages over consecutive `dt_s` intervals, e.g. one per packet).

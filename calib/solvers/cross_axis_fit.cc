@@ -9,8 +9,10 @@
 
 namespace adahrs::calib {
 
-CrossAxisEstimate FitCrossAxis(const std::string& context, const std::vector<AxisStepMean>& steps,
-                               double reference, const CrossAxisOptions& options) {
+CrossAxisEstimate FitCrossAxis(const std::string& context,
+                               const std::vector<AxisStepMean>& steps,
+                               double reference,
+                               const CrossAxisOptions& options) {
   Eigen::Matrix3d k = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d k_se = Eigen::Matrix3d::Zero();
   for (int axis = 0; axis < 3; ++axis) {
@@ -23,15 +25,20 @@ CrossAxisEstimate FitCrossAxis(const std::string& context, const std::vector<Axi
       k_se.col(axis) = s.standard_error;
     }
     if (found != 1) {
-      throw DegenerateDesignError(fmt::format(
-          "{}: design refused: orientation {} appears {} times (11, 21 and 31 are needed once each)",
-          context, orientation, found));
+      throw DegenerateDesignError(
+          fmt::format("{}: design refused: orientation {} appears {} times (11, 21 and 31 are "
+                      "needed once each)",
+                      context,
+                      orientation,
+                      found));
     }
     if (!(k(axis, axis) > 0.0)) {
       throw DegenerateDesignError(fmt::format(
           "{}: design refused: in orientation {} the up axis reads {:.6g}, not a positive "
           "reference (wrong face or sign)",
-          context, orientation, k(axis, axis)));
+          context,
+          orientation,
+          k(axis, axis)));
     }
   }
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(k);
@@ -42,7 +49,9 @@ CrossAxisEstimate FitCrossAxis(const std::string& context, const std::vector<Axi
     throw DegenerateDesignError(fmt::format(
         "{}: design refused: the three orientation means do not span three axes (condition number "
         "{:.3g}, limit {:.3g})",
-        context, out.condition_number, options.max_condition));
+        context,
+        out.condition_number,
+        options.max_condition));
   }
   const Eigen::Matrix3d k_inv = k.inverse();
   out.matrix = reference * k_inv;

@@ -44,7 +44,9 @@ struct CrossAxisEstimate {
 
 /// C = reference * K^-1 from steps 11, 21, 31; `context` leads every message
 /// ("accelerometer cross-axis"); throws DegenerateDesignError with the reason.
-CrossAxisEstimate FitCrossAxis(const std::string& context, const std::vector<AxisStepMean>& steps,
-                               double reference, const CrossAxisOptions& options = {});
+CrossAxisEstimate FitCrossAxis(const std::string& context,
+                               const std::vector<AxisStepMean>& steps,
+                               double reference,
+                               const CrossAxisOptions& options = {});
 
 }  // namespace adahrs::calib

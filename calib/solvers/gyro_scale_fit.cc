@@ -9,7 +9,8 @@
 
 namespace adahrs::calib {
 
-GyroScaleEstimate FitGyroScale(const std::string& gyro, const std::vector<GyroRateMean>& steps,
+GyroScaleEstimate FitGyroScale(const std::string& gyro,
+                               const std::vector<GyroRateMean>& steps,
                                const GyroScaleOptions& options) {
   const std::string context = fmt::format("gyro scale fit of {}", gyro);
   // The null step: its mean reported rate is 0 to within the table's settling (a table still
@@ -18,7 +19,8 @@ GyroScaleEstimate FitGyroScale(const std::string& gyro, const std::vector<GyroRa
   std::set<double> rates;
   for (const GyroRateMean& s : steps) {
     rates.insert(s.rate_dps);
-    if (std::abs(s.rate_dps) <= kNullStepTolerance_dps && (zero == nullptr || std::abs(s.rate_dps) < std::abs(zero->rate_dps))) {
+    if (std::abs(s.rate_dps) <= kNullStepTolerance_dps &&
+        (zero == nullptr || std::abs(s.rate_dps) < std::abs(zero->rate_dps))) {
       zero = &s;
     }
   }
@@ -29,7 +31,9 @@ GyroScaleEstimate FitGyroScale(const std::string& gyro, const std::vector<GyroRa
   if (static_cast<int>(rates.size()) < options.min_rates) {
     throw DegenerateDesignError(
         fmt::format("{}: design refused: {} distinct rates, at least {} are needed (too few rates)",
-                    context, rates.size(), options.min_rates));
+                    context,
+                    rates.size(),
+                    options.min_rates));
   }
   PolynomialObservations obs;
   for (const GyroRateMean& s : steps) {
@@ -37,8 +41,12 @@ GyroScaleEstimate FitGyroScale(const std::string& gyro, const std::vector<GyroRa
     obs.z.push_back(s.rate_dps);
   }
   const PolynomialBasis basis = PolynomialBasis::Univariate(3, "d");
-  const PolynomialFit fit = FitPolynomial(context, basis, obs, WeightKind::kInverseVariance,
-                                          ErrorScale::kResidualVariance, options.least_squares);
+  const PolynomialFit fit = FitPolynomial(context,
+                                          basis,
+                                          obs,
+                                          WeightKind::kInverseVariance,
+                                          ErrorScale::kResidualVariance,
+                                          options.least_squares);
   GyroScaleEstimate out;
   out.fit.null_cnt = zero->t_cnt;
   out.null_se_cnt = zero->t_cnt_se;

@@ -9,9 +9,9 @@
 // Standard errors: from the residual variance (n - 4 degrees of freedom, 3 for the reference's
 // seven rates) with equal weights, as the reference fits; se(null_cnt) is the 0 deg/s mean's.
 // The 0 deg/s step is the one whose mean reported rate is within kNullStepTolerance_dps of 0.
-// Refused: no 0 deg/s step, fewer than min_rates distinct rates (too few rates), a degenerate design.
-// Not modelled: scale factor vs temperature (the reference's future work), the rate table's own
-// rate error, noise in d (the regressor; its relative size ~1e-6 makes the bias negligible).
+// Refused: no 0 deg/s step, fewer than min_rates distinct rates (too few rates), a degenerate
+// design. Not modelled: scale factor vs temperature (the reference's future work), the rate table's
+// own rate error, noise in d (the regressor; its relative size ~1e-6 makes the bias negligible).
 #pragma once
 
 #include <array>
@@ -52,7 +52,8 @@ struct GyroScaleEstimate {
 };
 
 /// Fits gyro `gyro` (named in messages); throws DegenerateDesignError with the reason.
-GyroScaleEstimate FitGyroScale(const std::string& gyro, const std::vector<GyroRateMean>& steps,
+GyroScaleEstimate FitGyroScale(const std::string& gyro,
+                               const std::vector<GyroRateMean>& steps,
                                const GyroScaleOptions& options = {});
 
 }  // namespace adahrs::calib

@@ -32,7 +32,11 @@ void CheckInputs(const LinearLeastSquaresProblem& problem) {
       (problem.weights.size() != 0 && problem.weights.size() != n)) {
     throw std::invalid_argument(fmt::format(
         "{}: inconsistent problem: design {}x{}, {} term names, {} observations, {} weights",
-        problem.context, n, p, problem.term_names.size(), problem.observations.size(),
+        problem.context,
+        n,
+        p,
+        problem.term_names.size(),
+        problem.observations.size(),
         problem.weights.size()));
   }
   if (p == 0) Refuse(problem, "no terms");
@@ -47,9 +51,11 @@ void CheckInputs(const LinearLeastSquaresProblem& problem) {
     Refuse(problem, fmt::format("{} observations for {} terms", n, p));
   }
   if (n == p && problem.error_scale == ErrorScale::kResidualVariance) {
-    Refuse(problem, fmt::format("{} observations for {} terms leave no degree of freedom for the "
-                                "residual variance",
-                                n, p));
+    Refuse(problem,
+           fmt::format("{} observations for {} terms leave no degree of freedom for the "
+                       "residual variance",
+                       n,
+                       p));
   }
 }
 
@@ -84,7 +90,10 @@ LinearFit SolveLinearLeastSquares(const LinearLeastSquaresProblem& problem,
     Refuse(problem,
            fmt::format("rank {} of {} terms, condition number {:.3g} (limit {:.3g}); near-null "
                        "combination of the normalised terms: {}",
-                       rank, p, condition, options.max_condition,
+                       rank,
+                       p,
+                       condition,
+                       options.max_condition,
                        NullCombination(problem.term_names, svd.matrixV().col(p - 1))));
   }
 

@@ -36,7 +36,8 @@ InputScaling InputScaling::FromRange(double min, double max) {
   return InputScaling{0.5 * (min + max), half_span > 0.0 ? half_span : 1.0};
 }
 
-PolynomialBasis::PolynomialBasis(std::vector<Monomial> terms, std::string x_name,
+PolynomialBasis::PolynomialBasis(std::vector<Monomial> terms,
+                                 std::string x_name,
                                  std::string y_name)
     : terms_(std::move(terms)), x_name_(std::move(x_name)), y_name_(std::move(y_name)) {}
 
@@ -49,10 +50,13 @@ PolynomialBasis PolynomialBasis::Univariate(int degree, std::string x_name) {
 PolynomialBasis PolynomialBasis::ReferenceCubicSurface(std::string x_name, std::string y_name) {
   return PolynomialBasis(
       {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2}, {1, 1}, {3, 0}, {0, 3}, {1, 2}, {2, 1}},
-      std::move(x_name), std::move(y_name));
+      std::move(x_name),
+      std::move(y_name));
 }
 
-PolynomialBasis PolynomialBasis::TensorSurface(int x_degree, int y_degree, std::string x_name,
+PolynomialBasis PolynomialBasis::TensorSurface(int x_degree,
+                                               int y_degree,
+                                               std::string x_name,
                                                std::string y_name) {
   std::vector<Monomial> terms;
   for (int p = 0; p <= x_degree; ++p) {
@@ -107,7 +111,10 @@ Eigen::MatrixXd PolynomialBasis::NormalisedToRaw(const InputScaling& sx,
     }
     throw std::invalid_argument(fmt::format(
         "polynomial basis: monomial {}^{} {}^{} needed for the raw re-expansion is missing",
-        x_name_, i, y_name_, j));
+        x_name_,
+        i,
+        y_name_,
+        j));
   };
   Eigen::MatrixXd t = Eigen::MatrixXd::Zero(size(), size());
   for (int col = 0; col < size(); ++col) {
@@ -115,8 +122,8 @@ Eigen::MatrixXd PolynomialBasis::NormalisedToRaw(const InputScaling& sx,
     const int j = terms_[col].y_power;
     for (int k = 0; k <= i; ++k) {
       for (int l = 0; l <= j; ++l) {
-        t(index_of(k, l), col) += Binomial(i, k) * std::pow(-sx.centre, i - k) *
-                                  Binomial(j, l) * std::pow(-sy.centre, j - l) /
+        t(index_of(k, l), col) += Binomial(i, k) * std::pow(-sx.centre, i - k) * Binomial(j, l) *
+                                  std::pow(-sy.centre, j - l) /
                                   (std::pow(sx.half_span, i) * std::pow(sy.half_span, j));
       }
     }

@@ -48,7 +48,9 @@ class PolynomialBasis {
   /// 1, x, y, x^2, y^2, x y, x^3, y^3, x y^2, x^2 y.
   static PolynomialBasis ReferenceCubicSurface(std::string x_name, std::string y_name);
   /// Every x^p y^q with p <= x_degree, q <= y_degree, ordered by p then q.
-  static PolynomialBasis TensorSurface(int x_degree, int y_degree, std::string x_name,
+  static PolynomialBasis TensorSurface(int x_degree,
+                                       int y_degree,
+                                       std::string x_name,
                                        std::string y_name);
   /// The largest power of x and of y among the terms.
   int MaxXPower() const;

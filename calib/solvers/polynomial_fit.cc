@@ -8,30 +8,41 @@
 namespace adahrs::calib {
 
 double PolynomialFit::Evaluate(const PolynomialBasis& basis, double x, double y) const {
-  return basis.Evaluate(normalised_coefficients.head(basis.size()), x_scaling.Normalise(x),
-                        y_scaling.Normalise(y));
+  return basis.Evaluate(
+      normalised_coefficients.head(basis.size()), x_scaling.Normalise(x), y_scaling.Normalise(y));
 }
 
-PolynomialFit FitPolynomial(const std::string& context, const PolynomialBasis& basis,
-                            const PolynomialObservations& obs, WeightKind weight_kind,
-                            ErrorScale error_scale, const LeastSquaresOptions& options) {
+PolynomialFit FitPolynomial(const std::string& context,
+                            const PolynomialBasis& basis,
+                            const PolynomialObservations& obs,
+                            WeightKind weight_kind,
+                            ErrorScale error_scale,
+                            const LeastSquaresOptions& options) {
   const size_t n = obs.x.size();
   const bool bivariate = !obs.y.empty();
   if (obs.z.size() != n || (bivariate && obs.y.size() != n) ||
       (!obs.weights.empty() && obs.weights.size() != n)) {
     throw std::invalid_argument(fmt::format("{}: {} x, {} y, {} z and {} weights differ in length",
-                                            context, n, obs.y.size(), obs.z.size(),
+                                            context,
+                                            n,
+                                            obs.y.size(),
+                                            obs.z.size(),
                                             obs.weights.size()));
   }
   if (obs.extra_names.size() != obs.extra_columns.size()) {
-    throw std::invalid_argument(fmt::format("{}: {} extra columns but {} names", context,
-                                            obs.extra_columns.size(), obs.extra_names.size()));
+    throw std::invalid_argument(fmt::format("{}: {} extra columns but {} names",
+                                            context,
+                                            obs.extra_columns.size(),
+                                            obs.extra_names.size()));
   }
   for (size_t c = 0; c < obs.extra_columns.size(); ++c) {
     if (obs.extra_columns[c].size() != n) {
-      throw std::invalid_argument(fmt::format("{}: extra column {} has {} values for {} observations",
-                                              context, obs.extra_names[c],
-                                              obs.extra_columns[c].size(), n));
+      throw std::invalid_argument(
+          fmt::format("{}: extra column {} has {} values for {} observations",
+                      context,
+                      obs.extra_names[c],
+                      obs.extra_columns[c].size(),
+                      n));
     }
   }
   const Eigen::Index terms = basis.size();
@@ -53,7 +64,8 @@ PolynomialFit FitPolynomial(const std::string& context, const PolynomialBasis& b
   LinearLeastSquaresProblem problem;
   problem.context = context;
   problem.term_names = basis.TermNames();
-  problem.term_names.insert(problem.term_names.end(), obs.extra_names.begin(), obs.extra_names.end());
+  problem.term_names.insert(
+      problem.term_names.end(), obs.extra_names.begin(), obs.extra_names.end());
   problem.design.resize(static_cast<Eigen::Index>(n), terms + extras);
   problem.observations.resize(static_cast<Eigen::Index>(n));
   for (size_t i = 0; i < n; ++i) {
@@ -66,8 +78,8 @@ PolynomialFit FitPolynomial(const std::string& context, const PolynomialBasis& b
     problem.observations[static_cast<Eigen::Index>(i)] = obs.z[i];
   }
   if (!obs.weights.empty()) {
-    problem.weights = Eigen::Map<const Eigen::VectorXd>(obs.weights.data(),
-                                                        static_cast<Eigen::Index>(n));
+    problem.weights =
+        Eigen::Map<const Eigen::VectorXd>(obs.weights.data(), static_cast<Eigen::Index>(n));
   }
   problem.weight_kind = weight_kind;
   problem.error_scale = error_scale;

@@ -9,9 +9,8 @@ namespace adahrs::calib {
 
 SampleMean SummariseSamples(const std::string& context, std::span<const double> samples) {
   if (samples.size() < 2) {
-    throw std::invalid_argument(
-        fmt::format("{}: {} sample(s), at least 2 are needed for a standard error", context,
-                    samples.size()));
+    throw std::invalid_argument(fmt::format(
+        "{}: {} sample(s), at least 2 are needed for a standard error", context, samples.size()));
   }
   // Two passes: the mean first, then deviations from it (no cancellation for large offsets such
   // as gyro counts ~4e6).

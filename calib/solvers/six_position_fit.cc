@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "calib/solvers/linear_least_squares.h"
-#include "sensor_sim/im3_geometry.h"
 #include "common/units.h"
+#include "sensor_sim/im3_geometry.h"
 
 namespace adahrs::calib {
 namespace {
@@ -13,7 +13,8 @@ namespace {
 constexpr std::array<int, 6> kAxisOfChannel = {3, 1, 2, 3, 1, 2};
 
 const AccelOrientationMeans& FindStep(const std::vector<AccelOrientationMeans>& steps,
-                                      int orientation, int channel) {
+                                      int orientation,
+                                      int channel) {
   const AccelOrientationMeans* found = nullptr;
   for (const AccelOrientationMeans& s : steps) {
     if (s.orientation != orientation) continue;
@@ -24,10 +25,13 @@ const AccelOrientationMeans& FindStep(const std::vector<AccelOrientationMeans>& 
     found = &s;
   }
   if (found == nullptr) {
-    throw DegenerateDesignError(fmt::format(
-        "six-position fit: design refused: orientation {} is missing (channel {} needs {}1 and {}2)",
-        orientation, sensor_sim::kAccelChannelNames[channel], orientation / 10,
-        orientation / 10));
+    throw DegenerateDesignError(
+        fmt::format("six-position fit: design refused: orientation {} is missing (channel {} needs "
+                    "{}1 and {}2)",
+                    orientation,
+                    sensor_sim::kAccelChannelNames[channel],
+                    orientation / 10,
+                    orientation / 10));
   }
   return *found;
 }
@@ -35,7 +39,7 @@ const AccelOrientationMeans& FindStep(const std::vector<AccelOrientationMeans>& 
 }  // namespace
 
 std::array<AccelScaleEstimate, 6> FitSixPosition(const std::vector<AccelOrientationMeans>& steps,
-                                                  double g_local_mps2) {
+                                                 double g_local_mps2) {
   const double g_local_g = common::Mps2ToG(g_local_mps2);
   std::array<AccelScaleEstimate, 6> out;
   for (int ch = 0; ch < 6; ++ch) {

@@ -23,9 +23,9 @@ namespace adahrs::calib {
 
 /// Thermally compensated per-channel means of one orientation step (az1 ax1 ay1 az2 ax2 ay2).
 struct AccelOrientationMeans {
-  int orientation = 0;                  ///< 11, 12, 21, 22, 31 or 32
-  std::array<double, 6> t_duty{};       ///< mean T, duty
-  std::array<double, 6> t_duty_se{};    ///< standard error of each mean, duty
+  int orientation = 0;                ///< 11, 12, 21, 22, 31 or 32
+  std::array<double, 6> t_duty{};     ///< mean T, duty
+  std::array<double, 6> t_duty_se{};  ///< standard error of each mean, duty
 };
 
 struct AccelScaleEstimate {
@@ -38,6 +38,6 @@ struct AccelScaleEstimate {
 
 /// Fits all six channels; throws DegenerateDesignError (linear_least_squares.h) with the reason.
 std::array<AccelScaleEstimate, 6> FitSixPosition(const std::vector<AccelOrientationMeans>& steps,
-                                                  double g_local_mps2);
+                                                 double g_local_mps2);
 
 }  // namespace adahrs::calib

@@ -12,7 +12,8 @@ namespace adahrs::calib {
 namespace {
 
 // Equal weight per temperature band: w_i = 1 / (samples in the band of sample i).
-ThermalPolynomial FitSubset(const std::string& context, const std::vector<ThermalSample>& samples,
+ThermalPolynomial FitSubset(const std::string& context,
+                            const std::vector<ThermalSample>& samples,
                             const ThermalFitOptions& options) {
   std::map<long long, int> band_count;
   auto band_of = [&](double temp_cnt) {
@@ -24,7 +25,10 @@ ThermalPolynomial FitSubset(const std::string& context, const std::vector<Therma
     throw DegenerateDesignError(fmt::format(
         "{}: design refused: the samples cover {} temperature band(s) of {} counts, at least {} "
         "are needed (too few temperatures)",
-        context, bands, options.band_width_cnt, options.min_bands));
+        context,
+        bands,
+        options.band_width_cnt,
+        options.min_bands));
   }
   PolynomialObservations obs;
   for (const ThermalSample& s : samples) {
@@ -33,8 +37,12 @@ ThermalPolynomial FitSubset(const std::string& context, const std::vector<Therma
     obs.weights.push_back(1.0 / band_count[band_of(s.temp_cnt)]);
   }
   const PolynomialBasis basis = PolynomialBasis::Univariate(2, "t");
-  const PolynomialFit fit = FitPolynomial(context, basis, obs, WeightKind::kBalancing,
-                                          ErrorScale::kResidualVariance, options.least_squares);
+  const PolynomialFit fit = FitPolynomial(context,
+                                          basis,
+                                          obs,
+                                          WeightKind::kBalancing,
+                                          ErrorScale::kResidualVariance,
+                                          options.least_squares);
   ThermalPolynomial out;
   for (int i = 0; i < 3; ++i) {
     out.k[i] = fit.raw_coefficients[i];
@@ -63,17 +71,19 @@ ThermalDriftResult FitThermalDrift(const std::string& channel,
   ThermalDriftResult result;
   result.all = FitSubset(fmt::format("thermal fit of {} (all samples)", channel), samples, options);
 
-  auto direction = [&](ThermalSegment segment, const char* name,
-                       std::optional<ThermalPolynomial>* out) {
-    std::vector<ThermalSample> subset;
-    std::copy_if(samples.begin(), samples.end(), std::back_inserter(subset),
-                 [&](const ThermalSample& s) { return s.segment == segment; });
-    try {
-      *out = FitSubset(fmt::format("thermal fit of {} ({})", channel, name), subset, options);
-    } catch (const DegenerateDesignError& e) {
-      result.ramp_note += (result.ramp_note.empty() ? "" : "; ") + std::string(e.what());
-    }
-  };
+  auto direction =
+      [&](ThermalSegment segment, const char* name, std::optional<ThermalPolynomial>* out) {
+        std::vector<ThermalSample> subset;
+        std::copy_if(samples.begin(),
+                     samples.end(),
+                     std::back_inserter(subset),
+                     [&](const ThermalSample& s) { return s.segment == segment; });
+        try {
+          *out = FitSubset(fmt::format("thermal fit of {} ({})", channel, name), subset, options);
+        } catch (const DegenerateDesignError& e) {
+          result.ramp_note += (result.ramp_note.empty() ? "" : "; ") + std::string(e.what());
+        }
+      };
   direction(ThermalSegment::kUpRamp, "up-ramps", &result.up);
   direction(ThermalSegment::kDownRamp, "down-ramps", &result.down);
 

@@ -55,14 +55,16 @@ struct ThermalPolynomial {
   std::array<double, 3> k{};     ///< xi = k0 + k1 t + k2 t^2, U units per count^i
   std::array<double, 3> k_se{};  ///< standard errors of k
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  double temp_min_cnt = 0.0;     ///< the fitted temperature range
+  double temp_min_cnt = 0.0;  ///< the fitted temperature range
   double temp_max_cnt = 0.0;
   int bands = 0;
   int samples = 0;
-  double residual_rms = 0.0;     ///< U units
+  double residual_rms = 0.0;  ///< U units
   double condition_number = 0.0;
 
-  double Drift(double temp_cnt) const { return k[0] + k[1] * temp_cnt + k[2] * temp_cnt * temp_cnt; }
+  double Drift(double temp_cnt) const {
+    return k[0] + k[1] * temp_cnt + k[2] * temp_cnt * temp_cnt;
+  }
   /// Standard error of Drift(temp_cnt) from the covariance.
   double DriftStandardError(double temp_cnt) const;
 };

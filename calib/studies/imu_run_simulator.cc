@@ -22,12 +22,15 @@ hil::ImuRecordRow AtRecordedResolution(hil::ImuRecordRow row) {
 
 }  // namespace
 
-ImuRunSimulator::ImuRunSimulator(std::vector<sensor_sim::ImuUnitParams> units, double g_local_mps2,
-                                 uint64_t noise_seed, ImuRunSimulatorOptions options)
+ImuRunSimulator::ImuRunSimulator(std::vector<sensor_sim::ImuUnitParams> units,
+                                 double g_local_mps2,
+                                 uint64_t noise_seed,
+                                 ImuRunSimulatorOptions options)
     : params_(std::move(units)), g_local_mps2_(g_local_mps2), options_(options) {
   air_c_ = options_.initial_air_temp_c;
   for (size_t i = 0; i < params_.size(); ++i) {
-    units_.push_back(std::make_unique<sensor_sim::ImuUnit>(params_[i], noise_seed + 101 * i, air_c_));
+    units_.push_back(
+        std::make_unique<sensor_sim::ImuUnit>(params_[i], noise_seed + 101 * i, air_c_));
   }
 }
 

@@ -27,8 +27,8 @@
 namespace adahrs::calib {
 
 struct ImuRunSimulatorOptions {
-  int settle_frames = 50;            ///< > 10 filter time constants (3.2 ms accel, 4 ms gyro)
-  std::optional<int> soak_frames;    ///< empty: soaks without frames, for the step's soak_s
+  int settle_frames = 50;          ///< > 10 filter time constants (3.2 ms accel, 4 ms gyro)
+  std::optional<int> soak_frames;  ///< empty: soaks without frames, for the step's soak_s
   double thermal_speedup = 1.0;
   double table_rate_error_dps = 0.004;
   double initial_air_temp_c = 25.0;
@@ -39,8 +39,10 @@ using ImuRowSink = std::function<void(const hil::ImuRecordRow&)>;
 class ImuRunSimulator {
  public:
   /// Powers the units on; unit i draws its noise from `noise_seed + 101 i`.
-  ImuRunSimulator(std::vector<sensor_sim::ImuUnitParams> units, double g_local_mps2,
-                  uint64_t noise_seed, ImuRunSimulatorOptions options = {});
+  ImuRunSimulator(std::vector<sensor_sim::ImuUnitParams> units,
+                  double g_local_mps2,
+                  uint64_t noise_seed,
+                  ImuRunSimulatorOptions options = {});
 
   /// Runs `sequence` (refused with SequenceError if invalid against the default limits), handing
   /// every packet of every unit to `sink` in time order.

@@ -27,11 +27,18 @@ std::string SerialOf(int index) {
 }
 
 // The unit's recording of `sequence`, collected as LoadImuRuns collects a recording on disk.
-ImuRunData Simulate(const StudyDefinition& d, const sensor_sim::ImuUnitParams& params,
-                    const StudySettings& settings, uint64_t noise_seed) {
+ImuRunData Simulate(const StudyDefinition& d,
+                    const sensor_sim::ImuUnitParams& params,
+                    const StudySettings& settings,
+                    uint64_t noise_seed) {
   ImuRunData data;
-  ImuRunCollector collector("simulated " + d.sequence.name, "", d.sequence, settings.g_local_mps2,
-                            {params.serial}, {}, &data);
+  ImuRunCollector collector("simulated " + d.sequence.name,
+                            "",
+                            d.sequence,
+                            settings.g_local_mps2,
+                            {params.serial},
+                            {},
+                            &data);
   ImuRunSimulator simulator({params}, settings.g_local_mps2, noise_seed);
   int line = 1;
   simulator.Run(d.sequence, [&](const hil::ImuRecordRow& row) { collector.Take(row, ++line); });
@@ -39,8 +46,10 @@ ImuRunData Simulate(const StudyDefinition& d, const sensor_sim::ImuUnitParams& p
   return data;
 }
 
-StrategyOutcome Judge(const StudyDefinition& d, const ImuRunData& data,
-                      const sensor_sim::ImuUnitParams& params, const StudySettings& settings) {
+StrategyOutcome Judge(const StudyDefinition& d,
+                      const ImuRunData& data,
+                      const sensor_sim::ImuUnitParams& params,
+                      const StudySettings& settings) {
   StrategyOutcome o;
   const Specification spec = Specification::Reference();
   try {
@@ -57,7 +66,8 @@ StrategyOutcome Judge(const StudyDefinition& d, const ImuRunData& data,
     o.rate_verdict = e.rate_verdict;
     o.pass_acceleration = e.worst_accel_mg <= spec.accel_mg;
     o.pass_body_rate = e.worst_rate_dps <= spec.body_rate_dps;
-    o.pass_body_rate_limit = o.pass_body_rate || (e.rate_verdict.find("within 1.5x") != std::string::npos);
+    o.pass_body_rate_limit =
+        o.pass_body_rate || (e.rate_verdict.find("within 1.5x") != std::string::npos);
   } catch (const DegenerateDesignError& e) {
     o.failure = std::string("fit: ") + e.what();
   } catch (const ConstantsNotExportable& e) {
@@ -79,11 +89,13 @@ StudyShard StudyShard::Parse(const std::string& spec, const std::string& field) 
     size_t used_i = 0, used_n = 0;
     s.index = std::stoi(spec.substr(0, slash), &used_i);
     s.count = std::stoi(spec.substr(slash + 1), &used_n);
-    if (used_i != slash || used_n != spec.size() - slash - 1) throw std::invalid_argument("trailing text");
+    if (used_i != slash || used_n != spec.size() - slash - 1)
+      throw std::invalid_argument("trailing text");
   } catch (const std::exception&) {
     throw std::invalid_argument(field + " \"" + spec + "\": expected i/n, two whole numbers");
   }
-  if (s.count < 1) throw std::invalid_argument(field + " \"" + spec + "\": the shard count n must be at least 1");
+  if (s.count < 1)
+    throw std::invalid_argument(field + " \"" + spec + "\": the shard count n must be at least 1");
   if (s.index < 1 || s.index > s.count) {
     throw std::invalid_argument(field + " \"" + spec + "\": the shard index i must be 1..." +
                                 std::to_string(s.count));
@@ -92,7 +104,8 @@ StudyShard StudyShard::Parse(const std::string& spec, const std::string& field) 
 }
 
 StudyUnitResult RunImuStudyUnit(const std::vector<StudyDefinition>& strategies,
-                                const StudySettings& settings, int index) {
+                                const StudySettings& settings,
+                                int index) {
   StudyUnitResult r;
   r.index = index;
   r.serial = SerialOf(index);
@@ -117,7 +130,8 @@ StudyUnitResult RunImuStudyUnit(const std::vector<StudyDefinition>& strategies,
 }
 
 std::vector<StudyUnitResult> RunImuStudy(const std::vector<StudyDefinition>& strategies,
-                                         const StudySettings& settings, int threads,
+                                         const StudySettings& settings,
+                                         int threads,
                                          const StudyProgress& progress) {
   std::vector<int> indices;
   for (int k = 0; k < settings.units; ++k) {

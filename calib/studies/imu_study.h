@@ -38,9 +38,10 @@ struct StudySettings {
   uint64_t seed = 1;
   StudyPopulation population;
   StudyShard shard;
-  /// The simulated station's gravity (the virtual rig's site, docs/examples/station-virtual-rig.json).
+  /// The simulated station's gravity (the virtual rig's site,
+  /// docs/examples/station-virtual-rig.json).
   double g_local_mps2 = sensor_sim::NormalGravityMps2(34.7, 190.0);
-  int evaluation_frames = 40;    ///< frames averaged per grid point by EvaluateImu
+  int evaluation_frames = 40;  ///< frames averaged per grid point by EvaluateImu
 };
 
 /// One strategy's outcome for one unit. A fit the data cannot determine, or constants the
@@ -74,11 +75,13 @@ using StudyProgress = std::function<void(int units_done, int units_total)>;
 /// Runs the shard's units of every strategy on `threads` threads (0: all cores); results in unit
 /// index order. Throws what a simulation or evaluation throws other than the outcomes above.
 std::vector<StudyUnitResult> RunImuStudy(const std::vector<StudyDefinition>& strategies,
-                                         const StudySettings& settings, int threads,
+                                         const StudySettings& settings,
+                                         int threads,
                                          const StudyProgress& progress = {});
 
 /// Unit `index` of the study alone (the work of one thread).
 StudyUnitResult RunImuStudyUnit(const std::vector<StudyDefinition>& strategies,
-                                const StudySettings& settings, int index);
+                                const StudySettings& settings,
+                                int index);
 
 }  // namespace adahrs::calib

@@ -21,7 +21,8 @@ std::filesystem::path Resolve(const std::string& spec, const std::filesystem::pa
 StudyPopulation ReadPopulationFile(const std::filesystem::path& file) {
   const nlohmann::json j = ParamReader::LoadFile(file.string());
   const ParamReader r(j, file.string());
-  if (r.String("format") != "adahrs-population") r.Fail("$.format", "expected \"adahrs-population\"");
+  if (r.String("format") != "adahrs-population")
+    r.Fail("$.format", "expected \"adahrs-population\"");
   r.Integer("format_version", 1, 1);
   StudyPopulation p;
   const std::string profile = r.String("profile");
@@ -45,16 +46,22 @@ StudyPopulation ReadPopulationFile(const std::filesystem::path& file) {
 
 std::string StudyPopulation::Label() const {
   const std::string base = sensor_sim::ToString(profile);
-  return variant == sensor_sim::TruthVariant::kStandard ? base : base + "/" + sensor_sim::ToString(variant);
+  return variant == sensor_sim::TruthVariant::kStandard
+             ? base
+             : base + "/" + sensor_sim::ToString(variant);
 }
 
-StudyPopulation ParsePopulation(const std::string& spec, const std::filesystem::path& relative_to,
-                                const std::string& source, const std::string& json_path) {
+StudyPopulation ParsePopulation(const std::string& spec,
+                                const std::filesystem::path& relative_to,
+                                const std::string& source,
+                                const std::string& json_path) {
   if (spec == "truth") return {sensor_sim::ModelProfile::kTruth};
   if (spec == "nominal") return {sensor_sim::ModelProfile::kNominal};
   if (!IsFileName(spec)) {
-    throw ParamError(source + ": " + json_path + ": expected \"truth\", \"nominal\" or a population "
-                     "file (.json), got \"" + spec + "\"");
+    throw ParamError(source + ": " + json_path +
+                     ": expected \"truth\", \"nominal\" or a population "
+                     "file (.json), got \"" +
+                     spec + "\"");
   }
   return ReadPopulationFile(Resolve(spec, relative_to));
 }
@@ -77,7 +84,8 @@ StudyDefinition LoadStudyDefinition(const std::filesystem::path& file,
   d.sequence_file = IsFileName(sequence) ? Resolve(sequence, dir).string()
                                          : (shipped_sequence_dir / (sequence + ".json")).string();
   if (!IsFileName(sequence) && !std::filesystem::exists(d.sequence_file)) {
-    r.Fail("$.sequence", "no shipped sequence \"" + sequence + "\" in " + shipped_sequence_dir.string());
+    r.Fail("$.sequence",
+           "no shipped sequence \"" + sequence + "\" in " + shipped_sequence_dir.string());
   }
   const SequenceLimits limits;
   const std::vector<SequenceProblem> problems = CheckSequenceFile(d.sequence_file, limits);
@@ -100,8 +108,9 @@ StudyDefinition LoadStudyDefinition(const std::filesystem::path& file,
   } else if (IsFileName(d.strategy_label)) {
     d.strategy = ImuStrategy::Load(Resolve(d.strategy_label, dir));
   } else {
-    r.Fail("$.strategy", "unknown strategy \"" + d.strategy_label +
-                             "\" (expected \"reference\", \"improved\" or an adahrs-imu-strategy file .json)");
+    r.Fail("$.strategy",
+           "unknown strategy \"" + d.strategy_label +
+               "\" (expected \"reference\", \"improved\" or an adahrs-imu-strategy file .json)");
   }
   if (r.Has("population")) {
     d.population = ParsePopulation(r.String("population"), dir, file.string(), "$.population");

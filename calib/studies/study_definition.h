@@ -36,16 +36,18 @@ struct StudyPopulation {
 
 /// "truth", "nominal" or a population file; `source` and `json_path` name where the spec came
 /// from in errors (a study file's $.population, or the command line).
-StudyPopulation ParsePopulation(const std::string& spec, const std::filesystem::path& relative_to,
-                                const std::string& source, const std::string& json_path);
+StudyPopulation ParsePopulation(const std::string& spec,
+                                const std::filesystem::path& relative_to,
+                                const std::string& source,
+                                const std::string& json_path);
 
 struct StudyDefinition {
-  std::string name;             ///< the study file's stem: the strategy's name in results
-  std::string file;             ///< the study file
-  std::string sequence_file;    ///< the sequence it runs
+  std::string name;           ///< the study file's stem: the strategy's name in results
+  std::string file;           ///< the study file
+  std::string sequence_file;  ///< the sequence it runs
   Sequence sequence;
-  double rig_time_s = 0.0;      ///< the execution plan's duration estimate
-  std::string strategy_label;   ///< "reference", "improved" or the strategy file
+  double rig_time_s = 0.0;     ///< the execution plan's duration estimate
+  std::string strategy_label;  ///< "reference", "improved" or the strategy file
   ImuStrategy strategy;
   std::optional<StudyPopulation> population;
 };

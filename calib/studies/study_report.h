@@ -13,7 +13,8 @@
 
 namespace adahrs::calib {
 
-std::string RenderStudyReport(const StudyMeta& meta, const StudySummary& summary,
+std::string RenderStudyReport(const StudyMeta& meta,
+                              const StudySummary& summary,
                               const std::vector<StudyUnitResult>& results);
 
 }  // namespace adahrs::calib

@@ -20,7 +20,8 @@ using nlohmann::json;
 constexpr int kBootstrapResamples = 2000;
 constexpr const char* kCsvHeader =
     "unit_index,serial,draw_seed,noise_seed,strategy,fitted,worst_accel_mg,worst_rate_dps,"
-    "accel_verdict,rate_verdict,pass_acceleration,pass_body_rate,pass_body_rate_limit,pass_all,failure";
+    "accel_verdict,rate_verdict,pass_acceleration,pass_body_rate,pass_body_rate_limit,pass_all,"
+    "failure";
 constexpr size_t kCsvColumns = 15;
 
 std::string CsvField(const std::string& text) {
@@ -100,7 +101,8 @@ PairedInterval Bootstrap(const std::vector<double>& diffs, uint64_t seed) {
   return p;
 }
 
-StrategySummary SummariseStrategy(const StudyStrategyInfo& info, size_t s,
+StrategySummary SummariseStrategy(const StudyStrategyInfo& info,
+                                  size_t s,
                                   const std::vector<StudyUnitResult>& results) {
   StrategySummary out;
   out.info = info;
@@ -137,7 +139,8 @@ PairedSummary SummarisePair(const StudyMeta& meta, const std::vector<StudyUnitRe
     const StrategyOutcome& a = r.outcomes[0];
     const StrategyOutcome& b = r.outcomes[1];
     pass.push_back(static_cast<double>(b.pass_all()) - static_cast<double>(a.pass_all()));
-    pass_accel.push_back(static_cast<double>(b.pass_acceleration) - static_cast<double>(a.pass_acceleration));
+    pass_accel.push_back(static_cast<double>(b.pass_acceleration) -
+                         static_cast<double>(a.pass_acceleration));
     if (a.fitted && b.fitted) {
       accel.push_back(b.worst_accel_mg - a.worst_accel_mg);
       rate.push_back(b.worst_rate_dps - a.worst_rate_dps);
@@ -167,27 +170,42 @@ void WriteText(const std::filesystem::path& file, const std::string& text) {
 }  // namespace
 
 json StudyStrategyInfo::ToJson() const {
-  return {{"name", name}, {"file", file}, {"sequence", sequence}, {"sequence_file", sequence_file},
-          {"strategy", strategy}, {"rig_time_s", rig_time_s}};
+  return {{"name", name},
+          {"file", file},
+          {"sequence", sequence},
+          {"sequence_file", sequence_file},
+          {"strategy", strategy},
+          {"rig_time_s", rig_time_s}};
 }
 
 StudyStrategyInfo StudyStrategyInfo::FromJson(const json& j) {
-  return {j.at("name"), j.at("file"), j.at("sequence"), j.at("sequence_file"), j.at("strategy"),
+  return {j.at("name"),
+          j.at("file"),
+          j.at("sequence"),
+          j.at("sequence_file"),
+          j.at("strategy"),
           j.at("rig_time_s")};
 }
 
 json StudyMeta::ToJson() const {
   json s = json::array();
   for (const auto& i : strategies) s.push_back(i.ToJson());
-  return {{"format", "adahrs-study-run"}, {"format_version", 1}, {"units", units}, {"seed", seed},
-          {"population", population}, {"g_local_mps2", g_local_mps2},
-          {"evaluation_frames", evaluation_frames}, {"strategies", s}, {"shard", shard.Label()}};
+  return {{"format", "adahrs-study-run"},
+          {"format_version", 1},
+          {"units", units},
+          {"seed", seed},
+          {"population", population},
+          {"g_local_mps2", g_local_mps2},
+          {"evaluation_frames", evaluation_frames},
+          {"strategies", s},
+          {"shard", shard.Label()}};
 }
 
 StudyMeta StudyMeta::Read(const std::filesystem::path& file) {
   try {
     const json j = json::parse(ReadText(file));
-    if (j.at("format") != "adahrs-study-run") throw std::runtime_error("$.format is not adahrs-study-run");
+    if (j.at("format") != "adahrs-study-run")
+      throw std::runtime_error("$.format is not adahrs-study-run");
     StudyMeta m;
     m.units = j.at("units");
     m.seed = j.at("seed");
@@ -208,7 +226,8 @@ bool StudyMeta::SameStudy(const StudyMeta& o) const {
          strategies == o.strategies;
 }
 
-StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies, const StudySettings& settings) {
+StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies,
+                        const StudySettings& settings) {
   StudyMeta m;
   m.units = settings.units;
   m.seed = settings.seed;
@@ -217,22 +236,36 @@ StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies, const St
   m.evaluation_frames = settings.evaluation_frames;
   m.shard = settings.shard;
   for (const StudyDefinition& d : strategies) {
-    m.strategies.push_back({d.name, d.file, d.sequence.name, d.sequence_file, d.strategy_label, d.rig_time_s});
+    m.strategies.push_back(
+        {d.name, d.file, d.sequence.name, d.sequence_file, d.strategy_label, d.rig_time_s});
   }
   return m;
 }
 
 json ErrorDistribution::ToJson() const {
-  return {{"count", count}, {"mean", mean}, {"p50", p50}, {"p90", p90}, {"p95", p95}, {"p99", p99},
+  return {{"count", count},
+          {"mean", mean},
+          {"p50", p50},
+          {"p90", p90},
+          {"p95", p95},
+          {"p99", p99},
           {"max", max}};
 }
 
 json StrategySummary::ToJson() const {
-  return {{"name", info.name}, {"strategy", info.strategy}, {"sequence", info.sequence},
-          {"rig_time_s", info.rig_time_s}, {"units", units}, {"fitted", fitted},
-          {"yield", {{"acceleration", yield_acceleration}, {"body_rate", yield_body_rate},
-                     {"body_rate_limit", yield_body_rate_limit}, {"all", yield_all}}},
-          {"worst_accel_mg", worst_accel_mg.ToJson()}, {"worst_rate_dps", worst_rate_dps.ToJson()}};
+  return {{"name", info.name},
+          {"strategy", info.strategy},
+          {"sequence", info.sequence},
+          {"rig_time_s", info.rig_time_s},
+          {"units", units},
+          {"fitted", fitted},
+          {"yield",
+           {{"acceleration", yield_acceleration},
+            {"body_rate", yield_body_rate},
+            {"body_rate_limit", yield_body_rate_limit},
+            {"all", yield_all}}},
+          {"worst_accel_mg", worst_accel_mg.ToJson()},
+          {"worst_rate_dps", worst_rate_dps.ToJson()}};
 }
 
 json PairedInterval::ToJson() const {
@@ -240,8 +273,10 @@ json PairedInterval::ToJson() const {
 }
 
 json PairedSummary::ToJson() const {
-  return {{"difference", second + " - " + first}, {"bootstrap_resamples", resamples},
-          {"yield_all", yield_all.ToJson()}, {"yield_acceleration", yield_acceleration.ToJson()},
+  return {{"difference", second + " - " + first},
+          {"bootstrap_resamples", resamples},
+          {"yield_all", yield_all.ToJson()},
+          {"yield_acceleration", yield_acceleration.ToJson()},
           {"worst_accel_mg", worst_accel_mg.ToJson()},
           {"worst_rate_dps", worst_rate_dps.ToJson()}};
 }
@@ -266,24 +301,36 @@ StudySummary Summarise(const StudyMeta& meta, const std::vector<StudyUnitResult>
   return s;
 }
 
-void WriteResultsCsv(const std::filesystem::path& file, const StudyMeta& meta,
+void WriteResultsCsv(const std::filesystem::path& file,
+                     const StudyMeta& meta,
                      const std::vector<StudyUnitResult>& results) {
   std::string text = std::string(kCsvHeader) + "\n";
   for (const StudyUnitResult& r : results) {
     for (size_t s = 0; s < meta.strategies.size(); ++s) {
       const StrategyOutcome& o = r.outcomes.at(s);
-      text += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.index, r.serial,
-                          r.draw_seed, r.noise_seed, CsvField(meta.strategies[s].name),
-                          Bool(o.fitted), o.worst_accel_mg, o.worst_rate_dps,
-                          CsvField(o.accel_verdict), CsvField(o.rate_verdict),
-                          Bool(o.pass_acceleration), Bool(o.pass_body_rate),
-                          Bool(o.pass_body_rate_limit), Bool(o.pass_all()), CsvField(o.failure));
+      text += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                          r.index,
+                          r.serial,
+                          r.draw_seed,
+                          r.noise_seed,
+                          CsvField(meta.strategies[s].name),
+                          Bool(o.fitted),
+                          o.worst_accel_mg,
+                          o.worst_rate_dps,
+                          CsvField(o.accel_verdict),
+                          CsvField(o.rate_verdict),
+                          Bool(o.pass_acceleration),
+                          Bool(o.pass_body_rate),
+                          Bool(o.pass_body_rate_limit),
+                          Bool(o.pass_all()),
+                          CsvField(o.failure));
     }
   }
   WriteText(file, text);
 }
 
-std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file, const StudyMeta& meta) {
+std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file,
+                                            const StudyMeta& meta) {
   std::istringstream in(ReadText(file));
   std::string line;
   if (!std::getline(in, line) || line != kCsvHeader) {
@@ -324,7 +371,8 @@ std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file, c
   return results;
 }
 
-void WriteStudyOutputs(const std::filesystem::path& dir, const StudyMeta& meta,
+void WriteStudyOutputs(const std::filesystem::path& dir,
+                       const StudyMeta& meta,
                        const std::vector<StudyUnitResult>& results) {
   std::filesystem::create_directories(dir);
   const StudySummary summary = Summarise(meta, results);
@@ -334,7 +382,8 @@ void WriteStudyOutputs(const std::filesystem::path& dir, const StudyMeta& meta,
   WriteText(dir / "report.html", RenderStudyReport(meta, summary, results));
 }
 
-void MergeStudies(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out) {
+void MergeStudies(const std::vector<std::filesystem::path>& dirs,
+                  const std::filesystem::path& out) {
   if (dirs.empty()) throw std::runtime_error("study merge: no shard directory given");
   const StudyMeta first = StudyMeta::Read(dirs[0] / "study.json");
   std::map<int, std::filesystem::path> shards;
@@ -342,8 +391,8 @@ void MergeStudies(const std::vector<std::filesystem::path>& dirs, const std::fil
   for (const auto& dir : dirs) {
     const StudyMeta meta = StudyMeta::Read(dir / "study.json");
     if (!meta.SameStudy(first)) {
-      throw std::runtime_error(dir.string() + "/study.json: another study than " + dirs[0].string() +
-                               "/study.json (settings or strategies differ)");
+      throw std::runtime_error(dir.string() + "/study.json: another study than " +
+                               dirs[0].string() + "/study.json (settings or strategies differ)");
     }
     if (meta.shard.count != first.shard.count) {
       throw std::runtime_error(dir.string() + "/study.json: $.shard " + meta.shard.Label() +
@@ -362,10 +411,13 @@ void MergeStudies(const std::vector<std::filesystem::path>& dirs, const std::fil
     }
   }
   for (int i = 1; i <= first.shard.count; ++i) {
-    if (!shards.contains(i)) throw std::runtime_error("study merge: shard " + std::to_string(i) + "/" +
-                                                      std::to_string(first.shard.count) + " missing");
+    if (!shards.contains(i))
+      throw std::runtime_error("study merge: shard " + std::to_string(i) + "/" +
+                               std::to_string(first.shard.count) + " missing");
   }
-  std::sort(results.begin(), results.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
+  std::sort(results.begin(), results.end(), [](const auto& a, const auto& b) {
+    return a.index < b.index;
+  });
   for (int k = 0; k < std::max(first.units, static_cast<int>(results.size())); ++k) {
     if (k >= static_cast<int>(results.size()) || k >= first.units ||
         results[static_cast<size_t>(k)].index != k) {

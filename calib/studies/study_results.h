@@ -21,11 +21,11 @@
 namespace adahrs::calib {
 
 struct StudyStrategyInfo {
-  std::string name;           ///< the study file's stem
+  std::string name;  ///< the study file's stem
   std::string file;
-  std::string sequence;       ///< the sequence's name
+  std::string sequence;  ///< the sequence's name
   std::string sequence_file;
-  std::string strategy;       ///< "reference", "improved" or the strategy file
+  std::string strategy;  ///< "reference", "improved" or the strategy file
   double rig_time_s = 0.0;
   nlohmann::json ToJson() const;
   static StudyStrategyInfo FromJson(const nlohmann::json& j);
@@ -46,7 +46,8 @@ struct StudyMeta {
   bool SameStudy(const StudyMeta& other) const;
 };
 
-StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies, const StudySettings& settings);
+StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies,
+                        const StudySettings& settings);
 
 /// Percentiles by nearest rank over the finite values (units whose fit failed are left out).
 struct ErrorDistribution {
@@ -78,7 +79,7 @@ struct PairedInterval {
 struct PairedSummary {
   std::string first, second;
   int resamples = 0;
-  PairedInterval yield_all;       ///< pass (1/0) second − first, every unit
+  PairedInterval yield_all;  ///< pass (1/0) second − first, every unit
   PairedInterval yield_acceleration;
   PairedInterval worst_accel_mg;  ///< second − first, units both fitted
   PairedInterval worst_rate_dps;
@@ -96,12 +97,15 @@ struct StudySummary {
 
 StudySummary Summarise(const StudyMeta& meta, const std::vector<StudyUnitResult>& results);
 
-void WriteResultsCsv(const std::filesystem::path& file, const StudyMeta& meta,
+void WriteResultsCsv(const std::filesystem::path& file,
+                     const StudyMeta& meta,
                      const std::vector<StudyUnitResult>& results);
-std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file, const StudyMeta& meta);
+std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file,
+                                            const StudyMeta& meta);
 
 /// Writes study.json, results.csv, summary.json and report.html into `dir`.
-void WriteStudyOutputs(const std::filesystem::path& dir, const StudyMeta& meta,
+void WriteStudyOutputs(const std::filesystem::path& dir,
+                       const StudyMeta& meta,
                        const std::vector<StudyUnitResult>& results);
 
 /// Combines the shard directories of one study (every shard 1/n...n/n exactly once) into `out`:

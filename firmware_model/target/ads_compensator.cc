@@ -10,8 +10,13 @@ namespace {
 
 // z(x, y) = ((b3 x + b2) x + b1) x + b0, b_k = b_k(y), y the normalised linearised bridge code;
 // result at out_exponent; y (Q31) in *y_out.
-int32_t EvaluateSurface(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponent, int32_t x_code,
-                   int32_t y_code, int32_t* y_out, uint16_t* flags) {
+int32_t EvaluateSurface(DspEngine* engine,
+                        const SurfaceQ31& s,
+                        int8_t out_exponent,
+                        int32_t x_code,
+                        int32_t y_code,
+                        int32_t* y_out,
+                        uint16_t* flags) {
   engine->ChargeCallReturn();
   const int32_t x = NormaliseQ31(engine, x_code, 31, s.x_norm);
   const int32_t y_linear_code = LinearisedBridgeCode(engine, s.y_linearisation, y_code, flags);
@@ -61,9 +66,14 @@ int16_t GainAt(DspEngine* engine, const GainQ15& gain, int16_t tau_q15) {
 }
 
 // z + gain_P s_P + gain_T s_T after advancing both operators; z at `result_exponent`.
-int32_t CompensateHysteresis(DspEngine* engine, const SurfaceQ31& s, int8_t result_exponent,
-                             int32_t z, int32_t y_q31, PreisachQ15* pressure,
-                             PreisachQ15* thermal, uint16_t* flags) {
+int32_t CompensateHysteresis(DspEngine* engine,
+                             const SurfaceQ31& s,
+                             int8_t result_exponent,
+                             int32_t z,
+                             int32_t y_q31,
+                             PreisachQ15* pressure,
+                             PreisachQ15* thermal,
+                             uint16_t* flags) {
   const int16_t s_pressure =
       PreisachUpdateQ15(engine, pressure, z, result_exponent, s.pressure.inv_span);
   const int16_t tau_q15 = DieTemperatureQ15(engine, s, y_q31);
@@ -87,13 +97,19 @@ int32_t CompensateHysteresis(DspEngine* engine, const SurfaceQ31& s, int8_t resu
 // The output of one surface at `out_exponent`: the surface itself, or its pressure (at
 // kPressureExponent) through the block's law (validated per block by ads_constants.cc), each
 // after the hysteresis terms.
-int32_t SurfaceAndLaw(DspEngine* engine, const SurfaceQ31& s, int8_t out_exponent, int32_t x_code,
-                      int32_t y_code, PreisachQ15* pressure, PreisachQ15* thermal,
+int32_t SurfaceAndLaw(DspEngine* engine,
+                      const SurfaceQ31& s,
+                      int8_t out_exponent,
+                      int32_t x_code,
+                      int32_t y_code,
+                      PreisachQ15* pressure,
+                      PreisachQ15* thermal,
                       uint16_t* flags) {
   engine->ChargeBranch(1);  // the law
   const int8_t result_exponent = AdsSurfaceExponent(s.law, out_exponent);
   int32_t y_q31 = 0;
-  const int32_t surface = EvaluateSurface(engine, s, result_exponent, x_code, y_code, &y_q31, flags);
+  const int32_t surface =
+      EvaluateSurface(engine, s, result_exponent, x_code, y_code, &y_q31, flags);
   const int32_t z =
       CompensateHysteresis(engine, s, result_exponent, surface, y_q31, pressure, thermal, flags);
   if (s.law == kAdsLawIsaAltitude) return IsaAltitudeQ31(engine, z, flags);
@@ -110,8 +126,12 @@ void AdsHysteresisReset(AdsHysteresisState* state) {
   PreisachResetQ15(&state->pitot_thermal);
 }
 
-void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensationMode mode,
-                   const AdsRawFrame& raw, AdsHysteresisState* state, AdsCompensatedFrame* out) {
+void AdsCompensate(DspEngine* engine,
+                   const AdsConstants& constants,
+                   AdsCompensationMode mode,
+                   const AdsRawFrame& raw,
+                   AdsHysteresisState* state,
+                   AdsCompensatedFrame* out) {
   engine->ChargeCallReturn();
   engine->set_config(CompensatorDspConfig());
   engine->ChargeMov(1);  // CORCON write
@@ -124,11 +144,21 @@ void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensa
     out->flags = flags;
     return;
   }
-  out->value[0] = SurfaceAndLaw(engine, constants.altitude, kAltitudeExponent, raw.ps_code,
-                                raw.ps_bridge_code, &state->static_pressure,
-                                &state->static_thermal, &flags);
-  out->value[1] = SurfaceAndLaw(engine, constants.airspeed, kAirspeedExponent, raw.pt_code,
-                                raw.pt_bridge_code, &state->pitot_pressure, &state->pitot_thermal,
+  out->value[0] = SurfaceAndLaw(engine,
+                                constants.altitude,
+                                kAltitudeExponent,
+                                raw.ps_code,
+                                raw.ps_bridge_code,
+                                &state->static_pressure,
+                                &state->static_thermal,
+                                &flags);
+  out->value[1] = SurfaceAndLaw(engine,
+                                constants.airspeed,
+                                kAirspeedExponent,
+                                raw.pt_code,
+                                raw.pt_bridge_code,
+                                &state->pitot_pressure,
+                                &state->pitot_thermal,
                                 &flags);
   out->flags = flags;
 }

@@ -39,7 +39,11 @@ void AdsHysteresisReset(AdsHysteresisState* state);
 
 /// Compensates one ADS frame in `mode` with `constants`, advancing `state` (untouched in kRaw);
 /// charges every instruction to `engine`.
-void AdsCompensate(DspEngine* engine, const AdsConstants& constants, AdsCompensationMode mode,
-                   const AdsRawFrame& raw, AdsHysteresisState* state, AdsCompensatedFrame* out);
+void AdsCompensate(DspEngine* engine,
+                   const AdsConstants& constants,
+                   AdsCompensationMode mode,
+                   const AdsRawFrame& raw,
+                   AdsHysteresisState* state,
+                   AdsCompensatedFrame* out);
 
 }  // namespace adahrs::firmware_model

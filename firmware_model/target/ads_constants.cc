@@ -53,12 +53,14 @@ ConstantsStatus ValidateOuter(const SurfaceQ31& s, int8_t out_exponent) {
 }
 
 // A hysteresis term from its 6 words (docs/firmware-compensator.md "Hysteresis compensation").
-ConstantsStatus TermFromWords(const int16_t* words, int8_t input_exponent, int8_t result_exponent,
+ConstantsStatus TermFromWords(const int16_t* words,
+                              int8_t input_exponent,
+                              int8_t result_exponent,
                               HysteresisTermQ* term) {
   const ConstantsStatus s = CoeffFromWords(words, &term->inv_span);
   if (s != ConstantsStatus::kOk) return s;
-  term->gain = GainQ15{words[kCoeffWords], words[kCoeffWords + 1],
-                       static_cast<int8_t>(words[kCoeffWords + 2])};
+  term->gain = GainQ15{
+      words[kCoeffWords], words[kCoeffWords + 1], static_cast<int8_t>(words[kCoeffWords + 2])};
   const int32_t travel_shift = input_exponent + term->inv_span.exponent;
   const int32_t gain_align = result_exponent - words[kCoeffWords + 2];
   if (term->inv_span.mantissa_q31 == INT32_MIN || travel_shift < -31 || travel_shift > 31 ||
@@ -75,7 +77,9 @@ void TermToWords(const HysteresisTermQ& term, int16_t* words) {
   words[kCoeffWords + 2] = term.gain.exponent;
 }
 
-ConstantsStatus SurfaceFromWords(const int16_t* words, int8_t out_exponent, uint8_t pressure_law,
+ConstantsStatus SurfaceFromWords(const int16_t* words,
+                                 int8_t out_exponent,
+                                 uint8_t pressure_law,
                                  SurfaceQ31* out) {
   SurfaceQ31 decoded{};
   const int16_t law = words[kAdsSurfaceBlockWords - 1];
@@ -127,7 +131,8 @@ void SurfaceToWords(const SurfaceQ31& s, int16_t* words) {
   w[0] = s.outer_work_exponent;
   for (uint8_t i = 0; i <= kAdsSurfaceXDegree; ++i) {
     w[1 + i] = s.b[i].work_exponent;
-    for (uint8_t n = 0; n <= kAdsSurfaceYDegree; ++n) CoeffToWords(s.b[i].coeff[n], words + CoeffOffset(i, n));
+    for (uint8_t n = 0; n <= kAdsSurfaceYDegree; ++n)
+      CoeffToWords(s.b[i].coeff[n], words + CoeffOffset(i, n));
   }
   TermToWords(s.pressure, words + kHysteresisOffset);
   for (uint8_t k = 0; k < 3; ++k) words[kThermalOffset + k] = s.die_temp_q15[k];
@@ -152,8 +157,10 @@ uint8_t AdsConstantsBlockLength(uint8_t block_id) {
                                                                           : 0;
 }
 
-ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants, uint8_t block_id,
-                                       const int16_t* words, uint8_t count) {
+ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants,
+                                       uint8_t block_id,
+                                       const int16_t* words,
+                                       uint8_t count) {
   if (constants == nullptr || words == nullptr) return ConstantsStatus::kNullArgument;
   const uint8_t length = AdsConstantsBlockLength(block_id);
   if (length == 0) return ConstantsStatus::kUnknownBlock;
@@ -164,8 +171,11 @@ ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants, uint8_t block_id
   return SurfaceFromWords(words, kAirspeedExponent, kAdsLawCas, &constants->airspeed);
 }
 
-ConstantsStatus AdsConstantsReadBlock(const AdsConstants* constants, uint8_t block_id,
-                                      int16_t* words, uint8_t capacity, uint8_t* count) {
+ConstantsStatus AdsConstantsReadBlock(const AdsConstants* constants,
+                                      uint8_t block_id,
+                                      int16_t* words,
+                                      uint8_t capacity,
+                                      uint8_t* count) {
   if (constants == nullptr || words == nullptr || count == nullptr) {
     return ConstantsStatus::kNullArgument;
   }

@@ -42,17 +42,17 @@ struct HysteresisTermQ {
 };
 
 struct SurfaceQ31 {
-  InputNormQ31 x_norm;      ///< pressure code normalisation
-  InputNormQ31 y_norm;      ///< normalisation of the (linearised) bridge-voltage code
+  InputNormQ31 x_norm;  ///< pressure code normalisation
+  InputNormQ31 y_norm;  ///< normalisation of the (linearised) bridge-voltage code
   int8_t outer_work_exponent;
   PolyQ31 b[kAdsSurfaceXDegree + 1];  ///< b_k(y), degree kAdsSurfaceYDegree
-  HysteresisTermQ pressure;  ///< driven by the surface's result
-  HysteresisTermQ thermal;   ///< driven by tau(y)
+  HysteresisTermQ pressure;           ///< driven by the surface's result
+  HysteresisTermQ thermal;            ///< driven by tau(y)
   /// t1, t2, t3 of tau(y) = t1 y + t2 y^2 + t3 y^3 (Q15): the die temperature's change from y's
   /// centre, in a power of two of degC the exporter chooses
   int16_t die_temp_q15[3];
   BridgeLinearisationQ y_linearisation;  ///< bridge code -> the surface's y code
-  uint8_t law;              ///< AdsSurfaceLaw: what follows the surface
+  uint8_t law;                           ///< AdsSurfaceLaw: what follows the surface
 };
 
 struct AdsConstants {
@@ -67,9 +67,9 @@ enum AdsBlockId : uint8_t {
 
 inline constexpr uint8_t kGainWords = 3;
 inline constexpr uint8_t kAdsHysteresisWords = 2 * (kCoeffWords + kGainWords) + 3;
-inline constexpr uint8_t kAdsSurfaceBlockWords =
-    2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords + kAdsHysteresisWords +
-    kBridgeLinearisationWords + 1;
+inline constexpr uint8_t kAdsSurfaceBlockWords = 2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords +
+                                                 kAdsHysteresisWords + kBridgeLinearisationWords +
+                                                 1;
 inline constexpr uint8_t kAdsMaxBlockWords = kAdsSurfaceBlockWords;
 
 /// The exponent a surface's result must reach: the output's (`out_exponent`) when `law` is
@@ -84,11 +84,16 @@ void AdsConstantsInit(AdsConstants* constants);
 uint8_t AdsConstantsBlockLength(uint8_t block_id);
 
 /// Replaces block `block_id` from `count` words; on any status but kOk nothing changes.
-ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants, uint8_t block_id,
-                                       const int16_t* words, uint8_t count);
+ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants,
+                                       uint8_t block_id,
+                                       const int16_t* words,
+                                       uint8_t count);
 
 /// Writes block `block_id` into `words` (capacity `capacity`), its length into `*count`.
-ConstantsStatus AdsConstantsReadBlock(const AdsConstants* constants, uint8_t block_id,
-                                      int16_t* words, uint8_t capacity, uint8_t* count);
+ConstantsStatus AdsConstantsReadBlock(const AdsConstants* constants,
+                                      uint8_t block_id,
+                                      int16_t* words,
+                                      uint8_t capacity,
+                                      uint8_t* count);
 
 }  // namespace adahrs::firmware_model

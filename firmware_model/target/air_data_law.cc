@@ -8,8 +8,8 @@ namespace adahrs::firmware_model {
 namespace {
 
 // T[i] + (T[i+1] - T[i]) * fraction, fraction = the low `step_log2` bits of `mantissa` as Q31.
-int32_t Interpolate(DspEngine* engine, const int32_t* table, uint16_t i, int32_t mantissa,
-                    uint8_t step_log2) {
+int32_t Interpolate(
+    DspEngine* engine, const int32_t* table, uint16_t i, int32_t mantissa, uint8_t step_log2) {
   engine->ChargeMov(4);  // two table entries, TBLRDL + TBLRDH each
   engine->ChargeAlu(2);  // 32-bit difference (SUB, SUBB)
   const int32_t low = table[i];

@@ -19,14 +19,14 @@
 
 namespace adahrs::firmware_model {
 
-inline constexpr int8_t kPressureExponent = 17;     ///< Pa, |p| < 131,072 Pa
-inline constexpr int8_t kCasSquaredExponent = 19;   ///< kt^2, < 524,288 kt^2
+inline constexpr int8_t kPressureExponent = 17;    ///< Pa, |p| < 131,072 Pa
+inline constexpr int8_t kCasSquaredExponent = 19;  ///< kt^2, < 524,288 kt^2
 
-inline constexpr uint8_t kIsaTableStepLog2 = 21;    ///< 128 Pa = 2^21 mantissa LSB
+inline constexpr uint8_t kIsaTableStepLog2 = 21;  ///< 128 Pa = 2^21 mantissa LSB
 inline constexpr uint16_t kIsaTableEntries = 1025;
 inline constexpr uint16_t kIsaFirstValidEntry = 48;  ///< 6,144 Pa
 
-inline constexpr uint8_t kCasTableStepLog2 = 22;    ///< 256 Pa = 2^22 mantissa LSB
+inline constexpr uint8_t kCasTableStepLog2 = 22;  ///< 256 Pa = 2^22 mantissa LSB
 inline constexpr uint16_t kCasTableEntries = 513;
 inline constexpr uint16_t kCasLastValidEntry = 191;  ///< qc(511 kt) / 256 Pa = 191.5, rounded down
 

@@ -12,8 +12,10 @@ constexpr uint8_t kMaxCodeLog2 = 24;
 
 }  // namespace
 
-int32_t LinearisedBridgeCode(DspEngine* engine, const BridgeLinearisationQ& linearisation,
-                             int32_t y_code, uint16_t* flags) {
+int32_t LinearisedBridgeCode(DspEngine* engine,
+                             const BridgeLinearisationQ& linearisation,
+                             int32_t y_code,
+                             uint16_t* flags) {
   engine->ChargeCallReturn();
   engine->ChargeAlu(1);  // k == 0?
   engine->ChargeBranch(1);

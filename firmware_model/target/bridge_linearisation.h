@@ -50,8 +50,10 @@ struct BridgeLinearisationQ {
 
 /// The linearised code s of bridge-voltage code `y_code`; sets kFlagInputSaturated in *flags
 /// when |v| >= 1 or r < 0.
-int32_t LinearisedBridgeCode(DspEngine* engine, const BridgeLinearisationQ& linearisation,
-                             int32_t y_code, uint16_t* flags);
+int32_t LinearisedBridgeCode(DspEngine* engine,
+                             const BridgeLinearisationQ& linearisation,
+                             int32_t y_code,
+                             uint16_t* flags);
 
 /// Block words <-> linearisation; a shift beyond 24 or an origin outside +-2^24 (the ADS1254's
 /// codes: s then stays inside int32) is kOutOfRange.

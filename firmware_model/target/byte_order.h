@@ -24,9 +24,7 @@ inline void PutI16Le(uint8_t* out, int16_t value) { PutU16Le(out, static_cast<ui
 
 inline void PutI32Le(uint8_t* out, int32_t value) { PutU32Le(out, static_cast<uint32_t>(value)); }
 
-inline uint16_t GetU16Le(const uint8_t* in) {
-  return static_cast<uint16_t>(in[0] | (in[1] << 8));
-}
+inline uint16_t GetU16Le(const uint8_t* in) { return static_cast<uint16_t>(in[0] | (in[1] << 8)); }
 
 inline uint32_t GetU32Le(const uint8_t* in) {
   return static_cast<uint32_t>(in[0]) | (static_cast<uint32_t>(in[1]) << 8) |

@@ -135,25 +135,41 @@ bool DecodeAdsPayload(const uint8_t* payload, uint8_t length, AdsDataPayload* da
   return true;
 }
 
-uint16_t EncodeImuDataFrame(const ImuDataPayload& data, uint8_t sequence, uint8_t tag, uint8_t* out,
+uint16_t EncodeImuDataFrame(const ImuDataPayload& data,
+                            uint8_t sequence,
+                            uint8_t tag,
+                            uint8_t* out,
                             uint16_t out_capacity) {
   uint8_t payload[kImuCompensatedPayloadBytes];
   const uint8_t length = EncodeImuPayload(data, payload, kImuCompensatedPayloadBytes);
   if (length == 0) {
     return 0;
   }
-  return EncodeFrame(static_cast<uint8_t>(PacketType::kImuData), sequence, tag, payload, length, out,
+  return EncodeFrame(static_cast<uint8_t>(PacketType::kImuData),
+                     sequence,
+                     tag,
+                     payload,
+                     length,
+                     out,
                      out_capacity);
 }
 
-uint16_t EncodeAdsDataFrame(const AdsDataPayload& data, uint8_t sequence, uint8_t tag, uint8_t* out,
+uint16_t EncodeAdsDataFrame(const AdsDataPayload& data,
+                            uint8_t sequence,
+                            uint8_t tag,
+                            uint8_t* out,
                             uint16_t out_capacity) {
   uint8_t payload[kAdsCompensatedPayloadBytes];
   const uint8_t length = EncodeAdsPayload(data, payload, kAdsCompensatedPayloadBytes);
   if (length == 0) {
     return 0;
   }
-  return EncodeFrame(static_cast<uint8_t>(PacketType::kAdsData), sequence, tag, payload, length, out,
+  return EncodeFrame(static_cast<uint8_t>(PacketType::kAdsData),
+                     sequence,
+                     tag,
+                     payload,
+                     length,
+                     out,
                      out_capacity);
 }
 

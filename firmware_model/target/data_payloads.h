@@ -53,9 +53,9 @@ bool DecodeImuPayload(const uint8_t* payload, uint8_t length, ImuDataPayload* da
 bool DecodeAdsPayload(const uint8_t* payload, uint8_t length, AdsDataPayload* data);
 
 /// Encodes a complete IMU/ADS data frame; returns its length or 0 (see EncodeFrame).
-uint16_t EncodeImuDataFrame(const ImuDataPayload& data, uint8_t sequence, uint8_t tag, uint8_t* out,
-                            uint16_t out_capacity);
-uint16_t EncodeAdsDataFrame(const AdsDataPayload& data, uint8_t sequence, uint8_t tag, uint8_t* out,
-                            uint16_t out_capacity);
+uint16_t EncodeImuDataFrame(
+    const ImuDataPayload& data, uint8_t sequence, uint8_t tag, uint8_t* out, uint16_t out_capacity);
+uint16_t EncodeAdsDataFrame(
+    const AdsDataPayload& data, uint8_t sequence, uint8_t tag, uint8_t* out, uint16_t out_capacity);
 
 }  // namespace adahrs::firmware_model

@@ -13,11 +13,11 @@ struct OpInfo {
 // physics.md 5.1: MAC-class, LAC/SAC, SFTAC, MOV, MUL are single cycle; DIVx 19 with REPEAT #17;
 // a taken branch, CALL 2; RETURN 3.
 constexpr OpInfo kOps[static_cast<uint8_t>(DspOp::kCount)] = {
-    {"MPY", 1},      {"MAC", 1},      {"MSC", 1},         {"LAC", 1},     {"SAC", 1},
-    {"SAC.R", 1},    {"SFTAC", 1},    {"ADD Acc", 1},     {"SUB Acc", 1}, {"NEG Acc", 1},
-    {"ADD Ws,Acc", 1}, {"CLR Acc", 1}, {"MOV ACCx", 1},   {"MUL.SS", 1},  {"MUL.SU", 1},
-    {"MUL.UU", 1},   {"DIVF", 19},    {"DIV.SD", 19},     {"DIV.UD", 19}, {"MOV", 1},
-    {"ALU", 1},      {"BRA (taken)", 2}, {"CALL", 2},     {"RETURN", 3},
+    {"MPY", 1},        {"MAC", 1},         {"MSC", 1},      {"LAC", 1},     {"SAC", 1},
+    {"SAC.R", 1},      {"SFTAC", 1},       {"ADD Acc", 1},  {"SUB Acc", 1}, {"NEG Acc", 1},
+    {"ADD Ws,Acc", 1}, {"CLR Acc", 1},     {"MOV ACCx", 1}, {"MUL.SS", 1},  {"MUL.SU", 1},
+    {"MUL.UU", 1},     {"DIVF", 19},       {"DIV.SD", 19},  {"DIV.UD", 19}, {"MOV", 1},
+    {"ALU", 1},        {"BRA (taken)", 2}, {"CALL", 2},     {"RETURN", 3},
 };
 
 }  // namespace
@@ -93,7 +93,8 @@ void DspEngine::Lac(Acc acc, int16_t word, int8_t shift) {
 int16_t DspEngine::Store(Acc acc, int8_t shift, bool round) {
   // The shifted value stays 40 bits wide (the barrel shifter output), then bits 31..16 are taken.
   const int64_t shifted = SignExtend40(ShiftArith(acc_[Index(acc)], shift));
-  const int64_t high = round ? RoundHighWord(shifted, config_.convergent_rounding) : (shifted >> 16);
+  const int64_t high =
+      round ? RoundHighWord(shifted, config_.convergent_rounding) : (shifted >> 16);
   if (config_.saturate_writes) return SatQ15(high);
   return static_cast<int16_t>(static_cast<uint16_t>(static_cast<uint64_t>(high) & 0xFFFFu));
 }

@@ -31,8 +31,30 @@ constexpr Acc Other(Acc acc) { return acc == Acc::kA ? Acc::kB : Acc::kA; }
 
 /// Instruction classes counted by the engine (one entry of the cycle table each).
 enum class DspOp : uint8_t {
-  kMpy, kMac, kMsc, kLac, kSac, kSacR, kSftac, kAddAcc, kSubAcc, kNegAcc, kAddWordAcc, kClrAcc,
-  kMovAccWord, kMulSS, kMulSU, kMulUU, kDivF, kDivSD, kDivUD, kMov, kAlu, kBranch, kCall, kReturn,
+  kMpy,
+  kMac,
+  kMsc,
+  kLac,
+  kSac,
+  kSacR,
+  kSftac,
+  kAddAcc,
+  kSubAcc,
+  kNegAcc,
+  kAddWordAcc,
+  kClrAcc,
+  kMovAccWord,
+  kMulSS,
+  kMulSU,
+  kMulUU,
+  kDivF,
+  kDivSD,
+  kDivUD,
+  kMov,
+  kAlu,
+  kBranch,
+  kCall,
+  kReturn,
   kCount
 };
 
@@ -138,7 +160,9 @@ class DspEngine {
 
  private:
   static constexpr uint8_t Index(Acc acc) { return static_cast<uint8_t>(acc); }
-  static bool Overflowed31(int64_t v) { return v > INT64_C(0x7FFFFFFF) || v < -INT64_C(0x80000000); }
+  static bool Overflowed31(int64_t v) {
+    return v > INT64_C(0x7FFFFFFF) || v < -INT64_C(0x80000000);
+  }
   void Charge(DspOp op, uint8_t count);
   int64_t Product(int16_t a, int16_t b) const;
   /// Applies the saturation mode of `acc` to an exact result and stores it.

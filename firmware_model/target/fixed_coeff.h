@@ -26,11 +26,11 @@ namespace adahrs::firmware_model {
 /// Outcome of writing or reading one constant block; the maintenance handler maps it to a NAK code.
 enum class ConstantsStatus : uint8_t {
   kOk = 0,
-  kUnknownBlock = 1,    ///< block id is not defined for this unit
-  kWrongLength = 2,     ///< word count differs from the block's fixed length
-  kOutOfRange = 3,      ///< a field lies outside its documented range (exponent, shift, index)
-  kWouldOverflow = 4,   ///< the set is representable but could overflow a Q31 stage in the envelope
-  kNullArgument = 5,    ///< a pointer argument is null
+  kUnknownBlock = 1,   ///< block id is not defined for this unit
+  kWrongLength = 2,    ///< word count differs from the block's fixed length
+  kOutOfRange = 3,     ///< a field lies outside its documented range (exponent, shift, index)
+  kWouldOverflow = 4,  ///< the set is representable but could overflow a Q31 stage in the envelope
+  kNullArgument = 5,   ///< a pointer argument is null
 };
 
 /// One coefficient: value = mantissa_q31 * 2^(exponent - 31).
@@ -81,7 +81,8 @@ void NormToWords(const InputNormQ31& norm, int16_t* words);
 
 /// Decodes a polynomial of `degree` (coefficients above it are set to zero) and validates it:
 /// kOutOfRange for a bad exponent or an alignment shift outside 0..16; kWouldOverflow unless
-/// sum_k |c_k| < 2^work_exponent, which guarantees that no Horner partial sum overflows for |x| <= 1.
+/// sum_k |c_k| < 2^work_exponent, which guarantees that no Horner partial sum overflows for |x|
+/// <= 1.
 ConstantsStatus PolyFromWords(const int16_t* words, uint8_t degree, PolyQ31* poly);
 void PolyToWords(const PolyQ31& poly, uint8_t degree, int16_t* words);
 

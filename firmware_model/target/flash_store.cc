@@ -76,7 +76,10 @@ FlashImageInfo FlashStore::Inspect(UnitKind kind) const {
   return info;
 }
 
-FlashStatus FlashStore::Load(UnitKind kind, int16_t* payload, uint16_t capacity, uint16_t* count) const {
+FlashStatus FlashStore::Load(UnitKind kind,
+                             int16_t* payload,
+                             uint16_t capacity,
+                             uint16_t* count) const {
   const FlashImageInfo info = Inspect(kind);
   if (info.status != FlashStatus::kOk) {
     return info.status;

@@ -26,10 +26,10 @@ inline constexpr uint16_t kFlashMaxPayloadWords = kFlashPageWords - kFlashImageO
 
 enum class FlashStatus : uint8_t {
   kOk,
-  kErased,        ///< no image programmed (magic word reads 0xFFFF)
+  kErased,  ///< no image programmed (magic word reads 0xFFFF)
   kBadMagic,
-  kWrongKind,     ///< image written by the other product
-  kBadLength,     ///< payload count does not fit the page or the caller's buffer
+  kWrongKind,  ///< image written by the other product
+  kBadLength,  ///< payload count does not fit the page or the caller's buffer
   kBadCrc,
 };
 

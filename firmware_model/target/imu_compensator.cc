@@ -29,8 +29,8 @@ int32_t DutyQ31(DspEngine* engine, uint16_t t1, uint16_t t2, uint16_t* flags) {
   const DivResult high = engine->DivUD(static_cast<uint32_t>(t1) << 16, t2);
   engine->ChargeMov(2);  // dividend remainder:0
   const DivResult low = engine->DivUD(static_cast<uint32_t>(high.remainder) << 16, t2);
-  const uint32_t ratio_u32 = (static_cast<uint32_t>(high.quotient) << 16) |
-                             static_cast<uint32_t>(low.quotient);
+  const uint32_t ratio_u32 =
+      (static_cast<uint32_t>(high.quotient) << 16) | static_cast<uint32_t>(low.quotient);
   engine->ChargeAlu(3);  // LSR high, RRC low, SUB #0x4000 from high
   return static_cast<int32_t>(ratio_u32 >> 1) - kHalfDutyQ31;
 }
@@ -43,10 +43,15 @@ int32_t GyroCountsQ31(DspEngine* engine, int32_t counts) {
 }
 
 // T = U - xi(tau), both at u_exponent.
-int32_t ThermalQ31(DspEngine* engine, const ThermalConstantsQ31& c, int8_t u_exponent, int32_t u,
-                   const uint16_t temp_cnt[kTempSensors], uint16_t* flags) {
+int32_t ThermalQ31(DspEngine* engine,
+                   const ThermalConstantsQ31& c,
+                   int8_t u_exponent,
+                   int32_t u,
+                   const uint16_t temp_cnt[kTempSensors],
+                   uint16_t* flags) {
   engine->ChargeCallReturn();
-  const int32_t tau = NormaliseQ31(engine, temp_cnt[c.temp_sensor], kTempCountExponent, c.temp_norm);
+  const int32_t tau =
+      NormaliseQ31(engine, temp_cnt[c.temp_sensor], kTempCountExponent, c.temp_norm);
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
   HornerQ31(engine, Acc::kA, c.drift, kImuThermalDegree, tau);
   SftacBy(engine, Acc::kA, u_exponent - c.drift.work_exponent);
@@ -59,8 +64,12 @@ int32_t ThermalQ31(DspEngine* engine, const ThermalConstantsQ31& c, int8_t u_exp
 // shift <= 15) and the coefficients pre-aligned to the working exponent on write. A step
 // y tau + c_k is floor(tau yl / 2^15) (MUL.SU) + 2 yh tau (MPY) + c_k: 12 cycles where a Q31
 // Horner step (MulQ31, a coefficient aligned at run time, loop control) costs 25.
-int32_t ThermalQ15HornerQ31(DspEngine* engine, const ThermalConstantsQ31& c, int8_t u_exponent,
-                            int32_t u, const uint16_t temp_cnt[kTempSensors], uint16_t* flags) {
+int32_t ThermalQ15HornerQ31(DspEngine* engine,
+                            const ThermalConstantsQ31& c,
+                            int8_t u_exponent,
+                            int32_t u,
+                            const uint16_t temp_cnt[kTempSensors],
+                            uint16_t* flags) {
   engine->ChargeCallReturn();
   LoadQ31(engine, Acc::kA, temp_cnt[c.temp_sensor]);
   LoadQ31(engine, Acc::kB, c.temp_norm.centre);
@@ -118,7 +127,9 @@ int16_t ScaleDeltaQ15At(DspEngine* engine, const ScaleDeltaQ15& delta, const int
 
 // y F = y + y delta at y's exponent: y delta = floor(delta yl / 2^15) (MUL.SU) + 2 yh delta (MAC),
 // aligned by one SFTAC of -delta.exponent, then y added.
-int32_t ScaledQ31(DspEngine* engine, const ScaleDeltaQ15& delta, const int16_t tau_pow[3],
+int32_t ScaledQ31(DspEngine* engine,
+                  const ScaleDeltaQ15& delta,
+                  const int16_t tau_pow[3],
                   int32_t y) {
   const int16_t d = ScaleDeltaQ15At(engine, delta, tau_pow);
   engine->ChargeMov(2);  // yh, yl into W registers
@@ -133,8 +144,12 @@ int32_t ScaledQ31(DspEngine* engine, const ScaleDeltaQ15& delta, const int16_t t
 
 // Eq. 23 in deg/s; format 3 (`factor` not null): the normalised count times F(tau) first, so the
 // cubic inverts the response at the calibration's scale whatever the temperature.
-int32_t GyroCalibratedQ31(DspEngine* engine, const GyroCubicConstantsQ31& c, int32_t t,
-                          const ScaleDeltaQ15* delta, const int16_t* tau_pow, uint16_t* flags) {
+int32_t GyroCalibratedQ31(DspEngine* engine,
+                          const GyroCubicConstantsQ31& c,
+                          int32_t t,
+                          const ScaleDeltaQ15* delta,
+                          const int16_t* tau_pow,
+                          uint16_t* flags) {
   engine->ChargeCallReturn();
   int32_t x = NormaliseQ31(engine, t, kGyroCountExponent, c.count_norm);
   if (engine->TestAndClearSaturation()) *flags |= kFlagInputSaturated;
@@ -159,8 +174,12 @@ int32_t HalfSumQ31(DspEngine* engine, int32_t a, int32_t b, bool difference) {
 
 // y = M v, M entries at their own exponents, v at in_exponent, y at out_exponent. Each term is a
 // MulQ31 aligned by one SFTAC, added to the running sum held in a W pair.
-void MatrixVectorQ31(DspEngine* engine, const CoeffQ31 m[3][3], const int32_t v[3],
-                     int8_t in_exponent, int8_t out_exponent, int32_t y[3]) {
+void MatrixVectorQ31(DspEngine* engine,
+                     const CoeffQ31 m[3][3],
+                     const int32_t v[3],
+                     int8_t in_exponent,
+                     int8_t out_exponent,
+                     int32_t y[3]) {
   engine->ChargeCallReturn();
   for (uint8_t r = 0; r < 3; ++r) {
     int32_t sum = 0;
@@ -179,8 +198,10 @@ void MatrixVectorQ31(DspEngine* engine, const CoeffQ31 m[3][3], const int32_t v[
 
 // tau_s = (t_cnt[s] - centre_s) 2^-shift_s for every temperature sensor (format 3), rounded to Q15
 // (exact for shift <= 15), and its square and cube (MPY, SAC.R), stored per sensor.
-void ScaleTemperaturesQ15(DspEngine* engine, const ScaleTemperatureConstantsQ31& st,
-                          const uint16_t temp_cnt[kTempSensors], int16_t tau_pow[kTempSensors][3],
+void ScaleTemperaturesQ15(DspEngine* engine,
+                          const ScaleTemperatureConstantsQ31& st,
+                          const uint16_t temp_cnt[kTempSensors],
+                          int16_t tau_pow[kTempSensors][3],
                           uint16_t* flags) {
   for (uint8_t s = 0; s < kTempSensors; ++s) {
     LoadQ31(engine, Acc::kA, temp_cnt[s]);
@@ -217,7 +238,9 @@ int32_t AccelQuadraticQ15(DspEngine* engine, int16_t q_q15, int8_t q_exponent) {
 
 // G += GS A: A rounded to Q15 (SAC.R), per row an MPY/MAC chain of the Q15 row (operands MOVed
 // into W4..W7) aligned from the row's exponent to kRateExponent by one SFTAC, added to G.
-void AddGSensitivityQ15(DspEngine* engine, const GSensitivityQ15& gs, const int32_t a_mps2[3],
+void AddGSensitivityQ15(DspEngine* engine,
+                        const GSensitivityQ15& gs,
+                        const int32_t a_mps2[3],
                         int32_t g_dps[3]) {
   engine->ChargeCallReturn();
   int16_t a_q15[3];
@@ -255,8 +278,11 @@ DspConfig CompensatorDspConfig() {
   return config;
 }
 
-void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensationMode mode,
-                   const ImuRawFrame& raw, ImuCompensatedFrame* out) {
+void ImuCompensate(DspEngine* engine,
+                   const ImuConstants& constants,
+                   ImuCompensationMode mode,
+                   const ImuRawFrame& raw,
+                   ImuCompensatedFrame* out) {
   engine->ChargeCallReturn();
   engine->set_config(CompensatorDspConfig());
   engine->ChargeMov(1);  // CORCON write
@@ -317,8 +343,8 @@ void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensa
   for (uint8_t g = 0; g < kGyroChannels; ++g) {
     const uint8_t c = static_cast<uint8_t>(kAccelChannels + g);
     const ScaleDeltaQ15* delta = st.enabled != 0 ? &st.delta[c] : nullptr;
-    cal[c] = GyroCalibratedQ31(engine, constants.gyro[g], t[c], delta,
-                               tau_pow[constants.thermal[c].temp_sensor], &flags);
+    cal[c] = GyroCalibratedQ31(
+        engine, constants.gyro[g], t[c], delta, tau_pow[constants.thermal[c].temp_sensor], &flags);
     ChargeLoopStep(engine);
   }
   if (engine->TestAndClearSaturation()) flags |= kFlagOutputSaturated;
@@ -335,8 +361,8 @@ void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensa
     const int32_t ch2 = cal[kPairOfAxis[axis][1]];
     ca_g[axis] = HalfSumQ31(engine, ch1, ch2, false);
     if (st.enabled != 0) {
-      ca_g[axis] = AccelQuadraticQ15(engine, st.accel_quadratic_q15[axis],
-                                     st.accel_quadratic[axis].exponent);
+      ca_g[axis] = AccelQuadraticQ15(
+          engine, st.accel_quadratic_q15[axis], st.accel_quadratic[axis].exponent);
     }
     half_difference_g[axis] = HalfSumQ31(engine, ch1, ch2, true);
   }

@@ -31,8 +31,11 @@
 namespace adahrs::firmware_model {
 
 /// Compensates one IMU frame in `mode` with `constants`; charges every instruction to `engine`.
-void ImuCompensate(DspEngine* engine, const ImuConstants& constants, ImuCompensationMode mode,
-                   const ImuRawFrame& raw, ImuCompensatedFrame* out);
+void ImuCompensate(DspEngine* engine,
+                   const ImuConstants& constants,
+                   ImuCompensationMode mode,
+                   const ImuRawFrame& raw,
+                   ImuCompensatedFrame* out);
 
 /// The DSP configuration the compensators run in (fractional, 1.31 saturation on A and B,
 /// SATDW on, convergent rounding).

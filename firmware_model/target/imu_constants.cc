@@ -39,7 +39,9 @@ ConstantsStatus ValidateMatrix(const CoeffQ31 m[3][3], int32_t rated, int8_t out
   return ConstantsStatus::kOk;
 }
 
-ConstantsStatus MatrixFromWords(const int16_t* words, int32_t rated, int8_t out_exponent,
+ConstantsStatus MatrixFromWords(const int16_t* words,
+                                int32_t rated,
+                                int8_t out_exponent,
                                 CoeffQ31 out[3][3]) {
   CoeffQ31 decoded[3][3];
   for (int k = 0; k < 9; ++k) {
@@ -211,7 +213,8 @@ void ScaleTemperatureInit(ScaleTemperatureConstantsQ31* st) {
   DeriveScaleTemperatureQ15(st);
 }
 
-ConstantsStatus ScaleTemperatureWriteBlock(ScaleTemperatureConstantsQ31* st, uint8_t block_id,
+ConstantsStatus ScaleTemperatureWriteBlock(ScaleTemperatureConstantsQ31* st,
+                                           uint8_t block_id,
                                            const int16_t* words) {
   if (block_id == kImuBlockScaleSwitch) return ScaleSwitchFromWords(words, st);
   ConstantsStatus s = ConstantsStatus::kOk;
@@ -226,11 +229,13 @@ ConstantsStatus ScaleTemperatureWriteBlock(ScaleTemperatureConstantsQ31* st, uin
   return s;
 }
 
-void ScaleTemperatureReadBlock(const ScaleTemperatureConstantsQ31& st, uint8_t block_id,
+void ScaleTemperatureReadBlock(const ScaleTemperatureConstantsQ31& st,
+                               uint8_t block_id,
                                int16_t* words) {
   if (block_id == kImuBlockScaleSwitch) {
     words[0] = st.enabled;
-    for (uint8_t s = 0; s < kTempSensors; ++s) NormToWords(st.temp_norm[s], words + 1 + s * kNormWords);
+    for (uint8_t s = 0; s < kTempSensors; ++s)
+      NormToWords(st.temp_norm[s], words + 1 + s * kNormWords);
   } else if (block_id <= kImuBlockScaleFactorLast) {
     PolyToWords(st.scale[block_id - kImuBlockScaleFactorFirst], kImuScaleFactorDegree, words);
   } else if (block_id == kImuBlockAccelQuadratic) {
@@ -265,7 +270,8 @@ void DeriveScaleDelta(const PolyQ31& scale, ScaleDeltaQ15* delta) {
     ++exponent;
   }
   const int8_t lowest = static_cast<int8_t>(exponent - 16);
-  delta->tempco_exponent = BlockQ15(units47 + 1, kImuScaleFactorDegree,
+  delta->tempco_exponent = BlockQ15(units47 + 1,
+                                    kImuScaleFactorDegree,
                                     lowest < kMinQ15Exponent ? kMinQ15Exponent : lowest,
                                     delta->d_q15);
   if (delta->tempco_exponent > exponent) exponent = delta->tempco_exponent;
@@ -297,8 +303,8 @@ void DeriveScaleTemperatureQ15(ScaleTemperatureConstantsQ31* st) {
 void ImuConstantsInit(ImuConstants* constants) {
   for (uint8_t c = 0; c < kImuChannels; ++c) {
     ThermalConstantsQ31& t = constants->thermal[c];
-    t.temp_sensor = static_cast<uint8_t>(c < kAccelChannels ? c % kTempSensors
-                                                            : c - kAccelChannels);
+    t.temp_sensor =
+        static_cast<uint8_t>(c < kAccelChannels ? c % kTempSensors : c - kAccelChannels);
     t.temp_norm = InputNormQ31{INT32_C(32768), 16};
     ZeroPoly(&t.drift, c < kAccelChannels ? kDutyExponent : kGyroCountExponent);
     DeriveThermalAligned(&t);
@@ -331,8 +337,10 @@ uint8_t ImuConstantsBlockLength(uint8_t block_id) {
   return 0;
 }
 
-ConstantsStatus ImuConstantsWriteBlock(ImuConstants* constants, uint8_t block_id,
-                                       const int16_t* words, uint8_t count) {
+ConstantsStatus ImuConstantsWriteBlock(ImuConstants* constants,
+                                       uint8_t block_id,
+                                       const int16_t* words,
+                                       uint8_t count) {
   if (constants == nullptr || words == nullptr) return ConstantsStatus::kNullArgument;
   const uint8_t length = ImuConstantsBlockLength(block_id);
   if (length == 0) return ConstantsStatus::kUnknownBlock;
@@ -354,8 +362,11 @@ ConstantsStatus ImuConstantsWriteBlock(ImuConstants* constants, uint8_t block_id
   return ScaleTemperatureWriteBlock(&constants->scale_temperature, block_id, words);
 }
 
-ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants, uint8_t block_id,
-                                      int16_t* words, uint8_t capacity, uint8_t* count) {
+ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants,
+                                      uint8_t block_id,
+                                      int16_t* words,
+                                      uint8_t capacity,
+                                      uint8_t* count) {
   if (constants == nullptr || words == nullptr || count == nullptr) {
     return ConstantsStatus::kNullArgument;
   }

@@ -17,7 +17,8 @@
 //       then brought to U's exponent. The reference method's quadratic is the case k3 = 0.
 //   T   = U - xi, same format as U
 //   Ca  accel, Eq. 12 as the reference summary states it: (T - O) / S, stored as offset O (duty,
-//       exponent 0) and the reciprocal scale 1/S (g per duty, ~ +-25), result in g at kAccelGExponent
+//       exponent 0) and the reciprocal scale 1/S (g per duty, ~ +-25), result in g at
+//       kAccelGExponent
 //   Cg  gyro, Eq. 23: l0 + l1 x + l2 x^2 + l3 x^3, x = (T - centre) * 2^-shift, result in deg/s at
 //       kRateExponent
 //   A = CA * mean-pair(Ca) (Eq. 26, m/s^2), G = CG * Cg (Eq. 29, deg/s); see compensated_frame.h.
@@ -68,13 +69,13 @@ inline constexpr uint8_t kImuChannels = kAccelChannels + kGyroChannels;
 inline constexpr uint8_t kTempSensors = 3;
 
 /// Exponents of the stage formats (value = mantissa * 2^(exponent - 31)).
-inline constexpr int8_t kDutyExponent = 0;        ///< duty, |U| < 1
-inline constexpr int8_t kGyroCountExponent = 23;  ///< gyro counts, |U| < 2^23 (LSB 1/256 count)
-inline constexpr int8_t kTempCountExponent = 31;  ///< temperature counts, raw integer
-inline constexpr int8_t kAccelGExponent = 4;      ///< specific force in g, |Ca| < 16 g
-inline constexpr int8_t kAccelMps2Exponent = 8;   ///< specific force in m/s^2, |A| < 256 m/s^2
-inline constexpr int8_t kRateExponent = 8;        ///< angular rate in deg/s, |G| < 256 deg/s
-inline constexpr int8_t kScaleFactorExponent = 1; ///< dimensionless scale factor, |F| < 2
+inline constexpr int8_t kDutyExponent = 0;         ///< duty, |U| < 1
+inline constexpr int8_t kGyroCountExponent = 23;   ///< gyro counts, |U| < 2^23 (LSB 1/256 count)
+inline constexpr int8_t kTempCountExponent = 31;   ///< temperature counts, raw integer
+inline constexpr int8_t kAccelGExponent = 4;       ///< specific force in g, |Ca| < 16 g
+inline constexpr int8_t kAccelMps2Exponent = 8;    ///< specific force in m/s^2, |A| < 256 m/s^2
+inline constexpr int8_t kRateExponent = 8;         ///< angular rate in deg/s, |G| < 256 deg/s
+inline constexpr int8_t kScaleFactorExponent = 1;  ///< dimensionless scale factor, |F| < 2
 
 /// Rated input envelope used by the overflow check of the cross-axis matrices (Table 5).
 inline constexpr int32_t kRatedAccel_g = 10;
@@ -125,14 +126,14 @@ struct GSensitivityQ15 {
 /// The format-3 stages (blocks 0x10..0x1B), and the Q15 forms the compensator runs, derived on
 /// write (DeriveScaleDelta, DeriveGSensitivity).
 struct ScaleTemperatureConstantsQ31 {
-  uint8_t enabled;                          ///< 0: skipped (a format-2 set), 1: run
-  InputNormQ31 temp_norm[kTempSensors];     ///< tau_s, shift <= 16
-  PolyQ31 scale[kImuChannels];              ///< F_c(tau), work_exponent == kScaleFactorExponent
-  CoeffQ31 accel_quadratic[3];              ///< q per body axis, g per g^2
-  CoeffQ31 gs[3][3];                        ///< GS, deg/s per m/s^2
-  ScaleDeltaQ15 delta[kImuChannels];        ///< F_c - 1, derived from scale[c]
-  int16_t accel_quadratic_q15[3];           ///< q rounded to Q15 at accel_quadratic[axis].exponent
-  GSensitivityQ15 gs_q15;                   ///< derived from gs
+  uint8_t enabled;                       ///< 0: skipped (a format-2 set), 1: run
+  InputNormQ31 temp_norm[kTempSensors];  ///< tau_s, shift <= 16
+  PolyQ31 scale[kImuChannels];           ///< F_c(tau), work_exponent == kScaleFactorExponent
+  CoeffQ31 accel_quadratic[3];           ///< q per body axis, g per g^2
+  CoeffQ31 gs[3][3];                     ///< GS, deg/s per m/s^2
+  ScaleDeltaQ15 delta[kImuChannels];     ///< F_c - 1, derived from scale[c]
+  int16_t accel_quadratic_q15[3];        ///< q rounded to Q15 at accel_quadratic[axis].exponent
+  GSensitivityQ15 gs_q15;                ///< derived from gs
 };
 
 struct ImuConstants {
@@ -153,8 +154,8 @@ enum ImuBlockId : uint8_t {
   kImuBlockGyroCubicLast = 0x0D,
   kImuBlockCa = 0x0E,
   kImuBlockCg = 0x0F,
-  kImuBlockScaleSwitch = 0x10,      ///< format-3 switch and temperature normalisations
-  kImuBlockScaleFactorFirst = 0x11, ///< 0x11..0x19: F, channel = id - 0x11
+  kImuBlockScaleSwitch = 0x10,       ///< format-3 switch and temperature normalisations
+  kImuBlockScaleFactorFirst = 0x11,  ///< 0x11..0x19: F, channel = id - 0x11
   kImuBlockScaleFactorLast = 0x19,
   kImuBlockAccelQuadratic = 0x1A,
   kImuBlockGs = 0x1B,
@@ -191,12 +192,17 @@ uint8_t ImuConstantsBlockLength(uint8_t block_id);
 
 /// Replaces block `block_id` from `count` words. Returns kOk, or the first reason for refusal; on
 /// refusal `constants` is unchanged.
-ConstantsStatus ImuConstantsWriteBlock(ImuConstants* constants, uint8_t block_id,
-                                       const int16_t* words, uint8_t count);
+ConstantsStatus ImuConstantsWriteBlock(ImuConstants* constants,
+                                       uint8_t block_id,
+                                       const int16_t* words,
+                                       uint8_t count);
 
 /// Writes block `block_id` into `words` (capacity `capacity`) and its length into `*count`.
 /// Returns kUnknownBlock, or kWrongLength if the capacity is too small (nothing written).
-ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants, uint8_t block_id,
-                                      int16_t* words, uint8_t capacity, uint8_t* count);
+ConstantsStatus ImuConstantsReadBlock(const ImuConstants* constants,
+                                      uint8_t block_id,
+                                      int16_t* words,
+                                      uint8_t capacity,
+                                      uint8_t* count);
 
 }  // namespace adahrs::firmware_model

@@ -22,12 +22,18 @@ constexpr uint8_t kAdsBlockCount = kAdsBlockAirspeed - kAdsBlockAltitude + 1;
 
 ResultCode ToResultCode(ConstantsStatus status) {
   switch (status) {
-    case ConstantsStatus::kOk: return ResultCode::kAck;
-    case ConstantsStatus::kUnknownBlock: return ResultCode::kUnknownBlock;
-    case ConstantsStatus::kWrongLength: return ResultCode::kBlockWrongLength;
-    case ConstantsStatus::kOutOfRange: return ResultCode::kConstantOutOfRange;
-    case ConstantsStatus::kWouldOverflow: return ResultCode::kConstantOverflow;
-    case ConstantsStatus::kNullArgument: return ResultCode::kBadArgument;
+    case ConstantsStatus::kOk:
+      return ResultCode::kAck;
+    case ConstantsStatus::kUnknownBlock:
+      return ResultCode::kUnknownBlock;
+    case ConstantsStatus::kWrongLength:
+      return ResultCode::kBlockWrongLength;
+    case ConstantsStatus::kOutOfRange:
+      return ResultCode::kConstantOutOfRange;
+    case ConstantsStatus::kWouldOverflow:
+      return ResultCode::kConstantOverflow;
+    case ConstantsStatus::kNullArgument:
+      return ResultCode::kBadArgument;
   }
   return ResultCode::kBadArgument;
 }
@@ -74,7 +80,8 @@ void MaintenanceHandler::LoadCommittedConstants() {
     if (block_word < 0 || block_word > 0xFF || count_word < 0 || count_word > kMaxBlockWords ||
         position + 2 + count_word > image_length ||
         !BlockIndex(static_cast<uint8_t>(block_word), &index) ||
-        WriteBlock(static_cast<uint8_t>(block_word), image_words_ + position + 2,
+        WriteBlock(static_cast<uint8_t>(block_word),
+                   image_words_ + position + 2,
                    static_cast<uint8_t>(count_word)) != ConstantsStatus::kOk) {
       InitConstants();
       return;
@@ -119,9 +126,7 @@ bool MaintenanceHandler::BlockIndex(uint8_t block_id, uint8_t* index) const {
   return false;
 }
 
-uint32_t MaintenanceHandler::AllBlocksMask() const {
-  return (uint32_t{1} << BlockCount()) - 1u;
-}
+uint32_t MaintenanceHandler::AllBlocksMask() const { return (uint32_t{1} << BlockCount()) - 1u; }
 
 bool MaintenanceHandler::IsCompleteSet(uint32_t mask) const {
   if (identity_.kind != UnitKind::kImu) return mask == AllBlocksMask();
@@ -130,33 +135,42 @@ bool MaintenanceHandler::IsCompleteSet(uint32_t mask) const {
          ((mask & format3) == 0 || (mask & format3) == format3);
 }
 
-ConstantsStatus MaintenanceHandler::WriteBlock(uint8_t block_id, const int16_t* words, uint8_t count) {
+ConstantsStatus MaintenanceHandler::WriteBlock(uint8_t block_id,
+                                               const int16_t* words,
+                                               uint8_t count) {
   return identity_.kind == UnitKind::kImu
              ? ImuConstantsWriteBlock(&imu_constants_, block_id, words, count)
              : AdsConstantsWriteBlock(&ads_constants_, block_id, words, count);
 }
 
-ConstantsStatus MaintenanceHandler::ReadBlock(uint8_t block_id, int16_t* words, uint8_t capacity,
+ConstantsStatus MaintenanceHandler::ReadBlock(uint8_t block_id,
+                                              int16_t* words,
+                                              uint8_t capacity,
                                               uint8_t* count) const {
   return identity_.kind == UnitKind::kImu
              ? ImuConstantsReadBlock(&imu_constants_, block_id, words, capacity, count)
              : AdsConstantsReadBlock(&ads_constants_, block_id, words, capacity, count);
 }
 
-PortResult MaintenanceHandler::Receive(const uint8_t* bytes, uint16_t count, uint8_t* response,
+PortResult MaintenanceHandler::Receive(const uint8_t* bytes,
+                                       uint16_t count,
+                                       uint8_t* response,
                                        uint16_t response_capacity) {
   uint16_t consumed = 0;
   while (true) {
-    const DecodeResult result = decoder_.Feed(bytes + consumed, static_cast<uint16_t>(count - consumed),
-                                              &frame_);
+    const DecodeResult result =
+        decoder_.Feed(bytes + consumed, static_cast<uint16_t>(count - consumed), &frame_);
     consumed = static_cast<uint16_t>(consumed + result.consumed_bytes);
     uint16_t response_bytes = 0;
     if (result.event == DecodeEvent::kFrame) {
       response_bytes = HandleRequest(frame_, response, response_capacity);
     } else if (result.event == DecodeEvent::kBadCrc &&
                frame_.type == static_cast<uint8_t>(PacketType::kMaintenanceRequest)) {
-      response_bytes = Respond(static_cast<uint8_t>(MaintenanceCommand::kNone), frame_.sequence,
-                               ResultCode::kBadCrc, response, response_capacity);
+      response_bytes = Respond(static_cast<uint8_t>(MaintenanceCommand::kNone),
+                               frame_.sequence,
+                               ResultCode::kBadCrc,
+                               response,
+                               response_capacity);
     } else if (result.event == DecodeEvent::kNeedMoreBytes) {
       return PortResult{consumed, 0};
     }
@@ -166,7 +180,8 @@ PortResult MaintenanceHandler::Receive(const uint8_t* bytes, uint16_t count, uin
   }
 }
 
-uint16_t MaintenanceHandler::HandleRequest(const Frame& frame, uint8_t* response,
+uint16_t MaintenanceHandler::HandleRequest(const Frame& frame,
+                                           uint8_t* response,
                                            uint16_t response_capacity) {
   if (frame.type != static_cast<uint8_t>(PacketType::kMaintenanceRequest) ||
       frame.payload_length < 1 || response_capacity < kMaxFrameBytes) {
@@ -176,21 +191,41 @@ uint16_t MaintenanceHandler::HandleRequest(const Frame& frame, uint8_t* response
   const uint8_t command = frame.payload[0];
   ResultCode result = ResultCode::kUnknownCommand;
   switch (static_cast<MaintenanceCommand>(command)) {
-    case MaintenanceCommand::kSetMode: result = DoSetMode(frame); break;
-    case MaintenanceCommand::kSetTag: result = DoSetTag(frame); break;
-    case MaintenanceCommand::kWriteBlock: result = DoWriteBlock(frame); break;
-    case MaintenanceCommand::kReadBlock: result = DoReadBlock(frame); break;
-    case MaintenanceCommand::kCommit: result = DoCommit(frame); break;
-    case MaintenanceCommand::kIdentify: result = DoIdentify(frame); break;
-    case MaintenanceCommand::kReset: result = DoReset(frame); break;
-    case MaintenanceCommand::kReadCounters: result = DoReadCounters(frame); break;
-    case MaintenanceCommand::kNone: break;
+    case MaintenanceCommand::kSetMode:
+      result = DoSetMode(frame);
+      break;
+    case MaintenanceCommand::kSetTag:
+      result = DoSetTag(frame);
+      break;
+    case MaintenanceCommand::kWriteBlock:
+      result = DoWriteBlock(frame);
+      break;
+    case MaintenanceCommand::kReadBlock:
+      result = DoReadBlock(frame);
+      break;
+    case MaintenanceCommand::kCommit:
+      result = DoCommit(frame);
+      break;
+    case MaintenanceCommand::kIdentify:
+      result = DoIdentify(frame);
+      break;
+    case MaintenanceCommand::kReset:
+      result = DoReset(frame);
+      break;
+    case MaintenanceCommand::kReadCounters:
+      result = DoReadCounters(frame);
+      break;
+    case MaintenanceCommand::kNone:
+      break;
   }
   return Respond(command, frame.sequence, result, response, response_capacity);
 }
 
-uint16_t MaintenanceHandler::Respond(uint8_t command, uint8_t sequence, ResultCode result,
-                                     uint8_t* response, uint16_t response_capacity) {
+uint16_t MaintenanceHandler::Respond(uint8_t command,
+                                     uint8_t sequence,
+                                     ResultCode result,
+                                     uint8_t* response,
+                                     uint16_t response_capacity) {
   if (result == ResultCode::kAck) {
     ++counters_.requests_acked;
   } else {
@@ -204,8 +239,13 @@ uint16_t MaintenanceHandler::Respond(uint8_t command, uint8_t sequence, ResultCo
   for (uint8_t i = 0; i < data_length_; ++i) {
     payload[2 + i] = data_[i];
   }
-  return EncodeFrame(static_cast<uint8_t>(PacketType::kMaintenanceResponse), sequence, tag_, payload,
-                     static_cast<uint8_t>(2 + data_length_), response, response_capacity);
+  return EncodeFrame(static_cast<uint8_t>(PacketType::kMaintenanceResponse),
+                     sequence,
+                     tag_,
+                     payload,
+                     static_cast<uint8_t>(2 + data_length_),
+                     response,
+                     response_capacity);
 }
 
 ResultCode MaintenanceHandler::DoSetMode(const Frame& frame) {
@@ -302,8 +342,8 @@ ResultCode MaintenanceHandler::DoCommit(const Frame& frame) {
     if (free_words < 2) {
       return ResultCode::kFlashError;
     }
-    const uint8_t capacity = free_words - 2 < kMaxBlockWords ? static_cast<uint8_t>(free_words - 2)
-                                                             : kMaxBlockWords;
+    const uint8_t capacity =
+        free_words - 2 < kMaxBlockWords ? static_cast<uint8_t>(free_words - 2) : kMaxBlockWords;
     if (ReadBlock(BlockIdAt(i), image_words_ + position + 2, capacity, &word_count) !=
         ConstantsStatus::kOk) {
       return ResultCode::kFlashError;

@@ -59,7 +59,9 @@ class MaintenanceHandler {
 
   /// Takes received bytes until one response is produced or the chunk is used up. `response` must
   /// hold kMaxFrameBytes. Call again with the rest of the chunk while response_bytes is non-zero.
-  PortResult Receive(const uint8_t* bytes, uint16_t count, uint8_t* response,
+  PortResult Receive(const uint8_t* bytes,
+                     uint16_t count,
+                     uint8_t* response,
                      uint16_t response_capacity);
 
   /// Executes one CRC-checked request frame and writes the response frame; returns its length
@@ -96,7 +98,10 @@ class MaintenanceHandler {
   ResultCode DoReset(const Frame& frame);
   ResultCode DoReadCounters(const Frame& frame);
 
-  uint16_t Respond(uint8_t command, uint8_t sequence, ResultCode result, uint8_t* response,
+  uint16_t Respond(uint8_t command,
+                   uint8_t sequence,
+                   ResultCode result,
+                   uint8_t* response,
                    uint16_t response_capacity);
   void LoadCommittedConstants();
   void InitConstants();
@@ -104,7 +109,10 @@ class MaintenanceHandler {
   uint8_t BlockIdAt(uint8_t index) const;
   bool BlockIndex(uint8_t block_id, uint8_t* index) const;
   ConstantsStatus WriteBlock(uint8_t block_id, const int16_t* words, uint8_t count);
-  ConstantsStatus ReadBlock(uint8_t block_id, int16_t* words, uint8_t capacity, uint8_t* count) const;
+  ConstantsStatus ReadBlock(uint8_t block_id,
+                            int16_t* words,
+                            uint8_t capacity,
+                            uint8_t* count) const;
   uint32_t AllBlocksMask() const;
   /// True when `mask` holds a set the unit can run: every block for the ADS; for the IMU the
   /// format-2 blocks 0x01..0x0F, and the format-3 blocks 0x10..0x1B all or none.

@@ -48,8 +48,13 @@ bool IsPayloadLengthValid(uint8_t type, uint8_t payload_length) {
   return false;
 }
 
-uint16_t EncodeFrame(uint8_t type, uint8_t sequence, uint8_t tag, const uint8_t* payload,
-                     uint8_t payload_length, uint8_t* out, uint16_t out_capacity) {
+uint16_t EncodeFrame(uint8_t type,
+                     uint8_t sequence,
+                     uint8_t tag,
+                     const uint8_t* payload,
+                     uint8_t payload_length,
+                     uint8_t* out,
+                     uint16_t out_capacity) {
   if (payload_length > kMaxPayloadBytes || out_capacity < FrameBytes(payload_length)) {
     return 0;
   }
@@ -62,7 +67,8 @@ uint16_t EncodeFrame(uint8_t type, uint8_t sequence, uint8_t tag, const uint8_t*
   for (uint16_t i = 0; i < payload_length; ++i) {
     out[kFrameHeaderBytes + i] = payload[i];
   }
-  const uint16_t crc_covered_bytes = static_cast<uint16_t>(kFrameHeaderBytes - kLengthOffset + payload_length);
+  const uint16_t crc_covered_bytes =
+      static_cast<uint16_t>(kFrameHeaderBytes - kLengthOffset + payload_length);
   const uint16_t crc = Crc16CcittFalse(out + kLengthOffset, crc_covered_bytes);
   PutU16Le(out + kFrameHeaderBytes + payload_length, crc);
   return FrameBytes(payload_length);
@@ -140,8 +146,8 @@ DecodeEvent PacketDecoder::Scan(Frame* frame) {
       return DecodeEvent::kNeedMoreBytes;
     }
     const uint16_t crc_offset = static_cast<uint16_t>(kFrameHeaderBytes + payload_length);
-    const uint16_t crc_computed = Crc16CcittFalse(
-        buffer_ + kLengthOffset, static_cast<uint16_t>(crc_offset - kLengthOffset));
+    const uint16_t crc_computed =
+        Crc16CcittFalse(buffer_ + kLengthOffset, static_cast<uint16_t>(crc_offset - kLengthOffset));
     if (crc_computed != GetU16Le(buffer_ + crc_offset)) {
       return RejectCandidate(DecodeEvent::kBadCrc, &counters_.bad_crc, frame);
     }

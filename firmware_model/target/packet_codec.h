@@ -39,8 +39,13 @@ bool IsPayloadLengthValid(uint8_t type, uint8_t payload_length);
 /// returns 0 and writes nothing if `payload_length` exceeds kMaxPayloadBytes or `out_capacity`
 /// is too small. The length/type combination is not checked, so tests can build frames the
 /// decoder must refuse.
-uint16_t EncodeFrame(uint8_t type, uint8_t sequence, uint8_t tag, const uint8_t* payload,
-                     uint8_t payload_length, uint8_t* out, uint16_t out_capacity);
+uint16_t EncodeFrame(uint8_t type,
+                     uint8_t sequence,
+                     uint8_t tag,
+                     const uint8_t* payload,
+                     uint8_t payload_length,
+                     uint8_t* out,
+                     uint16_t out_capacity);
 
 /// What one call of PacketDecoder::Feed produced.
 enum class DecodeEvent : uint8_t {

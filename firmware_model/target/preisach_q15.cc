@@ -22,8 +22,8 @@ void PreisachResetQ15(PreisachQ15* op) {
 namespace {
 
 // Begins a branch at the last input. When the stack is full, the smallest minor loop below the
-// current branch is forgotten: the pair of consecutive starts (i, i + 1) closest in input, as if the
-// excursion between them had not happened (the directions still alternate). Noise makes small
+// current branch is forgotten: the pair of consecutive starts (i, i + 1) closest in input, as if
+// the excursion between them had not happened (the directions still alternate). Noise makes small
 // loops; a major branch's start is far from its neighbours and stays.
 void PushBranch(DspEngine* engine, PreisachQ15* op) {
   engine->ChargeAlu(1);
@@ -32,7 +32,8 @@ void PushBranch(DspEngine* engine, PreisachQ15* op) {
     uint8_t smallest = 0;
     uint32_t smallest_extent = UINT32_MAX;
     for (uint8_t i = 0; i + 2 < kPreisachDepth; ++i) {
-      const int64_t extent = static_cast<int64_t>(op->branches[i + 1].input) - op->branches[i].input;
+      const int64_t extent =
+          static_cast<int64_t>(op->branches[i + 1].input) - op->branches[i].input;
       const uint32_t magnitude = static_cast<uint32_t>(extent < 0 ? -extent : extent);
       engine->ChargeAlu(5);  // 32-bit SUB, SUBB, absolute value, compare
       engine->ChargeBranch(1);
@@ -68,13 +69,17 @@ bool BeyondMirror(DspEngine* engine, const PreisachQ15* op, int32_t input, int8_
   const int64_t mirror_from_origin = static_cast<int64_t>(op->origin_input) - op->branches[0].input;
   engine->ChargeAlu(6);  // two 32-bit SUB/SUBB pairs, a 33-bit compare
   engine->ChargeBranch(1);
-  return input_direction > 0 ? from_origin >= mirror_from_origin : from_origin <= mirror_from_origin;
+  return input_direction > 0 ? from_origin >= mirror_from_origin
+                             : from_origin <= mirror_from_origin;
 }
 
 }  // namespace
 
-int16_t PreisachUpdateQ15(DspEngine* engine, PreisachQ15* op, int32_t input,
-                          int8_t input_exponent, const CoeffQ31& inv_span) {
+int16_t PreisachUpdateQ15(DspEngine* engine,
+                          PreisachQ15* op,
+                          int32_t input,
+                          int8_t input_exponent,
+                          const CoeffQ31& inv_span) {
   engine->ChargeCallReturn();
   engine->ChargeAlu(1);
   engine->ChargeBranch(1);
@@ -103,7 +108,8 @@ int16_t PreisachUpdateQ15(DspEngine* engine, PreisachQ15* op, int32_t input,
   // Return-point memory: beyond the previous branch's start, the minor loop is closed.
   engine->ChargeAlu(1);
   engine->ChargeBranch(1);
-  while (op->depth >= 2 && Beyond(engine, input, op->branches[op->depth - 2].input, input_direction)) {
+  while (op->depth >= 2 &&
+         Beyond(engine, input, op->branches[op->depth - 2].input, input_direction)) {
     op->depth = static_cast<uint8_t>(op->depth - 2);
     engine->ChargeAlu(2);
     engine->ChargeBranch(1);
@@ -144,7 +150,8 @@ int16_t PreisachUpdateQ15(DspEngine* engine, PreisachQ15* op, int32_t input,
   // state = s_b - 2 d w on a branch, -d w on the virgin curve (s_b = 0); the store saturates.
   engine->Lac(Acc::kA, start_state_q15, 0);
   engine->ChargeAlu(1);  // NEG of w for a rise
-  engine->AddWordAcc(Acc::kA, direction > 0 ? static_cast<int16_t>(-weight_q15) : weight_q15,
+  engine->AddWordAcc(Acc::kA,
+                     direction > 0 ? static_cast<int16_t>(-weight_q15) : weight_q15,
                      static_cast<int8_t>(virgin ? 0 : -1));
   op->state_q15 = engine->SacR(Acc::kA, 0);
   engine->ChargeMov(1);

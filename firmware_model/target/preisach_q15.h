@@ -63,7 +63,10 @@ void PreisachResetQ15(PreisachQ15* op);
 /// Advances `op` to `input` (Q31 mantissa at `input_exponent`) and returns the state, Q15.
 /// The caller guarantees inv_span.mantissa_q31 != INT32_MIN and
 /// -31 <= input_exponent + inv_span.exponent <= 31 (ads_constants.cc validates both).
-int16_t PreisachUpdateQ15(DspEngine* engine, PreisachQ15* op, int32_t input,
-                          int8_t input_exponent, const CoeffQ31& inv_span);
+int16_t PreisachUpdateQ15(DspEngine* engine,
+                          PreisachQ15* op,
+                          int32_t input,
+                          int8_t input_exponent,
+                          const CoeffQ31& inv_span);
 
 }  // namespace adahrs::firmware_model

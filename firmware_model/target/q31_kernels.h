@@ -5,9 +5,9 @@
 // MulQ31(a, b) derivation. Split a = ah*2^16 + al (ah signed, al unsigned), b likewise. Then
 //   a*b / 2^31 = 2*ah*bh + (ah*bl + al*bh) / 2^15 + al*bl / 2^31.
 // The engine computes 2*ah*bh exactly with a fractional MPY, each mixed term with MUL.SU into a
-// W pair, loads it into an accumulator (LAC high + MOV ACCxL), shifts it right 15 (floor), and adds.
-// The al*bl term (< 2 LSB) is dropped. Result: acc = 2 ah bh + floor(ah bl / 2^15) +
-// floor(al bh / 2^15), within [-3, 0] LSB of floor(a b / 2^31); the only saturation is
+// W pair, loads it into an accumulator (LAC high + MOV ACCxL), shifts it right 15 (floor), and
+// adds. The al*bl term (< 2 LSB) is dropped. Result: acc = 2 ah bh + floor(ah bl / 2^15) + floor(al
+// bh / 2^15), within [-3, 0] LSB of floor(a b / 2^31); the only saturation is
 // (-1)*(-1) -> 0x7FFFFFFF under 1.31 saturation. Cost: 11 cycles (2 MUL.SU, 2 LAC, 2 MOV ACCxL,
 // 2 SFTAC, 1 MPY, 2 ADD) plus 4 MOVs that bring the operands' words into W registers, as a
 // compiler emits them: 15. The engine must be in fractional mode with 1.31 saturation.
@@ -31,7 +31,8 @@ void LoadQ31(DspEngine* engine, Acc acc, int32_t v);
 int32_t ReadQ31(DspEngine* engine, Acc acc);
 /// SFTAC by a shift held in a W register (-16..16): the MOV that loads it, then the SFTAC.
 void SftacBy(DspEngine* engine, Acc acc, int32_t shift);
-/// Shifts acc by `shift` (positive right), using as many SFTACs (+-16 each) as needed, at least one.
+/// Shifts acc by `shift` (positive right), using as many SFTACs (+-16 each) as needed, at least
+/// one.
 void ShiftAcc(DspEngine* engine, Acc acc, int32_t shift);
 /// acc = a*b in Q31 (see derivation above); uses the other accumulator as scratch.
 void MulQ31(DspEngine* engine, Acc acc, int32_t a_q31, int32_t b_q31);

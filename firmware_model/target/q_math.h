@@ -64,8 +64,12 @@ constexpr int64_t RoundHighWord(int64_t acc40, bool convergent) {
 }
 
 /// High and low words of a 32-bit value as the W-register pair holds them.
-constexpr int16_t HighWord(int32_t v) { return static_cast<int16_t>(static_cast<uint32_t>(v) >> 16); }
-constexpr uint16_t LowWord(int32_t v) { return static_cast<uint16_t>(static_cast<uint32_t>(v) & 0xFFFFu); }
+constexpr int16_t HighWord(int32_t v) {
+  return static_cast<int16_t>(static_cast<uint32_t>(v) >> 16);
+}
+constexpr uint16_t LowWord(int32_t v) {
+  return static_cast<uint16_t>(static_cast<uint32_t>(v) & 0xFFFFu);
+}
 /// Joins a W-register pair into a 32-bit value.
 constexpr int32_t JoinWords(int16_t high, uint16_t low) {
   return static_cast<int32_t>((static_cast<uint32_t>(static_cast<uint16_t>(high)) << 16) | low);

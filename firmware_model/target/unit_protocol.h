@@ -23,14 +23,15 @@ inline constexpr uint16_t kFrameHeaderBytes = 6;
 inline constexpr uint16_t kFrameTrailerBytes = 2;
 /// Largest payload any packet type may carry (the length field is one byte).
 inline constexpr uint16_t kMaxPayloadBytes = 250;
-inline constexpr uint16_t kMaxFrameBytes = kFrameHeaderBytes + kMaxPayloadBytes + kFrameTrailerBytes;
+inline constexpr uint16_t kMaxFrameBytes =
+    kFrameHeaderBytes + kMaxPayloadBytes + kFrameTrailerBytes;
 
 /// Packet types (§2.2).
 enum class PacketType : uint8_t {
-  kImuData = 0x01,             ///< unit -> PC, 100 Hz IMU data (§4)
-  kAdsData = 0x02,             ///< unit -> PC, 100 Hz air-data (§5)
-  kMaintenanceRequest = 0x20,  ///< PC -> unit (§6)
-  kMaintenanceResponse = 0x21, ///< unit -> PC, ACK or NAK of one request (§6)
+  kImuData = 0x01,              ///< unit -> PC, 100 Hz IMU data (§4)
+  kAdsData = 0x02,              ///< unit -> PC, 100 Hz air-data (§5)
+  kMaintenanceRequest = 0x20,   ///< PC -> unit (§6)
+  kMaintenanceResponse = 0x21,  ///< unit -> PC, ACK or NAK of one request (§6)
 };
 
 // Output modes: ImuCompensationMode and AdsCompensationMode (compensated_frame.h); their values
@@ -53,7 +54,7 @@ inline constexpr uint8_t kAdsCompensatedPayloadBytes = kAdsRawPayloadBytes + 2 *
 
 /// Maintenance commands (§6.2): first payload byte of a request, echoed in the response.
 enum class MaintenanceCommand : uint8_t {
-  kNone = 0x00,           ///< used only in a response to a frame that failed its CRC
+  kNone = 0x00,  ///< used only in a response to a frame that failed its CRC
   kSetMode = 0x01,
   kSetTag = 0x02,
   kWriteBlock = 0x03,
@@ -67,17 +68,17 @@ enum class MaintenanceCommand : uint8_t {
 /// Second byte of every response (§6.4): 0 is ACK, anything else a NAK with its reason.
 enum class ResultCode : uint8_t {
   kAck = 0x00,
-  kBadCrc = 0x01,              ///< request frame failed its CRC
-  kBadLength = 0x02,           ///< request payload length wrong for the command
+  kBadCrc = 0x01,     ///< request frame failed its CRC
+  kBadLength = 0x02,  ///< request payload length wrong for the command
   kUnknownCommand = 0x03,
-  kBadArgument = 0x04,         ///< mode not defined for this unit kind, or similar
-  kNoValidConstants = 0x05,    ///< calibrated mode refused: no valid committed constants
+  kBadArgument = 0x04,       ///< mode not defined for this unit kind, or similar
+  kNoValidConstants = 0x05,  ///< calibrated mode refused: no valid committed constants
   kUnknownBlock = 0x06,
-  kBlockWrongLength = 0x07,    ///< word count wrong for the block
+  kBlockWrongLength = 0x07,  ///< word count wrong for the block
   kConstantOutOfRange = 0x08,
-  kConstantOverflow = 0x09,    ///< block would overflow its fixed-point format
-  kIncompleteConstants = 0x0A, ///< commit refused: not every block holds valid constants
-  kFlashError = 0x0B,          ///< stored image does not fit the flash page
+  kConstantOverflow = 0x09,     ///< block would overflow its fixed-point format
+  kIncompleteConstants = 0x0A,  ///< commit refused: not every block holds valid constants
+  kFlashError = 0x0B,           ///< stored image does not fit the flash page
 };
 /// One past the largest result code; sizes the per-code counters.
 inline constexpr uint8_t kResultCodeCount = 0x0C;

@@ -31,7 +31,10 @@ void CheckCount(uint8_t function, size_t count) {
 }
 
 // The request fields in one place; the builders below fill them for one function code each.
-Request MakeRequest(uint8_t address, uint8_t function, uint16_t start_register, uint16_t count,
+Request MakeRequest(uint8_t address,
+                    uint8_t function,
+                    uint16_t start_register,
+                    uint16_t count,
                     std::vector<uint16_t> values) {
   return {.address = address,
           .function = function,
@@ -44,7 +47,8 @@ Request MakeRequest(uint8_t address, uint8_t function, uint16_t start_register, 
 // codec does not know): kOk, kIllegalFunction or kMalformed.
 DecodeStatus LengthStatus(int expected, size_t frame_bytes) {
   if (expected < 0) return DecodeStatus::kIllegalFunction;
-  return static_cast<size_t>(expected) == frame_bytes ? DecodeStatus::kOk : DecodeStatus::kMalformed;
+  return static_cast<size_t>(expected) == frame_bytes ? DecodeStatus::kOk
+                                                      : DecodeStatus::kMalformed;
 }
 
 }  // namespace
@@ -57,7 +61,8 @@ Request WriteSingleRequest(uint8_t address, uint16_t reg, uint16_t value) {
   return MakeRequest(address, kWriteSingleRegister, reg, 1, {value});
 }
 
-Request WriteMultipleRequest(uint8_t address, uint16_t start_register,
+Request WriteMultipleRequest(uint8_t address,
+                             uint16_t start_register,
                              std::vector<uint16_t> values) {
   const auto count = static_cast<uint16_t>(values.size());  // before the values are moved
   return MakeRequest(address, kWriteMultipleRegisters, start_register, count, std::move(values));

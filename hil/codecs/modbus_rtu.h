@@ -61,7 +61,9 @@ struct Response {
 /// Requests built field by field for the three function codes.
 Request ReadRequest(uint8_t address, uint16_t start_register, uint16_t count);
 Request WriteSingleRequest(uint8_t address, uint16_t reg, uint16_t value);
-Request WriteMultipleRequest(uint8_t address, uint16_t start_register, std::vector<uint16_t> values);
+Request WriteMultipleRequest(uint8_t address,
+                             uint16_t start_register,
+                             std::vector<uint16_t> values);
 /// An exception reply to `function` from `address`.
 Response ExceptionResponse(uint8_t address, uint8_t function, ExceptionCode code);
 
@@ -92,10 +94,10 @@ int ResponseFrameLength(std::span<const uint8_t> prefix);
 
 enum class DecodeStatus {
   kOk,
-  kBadCrc,             ///< too short or CRC mismatch: the frame is ignored (no reply)
-  kIllegalFunction,    ///< CRC good, function code not supported → exception 01
-  kIllegalDataValue,   ///< CRC good, count/byte count outside the protocol → exception 03
-  kMalformed,          ///< CRC good, length inconsistent with the function code → ignored
+  kBadCrc,            ///< too short or CRC mismatch: the frame is ignored (no reply)
+  kIllegalFunction,   ///< CRC good, function code not supported → exception 01
+  kIllegalDataValue,  ///< CRC good, count/byte count outside the protocol → exception 03
+  kMalformed,         ///< CRC good, length inconsistent with the function code → ignored
 };
 
 struct DecodedRequest {

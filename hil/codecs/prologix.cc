@@ -24,7 +24,8 @@ std::vector<std::string_view> Words(std::string_view text) {
 std::optional<int> IntIn(std::string_view word, int lo, int hi) {
   int value = 0;
   const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (ec != std::errc() || end != word.data() + word.size() || value < lo || value > hi) return std::nullopt;
+  if (ec != std::errc() || end != word.data() + word.size() || value < lo || value > hi)
+    return std::nullopt;
   return value;
 }
 
@@ -84,7 +85,8 @@ std::optional<PrologixLine> PrologixLineSplitter::Feed(uint8_t byte) {
 std::string EscapePrologixData(std::string_view data) {
   std::string escaped;
   for (const char c : data) {
-    if (c == '\r' || c == '\n' || c == kPrologixEscape || c == '+') escaped.push_back(kPrologixEscape);
+    if (c == '\r' || c == '\n' || c == kPrologixEscape || c == '+')
+      escaped.push_back(kPrologixEscape);
     escaped.push_back(c);
   }
   return escaped;
@@ -92,10 +94,14 @@ std::string EscapePrologixData(std::string_view data) {
 
 std::string_view PrologixEosTerminator(int eos) {
   switch (eos) {
-    case 0: return "\r\n";
-    case 1: return "\r";
-    case 2: return "\n";
-    default: return "";
+    case 0:
+      return "\r\n";
+    case 1:
+      return "\r";
+    case 2:
+      return "\n";
+    default:
+      return "";
   }
 }
 
@@ -103,7 +109,8 @@ PrologixAction PrologixController::Apply(std::string_view command_text) {
   const std::vector<std::string_view> words = Words(command_text);
   if (words.empty()) return Ignored("empty command");
   std::string name;
-  for (const char c : words[0]) name.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+  for (const char c : words[0])
+    name.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
   const size_t argc = words.size() - 1;
   PrologixSettings& s = settings_;
   // A 0/1 switch or a ranged integer setting: query without argument, set with one.

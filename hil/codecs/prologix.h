@@ -62,19 +62,19 @@ struct PrologixSettings {
 /// What the adapter must do after a command.
 struct PrologixAction {
   enum class Kind {
-    kNone,          ///< settings changed (or nothing to do)
-    kReply,         ///< send `reply` to the host
-    kRead,          ///< address the instrument to talk and pass its bytes to the host
-    kDeviceClear,   ///< ++clr: selected device clear
-    kTrigger,       ///< ++trg
-    kSerialPoll,    ///< ++spoll: reply with the instrument's status byte
-    kReset,         ///< ++rst: the adapter restarts with its saved settings
-    kIgnored,       ///< unknown command or bad argument; `reply` says why (for the log only)
+    kNone,         ///< settings changed (or nothing to do)
+    kReply,        ///< send `reply` to the host
+    kRead,         ///< address the instrument to talk and pass its bytes to the host
+    kDeviceClear,  ///< ++clr: selected device clear
+    kTrigger,      ///< ++trg
+    kSerialPoll,   ///< ++spoll: reply with the instrument's status byte
+    kReset,        ///< ++rst: the adapter restarts with its saved settings
+    kIgnored,      ///< unknown command or bad argument; `reply` says why (for the log only)
   };
   Kind kind = Kind::kNone;
   std::string reply;
-  bool read_until_eoi = false;   ///< kRead: stop at EOI
-  int read_until_char = -1;      ///< kRead: stop at this character (0-255), −1 none
+  bool read_until_eoi = false;  ///< kRead: stop at EOI
+  int read_until_char = -1;     ///< kRead: stop at this character (0-255), −1 none
 };
 
 /// The adapter's `++` command interpreter over its settings.

@@ -29,18 +29,30 @@ ScpiParsed Error(int code, size_t offset, std::string reason) {
 
 std::string_view ScpiErrorMessage(int code) {
   switch (code) {
-    case kScpiNoError: return "No error";
-    case kScpiCommandError: return "Command error";
-    case kScpiSyntaxError: return "Syntax error";
-    case kScpiDataTypeError: return "Data type error";
-    case kScpiParameterNotAllowed: return "Parameter not allowed";
-    case kScpiMissingParameter: return "Missing parameter";
-    case kScpiUndefinedHeader: return "Undefined header";
-    case kScpiSettingsConflict: return "Settings conflict";
-    case kScpiDataOutOfRange: return "Data out of range";
-    case kScpiIllegalParameterValue: return "Illegal parameter value";
-    case kScpiQueryInterrupted: return "Query INTERRUPTED";
-    default: return "Error";
+    case kScpiNoError:
+      return "No error";
+    case kScpiCommandError:
+      return "Command error";
+    case kScpiSyntaxError:
+      return "Syntax error";
+    case kScpiDataTypeError:
+      return "Data type error";
+    case kScpiParameterNotAllowed:
+      return "Parameter not allowed";
+    case kScpiMissingParameter:
+      return "Missing parameter";
+    case kScpiUndefinedHeader:
+      return "Undefined header";
+    case kScpiSettingsConflict:
+      return "Settings conflict";
+    case kScpiDataOutOfRange:
+      return "Data out of range";
+    case kScpiIllegalParameterValue:
+      return "Illegal parameter value";
+    case kScpiQueryInterrupted:
+      return "Query INTERRUPTED";
+    default:
+      return "Error";
   }
 }
 
@@ -67,7 +79,8 @@ std::vector<std::string> SplitScpiProgram(std::string_view line) {
 ScpiParsed ParseScpiCommand(std::string_view text) {
   for (size_t i = 0; i < text.size(); ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
-    if ((c < 0x20 && !IsSpace(text[i])) || c > 0x7E) return Error(kScpiSyntaxError, i, "invalid character");
+    if ((c < 0x20 && !IsSpace(text[i])) || c > 0x7E)
+      return Error(kScpiSyntaxError, i, "invalid character");
   }
   ScpiCommand command;
   size_t i = 0;
@@ -82,11 +95,13 @@ ScpiParsed ParseScpiCommand(std::string_view text) {
   // Header: mnemonics of letters, digits and '_' (a letter first), separated by ':'.
   while (true) {
     const size_t start = i;
-    while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_')) ++i;
+    while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_'))
+      ++i;
     if (i == start || !std::isalpha(static_cast<unsigned char>(text[start]))) {
       return Error(kScpiSyntaxError, start, "a mnemonic must start with a letter");
     }
-    if (i - start > 12) return Error(kScpiSyntaxError, start + 12, "mnemonic longer than 12 characters");
+    if (i - start > 12)
+      return Error(kScpiSyntaxError, start + 12, "mnemonic longer than 12 characters");
     std::string mnemonic;
     for (size_t k = start; k < i; ++k) mnemonic.push_back(Upper(text[k]));
     command.headers.push_back(std::move(mnemonic));
@@ -100,7 +115,8 @@ ScpiParsed ParseScpiCommand(std::string_view text) {
     command.query = true;
     ++i;
   }
-  if (i < text.size() && !IsSpace(text[i])) return Error(kScpiSyntaxError, i, "header followed by no space");
+  if (i < text.size() && !IsSpace(text[i]))
+    return Error(kScpiSyntaxError, i, "header followed by no space");
   const std::string_view rest = Trim(text.substr(i));
   if (!rest.empty()) {
     size_t start = 0;
@@ -127,7 +143,8 @@ ScpiParsed ParseScpiCommand(std::string_view text) {
 bool ScpiHeaderMatches(std::string_view pattern, std::string_view given) {
   std::string short_form, long_form, upper_given;
   for (const char c : pattern) {
-    if (std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c))) short_form.push_back(c);
+    if (std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)))
+      short_form.push_back(c);
     long_form.push_back(Upper(c));
   }
   for (const char c : given) upper_given.push_back(Upper(c));

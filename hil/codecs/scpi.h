@@ -37,7 +37,7 @@ struct ScpiCommand {
   bool common = false;               ///< `*XXX`
   std::vector<std::string> headers;  ///< mnemonics upper-cased, without `*` and `?`
   bool query = false;
-  std::vector<std::string> args;     ///< trimmed, quotes kept
+  std::vector<std::string> args;  ///< trimmed, quotes kept
 };
 
 /// A parsed command, or the SCPI error number, the offset in the command text and why.

@@ -59,7 +59,8 @@ size_t FirstBadNumberChar(std::string_view token) {
 Watlow942Decoded DecodeWatlow942Line(std::string_view line) {
   for (size_t i = 0; i < line.size(); ++i) {
     const unsigned char c = static_cast<unsigned char>(line[i]);
-    if (c < 0x20 || c > 0x7E) return Fail(Watlow942Error::kInvalidCharacter, i, "non-printable byte");
+    if (c < 0x20 || c > 0x7E)
+      return Fail(Watlow942Error::kInvalidCharacter, i, "non-printable byte");
   }
   const std::vector<Token> tokens = SplitOnSpaces(line);
   if (tokens.empty()) return Fail(Watlow942Error::kIncompleteCommandLine, 0, "empty line");
@@ -77,13 +78,16 @@ Watlow942Decoded DecodeWatlow942Line(std::string_view line) {
   const Token& mnemonic = tokens[1];
   for (size_t i = 0; i < mnemonic.text.size(); ++i) {
     if (!std::isalnum(static_cast<unsigned char>(mnemonic.text[i]))) {
-      return Fail(Watlow942Error::kInvalidCharacter, mnemonic.offset + i,
+      return Fail(Watlow942Error::kInvalidCharacter,
+                  mnemonic.offset + i,
                   "mnemonic characters are letters and digits");
     }
-    message.mnemonic += static_cast<char>(std::toupper(static_cast<unsigned char>(mnemonic.text[i])));
+    message.mnemonic +=
+        static_cast<char>(std::toupper(static_cast<unsigned char>(mnemonic.text[i])));
   }
   if (mnemonic.text.size() > kWatlow942MaxMnemonicChars) {
-    return Fail(Watlow942Error::kTooManyCharacters, mnemonic.offset + kWatlow942MaxMnemonicChars,
+    return Fail(Watlow942Error::kTooManyCharacters,
+                mnemonic.offset + kWatlow942MaxMnemonicChars,
                 "mnemonic longer than 4 characters");
   }
   for (size_t t = 2; t < tokens.size(); ++t) {
@@ -93,7 +97,8 @@ Watlow942Decoded DecodeWatlow942Line(std::string_view line) {
       return Fail(Watlow942Error::kInvalidCharacter, datum.offset + bad, "datum is not a number");
     }
     if (datum.text.size() > kWatlow942MaxNumberChars) {
-      return Fail(Watlow942Error::kTooManyCharacters, datum.offset + kWatlow942MaxNumberChars,
+      return Fail(Watlow942Error::kTooManyCharacters,
+                  datum.offset + kWatlow942MaxNumberChars,
                   "datum longer than 7 characters");
     }
     message.data.push_back(std::strtod(std::string(datum.text).c_str(), nullptr));
@@ -139,7 +144,8 @@ std::optional<std::string> FormatWatlow942Number(double value, int decimals) {
   return formatted;
 }
 
-std::string EncodeWatlow942Request(Watlow942Command command, std::string_view mnemonic,
+std::string EncodeWatlow942Request(Watlow942Command command,
+                                   std::string_view mnemonic,
                                    const std::vector<std::string>& data) {
   std::string line(command == Watlow942Command::kRead ? "? " : "= ");
   line += mnemonic;

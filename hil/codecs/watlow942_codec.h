@@ -96,7 +96,8 @@ class Watlow942LineSplitter {
 std::optional<std::string> FormatWatlow942Number(double value, int decimals);
 
 /// Client side: `? MN d1 d2...<CR>` / `= MN d1 d2...<CR>` (data already formatted).
-std::string EncodeWatlow942Request(Watlow942Command command, std::string_view mnemonic,
+std::string EncodeWatlow942Request(Watlow942Command command,
+                                   std::string_view mnemonic,
                                    const std::vector<std::string>& data = {});
 
 /// Device side: the reply to a `?` line, `<XOFF><XON>fields joined by spaces<CR>`.

@@ -27,10 +27,12 @@ AdtsPrologix::AdtsPrologix(const InstrumentEntry& entry, const Clock& clock)
 
 void AdtsPrologix::Configure() {
   if (configured_) return;
-  for (const std::string& line :
-       {std::string("++mode 1"), fmt::format("++addr {}", port_.entry().address),
-        std::string("++auto 0"), std::string("++eos 2"), std::string("++eoi 1"),
-        std::string("++eot_enable 0")}) {
+  for (const std::string& line : {std::string("++mode 1"),
+                                  fmt::format("++addr {}", port_.entry().address),
+                                  std::string("++auto 0"),
+                                  std::string("++eos 2"),
+                                  std::string("++eoi 1"),
+                                  std::string("++eot_enable 0")}) {
     port_.Send(line, line + "\n");
   }
   configured_ = true;
@@ -85,10 +87,12 @@ void AdtsPrologix::SetAirspeed(double cas_kt, double rate_kt_per_min) {
 bool AdtsPrologix::Stable() {
   const double value = QueryNumber("STAT:OPER:COND?");
   if (value < 0 || value != static_cast<int>(value)) {
-    port_.Fail(Kind::kBadReply, "STAT:OPER:COND?", fmt::format("{:g}", value), "expected a register");
+    port_.Fail(
+        Kind::kBadReply, "STAT:OPER:COND?", fmt::format("{:g}", value), "expected a register");
   }
   const int bits = static_cast<int>(value);
-  const int stable = (1 << kAdtsStableBit) | (1 << kAdtsPsAtSetPointBit) | (1 << kAdtsPtAtSetPointBit);
+  const int stable =
+      (1 << kAdtsStableBit) | (1 << kAdtsPsAtSetPointBit) | (1 << kAdtsPtAtSetPointBit);
   return (bits & stable) == stable;
 }
 

@@ -3,8 +3,8 @@
 // Adapter set-up, once before the first command (DOC, Prologix manual §8; the pyvisa-py recipe):
 // `++mode 1` (controller), `++addr <address>`, `++auto 0` (no read-after-write: a query is followed
 // by `++read eoi`), `++eos 2` (LF appended to data), `++eoi 1`, `++eot_enable 0`; then `*CLS` and
-// `UNIT:PRES PA` so every pressure is in pascals. Data lines are ESC-escaped (hil/codecs/prologix.h).
-// SCPI (DRV unless noted; numbers by hil/codecs/scpi.h):
+// `UNIT:PRES PA` so every pressure is in pascals. Data lines are ESC-escaped
+// (hil/codecs/prologix.h). SCPI (DRV unless noted; numbers by hil/codecs/scpi.h):
 //   Identify      `++ver`, `*IDN?` (must name an ADTS, else kWrongIdentity)
 //   SetAltitude   `SOUR:STAT ON`, `SOUR:RATE ALT,<ft/min>`, `SOUR:PRES ALT,<ft>`
 //   SetAirspeed   `SOUR:STAT ON`, `SOUR:RATE CAS,<kt/min>`, `SOUR:PRES CAS,<kt>`

@@ -24,7 +24,8 @@ std::string CommandText(const std::string& mnemonic, std::optional<double> argum
 AtlRateTable::AtlRateTable(const InstrumentEntry& entry, const Clock& clock)
     : port_(entry, clock) {}
 
-std::string AtlRateTable::Command(const std::string& mnemonic, std::optional<double> argument,
+std::string AtlRateTable::Command(const std::string& mnemonic,
+                                  std::optional<double> argument,
                                   bool query) {
   const AtlCommandTable& table = AtlClientCommandTable();
   const std::string text = CommandText(mnemonic, argument, query);
@@ -41,7 +42,9 @@ std::string AtlRateTable::Command(const std::string& mnemonic, std::optional<dou
   // end, which ends that line; the table refuses it before it answers the command.
   const bool resync = !line_synced_;
   const std::vector<std::string> replies = port_.ExchangeUntil(
-      text, (resync ? framing.line_end : "") + request, terminator,
+      text,
+      (resync ? framing.line_end : "") + request,
+      terminator,
       [resync](std::string_view reply) { return !resync || !reply.starts_with('?'); });
   line_synced_ = true;
   const std::string& reply = replies.back();
@@ -84,7 +87,8 @@ double AtlRateTable::ReadRateDps() { return QueryNumber("RAT"); }
 bool AtlRateTable::AtRate() {
   const int status = Status();
   if (status & (1 << kAtlStatusInterlockOpenBit)) {
-    port_.Fail(Kind::kFault, "STA?", std::to_string(status), "interlock open: the table is stopped");
+    port_.Fail(
+        Kind::kFault, "STA?", std::to_string(status), "interlock open: the table is stopped");
   }
   return (status & (1 << kAtlStatusAtRateBit)) != 0;
 }

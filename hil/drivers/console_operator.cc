@@ -26,7 +26,11 @@ void ConsoleOperator::WaitForEnter(const std::string& command) {
   out_ << "Press Enter when done (Ctrl-D aborts the run)." << std::endl;
   std::string line;
   if (!std::getline(in_, line)) {
-    throw InstrumentError(InstrumentError::Kind::kRefused, "operator", "console", command, "",
+    throw InstrumentError(InstrumentError::Kind::kRefused,
+                          "operator",
+                          "console",
+                          command,
+                          "",
                           "the operator aborted (end of input)");
   }
 }
@@ -34,7 +38,9 @@ void ConsoleOperator::WaitForEnter(const std::string& command) {
 void ConsoleOperator::Mount(const std::vector<std::string>& unit_roles, int orientation_code) {
   std::string roles;
   for (const std::string& role : unit_roles) roles += (roles.empty() ? "" : ", ") + role;
-  out_ << fmt::format("Mount {} in fixture orientation {} ({}).", roles, orientation_code,
+  out_ << fmt::format("Mount {} in fixture orientation {} ({}).",
+                      roles,
+                      orientation_code,
                       Describe(orientation_code))
        << std::endl;
   WaitForEnter(fmt::format("mount {}", orientation_code));

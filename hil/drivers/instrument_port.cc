@@ -17,8 +17,8 @@ std::unique_ptr<SerialPort> OpenInstrumentPort(const InstrumentEntry& entry) {
   try {
     return std::make_unique<SerialPort>(entry.port, entry.role);
   } catch (const TransportError& e) {
-    throw InstrumentError(InstrumentError::Kind::kNoReply, entry.role, entry.port.path, "open",
-                          "", e.what());
+    throw InstrumentError(
+        InstrumentError::Kind::kNoReply, entry.role, entry.port.path, "open", "", e.what());
   }
 }
 
@@ -27,8 +27,10 @@ std::unique_ptr<SerialPort> OpenInstrumentPort(const InstrumentEntry& entry) {
 InstrumentPort::InstrumentPort(const InstrumentEntry& entry, const Clock& clock)
     : entry_(entry), clock_(clock), port_(OpenInstrumentPort(entry)) {}
 
-void InstrumentPort::Fail(InstrumentError::Kind kind, const std::string& command,
-                          const std::string& reply, const std::string& detail) const {
+void InstrumentPort::Fail(InstrumentError::Kind kind,
+                          const std::string& command,
+                          const std::string& reply,
+                          const std::string& detail) const {
   throw InstrumentError(kind, entry_.role, entry_.port.path, command, reply, detail);
 }
 
@@ -40,13 +42,16 @@ void InstrumentPort::Send(const std::string& command, std::string_view request) 
   }
 }
 
-std::string InstrumentPort::Exchange(const std::string& command, std::string_view request,
+std::string InstrumentPort::Exchange(const std::string& command,
+                                     std::string_view request,
                                      std::string_view terminator) {
   return ExchangeUntil(command, request, terminator, [](std::string_view) { return true; }).back();
 }
 
 std::vector<std::string> InstrumentPort::ExchangeUntil(
-    const std::string& command, std::string_view request, std::string_view terminator,
+    const std::string& command,
+    std::string_view request,
+    std::string_view terminator,
     const std::function<bool(std::string_view)>& is_answer) {
   std::string received;
   const int attempts = entry_.retries + 1;
@@ -74,7 +79,9 @@ std::vector<std::string> InstrumentPort::ExchangeUntil(
     }
     if (!replies.empty()) return replies;
   }
-  Fail(InstrumentError::Kind::kNoReply, command, received,
+  Fail(InstrumentError::Kind::kNoReply,
+       command,
+       received,
        fmt::format("{} attempts of {} ms wall each", attempts, reply_timeout().count()));
 }
 

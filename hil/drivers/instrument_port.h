@@ -38,7 +38,9 @@ class InstrumentPort {
 
   const InstrumentEntry& entry() const { return entry_; }
   SerialPort& port() { return *port_; }
-  std::chrono::milliseconds reply_timeout() const { return WallReplyTimeout(clock_, entry_.timeout_ms); }
+  std::chrono::milliseconds reply_timeout() const {
+    return WallReplyTimeout(clock_, entry_.timeout_ms);
+  }
 
   /// Writes `request`; throws kNoReply naming `command` if the write cannot complete.
   void Send(const std::string& command, std::string_view request);
@@ -46,7 +48,8 @@ class InstrumentPort {
   /// Sends `request` (input discarded first) and returns what arrives up to and including
   /// `terminator`; an attempt that times out is repeated, up to the entry's `retries` times, then
   /// throws kNoReply with whatever partial reply arrived.
-  std::string Exchange(const std::string& command, std::string_view request,
+  std::string Exchange(const std::string& command,
+                       std::string_view request,
                        std::string_view terminator);
 
   /// Exchange that reads on past replies `is_answer` rejects (each ending in `terminator`), for
@@ -54,12 +57,15 @@ class InstrumentPort {
   /// stale partial line). Returns every reply read, the accepted one last; when the wait ends
   /// with replies but none accepted, returns them (the caller judges the last). Retries and
   /// kNoReply as Exchange.
-  std::vector<std::string> ExchangeUntil(const std::string& command, std::string_view request,
+  std::vector<std::string> ExchangeUntil(const std::string& command,
+                                         std::string_view request,
                                          std::string_view terminator,
                                          const std::function<bool(std::string_view)>& is_answer);
 
-  [[noreturn]] void Fail(InstrumentError::Kind kind, const std::string& command,
-                         const std::string& reply, const std::string& detail) const;
+  [[noreturn]] void Fail(InstrumentError::Kind kind,
+                         const std::string& command,
+                         const std::string& reply,
+                         const std::string& detail) const;
 
  private:
   InstrumentEntry entry_;

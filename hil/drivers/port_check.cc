@@ -33,11 +33,14 @@ InstrumentIdentity IdentifyInstrument(const InstrumentEntry& e, const Clock& clo
 std::string UnitIdentity(const UnitEntry& u, const Clock& clock) {
   UnitLink link(u, clock);
   const firmware_model::IdentifyInfo info = link.Identify();
-  return fmt::format("{} firmware {}.{}.{} mode {} constants {}",
-                     UnitSerialText(u.kind, info.serial_number), info.firmware_major,
-                     info.firmware_minor, info.firmware_patch, info.mode,
-                     info.constants_valid ? fmt::format("v{}", info.constants_version)
-                                          : std::string("none"));
+  return fmt::format(
+      "{} firmware {}.{}.{} mode {} constants {}",
+      UnitSerialText(u.kind, info.serial_number),
+      info.firmware_major,
+      info.firmware_minor,
+      info.firmware_patch,
+      info.mode,
+      info.constants_valid ? fmt::format("v{}", info.constants_version) : std::string("none"));
 }
 
 template <typename Check>

@@ -18,7 +18,7 @@ struct PortCheckRow {
   std::string port;      ///< the device path, "console" for a console operator
   std::string identity;  ///< what answered; empty when nothing did
   bool ok = false;
-  std::string status;    ///< "ok" or the error text
+  std::string status;  ///< "ok" or the error text
 };
 
 /// Checks every instrument, unit and the operator of `station`, in that order.

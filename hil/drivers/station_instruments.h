@@ -16,11 +16,11 @@
 namespace adahrs::hil {
 
 struct StationInstruments {
-  std::unique_ptr<RateTable> rate_table;        ///< null when the station has no rate_table
-  std::unique_ptr<Chamber> imu_chamber;         ///< Watlow F4 (profiles)
-  std::unique_ptr<Chamber> ads_chamber;         ///< Watlow 942
+  std::unique_ptr<RateTable> rate_table;  ///< null when the station has no rate_table
+  std::unique_ptr<Chamber> imu_chamber;   ///< Watlow F4 (profiles)
+  std::unique_ptr<Chamber> ads_chamber;   ///< Watlow 942
   std::unique_ptr<AirDataTestSet> adts;
-  std::unique_ptr<Operator> op;                 ///< the station's "operator"; console if absent
+  std::unique_ptr<Operator> op;                  ///< the station's "operator"; console if absent
   std::vector<std::unique_ptr<UnitLink>> units;  ///< station order
 };
 

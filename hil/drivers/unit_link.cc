@@ -24,8 +24,10 @@ std::unique_ptr<SerialPort> OpenPort(const UnitEntry& entry) {
 }
 
 std::string ResponseText(const fm::MaintenanceResponse& response) {
-  return fmt::format("command 0x{:02x} seq {} {}{}", static_cast<int>(response.command),
-                     response.sequence, fm::ResultCodeName(response.result),
+  return fmt::format("command 0x{:02x} seq {} {}{}",
+                     static_cast<int>(response.command),
+                     response.sequence,
+                     fm::ResultCodeName(response.result),
                      response.data.empty() ? "" : " data " + fm::HexTrace(response.data));
 }
 
@@ -38,12 +40,15 @@ std::chrono::milliseconds UnitLink::ReplyTimeout() const {
   return WallReplyTimeout(clock_, entry_.timeout_ms);
 }
 
-void UnitLink::Fail(Kind kind, const std::string& command, const std::string& reply,
+void UnitLink::Fail(Kind kind,
+                    const std::string& command,
+                    const std::string& reply,
                     const std::string& detail) const {
   throw InstrumentError(kind, entry_.role, entry_.port.path, command, reply, detail);
 }
 
-void UnitLink::Accept(const fm::Frame& frame, double t_s,
+void UnitLink::Accept(const fm::Frame& frame,
+                      double t_s,
                       std::vector<fm::MaintenanceResponse>* responses) {
   const auto type = static_cast<fm::PacketType>(frame.type);
   const fm::PacketType expected =
@@ -53,13 +58,16 @@ void UnitLink::Accept(const fm::Frame& frame, double t_s,
     try {
       responses->push_back(fm::ParseMaintenanceResponse(frame));
     } catch (const fm::ProtocolError& e) {
-      Fail(Kind::kBadReply, "maintenance response",
-           fm::HexTrace(std::span<const uint8_t>(frame.payload, frame.payload_length)), e.what());
+      Fail(Kind::kBadReply,
+           "maintenance response",
+           fm::HexTrace(std::span<const uint8_t>(frame.payload, frame.payload_length)),
+           e.what());
     }
     return;
   }
   if (type != expected) {
-    Fail(Kind::kWrongIdentity, "data packet",
+    Fail(Kind::kWrongIdentity,
+         "data packet",
          fmt::format("packet type 0x{:02x}", static_cast<int>(frame.type)),
          fmt::format("the station holds an {} unit here", ToString(entry_.kind)));
   }
@@ -127,8 +135,8 @@ fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
       Fail(Kind::kNoReply, command_text, "", e.what());
     }
     const double timeout_s = entry_.timeout_ms / 1000.0;
-    const ReplyDeadline patience(clock_, kUnitBacklogPatience * timeout_s,
-                                 kUnitBacklogPatience * timeout);
+    const ReplyDeadline patience(
+        clock_, kUnitBacklogPatience * timeout_s, kUnitBacklogPatience * timeout);
     ReplyDeadline quiet(clock_, timeout_s, timeout);
     while (!quiet.Passed() && !patience.Passed()) {
       std::vector<fm::MaintenanceResponse> responses;
@@ -142,14 +150,18 @@ fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
           continue;
         }
         if (response.result != fm::ResultCode::kAck) {
-          Fail(Kind::kRefused, command_text, ResponseText(response),
+          Fail(Kind::kRefused,
+               command_text,
+               ResponseText(response),
                fm::ResultCodeName(response.result));
         }
         return response;
       }
     }
   }
-  Fail(Kind::kNoReply, command_text, "",
+  Fail(Kind::kNoReply,
+       command_text,
+       "",
        fmt::format("{} attempts of {} ms wall each", kUnitRequestAttempts, timeout.count()));
 }
 
@@ -165,25 +177,31 @@ fm::IdentifyInfo UnitLink::Identify() {
   const fm::UnitKind expected =
       entry_.kind == UnitKind::kImu ? fm::UnitKind::kImu : fm::UnitKind::kAds;
   if (info.unit_kind != expected) {
-    Fail(Kind::kWrongIdentity, "IDENTIFY", ResponseText(response),
+    Fail(Kind::kWrongIdentity,
+         "IDENTIFY",
+         ResponseText(response),
          fmt::format("the station holds an {} unit on this port, the unit says kind {}",
-                     ToString(entry_.kind), static_cast<int>(info.unit_kind)));
+                     ToString(entry_.kind),
+                     static_cast<int>(info.unit_kind)));
   }
   return info;
 }
 
 void UnitLink::SetTag(uint8_t tag) {
-  Transact(fmt::format("SET_TAG {}", tag), fm::MaintenanceCommand::kSetTag,
-           [this, tag] { return client_.SetTag(tag); });
+  Transact(fmt::format("SET_TAG {}", tag), fm::MaintenanceCommand::kSetTag, [this, tag] {
+    return client_.SetTag(tag);
+  });
 }
 
 void UnitLink::SetImuMode(fm::ImuCompensationMode mode) {
-  Transact(fmt::format("SET_MODE {}", static_cast<int>(mode)), fm::MaintenanceCommand::kSetMode,
+  Transact(fmt::format("SET_MODE {}", static_cast<int>(mode)),
+           fm::MaintenanceCommand::kSetMode,
            [this, mode] { return client_.SetImuMode(mode); });
 }
 
 void UnitLink::SetAdsMode(fm::AdsCompensationMode mode) {
-  Transact(fmt::format("SET_MODE {}", static_cast<int>(mode)), fm::MaintenanceCommand::kSetMode,
+  Transact(fmt::format("SET_MODE {}", static_cast<int>(mode)),
+           fm::MaintenanceCommand::kSetMode,
            [this, mode] { return client_.SetAdsMode(mode); });
 }
 
@@ -196,12 +214,15 @@ void UnitLink::WriteBlock(uint8_t block_id, std::span<const int16_t> words) {
 std::vector<int16_t> UnitLink::ReadBlock(uint8_t block_id) {
   const std::string text = fmt::format("READ_BLOCK {}", block_id);
   const fm::MaintenanceResponse response =
-      Transact(text, fm::MaintenanceCommand::kReadBlock,
-               [this, block_id] { return client_.ReadBlock(block_id); });
+      Transact(text, fm::MaintenanceCommand::kReadBlock, [this, block_id] {
+        return client_.ReadBlock(block_id);
+      });
   try {
     fm::BlockReadback readback = fm::ParseReadBlock(response);
     if (readback.block_id != block_id) {
-      Fail(Kind::kBadReply, text, ResponseText(response),
+      Fail(Kind::kBadReply,
+           text,
+           ResponseText(response),
            fmt::format("answers block {}", readback.block_id));
     }
     return std::move(readback.words);
@@ -211,8 +232,8 @@ std::vector<int16_t> UnitLink::ReadBlock(uint8_t block_id) {
 }
 
 fm::CommitInfo UnitLink::Commit() {
-  const fm::MaintenanceResponse response = Transact(
-      "COMMIT", fm::MaintenanceCommand::kCommit, [this] { return client_.Commit(); });
+  const fm::MaintenanceResponse response =
+      Transact("COMMIT", fm::MaintenanceCommand::kCommit, [this] { return client_.Commit(); });
   try {
     return fm::ParseCommit(response);
   } catch (const fm::ProtocolError& e) {
@@ -221,9 +242,9 @@ fm::CommitInfo UnitLink::Commit() {
 }
 
 fm::UnitCounters UnitLink::ReadCounters() {
-  const fm::MaintenanceResponse response =
-      Transact("READ_COUNTERS", fm::MaintenanceCommand::kReadCounters,
-               [this] { return client_.ReadCounters(); });
+  const fm::MaintenanceResponse response = Transact("READ_COUNTERS",
+                                                    fm::MaintenanceCommand::kReadCounters,
+                                                    [this] { return client_.ReadCounters(); });
   try {
     return fm::ParseCounters(response);
   } catch (const fm::ProtocolError& e) {
@@ -237,8 +258,7 @@ std::vector<ReceivedPacket> UnitLink::Poll(std::chrono::milliseconds timeout) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     // With packets in hand only what is already waiting is taken; otherwise wait for the first.
-    const std::chrono::milliseconds wait =
-        queue_.empty() ? std::max(left, kDrainWait) : kDrainWait;
+    const std::chrono::milliseconds wait = queue_.empty() ? std::max(left, kDrainWait) : kDrainWait;
     if (ReadInto(wait, nullptr) == kReadChunkBytes) continue;  // a full chunk: more is waiting
     if (!queue_.empty() || left <= kDrainWait) break;
   }

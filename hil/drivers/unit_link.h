@@ -12,14 +12,13 @@
 // packet the unit sent before it, so on a fast rig whose line holds a backlog the wait is for
 // silence, not for a fixed time: it restarts whenever bytes arrive, up to kUnitBacklogPatience
 // reply timeouts per attempt (a unit that streams but never answers still fails, later). After
-// kUnitRequestAttempts unanswered attempts the request throws InstrumentError kNoReply. A NAK throws kRefused with its reason; a
-// response that does not parse, or a data packet of the other unit kind, throws kBadReply /
-// kWrongIdentity. Each error names the unit role, the port, the command and the reply.
-// Retrying COMMIT whose ACK was lost commits twice (constants_version counts both): harmless for
-// the image, visible in the version.
-// Packet times are clock seconds at arrival (all packets read in one chunk share one time).
-// Not thread-safe: one thread uses a link at a time.
-// Left out: RESET (the executor never power-cycles a unit mid-run), baud-rate detection.
+// kUnitRequestAttempts unanswered attempts the request throws InstrumentError kNoReply. A NAK
+// throws kRefused with its reason; a response that does not parse, or a data packet of the other
+// unit kind, throws kBadReply / kWrongIdentity. Each error names the unit role, the port, the
+// command and the reply. Retrying COMMIT whose ACK was lost commits twice (constants_version counts
+// both): harmless for the image, visible in the version. Packet times are clock seconds at arrival
+// (all packets read in one chunk share one time). Not thread-safe: one thread uses a link at a
+// time. Left out: RESET (the executor never power-cycles a unit mid-run), baud-rate detection.
 #pragma once
 
 #include <chrono>
@@ -102,9 +101,12 @@ class UnitLink {
   // Reads what arrives within `timeout` into the packet queue; responses go to `responses`.
   size_t ReadInto(std::chrono::milliseconds timeout,
                   std::vector<firmware_model::MaintenanceResponse>* responses);
-  void Accept(const firmware_model::Frame& frame, double t_s,
+  void Accept(const firmware_model::Frame& frame,
+              double t_s,
               std::vector<firmware_model::MaintenanceResponse>* responses);
-  [[noreturn]] void Fail(InstrumentError::Kind kind, const std::string& command, const std::string& reply,
+  [[noreturn]] void Fail(InstrumentError::Kind kind,
+                         const std::string& command,
+                         const std::string& reply,
                          const std::string& detail) const;
   std::chrono::milliseconds ReplyTimeout() const;
 

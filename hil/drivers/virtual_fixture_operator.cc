@@ -31,7 +31,8 @@ std::string Trim(std::string text) {
 
 }  // namespace
 
-VirtualFixtureOperator::VirtualFixtureOperator(const OperatorEntry& entry, const Clock& clock,
+VirtualFixtureOperator::VirtualFixtureOperator(const OperatorEntry& entry,
+                                               const Clock& clock,
                                                std::ostream& log)
     : clock_(clock), log_(log), port_(OpenControlPort(entry)) {}
 
@@ -55,7 +56,11 @@ std::string VirtualFixtureOperator::Command(const std::string& line) {
   } catch (const TransportError& e) {
     throw InstrumentError(Kind::kNoReply, kRole, port_->path(), line, received, e.what());
   }
-  throw InstrumentError(Kind::kNoReply, kRole, port_->path(), line, received,
+  throw InstrumentError(Kind::kNoReply,
+                        kRole,
+                        port_->path(),
+                        line,
+                        received,
                         fmt::format("no reply line within {} ms wall", timeout.count()));
 }
 
@@ -65,7 +70,11 @@ void VirtualFixtureOperator::Mount(const std::vector<std::string>& unit_roles,
     const std::string line = fmt::format("orientation {} {}", role, orientation_code);
     const std::string reply = Command(line);
     if (reply != fmt::format("OK {} {}", role, orientation_code)) {
-      throw InstrumentError(Kind::kRefused, kRole, port_->path(), line, reply,
+      throw InstrumentError(Kind::kRefused,
+                            kRole,
+                            port_->path(),
+                            line,
+                            reply,
                             "the virtual fixture did not mount the unit");
     }
   }

@@ -57,7 +57,8 @@ void Watlow942Chamber::Set(const std::string& mnemonic, double value) {
   if (port_.entry().port.flow != SerialSettings::Flow::kSoftware) {
     // Without the serial driver's flow control, wait for the 942's XON (done processing).
     try {
-      port_.port().ReadUntil(std::string(1, static_cast<char>(kWatlow942Xon)), port_.reply_timeout());
+      port_.port().ReadUntil(std::string(1, static_cast<char>(kWatlow942Xon)),
+                             port_.reply_timeout());
     } catch (const TransportError& e) {
       port_.Fail(Kind::kNoReply, command, "", e.what());
     }
@@ -87,13 +88,13 @@ void Watlow942Chamber::Hold() {
 }
 
 void Watlow942Chamber::DownloadProfile(const std::string& name, const std::vector<F4ProfileStep>&) {
-  port_.Fail(Kind::kRefused, "download profile " + name, "",
-             "the Watlow 942 driver runs set points only");
+  port_.Fail(
+      Kind::kRefused, "download profile " + name, "", "the Watlow 942 driver runs set points only");
 }
 
 void Watlow942Chamber::StartProfile(const std::string& name) {
-  port_.Fail(Kind::kRefused, "start profile " + name, "",
-             "the Watlow 942 driver runs set points only");
+  port_.Fail(
+      Kind::kRefused, "start profile " + name, "", "the Watlow 942 driver runs set points only");
 }
 
 }  // namespace adahrs::hil

@@ -58,20 +58,29 @@ constexpr int kMaxReadRegisters = 100;
 
 std::string ExceptionName(int code) {
   switch (code) {
-    case 1: return "illegal function";
-    case 2: return "illegal data address";
-    case 3: return "illegal data value";
-    case 4: return "slave device failure";
-    default: return "exception";
+    case 1:
+      return "illegal function";
+    case 2:
+      return "illegal data address";
+    case 3:
+      return "illegal data value";
+    case 4:
+      return "slave device failure";
+    default:
+      return "exception";
   }
 }
 
 uint16_t EndActionCode(F4EndAction action) {
   switch (action) {
-    case F4EndAction::kHold: return 0;
-    case F4EndAction::kControlOff: return 1;
-    case F4EndAction::kAllOff: return 2;
-    case F4EndAction::kIdle: return 3;
+    case F4EndAction::kHold:
+      return 0;
+    case F4EndAction::kControlOff:
+      return 1;
+    case F4EndAction::kAllOff:
+      return 2;
+    case F4EndAction::kIdle:
+      return 3;
   }
   return 0;
 }
@@ -81,8 +90,11 @@ uint16_t EndActionCode(F4EndAction action) {
 WatlowF4Chamber::WatlowF4Chamber(const InstrumentEntry& entry, const Clock& clock)
     : entry_(entry), clock_(clock) {
   const SerialSettings& s = entry.port;
-  ctx_ = modbus_new_rtu(s.path.c_str(), static_cast<int>(s.baud), s.parity,
-                        static_cast<int>(s.data_bits), static_cast<int>(s.stop_bits));
+  ctx_ = modbus_new_rtu(s.path.c_str(),
+                        static_cast<int>(s.baud),
+                        s.parity,
+                        static_cast<int>(s.data_bits),
+                        static_cast<int>(s.stop_bits));
   if (ctx_ == nullptr) Fail(Kind::kNoReply, "open", "", modbus_strerror(errno));
   if (modbus_set_slave(ctx_, entry.address) != 0 || modbus_connect(ctx_) != 0) {
     const std::string why = modbus_strerror(errno);
@@ -104,7 +116,9 @@ WatlowF4Chamber::~WatlowF4Chamber() {
   }
 }
 
-void WatlowF4Chamber::Fail(Kind kind, const std::string& command, const std::string& reply,
+void WatlowF4Chamber::Fail(Kind kind,
+                           const std::string& command,
+                           const std::string& reply,
                            const std::string& detail) const {
   throw InstrumentError(kind, entry_.role, entry_.port.path, command, reply, detail);
 }
@@ -135,7 +149,9 @@ void WatlowF4Chamber::Transact(const std::string& command, Call call) {
     }
     if (error > MODBUS_ENOBASE && error <= MODBUS_ENOBASE + MODBUS_EXCEPTION_GATEWAY_TARGET) {
       const int code = error - MODBUS_ENOBASE;
-      Fail(Kind::kRefused, command, fmt::format("exception {:02d} ({})", code, ExceptionName(code)),
+      Fail(Kind::kRefused,
+           command,
+           fmt::format("exception {:02d} ({})", code, ExceptionName(code)),
            "Modbus exception");
     }
     last_error = modbus_strerror(error);
@@ -145,8 +161,11 @@ void WatlowF4Chamber::Transact(const std::string& command, Call call) {
   if (!last_was_timeout) {
     Fail(Kind::kBadReply, command, "", fmt::format("{} after {} attempts", last_error, attempts));
   }
-  Fail(Kind::kNoReply, command, "",
-       fmt::format("{} attempts of {} ms wall each", attempts,
+  Fail(Kind::kNoReply,
+       command,
+       "",
+       fmt::format("{} attempts of {} ms wall each",
+                   attempts,
                    WallReplyTimeout(clock_, entry_.timeout_ms).count()));
 }
 
@@ -172,7 +191,8 @@ int WatlowF4Chamber::Decimals() {
   if (decimals_ < 0) {
     const uint16_t decimals = Read(kRegDecimals, 1)[0];
     if (decimals > 3) {
-      Fail(Kind::kBadReply, "read register 606", std::to_string(decimals), "decimals 0..3 expected");
+      Fail(
+          Kind::kBadReply, "read register 606", std::to_string(decimals), "decimals 0..3 expected");
     }
     decimals_ = decimals;
   }
@@ -194,11 +214,14 @@ double WatlowF4Chamber::FromRegister(uint16_t value) {
 InstrumentIdentity WatlowF4Chamber::Identify() {
   const uint16_t units = Read(kRegUnits, 1)[0];
   if (units != kUnitsCelsius) {
-    Fail(Kind::kWrongIdentity, "read register 901", std::to_string(units),
+    Fail(Kind::kWrongIdentity,
+         "read register 901",
+         std::to_string(units),
          "the controller does not work in degC (901 = 1)");
   }
-  return {"Watlow F4", fmt::format("Modbus address {}, {} implied decimal(s), degC",
-                                   entry_.address, Decimals())};
+  return {
+      "Watlow F4",
+      fmt::format("Modbus address {}, {} implied decimal(s), degC", entry_.address, Decimals())};
 }
 
 void WatlowF4Chamber::SetSetPointC(double temp_c) {
@@ -263,7 +286,10 @@ void WatlowF4Chamber::DownloadProfile(const std::string& name,
   }
   for (size_t i = 0; i + 1 < steps.size(); ++i) {
     if (std::holds_alternative<F4End>(steps[i])) {
-      Fail(Kind::kRefused, command, "", fmt::format("step {} is an end step before the last", i + 1));
+      Fail(Kind::kRefused,
+           command,
+           "",
+           fmt::format("step {} is an end step before the last", i + 1));
     }
   }
 
@@ -280,7 +306,9 @@ void WatlowF4Chamber::DownloadProfile(const std::string& name,
   const auto duration = [&](double duration_s, size_t index) {
     const long total_s = std::lround(duration_s);
     if (duration_s < 0 || total_s > 99 * 3600 + 59 * 60 + 59) {
-      Fail(Kind::kRefused, command, "",
+      Fail(Kind::kRefused,
+           command,
+           "",
            fmt::format("step {}: {} s is outside 0..99:59:59", index + 1, duration_s));
     }
     return std::vector<uint16_t>{static_cast<uint16_t>(total_s / 3600),
@@ -304,8 +332,8 @@ void WatlowF4Chamber::DownloadProfile(const std::string& name,
       WriteMany(kRegHours, duration(soak->duration_s, i));
     } else if (const auto* jump = std::get_if<F4Jump>(&step)) {
       Write(kRegStepType, kStepJump);
-      WriteMany(kRegJumpProfile, {number, static_cast<uint16_t>(jump->to_step),
-                                  static_cast<uint16_t>(jump->count)});
+      WriteMany(kRegJumpProfile,
+                {number, static_cast<uint16_t>(jump->to_step), static_cast<uint16_t>(jump->count)});
     }
   }
   const F4End& end = std::get<F4End>(steps.back());
@@ -319,7 +347,8 @@ void WatlowF4Chamber::DownloadProfile(const std::string& name,
 
 void WatlowF4Chamber::StartProfile(const std::string& name) {
   std::string padded;
-  for (const char c : name) padded += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (const char c : name)
+    padded += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   padded.resize(kNameChars, ' ');
   int number = 0;
   if (const auto known = profile_numbers_.find(padded); known != profile_numbers_.end()) {

@@ -6,8 +6,8 @@
 //   ReadProcessC    100 PV and 101 input error (non-zero: kFault)
 //   SetSetPointC    300 static set point (signed, `decimals` implied decimals)
 //   ReadSetPointC   4122 current set point (a running profile's ramp, or 300 when static)
-//   Hold            200 (2 running, 3 holding) → 4122 read, 1217 = 1 (terminate), 300 = that set point
-//   DownloadProfile names 3500+10(n-1); an existing profile of that name deleted (4000 = n,
+//   Hold            200 (2 running, 3 holding) → 4122 read, 1217 = 1 (terminate), 300 = that set
+//   point DownloadProfile names 3500+10(n-1); an existing profile of that name deleted (4000 = n,
 //                   4001 = 1, 4002 = 3) and its name blanked; 4002 = 1 create, 4000 read back;
 //                   name written; per step FC16 4001 = [i, 2] (insert), 4003 type, then 4009-4011
 //                   h/m/s, 4043 rate x10, 4044 target, 4050-4052 jump; the end step 4003 = 5,
@@ -65,8 +65,10 @@ class WatlowF4Chamber : public Chamber {
   double FromRegister(uint16_t value);
   // Profile numbers (1-based) whose name register block holds `name` (padded).
   std::vector<int> FindProfiles(const std::string& padded_name);
-  [[noreturn]] void Fail(InstrumentError::Kind kind, const std::string& command,
-                         const std::string& reply, const std::string& detail) const;
+  [[noreturn]] void Fail(InstrumentError::Kind kind,
+                         const std::string& command,
+                         const std::string& reply,
+                         const std::string& detail) const;
 
   InstrumentEntry entry_;
   const Clock& clock_;

@@ -8,11 +8,14 @@ namespace adahrs::hil {
 
 namespace {
 
-std::string Compose(InstrumentError::Kind kind, const std::string& role, const std::string& port,
-                    const std::string& command, const std::string& reply,
+std::string Compose(InstrumentError::Kind kind,
+                    const std::string& role,
+                    const std::string& port,
+                    const std::string& command,
+                    const std::string& reply,
                     const std::string& detail) {
-  std::string text = fmt::format("{} on {}: {}: {}", role, port, common::PrintableText(command),
-                                 ToString(kind));
+  std::string text =
+      fmt::format("{} on {}: {}: {}", role, port, common::PrintableText(command), ToString(kind));
   if (!detail.empty()) text += fmt::format(" ({})", common::PrintableText(detail));
   text += reply.empty() ? std::string("; nothing came back")
                         : fmt::format("; reply '{}'", common::PrintableText(reply));
@@ -21,8 +24,11 @@ std::string Compose(InstrumentError::Kind kind, const std::string& role, const s
 
 }  // namespace
 
-InstrumentError::InstrumentError(Kind kind, std::string role, std::string port,
-                                 std::string command, std::string reply,
+InstrumentError::InstrumentError(Kind kind,
+                                 std::string role,
+                                 std::string port,
+                                 std::string command,
+                                 std::string reply,
                                  const std::string& detail)
     : std::runtime_error(Compose(kind, role, port, command, reply, detail)),
       kind_(kind),

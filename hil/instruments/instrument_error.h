@@ -12,15 +12,19 @@ namespace adahrs::hil {
 class InstrumentError : public std::runtime_error {
  public:
   enum class Kind {
-    kNoReply,        ///< nothing (or nothing complete) came back within the timeout, after retries
-    kRefused,        ///< the instrument answered with an error (Modbus exception, ATL/942/SCPI error)
-    kBadReply,       ///< a reply that does not parse as the command's answer
+    kNoReply,   ///< nothing (or nothing complete) came back within the timeout, after retries
+    kRefused,   ///< the instrument answered with an error (Modbus exception, ATL/942/SCPI error)
+    kBadReply,  ///< a reply that does not parse as the command's answer
     kWrongIdentity,  ///< the port answers, but as another instrument or unit
     kFault,          ///< the instrument reports a fault state (interlock open, sensor break)
   };
 
-  InstrumentError(Kind kind, std::string role, std::string port, std::string command,
-                  std::string reply, const std::string& detail);
+  InstrumentError(Kind kind,
+                  std::string role,
+                  std::string port,
+                  std::string command,
+                  std::string reply,
+                  const std::string& detail);
 
   Kind kind() const { return kind_; }
   const std::string& role() const { return role_; }

@@ -50,7 +50,8 @@ class Chamber {
   virtual bool SupportsProfiles() const = 0;
   /// Writes `steps` as profile `name` (replacing a profile of that name); throws kRefused when the
   /// controller has no profiles.
-  virtual void DownloadProfile(const std::string& name, const std::vector<F4ProfileStep>& steps) = 0;
+  virtual void DownloadProfile(const std::string& name,
+                               const std::vector<F4ProfileStep>& steps) = 0;
   virtual void StartProfile(const std::string& name) = 0;
   /// True while the profile started last is running (not yet at its end step).
   virtual bool ProfileRunning() = 0;

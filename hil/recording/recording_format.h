@@ -77,10 +77,10 @@ struct AdsRecordRow {
   int32_t ps_temp_counts = 0;
   int32_t pt_temp_counts = 0;
   int32_t oat_counts = 0;
-  uint8_t mode = 0;               ///< the unit's mode byte (0 raw)
-  std::optional<double> alt_ft;   ///< surface-mode pressure altitude; absent in raw mode
-  std::optional<double> cas_kt;   ///< surface-mode calibrated airspeed; absent in raw mode
-  uint32_t comp_flags = 0;        ///< compensation status flags, 0 when absent
+  uint8_t mode = 0;              ///< the unit's mode byte (0 raw)
+  std::optional<double> alt_ft;  ///< surface-mode pressure altitude; absent in raw mode
+  std::optional<double> cas_kt;  ///< surface-mode calibrated airspeed; absent in raw mode
+  uint32_t comp_flags = 0;       ///< compensation status flags, 0 when absent
 };
 
 }  // namespace adahrs::hil

@@ -1,15 +1,15 @@
 #include "hil/recording/recording_reader.h"
 
-#include "common/printable_text.h"
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
+#include "common/printable_text.h"
 
 namespace adahrs::hil {
 
@@ -38,8 +38,11 @@ class CsvCursor {
   // lacks, or a name the header repeats, is refused; a column the format does not know is
   // ignored and named in `notes`; one of the latest version's columns in an older version's file
   // (`latest_header`) says meta.json's version is wrong and is refused.
-  CsvCursor(const std::filesystem::path& path, std::string_view header, std::string_view latest_header,
-            int version, std::vector<std::string>* notes)
+  CsvCursor(const std::filesystem::path& path,
+            std::string_view header,
+            std::string_view latest_header,
+            int version,
+            std::vector<std::string>* notes)
       : path_(path), names_(SplitHeader(header)), in_(path) {
     if (!in_) throw RecordingError(path_.string() + ": cannot open for reading");
     std::string first;
@@ -65,7 +68,8 @@ class CsvCursor {
       size_t start = 0;
       for (;;) {
         const size_t comma = text.find(',', start);
-        cells_.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        cells_.push_back(
+            text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
         if (comma == std::string::npos) break;
         start = comma + 1;
       }
@@ -133,17 +137,22 @@ class CsvCursor {
  private:
   std::string Where() const { return path_.string() + ":" + std::to_string(line_); }
   std::string Where(size_t column) const {
-    return Where() + ": column " + std::to_string(column_of_[column] + 1) + " (" + names_[column] + ")";
+    return Where() + ": column " + std::to_string(column_of_[column] + 1) + " (" + names_[column] +
+           ")";
   }
 
-  void MapColumns(const std::vector<std::string>& file_names, const std::vector<std::string>& latest_names,
-                  int version, std::vector<std::string>* notes) {
-    const std::string format = " (recording format version " + std::to_string(version) + ", as meta.json says)";
+  void MapColumns(const std::vector<std::string>& file_names,
+                  const std::vector<std::string>& latest_names,
+                  int version,
+                  std::vector<std::string>* notes) {
+    const std::string format =
+        " (recording format version " + std::to_string(version) + ", as meta.json says)";
     for (size_t i = 0; i < file_names.size(); ++i) {
       for (size_t j = 0; j < i; ++j) {
         if (file_names[j] == file_names[i]) {
-          throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
-                               "' repeats column " + std::to_string(j + 1));
+          throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" +
+                               PrintableText(file_names[i]) + "' repeats column " +
+                               std::to_string(j + 1));
         }
       }
     }
@@ -156,20 +165,24 @@ class CsvCursor {
     }
     for (size_t i = 0; i < file_names.size(); ++i) {
       if (std::find(names_.begin(), names_.end(), file_names[i]) != names_.end()) continue;
-      if (std::find(latest_names.begin(), latest_names.end(), file_names[i]) != latest_names.end()) {
-        throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
-                             "' belongs to recording format version " + std::to_string(kRecordingFormatVersion) +
+      if (std::find(latest_names.begin(), latest_names.end(), file_names[i]) !=
+          latest_names.end()) {
+        throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" +
+                             PrintableText(file_names[i]) +
+                             "' belongs to recording format version " +
+                             std::to_string(kRecordingFormatVersion) +
                              ", but meta.json says version " + std::to_string(version));
       }
-      notes->push_back(path_.string() + ": column " + std::to_string(i + 1) + " '" + PrintableText(file_names[i]) +
-                       "' is not in the recording format" + format + "; ignored");
+      notes->push_back(path_.string() + ": column " + std::to_string(i + 1) + " '" +
+                       PrintableText(file_names[i]) + "' is not in the recording format" + format +
+                       "; ignored");
     }
     file_columns_ = file_names.size();
   }
 
   std::filesystem::path path_;
-  std::vector<std::string> names_;    ///< the format's columns, in the format's order
-  std::vector<size_t> column_of_;     ///< file column of each format column
+  std::vector<std::string> names_;  ///< the format's columns, in the format's order
+  std::vector<size_t> column_of_;   ///< file column of each format column
   size_t file_columns_ = 0;
   std::ifstream in_;
   std::vector<std::string> cells_;
@@ -223,11 +236,11 @@ std::vector<RejectedInterval> ReadRejectedIntervals(const nlohmann::json& meta,
 
 Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions& options) {
   Recording rows;
-  Recording rec = StreamRecording(
-      run_dir,
-      {[&](ImuRecordRow&& r, int) { rows.imu.push_back(std::move(r)); },
-       [&](AdsRecordRow&& r, int) { rows.ads.push_back(std::move(r)); }},
-      options);
+  Recording rec =
+      StreamRecording(run_dir,
+                      {[&](ImuRecordRow&& r, int) { rows.imu.push_back(std::move(r)); },
+                       [&](AdsRecordRow&& r, int) { rows.ads.push_back(std::move(r)); }},
+                      options);
   rec.imu = std::move(rows.imu);
   rec.ads = std::move(rows.ads);
   return rec;
@@ -240,11 +253,14 @@ void RefuseRepeatedUnits(const nlohmann::json& meta, const std::string& meta_pat
   if (!meta.contains("units") || !meta["units"].is_array()) return;
   const nlohmann::json& units = meta["units"];
   for (size_t i = 0; i < units.size(); ++i) {
-    if (!units[i].is_object() || !units[i].contains("serial") || !units[i]["serial"].is_string()) continue;
+    if (!units[i].is_object() || !units[i].contains("serial") || !units[i]["serial"].is_string())
+      continue;
     for (size_t j = 0; j < i; ++j) {
-      if (units[j].is_object() && units[j].value("serial", nlohmann::json()) == units[i]["serial"]) {
-        throw RecordingError(meta_path + ": $.units[" + std::to_string(i) + "].serial " + units[i]["serial"].dump() +
-                             " is listed already as $.units[" + std::to_string(j) + "]");
+      if (units[j].is_object() &&
+          units[j].value("serial", nlohmann::json()) == units[i]["serial"]) {
+        throw RecordingError(meta_path + ": $.units[" + std::to_string(i) + "].serial " +
+                             units[i]["serial"].dump() + " is listed already as $.units[" +
+                             std::to_string(j) + "]");
       }
     }
   }
@@ -269,12 +285,14 @@ Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
   }
   const nlohmann::json& v = rec.meta["format_version"];
   if (!v.is_number_integer()) {
-    throw RecordingError(meta_path.string() + ": $.format_version is " + v.dump() + ", not an integer");
+    throw RecordingError(meta_path.string() + ": $.format_version is " + v.dump() +
+                         ", not an integer");
   }
   // Read wide, so 4294967298 is refused as itself instead of wrapping to 2.
-  const int64_t version = v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX)
-                              ? INT64_MAX
-                              : v.get<int64_t>();
+  const int64_t version =
+      v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX)
+          ? INT64_MAX
+          : v.get<int64_t>();
   if (version < kOldestReadableFormatVersion || version > kRecordingFormatVersion) {
     throw RecordingError(meta_path.string() + ": $.format_version is " + v.dump() +
                          "; this software reads versions " +
@@ -337,8 +355,7 @@ class RowOrder {
     return text;
   }
   [[noreturn]] void Fail(int line, const std::string& what) const {
-    throw RecordingError(file_.string() + ":" + std::to_string(line) + ": " +
-                         PrintableText(what));
+    throw RecordingError(file_.string() + ":" + std::to_string(line) + ": " + PrintableText(what));
   }
   std::filesystem::path file_;
   std::map<std::string, Last> last_;
@@ -359,18 +376,25 @@ uint64_t RawWord(const ImuRecordRow& r) {
 uint64_t RawWord(const AdsRecordRow& r) {
   uint64_t w = 1469598103934665603ull;
   const auto mix = [&w](int32_t v) { w = (w ^ static_cast<uint32_t>(v)) * 1099511628211ull; };
-  for (int32_t c : {r.ps_counts, r.pt_counts, r.ps_temp_counts, r.pt_temp_counts, r.oat_counts}) mix(c);
+  for (int32_t c : {r.ps_counts, r.pt_counts, r.ps_temp_counts, r.pt_temp_counts, r.oat_counts})
+    mix(c);
   return w;
 }
 
 }  // namespace
 
-Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& sinks, const ReadOptions& options) {
+Recording StreamRecording(const std::filesystem::path& run_dir,
+                          const RowSinks& sinks,
+                          const ReadOptions& options) {
   Recording rec = ReadRecordingMeta(run_dir);
   const int version = rec.format_version;
   const bool v2 = version >= 2;
 
-  CsvCursor imu(run_dir / kImuCsvName, v2 ? kImuCsvHeader : kImuCsvHeaderV1, kImuCsvHeader, version, &rec.notes);
+  CsvCursor imu(run_dir / kImuCsvName,
+                v2 ? kImuCsvHeader : kImuCsvHeaderV1,
+                kImuCsvHeader,
+                version,
+                &rec.notes);
   RowOrder imu_order(rec.meta, run_dir / kImuCsvName);
   while (imu.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     ImuRecordRow r;
@@ -397,7 +421,11 @@ Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& 
     imu_order.Check(r.unit, r.step, r.t_s, r.seq, RawWord(r), imu.line());
     if (sinks.imu) sinks.imu(std::move(r), imu.line());
   }
-  CsvCursor ads(run_dir / kAdsCsvName, v2 ? kAdsCsvHeader : kAdsCsvHeaderV1, kAdsCsvHeader, version, &rec.notes);
+  CsvCursor ads(run_dir / kAdsCsvName,
+                v2 ? kAdsCsvHeader : kAdsCsvHeaderV1,
+                kAdsCsvHeader,
+                version,
+                &rec.notes);
   RowOrder ads_order(rec.meta, run_dir / kAdsCsvName);
   while (ads.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     AdsRecordRow r;

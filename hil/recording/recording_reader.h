@@ -1,18 +1,18 @@
 // Reads a run directory in the recording format (docs/recording-format.md) back into rows, as the
 // solvers and reports consume it. Refuses what it cannot trust and says exactly where: a missing
 // or unreadable file, a format version it does not know, a header that lacks one of the contract's
-// columns or repeats a name, a row with another number of columns than its header, a cell that is not a number of its column's type or is out of
-// its type's range — each error names the file, the 1-based line and the column name.
-// Per unit, rows must come in arrival order: a row of a unit meta.json does not list, a negative
-// step, a unit's time going back or its previous row repeated is refused by file and line.
-// A truncated last line (a crash while writing) is reported as such, not silently dropped:
-// `ReadOptions::allow_truncated_tail` accepts it and counts it, as a resumed run needs.
-// Reads format versions 1 and 2 (recording_format.h); version 1 rows have no compensated values.
-// Columns are found by name, in any order; a column the contract does not know is ignored and
-// named in `Recording::notes` (a foreign logger's extra channels lose nothing that is read).
-// In version 2 the compensated cells are all empty exactly when the row's mode is 0 (raw).
-// meta.json's optional "rejected_intervals" (rows that are NOT calibration data) are parsed
-// strictly too; the rest of meta.json is handed over as JSON.
+// columns or repeats a name, a row with another number of columns than its header, a cell that is
+// not a number of its column's type or is out of its type's range — each error names the file, the
+// 1-based line and the column name. Per unit, rows must come in arrival order: a row of a unit
+// meta.json does not list, a negative step, a unit's time going back or its previous row repeated
+// is refused by file and line. A truncated last line (a crash while writing) is reported as such,
+// not silently dropped: `ReadOptions::allow_truncated_tail` accepts it and counts it, as a resumed
+// run needs. Reads format versions 1 and 2 (recording_format.h); version 1 rows have no compensated
+// values. Columns are found by name, in any order; a column the contract does not know is ignored
+// and named in `Recording::notes` (a foreign logger's extra channels lose nothing that is read). In
+// version 2 the compensated cells are all empty exactly when the row's mode is 0 (raw). meta.json's
+// optional "rejected_intervals" (rows that are NOT calibration data) are parsed strictly too; the
+// rest of meta.json is handed over as JSON.
 #pragma once
 
 #include <filesystem>
@@ -73,7 +73,8 @@ struct RowSinks {
 /// ReadRecording without holding the rows: each is checked as ReadRecording checks it and handed
 /// to `sinks`; the result carries meta.json, the rejected intervals and the truncation count, and
 /// empty row vectors. For recordings too large to hold twice (ten million rows of imu.csv).
-Recording StreamRecording(const std::filesystem::path& run_dir, const RowSinks& sinks,
+Recording StreamRecording(const std::filesystem::path& run_dir,
+                          const RowSinks& sinks,
                           const ReadOptions& options = {});
 
 /// True when `t_s` lies inside one of the recording's rejected intervals (its rows there are not

@@ -30,8 +30,8 @@ std::FILE* OpenCsv(const std::filesystem::path& path, std::string_view header, c
   }
   std::FILE* f = std::fopen(path.c_str(), "a");
   if (f == nullptr) {
-    throw std::runtime_error(path.string() + ": cannot open for appending: " +
-                             std::strerror(errno));
+    throw std::runtime_error(path.string() +
+                             ": cannot open for appending: " + std::strerror(errno));
   }
   std::setvbuf(f, buffer, _IOFBF, kStdioBufferBytes);
   if (is_new) std::fprintf(f, "%.*s\n", static_cast<int>(header.size()), header.data());
@@ -85,8 +85,16 @@ void RecordingWriter::WriteMeta(nlohmann::json meta) const {
 }
 
 void RecordingWriter::Append(const ImuRecordRow& r) {
-  std::fprintf(imu_, "%.4f,%s,%u,%d,%u,%d,%.3f,%.4f", r.t_s, r.unit.c_str(), r.seq, r.step,
-               static_cast<unsigned>(r.tag), r.orientation, r.chamber_c, r.table_rate_dps);
+  std::fprintf(imu_,
+               "%.4f,%s,%u,%d,%u,%d,%.3f,%.4f",
+               r.t_s,
+               r.unit.c_str(),
+               r.seq,
+               r.step,
+               static_cast<unsigned>(r.tag),
+               r.orientation,
+               r.chamber_c,
+               r.table_rate_dps);
   for (uint16_t ticks : r.accel_ticks) std::fprintf(imu_, ",%u", static_cast<unsigned>(ticks));
   for (int32_t cnt : r.gyro_cnt) std::fprintf(imu_, ",%d", cnt);
   for (uint16_t cnt : r.temp_cnt) std::fprintf(imu_, ",%u", static_cast<unsigned>(cnt));
@@ -105,10 +113,22 @@ void RecordingWriter::Append(const AdsRecordRow& r) {
     throw std::invalid_argument("ads row of " + r.unit + " at t_s " + std::to_string(r.t_s) +
                                 ": alt_ft and cas_kt must be both present or both absent");
   }
-  std::fprintf(ads_, "%.4f,%s,%u,%d,%u,%.3f,%.2f,%.2f,%d,%d,%d,%d,%d,%u", r.t_s, r.unit.c_str(),
-               r.seq, r.step, static_cast<unsigned>(r.tag), r.chamber_c, r.ps_ref_pa,
-               r.qc_ref_pa, r.ps_counts, r.pt_counts, r.ps_temp_counts, r.pt_temp_counts,
-               r.oat_counts, static_cast<unsigned>(r.mode));
+  std::fprintf(ads_,
+               "%.4f,%s,%u,%d,%u,%.3f,%.2f,%.2f,%d,%d,%d,%d,%d,%u",
+               r.t_s,
+               r.unit.c_str(),
+               r.seq,
+               r.step,
+               static_cast<unsigned>(r.tag),
+               r.chamber_c,
+               r.ps_ref_pa,
+               r.qc_ref_pa,
+               r.ps_counts,
+               r.pt_counts,
+               r.ps_temp_counts,
+               r.pt_temp_counts,
+               r.oat_counts,
+               static_cast<unsigned>(r.mode));
   if (r.alt_ft) {
     PutReal(ads_, *r.alt_ft);
     PutReal(ads_, *r.cas_kt);

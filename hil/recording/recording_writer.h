@@ -1,6 +1,6 @@
 // Writes a run directory in the recording format (recording_format.h). Rows are appended to the
-// CSVs as they arrive; Flush(durable=true) flushes and fsyncs both files, which the executor does at
-// every step boundary so that a crash loses nothing that was logged before it.
+// CSVs as they arrive; Flush(durable=true) flushes and fsyncs both files, which the executor does
+// at every step boundary so that a crash loses nothing that was logged before it.
 #pragma once
 
 #include <cstdio>

@@ -48,7 +48,8 @@ std::optional<std::filesystem::path> SetAsideTornTail(const std::filesystem::pat
     if (!std::filesystem::exists(torn)) break;
   }
   WriteDurably(torn, text.substr(keep));
-  if (::truncate(csv_path.c_str(), static_cast<off_t>(keep)) != 0) Fail(csv_path, "truncate failed");
+  if (::truncate(csv_path.c_str(), static_cast<off_t>(keep)) != 0)
+    Fail(csv_path, "truncate failed");
   return torn;
 }
 

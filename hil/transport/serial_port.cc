@@ -7,11 +7,11 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <array>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/read.hpp>
 #include <boost/asio/serial_port.hpp>
 #include <boost/asio/write.hpp>
-#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -31,7 +31,9 @@ namespace {
 // Runs the io_context until `done` or the timeout; on timeout cancels the operation and lets its
 // handler complete, so no handler outlives the call.
 template <typename Done>
-bool RunWithTimeout(asio::io_context& io, asio::serial_port& port, std::chrono::milliseconds timeout,
+bool RunWithTimeout(asio::io_context& io,
+                    asio::serial_port& port,
+                    std::chrono::milliseconds timeout,
                     Done done) {
   io.restart();
   io.run_for(timeout);
@@ -62,13 +64,14 @@ SerialPort::SerialPort(const SerialSettings& s, std::string role, PortAccess acc
   boost::system::error_code ec;
   impl_->port.open(s.path, ec);
   if (ec) throw TransportError(Describe("cannot open: " + ec.message()));
-  if (access == PortAccess::kExclusive && ::flock(impl_->port.native_handle(), LOCK_EX | LOCK_NB) != 0) {
+  if (access == PortAccess::kExclusive &&
+      ::flock(impl_->port.native_handle(), LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
-    throw TransportError(Describe(error == EWOULDBLOCK
-                                      ? std::string("in use: another open of this device holds its lock "
-                                                    "(a second pipeline, or a program opening it "
-                                                    "exclusively); one client per port")
-                                      : std::string("cannot lock: ") + std::strerror(error)));
+    throw TransportError(Describe(
+        error == EWOULDBLOCK ? std::string("in use: another open of this device holds its lock "
+                                           "(a second pipeline, or a program opening it "
+                                           "exclusively); one client per port")
+                             : std::string("cannot lock: ") + std::strerror(error)));
   }
   using P = asio::serial_port_base;
   const auto parity = s.parity == 'E'   ? P::parity::even
@@ -80,7 +83,9 @@ SerialPort::SerialPort(const SerialSettings& s, std::string role, PortAccess acc
   impl_->port.set_option(P::baud_rate(s.baud), ec);
   if (!ec) impl_->port.set_option(P::character_size(s.data_bits), ec);
   if (!ec) impl_->port.set_option(P::parity(parity), ec);
-  if (!ec) impl_->port.set_option(P::stop_bits(s.stop_bits == 2 ? P::stop_bits::two : P::stop_bits::one), ec);
+  if (!ec)
+    impl_->port.set_option(P::stop_bits(s.stop_bits == 2 ? P::stop_bits::two : P::stop_bits::one),
+                           ec);
   if (!ec) impl_->port.set_option(P::flow_control(flow), ec);
   if (ec) throw TransportError(Describe("cannot configure: " + ec.message()));
   DiscardInput();
@@ -110,7 +115,8 @@ void SerialPort::DiscardInput() {
 
 void SerialPort::Write(std::span<const uint8_t> bytes, std::chrono::milliseconds timeout) {
   std::optional<boost::system::error_code> result;
-  asio::async_write(impl_->port, asio::buffer(bytes.data(), bytes.size()),
+  asio::async_write(impl_->port,
+                    asio::buffer(bytes.data(), bytes.size()),
                     [&](const boost::system::error_code& ec, size_t) { result = ec; });
   if (!RunWithTimeout(impl_->io, impl_->port, timeout, [&] { return result.has_value(); }) ||
       *result == asio::error::operation_aborted) {
@@ -135,10 +141,9 @@ size_t SerialPort::ReadSome(std::span<uint8_t> buffer, std::chrono::milliseconds
     return n;
   }
   std::optional<std::pair<boost::system::error_code, size_t>> result;
-  impl_->port.async_read_some(asio::buffer(buffer.data(), buffer.size()),
-                              [&](const boost::system::error_code& ec, size_t n) {
-                                result.emplace(ec, n);
-                              });
+  impl_->port.async_read_some(
+      asio::buffer(buffer.data(), buffer.size()),
+      [&](const boost::system::error_code& ec, size_t n) { result.emplace(ec, n); });
   RunWithTimeout(impl_->io, impl_->port, timeout, [&] { return result.has_value(); });
   if (!result || result->first == asio::error::operation_aborted) return 0;
   if (result->first) throw TransportError(Describe("read failed: " + result->first.message()));
@@ -160,7 +165,8 @@ std::string SerialPort::ReadUntil(std::string_view terminator, std::chrono::mill
     const size_t at = text.find(terminator);
     if (at != std::string::npos) {
       const size_t end = at + terminator.size();
-      pending_.insert(pending_.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), text.end());
+      pending_.insert(
+          pending_.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), text.end());
       text.resize(end);
       return text;
     }
@@ -171,8 +177,9 @@ std::string SerialPort::ReadUntil(std::string_view terminator, std::chrono::mill
                                             terminator.size())) +
           " within " + std::to_string(timeout.count()) + " ms; received " +
           (text.empty() ? std::string("nothing")
-                        : "'" + HexBytes(std::span<const uint8_t>(
-                                    reinterpret_cast<const uint8_t*>(text.data()), text.size())) +
+                        : "'" +
+                              HexBytes(std::span<const uint8_t>(
+                                  reinterpret_cast<const uint8_t*>(text.data()), text.size())) +
                               "'")));
     }
   }
@@ -185,8 +192,7 @@ std::vector<uint8_t> SerialPort::ReadExactly(size_t count, std::chrono::millisec
   while (have < count) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
-    const size_t n =
-        left.count() > 0 ? ReadSome(std::span<uint8_t>(out).subspan(have), left) : 0;
+    const size_t n = left.count() > 0 ? ReadSome(std::span<uint8_t>(out).subspan(have), left) : 0;
     have += n;
     if (n == 0 && std::chrono::steady_clock::now() >= deadline) {
       out.resize(have);

@@ -52,7 +52,8 @@ class SerialPort {
  public:
   /// Opens and configures the port; discards bytes that arrived before it was opened. Throws
   /// TransportError when an exclusive open finds the port held by another open.
-  SerialPort(const SerialSettings& settings, std::string role,
+  SerialPort(const SerialSettings& settings,
+             std::string role,
              PortAccess access = PortAccess::kExclusive);
   ~SerialPort();
   SerialPort(const SerialPort&) = delete;

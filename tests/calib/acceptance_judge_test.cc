@@ -26,10 +26,10 @@
 namespace adahrs::calib {
 namespace {
 
-using ::testing::AllOf;
-using ::testing::HasSubstr;
 using testing::AcceptanceRecordingMaker;
 using testing::AdsErrors;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
 using testing::ImuErrors;
 
 class AcceptanceJudgeTest : public ::testing::Test {
@@ -56,7 +56,8 @@ class AcceptanceJudgeTest : public ::testing::Test {
     ImuErrors sensor_mode;
     sensor_mode.mode = 2;
     sensor_mode.accel_mg = {0.0, -1.2, 0.0};
-    return {{"IMU-0001", good}, {"IMU-0002", bad}, {"IMU-0003", reported}, {"IMU-0004", sensor_mode}};
+    return {
+        {"IMU-0001", good}, {"IMU-0002", bad}, {"IMU-0003", reported}, {"IMU-0004", sensor_mode}};
   }
 
   static std::map<std::string, AdsErrors> AdsUnits() {
@@ -163,7 +164,8 @@ TEST_F(AcceptanceJudgeTest, RatePointsCarryTheirPhysicalLimitAndTwoLevelVerdict)
   inside.rate_dps = {0.028, 0.028, 0.028};
   outside.rate_dps = {0.3, 0.3, 0.3};
   maker.RunImu(testing::ImuAcceptanceSequence(),
-               {{"IMU-0001", quiet}, {"IMU-0002", inside}, {"IMU-0003", outside}}, dir_ / "run");
+               {{"IMU-0001", quiet}, {"IMU-0002", inside}, {"IMU-0003", outside}},
+               dir_ / "run");
   const AcceptanceRun run = JudgeAcceptance(dir_ / "run", Specification::Reference());
   EXPECT_EQ(run.since_calibration_h, kDefaultSinceCalibration_h);
   const std::map<std::string, PointVerdict> expected = {
@@ -183,7 +185,8 @@ TEST_F(AcceptanceJudgeTest, RatePointsCarryTheirPhysicalLimitAndTwoLevelVerdict)
       ASSERT_TRUE(p.physical_limit.has_value());
       EXPECT_NEAR(p.duration_s, 25.0, 1e-6);
       const AllanTerms& terms = unit.rest->rate_dps[static_cast<size_t>(p.quantity.back() - 'x')];
-      const double floor = noise_dps / std::sqrt(static_cast<double>(terms.curve.back().cluster_size));
+      const double floor =
+          noise_dps / std::sqrt(static_cast<double>(terms.curve.back().cluster_size));
       const double expected_limit =
           3.0 * floor * std::sqrt(1.0 + 2.0 * FlickerSeparationRatio(86400.0 / 25.0));
       EXPECT_GT(*p.physical_limit, 0.6 * expected_limit);
@@ -197,11 +200,13 @@ TEST_F(AcceptanceJudgeTest, RatePointsCarryTheirPhysicalLimitAndTwoLevelVerdict)
   const Specification spec = Specification::Reference();
   const nlohmann::json doc = AcceptanceJson(run, Unit(run, "IMU-0002"), spec, "test");
   EXPECT_EQ(doc["format_version"], 2);
-  EXPECT_EQ(doc["point_verdicts"]["body_rate"]["outside specification, within the physical limit"], 27);
+  EXPECT_EQ(doc["point_verdicts"]["body_rate"]["outside specification, within the physical limit"],
+            27);
   EXPECT_EQ(doc["physical_limit"]["since_calibration_h"], 24.0);
-  EXPECT_THAT(RateVerdictLine(Unit(run, "IMU-0003")),
-              HasSubstr("0 of 27 within specification, 0 outside specification, within the physical "
-                        "limit, 27 outside specification and the physical limit"));
+  EXPECT_THAT(
+      RateVerdictLine(Unit(run, "IMU-0003")),
+      HasSubstr("0 of 27 within specification, 0 outside specification, within the physical "
+                "limit, 27 outside specification and the physical limit"));
 }
 
 TEST_F(AcceptanceJudgeTest, AdsVerdictsUseTheTestSetReferenceAndInterpolatedTolerance) {
@@ -222,8 +227,9 @@ TEST_F(AcceptanceJudgeTest, AdsVerdictsUseTheTestSetReferenceAndInterpolatedTole
       EXPECT_EQ(p.quantity, "altitude");
       EXPECT_EQ(*p.alt_ft, expected[i].alt_ft);  // the aim is the input
       EXPECT_DOUBLE_EQ(p.tolerance, expected[i].tolerance);
-      // The reference is what the test set reported (aim + 3 ft), not the aim; 0.01 ft: sensor_sim's
-      // ISA pressure and its inverse agree to 0.002 ft at 20,000 ft, not to the last bit.
+      // The reference is what the test set reported (aim + 3 ft), not the aim; 0.01 ft:
+      // sensor_sim's ISA pressure and its inverse agree to 0.002 ft at 20,000 ft, not to the last
+      // bit.
       EXPECT_NEAR(p.reference, expected[i].alt_ft + 3.0, 0.01);
       EXPECT_NEAR(p.error, e.alt_ft, 4.0 * e.noise_ft / 10.0);
       EXPECT_EQ(p.pass, e.alt_ft <= expected[i].tolerance);
@@ -243,18 +249,26 @@ TEST_F(AcceptanceJudgeTest, AdsVerdictsUseTheTestSetReferenceAndInterpolatedTole
 
 TEST_F(AcceptanceJudgeTest, UnitMissingFromAStepIsRefusedNamingIt) {
   AcceptanceRecordingMaker maker;
-  maker.imu_edit = [](hil::ImuRecordRow& row) { return !(row.unit == "IMU-0002" && row.step == 2); };
+  maker.imu_edit = [](hil::ImuRecordRow& row) {
+    return !(row.unit == "IMU-0002" && row.step == 2);
+  };
   maker.RunImu(testing::ImuAcceptanceSequence(), ImuUnits(), dir_ / "run");
-  EXPECT_THAT(JudgeError(), AllOf(HasSubstr((dir_ / "run").string()), HasSubstr("unit IMU-0002"),
-                                  HasSubstr("step 2 (accel"), HasSubstr("missing from the step")));
+  EXPECT_THAT(JudgeError(),
+              AllOf(HasSubstr((dir_ / "run").string()),
+                    HasSubstr("unit IMU-0002"),
+                    HasSubstr("step 2 (accel"),
+                    HasSubstr("missing from the step")));
 }
 
 TEST_F(AcceptanceJudgeTest, GyroRateWithoutRowsIsRefused) {
   AcceptanceRecordingMaker maker;
-  maker.imu_edit = [](hil::ImuRecordRow& row) { return !(row.step == 5 && row.table_rate_dps == 0.0); };
+  maker.imu_edit = [](hil::ImuRecordRow& row) {
+    return !(row.step == 5 && row.table_rate_dps == 0.0);
+  };
   maker.RunImu(testing::ImuAcceptanceSequence(), ImuUnits(), dir_ / "run");
-  EXPECT_THAT(JudgeError(), AllOf(HasSubstr("step 5 (gyro"),
-                                  HasSubstr("no rows at the commanded rate 0 deg/s in orientation 21")));
+  EXPECT_THAT(JudgeError(),
+              AllOf(HasSubstr("step 5 (gyro"),
+                    HasSubstr("no rows at the commanded rate 0 deg/s in orientation 21")));
 }
 
 TEST_F(AcceptanceJudgeTest, RawModeRowsAreRefusedNamingRunUnitAndStep) {
@@ -267,8 +281,11 @@ TEST_F(AcceptanceJudgeTest, RawModeRowsAreRefusedNamingRunUnitAndStep) {
     return true;
   };
   maker.RunImu(testing::ImuAcceptanceSequence(), ImuUnits(), dir_ / "run");
-  EXPECT_THAT(JudgeError(), AllOf(HasSubstr((dir_ / "run").string()), HasSubstr("unit IMU-0001"),
-                                  HasSubstr("step 4 (gyro"), HasSubstr("raw mode")));
+  EXPECT_THAT(JudgeError(),
+              AllOf(HasSubstr((dir_ / "run").string()),
+                    HasSubstr("unit IMU-0001"),
+                    HasSubstr("step 4 (gyro"),
+                    HasSubstr("raw mode")));
 }
 
 TEST_F(AcceptanceJudgeTest, ThermalModeRowsAreRefused) {
@@ -278,8 +295,9 @@ TEST_F(AcceptanceJudgeTest, ThermalModeRowsAreRefused) {
     return true;
   };
   maker.RunImu(testing::ImuAcceptanceSequence(), ImuUnits(), dir_ / "run");
-  EXPECT_THAT(JudgeError(), AllOf(HasSubstr("unit IMU-0003"), HasSubstr("step 1 (accel"),
-                                  HasSubstr("thermal mode (1)")));
+  EXPECT_THAT(
+      JudgeError(),
+      AllOf(HasSubstr("unit IMU-0003"), HasSubstr("step 1 (accel"), HasSubstr("thermal mode (1)")));
 }
 
 TEST_F(AcceptanceJudgeTest, ChamberOutsideTheRatingIsRefusedNamingTheStep) {
@@ -289,8 +307,10 @@ TEST_F(AcceptanceJudgeTest, ChamberOutsideTheRatingIsRefusedNamingTheStep) {
     return true;
   };
   maker.RunImu(testing::ImuAcceptanceSequence(), ImuUnits(), dir_ / "run");
-  EXPECT_THAT(JudgeError(), AllOf(HasSubstr("step 3 (accel"), HasSubstr("86.00 degC"),
-                                  HasSubstr("outside the rating -40...85 degC")));
+  EXPECT_THAT(JudgeError(),
+              AllOf(HasSubstr("step 3 (accel"),
+                    HasSubstr("86.00 degC"),
+                    HasSubstr("outside the rating -40...85 degC")));
 }
 
 TEST_F(AcceptanceJudgeTest, ChamberAtTheRatingEndWithinTheSoakBandIsJudged) {
@@ -364,7 +384,8 @@ TEST_F(AcceptanceJudgeTest, MalformedAcceptanceFileIsRefusedNamingThePath) {
   AcceptanceRecordingMaker maker;
   maker.RunImu(testing::ImuAcceptanceSequence(), ImuUnits(), dir_ / "run");
   const Specification spec = Specification::Reference();
-  const auto files = WriteAcceptanceFiles(JudgeAcceptance(dir_ / "run", spec), spec, "test", dir_ / "out");
+  const auto files =
+      WriteAcceptanceFiles(JudgeAcceptance(dir_ / "run", spec), spec, "test", dir_ / "out");
   nlohmann::json doc = nlohmann::json::parse(std::ifstream(files[0]));
   doc["points"][3]["error"] = "large";
   std::ofstream(files[0]) << doc.dump();
@@ -372,8 +393,10 @@ TEST_F(AcceptanceJudgeTest, MalformedAcceptanceFileIsRefusedNamingThePath) {
     ReadAcceptanceFile(files[0]);
     FAIL() << "accepted";
   } catch (const AcceptanceFileError& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr(files[0].string()), HasSubstr("$.points[3].error"),
-                                HasSubstr("expected a number")));
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr(files[0].string()),
+                      HasSubstr("$.points[3].error"),
+                      HasSubstr("expected a number")));
   }
 }
 

@@ -24,10 +24,10 @@
 
 #include "calib/sequence/sequence.h"
 #include "calib/sequence/sequence_json.h"
+#include "common/units.h"
 #include "hil/recording/recording_writer.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "common/units.h"
 
 namespace adahrs::calib::testing {
 
@@ -60,7 +60,7 @@ class AcceptanceRecordingMaker {
   double table_rate_error_dps = 0.004;
   double reference_offset_ft = 3.0;  ///< the test set's altitude differs from the aim
   double reference_offset_kt = 0.3;
-  double thermal_step_c = 0.05;   ///< chamber change per packet on a thermal profile ramp
+  double thermal_step_c = 0.05;  ///< chamber change per packet on a thermal profile ramp
   int thermal_orientation = 31;
   /// IMU: packets logged at rest (tag 0, thermal_orientation) at each target temperature step,
   /// as a soak logs them: the rest record the judge reads the units' noise from.
@@ -68,7 +68,8 @@ class AcceptanceRecordingMaker {
   ImuRowEdit imu_edit;
   AdsRowEdit ads_edit;
 
-  void RunImu(const Sequence& sequence, const std::map<std::string, ImuErrors>& units,
+  void RunImu(const Sequence& sequence,
+              const std::map<std::string, ImuErrors>& units,
               const std::filesystem::path& run_dir) {
     Begin(run_dir);
     const std::vector<uint8_t> tags = EffectiveTags(sequence);
@@ -85,7 +86,8 @@ class AcceptanceRecordingMaker {
         ImuFrames(units, static_cast<int>(s), tags[s], a->orientation, 0.0);
       }
       if (const auto* g = std::get_if<GyroStep>(&body)) {
-        for (double r : GyroRates_dps(*g)) ImuFrames(units, static_cast<int>(s), tags[s], g->orientation, r);
+        for (double r : GyroRates_dps(*g))
+          ImuFrames(units, static_cast<int>(s), tags[s], g->orientation, r);
       }
       if (const auto* c = std::get_if<CrossAxisStep>(&body)) {
         for (int o : kCrossAxisOrientations) {
@@ -105,7 +107,8 @@ class AcceptanceRecordingMaker {
             }
           }
           if (std::holds_alternative<F4Soak>(ps)) {
-            for (int i = 0; i < saved; ++i) ImuFrames(units, static_cast<int>(s), tags[s], thermal_orientation, 0.0);
+            for (int i = 0; i < saved; ++i)
+              ImuFrames(units, static_cast<int>(s), tags[s], thermal_orientation, 0.0);
           }
         }
         packets = saved;
@@ -114,7 +117,8 @@ class AcceptanceRecordingMaker {
     End(sequence, run_dir, units, "imu");
   }
 
-  void RunAds(const Sequence& sequence, const std::map<std::string, AdsErrors>& units,
+  void RunAds(const Sequence& sequence,
+              const std::map<std::string, AdsErrors>& units,
               const std::filesystem::path& run_dir) {
     Begin(run_dir);
     const std::vector<uint8_t> tags = EffectiveTags(sequence);
@@ -159,14 +163,21 @@ class AcceptanceRecordingMaker {
   }
 
   template <typename Errors>
-  void End(const Sequence& sequence, const std::filesystem::path& run_dir,
-           const std::map<std::string, Errors>& units, const std::string& kind) {
+  void End(const Sequence& sequence,
+           const std::filesystem::path& run_dir,
+           const std::map<std::string, Errors>& units,
+           const std::string& kind) {
     nlohmann::json unit_list = nlohmann::json::array();
     int slot = 1;
     for (const auto& [serial, e] : units) {
-      unit_list.push_back({{"role", kind + std::to_string(slot)}, {"kind", kind}, {"serial", serial},
-                           {"serial_number", slot}, {"firmware", "1.0.0"}, {"slot", slot},
-                           {"constants_version", 1}, {"mode", kind == "imu" ? 3 : 1}});
+      unit_list.push_back({{"role", kind + std::to_string(slot)},
+                           {"kind", kind},
+                           {"serial", serial},
+                           {"serial_number", slot},
+                           {"firmware", "1.0.0"},
+                           {"slot", slot},
+                           {"constants_version", 1},
+                           {"mode", kind == "imu" ? 3 : 1}});
       ++slot;
     }
     writer_->WriteMeta({{"run_id", "acceptance-test"},
@@ -185,8 +196,11 @@ class AcceptanceRecordingMaker {
     (void)run_dir;
   }
 
-  void ImuFrames(const std::map<std::string, ImuErrors>& units, int step, uint8_t tag,
-                 int orientation, double rate_dps) {
+  void ImuFrames(const std::map<std::string, ImuErrors>& units,
+                 int step,
+                 uint8_t tag,
+                 int orientation,
+                 double rate_dps) {
     std::array<double, 3> up{};
     up[static_cast<size_t>(orientation / 10 - 1)] = orientation % 10 == 1 ? 1.0 : -1.0;
     const double reported_dps = rate_dps == 0.0 ? 0.0 : rate_dps + table_rate_error_dps;
@@ -210,9 +224,10 @@ class AcceptanceRecordingMaker {
         row.mode = static_cast<uint8_t>(e.mode);
         std::array<double, 3> f_g{}, w_dps{};
         for (size_t k = 0; k < 3; ++k) {
-          f_g[k] = up[k] * common::Mps2ToG(kTestGLocal_mps2) +
-                   (e.accel_mg[k] + e.accel_mg_per_c * (chamber_c - 25.0) + e.noise_mg * normal_(rng_)) /
-                       1000.0;
+          f_g[k] =
+              up[k] * common::Mps2ToG(kTestGLocal_mps2) +
+              (e.accel_mg[k] + e.accel_mg_per_c * (chamber_c - 25.0) + e.noise_mg * normal_(rng_)) /
+                  1000.0;
           w_dps[k] = up[k] * reported_dps + e.rate_dps[k] + e.noise_dps * normal_(rng_);
         }
         std::array<double, 9> comp{};
@@ -225,8 +240,15 @@ class AcceptanceRecordingMaker {
           // Mode 2: az1 ax1 ay1 az2 ax2 ay2, each g along its body axis; the pair disagrees by
           // +-0.7 mg, which the axis mean cancels.
           const double d = 0.7e-3;
-          comp = {f_g[2] + d, f_g[0] + d, f_g[1] + d, f_g[2] - d, f_g[0] - d, f_g[1] - d,
-                  w_dps[0], w_dps[1], w_dps[2]};
+          comp = {f_g[2] + d,
+                  f_g[0] + d,
+                  f_g[1] + d,
+                  f_g[2] - d,
+                  f_g[0] - d,
+                  f_g[1] - d,
+                  w_dps[0],
+                  w_dps[1],
+                  w_dps[2]};
         }
         if (e.mode != 0) row.comp = comp;
         if (!imu_edit || imu_edit(row)) writer_->Append(row);
@@ -287,14 +309,17 @@ inline Sequence CrossAxisAcceptanceSequence() {
   return s;
 }
 
-/// Thermal acceptance: the unit at rest in orientation 31 while the chamber goes 25 -> -20 -> 25 degC.
+/// Thermal acceptance: the unit at rest in orientation 31 while the chamber goes 25 -> -20 -> 25
+/// degC.
 inline Sequence ThermalAcceptanceSequence() {
   Sequence s;
   s.name = "imu_thermal_acceptance_test";
   s.unit_kind = UnitKind::kImu;
   s.steps.push_back({std::nullopt, TargetTemperatureStep{25.0, 0.5, 0.0}});
-  s.steps.push_back({std::nullopt, ThermalProfileStep{"ACCEPT", {F4RampRate{-20.0, 1.0}, F4Soak{600.0},
-                                                                 F4RampRate{25.0, 1.0}, F4End{}}}});
+  s.steps.push_back(
+      {std::nullopt,
+       ThermalProfileStep{
+           "ACCEPT", {F4RampRate{-20.0, 1.0}, F4Soak{600.0}, F4RampRate{25.0, 1.0}, F4End{}}}});
   return s;
 }
 

@@ -79,7 +79,8 @@ TEST(AdsCalibrationPoints, SelectsTaggedRowsOutsideRejectedIntervals) {
 TEST(AdsCalibrationPoints, RefusesAReferenceThatMovedWithinTheAcquisition) {
   hil::Recording rec;
   rec.meta = nlohmann::json::object();
-  for (int i = 1; i <= 10; ++i) rec.ads.push_back(Row(121, 9, 0.125 * i, 21290, i <= 2 ? 13513.8 : 11597.0));
+  for (int i = 1; i <= 10; ++i)
+    rec.ads.push_back(Row(121, 9, 0.125 * i, 21290, i <= 2 ? 13513.8 : 11597.0));
   EXPECT_THAT([&] { SelectAdsCalibrationPoints(rec, "ADS-0007", "run"); },
               ::testing::ThrowsMessage<std::runtime_error>(HasSubstr(
                   "run/ads.csv lines 2 and 4 column ps_ref_pa: the test set's reference moved "
@@ -92,7 +93,8 @@ TEST(AdsCalibrationPoints, RefusesAReferenceThatMovedWithinTheAcquisition) {
   // A steady reference's jitter (6.4 Pa at most in that run) passes.
   hil::Recording steady;
   steady.meta = nlohmann::json::object();
-  for (int i = 1; i <= 10; ++i) steady.ads.push_back(Row(5, 9, 0.125 * i, 21290, 11597.0 + (i % 2) * 6.4));
+  for (int i = 1; i <= 10; ++i)
+    steady.ads.push_back(Row(5, 9, 0.125 * i, 21290, 11597.0 + (i % 2) * 6.4));
   EXPECT_EQ(SelectAdsCalibrationPoints(steady, "ADS-0007", "run").size(), 1u);
 }
 
@@ -123,10 +125,14 @@ struct CalibratedUnit {
   sensor_sim::AdsUnitParams truth;
   std::vector<AdsCalibrationPoint> points;
 };
-CalibratedUnit RunShippedCalibration(const std::string& serial, uint64_t seed, uint64_t noise_seed) {
-  CalibratedUnit u{sensor_sim::AdsUnitParams::Draw(serial, seed, sensor_sim::ModelProfile::kTruth), {}};
+CalibratedUnit RunShippedCalibration(const std::string& serial,
+                                     uint64_t seed,
+                                     uint64_t noise_seed) {
+  CalibratedUnit u{sensor_sim::AdsUnitParams::Draw(serial, seed, sensor_sim::ModelProfile::kTruth),
+                   {}};
   const fs::path run = TempRun(serial);
-  testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), u.truth, noise_seed);
+  testing::WriteAdsRecording(
+      run, testing::ShippedSequencePath("ads_calibration"), u.truth, noise_seed);
   u.points = SelectAdsCalibrationPoints(hil::ReadRecording(run), serial, run.string());
   fs::remove_all(run);
   return u;
@@ -152,19 +158,30 @@ TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecifica
       double& worst = g.temp_c <= -20.0 ? low_temp_worst_ft : warm_worst_ft;
       worst = std::max(worst, std::abs(g.error_no_history));
     }
-    std::printf("%s reference: worst altitude error -1,000..10,000 ft without history: %.1f ft "
-                "at <= -20 degC, %.1f ft above; altitude grid %d pass / %d fail / %d "
-                "unreachable; worst |error|/tolerance %.1f\n",
-                serial.c_str(), low_temp_worst_ft, warm_worst_ft, eval.altitude.pass,
-                eval.altitude.fail, eval.altitude.unreachable,
-                eval.altitude.worst_ratio_no_history);
+    std::printf(
+        "%s reference: worst altitude error -1,000..10,000 ft without history: %.1f ft "
+        "at <= -20 degC, %.1f ft above; altitude grid %d pass / %d fail / %d "
+        "unreachable; worst |error|/tolerance %.1f\n",
+        serial.c_str(),
+        low_temp_worst_ft,
+        warm_worst_ft,
+        eval.altitude.pass,
+        eval.altitude.fail,
+        eval.altitude.unreachable,
+        eval.altitude.worst_ratio_no_history);
     for (const auto* q : {&eval.altitude, &eval.airspeed}) {
       for (const AdsTolerancePointResult& r : q->points) {
-        std::printf("  %s %g: tolerance %g, worst without history %.1f (%g degC), with history "
-                    "%.1f, loop half-width %.1f: %s\n",
-                    q->quantity.c_str(), r.at, r.tolerance, r.worst_no_history,
-                    r.worst_no_history_temp_c, r.worst_with_history, r.max_loop_half_width,
-                    ToString(r.verdict));
+        std::printf(
+            "  %s %g: tolerance %g, worst without history %.1f (%g degC), with history "
+            "%.1f, loop half-width %.1f: %s\n",
+            q->quantity.c_str(),
+            r.at,
+            r.tolerance,
+            r.worst_no_history,
+            r.worst_no_history_temp_c,
+            r.worst_with_history,
+            r.max_loop_half_width,
+            ToString(r.verdict));
       }
     }
     EXPECT_GT(low_temp_worst_ft, AltitudeToleranceFt(0.0));
@@ -184,17 +201,19 @@ TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecifica
 // Truth: the half loops the centre fit separates match each unit's drawn hysteresis.
 TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) {
   constexpr int kUnits = 20;
-  constexpr const char* kStrategies[] = {"reference", "tolerance_minimax", "pressure_minimax",
-                                         "hysteresis_compensated"};
+  constexpr const char* kStrategies[] = {
+      "reference", "tolerance_minimax", "pressure_minimax", "hysteresis_compensated"};
   constexpr int kStrategyCount = 4;
   double sum[kStrategyCount][2] = {}, worst_pressure[2] = {};
   int better[2][2] = {}, fails[kStrategyCount][2] = {}, unreachable[2] = {}, passes[2] = {};
-  double worst_compensated[2] = {};  // hysteresis_compensated: worst |error| / tolerance with history
+  double worst_compensated[2] =
+      {};  // hysteresis_compensated: worst |error| / tolerance with history
   int compensated_unreachable = 0;
   double centre_rms_pa[2][2] = {{1e300, 0.0}, {1e300, 0.0}};  // [altitude/airspeed][min/max]
-  int chosen_degree[2][6] = {};                                // units per temperature degree
+  int chosen_degree[2][6] = {};                               // units per temperature degree
   double worst_thermal_loop_error = 0.0, worst_pressure_loop_error = 0.0;
-  double least_band_at_a_fail = 1e9;  // half-width / tolerance, over pressure_minimax's failing points
+  double least_band_at_a_fail =
+      1e9;  // half-width / tolerance, over pressure_minimax's failing points
   for (int i = 0; i < kUnits; ++i) {
     const std::string serial = "ADS-" + std::to_string(9200 + i);
     const auto [truth, points] = RunShippedCalibration(serial, 6100 + i, 40 + i);
@@ -247,7 +266,8 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
         int q = 0;
         for (const AdsQuantityEvaluation* e : {&eval.altitude, &eval.airspeed}) {
           for (const AdsGridPoint& g : e->grid) {
-            worst_compensated[q] = std::max(worst_compensated[q], g.worst_with_history / g.tolerance);
+            worst_compensated[q] =
+                std::max(worst_compensated[q], g.worst_with_history / g.tolerance);
           }
           ++q;
         }
@@ -260,7 +280,8 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
         for (const AdsQuantityEvaluation* q : {&eval.altitude, &eval.airspeed}) {
           for (const AdsGridPoint& g : q->grid) {
             if (g.verdict == AdsVerdict::kFail) {
-              least_band_at_a_fail = std::min(least_band_at_a_fail, g.loop_half_width / g.tolerance);
+              least_band_at_a_fail =
+                  std::min(least_band_at_a_fail, g.loop_half_width / g.tolerance);
             }
           }
         }
@@ -268,23 +289,39 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
         const nlohmann::json& h = fit.diagnostics["altitude_ft"]["hysteresis"];
         const auto& bridge = truth.static_bridge;
         const double thermal_pa = -bridge.full_scale_pa * bridge.thermal_hysteresis_pct_fso / 200.0;
-        const double pressure_pa = -bridge.full_scale_pa * bridge.pressure_hysteresis_pct_fso / 200.0;
+        const double pressure_pa =
+            -bridge.full_scale_pa * bridge.pressure_hysteresis_pct_fso / 200.0;
         const double thermal_error = h["thermal_half_loop_Pa"].get<double>() - thermal_pa;
         const double pressure_error = h["pressure_half_loop_Pa"].get<double>() - pressure_pa;
-        std::printf("%s static bridge half loops, fitted +- se (truth): thermal %.1f +- %.1f (%.1f) "
-                    "Pa, pressure %.1f +- %.1f (%.1f) Pa\n", serial.c_str(),
-                    h["thermal_half_loop_Pa"].get<double>(), h["thermal_half_loop_se_Pa"].get<double>(),
-                    thermal_pa, h["pressure_half_loop_Pa"].get<double>(),
-                    h["pressure_half_loop_se_Pa"].get<double>(), pressure_pa);
-        worst_thermal_loop_error = std::max(worst_thermal_loop_error, std::abs(thermal_error / thermal_pa));
-        worst_pressure_loop_error = std::max(worst_pressure_loop_error, std::abs(pressure_error / pressure_pa));
+        std::printf(
+            "%s static bridge half loops, fitted +- se (truth): thermal %.1f +- %.1f (%.1f) "
+            "Pa, pressure %.1f +- %.1f (%.1f) Pa\n",
+            serial.c_str(),
+            h["thermal_half_loop_Pa"].get<double>(),
+            h["thermal_half_loop_se_Pa"].get<double>(),
+            thermal_pa,
+            h["pressure_half_loop_Pa"].get<double>(),
+            h["pressure_half_loop_se_Pa"].get<double>(),
+            pressure_pa);
+        worst_thermal_loop_error =
+            std::max(worst_thermal_loop_error, std::abs(thermal_error / thermal_pa));
+        worst_pressure_loop_error =
+            std::max(worst_pressure_loop_error, std::abs(pressure_error / pressure_pa));
       }
     }
-    std::printf("%s worst |error|/tolerance on the envelope, no history: altitude %.1f / %.1f / "
-                "%.2f / %.2f, airspeed %.1f / %.1f / %.2f / %.2f (reference / tolerance_minimax / "
-                "pressure_minimax / hysteresis_compensated)\n",
-                serial.c_str(), ratio[0][0], ratio[1][0], ratio[2][0], ratio[3][0], ratio[0][1],
-                ratio[1][1], ratio[2][1], ratio[3][1]);
+    std::printf(
+        "%s worst |error|/tolerance on the envelope, no history: altitude %.1f / %.1f / "
+        "%.2f / %.2f, airspeed %.1f / %.1f / %.2f / %.2f (reference / tolerance_minimax / "
+        "pressure_minimax / hysteresis_compensated)\n",
+        serial.c_str(),
+        ratio[0][0],
+        ratio[1][0],
+        ratio[2][0],
+        ratio[3][0],
+        ratio[0][1],
+        ratio[1][1],
+        ratio[2][1],
+        ratio[3][1]);
     for (int q = 0; q < 2; ++q) {
       better[0][q] += ratio[1][q] < ratio[0][q] ? 1 : 0;
       better[1][q] += ratio[2][q] < ratio[1][q] ? 1 : 0;
@@ -292,17 +329,31 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
     }
   }
   for (int k = 0; k < kStrategyCount; ++k) {
-    std::printf("%s: mean worst ratio altitude %.2f, airspeed %.2f; grid points failing (with "
-                "history, over the 20 units) altitude %d, airspeed %d\n",
-                kStrategies[k], sum[k][0] / kUnits, sum[k][1] / kUnits, fails[k][0], fails[k][1]);
+    std::printf(
+        "%s: mean worst ratio altitude %.2f, airspeed %.2f; grid points failing (with "
+        "history, over the 20 units) altitude %d, airspeed %d\n",
+        kStrategies[k],
+        sum[k][0] / kUnits,
+        sum[k][1] / kUnits,
+        fails[k][0],
+        fails[k][1]);
   }
-  std::printf("pressure_minimax without history: worst over the units altitude %.2f, airspeed %.2f "
-              "tolerances; with history: altitude %d pass / %d unreachable / %d fail, airspeed %d / "
-              "%d / %d; smallest band half-width at a failing point %.2f of its tolerance; half "
-              "loops' worst relative error thermal %.2f, pressure %.2f\n",
-              worst_pressure[0], worst_pressure[1], passes[0], unreachable[0], fails[2][0], passes[1],
-              unreachable[1], fails[2][1], least_band_at_a_fail, worst_thermal_loop_error,
-              worst_pressure_loop_error);
+  std::printf(
+      "pressure_minimax without history: worst over the units altitude %.2f, airspeed %.2f "
+      "tolerances; with history: altitude %d pass / %d unreachable / %d fail, airspeed %d / "
+      "%d / %d; smallest band half-width at a failing point %.2f of its tolerance; half "
+      "loops' worst relative error thermal %.2f, pressure %.2f\n",
+      worst_pressure[0],
+      worst_pressure[1],
+      passes[0],
+      unreachable[0],
+      fails[2][0],
+      passes[1],
+      unreachable[1],
+      fails[2][1],
+      least_band_at_a_fail,
+      worst_thermal_loop_error,
+      worst_pressure_loop_error);
   // Measured: failing grid points per strategy and the band at pressure_minimax's failures in
   // docs/calibration-strategies.md; the fitted half loops within 0.01 (thermal) and 0.03
   // (pressure) of the truth (2026-11-26, the 2-core build VM). Required: each improvement on every
@@ -321,15 +372,27 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
   EXPECT_GE(least_band_at_a_fail, 0.65);
   EXPECT_LT(worst_thermal_loop_error, 0.05);
   EXPECT_LT(worst_pressure_loop_error, 0.05);
-  std::printf("hysteresis_compensated: worst |error| / tolerance under the nine histories, over the "
-              "units: altitude %.2f, airspeed %.2f; failing grid points %d and %d\n",
-              worst_compensated[0], worst_compensated[1], fails[3][0], fails[3][1]);
-  std::printf("hysteresis_compensated fits: centre-surface residual rms %.2f-%.2f Pa (static), "
-              "%.2f-%.2f Pa (impact); units taking temperature degree 3/4/5: altitude %d/%d/%d, "
-              "airspeed %d/%d/%d\n",
-              centre_rms_pa[0][0], centre_rms_pa[0][1], centre_rms_pa[1][0], centre_rms_pa[1][1],
-              chosen_degree[0][3], chosen_degree[0][4], chosen_degree[0][5], chosen_degree[1][3],
-              chosen_degree[1][4], chosen_degree[1][5]);
+  std::printf(
+      "hysteresis_compensated: worst |error| / tolerance under the nine histories, over the "
+      "units: altitude %.2f, airspeed %.2f; failing grid points %d and %d\n",
+      worst_compensated[0],
+      worst_compensated[1],
+      fails[3][0],
+      fails[3][1]);
+  std::printf(
+      "hysteresis_compensated fits: centre-surface residual rms %.2f-%.2f Pa (static), "
+      "%.2f-%.2f Pa (impact); units taking temperature degree 3/4/5: altitude %d/%d/%d, "
+      "airspeed %d/%d/%d\n",
+      centre_rms_pa[0][0],
+      centre_rms_pa[0][1],
+      centre_rms_pa[1][0],
+      centre_rms_pa[1][1],
+      chosen_degree[0][3],
+      chosen_degree[0][4],
+      chosen_degree[0][5],
+      chosen_degree[1][3],
+      chosen_degree[1][4],
+      chosen_degree[1][5]);
   // hysteresis_compensated (the firmware runs the operators and linearises the bridge codes,
   // docs/firmware-compensator.md; the spans estimated from the recording; measured figures in
   // docs/calibration-strategies.md). Required: every grid point of every unit inside its tolerance
@@ -353,8 +416,7 @@ TEST(AdsEvaluation, LoopHalfWidthIsTheThermalHysteresisInFeet) {
   truth.static_bridge.pressure_hysteresis_pct_fso = 0.0;
   const fs::path run = TempRun("hyst");
   testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), truth, 3);
-  const auto points =
-      SelectAdsCalibrationPoints(hil::ReadRecording(run), "ADS-9200", run.string());
+  const auto points = SelectAdsCalibrationPoints(hil::ReadRecording(run), "ADS-9200", run.string());
   const AdsFitResult fit = FitReferenceAdsStrategy("ADS-9200", points);
   const AdsEvaluation eval = EvaluateAdsConstants(fit.constants, truth);
   const double alt_ft = 20000.0;
@@ -373,10 +435,14 @@ TEST(AdsEvaluation, LoopHalfWidthIsTheThermalHysteresisInFeet) {
   const double slope_error =
       (at(alt_ft + 1000.0).error_no_history - at(alt_ft - 1000.0).error_no_history) / 2000.0;
   const double expected_ft = isa_ft * (1.0 + slope_error);
-  std::printf("thermal hysteresis %.3f %% FSO: loop half-width %.2f ft at 20,000 ft, expected "
-              "%.2f ft (ISA %.2f ft, surface slope error %.4f)\n",
-              truth.static_bridge.thermal_hysteresis_pct_fso, at(alt_ft).loop_half_width,
-              expected_ft, isa_ft, slope_error);
+  std::printf(
+      "thermal hysteresis %.3f %% FSO: loop half-width %.2f ft at 20,000 ft, expected "
+      "%.2f ft (ISA %.2f ft, surface slope error %.4f)\n",
+      truth.static_bridge.thermal_hysteresis_pct_fso,
+      at(alt_ft).loop_half_width,
+      expected_ft,
+      isa_ft,
+      slope_error);
   EXPECT_NEAR(at(alt_ft).loop_half_width, expected_ft, 0.02 * expected_ft);
   fs::remove_all(run);
 }

@@ -27,7 +27,8 @@ using sensor_sim::AdsUnitParams;
 UnitDiagnosis Diagnose(const AdsUnitParams& unit, uint64_t noise_seed) {
   const fs::path run = fs::temp_directory_path() / ("adahrs_ads_diagnosis_" + unit.serial);
   fs::remove_all(run);
-  testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), unit, noise_seed);
+  testing::WriteAdsRecording(
+      run, testing::ShippedSequencePath("ads_calibration"), unit, noise_seed);
   const std::vector<AdsCalibrationPoint> points =
       SelectAdsCalibrationPoints(hil::ReadRecording(run), unit.serial, run.string());
   fs::remove_all(run);
@@ -35,9 +36,20 @@ UnitDiagnosis Diagnose(const AdsUnitParams& unit, uint64_t noise_seed) {
 }
 
 void Print(const UnitDiagnosis& d) {
-  for (const Finding& f : d.findings) std::printf("  finding: %s (p %.2g, held-out %.4g -> %.4g Pa)\n", f.words.c_str(), f.wald_p_value, f.held_out_rms_before, f.held_out_rms_after);
-  for (const Unexplained& u : d.unexplained) std::printf("  unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
-  for (const ChannelFitSummary& c : d.channels) std::printf("  %s held-out %.4g -> %.4g Pa\n", c.channel.c_str(), c.held_out_rms_baseline, c.held_out_rms_final);
+  for (const Finding& f : d.findings)
+    std::printf("  finding: %s (p %.2g, held-out %.4g -> %.4g Pa)\n",
+                f.words.c_str(),
+                f.wald_p_value,
+                f.held_out_rms_before,
+                f.held_out_rms_after);
+  for (const Unexplained& u : d.unexplained)
+    std::printf(
+        "  unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
+  for (const ChannelFitSummary& c : d.channels)
+    std::printf("  %s held-out %.4g -> %.4g Pa\n",
+                c.channel.c_str(),
+                c.held_out_rms_baseline,
+                c.held_out_rms_final);
 }
 
 // The truth's half loop in Pa: h (fraction of FSO, falling minus rising) / 2 of the full scale.
@@ -50,7 +62,8 @@ double HalfLoopPa(const sensor_sim::PressureBridgeParams& b) {
 TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
   int with_findings = 0, with_unexplained = 0;
   for (int i = 0; i < 100; ++i) {
-    const AdsUnitParams unit = AdsUnitParams::Draw("ADS-" + std::to_string(9300 + i), 6300 + i, sensor_sim::ModelProfile::kNominal);
+    const AdsUnitParams unit = AdsUnitParams::Draw(
+        "ADS-" + std::to_string(9300 + i), 6300 + i, sensor_sim::ModelProfile::kNominal);
     const UnitDiagnosis d = Diagnose(unit, 300 + i);
     if (!d.findings.empty() || !d.unexplained.empty()) {
       std::printf("%s:\n", unit.serial.c_str());
@@ -59,7 +72,9 @@ TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
     with_findings += d.findings.empty() ? 0 : 1;
     with_unexplained += d.unexplained.empty() ? 0 : 1;
   }
-  std::printf("clean ADS: %d of 100 units with a finding, %d with unexplained structure\n", with_findings, with_unexplained);
+  std::printf("clean ADS: %d of 100 units with a finding, %d with unexplained structure\n",
+              with_findings,
+              with_unexplained);
   EXPECT_LE(with_findings, 5);
   EXPECT_EQ(with_unexplained, 0);
 }
@@ -73,8 +88,10 @@ TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
 TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
   int found[2] = {}, within[2] = {};
   for (int i = 0; i < 10; ++i) {
-    AdsUnitParams unit = AdsUnitParams::Draw("ADS-" + std::to_string(9400 + i), 6400 + i, sensor_sim::ModelProfile::kNominal);
-    for (sensor_sim::PressureBridgeParams* b : {&unit.static_bridge, &unit.pitot_bridge}) b->effects.pressure_hysteresis = true;
+    AdsUnitParams unit = AdsUnitParams::Draw(
+        "ADS-" + std::to_string(9400 + i), 6400 + i, sensor_sim::ModelProfile::kNominal);
+    for (sensor_sim::PressureBridgeParams* b : {&unit.static_bridge, &unit.pitot_bridge})
+      b->effects.pressure_hysteresis = true;
     const UnitDiagnosis d = Diagnose(unit, 400 + i);
     for (const Finding& f : d.findings) {
       if (f.effect != "pressure_hysteresis") {
@@ -85,17 +102,31 @@ TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
       const auto& b = k == 0 ? unit.static_bridge : unit.pitot_bridge;
       const double truth = HalfLoopPa(b);
       const FindingComponent& half = f.components[0];
-      std::printf("%s %s: half loop %.2f +- %.2f Pa, truth %.2f Pa; span %.0f +- %.0f Pa, truth %.0f Pa\n",
-                  unit.serial.c_str(), f.channel.c_str(), half.magnitude, half.standard_error, truth,
-                  f.components[1].magnitude, f.components[1].standard_error,
-                  b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa);
+      std::printf(
+          "%s %s: half loop %.2f +- %.2f Pa, truth %.2f Pa; span %.0f +- %.0f Pa, truth %.0f Pa\n",
+          unit.serial.c_str(),
+          f.channel.c_str(),
+          half.magnitude,
+          half.standard_error,
+          truth,
+          f.components[1].magnitude,
+          f.components[1].standard_error,
+          b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa);
       ++found[k];
-      if (std::abs(half.magnitude - truth) <= 3.0 * half.standard_error + (k == 0 ? 0.0 : 0.2 * truth)) ++within[k];
+      if (std::abs(half.magnitude - truth) <=
+          3.0 * half.standard_error + (k == 0 ? 0.0 : 0.2 * truth))
+        ++within[k];
       EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
     }
   }
-  std::printf("pressure hysteresis: static bridge found on %d of 10 (%d within 3 SE), pitot on %d of 10 (%d within "
-              "3 SE + 20 %%)\n", found[0], within[0], found[1], within[1]);
+  std::printf(
+      "pressure hysteresis: static bridge found on %d of 10 (%d within 3 SE), pitot on %d of 10 "
+      "(%d within "
+      "3 SE + 20 %%)\n",
+      found[0],
+      within[0],
+      found[1],
+      within[1]);
   EXPECT_EQ(found[0], 10);
   EXPECT_GE(within[0], 9);
   EXPECT_GE(found[1], 8);
@@ -106,7 +137,8 @@ TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
 void AppendForeignColumn(const fs::path& csv) {
   std::ifstream in(csv);
   std::string line, text;
-  for (int n = 0; std::getline(in, line); ++n) text += line + (n == 0 ? ",humidity_pct" : ",41.5") + "\n";
+  for (int n = 0; std::getline(in, line); ++n)
+    text += line + (n == 0 ? ",humidity_pct" : ",41.5") + "\n";
   in.close();
   std::ofstream(csv) << text;
 }
@@ -136,7 +168,8 @@ TEST(AdsDiagnosis, DiagnoseRunsReadsAnAdsRunDirectory) {
   EXPECT_EQ(j["findings"][0]["channels"], nlohmann::json::array({"ps"}));
   EXPECT_EQ(j["detection_limits"].size(), 6u);
   ASSERT_EQ(j["notes"].size(), 1u);
-  EXPECT_NE(j["notes"][0].get<std::string>().find("'humidity_pct' is not in the recording format"), std::string::npos);
+  EXPECT_NE(j["notes"][0].get<std::string>().find("'humidity_pct' is not in the recording format"),
+            std::string::npos);
   EXPECT_NE(DiagnosisHtml(d).find("calibration point"), std::string::npos);
   EXPECT_NE(DiagnosisHtml(d).find("humidity_pct"), std::string::npos);
 }

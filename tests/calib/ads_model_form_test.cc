@@ -65,8 +65,9 @@ Column RunTwentyUnits(Truth truth) {
     const std::string serial = "ADS-" + std::to_string(9200 + i);  // the 20-unit test's units
     const AdsUnitParams unit = DrawTruth(truth, serial, 6100 + i);
     // One directory per truth: ctest runs the three tests side by side.
-    const fs::path run = fs::temp_directory_path() /
-                         ("adahrs_ads_model_form_" + std::to_string(static_cast<int>(truth)) + "_" + serial);
+    const fs::path run =
+        fs::temp_directory_path() /
+        ("adahrs_ads_model_form_" + std::to_string(static_cast<int>(truth)) + "_" + serial);
     fs::remove_all(run);
     testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), unit, 40 + i);
     const std::vector<AdsCalibrationPoint> points =
@@ -89,32 +90,46 @@ Column RunTwentyUnits(Truth truth) {
         int r = 0;
         for (const char* key : {"altitude_ft", "airspeed_kt"}) {
           const nlohmann::json& d = fit.diagnostics[key];
-          c.centre_rms_pa[r] = std::max(c.centre_rms_pa[r],
-                                        d["hysteresis"]["centre_fit_residual_rms_Pa"].get<double>());
+          c.centre_rms_pa[r] = std::max(
+              c.centre_rms_pa[r], d["hysteresis"]["centre_fit_residual_rms_Pa"].get<double>());
           c.spans_at_search_edge += d["hysteresis_spans"]["at_search_edge"].get<bool>() ? 1 : 0;
           ++r;
         }
         const nlohmann::json& s = fit.diagnostics["altitude_ft"]["hysteresis_spans"];
         const auto& b = unit.static_bridge;
         const double p_true = b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa;
-        c.span_error[0] = std::max(c.span_error[0],
-                                   std::abs(s["pressure_span_Pa"].get<double>() / p_true - 1.0));
+        c.span_error[0] =
+            std::max(c.span_error[0], std::abs(s["pressure_span_Pa"].get<double>() / p_true - 1.0));
         c.span_error[1] = std::max(
             c.span_error[1],
             std::abs(s["thermal_span_degC"].get<double>() / b.thermal_hysteresis_span_c - 1.0));
       }
     }
   }
-  std::printf("%s: spans assumed: failing grid points altitude %d, airspeed %d; worst |error| / "
-              "tolerance altitude %.2f, airspeed %.2f\n",
-              Name(truth), c.fails[0][0], c.fails[0][1], c.worst[0][0], c.worst[0][1]);
-  std::printf("%s: spans estimated: failing grid points altitude %d, airspeed %d; worst |error| / "
-              "tolerance altitude %.2f, airspeed %.2f; static bridge's spans within %.0f %% "
-              "(pressure) and %.0f %% (thermal) of the truth's; centre-fit residual up to %.1f Pa "
-              "(static), %.1f Pa (impact); %d of %d estimates on the search box's edge\n",
-              Name(truth), c.fails[1][0], c.fails[1][1], c.worst[1][0], c.worst[1][1],
-              100.0 * c.span_error[0], 100.0 * c.span_error[1], c.centre_rms_pa[0],
-              c.centre_rms_pa[1], c.spans_at_search_edge, 2 * 20);
+  std::printf(
+      "%s: spans assumed: failing grid points altitude %d, airspeed %d; worst |error| / "
+      "tolerance altitude %.2f, airspeed %.2f\n",
+      Name(truth),
+      c.fails[0][0],
+      c.fails[0][1],
+      c.worst[0][0],
+      c.worst[0][1]);
+  std::printf(
+      "%s: spans estimated: failing grid points altitude %d, airspeed %d; worst |error| / "
+      "tolerance altitude %.2f, airspeed %.2f; static bridge's spans within %.0f %% "
+      "(pressure) and %.0f %% (thermal) of the truth's; centre-fit residual up to %.1f Pa "
+      "(static), %.1f Pa (impact); %d of %d estimates on the search box's edge\n",
+      Name(truth),
+      c.fails[1][0],
+      c.fails[1][1],
+      c.worst[1][0],
+      c.worst[1][1],
+      100.0 * c.span_error[0],
+      100.0 * c.span_error[1],
+      c.centre_rms_pa[0],
+      c.centre_rms_pa[1],
+      c.spans_at_search_edge,
+      2 * 20);
   return c;
 }
 

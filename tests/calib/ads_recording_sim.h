@@ -10,10 +10,10 @@
 // 1 s of untagged packets (tag 0: not calibration data), packets are never lost.
 #pragma once
 
-#include "adahrs_build_paths.h"
 #include <filesystem>
 #include <string>
 #include <variant>
+#include "adahrs_build_paths.h"
 
 #include "calib/sequence/execution_plan.h"
 #include "calib/sequence/sequence_json.h"
@@ -32,7 +32,8 @@ inline std::string ShippedSequencePath(const std::string& name) {
 /// Runs sequence file `sequence_path` on a unit with `params` and writes the run to `run_dir`.
 inline void WriteAdsRecording(const std::filesystem::path& run_dir,
                               const std::string& sequence_path,
-                              const sensor_sim::AdsUnitParams& params, uint64_t noise_seed) {
+                              const sensor_sim::AdsUnitParams& params,
+                              uint64_t noise_seed) {
   const ParsedSequence parsed = ParseSequenceFile(sequence_path);
   const ExecutionPlan plan = ExpandSequence(parsed.sequence, SequenceLimits{});
   hil::RecordingWriter writer(run_dir);

@@ -10,10 +10,10 @@
 #include <gtest/gtest.h>
 
 #include "calib/solvers/sample_statistics.h"
+#include "common/units.h"
 #include "firmware_model/reference_compensator.h"
 #include "sensor_sim/ads_unit.h"
 #include "sensor_sim/atmosphere.h"
-#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -37,8 +37,10 @@ SurfaceSample Point(sensor_sim::AdsUnit& unit, double alt_ft, double temp_c) {
   return {SummariseSamples("ps", x).mean, SummariseSamples("ps temp", y).mean, alt_ft, temp_c};
 }
 
-std::vector<SurfaceSample> Grid(sensor_sim::AdsUnit& unit, const std::vector<double>& temps_c,
-                                double alt_from_ft, double alt_step_ft) {
+std::vector<SurfaceSample> Grid(sensor_sim::AdsUnit& unit,
+                                const std::vector<double>& temps_c,
+                                double alt_from_ft,
+                                double alt_step_ft) {
   std::vector<SurfaceSample> out;
   for (double t : temps_c) {
     for (double alt = alt_from_ft; alt <= 10000.0; alt += alt_step_ft) {
@@ -49,8 +51,8 @@ std::vector<SurfaceSample> Grid(sensor_sim::AdsUnit& unit, const std::vector<dou
 }
 
 TEST(AdsSurfaceFit, RecoversIsaAltitudeOnASimulatedUnit) {
-  const auto params = sensor_sim::AdsUnitParams::Draw("ADS-SOLVERS-1", 2007,
-                                                      sensor_sim::ModelProfile::kNominal);
+  const auto params =
+      sensor_sim::AdsUnitParams::Draw("ADS-SOLVERS-1", 2007, sensor_sim::ModelProfile::kNominal);
   sensor_sim::AdsUnit unit(params, 5, 25.0);
   const SurfaceEstimate e =
       FitReferenceSurface("altitude surface", Grid(unit, {25, 35, 45, 55, 65}, -2000.0, 1000.0));
@@ -74,20 +76,24 @@ TEST(AdsSurfaceFit, RecoversIsaAltitudeOnASimulatedUnit) {
 }
 
 TEST(AdsSurfaceFit, RefusesTooFewTemperaturesOrAltitudes) {
-  const auto params = sensor_sim::AdsUnitParams::Draw("ADS-SOLVERS-2", 2008,
-                                                      sensor_sim::ModelProfile::kNominal);
+  const auto params =
+      sensor_sim::AdsUnitParams::Draw("ADS-SOLVERS-2", 2008, sensor_sim::ModelProfile::kNominal);
   sensor_sim::AdsUnit unit(params, 6, 25.0);
-  EXPECT_THAT([&] { FitReferenceSurface("altitude surface", Grid(unit, {25, 45, 65}, -2000.0,
-                                                                   1000.0)); },
-              ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr(
-                  "altitude surface: design refused: 3 chamber temperature(s), the surface's terms "
-                  "up to y^3 need at least 4 (too few temperatures)")));
+  EXPECT_THAT(
+      [&] {
+        FitReferenceSurface("altitude surface", Grid(unit, {25, 45, 65}, -2000.0, 1000.0));
+      },
+      ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr(
+          "altitude surface: design refused: 3 chamber temperature(s), the surface's terms "
+          "up to y^3 need at least 4 (too few temperatures)")));
   // Four temperatures but three altitudes: x^3 cannot be separated from 1, x and x^2.
-  EXPECT_THAT([&] { FitReferenceSurface("altitude surface", Grid(unit, {25, 35, 45, 55}, 1000.0,
-                                                                   4500.0)); },
-              ::testing::ThrowsMessage<DegenerateDesignError>(
-                  HasSubstr("altitude surface: design refused: 3 distinct reference value(s), the "
-                            "surface's terms up to x^3 need at least 4")));
+  EXPECT_THAT(
+      [&] {
+        FitReferenceSurface("altitude surface", Grid(unit, {25, 35, 45, 55}, 1000.0, 4500.0));
+      },
+      ::testing::ThrowsMessage<DegenerateDesignError>(
+          HasSubstr("altitude surface: design refused: 3 distinct reference value(s), the "
+                    "surface's terms up to x^3 need at least 4")));
   const auto few = Grid(unit, {25, 35, 45, 55}, 7000.0, 1000.0);  // 4 altitudes x 4 = 16 points
   std::vector<SurfaceSample> ten;  // all four temperatures and altitudes, but only 10 points
   for (int i : {0, 1, 2, 3, 4, 5, 8, 9, 12, 13}) ten.push_back(few[i]);

@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor_sim/adxrs150.h"
 #include "common/random.h"
+#include "sensor_sim/adxrs150.h"
 
 namespace adahrs::calib {
 namespace {

@@ -14,8 +14,8 @@
 #include "calib/campaign/augmented_model.h"
 #include "calib/diagnosis/ads_diagnosis.h"
 #include "calib/diagnosis/diagnosis_cells.h"
-#include "hil/recording/recording_reader.h"
 #include "common/param_reader.h"
+#include "hil/recording/recording_reader.h"
 #include "tests/calib/ads_recording_sim.h"
 #include "tests/calib/imu_diagnosis_scenario.h"
 
@@ -29,22 +29,32 @@ using sensor_sim::ImuUnitParams;
 fs::path WriteUnitFile(const fs::path& dir, const std::string& kind, const nlohmann::json& params) {
   fs::create_directories(dir);
   const fs::path path = dir / "base.json";
-  std::ofstream(path) << nlohmann::json{{"kind", kind}, {"model_profile", "nominal"}, {"params", params}}.dump(2);
+  std::ofstream(path) << nlohmann::json{
+      {"kind", kind},
+      {"model_profile", "nominal"},
+      {"params", params}}.dump(2);
   return path;
 }
 
-std::vector<AdsCalibrationPoint> Points(const AdsUnitParams& unit, const fs::path& run, uint64_t noise_seed) {
+std::vector<AdsCalibrationPoint> Points(const AdsUnitParams& unit,
+                                        const fs::path& run,
+                                        uint64_t noise_seed) {
   fs::remove_all(run);
-  testing::WriteAdsRecording(run, testing::ShippedSequencePath("ads_calibration"), unit, noise_seed);
-  std::vector<AdsCalibrationPoint> points = SelectAdsCalibrationPoints(hil::ReadRecording(run), unit.serial, run.string());
+  testing::WriteAdsRecording(
+      run, testing::ShippedSequencePath("ads_calibration"), unit, noise_seed);
+  std::vector<AdsCalibrationPoint> points =
+      SelectAdsCalibrationPoints(hil::ReadRecording(run), unit.serial, run.string());
   fs::remove_all(run);
   return points;
 }
 
 // RMS over the points of the static bridge's code difference, in Pa at the nominal sensitivity.
-double RmsPa(const std::vector<AdsCalibrationPoint>& a, const std::vector<AdsCalibrationPoint>& b, double codes_per_pa) {
+double RmsPa(const std::vector<AdsCalibrationPoint>& a,
+             const std::vector<AdsCalibrationPoint>& b,
+             double codes_per_pa) {
   double s = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) s += std::pow((a[i].ps_code - b[i].ps_code) / codes_per_pa, 2);
+  for (size_t i = 0; i < a.size(); ++i)
+    s += std::pow((a[i].ps_code - b[i].ps_code) / codes_per_pa, 2);
   return std::sqrt(s / static_cast<double>(a.size()));
 }
 
@@ -61,7 +71,8 @@ TEST(AugmentedModel, AdsPressureHysteresisReproducesTheRecording) {
   const UnitDiagnosis d = DiagnoseAds(truth.serial, recorded);
   DiagnosisRun run;
   run.units.push_back(d);
-  const AugmentedModel m = WriteAugmentedModel(run, WriteUnitFile(dir, "ads", base.ToJson()), dir / "out");
+  const AugmentedModel m =
+      WriteAugmentedModel(run, WriteUnitFile(dir, "ads", base.ToJson()), dir / "out");
   for (const std::string& a : m.applied) std::printf("applied: %s\n", a.c_str());
   for (const std::string& n : m.not_applied) std::printf("not applied: %s\n", n.c_str());
   const nlohmann::json written = common::ParamReader::LoadFile((dir / "out/model.json").string());
@@ -73,15 +84,22 @@ TEST(AugmentedModel, AdsPressureHysteresisReproducesTheRecording) {
     if (x.effect == "pressure_hysteresis" && x.channel == "ps") f = &x;
   }
   ASSERT_NE(f, nullptr);
-  const double se_pct = 2.0 * f->components[0].standard_error / truth.static_bridge.full_scale_pa * 100.0;
-  EXPECT_NEAR(augmented.static_bridge.pressure_hysteresis_pct_fso, truth.static_bridge.pressure_hysteresis_pct_fso,
+  const double se_pct =
+      2.0 * f->components[0].standard_error / truth.static_bridge.full_scale_pa * 100.0;
+  EXPECT_NEAR(augmented.static_bridge.pressure_hysteresis_pct_fso,
+              truth.static_bridge.pressure_hysteresis_pct_fso,
               3.0 * se_pct);
 
-  const double codes_per_pa = std::abs(recorded.back().ps_code - recorded.front().ps_code) /
-                              std::max(1.0, std::abs(recorded.back().ps_ref_pa - recorded.front().ps_ref_pa));
+  const double codes_per_pa =
+      std::abs(recorded.back().ps_code - recorded.front().ps_code) /
+      std::max(1.0, std::abs(recorded.back().ps_ref_pa - recorded.front().ps_ref_pa));
   const double before = RmsPa(recorded, Points(base, dir / "base", 600), codes_per_pa);
   const double after = RmsPa(recorded, Points(augmented, dir / "augmented", 600), codes_per_pa);
-  std::printf("static bridge points, re-simulated: RMS %.2f Pa with the base model, %.2f Pa with model.json\n", before, after);
+  std::printf(
+      "static bridge points, re-simulated: RMS %.2f Pa with the base model, %.2f Pa with "
+      "model.json\n",
+      before,
+      after);
   EXPECT_LT(after, 0.25 * before);
   fs::remove_all(dir);
 }
@@ -105,7 +123,8 @@ TEST(AugmentedModel, ImuGyroGSensitivityInThePackageFrame) {
   run.units.push_back(d);
   const fs::path dir = fs::temp_directory_path() / "adahrs_augmented_imu";
   fs::remove_all(dir);
-  const AugmentedModel m = WriteAugmentedModel(run, WriteUnitFile(dir, "imu", base.ToJson()), dir / "out");
+  const AugmentedModel m =
+      WriteAugmentedModel(run, WriteUnitFile(dir, "imu", base.ToJson()), dir / "out");
   for (const std::string& a : m.applied) std::printf("applied: %s\n", a.c_str());
   const nlohmann::json written = common::ParamReader::LoadFile((dir / "out/model.json").string());
   const ImuUnitParams augmented =
@@ -133,12 +152,15 @@ TEST(AugmentedModel, RefusesABaseFileOfAnotherUnit) {
   DiagnosisRun run;
   run.units.push_back(UnitDiagnosis{});
   run.units[0].serial = "ADS-0002";
-  const fs::path base = WriteUnitFile(dir, "ads", AdsUnitParams::Draw("ADS-0001", 1, sensor_sim::ModelProfile::kNominal).ToJson());
+  const fs::path base = WriteUnitFile(
+      dir, "ads", AdsUnitParams::Draw("ADS-0001", 1, sensor_sim::ModelProfile::kNominal).ToJson());
   try {
     WriteAugmentedModel(run, base, dir / "out");
     ADD_FAILURE() << "accepted";
   } catch (const common::ParamError& e) {
-    EXPECT_NE(std::string(e.what()).find("'ADS-0001' is not a unit of the diagnosed recordings"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'ADS-0001' is not a unit of the diagnosed recordings"),
+              std::string::npos)
+        << e.what();
   }
   fs::remove_all(dir);
 }

@@ -32,8 +32,8 @@ TEST(BridgeHistory, StatesFollowTheReferenceHistoryFromARestingUnit) {
   // From the room (25 degC, 101,325 Pa, fresh): cool to -40 (65 degC of travel: +1), climb to a
   // static 81,325 Pa (a fall of 20,000 Pa from the start: +1), then heat by 10 degC (-30 degC:
   // half the span from the reversal at -40) with the static pressure back up by 5,000 Pa.
-  const std::vector<AdsCalibrationPoint> points = {At(-40.0, 81325.0, 0.0), At(-30.0, 86325.0, 0.0),
-                                                   At(85.0, 86325.0, 30000.0)};
+  const std::vector<AdsCalibrationPoint> points = {
+      At(-40.0, 81325.0, 0.0), At(-30.0, 86325.0, 0.0), At(85.0, 86325.0, 30000.0)};
   const std::vector<PointHistory> h = BridgeHistoryOf(points, spans);
   ASSERT_EQ(h.size(), 3u);
   EXPECT_DOUBLE_EQ(h[0].static_bridge.s_thermal, 1.0);

@@ -22,7 +22,9 @@ namespace adahrs::calib {
 namespace {
 
 // The unit at steady state in still air at `temp_c`, noise off.
-sensor_sim::AdsRawFrame Soak(const sensor_sim::AdsUnitParams& params, double temp_c, double alt_ft) {
+sensor_sim::AdsRawFrame Soak(const sensor_sim::AdsUnitParams& params,
+                             double temp_c,
+                             double alt_ft) {
   sensor_sim::AdsUnit unit(params, 0, temp_c);
   sensor_sim::AdsStimulus s;
   s.ps_pa = sensor_sim::IsaStaticPressurePaFromFt(alt_ft);
@@ -32,7 +34,8 @@ sensor_sim::AdsRawFrame Soak(const sensor_sim::AdsUnitParams& params, double tem
 }
 
 // Worst |residual| of a straight-line fit of codes against temperatures, in degC of its slope.
-double WorstStraightLineResidualC(const std::vector<double>& temps_c, const std::vector<double>& codes) {
+double WorstStraightLineResidualC(const std::vector<double>& temps_c,
+                                  const std::vector<double>& codes) {
   Eigen::MatrixXd a(temps_c.size(), 2);
   Eigen::VectorXd y(temps_c.size());
   for (size_t i = 0; i < temps_c.size(); ++i) {
@@ -50,11 +53,12 @@ double WorstStraightLineResidualC(const std::vector<double>& temps_c, const std:
 // cubic). Required: the linearised code within 0.05 degC, and at least 100 times straighter than
 // the raw code on every unit.
 TEST(BridgeLinearisationFit, MakesTheBridgeCodeAStraightLineOfTemperatureOnTenUnits) {
-  const std::vector<double> calibration_c = {-40.0, -30.0, -15.0, 0.0, 25.0, 45.0, 65.0, 75.0, 85.0};
+  const std::vector<double> calibration_c = {
+      -40.0, -30.0, -15.0, 0.0, 25.0, 45.0, 65.0, 75.0, 85.0};
   double worst_raw_c = 1e9, worst_linear_c = 0.0, worst_ratio = 0.0;
   for (int i = 0; i < 10; ++i) {
-    auto params = sensor_sim::AdsUnitParams::Draw("ADS-95" + std::to_string(10 + i), 900 + i,
-                                                  sensor_sim::ModelProfile::kTruth);
+    auto params = sensor_sim::AdsUnitParams::Draw(
+        "ADS-95" + std::to_string(10 + i), 900 + i, sensor_sim::ModelProfile::kTruth);
     params.static_bridge.effects.noise = false;
     params.adc.effects.noise = false;
     params.static_thermal.effects.lag = false;
@@ -62,7 +66,8 @@ TEST(BridgeLinearisationFit, MakesTheBridgeCodeAStraightLineOfTemperatureOnTenUn
     for (double temp_c : calibration_c) {
       for (double alt_ft : {-1000.0, 5000.0, 15000.0, 30000.0, 50000.0}) {
         const sensor_sim::AdsRawFrame f = Soak(params, temp_c, alt_ft);
-        samples.push_back({static_cast<double>(f.ps_cnt), static_cast<double>(f.ps_temp_cnt), 0.0, temp_c});
+        samples.push_back(
+            {static_cast<double>(f.ps_cnt), static_cast<double>(f.ps_temp_cnt), 0.0, temp_c});
       }
     }
     const BridgeLinearisationFit fit = FitBridgeLinearisation("unit " + std::to_string(i), samples);
@@ -76,17 +81,27 @@ TEST(BridgeLinearisationFit, MakesTheBridgeCodeAStraightLineOfTemperatureOnTenUn
       }
       const double raw_c = WorstStraightLineResidualC(temps_c, raw);
       const double linear_c = WorstStraightLineResidualC(temps_c, linear);
-      std::printf("unit %d at %.0f ft: kappa %.4g +- %.2g per code; worst from a straight line: raw "
-                  "code %.2f degC, linearised %.3f degC\n", i, alt_ft,
-                  fit.linearisation.curvature_per_code, fit.curvature_se_per_code, raw_c, linear_c);
+      std::printf(
+          "unit %d at %.0f ft: kappa %.4g +- %.2g per code; worst from a straight line: raw "
+          "code %.2f degC, linearised %.3f degC\n",
+          i,
+          alt_ft,
+          fit.linearisation.curvature_per_code,
+          fit.curvature_se_per_code,
+          raw_c,
+          linear_c);
       worst_raw_c = std::min(worst_raw_c, raw_c);
       worst_linear_c = std::max(worst_linear_c, linear_c);
       worst_ratio = std::max(worst_ratio, linear_c / raw_c);
       EXPECT_LT(linear_c, 0.05) << i << " " << alt_ft;
     }
   }
-  std::printf("raw code at least %.2f degC from a straight line; linearised at most %.3f degC; "
-              "worst ratio %.3f\n", worst_raw_c, worst_linear_c, worst_ratio);
+  std::printf(
+      "raw code at least %.2f degC from a straight line; linearised at most %.3f degC; "
+      "worst ratio %.3f\n",
+      worst_raw_c,
+      worst_linear_c,
+      worst_ratio);
   EXPECT_LT(worst_ratio, 1.0 / 100.0);
 }
 
@@ -97,8 +112,10 @@ TEST(BridgeLinearisationFit, RefusesFewerThanThreeTemperaturesAndAFlatCode) {
     FitBridgeLinearisation("static bridge", two);
     ADD_FAILURE() << "two temperatures accepted";
   } catch (const DegenerateDesignError& e) {
-    EXPECT_NE(std::string(e.what()).find("static bridge: the bridge code's quadratic in temperature "
-                                         "needs 3 chamber temperatures, got 2"), std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("static bridge: the bridge code's quadratic in temperature "
+                                   "needs 3 chamber temperatures, got 2"),
+        std::string::npos)
         << e.what();
   }
   std::vector<SurfaceSample> flat;
@@ -107,7 +124,8 @@ TEST(BridgeLinearisationFit, RefusesFewerThanThreeTemperaturesAndAFlatCode) {
     FitBridgeLinearisation("static bridge", flat);
     ADD_FAILURE() << "a flat code accepted";
   } catch (const DegenerateDesignError& e) {
-    EXPECT_NE(std::string(e.what()).find("changes by less than a code over 125.0 degC"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("changes by less than a code over 125.0 degC"),
+              std::string::npos)
         << e.what();
   }
 }

@@ -13,12 +13,12 @@
 // Under ASan/UBSan the build checks memory and arithmetic, not speed: the same code paths run the
 // --quick variants of both sequences (calib/campaign/quick_sequences.h) at 200x with every loss
 // and completeness check, and the wall time is printed, not judged.
-#include "adahrs_build_paths.h"
 #include <chrono>
 #include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
+#include "adahrs_build_paths.h"
 
 #include <gtest/gtest.h>
 
@@ -47,8 +47,10 @@ constexpr double kBudgetWallS = 120.0;
 const std::string kSequenceDir = std::string(ADAHRS_SOURCE_DIR) + "/calib/sequences/";
 
 // A station of the rig limited to one bench: instruments of `keep_kinds`, units of `unit_kind`.
-std::string BenchStation(const testing::RigProcess& rig, const std::string& file,
-                         const std::vector<std::string>& keep_kinds, const std::string& unit_kind) {
+std::string BenchStation(const testing::RigProcess& rig,
+                         const std::string& file,
+                         const std::vector<std::string>& keep_kinds,
+                         const std::string& unit_kind) {
   return rig.WriteStation(file, [&](nlohmann::json& station) {
     nlohmann::json instruments = nlohmann::json::object();
     for (const auto& [role, entry] : station["instruments"].items()) {
@@ -94,8 +96,10 @@ std::map<int, uint8_t> TagPerStep(const std::string& sequence_file) {
 
 // Checks seq continuity and per-step completeness for rows of one kind.
 template <typename Row>
-void CheckRows(const hil::Recording& recording, const std::vector<Row>& rows,
-               const std::string& sequence_file, const std::string& kind) {
+void CheckRows(const hil::Recording& recording,
+               const std::vector<Row>& rows,
+               const std::string& sequence_file,
+               const std::string& kind) {
   const std::map<int, int64_t> expected = PacketsPerStep(sequence_file);
   const std::map<int, uint8_t> tags = TagPerStep(sequence_file);
   std::map<std::string, uint32_t> last_seq;
@@ -130,10 +134,11 @@ TEST(CalibrationEndToEndTest, FourImusAndOneAdsCalibratedConcurrentlyWithinBudge
   std::string imu_sequence = kSequenceDir + "imu_sensor_calibration.json";
   std::string ads_sequence = kSequenceDir + "ads_calibration.json";
   if (kSanitized) {
-    const CampaignSequences quick =
-        WriteQuickSequences({{imu_sequence}, ads_sequence, kSequenceDir + "imu_acceptance.json",
-                             kSequenceDir + "ads_acceptance.json"},
-                            rig.dir() / "quick");
+    const CampaignSequences quick = WriteQuickSequences({{imu_sequence},
+                                                         ads_sequence,
+                                                         kSequenceDir + "imu_acceptance.json",
+                                                         kSequenceDir + "ads_acceptance.json"},
+                                                        rig.dir() / "quick");
     imu_sequence = quick.imu_calibration.front();
     ads_sequence = quick.ads_calibration;
   }
@@ -151,10 +156,15 @@ TEST(CalibrationEndToEndTest, FourImusAndOneAdsCalibratedConcurrentlyWithinBudge
 
   const hil::Recording imu = hil::ReadRecording(rig.dir() / "imu_run");
   const hil::Recording ads = hil::ReadRecording(rig.dir() / "ads_run");
-  std::printf("wall %.1f s at %gx: IMU sensor calibration %.0f simulated s, %zu rows; ADS "
-              "calibration %.0f simulated s, %zu rows\n",
-              wall_s, kTimeScale, imu.imu.empty() ? 0.0 : imu.imu.back().t_s, imu.imu.size(),
-              ads.ads.empty() ? 0.0 : ads.ads.back().t_s, ads.ads.size());
+  std::printf(
+      "wall %.1f s at %gx: IMU sensor calibration %.0f simulated s, %zu rows; ADS "
+      "calibration %.0f simulated s, %zu rows\n",
+      wall_s,
+      kTimeScale,
+      imu.imu.empty() ? 0.0 : imu.imu.back().t_s,
+      imu.imu.size(),
+      ads.ads.empty() ? 0.0 : ads.ads.back().t_s,
+      ads.ads.size());
   if (!kSanitized) {
     EXPECT_LE(wall_s, kBudgetWallS);
   }

@@ -32,7 +32,8 @@ fs::path TempDir(const std::string& name) {
 
 void Write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
-const char* kSidecar = R"({"format": "adahrs-channel-csv", "format_version": 1, "unit": "U1", "csv": "d.csv",
+const char* kSidecar =
+    R"({"format": "adahrs-channel-csv", "format_version": 1, "unit": "U1", "csv": "d.csv",
   "time": {"column": "t", "unit": "s"}, "temperature": {"column": "temp"},
   "outputs": [{"name": "y", "column": "out", "unit": "V"}]})";
 
@@ -49,9 +50,11 @@ TEST(ChannelRecording, RefusesBadInputNamingWhere) {
   const fs::path d = TempDir("errors");
   Write(d / "d.csv", "t,temp,out,extra\n0,20,1,9\n1,20,x,9\n");
   Write(d / "s.json", kSidecar);
-  EXPECT_THAT(ErrorOf(d / "s.json"), HasSubstr("d.csv line 3 column 3 ('out'): 'x' is not a finite number"));
+  EXPECT_THAT(ErrorOf(d / "s.json"),
+              HasSubstr("d.csv line 3 column 3 ('out'): 'x' is not a finite number"));
   Write(d / "d.csv", "t,temp,out\n0,20,1\n1,20,2\n1,20,3\n");
-  EXPECT_THAT(ErrorOf(d / "s.json"), HasSubstr("d.csv line 4 column 1 ('t'): time 1 s does not increase"));
+  EXPECT_THAT(ErrorOf(d / "s.json"),
+              HasSubstr("d.csv line 4 column 1 ('t'): time 1 s does not increase"));
   Write(d / "d.csv", "t,temperature,out\n0,20,1\n");
   EXPECT_THAT(ErrorOf(d / "s.json"), HasSubstr("d.csv line 1: no column 'temp'"));
   std::string s = kSidecar;
@@ -66,7 +69,8 @@ TEST(ChannelRecording, RefusesBadInputNamingWhere) {
 TEST(ChannelRecording, MapsColumnsAndNotesTheOthers) {
   const fs::path d = TempDir("maps");
   Write(d / "d.csv", "\xEF\xBB\xBFtime (ms),temp,out,extra\r\n1000,65236,3,9\r\n1020,256,4,9\r\n");
-  Write(d / "s.json", R"json({"format": "adahrs-channel-csv", "format_version": 1, "unit": "U1", "csv": "d.csv",
+  Write(d / "s.json",
+        R"json({"format": "adahrs-channel-csv", "format_version": 1, "unit": "U1", "csv": "d.csv",
     "time": {"column": "time (ms)", "unit": "ms"}, "temperature": {"column": "temp", "int16": true, "scale": 0.00390625, "offset": 25},
     "outputs": [{"name": "y", "column": "out", "unit": "dps", "scale": 0.5}]})json");
   const ChannelRecording r = ReadChannelRecording(d / "s.json");
@@ -98,7 +102,10 @@ fs::path WriteLagging(const std::string& name, uint64_t seed, double tau_s, doub
     for (int k = 0; k < 10; ++k) {  // 1 s of rows; the element integrates the lag
       te += (temp - te) * (tau_s > 0 ? 0.1 / tau_s : 1.0);
       const double x = te - 25.0;
-      csv << fmt::format("{:.1f},{:.4f},{:.6f}\n", t, temp, 0.03 * x + 2e-4 * x * x + half_loop * sense + noise(rng));
+      csv << fmt::format("{:.1f},{:.4f},{:.6f}\n",
+                         t,
+                         temp,
+                         0.03 * x + 2e-4 * x * x + half_loop * sense + noise(rng));
       t += 0.1;
     }
   };
@@ -122,7 +129,8 @@ TEST(ChannelDiagnosis, FindsThermalLagConfoundedWithTheBiasPolynomial) {
       std::printf("seed %d: %s\n", static_cast<int>(seed), f.words.c_str());
       if (f.effect != "thermal_lag") continue;
       ++found;
-      if (std::abs(f.components[0].magnitude - 60.0) <= 3.0 * f.components[0].standard_error) ++within;
+      if (std::abs(f.components[0].magnitude - 60.0) <= 3.0 * f.components[0].standard_error)
+        ++within;
       EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
     }
     EXPECT_EQ(d.findings.size(), 1u);
@@ -134,40 +142,63 @@ TEST(ChannelDiagnosis, FindsThermalLagConfoundedWithTheBiasPolynomial) {
 TEST(ChannelDiagnosis, FindsThermalHysteresisAndNothingOnCleanSeries) {
   int clean_with_findings = 0;
   for (uint64_t seed = 20; seed < 40; ++seed) {
-    const UnitDiagnosis d = DiagnoseChannels(ReadChannelRecording(WriteLagging("clean", seed, 0.0, 0.0)));
-    for (const Finding& f : d.findings) std::printf("clean seed %d: %s\n", static_cast<int>(seed), f.words.c_str());
+    const UnitDiagnosis d =
+        DiagnoseChannels(ReadChannelRecording(WriteLagging("clean", seed, 0.0, 0.0)));
+    for (const Finding& f : d.findings)
+      std::printf("clean seed %d: %s\n", static_cast<int>(seed), f.words.c_str());
     if (!d.findings.empty() || !d.unexplained.empty()) ++clean_with_findings;
   }
   EXPECT_LE(clean_with_findings, 1);
-  const UnitDiagnosis d = DiagnoseChannels(ReadChannelRecording(WriteLagging("hyst", 41, 0.0, 0.004)));
+  const UnitDiagnosis d =
+      DiagnoseChannels(ReadChannelRecording(WriteLagging("hyst", 41, 0.0, 0.004)));
   ASSERT_EQ(d.findings.size(), 1u);
   EXPECT_EQ(d.findings[0].effect, "thermal_hysteresis");
-  EXPECT_NEAR(d.findings[0].components[0].magnitude, 0.004, 3.0 * d.findings[0].components[0].standard_error);
+  EXPECT_NEAR(d.findings[0].components[0].magnitude,
+              0.004,
+              3.0 * d.findings[0].components[0].standard_error);
 }
 
 // The real recording: read through its sidecar, diagnosed without error, cooling only, so thermal
 // hysteresis is not excited; whatever it reports improves the held-out fit.
 TEST(ChannelDiagnosis, RealPublicRecordingOfAnLsm6dsmCoolingInAChamber) {
-  const fs::path sidecar = fs::path(ADAHRS_SOURCE_DIR) / "tests/data/pan_lsm6dsm_cold_tvac/tvc_2020-03-07.json";
+  const fs::path sidecar =
+      fs::path(ADAHRS_SOURCE_DIR) / "tests/data/pan_lsm6dsm_cold_tvac/tvc_2020-03-07.json";
   const DiagnosisRun run = DiagnoseChannelFiles({sidecar});
   ASSERT_EQ(run.units.size(), 1u);
   const UnitDiagnosis& d = run.units[0];
-  EXPECT_EQ(run.recordings[0].sha256, "8ad84a540e91a690b1711a00472e034d6b0a8fdafee635a724191f77eb7c3327");
+  EXPECT_EQ(run.recordings[0].sha256,
+            "8ad84a540e91a690b1711a00472e034d6b0a8fdafee635a724191f77eb7c3327");
   EXPECT_EQ(d.rows, 6250);
   EXPECT_EQ(d.segments, 25);
   EXPECT_NEAR(d.temp_span_c, 8.3, 0.2);
   for (const Finding& f : d.findings) {
-    std::printf("finding: %s (held-out %.4g -> %.4g %s)\n", f.words.c_str(), f.held_out_rms_before, f.held_out_rms_after, f.rms_unit.c_str());
+    std::printf("finding: %s (held-out %.4g -> %.4g %s)\n",
+                f.words.c_str(),
+                f.held_out_rms_before,
+                f.held_out_rms_after,
+                f.rms_unit.c_str());
     EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
   }
-  for (const Unexplained& u : d.unexplained) std::printf("unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
+  for (const Unexplained& u : d.unexplained)
+    std::printf(
+        "unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
   for (const std::string& n : d.notes) std::printf("note: %s\n", n.c_str());
   for (const ChannelFitSummary& c : d.channels) {
-    std::printf("%s: held-out %.4g -> %.4g %s, white %.3g\n", c.channel.c_str(), c.held_out_rms_baseline, c.held_out_rms_final, c.unit.c_str(), c.white_noise_rms);
+    std::printf("%s: held-out %.4g -> %.4g %s, white %.3g\n",
+                c.channel.c_str(),
+                c.held_out_rms_baseline,
+                c.held_out_rms_final,
+                c.unit.c_str(),
+                c.white_noise_rms);
   }
   for (const DetectionLimit& l : d.detection_limits) {
     for (const FindingComponent& c : l.limits) {
-      std::printf("limit: %s %s: %s %.3g %s\n", l.effect.c_str(), l.channel.c_str(), c.name.c_str(), c.magnitude, c.unit.c_str());
+      std::printf("limit: %s %s: %s %.3g %s\n",
+                  l.effect.c_str(),
+                  l.channel.c_str(),
+                  c.name.c_str(),
+                  c.magnitude,
+                  c.unit.c_str());
     }
     if (l.effect == "thermal_hysteresis") {
       EXPECT_TRUE(l.limits.empty()) << l.channel;  // cooling only

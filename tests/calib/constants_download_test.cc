@@ -21,7 +21,8 @@ namespace {
 namespace fm = firmware_model;
 using ::testing::HasSubstr;
 
-// Rig time scale: 5 simulated s per wall s keeps the test short; UnitLink's reply floor is wall time.
+// Rig time scale: 5 simulated s per wall s keeps the test short; UnitLink's reply floor is wall
+// time.
 constexpr double kTimeScale = 5.0;
 
 ConstantsFile ImuFileFor(const std::string& serial, uint64_t seed) {
@@ -61,8 +62,14 @@ TEST(ConstantsBlocksTest, ImuSetIsTwentySevenBlocksOfTheTargetLengths) {
     // Lengths from docs/unit-protocol.md §6.2: thermal 17, accel 30, gyro 16, matrices 27 words;
     // format 3: switch 10, scale factors 13, accelerometer nonlinearity 9, g-sensitivity 27.
     const uint8_t id = block.block_id;
-    const size_t expected = id <= 0x09 ? 17 : id == 0x0A ? 30 : id <= 0x0D ? 16 : id <= 0x0F ? 27
-                            : id == 0x10 ? 10 : id <= 0x19 ? 13 : id == 0x1A ? 9 : 27;
+    const size_t expected = id <= 0x09   ? 17
+                            : id == 0x0A ? 30
+                            : id <= 0x0D ? 16
+                            : id <= 0x0F ? 27
+                            : id == 0x10 ? 10
+                            : id <= 0x19 ? 13
+                            : id == 0x1A ? 9
+                                         : 27;
     EXPECT_EQ(block.words.size(), expected) << block.name;
     EXPECT_EQ(id, blocks.blocks.front().block_id + (&block - blocks.blocks.data()));
   }
@@ -78,7 +85,8 @@ TEST(ConstantsBlocksTest, ImuSetIsTwentySevenBlocksOfTheTargetLengths) {
 class ConstantsDownloadRigTest : public ::testing::Test {
  protected:
   ConstantsDownloadRigTest()
-      : rig_(kTimeScale), station_(hil::Station::Load(rig_.WriteStation())),
+      : rig_(kTimeScale),
+        station_(hil::Station::Load(rig_.WriteStation())),
         clock_(hil::MakeClock(station_.time_scale)) {}
   adahrs::testing::RigProcess rig_;
   hil::Station station_;
@@ -118,9 +126,14 @@ TEST_F(ConstantsDownloadRigTest, CommittedConstantsCompensateLikeTheReferenceWit
       ++compared;
     }
   }
-  std::printf("compared %d packets: worst |A - A_ref| %.3g m/s^2 (bound %.3g), "
-              "worst |G - G_ref| %.3g deg/s (bound %.3g)\n",
-              compared, worst_mps2, bound.accel_mps2, worst_dps, bound.rate_full_dps);
+  std::printf(
+      "compared %d packets: worst |A - A_ref| %.3g m/s^2 (bound %.3g), "
+      "worst |G - G_ref| %.3g deg/s (bound %.3g)\n",
+      compared,
+      worst_mps2,
+      bound.accel_mps2,
+      worst_dps,
+      bound.rate_full_dps);
   EXPECT_LE(worst_mps2, bound.accel_mps2);
   EXPECT_LE(worst_dps, bound.rate_full_dps);
 }
@@ -174,7 +187,8 @@ TEST_F(ConstantsDownloadRigTest, CorruptedLineRefusesTheDownloadAndCommitsNothin
   // sent no corrupted request at all).
   const uint64_t by_unit = refused(fresh.ReadCounters().decoder);
   std::printf("refusals: unit decoder %llu, link decoder %llu\n",
-              static_cast<unsigned long long>(by_unit), static_cast<unsigned long long>(by_link));
+              static_cast<unsigned long long>(by_unit),
+              static_cast<unsigned long long>(by_link));
   EXPECT_GT(by_unit + by_link, 0u);
 }
 

@@ -13,8 +13,8 @@
 namespace adahrs::calib {
 namespace {
 
-using ::testing::HasSubstr;
 using nlohmann::json;
+using ::testing::HasSubstr;
 namespace fm = firmware_model;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -108,7 +108,8 @@ TEST(ConstantsFile, Format3TermsMakeAVersion3FileAndRoundTrip) {
   se.scale_temperature = st;
   for (auto& scale : se.scale_temperature.scale) scale = {1e-5, 1e-9, 1e-13, 1e-17};
   se.scale_temperature.accel_quadratic_per_g = {1e-5, 1e-5, 1e-5};
-  se.scale_temperature.gs_dps_per_mps2 = {{{1e-4, 1e-4, 1e-4}, {1e-4, 1e-4, 1e-4}, {1e-4, 1e-4, 1e-4}}};
+  se.scale_temperature.gs_dps_per_mps2 = {
+      {{1e-4, 1e-4, 1e-4}, {1e-4, 1e-4, 1e-4}, {1e-4, 1e-4, 1e-4}}};
   f.standard_errors = ImuStandardErrorsJson(se);
   const json j = ToJson(f);
   EXPECT_EQ(j["format_version"], 3);
@@ -124,7 +125,8 @@ TEST(ConstantsFile, Format3TermsMakeAVersion3FileAndRoundTrip) {
   json bad = j;
   bad["constants"]["scale_temperature"]["sensor"][2]["origin_cnt"] = 32768.5;
   bad["standard_errors"]["scale_temperature"]["sensor"][2]["origin_cnt"] = nullptr;
-  EXPECT_THAT(MessageOf(bad), HasSubstr("imu.scale_temperature.sensor[2].origin_cnt: must be a whole count"));
+  EXPECT_THAT(MessageOf(bad),
+              HasSubstr("imu.scale_temperature.sensor[2].origin_cnt: must be a whole count"));
 }
 
 TEST(ConstantsFile, RefusesMissingAndUnexpectedKeys) {
@@ -145,7 +147,8 @@ TEST(ConstantsFile, RefusesStandardErrorsOfAnotherShapeOrSign) {
   EXPECT_THAT(MessageOf(j), HasSubstr("$.standard_errors.cg[2]: expected an array of 3"));
   j = ToJson(ImuFile());
   j["standard_errors"]["accel"][4]["offset_duty"] = -1e-6;
-  EXPECT_THAT(MessageOf(j), HasSubstr("$.standard_errors.accel[4].offset_duty: a standard error must be"));
+  EXPECT_THAT(MessageOf(j),
+              HasSubstr("$.standard_errors.accel[4].offset_duty: a standard error must be"));
   j = ToJson(ImuFile());
   j["standard_errors"].erase("ca_mps2_per_g");
   EXPECT_THAT(MessageOf(j), HasSubstr("missing key \"ca_mps2_per_g\""));
@@ -173,7 +176,8 @@ TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
   c.altitude_ft.y_min_code = 2e6;
   c.altitude_ft.y_max_code = 3e6;
   for (int p = 0; p <= fm::kSurfaceXDegree; ++p) {
-    for (int q = 0; q <= fm::kSurfaceYDegree; ++q) c.altitude_ft.coeff_xy[p][q] = 1.0 + p + 0.25 * q;
+    for (int q = 0; q <= fm::kSurfaceYDegree; ++q)
+      c.altitude_ft.coeff_xy[p][q] = 1.0 + p + 0.25 * q;
   }
   c.airspeed_kt = c.altitude_ft;
   c.altitude_ft.y_linearisation = {2500000.0, 7.5e-7};  // the airspeed surface has none
@@ -194,7 +198,8 @@ TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
   // The target holds the origin as a whole code: a fractional one is refused with its path.
   json bad = ToJson(f);
   bad["constants"]["altitude_ft"]["y_linearisation"]["origin_code"] = 2500000.5;
-  EXPECT_THAT(MessageOf(bad), HasSubstr("altitude_ft.y_linearisation.origin_code: must be a whole code"));
+  EXPECT_THAT(MessageOf(bad),
+              HasSubstr("altitude_ft.y_linearisation.origin_code: must be a whole code"));
   f.imu = fm::ImuCalibrationConstants{};  // both kinds set: refused by the writer
   EXPECT_THROW(ToJson(f), ConstantsFileError);
 }
@@ -204,8 +209,10 @@ TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
 // forms, or neither, is refused with its JSON path.
 TEST(ConstantsFile, ReadsTheReferenceCubicsLettersFromOlderFiles) {
   nlohmann::json surface = {{"coeff_a_to_j", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10}},
-                            {"x_min_code", -1e6}, {"x_max_code", 1e6},
-                            {"y_min_code", 2e6},  {"y_max_code", 3e6}};
+                            {"x_min_code", -1e6},
+                            {"x_max_code", 1e6},
+                            {"y_min_code", 2e6},
+                            {"y_max_code", 3e6}};
   nlohmann::json ads = {{"altitude_ft", surface}, {"airspeed_kt", surface}};
   const fm::AdsCalibrationConstants c = fm::AdsCalibrationConstantsFromJson(ads);
   const auto& k = c.altitude_ft.coeff_xy;

@@ -19,9 +19,7 @@ using ::testing::HasSubstr;
 // z, plus a symmetric skew and scale errors).
 Eigen::Matrix3d Mixing() {
   Eigen::Matrix3d m;
-  m << 1.004, -0.015 + 0.003, 0.008,
-       0.015 + 0.003, 0.997, -0.011,
-       -0.008, 0.011, 1.002;
+  m << 1.004, -0.015 + 0.003, 0.008, 0.015 + 0.003, 0.997, -0.011, -0.008, 0.011, 1.002;
   return m;
 }
 
@@ -36,8 +34,8 @@ std::vector<AxisStepMean> Steps(const Eigen::Matrix3d& m, double reference, doub
 TEST(CrossAxisFit, CorrectsEveryOrientationToTheReference) {
   const Eigen::Matrix3d m = Mixing();
   const double g_local_g = 9.7949 / 9.80665;
-  const CrossAxisEstimate e = FitCrossAxis("accelerometer cross-axis",
-                                           Steps(m, g_local_g, 1e-5), 9.7949);
+  const CrossAxisEstimate e =
+      FitCrossAxis("accelerometer cross-axis", Steps(m, g_local_g, 1e-5), 9.7949);
   // C M (g_l e_k) = g_local_mps2 e_k: C = (9.80665) M^-1 to rounding.
   const Eigen::Matrix3d expected = 9.80665 * m.inverse();
   EXPECT_LT((e.matrix - expected).cwiseAbs().maxCoeff(), 1e-12);
@@ -65,8 +63,8 @@ TEST(CrossAxisFit, RefusesMissingOrRepeatedOrientation) {
   auto steps = Steps(Mixing(), 150.0, 0.01);
   steps[2].orientation = 21;
   EXPECT_THAT([&] { FitCrossAxis("gyro cross-axis", steps, 150.0); },
-              ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr(
-                  "gyro cross-axis: design refused: orientation 21 appears 2 times")));
+              ::testing::ThrowsMessage<DegenerateDesignError>(
+                  HasSubstr("gyro cross-axis: design refused: orientation 21 appears 2 times")));
 }
 
 TEST(CrossAxisFit, RefusesWrongFaceAndCollapsedAxes) {
@@ -78,8 +76,7 @@ TEST(CrossAxisFit, RefusesWrongFaceAndCollapsedAxes) {
   steps = Steps(Mixing(), 150.0, 0.01);
   steps[2].mean = steps[0].mean + Eigen::Vector3d(0, 0, 2.0);  // 31 step nearly along x
   EXPECT_THAT([&] { FitCrossAxis("gyro cross-axis", steps, 150.0); },
-              ::testing::ThrowsMessage<DegenerateDesignError>(
-                  HasSubstr("do not span three axes")));
+              ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr("do not span three axes")));
 }
 
 }  // namespace

@@ -38,8 +38,10 @@ TEST(GyroRates, ReferenceSweepGivesExactlyTheSevenReferenceRates) {
 }
 
 TEST(EffectiveTags, ExplicitKeptAndSmallestFreeAssignedInOrder) {
-  const Sequence s = Imu({{std::nullopt, AccelStep{11, 1}}, {2, AccelStep{12, 1}},
-                          {std::nullopt, AccelStep{21, 1}}, {std::nullopt, AccelStep{22, 1}},
+  const Sequence s = Imu({{std::nullopt, AccelStep{11, 1}},
+                          {2, AccelStep{12, 1}},
+                          {std::nullopt, AccelStep{21, 1}},
+                          {std::nullopt, AccelStep{22, 1}},
                           {1, AccelStep{31, 1}}});
   // 1 and 2 are taken explicitly, so the free steps get 3, 4, 5.
   EXPECT_THAT(EffectiveTags(s), ElementsAre(3, 2, 4, 5, 1));
@@ -54,10 +56,15 @@ TEST(ExecutionPlan, GyroStepExpandsToRateCommandsWithAcquisitions) {
               ElementsAre("mount batch in orientation 21",
                           "interlock: jog 100 deg/s, check gyro axis for orientation 21",
                           "set table rate -100 deg/s (accel 50 deg/s^2)",
-                          "wait table at -100 deg/s", "acquire 200 packets",
-                          "set table rate 0 deg/s (accel 50 deg/s^2)", "wait table at 0 deg/s",
-                          "acquire 200 packets", "set table rate 100 deg/s (accel 50 deg/s^2)",
-                          "wait table at 100 deg/s", "acquire 200 packets", "stop table"));
+                          "wait table at -100 deg/s",
+                          "acquire 200 packets",
+                          "set table rate 0 deg/s (accel 50 deg/s^2)",
+                          "wait table at 0 deg/s",
+                          "acquire 200 packets",
+                          "set table rate 100 deg/s (accel 50 deg/s^2)",
+                          "wait table at 100 deg/s",
+                          "acquire 200 packets",
+                          "stop table"));
   for (const PlannedAction& a : plan.actions) {
     EXPECT_EQ(a.step, 0u);
     EXPECT_EQ(a.tag, 9);
@@ -68,27 +75,34 @@ TEST(ExecutionPlan, GyroStepExpandsToRateCommandsWithAcquisitions) {
 }
 
 TEST(ExecutionPlan, MountOnlyWhenOrientationChanges) {
-  const Sequence s = Imu({{std::nullopt, AccelStep{31, 100}}, {std::nullopt, AccelStep{31, 100}},
+  const Sequence s = Imu({{std::nullopt, AccelStep{31, 100}},
+                          {std::nullopt, AccelStep{31, 100}},
                           {std::nullopt, AccelStep{11, 100}}});
   EXPECT_THAT(Descriptions(ExpandSequence(s, {})),
               ElementsAre("mount batch in orientation 31",
-                          "interlock: check gravity for orientation 31", "acquire 100 packets",
-                          "interlock: check gravity for orientation 31", "acquire 100 packets",
+                          "interlock: check gravity for orientation 31",
+                          "acquire 100 packets",
+                          "interlock: check gravity for orientation 31",
+                          "acquire 100 packets",
                           "mount batch in orientation 11",
-                          "interlock: check gravity for orientation 11", "acquire 100 packets"));
+                          "interlock: check gravity for orientation 11",
+                          "acquire 100 packets"));
 }
 
 TEST(ExecutionPlan, CrossAxisVisitsElevenTwentyOneThirtyOneAtRestAndAtRate) {
-  const ExecutionPlan plan = ExpandSequence(Imu({{std::nullopt, CrossAxisStep{50, 150.0, 100.0}}}), {});
+  const ExecutionPlan plan =
+      ExpandSequence(Imu({{std::nullopt, CrossAxisStep{50, 150.0, 100.0}}}), {});
   std::vector<std::string> expected;
   for (int o : {11, 21, 31}) {
     const std::string code = std::to_string(o);
     for (const std::string& line :
-         {"mount batch in orientation " + code, "interlock: check gravity for orientation " + code,
+         {"mount batch in orientation " + code,
+          "interlock: check gravity for orientation " + code,
           std::string("acquire 50 packets"),
           "interlock: jog 100 deg/s, check gyro axis for orientation " + code,
           std::string("set table rate 150 deg/s (accel 100 deg/s^2)"),
-          std::string("wait table at 150 deg/s"), std::string("acquire 50 packets"),
+          std::string("wait table at 150 deg/s"),
+          std::string("acquire 50 packets"),
           std::string("stop table")}) {
       expected.push_back(line);
     }
@@ -112,9 +126,12 @@ TEST(ExecutionPlan, ChamberAndAdtsSteps) {
   EXPECT_THAT(Descriptions(plan),
               ElementsAre("set chamber set point -15 degC",
                           "wait chamber within -15 ± 1 degC, soak 600 s",
-                          "set ADTS altitude 3000 ft at 1500 ft/min", "wait ADTS stable",
-                          "acquire 300 packets", "set ADTS airspeed 100 kt at 50 kt/min",
-                          "wait ADTS stable", "log for 5 s"));
+                          "set ADTS altitude 3000 ft at 1500 ft/min",
+                          "wait ADTS stable",
+                          "acquire 300 packets",
+                          "set ADTS airspeed 100 kt at 50 kt/min",
+                          "wait ADTS stable",
+                          "log for 5 s"));
   // 40 °C at 1 °C/min = 2400 s + 600 s soak; 3000 ft at 1500 ft/min = 120 s + 15 s stable;
   // 3 s of packets; 100 kt at 50 kt/min = 120 s + 15 s; 5 s of logging.
   EXPECT_DOUBLE_EQ(plan.duration_estimate_s, 3000.0 + 135.0 + 3.0 + 135.0 + 5.0);
@@ -131,9 +148,14 @@ TEST(ProfileDuration, JumpRepeatsItsLoopCountTimes) {
   // 25 → −40 at 2 °C/min: 1950 s; soak 1800; −40 → 85: 3750; soak 1800 (first pass 9300 s).
   // The jump repeats steps 1–4 twice more from 85 °C: 2 × (3750 + 1800 + 3750 + 1800) = 22200.
   // Then 85 → 25 at 2 °C/min: 1800 s. Total 33300 s.
-  const ThermalProfileStep profile{"BURN", {F4RampRate{-40.0, 2.0}, F4Soak{1800.0},
-                                            F4RampRate{85.0, 2.0}, F4Soak{1800.0}, F4Jump{1, 2},
-                                            F4RampRate{25.0, 2.0}, F4End{}}};
+  const ThermalProfileStep profile{"BURN",
+                                   {F4RampRate{-40.0, 2.0},
+                                    F4Soak{1800.0},
+                                    F4RampRate{85.0, 2.0},
+                                    F4Soak{1800.0},
+                                    F4Jump{1, 2},
+                                    F4RampRate{25.0, 2.0},
+                                    F4End{}}};
   EXPECT_DOUBLE_EQ(ProfileDurationS(profile, 25.0), 33300.0);
 }
 
@@ -148,11 +170,12 @@ TEST(ProfileDuration, NestedLoopRunsInnerLoopInFullEachOuterPass) {
 TEST(ExecutionPlan, ProfileIsDownloadedThenRunWhileLogging) {
   PlanTiming timing;
   timing.profile_download_s = 10.0;
-  const Sequence s = Imu({{std::nullopt, ThermalProfileStep{"T", {F4RampTime{30.0, 100.0},
-                                                                  F4End{}}}}});
+  const Sequence s =
+      Imu({{std::nullopt, ThermalProfileStep{"T", {F4RampTime{30.0, 100.0}, F4End{}}}}});
   const ExecutionPlan plan = ExpandSequence(s, {}, timing);
-  EXPECT_THAT(Descriptions(plan), ElementsAre("download chamber profile \"T\" (2 steps)",
-                                              "run chamber profile \"T\", logging until its end"));
+  EXPECT_THAT(Descriptions(plan),
+              ElementsAre("download chamber profile \"T\" (2 steps)",
+                          "run chamber profile \"T\", logging until its end"));
   EXPECT_DOUBLE_EQ(plan.duration_estimate_s, 110.0);
 }
 

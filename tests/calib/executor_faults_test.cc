@@ -21,8 +21,10 @@ using testing::TempDir;
 constexpr double kTimeScale = 200.0;
 
 // Runs `steps` (of `unit_kind`) on `rig`; returns the RunError's message ("" if none).
-std::string RunExpectingError(const adahrs::testing::RigProcess& rig, const TempDir& dir,
-                              const std::string& unit_kind, const nlohmann::json& steps,
+std::string RunExpectingError(const adahrs::testing::RigProcess& rig,
+                              const TempDir& dir,
+                              const std::string& unit_kind,
+                              const nlohmann::json& steps,
                               NewRunOptions options = {}) {
   options.station_file = rig.WriteStation();
   options.sequence_file = testing::WriteSequence(dir.path(), unit_kind, steps);
@@ -51,13 +53,17 @@ TEST(ExecutorFaults, SilentRateTable) {
   std::string reply;
   options.wrap_operator =
       testing::DisturbingOperator::Wrapper(rig, 31, "fault rate_table silent on", reply);
-  const std::string error = RunExpectingError(rig, dir, "imu", nlohmann::json::parse(R"([
+  const std::string error = RunExpectingError(rig,
+                                              dir,
+                                              "imu",
+                                              nlohmann::json::parse(R"([
     {"kind": "accel", "orientation": 11, "packets": 100},
     {"kind": "gyro", "orientation": 31, "packets": 100, "rate_min_dps": 50, "rate_max_dps": 50,
      "rate_increment_dps": 10, "table_accel_dps2": 100}])"),
                                               options);
   EXPECT_EQ(reply, "OK rate_table silent on");
-  EXPECT_THAT(error, AllOf(HasSubstr("step 1 (gyro"), HasSubstr("rate_table"), HasSubstr("no reply")));
+  EXPECT_THAT(error,
+              AllOf(HasSubstr("step 1 (gyro"), HasSubstr("rate_table"), HasSubstr("no reply")));
   EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
   // Step 0's 100 packets per unit plus the gyro interlock's rest average: all kept.
   ExpectAbortedWithRowsKept(dir, 4 * 200);
@@ -71,8 +77,10 @@ TEST(ExecutorFaults, ChamberRefusesASetPointBeyondItsLimit) {
   const std::string error = RunExpectingError(rig, dir, "imu", nlohmann::json::parse(R"([
     {"kind": "accel", "orientation": 31, "packets": 100},
     {"kind": "target_temperature", "target_c": 60.0, "band_c": 1.0, "soak_s": 10.0}])"));
-  EXPECT_THAT(error, AllOf(HasSubstr("step 1 (target_temperature"), HasSubstr("imu_chamber"),
-                           HasSubstr("exception")));
+  EXPECT_THAT(error,
+              AllOf(HasSubstr("step 1 (target_temperature"),
+                    HasSubstr("imu_chamber"),
+                    HasSubstr("exception")));
   EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
   ExpectAbortedWithRowsKept(dir, 4 * 100);
 }
@@ -84,7 +92,8 @@ TEST(ExecutorFaults, AirDataTestSetNeverStable) {
   const std::string error = RunExpectingError(rig, dir, "ads", nlohmann::json::parse(R"([
     {"kind": "altitude", "alt_ft": 2000.0, "rate_ft_per_min": 6000.0},
     {"kind": "log", "packets": 100}])"));
-  EXPECT_THAT(error, AllOf(HasSubstr("step 0 (altitude"), HasSubstr("adts"), HasSubstr("not stable")));
+  EXPECT_THAT(error,
+              AllOf(HasSubstr("step 0 (altitude"), HasSubstr("adts"), HasSubstr("not stable")));
   const hil::Recording rec = hil::ReadRecording(dir.path() / "run");
   EXPECT_EQ(rec.meta["status"], "aborted");
   EXPECT_GT(rec.ads.size(), 1000u);  // over 100 s of waiting at 100 Hz, all logged
@@ -99,7 +108,10 @@ TEST(ExecutorFaults, UnitUnpluggedMidStep) {
   std::string reply;
   options.wrap_operator =
       testing::DisturbingOperator::Wrapper(rig, 32, "fault imu3 unplugged on", reply);
-  const std::string error = RunExpectingError(rig, dir, "imu", nlohmann::json::parse(R"([
+  const std::string error = RunExpectingError(rig,
+                                              dir,
+                                              "imu",
+                                              nlohmann::json::parse(R"([
     {"kind": "accel", "orientation": 11, "packets": 200},
     {"kind": "accel", "orientation": 32, "packets": 200}])"),
                                               options);

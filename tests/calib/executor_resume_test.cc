@@ -30,7 +30,8 @@ pid_t Spawn(std::vector<std::string> args, const std::filesystem::path& log) {
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_addopen(
+      &actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = -1;
   const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
@@ -66,9 +67,9 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
     {"kind": "accel", "orientation": 22, "packets": 300}])"));
   const std::filesystem::path run_dir = dir.path() / "run";
   const std::string adahrs = std::string(std::getenv("ADAHRS_BIN_DIR")) + "/adahrs";
-  const pid_t first = Spawn({adahrs, "run", "--station", station, "--sequence", sequence,
-                             "--run-dir", run_dir.string()},
-                            dir.path() / "first.log");
+  const pid_t first = Spawn(
+      {adahrs, "run", "--station", station, "--sequence", sequence, "--run-dir", run_dir.string()},
+      dir.path() / "first.log");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   while (!JournalHasStepCompleted(run_dir, 1) && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -96,14 +97,19 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   const size_t last_row = complete_at_kill.rfind('\n', complete_at_kill.size() - 2) + 1;
   std::ofstream(garbled / "imu.csv", std::ios::binary)
       << complete_at_kill.substr(0, last_row) << "x" << complete_at_kill.substr(last_row);
-  const long last_line = static_cast<long>(std::count(complete_at_kill.begin(), complete_at_kill.end(), '\n'));
-  const pid_t refused = Spawn({adahrs, "run", "--resume", garbled.string()}, dir.path() / "garbled.log");
+  const long last_line =
+      static_cast<long>(std::count(complete_at_kill.begin(), complete_at_kill.end(), '\n'));
+  const pid_t refused =
+      Spawn({adahrs, "run", "--resume", garbled.string()}, dir.path() / "garbled.log");
   ::waitpid(refused, &status, 0);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);
-  EXPECT_NE(ReadAll(dir.path() / "garbled.log").find("imu.csv:" + std::to_string(last_line) + ": column 1 (t_s) 'x"),
-            std::string::npos) << ReadAll(dir.path() / "garbled.log");
+  EXPECT_NE(ReadAll(dir.path() / "garbled.log")
+                .find("imu.csv:" + std::to_string(last_line) + ": column 1 (t_s) 'x"),
+            std::string::npos)
+      << ReadAll(dir.path() / "garbled.log");
 
-  const pid_t second = Spawn({adahrs, "run", "--resume", run_dir.string()}, dir.path() / "second.log");
+  const pid_t second =
+      Spawn({adahrs, "run", "--resume", run_dir.string()}, dir.path() / "second.log");
   ::waitpid(second, &status, 0);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadAll(dir.path() / "second.log");
 
@@ -120,7 +126,8 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   EXPECT_EQ(rec.rejected_intervals[0].step, 2);
   EXPECT_EQ(rec.rejected_intervals[0].reason, "repeated partial step");
   bool repeat_journaled = false;
-  for (const auto& e : ReadJournal(run_dir).events) repeat_journaled |= e["event"] == "step_repeated";
+  for (const auto& e : ReadJournal(run_dir).events)
+    repeat_journaled |= e["event"] == "step_repeated";
   EXPECT_TRUE(repeat_journaled);
   // Time keeps increasing across the resume.
   for (size_t i = 1; i < rec.imu.size(); ++i) {

@@ -90,15 +90,18 @@ TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
   options.run_dir = dir.path() / "run";
   // The disturbance: after every mount in 32, imu2 is turned back to 31 (the wrong way up).
   std::string reply;
-  options.wrap_operator = testing::DisturbingOperator::Wrapper(rig, 32, "orientation imu2 31", reply);
+  options.wrap_operator =
+      testing::DisturbingOperator::Wrapper(rig, 32, "orientation imu2 31", reply);
   RecordingProgress progress;
   std::atomic<bool> stop{false};
   try {
     StartRun(options, progress, stop);
     FAIL() << "the run should have stopped";
   } catch (const RunError& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("step 2 (accel"), HasSubstr("gravity interlock failed"),
-                                HasSubstr("imu2 (IMU-0002)")));
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr("step 2 (accel"),
+                      HasSubstr("gravity interlock failed"),
+                      HasSubstr("imu2 (IMU-0002)")));
     EXPECT_THAT(e.what(), ::testing::Not(HasSubstr("imu1")));
   }
   EXPECT_EQ(reply, "OK imu2 31");
@@ -120,7 +123,8 @@ TEST(ExecutorRig, ATableLeftTurningIsStoppedBeforeTheFirstStep) {
   options.station_file = rig.WriteStation();
   {
     const hil::Station station = hil::Station::Load(options.station_file);
-    const std::unique_ptr<hil::Clock> clock = hil::MakeClock(station.time_scale, station.clock_file);
+    const std::unique_ptr<hil::Clock> clock =
+        hil::MakeClock(station.time_scale, station.clock_file);
     hil::StationInstruments left = hil::OpenStation(station, *clock);
     left.rate_table->CommandRate(50.0, 100.0);
     clock->SleepS(5.0);
@@ -173,7 +177,9 @@ TEST(ExecutorRig, AFirstChamberStepFarFromThePlansStartIsWaitedFor) {
       break;
     }
   }
-  std::printf("chamber from %.1f degC to %.1f degC over %.0f s\n", first_c, rec.imu.back().chamber_c,
+  std::printf("chamber from %.1f degC to %.1f degC over %.0f s\n",
+              first_c,
+              rec.imu.back().chamber_c,
               rec.imu.back().t_s - rec.imu.front().t_s);
   EXPECT_LT(first_c, 5.0);  // it did start far away
   EXPECT_NEAR(rec.imu.back().chamber_c, 25.0, 1.0);
@@ -246,7 +252,8 @@ TEST(ExecutorRig, AdsBatchLogsAtTheTestSetsAims) {
   EXPECT_EQ(StartRun(options, progress, stop).lost, 0u);
   const hil::Recording rec = hil::ReadRecording(options.run_dir);
   const double ps_2000ft_pa = 101325.0 * std::pow(1.0 - 6.8755856e-6 * 2000.0, 5.2558797);
-  const double qc_100kt_pa = 101325.0 * (std::pow(1.0 + 0.2 * std::pow(100.0 / 661.4786, 2), 3.5) - 1.0);
+  const double qc_100kt_pa =
+      101325.0 * (std::pow(1.0 + 0.2 * std::pow(100.0 / 661.4786, 2), 3.5) - 1.0);
   std::map<int, int> per_tag;
   for (const auto& r : rec.ads) {
     if (r.tag == 0) continue;

@@ -1,6 +1,7 @@
-// Shared helpers of the executor tests that run against the rig process (tests/support/rig_process.h):
-// a fresh run directory, sequence files, a progress sink that keeps the notes, the rig's reported
-// table rate, and the calibration rows of a recording grouped per unit and TAG.
+// Shared helpers of the executor tests that run against the rig process
+// (tests/support/rig_process.h): a fresh run directory, sequence files, a progress sink that keeps
+// the notes, the rig's reported table rate, and the calibration rows of a recording grouped per
+// unit and TAG.
 #pragma once
 
 #include <unistd.h>
@@ -39,15 +40,16 @@ class TempDir {
 };
 
 /// Writes a sequence document with `steps` for `unit_kind` ("imu"/"ads"); returns its path.
-inline std::string WriteSequence(const std::filesystem::path& dir, const std::string& unit_kind,
+inline std::string WriteSequence(const std::filesystem::path& dir,
+                                 const std::string& unit_kind,
                                  const nlohmann::json& steps) {
   const std::filesystem::path path = dir / "sequence.json";
-  std::ofstream(path) << nlohmann::json{{"format_version", 1},
-                                        {"name", "executor test"},
-                                        {"description", "a short sequence for the executor tests"},
-                                        {"unit_kind", unit_kind},
-                                        {"steps", steps}}
-                             .dump(2);
+  std::ofstream(path) << nlohmann::json{
+      {"format_version", 1},
+      {"name", "executor test"},
+      {"description", "a short sequence for the executor tests"},
+      {"unit_kind", unit_kind},
+      {"steps", steps}}.dump(2);
   return path.string();
 }
 
@@ -56,9 +58,16 @@ inline std::string WriteSequence(const std::filesystem::path& dir, const std::st
 /// test owns (the operator dies with the run).
 class DisturbingOperator : public hil::Operator {
  public:
-  DisturbingOperator(std::unique_ptr<hil::Operator> inner, const adahrs::testing::RigProcess& rig,
-                     int code, std::string command, std::string& reply)
-      : inner_(std::move(inner)), rig_(rig), code_(code), command_(std::move(command)), reply_(reply) {}
+  DisturbingOperator(std::unique_ptr<hil::Operator> inner,
+                     const adahrs::testing::RigProcess& rig,
+                     int code,
+                     std::string command,
+                     std::string& reply)
+      : inner_(std::move(inner)),
+        rig_(rig),
+        code_(code),
+        command_(std::move(command)),
+        reply_(reply) {}
   void Mount(const std::vector<std::string>& roles, int code) override {
     inner_->Mount(roles, code);
     if (code == code_) reply_ = rig_.Control(command_);
@@ -66,9 +75,12 @@ class DisturbingOperator : public hil::Operator {
   void Prompt(const std::string& text) override { inner_->Prompt(text); }
 
   /// A NewRunOptions::wrap_operator that installs this disturbance.
-  static auto Wrapper(const adahrs::testing::RigProcess& rig, int code, std::string command,
+  static auto Wrapper(const adahrs::testing::RigProcess& rig,
+                      int code,
+                      std::string command,
                       std::string& reply) {
-    return [&rig, code, command, &reply](std::unique_ptr<hil::Operator> inner) -> std::unique_ptr<hil::Operator> {
+    return [&rig, code, command, &reply](
+               std::unique_ptr<hil::Operator> inner) -> std::unique_ptr<hil::Operator> {
       return std::make_unique<DisturbingOperator>(std::move(inner), rig, code, command, reply);
     };
   }

@@ -30,9 +30,12 @@ ImuObservation Observation(std::vector<std::pair<int, int>> frames, int run = 0)
 TEST(GyroBiasCovariance, MatchesTheSimulatedProcessWithinItsSamplingError) {
   // Short and long windows, overlapping, nested, near and far apart, and a band revisited.
   const std::vector<ImuObservation> obs = {
-      Observation({{0, 299}}),           Observation({{100, 199}}),
-      Observation({{350, 649}}),         Observation({{6000, 65999}}),
-      Observation({{150000, 150299}}),   Observation({{2000, 2099}, {120000, 120099}}),
+      Observation({{0, 299}}),
+      Observation({{100, 199}}),
+      Observation({{350, 649}}),
+      Observation({{6000, 65999}}),
+      Observation({{150000, 150299}}),
+      Observation({{2000, 2099}, {120000, 120099}}),
   };
   const Eigen::MatrixXd analytic = GyroBiasCovariance_dps2(obs, kFloor_dps, kFrame_s);
   const int n = static_cast<int>(obs.size());
@@ -56,7 +59,8 @@ TEST(GyroBiasCovariance, MatchesTheSimulatedProcessWithinItsSamplingError) {
   for (int i = 0; i < n; ++i) {
     for (int j = i; j < n; ++j) {
       // Standard error of a sample covariance of Gaussian variables with known zero mean.
-      const double se = std::sqrt((analytic(i, i) * analytic(j, j) + analytic(i, j) * analytic(i, j)) / kRealisations);
+      const double se = std::sqrt(
+          (analytic(i, i) * analytic(j, j) + analytic(i, j) * analytic(i, j)) / kRealisations);
       EXPECT_NEAR(sample(i, j), analytic(i, j), 4.0 * se) << "observations " << i << ", " << j;
     }
   }

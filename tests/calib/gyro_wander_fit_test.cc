@@ -36,7 +36,8 @@ Problem Draw(double floor_dph, double time_scale, double white_scale, uint64_t s
   }
   const Eigen::MatrixXd v =
       Eigen::MatrixXd(p.white.asDiagonal()) * white_scale +
-      GyroBiasCovariance_dps2(p.obs, floor_dph / 3600.0, kFrame_s, time_scale) * kCountsPerDps * kCountsPerDps;
+      GyroBiasCovariance_dps2(p.obs, floor_dph / 3600.0, kFrame_s, time_scale) * kCountsPerDps *
+          kCountsPerDps;
   const Eigen::LLT<Eigen::MatrixXd> llt(v);
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal;
@@ -47,7 +48,8 @@ Problem Draw(double floor_dph, double time_scale, double white_scale, uint64_t s
 }
 
 GyroWanderEstimate Estimate(const Problem& p) {
-  return EstimateGyroWander(p.obs, p.design, p.y, p.white, kPriorFloor_dph, kCountsPerDps, kFrame_s);
+  return EstimateGyroWander(
+      p.obs, p.design, p.y, p.white, kPriorFloor_dph, kCountsPerDps, kFrame_s);
 }
 
 // A floor three times the prior's is found within a factor of 1.6 on most draws, and the
@@ -71,9 +73,11 @@ TEST(GyroWanderFit, NeverFitsWorseThanThePriorAndCarriesTheWhiteExcess) {
   EXPECT_GE(e.log_likelihood_gain, 0.0);
   EXPECT_GT(e.white_scale, 1.0);
   const Eigen::MatrixXd k =
-      GyroBiasCovariance_dps2(p.obs, e.floor_dph / 3600.0, kFrame_s, e.time_scale) * kCountsPerDps * kCountsPerDps;
+      GyroBiasCovariance_dps2(p.obs, e.floor_dph / 3600.0, kFrame_s, e.time_scale) * kCountsPerDps *
+      kCountsPerDps;
   EXPECT_NEAR(e.covariance_cnt2(3, 7), k(3, 7), 1e-9 * std::abs(k(3, 7)));
-  EXPECT_NEAR(e.covariance_cnt2(5, 5), k(5, 5) + (e.white_scale - 1.0) * p.white[5], 1e-6 * k(5, 5));
+  EXPECT_NEAR(
+      e.covariance_cnt2(5, 5), k(5, 5) + (e.white_scale - 1.0) * p.white[5], 1e-6 * k(5, 5));
 }
 
 }  // namespace

@@ -12,14 +12,16 @@
 #include <vector>
 
 #include "calib/imu_calibration/imu_run_data.h"
-#include "sensor_sim/imu_unit.h"
 #include "common/units.h"
+#include "sensor_sim/imu_unit.h"
 
 namespace adahrs::calib::testing {
 
 class ImuScenario {
  public:
-  ImuScenario(const sensor_sim::ImuUnitParams& params, uint64_t noise_seed, double start_c,
+  ImuScenario(const sensor_sim::ImuUnitParams& params,
+              uint64_t noise_seed,
+              double start_c,
               double g_local_mps2 = 9.80665)
       : unit_(std::make_unique<sensor_sim::ImuUnit>(params, noise_seed, start_c)),
         g_scale_(g_local_mps2 / 9.80665),
@@ -35,13 +37,16 @@ class ImuScenario {
 
   /// Recorded thermal profile in `orientation`: ramps to each target at `rate_c_per_min`, then
   /// soaks `soak_s` there.
-  void ThermalProfile(int orientation, const std::vector<double>& targets_c, double rate_c_per_min,
+  void ThermalProfile(int orientation,
+                      const std::vector<double>& targets_c,
+                      double rate_c_per_min,
                       double soak_s) {
     data_.thermal_orientation = orientation;
     const Eigen::Vector3d up = Up(orientation);
     const double step_c = rate_c_per_min / 60.0 * kFrame_s;
     for (double target : targets_c) {
-      const ThermalSegment seg = target > air_c_ ? ThermalSegment::kUpRamp : ThermalSegment::kDownRamp;
+      const ThermalSegment seg =
+          target > air_c_ ? ThermalSegment::kUpRamp : ThermalSegment::kDownRamp;
       while (std::abs(target - air_c_) > step_c) {
         air_c_ += target > air_c_ ? step_c : -step_c;
         ThermalRow(up, seg);
@@ -52,14 +57,17 @@ class ImuScenario {
   }
 
   /// An accelerometer acquisition of `packets` rows after 0.5 s of settling.
-  void Accel(int step, int orientation, int packets) { Acquire(step, "accel", orientation, 0.0, packets, &data_.accel); }
+  void Accel(int step, int orientation, int packets) {
+    Acquire(step, "accel", orientation, 0.0, packets, &data_.accel);
+  }
 
   /// A gyro acquisition at each rate.
   void Gyro(int step, int orientation, const std::vector<double>& rates_dps, int packets) {
     for (double r : rates_dps) Acquire(step, "gyro", orientation, r, packets, &data_.gyro);
   }
 
-  /// Six positions, then rates about each axis (the sensor calibration's shape), at the present air.
+  /// Six positions, then rates about each axis (the sensor calibration's shape), at the present
+  /// air.
   void SensorCalibration(int first_step, int accel_packets, int gyro_packets) {
     int step = first_step;
     for (int o : {11, 12, 21, 22, 31, 32}) Accel(step++, o, accel_packets);
@@ -114,7 +122,11 @@ class ImuScenario {
     data_.thermal_segment.push_back(seg);
   }
 
-  void Acquire(int step, const std::string& kind, int orientation, double rate_dps, int packets,
+  void Acquire(int step,
+               const std::string& kind,
+               int orientation,
+               double rate_dps,
+               int packets,
                std::vector<ImuAcquisition>* out) {
     const Eigen::Vector3d up = Up(orientation);
     for (int i = 0; i < 50; ++i) Step(up, rate_dps, nullptr);

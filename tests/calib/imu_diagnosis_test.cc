@@ -27,7 +27,9 @@ using sensor_sim::ModelProfile;
 using testing::ImuScenario;
 
 // A drawn unit with the nominal profile (what the pipeline's model expresses).
-ImuUnitParams Nominal(uint64_t seed) { return ImuUnitParams::Draw("IMU-0001", seed, ModelProfile::kNominal); }
+ImuUnitParams Nominal(uint64_t seed) {
+  return ImuUnitParams::Draw("IMU-0001", seed, ModelProfile::kNominal);
+}
 
 struct Shape {
   std::vector<double> profile_c = {-20.0, 70.0, 25.0};
@@ -54,17 +56,33 @@ ImuUnitData Simulate(const ImuUnitParams& p, uint64_t noise_seed, const Shape& s
 UnitDiagnosis Diagnose(const ImuUnitData& d) { return DiagnoseImu(BuildDiagnosisData(d, 9.80665)); }
 
 void Print(const UnitDiagnosis& d) {
-  for (const Finding& f : d.findings) std::printf("  finding: %s (p %.2g, held-out %.4g -> %.4g %s)\n", f.words.c_str(), f.wald_p_value, f.held_out_rms_before, f.held_out_rms_after, f.rms_unit.c_str());
-  for (const Unexplained& u : d.unexplained) std::printf("  unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
+  for (const Finding& f : d.findings)
+    std::printf("  finding: %s (p %.2g, held-out %.4g -> %.4g %s)\n",
+                f.words.c_str(),
+                f.wald_p_value,
+                f.held_out_rms_before,
+                f.held_out_rms_after,
+                f.rms_unit.c_str());
+  for (const Unexplained& u : d.unexplained)
+    std::printf(
+        "  unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
   for (const std::string& n : d.notes) std::printf("  note: %s\n", n.c_str());
-  for (const ChannelFitSummary& c : d.channels) std::printf("  %s held-out %.4g -> %.4g %s (white %.3g)\n", c.channel.c_str(), c.held_out_rms_baseline, c.held_out_rms_final, c.unit.c_str(), c.white_noise_rms);
+  for (const ChannelFitSummary& c : d.channels)
+    std::printf("  %s held-out %.4g -> %.4g %s (white %.3g)\n",
+                c.channel.c_str(),
+                c.held_out_rms_baseline,
+                c.held_out_rms_final,
+                c.unit.c_str(),
+                c.white_noise_rms);
 }
-
 
 // The truth's polynomial c1 dT + c2 dT^2 + c3 dT^3 as the recording sees it: its least-squares
 // projection onto (dT, dT^2) over the temperatures visited (a cubic term aliases into the linear
 // one when only three temperatures are visited).
-std::array<double, 2> Projected(double c1, double c2, double c3, const std::vector<double>& temps_c) {
+std::array<double, 2> Projected(double c1,
+                                double c2,
+                                double c3,
+                                const std::vector<double>& temps_c) {
   Eigen::MatrixXd a(static_cast<int>(temps_c.size()), 3);
   Eigen::VectorXd y(static_cast<int>(temps_c.size()));
   for (size_t i = 0; i < temps_c.size(); ++i) {
@@ -76,7 +94,9 @@ std::array<double, 2> Projected(double c1, double c2, double c3, const std::vect
   return {x[1], x[2]};
 }
 
-const DetectionLimit* Limit(const UnitDiagnosis& d, const std::string& effect, const std::string& channel) {
+const DetectionLimit* Limit(const UnitDiagnosis& d,
+                            const std::string& effect,
+                            const std::string& channel) {
   for (const DetectionLimit& l : d.detection_limits) {
     if (l.effect == effect && l.channel == channel) return &l;
   }
@@ -125,7 +145,9 @@ TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
     }
     if (!d.unexplained.empty()) ++with_unexplained;
   }
-  std::printf("clean: %d of 100 units with a finding, %d with unexplained structure\n", with_findings, with_unexplained);
+  std::printf("clean: %d of 100 units with a finding, %d with unexplained structure\n",
+              with_findings,
+              with_unexplained);
   EXPECT_LE(with_findings, 5);
   EXPECT_LE(with_unexplained, 5);
 }
@@ -145,14 +167,16 @@ TEST(ImuDiagnosis, FindsGyroGSensitivityConcealedAsOrientationBias) {
       const Eigen::Vector3d g_G(p.gyros[g].g_sensitivity_dps_per_g.data());
       const Eigen::Vector3d truth_B = p.geometry.R_GB(g).transpose() * g_G;
       const Finding* f = Find(d, "gyro_g_sensitivity", kImuChannelNames[6 + g]);
-      const bool can = Detectable(Limit(d, "gyro_g_sensitivity", kImuChannelNames[6 + g]), {truth_B[0], truth_B[1], truth_B[2]});
+      const bool can = Detectable(Limit(d, "gyro_g_sensitivity", kImuChannelNames[6 + g]),
+                                  {truth_B[0], truth_B[1], truth_B[2]});
       detectable += can;
       if (f == nullptr) {
         missed += can;
         continue;
       }
       EXPECT_LT(f->held_out_rms_after, f->held_out_rms_before);
-      for (int k = 0; k < 3; ++k) tally.Check(f->components[k].magnitude, f->components[k].standard_error, truth_B[k]);
+      for (int k = 0; k < 3; ++k)
+        tally.Check(f->components[k].magnitude, f->components[k].standard_error, truth_B[k]);
     }
     for (const Finding& f : d.findings) {
       if (f.effect != "gyro_g_sensitivity") {
@@ -161,8 +185,11 @@ TEST(ImuDiagnosis, FindsGyroGSensitivityConcealedAsOrientationBias) {
       }
     }
   }
-  std::printf("g-sensitivity: %d of %d components within 3 SE; %d of %d detectable gyros missed\n", tally.within,
-              tally.total, missed, detectable);
+  std::printf("g-sensitivity: %d of %d components within 3 SE; %d of %d detectable gyros missed\n",
+              tally.within,
+              tally.total,
+              missed,
+              detectable);
   EXPECT_GE(tally.Fraction(), 0.9);
   EXPECT_LE(missed, detectable / 5);
   EXPECT_GE(detectable, 20);
@@ -189,7 +216,9 @@ TEST(ImuDiagnosis, FindsScaleFactorTempcoVisibleOnlyAwayFromTheCalibrationTemper
       std::array<double, 2> truth;
       if (ch < 6) {
         const auto& axis = ch % 2 == 0 ? p.accel_chips[ch / 2].x : p.accel_chips[ch / 2].y;
-        truth = Projected(axis.sensitivity_tc1_ppm_per_c, axis.sensitivity_tc2_ppm_per_c2, axis.sensitivity_tc3_ppm_per_c3,
+        truth = Projected(axis.sensitivity_tc1_ppm_per_c,
+                          axis.sensitivity_tc2_ppm_per_c2,
+                          axis.sensitivity_tc3_ppm_per_c3,
                           shape.sensor_cal_c);
       } else {
         const auto& g = p.gyros[ch - 6];
@@ -204,7 +233,10 @@ TEST(ImuDiagnosis, FindsScaleFactorTempcoVisibleOnlyAwayFromTheCalibrationTemper
       tally.Check(f->components[1].magnitude, f->components[1].standard_error, truth[1]);
     }
   }
-  std::printf("scale tempco: %d of %d components within 3 SE, %d channels missed\n", tally.within, tally.total, missed);
+  std::printf("scale tempco: %d of %d components within 3 SE, %d channels missed\n",
+              tally.within,
+              tally.total,
+              missed);
   EXPECT_GE(tally.Fraction(), 0.9);
   EXPECT_LE(missed, 5);
 }
@@ -219,7 +251,10 @@ TEST(ImuDiagnosis, ScaleFactorTempcoIsUndetectableFromOneCalibrationTemperature)
     if (l.effect == "scale_factor_tempco" && l.channel[0] == 'g') {
       // Only the few tenths of a degree the die wanders during the rate steps excite it.
       const double limit = l.limits.empty() ? INFINITY : l.limits[0].magnitude;
-      std::printf("%s scale tempco detection limit %g ppm/degC %s\n", l.channel.c_str(), limit, l.note.c_str());
+      std::printf("%s scale tempco detection limit %g ppm/degC %s\n",
+                  l.channel.c_str(),
+                  limit,
+                  l.note.c_str());
       EXPECT_GT(limit, 1000.0) << l.channel;
     }
   }
@@ -243,7 +278,8 @@ TEST(ImuDiagnosis, FindsDieLagConfoundedWithTheTemperaturePolynomial) {
     for (auto& t : p.gyro_thermal) t.effects.lag = true;
     const UnitDiagnosis d = Diagnose(Simulate(p, 5000 + seed, shape));
     for (int ch = 0; ch < 6; ++ch) {
-      const double truth = p.accel_thermal[ch / 2].tau_s - p.gyro_thermal[kChannelThermometer[ch]].tau_s;
+      const double truth =
+          p.accel_thermal[ch / 2].tau_s - p.gyro_thermal[kChannelThermometer[ch]].tau_s;
       const Finding* f = Find(d, "die_thermal_lag", kImuChannelNames[ch]);
       const bool can = Detectable(Limit(d, "die_thermal_lag", kImuChannelNames[ch]), {truth});
       detectable += can;
@@ -251,12 +287,19 @@ TEST(ImuDiagnosis, FindsDieLagConfoundedWithTheTemperaturePolynomial) {
         missed += can;
         continue;
       }
-      tally.Check(f->components[0].magnitude, f->components[0].standard_error, truth, 0.15 * std::abs(truth));
+      tally.Check(f->components[0].magnitude,
+                  f->components[0].standard_error,
+                  truth,
+                  0.15 * std::abs(truth));
     }
-    for (int ch = 6; ch < 9; ++ch) EXPECT_EQ(Find(d, "die_thermal_lag", kImuChannelNames[ch]), nullptr);
+    for (int ch = 6; ch < 9; ++ch)
+      EXPECT_EQ(Find(d, "die_thermal_lag", kImuChannelNames[ch]), nullptr);
   }
-  std::printf("die lag: %d of %d within 3 SE + 15 %%, %d of %d detectable channels missed\n", tally.within,
-              tally.total, missed, detectable);
+  std::printf("die lag: %d of %d within 3 SE + 15 %%, %d of %d detectable channels missed\n",
+              tally.within,
+              tally.total,
+              missed,
+              detectable);
   EXPECT_GE(tally.Fraction(), 0.9);
   EXPECT_LE(10 * missed, detectable);  // at least 90 % of the channels the limits call detectable
 }
@@ -267,13 +310,15 @@ TEST(ImuDiagnosis, LocatesABiasStepWithoutFittingAnyTerm) {
   ImuUnitData data = Simulate(Nominal(601), 7001, shape);
   const double t_step = data.thermal[data.thermal.size() - 15000].t_s;  // inside the last soak
   for (ImuSample& s : data.thermal) {
-    if (s.t_s >= t_step) s.raw.t1_cnt[5] = static_cast<uint16_t>(s.raw.t1_cnt[5] + 30);  // ay2: ~1e-3 duty
+    if (s.t_s >= t_step)
+      s.raw.t1_cnt[5] = static_cast<uint16_t>(s.raw.t1_cnt[5] + 30);  // ay2: ~1e-3 duty
   }
   const UnitDiagnosis d = Diagnose(data);
   for (const Finding& f : d.findings) ADD_FAILURE() << f.words;
   bool located = false;
   for (const Unexplained& u : d.unexplained) {
-    std::printf("unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
+    std::printf(
+        "unexplained: %s %s: %s\n", u.channel.c_str(), u.where.c_str(), u.description.c_str());
     const size_t at = u.where.find("t = ");
     if (u.channel == "ay2" && at != std::string::npos) {
       EXPECT_NEAR(std::stod(u.where.substr(at + 4)), t_step, 2.0);
@@ -288,16 +333,23 @@ TEST(ImuDiagnosis, ReportsPacketsMissingByTheSequenceCounter) {
   Shape shape;
   ImuUnitData data = Simulate(Nominal(602), 7002, shape);
   const auto has_note = [](const UnitDiagnosis& d, const std::string& text) {
-    return std::any_of(d.notes.begin(), d.notes.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+    return std::any_of(d.notes.begin(), d.notes.end(), [&](const std::string& n) {
+      return n.find(text) != std::string::npos;
+    });
   };
   EXPECT_TRUE(has_note(Diagnose(data), "sequence counter: no packet missing inside a segment"));
   const size_t at = data.thermal.size() / 2;
   const double t_gap = data.thermal[at + 37].t_s;
-  data.thermal.erase(data.thermal.begin() + static_cast<std::ptrdiff_t>(at), data.thermal.begin() + static_cast<std::ptrdiff_t>(at + 37));
+  data.thermal.erase(data.thermal.begin() + static_cast<std::ptrdiff_t>(at),
+                     data.thermal.begin() + static_cast<std::ptrdiff_t>(at + 37));
   data.thermal_segment.erase(data.thermal_segment.begin() + static_cast<std::ptrdiff_t>(at),
                              data.thermal_segment.begin() + static_cast<std::ptrdiff_t>(at + 37));
   const UnitDiagnosis d = Diagnose(data);
-  EXPECT_TRUE(has_note(d, fmt::format("1 gap(s) inside segments, 37 packet(s) missing (the largest, 37, at t = {:.2f} s", t_gap)))
+  EXPECT_TRUE(has_note(
+      d,
+      fmt::format(
+          "1 gap(s) inside segments, 37 packet(s) missing (the largest, 37, at t = {:.2f} s",
+          t_gap)))
       << ::testing::PrintToString(d.notes);
 }
 
@@ -317,29 +369,43 @@ TEST(ImuDiagnosis, LocatesPeriodicInterferenceBelowTheRowNoise) {
     double sum2 = 0.0;
     const size_t n = 20000;
     for (size_t i = data.thermal.size() - n; i < data.thermal.size(); ++i) {
-      const double d = static_cast<double>(data.thermal[i].raw.gyro_cnt[axis]) - data.thermal[i - 1].raw.gyro_cnt[axis];
+      const double d = static_cast<double>(data.thermal[i].raw.gyro_cnt[axis]) -
+                       data.thermal[i - 1].raw.gyro_cnt[axis];
       sum2 += d * d;
     }
     const double amplitude_cnt = 0.2 * std::sqrt(sum2 / n / 2.0);
     auto add = [&](ImuSample& s) {
-      s.raw.gyro_cnt[axis] += static_cast<int32_t>(std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s + unit)));
+      s.raw.gyro_cnt[axis] += static_cast<int32_t>(
+          std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s + unit)));
     };
     for (ImuSample& s : data.thermal) add(s);
-    for (ImuAcquisition& a : data.accel) for (ImuSample& s : a.samples) add(s);
-    for (ImuAcquisition& a : data.gyro) for (ImuSample& s : a.samples) add(s);
+    for (ImuAcquisition& a : data.accel)
+      for (ImuSample& s : a.samples) add(s);
+    for (ImuAcquisition& a : data.gyro)
+      for (ImuSample& s : a.samples) add(s);
     const DiagnosisData cells = BuildDiagnosisData(data, 9.80665);
     const UnitDiagnosis d = DiagnoseImu(cells);
     for (const Finding& f : d.findings) ADD_FAILURE() << f.words;
     const std::string channel = kImuChannelNames[6 + axis];
     for (const Unexplained& u : d.unexplained) EXPECT_EQ(u.channel, channel) << u.description;
-    const std::vector<PeriodicLine> lines = FindPeriodicLines(cells.spectra, 6 + axis, 1e-3 / kImuChannels);
+    const std::vector<PeriodicLine> lines =
+        FindPeriodicLines(cells.spectra, 6 + axis, 1e-3 / kImuChannels);
     const double bin_hz = cells.spectra.BinHz(1.0);
     for (const PeriodicLine& l : lines) {
-      std::printf("%s: injected %.0f counts at %.2f Hz; found %.0f counts at %.3f Hz (bin %.3f Hz) in %zu of %d segments\n",
-                  channel.c_str(), amplitude_cnt, f_hz, l.amplitude, l.frequency_hz, bin_hz, l.segments.size(),
-                  l.segments_with_windows);
+      std::printf(
+          "%s: injected %.0f counts at %.2f Hz; found %.0f counts at %.3f Hz (bin %.3f Hz) in %zu "
+          "of %d segments\n",
+          channel.c_str(),
+          amplitude_cnt,
+          f_hz,
+          l.amplitude,
+          l.frequency_hz,
+          bin_hz,
+          l.segments.size(),
+          l.segments_with_windows);
     }
-    if (d.unexplained.size() == 1 && lines.size() == 1 && std::abs(lines[0].frequency_hz - f_hz) < bin_hz / 2 &&
+    if (d.unexplained.size() == 1 && lines.size() == 1 &&
+        std::abs(lines[0].frequency_hz - f_hz) < bin_hz / 2 &&
         std::abs(lines[0].amplitude - amplitude_cnt) < 0.15 * amplitude_cnt) {
       ++located;
     }
@@ -373,7 +439,8 @@ TEST(ImuDiagnosis, FindsTableRateRippleOnTheGyroAlongTheTableAxis) {
       for (const Finding& f : d.findings) {
         if (f.effect != "table_rate_ripple") {
           ++others;
-          std::printf("seed %d, k %g, not in the truth: %s\n", static_cast<int>(seed), k, f.words.c_str());
+          std::printf(
+              "seed %d, k %g, not in the truth: %s\n", static_cast<int>(seed), k, f.words.c_str());
           continue;
         }
         if (k == 0.0) {
@@ -395,7 +462,9 @@ TEST(ImuDiagnosis, FindsTableRateRippleOnTheGyroAlongTheTableAxis) {
       }
     }
   }
-  std::printf("table rate ripple: %d of 30 gyros found, %d within 3 SE; %d found without ripple\n", found, within,
+  std::printf("table rate ripple: %d of 30 gyros found, %d within 3 SE; %d found without ripple\n",
+              found,
+              within,
               false_found);
   EXPECT_GE(found, 27);
   EXPECT_GE(within, 27);
@@ -412,18 +481,29 @@ TEST(ImuDiagnosis, LocatesPeriodicInterferenceInRowsThatArriveInBursts) {
     const double f_hz = 3.1 + 11.0 * unit;
     const double amplitude_cnt = 3000.0;
     auto add = [&](ImuSample& s) {
-      s.raw.gyro_cnt[axis] += static_cast<int32_t>(std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s)));
+      s.raw.gyro_cnt[axis] +=
+          static_cast<int32_t>(std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s)));
       s.t_s = 0.2 * std::floor(s.t_s / 0.2);
     };
     for (ImuSample& s : data.thermal) add(s);
-    for (ImuAcquisition& a : data.accel) for (ImuSample& s : a.samples) add(s);
-    for (ImuAcquisition& a : data.gyro) for (ImuSample& s : a.samples) add(s);
+    for (ImuAcquisition& a : data.accel)
+      for (ImuSample& s : a.samples) add(s);
+    for (ImuAcquisition& a : data.gyro)
+      for (ImuSample& s : a.samples) add(s);
     const DiagnosisData cells = BuildDiagnosisData(data, 9.80665);
-    const std::vector<PeriodicLine> lines = FindPeriodicLines(cells.spectra, 6 + axis, 1e-3 / kImuChannels);
+    const std::vector<PeriodicLine> lines =
+        FindPeriodicLines(cells.spectra, 6 + axis, 1e-3 / kImuChannels);
     const double bin_hz = cells.spectra.BinHz(1.0);
     for (const PeriodicLine& l : lines) {
-      std::printf("bursts: injected %.0f counts at %.2f Hz; found %.0f counts at %.3f Hz (bin %.3f Hz), %d windows\n",
-                  amplitude_cnt, f_hz, l.amplitude, l.frequency_hz, bin_hz, cells.spectra.windows());
+      std::printf(
+          "bursts: injected %.0f counts at %.2f Hz; found %.0f counts at %.3f Hz (bin %.3f Hz), %d "
+          "windows\n",
+          amplitude_cnt,
+          f_hz,
+          l.amplitude,
+          l.frequency_hz,
+          bin_hz,
+          cells.spectra.windows());
     }
     if (lines.size() == 1 && std::abs(lines[0].frequency_hz - f_hz) < bin_hz / 2 &&
         std::abs(lines[0].amplitude - amplitude_cnt) < 0.15 * amplitude_cnt) {
@@ -450,22 +530,35 @@ TEST(ImuDiagnosis, TruthProfileUnitsOnTheDemosShape) {
     s.SensorCalibration(4, 1000, 1000);
     const UnitDiagnosis d = Diagnose(s.data());
     for (int ch = 0; ch < 6; ++ch) {
-      const double truth = p.accel_thermal[ch / 2].tau_s - p.gyro_thermal[kChannelThermometer[ch]].tau_s;
+      const double truth =
+          p.accel_thermal[ch / 2].tau_s - p.gyro_thermal[kChannelThermometer[ch]].tau_s;
       const Finding* f = Find(d, "die_thermal_lag", kImuChannelNames[ch]);
       ASSERT_NE(f, nullptr) << "seed " << seed << " " << kImuChannelNames[ch];
-      lag.Check(f->components[0].magnitude, f->components[0].standard_error, truth, 0.15 * std::abs(truth));
+      lag.Check(f->components[0].magnitude,
+                f->components[0].standard_error,
+                truth,
+                0.15 * std::abs(truth));
     }
     for (int g = 0; g < 3; ++g) {
-      const Eigen::Vector3d truth_B = p.geometry.R_GB(g).transpose() * Eigen::Vector3d(p.gyros[g].g_sensitivity_dps_per_g.data());
+      const Eigen::Vector3d truth_B = p.geometry.R_GB(g).transpose() *
+                                      Eigen::Vector3d(p.gyros[g].g_sensitivity_dps_per_g.data());
       const Finding* f = Find(d, "gyro_g_sensitivity", kImuChannelNames[6 + g]);
       if (f == nullptr) continue;
       ++gyros_found;
-      for (int k = 0; k < 3; ++k) gsens.Check(f->components[k].magnitude, f->components[k].standard_error, truth_B[k]);
+      for (int k = 0; k < 3; ++k)
+        gsens.Check(f->components[k].magnitude, f->components[k].standard_error, truth_B[k]);
     }
     for (const Finding& f : d.findings) EXPECT_NE(f.effect, "scale_factor_tempco") << f.words;
   }
-  std::printf("truth profile, demo shape: lag %d of %d within 3 SE + 15 %%; g-sensitivity on %d of 6 gyros, "
-              "%d of %d components within 3 SE\n", lag.within, lag.total, gyros_found, gsens.within, gsens.total);
+  std::printf(
+      "truth profile, demo shape: lag %d of %d within 3 SE + 15 %%; g-sensitivity on %d of 6 "
+      "gyros, "
+      "%d of %d components within 3 SE\n",
+      lag.within,
+      lag.total,
+      gyros_found,
+      gsens.within,
+      gsens.total);
   EXPECT_GE(lag.Fraction(), 0.9);
   EXPECT_GE(gyros_found, 4);
   EXPECT_GE(gsens.Fraction(), 0.8);
@@ -480,11 +573,13 @@ TEST(ImuDiagnosis, CampaignComparesFindingsWithTheTruthFile) {
   const UnitDiagnosis d = Diagnose(Simulate(p, 9001, Shape{}));
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "diagnosis_truth";
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / (p.serial + ".json")) << nlohmann::json{{"serial", p.serial}, {"kind", "imu"}, {"params", p.ToJson()}}.dump();
+  std::ofstream(dir / (p.serial + ".json"))
+      << nlohmann::json{{"serial", p.serial}, {"kind", "imu"}, {"params", p.ToJson()}}.dump();
   const std::vector<DiagnosisTruthLine> lines = CompareDiagnosisWithTruth({d}, dir);
   int found_gsens = 0, scale_not_found = 0;
   for (const DiagnosisTruthLine& l : lines) {
-    std::printf("%s %s %s: %s\n", l.serial.c_str(), l.channel.c_str(), l.effect.c_str(), l.text.c_str());
+    std::printf(
+        "%s %s %s: %s\n", l.serial.c_str(), l.channel.c_str(), l.effect.c_str(), l.text.c_str());
     if (l.effect == "gyro_g_sensitivity" && l.found) ++found_gsens;
     if (l.effect == "scale_factor_tempco" && l.channel == "gx" && !l.found) {
       ++scale_not_found;
@@ -504,13 +599,22 @@ TEST(ImuDiagnosis, WritesTheDocumentedJsonContract) {
   const nlohmann::json j = d.ToJson();
   ASSERT_FALSE(j["findings"].empty());
   const nlohmann::json& f = j["findings"][0];
-  for (const char* key : {"effect", "channels", "magnitude", "standard_error", "unit", "held_out_rms_before",
-                          "held_out_rms_after", "evidence", "words", "components"}) {
+  for (const char* key : {"effect",
+                          "channels",
+                          "magnitude",
+                          "standard_error",
+                          "unit",
+                          "held_out_rms_before",
+                          "held_out_rms_after",
+                          "evidence",
+                          "words",
+                          "components"}) {
     EXPECT_TRUE(f.contains(key)) << key;
   }
   // Accelerometers: lag, scale tempco; gyros: scale tempco, g-sensitivity, table rate ripple.
   EXPECT_EQ(j["detection_limits"].size(), 6u * 2u + 3u * 3u);
-  // This shape's 3 s rate acquisitions hold less than 3 turns: the ripple is untestable, and says why.
+  // This shape's 3 s rate acquisitions hold less than 3 turns: the ripple is untestable, and says
+  // why.
   for (const nlohmann::json& l : j["detection_limits"]) {
     if (l["effect"] != "table_rate_ripple") continue;
     EXPECT_TRUE(l["limits"].is_null());

@@ -55,12 +55,30 @@ constexpr const char* kAll = "all (truth profile)";
 std::vector<Effect> SingleEffects() {
   using P = ImuUnitParams;
   return {
-      {kAccelScale, [](P* p) { for (auto& c : p->accel_chips) c.effects.sensitivity_tempco = true; }},
-      {kAccelNonlinearity, [](P* p) { for (auto& c : p->accel_chips) c.effects.nonlinearity = true; }},
-      {"accelerometer T2 vs temperature", [](P* p) { for (auto& c : p->accel_chips) c.effects.t2_tempco = true; }},
-      {"accelerometer T2 jitter", [](P* p) { for (auto& c : p->accel_chips) c.effects.t2_jitter = true; }},
-      {kGyroScale, [](P* p) { for (auto& g : p->gyros) g.effects.sensitivity_tempco = true; }},
-      {kGyroG, [](P* p) { for (auto& g : p->gyros) g.effects.g_sensitivity = true; }},
+      {kAccelScale,
+       [](P* p) {
+         for (auto& c : p->accel_chips) c.effects.sensitivity_tempco = true;
+       }},
+      {kAccelNonlinearity,
+       [](P* p) {
+         for (auto& c : p->accel_chips) c.effects.nonlinearity = true;
+       }},
+      {"accelerometer T2 vs temperature",
+       [](P* p) {
+         for (auto& c : p->accel_chips) c.effects.t2_tempco = true;
+       }},
+      {"accelerometer T2 jitter",
+       [](P* p) {
+         for (auto& c : p->accel_chips) c.effects.t2_jitter = true;
+       }},
+      {kGyroScale,
+       [](P* p) {
+         for (auto& g : p->gyros) g.effects.sensitivity_tempco = true;
+       }},
+      {kGyroG,
+       [](P* p) {
+         for (auto& g : p->gyros) g.effects.g_sensitivity = true;
+       }},
       {"die self-heating",
        [](P* p) {
          for (auto& t : p->accel_thermal) t.effects.self_heating = true;
@@ -113,7 +131,9 @@ std::vector<Row> Decompose(const std::vector<ImuUnitParams>& truth) {
   return rows;
 }
 
-std::string Range(const std::vector<ImuFirmwareFloor>& v, double ImuFirmwareFloor::*field, int digits) {
+std::string Range(const std::vector<ImuFirmwareFloor>& v,
+                  double ImuFirmwareFloor::*field,
+                  int digits) {
   double lo = v[0].*field, hi = v[0].*field;
   for (const ImuFirmwareFloor& f : v) {
     lo = std::min(lo, f.*field);
@@ -126,10 +146,13 @@ std::string Range(const std::vector<ImuFirmwareFloor>& v, double ImuFirmwareFloo
 }
 
 void PrintTable(const std::vector<Row>& rows) {
-  std::printf("| effect switched on | acceleration, format 2 | format 3 | body rate, format 2 | format 3 |\n");
+  std::printf(
+      "| effect switched on | acceleration, format 2 | format 3 | body rate, format 2 | format 3 "
+      "|\n");
   std::printf("|---|---|---|---|---|\n");
   for (const Row& r : rows) {
-    std::printf("| %s | %s mg | %s mg | %s °/s | %s °/s |\n", r.name.c_str(),
+    std::printf("| %s | %s mg | %s mg | %s °/s | %s °/s |\n",
+                r.name.c_str(),
                 Range(r.floors[0], &ImuFirmwareFloor::worst_accel_mg, 2).c_str(),
                 Range(r.floors[1], &ImuFirmwareFloor::worst_accel_mg, 2).c_str(),
                 Range(r.floors[0], &ImuFirmwareFloor::worst_rate_dps, 3).c_str(),
@@ -140,13 +163,18 @@ void PrintTable(const std::vector<Row>& rows) {
 void PrintUnit(const std::vector<Row>& rows, const std::string& serial, int u) {
   for (const Row& r : rows) {
     std::printf("%s %-36s format 2: %6.3f mg %6.4f deg/s; format 3: %6.3f mg %6.4f deg/s\n",
-                serial.c_str(), r.name.c_str(), r.floors[0][u].worst_accel_mg,
-                r.floors[0][u].worst_rate_dps, r.floors[1][u].worst_accel_mg, r.floors[1][u].worst_rate_dps);
+                serial.c_str(),
+                r.name.c_str(),
+                r.floors[0][u].worst_accel_mg,
+                r.floors[0][u].worst_rate_dps,
+                r.floors[1][u].worst_accel_mg,
+                r.floors[1][u].worst_rate_dps);
   }
 }
 
 const Floors& FloorsNamed(const std::vector<Row>& rows, const std::string& name) {
-  const auto it = std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return r.name == name; });
+  const auto it =
+      std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return r.name == name; });
   if (it == rows.end()) throw std::logic_error("no row " + name);
   return it->floors;
 }
@@ -154,7 +182,8 @@ const Floors& FloorsNamed(const std::vector<Row>& rows, const std::string& name)
 TEST(ImuFloorDecomposition, ScaleFactorsInTemperatureMakeTheFormat2FloorAndFormat3RemovesIt) {
   std::vector<ImuUnitParams> truth;
   for (int n = 1; n <= kUnits; ++n) {
-    truth.push_back(ImuUnitParams::Draw("IMU-000" + std::to_string(n), 7000 + n, ModelProfile::kTruth));
+    truth.push_back(
+        ImuUnitParams::Draw("IMU-000" + std::to_string(n), 7000 + n, ModelProfile::kTruth));
   }
   const std::vector<Row> rows = Decompose(truth);
   PrintTable(rows);

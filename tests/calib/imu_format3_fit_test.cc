@@ -41,8 +41,10 @@ TEST_P(ImuFormat3Fit, TruthUnitsMeetTheAccelerationSpecificationAndBeatFormat2An
   std::vector<ImuUnitParams> params;
   for (int k = 1; k <= kUnitsPerTest; ++k) {
     const int n = 4 * GetParam() + k;
-    params.push_back(ImuUnitParams::Draw("IMU-" + std::string(n < 10 ? "000" : "00") + std::to_string(n),
-                                         7000 + n, sensor_sim::ModelProfile::kTruth));
+    params.push_back(
+        ImuUnitParams::Draw("IMU-" + std::string(n < 10 ? "000" : "00") + std::to_string(n),
+                            7000 + n,
+                            sensor_sim::ModelProfile::kTruth));
   }
   testing::MakerOptions options;
   options.thermal_speedup = 1.0;
@@ -73,11 +75,18 @@ TEST_P(ImuFormat3Fit, TruthUnitsMeetTheAccelerationSpecificationAndBeatFormat2An
     const ImuEvaluation e2 = EvaluateImu(fits2[u], params[u], spec, evaluation);
     const ImuEvaluation er = EvaluateImu(reference[u], params[u], spec, evaluation);
     const double limit_dps = e3.report["body_rate"]["crb_limit_dps_at_worst"].get<double>();
-    std::printf("%s: format 3 %.3f mg, %.4f dps (%s; CRB limit %.4f dps); format 2 %.3f mg, "
-                "%.4f dps; reference %.3f mg, %.4f dps\n",
-                params[u].serial.c_str(), e3.worst_accel_mg, e3.worst_rate_dps,
-                e3.rate_verdict.c_str(), limit_dps, e2.worst_accel_mg, e2.worst_rate_dps,
-                er.worst_accel_mg, er.worst_rate_dps);
+    std::printf(
+        "%s: format 3 %.3f mg, %.4f dps (%s; CRB limit %.4f dps); format 2 %.3f mg, "
+        "%.4f dps; reference %.3f mg, %.4f dps\n",
+        params[u].serial.c_str(),
+        e3.worst_accel_mg,
+        e3.worst_rate_dps,
+        e3.rate_verdict.c_str(),
+        limit_dps,
+        e2.worst_accel_mg,
+        e2.worst_rate_dps,
+        er.worst_accel_mg,
+        er.worst_rate_dps);
     EXPECT_EQ(e3.accel_verdict, "within specification");
     EXPECT_LE(e3.worst_accel_mg, 1.0);
     // The body-rate specification (0.015 deg/s) is below the gyro's own bias instability: every

@@ -4,9 +4,9 @@
 // for the length).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
 
 #include <gmock/gmock.h>
@@ -14,8 +14,8 @@
 
 #include "calib/evaluation/imu_evaluation.h"
 #include "calib/imu_calibration/imu_strategy.h"
-#include "tests/calib/twenty_nominal_imus.h"
 #include "sensor_sim/gravity.h"
+#include "tests/calib/twenty_nominal_imus.h"
 
 namespace adahrs::calib {
 namespace {
@@ -46,47 +46,60 @@ TEST(ImuJointFit, TwentyUnitsWithinSpecOrCrbLimit) {
   std::map<std::string, int> verdicts;
   double sum_joint = 0.0, sum_reference = 0.0;
   std::vector<double> gyro_error_over_crb;
-  testing::ForEachNominalImuBatch(base, kGLocal_mps2, sensor_sim::TruthVariant::kStandard,
-                                  [&](const std::vector<ImuUnitParams>& params,
-                                      const std::filesystem::path& thermal,
-                                      const std::filesystem::path& sensor) {
-    const auto joint = FitImuRuns({thermal, sensor}, ImuStrategy::Improved(), "test");
-    const auto reference = FitImuRuns({thermal, sensor}, ImuStrategy::Reference(), "test");
-    ASSERT_EQ(joint.size(), 4u);
-    ImuEvaluationOptions options;
-    options.g_local_mps2 = kGLocal_mps2;
-    options.frames = 40;
-    for (size_t u = 0; u < 4; ++u) {
-      SCOPED_TRACE(params[u].serial);
-      ImuEvaluation e, r;
-      try {
-        e = EvaluateImu(joint[u], params[u], Specification::Reference(), options);
-        r = EvaluateImu(reference[u], params[u], Specification::Reference(), options);
-      } catch (const ConstantsNotExportable& error) {
-        ADD_FAILURE() << params[u].serial << " not exportable: " << error.what();
-        continue;
-      }
-      for (const char* q : {"acceleration", "body_rate"}) ++verdicts[std::string(q) + ": " + Verdict(e, q)];
-      EXPECT_EQ(Verdict(e, "acceleration"), "within specification") << e.report["acceleration"].dump();
-      EXPECT_LT(e.worst_rate_dps, r.worst_rate_dps);
-      sum_joint += e.worst_accel_mg / 1.0 + e.worst_rate_dps / 0.015;
-      sum_reference += r.worst_accel_mg / 1.0 + r.worst_rate_dps / 0.015;
-      gyro_error_over_crb.push_back(testing::GyroErrorOverCrb(e));
-      std::printf("%s joint accel %.3f mg (floor %.3f) rate %.4f dps (floor %.4f, CRB limit %.4f, "
-                  "gyro error/CRB se %.2f) | reference %.3f mg %.4f dps\n",
-                  params[u].serial.c_str(), e.worst_accel_mg,
-                  e.report["acceleration"]["worst_firmware_floor_mg"].get<double>(), e.worst_rate_dps,
-                  e.report["body_rate"]["worst_firmware_floor_dps"].get<double>(),
-                  e.report["body_rate"]["crb_limit_dps_at_worst"].get<double>(),
-                  gyro_error_over_crb.back(), r.worst_accel_mg, r.worst_rate_dps);
-    }
-  });
+  testing::ForEachNominalImuBatch(
+      base,
+      kGLocal_mps2,
+      sensor_sim::TruthVariant::kStandard,
+      [&](const std::vector<ImuUnitParams>& params,
+          const std::filesystem::path& thermal,
+          const std::filesystem::path& sensor) {
+        const auto joint = FitImuRuns({thermal, sensor}, ImuStrategy::Improved(), "test");
+        const auto reference = FitImuRuns({thermal, sensor}, ImuStrategy::Reference(), "test");
+        ASSERT_EQ(joint.size(), 4u);
+        ImuEvaluationOptions options;
+        options.g_local_mps2 = kGLocal_mps2;
+        options.frames = 40;
+        for (size_t u = 0; u < 4; ++u) {
+          SCOPED_TRACE(params[u].serial);
+          ImuEvaluation e, r;
+          try {
+            e = EvaluateImu(joint[u], params[u], Specification::Reference(), options);
+            r = EvaluateImu(reference[u], params[u], Specification::Reference(), options);
+          } catch (const ConstantsNotExportable& error) {
+            ADD_FAILURE() << params[u].serial << " not exportable: " << error.what();
+            continue;
+          }
+          for (const char* q : {"acceleration", "body_rate"})
+            ++verdicts[std::string(q) + ": " + Verdict(e, q)];
+          EXPECT_EQ(Verdict(e, "acceleration"), "within specification")
+              << e.report["acceleration"].dump();
+          EXPECT_LT(e.worst_rate_dps, r.worst_rate_dps);
+          sum_joint += e.worst_accel_mg / 1.0 + e.worst_rate_dps / 0.015;
+          sum_reference += r.worst_accel_mg / 1.0 + r.worst_rate_dps / 0.015;
+          gyro_error_over_crb.push_back(testing::GyroErrorOverCrb(e));
+          std::printf(
+              "%s joint accel %.3f mg (floor %.3f) rate %.4f dps (floor %.4f, CRB limit %.4f, "
+              "gyro error/CRB se %.2f) | reference %.3f mg %.4f dps\n",
+              params[u].serial.c_str(),
+              e.worst_accel_mg,
+              e.report["acceleration"]["worst_firmware_floor_mg"].get<double>(),
+              e.worst_rate_dps,
+              e.report["body_rate"]["worst_firmware_floor_dps"].get<double>(),
+              e.report["body_rate"]["crb_limit_dps_at_worst"].get<double>(),
+              gyro_error_over_crb.back(),
+              r.worst_accel_mg,
+              r.worst_rate_dps);
+        }
+      });
   for (const auto& [v, n] : verdicts) std::printf("%2d x %s\n", n, v.c_str());
   EXPECT_LE(sum_joint, sum_reference);
-  EXPECT_EQ(verdicts["body_rate: within specification"] + verdicts["body_rate: outside specification, within 1.5x the physical limit"], 20);
+  EXPECT_EQ(verdicts["body_rate: within specification"] +
+                verdicts["body_rate: outside specification, within 1.5x the physical limit"],
+            20);
   // An inflated bound would pass the verdict trivially; an optimistic one would fail it by luck.
   ASSERT_EQ(gyro_error_over_crb.size(), 20u);
-  std::nth_element(gyro_error_over_crb.begin(), gyro_error_over_crb.begin() + 10, gyro_error_over_crb.end());
+  std::nth_element(
+      gyro_error_over_crb.begin(), gyro_error_over_crb.begin() + 10, gyro_error_over_crb.end());
   std::printf("median gyro error / CRB se %.2f\n", gyro_error_over_crb[10]);
   EXPECT_GT(gyro_error_over_crb[10], 0.5);
   EXPECT_LT(gyro_error_over_crb[10], 2.0);

@@ -22,8 +22,8 @@
 
 #include "calib/evaluation/imu_evaluation.h"
 #include "calib/imu_calibration/imu_strategy.h"
-#include "tests/calib/twenty_nominal_imus.h"
 #include "sensor_sim/gravity.h"
+#include "tests/calib/twenty_nominal_imus.h"
 
 namespace adahrs::calib {
 namespace {
@@ -31,7 +31,6 @@ namespace {
 using sensor_sim::ImuUnitParams;
 
 const double kGLocal_mps2 = sensor_sim::NormalGravityMps2(32.6, 200.0);
-
 
 double Median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -49,46 +48,54 @@ std::array<Column, 2> RunTwentyUnits(sensor_sim::TruthVariant variant) {
   // One directory per truth: ctest runs the tests side by side.
   const auto base = std::filesystem::temp_directory_path() /
                     ("adahrs_imu_model_form_" + sensor_sim::ToString(variant));
-  testing::ForEachNominalImuBatch(base, kGLocal_mps2, variant,
-                                  [&](const std::vector<ImuUnitParams>& params,
-                                      const std::filesystem::path& thermal,
-                                      const std::filesystem::path& sensor) {
-    for (int k = 0; k < 2; ++k) {
-      ImuStrategy strategy = ImuStrategy::Improved();
-      strategy.estimate_gyro_wander = k == 1;
-      const auto fits = FitImuRuns({thermal, sensor}, strategy, "test");
-      ImuEvaluationOptions options;
-      options.g_local_mps2 = kGLocal_mps2;
-      options.frames = 40;
-      for (size_t u = 0; u < fits.size(); ++u) {
-        const ImuEvaluation e = EvaluateImu(fits[u], params[u], Specification::Reference(), options);
-        ++c[k].verdicts[e.report["body_rate"]["verdict"].get<std::string>()];
-        c[k].error_over_crb.push_back(testing::GyroErrorOverCrb(e));
-        c[k].rate_dps.push_back(e.worst_rate_dps);
-        c[k].limit_dps.push_back(e.report["body_rate"]["crb_limit_dps_at_worst"].get<double>());
-        for (const char* g : {"gx", "gy", "gz"}) {
-          const auto& w = fits[u].diagnostics["channels"][g]["bias_wander"];
-          c[k].floor_dph.push_back(w["floor_dph"].get<double>());
-          c[k].time_scale.push_back(w["time_scale"].get<double>());
-          if (k == 1) c[k].white_scale.push_back(w["white_variance_scale"].get<double>());
+  testing::ForEachNominalImuBatch(
+      base,
+      kGLocal_mps2,
+      variant,
+      [&](const std::vector<ImuUnitParams>& params,
+          const std::filesystem::path& thermal,
+          const std::filesystem::path& sensor) {
+        for (int k = 0; k < 2; ++k) {
+          ImuStrategy strategy = ImuStrategy::Improved();
+          strategy.estimate_gyro_wander = k == 1;
+          const auto fits = FitImuRuns({thermal, sensor}, strategy, "test");
+          ImuEvaluationOptions options;
+          options.g_local_mps2 = kGLocal_mps2;
+          options.frames = 40;
+          for (size_t u = 0; u < fits.size(); ++u) {
+            const ImuEvaluation e =
+                EvaluateImu(fits[u], params[u], Specification::Reference(), options);
+            ++c[k].verdicts[e.report["body_rate"]["verdict"].get<std::string>()];
+            c[k].error_over_crb.push_back(testing::GyroErrorOverCrb(e));
+            c[k].rate_dps.push_back(e.worst_rate_dps);
+            c[k].limit_dps.push_back(e.report["body_rate"]["crb_limit_dps_at_worst"].get<double>());
+            for (const char* g : {"gx", "gy", "gz"}) {
+              const auto& w = fits[u].diagnostics["channels"][g]["bias_wander"];
+              c[k].floor_dph.push_back(w["floor_dph"].get<double>());
+              c[k].time_scale.push_back(w["time_scale"].get<double>());
+              if (k == 1) c[k].white_scale.push_back(w["white_variance_scale"].get<double>());
+            }
+          }
         }
-      }
-    }
-  });
+      });
   for (int k = 0; k < 2; ++k) {
     const Column& col = c[k];
-    std::printf("%s, wander %s: median gyro error / CRB se %.2f (max %.2f); worst rate %.3f-%.3f "
-                "deg/s against CRB limits %.3f-%.3f; gyro floor median %.0f deg/h, time scale "
-                "median %.1f\n",
-                sensor_sim::ToString(variant).c_str(), k == 0 ? "datasheet" : "estimated",
-                Median(col.error_over_crb),
-                *std::max_element(col.error_over_crb.begin(), col.error_over_crb.end()),
-                *std::min_element(col.rate_dps.begin(), col.rate_dps.end()),
-                *std::max_element(col.rate_dps.begin(), col.rate_dps.end()),
-                *std::min_element(col.limit_dps.begin(), col.limit_dps.end()),
-                *std::max_element(col.limit_dps.begin(), col.limit_dps.end()), Median(col.floor_dph),
-                Median(col.time_scale));
-    if (!col.white_scale.empty()) std::printf("  white variance scale median %.2f\n", Median(col.white_scale));
+    std::printf(
+        "%s, wander %s: median gyro error / CRB se %.2f (max %.2f); worst rate %.3f-%.3f "
+        "deg/s against CRB limits %.3f-%.3f; gyro floor median %.0f deg/h, time scale "
+        "median %.1f\n",
+        sensor_sim::ToString(variant).c_str(),
+        k == 0 ? "datasheet" : "estimated",
+        Median(col.error_over_crb),
+        *std::max_element(col.error_over_crb.begin(), col.error_over_crb.end()),
+        *std::min_element(col.rate_dps.begin(), col.rate_dps.end()),
+        *std::max_element(col.rate_dps.begin(), col.rate_dps.end()),
+        *std::min_element(col.limit_dps.begin(), col.limit_dps.end()),
+        *std::max_element(col.limit_dps.begin(), col.limit_dps.end()),
+        Median(col.floor_dph),
+        Median(col.time_scale));
+    if (!col.white_scale.empty())
+      std::printf("  white variance scale median %.2f\n", Median(col.white_scale));
     for (const auto& [v, n] : col.verdicts) std::printf("  %2d x body rate %s\n", n, v.c_str());
   }
   return c;
@@ -96,7 +103,8 @@ std::array<Column, 2> RunTwentyUnits(sensor_sim::TruthVariant variant) {
 
 int WithinSpecOrBound(const Column& c) {
   auto count = [&](const char* v) { return c.verdicts.count(v) ? c.verdicts.at(v) : 0; };
-  return count("within specification") + count("outside specification, within 1.5x the physical limit");
+  return count("within specification") +
+         count("outside specification, within 1.5x the physical limit");
 }
 
 // Measured (2026-11-26): datasheet prior median 0.95, 20 of 20 within 1.5x the bound; estimated

@@ -7,12 +7,12 @@
 // truth/<serial>.json holds each unit's parameters, as the rig writes it.
 #pragma once
 
-#include "adahrs_build_paths.h"
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <variant>
 #include <vector>
+#include "adahrs_build_paths.h"
 
 #include <nlohmann/json.hpp>
 
@@ -25,7 +25,7 @@
 namespace adahrs::calib::testing {
 
 struct MakerOptions {
-  int settle_frames = 50;        // > 10 filter time constants (3.2 ms accel, 4 ms gyro)
+  int settle_frames = 50;  // > 10 filter time constants (3.2 ms accel, 4 ms gyro)
   int soak_frames = 100;
   double thermal_speedup = 30.0;
   double table_rate_error_dps = 0.004;
@@ -34,11 +34,18 @@ struct MakerOptions {
 
 class ImuRecordingMaker {
  public:
-  ImuRecordingMaker(std::vector<sensor_sim::ImuUnitParams> units, double g_local_mps2,
-                    uint64_t noise_seed, MakerOptions options = {})
-      : simulator_(std::move(units), g_local_mps2, noise_seed,
-                   {options.settle_frames, options.soak_frames, options.thermal_speedup,
-                    options.table_rate_error_dps, options.initial_air_temp_c}),
+  ImuRecordingMaker(std::vector<sensor_sim::ImuUnitParams> units,
+                    double g_local_mps2,
+                    uint64_t noise_seed,
+                    MakerOptions options = {})
+      : simulator_(std::move(units),
+                   g_local_mps2,
+                   noise_seed,
+                   {options.settle_frames,
+                    options.soak_frames,
+                    options.thermal_speedup,
+                    options.table_rate_error_dps,
+                    options.initial_air_temp_c}),
         g_local_mps2_(g_local_mps2) {}
 
   /// Runs `sequence` and writes `run_dir` (meta.json, imu.csv, ads.csv, truth/).
@@ -48,9 +55,13 @@ class ImuRecordingMaker {
     const auto& params = simulator_.params();
     nlohmann::json units = nlohmann::json::array();
     for (size_t i = 0; i < params.size(); ++i) {
-      units.push_back({{"role", "imu" + std::to_string(i + 1)}, {"kind", "imu"},
-                       {"serial", params[i].serial}, {"serial_number", i + 1},
-                       {"firmware", "1.0.0"}, {"slot", i + 1}, {"constants_version", 0},
+      units.push_back({{"role", "imu" + std::to_string(i + 1)},
+                       {"kind", "imu"},
+                       {"serial", params[i].serial},
+                       {"serial_number", i + 1},
+                       {"firmware", "1.0.0"},
+                       {"slot", i + 1},
+                       {"constants_version", 0},
                        {"mode", 0}});
     }
     nlohmann::json meta = {{"run_id", sequence.name},
@@ -68,7 +79,8 @@ class ImuRecordingMaker {
     writer.WriteMeta(meta);
     writer.Flush(true);
     std::filesystem::create_directories(run_dir / "truth");
-    for (const auto& p : params) std::ofstream(run_dir / "truth" / (p.serial + ".json")) << p.ToJson().dump(2);
+    for (const auto& p : params)
+      std::ofstream(run_dir / "truth" / (p.serial + ".json")) << p.ToJson().dump(2);
   }
 
  private:
@@ -79,9 +91,9 @@ class ImuRecordingMaker {
 /// A shipped sequence (calib/sequences/<name>.json) with every acquisition's packet count set to
 /// `packets` (short recordings for tests).
 inline Sequence ShippedSequence(const std::string& name, int64_t packets) {
-  Sequence s = SequenceFromJson(
-      common::ParamReader::LoadFile(std::string(ADAHRS_SOURCE_DIR) + "/calib/sequences/" + name + ".json"),
-      name);
+  Sequence s = SequenceFromJson(common::ParamReader::LoadFile(std::string(ADAHRS_SOURCE_DIR) +
+                                                              "/calib/sequences/" + name + ".json"),
+                                name);
   for (Step& step : s.steps) {
     if (auto* a = std::get_if<AccelStep>(&step.body)) a->packets = packets;
     if (auto* g = std::get_if<GyroStep>(&step.body)) g->packets = packets;

@@ -33,8 +33,8 @@ const Runs& SharedRuns() {
     r.thermal = base / "thermal";
     r.sensor = base / "sensor";
     for (int i = 0; i < 4; ++i) {
-      r.params.push_back(ImuUnitParams::Draw("IMU-000" + std::to_string(i + 1), 2007 + i,
-                                             sensor_sim::ModelProfile::kNominal));
+      r.params.push_back(ImuUnitParams::Draw(
+          "IMU-000" + std::to_string(i + 1), 2007 + i, sensor_sim::ModelProfile::kNominal));
     }
     testing::ImuRecordingMaker maker(r.params, kGLocal_mps2, 77);
     maker.Run(testing::ShippedSequence("imu_thermal_calibration_full", 500), r.thermal);

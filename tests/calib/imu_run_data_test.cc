@@ -59,7 +59,8 @@ class ImuRunDataTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("adahrs_imu_run_data_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("adahrs_imu_run_data_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     std::vector<sensor_sim::ImuUnitParams> params = {
         sensor_sim::ImuUnitParams::Draw("IMU-0001", 1, sensor_sim::ModelProfile::kNominal),
         sensor_sim::ImuUnitParams::Draw("IMU-0002", 2, sensor_sim::ModelProfile::kNominal)};
@@ -67,7 +68,9 @@ class ImuRunDataTest : public ::testing::Test {
     maker.Run(Sequence(), dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
-  virtual calib::Sequence Sequence() { return testing::ShippedSequence("imu_sensor_calibration", 40); }
+  virtual calib::Sequence Sequence() {
+    return testing::ShippedSequence("imu_sensor_calibration", 40);
+  }
   std::string LoadError() {
     try {
       LoadImuRuns({dir_});
@@ -132,8 +135,8 @@ TEST_F(ImuRunDataTest, SaturatedSamplesAreExcludedAndNamed) {
   const ImuRunData data = LoadImuRuns({dir_});
   const ImuUnitData& unit = data.units.at("IMU-0001");
   ASSERT_EQ(unit.exclusions.size(), 1u);
-  EXPECT_THAT(unit.exclusions[0], HasSubstr("imu.csv line " + std::to_string(line_number) +
-                                            " column az1_t1"));
+  EXPECT_THAT(unit.exclusions[0],
+              HasSubstr("imu.csv line " + std::to_string(line_number) + " column az1_t1"));
   EXPECT_THAT(unit.exclusions[0], HasSubstr("duty undefined"));
   EXPECT_TRUE(data.units.at("IMU-0002").exclusions.empty());
 }
@@ -148,7 +151,9 @@ TEST_F(ImuRunDataTest, RowsInsideARejectedIntervalAreNotCalibrationData) {
     }
   }
   nlohmann::json meta = rec.meta;
-  meta["rejected_intervals"] = {{{"step", 2}, {"t_start_s", t_first}, {"t_end_s", t_first + 0.095},
+  meta["rejected_intervals"] = {{{"step", 2},
+                                 {"t_start_s", t_first},
+                                 {"t_end_s", t_first + 0.095},
                                  {"reason", "chamber excursion"}}};
   std::ofstream(dir_ / "meta.json", std::ios::trunc) << meta.dump();
   const ImuRunData data = LoadImuRuns({dir_});
@@ -173,7 +178,8 @@ class MissingOrientation : public ImuRunDataTest {
     calib::Sequence s = testing::ShippedSequence("imu_sensor_calibration", 40);
     s.steps.erase(s.steps.begin() + 5);  // accel 22
     // A thermal profile the F4 can run, so the fit reaches the six-position step.
-    ThermalProfileStep profile{"T", {F4RampRate{-20.0, 5.0}, F4RampRate{60.0, 5.0}, F4RampRate{25.0, 5.0}, F4End{}}};
+    ThermalProfileStep profile{
+        "T", {F4RampRate{-20.0, 5.0}, F4RampRate{60.0, 5.0}, F4RampRate{25.0, 5.0}, F4End{}}};
     s.steps.insert(s.steps.begin() + 2, Step{std::nullopt, profile});
     return s;
   }

@@ -22,7 +22,8 @@ namespace {
 const double kG_mps2 = sensor_sim::NormalGravityMps2(34.7, 190.0);
 
 Sequence ShortSequence() {
-  const std::string file = std::string(ADAHRS_SOURCE_DIR) + "/tests/data/studies/short_imu_calibration.json";
+  const std::string file =
+      std::string(ADAHRS_SOURCE_DIR) + "/tests/data/studies/short_imu_calibration.json";
   return SequenceFromJson(common::ParamReader::LoadFile(file), file);
 }
 
@@ -40,9 +41,14 @@ TEST(ImuRunSimulator, InMemoryRunCollectsAndFitsAsItsRecordingDoes) {
 
   ImuRunData in_memory;
   ImuRunCollector collector("memory", "", sequence, kG_mps2, {params.serial}, {}, &in_memory);
-  ImuRunSimulator simulator({params}, kG_mps2, 9,
-                            {maker_options.settle_frames, maker_options.soak_frames, 1.0,
-                             maker_options.table_rate_error_dps, maker_options.initial_air_temp_c});
+  ImuRunSimulator simulator({params},
+                            kG_mps2,
+                            9,
+                            {maker_options.settle_frames,
+                             maker_options.soak_frames,
+                             1.0,
+                             maker_options.table_rate_error_dps,
+                             maker_options.initial_air_temp_c});
   simulator.Run(sequence, [&](const hil::ImuRecordRow& row) { collector.Take(row, 0); });
   collector.Finish();
 
@@ -76,7 +82,9 @@ TEST(ImuRunSimulator, AFramelessSoakLeavesTheDiesWhereFramesWould) {
   for (int i = 0; i < 90000; ++i) framed.Step(cold);  // 15 min of frames
   frameless.SoakWithoutFrames(-40.0, 900.0);
   for (int k = 0; k < 3; ++k) {
-    EXPECT_NEAR(frameless.die_temperatures().accel_chip_c[k], framed.die_temperatures().accel_chip_c[k], 1e-9);
+    EXPECT_NEAR(frameless.die_temperatures().accel_chip_c[k],
+                framed.die_temperatures().accel_chip_c[k],
+                1e-9);
     EXPECT_NEAR(frameless.die_temperatures().gyro_c[k], framed.die_temperatures().gyro_c[k], 1e-9);
   }
   EXPECT_LT(frameless.die_temperatures().gyro_c[0], 0.0);  // well on its way to -40 degC

@@ -47,10 +47,13 @@ TEST(ImuStrategyFile, ReadsEveryKey) {
 }
 
 TEST(ImuStrategyFile, RefusesNamingTheFileAndPath) {
-  EXPECT_THAT(LoadError(std::string(kHead) + R"("strategy": "joint", "gyro_bias_wander": "allan"})"),
-              AllOf(HasSubstr("adahrs_imu_strategy_file_test.json"), HasSubstr("$.gyro_bias_wander"),
-                    HasSubstr("\"allan\"")));
-  EXPECT_THAT(LoadError(std::string(kHead) + R"("strategy": "reference", "gyro_bias_wander": "datasheet"})"),
+  EXPECT_THAT(
+      LoadError(std::string(kHead) + R"("strategy": "joint", "gyro_bias_wander": "allan"})"),
+      AllOf(HasSubstr("adahrs_imu_strategy_file_test.json"),
+            HasSubstr("$.gyro_bias_wander"),
+            HasSubstr("\"allan\"")));
+  EXPECT_THAT(LoadError(std::string(kHead) +
+                        R"("strategy": "reference", "gyro_bias_wander": "datasheet"})"),
               AllOf(HasSubstr("$.gyro_bias_wander"), HasSubstr("only the joint strategy")));
   EXPECT_THAT(LoadError(std::string(kHead) + R"("strategy": "joint", "gyro_wander": "datasheet"})"),
               HasSubstr("$.gyro_wander"));

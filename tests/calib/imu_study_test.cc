@@ -109,7 +109,9 @@ TEST_F(ImuStudy, ThermalOrderZeroYieldsLessThanTheImprovedStrategy) {
   const StrategySummary& order0 = summary.strategies[0];
   const StrategySummary& improved = summary.strategies[1];
   std::printf("acceleration yield: order 0 %.2f, improved %.2f; median worst %.3f mg vs %.3f mg\n",
-              order0.yield_acceleration, improved.yield_acceleration, order0.worst_accel_mg.p50,
+              order0.yield_acceleration,
+              improved.yield_acceleration,
+              order0.worst_accel_mg.p50,
               improved.worst_accel_mg.p50);
   EXPECT_EQ(improved.fitted, kUnits);
   EXPECT_EQ(improved.yield_acceleration, 1.0);  // nominal units: within 1.0 mg over the envelope
@@ -125,16 +127,21 @@ TEST_F(ImuStudy, ReportShowsTheYieldAndTheDistributionsOfEveryStrategy) {
   const nlohmann::json html = testing::ParseXmlTree(dir / "report.html");
   ASSERT_FALSE(html.is_null());
   for (const char* id : {"settings", "yield", "paired", "acceleration", "body-rate"}) {
-    EXPECT_EQ(testing::FindAll(html, [&](const nlohmann::json& n) {
-                return n["tag"] == "section" && n["attrib"].value("id", "") == id;
-              }).size(), 1u) << id;
+    EXPECT_EQ(testing::FindAll(html,
+                               [&](const nlohmann::json& n) {
+                                 return n["tag"] == "section" && n["attrib"].value("id", "") == id;
+                               })
+                  .size(),
+              1u)
+        << id;
   }
   EXPECT_EQ(testing::FindTag(html, "svg").size(), 4u);  // histogram and CDF per quantity
   // The yield table's acceleration column: order 0 passes no unit, the improved strategy all.
   std::map<std::string, double> accel_yield;
   for (const auto& row : testing::FindTag(html, "tr")) {
     const auto cells = testing::FindTag(row, "td");
-    if (cells.size() == 13) accel_yield[cells[0]["text"]] = std::stod(cells[3]["text"].get<std::string>());
+    if (cells.size() == 13)
+      accel_yield[cells[0]["text"]] = std::stod(cells[3]["text"].get<std::string>());
   }
   EXPECT_EQ(accel_yield["short_thermal_order0"], 0.0);
   EXPECT_EQ(accel_yield["short_improved"], 1.0);
@@ -171,7 +178,8 @@ TEST(ImuStudyInput, ShardBeyondItsCountIsRefusedNamingTheOption) {
       StudyShard::Parse(spec, "--shard");
       FAIL() << "accepted " << spec;
     } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("--shard \"" + spec + "\""), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("--shard \"" + spec + "\""), std::string::npos)
+          << e.what();
     }
   }
   const StudyShard s = StudyShard::Parse("2/3", "--shard");

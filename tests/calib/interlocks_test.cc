@@ -21,7 +21,8 @@ constexpr std::array<double, 6> kSign = {-1, -1, +1, +1, +1, -1};
 RawAverage AtRest(const Eigen::Vector3d& f_B_g, const std::array<double, 6>& offset_g = {}) {
   RawAverage a;
   a.packets = 100;
-  for (int ch = 0; ch < 6; ++ch) a.duty_offset[ch] = 0.04 * (kSign[ch] * f_B_g[kAxis[ch]] + offset_g[ch]);
+  for (int ch = 0; ch < 6; ++ch)
+    a.duty_offset[ch] = 0.04 * (kSign[ch] * f_B_g[kAxis[ch]] + offset_g[ch]);
   a.gyro_cnt = {4194304.0, 4194304.0, 4194304.0};
   return a;
 }

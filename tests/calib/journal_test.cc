@@ -80,7 +80,9 @@ TEST(ResumePoint, FirstIncompleteStepAndWhenItBegan) {
 TEST(ResumePoint, RefusesImpossibleTimesAndSteps) {
   const auto error_of = [](const nlohmann::json& bad) {
     JournalContents j;
-    j.events = {{{"event", "run_started"}, {"t_s", 0.5}}, {{"event", "step_completed"}, {"t_s", 2.0}, {"step", 0}}, bad};
+    j.events = {{{"event", "run_started"}, {"t_s", 0.5}},
+                {{"event", "step_completed"}, {"t_s", 2.0}, {"step", 0}},
+                bad};
     try {
       FindResumePoint(j, 3);
     } catch (const JournalError& e) {
@@ -88,12 +90,16 @@ TEST(ResumePoint, RefusesImpossibleTimesAndSteps) {
     }
     return std::string("accepted");
   };
-  EXPECT_THAT(error_of({{"event", "step_completed"}, {"step", 1}, {"t_s", 1e308}}),
-              AllOf(HasSubstr("journal event 3 (step_completed)"), HasSubstr("not a time of a run")));
+  EXPECT_THAT(
+      error_of({{"event", "step_completed"}, {"step", 1}, {"t_s", 1e308}}),
+      AllOf(HasSubstr("journal event 3 (step_completed)"), HasSubstr("not a time of a run")));
   EXPECT_THAT(error_of({{"event", "step_completed"}, {"step", -1}, {"t_s", 3.0}}),
-              AllOf(HasSubstr("journal event 3"), HasSubstr("\"step\" -1 is not a step of the sequence (0 ... 2)")));
-  EXPECT_THAT(error_of({{"event", "action_started"}, {"step", 1.5}, {"t_s", 3.0}}), HasSubstr("\"step\" 1.5"));
-  EXPECT_THAT(error_of({{"event", "step_completed"}, {"step", 1}, {"t_s", 1.0}}), HasSubstr("before the previous"));
+              AllOf(HasSubstr("journal event 3"),
+                    HasSubstr("\"step\" -1 is not a step of the sequence (0 ... 2)")));
+  EXPECT_THAT(error_of({{"event", "action_started"}, {"step", 1.5}, {"t_s", 3.0}}),
+              HasSubstr("\"step\" 1.5"));
+  EXPECT_THAT(error_of({{"event", "step_completed"}, {"step", 1}, {"t_s", 1.0}}),
+              HasSubstr("before the previous"));
   EXPECT_EQ(error_of({{"event", "step_completed"}, {"step", 1}, {"t_s", 3.0}}), "accepted");
 }
 

@@ -12,8 +12,8 @@
 namespace adahrs::calib {
 namespace {
 
-using ::testing::HasSubstr;
 using common::Rng;
+using ::testing::HasSubstr;
 
 // y = 2 + 3 x + e, x uniform on [0, 10], e ~ N(0, sigma^2).
 LinearLeastSquaresProblem Line(Rng& rng, int n, double sigma) {
@@ -42,8 +42,7 @@ TEST(LinearLeastSquares, LineMatchesClosedForm) {
   const double sxy = ((x.array() - x_mean) * (p.observations.array() - y_mean)).sum();
   const double slope = sxy / sxx;
   const double intercept = y_mean - slope * x_mean;
-  const double ssr =
-      (p.observations.array() - intercept - slope * x.array()).square().sum();
+  const double ssr = (p.observations.array() - intercept - slope * x.array()).square().sum();
   const double s = std::sqrt(ssr / 48.0);
   // Both are O(1) double computations on the same data: agreement to 1e-10 relative.
   EXPECT_NEAR(fit.coefficients[1], slope, 1e-10 * std::abs(slope));
@@ -149,14 +148,14 @@ TEST(LinearLeastSquares, RefusesTooFewObservationsAndBadValues) {
               ::testing::ThrowsMessage<DegenerateDesignError>(
                   HasSubstr("2 observations for 2 terms leave no degree of freedom")));
   p = Line(rng, 1, 0.1);
-  EXPECT_THAT([&] { SolveLinearLeastSquares(p); },
-              ::testing::ThrowsMessage<DegenerateDesignError>(
-                  HasSubstr("1 observations for 2 terms")));
+  EXPECT_THAT(
+      [&] { SolveLinearLeastSquares(p); },
+      ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr("1 observations for 2 terms")));
   p = Line(rng, 10, 0.1);
   p.observations[7] = std::nan("");
-  EXPECT_THAT([&] { SolveLinearLeastSquares(p); },
-              ::testing::ThrowsMessage<DegenerateDesignError>(
-                  HasSubstr("observation 7 is not finite")));
+  EXPECT_THAT(
+      [&] { SolveLinearLeastSquares(p); },
+      ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr("observation 7 is not finite")));
 }
 
 TEST(LinearLeastSquares, RefusesIllConditionedDesign) {

@@ -14,8 +14,8 @@ namespace {
 
 TEST(PolynomialBasis, TermNamesFollowTheReferenceLetterOrder) {
   const auto names = PolynomialBasis::ReferenceCubicSurface("x", "y").TermNames();
-  const std::vector<std::string> expected = {"1",   "x",   "y",       "x^2",   "y^2",
-                                             "x y", "x^3", "y^3", "x y^2", "x^2 y"};
+  const std::vector<std::string> expected = {
+      "1", "x", "y", "x^2", "y^2", "x y", "x^3", "y^3", "x y^2", "x^2 y"};
   EXPECT_EQ(names, expected);
 }
 

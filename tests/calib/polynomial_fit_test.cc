@@ -20,10 +20,10 @@
 namespace adahrs::calib {
 namespace {
 
+using common::Rng;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
-using common::Rng;
 
 // sum_k c[k] x^k.
 double Polynomial(const std::vector<double>& c, double x) {
@@ -39,13 +39,14 @@ std::vector<double> Grid(double lo, double hi, int n) {
   return x;
 }
 
-PolynomialFit FitUnivariate(const std::string& context, int degree,
+PolynomialFit FitUnivariate(const std::string& context,
+                            int degree,
                             const PolynomialObservations& obs,
                             WeightKind weight_kind = WeightKind::kInverseVariance,
                             ErrorScale error_scale = ErrorScale::kResidualVariance,
                             const LeastSquaresOptions& options = {}) {
-  return FitPolynomial(context, PolynomialBasis::Univariate(degree, "t"), obs, weight_kind,
-                       error_scale, options);
+  return FitPolynomial(
+      context, PolynomialBasis::Univariate(degree, "t"), obs, weight_kind, error_scale, options);
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -79,7 +80,8 @@ TEST(PolynomialFit, RecoversKnownCubicFromNoiseFreeData) {
   // Evaluate (through the normalised coefficients) reproduces the polynomial between the nodes.
   for (double t_degc : {-37.3, 0.0, 12.5, 61.1, 84.9}) {
     EXPECT_NEAR(fit.Evaluate(PolynomialBasis::Univariate(3, "t"), t_degc),
-                Polynomial(truth, t_degc), 1e-13);
+                Polynomial(truth, t_degc),
+                1e-13);
   }
 }
 
@@ -92,8 +94,8 @@ TEST(PolynomialFit, RecoversKnownSurfaceInAdcCountInputs) {
   const PolynomialBasis basis = PolynomialBasis::ReferenceCubicSurface("x", "y");
   constexpr double kXCornerCnt = 6.5e6;
   constexpr double kYCornerCnt = 3.6e6;
-  const std::array<double, 10> term_at_corner = {40.0, 90.0, -7.0, 3.0, 0.5,
-                                                 -2.0, 0.8,  -0.3, 0.2, -0.6};
+  const std::array<double, 10> term_at_corner = {
+      40.0, 90.0, -7.0, 3.0, 0.5, -2.0, 0.8, -0.3, 0.2, -0.6};
   Eigen::VectorXd truth(10);
   for (int k = 0; k < 10; ++k) {
     const Monomial& m = basis.terms()[static_cast<size_t>(k)];
@@ -107,8 +109,8 @@ TEST(PolynomialFit, RecoversKnownSurfaceInAdcCountInputs) {
     obs.y.push_back(rng.Uniform(3.1e6, 3.6e6));
     obs.z.push_back(basis.Row(obs.x.back(), obs.y.back()).dot(truth));
   }
-  const PolynomialFit fit = FitPolynomial("surface", basis, obs, WeightKind::kInverseVariance,
-                                          ErrorScale::kResidualVariance);
+  const PolynomialFit fit = FitPolynomial(
+      "surface", basis, obs, WeightKind::kInverseVariance, ErrorScale::kResidualVariance);
   for (int k = 0; k < 10; ++k) {
     EXPECT_NEAR(fit.raw_coefficients[k], truth[k], 1e-8 * std::abs(truth[k]))
         << basis.TermNames()[static_cast<size_t>(k)];
@@ -127,8 +129,8 @@ TEST(PolynomialFit, KnownVarianceInterpolatesWithAsManyPointsAsTerms) {
   PolynomialObservations obs;
   obs.x = {-3.0, -1.0, 2.0, 5.0};
   for (double x : obs.x) obs.z.push_back(Polynomial(truth, x));
-  const PolynomialFit fit =
-      FitUnivariate("interpolant", 3, obs, WeightKind::kInverseVariance, ErrorScale::kKnownVariance);
+  const PolynomialFit fit = FitUnivariate(
+      "interpolant", 3, obs, WeightKind::kInverseVariance, ErrorScale::kKnownVariance);
   for (int k = 0; k < 4; ++k) {
     EXPECT_NEAR(fit.raw_coefficients[k], truth[static_cast<size_t>(k)], 1e-14) << "t^" << k;
   }
@@ -179,10 +181,10 @@ PolynomialFit FitWampler(const std::string& name, const std::vector<double>& y) 
 // rounding of the normalised solve (~1e-16 of 3.4e6 times the condition) is ~1e-9 absolute in the
 // raw coefficients after the alternating re-expansion: 8 digits are required of each.
 TEST(PolynomialFitNist, Wampler1CertifiedValues) {
-  const PolynomialFit fit = FitWampler(
-      "Wampler1", {1,      6,      63,      364,     1365,    3906,    9331,
-                   19608,  37449,  66430,   111111,  177156,  271453,  402234,
-                   579195, 813616, 1118481, 1508598, 2000719, 2613660, 3368421});
+  const PolynomialFit fit =
+      FitWampler("Wampler1", {1,      6,      63,      364,     1365,    3906,    9331,
+                              19608,  37449,  66430,   111111,  177156,  271453,  402234,
+                              579195, 813616, 1118481, 1508598, 2000719, 2613660, 3368421});
   for (int k = 0; k < 6; ++k) {
     EXPECT_NEAR(fit.raw_coefficients[k], 1.0, 1e-8) << "B" << k;
     EXPECT_LT(fit.raw_standard_errors[k], 1e-8) << "B" << k;
@@ -196,15 +198,20 @@ TEST(PolynomialFitNist, Wampler1CertifiedValues) {
 // errors and residual SD to 1e-12 relative (they depend on the design and the residuals only, both
 // well conditioned: the equilibrated design's condition number is 25).
 TEST(PolynomialFitNist, Wampler3CertifiedValues) {
-  const PolynomialFit fit = FitWampler(
-      "Wampler3", {760,    -2042,  2111,    -1684,   3888,    1858,    11379,
-                   17560,  39287,  64382,   113159,  175108,  273291,  400186,
-                   581243, 811568, 1121004, 1506550, 2002767, 2611612, 3369180});
-  const std::vector<double> certified_se = {2152.32624678170, 2363.55173469681, 779.343524331583,
-                                            101.475507550350, 5.64566512170752, 0.112324854679312};
+  const PolynomialFit fit =
+      FitWampler("Wampler3", {760,    -2042,  2111,    -1684,   3888,    1858,    11379,
+                              17560,  39287,  64382,   113159,  175108,  273291,  400186,
+                              581243, 811568, 1121004, 1506550, 2002767, 2611612, 3369180});
+  const std::vector<double> certified_se = {2152.32624678170,
+                                            2363.55173469681,
+                                            779.343524331583,
+                                            101.475507550350,
+                                            5.64566512170752,
+                                            0.112324854679312};
   for (int k = 0; k < 6; ++k) {
     EXPECT_NEAR(fit.raw_coefficients[k], 1.0, 1e-8) << "B" << k;
-    EXPECT_NEAR(fit.raw_standard_errors[k], certified_se[static_cast<size_t>(k)],
+    EXPECT_NEAR(fit.raw_standard_errors[k],
+                certified_se[static_cast<size_t>(k)],
                 1e-12 * certified_se[static_cast<size_t>(k)])
         << "B" << k;
   }
@@ -223,10 +230,10 @@ TEST(PolynomialFitNist, PontiusCertifiedValues) {
       1.20001, 1.30822, 1.41599, 1.52399, 1.63194, 1.73947, 1.84646, 1.95392, 2.06128, 2.16844,
       .11052,  .22018,  .32939,  .43886,  .54798,  .65739,  .76596,  .87474,  .98300,  1.09150,
       1.20004, 1.30818, 1.41613, 1.52408, 1.63159, 1.73965, 1.84696, 1.95445, 2.06177, 2.16829};
-  const std::vector<double> certified = {0.673565789473684E-03, 0.732059160401003E-06,
-                                         -0.316081871345029E-14};
-  const std::vector<double> certified_se = {0.107938612033077E-03, 0.157817399981659E-09,
-                                            0.486652849992036E-16};
+  const std::vector<double> certified = {
+      0.673565789473684E-03, 0.732059160401003E-06, -0.316081871345029E-14};
+  const std::vector<double> certified_se = {
+      0.107938612033077E-03, 0.157817399981659E-09, 0.486652849992036E-16};
   PolynomialObservations obs;
   for (int i = 0; i < 40; ++i) obs.x.push_back(150000.0 * (1 + i % 20));  // load, lb
   obs.z = deflection;
@@ -274,8 +281,8 @@ void ExpectStandardErrorsMatchSpread(const NoisyCubic& design, uint64_t seed) {
     }
     const PolynomialFit fit =
         FitUnivariate("monte carlo", 3, obs, design.weight_kind, design.error_scale);
-    sum_d2 += (fit.raw_coefficients - Eigen::Map<const Eigen::VectorXd>(truth.data(), 4))
-                  .cwiseAbs2();
+    sum_d2 +=
+        (fit.raw_coefficients - Eigen::Map<const Eigen::VectorXd>(truth.data(), 4)).cwiseAbs2();
     sum_se2 += fit.raw_standard_errors.cwiseAbs2();
   }
   for (int k = 0; k < 4; ++k) {
@@ -368,16 +375,16 @@ TEST(PolynomialFit, IntegerWeightEqualsRepeatedObservation) {
       repeated.z.push_back(z);
     }
   }
-  const PolynomialFit a = FitUnivariate("weighted", 2, weighted, WeightKind::kInverseVariance,
-                                        ErrorScale::kKnownVariance);
-  const PolynomialFit b = FitUnivariate("repeated", 2, repeated, WeightKind::kInverseVariance,
-                                        ErrorScale::kKnownVariance);
+  const PolynomialFit a = FitUnivariate(
+      "weighted", 2, weighted, WeightKind::kInverseVariance, ErrorScale::kKnownVariance);
+  const PolynomialFit b = FitUnivariate(
+      "repeated", 2, repeated, WeightKind::kInverseVariance, ErrorScale::kKnownVariance);
   for (int k = 0; k < 3; ++k) {
-    EXPECT_NEAR(a.raw_coefficients[k], b.raw_coefficients[k],
-                1e-12 * std::abs(b.raw_coefficients[k]))
+    EXPECT_NEAR(
+        a.raw_coefficients[k], b.raw_coefficients[k], 1e-12 * std::abs(b.raw_coefficients[k]))
         << "t^" << k;
-    EXPECT_NEAR(a.raw_standard_errors[k], b.raw_standard_errors[k],
-                1e-12 * b.raw_standard_errors[k])
+    EXPECT_NEAR(
+        a.raw_standard_errors[k], b.raw_standard_errors[k], 1e-12 * b.raw_standard_errors[k])
         << "t^" << k;
   }
 }
@@ -410,9 +417,9 @@ TEST(PolynomialFitRefusal, InputThatDoesNotVary) {
   PolynomialObservations obs;
   obs.x.assign(10, 25.0);
   obs.z.assign(10, 1.0);
-  EXPECT_THAT([&] { FitUnivariate("soak", 3, obs); },
-              ThrowsMessage<DegenerateDesignError>(
-                  HasSubstr("soak: design refused: rank 1 of 4 terms")));
+  EXPECT_THAT(
+      [&] { FitUnivariate("soak", 3, obs); },
+      ThrowsMessage<DegenerateDesignError>(HasSubstr("soak: design refused: rank 1 of 4 terms")));
 }
 
 // Two distinct temperatures for a quadratic: in normalised inputs u = +-1, so u^2 = 1 repeats the
@@ -424,9 +431,10 @@ TEST(PolynomialFitRefusal, RankDeficientNamesTheNullCombination) {
     obs.z.push_back(0.1 * i);
   }
   EXPECT_THAT([&] { FitUnivariate("two soaks", 2, obs); },
-              ThrowsMessage<DegenerateDesignError>(AllOf(
-                  HasSubstr("two soaks: design refused: rank 2 of 3 terms"),
-                  HasSubstr(" 1"), HasSubstr("t^2"))));
+              ThrowsMessage<DegenerateDesignError>(
+                  AllOf(HasSubstr("two soaks: design refused: rank 2 of 3 terms"),
+                        HasSubstr(" 1"),
+                        HasSubstr("t^2"))));
 }
 
 // A surface basis given no y: the y columns are all zero and the design is refused.
@@ -434,8 +442,11 @@ TEST(PolynomialFitRefusal, SurfaceWithoutSecondInput) {
   PolynomialObservations obs = Cubic(30);
   EXPECT_THAT(
       [&] {
-        FitPolynomial("surface", PolynomialBasis::ReferenceCubicSurface("ps", "pt"), obs,
-                      WeightKind::kInverseVariance, ErrorScale::kResidualVariance);
+        FitPolynomial("surface",
+                      PolynomialBasis::ReferenceCubicSurface("ps", "pt"),
+                      obs,
+                      WeightKind::kInverseVariance,
+                      ErrorScale::kResidualVariance);
       },
       ThrowsMessage<DegenerateDesignError>(HasSubstr("surface: design refused: rank 4 of 10")));
 }
@@ -445,10 +456,10 @@ TEST(PolynomialFitRefusal, ExtraColumnCollinearWithTheBasis) {
   PolynomialObservations obs = Cubic(20);
   obs.extra_names = {"offset_state"};
   obs.extra_columns = {std::vector<double>(20, 2.0)};
-  EXPECT_THAT([&] { FitUnivariate("with extra", 3, obs); },
-              ThrowsMessage<DegenerateDesignError>(AllOf(
-                  HasSubstr("with extra: design refused: rank 4 of 5 terms"),
-                  HasSubstr("offset_state"))));
+  EXPECT_THAT(
+      [&] { FitUnivariate("with extra", 3, obs); },
+      ThrowsMessage<DegenerateDesignError>(AllOf(
+          HasSubstr("with extra: design refused: rank 4 of 5 terms"), HasSubstr("offset_state"))));
 }
 
 TEST(PolynomialFitRefusal, NonFiniteValueOrNonPositiveWeight) {
@@ -474,13 +485,17 @@ TEST(PolynomialFitRefusal, IllConditionedBeyondTheGivenLimit) {
   EXPECT_NO_THROW(FitUnivariate("degree 8", 8, Cubic(40)));
   LeastSquaresOptions options;
   options.max_condition = 100.0;
-  EXPECT_THAT([&] {
-    FitUnivariate("degree 8", 8, Cubic(40), WeightKind::kInverseVariance,
-                  ErrorScale::kResidualVariance, options);
-  },
-              ThrowsMessage<DegenerateDesignError>(
-                  AllOf(HasSubstr("degree 8: design refused: rank 9 of 9 terms"),
-                        HasSubstr("(limit 100)"))));
+  EXPECT_THAT(
+      [&] {
+        FitUnivariate("degree 8",
+                      8,
+                      Cubic(40),
+                      WeightKind::kInverseVariance,
+                      ErrorScale::kResidualVariance,
+                      options);
+      },
+      ThrowsMessage<DegenerateDesignError>(AllOf(
+          HasSubstr("degree 8: design refused: rank 9 of 9 terms"), HasSubstr("(limit 100)"))));
 }
 
 // Inconsistent inputs are a caller's bug: std::invalid_argument naming the lengths.

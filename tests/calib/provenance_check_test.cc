@@ -19,7 +19,8 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 TEST(ProvenanceCheck, UnchangedChangedAndUnreadableRecordings) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("adahrs_provenance_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("adahrs_provenance_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir / "run");
   std::ofstream(dir / "run" / "meta.json") << "{}";
@@ -44,8 +45,11 @@ TEST(ProvenanceCheck, UnchangedChangedAndUnreadableRecordings) {
     RequireUnchangedRecordings(file, "IMU-0001.json");
     FAIL() << "a changed recording was accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("IMU-0001.json"), HasSubstr((dir / "run").string()),
-                                HasSubstr("CHANGED since the fit"), HasSubstr(file.provenance.recordings[0].sha256)));
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr("IMU-0001.json"),
+                      HasSubstr((dir / "run").string()),
+                      HasSubstr("CHANGED since the fit"),
+                      HasSubstr(file.provenance.recordings[0].sha256)));
   }
   std::filesystem::remove_all(dir);
 }

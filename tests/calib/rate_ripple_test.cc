@@ -13,8 +13,13 @@ namespace adahrs::calib {
 namespace {
 
 // One segment of rows at 100 Hz: offset, drift, a line of `amplitude` at `f_hz` and white noise.
-void Rows(double rate_dps, double seconds, double amplitude, double sigma, std::mt19937_64& rng,
-          std::vector<double>* t, std::vector<double>* y) {
+void Rows(double rate_dps,
+          double seconds,
+          double amplitude,
+          double sigma,
+          std::mt19937_64& rng,
+          std::vector<double>* t,
+          std::vector<double>* y) {
   std::normal_distribution<double> noise(0.0, sigma);
   std::uniform_real_distribution<double> phase(0.0, 2.0 * M_PI);
   const double f_hz = std::abs(rate_dps) / 360.0, p = phase(rng);
@@ -88,7 +93,11 @@ TEST(RateRipple, TestHoldsItsLevelAndSizesAKnownRipple) {
       }
     }
   }
-  std::printf("ripple: size %d of 200 at %.2f; found %d of 200, %d within 3 SE\n", rejected, kAlpha, found, within);
+  std::printf("ripple: size %d of 200 at %.2f; found %d of 200, %d within 3 SE\n",
+              rejected,
+              kAlpha,
+              found,
+              within);
   EXPECT_LE(rejected, 20);  // 10 expected; the controls' inflation only makes the test stricter
   EXPECT_GE(within, 190);
   EXPECT_GE(found, 190);

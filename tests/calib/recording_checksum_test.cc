@@ -33,10 +33,10 @@ TEST(RecordingChecksum, MatchesHashlibOverTheThreeFiles) {
   std::ofstream(dir / "imu.csv") << "t_s,unit\n" << big;
   std::ofstream(dir / "ads.csv") << "t_s,unit\n";
   std::ofstream(dir / "not_covered.txt") << "ignored";
-  const std::string expected = RunCommand(
-      std::string(ADAHRS_PYTHON) + " -c \"import hashlib,sys; d='" + dir.string() +
-      "'; print(hashlib.sha256(b''.join(open(d+'/'+n,'rb').read() for n in "
-      "('meta.json','imu.csv','ads.csv'))).hexdigest())\"");
+  const std::string expected =
+      RunCommand(std::string(ADAHRS_PYTHON) + " -c \"import hashlib,sys; d='" + dir.string() +
+                 "'; print(hashlib.sha256(b''.join(open(d+'/'+n,'rb').read() for n in "
+                 "('meta.json','imu.csv','ads.csv'))).hexdigest())\"");
   ASSERT_EQ(expected.size(), 64u) << expected;
   EXPECT_EQ(RecordingSha256(dir), expected);
   // One byte more anywhere changes it.

@@ -1,7 +1,7 @@
 // Run directories and constants files into records: fields taken from the files as written,
 // checksums equal to those of independent tools (sha256sum), bad input refused by file and path.
-#include "adahrs_build_paths.h"
 #include "calib/records/records_sources.h"
+#include "adahrs_build_paths.h"
 
 #include <unistd.h>
 
@@ -47,10 +47,22 @@ class RecordsSourcesTest : public ::testing::Test {
              {"sample_rate_hz", 100},
              {"local_gravity_mps2", 9.80665},
              {"units",
-              {{{"role", "imu1"}, {"kind", "imu"}, {"serial", "IMU-0001"}, {"serial_number", 1},
-                {"firmware", "1.0.0"}, {"slot", 1}, {"constants_version", 0}, {"mode", 0}},
-               {{"role", "imu2"}, {"kind", "imu"}, {"serial", "IMU-0002"}, {"serial_number", 2},
-                {"firmware", "1.0.0"}, {"slot", 2}, {"constants_version", 4}, {"mode", 0}}}},
+              {{{"role", "imu1"},
+                {"kind", "imu"},
+                {"serial", "IMU-0001"},
+                {"serial_number", 1},
+                {"firmware", "1.0.0"},
+                {"slot", 1},
+                {"constants_version", 0},
+                {"mode", 0}},
+               {{"role", "imu2"},
+                {"kind", "imu"},
+                {"serial", "IMU-0002"},
+                {"serial_number", 2},
+                {"firmware", "1.0.0"},
+                {"slot", 2},
+                {"constants_version", 4},
+                {"mode", 0}}}},
              {"instruments", nlohmann::json::array()},
              {"rejected_intervals",
               {{{"step", 2}, {"t_start_s", 10.0}, {"t_end_s", 12.5}, {"reason", "chamber"}},
@@ -127,16 +139,25 @@ TEST_F(RecordsSourcesTest, RunRecordCarriesMetaStepsUnitsAndTheRecordingChecksum
 // add-run reads the rows before recording a run: what the pipeline would not trust is refused
 // by file and line.
 TEST_F(RecordsSourcesTest, RowsTheFitWouldNotTrustAreRefusedByLine) {
-  WriteRun([](int n, hil::ImuRecordRow& r) { if (n == 6) r.unit = "IMU-0009"; });
+  WriteRun([](int n, hil::ImuRecordRow& r) {
+    if (n == 6) r.unit = "IMU-0009";
+  });
   EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:8"), HasSubstr("'IMU-0009' is not listed")));
-  WriteRun([](int n, hil::ImuRecordRow& r) { if (n == 7) r.t_s = 0.0; });
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:9"), HasSubstr("IMU-0002 t_s 0.000000 s goes back")));
-  WriteRun([](int n, hil::ImuRecordRow& r) { if (n == 5) { r.t_s = 0.01; r.seq = 1; } });
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:7"), HasSubstr("IMU-0002 repeats its previous row")));
+  WriteRun([](int n, hil::ImuRecordRow& r) {
+    if (n == 7) r.t_s = 0.0;
+  });
+  EXPECT_THAT(ErrorOf(),
+              AllOf(HasSubstr("imu.csv:9"), HasSubstr("IMU-0002 t_s 0.000000 s goes back")));
+  WriteRun([](int n, hil::ImuRecordRow& r) {
+    if (n == 5) {
+      r.t_s = 0.01;
+      r.seq = 1;
+    }
+  });
+  EXPECT_THAT(ErrorOf(),
+              AllOf(HasSubstr("imu.csv:7"), HasSubstr("IMU-0002 repeats its previous row")));
   WriteRun();
-  {
-    std::ofstream(dir_ / "run" / "imu.csv", std::ios::app) << "0.05,IMU-0001,5,0,0,31,x";
-  }
+  { std::ofstream(dir_ / "run" / "imu.csv", std::ios::app) << "0.05,IMU-0001,5,0,0,31,x"; }
   EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:12"));  // a torn last line, in a complete run
   meta_["status"] = "interrupted";
   std::ofstream(dir_ / "run" / "meta.json") << meta_.dump(2);
@@ -170,7 +191,8 @@ TEST_F(RecordsSourcesTest, ConstantsFilesBecomeVersionsAndTheHistoryShowsThem) {
   for (auto& t : se.thermal) {
     for (double& k : t.k) k = 1e-3 * std::abs(k);
   }
-  for (auto& a : se.accel) a = {1e-3 * std::abs(a.offset_duty), 1e-3 * std::abs(a.scale_duty_per_g)};
+  for (auto& a : se.accel)
+    a = {1e-3 * std::abs(a.offset_duty), 1e-3 * std::abs(a.scale_duty_per_g)};
   for (auto& g : se.gyro) {
     g.null_cnt = 1.0;
     for (double& l : g.l) l = 1e-3 * std::abs(l);

@@ -63,8 +63,14 @@ class RecordsStoreTest : public ::testing::Test {
   }
 
   static ConstantsRecord Constants(const std::string& serial, const std::string& sha) {
-    return {serial, "imu", "reference", "2024-05-01T09:00:00Z", "0.1.0", sha,
-            "{\"serial\": \"" + serial + "\"}", "{\"recordings\": []}"};
+    return {serial,
+            "imu",
+            "reference",
+            "2024-05-01T09:00:00Z",
+            "0.1.0",
+            sha,
+            "{\"serial\": \"" + serial + "\"}",
+            "{\"recordings\": []}"};
   }
 
   std::filesystem::path dir_;
@@ -148,7 +154,14 @@ TEST_F(RecordsStoreTest, ReadingNeverWritesAndRefusesWhatIsNotARecordsDatabase) 
 // attempt of the same file is recorded against it.
 TEST_F(RecordsStoreTest, OnlyAcceptedFilesBecomeConstantsVersions) {
   RecordsStore store(db_);
-  const DownloadRecord refused{"IMU-0001", 0, "virtual lab", "imu1", false, false, std::nullopt, std::nullopt,
+  const DownloadRecord refused{"IMU-0001",
+                               0,
+                               "virtual lab",
+                               "imu1",
+                               false,
+                               false,
+                               std::nullopt,
+                               std::nullopt,
                                "IMU-0002 answers on imu1: another unit's constants"};
   EXPECT_EQ(RecordDownloadAttempt(store, Constants("IMU-0001", "c1"), refused), std::nullopt);
   EXPECT_EQ(PythonQuery("SELECT count(*) FROM constants"), "[(0,)]\n");
@@ -161,17 +174,25 @@ TEST_F(RecordsStoreTest, OnlyAcceptedFilesBecomeConstantsVersions) {
   EXPECT_EQ(RecordDownloadAttempt(store, Constants("IMU-0001", "c1"), refused), 1);
   EXPECT_EQ(RecordDownloadAttempt(store, Constants("IMU-0001", "c2"), refused), std::nullopt);
   EXPECT_EQ(PythonQuery("SELECT count(*) FROM constants"), "[(1,)]\n");
-  EXPECT_EQ(PythonQuery("SELECT verified, committed FROM downloads ORDER BY rowid"), "[(1, 1), (0, 0)]\n");
+  EXPECT_EQ(PythonQuery("SELECT verified, committed FROM downloads ORDER BY rowid"),
+            "[(1, 1), (0, 0)]\n");
 }
 
 TEST_F(RecordsStoreTest, HistoryShowsDownloadsAndAcceptanceVerdicts) {
   RecordsStore store(db_);
   store.AddConstants(Constants("IMU-0001", "c1"));
   store.AddConstants(Constants("IMU-0001", "c2"));
-  store.AddDownload({"IMU-0001", 1, "virtual lab", "imu1", false, false, std::nullopt,
-                     std::nullopt, "block 0x03 read back differs"});
-  store.AddDownload({"IMU-0001", 2, "virtual lab", "imu1", true, true, int64_t{1}, int64_t{0xBEEF},
-                     "ok"});
+  store.AddDownload({"IMU-0001",
+                     1,
+                     "virtual lab",
+                     "imu1",
+                     false,
+                     false,
+                     std::nullopt,
+                     std::nullopt,
+                     "block 0x03 read back differs"});
+  store.AddDownload(
+      {"IMU-0001", 2, "virtual lab", "imu1", true, true, int64_t{1}, int64_t{0xBEEF}, "ok"});
   const std::vector<AcceptancePointRecord> points = {
       {"IMU-0001", "acc-1", "accel_x", "orientation 11", 0.0004, 0.001, "g", true},
       {"IMU-0001", "acc-1", "rate_z", "150 deg/s", 0.02, 0.015, "deg/s", false}};

@@ -15,10 +15,10 @@
 #include "calib/solvers/sample_statistics.h"
 #include "calib/solvers/six_position_fit.h"
 #include "calib/solvers/thermal_drift_fit.h"
+#include "common/units.h"
 #include "firmware_model/reference_compensator.h"
 #include "sensor_sim/gravity.h"
 #include "sensor_sim/imu_unit.h"
-#include "common/units.h"
 
 namespace adahrs::calib {
 namespace {
@@ -29,10 +29,11 @@ using sensor_sim::ImuUnitParams;
 
 // Station: Auburn AL (the reference's lab), 33 deg N, 200 m.
 const double kGLocal_mps2 = sensor_sim::NormalGravityMps2(32.6, 200.0);
-constexpr int kSettleFrames = 50;     // > 10 filter time constants (3.2 ms accel, 4 ms gyro)
-constexpr int kCalFrames = 1000;      // per calibration step (10 s at 100 Hz)
-constexpr int kEvalFrames = 1000;     // per evaluation step
-constexpr std::array<int, 9> kTempSensorOfChannel = {0, 0, 1, 1, 2, 2, 0, 1, 2};  // chip k -> TEMP k
+constexpr int kSettleFrames = 50;  // > 10 filter time constants (3.2 ms accel, 4 ms gyro)
+constexpr int kCalFrames = 1000;   // per calibration step (10 s at 100 Hz)
+constexpr int kEvalFrames = 1000;  // per evaluation step
+constexpr std::array<int, 9> kTempSensorOfChannel = {
+    0, 0, 1, 1, 2, 2, 0, 1, 2};  // chip k -> TEMP k
 constexpr std::array<double, 7> kRates_dps = {-150, -100, -50, 0, 50, 100, 150};
 
 Eigen::Vector3d UpAxis(int orientation) {
@@ -47,7 +48,8 @@ class Rig {
   std::vector<fm::ImuRawFrame> Acquire(int orientation, double rate_dps, double air_temp_c, int n) {
     std::vector<fm::ImuRawFrame> frames;
     for (int i = 0; i < kSettleFrames + n; ++i) {
-      const fm::ImuRawFrame f = ToFirmwareRawFrame(unit_.Step(Stimulus(orientation, rate_dps, air_temp_c)));
+      const fm::ImuRawFrame f =
+          ToFirmwareRawFrame(unit_.Step(Stimulus(orientation, rate_dps, air_temp_c)));
       if (i >= kSettleFrames) frames.push_back(f);
     }
     return frames;
@@ -68,7 +70,8 @@ class Rig {
 };
 
 // Per-channel means of one output slot range through the compensator.
-std::vector<SampleMean> Means(const fm::ImuCalibrationConstants& c, fm::ImuCompensationMode mode,
+std::vector<SampleMean> Means(const fm::ImuCalibrationConstants& c,
+                              fm::ImuCompensationMode mode,
                               const std::vector<fm::ImuRawFrame>& frames) {
   std::vector<std::vector<double>> columns(9);
   for (const fm::ImuRawFrame& f : frames) {
@@ -106,8 +109,8 @@ Calibration Calibrate(Rig& rig, const ImuUnitParams& params) {
       const fm::ImuRawFrame f = rig.Step(31, from_c + (to_c - from_c) * i / n);
       const auto u = fm::ImuReference(c, fm::ImuCompensationMode::kRaw, f);
       for (int ch = 0; ch < 9; ++ch) {
-        samples[ch].push_back({static_cast<double>(f.temp_cnt[kTempSensorOfChannel[ch]]), u[ch],
-                               segment});
+        samples[ch].push_back(
+            {static_cast<double>(f.temp_cnt[kTempSensorOfChannel[ch]]), u[ch], segment});
       }
     }
   };
@@ -299,24 +302,28 @@ TEST_F(ReferenceImuCalibration, CalibratedRateMatchesTruth) {
   for (int a = 0; a < 3; ++a) {
     const int o = 10 * (a + 1) + 1;
     for (double r : {50.0, 150.0}) {
-      const auto plus = Means(cal_->constants, fm::ImuCompensationMode::kFullyCalibrated,
+      const auto plus = Means(cal_->constants,
+                              fm::ImuCompensationMode::kFullyCalibrated,
                               rig_->Acquire(o, r, 25.0, kEvalFrames));
-      const auto minus = Means(cal_->constants, fm::ImuCompensationMode::kFullyCalibrated,
+      const auto minus = Means(cal_->constants,
+                               fm::ImuCompensationMode::kFullyCalibrated,
                                rig_->Acquire(o, -r, 25.0, kEvalFrames));
       for (int i = 0; i < 3; ++i) {
         const double s_g = plus[3 + i].standard_deviation;
         const double sigma = std::sqrt(s_g * s_g * (0.5 / kEvalFrames + 1.0 / kCalFrames) +
                                        2.0 * sigma_b_dps * sigma_b_dps);
         const double half_diff = 0.5 * (plus[3 + i].mean - minus[3 + i].mean);
-        EXPECT_NEAR(half_diff, i == a ? r : 0.0, 4.5 * sigma) << "axis " << a << " rate " << r
-                                                             << " out " << i;
+        EXPECT_NEAR(half_diff, i == a ? r : 0.0, 4.5 * sigma)
+            << "axis " << a << " rate " << r << " out " << i;
       }
     }
-    const auto zero = Means(cal_->constants, fm::ImuCompensationMode::kFullyCalibrated,
+    const auto zero = Means(cal_->constants,
+                            fm::ImuCompensationMode::kFullyCalibrated,
                             rig_->Acquire(o, 0.0, 25.0, kEvalFrames));
     for (int i = 0; i < 3; ++i) {
       const double s_g = zero[3 + i].standard_deviation;
-      const double sigma = std::sqrt(s_g * s_g * 2.0 / kEvalFrames + 2.0 * sigma_b_dps * sigma_b_dps);
+      const double sigma =
+          std::sqrt(s_g * s_g * 2.0 / kEvalFrames + 2.0 * sigma_b_dps * sigma_b_dps);
       EXPECT_NEAR(zero[3 + i].mean, 0.0, 4.5 * sigma) << "axis " << a << " out " << i;
     }
   }

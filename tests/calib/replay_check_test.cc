@@ -30,50 +30,72 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("adahrs_replay_check_" + name + "_" + std::to_string(::getpid()));
+  const fs::path dir = fs::temp_directory_path() /
+                       ("adahrs_replay_check_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
 }
 
 // `adahrs simulate replay`, the command a user runs, as the replay function.
-void ReplayWithTheCommand(const fs::path& run, const std::vector<fs::path>& files, const fs::path& out) {
-  std::string cmd = std::string(std::getenv("ADAHRS_BIN_DIR")) + "/adahrs simulate replay --run '" + run.string() +
-                    "' --out '" + out.string() + "' --seed 77";
+void ReplayWithTheCommand(const fs::path& run,
+                          const std::vector<fs::path>& files,
+                          const fs::path& out) {
+  std::string cmd = std::string(std::getenv("ADAHRS_BIN_DIR")) + "/adahrs simulate replay --run '" +
+                    run.string() + "' --out '" + out.string() + "' --seed 77";
   for (const fs::path& f : files) cmd += " --unit '" + f.string() + "'";
   ASSERT_EQ(std::system((cmd + " > /dev/null").c_str()), 0) << cmd;
 }
 
 void WriteUnitFile(const fs::path& path, const sensor_sim::AdsUnitParams& p) {
-  std::ofstream(path) << nlohmann::json{{"kind", "ads"}, {"model_profile", "nominal"}, {"params", p.ToJson()}}.dump(2);
+  std::ofstream(path) << nlohmann::json{
+      {"kind", "ads"},
+      {"model_profile", "nominal"},
+      {"params", p.ToJson()}}.dump(2);
 }
 
 TEST(ReplayCheck, AHeldOutRunIsReproducedWithTheFoundHysteresis) {
   const fs::path dir = TempDir("ads");
-  sensor_sim::AdsUnitParams base = sensor_sim::AdsUnitParams::Draw("ADS-0007", 6607, sensor_sim::ModelProfile::kNominal);
+  sensor_sim::AdsUnitParams base =
+      sensor_sim::AdsUnitParams::Draw("ADS-0007", 6607, sensor_sim::ModelProfile::kNominal);
   sensor_sim::AdsUnitParams truth = base;
   for (auto* b : {&truth.static_bridge, &truth.pitot_bridge}) b->effects.pressure_hysteresis = true;
-  testing::WriteAdsRecording(dir / "calibration", testing::ShippedSequencePath("ads_calibration"), truth, 601);
-  testing::WriteAdsRecording(dir / "acceptance", testing::ShippedSequencePath("ads_acceptance"), truth, 602);
-  const UnitDiagnosis d = DiagnoseAds(
-      truth.serial, SelectAdsCalibrationPoints(hil::ReadRecording(dir / "calibration"), truth.serial, "calibration"));
+  testing::WriteAdsRecording(
+      dir / "calibration", testing::ShippedSequencePath("ads_calibration"), truth, 601);
+  testing::WriteAdsRecording(
+      dir / "acceptance", testing::ShippedSequencePath("ads_acceptance"), truth, 602);
+  const UnitDiagnosis d =
+      DiagnoseAds(truth.serial,
+                  SelectAdsCalibrationPoints(
+                      hil::ReadRecording(dir / "calibration"), truth.serial, "calibration"));
   DiagnosisRun run;
   run.units.push_back(d);
   WriteUnitFile(dir / "base.json", base);
   const AugmentedModel m = WriteAugmentedModel(run, dir / "base.json", dir / "out");
   for (const std::string& a : m.applied) std::printf("applied: %s\n", a.c_str());
   for (const auto* b : {&truth.static_bridge, &truth.pitot_bridge}) {
-    std::printf("truth: pressure_hysteresis_pct_fso %.4g, span %.4g %% FS\n", b->pressure_hysteresis_pct_fso,
+    std::printf("truth: pressure_hysteresis_pct_fso %.4g, span %.4g %% FS\n",
+                b->pressure_hysteresis_pct_fso,
                 b->pressure_hysteresis_span_pct_fs);
   }
 
-  const ReplayComparison c = CheckByReplay(dir / "acceptance", {dir / "base.json"}, {dir / "out/model.json"},
-                                           dir / "replay", true, ReplayWithTheCommand);
+  const ReplayComparison c = CheckByReplay(dir / "acceptance",
+                                           {dir / "base.json"},
+                                           {dir / "out/model.json"},
+                                           dir / "replay",
+                                           true,
+                                           ReplayWithTheCommand);
   ASSERT_EQ(c.units.size(), 1u);
   ASSERT_EQ(c.units[0].channels.size(), 2u);
   for (const ChannelReplayFit& ch : c.units[0].channels) {
-    std::printf("%s: held-out RMS %.2f Pa with the base model, %.2f with model.json, noise alone %.2f (%zu acquisitions)\n",
-                ch.channel.c_str(), ch.rms_base, ch.rms_model, ch.rms_noise, ch.acquisitions.size());
+    std::printf(
+        "%s: held-out RMS %.2f Pa with the base model, %.2f with model.json, noise alone %.2f (%zu "
+        "acquisitions)\n",
+        ch.channel.c_str(),
+        ch.rms_base,
+        ch.rms_model,
+        ch.rms_noise,
+        ch.acquisitions.size());
     EXPECT_EQ(ch.unit, "Pa");
     EXPECT_GT(ch.acquisitions.size(), 20u);
   }
@@ -85,8 +107,12 @@ TEST(ReplayCheck, AHeldOutRunIsReproducedWithTheFoundHysteresis) {
   EXPECT_LT(ps.rms_model, 3.0 * ps.rms_noise);
   EXPECT_LT(c.units[0].channels[1].rms_model, 0.3 * c.units[0].channels[1].rms_base);
   WriteUnitFile(dir / "truth.json", truth);
-  const ReplayComparison t = CheckByReplay(dir / "acceptance", {dir / "truth.json"}, {dir / "truth.json"},
-                                           dir / "replay_truth", true, ReplayWithTheCommand);
+  const ReplayComparison t = CheckByReplay(dir / "acceptance",
+                                           {dir / "truth.json"},
+                                           {dir / "truth.json"},
+                                           dir / "replay_truth",
+                                           true,
+                                           ReplayWithTheCommand);
   for (const ChannelReplayFit& ch : t.units[0].channels) {
     std::printf("%s: held-out RMS %.2f Pa with the truth\n", ch.channel.c_str(), ch.rms_base);
     // The replay itself: the truth reproduces the run to its noise (the run starts at 0 °C, which
@@ -95,9 +121,12 @@ TEST(ReplayCheck, AHeldOutRunIsReproducedWithTheFoundHysteresis) {
   }
   WriteReplayCheck({c}, dir / "out");
   std::ifstream html_file(dir / "out/replay_check.html");
-  const std::string html((std::istreambuf_iterator<char>(html_file)), std::istreambuf_iterator<char>());
-  EXPECT_NE(html.find("ADS-0007 ps: mean residual of each acquisition"), std::string::npos);  // its figure
-  EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "out/replay_check.json"))[0]["units"][0]["channels"][0]["rms_model"],
+  const std::string html((std::istreambuf_iterator<char>(html_file)),
+                         std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("ADS-0007 ps: mean residual of each acquisition"),
+            std::string::npos);  // its figure
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(
+                dir / "out/replay_check.json"))[0]["units"][0]["channels"][0]["rms_model"],
             ps.rms_model);
   const hil::Recording meta = hil::ReadRecordingMeta(dir / "replay/model");
   EXPECT_EQ(meta.meta["replay"]["noise"], 77);
@@ -111,7 +140,9 @@ TEST(ReplayCheck, ComparesAcquisitionMeansInPhysicalUnits) {
   // model's; az1 duty 0.5 + 0.04 (1 g) recorded, the replays 0.5 + 0.04 + 0.0004 (10 mg more).
   auto write = [&](const fs::path& run, int32_t gx, uint16_t az1_t1) {
     hil::RecordingWriter w(run);
-    w.WriteMeta({{"run_id", "means"}, {"status", "complete"}, {"units", {{{"kind", "imu"}, {"serial", "IMU-0001"}}}}});
+    w.WriteMeta({{"run_id", "means"},
+                 {"status", "complete"},
+                 {"units", {{{"kind", "imu"}, {"serial", "IMU-0001"}}}}});
     hil::ImuRecordRow row;
     row.unit = "IMU-0001";
     for (int step = 1; step <= 2; ++step) {
@@ -148,7 +179,8 @@ TEST(ReplayCheck, ComparesAcquisitionMeansInPhysicalUnits) {
   const double se_one = 500.0 * std::sqrt(100.0 / 99.0) / 10.0 / 20971.52;
   EXPECT_NEAR(channels[6].rms_noise, se_one * std::sqrt(2.0), 1e-9);
   EXPECT_EQ(channels[6].acquisitions[1].label, "step 2 tag 2");
-  EXPECT_THROW(CompareReplays(dir / "rec", dir / "missing", dir / "model", false), hil::RecordingError);
+  EXPECT_THROW(CompareReplays(dir / "rec", dir / "missing", dir / "model", false),
+               hil::RecordingError);
   fs::remove_all(dir);
 }
 

@@ -17,7 +17,13 @@ struct Series {
 };
 
 // AR(1) noise (pole at `pole`) of unit innovation, a random walk of `walk` per row, a sinusoid.
-Series Make(uint64_t seed, size_t rows, double dt_s, double pole, double walk, double amplitude, double f_hz) {
+Series Make(uint64_t seed,
+            size_t rows,
+            double dt_s,
+            double pole,
+            double walk,
+            double amplitude,
+            double f_hz) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n01;
   Series s;
@@ -34,7 +40,8 @@ Series Make(uint64_t seed, size_t rows, double dt_s, double pole, double walk, d
 
 RowSpectra Spectra(const Series& s, double dt_s) {
   RowSpectra spectra(1, dt_s);
-  spectra.AddSegment(0, s.y.size(), [&](size_t i) { return s.t_s[i]; }, [&](size_t i, int) { return s.y[i]; });
+  spectra.AddSegment(
+      0, s.y.size(), [&](size_t i) { return s.t_s[i]; }, [&](size_t i, int) { return s.y[i]; });
   return spectra;
 }
 
@@ -53,7 +60,12 @@ TEST(RowSpectrum, FindsASinusoidAtAFifthOfTheNoiseWithItsAmplitude) {
     const double f_hz = 2.0 + 3.7 * seed;
     const Series s = Make(seed, 512 * 300, 0.01, 0.9, 0.01, 0.2 * 2.3, f_hz);  // AR(1) sd 2.3
     const std::vector<PeriodicLine> lines = FindPeriodicLines(Spectra(s, 0.01), 0, 1e-3);
-    for (const PeriodicLine& l : lines) std::printf("seed %d: %.3f Hz amplitude %.3f z %.1f\n", static_cast<int>(seed), l.frequency_hz, l.amplitude, l.z);
+    for (const PeriodicLine& l : lines)
+      std::printf("seed %d: %.3f Hz amplitude %.3f z %.1f\n",
+                  static_cast<int>(seed),
+                  l.frequency_hz,
+                  l.amplitude,
+                  l.z);
     ASSERT_EQ(lines.size(), 1u) << "seed " << seed;
     EXPECT_NEAR(lines[0].frequency_hz, f_hz, 0.1);
     EXPECT_NEAR(lines[0].amplitude, 0.46, 0.07);
@@ -72,7 +84,8 @@ TEST(RowSpectrum, ColouredNoiseGivesNoLineOnFiftySeeds) {
 
 TEST(RowSpectrum, AGapClosesAWindowAndTheNextStartsAfterIt) {
   Series s = Make(3, 2000, 0.01, 0.0, 0.0, 0.0, 1.0);
-  for (size_t i = 700; i < s.t_s.size(); ++i) s.t_s[i] += 0.5;  // a gap of 50 rows' time after row 699
+  for (size_t i = 700; i < s.t_s.size(); ++i)
+    s.t_s[i] += 0.5;  // a gap of 50 rows' time after row 699
   const RowSpectra spectra = Spectra(s, 0.01);
   // Rows 0-511 fill one window; 512-699 are too few; 700-1211 and 1212-1723 fill two more.
   EXPECT_EQ(spectra.windows(), 3);

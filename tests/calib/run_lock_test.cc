@@ -18,15 +18,18 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 TEST(RunDirectoryLock, ASecondHolderIsRefusedUntilTheFirstIsGone) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("adahrs_run_lock_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("adahrs_run_lock_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::optional<RunDirectoryLock> first(std::in_place, dir);
   try {
     RunDirectoryLock second(dir);
     FAIL() << "two holders";
   } catch (const RunError& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr(dir.string()), HasSubstr("in use by another adahrs process"),
-                                HasSubstr("(pid " + std::to_string(::getpid()) + ")")));
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr(dir.string()),
+                      HasSubstr("in use by another adahrs process"),
+                      HasSubstr("(pid " + std::to_string(::getpid()) + ")")));
   }
   first.reset();
   EXPECT_NO_THROW(RunDirectoryLock again(dir));

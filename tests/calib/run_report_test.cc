@@ -23,17 +23,17 @@ namespace adahrs::calib {
 namespace {
 
 namespace fm = firmware_model;
-using ::testing::HasSubstr;
 using testing::FindAll;
 using testing::FindTag;
+using ::testing::HasSubstr;
 
 class RunReportTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = std::filesystem::temp_directory_path() / ("adahrs_report_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir_);
-    const auto params = std::vector<sensor_sim::ImuUnitParams>{sensor_sim::ImuUnitParams::Draw(
-        "IMU-0001", 2007, sensor_sim::ModelProfile::kNominal)};
+    const auto params = std::vector<sensor_sim::ImuUnitParams>{
+        sensor_sim::ImuUnitParams::Draw("IMU-0001", 2007, sensor_sim::ModelProfile::kNominal)};
     testing::ImuRecordingMaker maker(params, sensor_sim::NormalGravityMps2(32.6, 200.0), 5);
     maker.Run(testing::ShippedSequence("imu_sensor_calibration", 50), dir_ / "run");
     AddAdsRows(dir_ / "run");
@@ -47,9 +47,14 @@ class RunReportTest : public ::testing::Test {
   // fixture's own ISA (realistic_constants.h), codes synthesised from it.
   static void AddAdsRows(const std::filesystem::path& run) {
     nlohmann::json meta = nlohmann::json::parse(std::ifstream(run / "meta.json"));
-    meta["units"].push_back({{"role", "ads1"}, {"kind", "ads"}, {"serial", "ADS-0001"},
-                             {"serial_number", 1}, {"firmware", "1.0.0"}, {"slot", 1},
-                             {"constants_version", 0}, {"mode", 0}});
+    meta["units"].push_back({{"role", "ads1"},
+                             {"kind", "ads"},
+                             {"serial", "ADS-0001"},
+                             {"serial_number", 1},
+                             {"firmware", "1.0.0"},
+                             {"slot", 1},
+                             {"constants_version", 0},
+                             {"mode", 0}});
     // The maker's ads.csv holds only the header: write the ADS rows with a writer of their own and
     // put its ads.csv in place.
     const auto ads_dir = run.parent_path() / "ads_rows";
@@ -78,8 +83,8 @@ class RunReportTest : public ::testing::Test {
     }
     writer.WriteMeta(meta);
     writer.Flush(true);
-    std::filesystem::copy_file(ads_dir / "ads.csv", run / "ads.csv",
-                               std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(
+        ads_dir / "ads.csv", run / "ads.csv", std::filesystem::copy_options::overwrite_existing);
     std::ofstream(run / "meta.json") << meta.dump(2);
   }
 
@@ -96,11 +101,18 @@ class RunReportTest : public ::testing::Test {
     return f;
   }
   static fm::ImuCalibrationConstants Scaled(fm::ImuCalibrationConstants c) {
-    for (auto& t : c.thermal) for (double& k : t.k) k = 1e-3 * std::abs(k);
-    for (auto& a : c.accel) a = {1e-3 * std::abs(a.offset_duty), 1e-3 * std::abs(a.scale_duty_per_g)};
-    for (auto& g : c.gyro) { g.null_cnt = 0.5; for (double& l : g.l) l = 1e-3 * std::abs(l); }
-    for (auto& r : c.ca_mps2_per_g) for (double& v : r) v = 1e-3 * std::abs(v);
-    for (auto& r : c.cg) for (double& v : r) v = 1e-3 * std::abs(v);
+    for (auto& t : c.thermal)
+      for (double& k : t.k) k = 1e-3 * std::abs(k);
+    for (auto& a : c.accel)
+      a = {1e-3 * std::abs(a.offset_duty), 1e-3 * std::abs(a.scale_duty_per_g)};
+    for (auto& g : c.gyro) {
+      g.null_cnt = 0.5;
+      for (double& l : g.l) l = 1e-3 * std::abs(l);
+    }
+    for (auto& r : c.ca_mps2_per_g)
+      for (double& v : r) v = 1e-3 * std::abs(v);
+    for (auto& r : c.cg)
+      for (double& v : r) v = 1e-3 * std::abs(v);
     return c;
   }
   static ConstantsFile AdsConstants() {
@@ -141,9 +153,18 @@ class RunReportTest : public ::testing::Test {
 TEST_F(RunReportTest, SectionsFiguresAndConstantsMatchTheFiles) {
   const nlohmann::json html = Report(true);
   ASSERT_FALSE(html.is_null());
-  for (const char* id : {"summary", "IMU-0001", "IMU-0001-constants", "IMU-0001-thermal",
-                         "IMU-0001-six-position", "IMU-0001-gyro", "IMU-0001-cross-axis",
-                         "IMU-0001-noise", "ADS-0001", "ADS-0001-constants", "ADS-0001-error-map", "acceptance",
+  for (const char* id : {"summary",
+                         "IMU-0001",
+                         "IMU-0001-constants",
+                         "IMU-0001-thermal",
+                         "IMU-0001-six-position",
+                         "IMU-0001-gyro",
+                         "IMU-0001-cross-axis",
+                         "IMU-0001-noise",
+                         "ADS-0001",
+                         "ADS-0001-constants",
+                         "ADS-0001-error-map",
+                         "acceptance",
                          "evaluation"}) {
     SectionById(html, id);
   }
@@ -168,7 +189,8 @@ TEST_F(RunReportTest, SectionsFiguresAndConstantsMatchTheFiles) {
     ASSERT_TRUE(file.contains(path)) << path;
     const double expected = file[path].get<double>();
     // Printed to 10 significant digits.
-    EXPECT_NEAR(std::stod(cells[1]["text"].get<std::string>()), expected, 1e-9 * std::abs(expected)) << path;
+    EXPECT_NEAR(std::stod(cells[1]["text"].get<std::string>()), expected, 1e-9 * std::abs(expected))
+        << path;
     ++rows;
   }
   size_t numbers = 0;

@@ -10,8 +10,8 @@ namespace {
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-using ::testing::SizeIs;
 using testing::Joined;
+using ::testing::SizeIs;
 using testing::TempFile;
 
 // One step of every kind and every profile step type, with explicit and assigned TAGs.
@@ -25,10 +25,13 @@ Sequence EveryKind() {
   s.steps.push_back({std::nullopt, GyroStep{31, 500, -150.0, 150.0, 50.0, 100.0}});
   s.steps.push_back({200, TargetTemperatureStep{-20.5, 0.25, 1800.0}});
   s.steps.push_back({std::nullopt, CrossAxisStep{1000, 150.0, 100.0}});
-  s.steps.push_back(
-      {std::nullopt,
-       ThermalProfileStep{"IMU 1", {F4RampTime{-20.0, 3600.0}, F4RampRate{65.0, 1.5}, F4Soak{600.0},
-                                    F4Jump{1, 2}, F4End{F4EndAction::kIdle, 23.5}}}});
+  s.steps.push_back({std::nullopt,
+                     ThermalProfileStep{"IMU 1",
+                                        {F4RampTime{-20.0, 3600.0},
+                                         F4RampRate{65.0, 1.5},
+                                         F4Soak{600.0},
+                                         F4Jump{1, 2},
+                                         F4End{F4EndAction::kIdle, 23.5}}}});
   s.steps.push_back({std::nullopt, AltitudeStep{-1000.0, 3000.0}});
   s.steps.push_back({std::nullopt, AirspeedStep{60.0, 100.0}});
   s.steps.push_back({std::nullopt, LogStep{200, std::nullopt}});
@@ -73,11 +76,12 @@ TEST(SequenceJson, EveryStructuralProblemIsReportedWithPath) {
   const ParsedSequence parsed = ParseSequence(doc, "bad.json");
   const std::string text = Joined(parsed.problems, "bad.json");
   EXPECT_THAT(parsed.problems, SizeIs(5)) << text;
-  EXPECT_THAT(text, AllOf(HasSubstr("bad.json: $.colour: unknown key"),
-                          HasSubstr("bad.json: $.steps[1].rate_dps: unknown key"),
-                          HasSubstr("bad.json: $.steps[2].rate_increment_dps: missing key"),
-                          HasSubstr("$.steps[3].kind: unknown step kind \"spin\""),
-                          HasSubstr("$.steps[4]: a log step takes exactly one of packets")));
+  EXPECT_THAT(text,
+              AllOf(HasSubstr("bad.json: $.colour: unknown key"),
+                    HasSubstr("bad.json: $.steps[1].rate_dps: unknown key"),
+                    HasSubstr("bad.json: $.steps[2].rate_increment_dps: missing key"),
+                    HasSubstr("$.steps[3].kind: unknown step kind \"spin\""),
+                    HasSubstr("$.steps[4]: a log step takes exactly one of packets")));
   // The good step is kept, with its index in the file.
   ASSERT_THAT(parsed.sequence.steps, SizeIs(1));
   EXPECT_EQ(parsed.file_step_index[0], 0u);
@@ -92,10 +96,11 @@ TEST(SequenceJson, ProfileStepProblemsNameTheProfileStep) {
       {"type": "loop", "to_step": 1},
       {"type": "end", "action": "explode"}]}]})");
   const std::string text = Joined(ParseSequence(doc, "p.json").problems, "p.json");
-  EXPECT_THAT(text, AllOf(HasSubstr("$.steps[0].profile_steps[1].rate_c_per_min: missing key"),
-                          HasSubstr("$.steps[0].profile_steps[2].type: unknown profile step "
-                                    "type \"loop\""),
-                          HasSubstr("$.steps[0].profile_steps[3].action: unknown end action")));
+  EXPECT_THAT(text,
+              AllOf(HasSubstr("$.steps[0].profile_steps[1].rate_c_per_min: missing key"),
+                    HasSubstr("$.steps[0].profile_steps[2].type: unknown profile step "
+                              "type \"loop\""),
+                    HasSubstr("$.steps[0].profile_steps[3].action: unknown end action")));
 }
 
 TEST(SequenceJson, WrongFormatVersionAndNotJsonAreRefused) {

@@ -18,7 +18,9 @@ namespace adahrs::calib::testing {
 class TempFile {
  public:
   TempFile(const std::string& name, const std::string& text)
-      : path_((std::filesystem::temp_directory_path() / ("adahrs_seq_" + std::to_string(::getpid()) + "_" + name)).string()) {
+      : path_((std::filesystem::temp_directory_path() /
+               ("adahrs_seq_" + std::to_string(::getpid()) + "_" + name))
+                  .string()) {
     std::ofstream(path_) << text;
   }
   ~TempFile() { std::filesystem::remove(path_); }

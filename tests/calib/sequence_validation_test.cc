@@ -12,8 +12,8 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
-using ::testing::SizeIs;
 using testing::Joined;
+using ::testing::SizeIs;
 using testing::TempFile;
 
 Sequence Imu(std::vector<Step> steps) {
@@ -47,9 +47,12 @@ TEST(SequenceValidation, ValidStepsOfEveryKindPass) {
                             {std::nullopt, AccelStep{12, 100}},
                             {std::nullopt, GyroStep{21, 100, -150.0, 150.0, 50.0, 100.0}},
                             {std::nullopt, CrossAxisStep{100, 150.0, 100.0}},
-                            {std::nullopt, Profile({F4RampRate{-40.0, 2.0}, F4Soak{60.0},
-                                                    F4RampTime{85.0, 7500.0}, F4Jump{1, 3},
-                                                    F4End{}})}});
+                            {std::nullopt,
+                             Profile({F4RampRate{-40.0, 2.0},
+                                      F4Soak{60.0},
+                                      F4RampTime{85.0, 7500.0},
+                                      F4Jump{1, 3},
+                                      F4End{}})}});
   EXPECT_THAT(ValidateSequence(imu, {}), IsEmpty()) << Joined(ValidateSequence(imu, {}), "imu");
   const Sequence ads = Ads({{std::nullopt, AltitudeStep{-1000.0, 3000.0}},
                             {std::nullopt, LogStep{100, std::nullopt}},
@@ -72,8 +75,8 @@ TEST(SequenceValidation, RateBeyondTableLimitNamesTheTable) {
   SequenceLimits limits;
   limits.table_name = "rate table (Aero 812)";
   limits.table_max_rate_dps = 100.0;
-  const SequenceProblem p = OnlyProblem(Imu({{std::nullopt, CrossAxisStep{10, 150.0, 100.0}}}),
-                                        limits);
+  const SequenceProblem p =
+      OnlyProblem(Imu({{std::nullopt, CrossAxisStep{10, 150.0, 100.0}}}), limits);
   EXPECT_EQ(p.path, "$.steps[0].rate_dps");
   EXPECT_EQ(p.limit, "rate table (Aero 812) ±100 deg/s");
 }
@@ -104,14 +107,15 @@ TEST(SequenceValidation, GyroRatesMustBeWholeStepsOfTheTable) {
   const SequenceProblem p =
       OnlyProblem(Imu({{std::nullopt, GyroStep{11, 100, -125.0, 125.0, 62.5, 100.0}}}));
   EXPECT_EQ(p.path, "$.steps[0].rate_increment_dps");
-  EXPECT_THAT(p.rule, HasSubstr("62.5 deg/s is not a multiple of the rate table's rate resolution"));
+  EXPECT_THAT(p.rule,
+              HasSubstr("62.5 deg/s is not a multiple of the rate table's rate resolution"));
   EXPECT_EQ(p.limit, "rate table commands rates in steps of 1 deg/s");
-  const SequenceProblem cross =
-      OnlyProblem(Imu({{std::nullopt, CrossAxisStep{10, 100.5, 100.0}}}));
+  const SequenceProblem cross = OnlyProblem(Imu({{std::nullopt, CrossAxisStep{10, 100.5, 100.0}}}));
   EXPECT_EQ(cross.path, "$.steps[0].rate_dps");
   // An increment below the table's step passed the multiple-of-resolution test (1e-9 is 0 steps
   // to within 1e-9) and expanded into 3e11 rates.
-  const SequenceProblem tiny = OnlyProblem(Imu({{std::nullopt, GyroStep{11, 100, -150.0, 150.0, 1e-9, 100.0}}}));
+  const SequenceProblem tiny =
+      OnlyProblem(Imu({{std::nullopt, GyroStep{11, 100, -150.0, 150.0, 1e-9, 100.0}}}));
   EXPECT_EQ(tiny.path, "$.steps[0].rate_increment_dps");
   EXPECT_THAT(tiny.rule, HasSubstr("below the rate table's rate resolution"));
   SequenceLimits fine_table;
@@ -170,8 +174,8 @@ TEST(SequenceValidation, AirspeedBeyondUnitAndPitotLimit) {
 }
 
 TEST(SequenceValidation, DuplicateTagsRefused) {
-  const Sequence s = Imu({{5, AccelStep{11, 10}}, {std::nullopt, AccelStep{12, 10}},
-                          {5, AccelStep{21, 10}}});
+  const Sequence s =
+      Imu({{5, AccelStep{11, 10}}, {std::nullopt, AccelStep{12, 10}}, {5, AccelStep{21, 10}}});
   const SequenceProblem p = OnlyProblem(s);
   EXPECT_EQ(p.path, "$.steps[2].tag");
   EXPECT_EQ(p.rule, "TAG 5 already used by $.steps[0]");
@@ -179,8 +183,8 @@ TEST(SequenceValidation, DuplicateTagsRefused) {
 }
 
 // More steps than TAGs: the unstated ones start over after 255, skipping stated ones, and no two
-// consecutive steps share a TAG; with a single TAG left to assign two adjacent unstated steps would,
-// and the sequence is refused naming the step.
+// consecutive steps share a TAG; with a single TAG left to assign two adjacent unstated steps
+// would, and the sequence is refused naming the step.
 TEST(SequenceValidation, TagsStartOverBeyond255StepsButNeverRepeatBackToBack) {
   std::vector<Step> steps;
   steps.push_back({7, AccelStep{11, 10}});
@@ -227,20 +231,21 @@ TEST(SequenceValidation, ProfileJumpCountOutOfRangeRefused) {
 
 TEST(SequenceValidation, ProfileShapeRules) {
   // No end step; jump onto a jump; bad name; too fast a ramp (25 → 85 °C in 10 min = 6 °C/min).
-  const Sequence s = Imu({{std::nullopt, TargetTemperatureStep{25.0, 1.0, 0.0}},
-                          {std::nullopt, ThermalProfileStep{"cal-1", {F4RampTime{85.0, 600.0},
-                                                                      F4Jump{1, 1},
-                                                                      F4Jump{2, 1}}}}});
+  const Sequence s =
+      Imu({{std::nullopt, TargetTemperatureStep{25.0, 1.0, 0.0}},
+           {std::nullopt,
+            ThermalProfileStep{"cal-1", {F4RampTime{85.0, 600.0}, F4Jump{1, 1}, F4Jump{2, 1}}}}});
   const std::vector<SequenceProblem> problems = ValidateSequence(s, {});
   const std::string text = Joined(problems, "seq.json");
   EXPECT_THAT(problems, SizeIs(4)) << text;
-  EXPECT_THAT(text, AllOf(HasSubstr("$.steps[1].profile_name: profile name \"cal-1\""),
-                          HasSubstr("$.steps[1].profile_steps[2]: the last profile step must be "
-                                    "an end step"),
-                          HasSubstr("$.steps[1].profile_steps[2].to_step: jump to step 2, a jump "
-                                    "step"),
-                          HasSubstr("$.steps[1].profile_steps[0].duration_s: ramp from 25 to 85 "
-                                    "degC in 600 s is 6 degC/min")));
+  EXPECT_THAT(text,
+              AllOf(HasSubstr("$.steps[1].profile_name: profile name \"cal-1\""),
+                    HasSubstr("$.steps[1].profile_steps[2]: the last profile step must be "
+                              "an end step"),
+                    HasSubstr("$.steps[1].profile_steps[2].to_step: jump to step 2, a jump "
+                              "step"),
+                    HasSubstr("$.steps[1].profile_steps[0].duration_s: ramp from 25 to 85 "
+                              "degC in 600 s is 6 degC/min")));
 }
 
 TEST(SequenceValidation, ProfileLongerThanTheChamberHoldsRefused) {
@@ -256,8 +261,8 @@ TEST(SequenceValidation, ProfileLongerThanTheChamberHoldsRefused) {
 }
 
 TEST(SequenceValidation, AdsThermalProfileRefusedSinceThe942DriverRunsSetPointsOnly) {
-  const SequenceProblem p = OnlyProblem(
-      Ads({{std::nullopt, Profile({F4RampRate{-40.0, 2.0}, F4Soak{60.0}, F4End{}})}}));
+  const SequenceProblem p =
+      OnlyProblem(Ads({{std::nullopt, Profile({F4RampRate{-40.0, 2.0}, F4Soak{60.0}, F4End{}})}}));
   EXPECT_EQ(p.path, "$.steps[0].kind");
   EXPECT_THAT(p.rule, HasSubstr("chamber (Watlow 942) runs set points only"));
   EXPECT_EQ(p.limit, "chamber (Watlow 942) driver: set points only");
@@ -282,13 +287,16 @@ TEST(SequenceValidation, EveryProblemReportedAtOnce) {
   // orientation, packets; rate_min and rate_max beyond the gyro range; temperature beyond unit
   // and chamber, band, soak; prompt text.
   EXPECT_THAT(ValidateSequence(s, {}), SizeIs(9)) << text;
-  EXPECT_THAT(text, AllOf(HasSubstr("$.steps[0].orientation: orientation 13 is not"),
-                          HasSubstr("$.steps[0].packets: packets must be 1…8640000, got 0"),
-                          HasSubstr("$.steps[1].rate_min_dps"), HasSubstr("$.steps[1].rate_max_dps"),
-                          HasSubstr("(limit: unit rating -40…85 degC)"),
-                          HasSubstr("(limit: chamber (Watlow F4) -70…180 degC)"),
-                          HasSubstr("$.steps[2].band_c"), HasSubstr("$.steps[2].soak_s"),
-                          HasSubstr("$.steps[3].text")));
+  EXPECT_THAT(text,
+              AllOf(HasSubstr("$.steps[0].orientation: orientation 13 is not"),
+                    HasSubstr("$.steps[0].packets: packets must be 1…8640000, got 0"),
+                    HasSubstr("$.steps[1].rate_min_dps"),
+                    HasSubstr("$.steps[1].rate_max_dps"),
+                    HasSubstr("(limit: unit rating -40…85 degC)"),
+                    HasSubstr("(limit: chamber (Watlow F4) -70…180 degC)"),
+                    HasSubstr("$.steps[2].band_c"),
+                    HasSubstr("$.steps[2].soak_s"),
+                    HasSubstr("$.steps[3].text")));
 }
 
 TEST(SequenceValidation, FileCheckReportsStructureAndLimitsTogether) {
@@ -302,9 +310,10 @@ TEST(SequenceValidation, FileCheckReportsStructureAndLimitsTogether) {
   const std::vector<SequenceProblem> problems = CheckSequenceFile(file.path(), {});
   const std::string text = Joined(problems, file.path());
   EXPECT_THAT(problems, SizeIs(3)) << text;
-  EXPECT_THAT(text, AllOf(HasSubstr(file.path() + ": $.steps[0].packet: unknown key"),
-                          HasSubstr(file.path() + ": $.steps[1].rate_min_dps: rate -160 deg/s"),
-                          HasSubstr(file.path() + ": $.steps[1].rate_max_dps: rate 160 deg/s")));
+  EXPECT_THAT(text,
+              AllOf(HasSubstr(file.path() + ": $.steps[0].packet: unknown key"),
+                    HasSubstr(file.path() + ": $.steps[1].rate_min_dps: rate -160 deg/s"),
+                    HasSubstr(file.path() + ": $.steps[1].rate_max_dps: rate 160 deg/s")));
   try {
     LoadValidSequence(file.path(), {});
     FAIL() << "no exception";

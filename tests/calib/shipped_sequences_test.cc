@@ -1,9 +1,9 @@
 // Every shipped reference sequence (calib/sequences/*.json) loads and validates against the
 // reference hardware's limits, and holds what reference-method.md says it must.
-#include "adahrs_build_paths.h"
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include "adahrs_build_paths.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -31,11 +31,16 @@ TEST(ShippedSequences, EveryFileLoadsValidatesAndExpands) {
     EXPECT_GT(plan.duration_estimate_s, 0.0);
     names.insert(s.name);
   }
-  EXPECT_EQ(names, (std::set<std::string>{"ads_acceptance", "ads_burn_in", "ads_calibration",
-                                          "imu_acceptance", "imu_burn_in",
-                                          "imu_sensor_calibration", "imu_thermal_calibration_full",
-                                          "imu_thermal_sensor_calibration",
-                                          "imu_thermal_calibration_trial"}));
+  EXPECT_EQ(names,
+            (std::set<std::string>{"ads_acceptance",
+                                   "ads_burn_in",
+                                   "ads_calibration",
+                                   "imu_acceptance",
+                                   "imu_burn_in",
+                                   "imu_sensor_calibration",
+                                   "imu_thermal_calibration_full",
+                                   "imu_thermal_sensor_calibration",
+                                   "imu_thermal_calibration_trial"}));
 }
 
 TEST(ShippedSequences, SensorCalibrationHasSixOrientationsSevenRatesPerAxisAndCrossAxis) {
@@ -44,7 +49,8 @@ TEST(ShippedSequences, SensorCalibrationHasSixOrientationsSevenRatesPerAxisAndCr
   std::vector<int> gyro_orientations;
   int cross_axis_steps = 0;
   for (const Step& step : s.steps) {
-    if (const auto* a = std::get_if<AccelStep>(&step.body)) accel_orientations.push_back(a->orientation);
+    if (const auto* a = std::get_if<AccelStep>(&step.body))
+      accel_orientations.push_back(a->orientation);
     if (const auto* g = std::get_if<GyroStep>(&step.body)) {
       gyro_orientations.push_back(g->orientation);
       EXPECT_THAT(GyroRates_dps(*g), ElementsAre(-150.0, -100.0, -50.0, 0.0, 50.0, 100.0, 150.0));

@@ -48,8 +48,7 @@ TEST(SixPositionFit, RecoversOffsetAndScaleInStandardG) {
     // se(O) = sqrt(se+^2 + se-^2) / 2 with equal se: se / sqrt(2); se(S) = that / g_l.
     const double se = 2e-6 * (1 + ch);
     EXPECT_NEAR(fit[ch].offset_se_duty, se / std::sqrt(2.0), 1e-18) << ch;
-    EXPECT_NEAR(fit[ch].scale_se_duty_per_g, se / std::sqrt(2.0) / (kGLocal_mps2 / 9.80665),
-                1e-18);
+    EXPECT_NEAR(fit[ch].scale_se_duty_per_g, se / std::sqrt(2.0) / (kGLocal_mps2 / 9.80665), 1e-18);
   }
 }
 

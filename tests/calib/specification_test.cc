@@ -44,7 +44,8 @@ TEST(Specification, OutsideTheOperatingLimitsThereIsNoTolerance) {
     s.altitude_ft.At(51000.0);
     FAIL();
   } catch (const std::out_of_range& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("altitude 51000 ft is outside the operating limits"));
+    EXPECT_THAT(e.what(),
+                ::testing::HasSubstr("altitude 51000 ft is outside the operating limits"));
   }
   EXPECT_THROW(s.airspeed_kt.At(20.0), std::out_of_range);
   EXPECT_THROW(s.altitude_ft.At(-1500.0), std::out_of_range);
@@ -54,7 +55,8 @@ TEST(Specification, JsonCarriesTheTablesAndTheRule) {
   const nlohmann::json j = Specification::Reference().ToJson();
   EXPECT_EQ(j["altitude_ft"]["points"].size(), 4u);
   EXPECT_EQ(j["airspeed_kt"]["points"][1][1], 2.0);
-  EXPECT_THAT(j["altitude_ft"]["interpolation"].get<std::string>(), ::testing::HasSubstr("assumption"));
+  EXPECT_THAT(j["altitude_ft"]["interpolation"].get<std::string>(),
+              ::testing::HasSubstr("assumption"));
 }
 
 // The ADS evaluation keeps its own copy of the tolerance points (with extra report points); both

@@ -16,8 +16,8 @@ namespace adahrs::calib {
 namespace {
 
 using ::testing::ElementsAre;
-using ::testing::HasSubstr;
 using testing::FindTag;
+using ::testing::HasSubstr;
 using testing::ParseXmlTree;
 
 // True if `step` is 1, 2 or 5 times a power of ten (to 1e-9 relative).
@@ -28,9 +28,16 @@ bool IsNiceStep(double step) {
 }
 
 TEST(NiceTicksTest, CoversTheRangeWithNiceStepsOnMultiplesOfTheStep) {
-  struct Case { double lo, hi; };
-  for (const Case c : {Case{0.0, 1.0}, Case{-3.7, 12.1}, Case{-40.0, 85.0}, Case{4.7e-5, 4.9e-5},
-                       Case{-1000.0, 50000.0}, Case{-0.0123, 0.0071}, Case{3.0, 3.0}}) {
+  struct Case {
+    double lo, hi;
+  };
+  for (const Case c : {Case{0.0, 1.0},
+                       Case{-3.7, 12.1},
+                       Case{-40.0, 85.0},
+                       Case{4.7e-5, 4.9e-5},
+                       Case{-1000.0, 50000.0},
+                       Case{-0.0123, 0.0071},
+                       Case{3.0, 3.0}}) {
     const AxisTicks t = NiceTicks(c.lo, c.hi, 8);
     EXPECT_LE(t.lo, c.lo) << c.lo;
     EXPECT_GE(t.hi, c.hi) << c.hi;
@@ -88,13 +95,14 @@ TEST_F(SvgPlotTest, PointsLandOnTheirTicksAndLabelsLegendAndTitleAreThere) {
   plot.x_label = "temperature (counts)";
   plot.y_label = "drift (counts)";
   // x and y at values that are ticks of their axes: [0, 100] -> step 20, [-10, 30] -> step 10.
-  plot.series.push_back({"measured", {0.0, 20.0, 100.0}, {-10.0, 30.0, 0.0},
-                         PlotSeries::Style::kLine});
+  plot.series.push_back(
+      {"measured", {0.0, 20.0, 100.0}, {-10.0, 30.0, 0.0}, PlotSeries::Style::kLine});
   plot.series.push_back({"fit", {40.0, NAN, 60.0}, {10.0, 0.0, 20.0}, PlotSeries::Style::kPoints});
   const nlohmann::json svg = RenderAndParse(plot);
   ASSERT_FALSE(svg.is_null());
   EXPECT_EQ(svg["tag"], "svg");
-  EXPECT_EQ(FindTag(svg, "title")[0]["text"], plot.title);  // escaped in the file, intact when parsed
+  EXPECT_EQ(FindTag(svg, "title")[0]["text"],
+            plot.title);  // escaped in the file, intact when parsed
   std::map<double, double> x_px, y_px;
   for (const auto& tick : FindTag(svg, "line", "xtick")) {
     x_px[std::stod(tick["attrib"]["data-value"].get<std::string>())] =
@@ -132,8 +140,8 @@ TEST_F(SvgPlotTest, PointsLandOnTheirTicksAndLabelsLegendAndTitleAreThere) {
 TEST_F(SvgPlotTest, LogAxesPutTicksOnDecadesAndPointsByTheirLogarithm) {
   Plot plot{"Allan deviation", "cluster time tau (s)", "Allan deviation (deg/s)", {}, {}};
   plot.log_x = plot.log_y = true;
-  plot.series.push_back({"G x", {0.01, 0.1, 1.0, 10.0, 0.0}, {0.5, 0.2, 0.05, 0.02, 1.0},
-                         PlotSeries::Style::kLine});
+  plot.series.push_back(
+      {"G x", {0.01, 0.1, 1.0, 10.0, 0.0}, {0.5, 0.2, 0.05, 0.02, 1.0}, PlotSeries::Style::kLine});
   const nlohmann::json svg = RenderAndParse(plot);
   ASSERT_FALSE(svg.is_null());
   std::map<double, double> x_px;

@@ -19,8 +19,13 @@ using ::testing::HasSubstr;
 constexpr double kK0 = -1.2e6, kK1 = 770.0, kK2 = -0.0089;  // magnitudes of Table 13's gx
 double Quadratic(double t) { return kK0 + kK1 * t + kK2 * t * t; }
 
-std::vector<ThermalSample> Ramp(double t0, double t1, int n, ThermalSegment segment,
-                                common::Rng& rng, double noise, double (*f)(double)) {
+std::vector<ThermalSample> Ramp(double t0,
+                                double t1,
+                                int n,
+                                ThermalSegment segment,
+                                common::Rng& rng,
+                                double noise,
+                                double (*f)(double)) {
   std::vector<ThermalSample> out;
   for (int i = 0; i < n; ++i) {
     const double t = t0 + (t1 - t0) * i / (n - 1);
@@ -47,8 +52,9 @@ TEST(ThermalDriftFit, RecoversQuadraticWithinStandardErrors) {
   EXPECT_LT(r.all.DriftStandardError(32768), 360.0);
   ASSERT_TRUE(r.up && r.down) << r.ramp_note;
   // No hysteresis in the data: the up/down gap is noise, within 4 se of each curve's difference.
-  EXPECT_LT(r.hysteresis, 4.0 * std::hypot(r.up->DriftStandardError(r.hysteresis_at_temp_cnt),
-                                           r.down->DriftStandardError(r.hysteresis_at_temp_cnt)));
+  EXPECT_LT(r.hysteresis,
+            4.0 * std::hypot(r.up->DriftStandardError(r.hysteresis_at_temp_cnt),
+                             r.down->DriftStandardError(r.hysteresis_at_temp_cnt)));
 }
 
 double Cubic(double t) {
@@ -106,10 +112,11 @@ TEST(ThermalDriftFit, RefusesTooFewTemperatures) {
     const auto soak = Ramp(t, t + 20, 100, ThermalSegment::kSoak, rng, 10.0, Quadratic);
     samples.insert(samples.end(), soak.begin(), soak.end());
   }
-  EXPECT_THAT([&] { FitThermalDrift("ax2", samples); },
-              ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr(
-                  "thermal fit of ax2 (all samples): design refused: the samples cover 3 "
-                  "temperature band(s) of 110 counts, at least 4 are needed (too few temperatures)")));
+  EXPECT_THAT(
+      [&] { FitThermalDrift("ax2", samples); },
+      ::testing::ThrowsMessage<DegenerateDesignError>(HasSubstr(
+          "thermal fit of ax2 (all samples): design refused: the samples cover 3 "
+          "temperature band(s) of 110 counts, at least 4 are needed (too few temperatures)")));
 }
 
 TEST(ThermalDriftFit, MissingRampDirectionIsReportedNotRefused) {
@@ -118,8 +125,9 @@ TEST(ThermalDriftFit, MissingRampDirectionIsReportedNotRefused) {
   const ThermalDriftResult r = FitThermalDrift("gz", samples);
   EXPECT_TRUE(r.up.has_value());
   EXPECT_FALSE(r.down.has_value());
-  EXPECT_THAT(r.ramp_note, HasSubstr("thermal fit of gz (down-ramps): design refused: the samples "
-                                     "cover 0 temperature band(s)"));
+  EXPECT_THAT(r.ramp_note,
+              HasSubstr("thermal fit of gz (down-ramps): design refused: the samples "
+                        "cover 0 temperature band(s)"));
   EXPECT_EQ(r.hysteresis, 0.0);
 }
 

@@ -25,8 +25,10 @@ using NominalImuBatch = std::function<void(const std::vector<sensor_sim::ImuUnit
                                            const std::filesystem::path& thermal_run,
                                            const std::filesystem::path& sensor_run)>;
 
-inline void ForEachNominalImuBatch(const std::filesystem::path& base, double g_local_mps2,
-                                   sensor_sim::TruthVariant variant, const NominalImuBatch& on_batch) {
+inline void ForEachNominalImuBatch(const std::filesystem::path& base,
+                                   double g_local_mps2,
+                                   sensor_sim::TruthVariant variant,
+                                   const NominalImuBatch& on_batch) {
   MakerOptions maker_options;
   maker_options.thermal_speedup = 60.0;
   for (int batch = 0; batch < 5; ++batch) {
@@ -34,7 +36,8 @@ inline void ForEachNominalImuBatch(const std::filesystem::path& base, double g_l
     for (int i = 0; i < 4; ++i) {
       const int n = 4 * batch + i + 1;
       params.push_back(sensor_sim::ImuUnitParams::Draw(
-          "IMU-" + std::string(n < 10 ? "000" : "00") + std::to_string(n), 500 + n,
+          "IMU-" + std::string(n < 10 ? "000" : "00") + std::to_string(n),
+          500 + n,
           sensor_sim::ModelProfile::kNominal));
       params.back().ApplyVariant(variant);
     }
@@ -55,7 +58,8 @@ inline double GyroErrorOverCrb(const ImuEvaluation& e) {
   for (const auto& p : e.report["parameters"]) {
     const std::string name = p["name"];
     const bool gyro = name.rfind("thermal[6]", 0) == 0 || name.rfind("thermal[7]", 0) == 0 ||
-                      name.rfind("thermal[8]", 0) == 0 || name.find("null_cnt") != std::string::npos;
+                      name.rfind("thermal[8]", 0) == 0 ||
+                      name.find("null_cnt") != std::string::npos;
     if (!gyro || !p.contains("error_over_crb")) continue;
     sum += std::pow(p["error_over_crb"].get<double>(), 2);
     ++n;

@@ -18,7 +18,8 @@ TEST(UnitHysteresisOperator, FollowsTheUnitsFixedPointOperator) {
   constexpr int kExponent = 18;  // inputs below 2^17 Pa
   int e = 0;
   const double m = std::frexp(1.0 / kSpanPa, &e);
-  const firmware_model::CoeffQ31 inv_span{static_cast<int32_t>(std::lround(std::ldexp(m, 31) - 1.0)), static_cast<int8_t>(e)};
+  const firmware_model::CoeffQ31 inv_span{
+      static_cast<int32_t>(std::lround(std::ldexp(m, 31) - 1.0)), static_cast<int8_t>(e)};
   firmware_model::PreisachQ15 unit;
   firmware_model::PreisachResetQ15(&unit);
   UnitHysteresisOperator calib(kSpanPa);
@@ -29,7 +30,8 @@ TEST(UnitHysteresisOperator, FollowsTheUnitsFixedPointOperator) {
     p = std::clamp(p + step(rng) * (i % 50 < 25 ? 1.0 : 0.05), 10000.0, 110000.0);
     const int32_t mantissa = static_cast<int32_t>(std::lround(std::ldexp(p, 31 - kExponent)));
     firmware_model::DspEngine engine;
-    const double s_unit = std::ldexp(firmware_model::PreisachUpdateQ15(&engine, &unit, mantissa, kExponent, inv_span), -15);
+    const double s_unit = std::ldexp(
+        firmware_model::PreisachUpdateQ15(&engine, &unit, mantissa, kExponent, inv_span), -15);
     const double s_calib = calib.Update(std::ldexp(static_cast<double>(mantissa), kExponent - 31));
     worst = std::max(worst, std::abs(s_unit - s_calib));
   }

@@ -2,12 +2,12 @@
 // parser) and returns its element tree as JSON, plus small search helpers.
 #pragma once
 
-#include "adahrs_build_paths.h"
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
+#include "adahrs_build_paths.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -29,8 +29,8 @@ inline nlohmann::json ParseXmlTree(const std::filesystem::path& file) {
 }
 
 /// Every element below (and including) `tree` for which `match` holds, in document order.
-inline std::vector<nlohmann::json> FindAll(const nlohmann::json& tree,
-                                           const std::function<bool(const nlohmann::json&)>& match) {
+inline std::vector<nlohmann::json> FindAll(
+    const nlohmann::json& tree, const std::function<bool(const nlohmann::json&)>& match) {
   std::vector<nlohmann::json> found;
   std::function<void(const nlohmann::json&)> walk = [&](const nlohmann::json& node) {
     if (match(node)) found.push_back(node);
@@ -41,11 +41,12 @@ inline std::vector<nlohmann::json> FindAll(const nlohmann::json& tree,
 }
 
 /// Elements with tag `tag` and (if given) attribute class == `css_class`.
-inline std::vector<nlohmann::json> FindTag(const nlohmann::json& tree, const std::string& tag,
+inline std::vector<nlohmann::json> FindTag(const nlohmann::json& tree,
+                                           const std::string& tag,
                                            const std::string& css_class = "") {
   return FindAll(tree, [&](const nlohmann::json& n) {
-    return n["tag"] == tag &&
-           (css_class.empty() || (n["attrib"].contains("class") && n["attrib"]["class"] == css_class));
+    return n["tag"] == tag && (css_class.empty() || (n["attrib"].contains("class") &&
+                                                     n["attrib"]["class"] == css_class));
   });
 }
 

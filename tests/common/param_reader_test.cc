@@ -36,8 +36,9 @@ TEST(ParamReader, ReadsValuesInRange) {
 TEST(ParamReader, MissingKeyNamesFileAndPath) {
   const auto j = nlohmann::json::parse(R"({"a": {}})");
   ParamReader r(j, "unit.json");
-  EXPECT_THAT(ErrorOf([&] { r.Child("a").Number("gain_mv_per_dps", 10, 15, "mV"); }),
-              AllOf(HasSubstr("unit.json"), HasSubstr("$.a.gain_mv_per_dps"), HasSubstr("missing")));
+  EXPECT_THAT(
+      ErrorOf([&] { r.Child("a").Number("gain_mv_per_dps", 10, 15, "mV"); }),
+      AllOf(HasSubstr("unit.json"), HasSubstr("$.a.gain_mv_per_dps"), HasSubstr("missing")));
 }
 
 TEST(ParamReader, OutOfRangeNamesAllowedRange) {
@@ -90,7 +91,8 @@ TEST(ParamReader, WrongTypeIsRefused) {
 // A number beyond double's range is a parse failure of the file, named as such (it escaped as
 // a bare "[json.exception.out_of_range.406]").
 TEST(ParamReader, NumberBeyondDoubleRangeNamesTheFile) {
-  const std::string path = (std::filesystem::temp_directory_path() / "adahrs_param_reader_1e400.json").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "adahrs_param_reader_1e400.json").string();
   std::ofstream(path) << R"({"x": 1e400})";
   EXPECT_THAT(ErrorOf([&] { ParamReader::LoadFile(path); }),
               AllOf(HasSubstr(path + ": not valid JSON"), HasSubstr("1e400")));

@@ -43,9 +43,9 @@ TEST(Rng, NormalMomentsAndTails) {
     beyond4 += std::abs(x) > 4.0;
   }
   const double mean = sum / n, var = sum2 / n - mean * mean;
-  EXPECT_NEAR(mean, 0.0, 5.0 / std::sqrt(n));                     // 5 sigma of the mean
-  EXPECT_NEAR(var, 1.0, 5.0 * std::sqrt(2.0 / n));                // 5 sigma of the variance
-  EXPECT_NEAR(sum4 / n, 3.0, 5.0 * std::sqrt(96.0 / n));          // kurtosis, var(x^4) = 96
+  EXPECT_NEAR(mean, 0.0, 5.0 / std::sqrt(n));             // 5 sigma of the mean
+  EXPECT_NEAR(var, 1.0, 5.0 * std::sqrt(2.0 / n));        // 5 sigma of the variance
+  EXPECT_NEAR(sum4 / n, 3.0, 5.0 * std::sqrt(96.0 / n));  // kurtosis, var(x^4) = 96
   // Tail masses: P(|z| > 3) = 2.6998e-3, P(|z| > 4) = 6.3342e-5; 5-sigma binomial bounds.
   const double p3 = 2.6998e-3, p4 = 6.3342e-5;
   EXPECT_NEAR(beyond3, p3 * n, 5 * std::sqrt(p3 * n));

@@ -1,8 +1,8 @@
 // The ADS firmware's air-data laws (target/air_data_law.h) against independent truth: the
 // published ISA pressures (US Standard Atmosphere 1976 / ICAO) and sensor_sim's own atmosphere and
 // airspeed formulas, over the whole envelope; the compiled ROM tables against their generator.
-#include "adahrs_build_paths.h"
 #include "firmware_model/target/air_data_law.h"
+#include "adahrs_build_paths.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,7 +24,9 @@
 namespace adahrs::firmware_model {
 namespace {
 
-int32_t PressureQ31(double pa) { return static_cast<int32_t>(std::llround(std::ldexp(pa, 31 - kPressureExponent))); }
+int32_t PressureQ31(double pa) {
+  return static_cast<int32_t>(std::llround(std::ldexp(pa, 31 - kPressureExponent)));
+}
 
 double AltitudeFt(double ps_pa, uint16_t* flags) {
   DspEngine engine(CompensatorDspConfig());
@@ -34,7 +36,8 @@ double AltitudeFt(double ps_pa, uint16_t* flags) {
 
 double AirspeedKt(double qc_pa, uint16_t* flags) {
   DspEngine engine(CompensatorDspConfig());
-  return std::ldexp(static_cast<double>(CasQ31(&engine, PressureQ31(qc_pa), flags)), kAirspeedExponent - 31);
+  return std::ldexp(static_cast<double>(CasQ31(&engine, PressureQ31(qc_pa), flags)),
+                    kAirspeedExponent - 31);
 }
 
 TEST(AirDataTables, CompiledTablesAreTheGeneratorsOutput) {
@@ -43,8 +46,10 @@ TEST(AirDataTables, CompiledTablesAreTheGeneratorsOutput) {
         << AirDataTablesSource();
   }
   const std::vector<int32_t> isa = IsaAltitudeTable(), cas = CasSquaredTable();
-  for (size_t k = 0; k < isa.size(); ++k) ASSERT_EQ(kIsaAltitudeTableQ31[k], isa[k]) << "ISA entry " << k;
-  for (size_t k = 0; k < cas.size(); ++k) ASSERT_EQ(kCasSquaredTableQ31[k], cas[k]) << "CAS entry " << k;
+  for (size_t k = 0; k < isa.size(); ++k)
+    ASSERT_EQ(kIsaAltitudeTableQ31[k], isa[k]) << "ISA entry " << k;
+  for (size_t k = 0; k < cas.size(); ++k)
+    ASSERT_EQ(kCasSquaredTableQ31[k], cas[k]) << "CAS entry " << k;
   std::ifstream file(std::string(ADAHRS_SOURCE_DIR) + "/firmware_model/target/air_data_tables.cc");
   std::stringstream text;
   text << file.rdbuf();
@@ -54,13 +59,20 @@ TEST(AirDataTables, CompiledTablesAreTheGeneratorsOutput) {
 // Published ISA static pressure (hPa, to 0.01 hPa) at pressure altitudes; the tolerance is the
 // rounding of the published figure (0.005 hPa) through the local slope, plus 0.5 ft.
 TEST(AirDataLaw, IsaAltitudeMatchesThePublishedTable) {
-  const std::pair<double, double> kTable[] = {{0.0, 1013.25},     {5000.0, 843.07},  {10000.0, 696.82},
-                                              {20000.0, 465.63},  {30000.0, 300.90}, {36089.0, 226.32},
-                                              {40000.0, 187.54},  {50000.0, 115.97}};
+  const std::pair<double, double> kTable[] = {{0.0, 1013.25},
+                                              {5000.0, 843.07},
+                                              {10000.0, 696.82},
+                                              {20000.0, 465.63},
+                                              {30000.0, 300.90},
+                                              {36089.0, 226.32},
+                                              {40000.0, 187.54},
+                                              {50000.0, 115.97}};
   for (const auto& [alt_ft, hpa] : kTable) {
     uint16_t flags = 0;
-    const double slope_ft_per_pa = AltitudeFt(hpa * 100.0 - 1.0, &flags) - AltitudeFt(hpa * 100.0, &flags);
-    EXPECT_NEAR(AltitudeFt(hpa * 100.0, &flags), alt_ft, 0.5 + 0.5 * std::abs(slope_ft_per_pa)) << hpa << " hPa";
+    const double slope_ft_per_pa =
+        AltitudeFt(hpa * 100.0 - 1.0, &flags) - AltitudeFt(hpa * 100.0, &flags);
+    EXPECT_NEAR(AltitudeFt(hpa * 100.0, &flags), alt_ft, 0.5 + 0.5 * std::abs(slope_ft_per_pa))
+        << hpa << " hPa";
     EXPECT_EQ(flags, 0) << hpa << " hPa";
   }
 }
@@ -129,7 +141,8 @@ TEST(AirDataLaw, CyclesPerLaw) {
   IsaAltitudeQ31(&engine, PressureQ31(50000.0), &flags);
   const uint32_t isa_cycles = engine.cycles();
   CasQ31(&engine, PressureQ31(20000.0), &flags);
-  std::printf("ISA altitude law %u cycles, CAS law %u cycles\n", isa_cycles, engine.cycles() - isa_cycles);
+  std::printf(
+      "ISA altitude law %u cycles, CAS law %u cycles\n", isa_cycles, engine.cycles() - isa_cycles);
   EXPECT_LT(engine.cycles(), 600u);  // a few percent of the surface's cost budget per frame
 }
 

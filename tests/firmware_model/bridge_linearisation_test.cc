@@ -30,7 +30,8 @@ struct Sweep {
 // Every 1,001st code of [origin - half, origin + half] through the target.
 Sweep SweepBox(const BridgeLinearisationQ& q, double half) {
   Sweep out;
-  const long double kappa = std::ldexp(static_cast<long double>(q.curvature_q13), -13 - q.raw_norm.shift);
+  const long double kappa =
+      std::ldexp(static_cast<long double>(q.curvature_q13), -13 - q.raw_norm.shift);
   for (double y = q.raw_norm.centre - half; y <= q.raw_norm.centre + half; y += 1001.0) {
     DspEngine engine;
     uint16_t flags = 0;
@@ -49,15 +50,25 @@ Sweep SweepBox(const BridgeLinearisationQ& q, double half) {
 TEST(BridgeLinearisation, FollowsTheClosedFormWithinFourQuotientSteps) {
   const InputNormQ31 raw{6710886, 21};
   const double step_codes = std::ldexp(1.0, raw.shift - 14);  // 128 codes
-  for (const auto& [k_q13, half] : {std::pair{int16_t{1}, 1.2e6}, std::pair{int16_t{-1}, 1.2e6},
-                                    std::pair{int16_t{2048}, 1.2e6}, std::pair{int16_t{-2048}, 1.2e6},
-                                    std::pair{int16_t{8192}, 1.2e6}, std::pair{int16_t{-8192}, 1.2e6},
-                                    std::pair{int16_t{12500}, 1.2e6}, std::pair{int16_t{-12500}, 1.2e6},
-                                    std::pair{int16_t{24576}, 0.63e6}, std::pair{int16_t{-24576}, 0.63e6}}) {
+  for (const auto& [k_q13, half] : {std::pair{int16_t{1}, 1.2e6},
+                                    std::pair{int16_t{-1}, 1.2e6},
+                                    std::pair{int16_t{2048}, 1.2e6},
+                                    std::pair{int16_t{-2048}, 1.2e6},
+                                    std::pair{int16_t{8192}, 1.2e6},
+                                    std::pair{int16_t{-8192}, 1.2e6},
+                                    std::pair{int16_t{12500}, 1.2e6},
+                                    std::pair{int16_t{-12500}, 1.2e6},
+                                    std::pair{int16_t{24576}, 0.63e6},
+                                    std::pair{int16_t{-24576}, 0.63e6}}) {
     const Sweep sweep = SweepBox(BridgeLinearisationQ{raw, k_q13}, half);
-    std::printf("k = %+.5f over +-%.2g codes: worst |s - closed form| %.1f codes (%.2f quotient "
-                "steps), max %u cycles\n", k_q13 / 8192.0, half, sweep.worst_codes,
-                sweep.worst_codes / step_codes, sweep.max_cycles);
+    std::printf(
+        "k = %+.5f over +-%.2g codes: worst |s - closed form| %.1f codes (%.2f quotient "
+        "steps), max %u cycles\n",
+        k_q13 / 8192.0,
+        half,
+        sweep.worst_codes,
+        sweep.worst_codes / step_codes,
+        sweep.max_cycles);
     EXPECT_LE(sweep.worst_codes, 4.0 * step_codes) << k_q13;
     EXPECT_EQ(sweep.flags, 0) << k_q13;
     EXPECT_LE(sweep.max_cycles, 250u) << k_q13;

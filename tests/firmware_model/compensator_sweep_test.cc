@@ -36,11 +36,14 @@ constexpr double kBudgetGyroCounts = 0.0015 * 20972.0;
 // Format 2 (the reference method's stages) and format 3 (with the scale-temperature stages).
 class ImuSweep : public ::testing::TestWithParam<bool> {};
 
-INSTANTIATE_TEST_SUITE_P(CompensatorSweep, ImuSweep, ::testing::Values(false, true),
+INSTANTIATE_TEST_SUITE_P(CompensatorSweep,
+                         ImuSweep,
+                         ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? "Format3" : "Format2"; });
 
 TEST_P(ImuSweep, WithinBudgetOverEnvelope) {
-  constexpr ImuCompensationMode kModes[] = {ImuCompensationMode::kRaw, ImuCompensationMode::kThermal,
+  constexpr ImuCompensationMode kModes[] = {ImuCompensationMode::kRaw,
+                                            ImuCompensationMode::kThermal,
                                             ImuCompensationMode::kSensorCalibrated,
                                             ImuCompensationMode::kFullyCalibrated};
   double worst[4][9] = {};
@@ -75,18 +78,29 @@ TEST_P(ImuSweep, WithinBudgetOverEnvelope) {
         }
         const auto fixed = ImuFrameToDouble(kModes[m], frame);
         const auto ref = ImuReference(cal, kModes[m], raw);
-        for (int k = 0; k < 9; ++k) worst[m][k] = std::max(worst[m][k], std::fabs(fixed[k] - ref[k]));
+        for (int k = 0; k < 9; ++k)
+          worst[m][k] = std::max(worst[m][k], std::fabs(fixed[k] - ref[k]));
       }
     }
   }
   auto max_of = [&](int m, int from, int to) {
     return *std::max_element(worst[m] + from, worst[m] + to);
   };
-  std::printf("IMU (format %d) worst |fixed - double|: raw duty %.3g, raw counts %.3g; thermal duty %.3g, "
-              "counts %.3g; sensor accel %.3g g, rate %.3g dps; full A %.3g m/s^2, G %.3g dps, "
-              "half-diff %.3g g; max cycles %u\n",
-              GetParam() ? 3 : 2, max_of(0, 0, 6), max_of(0, 6, 9), max_of(1, 0, 6), max_of(1, 6, 9), max_of(2, 0, 6),
-              max_of(2, 6, 9), max_of(3, 0, 3), max_of(3, 3, 6), max_of(3, 6, 9), max_cycles);
+  std::printf(
+      "IMU (format %d) worst |fixed - double|: raw duty %.3g, raw counts %.3g; thermal duty %.3g, "
+      "counts %.3g; sensor accel %.3g g, rate %.3g dps; full A %.3g m/s^2, G %.3g dps, "
+      "half-diff %.3g g; max cycles %u\n",
+      GetParam() ? 3 : 2,
+      max_of(0, 0, 6),
+      max_of(0, 6, 9),
+      max_of(1, 0, 6),
+      max_of(1, 6, 9),
+      max_of(2, 0, 6),
+      max_of(2, 6, 9),
+      max_of(3, 0, 3),
+      max_of(3, 3, 6),
+      max_of(3, 6, 9),
+      max_cycles);
   // Raw: the duty is floor(U 2^31), so within one Q31 LSB; gyro counts are exact.
   EXPECT_LE(max_of(0, 0, 6), std::ldexp(1.0, -31));
   EXPECT_EQ(max_of(0, 6, 9), 0.0);
@@ -97,9 +111,14 @@ TEST_P(ImuSweep, WithinBudgetOverEnvelope) {
   EXPECT_LE(max_of(3, 0, 3), kBudgetAccel_mps2);
   EXPECT_LE(max_of(3, 3, 6), kBudgetRate_dps);
   EXPECT_LE(max_of(3, 6, 9), kBudgetAccel_g);
-  std::printf("IMU (format %d) exporter bounds: sensor accel %.3g g, rate %.3g dps; full A %.3g "
-              "m/s^2, G %.3g dps\n",
-              GetParam() ? 3 : 2, bound.accel_g, bound.rate_dps, bound.accel_mps2, bound.rate_full_dps);
+  std::printf(
+      "IMU (format %d) exporter bounds: sensor accel %.3g g, rate %.3g dps; full A %.3g "
+      "m/s^2, G %.3g dps\n",
+      GetParam() ? 3 : 2,
+      bound.accel_g,
+      bound.rate_dps,
+      bound.accel_mps2,
+      bound.rate_full_dps);
   EXPECT_LE(max_of(2, 0, 6), bound.accel_g);
   EXPECT_LE(max_of(2, 6, 9), bound.rate_dps);
   EXPECT_LE(max_of(3, 0, 3), bound.accel_mps2);
@@ -112,7 +131,9 @@ TEST_P(ImuSweep, WithinBudgetOverEnvelope) {
 // difference includes the target's table interpolation and its 1/128 kt square root).
 class AdsSweep : public ::testing::TestWithParam<bool> {};
 
-INSTANTIATE_TEST_SUITE_P(CompensatorSweep, AdsSweep, ::testing::Values(false, true),
+INSTANTIATE_TEST_SUITE_P(CompensatorSweep,
+                         AdsSweep,
+                         ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? "PressureLaws" : "Direct"; });
 
 TEST_P(AdsSweep, WithinBudgetOverEnvelope) {
@@ -144,10 +165,14 @@ TEST_P(AdsSweep, WithinBudgetOverEnvelope) {
     worst_alt_ft = std::max(worst_alt_ft, std::fabs(fixed[0] - ref[0]));
     worst_cas_kt = std::max(worst_cas_kt, std::fabs(fixed[1] - ref[1]));
   }
-  std::printf("ADS worst |fixed - double|: altitude %.3g ft, airspeed %.3g kt; exporter bounds "
-              "%.3g ft, %.3g kt; max cycles %u\n",
-              worst_alt_ft, worst_cas_kt, exported.report.altitude_ft, exported.report.airspeed_kt,
-              max_cycles);
+  std::printf(
+      "ADS worst |fixed - double|: altitude %.3g ft, airspeed %.3g kt; exporter bounds "
+      "%.3g ft, %.3g kt; max cycles %u\n",
+      worst_alt_ft,
+      worst_cas_kt,
+      exported.report.altitude_ft,
+      exported.report.airspeed_kt,
+      max_cycles);
   EXPECT_LE(worst_alt_ft, 1.5);
   EXPECT_LE(worst_cas_kt, 0.1);
   EXPECT_LE(worst_alt_ft, exported.report.altitude_ft);
@@ -215,14 +240,21 @@ DspEngine ImuFrameMix(const char* title, const ImuConstants& constants, const Im
   DspEngine engine;
   ImuCompensatedFrame frame{};
   ImuCompensate(&engine, constants, ImuCompensationMode::kFullyCalibrated, raw, &frame);
-  std::printf("IMU fully calibrated frame, %s: %u instructions, %u cycles (%.2f %% of 30 MIPS at "
-              "100 Hz)\n",
-              title, engine.instructions(), engine.cycles(), 100.0 * engine.cycles() * 100.0 / 30e6);
+  std::printf(
+      "IMU fully calibrated frame, %s: %u instructions, %u cycles (%.2f %% of 30 MIPS at "
+      "100 Hz)\n",
+      title,
+      engine.instructions(),
+      engine.cycles(),
+      100.0 * engine.cycles() * 100.0 / 30e6);
   for (uint8_t op = 0; op < static_cast<uint8_t>(DspOp::kCount); ++op) {
     const DspOp o = static_cast<DspOp>(op);
     if (engine.op_count(o) > 0) {
-      std::printf("  %-12s x%4u  %2u cy  = %5u\n", DspOpName(o), engine.op_count(o),
-                  DspOpCycles(o), engine.op_count(o) * DspOpCycles(o));
+      std::printf("  %-12s x%4u  %2u cy  = %5u\n",
+                  DspOpName(o),
+                  engine.op_count(o),
+                  DspOpCycles(o),
+                  engine.op_count(o) * DspOpCycles(o));
     }
   }
   for (uint8_t m = 0; m < 3; ++m) {
@@ -235,8 +267,8 @@ DspEngine ImuFrameMix(const char* title, const ImuConstants& constants, const Im
 
 TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
   common::Rng rng(5);
-  const ImuRawFrame raw = testing::SynthesiseImu(testing::RealisticImu(1), {0.0, 0.0, 1.0},
-                                                 {10.0, 0.0, 0.0}, 25.0, &rng);
+  const ImuRawFrame raw = testing::SynthesiseImu(
+      testing::RealisticImu(1), {0.0, 0.0, 1.0}, {10.0, 0.0, 0.0}, 25.0, &rng);
   const DspEngine engine =
       ImuFrameMix("format 2", ExportImuConstants(testing::RealisticImu(1)).constants, raw);
   EXPECT_EQ(engine.op_count(DspOp::kMpy), 60u);
@@ -248,7 +280,8 @@ TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
   // and 18 matrix Q31 multiplies are format 2's.
   const DspEngine engine3 = ImuFrameMix(
       "format 3",
-      ExportImuConstants(testing::WithScaleTemperature(testing::RealisticImu(1), 2)).constants, raw);
+      ExportImuConstants(testing::WithScaleTemperature(testing::RealisticImu(1), 2)).constants,
+      raw);
   EXPECT_EQ(engine3.op_count(DspOp::kMpy), 27u + 6u + 9u + 6u + 3u + 33u);
   EXPECT_EQ(engine3.op_count(DspOp::kMulSU), 27u + 9u + 2u * 33u);
   EXPECT_EQ(engine3.op_count(DspOp::kMac), 9u * 3u + 3u * 2u);
@@ -264,21 +297,33 @@ TEST(CompensatorCycles, InstructionMixMatchesTheAlgorithm) {
   AdsCompensatedFrame ads_frame{};
   AdsHysteresisState ads_state;
   AdsHysteresisReset(&ads_state);
-  AdsCompensate(&ads_engine, ads.constants, AdsCompensationMode::kSurface,
-                testing::SynthesiseAds(5000.0, 200.0, 25.0), &ads_state, &ads_frame);
+  AdsCompensate(&ads_engine,
+                ads.constants,
+                AdsCompensationMode::kSurface,
+                testing::SynthesiseAds(5000.0, 200.0, 25.0),
+                &ads_state,
+                &ads_frame);
   EXPECT_EQ(ads_engine.op_count(DspOp::kMpy), 56u);
   DspEngine moving_engine;
-  AdsCompensate(&moving_engine, ads.constants, AdsCompensationMode::kSurface,
-                testing::SynthesiseAds(6000.0, 210.0, 26.0), &ads_state, &ads_frame);
+  AdsCompensate(&moving_engine,
+                ads.constants,
+                AdsCompensationMode::kSurface,
+                testing::SynthesiseAds(6000.0, 210.0, 26.0),
+                &ads_state,
+                &ads_frame);
   EXPECT_EQ(moving_engine.op_count(DspOp::kMpy), 68u);
   // Each of the four moving operators adds its weight to the branch's start state once (ADD of a
   // word); a still operator returns before.
-  EXPECT_EQ(moving_engine.op_count(DspOp::kAddWordAcc) - ads_engine.op_count(DspOp::kAddWordAcc), 4u);
+  EXPECT_EQ(moving_engine.op_count(DspOp::kAddWordAcc) - ads_engine.op_count(DspOp::kAddWordAcc),
+            4u);
   EXPECT_EQ(moving_engine.op_count(DspOp::kMsc), 0u);
-  std::printf("ADS surface frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at 100 Hz); "
-              "with the operators moving: %u cycles\n",
-              ads_engine.instructions(), ads_engine.cycles(),
-              100.0 * ads_engine.cycles() * 100.0 / 30e6, moving_engine.cycles());
+  std::printf(
+      "ADS surface frame: %u instructions, %u cycles (%.2f %% of 30 MIPS at 100 Hz); "
+      "with the operators moving: %u cycles\n",
+      ads_engine.instructions(),
+      ads_engine.cycles(),
+      100.0 * ads_engine.cycles() * 100.0 / 30e6,
+      moving_engine.cycles());
 }
 
 }  // namespace

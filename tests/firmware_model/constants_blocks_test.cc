@@ -52,7 +52,8 @@ TEST(ConstantsBlocks, Format3RoundTripAndRefusals) {
   int16_t words[kImuMaxBlockWords];
   uint8_t count = 0;
   for (uint8_t id = kImuBlockScaleSwitch; id <= kImuBlockLast; ++id) {
-    ASSERT_EQ(ImuConstantsReadBlock(&source, id, words, kImuMaxBlockWords, &count), ConstantsStatus::kOk);
+    ASSERT_EQ(ImuConstantsReadBlock(&source, id, words, kImuMaxBlockWords, &count),
+              ConstantsStatus::kOk);
     EXPECT_EQ(count, ImuConstantsBlockLength(id));
     ASSERT_EQ(ImuConstantsWriteBlock(&target, id, words, count), ConstantsStatus::kOk) << int(id);
     int16_t back[kImuMaxBlockWords];
@@ -66,10 +67,12 @@ TEST(ConstantsBlocks, Format3RoundTripAndRefusals) {
   const ImuConstants before = target;
   ImuConstantsReadBlock(&target, kImuBlockScaleSwitch, words, kImuMaxBlockWords, &count);
   words[0] = 2;  // the switch is 0 or 1
-  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockScaleSwitch, words, count), ConstantsStatus::kOutOfRange);
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockScaleSwitch, words, count),
+            ConstantsStatus::kOutOfRange);
   words[0] = 1;
   words[1 + 2 * kNormWords + 2] = 17;  // sensor 2's shift beyond 16
-  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockScaleSwitch, words, count), ConstantsStatus::kOutOfRange);
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockScaleSwitch, words, count),
+            ConstantsStatus::kOutOfRange);
   ImuConstantsReadBlock(&target, kImuBlockScaleFactorFirst + 4, words, kImuMaxBlockWords, &count);
   words[0] = kScaleFactorExponent + 1;  // F's working exponent is fixed
   EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockScaleFactorFirst + 4, words, count),
@@ -89,11 +92,14 @@ TEST(ConstantsBlocks, Format3RoundTripAndRefusals) {
   words[0] = 0x6000;  // 0.75 * 2^2 = 3
   words[1] = 0;
   words[2] = 2;
-  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockGs, words, count), ConstantsStatus::kWouldOverflow);
+  EXPECT_EQ(ImuConstantsWriteBlock(&target, kImuBlockGs, words, count),
+            ConstantsStatus::kWouldOverflow);
   EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
 }
 
-double ValueOf(const CoeffQ31& c) { return std::ldexp(static_cast<double>(c.mantissa_q31), c.exponent - 31); }
+double ValueOf(const CoeffQ31& c) {
+  return std::ldexp(static_cast<double>(c.mantissa_q31), c.exponent - 31);
+}
 
 // The Q15 forms the compensator runs hold the blocks' values within half an LSB of each mantissa,
 // sum within their chains' range, and the exporter derives the same forms as a block write does.
@@ -115,11 +121,13 @@ TEST(ConstantsBlocks, Format3RunTimeFormsHoldTheBlocksWithinHalfAnLsb) {
     ASSERT_GE(d.exponent - d.tempco_exponent, 0);
     ASSERT_LE(d.exponent - d.tempco_exponent, 16);
     EXPECT_NEAR(std::ldexp(static_cast<double>(d.d0_q31), d.exponent - 31),
-                ValueOf(st.scale[c].coeff[0]) - 1.0, std::ldexp(1.0, d.exponent - 32));
+                ValueOf(st.scale[c].coeff[0]) - 1.0,
+                std::ldexp(1.0, d.exponent - 32));
     double sum_abs_q31 = std::fabs(static_cast<double>(d.d0_q31));
     for (int k = 1; k <= kImuScaleFactorDegree; ++k) {
       EXPECT_NEAR(std::ldexp(static_cast<double>(d.d_q15[k - 1]), d.tempco_exponent - 15),
-                  ValueOf(st.scale[c].coeff[k]), std::ldexp(1.0, d.tempco_exponent - 16));
+                  ValueOf(st.scale[c].coeff[k]),
+                  std::ldexp(1.0, d.tempco_exponent - 16));
       sum_abs_q31 += std::ldexp(std::fabs(static_cast<double>(d.d_q15[k - 1])),
                                 16 + d.tempco_exponent - d.exponent);
     }
@@ -133,13 +141,15 @@ TEST(ConstantsBlocks, Format3RunTimeFormsHoldTheBlocksWithinHalfAnLsb) {
   for (int axis = 0; axis < 3; ++axis) {
     const CoeffQ31& q = st.accel_quadratic[axis];
     EXPECT_NEAR(std::ldexp(static_cast<double>(st.accel_quadratic_q15[axis]), q.exponent - 15),
-                ValueOf(q), std::ldexp(1.0, q.exponent - 16));
+                ValueOf(q),
+                std::ldexp(1.0, q.exponent - 16));
   }
   for (int r = 0; r < 3; ++r) {
     const int e = st.gs_q15.row_exponent[r];
     int sum_abs = 0;
     for (int c = 0; c < 3; ++c) {
-      EXPECT_NEAR(std::ldexp(static_cast<double>(st.gs_q15.m_q15[r][c]), e - 15), ValueOf(st.gs[r][c]),
+      EXPECT_NEAR(std::ldexp(static_cast<double>(st.gs_q15.m_q15[r][c]), e - 15),
+                  ValueOf(st.gs[r][c]),
                   std::ldexp(1.0, e - 16));
       sum_abs += std::abs(st.gs_q15.m_q15[r][c]);
     }
@@ -190,7 +200,8 @@ TEST(ConstantsBlocks, ImuRefusalsLeaveStateUnchanged) {
             ConstantsStatus::kOutOfRange);
   EXPECT_EQ(std::memcmp(&c, &before, sizeof(c)), 0);
   // Reading into too small a buffer writes nothing.
-  EXPECT_EQ(ImuConstantsReadBlock(&c, kImuBlockCa, words, 10, &count), ConstantsStatus::kWrongLength);
+  EXPECT_EQ(ImuConstantsReadBlock(&c, kImuBlockCa, words, 10, &count),
+            ConstantsStatus::kWrongLength);
 }
 
 TEST(ConstantsBlocks, AdsRoundTripAndRefusals) {
@@ -209,7 +220,8 @@ TEST(ConstantsBlocks, AdsRoundTripAndRefusals) {
   std::memcpy(bad, words, sizeof(bad));
   bad[6] = static_cast<int16_t>(bad[6] - 3);  // outer exponent below the b_k bound
   const ConstantsStatus refused = AdsConstantsWriteBlock(&target, kAdsBlockAltitude, bad, count);
-  EXPECT_TRUE(refused == ConstantsStatus::kWouldOverflow || refused == ConstantsStatus::kOutOfRange);
+  EXPECT_TRUE(refused == ConstantsStatus::kWouldOverflow ||
+              refused == ConstantsStatus::kOutOfRange);
   EXPECT_EQ(AdsConstantsWriteBlock(&target, 0x01, words, count), ConstantsStatus::kUnknownBlock);
   EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
   ASSERT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAltitude, words, count), ConstantsStatus::kOk);
@@ -234,22 +246,25 @@ TEST(ConstantsBlocks, AdsLawWordIsCheckedPerBlock) {
   EXPECT_EQ(words[kAdsSurfaceBlockWords - 1], kAdsLawIsaAltitude);
   for (int16_t law : {int16_t{kAdsLawCas}, int16_t{3}, int16_t{-1}}) {
     words[kAdsSurfaceBlockWords - 1] = law;
-    EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAltitude, words, count), ConstantsStatus::kOutOfRange) << law;
+    EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAltitude, words, count),
+              ConstantsStatus::kOutOfRange)
+        << law;
   }
   AdsConstantsReadBlock(&source, kAdsBlockAirspeed, words, kAdsMaxBlockWords, &count);
   EXPECT_EQ(words[kAdsSurfaceBlockWords - 1], kAdsLawCas);
   words[kAdsSurfaceBlockWords - 1] = kAdsLawIsaAltitude;
-  EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAirspeed, words, count), ConstantsStatus::kOutOfRange);
+  EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAirspeed, words, count),
+            ConstantsStatus::kOutOfRange);
   EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
   words[kAdsSurfaceBlockWords - 1] = kAdsLawCas;
   EXPECT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAirspeed, words, count), ConstantsStatus::kOk);
   EXPECT_EQ(target.airspeed.law, kAdsLawCas);
 }
 
-// The hysteresis words (ads_constants.h), just before the linearisation's: pressure [inv_span (CoeffQ31:
-// mantissa high, low, exponent)][gain (GainQ15: at the centre, per tau, exponent)], thermal
-// [t1 t2 t3][inv_span][gain]. Written by the exporter from RealisticPressureAds's terms; each refused field changes
-// nothing.
+// The hysteresis words (ads_constants.h), just before the linearisation's: pressure [inv_span
+// (CoeffQ31: mantissa high, low, exponent)][gain (GainQ15: at the centre, per tau, exponent)],
+// thermal [t1 t2 t3][inv_span][gain]. Written by the exporter from RealisticPressureAds's terms;
+// each refused field changes nothing.
 TEST(ConstantsBlocks, AdsHysteresisWordsRoundTripAndRefusals) {
   const AdsCalibrationConstants cal = testing::RealisticPressureAds();
   const AdsConstants source = ExportAdsConstants(cal).constants;
@@ -267,7 +282,8 @@ TEST(ConstantsBlocks, AdsHysteresisWordsRoundTripAndRefusals) {
   // The die temperature at the y normalisation's centre (the gains are given there) and K, the
   // degC of one unit of tau, from t1 (the bridge code is linear in temperature here).
   const double degc_per_y = std::ldexp(h.die_temp_c[1], source.altitude.y_norm.shift);
-  const double centre_c = h.die_temp_c[0] + h.die_temp_c[1] * (source.altitude.y_norm.centre - h.die_temp_origin_code);
+  const double centre_c =
+      h.die_temp_c[0] + h.die_temp_c[1] * (source.altitude.y_norm.centre - h.die_temp_origin_code);
   const double k_c = degc_per_y / (words[kThermal] / 32768.0);
   auto gain = [&](int at, double tau) {
     return std::ldexp(words[at] + words[at + 1] * tau, words[at + 2] - 15);
@@ -277,14 +293,19 @@ TEST(ConstantsBlocks, AdsHysteresisWordsRoundTripAndRefusals) {
   EXPECT_EQ(words[kAt + 5], 7);  // |at centre| + |per tau| < 128 Pa: within 16 of the result's 17
   for (const double temp_c : {-40.0, 85.0}) {
     const double tau = (temp_c - centre_c) / k_c;
-    EXPECT_NEAR(gain(kAt + 3, tau), h.pressure_gain + h.pressure_gain_per_degc * (temp_c - 25.0),
-                2 * 64.0 / 32768.0) << temp_c;
-    EXPECT_NEAR(gain(kThermal + 6, tau), h.thermal_gain + h.thermal_gain_per_degc * (temp_c - 25.0),
-                2 * 128.0 / 32768.0) << temp_c;
+    EXPECT_NEAR(gain(kAt + 3, tau),
+                h.pressure_gain + h.pressure_gain_per_degc * (temp_c - 25.0),
+                2 * 64.0 / 32768.0)
+        << temp_c;
+    EXPECT_NEAR(gain(kThermal + 6, tau),
+                h.thermal_gain + h.thermal_gain_per_degc * (temp_c - 25.0),
+                2 * 128.0 / 32768.0)
+        << temp_c;
   }
   // tau = t1 y: t1 = (degC per normalised y) / K, and inv_span = K / 20 degC, so t1 * inv_span is
   // the travel per unit of normalised y whatever K the exporter chose.
-  EXPECT_NEAR(words[kThermal] / 32768.0 * coeff(kThermal + 3), degc_per_y / h.thermal_span_c,
+  EXPECT_NEAR(words[kThermal] / 32768.0 * coeff(kThermal + 3),
+              degc_per_y / h.thermal_span_c,
               1e-4 * degc_per_y / h.thermal_span_c);
   EXPECT_EQ(words[kThermal + 1], 0);
   EXPECT_EQ(words[kThermal + 2], 0);
@@ -311,7 +332,8 @@ TEST(ConstantsBlocks, AdsHysteresisWordsRoundTripAndRefusals) {
   EXPECT_EQ(refused({{kThermal, 20000}, {kThermal + 1, 13000}}), ConstantsStatus::kWouldOverflow);
   EXPECT_EQ(std::memcmp(&target, &before, sizeof(target)), 0);
   ASSERT_EQ(AdsConstantsWriteBlock(&target, kAdsBlockAltitude, words, count), ConstantsStatus::kOk);
-  EXPECT_EQ(target.altitude.pressure.gain.at_centre_q15, source.altitude.pressure.gain.at_centre_q15);
+  EXPECT_EQ(target.altitude.pressure.gain.at_centre_q15,
+            source.altitude.pressure.gain.at_centre_q15);
   EXPECT_EQ(target.altitude.thermal.gain.per_tau_q15, source.altitude.thermal.gain.per_tau_q15);
   EXPECT_EQ(target.altitude.die_temp_q15[0], source.altitude.die_temp_q15[0]);
   EXPECT_EQ(target.altitude.thermal.inv_span.exponent, source.altitude.thermal.inv_span.exponent);
@@ -331,7 +353,8 @@ TEST(CalibrationConstants, AdsLawInJsonAndFilesWithoutItAreDirect) {
     AdsCalibrationConstantsFromJson(j);
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
-    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("ads.airspeed_kt.law: expected \"direct\" or \"cas\""));
+    EXPECT_THAT(std::string(e.what()),
+                ::testing::HasSubstr("ads.airspeed_kt.law: expected \"direct\" or \"cas\""));
   }
 }
 
@@ -377,7 +400,8 @@ TEST(ConstantsExporter, RefusesALinearisationTheTargetCannotHold) {
   bad.airspeed_kt.y_linearisation.curvature_per_code = 4.0 / (1 << 21);  // k = 4 at shift 21
   EXPECT_THAT(refusal(bad), ::testing::HasSubstr("airspeed block 0x22: bridge curvature"));
   bad = good;
-  bad.altitude_ft.y_linearisation.curvature_per_code = -2.5 / (bad.altitude_ft.y_max_code - 6710886.0);
+  bad.altitude_ft.y_linearisation.curvature_per_code =
+      -2.5 / (bad.altitude_ft.y_max_code - 6710886.0);
   EXPECT_THAT(refusal(bad), ::testing::HasSubstr("turns inside the y box"));
 }
 

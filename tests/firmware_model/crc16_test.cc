@@ -5,11 +5,11 @@
 #include <cstdint>
 #include <vector>
 
-#include <boost/crc.hpp>
 #include <gtest/gtest.h>
+#include <boost/crc.hpp>
 
-#include "firmware_model/unit_protocol_client.h"
 #include "common/random.h"
+#include "firmware_model/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {
 namespace {

@@ -48,12 +48,12 @@ void ExpectImuEqual(const ImuDataPayload& a, const ImuDataPayload& b, bool with_
 
 TEST(DataPayloadsTest, ImuLayoutIsLittleEndianAtDocumentedOffsets) {
   ImuDataPayload data = ExtremeImuPayload(ImuCompensationMode::kFullyCalibrated);
-  data.raw.t1_cnt[1] = 0xBEEF;               // ax1 T1 at offset 4
-  data.raw.t2_cnt[5] = 0x1234;               // ay2 T2 at offset 22
-  data.raw.gyro_cnt[0] = 0x01020304;         // gx at offset 24
-  data.raw.temp_cnt[2] = 0xCAFE;             // tz at offset 40
-  data.compensated.value[8] = -2;            // value 8 at offset 43 + 32
-  data.compensated.flags = 0x0102;           // flags at offset 79
+  data.raw.t1_cnt[1] = 0xBEEF;        // ax1 T1 at offset 4
+  data.raw.t2_cnt[5] = 0x1234;        // ay2 T2 at offset 22
+  data.raw.gyro_cnt[0] = 0x01020304;  // gx at offset 24
+  data.raw.temp_cnt[2] = 0xCAFE;      // tz at offset 40
+  data.compensated.value[8] = -2;     // value 8 at offset 43 + 32
+  data.compensated.flags = 0x0102;    // flags at offset 79
   uint8_t out[kImuCompensatedPayloadBytes];
   ASSERT_EQ(EncodeImuPayload(data, out, sizeof(out)), 81);
   EXPECT_EQ(out[4], 0xEF);
@@ -72,7 +72,8 @@ TEST(DataPayloadsTest, ImuLayoutIsLittleEndianAtDocumentedOffsets) {
 }
 
 TEST(DataPayloadsTest, ImuRoundTripInEveryMode) {
-  for (const auto mode : {ImuCompensationMode::kRaw, ImuCompensationMode::kThermal,
+  for (const auto mode : {ImuCompensationMode::kRaw,
+                          ImuCompensationMode::kThermal,
                           ImuCompensationMode::kSensorCalibrated,
                           ImuCompensationMode::kFullyCalibrated}) {
     const ImuDataPayload data = ExtremeImuPayload(mode);

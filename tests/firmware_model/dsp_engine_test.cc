@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "firmware_model/target/q31_kernels.h"
 #include "common/random.h"
+#include "firmware_model/target/q31_kernels.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -76,7 +76,7 @@ TEST(DspEngine, SatdwClampsWritesWithSignFromBit39) {
   no_satdw.saturate_writes = false;
   e.set_config(no_satdw);
   e.set_acc(Acc::kA, INT64_C(0x0080000000));
-  EXPECT_EQ(e.Sac(Acc::kA, 0), INT16_MIN);  // the wrapped word 0x8000
+  EXPECT_EQ(e.Sac(Acc::kA, 0), INT16_MIN);           // the wrapped word 0x8000
   EXPECT_EQ(e.acc(Acc::kA), INT64_C(0x0080000000));  // accumulator unchanged by a store
 }
 
@@ -94,7 +94,7 @@ TEST(DspEngine, SuperSaturationClampsAtBit39AndNoSaturationWraps) {
   w.set_acc(Acc::kB, 1);
   w.AddAcc(Acc::kA);
   EXPECT_EQ(w.acc(Acc::kA), -(INT64_C(1) << 39));  // 0x80_0000_0000
-  EXPECT_TRUE(w.sa());  // catastrophic overflow is sticky
+  EXPECT_TRUE(w.sa());                             // catastrophic overflow is sticky
   EXPECT_TRUE(w.TestAndClearSaturation());
   EXPECT_FALSE(w.sa());
 }

@@ -14,8 +14,8 @@ namespace {
 
 // §7: CRC-16/CCITT-FALSE over header and payload words, each word low byte first.
 uint16_t DocumentedImageCrc(UnitKind kind, uint16_t version, const std::vector<int16_t>& payload) {
-  std::vector<uint16_t> words = {0xCA1B, static_cast<uint16_t>(kind), version,
-                                 static_cast<uint16_t>(payload.size())};
+  std::vector<uint16_t> words = {
+      0xCA1B, static_cast<uint16_t>(kind), version, static_cast<uint16_t>(payload.size())};
   for (const int16_t word : payload) {
     words.push_back(static_cast<uint16_t>(word));
   }
@@ -60,7 +60,8 @@ TEST(FlashStoreTest, CommitStoresTheDocumentedImageAndCountsVersions) {
   info = flash.Inspect(UnitKind::kAds);
   EXPECT_EQ(info.constants_version, 2);
   EXPECT_EQ(info.image_crc,
-            DocumentedImageCrc(UnitKind::kAds, 2, std::vector<int16_t>(payload.begin(), payload.begin() + 2)));
+            DocumentedImageCrc(
+                UnitKind::kAds, 2, std::vector<int16_t>(payload.begin(), payload.begin() + 2)));
   // A buffer too small for the payload gets nothing.
   EXPECT_EQ(flash.Load(UnitKind::kAds, loaded.data(), 1, &count), FlashStatus::kBadLength);
 }
@@ -69,7 +70,8 @@ TEST(FlashStoreTest, OversizeCommitIsRefusedAndLeavesTheImage) {
   FlashStore flash;
   std::vector<int16_t> payload(kFlashMaxPayloadWords + 1, 3);
   ASSERT_EQ(flash.Commit(UnitKind::kImu, payload.data(), 4), FlashStatus::kOk);
-  EXPECT_EQ(flash.Commit(UnitKind::kImu, payload.data(), kFlashMaxPayloadWords + 1), FlashStatus::kBadLength);
+  EXPECT_EQ(flash.Commit(UnitKind::kImu, payload.data(), kFlashMaxPayloadWords + 1),
+            FlashStatus::kBadLength);
   EXPECT_EQ(flash.Inspect(UnitKind::kImu).payload_words, 4);
   EXPECT_EQ(flash.Commit(UnitKind::kImu, payload.data(), kFlashMaxPayloadWords), FlashStatus::kOk);
 }
@@ -84,7 +86,8 @@ TEST(FlashStoreTest, EverySingleBitFlipInTheImageIsDetected) {
       FlashStore flash;
       ASSERT_EQ(flash.Commit(UnitKind::kImu, payload.data(), 6), FlashStatus::kOk);
       flash.InjectBitFlip(word, bit);
-      EXPECT_NE(flash.Inspect(UnitKind::kImu).status, FlashStatus::kOk) << "word " << word << " bit " << +bit;
+      EXPECT_NE(flash.Inspect(UnitKind::kImu).status, FlashStatus::kOk)
+          << "word " << word << " bit " << +bit;
     }
   }
 }

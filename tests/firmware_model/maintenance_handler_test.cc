@@ -24,11 +24,11 @@ using ::testing::HasSubstr;
 constexpr UnitIdentity kImuIdentity = {UnitKind::kImu, 150042, 2, 7, 1};
 constexpr UnitIdentity kAdsIdentity = {UnitKind::kAds, 230017, 1, 4, 0};
 
-// Index of one mantissa low word per block layout (imu_constants.h, ads_constants.h, fixed_coeff.h):
-// thermal: sensor, norm(3), work exponent, c0 hi at 5, lo at 6; accel: offset lo of az1 at 1;
-// gyro: norm(3), work exponent, c0 lo at 5; matrices: [0][0] lo at 1; ADS: 2 norms, 5 exponents,
-// coefficient c_00 (the reference's a) lo at 12.
-// Room for any constants block of either unit kind.
+// Index of one mantissa low word per block layout (imu_constants.h, ads_constants.h,
+// fixed_coeff.h): thermal: sensor, norm(3), work exponent, c0 hi at 5, lo at 6; accel: offset lo of
+// az1 at 1; gyro: norm(3), work exponent, c0 lo at 5; matrices: [0][0] lo at 1; ADS: 2 norms, 5
+// exponents, coefficient c_00 (the reference's a) lo at 12. Room for any constants block of either
+// unit kind.
 constexpr uint8_t kLargestBlockWords = std::max(kAdsMaxBlockWords, kImuMaxBlockWords);
 
 int MantissaLowIndex(uint8_t block_id) {
@@ -49,11 +49,13 @@ std::vector<int16_t> ValidBlock(UnitKind kind, uint8_t block_id, int16_t marker)
   if (kind == UnitKind::kImu) {
     ImuConstants constants;
     ImuConstantsInit(&constants);
-    status = ImuConstantsReadBlock(&constants, block_id, words.data(), static_cast<uint8_t>(words.size()), &count);
+    status = ImuConstantsReadBlock(
+        &constants, block_id, words.data(), static_cast<uint8_t>(words.size()), &count);
   } else {
     AdsConstants constants;
     AdsConstantsInit(&constants);
-    status = AdsConstantsReadBlock(&constants, block_id, words.data(), static_cast<uint8_t>(words.size()), &count);
+    status = AdsConstantsReadBlock(
+        &constants, block_id, words.data(), static_cast<uint8_t>(words.size()), &count);
   }
   EXPECT_EQ(status, ConstantsStatus::kOk);
   words.resize(count);
@@ -84,7 +86,8 @@ struct Snapshot {
     return mode == o.mode && tag == o.tag && constants_valid == o.constants_valid &&
            constants_version == o.constants_version && constants_crc == o.constants_crc &&
            blocks == o.blocks && flash.status == o.flash.status &&
-           flash.constants_version == o.flash.constants_version && flash.image_crc == o.flash.image_crc;
+           flash.constants_version == o.flash.constants_version &&
+           flash.image_crc == o.flash.image_crc;
   }
 };
 
@@ -100,7 +103,8 @@ class Unit {
     while (true) {
       const PortResult result = handler_.Receive(bytes.data() + offset,
                                                  static_cast<uint16_t>(bytes.size() - offset),
-                                                 out.data(), static_cast<uint16_t>(out.size()));
+                                                 out.data(),
+                                                 static_cast<uint16_t>(out.size()));
       offset += result.consumed_bytes;
       if (result.response_bytes == 0) break;
       for (const Frame& frame : reader_.Push({out.data(), result.response_bytes})) {
@@ -114,14 +118,16 @@ class Unit {
   MaintenanceResponse Send(const std::vector<uint8_t>& request) {
     const std::vector<MaintenanceResponse> responses = SendRaw(request);
     EXPECT_EQ(responses.size(), 1u) << HexTrace(request);
-    if (responses.empty()) return MaintenanceResponse{0, MaintenanceCommand::kNone, ResultCode::kFlashError, {}};
+    if (responses.empty())
+      return MaintenanceResponse{0, MaintenanceCommand::kNone, ResultCode::kFlashError, {}};
     EXPECT_EQ(responses[0].sequence, request[4]) << "response must echo the request sequence";
     return responses[0];
   }
 
   void WriteAllBlocks(int16_t marker) {
     for (const uint8_t id : BlockIds(handler_.kind())) {
-      ASSERT_EQ(Send(client_.WriteBlock(id, ValidBlock(handler_.kind(), id, marker))).result, ResultCode::kAck)
+      ASSERT_EQ(Send(client_.WriteBlock(id, ValidBlock(handler_.kind(), id, marker))).result,
+                ResultCode::kAck)
           << "block " << +id;
     }
   }
@@ -133,17 +139,30 @@ class Unit {
   }
 
   Snapshot Take() const {
-    Snapshot s{0, handler_.tag(), handler_.constants_valid(), handler_.constants_version(),
-               handler_.constants_crc(), {}, flash_.Inspect(handler_.kind())};
+    Snapshot s{0,
+               handler_.tag(),
+               handler_.constants_valid(),
+               handler_.constants_version(),
+               handler_.constants_crc(),
+               {},
+               flash_.Inspect(handler_.kind())};
     s.mode = handler_.kind() == UnitKind::kImu ? static_cast<uint8_t>(handler_.imu_mode())
                                                : static_cast<uint8_t>(handler_.ads_mode());
     for (const uint8_t id : BlockIds(handler_.kind())) {
       std::vector<int16_t> words(kLargestBlockWords);
       uint8_t count = 0;
       if (handler_.kind() == UnitKind::kImu) {
-        ImuConstantsReadBlock(&handler_.imu_constants(), id, words.data(), static_cast<uint8_t>(words.size()), &count);
+        ImuConstantsReadBlock(&handler_.imu_constants(),
+                              id,
+                              words.data(),
+                              static_cast<uint8_t>(words.size()),
+                              &count);
       } else {
-        AdsConstantsReadBlock(&handler_.ads_constants(), id, words.data(), static_cast<uint8_t>(words.size()), &count);
+        AdsConstantsReadBlock(&handler_.ads_constants(),
+                              id,
+                              words.data(),
+                              static_cast<uint8_t>(words.size()),
+                              &count);
       }
       words.resize(count);
       s.blocks.push_back(words);
@@ -184,7 +203,8 @@ TEST(MaintenanceHandlerTest, SetTagIsCarriedByEveryLaterResponse) {
 TEST(MaintenanceHandlerTest, WriteAndReadBackEveryImuBlock) {
   Unit unit(kImuIdentity);
   for (const uint8_t id : BlockIds(UnitKind::kImu)) {
-    const std::vector<int16_t> block = ValidBlock(UnitKind::kImu, id, static_cast<int16_t>(100 + id));
+    const std::vector<int16_t> block =
+        ValidBlock(UnitKind::kImu, id, static_cast<int16_t>(100 + id));
     const MaintenanceResponse ack = unit.Send(unit.client_.WriteBlock(id, block));
     ASSERT_EQ(ack.result, ResultCode::kAck) << ResultCodeName(ack.result) << " for block " << +id;
     EXPECT_EQ(unit.ReadBack(id), block) << "block " << +id;
@@ -197,7 +217,8 @@ TEST(MaintenanceHandlerTest, CommitPersistsAcrossPowerCycleAndUncommittedWritesA
   const CommitInfo commit = ParseCommit(unit.Send(unit.client_.Commit()));
   EXPECT_EQ(commit.constants_version, 1);
   EXPECT_EQ(commit.constants_crc, unit.flash_.Inspect(UnitKind::kImu).image_crc);
-  ASSERT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kFullyCalibrated)).result, ResultCode::kAck);
+  ASSERT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kFullyCalibrated)).result,
+            ResultCode::kAck);
   ASSERT_EQ(unit.Send(unit.client_.SetTag(9)).result, ResultCode::kAck);
   // An uncommitted change to CA.
   const std::vector<int16_t> changed = ValidBlock(UnitKind::kImu, kImuBlockCa, 777);
@@ -214,7 +235,8 @@ TEST(MaintenanceHandlerTest, CommitPersistsAcrossPowerCycleAndUncommittedWritesA
   EXPECT_TRUE(info.constants_valid);
   EXPECT_EQ(info.constants_version, 1);
   EXPECT_EQ(info.constants_crc, commit.constants_crc);
-  EXPECT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kThermal)).result, ResultCode::kAck);
+  EXPECT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kThermal)).result,
+            ResultCode::kAck);
 
   // Constants loaded from flash count as complete: a commit right away is accepted.
   EXPECT_EQ(ParseCommit(unit.Send(unit.client_.Commit())).constants_version, 2);
@@ -251,7 +273,8 @@ TEST(MaintenanceHandlerTest, EveryMalformedRequestIsRefusedWithItsCodeAndChanges
   // Start from a committed unit in a calibrated mode with a TAG, so any change would show.
   unit.WriteAllBlocks(3);
   ASSERT_EQ(unit.Send(unit.client_.Commit()).result, ResultCode::kAck);
-  ASSERT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kSensorCalibrated)).result, ResultCode::kAck);
+  ASSERT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kSensorCalibrated)).result,
+            ResultCode::kAck);
   ASSERT_EQ(unit.Send(unit.client_.SetTag(0x33)).result, ResultCode::kAck);
   UnitProtocolClient& c = unit.client_;
   const auto cmd = [](MaintenanceCommand command) { return static_cast<uint8_t>(command); };
@@ -259,7 +282,7 @@ TEST(MaintenanceHandlerTest, EveryMalformedRequestIsRefusedWithItsCodeAndChanges
   std::vector<int16_t> ca_out_of_range = ca;
   ca_out_of_range[2] = 100;  // exponent of CA[0][0] outside -40..40
   std::vector<int16_t> ca_overflow = ca;
-  ca_overflow[0] = 0x7FFF;   // CA[0][0] ~ 2^(5-31) * 2^31 = 32 m/s^2 per g: 32 * 10 g >= 256 m/s^2
+  ca_overflow[0] = 0x7FFF;  // CA[0][0] ~ 2^(5-31) * 2^31 = 32 m/s^2 per g: 32 * 10 g >= 256 m/s^2
   ca_overflow[1] = -1;
   ca_overflow[2] = 5;
   struct Case {
@@ -273,49 +296,86 @@ TEST(MaintenanceHandlerTest, EveryMalformedRequestIsRefusedWithItsCodeAndChanges
   std::vector<uint8_t> write_count_mismatch = c.WriteBlock(kImuBlockCa, ca);
   const std::vector<Case> cases = {
       {"bad CRC", bad_crc, MaintenanceCommand::kNone, ResultCode::kBadCrc},
-      {"SET_MODE with two arguments", c.Request(cmd(MaintenanceCommand::kSetMode), std::vector<uint8_t>{0, 0}),
-       MaintenanceCommand::kSetMode, ResultCode::kBadLength},
-      {"SET_TAG without argument", c.Request(cmd(MaintenanceCommand::kSetTag), {}), MaintenanceCommand::kSetTag,
+      {"SET_MODE with two arguments",
+       c.Request(cmd(MaintenanceCommand::kSetMode), std::vector<uint8_t>{0, 0}),
+       MaintenanceCommand::kSetMode,
+       ResultCode::kBadLength},
+      {"SET_TAG without argument",
+       c.Request(cmd(MaintenanceCommand::kSetTag), {}),
+       MaintenanceCommand::kSetTag,
        ResultCode::kBadLength},
       {"WRITE_BLOCK count says 27, 26 words sent",
-       c.Request(cmd(MaintenanceCommand::kWriteBlock),
-                 std::vector<uint8_t>(write_count_mismatch.begin() + 7, write_count_mismatch.end() - 4)),
-       MaintenanceCommand::kWriteBlock, ResultCode::kBadLength},
-      {"READ_BLOCK without block id", c.Request(cmd(MaintenanceCommand::kReadBlock), {}),
-       MaintenanceCommand::kReadBlock, ResultCode::kBadLength},
-      {"COMMIT with an argument", c.Request(cmd(MaintenanceCommand::kCommit), std::vector<uint8_t>{1}),
-       MaintenanceCommand::kCommit, ResultCode::kBadLength},
-      {"IDENTIFY with an argument", c.Request(cmd(MaintenanceCommand::kIdentify), std::vector<uint8_t>{1}),
-       MaintenanceCommand::kIdentify, ResultCode::kBadLength},
-      {"RESET with an argument", c.Request(cmd(MaintenanceCommand::kReset), std::vector<uint8_t>{1}),
-       MaintenanceCommand::kReset, ResultCode::kBadLength},
-      {"READ_COUNTERS with an argument", c.Request(cmd(MaintenanceCommand::kReadCounters), std::vector<uint8_t>{1}),
-       MaintenanceCommand::kReadCounters, ResultCode::kBadLength},
-      {"unknown command 0x55", c.Request(0x55, {}), static_cast<MaintenanceCommand>(0x55),
+       c.Request(
+           cmd(MaintenanceCommand::kWriteBlock),
+           std::vector<uint8_t>(write_count_mismatch.begin() + 7, write_count_mismatch.end() - 4)),
+       MaintenanceCommand::kWriteBlock,
+       ResultCode::kBadLength},
+      {"READ_BLOCK without block id",
+       c.Request(cmd(MaintenanceCommand::kReadBlock), {}),
+       MaintenanceCommand::kReadBlock,
+       ResultCode::kBadLength},
+      {"COMMIT with an argument",
+       c.Request(cmd(MaintenanceCommand::kCommit), std::vector<uint8_t>{1}),
+       MaintenanceCommand::kCommit,
+       ResultCode::kBadLength},
+      {"IDENTIFY with an argument",
+       c.Request(cmd(MaintenanceCommand::kIdentify), std::vector<uint8_t>{1}),
+       MaintenanceCommand::kIdentify,
+       ResultCode::kBadLength},
+      {"RESET with an argument",
+       c.Request(cmd(MaintenanceCommand::kReset), std::vector<uint8_t>{1}),
+       MaintenanceCommand::kReset,
+       ResultCode::kBadLength},
+      {"READ_COUNTERS with an argument",
+       c.Request(cmd(MaintenanceCommand::kReadCounters), std::vector<uint8_t>{1}),
+       MaintenanceCommand::kReadCounters,
+       ResultCode::kBadLength},
+      {"unknown command 0x55",
+       c.Request(0x55, {}),
+       static_cast<MaintenanceCommand>(0x55),
        ResultCode::kUnknownCommand},
       {"command NONE", c.Request(0x00, {}), MaintenanceCommand::kNone, ResultCode::kUnknownCommand},
-      {"IMU mode 4", c.Request(cmd(MaintenanceCommand::kSetMode), std::vector<uint8_t>{4}),
-       MaintenanceCommand::kSetMode, ResultCode::kBadArgument},
-      {"write unknown block 0x30", c.WriteBlock(0x30, ca), MaintenanceCommand::kWriteBlock, ResultCode::kUnknownBlock},
-      {"write ADS block on an IMU", c.WriteBlock(kAdsBlockAltitude, ca), MaintenanceCommand::kWriteBlock,
+      {"IMU mode 4",
+       c.Request(cmd(MaintenanceCommand::kSetMode), std::vector<uint8_t>{4}),
+       MaintenanceCommand::kSetMode,
+       ResultCode::kBadArgument},
+      {"write unknown block 0x30",
+       c.WriteBlock(0x30, ca),
+       MaintenanceCommand::kWriteBlock,
        ResultCode::kUnknownBlock},
-      {"read unknown block 0x00", c.ReadBlock(0x00), MaintenanceCommand::kReadBlock, ResultCode::kUnknownBlock},
-      {"CA with 26 words", c.WriteBlock(kImuBlockCa, std::vector<int16_t>(ca.begin(), ca.end() - 1)),
-       MaintenanceCommand::kWriteBlock, ResultCode::kBlockWrongLength},
-      {"CA exponent 100", c.WriteBlock(kImuBlockCa, ca_out_of_range), MaintenanceCommand::kWriteBlock,
+      {"write ADS block on an IMU",
+       c.WriteBlock(kAdsBlockAltitude, ca),
+       MaintenanceCommand::kWriteBlock,
+       ResultCode::kUnknownBlock},
+      {"read unknown block 0x00",
+       c.ReadBlock(0x00),
+       MaintenanceCommand::kReadBlock,
+       ResultCode::kUnknownBlock},
+      {"CA with 26 words",
+       c.WriteBlock(kImuBlockCa, std::vector<int16_t>(ca.begin(), ca.end() - 1)),
+       MaintenanceCommand::kWriteBlock,
+       ResultCode::kBlockWrongLength},
+      {"CA exponent 100",
+       c.WriteBlock(kImuBlockCa, ca_out_of_range),
+       MaintenanceCommand::kWriteBlock,
        ResultCode::kConstantOutOfRange},
-      {"CA gain 32 overflows 256 m/s^2 at 10 g", c.WriteBlock(kImuBlockCa, ca_overflow),
-       MaintenanceCommand::kWriteBlock, ResultCode::kConstantOverflow},
+      {"CA gain 32 overflows 256 m/s^2 at 10 g",
+       c.WriteBlock(kImuBlockCa, ca_overflow),
+       MaintenanceCommand::kWriteBlock,
+       ResultCode::kConstantOverflow},
   };
   const Snapshot before = unit.Take();
   for (const Case& test_case : cases) {
-    const uint32_t naks_before = unit.handler_.counters().naks_by_code[static_cast<uint8_t>(test_case.expected)];
+    const uint32_t naks_before =
+        unit.handler_.counters().naks_by_code[static_cast<uint8_t>(test_case.expected)];
     const MaintenanceResponse response = unit.Send(test_case.request);
     EXPECT_EQ(response.result, test_case.expected)
-        << test_case.what << ": got " << ResultCodeName(response.result) << " for " << HexTrace(test_case.request);
+        << test_case.what << ": got " << ResultCodeName(response.result) << " for "
+        << HexTrace(test_case.request);
     EXPECT_EQ(response.command, test_case.echoed) << test_case.what;
     EXPECT_TRUE(response.data.empty()) << test_case.what;
-    EXPECT_EQ(unit.handler_.counters().naks_by_code[static_cast<uint8_t>(test_case.expected)], naks_before + 1)
+    EXPECT_EQ(unit.handler_.counters().naks_by_code[static_cast<uint8_t>(test_case.expected)],
+              naks_before + 1)
         << test_case.what;
     EXPECT_TRUE(unit.Take() == before) << test_case.what << " changed the unit's state";
   }
@@ -335,7 +395,8 @@ TEST(MaintenanceHandlerTest, EveryMalformedRequestIsRefusedWithItsCodeAndChanges
 
 TEST(MaintenanceHandlerTest, CalibratedModesAndCommitNeedACompleteValidSet) {
   Unit unit(kImuIdentity);
-  for (const auto mode : {ImuCompensationMode::kThermal, ImuCompensationMode::kSensorCalibrated,
+  for (const auto mode : {ImuCompensationMode::kThermal,
+                          ImuCompensationMode::kSensorCalibrated,
                           ImuCompensationMode::kFullyCalibrated}) {
     EXPECT_EQ(unit.Send(unit.client_.SetImuMode(mode)).result, ResultCode::kNoValidConstants);
   }
@@ -343,16 +404,21 @@ TEST(MaintenanceHandlerTest, CalibratedModesAndCommitNeedACompleteValidSet) {
   // All blocks but CG written: commit refused, flash untouched.
   for (const uint8_t id : BlockIds(UnitKind::kImu)) {
     if (id == kImuBlockCg) continue;
-    ASSERT_EQ(unit.Send(unit.client_.WriteBlock(id, ValidBlock(UnitKind::kImu, id, 2))).result, ResultCode::kAck);
+    ASSERT_EQ(unit.Send(unit.client_.WriteBlock(id, ValidBlock(UnitKind::kImu, id, 2))).result,
+              ResultCode::kAck);
   }
   EXPECT_EQ(unit.Send(unit.client_.Commit()).result, ResultCode::kIncompleteConstants);
   EXPECT_EQ(unit.flash_.Inspect(UnitKind::kImu).status, FlashStatus::kErased);
   // Written but uncommitted constants do not unlock calibrated modes either.
-  ASSERT_EQ(unit.Send(unit.client_.WriteBlock(kImuBlockCg, ValidBlock(UnitKind::kImu, kImuBlockCg, 2))).result,
-            ResultCode::kAck);
-  EXPECT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kThermal)).result, ResultCode::kNoValidConstants);
+  ASSERT_EQ(
+      unit.Send(unit.client_.WriteBlock(kImuBlockCg, ValidBlock(UnitKind::kImu, kImuBlockCg, 2)))
+          .result,
+      ResultCode::kAck);
+  EXPECT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kThermal)).result,
+            ResultCode::kNoValidConstants);
   EXPECT_EQ(unit.Send(unit.client_.Commit()).result, ResultCode::kAck);
-  EXPECT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kThermal)).result, ResultCode::kAck);
+  EXPECT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kThermal)).result,
+            ResultCode::kAck);
   EXPECT_EQ(unit.handler_.imu_mode(), ImuCompensationMode::kThermal);
 }
 
@@ -366,20 +432,23 @@ TEST(MaintenanceHandlerTest, Format3BlocksAreAllOrNoneAndAFormat2ImageStillLoads
   auto words_of = [&](const ImuConstants& c, uint8_t id) {
     std::vector<int16_t> words(kLargestBlockWords);
     uint8_t count = 0;
-    EXPECT_EQ(ImuConstantsReadBlock(&c, id, words.data(), static_cast<uint8_t>(words.size()), &count),
-              ConstantsStatus::kOk);
+    EXPECT_EQ(
+        ImuConstantsReadBlock(&c, id, words.data(), static_cast<uint8_t>(words.size()), &count),
+        ConstantsStatus::kOk);
     words.resize(count);
     return words;
   };
   Unit unit(kImuIdentity);
   for (uint8_t id = kImuBlockThermalFirst; id <= kImuBlockScaleSwitch; ++id) {
-    ASSERT_EQ(unit.Send(unit.client_.WriteBlock(id, words_of(exported, id))).result, ResultCode::kAck)
+    ASSERT_EQ(unit.Send(unit.client_.WriteBlock(id, words_of(exported, id))).result,
+              ResultCode::kAck)
         << "block " << +id;
   }
   EXPECT_EQ(unit.Send(unit.client_.Commit()).result, ResultCode::kIncompleteConstants);
   EXPECT_EQ(unit.flash_.Inspect(UnitKind::kImu).status, FlashStatus::kErased);
   for (uint8_t id = kImuBlockScaleFactorFirst; id <= kImuBlockLast; ++id) {
-    ASSERT_EQ(unit.Send(unit.client_.WriteBlock(id, words_of(exported, id))).result, ResultCode::kAck)
+    ASSERT_EQ(unit.Send(unit.client_.WriteBlock(id, words_of(exported, id))).result,
+              ResultCode::kAck)
         << "block " << +id;
   }
   ASSERT_EQ(unit.Send(unit.client_.Commit()).result, ResultCode::kAck);
@@ -412,15 +481,21 @@ TEST(MaintenanceHandlerTest, Format3BlocksAreAllOrNoneAndAFormat2ImageStillLoads
 
 TEST(MaintenanceHandlerTest, AdsUnitModesBlocksAndPowerCycle) {
   Unit unit(kAdsIdentity);
-  EXPECT_EQ(unit.Send(unit.client_.SetAdsMode(AdsCompensationMode::kSurface)).result, ResultCode::kNoValidConstants);
-  EXPECT_EQ(unit.Send(unit.client_.Request(0x01, std::vector<uint8_t>{2})).result, ResultCode::kBadArgument);
-  EXPECT_EQ(unit.Send(unit.client_.WriteBlock(kImuBlockCa, ValidBlock(UnitKind::kImu, kImuBlockCa, 1))).result,
-            ResultCode::kUnknownBlock);
+  EXPECT_EQ(unit.Send(unit.client_.SetAdsMode(AdsCompensationMode::kSurface)).result,
+            ResultCode::kNoValidConstants);
+  EXPECT_EQ(unit.Send(unit.client_.Request(0x01, std::vector<uint8_t>{2})).result,
+            ResultCode::kBadArgument);
+  EXPECT_EQ(
+      unit.Send(unit.client_.WriteBlock(kImuBlockCa, ValidBlock(UnitKind::kImu, kImuBlockCa, 1)))
+          .result,
+      ResultCode::kUnknownBlock);
   unit.WriteAllBlocks(21);
   EXPECT_EQ(unit.ReadBack(kAdsBlockAirspeed), ValidBlock(UnitKind::kAds, kAdsBlockAirspeed, 21));
   ASSERT_EQ(ParseCommit(unit.Send(unit.client_.Commit())).constants_version, 1);
-  ASSERT_EQ(unit.Send(unit.client_.SetAdsMode(AdsCompensationMode::kSurface)).result, ResultCode::kAck);
-  ASSERT_EQ(unit.Send(unit.client_.WriteBlock(kAdsBlockAltitude, ValidBlock(UnitKind::kAds, kAdsBlockAltitude, 99)))
+  ASSERT_EQ(unit.Send(unit.client_.SetAdsMode(AdsCompensationMode::kSurface)).result,
+            ResultCode::kAck);
+  ASSERT_EQ(unit.Send(unit.client_.WriteBlock(kAdsBlockAltitude,
+                                              ValidBlock(UnitKind::kAds, kAdsBlockAltitude, 99)))
                 .result,
             ResultCode::kAck);
   ASSERT_EQ(unit.Send(unit.client_.Reset()).result, ResultCode::kAck);
@@ -446,13 +521,14 @@ TEST(MaintenanceHandlerTest, ResetClearsCountersAndDataSequence) {
   EXPECT_EQ(unit.handler_.TakeDataSequence(), 0);
   const UnitCounters counters = ParseCounters(unit.Send(unit.client_.ReadCounters()));
   EXPECT_EQ(counters.requests_naked, 0u);
-  EXPECT_EQ(counters.requests_acked, 1u);   // the RESET ACK itself, counted after the power cycle
+  EXPECT_EQ(counters.requests_acked, 1u);     // the RESET ACK itself, counted after the power cycle
   EXPECT_EQ(counters.decoder.frames_ok, 1u);  // READ_COUNTERS
 }
 
 TEST(MaintenanceHandlerTest, ClientParsersRejectNaksAndMismatchesWithContext) {
   Unit unit(kImuIdentity);
-  const MaintenanceResponse nak = unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kFullyCalibrated));
+  const MaintenanceResponse nak =
+      unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kFullyCalibrated));
   try {
     ParseCommit(nak);
     FAIL() << "ParseCommit accepted a response to SET_MODE";

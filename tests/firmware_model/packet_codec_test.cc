@@ -16,10 +16,17 @@ namespace {
 constexpr uint8_t kRequest = static_cast<uint8_t>(PacketType::kMaintenanceRequest);
 constexpr uint8_t kResponse = static_cast<uint8_t>(PacketType::kMaintenanceResponse);
 
-std::vector<uint8_t> Encode(uint8_t type, uint8_t sequence, uint8_t tag, const std::vector<uint8_t>& payload) {
+std::vector<uint8_t> Encode(uint8_t type,
+                            uint8_t sequence,
+                            uint8_t tag,
+                            const std::vector<uint8_t>& payload) {
   std::vector<uint8_t> out(kMaxFrameBytes);
-  const uint16_t length = EncodeFrame(type, sequence, tag, payload.data(),
-                                      static_cast<uint8_t>(payload.size()), out.data(),
+  const uint16_t length = EncodeFrame(type,
+                                      sequence,
+                                      tag,
+                                      payload.data(),
+                                      static_cast<uint8_t>(payload.size()),
+                                      out.data(),
                                       static_cast<uint16_t>(out.size()));
   out.resize(length);
   return out;
@@ -37,7 +44,8 @@ Collected FeedByBytes(PacketDecoder* decoder, const std::vector<uint8_t>& stream
   for (const uint8_t byte : stream) {
     uint16_t offset = 0;
     while (true) {
-      const DecodeResult result = decoder->Feed(&byte + offset, static_cast<uint16_t>(1 - offset), &frame);
+      const DecodeResult result =
+          decoder->Feed(&byte + offset, static_cast<uint16_t>(1 - offset), &frame);
       offset = static_cast<uint16_t>(offset + result.consumed_bytes);
       if (result.event == DecodeEvent::kNeedMoreBytes) {
         break;
@@ -52,7 +60,10 @@ Collected FeedByBytes(PacketDecoder* decoder, const std::vector<uint8_t>& stream
   return collected;
 }
 
-void ExpectFrame(const Frame& frame, uint8_t type, uint8_t sequence, uint8_t tag,
+void ExpectFrame(const Frame& frame,
+                 uint8_t type,
+                 uint8_t sequence,
+                 uint8_t tag,
                  const std::vector<uint8_t>& payload) {
   EXPECT_EQ(frame.type, type);
   EXPECT_EQ(frame.sequence, sequence);
@@ -66,7 +77,8 @@ void ExpectFrame(const Frame& frame, uint8_t type, uint8_t sequence, uint8_t tag
 TEST(PacketCodecTest, WorkedExampleOfTheProtocolDocument) {
   // docs/unit-protocol.md §3.1: SET_TAG 42 as request sequence 7; CRC computed by hand from the
   // CRC-16/CCITT-FALSE definition (bitwise, MSB first) is 0x3F83, sent low byte first.
-  const std::vector<uint8_t> expected = {0xA5, 0x5A, 0x02, 0x20, 0x07, 0x00, 0x02, 0x2A, 0x83, 0x3F};
+  const std::vector<uint8_t> expected = {
+      0xA5, 0x5A, 0x02, 0x20, 0x07, 0x00, 0x02, 0x2A, 0x83, 0x3F};
   EXPECT_EQ(Encode(kRequest, 7, 0, {0x02, 0x2A}), expected);
   UnitProtocolClient client;
   for (int i = 0; i < 7; ++i) {
@@ -74,7 +86,8 @@ TEST(PacketCodecTest, WorkedExampleOfTheProtocolDocument) {
   }
   EXPECT_EQ(client.SetTag(42), expected);
   // The unit's ACK, also from §3.1: response type, tag field already 42, CRC 0x8A9D.
-  const std::vector<uint8_t> ack = {0xA5, 0x5A, 0x03, 0x21, 0x07, 0x2A, 0x02, 0x00, 0x2A, 0x9D, 0x8A};
+  const std::vector<uint8_t> ack = {
+      0xA5, 0x5A, 0x03, 0x21, 0x07, 0x2A, 0x02, 0x00, 0x2A, 0x9D, 0x8A};
   EXPECT_EQ(Encode(kResponse, 7, 42, {0x02, 0x00, 0x2A}), ack);
 }
 
@@ -116,12 +129,15 @@ TEST(PacketCodecTest, RoundTripOfEveryPacketTypeWholeAndByteByByte) {
   };
   std::vector<uint8_t> stream;
   for (size_t i = 0; i < cases.size(); ++i) {
-    const std::vector<uint8_t> frame = Encode(cases[i].type, static_cast<uint8_t>(250 + i),
-                                              static_cast<uint8_t>(i), cases[i].payload);
+    const std::vector<uint8_t> frame = Encode(
+        cases[i].type, static_cast<uint8_t>(250 + i), static_cast<uint8_t>(i), cases[i].payload);
     ASSERT_EQ(frame.size(), 8 + cases[i].payload.size());
     // Boost.CRC framing on the PC side produces the same bytes.
-    EXPECT_EQ(frame, BuildFrame(cases[i].type, static_cast<uint8_t>(250 + i), static_cast<uint8_t>(i),
-                                cases[i].payload));
+    EXPECT_EQ(frame,
+              BuildFrame(cases[i].type,
+                         static_cast<uint8_t>(250 + i),
+                         static_cast<uint8_t>(i),
+                         cases[i].payload));
     stream.insert(stream.end(), frame.begin(), frame.end());
   }
   PacketDecoder by_bytes;
@@ -132,9 +148,15 @@ TEST(PacketCodecTest, RoundTripOfEveryPacketTypeWholeAndByteByByte) {
   const std::vector<Frame> frames = whole.Push(stream);
   ASSERT_EQ(frames.size(), cases.size());
   for (size_t i = 0; i < cases.size(); ++i) {
-    ExpectFrame(collected.frames[i], cases[i].type, static_cast<uint8_t>(250 + i),
-                static_cast<uint8_t>(i), cases[i].payload);
-    ExpectFrame(frames[i], cases[i].type, static_cast<uint8_t>(250 + i), static_cast<uint8_t>(i),
+    ExpectFrame(collected.frames[i],
+                cases[i].type,
+                static_cast<uint8_t>(250 + i),
+                static_cast<uint8_t>(i),
+                cases[i].payload);
+    ExpectFrame(frames[i],
+                cases[i].type,
+                static_cast<uint8_t>(250 + i),
+                static_cast<uint8_t>(i),
                 cases[i].payload);
   }
   EXPECT_EQ(whole.counters().frames_ok, cases.size());
@@ -176,7 +198,8 @@ TEST(PacketCodecTest, LengthNotAllowedForTheTypeIsRefusedAtTheHeader) {
   stream.insert(stream.end(), good.begin(), good.end());
   PacketDecoder decoder;
   const Collected collected = FeedByBytes(&decoder, stream);
-  EXPECT_EQ(collected.errors, (std::vector<DecodeEvent>{DecodeEvent::kBadLength, DecodeEvent::kBadLength}));
+  EXPECT_EQ(collected.errors,
+            (std::vector<DecodeEvent>{DecodeEvent::kBadLength, DecodeEvent::kBadLength}));
   ASSERT_EQ(collected.frames.size(), 1u);
   ExpectFrame(collected.frames[0], kResponse, 4, 0, {0x06, 0x03});
   EXPECT_EQ(decoder.counters().bad_length, 2u);

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include "common/random.h"
 #include "firmware_model/target/data_payloads.h"
 #include "firmware_model/target/packet_codec.h"
-#include "common/random.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -41,11 +41,16 @@ std::vector<uint8_t> RandomFrame(common::Rng& rng, uint8_t sequence) {
   for (uint8_t& byte : payload) {
     // One byte in eight is a sync byte, so false syncs inside payloads are frequent.
     const uint64_t draw = rng.NextU64();
-    byte = draw % 8 == 0 ? (draw % 16 == 0 ? kSyncByte0 : kSyncByte1) : static_cast<uint8_t>(draw >> 8);
+    byte = draw % 8 == 0 ? (draw % 16 == 0 ? kSyncByte0 : kSyncByte1)
+                         : static_cast<uint8_t>(draw >> 8);
   }
   std::vector<uint8_t> frame(kMaxFrameBytes);
-  frame.resize(EncodeFrame(type, sequence, static_cast<uint8_t>(rng.NextU64()), payload.data(),
-                           static_cast<uint8_t>(payload.size()), frame.data(),
+  frame.resize(EncodeFrame(type,
+                           sequence,
+                           static_cast<uint8_t>(rng.NextU64()),
+                           payload.data(),
+                           static_cast<uint8_t>(payload.size()),
+                           frame.data(),
                            static_cast<uint16_t>(frame.size())));
   return frame;
 }
@@ -58,7 +63,9 @@ std::vector<uint8_t> RandomGarbage(common::Rng& rng) {
   }
   if (rng.NextU64() % 2 == 0) {
     garbage.insert(garbage.begin() + static_cast<long>(rng.NextU64() % garbage.size()),
-                   {kSyncByte0, kSyncByte1, static_cast<uint8_t>(rng.NextU64() % 100),
+                   {kSyncByte0,
+                    kSyncByte1,
+                    static_cast<uint8_t>(rng.NextU64() % 100),
                     static_cast<uint8_t>(rng.NextU64() % 2 == 0 ? 0x20 : 0x21)});
   }
   return garbage;
@@ -107,16 +114,22 @@ TEST(PacketCorruptionTest, NoCorruptPacketAcceptedAndEveryIntactPacketRecovered)
   size_t offset = 0;
   Frame frame;
   while (offset < stream.size()) {
-    const auto chunk = static_cast<uint16_t>(std::min<size_t>(1 + rng.NextU64() % 64, stream.size() - offset));
+    const auto chunk =
+        static_cast<uint16_t>(std::min<size_t>(1 + rng.NextU64() % 64, stream.size() - offset));
     uint16_t taken = 0;
     while (true) {
-      const DecodeResult result = decoder.Feed(stream.data() + offset + taken,
-                                               static_cast<uint16_t>(chunk - taken), &frame);
+      const DecodeResult result = decoder.Feed(
+          stream.data() + offset + taken, static_cast<uint16_t>(chunk - taken), &frame);
       taken = static_cast<uint16_t>(taken + result.consumed_bytes);
       if (result.event == DecodeEvent::kFrame) {
         std::vector<uint8_t> bytes(kMaxFrameBytes);
-        bytes.resize(EncodeFrame(frame.type, frame.sequence, frame.tag, frame.payload,
-                                 frame.payload_length, bytes.data(), static_cast<uint16_t>(bytes.size())));
+        bytes.resize(EncodeFrame(frame.type,
+                                 frame.sequence,
+                                 frame.tag,
+                                 frame.payload,
+                                 frame.payload_length,
+                                 bytes.data(),
+                                 static_cast<uint16_t>(bytes.size())));
         decoded.push_back(bytes);
       } else if (result.event == DecodeEvent::kNeedMoreBytes) {
         break;
@@ -126,10 +139,17 @@ TEST(PacketCorruptionTest, NoCorruptPacketAcceptedAndEveryIntactPacketRecovered)
   }
 
   const DecoderCounters& counters = decoder.counters();
-  std::printf("packets %d: intact %zu, bit-flipped %d, truncated %d, garbage-followed %d\n", kPackets,
-              intact.size(), fault_counts[1], fault_counts[2], fault_counts[3]);
+  std::printf("packets %d: intact %zu, bit-flipped %d, truncated %d, garbage-followed %d\n",
+              kPackets,
+              intact.size(),
+              fault_counts[1],
+              fault_counts[2],
+              fault_counts[3]);
   std::printf("decoded %zu; bad CRC %u, bad length %u, unknown type %u, resync bytes %u\n",
-              decoded.size(), counters.bad_crc, counters.bad_length, counters.unknown_type,
+              decoded.size(),
+              counters.bad_crc,
+              counters.bad_length,
+              counters.unknown_type,
               counters.resync_bytes_skipped);
   ASSERT_EQ(decoded.size(), intact.size());
   for (size_t i = 0; i < intact.size(); ++i) {

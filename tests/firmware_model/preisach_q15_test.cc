@@ -8,10 +8,10 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "common/random.h"
 #include "firmware_model/target/air_data_tables.h"
 #include "firmware_model/target/preisach_q15.h"
 #include "sensor_sim/preisach_hysteresis.h"
-#include "common/random.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -21,7 +21,8 @@ constexpr double kQ15 = 1.0 / 32768.0;
 CoeffQ31 InverseSpan(double inv) {
   int e = 0;
   std::frexp(inv, &e);
-  return CoeffQ31{static_cast<int32_t>(std::lround(std::ldexp(inv, 31 - e))), static_cast<int8_t>(e)};
+  return CoeffQ31{static_cast<int32_t>(std::lround(std::ldexp(inv, 31 - e))),
+                  static_cast<int8_t>(e)};
 }
 
 int32_t PressureMantissa(double pa) {
@@ -74,7 +75,8 @@ TEST(PreisachQ15, FollowsTheSimulatorsLawOverRandomPressureHistories) {
     double p_pa = rng.Uniform(11000.0, 105000.0);
     for (int excursion = 0; excursion < 60; ++excursion) {
       const double size = std::pow(10.0, rng.Uniform(0.5, 5.0));
-      const double aim = std::clamp(p_pa + (rng.Uniform(0.0, 1.0) < 0.5 ? -size : size), 11000.0, 108000.0);
+      const double aim =
+          std::clamp(p_pa + (rng.Uniform(0.0, 1.0) < 0.5 ? -size : size), 11000.0, 108000.0);
       while (p_pa != aim) {
         p_pa = aim > p_pa ? std::min(aim, p_pa + rng.Uniform(1.0, 400.0))
                           : std::max(aim, p_pa - rng.Uniform(1.0, 400.0));
@@ -86,10 +88,12 @@ TEST(PreisachQ15, FollowsTheSimulatorsLawOverRandomPressureHistories) {
     moving_cycles += pair.moving_cycles;
     moving_frames += pair.moving_frames;
   }
-  std::printf("pressure operator: worst |state - law| %.2e over 1,200 excursions, %.1f cycles per "
-              "moving frame on average, max %u cycles\n",
-              worst, static_cast<double>(moving_cycles) / static_cast<double>(moving_frames),
-              max_cycles);
+  std::printf(
+      "pressure operator: worst |state - law| %.2e over 1,200 excursions, %.1f cycles per "
+      "moving frame on average, max %u cycles\n",
+      worst,
+      static_cast<double>(moving_cycles) / static_cast<double>(moving_frames),
+      max_cycles);
   EXPECT_LT(worst, 5e-4);
   EXPECT_LE(max_cycles, 100u);
 }
@@ -109,7 +113,8 @@ TEST(PreisachQ15, NegativeInverseSpanKeepsTheTemperatureConvention) {
   for (const double aim_c : {25.0, 85.0, -40.0, 10.0, 20.0, 12.0, 85.0, 60.0, 70.0}) {
     while (temp_c != aim_c) {
       temp_c = aim_c > temp_c ? std::min(aim_c, temp_c + 0.5) : std::max(aim_c, temp_c - 0.5);
-      const int32_t code = static_cast<int32_t>(std::lround(6710886.0 + kCodePerDegC * (temp_c - 25.0)));
+      const int32_t code =
+          static_cast<int32_t>(std::lround(6710886.0 + kCodePerDegC * (temp_c - 25.0)));
       DspEngine engine;
       const int16_t state = PreisachUpdateQ15(&engine, &op, code, 31, inv_span);
       worst = std::max(worst, std::abs(state * kQ15 - law.Update(temp_c)));
@@ -160,9 +165,13 @@ TEST(PreisachQ15, NoisySweepDevelopsLikeTheCleanSweep) {
       EXPECT_NEAR(state * kQ15, clean.Update(p_pa), 0.01) << "at " << p_pa << " Pa";
     }
   }
-  std::printf("noisy sweep: %d reversals, worst |state - law| %.2e, deepest stack %u, max %u "
-              "cycles\n",
-              reversals, pair.worst, deepest, pair.max_cycles);
+  std::printf(
+      "noisy sweep: %d reversals, worst |state - law| %.2e, deepest stack %u, max %u "
+      "cycles\n",
+      reversals,
+      pair.worst,
+      deepest,
+      pair.max_cycles);
   EXPECT_GT(reversals, 5000);
   EXPECT_LT(pair.worst, 5e-4);
   EXPECT_LE(deepest, kPreisachDepth);

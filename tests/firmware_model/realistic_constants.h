@@ -2,9 +2,9 @@
 // by the reference tables") and raw frames synthesised from physical truth over the envelope.
 // Magnitudes: accelerometer 1/S = +-25.08..25.93 g per duty with the reference's channel signs,
 // offsets ~ +-0.01 duty; thermal drift tens of mg and a few deg/s over -40..85 C; gyro null ~4.2e6
-// counts, l1 = 4.68..4.84e-5 deg/s per count, l2 ~ 1e-13, l3 ~ 1e-20; cross-axis off-diagonals ~0.01.
-// Temperature counts: ADXRS150 TEMP 2.50 V at 25 C, 8.4 mV/K (physics.md 2.1), 16 x 12-bit at 5 V:
-// 13,107 counts per volt.
+// counts, l1 = 4.68..4.84e-5 deg/s per count, l2 ~ 1e-13, l3 ~ 1e-20; cross-axis off-diagonals
+// ~0.01. Temperature counts: ADXRS150 TEMP 2.50 V at 25 C, 8.4 mV/K (physics.md 2.1), 16 x 12-bit
+// at 5 V: 13,107 counts per volt.
 #pragma once
 
 #include <algorithm>
@@ -13,16 +13,16 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/random.h"
 #include "firmware_model/calibration_constants.h"
 #include "firmware_model/reference_compensator.h"
 #include "firmware_model/target/compensated_frame.h"
-#include "common/random.h"
 
 namespace adahrs::firmware_model::testing {
 
 inline constexpr double kGyroCountsPerDps = 20972.0;
-inline constexpr double kAccelReciprocalScale_g_per_duty[6] = {-25.35, -25.08, 25.26,
-                                                              25.93,  25.57,  -25.71};
+inline constexpr double kAccelReciprocalScale_g_per_duty[6] = {
+    -25.35, -25.08, 25.26, 25.93, 25.57, -25.71};
 // Body axis of each accelerometer channel az1 ax1 ay1 az2 ax2 ay2.
 inline constexpr int kAxisOfChannel[6] = {2, 0, 1, 2, 0, 1};
 
@@ -46,7 +46,9 @@ inline ImuCalibrationConstants RealisticImu(uint64_t seed) {
     const double s2 = rng.Uniform(-0.5, 0.5) * full / (edge * edge);
     const double s3 = rng.Uniform(-0.25, 0.25) * full / (edge * edge * edge);
     f.k = {x0 - s1 * t25 + s2 * t25 * t25 - s3 * t25 * t25 * t25,
-           s1 - 2 * s2 * t25 + 3 * s3 * t25 * t25, s2 - 3 * s3 * t25, s3};
+           s1 - 2 * s2 * t25 + 3 * s3 * t25 * t25,
+           s2 - 3 * s3 * t25,
+           s3};
     f.temp_min_cnt = TempCounts(-40.0);
     f.temp_max_cnt = TempCounts(85.0);
   }
@@ -56,8 +58,10 @@ inline ImuCalibrationConstants RealisticImu(uint64_t seed) {
   }
   for (int g = 0; g < 3; ++g) {
     c.gyro[g].null_cnt = rng.Uniform(-300.0, 300.0);
-    c.gyro[g].l = {rng.Uniform(-0.05, 0.05), rng.Uniform(4.68e-5, 4.84e-5),
-                   rng.Uniform(-1e-13, 1e-13), rng.Uniform(-2e-20, 2e-20)};
+    c.gyro[g].l = {rng.Uniform(-0.05, 0.05),
+                   rng.Uniform(4.68e-5, 4.84e-5),
+                   rng.Uniform(-1e-13, 1e-13),
+                   rng.Uniform(-2e-20, 2e-20)};
   }
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) {
@@ -81,8 +85,10 @@ inline ImuCalibrationConstants WithScaleTemperature(ImuCalibrationConstants c, u
   const double edge = TempCounts(85.0) - t25;
   for (TempSensorSpan& span : st.sensor) span = {t25, TempCounts(-40.0), TempCounts(85.0)};
   for (auto& f : st.scale) {
-    f = {1.0 + rng.Uniform(-0.002, 0.002), rng.Uniform(-0.010, 0.010) / edge,
-         rng.Uniform(-0.003, 0.003) / (edge * edge), rng.Uniform(-0.001, 0.001) / (edge * edge * edge)};
+    f = {1.0 + rng.Uniform(-0.002, 0.002),
+         rng.Uniform(-0.010, 0.010) / edge,
+         rng.Uniform(-0.003, 0.003) / (edge * edge),
+         rng.Uniform(-0.001, 0.001) / (edge * edge * edge)};
   }
   for (double& q : st.accel_quadratic_per_g) q = rng.Uniform(-2e-3, 2e-3);
   for (auto& row : st.gs_dps_per_mps2) {
@@ -93,27 +99,30 @@ inline ImuCalibrationConstants WithScaleTemperature(ImuCalibrationConstants c, u
 
 /// Raw frame for specific force f_B_g (body x, y, z), rate w_dps, temperature temp_c, with the
 /// sensors behaving as the constants `c` describe (so the calibrated output is near the truth).
-inline ImuRawFrame SynthesiseImu(const ImuCalibrationConstants& c, const std::array<double, 3>& f_B_g,
-                                 const std::array<double, 3>& w_dps, double temp_c,
+inline ImuRawFrame SynthesiseImu(const ImuCalibrationConstants& c,
+                                 const std::array<double, 3>& f_B_g,
+                                 const std::array<double, 3>& w_dps,
+                                 double temp_c,
                                  common::Rng* rng) {
   ImuRawFrame raw{};
   for (int s = 0; s < 3; ++s) {
-    raw.temp_cnt[s] = static_cast<uint16_t>(std::lround(TempCounts(temp_c) + rng->Uniform(-20, 20)));
+    raw.temp_cnt[s] =
+        static_cast<uint16_t>(std::lround(TempCounts(temp_c) + rng->Uniform(-20, 20)));
   }
   for (int ch = 0; ch < 9; ++ch) {
     const ThermalFit& f = c.thermal[ch];
     const double t = raw.temp_cnt[f.temp_sensor];
     const double xi = f.k[0] + t * (f.k[1] + t * (f.k[2] + t * f.k[3]));
     if (ch < 6) {
-      const double u = xi + c.accel[ch].offset_duty +
-                       c.accel[ch].scale_duty_per_g * f_B_g[kAxisOfChannel[ch]];
+      const double u =
+          xi + c.accel[ch].offset_duty + c.accel[ch].scale_duty_per_g * f_B_g[kAxisOfChannel[ch]];
       const double t2 = std::floor(rng->Uniform(20000.0, 65000.0));
       raw.t2_cnt[ch] = static_cast<uint16_t>(t2);
       raw.t1_cnt[ch] = static_cast<uint16_t>(std::lround((0.5 + u) * t2));
     } else {
       const int g = ch - 6;
-      raw.gyro_cnt[g] = static_cast<int32_t>(
-          std::lround(xi + c.gyro[g].null_cnt + w_dps[g] * kGyroCountsPerDps));
+      raw.gyro_cnt[g] =
+          static_cast<int32_t>(std::lround(xi + c.gyro[g].null_cnt + w_dps[g] * kGyroCountsPerDps));
     }
   }
   return raw;
@@ -163,8 +172,10 @@ inline SurfaceFit FitSurface(const std::vector<std::array<double, 3>>& xyz,
     s.y_min_code = std::min(s.y_min_code, p[1]);
     s.y_max_code = std::max(s.y_max_code, p[1]);
   }
-  const long double cx = 0.5L * (s.x_min_code + s.x_max_code), hx = 0.5L * (s.x_max_code - s.x_min_code);
-  const long double cy = 0.5L * (s.y_min_code + s.y_max_code), hy = 0.5L * (s.y_max_code - s.y_min_code);
+  const long double cx = 0.5L * (s.x_min_code + s.x_max_code),
+                    hx = 0.5L * (s.x_max_code - s.x_min_code);
+  const long double cy = 0.5L * (s.y_min_code + s.y_max_code),
+                    hy = 0.5L * (s.y_max_code - s.y_min_code);
   const size_t nt = terms.size();
   std::vector<std::vector<long double>> n(nt, std::vector<long double>(nt + 1, 0.0L));
   std::vector<long double> phi(nt);
@@ -233,10 +244,10 @@ inline AdsCalibrationConstants RealisticAds() {
   return AdsCalibrationConstants{FitSurface(alt), FitSurface(cas)};
 }
 
-/// The same bridges calibrated for the firmware's laws: surfaces of static and impact pressure (Pa),
-/// in the full degree-(3, 5) form, so every coefficient word of the blocks is exercised.
-/// Each surface in the bridge code's linearisation (so every block word, the linearisation's too,
-/// is exercised).
+/// The same bridges calibrated for the firmware's laws: surfaces of static and impact pressure
+/// (Pa), in the full degree-(3, 5) form, so every coefficient word of the blocks is exercised. Each
+/// surface in the bridge code's linearisation (so every block word, the linearisation's too, is
+/// exercised).
 inline AdsCalibrationConstants RealisticPressureAds() {
   std::vector<std::array<double, 3>> ps, qc;
   const BridgeLinearisation static_linearisation = BridgeCodeLinearisation(1.0);
@@ -245,10 +256,12 @@ inline AdsCalibrationConstants RealisticPressureAds() {
     const double s_static = LinearisedBridgeCode(static_linearisation, BridgeCode(temp_c));
     const double s_pitot = LinearisedBridgeCode(pitot_linearisation, 1.01 * BridgeCode(temp_c));
     for (double alt_ft = -1000.0; alt_ft <= 50000.0; alt_ft += 1000.0) {
-      ps.push_back({PressureCode(IsaPressure_pa(alt_ft), temp_c), s_static, IsaPressure_pa(alt_ft)});
+      ps.push_back(
+          {PressureCode(IsaPressure_pa(alt_ft), temp_c), s_static, IsaPressure_pa(alt_ft)});
     }
     for (double cas_kt = 30.0; cas_kt <= 450.0; cas_kt += 10.0) {
-      qc.push_back({PressureCode(ImpactPressure_pa(cas_kt), temp_c), s_pitot, ImpactPressure_pa(cas_kt)});
+      qc.push_back(
+          {PressureCode(ImpactPressure_pa(cas_kt), temp_c), s_pitot, ImpactPressure_pa(cas_kt)});
     }
   }
   AdsCalibrationConstants c{FitSurface(ps, FullSurfaceTerms()), FitSurface(qc, FullSurfaceTerms())};
@@ -260,9 +273,21 @@ inline AdsCalibrationConstants RealisticPressureAds() {
   // 0.05 % and 0.075 % FSO of a 15 psi and a 5 psi bridge, following a -2,500 ppm/degC span
   // tempco, spans 20 % FS and 20 degC), the die temperature the inverse of BridgeCode above.
   constexpr double kCodePerDegC = 6710886.0 * 0.0026;
-  c.altitude_ft.hysteresis = {-51.7, 51.7 * 0.0025, 20684.0, -77.6, 77.6 * 0.0025, 20.0, 6710886.0,
+  c.altitude_ft.hysteresis = {-51.7,
+                              51.7 * 0.0025,
+                              20684.0,
+                              -77.6,
+                              77.6 * 0.0025,
+                              20.0,
+                              6710886.0,
                               {25.0, 1.0 / kCodePerDegC, 0.0, 0.0}};
-  c.airspeed_kt.hysteresis = {-17.2, 17.2 * 0.0025, 6895.0, -25.9, 25.9 * 0.0025, 20.0, 6710886.0 * 1.01,
+  c.airspeed_kt.hysteresis = {-17.2,
+                              17.2 * 0.0025,
+                              6895.0,
+                              -25.9,
+                              25.9 * 0.0025,
+                              20.0,
+                              6710886.0 * 1.01,
                               {25.0, 1.0 / (kCodePerDegC * 1.01), 0.0, 0.0}};
   return c;
 }

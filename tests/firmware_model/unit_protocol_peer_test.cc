@@ -2,19 +2,19 @@
 // tests/firmware_model/unit_protocol_peer.py, a standard-library Python decoder written from
 // docs/unit-protocol.md alone (bitwise CRC from the CRC's definition, struct layouts from the
 // tables). Every field it reports must equal what the test encoded.
-#include "adahrs_build_paths.h"
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
+#include "adahrs_build_paths.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "common/random.h"
 #include "firmware_model/target/data_payloads.h"
 #include "firmware_model/unit_protocol_client.h"
-#include "common/random.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -58,7 +58,8 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
         for (int32_t& value : data.compensated.value) value = static_cast<int32_t>(rng.NextU64());
         data.compensated.flags = static_cast<uint16_t>(rng.NextU64());
       }
-      length = EncodeImuDataFrame(data, sequence, tag, frame.data(), static_cast<uint16_t>(frame.size()));
+      length = EncodeImuDataFrame(
+          data, sequence, tag, frame.data(), static_cast<uint16_t>(frame.size()));
       imu_sent.push_back(data);
     } else {
       AdsDataPayload data{};
@@ -73,7 +74,8 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
         for (int32_t& value : data.compensated.value) value = static_cast<int32_t>(rng.NextU64());
         data.compensated.flags = static_cast<uint16_t>(rng.NextU64());
       }
-      length = EncodeAdsDataFrame(data, sequence, tag, frame.data(), static_cast<uint16_t>(frame.size()));
+      length = EncodeAdsDataFrame(
+          data, sequence, tag, frame.data(), static_cast<uint16_t>(frame.size()));
       ads_sent.push_back(data);
     }
     ASSERT_GT(length, 0);
@@ -90,8 +92,9 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
   stream.insert(stream.end(), request.begin(), request.end());
 
   const std::string path = std::string(ADAHRS_BINARY_DIR) + "/unit_protocol_peer_stream.bin";
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(stream.data()),
-                                              static_cast<std::streamsize>(stream.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(stream.data()),
+             static_cast<std::streamsize>(stream.size()));
   const nlohmann::json decoded = nlohmann::json::parse(RunPeer(path));
   const nlohmann::json& frames = decoded.at("frames");
   ASSERT_EQ(frames.size(), 301u);
@@ -115,7 +118,8 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
       }
       EXPECT_EQ(imu.at("mode").get<int>(), static_cast<int>(sent.mode));
       if (sent.mode != ImuCompensationMode::kRaw) {
-        for (int c = 0; c < 9; ++c) EXPECT_EQ(imu.at("values")[c].get<int32_t>(), sent.compensated.value[c]);
+        for (int c = 0; c < 9; ++c)
+          EXPECT_EQ(imu.at("values")[c].get<int32_t>(), sent.compensated.value[c]);
         EXPECT_EQ(imu.at("flags").get<uint16_t>(), sent.compensated.flags);
       } else {
         EXPECT_FALSE(imu.contains("values"));
@@ -123,8 +127,11 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
     } else {
       const AdsDataPayload& sent = ads_sent[ads_index++];
       const nlohmann::json& ads = f.at("ads");
-      const int32_t codes[5] = {sent.raw.ps_code, sent.raw.pt_code, sent.raw.ps_bridge_code,
-                                sent.raw.pt_bridge_code, sent.raw.oat_code};
+      const int32_t codes[5] = {sent.raw.ps_code,
+                                sent.raw.pt_code,
+                                sent.raw.ps_bridge_code,
+                                sent.raw.pt_bridge_code,
+                                sent.raw.oat_code};
       for (int c = 0; c < 5; ++c) EXPECT_EQ(ads.at("codes")[c].get<int32_t>(), codes[c]);
       EXPECT_EQ(ads.at("mode").get<int>(), static_cast<int>(sent.mode));
       if (sent.mode != AdsCompensationMode::kRaw) {

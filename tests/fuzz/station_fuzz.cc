@@ -2,8 +2,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "hil/station.h"
 #include "common/param_reader.h"
+#include "hil/station.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -25,8 +25,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     fm::Frame frame{};
     frame.type = static_cast<uint8_t>(fm::PacketType::kMaintenanceRequest);
     frame.sequence = sequence++;
-    frame.payload_length = static_cast<uint8_t>(
-        std::min<size_t>({data[at], size - at - 1, fm::kMaxPayloadBytes}));
+    frame.payload_length =
+        static_cast<uint8_t>(std::min<size_t>({data[at], size - at - 1, fm::kMaxPayloadBytes}));
     std::memcpy(frame.payload, data + at + 1, frame.payload_length);
     at += 1 + frame.payload_length;
     const uint16_t bytes = handler.HandleRequest(frame, response, sizeof response);

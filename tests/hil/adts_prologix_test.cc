@@ -12,15 +12,16 @@
 namespace adahrs::hil {
 namespace {
 
-using ::testing::HasSubstr;
 using test::RigStation;
+using ::testing::HasSubstr;
 
 // ISA troposphere (ICAO Doc 7488): P = P0 (1 - L h / T0)^(g0 / (R L)), h in m.
 double IsaPsPa(double alt_ft) {
   const double h_m = alt_ft * 0.3048;
   return 101325.0 * std::pow(1.0 - 0.0065 * h_m / 288.15, 9.80665 / (287.05287 * 0.0065));
 }
-// Subsonic impact pressure of calibrated airspeed (St Venant): qc = P0 ((1 + 0.2 (V/a0)^2)^3.5 - 1).
+// Subsonic impact pressure of calibrated airspeed (St Venant): qc = P0 ((1 + 0.2 (V/a0)^2)^3.5 -
+// 1).
 double IsaQcPa(double cas_kt) {
   const double v_mps = cas_kt * 1852.0 / 3600.0;
   const double a0_mps = std::sqrt(1.4 * 287.05287 * 288.15);
@@ -76,7 +77,8 @@ TEST(AdtsPrologix, NeverStableStaysUnstable) {
   adts.SetAltitude(2000.0, 20000.0);
   adts.SetAirspeed(100.0, 1000.0);
   // 6 s ramp + 15 s delay would make it stable; two simulated minutes later it still is not.
-  EXPECT_FALSE(test::WaitUntil(s.clock, [&] { return adts.Stable(); }, std::chrono::milliseconds(600)));
+  EXPECT_FALSE(test::WaitUntil(
+      s.clock, [&] { return adts.Stable(); }, std::chrono::milliseconds(600)));
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-#include "adahrs_build_paths.h"
 #include "hil/codecs/atl_codec.h"
+#include "adahrs_build_paths.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,18 +1,18 @@
 // The ATL rate-table driver against the virtual table of the rig process (docs/rig/rate-table.md).
-#include "adahrs_build_paths.h"
 #include "hil/drivers/atl_rate_table.h"
+#include "adahrs_build_paths.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "hil/drivers/atl_client_table.h"
 #include "driver_test_util.h"
+#include "hil/drivers/atl_client_table.h"
 
 namespace adahrs::hil {
 namespace {
 
-using ::testing::HasSubstr;
 using test::RigStation;
+using ::testing::HasSubstr;
 
 TEST(AtlRateTable, ReachesTheCommandedRateReportsAtRateAndStops) {
   RigStation s;
@@ -24,7 +24,8 @@ TEST(AtlRateTable, ReachesTheCommandedRateReportsAtRateAndStops) {
   ASSERT_TRUE(test::WaitUntil(s.clock, [&] { return table.AtRate(); }));
   // At rate: within the controller's 0.01 deg/s band, plus the 1e-5 once-per-revolution ripple.
   EXPECT_NEAR(table.ReadRateDps(), 100.0, 0.01 + 100.0 * 1e-5);
-  // The world the units sense turns at the commanded rate too (the rig's own state, not the driver).
+  // The world the units sense turns at the commanded rate too (the rig's own state, not the
+  // driver).
   EXPECT_NEAR(test::EnvValue(s.rig, "table_rate_dps"), 100.0, 0.01 + 100.0 * 1e-5);
   table.Stop(200.0);
   ASSERT_TRUE(test::WaitUntil(s.clock, [&] { return std::abs(table.ReadRateDps()) < 0.01; }));

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "hil/drivers/station_instruments.h"
 #include "../support/rig_process.h"
+#include "hil/drivers/station_instruments.h"
 
 namespace adahrs::hil::test {
 
@@ -25,7 +25,8 @@ struct RigStation {
 };
 
 /// Polls `condition` every simulated second until it holds or `wall_limit` passes; true if held.
-inline bool WaitUntil(const Clock& clock, const std::function<bool()>& condition,
+inline bool WaitUntil(const Clock& clock,
+                      const std::function<bool()>& condition,
                       std::chrono::milliseconds wall_limit = std::chrono::seconds(10)) {
   const auto end = std::chrono::steady_clock::now() + wall_limit;
   while (std::chrono::steady_clock::now() < end) {

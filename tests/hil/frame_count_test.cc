@@ -17,9 +17,9 @@ TEST(FramesBetween, CountsTheCounterStepAcrossItsWrap) {
 }
 
 TEST(FramesBetween, BurstsKeepTheCounterStepWhateverTheArrivalTime) {
-  EXPECT_EQ(FramesBetween(7, 8, 0.0, kPeriod_s), 1);   // read in one burst
-  EXPECT_EQ(FramesBetween(7, 8, 0.5, kPeriod_s), 1);   // held 0.5 s by a busy host
-  EXPECT_EQ(FramesBetween(7, 7, 0.0, kPeriod_s), 0);   // the same packet logged twice
+  EXPECT_EQ(FramesBetween(7, 8, 0.0, kPeriod_s), 1);  // read in one burst
+  EXPECT_EQ(FramesBetween(7, 8, 0.5, kPeriod_s), 1);  // held 0.5 s by a busy host
+  EXPECT_EQ(FramesBetween(7, 7, 0.0, kPeriod_s), 0);  // the same packet logged twice
 }
 
 TEST(FramesBetween, WholeTurnsComeFromTheArrivalTime) {

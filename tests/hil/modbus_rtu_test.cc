@@ -39,7 +39,8 @@ TEST(ModbusRtuCrc, MatchesPublishedRequestFrames) {
 TEST(ModbusRtuRequest, EncodesTheTextbookReadFrame) {
   // Read 10 holding registers from 0 at slave 1: the frame printed in the Modbus RTU literature
   // (e.g. Simply Modbus "Function 03" page): 01 03 00 00 00 0A C5 CD.
-  EXPECT_EQ(EncodeRequest(ReadRequest(1, 0, 10)), (Bytes{0x01, 0x03, 0x00, 0x00, 0x00, 0x0A, 0xC5, 0xCD}));
+  EXPECT_EQ(EncodeRequest(ReadRequest(1, 0, 10)),
+            (Bytes{0x01, 0x03, 0x00, 0x00, 0x00, 0x0A, 0xC5, 0xCD}));
   // Exception 02 to FC 03 from slave 1 (same literature): 01 83 02 C0 F1.
   const Response exception =
       ExceptionResponse(1, kReadHoldingRegisters, ExceptionCode::kIllegalDataAddress);
@@ -147,7 +148,8 @@ TEST(ModbusRtuDecode, RepliesWithRegisterCountsOutsideTheProtocolAreMalformed) {
   // length fits its header, none is a reply the protocol allows (nor one EncodeResponse writes).
   Bytes too_many_read = {0x01, 0x03, 252};
   too_many_read.resize(3 + 252, 0x00);
-  for (const Bytes& frame : {WithCrc({0x01, 0x03, 0x00}), WithCrc(too_many_read),
+  for (const Bytes& frame : {WithCrc({0x01, 0x03, 0x00}),
+                             WithCrc(too_many_read),
                              WithCrc({0x01, 0x10, 0x00, 0x64, 0x00, 0x00}),
                              WithCrc({0x01, 0x10, 0x00, 0x64, 0x00, 124})}) {
     EXPECT_EQ(DecodeResponse(frame).status, DecodeStatus::kMalformed) << frame.size() << " bytes";

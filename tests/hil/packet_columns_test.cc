@@ -58,8 +58,8 @@ TEST(PacketColumns, SensorCalibratedModeIsGAndDps) {
 TEST(PacketColumns, FullyCalibratedModeIsMps2DpsAndG) {
   ImuRecordRow row;
   SetPacketColumns(ImuPayload(fm::ImuCompensationMode::kFullyCalibrated, -(1 << 23)), row);
-  EXPECT_EQ((*row.comp)[0], -1.0);        // m/s^2, LSB 2^-23
-  EXPECT_EQ((*row.comp)[3], -1.0);        // deg/s, LSB 2^-23
+  EXPECT_EQ((*row.comp)[0], -1.0);         // m/s^2, LSB 2^-23
+  EXPECT_EQ((*row.comp)[3], -1.0);         // deg/s, LSB 2^-23
   EXPECT_EQ((*row.comp)[6], -1.0 / 16.0);  // g, LSB 2^-27
 }
 

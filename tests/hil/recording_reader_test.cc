@@ -84,14 +84,18 @@ TEST_F(RecordingReaderTest, ReadsBackWhatTheWriterWrote) {
 TEST_F(RecordingReaderTest, StreamingHandsEachRowWithItsLineAndHoldsNone) {
   std::vector<std::pair<uint32_t, int>> imu;
   std::vector<int> ads_lines;
-  const Recording rec = StreamRecording(
-      dir_, {[&](ImuRecordRow&& r, int line) { imu.emplace_back(r.seq, line); },
-             [&](AdsRecordRow&& r, int line) { ads_lines.push_back(r.ps_counts == -8388608 ? line : -1); }});
+  const Recording rec =
+      StreamRecording(dir_,
+                      {[&](ImuRecordRow&& r, int line) { imu.emplace_back(r.seq, line); },
+                       [&](AdsRecordRow&& r, int line) {
+                         ads_lines.push_back(r.ps_counts == -8388608 ? line : -1);
+                       }});
   EXPECT_TRUE(rec.imu.empty());
   EXPECT_TRUE(rec.ads.empty());
   EXPECT_EQ(rec.meta["sample_rate_hz"], 100);
   ASSERT_EQ(imu.size(), 3u);
-  for (uint32_t i = 0; i < 3; ++i) EXPECT_EQ(imu[i], std::make_pair(i, static_cast<int>(i) + 2));  // line 1: header
+  for (uint32_t i = 0; i < 3; ++i)
+    EXPECT_EQ(imu[i], std::make_pair(i, static_cast<int>(i) + 2));  // line 1: header
   EXPECT_EQ(ads_lines, std::vector<int>{2});
   // An empty sink still checks its file's rows.
   ReplaceInFile("imu.csv", ",4194304,-3,", ",4194304,nan,");
@@ -100,7 +104,8 @@ TEST_F(RecordingReaderTest, StreamingHandsEachRowWithItsLineAndHoldsNone) {
 
 TEST_F(RecordingReaderTest, BadCellNamesFileLineAndColumn) {
   ReplaceInFile("imu.csv", ",4194304,-3,", ",4194304,nan,");
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:2"), HasSubstr("column 22 (gy)"), HasSubstr("'nan'")));
+  EXPECT_THAT(ErrorOf(),
+              AllOf(HasSubstr("imu.csv:2"), HasSubstr("column 22 (gy)"), HasSubstr("'nan'")));
 }
 
 TEST_F(RecordingReaderTest, BadCellIsQuotedWithItsControlBytesEscaped) {
@@ -112,7 +117,8 @@ TEST_F(RecordingReaderTest, BadCellIsQuotedWithItsControlBytesEscaped) {
 
 TEST_F(RecordingReaderTest, OutOfRangeTicksAreRefused) {
   ReplaceInFile("imu.csv", ",30001,", ",70000,");
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:3"), HasSubstr("az1_t1"), HasSubstr("[0, 65535]")));
+  EXPECT_THAT(ErrorOf(),
+              AllOf(HasSubstr("imu.csv:3"), HasSubstr("az1_t1"), HasSubstr("[0, 65535]")));
 }
 
 TEST_F(RecordingReaderTest, TruncatedTailIsReportedOrCountedOnRequest) {
@@ -133,7 +139,8 @@ TEST_F(RecordingReaderTest, WrongFormatVersionIsRefused) {
 // not an integer is named as such, not called missing.
 TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
   ReplaceInFile("meta.json", "\"format_version\": 2", "\"format_version\": 4294967298");
-  EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is 4294967298; this software reads versions 1 to 2"));
+  EXPECT_THAT(ErrorOf(),
+              HasSubstr("$.format_version is 4294967298; this software reads versions 1 to 2"));
   ReplaceInFile("meta.json", "\"format_version\": 4294967298", "\"format_version\": 2.0");
   EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is 2.0, not an integer"));
   ReplaceInFile("meta.json", "\"format_version\": 2.0", "\"format_version\": \"2\"");
@@ -143,7 +150,9 @@ TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
 // Per unit, rows come in arrival order; a copy, time going back, a unit meta.json does not list
 // and a negative step are refused by file and line. Rows 2-4 of imu.csv are seq 0, 1, 2.
 TEST_F(RecordingReaderTest, RowsOutOfArrivalOrderAreRefusedByLine) {
-  const auto append = [&](const std::string& row) { std::ofstream(dir_ / "imu.csv", std::ios::app) << row; };
+  const auto append = [&](const std::string& row) {
+    std::ofstream(dir_ / "imu.csv", std::ios::app) << row;
+  };
   std::ifstream in(dir_ / "imu.csv");
   std::string header, row1, row2, row3;
   std::getline(in, header);
@@ -152,18 +161,23 @@ TEST_F(RecordingReaderTest, RowsOutOfArrivalOrderAreRefusedByLine) {
   std::getline(in, row3);
   in.close();
   append(row3 + "\n");
-  EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:5: unit IMU-0001 repeats its previous row (seq 2, t_s 0.030000 s)"));
+  EXPECT_THAT(
+      ErrorOf(),
+      HasSubstr("imu.csv:5: unit IMU-0001 repeats its previous row (seq 2, t_s 0.030000 s)"));
   ReplaceInFile("imu.csv", row3 + "\n" + row3, row3 + "\n" + row1);
-  EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:5: unit IMU-0001 t_s 0.010000 s goes back from 0.030000 s"));
+  EXPECT_THAT(ErrorOf(),
+              HasSubstr("imu.csv:5: unit IMU-0001 t_s 0.010000 s goes back from 0.030000 s"));
   ReplaceInFile("imu.csv", row3 + "\n" + row1, row3);
   ASSERT_EQ(ErrorOf(), "accepted");
   ReplaceInFile("imu.csv", "0.0200,IMU-0001,1,0,", "0.0200,IMU-0001,1,-4,");
   EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:3: unit IMU-0001 step -4 is negative"));
   ReplaceInFile("imu.csv", "0.0200,IMU-0001,1,-4,", "0.0200,IMU-0001,1,0,");
   nlohmann::json meta = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
-  meta["units"] = {{{"kind", "imu"}, {"serial", "IMU-0002"}}, {{"kind", "ads"}, {"serial", "ADS-0001"}}};
+  meta["units"] = {{{"kind", "imu"}, {"serial", "IMU-0002"}},
+                   {{"kind", "ads"}, {"serial", "ADS-0001"}}};
   std::ofstream(dir_ / "meta.json") << meta.dump();
-  EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:2: unit 'IMU-0001' is not listed in meta.json $.units"));
+  EXPECT_THAT(ErrorOf(),
+              HasSubstr("imu.csv:2: unit 'IMU-0001' is not listed in meta.json $.units"));
 }
 
 // Packets sharing an arrival time (a burst read at once) are not copies, even when their 8-bit
@@ -186,9 +200,12 @@ TEST_F(RecordingReaderTest, ABurstSharingOneTimeIsRead) {
 // A unit listed twice would have its rows counted twice by whoever walks the list.
 TEST_F(RecordingReaderTest, UnitListedTwiceIsRefused) {
   nlohmann::json meta = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
-  meta["units"] = {{{"kind", "imu"}, {"serial", "IMU-0001"}}, {{"kind", "imu"}, {"serial", "IMU-0001"}}};
+  meta["units"] = {{{"kind", "imu"}, {"serial", "IMU-0001"}},
+                   {{"kind", "imu"}, {"serial", "IMU-0001"}}};
   std::ofstream(dir_ / "meta.json") << meta.dump();
-  EXPECT_THAT(ErrorOf(), HasSubstr("meta.json: $.units[1].serial \"IMU-0001\" is listed already as $.units[0]"));
+  EXPECT_THAT(
+      ErrorOf(),
+      HasSubstr("meta.json: $.units[1].serial \"IMU-0001\" is listed already as $.units[0]"));
 }
 
 TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
@@ -222,7 +239,8 @@ TEST_F(RecordingReaderTest, CompensatedRowReadsBackExactly) {
 
 TEST_F(RecordingReaderTest, CompensatedCellsMustMatchTheMode) {
   ReplaceInFile("imu.csv", ",65520,0,,,", ",65520,2,,,");
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:2"), HasSubstr("(comp0)"), HasSubstr("mode is 2")));
+  EXPECT_THAT(ErrorOf(),
+              AllOf(HasSubstr("imu.csv:2"), HasSubstr("(comp0)"), HasSubstr("mode is 2")));
 }
 
 TEST_F(RecordingReaderTest, RawModeWithAValueIsRefused) {
@@ -262,8 +280,9 @@ TEST_F(RecordingReaderTest, VersionOneMetaWithVersionTwoHeaderIsRefused) {
 
 TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {
   RecordingWriter w(dir_);
-  w.WriteMeta({{"rejected_intervals",
-                {{{"step", 2}, {"t_start_s", 0.015}, {"t_end_s", 0.02}, {"reason", "interlock"}}}}});
+  w.WriteMeta(
+      {{"rejected_intervals",
+        {{{"step", 2}, {"t_start_s", 0.015}, {"t_end_s", 0.02}, {"reason", "interlock"}}}}});
   const Recording rec = ReadRecording(dir_);
   ASSERT_EQ(rec.rejected_intervals.size(), 1u);
   EXPECT_EQ(rec.rejected_intervals[0].step, 2);
@@ -277,7 +296,8 @@ TEST_F(RecordingReaderTest, MalformedRejectedIntervalNamesItsPath) {
   RecordingWriter w(dir_);
   w.WriteMeta({{"rejected_intervals",
                 {{{"step", 2}, {"t_start_s", 5.0}, {"t_end_s", 4.0}, {"reason", "x"}}}}});
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("$.rejected_intervals[0]"), HasSubstr("before t_start_s")));
+  EXPECT_THAT(ErrorOf(),
+              AllOf(HasSubstr("$.rejected_intervals[0]"), HasSubstr("before t_start_s")));
 }
 
 TEST_F(RecordingReaderTest, MissingColumnIsRefusedByName) {
@@ -299,7 +319,8 @@ TEST_F(RecordingReaderTest, UnknownColumnIsIgnoredWithANote) {
   std::string line, text;
   for (int n = 0; std::getline(in, line); ++n) {
     const size_t third = line.find(',', line.find(',', line.find(',') + 1) + 1);
-    text += line.substr(0, third + 1) + (n == 0 ? "humidity_pct" : std::to_string(40 + n)) + line.substr(third) + "\n";
+    text += line.substr(0, third + 1) + (n == 0 ? "humidity_pct" : std::to_string(40 + n)) +
+            line.substr(third) + "\n";
   }
   in.close();
   std::ofstream(path) << text;
@@ -313,7 +334,9 @@ TEST_F(RecordingReaderTest, UnknownColumnIsIgnoredWithANote) {
     EXPECT_EQ(after.imu[i].temp_cnt, before.imu[i].temp_cnt);
   }
   ASSERT_EQ(after.notes.size(), 1u);
-  EXPECT_THAT(after.notes[0], AllOf(HasSubstr("imu.csv"), HasSubstr("column 4 'humidity_pct'"), HasSubstr("ignored")));
+  EXPECT_THAT(
+      after.notes[0],
+      AllOf(HasSubstr("imu.csv"), HasSubstr("column 4 'humidity_pct'"), HasSubstr("ignored")));
   EXPECT_TRUE(before.notes.empty());
 }
 
@@ -322,7 +345,8 @@ TEST_F(RecordingReaderTest, ColumnsAreFoundByNameInAnyOrder) {
   ReplaceInFile("ads.csv", "ps_ref_pa,qc_ref_pa", "qc_ref_pa,ps_ref_pa");
   const Recording rec = ReadRecording(dir_);
   ASSERT_EQ(rec.ads.size(), 1u);
-  EXPECT_DOUBLE_EQ(rec.ads[0].qc_ref_pa, 69681.64);  // the file's values did not move: its names did
+  EXPECT_DOUBLE_EQ(rec.ads[0].qc_ref_pa,
+                   69681.64);  // the file's values did not move: its names did
   EXPECT_DOUBLE_EQ(rec.ads[0].ps_ref_pa, 0.0);
 }
 

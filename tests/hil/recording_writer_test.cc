@@ -1,5 +1,5 @@
-#include "adahrs_build_paths.h"
 #include "hil/recording/recording_writer.h"
+#include "adahrs_build_paths.h"
 
 #include <cmath>
 #include <filesystem>
@@ -21,8 +21,8 @@ std::string ReadAll(const std::filesystem::path& path) {
 }
 
 std::filesystem::path FreshDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("adahrs_" + name + "_" +
-                                                              std::to_string(::getpid()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("adahrs_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   return dir;
 }
@@ -30,7 +30,8 @@ std::filesystem::path FreshDir(const std::string& name) {
 // The header the code writes must be the one the contract documents (docs/recording-format.md),
 // so the two cannot drift apart.
 TEST(RecordingWriter, HeadersMatchTheDocumentedContract) {
-  const std::string doc = ReadAll(std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/recording-format.md");
+  const std::string doc =
+      ReadAll(std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/recording-format.md");
   for (std::string_view header : {kImuCsvHeader, kAdsCsvHeader, kImuCsvHeaderV1, kAdsCsvHeaderV1}) {
     std::string quoted(1, '`');
     quoted.append(header).push_back('`');
@@ -67,10 +68,11 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
     w.Flush(true);
   }
   const std::string imu = ReadAll(dir / "imu.csv");
-  EXPECT_EQ(imu, std::string(kImuCsvHeader) + "\n" +
-                     "1.2500,IMU-0001,65535,2,200,31,-20.500,150.0000,29000,29001,29002,29003,29004,"
-                     "29005,29006,29007,29008,29009,29010,29011,4194304,-1,7340032,40000,41000,42000,"
-                     "0,,,,,,,,,,\n");
+  EXPECT_EQ(imu,
+            std::string(kImuCsvHeader) + "\n" +
+                "1.2500,IMU-0001,65535,2,200,31,-20.500,150.0000,29000,29001,29002,29003,29004,"
+                "29005,29006,29007,29008,29009,29010,29011,4194304,-1,7340032,40000,41000,42000,"
+                "0,,,,,,,,,,\n");
   const std::string ads = ReadAll(dir / "ads.csv");
   EXPECT_EQ(std::count(ads.begin(), ads.end(), '\n'), 2);
   EXPECT_NE(ads.find(",-8388608,"), std::string::npos);
@@ -115,7 +117,8 @@ TEST(RecordingWriter, RefusesToAppendToAnotherVersionsFile) {
     RecordingWriter w(dir);
     FAIL();
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("imu.csv:1: cannot append"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("imu.csv:1: cannot append"), std::string::npos)
+        << e.what();
   }
   std::filesystem::remove_all(dir);
 }
@@ -125,7 +128,8 @@ TEST(RecordingWriter, UnwritableDirectoryNamesThePath) {
     RecordingWriter w("/proc/adahrs_no_such_dir/run");
     FAIL();
   } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("/proc/adahrs_no_such_dir"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/proc/adahrs_no_such_dir"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
+#include "common/random.h"
 #include "hil/codecs/prologix.h"
 #include "hil/codecs/scpi.h"
-#include "common/random.h"
 
 namespace adahrs::hil {
 namespace {
@@ -28,7 +28,8 @@ TEST(ScpiCodec, ParsesHeadersQueriesAndArguments) {
 }
 
 TEST(ScpiCodec, RefusesMalformedCommandsWithSyntaxErrors) {
-  for (const char* text : {"", "1ABC", "SOUR:", "SOUR:PRES PS,,1", "MEAS:PRES?PS", "A\x01", "X \"open"}) {
+  for (const char* text :
+       {"", "1ABC", "SOUR:", "SOUR:PRES PS,,1", "MEAS:PRES?PS", "A\x01", "X \"open"}) {
     const ScpiParsed p = ParseScpiCommand(text);
     EXPECT_FALSE(p.command) << text;
     EXPECT_EQ(p.error, kScpiSyntaxError) << text;
@@ -87,7 +88,8 @@ TEST(ScpiPrologixCodec, SurviveRandomGarbage) {
     std::string text;
     const int length = static_cast<int>(rng.Uniform(0.0, 24.0));
     for (int k = 0; k < length; ++k) {
-      text.push_back(i % 2 ? static_cast<char>(rng.NextU64() & 0xFF) : alphabet[rng.NextU64() % alphabet.size()]);
+      text.push_back(i % 2 ? static_cast<char>(rng.NextU64() & 0xFF)
+                           : alphabet[rng.NextU64() % alphabet.size()]);
     }
     for (const std::string& command : SplitScpiProgram(text)) {
       const ScpiParsed p = ParseScpiCommand(command);

@@ -25,8 +25,10 @@ std::string ReadMaster(int fd, size_t count) {
   char buf[256];
   for (int i = 0; i < 200 && out.size() < count; ++i) {
     const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n > 0) out.append(buf, static_cast<size_t>(n));
-    else std::this_thread::sleep_for(1ms);
+    if (n > 0)
+      out.append(buf, static_cast<size_t>(n));
+    else
+      std::this_thread::sleep_for(1ms);
   }
   return out;
 }
@@ -51,8 +53,12 @@ TEST(SerialPort, TimeoutNamesRolePortAndWhatArrived) {
     port.ReadUntil("\r\n", 100ms);
     FAIL();
   } catch (const TransportTimeout& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("chamber"), HasSubstr(pty.slave_path()),
-                                HasSubstr("0D 0A"), HasSubstr("01 03"), HasSubstr("100 ms")));
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr("chamber"),
+                      HasSubstr(pty.slave_path()),
+                      HasSubstr("0D 0A"),
+                      HasSubstr("01 03"),
+                      HasSubstr("100 ms")));
   }
   uint8_t buf[8];
   EXPECT_EQ(port.ReadSome(buf, 50ms), 0u);  // a poll with nothing pending is not an error
@@ -77,8 +83,10 @@ TEST(SerialPort, MissingDeviceIsAClearError) {
     SerialPort port({"/dev/does-not-exist-adahrs", 9600}, "adts");
     FAIL();
   } catch (const TransportError& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("adts"), HasSubstr("/dev/does-not-exist-adahrs"),
-                                HasSubstr("cannot open")));
+    EXPECT_THAT(
+        e.what(),
+        AllOf(
+            HasSubstr("adts"), HasSubstr("/dev/does-not-exist-adahrs"), HasSubstr("cannot open")));
   }
 }
 
@@ -88,7 +96,8 @@ int PyserialExclusiveOpen(const std::string& path) {
   const std::string command =
       "/usr/bin/python3 -c 'import sys, serial\n"
       "try:\n    serial.Serial(sys.argv[1], exclusive=True).close()\n"
-      "except serial.SerialException:\n    sys.exit(3)' " + path;
+      "except serial.SerialException:\n    sys.exit(3)' " +
+      path;
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }

@@ -8,8 +8,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "hil/drivers/unit_serial.h"
 #include "driver_test_util.h"
+#include "hil/drivers/unit_serial.h"
 
 extern char** environ;
 
@@ -21,8 +21,8 @@ namespace {
 class SocatRelay {
  public:
   SocatRelay(const std::string& link, const std::string& target) {
-    std::vector<std::string> args = {"/usr/bin/socat", "pty,raw,echo=0,link=" + link,
-                                     target + ",raw,echo=0"};
+    std::vector<std::string> args = {
+        "/usr/bin/socat", "pty,raw,echo=0,link=" + link, target + ",raw,echo=0"};
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

@@ -6,8 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "hil/drivers/unit_serial.h"
 #include "../support/rig_process.h"
+#include "hil/drivers/unit_serial.h"
 
 namespace adahrs::hil {
 namespace {

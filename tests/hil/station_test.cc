@@ -1,5 +1,5 @@
-#include "adahrs_build_paths.h"
 #include "hil/station.h"
+#include "adahrs_build_paths.h"
 
 #include <unistd.h>
 
@@ -15,7 +15,8 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-const std::string kExample = std::string(ADAHRS_SOURCE_DIR) + "/docs/examples/station-virtual-rig.json";
+const std::string kExample =
+    std::string(ADAHRS_SOURCE_DIR) + "/docs/examples/station-virtual-rig.json";
 
 nlohmann::json Example() { return common::ParamReader::LoadFile(kExample); }
 
@@ -38,8 +39,8 @@ TEST(Station, TheDocumentedExampleLoads) {
   ASSERT_EQ(st.units.size(), 2u);
   EXPECT_EQ(st.units[1].port.baud, 115200u);
   // WGS-84 normal gravity at 34.7° N, 190 m, by hand: Somigliana
-  // 9.7803253359·(1 + 0.00193185265·sin²φ)/√(1 − 0.00669438·sin²φ) = 9.797079 with sin²φ = 0.324082,
-  // free air −3.086e-6·190 = −0.000586: 9.796493 m/s².
+  // 9.7803253359·(1 + 0.00193185265·sin²φ)/√(1 − 0.00669438·sin²φ) = 9.797079 with sin²φ =
+  // 0.324082, free air −3.086e-6·190 = −0.000586: 9.796493 m/s².
   EXPECT_NEAR(st.local_gravity_mps2, 9.796493, 1e-5);
 }
 
@@ -75,22 +76,26 @@ TEST(Station, RoundTripsThroughJson) {
 TEST(Station, RefusesWhatARealLabWouldGetWrong) {
   nlohmann::json j = Example();
   j["units"][1]["port"]["parity"] = "X";
-  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1].port.parity"), HasSubstr("\"N\", \"E\" or \"O\"")));
+  EXPECT_THAT(ErrorOf(j),
+              AllOf(HasSubstr("$.units[1].port.parity"), HasSubstr("\"N\", \"E\" or \"O\"")));
 
   j = Example();
   j["units"][1]["port"]["path"] = j["units"][0]["port"]["path"];
   EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1]"), HasSubstr("already used")));
 
   // One device under two names: a symlink and its target, and a path spelt two ways.
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("adahrs_station_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("adahrs_station_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::filesystem::remove(dir / "imu1");
   std::filesystem::create_symlink("/dev/null", dir / "imu1");
   j = Example();
   j["units"][0]["port"]["path"] = (dir / "imu1").string();
   j["units"][1]["port"]["path"] = "/dev/null";
-  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1].port.path"), HasSubstr("/dev/null is the device"),
-                                HasSubstr("imu1 already used")));
+  EXPECT_THAT(ErrorOf(j),
+              AllOf(HasSubstr("$.units[1].port.path"),
+                    HasSubstr("/dev/null is the device"),
+                    HasSubstr("imu1 already used")));
   j["units"][1]["port"]["path"] = (dir / "." / "imu1").string();
   EXPECT_THAT(ErrorOf(j), HasSubstr("$.units[1].port.path"));
   std::filesystem::remove_all(dir);
@@ -102,11 +107,13 @@ TEST(Station, RefusesWhatARealLabWouldGetWrong) {
   // Two IMUs in one slot of the fixture.
   j = Example();
   j["units"][1]["slot"] = j["units"][0]["slot"];
-  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.units[1].slot"), HasSubstr("slot 1 already holds imu1")));
+  EXPECT_THAT(ErrorOf(j),
+              AllOf(HasSubstr("$.units[1].slot"), HasSubstr("slot 1 already holds imu1")));
 
   j = Example();
   j["instruments"]["imu_chamber"]["type"] = "watlow_942";
-  EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.instruments.imu_chamber.type"), HasSubstr("watlow_f4")));
+  EXPECT_THAT(ErrorOf(j),
+              AllOf(HasSubstr("$.instruments.imu_chamber.type"), HasSubstr("watlow_f4")));
 
   j = Example();
   j["instruments"]["rate_tabel"] = j["instruments"]["rate_table"];

@@ -39,8 +39,13 @@ std::vector<uint8_t> MalformedImuFrame(uint8_t seq) {
   std::array<uint8_t, 81> payload{};
   payload.fill(0xEE);
   std::array<uint8_t, 300> out{};
-  const uint16_t n = fm::EncodeFrame(static_cast<uint8_t>(fm::PacketType::kImuData), seq, 0, payload.data(),
-                                     static_cast<uint8_t>(payload.size()), out.data(), out.size());
+  const uint16_t n = fm::EncodeFrame(static_cast<uint8_t>(fm::PacketType::kImuData),
+                                     seq,
+                                     0,
+                                     payload.data(),
+                                     static_cast<uint8_t>(payload.size()),
+                                     out.data(),
+                                     out.size());
   return {out.begin(), out.begin() + n};
 }
 
@@ -57,7 +62,8 @@ TEST(UnitLinkMalformed, CrcValidFrameWithAnImpossiblePayloadIsDroppedAndCountedA
   WallClock clock;
   UnitLink link(entry, clock);
   std::vector<uint8_t> bytes;
-  for (const auto& f : {RawImuFrame(1), MalformedImuFrame(2), RawImuFrame(3)}) bytes.insert(bytes.end(), f.begin(), f.end());
+  for (const auto& f : {RawImuFrame(1), MalformedImuFrame(2), RawImuFrame(3)})
+    bytes.insert(bytes.end(), f.begin(), f.end());
   ASSERT_EQ(::write(master, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
   std::vector<ReceivedPacket> got;
   for (int i = 0; i < 20 && got.size() < 2; ++i) {

@@ -15,11 +15,11 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include "../support/rig_process.h"
 #include "firmware_model/constants_exporter.h"
 #include "hil/drivers/unit_serial.h"
 #include "hil/rig_clock.h"
 #include "rig_sim/device_host.h"
-#include "../support/rig_process.h"
 
 namespace adahrs::hil {
 namespace {
@@ -44,7 +44,8 @@ const UnitEntry& Unit(const Station& station, const std::string& role) {
 
 // Sends `line` and "time" in one write on the rig's control port, so the rig acts on both in the
 // same frame; checks the first reply and returns the frame's time (simulated s).
-double ControlAt(const testing::RigProcess& rig, const std::string& line,
+double ControlAt(const testing::RigProcess& rig,
+                 const std::string& line,
                  const std::string& expected_reply) {
   const int fd = ::open(rig.Port("control").c_str(), O_RDWR | O_NOCTTY);
   if (fd < 0) throw std::runtime_error("cannot open the control port");
@@ -126,8 +127,9 @@ TEST(UnitLink, BlockWrittenIsReadBack) {
   const fm::ImuConstants exported = fm::ExportImuConstants(constants).constants;
   std::array<int16_t, fm::kImuMaxBlockWords> words{};
   uint8_t count = 0;
-  ASSERT_EQ(fm::ImuConstantsReadBlock(&exported, fm::kImuBlockCg, words.data(), words.size(), &count),
-            fm::ConstantsStatus::kOk);
+  ASSERT_EQ(
+      fm::ImuConstantsReadBlock(&exported, fm::kImuBlockCg, words.data(), words.size(), &count),
+      fm::ConstantsStatus::kOk);
   const std::vector<int16_t> written(words.begin(), words.begin() + count);
   link.WriteBlock(fm::kImuBlockCg, written);
   EXPECT_EQ(link.ReadBlock(fm::kImuBlockCg), written);

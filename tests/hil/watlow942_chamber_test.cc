@@ -9,8 +9,8 @@
 namespace adahrs::hil {
 namespace {
 
-using ::testing::HasSubstr;
 using test::RigStation;
+using ::testing::HasSubstr;
 
 TEST(Watlow942Chamber, IdentifiesSetsAndReadsTheSetPoint) {
   RigStation s;
@@ -23,7 +23,8 @@ TEST(Watlow942Chamber, IdentifiesSetsAndReadsTheSetPoint) {
   EXPECT_DOUBLE_EQ(chamber.ReadSetPointC(), -12.5);
   // 4 degC down at the 3.5 degC/min cooling capacity, then the 120 s tail: minutes of simulation.
   chamber.SetSetPointC(21.0);
-  EXPECT_TRUE(test::WaitUntil(s.clock, [&] { return std::abs(chamber.ReadProcessC() - 21.0) < 0.5; }));
+  EXPECT_TRUE(
+      test::WaitUntil(s.clock, [&] { return std::abs(chamber.ReadProcessC() - 21.0) < 0.5; }));
 }
 
 TEST(Watlow942Chamber, LatchedErrorIsARefusalAndProfilesAreNotOffered) {

@@ -30,11 +30,17 @@ TEST(Watlow942Codec, DecodesTheManualsExamples) {
 
 TEST(Watlow942Codec, EncodesTheReadReplyOfTheManual) {
   // p. 13: the reply to `? A1LO` is 13 11 35 30 30 0D.
-  EXPECT_EQ(EncodeWatlow942ReadReply({"500"}), std::string("\x13\x11" "500\r"));
+  EXPECT_EQ(EncodeWatlow942ReadReply({"500"}),
+            std::string("\x13\x11"
+                        "500\r"));
   EXPECT_EQ(EncodeWatlow942Request(Watlow942Command::kRead, "A1LO"), "? A1LO\r");
   EXPECT_EQ(EncodeWatlow942Request(Watlow942Command::kWrite, "A1LO", {"500"}), "= A1LO 500\r");
-  EXPECT_EQ(DecodeWatlow942ReadReply("\x13\x11" "8 1 235 1 20 15 1 0\r"), "8 1 235 1 20 15 1 0");
-  EXPECT_FALSE(DecodeWatlow942ReadReply("\x13\x11" "50"));
+  EXPECT_EQ(DecodeWatlow942ReadReply("\x13\x11"
+                                     "8 1 235 1 20 15 1 0\r"),
+            "8 1 235 1 20 15 1 0");
+  EXPECT_FALSE(
+      DecodeWatlow942ReadReply("\x13\x11"
+                               "50"));
 }
 
 TEST(Watlow942Codec, RefusesBadLinesWithTheEr2CodeAndOffset) {
@@ -77,7 +83,8 @@ TEST(Watlow942Codec, SplitterSeparatesFlowControlAndBoundsLines) {
   Watlow942LineSplitter splitter(8);
   std::vector<std::string> lines;
   std::vector<bool> overflowed;
-  for (const char c : std::string("? C1\r\n\x13= SP1 4\x11" "0\r0123456789AB\r")) {
+  for (const char c : std::string("? C1\r\n\x13= SP1 4\x11"
+                                  "0\r0123456789AB\r")) {
     if (auto line = splitter.Feed(static_cast<uint8_t>(c))) {
       lines.push_back(line->text);
       overflowed.push_back(line->overflowed);
@@ -94,9 +101,10 @@ TEST(Watlow942Codec, SplitterSeparatesFlowControlAndBoundsLines) {
 TEST(Watlow942Codec, SurvivesRandomGarbage) {
   // 20 000 random lines of random bytes and of near-miss text: every one decodes to a message or
   // to one of the documented ER2 codes with an offset inside the line.
-  const std::set<Watlow942Error> known = {
-      Watlow942Error::kCommandNotFound, Watlow942Error::kIncompleteCommandLine,
-      Watlow942Error::kInvalidCharacter, Watlow942Error::kTooManyCharacters};
+  const std::set<Watlow942Error> known = {Watlow942Error::kCommandNotFound,
+                                          Watlow942Error::kIncompleteCommandLine,
+                                          Watlow942Error::kInvalidCharacter,
+                                          Watlow942Error::kTooManyCharacters};
   common::Rng rng(942);
   const std::string alphabet = "?= 0123456789.-+ABCDSPTMRL\t";
   int messages = 0;

@@ -10,8 +10,8 @@
 namespace adahrs::hil {
 namespace {
 
-using ::testing::HasSubstr;
 using test::RigStation;
+using ::testing::HasSubstr;
 
 TEST(WatlowF4Chamber, SetPointIsWrittenAndTheChamberFollows) {
   RigStation s;
@@ -24,7 +24,8 @@ TEST(WatlowF4Chamber, SetPointIsWrittenAndTheChamberFollows) {
   EXPECT_DOUBLE_EQ(chamber.ReadSetPointC(), 31.5);
   // 6.5 degC at the 5 degC/min heating capacity, then the 120 s exponential tail: within the
   // control band a few simulated minutes later.
-  EXPECT_TRUE(test::WaitUntil(s.clock, [&] { return std::abs(chamber.ReadProcessC() - 31.5) < 0.5; }));
+  EXPECT_TRUE(
+      test::WaitUntil(s.clock, [&] { return std::abs(chamber.ReadProcessC() - 31.5) < 0.5; }));
   // The rig's own air temperature agrees (the driver reads what the world holds).
   EXPECT_NEAR(test::EnvValue(s.rig, "imu_chamber_air_c"), 31.5, 0.6);
 }
@@ -32,8 +33,8 @@ TEST(WatlowF4Chamber, SetPointIsWrittenAndTheChamberFollows) {
 TEST(WatlowF4Chamber, DownloadedProfileRunsToItsEnd) {
   RigStation s;
   WatlowF4Chamber chamber(s.Entry("imu_chamber"), s.clock);
-  const std::vector<F4ProfileStep> steps = {F4RampTime{30.0, 120.0}, F4Soak{60.0},
-                                            F4RampRate{28.0, 2.0}, F4End{F4EndAction::kHold, 0.0}};
+  const std::vector<F4ProfileStep> steps = {
+      F4RampTime{30.0, 120.0}, F4Soak{60.0}, F4RampRate{28.0, 2.0}, F4End{F4EndAction::kHold, 0.0}};
   chamber.DownloadProfile("drv test", steps);
   // Downloading again under the same name replaces the profile (no second copy to start).
   chamber.DownloadProfile("drv test", steps);

@@ -1,8 +1,8 @@
 // Real outside clients (pyserial, as pyvisa-py and a terminal program use the port) talk to the
 // ADS bench instruments through pseudo-terminals served by DeviceHost.
-#include "adahrs_build_paths.h"
 #include <cstdio>
 #include <string>
+#include "adahrs_build_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -37,8 +37,8 @@ class FrameStream : public SerialDevice {
       ++record_;
       uint8_t record[kFrameBytes];
       std::memcpy(record, &record_, sizeof record_);
-      std::memset(record + sizeof record_, static_cast<int>(record_ & 0xff),
-                  kFrameBytes - sizeof record_);
+      std::memset(
+          record + sizeof record_, static_cast<int>(record_ & 0xff), kFrameBytes - sizeof record_);
       out.insert(out.end(), record, record + kFrameBytes);
     }
   }
@@ -66,8 +66,8 @@ struct SlowReader {
   bool drain = false;  // read all there is before each nap, as a logger polling its port does
   std::atomic<int> pause_ms{0};  // one longer nap, as of a logger descheduled on a loaded machine
   std::atomic<bool> stop{false};
-  uint64_t records = 0;  // the last frame index read
-  uint64_t read = 0;     // records read
+  uint64_t records = 0;               // the last frame index read
+  uint64_t read = 0;                  // records read
   uint64_t out_of_order = 0;          // torn or going back
   std::atomic<uint64_t> skipped = 0;  // records skipped
   void Run(int fd) {
@@ -121,8 +121,9 @@ TEST(DeviceHostLockstep, SlowReaderHoldsTheClockAndLosesNothing) {
   // kernel had not yet moved earlier writes into the queue (a flip-buffer worker descheduled on a
   // loaded machine: seen once, 58 frames beyond the first three).
   const double frames = host.now_s() / kWorldFrame_s;
-  const double waiting = static_cast<double>(kLockstepBudgetBytes + 2 * kPtyQueueBytes) / kFrameBytes +
-                         kLockstepCheckFrames;
+  const double waiting =
+      static_cast<double>(kLockstepBudgetBytes + 2 * kPtyQueueBytes) / kFrameBytes +
+      kLockstepCheckFrames;
   EXPECT_LE(frames - static_cast<double>(reader.records), waiting);
   EXPECT_LT(frames, 0.5 * 2000.0 * 1.5 / kWorldFrame_s) << "the clock did not wait";
   EXPECT_GT(host.held_wall_s(), 0.5);
@@ -152,7 +153,8 @@ TEST(DeviceHostLockstep, ClientThatLeavesHoldsTheClockForTheStallLimit) {
   uint8_t buffer[4096];
   const auto read_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
   while (std::chrono::steady_clock::now() < read_until) {
-    if (::read(fd, buffer, sizeof buffer) <= 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    if (::read(fd, buffer, sizeof buffer) <= 0)
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
   ::close(fd);
   std::this_thread::sleep_for(std::chrono::duration<double>(kLockstepStallLimit_s * 0.5));
@@ -207,8 +209,8 @@ TEST(DeviceHostLockstep, ReaderOfAnotherPortLosesNothingWhileAGoneClientHoldsThe
 }
 
 TEST(DeviceHostLockstep, ClockFileFollowsTheHost) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("adahrs-clock-" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("adahrs-clock-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   {
     DeviceHost host(100.0);

@@ -5,9 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "common/random.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
-#include "common/random.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -64,12 +64,14 @@ class Bench {
   long frames_done_ = 0;
 };
 
-constexpr int kStable = 1 << 1, kGround = 1 << 2, kPsAtSp = 1 << 8, kPsRamp = 1 << 9, kPtAtSp = 1 << 10;
+constexpr int kStable = 1 << 1, kGround = 1 << 2, kPsAtSp = 1 << 8, kPsRamp = 1 << 9,
+              kPtAtSp = 1 << 10;
 
 TEST(PrologixAdtsDevice, AnswersAPyvisaStyleSession) {
   Bench bench;
   // pyvisa-py's initialisation (protocols.md §6.2), then a query read with ++read eoi.
-  EXPECT_EQ(bench.Talk("++mode 1\n++auto 0\n++read_tmo_ms 50\n++eos 3\n++eoi 1\n++eot_enable 0\n"), "");
+  EXPECT_EQ(bench.Talk("++mode 1\n++auto 0\n++read_tmo_ms 50\n++eos 3\n++eoi 1\n++eot_enable 0\n"),
+            "");
   EXPECT_EQ(bench.Talk("++ver\n"), "Prologix GPIB-USB Controller version 6.107\r\n");
   EXPECT_EQ(bench.Query("*IDN?"), "DRUCK,ADTS405,0000000,V1.00");
   EXPECT_EQ(bench.Query("SOUR:STAT?"), "OFF");
@@ -223,7 +225,9 @@ TEST(PrologixAdtsDevice, SameTimelineWhateverTheAdvanceGranularity) {
   std::vector<double> ps_pa, qc_pa;
   for (const double frame_s : {0.01, 0.25, 1.7}) {
     Bench bench(DefaultPrologixAdtsConfig(), frame_s);
-    bench.Send("++eos 3\n++addr 1\nSOUR:STAT ON;SOUR:RATE ALT,3000;SOUR:PRES ALT,2000;SOUR:PRES CAS,120\n");
+    bench.Send(
+        "++eos 3\n++addr 1\nSOUR:STAT ON;SOUR:RATE ALT,3000;SOUR:PRES ALT,2000;SOUR:PRES "
+        "CAS,120\n");
     bench.RunUntil(37.77);
     ps_pa.push_back(bench.env_.ps_pa);
     qc_pa.push_back(bench.env_.qc_pa);
@@ -242,13 +246,17 @@ TEST(PrologixAdtsDevice, SurvivesGarbageAndKeepsAnswering) {
     std::string garbage;
     const int length = static_cast<int>(rng.Uniform(1.0, 120.0));
     for (int k = 0; k < length; ++k) {
-      garbage.push_back(burst % 2 ? static_cast<char>(rng.NextU64() & 0xFF) : alphabet[rng.NextU64() % alphabet.size()]);
+      garbage.push_back(burst % 2 ? static_cast<char>(rng.NextU64() & 0xFF)
+                                  : alphabet[rng.NextU64() % alphabet.size()]);
     }
     bench.Talk(garbage, 0.02);
   }
   // A clean session after the garbage: end any partial line, reset the adapter's settings the
   // pyvisa way, clear the instrument, and the ADTS answers.
-  bench.Talk("\n++mode 1\n++auto 0\n++read_tmo_ms 500\n++eos 3\n++eoi 1\n++eot_enable 0\n++addr 1\n++clr\n*CLS\n", 0.5);
+  bench.Talk(
+      "\n++mode 1\n++auto 0\n++read_tmo_ms 500\n++eos 3\n++eoi 1\n++eot_enable 0\n++addr "
+      "1\n++clr\n*CLS\n",
+      0.5);
   EXPECT_EQ(bench.Query("*IDN?"), "DRUCK,ADTS405,0000000,V1.00");
 }
 
@@ -259,7 +267,7 @@ TEST(PrologixAdtsDevice, StatusByteFollowsTheEnableRegisters) {
   Bench bench;
   EXPECT_EQ(bench.Query("*ESE?"), "0");
   bench.Talk("++addr 1\nNOSUCH:HEADER\n", 0.5);  // -113: a command error, ESR bit 5
-  EXPECT_EQ(bench.Query("*STB?"), "4");           // error queue only: ESE masks the summary
+  EXPECT_EQ(bench.Query("*STB?"), "4");          // error queue only: ESE masks the summary
   bench.Talk("++addr 1\n*ESE 32\n*SRE 32\n", 0.5);
   EXPECT_EQ(bench.Query("*ESE?"), "32");
   EXPECT_EQ(bench.Query("*SRE?"), "32");
@@ -267,9 +275,9 @@ TEST(PrologixAdtsDevice, StatusByteFollowsTheEnableRegisters) {
   EXPECT_EQ(bench.Query("SYST:ERR?"), "-113,\"Undefined header\"");
   bench.Talk("++addr 1\n*CLS\n*ESE 256\n", 0.5);
   EXPECT_EQ(bench.Query("SYST:ERR?"), "-224,\"Illegal parameter value\"");
-  EXPECT_EQ(bench.Query("*ESE?"), "32");  // kept by *CLS, unchanged by the refused value
+  EXPECT_EQ(bench.Query("*ESE?"), "32");       // kept by *CLS, unchanged by the refused value
   bench.Talk("++addr 1\n*CLS\n*IDN?\n", 0.5);  // answered, never read ...
-  bench.Talk("++addr 1\n*OPC?\n", 0.5);         // ... and replaced by the next query
+  bench.Talk("++addr 1\n*OPC?\n", 0.5);        // ... and replaced by the next query
   EXPECT_EQ(bench.Query("SYST:ERR?"), "-410,\"Query INTERRUPTED\"");
 }
 

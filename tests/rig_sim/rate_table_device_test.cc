@@ -1,5 +1,5 @@
-#include "adahrs_build_paths.h"
 #include "rig_sim/rate_table_device.h"
+#include "adahrs_build_paths.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "hil/codecs/atl_codec.h"
-#include "rig_sim/device_host.h"
 #include "common/random.h"
 #include "common/units.h"
+#include "hil/codecs/atl_codec.h"
+#include "rig_sim/device_host.h"
 
 namespace adahrs::rig_sim {
 namespace {

@@ -13,11 +13,11 @@
 
 #include <gtest/gtest.h>
 
+#include "common/param_reader.h"
 #include "hil/recording/recording_reader.h"
 #include "hil/recording/recording_writer.h"
 #include "rig_sim/static_thermal_run.h"
 #include "sensor_sim/imu_unit.h"
-#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -25,7 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("adahrs_replay_" + name + "_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("adahrs_replay_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   return dir;
 }
@@ -46,7 +47,8 @@ struct Differences {
   double mean_gyro_cnt = 0.0;  // recorded minus replayed, gx
 };
 
-// Row by row, IMU-0001's and ADS-0001's outputs of `a` against those of `b` (same rows, same order).
+// Row by row, IMU-0001's and ADS-0001's outputs of `a` against those of `b` (same rows, same
+// order).
 Differences Compare(const hil::Recording& a, const hil::Recording& b) {
   Differences d;
   EXPECT_EQ(a.imu.size(), b.imu.size());
@@ -59,12 +61,14 @@ Differences Compare(const hil::Recording& a, const hil::Recording& b) {
       d.max_temp_cnt = std::max(d.max_temp_cnt, std::abs(double(x.temp_cnt[k]) - y.temp_cnt[k]));
     }
     for (size_t k = 0; k < 12; k += 2) {
-      d.max_t1_ticks = std::max(d.max_t1_ticks, std::abs(double(x.accel_ticks[k]) - y.accel_ticks[k]));
+      d.max_t1_ticks =
+          std::max(d.max_t1_ticks, std::abs(double(x.accel_ticks[k]) - y.accel_ticks[k]));
     }
     d.mean_gyro_cnt += (double(x.gyro_cnt[0]) - y.gyro_cnt[0]) / static_cast<double>(n);
   }
   for (size_t i = 0; i < std::min(a.ads.size(), b.ads.size()); ++i) {
-    d.max_ps_cnt = std::max(d.max_ps_cnt, std::abs(double(a.ads[i].ps_counts) - b.ads[i].ps_counts));
+    d.max_ps_cnt =
+        std::max(d.max_ps_cnt, std::abs(double(a.ads[i].ps_counts) - b.ads[i].ps_counts));
   }
   return d;
 }
@@ -74,8 +78,8 @@ TEST(RecordingReplay, TheRigsOwnModelAndNoiseReproduceTheRecording) {
   const fs::path rec = RecordEveryFrame(dir);
   ReplayOptions same_noise;
   same_noise.noise_from_unit_file = true;
-  const ReplaySummary s = ReplayRecording(rec, {rec / "truth/IMU-0001.json", rec / "truth/ADS-0001.json"},
-                                          dir / "replay", same_noise);
+  const ReplaySummary s = ReplayRecording(
+      rec, {rec / "truth/IMU-0001.json", rec / "truth/ADS-0001.json"}, dir / "replay", same_noise);
   EXPECT_EQ(s.replayed.size(), 2u);
   EXPECT_TRUE(s.skipped.empty());
   const hil::Recording recorded = hil::ReadRecording(rec);
@@ -83,8 +87,14 @@ TEST(RecordingReplay, TheRigsOwnModelAndNoiseReproduceTheRecording) {
   ASSERT_GT(recorded.imu.size(), 10000u);
   EXPECT_EQ(recorded.ads.size(), replayed.ads.size());
   const Differences d = Compare(recorded, replayed);
-  std::printf("same model and noise, %zu rows: max |diff| gyro %.0f, TEMP %.0f counts, T1 %.0f ticks, ps %.0f codes\n",
-              recorded.imu.size(), d.max_gyro_cnt, d.max_temp_cnt, d.max_t1_ticks, d.max_ps_cnt);
+  std::printf(
+      "same model and noise, %zu rows: max |diff| gyro %.0f, TEMP %.0f counts, T1 %.0f ticks, ps "
+      "%.0f codes\n",
+      recorded.imu.size(),
+      d.max_gyro_cnt,
+      d.max_temp_cnt,
+      d.max_t1_ticks,
+      d.max_ps_cnt);
   // The chamber column is written to 1 mK, so the replayed dies differ by < 1 mK: a count on a
   // quantiser's edge at most.
   EXPECT_LE(d.max_gyro_cnt, 4.0);
@@ -100,7 +110,9 @@ TEST(RecordingReplay, TheRigsOwnModelAndNoiseReproduceTheRecording) {
   const hil::Recording other_noise = hil::ReadRecording(dir / "fresh");
   EXPECT_TRUE(other_noise.ads.empty());
   const Differences n = Compare(recorded, other_noise);
-  std::printf("fresh noise: max |diff| gyro %.0f counts, mean %.1f counts\n", n.max_gyro_cnt, n.mean_gyro_cnt);
+  std::printf("fresh noise: max |diff| gyro %.0f counts, mean %.1f counts\n",
+              n.max_gyro_cnt,
+              n.mean_gyro_cnt);
   EXPECT_GT(n.max_gyro_cnt, 100.0);
   EXPECT_LT(std::abs(n.mean_gyro_cnt), 0.1 * n.max_gyro_cnt);
   fs::remove_all(dir);
@@ -116,7 +128,8 @@ TEST(RecordingReplay, RefusesUnitFilesItCannotUseByName) {
     ReplayRecording(rec, {dir / "other.json"}, dir / "out");
     FAIL() << "a unit the recording does not hold was replayed";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("other.json: unit IMU-0042 is not in"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("other.json: unit IMU-0042 is not in"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("ADS-0001, IMU-0001"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(dir / "out"));
@@ -125,8 +138,10 @@ TEST(RecordingReplay, RefusesUnitFilesItCannotUseByName) {
   std::ofstream(dir / "no_seed.json") << no_seed.dump();
   ReplayOptions same_noise;
   same_noise.noise_from_unit_file = true;
-  EXPECT_THROW(ReplayRecording(rec, {dir / "no_seed.json"}, dir / "out", same_noise), std::runtime_error);
-  EXPECT_THROW(ReplayRecording(rec, {rec / "truth/IMU-0001.json"}, rec), std::runtime_error);  // exists
+  EXPECT_THROW(ReplayRecording(rec, {dir / "no_seed.json"}, dir / "out", same_noise),
+               std::runtime_error);
+  EXPECT_THROW(ReplayRecording(rec, {rec / "truth/IMU-0001.json"}, rec),
+               std::runtime_error);  // exists
   fs::remove_all(dir);
 }
 
@@ -135,11 +150,15 @@ TEST(RecordingReplay, RefusesUnitFilesItCannotUseByName) {
 // does not start with a die at 0 °C.
 TEST(RecordingReplay, RowsBeforeTheChambersFirstReportTakeIt) {
   const fs::path dir = TempDir("zeros");
-  const auto params = sensor_sim::ImuUnitParams::Draw("IMU-0001", 7, sensor_sim::ModelProfile::kNominal);
-  std::ofstream(dir.string() + ".json") << nlohmann::json{{"kind", "imu"}, {"params", params.ToJson()}}.dump();
+  const auto params =
+      sensor_sim::ImuUnitParams::Draw("IMU-0001", 7, sensor_sim::ModelProfile::kNominal);
+  std::ofstream(dir.string() + ".json")
+      << nlohmann::json{{"kind", "imu"}, {"params", params.ToJson()}}.dump();
   {
     hil::RecordingWriter writer(dir / "rec");
-    writer.WriteMeta({{"run_id", "zeros"}, {"status", "complete"}, {"local_gravity_mps2", 9.80665},
+    writer.WriteMeta({{"run_id", "zeros"},
+                      {"status", "complete"},
+                      {"local_gravity_mps2", 9.80665},
                       {"units", {{{"kind", "imu"}, {"serial", "IMU-0001"}}}}});
     hil::ImuRecordRow row;
     row.unit = "IMU-0001";

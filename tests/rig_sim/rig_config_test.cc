@@ -68,13 +68,18 @@ TEST(RigConfig, ReadsUnitsStationAndFaults) {
 // A slot naming a unit file (a truth file, or the model.json of `adahrs diagnose --model`) takes
 // its params; a file of the other kind or serial is refused naming the slot and the file.
 TEST(RigConfig, ASlotTakesItsUnitFromAModelFile) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "adahrs_rig_config_model";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "adahrs_rig_config_model";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  sensor_sim::AdsUnitParams ads = sensor_sim::AdsUnitParams::Draw("ADS-0001", 77, sensor_sim::ModelProfile::kNominal);
+  sensor_sim::AdsUnitParams ads =
+      sensor_sim::AdsUnitParams::Draw("ADS-0001", 77, sensor_sim::ModelProfile::kNominal);
   ads.static_bridge.effects.pressure_hysteresis = true;
   ads.static_bridge.pressure_hysteresis_pct_fso = 0.0615;
-  std::ofstream(dir / "model.json") << nlohmann::json{{"kind", "ads"}, {"model_profile", "nominal"}, {"params", ads.ToJson()}}.dump();
+  std::ofstream(dir / "model.json") << nlohmann::json{
+      {"kind", "ads"},
+      {"model_profile", "nominal"},
+      {"params", ads.ToJson()}}.dump();
   nlohmann::json j = DefaultRigConfig();
   j["units"]["ads"][0]["model"] = "model.json";
   const RigConfig c = RigConfig::FromJson(j, (dir / "rig.json").string());

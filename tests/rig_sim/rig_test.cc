@@ -22,8 +22,8 @@ namespace adahrs::rig_sim {
 namespace {
 
 namespace fm = firmware_model;
-using testing::PtyClient;
 using ::testing::HasSubstr;
+using testing::PtyClient;
 using ::testing::StartsWith;
 
 std::filesystem::path TempRunDir(const std::string& name) {
@@ -109,13 +109,13 @@ TEST(Rig, WritesManifestLinksAndTruthAndStreamsUnitsOnPtys) {
 
   PtyClient control(manifest["ports"]["control"].get<std::string>());
   EXPECT_THAT(control.Command("time"), StartsWith("OK "));
-  EXPECT_THAT(control.Command("status"),
-              HasSubstr("imu1,imu2,imu3,imu4,ads1,control faults=none"));
+  EXPECT_THAT(control.Command("status"), HasSubstr("imu1,imu2,imu3,imu4,ads1,control faults=none"));
   EXPECT_EQ(control.Command("orientation imu2 12"), "OK imu2 12");
   EXPECT_EQ(rig.host().environment().imu_orientation[1], 12);
   EXPECT_EQ(control.Command("orientation ads1 12"), "ERR ads1 is not an IMU unit");
   EXPECT_THAT(control.Command("fault imu9 silent on"), StartsWith("ERR no role 'imu9'"));
-  EXPECT_EQ(control.Command("faults imu1"), "OK silent garbage drop_rate corrupt_rate unplugged reset");
+  EXPECT_EQ(control.Command("faults imu1"),
+            "OK silent garbage drop_rate corrupt_rate unplugged reset");
   EXPECT_THAT(control.Command("launch"), StartsWith("ERR unknown command"));
   rig.Stop();
   std::filesystem::remove_all(dir);
@@ -154,8 +154,7 @@ TEST(Rig, MaintenanceCommandsOverThePty) {
   EXPECT_EQ(fm::ParseReadBlock(ask(client.ReadBlock(fm::kImuBlockCa))).words.size(),
             fm::kImuMatrixBlockWords);
   // A full constant set written block by block, committed, then a compensated mode.
-  const fm::ImuConstants constants =
-      fm::ExportImuConstants(fm::testing::RealisticImu(8)).constants;
+  const fm::ImuConstants constants = fm::ExportImuConstants(fm::testing::RealisticImu(8)).constants;
   for (uint8_t block = fm::kImuBlockThermalFirst; block <= fm::kImuBlockCg; ++block) {
     int16_t words[fm::kImuMaxBlockWords];
     uint8_t count = 0;
@@ -240,7 +239,7 @@ TEST(Rig, ByteAndPhysicalFaultsAreSeenByTheClient) {
   EXPECT_GT(Decode(observe("fault imu1 silent off")).data.size(), 300u);
 
   const std::vector<uint8_t> garbage = observe("fault imu1 garbage on");
-  EXPECT_GT(garbage.size(), 300u * 51u);  // bytes keep coming …
+  EXPECT_GT(garbage.size(), 300u * 51u);       // bytes keep coming …
   EXPECT_EQ(Decode(garbage).data.size(), 0u);  // … but no frame survives
   observe("fault imu1 garbage off");
 

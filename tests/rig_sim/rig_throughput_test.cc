@@ -33,10 +33,13 @@ TEST(RigThroughput, FourImusAndOneAdsStreamTenSimulatedHoursWithoutLoss) {
   EXPECT_EQ(r.lost, 0u);
   EXPECT_EQ(r.bad_frames, 0u);
   EXPECT_EQ(r.host_bytes_lost, 0u);
-  std::printf("lost %llu, host bytes lost %llu\n", static_cast<unsigned long long>(r.lost),
+  std::printf("lost %llu, host bytes lost %llu\n",
+              static_cast<unsigned long long>(r.lost),
               static_cast<unsigned long long>(r.host_bytes_lost));
   RecordProperty("wall_s", std::to_string(r.wall_s));
-  std::printf("%.0f h simulated in %.1f s wall (%.0fx)\n", kSimulated_s / 3600.0, r.wall_s,
+  std::printf("%.0f h simulated in %.1f s wall (%.0fx)\n",
+              kSimulated_s / 3600.0,
+              r.wall_s,
               r.simulated_s / r.wall_s);
 }
 

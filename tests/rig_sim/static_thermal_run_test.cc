@@ -8,16 +8,16 @@
 
 #include <gtest/gtest.h>
 
+#include "common/param_reader.h"
 #include "hil/recording/recording_reader.h"
 #include "sensor_sim/imu_unit.h"
-#include "common/param_reader.h"
 
 namespace adahrs::rig_sim {
 namespace {
 
 TEST(StaticThermalRun, WritesARecordingWhoseTemperatureCountsFollowTheChamber) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("adahrs_static_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("adahrs_static_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   StaticThermalRunConfig config;
   config.imu_units = 2;
@@ -42,9 +42,9 @@ TEST(StaticThermalRun, WritesARecordingWhoseTemperatureCountsFollowTheChamber) {
     auto& fl = first_last_tx[row.unit];
     if (fl.first == 0) fl.first = row.temp_cnt[0];
     fl.second = row.temp_cnt[0];
-    EXPECT_EQ(row.tag, 1);           // tag of step 0
+    EXPECT_EQ(row.tag, 1);  // tag of step 0
     EXPECT_EQ(row.orientation, 31);
-    EXPECT_EQ(row.mode, 0);          // raw: no compensated values
+    EXPECT_EQ(row.mode, 0);  // raw: no compensated values
     EXPECT_FALSE(row.comp.has_value());
   }
   EXPECT_NEAR(max_chamber_c, 45.0, 0.3 + 1e-6);

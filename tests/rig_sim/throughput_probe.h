@@ -36,8 +36,8 @@ class FrameWalker {
         ++pos;
         continue;
       }
-      const size_t length = size_t{f[2]} + firmware_model::kFrameHeaderBytes +
-                            firmware_model::kFrameTrailerBytes;
+      const size_t length =
+          size_t{f[2]} + firmware_model::kFrameHeaderBytes + firmware_model::kFrameTrailerBytes;
       if (pending_.size() - pos < length) break;
       const uint16_t crc = static_cast<uint16_t>(f[length - 2] | (f[length - 1] << 8));
       if (firmware_model::HostCrc16({f + 2, length - 4}) != crc) {
@@ -60,8 +60,8 @@ class FrameWalker {
 };
 
 struct ThroughputResult {
-  double simulated_s = 0.0;        ///< simulated time when `simulated_s` was reached
-  double wall_s = 0.0;             ///< wall time to reach it
+  double simulated_s = 0.0;       ///< simulated time when `simulated_s` was reached
+  double wall_s = 0.0;            ///< wall time to reach it
   std::vector<uint64_t> packets;  ///< per unit port
   uint64_t lost = 0;              ///< sequence gaps over all ports
   uint64_t bad_frames = 0;        ///< CRC, length or type errors over all ports
@@ -72,15 +72,16 @@ inline ThroughputResult MeasureThroughput(double time_scale, double simulated_s)
   nlohmann::json j = DefaultRigConfig();
   j["time_scale"] = time_scale;
   j["instruments"] = nlohmann::json::object();
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("adahrs_throughput_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("adahrs_throughput_" + std::to_string(::getpid()));
   Rig rig(RigConfig::FromJson(j, "throughput"), dir);
   std::vector<std::string> roles;
   for (const auto& [role, path] : rig.ports()) {
     if (role != "control") roles.push_back(role);
   }
   std::vector<std::unique_ptr<PtyClient>> clients;
-  for (const std::string& role : roles) clients.push_back(std::make_unique<PtyClient>(rig.ports().at(role)));
+  for (const std::string& role : roles)
+    clients.push_back(std::make_unique<PtyClient>(rig.ports().at(role)));
   std::vector<FrameWalker> walkers(roles.size());
   ThroughputResult result;
   result.packets.assign(roles.size(), 0);
@@ -108,7 +109,8 @@ inline ThroughputResult MeasureThroughput(double time_scale, double simulated_s)
   });
   const auto start = std::chrono::steady_clock::now();
   rig.Start(dir / "manifest.json");
-  while (rig.host().now_s() < simulated_s) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  while (rig.host().now_s() < simulated_s)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.simulated_s = rig.host().now_s();
   // Let the client read what the rig still holds for it (up to 10 s wall), then stop.

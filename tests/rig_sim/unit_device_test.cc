@@ -2,6 +2,8 @@
 // PC-side codec (firmware_model/unit_protocol_client.h, an independent CRC implementation).
 #include <gtest/gtest.h>
 
+#include "common/random.h"
+#include "common/units.h"
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/target/imu_compensator.h"
 #include "firmware_model/target/imu_constants.h"
@@ -9,8 +11,6 @@
 #include "rig_sim/ads_unit_device.h"
 #include "rig_sim/fixture_orientation.h"
 #include "rig_sim/imu_unit_device.h"
-#include "common/random.h"
-#include "common/units.h"
 #include "tests/firmware_model/realistic_constants.h"
 
 namespace adahrs::rig_sim {
@@ -33,8 +33,12 @@ ImuUnitDeviceConfig ImuConfig(int baud = 115200) {
 
 // Runs `device` from `from_s` to `to_s` in frames of `frame_s`, feeding `request` (if any) at the
 // first frame, and returns every byte it released.
-std::vector<uint8_t> RunDevice(SerialDevice& device, RigEnvironment& env, double from_s, double to_s,
-                         double frame_s = 0.01, const std::vector<uint8_t>& request = {}) {
+std::vector<uint8_t> RunDevice(SerialDevice& device,
+                               RigEnvironment& env,
+                               double from_s,
+                               double to_s,
+                               double frame_s = 0.01,
+                               const std::vector<uint8_t>& request = {}) {
   std::vector<uint8_t> out;
   bool sent = request.empty();
   for (double t = from_s + frame_s; t <= to_s + 1e-9; t += frame_s) {
@@ -68,7 +72,9 @@ Decoded Decode(const std::vector<uint8_t>& bytes) {
 }
 
 // Sends one request and runs 50 ms; returns the (single) response.
-fm::MaintenanceResponse Ask(SerialDevice& device, RigEnvironment& env, double& t,
+fm::MaintenanceResponse Ask(SerialDevice& device,
+                            RigEnvironment& env,
+                            double& t,
                             const std::vector<uint8_t>& request) {
   const Decoded d = Decode(RunDevice(device, env, t, t + 0.05, 0.01, request));
   t += 0.05;
@@ -144,12 +150,12 @@ TEST(ImuUnitDevice, MaintenanceCommandsSetTagModeConstantsCommitAndReset) {
   EXPECT_FALSE(id.constants_valid);
 
   // Calibrated mode without committed constants: NAK 0x05 (§6.3).
-  EXPECT_EQ(Ask(device, env, t, client.SetImuMode(fm::ImuCompensationMode::kFullyCalibrated)).result,
-            fm::ResultCode::kNoValidConstants);
+  EXPECT_EQ(
+      Ask(device, env, t, client.SetImuMode(fm::ImuCompensationMode::kFullyCalibrated)).result,
+      fm::ResultCode::kNoValidConstants);
 
   // Every block of a realistic set, then COMMIT.
-  const fm::ImuConstants constants =
-      fm::ExportImuConstants(fm::testing::RealisticImu(3)).constants;
+  const fm::ImuConstants constants = fm::ExportImuConstants(fm::testing::RealisticImu(3)).constants;
   for (uint8_t block = fm::kImuBlockThermalFirst; block <= fm::kImuBlockCg; ++block) {
     int16_t words[fm::kImuMaxBlockWords];
     uint8_t count = 0;
@@ -163,8 +169,9 @@ TEST(ImuUnitDevice, MaintenanceCommandsSetTagModeConstantsCommitAndReset) {
   EXPECT_EQ(commit.constants_version, 1);
 
   ASSERT_EQ(Ask(device, env, t, client.SetTag(42)).result, fm::ResultCode::kAck);
-  ASSERT_EQ(Ask(device, env, t, client.SetImuMode(fm::ImuCompensationMode::kFullyCalibrated)).result,
-            fm::ResultCode::kAck);
+  ASSERT_EQ(
+      Ask(device, env, t, client.SetImuMode(fm::ImuCompensationMode::kFullyCalibrated)).result,
+      fm::ResultCode::kAck);
 
   // Packets now carry TAG 42 and the compensator's output for their own raw values, computed here
   // with the committed constants.
@@ -177,9 +184,10 @@ TEST(ImuUnitDevice, MaintenanceCommandsSetTagModeConstantsCommitAndReset) {
     ASSERT_EQ(got.mode, fm::ImuCompensationMode::kFullyCalibrated);
     fm::ImuCompensatedFrame expected{};
     fm::DspEngine engine;
-    fm::ImuCompensate(&engine, constants, fm::ImuCompensationMode::kFullyCalibrated, got.raw,
-                      &expected);
-    for (int i = 0; i < fm::kImuOutputValues; ++i) EXPECT_EQ(got.compensated.value[i], expected.value[i]);
+    fm::ImuCompensate(
+        &engine, constants, fm::ImuCompensationMode::kFullyCalibrated, got.raw, &expected);
+    for (int i = 0; i < fm::kImuOutputValues; ++i)
+      EXPECT_EQ(got.compensated.value[i], expected.value[i]);
     EXPECT_EQ(got.compensated.flags, expected.flags);
   }
 
@@ -254,8 +262,7 @@ TEST(ImuUnitDevice, AtTooSlowALineCompensatedPacketsAreDroppedAndSeenAsGaps) {
   EXPECT_EQ(device.counters().packets_dropped, 0u);
   t = 2.0;
   // Load constants so a compensated mode is allowed.
-  const fm::ImuConstants constants =
-      fm::ExportImuConstants(fm::testing::RealisticImu(5)).constants;
+  const fm::ImuConstants constants = fm::ExportImuConstants(fm::testing::RealisticImu(5)).constants;
   for (uint8_t block = fm::kImuBlockThermalFirst; block <= fm::kImuBlockCg; ++block) {
     int16_t words[fm::kImuMaxBlockWords];
     uint8_t count = 0;

@@ -27,7 +27,8 @@ class Bench {
     std::string reply;
     for (int i = 0; i < 100; ++i) {
       RunFor(0.01);
-      if (!reply.empty() && (reply.back() == '\r' || (text[0] == '=' && reply.back() == '\x11'))) break;
+      if (!reply.empty() && (reply.back() == '\r' || (text[0] == '=' && reply.back() == '\x11')))
+        break;
       reply += TakeAll();
     }
     return reply;
@@ -69,8 +70,11 @@ class Bench {
 // The profile used below: up to 35 °C at 2 °C/min, soak 5 min, down to 25 °C at 2 °C/min,
 // jump back to step 1 once, end in hold.
 void WriteProfile(Bench& bench) {
-  for (const char* line : {"= STP 1 1 35 2 1 0", "= STP 2 2 0 5 0 0 0", "= STP 3 1 25 2 0 0",
-                           "= STP 4 3 1 1", "= STP 5 0 0"}) {
+  for (const char* line : {"= STP 1 1 35 2 1 0",
+                           "= STP 2 2 0 5 0 0 0",
+                           "= STP 3 1 25 2 0 0",
+                           "= STP 4 3 1 1",
+                           "= STP 5 0 0"}) {
     bench.Transact(std::string(line) + "\r");
   }
 }
@@ -79,7 +83,9 @@ TEST(Watlow942Device, AnswersReadsAndWritesWithXonXoffFraming) {
   Bench bench;
   // p. 13: a write is acknowledged by XOFF then XON only; a read by XOFF XON value CR.
   EXPECT_EQ(bench.Transact("= SP1 30\r"), "\x13\x11");
-  EXPECT_EQ(bench.Transact("? SP1\r"), "\x13\x11" "30.0\r");
+  EXPECT_EQ(bench.Transact("? SP1\r"),
+            "\x13\x11"
+            "30.0\r");
   EXPECT_EQ(bench.Ask("? MDL"), "942 1");
   EXPECT_EQ(bench.Ask("? MODE"), "2");  // power-up: hold at the static set point
   EXPECT_EQ(bench.Ask("? C1"), "25.0");
@@ -93,19 +99,19 @@ TEST(Watlow942Device, RefusesLimitsAndModeErrorsThroughEr2) {
     int er2;
   };
   const std::vector<Case> cases = {
-      {"= SP1 150", 25},            // above rH = 100 (never clamped)
-      {"= SP1 -60", 25},            // below rL = -50
-      {"= STP 25 0 0", 25},         // 24 steps (p. 21)
-      {"= STP 2 1 30 0 1 0", 25},   // rate 0
-      {"= STP 2 1 30 31 1 0", 25},  // rate above 30 °C/min
-      {"= STP 2 2 0 60 0 0 0", 25}, // 60 minutes
-      {"= STP 2 3 2 1", 25},        // jump forward
-      {"= STP 2 1 30 5", 22},       // fields missing
+      {"= SP1 150", 25},             // above rH = 100 (never clamped)
+      {"= SP1 -60", 25},             // below rL = -50
+      {"= STP 25 0 0", 25},          // 24 steps (p. 21)
+      {"= STP 2 1 30 0 1 0", 25},    // rate 0
+      {"= STP 2 1 30 31 1 0", 25},   // rate above 30 °C/min
+      {"= STP 2 2 0 60 0 0 0", 25},  // 60 minutes
+      {"= STP 2 3 2 1", 25},         // jump forward
+      {"= STP 2 1 30 5", 22},        // fields missing
       {"? XYZ", 21},
       {"= C1 20", 26},
       {"? STRT", 27},
-      {"= HOLD 1", 31},             // already holding
-      {"= RESU 1", 30},             // no profile in progress
+      {"= HOLD 1", 31},  // already holding
+      {"= RESU 1", 30},  // no profile in progress
       {"SP1 30", 20},
   };
   for (const Case& c : cases) {
@@ -159,8 +165,8 @@ TEST(Watlow942Device, FollowsAProfileWithRampSoakJumpAndEnd) {
   // sin(2π·t/90 s), with t the device's time since start.
   bench.RunUntil(t0_s + 600.0);
   const double mean_c = 35.0 - lag_c * std::exp(-2.5);
-  const double cycling_c = 0.3 * std::exp(-(35.0 - mean_c) / 0.9) *
-                           std::sin(2.0 * common::kPi * bench.now_s() / 90.0);
+  const double cycling_c =
+      0.3 * std::exp(-(35.0 - mean_c) / 0.9) * std::sin(2.0 * common::kPi * bench.now_s() / 90.0);
   EXPECT_NEAR(bench.env_.ads_chamber_air_c, mean_c + cycling_c, 0.02);
   bench.RunUntil(t0_s + 1050.0);  // second pass, mid-ramp up
   EXPECT_EQ(bench.Ask("? CSP"), "30.0");
@@ -207,7 +213,9 @@ TEST(Watlow942Device, HostXoffPausesItsOutput) {
   bench.Transact("? C1\r");
   bench.RunFor(1.0);
   EXPECT_EQ(bench.TakeAll(), "");
-  EXPECT_EQ(bench.Transact("\x11"), "\x13\x11" "25.0\r");
+  EXPECT_EQ(bench.Transact("\x11"),
+            "\x13\x11"
+            "25.0\r");
 }
 
 TEST(Watlow942Device, CannotReachSetPointFault) {

@@ -24,7 +24,9 @@ using Bytes = std::vector<uint8_t>;
 constexpr double kFrame_s = 0.01;  // the rig's world frame (rig_sim/device_host.h)
 constexpr double kTick_s = 0.1;    // default control tick
 
-uint16_t Tenths(double c) { return static_cast<uint16_t>(static_cast<int16_t>(std::lround(c * 10))); }
+uint16_t Tenths(double c) {
+  return static_cast<uint16_t>(static_cast<int16_t>(std::lround(c * 10)));
+}
 
 // CRC-16/MODBUS written out again from the Serial Line spec §6.2.2, independently of the codec,
 // so the garbage test judges frames by its own rule.
@@ -71,8 +73,8 @@ class Line {
       if (length > 0 && out.size() >= static_cast<size_t>(length)) break;
     }
     const auto decoded = DecodeResponse(out);
-    EXPECT_EQ(decoded.status, DecodeStatus::kOk) << "no valid reply to a request for register "
-                                                 << request.start_register;
+    EXPECT_EQ(decoded.status, DecodeStatus::kOk)
+        << "no valid reply to a request for register " << request.start_register;
     return decoded.response;
   }
 
@@ -184,11 +186,13 @@ TEST(WatlowF4Device, FollowsADownloadedProfileWithGuaranteedSoakAndJumpLoops) {
   std::vector<Sample> trace;
   const double t0_s = std::ceil(line.now_s / kTick_s) * kTick_s;
   line.RunUntil(t0_s);
-  Sample previous{line.device.controller().current_step(), line.device.air_c(),
+  Sample previous{line.device.controller().current_step(),
+                  line.device.air_c(),
                   line.device.controller().WorkingSetPointC()};
   for (int i = 0; i < 4 * 3600 * 10 && line.device.controller().current_step() != 0; ++i) {
     line.RunUntil(line.now_s + kTick_s, kTick_s);
-    trace.push_back({line.device.controller().current_step(), line.device.air_c(),
+    trace.push_back({line.device.controller().current_step(),
+                     line.device.air_c(),
                      line.device.controller().WorkingSetPointC()});
   }
   ASSERT_EQ(line.device.controller().current_step(), 0) << "profile did not end in 4 h";
@@ -215,8 +219,8 @@ TEST(WatlowF4Device, FollowsADownloadedProfileWithGuaranteedSoakAndJumpLoops) {
     if (s.step == 1 && k == 0) {
       // The first pass began during the download, before the trace, from the PV then:
       // check its slope (5 °C/min; rounding of 0.1 s sums only) and that it reached 40.
-      const double slope_c_per_min = (trace[s.last].sp_c - trace[s.first].sp_c) /
-                                     ((s.last - s.first) * kTick_s) * 60.0;
+      const double slope_c_per_min =
+          (trace[s.last].sp_c - trace[s.first].sp_c) / ((s.last - s.first) * kTick_s) * 60.0;
       EXPECT_NEAR(slope_c_per_min, 5.0, 5e-9);
       EXPECT_NEAR(trace[s.last].sp_c, 40.0, 5.0 / 60.0 * kTick_s);  // within its last tick
       EXPECT_NEAR(trace[segments[k + 1].first].sp_c, 40.0, 1e-9);   // the soak holds 40

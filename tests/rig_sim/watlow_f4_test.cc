@@ -18,7 +18,9 @@ using hil::modbus::WriteSingleRequest;
 constexpr double kTick_s = 0.1;
 
 // Register values in the F4's format: signed, one implied decimal (shared/protocols.md §2.2).
-uint16_t Tenths(double c) { return static_cast<uint16_t>(static_cast<int16_t>(std::lround(c * 10))); }
+uint16_t Tenths(double c) {
+  return static_cast<uint16_t>(static_cast<int16_t>(std::lround(c * 10)));
+}
 
 std::optional<ExceptionCode> Write(WatlowF4& f4, uint16_t reg, uint16_t value) {
   const Response r = f4.Handle(WriteSingleRequest(1, reg, value));
@@ -56,17 +58,19 @@ uint16_t Download(WatlowF4& f4, const std::vector<StepSpec>& steps) {
     const StepSpec& s = steps[i];
     const uint16_t number = static_cast<uint16_t>(i + 1);
     const bool last = i + 1 == steps.size();
-    const Response selected = f4.Handle(
-        WriteMultipleRequest(1, 4001, last ? std::vector<uint16_t>{number} : std::vector<uint16_t>{number, 2}));
+    const Response selected = f4.Handle(WriteMultipleRequest(
+        1, 4001, last ? std::vector<uint16_t>{number} : std::vector<uint16_t>{number, 2}));
     EXPECT_FALSE(selected.is_exception) << "step " << number;
     EXPECT_EQ(Write(f4, 4003, s.type), std::nullopt);
     switch (s.type) {
       case WatlowF4::kRampTime:
       case WatlowF4::kSoak: {
-        const Response r = f4.Handle(WriteMultipleRequest(
-            1, 4009,
-            {static_cast<uint16_t>(s.duration_s / 3600), static_cast<uint16_t>(s.duration_s / 60 % 60),
-             static_cast<uint16_t>(s.duration_s % 60)}));
+        const Response r =
+            f4.Handle(WriteMultipleRequest(1,
+                                           4009,
+                                           {static_cast<uint16_t>(s.duration_s / 3600),
+                                            static_cast<uint16_t>(s.duration_s / 60 % 60),
+                                            static_cast<uint16_t>(s.duration_s % 60)}));
         EXPECT_FALSE(r.is_exception);
         if (s.type == WatlowF4::kRampTime) {
           EXPECT_EQ(Write(f4, 4044, Tenths(s.target_c)), std::nullopt);
@@ -79,8 +83,8 @@ uint16_t Download(WatlowF4& f4, const std::vector<StepSpec>& steps) {
         EXPECT_EQ(Write(f4, 4044, Tenths(s.target_c)), std::nullopt);
         break;
       case WatlowF4::kJump:
-        EXPECT_FALSE(
-            f4.Handle(WriteMultipleRequest(1, 4050, {profile, s.jump_step, s.jump_count})).is_exception);
+        EXPECT_FALSE(f4.Handle(WriteMultipleRequest(1, 4050, {profile, s.jump_step, s.jump_count}))
+                         .is_exception);
         break;
       default:  // end
         EXPECT_EQ(Write(f4, 4060, s.end_action), std::nullopt);
@@ -140,12 +144,13 @@ TEST(WatlowF4, IdentificationInputAndOutputPowerRegistersAnswer) {
   ASSERT_FALSE(ident.is_exception);
   ASSERT_EQ(ident.values.size(), 6u);
   const std::string model = std::to_string(ident.values[0]);
-  EXPECT_EQ(std::string() + static_cast<char>(std::stoi(model.substr(2))) + static_cast<char>(std::stoi(model.substr(0, 2))),
+  EXPECT_EQ(std::string() + static_cast<char>(std::stoi(model.substr(2))) +
+                static_cast<char>(std::stoi(model.substr(0, 2))),
             "F4");
   const Response input = f4.Handle(ReadRequest(1, 606, 3));
   ASSERT_FALSE(input.is_exception);
   EXPECT_EQ(input.values, (std::vector<uint16_t>{1, 0, 0}));  // tenths, not latching, temperature
-  EXPECT_EQ(Read(f4, 102), 0);                                 // alarm 1: none modelled
+  EXPECT_EQ(Read(f4, 102), 0);                                // alarm 1: none modelled
   f4.SetOutputPower(0.4567, 0.0);
   EXPECT_EQ(Read(f4, 103), 4567);
   EXPECT_EQ(Read(f4, 107), 0);
@@ -160,7 +165,7 @@ TEST(WatlowF4, ReadOnlyAndUnmappedRegistersGiveException02) {
   EXPECT_EQ(Write(f4, 100, 0), ExceptionCode::kIllegalDataAddress);   // PV is read-only
   EXPECT_EQ(Write(f4, 4122, 0), ExceptionCode::kIllegalDataAddress);  // run status read-only
   EXPECT_EQ(Write(f4, 4045, 0), ExceptionCode::kIllegalDataAddress);  // channel 2 (F4S)
-  const Response block = f4.Handle(ReadRequest(1, 99, 3));           // 99 is unmapped
+  const Response block = f4.Handle(ReadRequest(1, 99, 3));            // 99 is unmapped
   ASSERT_TRUE(block.is_exception);
   EXPECT_EQ(block.exception, ExceptionCode::kIllegalDataAddress);
   const Response tail = f4.Handle(ReadRequest(1, 65535, 2));  // runs past the address space
@@ -184,10 +189,11 @@ TEST(WatlowF4, MultipleWritesApplyInOrderUpToTheFirstRefusal) {
 TEST(WatlowF4, ChamberConnectRecipeCreatesReadsBackAndDeletesAProfile) {
   WatlowF4 f4(WatlowF4Settings{});
   EXPECT_EQ(Read(f4, 4003), 6);  // profile 1 does not exist: type > 5 (§2.4)
-  const uint16_t profile = Download(
-      f4, {{.type = WatlowF4::kRampRate, .rate_c_per_min = 2.5, .target_c = -20.0},
-           {.type = WatlowF4::kSoak, .duration_s = 3723, .guaranteed_soak = true},
-           {.type = WatlowF4::kEnd, .end_action = WatlowF4::kIdle, .idle_c = 23.5}});
+  const uint16_t profile =
+      Download(f4,
+               {{.type = WatlowF4::kRampRate, .rate_c_per_min = 2.5, .target_c = -20.0},
+                {.type = WatlowF4::kSoak, .duration_s = 3723, .guaranteed_soak = true},
+                {.type = WatlowF4::kEnd, .end_action = WatlowF4::kIdle, .idle_c = 23.5}});
   EXPECT_EQ(profile, 1);
   EXPECT_EQ(Read(f4, 1218), 39);
   EXPECT_EQ(Read(f4, 1219), 256 - 3);
@@ -200,9 +206,9 @@ TEST(WatlowF4, ChamberConnectRecipeCreatesReadsBackAndDeletesAProfile) {
   const Response soak = f4.Handle(ReadRequest(1, 4003, 60));
   ASSERT_FALSE(soak.is_exception);
   EXPECT_EQ(soak.values[4003 - 4003], WatlowF4::kSoak);
-  EXPECT_EQ(soak.values[4009 - 4003], 1);   // 3723 s = 1 h
-  EXPECT_EQ(soak.values[4010 - 4003], 2);   // 2 min
-  EXPECT_EQ(soak.values[4011 - 4003], 3);   // 3 s
+  EXPECT_EQ(soak.values[4009 - 4003], 1);  // 3723 s = 1 h
+  EXPECT_EQ(soak.values[4010 - 4003], 2);  // 2 min
+  EXPECT_EQ(soak.values[4011 - 4003], 3);  // 3 s
   EXPECT_EQ(soak.values[4048 - 4003], 1);
   ASSERT_EQ(Write(f4, 4001, 1), std::nullopt);
   EXPECT_EQ(Read(f4, 4043), 25);
@@ -233,11 +239,11 @@ TEST(WatlowF4, RefusesStepValuesItCannotHonour) {
 TEST(WatlowF4, RunRefusesProfilesThatCannotRunAndEditsOfTheRunningProfile) {
   WatlowF4 f4(WatlowF4Settings{});
   EXPECT_EQ(RunProfile(f4, 1), ExceptionCode::kIllegalDataValue);  // no such profile
-  const uint16_t zero_rate = Download(f4, {{.type = WatlowF4::kRampRate, .target_c = 30.0},
-                                           {.type = WatlowF4::kEnd}});
+  const uint16_t zero_rate =
+      Download(f4, {{.type = WatlowF4::kRampRate, .target_c = 30.0}, {.type = WatlowF4::kEnd}});
   EXPECT_EQ(RunProfile(f4, zero_rate), ExceptionCode::kIllegalDataValue);
-  const uint16_t good = Download(f4, {{.type = WatlowF4::kSoak, .duration_s = 600},
-                                      {.type = WatlowF4::kEnd}});
+  const uint16_t good =
+      Download(f4, {{.type = WatlowF4::kSoak, .duration_s = 600}, {.type = WatlowF4::kEnd}});
   EXPECT_EQ(RunProfile(f4, good, 3), ExceptionCode::kIllegalDataValue);  // no step 3
   ASSERT_EQ(RunProfile(f4, good), std::nullopt);
   EXPECT_EQ(Read(f4, 200), 2);
@@ -252,13 +258,14 @@ TEST(WatlowF4, ProfileTimelineFollowsRampTimeRampRateSoakJumpAndEnd) {
   WatlowF4 f4(WatlowF4Settings{});
   // From PV 25: ramp 10 min to 85; ramp at 2 °C/min to 45 (20 min); soak 30 min; ramp 5 min to
   // 85; jump to step 2 twice; end idling at 25. Loop body 1200 + 1800 + 300 s, run three times.
-  const uint16_t profile = Download(
-      f4, {{.type = WatlowF4::kRampTime, .duration_s = 600, .target_c = 85.0},
-           {.type = WatlowF4::kRampRate, .rate_c_per_min = 2.0, .target_c = 45.0},
-           {.type = WatlowF4::kSoak, .duration_s = 1800},
-           {.type = WatlowF4::kRampTime, .duration_s = 300, .target_c = 85.0},
-           {.type = WatlowF4::kJump, .jump_step = 2, .jump_count = 2},
-           {.type = WatlowF4::kEnd, .end_action = WatlowF4::kIdle, .idle_c = 25.0}});
+  const uint16_t profile =
+      Download(f4,
+               {{.type = WatlowF4::kRampTime, .duration_s = 600, .target_c = 85.0},
+                {.type = WatlowF4::kRampRate, .rate_c_per_min = 2.0, .target_c = 45.0},
+                {.type = WatlowF4::kSoak, .duration_s = 1800},
+                {.type = WatlowF4::kRampTime, .duration_s = 300, .target_c = 85.0},
+                {.type = WatlowF4::kJump, .jump_step = 2, .jump_count = 2},
+                {.type = WatlowF4::kEnd, .end_action = WatlowF4::kIdle, .idle_c = 25.0}});
   ASSERT_EQ(RunProfile(f4, profile), std::nullopt);
   // The engine integrates in 0.1 s ticks whose sum is exact to ~1e-12 s over hours, so set
   // points are compared to 1e-6 °C and step changes land on the expected tick.
@@ -291,9 +298,10 @@ TEST(WatlowF4, GuaranteedSoakStopsTheStepClockWhilePvIsOutOfBand) {
   settings.guaranteed_soak_band_c = 1.0;
   WatlowF4 f4(settings);
   const uint16_t profile = Download(
-      f4, {{.type = WatlowF4::kRampTime, .duration_s = 60, .target_c = 60.0, .guaranteed_soak = true},
-           {.type = WatlowF4::kSoak, .duration_s = 600, .guaranteed_soak = true},
-           {.type = WatlowF4::kEnd}});
+      f4,
+      {{.type = WatlowF4::kRampTime, .duration_s = 60, .target_c = 60.0, .guaranteed_soak = true},
+       {.type = WatlowF4::kSoak, .duration_s = 600, .guaranteed_soak = true},
+       {.type = WatlowF4::kEnd}});
   EXPECT_EQ(Read(f4, 1205), 10);
   f4.Tick(kTick_s, 25.0);  // the profile starts from the last PV the controller saw
   ASSERT_EQ(RunProfile(f4, profile), std::nullopt);
@@ -325,9 +333,10 @@ TEST(WatlowF4, GuaranteedSoakStopsTheStepClockWhilePvIsOutOfBand) {
 
 TEST(WatlowF4, HoldFreezesTheProfileResumeContinuesTerminateReturnsToStatic) {
   WatlowF4 f4(WatlowF4Settings{});
-  const uint16_t profile = Download(
-      f4, {{.type = WatlowF4::kRampTime, .duration_s = 1000, .target_c = 125.0},
-           {.type = WatlowF4::kEnd}});
+  const uint16_t profile =
+      Download(f4,
+               {{.type = WatlowF4::kRampTime, .duration_s = 1000, .target_c = 125.0},
+                {.type = WatlowF4::kEnd}});
   f4.Tick(kTick_s, 25.0);
   ASSERT_EQ(RunProfile(f4, profile), std::nullopt);
   TickIdeal(f4, 100.0);

@@ -202,9 +202,9 @@ TEST(Ads1254, BadJsonNamesPathAndRange) {
               HasSubstr("$.vref_v"));
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["inl_ppm_fsr"] = 20.0; }),
               AllOf(HasSubstr("$.inl_ppm_fsr"), HasSubstr("[-15, 15] ppm FSR")));
-  EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["noise_uv_rms"] = "NaN"; }),
-              AllOf(HasSubstr("$.noise_uv_rms"), HasSubstr("expected a number"),
-                    HasSubstr("[0, 1000]")));
+  EXPECT_THAT(
+      FromJsonError([](nlohmann::json& j) { j["noise_uv_rms"] = "NaN"; }),
+      AllOf(HasSubstr("$.noise_uv_rms"), HasSubstr("expected a number"), HasSubstr("[0, 1000]")));
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["averaging_count"] = 5000; }),
               AllOf(HasSubstr("$.averaging_count"), HasSubstr("[1, 4096]")));
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["effects"]["dither"] = true; }),

@@ -56,15 +56,15 @@ TEST(AdsUnit, PressureSlopesFollowTheBridgeSensitivity) {
     const Mean a = Average(unit, lo), c = Average(unit, hi);
     const double dp_pa = pitot ? hi.qc_pa - lo.qc_pa : hi.ps_pa - lo.ps_pa;
     const double v_b = b.excitation_current_ma * 1e-3 * b.bridge_resistance_ohm;
-    const double expected = v_b * b.sensitivity_mv_per_v * 1e-3 * dp_pa / b.full_scale_pa *
-                            CodesPerVolt(p);
+    const double expected =
+        v_b * b.sensitivity_mv_per_v * 1e-3 * dp_pa / b.full_scale_pa * CodesPerVolt(p);
     const double measured = pitot ? c.pt - a.pt : c.ps - a.ps;
     // Each end point may sit off the best-fit straight line by the BFSL nonlinearity (% FSO), so
     // the secant differs from the BFSL slope by at most twice that in counts; the ADC reference
     // error (ppm) adds 0.1 % at most.
     const double fso_counts = v_b * b.sensitivity_mv_per_v * 1e-3 * CodesPerVolt(p);
-    const double allowed = 2.0 * std::abs(b.nonlinearity_bfsl_pct_fso) / 100.0 * fso_counts +
-                           0.001 * expected;
+    const double allowed =
+        2.0 * std::abs(b.nonlinearity_bfsl_pct_fso) / 100.0 * fso_counts + 0.001 * expected;
     EXPECT_NEAR(measured, expected, allowed) << (pitot ? "pitot" : "static");
   }
 }

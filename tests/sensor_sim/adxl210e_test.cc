@@ -10,8 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/duty_cycle_modulator.h"
 #include "common/units.h"
+#include "sensor_sim/duty_cycle_modulator.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -19,12 +19,15 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-constexpr double kFrame_s = 0.01;           // 100 Hz firmware frame
-constexpr double kFcy_hz = 29.4912e6;       // 7.3728 MHz × 16 PLL / 4 (physics.md §1.3)
+constexpr double kFrame_s = 0.01;                  // 100 Hz firmware frame
+constexpr double kFcy_hz = 29.4912e6;              // 7.3728 MHz × 16 PLL / 4 (physics.md §1.3)
 constexpr double kT2Typical_cnt = 1e-3 * kFcy_hz;  // 1 ms at 125 kΩ: 29 491.2 ticks
 constexpr double kFrame_cnt = kFrame_s * kFcy_hz;  // 294 912 ticks
 
-Adxl210eInput At(double f_x_g, double f_y_g = 0.0, double f_z_g = 0.0, double temp_c = 25.0,
+Adxl210eInput At(double f_x_g,
+                 double f_y_g = 0.0,
+                 double f_z_g = 0.0,
+                 double temp_c = 25.0,
                  double supply_v = 5.0) {
   return {f_x_g, f_y_g, f_z_g, temp_c, supply_v};
 }
@@ -62,7 +65,9 @@ MeanReading Average(const Adxl210eParams& p, const Adxl210eInput& input, int fra
   return Average(chip, input, frames);
 }
 
-std::vector<Adxl210eOutput> Record(const Adxl210eParams& p, const Adxl210eInput& input, int frames,
+std::vector<Adxl210eOutput> Record(const Adxl210eParams& p,
+                                   const Adxl210eInput& input,
+                                   int frames,
                                    uint64_t seed = 1) {
   Adxl210e chip(p, seed, kFrame_s);
   std::vector<Adxl210eOutput> out;
@@ -103,10 +108,10 @@ TEST(DutyCycleModulator, ReportsTheLastPeriodCompletedInsideEachFrame) {
 TEST(DutyCycleModulator, CaptureFloorsEdgesAndWrapsAt16Bits) {
   // Edges at 0.3 + 0.5 = 0.8 and 0.3 + 10.6 = 10.9 ticks are captured as 0 and 10.
   EXPECT_EQ(CaptureIntervalCnt(0.3, 0.5, 10.6, true), 10);
-  EXPECT_EQ(CaptureIntervalCnt(0.3, 0.5, 10.2, true), 10);  // 0.8 → 0, 10.5 → 10
-  EXPECT_EQ(CaptureIntervalCnt(0.0, 0.5, 10.2, true), 10);  // 0.5 → 0, 10.2 → 10
-  EXPECT_EQ(CaptureIntervalCnt(0.6, 0.5, 10.2, true), 9);   // 1.1 → 1, 10.8 → 10
-  EXPECT_EQ(CaptureIntervalCnt(0.6, 0.5, 10.2, false), 10);  // 9.7 rounds to 10
+  EXPECT_EQ(CaptureIntervalCnt(0.3, 0.5, 10.2, true), 10);                // 0.8 → 0, 10.5 → 10
+  EXPECT_EQ(CaptureIntervalCnt(0.0, 0.5, 10.2, true), 10);                // 0.5 → 0, 10.2 → 10
+  EXPECT_EQ(CaptureIntervalCnt(0.6, 0.5, 10.2, true), 9);                 // 1.1 → 1, 10.8 → 10
+  EXPECT_EQ(CaptureIntervalCnt(0.6, 0.5, 10.2, false), 10);               // 9.7 rounds to 10
   EXPECT_EQ(CaptureIntervalCnt(0.0, 0.0, 70000.0, true), 70000 - 65536);  // modulo 2^16
 }
 
@@ -292,7 +297,8 @@ NoiseStats MeasureNoise(double filter_c_f, int frames, int block) {
     for (int i = 0; i < block; ++i) means[b] += a_g[b * block + i] / block;
   }
   double allan = 0.0;
-  for (int b = 1; b < blocks; ++b) allan += 0.5 * std::pow(means[b] - means[b - 1], 2) / (blocks - 1);
+  for (int b = 1; b < blocks; ++b)
+    allan += 0.5 * std::pow(means[b] - means[b - 1], 2) / (blocks - 1);
   return {std::sqrt(var), std::sqrt(allan)};
 }
 
@@ -305,8 +311,8 @@ TEST(Adxl210e, PerSampleNoiseRmsIsDensityTimesRootHalfPiBandwidth) {
   // plus the rounding variance (0.24 mg rms). 200 000 nearly independent samples estimate the rms
   // within 0.16 % (1σ); tolerance 1 % is over 6σ.
   const double f3db_hz = 1.0 / (2.0 * common::kPi * 32e3 * 0.1e-6);
-  const double expected_g = std::sqrt(std::pow(kDensity_g_per_rthz, 2) * common::kPi / 2.0 * f3db_hz +
-                                      kQuantVar_g2);
+  const double expected_g =
+      std::sqrt(std::pow(kDensity_g_per_rthz, 2) * common::kPi / 2.0 * f3db_hz + kQuantVar_g2);
   EXPECT_NEAR(MeasureNoise(0.1e-6, 200000, 100).rms_g, expected_g, 0.01 * expected_g);
 }
 
@@ -324,8 +330,8 @@ TEST(Adxl210e, LowFrequencyNoiseMatchesDensity) {
   for (double c_f : {1e-6, 0.1e-6}) {
     const double tau_s = 32e3 * c_f;
     const double x = kFrame_s / (2.0 * tau_s);
-    const double psd0 = std::pow(kDensity_g_per_rthz, 2) * x / std::tanh(x) +
-                        2.0 * kFrame_s * kQuantVar_g2;
+    const double psd0 =
+        std::pow(kDensity_g_per_rthz, 2) * x / std::tanh(x) + 2.0 * kFrame_s * kQuantVar_g2;
     const double expected_g = std::sqrt(psd0 / (2.0 * tau_a_s));
     const double measured_g = MeasureNoise(c_f, 1000000, 200).allan_g;
     EXPECT_NEAR(measured_g, expected_g, 0.05 * expected_g) << c_f << " F";
@@ -345,14 +351,39 @@ TEST(Adxl210e, EachEffectOffIgnoresItsParameters) {
     std::function<void(Adxl210eParams&)> mutate;
   };
   const std::vector<Case> cases = {
-      {"zero_g_tempco", [](Adxl210eParams& p) { p.x.zero_g_tc1_mg_per_c = 5; p.y.zero_g_tc3_mg_per_c3 = 1e-3; }},
-      {"sensitivity_tempco", [](Adxl210eParams& p) { p.x.sensitivity_tc1_ppm_per_c = 500; p.y.sensitivity_tc2_ppm_per_c2 = 3; }},
-      {"nonlinearity", [](Adxl210eParams& p) { p.x.nonlinearity_pct_fs = 1.0; p.y.nonlinearity_pct_fs = -1.0; }},
-      {"cross_axis", [](Adxl210eParams& p) { p.x.cross_z_ratio = 0.05; p.y.cross_other_ratio = 0.05; p.xy_nonorthogonality_deg = 0.5; }},
-      {"supply_sensitivity", [](Adxl210eParams& p) { p.x.zero_g_supply_pct_per_v = 4; p.y.zero_g_supply_pct_per_v = -4; }},
+      {"zero_g_tempco",
+       [](Adxl210eParams& p) {
+         p.x.zero_g_tc1_mg_per_c = 5;
+         p.y.zero_g_tc3_mg_per_c3 = 1e-3;
+       }},
+      {"sensitivity_tempco",
+       [](Adxl210eParams& p) {
+         p.x.sensitivity_tc1_ppm_per_c = 500;
+         p.y.sensitivity_tc2_ppm_per_c2 = 3;
+       }},
+      {"nonlinearity",
+       [](Adxl210eParams& p) {
+         p.x.nonlinearity_pct_fs = 1.0;
+         p.y.nonlinearity_pct_fs = -1.0;
+       }},
+      {"cross_axis",
+       [](Adxl210eParams& p) {
+         p.x.cross_z_ratio = 0.05;
+         p.y.cross_other_ratio = 0.05;
+         p.xy_nonorthogonality_deg = 0.5;
+       }},
+      {"supply_sensitivity",
+       [](Adxl210eParams& p) {
+         p.x.zero_g_supply_pct_per_v = 4;
+         p.y.zero_g_supply_pct_per_v = -4;
+       }},
       {"t2_tempco", [](Adxl210eParams& p) { p.t2_tc_ppm_per_c = 1000; }},
       {"t2_jitter", [](Adxl210eParams& p) { p.t2_jitter_ppm = 500; }},
-      {"filter", [](Adxl210eParams& p) { p.x.filter_c_f = 1e-6; p.y.filter_r_ohm = 40e3; }},
+      {"filter",
+       [](Adxl210eParams& p) {
+         p.x.filter_c_f = 1e-6;
+         p.y.filter_r_ohm = 40e3;
+       }},
       {"noise", [](Adxl210eParams& p) { p.x.noise_density_ug_per_rthz = 1000; }},
   };
   // A changing input (temperature, supply, a step) so that every term would show if active.
@@ -412,7 +443,8 @@ TEST(Adxl210e, CrossAxisAddsTransverseAndNonOrthogonalTerms) {
   p.effects.cross_axis = true;
   const MeanReading on = Average(p, At(3.0, 2.0, -4.0));
   EXPECT_NEAR((on.duty_x - off.duty_x) / 0.04, 0.08, kDutyTick_ratio / 0.04);
-  EXPECT_NEAR((on.duty_y - off.duty_y) / 0.04, 3.0 * (0.015 + std::sin(common::DegToRad(0.5))) - 0.04,
+  EXPECT_NEAR((on.duty_y - off.duty_y) / 0.04,
+              3.0 * (0.015 + std::sin(common::DegToRad(0.5))) - 0.04,
               kDutyTick_ratio / 0.04);
 }
 
@@ -499,10 +531,10 @@ TEST(Adxl210e, NominalPeriodLocksToTheFrameALimitCycle) {
 }
 
 TEST(Adxl210e, FilterLagsAStepByTheRcTimeConstant) {
-  // C = 1 µF: τ = 32 ms. A step 0 → 5 g at a frame start is sampled at s = Δ − ε with ε ∈ [T2, 2·T2)
-  // (the last complete period's rising edge), so the first frame reads 5·(1 − e^{−s/τ}) ∈
-  // [5·(1 − e^{−8/32}), 5·(1 − e^{−9/32})] = [1.106, 1.225] g; the next frame 5·(1 − e^{−(10+s)/τ}).
-  // Without the filter the first frame reads 5 g. Tolerance one tick (0.85 mg).
+  // C = 1 µF: τ = 32 ms. A step 0 → 5 g at a frame start is sampled at s = Δ − ε with ε ∈ [T2,
+  // 2·T2) (the last complete period's rising edge), so the first frame reads 5·(1 − e^{−s/τ}) ∈
+  // [5·(1 − e^{−8/32}), 5·(1 − e^{−9/32})] = [1.106, 1.225] g; the next frame 5·(1 −
+  // e^{−(10+s)/τ}). Without the filter the first frame reads 5 g. Tolerance one tick (0.85 mg).
   Adxl210eParams p = Ideal();
   p.x.filter_c_f = 1e-6;
   const double tick_g = kDutyTick_ratio / 0.04;
@@ -544,8 +576,11 @@ TEST(Adxl210e, StepEachMatchesSteppingEachChipInTurn) {
   for (int i = 0; i < 2000; ++i) {
     std::vector<Adxl210eInput> inputs;
     for (int k = 0; k < kChips; ++k) {
-      inputs.push_back(At(std::sin(1e-2 * i + k), 0.5 * std::cos(3e-3 * i) - 0.1 * k,
-                          0.9 + 0.01 * k, 25.0 + 40.0 * std::sin(1e-3 * i), 5.0 + 0.01 * k));
+      inputs.push_back(At(std::sin(1e-2 * i + k),
+                          0.5 * std::cos(3e-3 * i) - 0.1 * k,
+                          0.9 + 0.01 * k,
+                          25.0 + 40.0 * std::sin(1e-3 * i),
+                          5.0 + 0.01 * k));
     }
     std::vector<Adxl210eOutput> expected;
     for (int k = 0; k < kChips; ++k) expected.push_back(one_by_one[k].Step(inputs[k]));
@@ -580,19 +615,25 @@ TEST(Adxl210e, BadParametersNamePathAndRange) {
   const nlohmann::json good = Adxl210eParams::Typical().ToJson();
   nlohmann::json missing = good;
   missing["x"].erase("filter_c_f");
-  EXPECT_THAT(ErrorOf(missing),
-              AllOf(HasSubstr("chip.json"), HasSubstr("$.accel[0].x.filter_c_f"), HasSubstr("missing")));
+  EXPECT_THAT(
+      ErrorOf(missing),
+      AllOf(HasSubstr("chip.json"), HasSubstr("$.accel[0].x.filter_c_f"), HasSubstr("missing")));
   nlohmann::json wrong_unit = good;
   wrong_unit["x"]["filter_c_uf"] = 0.1;
-  EXPECT_THAT(ErrorOf(wrong_unit), AllOf(HasSubstr("$.accel[0].x.filter_c_uf"), HasSubstr("unknown key")));
+  EXPECT_THAT(ErrorOf(wrong_unit),
+              AllOf(HasSubstr("$.accel[0].x.filter_c_uf"), HasSubstr("unknown key")));
   nlohmann::json out_of_range = good;
   out_of_range["rset_ohm"] = 2e6;
   EXPECT_THAT(ErrorOf(out_of_range),
-              AllOf(HasSubstr("$.accel[0].rset_ohm"), HasSubstr("out of range"), HasSubstr("[62500, 1.25e+06] ohm")));
+              AllOf(HasSubstr("$.accel[0].rset_ohm"),
+                    HasSubstr("out of range"),
+                    HasSubstr("[62500, 1.25e+06] ohm")));
   nlohmann::json nan = good;
   nan["y"]["sensitivity_pct_per_g"] = "NaN";
-  EXPECT_THAT(ErrorOf(nan), AllOf(HasSubstr("$.accel[0].y.sensitivity_pct_per_g"),
-                                  HasSubstr("expected a number"), HasSubstr("[2, 6] %/g")));
+  EXPECT_THAT(ErrorOf(nan),
+              AllOf(HasSubstr("$.accel[0].y.sensitivity_pct_per_g"),
+                    HasSubstr("expected a number"),
+                    HasSubstr("[2, 6] %/g")));
   nlohmann::json effect = good;
   effect["effects"].erase("filter");
   EXPECT_THAT(ErrorOf(effect), HasSubstr("$.accel[0].effects.filter"));

@@ -6,8 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sensor_sim/atmosphere.h"
 #include "common/units.h"
+#include "sensor_sim/atmosphere.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -22,8 +22,13 @@ struct CasImpact {
 
 // shared/physics.md §4.1 CAS table (qc quoted to 0.1 Pa).
 constexpr CasImpact kCasTable[] = {
-    {40.0, 259.6},     {60.0, 584.8},     {100.0, 1630.3},  {150.0, 3694.4},
-    {250.0, 10498.2},  {350.0, 21286.3},  {450.0, 36800.9},
+    {40.0, 259.6},
+    {60.0, 584.8},
+    {100.0, 1630.3},
+    {150.0, 3694.4},
+    {250.0, 10498.2},
+    {350.0, 21286.3},
+    {450.0, 36800.9},
 };
 
 TEST(AirData, ImpactPressureMatchesPublishedTable) {
@@ -64,7 +69,8 @@ TEST(AirData, Fl350At250KcasCheckValue) {
   const double ps_pa = IsaStaticPressurePaFromFt(35000.0);
   const double qc_pa = ImpactPressurePaFromKt(250.0);
   const double mach = MachNumber(qc_pa, ps_pa);
-  const double tas_kt = common::MpsToKt(TrueAirspeedMps(mach, IsaTemperatureK(common::FtToM(35000.0))));
+  const double tas_kt =
+      common::MpsToKt(TrueAirspeedMps(mach, IsaTemperatureK(common::FtToM(35000.0))));
   EXPECT_NEAR(ps_pa, common::HpaToPa(238.4), 5.0);
   EXPECT_NEAR(qc_pa, common::HpaToPa(105.0), 5.0);
   EXPECT_NEAR(mach, 0.741, 0.0005);
@@ -73,15 +79,16 @@ TEST(AirData, Fl350At250KcasCheckValue) {
 
 TEST(AirData, MachAt30000FtCheckValue) {
   // shared/protocols.md §5: 250 kt CAS at 30 000 ft → M = 0.668.
-  EXPECT_NEAR(MachNumber(ImpactPressurePaFromKt(250.0), IsaStaticPressurePaFromFt(30000.0)),
-              0.668, 0.0005);
+  EXPECT_NEAR(
+      MachNumber(ImpactPressurePaFromKt(250.0), IsaStaticPressurePaFromFt(30000.0)), 0.668, 0.0005);
 }
 
 TEST(AirData, MachEqualsCasRatioAtSeaLevel) {
   // At ps = p0 the Mach and CAS formulas coincide: M = Vc/a0 exactly (up to rounding).
   for (double cas_kt : {50.0, 200.0, 600.0}) {
     EXPECT_NEAR(MachNumber(ImpactPressurePaFromKt(cas_kt), kIsaSeaLevelPressure_pa),
-                common::KtToMps(cas_kt) / SeaLevelSpeedOfSoundMps(), 1e-12);
+                common::KtToMps(cas_kt) / SeaLevelSpeedOfSoundMps(),
+                1e-12);
   }
 }
 

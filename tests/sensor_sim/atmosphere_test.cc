@@ -27,16 +27,23 @@ struct AltitudePressure {
 // value, 65 616.8 ft rounded up, lies just above the modelled range; it is checked in metres in
 // TabulatedConstantsAtLayerBoundaries).
 constexpr AltitudePressure kIsaTable[] = {
-    {-1000.0, 1050.41}, {0.0, 1013.25},    {5000.0, 843.07},   {10000.0, 696.82},
-    {20000.0, 465.63},  {30000.0, 300.90}, {36089.24, 226.32}, {40000.0, 187.54},
-    {41000.0, 178.74},  {50000.0, 115.97},
+    {-1000.0, 1050.41},
+    {0.0, 1013.25},
+    {5000.0, 843.07},
+    {10000.0, 696.82},
+    {20000.0, 465.63},
+    {30000.0, 300.90},
+    {36089.24, 226.32},
+    {40000.0, 187.54},
+    {41000.0, 178.74},
+    {50000.0, 115.97},
 };
 
 TEST(Atmosphere, StaticPressureMatchesPublishedTable) {
   for (const AltitudePressure& row : kIsaTable) {
     const double expected_pa = common::HpaToPa(row.ps_hpa);
-    EXPECT_NEAR(IsaStaticPressurePaFromFt(row.alt_ft), expected_pa,
-                kTableRelativeTolerance * expected_pa)
+    EXPECT_NEAR(
+        IsaStaticPressurePaFromFt(row.alt_ft), expected_pa, kTableRelativeTolerance * expected_pa)
         << "alt_ft " << row.alt_ft;
   }
 }
@@ -48,8 +55,8 @@ TEST(Atmosphere, PressureAltitudeMatchesPublishedTable) {
     const double ps_pa = common::HpaToPa(row.ps_hpa);
     const double dh_dp_ft_per_pa = common::MToFt(1.0) * kIsaGasConstant_j_per_kg_k * 288.15 /
                                    (common::kStandardGravity_mps2 * ps_pa);
-    EXPECT_NEAR(IsaPressureAltitudeFt(ps_pa), row.alt_ft,
-                kTableRelativeTolerance * ps_pa * dh_dp_ft_per_pa)
+    EXPECT_NEAR(
+        IsaPressureAltitudeFt(ps_pa), row.alt_ft, kTableRelativeTolerance * ps_pa * dh_dp_ft_per_pa)
         << "ps_hpa " << row.ps_hpa;
   }
 }

@@ -26,8 +26,18 @@ int64_t UlpDistance(double a, double b) {
 // (where every double is an integer), and signed zeros.
 std::vector<double> EdgeCases() {
   std::vector<double> v;
-  for (double base : {0.0, 0.5, 1.0, 1.5, 2.5, 3.0, 1e6 + 0.5, 0x1p52, 0x1p52 + 1.0, 0x1p61,
-                      0.49999999999999994, 4503599627370495.5}) {
+  for (double base : {0.0,
+                      0.5,
+                      1.0,
+                      1.5,
+                      2.5,
+                      3.0,
+                      1e6 + 0.5,
+                      0x1p52,
+                      0x1p52 + 1.0,
+                      0x1p61,
+                      0.49999999999999994,
+                      4503599627370495.5}) {
     for (double s : {1.0, -1.0}) {
       const double x = s * base;
       v.push_back(x);

@@ -15,9 +15,12 @@ struct Expected {
   int body_axis;
   double sign;
 };
-constexpr std::array<Expected, 6> kReferenceChannels = {
-    Expected{2, -1}, Expected{0, -1}, Expected{1, +1}, Expected{2, +1}, Expected{0, +1},
-    Expected{1, -1}};
+constexpr std::array<Expected, 6> kReferenceChannels = {Expected{2, -1},
+                                                        Expected{0, -1},
+                                                        Expected{1, +1},
+                                                        Expected{2, +1},
+                                                        Expected{0, +1},
+                                                        Expected{1, -1}};
 
 TEST(Im3Geometry, NominalChannelsSenseTheReferenceAxesAndSigns) {
   for (int ch = 0; ch < 6; ++ch) {
@@ -47,7 +50,8 @@ TEST(Im3Geometry, EveryPackageFrameIsAProperRotation) {
 TEST(Im3Geometry, DrawnMisalignmentStaysWithinOneDegreePerComponent) {
   // ADXL210E alignment error ±1° (physics.md §1.1): every component within ±1°, so the
   // sensitive axis is off its nominal direction by at most √2° (the rotation about the axis itself
-  // does not move it), and the cross-coupling terms are of order 0.01 as in the reference Eq. 30–31.
+  // does not move it), and the cross-coupling terms are of order 0.01 as in the reference Eq.
+  // 30–31.
   double max_cross = 0.0;
   for (uint64_t seed = 1; seed <= 200; ++seed) {
     const Im3Geometry g = Im3Geometry::Draw(seed);

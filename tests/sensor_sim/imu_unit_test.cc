@@ -59,14 +59,18 @@ TEST(ImuUnit, SixPositionPairsSeeEachChannelsAxisWithTheReferenceSigns) {
   for (int ch = 0; ch < 6; ++ch) {
     const Eigen::Vector3d axis = Eigen::Vector3d::Unit(channel_axis[ch]);
     ImuUnit up(p, 5, 25.0), down(p, 6, 25.0);
-    const double half_diff =
-        (Average(up, AtRest(axis), kFrames).duty[ch] - Average(down, AtRest(-axis), kFrames).duty[ch]) / 2;
+    const double half_diff = (Average(up, AtRest(axis), kFrames).duty[ch] -
+                              Average(down, AtRest(-axis), kFrames).duty[ch]) /
+                             2;
     const ChipAxis ca = kAccelChannelChipAxis[ch];
-    const Adxl210eAxisParams& ap = ca.axis == 0 ? p.accel_chips[ca.chip].x : p.accel_chips[ca.chip].y;
-    const double expected = ap.sensitivity_pct_per_g / 100.0 * p.geometry.R_CB(ca.chip)(ca.axis, channel_axis[ch]);
+    const Adxl210eAxisParams& ap =
+        ca.axis == 0 ? p.accel_chips[ca.chip].x : p.accel_chips[ca.chip].y;
+    const double expected =
+        ap.sensitivity_pct_per_g / 100.0 * p.geometry.R_CB(ca.chip)(ca.axis, channel_axis[ch]);
     EXPECT_EQ(std::signbit(half_diff), reference_sign[ch] < 0) << kAccelChannelNames[ch];
     // 1.8 mg rms per frame, averaged over 4000 correlated frames, plus cross-axis terms of the
-    // chip (≤ 2 % of the 1 g on the other axes is zero here: the other axes see 0 g): 1 % covers it.
+    // chip (≤ 2 % of the 1 g on the other axes is zero here: the other axes see 0 g): 1 % covers
+    // it.
     EXPECT_NEAR(half_diff, expected, 0.01 * std::abs(expected)) << kAccelChannelNames[ch];
   }
 }

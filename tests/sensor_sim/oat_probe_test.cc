@@ -27,8 +27,14 @@ struct TableRow {
 
 // IEC 60751 PT100 reference table (resistance to 0.01 Ω); PT500/PT1000 are 5×/10× these.
 constexpr TableRow kIec60751Table[] = {
-    {-200.0, 18.52}, {-100.0, 60.26}, {-40.0, 84.27}, {0.0, 100.00},
-    {50.0, 119.40},  {100.0, 138.51}, {200.0, 175.86}, {850.0, 390.48},
+    {-200.0, 18.52},
+    {-100.0, 60.26},
+    {-40.0, 84.27},
+    {0.0, 100.00},
+    {50.0, 119.40},
+    {100.0, 138.51},
+    {200.0, 175.86},
+    {850.0, 390.48},
 };
 
 TEST(OatProbe, ResistanceMatchesIec60751Table) {
@@ -116,10 +122,14 @@ TEST(OatProbe, EachEffectChangesOutputOnlyWhenOn) {
     std::function<void(OatProbeParams&)> perturb;
   };
   const Case cases[] = {
-      {"rtd_tolerance", [](auto& e) { e.rtd_tolerance = true; }, [](auto& p) { p.r0_error_pct = 0.5; }},
-      {"lead_resistance", [](auto& e) { e.lead_resistance = true; },
+      {"rtd_tolerance",
+       [](auto& e) { e.rtd_tolerance = true; },
+       [](auto& p) { p.r0_error_pct = 0.5; }},
+      {"lead_resistance",
+       [](auto& e) { e.lead_resistance = true; },
        [](auto& p) { p.lead_resistance_ohm = 3.0; }},
-      {"self_heating", [](auto& e) { e.self_heating = true; },
+      {"self_heating",
+       [](auto& e) { e.self_heating = true; },
        [](auto& p) { p.dissipation_mw_per_c = 0.5; }},
   };
   for (const Case& c : cases) {
@@ -136,8 +146,10 @@ TEST(OatProbe, EachEffectChangesOutputOnlyWhenOn) {
 }
 
 TEST(OatProbe, DrawIsDeterministicAndWithinClassB) {
-  EXPECT_EQ(OatProbeParams::Draw(RtdElement::kPt500, 9), OatProbeParams::Draw(RtdElement::kPt500, 9));
-  EXPECT_NE(OatProbeParams::Draw(RtdElement::kPt500, 9), OatProbeParams::Draw(RtdElement::kPt500, 10));
+  EXPECT_EQ(OatProbeParams::Draw(RtdElement::kPt500, 9),
+            OatProbeParams::Draw(RtdElement::kPt500, 9));
+  EXPECT_NE(OatProbeParams::Draw(RtdElement::kPt500, 9),
+            OatProbeParams::Draw(RtdElement::kPt500, 10));
   for (uint64_t seed = 0; seed < 300; ++seed) {
     const OatProbeParams p = OatProbeParams::Draw(RtdElement::kPt1000, seed);
     EXPECT_LE(std::fabs(p.r0_error_pct), 0.3 * 3.9083e-3 * 100.0 + 1e-12);
@@ -145,8 +157,8 @@ TEST(OatProbe, DrawIsDeterministicAndWithinClassB) {
 }
 
 TEST(OatProbe, JsonRoundTripIsExactAndStable) {
-  for (const OatProbeParams& p :
-       {OatProbeParams::Typical(RtdElement::kPt500), OatProbeParams::Draw(RtdElement::kPt1000, 2)}) {
+  for (const OatProbeParams& p : {OatProbeParams::Typical(RtdElement::kPt500),
+                                  OatProbeParams::Draw(RtdElement::kPt1000, 2)}) {
     const nlohmann::json j = nlohmann::json::parse(p.ToJson().dump());
     EXPECT_EQ(OatProbeParams::FromJson(common::ParamReader(j, "oat.json")), p);
   }

@@ -47,18 +47,18 @@ TEST(PreisachHysteresis, IndependentOfStepSize) {
 TEST(PreisachHysteresis, MinorLoopsCloseExactlyAndAreWipedOut) {
   PreisachHysteresis h(10.0);
   h.Update(-30.0);
-  h.Update(30.0);  // saturated -1
+  h.Update(30.0);                     // saturated -1
   const double at_3 = h.Update(3.0);  // falling from 30: t = 2.7 -> +1
   EXPECT_DOUBLE_EQ(at_3, 1.0);
   h.Update(-2.0);  // falling further (same branch)
   const double at_m2 = h.state();
-  h.Update(4.0);   // minor loop up: -2 -> 4 (t = 0.6, F = 0.648)
+  h.Update(4.0);  // minor loop up: -2 -> 4 (t = 0.6, F = 0.648)
   EXPECT_DOUBLE_EQ(h.state(), at_m2 - 2.0 * 0.648);
-  h.Update(1.0);   // and back down 3 (t = 0.3, F = 0.216)
+  h.Update(1.0);  // and back down 3 (t = 0.3, F = 0.216)
   EXPECT_DOUBLE_EQ(h.state(), at_m2 - 2.0 * 0.648 + 2.0 * 0.216);
   EXPECT_DOUBLE_EQ(h.Update(4.0), at_m2 - 2.0 * 0.648);  // inner loop closes exactly
   EXPECT_NEAR(h.Update(-2.0 + 1e-9), at_m2, 1e-8);
-  EXPECT_NEAR(h.Update(-2.0), at_m2, 1e-15);             // outer loop closes exactly
+  EXPECT_NEAR(h.Update(-2.0), at_m2, 1e-15);  // outer loop closes exactly
   // Beyond -2 the -2 -> 4 loop is forgotten: the branch from 30 continues.
   PreisachHysteresis clean(10.0);
   clean.Update(-30.0);
@@ -128,7 +128,8 @@ TEST(PreisachHysteresis, BoundedAndLipschitzOverRandomHistories) {
         const double before = h.state();
         const double after = h.Update(next);
         ASSERT_LE(std::abs(after), 1.0);
-        if (next != x) worst_slope = std::max(worst_slope, std::abs(after - before) / std::abs(next - x));
+        if (next != x)
+          worst_slope = std::max(worst_slope, std::abs(after - before) / std::abs(next - x));
         x = next;
       }
     }

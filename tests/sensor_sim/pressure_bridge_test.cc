@@ -82,8 +82,7 @@ TEST(PressureBridgeBridgeVoltage, TempcoAsConfigured) {
   // "about 10 mV/°C" at 4 kΩ). Symmetric difference ±1 °C cancels β exactly.
   const PressureBridgeParams p = TypicalWith([](PressureBridgeEffects& e) { e.bridge_tcr = true; });
   EXPECT_NEAR(Once(p, 0.0, 25.0).bridge_v, 5.0, 1e-12);
-  const double slope_v_per_c =
-      (Once(p, 0.0, 26.0).bridge_v - Once(p, 0.0, 24.0).bridge_v) / 2.0;
+  const double slope_v_per_c = (Once(p, 0.0, 26.0).bridge_v - Once(p, 0.0, 24.0).bridge_v) / 2.0;
   EXPECT_NEAR(slope_v_per_c, 2600e-6 * 5.0, 1e-12);
   // Curvature: V_B(25+20) + V_B(25−20) − 2·V_B(25) = 2·β·20²·V_B0.
   const double curvature_v = Once(p, 0.0, 45.0).bridge_v + Once(p, 0.0, 5.0).bridge_v - 10.0;
@@ -98,8 +97,7 @@ TEST(PressureBridgeBridgeVoltage, CurrentSourceTempcoAddsToApparentTcr) {
     e.excitation_tempco = true;
   });
   p.excitation_tempco_ppm_per_c = -40.0;
-  const double slope_v_per_c =
-      (Once(p, 0.0, 26.0).bridge_v - Once(p, 0.0, 24.0).bridge_v) / 2.0;
+  const double slope_v_per_c = (Once(p, 0.0, 26.0).bridge_v - Once(p, 0.0, 24.0).bridge_v) / 2.0;
   EXPECT_NEAR(slope_v_per_c, (2600e-6 - 40e-6) * 5.0, 2e-9);
 }
 
@@ -107,8 +105,8 @@ TEST(PressureBridgeBridgeVoltage, PressureDependenceAsConfigured) {
   // γ_P = 200 ppm of R_B at full scale: the thermometer reads 200e-6/2600e-6 = 0.077 °C high.
   const PressureBridgeParams p =
       TypicalWith([](PressureBridgeEffects& e) { e.resistance_pressure = true; });
-  EXPECT_NEAR(Once(p, p.full_scale_pa, 25.0).bridge_v / Once(p, 0.0, 25.0).bridge_v - 1.0,
-              200e-6, 1e-12);
+  EXPECT_NEAR(
+      Once(p, p.full_scale_pa, 25.0).bridge_v / Once(p, 0.0, 25.0).bridge_v - 1.0, 200e-6, 1e-12);
 }
 
 TEST(PressureBridge, NetSpanTempcoUnderConstantCurrent) {
@@ -177,7 +175,8 @@ TEST(PressureBridge, ThermalHysteresisOnlyWhenOn) {
     PressureBridge bridge(p, 3);
     double out = 0.0;
     for (int i = 0; i <= 100; ++i) bridge.Step({0.0, 25.0 + (extreme_c - 25.0) * i / 100});
-    for (int i = 100; i >= 0; --i) out = bridge.Step({0.0, 25.0 + (extreme_c - 25.0) * i / 100}).signal_v;
+    for (int i = 100; i >= 0; --i)
+      out = bridge.Step({0.0, 25.0 + (extreme_c - 25.0) * i / 100}).signal_v;
     return out;
   };
   PressureBridgeParams off = PressureBridgeParams::Typical(kStatic);
@@ -232,22 +231,45 @@ TEST(PressureBridge, EachEffectChangesOutputOnlyWhenOn) {
   // temperature path bit-identical when the effect is off and changes it when it is on.
   const std::vector<EffectCase> cases = {
       {"noise", [](auto& e) { e.noise = true; }, [](auto& p) { p.noise_uv_rms = 50.0; }},
-      {"bridge_tcr", [](auto& e) { e.bridge_tcr = true; },
-       [](auto& p) { p.bridge_tcr_ppm_per_c = 1000.0; p.bridge_tcr2_ppm_per_c2 = -20.0; }},
-      {"excitation_tempco", [](auto& e) { e.excitation_tempco = true; },
+      {"bridge_tcr",
+       [](auto& e) { e.bridge_tcr = true; },
+       [](auto& p) {
+         p.bridge_tcr_ppm_per_c = 1000.0;
+         p.bridge_tcr2_ppm_per_c2 = -20.0;
+       }},
+      {"excitation_tempco",
+       [](auto& e) { e.excitation_tempco = true; },
        [](auto& p) { p.excitation_tempco_ppm_per_c = 100.0; }},
-      {"resistance_pressure", [](auto& e) { e.resistance_pressure = true; },
+      {"resistance_pressure",
+       [](auto& e) { e.resistance_pressure = true; },
        [](auto& p) { p.resistance_pressure_ppm_per_fs = -3000.0; }},
-      {"offset_tempco", [](auto& e) { e.offset_tempco = true; },
-       [](auto& p) { p.offset_tc_uv_per_v_per_c = -20.0; p.offset_tc2_uv_per_v_per_c2 = 1.0; }},
-      {"span_tempco", [](auto& e) { e.span_tempco = true; },
-       [](auto& p) { p.span_tc_ppm_per_c = 0.0; p.span_tc2_ppm_per_c2 = 30.0; }},
-      {"nonlinearity", [](auto& e) { e.nonlinearity = true; },
+      {"offset_tempco",
+       [](auto& e) { e.offset_tempco = true; },
+       [](auto& p) {
+         p.offset_tc_uv_per_v_per_c = -20.0;
+         p.offset_tc2_uv_per_v_per_c2 = 1.0;
+       }},
+      {"span_tempco",
+       [](auto& e) { e.span_tempco = true; },
+       [](auto& p) {
+         p.span_tc_ppm_per_c = 0.0;
+         p.span_tc2_ppm_per_c2 = 30.0;
+       }},
+      {"nonlinearity",
+       [](auto& e) { e.nonlinearity = true; },
        [](auto& p) { p.nonlinearity_bfsl_pct_fso = -1.0; }},
-      {"pressure_hysteresis", [](auto& e) { e.pressure_hysteresis = true; },
-       [](auto& p) { p.pressure_hysteresis_pct_fso = 1.0; p.pressure_hysteresis_span_pct_fs = 5; }},
-      {"thermal_hysteresis", [](auto& e) { e.thermal_hysteresis = true; },
-       [](auto& p) { p.thermal_hysteresis_pct_fso = 1.0; p.thermal_hysteresis_span_c = 2.0; }},
+      {"pressure_hysteresis",
+       [](auto& e) { e.pressure_hysteresis = true; },
+       [](auto& p) {
+         p.pressure_hysteresis_pct_fso = 1.0;
+         p.pressure_hysteresis_span_pct_fs = 5;
+       }},
+      {"thermal_hysteresis",
+       [](auto& e) { e.thermal_hysteresis = true; },
+       [](auto& p) {
+         p.thermal_hysteresis_pct_fso = 1.0;
+         p.thermal_hysteresis_span_c = 2.0;
+       }},
   };
   auto path = [](const PressureBridgeParams& p) {
     PressureBridge bridge(p, 21);
@@ -323,8 +345,8 @@ TEST(PressureBridge, DrawnPartsHaveTheirOwnHysteresisSpans) {
             PressureBridgeParams::Draw(kStatic, 2).thermal_hysteresis_span_c);
 }
 
-// Under the play-operator law the loop between fully developed branches is still h_P (the weights sum
-// to one), while a loop of a tenth of the span is larger than the travel law's, whose branch
+// Under the play-operator law the loop between fully developed branches is still h_P (the weights
+// sum to one), while a loop of a tenth of the span is larger than the travel law's, whose branch
 // leaves a reversal with zero slope.
 TEST(PressureBridge, PlayLawKeepsTheFullLoopAndChangesItsShape) {
   PressureBridgeParams travel = PressureBridgeParams::Typical(kStatic);
@@ -348,9 +370,11 @@ TEST(PressureBridge, PlayLawKeepsTheFullLoopAndChangesItsShape) {
 TEST(PressureBridge, JsonRoundTripIsExactAndStable) {
   PressureBridgeParams play = PressureBridgeParams::Draw(kStatic, 6);
   play.hysteresis_law = HysteresisLaw::kPlayOperators;
-  for (const PressureBridgeParams& p :
-       {PressureBridgeParams::Typical(kStatic), PressureBridgeParams::Typical(kPitot),
-        PressureBridgeParams::Draw(kStatic, 5), PressureBridgeParams::Draw(kPitot, 5), play}) {
+  for (const PressureBridgeParams& p : {PressureBridgeParams::Typical(kStatic),
+                                        PressureBridgeParams::Typical(kPitot),
+                                        PressureBridgeParams::Draw(kStatic, 5),
+                                        PressureBridgeParams::Draw(kPitot, 5),
+                                        play}) {
     const nlohmann::json j = nlohmann::json::parse(p.ToJson().dump());
     EXPECT_EQ(PressureBridgeParams::FromJson(common::ParamReader(j, "bridge.json")), p);
   }
@@ -370,16 +394,18 @@ std::string FromJsonError(const std::function<void(nlohmann::json&)>& edit) {
 }
 
 TEST(PressureBridge, BadJsonNamesPathAndRange) {
-  EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j.erase("sensitivity_mv_per_v"); }),
-              AllOf(HasSubstr("pitot.json"), HasSubstr("$.sensitivity_mv_per_v"),
-                    HasSubstr("missing")));
+  EXPECT_THAT(
+      FromJsonError([](nlohmann::json& j) { j.erase("sensitivity_mv_per_v"); }),
+      AllOf(HasSubstr("pitot.json"), HasSubstr("$.sensitivity_mv_per_v"), HasSubstr("missing")));
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["bridge_resistance_kohm"] = 5.0; }),
               AllOf(HasSubstr("$.bridge_resistance_kohm"), HasSubstr("unknown key")));
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["bridge_tcr_ppm_per_c"] = 9000.0; }),
-              AllOf(HasSubstr("$.bridge_tcr_ppm_per_c"), HasSubstr("out of range"),
+              AllOf(HasSubstr("$.bridge_tcr_ppm_per_c"),
+                    HasSubstr("out of range"),
                     HasSubstr("[-5000, 5000] ppm/degC")));
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["noise_uv_rms"] = "nan"; }),
-              AllOf(HasSubstr("$.noise_uv_rms"), HasSubstr("expected a number"),
+              AllOf(HasSubstr("$.noise_uv_rms"),
+                    HasSubstr("expected a number"),
                     HasSubstr("[0, 1000] uV rms")));
   EXPECT_THAT(FromJsonError([](nlohmann::json& j) { j["kind"] = "gauge"; }),
               AllOf(HasSubstr("$.kind"), HasSubstr("\"gauge\""), HasSubstr("differential")));

@@ -51,7 +51,8 @@ class RigProcess {
  public:
   /// Starts the rig at `time_scale` (simulated s per wall s; the top speed in lockstep) with
   /// `config` (the rig's built-in default config when absent).
-  explicit RigProcess(double time_scale, std::optional<nlohmann::json> config = std::nullopt,
+  explicit RigProcess(double time_scale,
+                      std::optional<nlohmann::json> config = std::nullopt,
                       bool lockstep = false)
       : time_scale_(time_scale), lockstep_(lockstep) {
     const char* bin_dir = std::getenv("ADAHRS_BIN_DIR");
@@ -97,8 +98,12 @@ class RigProcess {
   /// A station (docs/station.md) for every role of this rig, on its ports/ links.
   nlohmann::json StationJson() const {
     const auto port = [](const std::string& path, unsigned baud, const char* flow) {
-      return nlohmann::json{{"path", path}, {"baud", baud},      {"data_bits", 8},
-                            {"parity", "N"}, {"stop_bits", 1},   {"flow", flow}};
+      return nlohmann::json{{"path", path},
+                            {"baud", baud},
+                            {"data_bits", 8},
+                            {"parity", "N"},
+                            {"stop_bits", 1},
+                            {"flow", flow}};
     };
     nlohmann::json instruments = nlohmann::json::object();
     for (const nlohmann::json& instrument : manifest_["instruments"]) {
@@ -114,8 +119,10 @@ class RigProcess {
         baud = 115200;
       }
       if (kind == "watlow_942") flow = "xonxoff";
-      instruments[role] = {{"type", kind},     {"port", port(Port(role), baud, flow)},
-                           {"address", address}, {"timeout_ms", 1000},
+      instruments[role] = {{"type", kind},
+                           {"port", port(Port(role), baud, flow)},
+                           {"address", address},
+                           {"timeout_ms", 1000},
                            {"retries", 2}};
     }
     nlohmann::json units = nlohmann::json::array();
@@ -127,15 +134,16 @@ class RigProcess {
                        {"timeout_ms", 500},
                        {"port", port(Port(role), unit["baud"].get<unsigned>(), "none")}});
     }
-    nlohmann::json station = {{"name", "virtual rig (test)"},
-            {"time_scale", time_scale_},
-            {"site",
-             {{"latitude_deg", manifest_["station"]["latitude_deg"]},
-              {"height_m", manifest_["station"]["height_m"]}}},
-            {"instruments", instruments},
-            {"units", units},
-            {"operator",
-             {{"type", "virtual_fixture"}, {"port", port(Port("control"), 115200, "none")}}}};
+    nlohmann::json station = {
+        {"name", "virtual rig (test)"},
+        {"time_scale", time_scale_},
+        {"site",
+         {{"latitude_deg", manifest_["station"]["latitude_deg"]},
+          {"height_m", manifest_["station"]["height_m"]}}},
+        {"instruments", instruments},
+        {"units", units},
+        {"operator",
+         {{"type", "virtual_fixture"}, {"port", port(Port("control"), 115200, "none")}}}};
     if (lockstep_) station["clock_file"] = manifest_["clock"]["file"];
     return station;
   }
@@ -228,8 +236,8 @@ class RigProcess {
     argv.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(
+        &actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
     const int rc = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
