@@ -84,6 +84,7 @@ std::string AirDataTablesSource() {
          "// air_data_tables.h). Rewrite: ADAHRS_WRITE_AIR_DATA_TABLES=1 "
          "build/bin/firmware_model_tests\n"
          "// --gtest_filter=AirDataTables.*\n"
+         "// clang-format off\n"
          "#include \"firmware_model/target/air_data_tables.h\"\n\n"
          "namespace adahrs::firmware_model {\n\n"
          "// ISA pressure altitude, ft * 2^15, at p = k * 128 Pa.\n";

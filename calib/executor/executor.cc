@@ -7,17 +7,13 @@
 #include <fmt/format.h>
 
 #include "calib/executor/interlocks.h"
+#include "common/overloaded.h"
 
 namespace adahrs::calib {
-namespace {
 
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-// The deduction guide C++20 makes implicit; clang 14 (the fuzz build) still needs it written.
-template <typename... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
+using common::Overloaded;
+
+namespace {
 
 // Waits for every unit's request (one per logger, in order); throws a RunError naming every
 // unit whose request failed, after all have finished.

@@ -5,17 +5,13 @@
 #include <fmt/format.h>
 
 #include "calib/sequence/validation.h"
+#include "common/overloaded.h"
 
 namespace adahrs::calib {
-namespace {
 
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-// The deduction guide C++20 makes implicit; clang 14 (the fuzz build) still needs it written.
-template <typename... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
+using common::Overloaded;
+
+namespace {
 
 constexpr double kSecondsPerMinute = 60.0;
 

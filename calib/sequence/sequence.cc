@@ -1,21 +1,14 @@
 #include "calib/sequence/sequence.h"
 
+#include "common/overloaded.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace adahrs::calib {
-namespace {
 
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-// The deduction guide C++20 makes implicit; clang 14 (the fuzz build) still needs it written.
-template <typename... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
-
-}  // namespace
+using common::Overloaded;
 
 bool IsOrientationCode(int code) {
   return std::find(std::begin(kOrientationCodes), std::end(kOrientationCodes), code) !=

@@ -4,9 +4,13 @@
 #include <functional>
 #include <string_view>
 
+#include "common/overloaded.h"
 #include "common/param_reader.h"
 
 namespace adahrs::calib {
+
+using common::Overloaded;
+
 namespace {
 
 using common::ParamError;
@@ -15,14 +19,6 @@ using common::ParamReader;
 // The reader checks form; limits are validation's. Any finite value within this is well formed.
 constexpr double kAnyFinite = 1e9;
 constexpr int64_t kAnyInteger = 1000000000;
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-// The deduction guide C++20 makes implicit; clang 14 (the fuzz build) still needs it written.
-template <typename... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // ParamError::what() is "<source>: <path>: <message>"; split it back into a problem.
 SequenceProblem ProblemFromParamError(const ParamError& error, const std::string& source) {

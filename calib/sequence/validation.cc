@@ -8,23 +8,19 @@
 #include <fmt/format.h>
 
 #include "calib/sequence/sequence_json.h"
+#include "common/overloaded.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
 
 namespace adahrs::calib {
+
+using common::Overloaded;
+
 namespace {
 
 // More rates than this in one gyro step is a typo, not a calibration: every rate is an
 // acquisition of its own in the plan.
 constexpr int kMaxGyroRatesPerStep = 1000;
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-// The deduction guide C++20 makes implicit; clang 14 (the fuzz build) still needs it written.
-template <typename... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 std::string JoinProblems(const std::string& source, const std::vector<SequenceProblem>& problems) {
   std::string text = fmt::format("{}: sequence refused, {} problem{}:",

@@ -17,6 +17,47 @@ constexpr uint8_t kAdsModeOffset = 20;
 constexpr uint8_t kAdsValuesOffset = 21;
 constexpr uint8_t kAdsFlagsOffset = 29;
 
+// The compensated values and their flags word, at their offsets in a payload.
+void PutCompensated(const int32_t* value,
+                    uint8_t count,
+                    uint16_t flags,
+                    uint8_t values_offset,
+                    uint8_t flags_offset,
+                    uint8_t* out) {
+  for (uint8_t i = 0; i < count; ++i) {
+    PutI32Le(out + values_offset + 4 * i, value[i]);
+  }
+  PutU16Le(out + flags_offset, flags);
+}
+
+// Reads them back; a raw payload (`has_values` false) carries none and reads as zeros.
+void GetCompensated(const uint8_t* payload,
+                    bool has_values,
+                    uint8_t values_offset,
+                    uint8_t flags_offset,
+                    int32_t* value,
+                    uint8_t count,
+                    uint16_t* flags) {
+  for (uint8_t i = 0; i < count; ++i) {
+    value[i] = has_values ? GetI32Le(payload + values_offset + 4 * i) : 0;
+  }
+  *flags = has_values ? GetU16Le(payload + flags_offset) : uint16_t{0};
+}
+
+// Frames a payload an encoder wrote (`length` 0: the encoder refused it, and so does this).
+uint16_t FrameDataPayload(PacketType type,
+                          const uint8_t* payload,
+                          uint8_t length,
+                          uint8_t sequence,
+                          uint8_t tag,
+                          uint8_t* out,
+                          uint16_t out_capacity) {
+  if (length == 0) {
+    return 0;
+  }
+  return EncodeFrame(static_cast<uint8_t>(type), sequence, tag, payload, length, out, out_capacity);
+}
+
 }  // namespace
 
 bool IsImuModeByte(uint8_t mode) {
@@ -55,10 +96,12 @@ uint8_t EncodeImuPayload(const ImuDataPayload& data, uint8_t* out, uint8_t capac
   }
   out[kImuModeOffset] = static_cast<uint8_t>(data.mode);
   if (data.mode != ImuCompensationMode::kRaw) {
-    for (uint8_t i = 0; i < kImuOutputValues; ++i) {
-      PutI32Le(out + kImuValuesOffset + 4 * i, data.compensated.value[i]);
-    }
-    PutU16Le(out + kImuFlagsOffset, data.compensated.flags);
+    PutCompensated(data.compensated.value,
+                   kImuOutputValues,
+                   data.compensated.flags,
+                   kImuValuesOffset,
+                   kImuFlagsOffset,
+                   out);
   }
   return length;
 }
@@ -78,10 +121,12 @@ uint8_t EncodeAdsPayload(const AdsDataPayload& data, uint8_t* out, uint8_t capac
   PutI32Le(out + 16, data.raw.oat_code);
   out[kAdsModeOffset] = static_cast<uint8_t>(data.mode);
   if (data.mode != AdsCompensationMode::kRaw) {
-    for (uint8_t i = 0; i < kAdsOutputValues; ++i) {
-      PutI32Le(out + kAdsValuesOffset + 4 * i, data.compensated.value[i]);
-    }
-    PutU16Le(out + kAdsFlagsOffset, data.compensated.flags);
+    PutCompensated(data.compensated.value,
+                   kAdsOutputValues,
+                   data.compensated.flags,
+                   kAdsValuesOffset,
+                   kAdsFlagsOffset,
+                   out);
   }
   return length;
 }
@@ -105,11 +150,13 @@ bool DecodeImuPayload(const uint8_t* payload, uint8_t length, ImuDataPayload* da
     data->raw.temp_cnt[i] = GetU16Le(payload + kImuTempOffset + 2 * i);
   }
   data->mode = mode;
-  const bool has_values = mode != ImuCompensationMode::kRaw;
-  for (uint8_t i = 0; i < kImuOutputValues; ++i) {
-    data->compensated.value[i] = has_values ? GetI32Le(payload + kImuValuesOffset + 4 * i) : 0;
-  }
-  data->compensated.flags = has_values ? GetU16Le(payload + kImuFlagsOffset) : uint16_t{0};
+  GetCompensated(payload,
+                 mode != ImuCompensationMode::kRaw,
+                 kImuValuesOffset,
+                 kImuFlagsOffset,
+                 data->compensated.value,
+                 kImuOutputValues,
+                 &data->compensated.flags);
   return true;
 }
 
@@ -127,11 +174,13 @@ bool DecodeAdsPayload(const uint8_t* payload, uint8_t length, AdsDataPayload* da
   data->raw.pt_bridge_code = GetI32Le(payload + 12);
   data->raw.oat_code = GetI32Le(payload + 16);
   data->mode = mode;
-  const bool has_values = mode != AdsCompensationMode::kRaw;
-  for (uint8_t i = 0; i < kAdsOutputValues; ++i) {
-    data->compensated.value[i] = has_values ? GetI32Le(payload + kAdsValuesOffset + 4 * i) : 0;
-  }
-  data->compensated.flags = has_values ? GetU16Le(payload + kAdsFlagsOffset) : uint16_t{0};
+  GetCompensated(payload,
+                 mode != AdsCompensationMode::kRaw,
+                 kAdsValuesOffset,
+                 kAdsFlagsOffset,
+                 data->compensated.value,
+                 kAdsOutputValues,
+                 &data->compensated.flags);
   return true;
 }
 
@@ -142,16 +191,7 @@ uint16_t EncodeImuDataFrame(const ImuDataPayload& data,
                             uint16_t out_capacity) {
   uint8_t payload[kImuCompensatedPayloadBytes];
   const uint8_t length = EncodeImuPayload(data, payload, kImuCompensatedPayloadBytes);
-  if (length == 0) {
-    return 0;
-  }
-  return EncodeFrame(static_cast<uint8_t>(PacketType::kImuData),
-                     sequence,
-                     tag,
-                     payload,
-                     length,
-                     out,
-                     out_capacity);
+  return FrameDataPayload(PacketType::kImuData, payload, length, sequence, tag, out, out_capacity);
 }
 
 uint16_t EncodeAdsDataFrame(const AdsDataPayload& data,
@@ -161,16 +201,7 @@ uint16_t EncodeAdsDataFrame(const AdsDataPayload& data,
                             uint16_t out_capacity) {
   uint8_t payload[kAdsCompensatedPayloadBytes];
   const uint8_t length = EncodeAdsPayload(data, payload, kAdsCompensatedPayloadBytes);
-  if (length == 0) {
-    return 0;
-  }
-  return EncodeFrame(static_cast<uint8_t>(PacketType::kAdsData),
-                     sequence,
-                     tag,
-                     payload,
-                     length,
-                     out,
-                     out_capacity);
+  return FrameDataPayload(PacketType::kAdsData, payload, length, sequence, tag, out, out_capacity);
 }
 
 }  // namespace adahrs::firmware_model

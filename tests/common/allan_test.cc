@@ -11,6 +11,7 @@
 
 #include "common/random.h"
 #include "common/units.h"
+#include "tests/support/error_text.h"
 
 namespace adahrs::common {
 namespace {
@@ -26,12 +27,7 @@ std::vector<double> WhiteNoise(size_t n, double sigma, uint64_t seed) {
 }
 
 std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "no error";
+  return test_support::ErrorText<std::invalid_argument>(f);
 }
 
 // Discrete white noise of variance s^2 has AVAR(m) = s^2 / m exactly (in expectation).

@@ -1,4 +1,5 @@
 #include "common/param_reader.h"
+#include "tests/support/error_text.h"
 
 #include <filesystem>
 #include <fstream>
@@ -14,12 +15,7 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ParamError& e) {
-    return e.what();
-  }
-  return "no error";
+  return test_support::ErrorText<ParamError>(f);
 }
 
 TEST(ParamReader, ReadsValuesInRange) {

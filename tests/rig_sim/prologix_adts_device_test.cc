@@ -8,21 +8,17 @@
 #include "common/random.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
+#include "tests/rig_sim/device_bench.h"
 
 namespace adahrs::rig_sim {
 namespace {
 
-// Drives the device as the rig does, with world frames of `frame_s`.
-class Bench {
+// Drives the device as the rig does (device_bench.h), with world frames of `frame_s`.
+class Bench : public device_test::DeviceBench {
  public:
   explicit Bench(nlohmann::json config = DefaultPrologixAdtsConfig(), double frame_s = 0.01)
-      : config_(std::move(config)),
-        device_(MakePrologixAdtsDevice(common::ParamReader(config_, "test"))),
-        frame_s_(frame_s) {}
+      : DeviceBench(std::move(config), MakePrologixAdtsDevice, frame_s) {}
 
-  void Send(const std::string& text) {
-    device_->Receive(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()), now_s_);
-  }
   // Sends lines and collects what comes back within `wait_s`.
   std::string Talk(const std::string& text, double wait_s = 0.1) {
     Send(text);
@@ -35,33 +31,8 @@ class Bench {
     if (!reply.empty() && reply.back() == '\n') reply.pop_back();
     return reply;
   }
-  void RunFor(double duration_s) { RunUntil(now_s_ + duration_s); }
-  void RunUntil(double end_s) {
-    const auto frames = static_cast<long>(std::floor(end_s / frame_s_ + 1e-9));
-    for (long k = frames_done_ + 1; k <= frames; ++k) {
-      device_->Advance(k * frame_s_, frame_s_, env_);
-      frames_done_ = k;
-    }
-    if (end_s > frames_done_ * frame_s_ + 1e-9) device_->Advance(end_s, 0.0, env_);
-    now_s_ = end_s;
-  }
-  std::string TakeAll() {
-    std::vector<uint8_t> out;
-    device_->TakeOutput(now_s_, out);
-    return {out.begin(), out.end()};
-  }
   int Condition() { return std::stoi(Query("STAT:OPER:COND?")); }
-  SerialDevice& device() { return *device_; }
-  const Adts405& adts() { return static_cast<PrologixAdtsDevice&>(*device_).adts(); }
-  double now_s() const { return now_s_; }
-  RigEnvironment env_;
-
- private:
-  nlohmann::json config_;
-  std::unique_ptr<SerialDevice> device_;
-  double frame_s_;
-  double now_s_ = 0.0;
-  long frames_done_ = 0;
+  const Adts405& adts() { return static_cast<PrologixAdtsDevice&>(device()).adts(); }
 };
 
 constexpr int kStable = 1 << 1, kGround = 1 << 2, kPsAtSp = 1 << 8, kPsRamp = 1 << 9,

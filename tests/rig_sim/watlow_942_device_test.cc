@@ -7,23 +7,21 @@
 
 #include "common/random.h"
 #include "common/units.h"
+#include "tests/rig_sim/device_bench.h"
 
 namespace adahrs::rig_sim {
 namespace {
 
-// Drives a device the way the rig does: Receive at a frame time, then Advance and TakeOutput
-// frame by frame. `frame_s` sets the granularity.
-class Bench {
+// Drives the controller the way the rig does (device_bench.h); `frame_s` sets the granularity.
+class Bench : public device_test::DeviceBench {
  public:
   explicit Bench(nlohmann::json config = DefaultWatlow942Config(), double frame_s = 0.01)
-      : config_(std::move(config)),
-        device_(MakeWatlow942Device(common::ParamReader(config_, "test"))),
-        frame_s_(frame_s) {}
+      : DeviceBench(std::move(config), MakeWatlow942Device, frame_s) {}
 
   // Sends `text` now and runs frames until the reply's CR (or an XON after a write) arrives;
   // returns the raw reply bytes.
   std::string Transact(const std::string& text) {
-    device_->Receive(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()), now_s_);
+    Send(text);
     std::string reply;
     for (int i = 0; i < 100; ++i) {
       RunFor(0.01);
@@ -37,34 +35,7 @@ class Bench {
   std::string Ask(const std::string& line) {
     return hil::DecodeWatlow942ReadReply(Transact(line + "\r")).value_or("<no reply>");
   }
-  void RunFor(double duration_s) { RunUntil(now_s_ + duration_s); }
-  void RunUntil(double end_s) {
-    const auto frames = static_cast<long>(std::floor((end_s - start_s_) / frame_s_ + 1e-9));
-    for (long k = frames_done_ + 1; k <= frames; ++k) {
-      const double t = start_s_ + k * frame_s_;
-      device_->Advance(t, frame_s_, env_);
-      frames_done_ = k;
-    }
-    if (end_s > start_s_ + frames_done_ * frame_s_ + 1e-9) device_->Advance(end_s, 0.0, env_);
-    now_s_ = end_s;
-  }
-  std::string TakeAll() {
-    std::vector<uint8_t> out;
-    device_->TakeOutput(now_s_, out);
-    return {out.begin(), out.end()};
-  }
-  SerialDevice& device() { return *device_; }
-  const Watlow942& controller() { return static_cast<Watlow942Device&>(*device_).controller(); }
-  double now_s() const { return now_s_; }
-  RigEnvironment env_;
-
- private:
-  nlohmann::json config_;
-  std::unique_ptr<SerialDevice> device_;
-  double frame_s_;
-  double now_s_ = 0.0;
-  double start_s_ = 0.0;
-  long frames_done_ = 0;
+  const Watlow942& controller() { return static_cast<Watlow942Device&>(device()).controller(); }
 };
 
 // The profile used below: up to 35 °C at 2 °C/min, soak 5 min, down to 25 °C at 2 °C/min,

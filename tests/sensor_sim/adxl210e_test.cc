@@ -12,6 +12,7 @@
 
 #include "common/units.h"
 #include "sensor_sim/duty_cycle_modulator.h"
+#include "tests/support/line_fit.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -250,16 +251,7 @@ TEST(Adxl210e, NonlinearityIsTheConfiguredPercentOfFullScaleFromBestFitLine) {
       a.push_back(0.5 * i);
       d.push_back(Average(p, At(a.back())).duty_x);
     }
-    const double n = a.size();
-    double sa = 0, sd = 0, saa = 0, sad = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-      sa += a[i];
-      sd += d[i];
-      saa += a[i] * a[i];
-      sad += a[i] * d[i];
-    }
-    const double slope = (n * sad - sa * sd) / (n * saa - sa * sa);
-    const double offset = (sd - slope * sa) / n;
+    const auto [offset, slope] = test_support::FitLine(a, d);
     double worst_g = 0.0;
     for (size_t i = 0; i < a.size(); ++i) {
       const double residual_g = (d[i] - offset - slope * a[i]) / slope;

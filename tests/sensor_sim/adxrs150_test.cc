@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/allan.h"
+#include "tests/support/line_fit.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -129,16 +130,7 @@ double MeasuredNonlinearityPctFs(double quadratic_pct_fs, double cubic_pct_fs, b
     w.push_back(i * 0.1);
     c.push_back(MeanRate(gyro, Still(w.back()), 1));
   }
-  const double n = static_cast<double>(w.size());
-  double sw = 0, sc = 0, sww = 0, swc = 0;
-  for (size_t i = 0; i < w.size(); ++i) {
-    sw += w[i];
-    sc += c[i];
-    sww += w[i] * w[i];
-    swc += w[i] * c[i];
-  }
-  const double slope = (n * swc - sw * sc) / (n * sww - sw * sw);
-  const double intercept = (sc - slope * sw) / n;
+  const auto [intercept, slope] = test_support::FitLine(w, c);
   double max_dev = 0.0;
   for (size_t i = 0; i < w.size(); ++i) {
     max_dev = std::max(max_dev, std::fabs(c[i] - (intercept + slope * w[i])));

@@ -8,6 +8,7 @@
 
 #include "common/units.h"
 #include "sensor_sim/atmosphere.h"
+#include "tests/support/error_text.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -94,12 +95,7 @@ TEST(AirData, MachEqualsCasRatioAtSeaLevel) {
 
 template <typename F>
 std::string DomainErrorOf(F f) {
-  try {
-    f();
-  } catch (const std::domain_error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test_support::ErrorText<std::domain_error>(f);
 }
 
 TEST(AirData, SupersonicAndNegativeInputsThrowNamingTheValue) {

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "common/units.h"
+#include "tests/support/error_text.h"
 
 namespace adahrs::sensor_sim {
 namespace {
@@ -108,12 +109,7 @@ TEST(Atmosphere, SpeedOfSoundAtSeaLevel) {
 }
 
 std::string DomainErrorOf(double (*f)(double), double x) {
-  try {
-    f(x);
-  } catch (const std::domain_error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test_support::ErrorText<std::domain_error>([&] { f(x); });
 }
 
 TEST(Atmosphere, OutOfRangeThrowsNamingTheValue) {

@@ -1,4 +1,5 @@
 #include "sensor_sim/gravity.h"
+#include "tests/support/error_text.h"
 
 #include <stdexcept>
 #include <string>
@@ -45,12 +46,7 @@ TEST(Gravity, SymmetricInLatitude) {
 
 template <typename F>
 std::string DomainErrorOf(F f) {
-  try {
-    f();
-  } catch (const std::domain_error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test_support::ErrorText<std::domain_error>(f);
 }
 
 TEST(Gravity, OutOfRangeThrowsNamingTheValue) {
