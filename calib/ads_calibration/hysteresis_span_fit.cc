@@ -1,5 +1,6 @@
 #include "calib/ads_calibration/hysteresis_span_fit.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -54,10 +55,12 @@ double SpanSe(double span, double minus, double centre, double plus, double h, i
 SpanFit FitHysteresisSpans(const std::function<double(double, double)>& cost,
                            double start_pressure_span,
                            double start_thermal_span_c,
-                           int dof) {
+                           int dof,
+                           double max_pressure_span) {
   const double lp0 = std::log(start_pressure_span), lt0 = std::log(start_thermal_span_c);
   const double lo = std::log(kSpanSearchMin), hi = std::log(kSpanSearchMax);
-  const Box outer{lp0 + lo, lp0 + hi, lt0 + lo, lt0 + hi};
+  const double lp_max = std::min(lp0 + hi, std::log(max_pressure_span));
+  const Box outer{lp0 + lo, std::max(lp0 + lo, lp_max), lt0 + lo, lt0 + hi};
   GridBest best = SearchGrid(cost, outer, kCoarsePoints);
   for (int r = 0; r < kRefinements; ++r) {
     const Box around{std::max(outer.log_p_min, best.log_p - best.step_p),

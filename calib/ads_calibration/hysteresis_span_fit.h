@@ -19,6 +19,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 
 namespace adahrs::calib {
 
@@ -36,10 +37,14 @@ struct SpanFit {
 };
 
 /// Minimises `cost(pressure_span, thermal_span_c)` as described above, from the starting spans;
-/// `dof` = points - fitted parameters (> 0) scales the standard errors.
+/// `dof` = points - fitted parameters (> 0) scales the standard errors. `max_pressure_span`, when
+/// given, lowers the box's pressure bound: a span longer than the pressure travel the points made
+/// leaves every state on its virgin-like quadratic start, which the surface's own curvature can
+/// mimic, so the search would trade one for the other.
 SpanFit FitHysteresisSpans(const std::function<double(double, double)>& cost,
                            double start_pressure_span,
                            double start_thermal_span_c,
-                           int dof);
+                           int dof,
+                           double max_pressure_span = std::numeric_limits<double>::infinity());
 
 }  // namespace adahrs::calib

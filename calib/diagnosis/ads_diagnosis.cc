@@ -49,9 +49,13 @@ struct Bridge {
   std::vector<int> sweep;
   std::vector<int> block;  ///< chamber temperature visited, coldest 0
   int blocks = 0;
-  double p_mid = 0, p_half = 1, v_mid = 0, v_half = 1;
+  double p_mid = 0, p_half = 1, v_mid = 0, v_half = 1, v_mean = 1;
   double u(size_t i) const { return (p_pa[i] - p_mid) / p_half; }
   double v(size_t i) const { return (v_code[i] - v_mid) / v_half; }
+  // A bridge's output is ratiometric: a resistance change, whatever moved it, reads in
+  // proportion to the excitation across the bridge, whose code is the thermometer V_B. A
+  // hysteresis state's contribution scales with it (with R_B's tempco, ~0.26 %/degC).
+  double excitation(size_t i) const { return v_code[i] / v_mean; }
 };
 
 void Scale(const std::vector<double>& x, double* mid, double* half) {
@@ -109,6 +113,8 @@ Bridge MakeBridge(bool pitot,
   }
   Scale(b.p_pa, &b.p_mid, &b.p_half);
   Scale(b.v_code, &b.v_mid, &b.v_half);
+  b.v_mean =
+      std::accumulate(b.v_code.begin(), b.v_code.end(), 0.0) / static_cast<double>(b.v_code.size());
   std::vector<double> temps = b.chamber_c;
   std::sort(temps.begin(), temps.end());
   std::vector<double> levels;
@@ -176,8 +182,8 @@ Eigen::VectorXd Row(const Layout& l, const Bridge& b, size_t i) {
   for (size_t k = 0; k < l.terms.size(); ++k) {
     x[static_cast<int>(k)] = std::pow(u, l.terms[k].first) * std::pow(v, l.terms[k].second);
   }
-  x[l.candidate[0][0]] = b.s_p[i];
-  x[l.candidate[1][0]] = b.s_t[i];
+  x[l.candidate[0][0]] = b.s_p[i] * b.excitation(i);
+  x[l.candidate[1][0]] = b.s_t[i] * b.excitation(i);
   x[l.candidate[2][0]] = std::pow(u, l.dp + 1);
   x[l.candidate[2][1]] = std::pow(u, l.dp + 1) * v;
   return x;
@@ -444,7 +450,7 @@ std::optional<SpanFit> RefitSpans(Bridge* b,
     return Accumulate(bc->layout, trial, sweeps, y_mid).Fit(selected).rss;
   };
   const int dof = static_cast<int>(pts.size()) - static_cast<int>(selected.size());
-  const SpanFit spans = FitHysteresisSpans(cost, p0, t0, std::max(1, dof));
+  const SpanFit spans = FitHysteresisSpans(cost, p0, t0, std::max(1, dof), 2.0 * b->p_half);
   const double p = has(Effect::kPressureHysteresis) ? spans.pressure_span : p0;
   const double t = has(Effect::kThermalHysteresis) ? spans.thermal_span_c : t0;
   SetStates(b, pitot, pts, p, t);
