@@ -5,13 +5,16 @@
 namespace adahrs::calib {
 namespace {
 
-nlohmann::json SurfaceDiagnostics(const SurfaceEstimate& e, const char* unit) {
-  return {{"points", e.fit.fit.observations},
-          {"terms", e.terms},
-          {"y_degree", e.y_degree},
-          {"dof", e.fit.fit.dof},
-          {std::string("residual_rms_") + unit, e.residual_rms},
-          {std::string("max_abs_residual_") + unit, e.max_abs_residual}};
+AdsSurfaceDiagnostics SurfaceDiagnostics(const SurfaceEstimate& e, const char* unit) {
+  AdsSurfaceDiagnostics d;
+  d.unit = unit;
+  d.points = e.fit.fit.observations;
+  d.terms = e.terms;
+  d.y_degree = e.y_degree;
+  d.dof = e.fit.fit.dof;
+  d.residual_rms = e.residual_rms;
+  d.max_abs_residual = e.max_abs_residual;
+  return d;
 }
 
 }  // namespace
@@ -52,8 +55,8 @@ AdsFitResult AdsFitFromSurfaces(const std::string& strategy,
   se.altitude_ft.coeff_xy = alt.coeff_se;
   se.airspeed_kt.coeff_xy = cas.coeff_se;
   out.standard_errors = AdsStandardErrorsJson(se);
-  out.diagnostics = {{"altitude_ft", SurfaceDiagnostics(alt, pressure_laws ? "Pa" : "ft")},
-                     {"airspeed_kt", SurfaceDiagnostics(cas, pressure_laws ? "Pa" : "kt")}};
+  out.diagnostics = {SurfaceDiagnostics(alt, pressure_laws ? "pa" : "ft"),
+                     SurfaceDiagnostics(cas, pressure_laws ? "pa" : "kt")};
   return out;
 }
 

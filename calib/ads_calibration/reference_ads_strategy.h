@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/ads_calibration/ads_calibration_points.h"
+#include "calib/ads_calibration/ads_fit_diagnostics.h"
 #include "calib/solvers/ads_surface_fit.h"
 #include "firmware_model/calibration_constants.h"
 
@@ -27,7 +28,7 @@ struct AdsFitResult {
   std::string strategy;
   firmware_model::AdsCalibrationConstants constants;
   nlohmann::json standard_errors;  ///< shape of firmware_model::ToJson(constants)
-  nlohmann::json diagnostics;
+  AdsFitDiagnostics diagnostics;
 };
 
 /// Fits the reference strategy to `points`; `context` (e.g. the unit serial) leads every message.

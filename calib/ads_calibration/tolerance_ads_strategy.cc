@@ -107,7 +107,7 @@ MinimaxSurface FitMinimax(const std::string& context,
 // leaving one out would score extrapolation, which the envelope never asks of the surface.
 struct OrderChoice {
   int y_degree = 3;
-  nlohmann::json held_out_worst_ratio = nlohmann::json::object();  ///< per candidate degree
+  std::map<int, double> held_out_worst_ratio;  ///< per candidate degree
 };
 
 OrderChoice ChooseYDegree(const std::string& context,
@@ -144,7 +144,7 @@ OrderChoice ChooseYDegree(const std::string& context,
         score = std::max(score, std::abs(Predicted(e, samples[i]) - samples[i].z) / tolerance[i]);
       }
     }
-    choice.held_out_worst_ratio[std::to_string(q)] = score;
+    choice.held_out_worst_ratio[q] = score;
     if (score < best_score) {
       best_score = score;
       choice.y_degree = q;
@@ -176,10 +176,11 @@ AdsFitResult FitToleranceAdsStrategy(const std::string& context,
                    return AirspeedToleranceKt(std::clamp(kt, kAdsMinAirspeedKt, kAdsMaxAirspeedKt));
                  }));
   AdsFitResult out = AdsFitFromSurfaces(kToleranceAdsStrategyName, alt.estimate, cas.estimate);
-  for (const auto& [key, m] : {std::pair{"altitude_ft", &alt}, std::pair{"airspeed_kt", &cas}}) {
-    out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->first_worst_ratio;
-    out.diagnostics[key]["worst_ratio_at_points"] = m->worst_ratio;
-    out.diagnostics[key]["lawson_iterations"] = kLawsonIterations;
+  for (const auto& [d, m] : {std::pair{&out.diagnostics.altitude_ft, &alt},
+                             std::pair{&out.diagnostics.airspeed_kt, &cas}}) {
+    d->worst_ratio_at_points_weighted_fit = m->first_worst_ratio;
+    d->worst_ratio_at_points = m->worst_ratio;
+    d->lawson_iterations = kLawsonIterations;
   }
   return out;
 }
@@ -228,11 +229,15 @@ double ImpactTolerancePa(double pa) {
   return AirspeedToleranceKt(kt) / kt_per_pa;
 }
 
+const char* LawName(bool altitude) {
+  return altitude ? "ISA altitude from static pressure" : "CAS from impact pressure";
+}
+
 }  // namespace
 
 AdsFitResult FitPressureAdsStrategy(const std::string& context,
                                     const std::vector<AdsCalibrationPoint>& points) {
-  nlohmann::json span_diagnostics;
+  AdsFitDiagnostics span_diagnostics;
   const HysteresisSpans spans =
       EstimateHysteresisSpans(context, points, HysteresisSpans::Nominal(), &span_diagnostics);
   const PressureSamples samples = PressureSamplesOf(points, spans);
@@ -285,24 +290,24 @@ AdsFitResult FitPressureAdsStrategy(const std::string& context,
   const CentreAndSurface cas = fit(qc_context, qc_order, qc, qc_mid, qc_tolerance);
   AdsFitResult out = AdsFitFromSurfaces(
       kPressureAdsStrategyName, alt.surface.estimate, cas.surface.estimate, true);
-  for (const auto& [key, m, order] :
-       {std::tuple{"altitude_ft", &alt, &ps_order}, std::tuple{"airspeed_kt", &cas, &qc_order}}) {
-    out.diagnostics[key]["worst_ratio_at_points_weighted_fit"] = m->surface.first_worst_ratio;
-    out.diagnostics[key]["worst_ratio_at_points"] = m->surface.worst_ratio;
-    out.diagnostics[key]["lawson_iterations"] = kLawsonIterations;
-    out.diagnostics[key]["held_out_worst_ratio_by_y_degree"] = order->held_out_worst_ratio;
+  for (const auto& [d, m, order, spans_of] :
+       {std::tuple{&out.diagnostics.altitude_ft, &alt, &ps_order, &span_diagnostics.altitude_ft},
+        std::tuple{&out.diagnostics.airspeed_kt, &cas, &qc_order, &span_diagnostics.airspeed_kt}}) {
+    d->worst_ratio_at_points_weighted_fit = m->surface.first_worst_ratio;
+    d->worst_ratio_at_points = m->surface.worst_ratio;
+    d->lawson_iterations = kLawsonIterations;
+    d->held_out_worst_ratio_by_y_degree = order->held_out_worst_ratio;
     // The half loops the centre fit separated, Pa per unit state (c = -FS h / 2 for a loop of
     // h FSO between the branches), and how far its centre fits the points.
     const HysteresisEstimate& h = *m->centre.history;
-    out.diagnostics[key]["hysteresis"] = {{"pressure_half_loop_Pa", h.pressure},
-                                          {"pressure_half_loop_se_Pa", h.pressure_se},
-                                          {"thermal_half_loop_Pa", h.thermal},
-                                          {"thermal_half_loop_se_Pa", h.thermal_se},
-                                          {"centre_fit_residual_rms_Pa", m->centre.residual_rms}};
-    out.diagnostics[key]["hysteresis_spans"] = span_diagnostics[key]["hysteresis_spans"];
-    out.diagnostics[key]["law"] = key == std::string("altitude_ft")
-                                      ? "ISA altitude from static pressure"
-                                      : "CAS from impact pressure";
+    SurfaceHysteresisDiagnostics& hd = d->hysteresis.emplace();
+    hd.pressure_half_loop_pa = h.pressure;
+    hd.pressure_half_loop_se_pa = h.pressure_se;
+    hd.thermal_half_loop_pa = h.thermal;
+    hd.thermal_half_loop_se_pa = h.thermal_se;
+    hd.centre_fit_residual_rms_pa = m->centre.residual_rms;
+    d->hysteresis_spans = spans_of->hysteresis_spans;
+    d->law = LawName(d == &out.diagnostics.altitude_ft);
   }
   return out;
 }
@@ -440,14 +445,14 @@ SpanFit FitBridgeSpans(const std::string& context,
                             std::max(1, static_cast<int>(samples.size()) - parameters));
 }
 
-nlohmann::json SpanFitJson(const SpanFit& f, const char* pressure_unit) {
-  return {{std::string("pressure_span_") + pressure_unit, f.pressure_span},
-          {std::string("pressure_span_se_") + pressure_unit, f.pressure_span_se},
-          {"thermal_span_degC", f.thermal_span_c},
-          {"thermal_span_se_degC", f.thermal_span_c_se},
-          {"weighted_cost_at_nominal_spans", f.cost_at_start},
-          {"weighted_cost", f.cost},
-          {"at_search_edge", f.at_search_edge}};
+HysteresisSpanDiagnostics SpanDiagnostics(const SpanFit& f) {
+  return {f.pressure_span,
+          f.pressure_span_se,
+          f.thermal_span_c,
+          f.thermal_span_c_se,
+          f.cost_at_start,
+          f.cost,
+          f.at_search_edge};
 }
 
 }  // namespace
@@ -455,7 +460,7 @@ nlohmann::json SpanFitJson(const SpanFit& f, const char* pressure_unit) {
 HysteresisSpans EstimateHysteresisSpans(const std::string& context,
                                         const std::vector<AdsCalibrationPoint>& points,
                                         const HysteresisSpans& start,
-                                        nlohmann::json* diagnostics) {
+                                        AdsFitDiagnostics* diagnostics) {
   const PressureSamples samples = PressureSamplesOf(points, start);
   const SpanFit ps = FitBridgeSpans(context + ": static bridge's hysteresis spans",
                                     points,
@@ -470,8 +475,8 @@ HysteresisSpans EstimateHysteresisSpans(const std::string& context,
                                     start,
                                     false);
   if (diagnostics != nullptr) {
-    (*diagnostics)["altitude_ft"]["hysteresis_spans"] = SpanFitJson(ps, "Pa");
-    (*diagnostics)["airspeed_kt"]["hysteresis_spans"] = SpanFitJson(qc, "Pa");
+    diagnostics->altitude_ft.hysteresis_spans = SpanDiagnostics(ps);
+    diagnostics->airspeed_kt.hysteresis_spans = SpanDiagnostics(qc);
   }
   return {ps.pressure_span, qc.pressure_span, ps.thermal_span_c, qc.thermal_span_c};
 }
@@ -480,7 +485,7 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
                                       const std::vector<AdsCalibrationPoint>& points,
                                       const HysteresisSpans& start,
                                       SpanChoice span_choice) {
-  nlohmann::json span_diagnostics;
+  AdsFitDiagnostics span_diagnostics;
   const HysteresisSpans spans =
       span_choice == SpanChoice::kEstimated
           ? EstimateHysteresisSpans(context, points, start, &span_diagnostics)
@@ -516,32 +521,28 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
     surface->y_linearisation.curvature_per_code = c->linearisation.curvature_se_per_code;
   }
   out.standard_errors = AdsStandardErrorsJson(se);
-  for (const auto& [key, c, order] :
-       {std::tuple{"altitude_ft", &alt, &ps_order}, std::tuple{"airspeed_kt", &cas, &qc_order}}) {
-    out.diagnostics[key]["worst_ratio_at_points"] = c->worst_ratio_at_points;
-    out.diagnostics[key]["held_out_worst_ratio_by_y_degree"] = order->held_out_worst_ratio;
+  for (const auto& [d, c, order, spans_of] :
+       {std::tuple{&out.diagnostics.altitude_ft, &alt, &ps_order, &span_diagnostics.altitude_ft},
+        std::tuple{&out.diagnostics.airspeed_kt, &cas, &qc_order, &span_diagnostics.airspeed_kt}}) {
+    d->worst_ratio_at_points = c->worst_ratio_at_points;
+    d->held_out_worst_ratio_by_y_degree = order->held_out_worst_ratio;
     const HysteresisEstimate& h = *c->centre.history;
-    out.diagnostics[key]["hysteresis"] = {
-        {"pressure_half_loop_Pa", h.pressure},
-        {"pressure_half_loop_se_Pa", h.pressure_se},
-        {"thermal_half_loop_Pa", h.thermal},
-        {"thermal_half_loop_se_Pa", h.thermal_se},
-        {"pressure_half_loop_per_degC_Pa", h.pressure_per_degc},
-        {"thermal_half_loop_per_degC_Pa", h.thermal_per_degc},
-        {"centre_fit_residual_rms_Pa", c->centre.residual_rms},
-        {"die_temperature_residual_rms_degC", c->die_temp_residual_rms_c}};
+    d->hysteresis = SurfaceHysteresisDiagnostics{
+        .pressure_half_loop_pa = h.pressure,
+        .pressure_half_loop_se_pa = h.pressure_se,
+        .thermal_half_loop_pa = h.thermal,
+        .thermal_half_loop_se_pa = h.thermal_se,
+        .pressure_half_loop_per_degc_pa = h.pressure_per_degc,
+        .thermal_half_loop_per_degc_pa = h.thermal_per_degc,
+        .centre_fit_residual_rms_pa = c->centre.residual_rms,
+        .die_temperature_residual_rms_degc = c->die_temp_residual_rms_c};
     const BridgeLinearisationFit& l = c->linearisation;
-    out.diagnostics[key]["bridge_linearisation"] = {
-        {"curvature_per_code", l.linearisation.curvature_per_code},
-        {"curvature_se_per_code", l.curvature_se_per_code},
-        {"slope_code_per_degC", l.slope_code_per_degc},
-        {"quadratic_residual_rms_degC", l.residual_rms_c}};
-    out.diagnostics[key]["law"] = key == std::string("altitude_ft")
-                                      ? "ISA altitude from static pressure"
-                                      : "CAS from impact pressure";
-    if (span_diagnostics.contains(key)) {
-      out.diagnostics[key]["hysteresis_spans"] = span_diagnostics[key]["hysteresis_spans"];
-    }
+    d->bridge_linearisation = BridgeLinearisationDiagnostics{l.linearisation.curvature_per_code,
+                                                             l.curvature_se_per_code,
+                                                             l.slope_code_per_degc,
+                                                             l.residual_rms_c};
+    d->law = LawName(d == &out.diagnostics.altitude_ft);
+    d->hysteresis_spans = spans_of->hysteresis_spans;
   }
   return out;
 }

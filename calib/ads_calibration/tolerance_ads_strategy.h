@@ -74,13 +74,12 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
                                       SpanChoice span_choice = SpanChoice::kEstimated);
 
 /// Each bridge's pressure and thermal spans that let its centre fit explain the points best
-/// (hysteresis_span_fit.h), searched around `start`; with `diagnostics`, writes
-/// ["altitude_ft" | "airspeed_kt"]["hysteresis_spans"] (spans, standard errors, the weighted cost
-/// at `start` and at the estimate).
+/// (hysteresis_span_fit.h), searched around `start`; with `diagnostics`, sets each surface's
+/// `hysteresis_spans` (spans, standard errors, the weighted cost at `start` and at the estimate).
 HysteresisSpans EstimateHysteresisSpans(const std::string& context,
                                         const std::vector<AdsCalibrationPoint>& points,
                                         const HysteresisSpans& start,
-                                        nlohmann::json* diagnostics);
+                                        AdsFitDiagnostics* diagnostics);
 
 /// The ADS strategy called `name` ("reference", "tolerance_minimax", "pressure_minimax" or
 /// "hysteresis_compensated");

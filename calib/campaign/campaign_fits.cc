@@ -52,7 +52,7 @@ std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& r
     file.ads = fit.constants;
     file.standard_errors = fit.standard_errors;
     file.provenance = {{reference}, {sequence_name}};
-    file.diagnostics = fit.diagnostics;
+    file.diagnostics = fit.diagnostics.ToJson();
     written.push_back(Write(fit_dir, std::move(file)));
   }
   return written;

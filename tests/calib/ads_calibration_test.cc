@@ -149,8 +149,8 @@ TEST(ReferenceAdsStrategy, LeavesLowTemperatureAltitudeErrorsOutsideTheSpecifica
     // 9 temperatures x (13 altitudes + 2 return points + 9 airspeeds), one point per log step.
     ASSERT_EQ(points.size(), 9u * 24u);
     const AdsFitResult fit = FitReferenceAdsStrategy(serial, points);
-    EXPECT_EQ(fit.diagnostics["altitude_ft"]["points"], 216);
-    EXPECT_EQ(fit.diagnostics["airspeed_kt"]["points"], 81);
+    EXPECT_EQ(fit.diagnostics.altitude_ft.points, 216);
+    EXPECT_EQ(fit.diagnostics.airspeed_kt.points, 81);
     const AdsEvaluation eval = EvaluateAdsConstants(fit.constants, truth);
     double low_temp_worst_ft = 0.0, warm_worst_ft = 0.0;
     for (const AdsGridPoint& g : eval.altitude.grid) {
@@ -232,7 +232,7 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
         file.ads = fit.constants;
         file.standard_errors = fit.standard_errors;
         file.provenance.recordings = {{"run", std::string(64, 'a')}};
-        file.diagnostics = fit.diagnostics;
+        file.diagnostics = fit.diagnostics.ToJson();
         const ConstantsFile back = ConstantsFileFromJson(ToJson(file), serial + ".json");
         EXPECT_EQ(ToJson(back), ToJson(file)) << kStrategies[k];
       }
@@ -247,20 +247,20 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
         // What docs/calibration-strategies.md quotes of the fit: the centre surface's residual
         // and the temperature degree the held-out choice takes, per quantity.
         int q_fit = 0;
-        for (const char* key : {"altitude_ft", "airspeed_kt"}) {
-          const nlohmann::json& d = fit.diagnostics[key];
-          const double rms_pa = d["hysteresis"]["centre_fit_residual_rms_Pa"].get<double>();
+        for (const AdsSurfaceDiagnostics* d :
+             {&fit.diagnostics.altitude_ft, &fit.diagnostics.airspeed_kt}) {
+          const double rms_pa = d->hysteresis->centre_fit_residual_rms_pa;
           centre_rms_pa[q_fit][0] = std::min(centre_rms_pa[q_fit][0], rms_pa);
           centre_rms_pa[q_fit][1] = std::max(centre_rms_pa[q_fit][1], rms_pa);
-          std::string chosen;
+          int chosen = 0;
           double best = 1e300;
-          for (const auto& [degree, score] : d["held_out_worst_ratio_by_y_degree"].items()) {
-            if (score.get<double>() < best) {
-              best = score.get<double>();
+          for (const auto& [degree, score] : d->held_out_worst_ratio_by_y_degree) {
+            if (score < best) {
+              best = score;
               chosen = degree;
             }
           }
-          ++chosen_degree[q_fit][std::stoi(chosen)];
+          ++chosen_degree[q_fit][chosen];
           ++q_fit;
         }
         int q = 0;
@@ -286,22 +286,22 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
           }
         }
         // c = -FS h / 2 for a loop of h (fraction of FSO) between the branches.
-        const nlohmann::json& h = fit.diagnostics["altitude_ft"]["hysteresis"];
+        const SurfaceHysteresisDiagnostics& h = *fit.diagnostics.altitude_ft.hysteresis;
         const auto& bridge = truth.static_bridge;
         const double thermal_pa = -bridge.full_scale_pa * bridge.thermal_hysteresis_pct_fso / 200.0;
         const double pressure_pa =
             -bridge.full_scale_pa * bridge.pressure_hysteresis_pct_fso / 200.0;
-        const double thermal_error = h["thermal_half_loop_Pa"].get<double>() - thermal_pa;
-        const double pressure_error = h["pressure_half_loop_Pa"].get<double>() - pressure_pa;
+        const double thermal_error = h.thermal_half_loop_pa - thermal_pa;
+        const double pressure_error = h.pressure_half_loop_pa - pressure_pa;
         std::printf(
             "%s static bridge half loops, fitted +- se (truth): thermal %.1f +- %.1f (%.1f) "
             "Pa, pressure %.1f +- %.1f (%.1f) Pa\n",
             serial.c_str(),
-            h["thermal_half_loop_Pa"].get<double>(),
-            h["thermal_half_loop_se_Pa"].get<double>(),
+            h.thermal_half_loop_pa,
+            h.thermal_half_loop_se_pa,
             thermal_pa,
-            h["pressure_half_loop_Pa"].get<double>(),
-            h["pressure_half_loop_se_Pa"].get<double>(),
+            h.pressure_half_loop_pa,
+            h.pressure_half_loop_se_pa,
             pressure_pa);
         worst_thermal_loop_error =
             std::max(worst_thermal_loop_error, std::abs(thermal_error / thermal_pa));

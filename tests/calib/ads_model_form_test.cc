@@ -88,21 +88,19 @@ Column RunTwentyUnits(Truth truth) {
       }
       if (choice == SpanChoice::kEstimated) {
         int r = 0;
-        for (const char* key : {"altitude_ft", "airspeed_kt"}) {
-          const nlohmann::json& d = fit.diagnostics[key];
-          c.centre_rms_pa[r] = std::max(
-              c.centre_rms_pa[r], d["hysteresis"]["centre_fit_residual_rms_Pa"].get<double>());
-          c.spans_at_search_edge += d["hysteresis_spans"]["at_search_edge"].get<bool>() ? 1 : 0;
+        for (const AdsSurfaceDiagnostics* d :
+             {&fit.diagnostics.altitude_ft, &fit.diagnostics.airspeed_kt}) {
+          c.centre_rms_pa[r] =
+              std::max(c.centre_rms_pa[r], d->hysteresis->centre_fit_residual_rms_pa);
+          c.spans_at_search_edge += d->hysteresis_spans->at_search_edge ? 1 : 0;
           ++r;
         }
-        const nlohmann::json& s = fit.diagnostics["altitude_ft"]["hysteresis_spans"];
+        const HysteresisSpanDiagnostics& s = *fit.diagnostics.altitude_ft.hysteresis_spans;
         const auto& b = unit.static_bridge;
         const double p_true = b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa;
-        c.span_error[0] =
-            std::max(c.span_error[0], std::abs(s["pressure_span_Pa"].get<double>() / p_true - 1.0));
+        c.span_error[0] = std::max(c.span_error[0], std::abs(s.pressure_span_pa / p_true - 1.0));
         c.span_error[1] = std::max(
-            c.span_error[1],
-            std::abs(s["thermal_span_degC"].get<double>() / b.thermal_hysteresis_span_c - 1.0));
+            c.span_error[1], std::abs(s.thermal_span_degc / b.thermal_hysteresis_span_c - 1.0));
       }
     }
   }
