@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -122,14 +123,56 @@ double ToleranceAt(const Where& where, const ToleranceTable& table, double input
   }
 }
 
+// What acceptance keeps of one ADS row: the columns it judges.
+struct AdsOutputRow {
+  double t_s = 0.0;
+  double chamber_c = 0.0;
+  double ps_ref_pa = 0.0;
+  double qc_ref_pa = 0.0;
+  std::optional<double> alt_ft;
+  std::optional<double> cas_kt;
+  int step = 0;
+  uint8_t tag = 0;
+  uint8_t mode = 0;
+
+  static AdsOutputRow Of(const hil::AdsRecordRow& row) {
+    return {row.t_s,
+            row.chamber_c,
+            row.ps_ref_pa,
+            row.qc_ref_pa,
+            row.alt_ft,
+            row.cas_kt,
+            row.step,
+            row.tag,
+            row.mode};
+  }
+};
+
+template <typename Row>
+using RowsByUnit = std::map<std::string, std::vector<Row>>;
+
 struct RunContext {
   std::string run;
   double packet_period_s = 0.0;
   double since_calibration_s = 0.0;
-  hil::Recording recording;
+  hil::Recording recording;  ///< meta.json and the rejected intervals; no rows
+  RowsByUnit<ImuOutputRow> imu;
+  RowsByUnit<AdsOutputRow> ads;
   Sequence sequence;
   std::vector<uint8_t> tags;
 };
+
+// One streamed pass over the run: each row kept in its compact form, per unit in file order.
+void ReadRows(const std::filesystem::path& run_dir, RunContext* ctx) {
+  hil::RowSinks sinks;
+  sinks.imu = [ctx](hil::ImuRecordRow&& row, int) {
+    ctx->imu[row.unit].push_back(ImuOutputRow::Of(row));
+  };
+  sinks.ads = [ctx](hil::AdsRecordRow&& row, int) {
+    ctx->ads[row.unit].push_back(AdsOutputRow::Of(row));
+  };
+  ctx->recording = hil::StreamRecording(run_dir, sinks);
+}
 
 template <typename Row>
 bool Rejected(const RunContext& ctx, const Row& row) {
@@ -142,14 +185,16 @@ bool Rejected(const RunContext& ctx, const Row& row) {
 // The calibration rows of each (unit, step): the step's TAG, outside the rejected intervals.
 template <typename Row>
 std::map<std::pair<std::string, int>, std::vector<const Row*>> SelectRows(
-    const RunContext& ctx, const std::vector<Row>& rows) {
+    const RunContext& ctx, const RowsByUnit<Row>& by_unit) {
   std::map<std::pair<std::string, int>, std::vector<const Row*>> out;
-  for (const Row& row : rows) {
-    if (row.step < 0 || row.step >= static_cast<int>(ctx.tags.size()) || row.tag == 0 ||
-        row.tag != ctx.tags[static_cast<size_t>(row.step)] || Rejected(ctx, row)) {
-      continue;
+  for (const auto& [unit, rows] : by_unit) {
+    for (const Row& row : rows) {
+      if (row.step < 0 || row.step >= static_cast<int>(ctx.tags.size()) || row.tag == 0 ||
+          row.tag != ctx.tags[static_cast<size_t>(row.step)] || Rejected(ctx, row)) {
+        continue;
+      }
+      out[{unit, row.step}].push_back(&row);
     }
-    out[{row.unit, row.step}].push_back(&row);
   }
   return out;
 }
@@ -205,19 +250,19 @@ struct ImuGroup {
   std::optional<double> rate_cmd_dps;
   bool judge_accel = false;
   bool judge_rate = false;
-  std::vector<const hil::ImuRecordRow*> rows;
+  std::vector<const ImuOutputRow*> rows;
 };
 
 std::vector<ImuGroup> GroupImuStep(const Where& where,
                                    const StepBody& body,
-                                   const std::vector<const hil::ImuRecordRow*>& rows) {
+                                   const std::vector<const ImuOutputRow*>& rows) {
   std::vector<ImuGroup> groups;
   std::vector<double> commands;
   if (const auto* g = std::get_if<GyroStep>(&body)) commands = GyroRates_dps(*g);
   if (const auto* c = std::get_if<CrossAxisStep>(&body)) commands = {0.0, c->rate_dps};
   const bool thermal = std::holds_alternative<ThermalProfileStep>(body);
   std::map<std::pair<int, double>, size_t> index;  // (orientation, command or bin) -> group
-  for (const hil::ImuRecordRow* row : rows) {
+  for (const ImuOutputRow* row : rows) {
     double key = 0.0;
     std::optional<double> rate_cmd;
     if (!commands.empty()) {
@@ -279,8 +324,8 @@ void JudgeImuGroup(const Where& where,
   const std::array<double, 3> up = UpAxis(where, group.orientation);
   std::array<Series, 3> accel_mg, rate_dps;
   Moments chamber;
-  for (const hil::ImuRecordRow* row : group.rows) {
-    const ImuBodyOutput m = BodyOutput(*row);
+  for (const ImuOutputRow* row : group.rows) {
+    const ImuBodyOutput& m = row->body;
     for (size_t i = 0; i < 3; ++i) {
       accel_mg[i].Add(m.f_B_g[i] * kMgPerG, up[i] * g_local_g * kMgPerG);
       rate_dps[i].Add(m.w_B_dps[i], up[i] * row->table_rate_dps);
@@ -325,13 +370,11 @@ void JudgeImuUnit(
     const RunContext& ctx,
     const Specification& spec,
     double g_local_mps2,
-    const std::map<std::pair<std::string, int>, std::vector<const hil::ImuRecordRow*>>& selected,
+    const std::map<std::pair<std::string, int>, std::vector<const ImuOutputRow*>>& selected,
     UnitAcceptance* unit) {
-  std::vector<const hil::ImuRecordRow*> own;
-  for (const hil::ImuRecordRow& row : ctx.recording.imu) {
-    if (row.unit == unit->serial) own.push_back(&row);
-  }
-  unit->rest = ReadRestStability(own, ctx.packet_period_s);
+  const auto own = ctx.imu.find(unit->serial);
+  unit->rest = ReadRestStability(own == ctx.imu.end() ? std::vector<ImuOutputRow>{} : own->second,
+                                 ctx.packet_period_s);
   for (size_t s = 0; s < ctx.sequence.steps.size(); ++s) {
     const StepBody& body = ctx.sequence.steps[s].body;
     const bool acquires = std::holds_alternative<AccelStep>(body) ||
@@ -350,7 +393,7 @@ void JudgeImuUnit(
     std::optional<int> commanded;
     if (const auto* a = std::get_if<AccelStep>(&body)) commanded = a->orientation;
     if (const auto* g = std::get_if<GyroStep>(&body)) commanded = g->orientation;
-    for (const hil::ImuRecordRow* row : rows) {
+    for (const ImuOutputRow* row : rows) {
       if (commanded && row->orientation != *commanded) {
         Refuse(where,
                fmt::format("t_s {}: orientation {} where the step commands {}",
@@ -376,7 +419,7 @@ void JudgeImuUnit(
 void JudgeAdsUnit(
     const RunContext& ctx,
     const Specification& spec,
-    const std::map<std::pair<std::string, int>, std::vector<const hil::AdsRecordRow*>>& selected,
+    const std::map<std::pair<std::string, int>, std::vector<const AdsOutputRow*>>& selected,
     UnitAcceptance* unit) {
   std::optional<double> alt_aim_ft;
   std::optional<double> cas_aim_kt;
@@ -392,7 +435,7 @@ void JudgeAdsUnit(
     Series alt_ft, cas_kt;
     Moments chamber;
     const double duration_s = rows.back()->t_s - rows.front()->t_s + ctx.packet_period_s;
-    for (const hil::AdsRecordRow* row : rows) {
+    for (const AdsOutputRow* row : rows) {
       double ref_alt_ft = 0.0;
       double ref_cas_kt = 0.0;
       try {
@@ -521,7 +564,7 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir,
                      kMaxSinceCalibration_h));
   }
   ctx.since_calibration_s = options.since_calibration_h * 3600.0;
-  ctx.recording = hil::ReadRecording(run_dir);
+  ReadRows(run_dir, &ctx);
   const json& meta = ctx.recording.meta;
   ctx.packet_period_s = 1.0 / kDefaultSampleRate_hz;
   if (meta.contains("sample_rate_hz")) {
@@ -572,8 +615,8 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir,
           fmt::format("meta.json: $.local_gravity_mps2 {} is not Earth's", run.local_gravity_mps2));
     }
   }
-  const auto imu_rows = SelectRows(ctx, ctx.recording.imu);
-  const auto ads_rows = SelectRows(ctx, ctx.recording.ads);
+  const auto imu_rows = SelectRows(ctx, ctx.imu);
+  const auto ads_rows = SelectRows(ctx, ctx.ads);
   for (UnitAcceptance& unit : run.units) {
     if (unit.kind == "imu") {
       JudgeImuUnit(ctx, spec, run.local_gravity_mps2, imu_rows, &unit);

@@ -15,26 +15,25 @@ constexpr double kThreeSigma = 3.0;
 // Above this separation ratio B2 takes its asymptote: the exact form cancels large terms.
 constexpr double kAsymptoticRatio = 1e3;
 
-bool AtRest(const hil::ImuRecordRow& row) {
-  return row.comp.has_value() && (row.mode == 2 || row.mode == 3) && row.orientation != 0 &&
+bool AtRest(const ImuOutputRow& row) {
+  return row.has_comp && (row.mode == 2 || row.mode == 3) && row.orientation != 0 &&
          std::abs(row.table_rate_dps) <= kRestRate_dps;
 }
 
 // [first, last) of the longest stretch of consecutive rest packets in one orientation.
-std::pair<size_t, size_t> LongestStretch(const std::vector<const hil::ImuRecordRow*>& rows,
+std::pair<size_t, size_t> LongestStretch(const std::vector<ImuOutputRow>& rows,
                                          double packet_period_s) {
   std::pair<size_t, size_t> best{0, 0};
   size_t first = 0;
   for (size_t i = 0; i <= rows.size(); ++i) {
     const bool continues =
-        i < rows.size() && AtRest(*rows[i]) && i > first &&
-        rows[i]->orientation == rows[first]->orientation && rows[i]->mode == rows[first]->mode &&
-        std::abs(rows[i]->chamber_c - rows[first]->chamber_c) <= kRestBand_c &&
+        i < rows.size() && AtRest(rows[i]) && i > first &&
+        rows[i].orientation == rows[first].orientation && rows[i].mode == rows[first].mode &&
+        std::abs(rows[i].chamber_c - rows[first].chamber_c) <= kRestBand_c &&
         hil::FramesBetween(
-            rows[i - 1]->seq, rows[i]->seq, rows[i]->t_s - rows[i - 1]->t_s, packet_period_s) == 1;
+            rows[i - 1].seq, rows[i].seq, rows[i].t_s - rows[i - 1].t_s, packet_period_s) == 1;
     if (continues) continue;
-    if (i > first && AtRest(*rows[first]) && i - first > best.second - best.first)
-      best = {first, i};
+    if (i > first && AtRest(rows[first]) && i - first > best.second - best.first) best = {first, i};
     first = i;
   }
   return best;
@@ -57,6 +56,21 @@ ImuBodyOutput BodyOutput(const hil::ImuRecordRow& row) {
     p.w_B_dps = {c[6], c[7], c[8]};
   }
   return p;
+}
+
+ImuOutputRow ImuOutputRow::Of(const hil::ImuRecordRow& row) {
+  ImuOutputRow out;
+  out.t_s = row.t_s;
+  out.chamber_c = row.chamber_c;
+  out.table_rate_dps = row.table_rate_dps;
+  if (row.comp) out.body = BodyOutput(row);
+  out.seq = row.seq;
+  out.step = row.step;
+  out.orientation = row.orientation;
+  out.tag = row.tag;
+  out.mode = row.mode;
+  out.has_comp = row.comp.has_value();
+  return out;
 }
 
 double RestStability::SigmaAt(const AllanTerms& terms, double tau_s) {
@@ -107,7 +121,7 @@ double FlickerSeparationRatio(double r) {
   return (a + b - c) / four_ln2;
 }
 
-std::optional<RestStability> ReadRestStability(const std::vector<const hil::ImuRecordRow*>& rows,
+std::optional<RestStability> ReadRestStability(const std::vector<ImuOutputRow>& rows,
                                                double packet_period_s) {
   auto [first, last] = LongestStretch(rows, packet_period_s);
   if (last == first) return std::nullopt;
@@ -116,17 +130,17 @@ std::optional<RestStability> ReadRestStability(const std::vector<const hil::ImuR
   if (last - first > max_packets) first = last - max_packets;
 
   RestStability r;
-  r.t_start_s = rows[first]->t_s;
-  r.orientation = rows[first]->orientation;
+  r.t_start_s = rows[first].t_s;
+  r.orientation = rows[first].orientation;
   std::array<std::vector<double>, 3> accel_mg, rate_dps;
   double chamber_sum_c = 0.0;
   for (size_t i = first; i < last; ++i) {
-    const ImuBodyOutput out = BodyOutput(*rows[i]);
+    const ImuBodyOutput& out = rows[i].body;
     for (size_t k = 0; k < 3; ++k) {
       accel_mg[k].push_back(out.f_B_g[k] * kMgPerG);
       rate_dps[k].push_back(out.w_B_dps[k]);
     }
-    chamber_sum_c += rows[i]->chamber_c;
+    chamber_sum_c += rows[i].chamber_c;
   }
   const double n = static_cast<double>(last - first);
   r.record_s = n * packet_period_s;

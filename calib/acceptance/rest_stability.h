@@ -25,6 +25,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -54,6 +55,23 @@ struct ImuBodyOutput {
 /// The body output of a row in mode 2 or 3 (the caller checks the mode and that comp is present).
 ImuBodyOutput BodyOutput(const hil::ImuRecordRow& row);
 
+/// What acceptance keeps of one IMU row: the columns it judges and the body output, without the
+/// serial, the raw channels and the compensated cells (about a quarter of the reader's row).
+struct ImuOutputRow {
+  double t_s = 0.0;
+  double chamber_c = 0.0;
+  double table_rate_dps = 0.0;
+  ImuBodyOutput body;  ///< BodyOutput of the row; zero when the row carries no compensated values
+  uint32_t seq = 0;
+  int step = 0;
+  int orientation = 0;
+  uint8_t tag = 0;
+  uint8_t mode = 0;
+  bool has_comp = false;
+
+  static ImuOutputRow Of(const hil::ImuRecordRow& row);
+};
+
 struct RestStability {
   double t_start_s = 0.0;  ///< first packet of the record, run time
   double record_s = 0.0;
@@ -76,7 +94,7 @@ double FlickerSeparationRatio(double r);
 
 /// The rest record of one unit's rows (in recording order), or nothing when no stretch reaches
 /// kRestRecordMin_s. `packet_period_s` is the units' frame period.
-std::optional<RestStability> ReadRestStability(const std::vector<const hil::ImuRecordRow*>& rows,
+std::optional<RestStability> ReadRestStability(const std::vector<ImuOutputRow>& rows,
                                                double packet_period_s);
 
 /// The 3-sigma limit of a point's mean error (see the header comment), in the terms' unit.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -12,11 +13,7 @@
 namespace adahrs::calib {
 namespace {
 
-struct RejectedInterval {
-  int step = 0;
-  double t_start_s = 0.0;
-  double t_end_s = 0.0;
-};
+using hil::RejectedInterval;
 
 std::vector<RejectedInterval> RejectedIntervals(const nlohmann::json& meta,
                                                 const std::string& source) {
@@ -35,7 +32,8 @@ std::vector<RejectedInterval> RejectedIntervals(const nlohmann::json& meta,
         !r["t_end_s"].is_number()) {
       throw std::runtime_error(path + ": expected {\"step\": int, \"t_start_s\", \"t_end_s\"}");
     }
-    out.push_back({r["step"].get<int>(), r["t_start_s"].get<double>(), r["t_end_s"].get<double>()});
+    out.push_back(
+        {r["step"].get<int>(), r["t_start_s"].get<double>(), r["t_end_s"].get<double>(), ""});
   }
   return out;
 }
@@ -69,26 +67,10 @@ void CheckNotSaturated(int32_t code, const char* column, int line, const std::st
   }
 }
 
-// The extremes of one reference column over a step's rows, with their lines.
-struct Extremes {
-  double min = 0, max = 0;
-  int min_line = 0, max_line = 0;
-
-  void Add(double v, int line, bool first) {
-    if (first || v < min) min = v, min_line = line;
-    if (first || v > max) max = v, max_line = line;
-  }
-};
-
-struct Sum {
-  AdsCalibrationPoint point;
-  double ps = 0, pt = 0, ps_t = 0, pt_t = 0, ps_ref = 0, qc_ref = 0, chamber = 0;
-  Extremes ps_ref_range, qc_ref_range;
-};
-
 // A point's truth is the test set's pressure; if that moved within the acquisition, the mean pairs
-// codes and references of different pressures.
-void CheckSteady(const Extremes& e, const char* column, int step, const std::string& source) {
+// codes and references of different pressures. `E` is AdsPointSelector's extremes of a column.
+template <typename E>
+void CheckSteady(const E& e, const char* column, int step, const std::string& source) {
   if (e.max - e.min <= kMaxReferenceSpanPa) return;
   throw std::runtime_error(fmt::format(
       "{}/ads.csv lines {} and {} column {}: the test set's reference moved {:.1f} Pa within step "
@@ -107,60 +89,66 @@ void CheckSteady(const Extremes& e, const char* column, int step, const std::str
 
 }  // namespace
 
-std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording& recording,
-                                                            const std::string& serial,
-                                                            const std::string& source) {
-  const std::vector<RejectedInterval> rejected = RejectedIntervals(recording.meta, source);
-  std::map<int, Sum> by_step;
-  bool unit_seen = false;
-  for (size_t i = 0; i < recording.ads.size(); ++i) {
-    const hil::AdsRecordRow& row = recording.ads[i];
-    if (row.unit != serial) continue;
-    unit_seen = true;
-    if (row.tag == 0 || Rejected(rejected, row)) continue;
-    const int line = static_cast<int>(i) + 2;  // line 1 is the header
-    CheckFinite(row.ps_ref_pa, "ps_ref_pa", line, source);
-    CheckFinite(row.qc_ref_pa, "qc_ref_pa", line, source);
-    CheckFinite(row.chamber_c, "chamber_c", line, source);
-    CheckNotSaturated(row.ps_counts, "ps_counts", line, source);
-    CheckNotSaturated(row.pt_counts, "pt_counts", line, source);
-    CheckNotSaturated(row.ps_temp_counts, "ps_temp_counts", line, source);
-    CheckNotSaturated(row.pt_temp_counts, "pt_temp_counts", line, source);
-    Sum& s = by_step[row.step];
-    if (s.point.rows == 0) {
-      s.point.step = row.step;
-      s.point.tag = row.tag;
-      s.point.first_line = line;
-    } else if (s.point.tag != row.tag) {
-      throw std::runtime_error(fmt::format(
-          "{}/ads.csv line {} column tag: unit {} step {} carries tag {} after tag {} (line {})",
-          source,
-          line,
-          serial,
-          row.step,
-          row.tag,
-          s.point.tag,
-          s.point.first_line));
-    }
-    s.ps_ref_range.Add(row.ps_ref_pa, line, s.point.rows == 0);
-    s.qc_ref_range.Add(row.qc_ref_pa, line, s.point.rows == 0);
-    ++s.point.rows;
-    s.ps += row.ps_counts;
-    s.pt += row.pt_counts;
-    s.ps_t += row.ps_temp_counts;
-    s.pt_t += row.pt_temp_counts;
-    s.ps_ref += row.ps_ref_pa;
-    s.qc_ref += row.qc_ref_pa;
-    s.chamber += row.chamber_c;
+void AdsPointSelector::Extremes::Add(double v, int line, bool first) {
+  if (first || v < min) min = v, min_line = line;
+  if (first || v > max) max = v, max_line = line;
+}
+
+AdsPointSelector::AdsPointSelector(const nlohmann::json& meta,
+                                   std::string serial,
+                                   std::string source)
+    : serial_(std::move(serial)),
+      source_(std::move(source)),
+      rejected_(RejectedIntervals(meta, source_)) {}
+
+void AdsPointSelector::Add(const hil::AdsRecordRow& row, int line) {
+  if (row.unit != serial_) return;
+  unit_seen_ = true;
+  if (row.tag == 0 || Rejected(rejected_, row)) return;
+  CheckFinite(row.ps_ref_pa, "ps_ref_pa", line, source_);
+  CheckFinite(row.qc_ref_pa, "qc_ref_pa", line, source_);
+  CheckFinite(row.chamber_c, "chamber_c", line, source_);
+  CheckNotSaturated(row.ps_counts, "ps_counts", line, source_);
+  CheckNotSaturated(row.pt_counts, "pt_counts", line, source_);
+  CheckNotSaturated(row.ps_temp_counts, "ps_temp_counts", line, source_);
+  CheckNotSaturated(row.pt_temp_counts, "pt_temp_counts", line, source_);
+  Sum& s = by_step_[row.step];
+  if (s.point.rows == 0) {
+    s.point.step = row.step;
+    s.point.tag = row.tag;
+    s.point.first_line = line;
+  } else if (s.point.tag != row.tag) {
+    throw std::runtime_error(fmt::format(
+        "{}/ads.csv line {} column tag: unit {} step {} carries tag {} after tag {} (line {})",
+        source_,
+        line,
+        serial_,
+        row.step,
+        row.tag,
+        s.point.tag,
+        s.point.first_line));
   }
-  if (!unit_seen) {
+  s.ps_ref_range.Add(row.ps_ref_pa, line, s.point.rows == 0);
+  s.qc_ref_range.Add(row.qc_ref_pa, line, s.point.rows == 0);
+  ++s.point.rows;
+  s.ps += row.ps_counts;
+  s.pt += row.pt_counts;
+  s.ps_t += row.ps_temp_counts;
+  s.pt_t += row.pt_temp_counts;
+  s.ps_ref += row.ps_ref_pa;
+  s.qc_ref += row.qc_ref_pa;
+  s.chamber += row.chamber_c;
+}
+
+std::vector<AdsCalibrationPoint> AdsPointSelector::Points() const {
+  if (!unit_seen_) {
     throw std::runtime_error(
-        fmt::format("{}/ads.csv: no row of unit {} (column unit)", source, serial));
+        fmt::format("{}/ads.csv: no row of unit {} (column unit)", source_, serial_));
   }
   std::vector<AdsCalibrationPoint> out;
-  for (auto& [step, s] : by_step) {
-    CheckSteady(s.ps_ref_range, "ps_ref_pa", step, source);
-    CheckSteady(s.qc_ref_range, "qc_ref_pa", step, source);
+  for (const auto& [step, s] : by_step_) {
+    CheckSteady(s.ps_ref_range, "ps_ref_pa", step, source_);
+    CheckSteady(s.qc_ref_range, "qc_ref_pa", step, source_);
     AdsCalibrationPoint p = s.point;
     const double n = p.rows;
     p.ps_code = s.ps / n;
@@ -176,7 +164,7 @@ std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording
     } catch (const std::domain_error& e) {
       throw std::runtime_error(fmt::format(
           "{}/ads.csv line {} columns ps_ref_pa/qc_ref_pa: step {} reference outside ISA: {}",
-          source,
+          source_,
           p.first_line,
           step,
           e.what()));
@@ -184,6 +172,33 @@ std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording
     p.airspeed_point = p.cas_kt >= kMinAirspeedPointKt;
     out.push_back(p);
   }
+  return out;
+}
+
+std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording& recording,
+                                                            const std::string& serial,
+                                                            const std::string& source) {
+  AdsPointSelector selector(recording.meta, serial, source);
+  for (size_t i = 0; i < recording.ads.size(); ++i) {
+    selector.Add(recording.ads[i], static_cast<int>(i) + 2);  // line 1 is the header
+  }
+  return selector.Points();
+}
+
+std::map<std::string, std::vector<AdsCalibrationPoint>> StreamAdsCalibrationPoints(
+    const std::filesystem::path& run_dir,
+    const std::vector<std::string>& serials,
+    const std::string& source) {
+  const nlohmann::json meta = hil::ReadRecordingMeta(run_dir).meta;
+  std::vector<AdsPointSelector> selectors;
+  for (const std::string& serial : serials) selectors.emplace_back(meta, serial, source);
+  hil::RowSinks sinks;
+  sinks.ads = [&](hil::AdsRecordRow&& row, int line) {
+    for (AdsPointSelector& s : selectors) s.Add(row, line);
+  };
+  hil::StreamRecording(run_dir, sinks);
+  std::map<std::string, std::vector<AdsCalibrationPoint>> out;
+  for (size_t i = 0; i < serials.size(); ++i) out[serials[i]] = selectors[i].Points();
   return out;
 }
 

@@ -18,6 +18,8 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -48,10 +50,47 @@ struct AdsCalibrationPoint {
   bool airspeed_point = false;  ///< cas_kt >= kMinAirspeedPointKt
 };
 
+/// The selection one row at a time: Add every ads.csv row in file order with its CSV line, then
+/// Points(). Holds one sum per step, never the rows.
+class AdsPointSelector {
+ public:
+  /// `meta` is the run's meta.json (its rejected intervals); `source` is named in errors.
+  AdsPointSelector(const nlohmann::json& meta, std::string serial, std::string source);
+
+  void Add(const hil::AdsRecordRow& row, int line);
+  /// The points in step order; throws as SelectAdsCalibrationPoints does.
+  std::vector<AdsCalibrationPoint> Points() const;
+
+ private:
+  struct Extremes {
+    double min = 0, max = 0;
+    int min_line = 0, max_line = 0;
+    void Add(double v, int line, bool first);
+  };
+  struct Sum {
+    AdsCalibrationPoint point;
+    double ps = 0, pt = 0, ps_t = 0, pt_t = 0, ps_ref = 0, qc_ref = 0, chamber = 0;
+    Extremes ps_ref_range, qc_ref_range;
+  };
+
+  std::string serial_;
+  std::string source_;
+  std::vector<hil::RejectedInterval> rejected_;
+  std::map<int, Sum> by_step_;
+  bool unit_seen_ = false;
+};
+
 /// The calibration points of unit `serial` in `recording` (read from `source`, named in errors),
 /// in step order. Throws std::runtime_error naming file, line and column for bad input.
 std::vector<AdsCalibrationPoint> SelectAdsCalibrationPoints(const hil::Recording& recording,
                                                             const std::string& serial,
                                                             const std::string& source);
+
+/// The points of each of `serials` in one streamed pass over `run_dir` (hil::StreamRecording;
+/// `source` is named in errors), as SelectAdsCalibrationPoints selects them.
+std::map<std::string, std::vector<AdsCalibrationPoint>> StreamAdsCalibrationPoints(
+    const std::filesystem::path& run_dir,
+    const std::vector<std::string>& serials,
+    const std::string& source);
 
 }  // namespace adahrs::calib

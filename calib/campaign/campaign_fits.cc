@@ -33,16 +33,18 @@ std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& r
                                                   const std::string& strategy,
                                                   const std::filesystem::path& fit_dir,
                                                   const std::string& software_version) {
-  const hil::Recording recording = hil::ReadRecording(run_dir);
+  const nlohmann::json meta = hil::ReadRecordingMeta(run_dir).meta;
   const std::string source = (run_dir / "ads.csv").string();
   const RecordingReference reference{run_dir.string(), RecordingSha256(run_dir)};
-  const std::string sequence_name = recording.meta.at("sequence").at("name").get<std::string>();
+  const std::string sequence_name = meta.at("sequence").at("name").get<std::string>();
+  std::vector<std::string> serials;
+  for (const nlohmann::json& unit : meta.at("units")) {
+    if (unit.at("kind") == "ads") serials.push_back(unit.at("serial"));
+  }
+  const auto points = StreamAdsCalibrationPoints(run_dir, serials, source);
   std::vector<WrittenConstants> written;
-  for (const nlohmann::json& unit : recording.meta.at("units")) {
-    if (unit.at("kind") != "ads") continue;
-    const std::string serial = unit.at("serial");
-    const AdsFitResult fit =
-        FitAdsStrategy(strategy, serial, SelectAdsCalibrationPoints(recording, serial, source));
+  for (const std::string& serial : serials) {
+    const AdsFitResult fit = FitAdsStrategy(strategy, serial, points.at(serial));
     ConstantsFile file;
     file.serial = serial;
     file.kind = hil::UnitKind::kAds;

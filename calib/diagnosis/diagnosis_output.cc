@@ -43,24 +43,32 @@ std::set<std::string> UnitKinds(const std::filesystem::path& run) {
   return kinds;
 }
 
-// Every ADS unit of `run` (or only `serial`), diagnosed from its calibration points.
+// Every ADS unit of `run` (or only `serial`), diagnosed from its calibration points, selected in
+// one streamed pass over ads.csv; units in the order of their first row.
 void DiagnoseAdsRun(const std::filesystem::path& run,
                     const std::optional<std::string>& serial,
                     const DiagnosisOptions& options,
                     DiagnosisRun* out,
                     std::vector<std::string>* seen) {
-  const hil::Recording rec = hil::ReadRecording(run);
-  out->notes.insert(out->notes.end(), rec.notes.begin(), rec.notes.end());
+  const json meta = hil::ReadRecordingMeta(run).meta;
   std::vector<std::string> serials;
-  for (const hil::AdsRecordRow& r : rec.ads) {
-    if (std::find(serials.begin(), serials.end(), r.unit) == serials.end())
+  std::vector<AdsPointSelector> selectors;  // one per serial diagnosed, in `serials` order
+  hil::RowSinks sinks;
+  sinks.ads = [&](hil::AdsRecordRow&& r, int line) {
+    if (std::find(serials.begin(), serials.end(), r.unit) == serials.end()) {
       serials.push_back(r.unit);
-  }
+      if (!serial || r.unit == *serial) selectors.emplace_back(meta, r.unit, run.string());
+    }
+    for (AdsPointSelector& s : selectors) s.Add(r, line);
+  };
+  const hil::Recording rec = hil::StreamRecording(run, sinks);
+  out->notes.insert(out->notes.end(), rec.notes.begin(), rec.notes.end());
   out->recordings.push_back({run.string(), RecordingSha256(run)});
+  size_t next = 0;
   for (const std::string& s : serials) {
     seen->push_back(s);
     if (serial && s != *serial) continue;
-    out->units.push_back(DiagnoseAds(s, SelectAdsCalibrationPoints(rec, s, run.string()), options));
+    out->units.push_back(DiagnoseAds(s, selectors[next++].Points(), options));
     out->units.back().notes.push_back("points of " + run.string());
   }
 }

@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <map>
+#include <ranges>
 #include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -22,11 +24,7 @@ namespace fm = firmware_model;
 // Chamber temperatures are grouped to this width for the map's series.
 constexpr double kTemperatureBinC = 5.0;
 
-struct Acquisition {
-  double alt_ref_ft = 0.0, cas_ref_kt = 0.0, qc_pa = 0.0, temp_c = 0.0;
-  double alt_ft = 0.0, cas_kt = 0.0;
-  int n = 0;
-};
+using Acquisition = AdsReportAccumulator::Acquisition;
 
 bool Rejected(const nlohmann::json& meta, int step, double t_s) {
   if (!meta.contains("rejected_intervals")) return false;
@@ -99,65 +97,77 @@ std::string ErrorPlot(const std::string& serial,
 
 }  // namespace
 
-std::string AdsReportSections(const std::string& serial,
-                              const std::vector<hil::AdsRecordRow>& rows,
-                              const nlohmann::json& meta,
-                              const ConstantsFile* constants) {
-  std::string html = Section(
-      serial + "-constants",
-      3,
-      serial + " constants",
-      constants != nullptr
-          ? ConstantsSection(*constants)
-          : NotAvailable("Constants", "no constants.json for " + serial + " in the fit directory"));
-  std::map<std::tuple<int, int, long, long>, Acquisition> groups;
-  bool unit_values = false, reference_values = false;
-  for (const hil::AdsRecordRow& row : rows) {
-    if (row.unit != serial || row.tag == 0 || Rejected(meta, row.step, row.t_s)) continue;
-    double alt_ft = 0.0, cas_kt = 0.0;
-    if (row.alt_ft && row.cas_kt) {
-      alt_ft = *row.alt_ft;
-      cas_kt = *row.cas_kt;
-      unit_values = true;
-    } else if (constants != nullptr) {
-      const fm::AdsRawFrame raw{
-          row.ps_counts, row.pt_counts, row.ps_temp_counts, row.pt_temp_counts, row.oat_counts};
-      const auto v = fm::AdsReference(*constants->ads, fm::AdsCompensationMode::kSurface, raw);
-      alt_ft = v[0];
-      cas_kt = v[1];
-      reference_values = true;
-    } else {
-      continue;
-    }
-    Acquisition& a =
-        groups[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
-    a.alt_ref_ft += sensor_sim::IsaPressureAltitudeFt(row.ps_ref_pa);
-    a.cas_ref_kt += row.qc_ref_pa > 0.0 ? sensor_sim::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
-    a.temp_c += row.chamber_c;
-    a.alt_ft += alt_ft;
-    a.cas_kt += cas_kt;
-    ++a.n;
+AdsReportAccumulator::AdsReportAccumulator(std::string serial,
+                                           nlohmann::json meta,
+                                           const ConstantsFile* constants)
+    : serial_(std::move(serial)), meta_(std::move(meta)), constants_(constants) {}
+
+void AdsReportAccumulator::Add(const hil::AdsRecordRow& row) {
+  if (row.unit != serial_ || row.tag == 0 || Rejected(meta_, row.step, row.t_s)) return;
+  double alt_ft = 0.0, cas_kt = 0.0;
+  if (row.alt_ft && row.cas_kt) {
+    alt_ft = *row.alt_ft;
+    cas_kt = *row.cas_kt;
+    unit_values_ = true;
+  } else if (constants_ != nullptr) {
+    const fm::AdsRawFrame raw{
+        row.ps_counts, row.pt_counts, row.ps_temp_counts, row.pt_temp_counts, row.oat_counts};
+    const auto v = fm::AdsReference(*constants_->ads, fm::AdsCompensationMode::kSurface, raw);
+    alt_ft = v[0];
+    cas_kt = v[1];
+    reference_values_ = true;
+  } else {
+    return;
   }
+  Acquisition& a =
+      groups_[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
+  a.alt_ref_ft += sensor_sim::IsaPressureAltitudeFt(row.ps_ref_pa);
+  a.cas_ref_kt += row.qc_ref_pa > 0.0 ? sensor_sim::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
+  a.temp_c += row.chamber_c;
+  a.alt_ft += alt_ft;
+  a.cas_kt += cas_kt;
+  ++a.n;
+}
+
+std::string AdsReportAccumulator::Sections() const {
+  std::string html =
+      Section(serial_ + "-constants",
+              3,
+              serial_ + " constants",
+              constants_ != nullptr ? ConstantsSection(*constants_)
+                                    : NotAvailable("Constants",
+                                                   "no constants.json for " + serial_ +
+                                                       " in the fit "
+                                                       "directory"));
   std::vector<Acquisition> points;
-  for (auto& [key, a] : groups) {
+  for (Acquisition a : groups_ | std::views::values) {
     for (double* v : {&a.alt_ref_ft, &a.cas_ref_kt, &a.temp_c, &a.alt_ft, &a.cas_kt}) *v /= a.n;
     points.push_back(a);
   }
   std::string map;
   if (points.empty()) {
     map = NotAvailable("ADS error map",
-                       constants == nullptr ? "raw rows only and no constants.json for " + serial
-                                            : "no tagged acquisition rows for " + serial);
+                       constants_ == nullptr ? "raw rows only and no constants.json for " + serial_
+                                             : "no tagged acquisition rows for " + serial_);
   } else {
-    const std::string source = unit_values && reference_values
+    const std::string source = unit_values_ && reference_values_
                                    ? "unit output and reference compensator"
-                               : unit_values ? "the unit's own surface output"
-                                             : "reference compensator on raw codes";
-    map = ErrorPlot(serial, points, true, source) + ErrorPlot(serial, points, false, source);
+                               : unit_values_ ? "the unit's own surface output"
+                                              : "reference compensator on raw codes";
+    map = ErrorPlot(serial_, points, true, source) + ErrorPlot(serial_, points, false, source);
   }
   return html +
          Section(
-             serial + "-error-map", 3, serial + " error map against the tolerance envelope", map);
+             serial_ + "-error-map", 3, serial_ + " error map against the tolerance envelope", map);
+}
+
+std::string AdsReportSections(const std::string& serial,
+                              const std::vector<hil::AdsRecordRow>& rows,
+                              const nlohmann::json& meta,
+                              const ConstantsFile* constants) {
+  AdsReportAccumulator accumulator(serial, meta, constants);
+  for (const hil::AdsRecordRow& row : rows) accumulator.Add(row);
+  return accumulator.Sections();
 }
 
 }  // namespace adahrs::calib

@@ -8,7 +8,9 @@
 // says which. Rows in rejected intervals and rows with TAG 0 (between acquisitions) are left out.
 #pragma once
 
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +19,32 @@
 #include "hil/recording/recording_format.h"
 
 namespace adahrs::calib {
+
+/// The acquisitions of one unit, summed one row at a time: Add every ads.csv row in file order
+/// (other units' rows are passed over), then Sections(). Holds one sum per acquisition.
+class AdsReportAccumulator {
+ public:
+  /// `meta` supplies rejected intervals; `constants` may be null and must outlive this.
+  AdsReportAccumulator(std::string serial, nlohmann::json meta, const ConstantsFile* constants);
+
+  void Add(const hil::AdsRecordRow& row);
+  const std::string& serial() const { return serial_; }
+  /// Every ADS section for the unit.
+  std::string Sections() const;
+
+  struct Acquisition {
+    double alt_ref_ft = 0.0, cas_ref_kt = 0.0, qc_pa = 0.0, temp_c = 0.0;
+    double alt_ft = 0.0, cas_kt = 0.0;
+    int n = 0;
+  };
+
+ private:
+  std::string serial_;
+  nlohmann::json meta_;
+  const ConstantsFile* constants_;
+  std::map<std::tuple<int, int, long, long>, Acquisition> groups_;
+  bool unit_values_ = false, reference_values_ = false;
+};
 
 /// Every ADS section for `serial`; `constants` may be null. `meta` supplies rejected intervals.
 std::string AdsReportSections(const std::string& serial,

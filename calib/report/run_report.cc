@@ -125,14 +125,40 @@ std::string Acceptance(const std::filesystem::path& run_dir,
       "no <serial>/acceptance.json in " + dir.string() + "; fit directory: " + fit.why_missing);
 }
 
+const ConstantsFile* ConstantsOf(const FitInputs& fit, const std::string& serial) {
+  const auto found = fit.constants.find(serial);
+  return found == fit.constants.end() ? nullptr : &found->second;
+}
+
+// The ADS sections of every ADS unit of the run, by serial, from one streamed pass over the
+// recording (every row is still read and checked; only per-acquisition sums are kept).
+std::map<std::string, std::string> AdsSectionsBySerial(const std::filesystem::path& run_dir,
+                                                       const nlohmann::json& meta,
+                                                       const FitInputs& fit) {
+  std::vector<AdsReportAccumulator> units;
+  for (const auto& u : meta.value("units", nlohmann::json::array())) {
+    if (u.value("kind", "") == "imu") continue;
+    const std::string serial = u.value("serial", "");
+    units.emplace_back(serial, meta, ConstantsOf(fit, serial));
+  }
+  hil::RowSinks sinks;
+  sinks.ads = [&](hil::AdsRecordRow&& row, int) {
+    for (AdsReportAccumulator& unit : units) unit.Add(row);
+  };
+  hil::StreamRecording(run_dir, sinks);
+  std::map<std::string, std::string> html;
+  for (const AdsReportAccumulator& unit : units) html[unit.serial()] = unit.Sections();
+  return html;
+}
+
 }  // namespace
 
 std::string BuildRunReport(const std::filesystem::path& run_dir,
                            const std::optional<std::filesystem::path>& fit_dir,
                            const std::optional<std::filesystem::path>& acceptance_dir) {
-  const hil::Recording recording = hil::ReadRecording(run_dir);
+  const nlohmann::json meta = hil::ReadRecordingMeta(run_dir).meta;
   const FitInputs fit = LoadFit(fit_dir);
-  const nlohmann::json& meta = recording.meta;
+  const std::map<std::string, std::string> ads_html = AdsSectionsBySerial(run_dir, meta, fit);
   const double g_local_mps2 = meta.value("local_gravity_mps2", 0.0);
 
   std::optional<ImuRunData> imu;
@@ -154,8 +180,7 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
   std::string units;
   for (const auto& u : meta.value("units", nlohmann::json::array())) {
     const std::string serial = u.value("serial", "");
-    const auto found = fit.constants.find(serial);
-    const ConstantsFile* constants = found == fit.constants.end() ? nullptr : &found->second;
+    const ConstantsFile* constants = ConstantsOf(fit, serial);
     std::string unit_html;
     if (u.value("kind", "") == "imu") {
       if (imu && imu->units.count(serial)) {
@@ -165,7 +190,7 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
                                  imu ? "no calibration rows for " + serial : imu_why);
       }
     } else {
-      unit_html = AdsReportSections(serial, recording.ads, meta, constants);
+      unit_html = ads_html.at(serial);
     }
     units +=
         Section(serial, 2, fmt::format("Unit {} ({})", serial, u.value("role", "")), unit_html);
