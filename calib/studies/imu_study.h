@@ -60,6 +60,20 @@ struct StrategyOutcome {
   /// physical limit"); the reference strategy has no such limit. Informative: not part of "all".
   bool pass_body_rate_limit = false;
   bool pass_all() const { return pass_acceleration && pass_body_rate; }
+
+  /// ADS studies (ads_study.h): the worst |error| / tolerance over the envelope grid under every
+  /// history of EvaluateAdsConstants, and with the operators fresh; grid points failing (fail or
+  /// unreachable).
+  double worst_altitude_tol = 0.0;
+  double worst_airspeed_tol = 0.0;
+  double worst_altitude_no_history_tol = 0.0;
+  double worst_airspeed_no_history_tol = 0.0;
+  int altitude_failing_points = 0;
+  int airspeed_failing_points = 0;
+  bool pass_altitude = false;    ///< every altitude grid point within tolerance, every history
+  bool pass_airspeed = false;    ///< every airspeed grid point within tolerance, every history
+  bool pass_no_history = false;  ///< both within tolerance with fresh operators (informative)
+  bool pass_ads_all() const { return pass_altitude && pass_airspeed; }
 };
 
 struct StudyUnitResult {
