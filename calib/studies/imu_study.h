@@ -9,7 +9,8 @@
 // same units and the same noise (a paired comparison).
 // Determinism: a unit's result depends only on the study seed and its index, never on the thread
 // that ran it or on the shard (--shard i/n holds the indices k with k mod n = i - 1).
-// Left out: ADS units; station gravity other than the study's.
+// ADS units: ads_study.h (the same settings, shard and unit results; its own outcome fields).
+// Left out: station gravity other than the study's.
 #pragma once
 
 #include <cstdint>

@@ -5,7 +5,8 @@
 // strategies, the paired difference second − first with a bootstrap 95 % interval).
 // The summary is a function of study.json and results.csv alone, so merged shards summarise
 // exactly as the unsharded study. Errors reading them throw std::runtime_error naming the file
-// and, for results.csv, the line and column.
+// and, for results.csv, the line and column. For an ADS study (StudyMeta::unit_kind "ads")
+// WriteStudyOutputs and ReadResultsCsv hand over to ads_study_results.h.
 #pragma once
 
 #include <cstdint>
