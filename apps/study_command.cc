@@ -17,6 +17,7 @@
 
 #include "adahrs_build_paths.h"
 #include "apps/commands.h"
+#include "calib/studies/ads_study.h"
 #include "calib/studies/imu_study.h"
 #include "calib/studies/study_results.h"
 
@@ -79,6 +80,11 @@ void RunStudy(const StudyArgs& a) {
     throw CLI::ValidationError(
         "--vs", "the two study files have the same name \"" + strategies[0].name + "\"");
   }
+  if (strategies.size() == 2 && strategies[0].unit_kind != strategies[1].unit_kind) {
+    throw CLI::ValidationError("--vs",
+                               strategies[1].file + ": $.unit_kind differs from " +
+                                   strategies[0].file + " (a paired study draws one kind of unit)");
+  }
   calib::StudySettings settings;
   settings.units = a.units;
   settings.seed = a.seed;
@@ -98,7 +104,9 @@ void RunStudy(const StudyArgs& a) {
     }
   }
   KeepLargeBlocksForReuse();
-  const auto results = calib::RunImuStudy(strategies, settings, a.threads, ProgressPrinter());
+  const bool ads = strategies[0].unit_kind == calib::UnitKind::kAds;
+  const auto results = ads ? calib::RunAdsStudy(strategies, settings, a.threads, ProgressPrinter())
+                           : calib::RunImuStudy(strategies, settings, a.threads, ProgressPrinter());
   calib::WriteStudyOutputs(a.out, calib::MakeStudyMeta(strategies, settings), results);
   std::cout << fmt::format("{} units, shard {}: {}/results.csv, summary.json, report.html\n",
                            results.size(),

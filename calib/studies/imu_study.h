@@ -9,7 +9,8 @@
 // same units and the same noise (a paired comparison).
 // Determinism: a unit's result depends only on the study seed and its index, never on the thread
 // that ran it or on the shard (--shard i/n holds the indices k with k mod n = i - 1).
-// Left out: ADS units; station gravity other than the study's.
+// ADS units: ads_study.h (the same settings, shard and unit results; its own outcome fields).
+// Left out: station gravity other than the study's.
 #pragma once
 
 #include <cstdint>
@@ -60,6 +61,20 @@ struct StrategyOutcome {
   /// physical limit"); the reference strategy has no such limit. Informative: not part of "all".
   bool pass_body_rate_limit = false;
   bool pass_all() const { return pass_acceleration && pass_body_rate; }
+
+  /// ADS studies (ads_study.h): the worst |error| / tolerance over the envelope grid under every
+  /// history of EvaluateAdsConstants, and with the operators fresh; grid points failing (fail or
+  /// unreachable).
+  double worst_altitude_tol = 0.0;
+  double worst_airspeed_tol = 0.0;
+  double worst_altitude_no_history_tol = 0.0;
+  double worst_airspeed_no_history_tol = 0.0;
+  int altitude_failing_points = 0;
+  int airspeed_failing_points = 0;
+  bool pass_altitude = false;    ///< every altitude grid point within tolerance, every history
+  bool pass_airspeed = false;    ///< every airspeed grid point within tolerance, every history
+  bool pass_no_history = false;  ///< both within tolerance with fresh operators (informative)
+  bool pass_ads_all() const { return pass_altitude && pass_airspeed; }
 };
 
 struct StudyUnitResult {

@@ -1,5 +1,6 @@
 #include "calib/studies/study_definition.h"
 
+#include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/sequence/execution_plan.h"
 #include "calib/sequence/sequence_json.h"
 #include "calib/sequence/validation.h"
@@ -42,6 +43,23 @@ StudyPopulation ReadPopulationFile(const std::filesystem::path& file) {
   return p;
 }
 
+// "reference", "improved" (hysteresis_compensated, the strategy the demo downloads) or another name
+// FitAdsStrategy knows.
+std::string AdsStrategyName(const std::string& label, const ParamReader& r) {
+  if (label == "improved") return kHysteresisAdsStrategyName;
+  for (const char* known : {kReferenceAdsStrategyName,
+                            kToleranceAdsStrategyName,
+                            kPressureAdsStrategyName,
+                            kHysteresisAdsStrategyName}) {
+    if (label == known) return label;
+  }
+  r.Fail("$.strategy",
+         "unknown ADS strategy \"" + label +
+             "\" (expected \"reference\", \"improved\", \"tolerance_minimax\", "
+             "\"pressure_minimax\" or \"hysteresis_compensated\")");
+  return {};
+}
+
 }  // namespace
 
 std::string StudyPopulation::Label() const {
@@ -74,10 +92,12 @@ StudyDefinition LoadStudyDefinition(const std::filesystem::path& file,
   if (r.String("format") != "adahrs-study") r.Fail("$.format", "expected \"adahrs-study\"");
   r.Integer("format_version", 1, 1);
   const std::string kind = r.String("unit_kind");
-  if (kind == "ads") r.Fail("$.unit_kind", "ADS studies are not available yet (IMU only)");
-  if (kind != "imu") r.Fail("$.unit_kind", "expected \"imu\", got \"" + kind + "\"");
+  if (kind != "imu" && kind != "ads") {
+    r.Fail("$.unit_kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
+  }
 
   StudyDefinition d;
+  d.unit_kind = kind == "ads" ? UnitKind::kAds : UnitKind::kImu;
   d.name = file.stem().string();
   d.file = file.string();
   const std::string sequence = r.String("sequence");
@@ -95,13 +115,16 @@ StudyDefinition LoadStudyDefinition(const std::filesystem::path& file,
     r.Fail("$.sequence", "the validator refuses " + d.sequence_file + ":" + list);
   }
   d.sequence = LoadValidSequence(d.sequence_file, limits);
-  if (d.sequence.unit_kind != UnitKind::kImu) {
-    r.Fail("$.sequence", d.sequence_file + " is not an IMU sequence");
+  if (d.sequence.unit_kind != d.unit_kind) {
+    r.Fail("$.sequence",
+           d.sequence_file + " is not an " + (kind == "ads" ? "ADS" : "IMU") + " sequence");
   }
   d.rig_time_s = ExpandSequence(d.sequence, limits).duration_estimate_s;
 
   d.strategy_label = r.String("strategy");
-  if (d.strategy_label == "reference") {
+  if (d.unit_kind == UnitKind::kAds) {
+    d.ads_strategy = AdsStrategyName(d.strategy_label, r);
+  } else if (d.strategy_label == "reference") {
     d.strategy = ImuStrategy::Reference();
   } else if (d.strategy_label == "improved") {
     d.strategy = ImuStrategy::Improved();

@@ -1,17 +1,20 @@
-// A study file (docs/studies.md): which sequence a strategy's units run, which IMU fit strategy
-// turns the recording into constants, and optionally the unit population.
+// A study file (docs/studies.md): which sequence a strategy's units run, which fit strategy turns
+// the recording into constants, and optionally the unit population.
 //
-//   {"format": "adahrs-study", "format_version": 1, "unit_kind": "imu",
+//   {"format": "adahrs-study", "format_version": 1, "unit_kind": "imu" | "ads",
 //    "sequence": "imu_thermal_sensor_calibration" | "<file>.json",   (a shipped name, or a file
 //                                                                     relative to the study file)
 //    "strategy": "reference" | "improved" | "<file>.json",           (an adahrs-imu-strategy file)
+//                (ADS: "reference" | "improved" | a FitAdsStrategy name; improved is
+//                 hysteresis_compensated)
 //    "population": "truth" | "nominal" | "<file>.json"}              (optional; default truth)
 //
 // A population file: {"format": "adahrs-population", "format_version": 1,
 //                     "profile": "truth" | "nominal", "variant": "standard" | ...}.
 // The sequence must pass the validator (calib/sequence/validation.h); its rig time is the
 // execution plan's duration estimate on real instruments (ExpandSequence). Errors throw
-// common::ParamError naming the file and the JSON path. Left out: ADS studies (refused).
+// common::ParamError naming the file and the JSON path. The sequence's unit kind must be the study
+// file's.
 #pragma once
 
 #include <filesystem>
@@ -49,6 +52,8 @@ struct StudyDefinition {
   double rig_time_s = 0.0;     ///< the execution plan's duration estimate
   std::string strategy_label;  ///< "reference", "improved" or the strategy file
   ImuStrategy strategy;
+  UnitKind unit_kind = UnitKind::kImu;
+  std::string ads_strategy;  ///< ADS studies: the FitAdsStrategy name
   std::optional<StudyPopulation> population;
 };
 

@@ -214,4 +214,15 @@ std::string RenderStudyReport(const StudyMeta& meta,
       body);
 }
 
+const char* StudyReportStyle() { return kStyle; }
+
+std::string StudyQuantityPlots(const StudyMeta& meta,
+                               const std::vector<StudyUnitResult>& results,
+                               const std::string& name,
+                               const std::string& unit,
+                               double limit,
+                               const std::function<double(const StrategyOutcome&)>& q) {
+  return QuantityPlots(meta, results, name, unit, limit, q);
+}
+
 }  // namespace adahrs::calib

@@ -6,6 +6,7 @@
 // Left out: per-unit plots (results.csv holds every unit).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,5 +17,16 @@ namespace adahrs::calib {
 std::string RenderStudyReport(const StudyMeta& meta,
                               const StudySummary& summary,
                               const std::vector<StudyUnitResult>& results);
+
+// Shared with the ADS study's report (ads_study_report.h).
+/// The page's style sheet.
+const char* StudyReportStyle();
+/// Histogram and empirical CDF of quantity `q` of every strategy, `limit` drawn on the CDF.
+std::string StudyQuantityPlots(const StudyMeta& meta,
+                               const std::vector<StudyUnitResult>& results,
+                               const std::string& name,
+                               const std::string& unit,
+                               double limit,
+                               const std::function<double(const StrategyOutcome&)>& q);
 
 }  // namespace adahrs::calib

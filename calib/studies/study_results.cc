@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "calib/studies/ads_study_results.h"
 #include "calib/studies/study_report.h"
 
 namespace adahrs::calib {
@@ -17,7 +18,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kBootstrapResamples = 2000;
+constexpr int kBootstrapResamples = kStudyBootstrapResamples;
 constexpr const char* kCsvHeader =
     "unit_index,serial,draw_seed,noise_seed,strategy,fitted,worst_accel_mg,worst_rate_dps,"
     "accel_verdict,rate_verdict,pass_acceleration,pass_body_rate,pass_body_rate_limit,pass_all,"
@@ -190,15 +191,17 @@ StudyStrategyInfo StudyStrategyInfo::FromJson(const json& j) {
 json StudyMeta::ToJson() const {
   json s = json::array();
   for (const auto& i : strategies) s.push_back(i.ToJson());
-  return {{"format", "adahrs-study-run"},
-          {"format_version", 1},
-          {"units", units},
-          {"seed", seed},
-          {"population", population},
-          {"g_local_mps2", g_local_mps2},
-          {"evaluation_frames", evaluation_frames},
-          {"strategies", s},
-          {"shard", shard.Label()}};
+  json j = {{"format", "adahrs-study-run"},
+            {"format_version", 1},
+            {"units", units},
+            {"seed", seed},
+            {"population", population},
+            {"g_local_mps2", g_local_mps2},
+            {"evaluation_frames", evaluation_frames},
+            {"strategies", s},
+            {"shard", shard.Label()}};
+  if (unit_kind != "imu") j["unit_kind"] = unit_kind;
+  return j;
 }
 
 StudyMeta StudyMeta::Read(const std::filesystem::path& file) {
@@ -207,6 +210,7 @@ StudyMeta StudyMeta::Read(const std::filesystem::path& file) {
     if (j.at("format") != "adahrs-study-run")
       throw std::runtime_error("$.format is not adahrs-study-run");
     StudyMeta m;
+    m.unit_kind = j.value("unit_kind", "imu");
     m.units = j.at("units");
     m.seed = j.at("seed");
     m.population = j.at("population");
@@ -221,14 +225,15 @@ StudyMeta StudyMeta::Read(const std::filesystem::path& file) {
 }
 
 bool StudyMeta::SameStudy(const StudyMeta& o) const {
-  return units == o.units && seed == o.seed && population == o.population &&
-         g_local_mps2 == o.g_local_mps2 && evaluation_frames == o.evaluation_frames &&
-         strategies == o.strategies;
+  return unit_kind == o.unit_kind && units == o.units && seed == o.seed &&
+         population == o.population && g_local_mps2 == o.g_local_mps2 &&
+         evaluation_frames == o.evaluation_frames && strategies == o.strategies;
 }
 
 StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies,
                         const StudySettings& settings) {
   StudyMeta m;
+  if (!strategies.empty() && strategies[0].unit_kind == UnitKind::kAds) m.unit_kind = "ads";
   m.units = settings.units;
   m.seed = settings.seed;
   m.population = settings.population.Label();
@@ -331,6 +336,7 @@ void WriteResultsCsv(const std::filesystem::path& file,
 
 std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file,
                                             const StudyMeta& meta) {
+  if (meta.unit_kind == "ads") return ReadAdsResultsCsv(file, meta);
   std::istringstream in(ReadText(file));
   std::string line;
   if (!std::getline(in, line) || line != kCsvHeader) {
@@ -374,6 +380,10 @@ std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file,
 void WriteStudyOutputs(const std::filesystem::path& dir,
                        const StudyMeta& meta,
                        const std::vector<StudyUnitResult>& results) {
+  if (meta.unit_kind == "ads") {
+    WriteAdsStudyOutputs(dir, meta, results);
+    return;
+  }
   std::filesystem::create_directories(dir);
   const StudySummary summary = Summarise(meta, results);
   WriteText(dir / "study.json", meta.ToJson().dump(2) + "\n");
@@ -427,6 +437,24 @@ void MergeStudies(const std::vector<std::filesystem::path>& dirs,
   StudyMeta merged = first;
   merged.shard = StudyShard{};
   WriteStudyOutputs(out, merged, results);
+}
+
+ErrorDistribution StudyDistribution(std::vector<double> values) {
+  return Distribution(std::move(values));
+}
+
+PairedInterval StudyBootstrap(const std::vector<double>& diffs, uint64_t seed) {
+  return Bootstrap(diffs, seed);
+}
+
+std::string StudyCsvField(const std::string& text) { return CsvField(text); }
+
+std::vector<std::string> StudyCsvSplit(const std::string& line) { return CsvSplit(line); }
+
+std::string ReadStudyText(const std::filesystem::path& file) { return ReadText(file); }
+
+void WriteStudyText(const std::filesystem::path& file, const std::string& text) {
+  WriteText(file, text);
 }
 
 }  // namespace adahrs::calib

@@ -5,7 +5,8 @@
 // strategies, the paired difference second − first with a bootstrap 95 % interval).
 // The summary is a function of study.json and results.csv alone, so merged shards summarise
 // exactly as the unsharded study. Errors reading them throw std::runtime_error naming the file
-// and, for results.csv, the line and column.
+// and, for results.csv, the line and column. For an ADS study (StudyMeta::unit_kind "ads")
+// WriteStudyOutputs and ReadResultsCsv hand over to ads_study_results.h.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +34,7 @@ struct StudyStrategyInfo {
 };
 
 struct StudyMeta {
+  std::string unit_kind = "imu";  ///< "imu" or "ads"; study.json names it for ADS studies only
   int units = 0;
   uint64_t seed = 0;
   std::string population;
@@ -107,6 +109,18 @@ std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file,
 void WriteStudyOutputs(const std::filesystem::path& dir,
                        const StudyMeta& meta,
                        const std::vector<StudyUnitResult>& results);
+
+// Shared with the ADS study's outputs (ads_study_results.h).
+inline constexpr int kStudyBootstrapResamples = 2000;
+/// The distribution of the finite `values` by nearest rank.
+ErrorDistribution StudyDistribution(std::vector<double> values);
+/// The mean of `diffs` with its percentile bootstrap interval (kStudyBootstrapResamples, `seed`).
+PairedInterval StudyBootstrap(const std::vector<double>& diffs, uint64_t seed);
+/// A CSV field, quoted when it holds a comma, quote or line break; a line split back into fields.
+std::string StudyCsvField(const std::string& text);
+std::vector<std::string> StudyCsvSplit(const std::string& line);
+std::string ReadStudyText(const std::filesystem::path& file);
+void WriteStudyText(const std::filesystem::path& file, const std::string& text);
 
 /// Combines the shard directories of one study (every shard 1/n...n/n exactly once) into `out`:
 /// the outputs the unsharded study writes. Throws std::runtime_error naming the directory and

@@ -3,7 +3,11 @@
 shards merged with `study merge` give the unsharded results.csv and summary.json byte for byte;
 results.csv has one row per unit and strategy; the rig time is the duration `adahrs sequence
 check` prints for the sequence; a shard spec 3/2 and an unknown strategy are refused naming the
-option or the file and JSON path. Usage: study_command_test.py ADAHRS"""
+option or the file and JSON path; an ADS study of two truth units (tolerance_minimax vs improved,
+shipped ads_calibration) fails every unit with the first and keeps every altitude grid point of
+every unit within tolerance with the second,
+and an IMU study file paired with an ADS one is refused naming --vs and $.unit_kind.
+Usage: study_command_test.py ADAHRS"""
 import csv
 import json
 import pathlib
@@ -66,6 +70,24 @@ def main(adahrs):
                       "--seed", 1, "--out", tmp / "bad")
         assert unknown.returncode != 0
         assert "unknown_strategy.json" in unknown.stderr and "$.strategy" in unknown.stderr, unknown.stderr
+
+        ads = run(adahrs, "study", "--strategy", DATA / "ads_tolerance_minimax.json",
+                  "--vs", DATA / "ads_improved.json", "--units", 2, "--seed", 5, "--threads", 2,
+                  "--out", tmp / "ads")
+        assert ads.returncode == 0, ads.stderr
+        ads_summary = json.loads((tmp / "ads" / "summary.json").read_text())
+        assert ads_summary["unit_kind"] == "ads", ads_summary
+        assert ads_summary["strategies"][0]["yield"]["all"] == 0.0, ads_summary
+        ads_rows = list(csv.DictReader(open(tmp / "ads" / "results.csv", newline="")))
+        assert [r["strategy"] for r in ads_rows] == ["ads_tolerance_minimax", "ads_improved"] * 2
+        for cubic, improved in zip(ads_rows[0::2], ads_rows[1::2]):
+            assert float(cubic["worst_altitude_tol"]) > 1.0, cubic
+            assert float(improved["worst_altitude_tol"]) < 1.0, improved
+        mixed = run(adahrs, "study", "--strategy", DATA / "short_improved.json",
+                    "--vs", DATA / "ads_improved.json", "--units", 1, "--seed", 1,
+                    "--out", tmp / "bad")
+        assert mixed.returncode != 0
+        assert "--vs" in mixed.stderr and "$.unit_kind" in mixed.stderr, mixed.stderr
     print("ok")
 
 

@@ -1,0 +1,91 @@
+#include "calib/studies/ads_run_simulator.h"
+
+#include <cmath>
+#include <variant>
+
+#include "calib/sequence/execution_plan.h"
+#include "calib/sequence/sequence_limits.h"
+#include "sensor_sim/air_data.h"
+#include "sensor_sim/atmosphere.h"
+
+namespace adahrs::calib {
+namespace {
+
+// The columns at the resolution ads.csv writes them (hil/recording/recording_writer.cc: t_s to
+// 0.1 ms, chamber_c to 0.001 degC, the reference pressures to 0.01 Pa).
+double Rounded(double value, double per_unit) { return std::round(value * per_unit) / per_unit; }
+
+}  // namespace
+
+AdsRunSimulator::AdsRunSimulator(const sensor_sim::AdsUnitParams& params,
+                                 uint64_t noise_seed,
+                                 AdsRunSimulatorOptions options)
+    : params_(params), unit_(params, noise_seed, options.initial_air_temp_c), options_(options) {
+  stimulus_.air_temp_c = options.initial_air_temp_c;
+  stimulus_.oat_c = options.initial_air_temp_c;
+}
+
+void AdsRunSimulator::Frames(int64_t n, int step, uint8_t tag, const AdsRowSink* sink) {
+  hil::AdsRecordRow row;
+  row.unit = params_.serial;
+  row.step = step;
+  row.tag = tag;
+  row.chamber_c = Rounded(stimulus_.air_temp_c, 1e3);
+  row.ps_ref_pa = Rounded(stimulus_.ps_pa, 1e2);
+  row.qc_ref_pa = Rounded(stimulus_.qc_pa, 1e2);
+  for (int64_t i = 0; i < n; ++i) {
+    const sensor_sim::AdsRawFrame f = unit_.Step(stimulus_);
+    t_s_ += params_.frame_period_s;
+    seq_ = (seq_ + 1) & 0xFF;
+    if (!sink) continue;
+    row.t_s = Rounded(t_s_, 1e4);
+    row.seq = seq_;
+    row.ps_counts = f.ps_cnt;
+    row.pt_counts = f.pt_cnt;
+    row.ps_temp_counts = f.ps_temp_cnt;
+    row.pt_temp_counts = f.pt_temp_cnt;
+    row.oat_counts = f.oat_cnt;
+    (*sink)(row);
+  }
+}
+
+void AdsRunSimulator::Run(const Sequence& sequence, const AdsRowSink& sink) {
+  const ExecutionPlan plan = ExpandSequence(sequence, SequenceLimits{});
+  const int frames_per_s = static_cast<int>(1.0 / params_.frame_period_s + 0.5);
+  for (const PlannedAction& a : plan.actions) {
+    const int step = static_cast<int>(a.step);
+    if (const auto* set = std::get_if<SetChamberSetPoint>(&a.action)) {
+      stimulus_.air_temp_c = set->temp_c;
+      stimulus_.oat_c = set->temp_c;
+    } else if (const auto* soak = std::get_if<WaitChamberSoak>(&a.action)) {
+      Frames(static_cast<int64_t>(soak->soak_s) * frames_per_s, step, 0, nullptr);
+    } else if (const auto* alt = std::get_if<SetAltitude>(&a.action)) {
+      stimulus_.ps_pa = sensor_sim::IsaStaticPressurePaFromFt(alt->alt_ft);
+    } else if (const auto* cas = std::get_if<SetAirspeed>(&a.action)) {
+      stimulus_.qc_pa = sensor_sim::ImpactPressurePaFromKt(cas->cas_kt);
+    } else if (std::holds_alternative<WaitAdtsStable>(a.action)) {
+      Frames(std::llround(options_.settle_s * frames_per_s), step, 0, &sink);
+    } else if (const auto* acquire = std::get_if<AcquirePackets>(&a.action)) {
+      Frames(acquire->packets, step, a.tag, &sink);
+    }
+  }
+}
+
+hil::Recording AdsRunRecording(const Sequence& sequence,
+                               const sensor_sim::AdsUnitParams& params,
+                               uint64_t noise_seed,
+                               AdsRunSimulatorOptions options) {
+  hil::Recording recording;
+  recording.format_version = 1;
+  recording.meta = {{"run_id", "simulated " + sequence.name},
+                    {"status", "complete"},
+                    {"sample_rate_hz", 100},
+                    {"sequence", {{"name", sequence.name}}},
+                    {"units", {{{"kind", "ads"}, {"serial", params.serial}}}},
+                    {"rejected_intervals", nlohmann::json::array()}};
+  AdsRunSimulator simulator(params, noise_seed, options);
+  simulator.Run(sequence, [&](const hil::AdsRecordRow& row) { recording.ads.push_back(row); });
+  return recording;
+}
+
+}  // namespace adahrs::calib

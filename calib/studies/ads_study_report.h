@@ -1,0 +1,19 @@
+// report.html of an ADS study: the settings, a yield table per strategy and criterion (altitude,
+// airspeed, all, no history), the worst-error distributions in tolerances (percentiles; histogram
+// and empirical CDF per quantity, every strategy on one plot, the tolerance drawn at 1) and, with
+// two strategies, the paired differences with their bootstrap intervals. The IMU study's page
+// layout and plots (study_report.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "calib/studies/ads_study_results.h"
+
+namespace adahrs::calib {
+
+std::string RenderAdsStudyReport(const StudyMeta& meta,
+                                 const AdsStudySummary& summary,
+                                 const std::vector<StudyUnitResult>& results);
+
+}  // namespace adahrs::calib
