@@ -8,8 +8,11 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
+
 #include "common/printable_text.h"
+#include "hil/recording/csv_lines.h"
 
 namespace adahrs::hil {
 
@@ -43,10 +46,17 @@ class CsvCursor {
             std::string_view latest_header,
             int version,
             std::vector<std::string>* notes)
-      : path_(path), names_(SplitHeader(header)), in_(path) {
-    if (!in_) throw RecordingError(path_.string() + ": cannot open for reading");
-    std::string first;
-    if (!std::getline(in_, first)) throw RecordingError(path_.string() + ": empty file, no header");
+      : path_(path), names_(SplitHeader(header)) {
+    try {
+      lines_ = std::make_unique<CsvLines>(path_);
+    } catch (const std::runtime_error&) {
+      throw RecordingError(path_.string() + ": cannot open for reading");
+    }
+    std::string_view first;
+    bool complete = false;
+    if (!lines_->Next(first, complete)) {
+      throw RecordingError(path_.string() + ": empty file, no header");
+    }
     line_ = 1;
     if (first == header) {
       file_columns_ = names_.size();
@@ -60,36 +70,35 @@ class CsvCursor {
 
   // Reads the next row's cells; false at the end. A last line without its newline is truncated.
   bool Next(bool allow_truncated_tail, int& truncated) {
-    std::string text;
-    while (std::getline(in_, text)) {
-      ++line_;
-      const bool complete = !in_.eof();
-      cells_.clear();
-      size_t start = 0;
-      for (;;) {
-        const size_t comma = text.find(',', start);
-        cells_.push_back(
-            text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-      }
-      if (!complete || cells_.size() != file_columns_) {
-        if (!complete && allow_truncated_tail) {
-          ++truncated;
-          return false;
-        }
-        throw RecordingError(Where() + (complete ? "" : " (last line, no newline: truncated?)") +
-                             ": " + std::to_string(cells_.size()) + " columns, expected " +
-                             std::to_string(file_columns_) + " (as the header)");
-      }
-      return true;
+    std::string_view text;
+    bool complete = false;
+    if (!lines_->Next(text, complete)) return false;
+    ++line_;
+    // One pass over the bytes: a call per cell (find) costs more than the cells' own parsing.
+    cells_.clear();
+    const char* cell = text.data();
+    const char* const end = text.data() + text.size();
+    for (const char* c = cell; c != end; ++c) {
+      if (*c != ',') continue;
+      cells_.emplace_back(cell, static_cast<size_t>(c - cell));
+      cell = c + 1;
     }
-    return false;
+    cells_.emplace_back(cell, static_cast<size_t>(end - cell));
+    if (!complete || cells_.size() != file_columns_) {
+      if (!complete && allow_truncated_tail) {
+        ++truncated;
+        return false;
+      }
+      throw RecordingError(Where() + (complete ? "" : " (last line, no newline: truncated?)") +
+                           ": " + std::to_string(cells_.size()) + " columns, expected " +
+                           std::to_string(file_columns_) + " (as the header)");
+    }
+    return true;
   }
 
   double Real(size_t column) const {
     double v = 0.0;
-    const std::string& cell = cells_[column_of_[column]];
+    const std::string_view cell = cells_[column_of_[column]];
     const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
     if (ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v)) {
       throw RecordingError(Where(column) + ": '" + PrintableText(cell) +
@@ -101,7 +110,7 @@ class CsvCursor {
   template <typename Int>
   Int Integer(size_t column) const {
     long long v = 0;
-    const std::string& cell = cells_[column_of_[column]];
+    const std::string_view cell = cells_[column_of_[column]];
     const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
     if (ec != std::errc() || end != cell.data() + cell.size() ||
         v < static_cast<long long>(std::numeric_limits<Int>::min()) ||
@@ -129,7 +138,7 @@ class CsvCursor {
     return mode != 0;
   }
 
-  const std::string& Text(size_t column) const {
+  std::string_view Text(size_t column) const {
     if (cells_[column_of_[column]].empty()) throw RecordingError(Where(column) + ": empty");
     return cells_[column_of_[column]];
   }
@@ -184,8 +193,9 @@ class CsvCursor {
   std::vector<std::string> names_;  ///< the format's columns, in the format's order
   std::vector<size_t> column_of_;   ///< file column of each format column
   size_t file_columns_ = 0;
-  std::ifstream in_;
-  std::vector<std::string> cells_;
+  std::unique_ptr<CsvLines> lines_;
+  std::vector<std::string_view> cells_;  ///< views into lines_' buffer, valid until Next
+
   long line_ = 0;
 };
 

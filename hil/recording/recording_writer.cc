@@ -8,6 +8,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "hil/recording/row_text.h"
+
 namespace adahrs::hil {
 namespace {
 
@@ -36,15 +38,6 @@ std::FILE* OpenCsv(const std::filesystem::path& path, std::string_view header, c
   std::setvbuf(f, buffer, _IOFBF, kStdioBufferBytes);
   if (is_new) std::fprintf(f, "%.*s\n", static_cast<int>(header.size()), header.data());
   return f;
-}
-
-// ",<value>" in the shortest form that reads back to the same double (a Q31 word scaled by a
-// power of two is exact in a double, so the CSV loses nothing).
-void PutReal(std::FILE* f, double value) {
-  char text[32];
-  const auto [end, ec] = std::to_chars(text, text + sizeof text, value);
-  std::fputc(',', f);
-  std::fwrite(text, 1, static_cast<size_t>(end - text), f);
 }
 
 void Check(int rc, const std::filesystem::path& path, const char* what) {
@@ -85,26 +78,48 @@ void RecordingWriter::WriteMeta(nlohmann::json meta) const {
 }
 
 void RecordingWriter::Append(const ImuRecordRow& r) {
-  std::fprintf(imu_,
-               "%.4f,%s,%u,%d,%u,%d,%.3f,%.4f",
-               r.t_s,
-               r.unit.c_str(),
-               r.seq,
-               r.step,
-               static_cast<unsigned>(r.tag),
-               r.orientation,
-               r.chamber_c,
-               r.table_rate_dps);
-  for (uint16_t ticks : r.accel_ticks) std::fprintf(imu_, ",%u", static_cast<unsigned>(ticks));
-  for (int32_t cnt : r.gyro_cnt) std::fprintf(imu_, ",%d", cnt);
-  for (uint16_t cnt : r.temp_cnt) std::fprintf(imu_, ",%u", static_cast<unsigned>(cnt));
-  std::fprintf(imu_, ",%u", static_cast<unsigned>(r.mode));
-  if (r.comp) {
-    for (double v : *r.comp) PutReal(imu_, v);
-    std::fprintf(imu_, ",%u\n", r.comp_flags);
-  } else {
-    std::fputs(",,,,,,,,,,\n", imu_);
+  RowText row(row_buffer_, r.unit.size());
+  row.Fixed(r.t_s, 4);
+  row.Comma();
+  row.Text(r.unit);
+  row.Comma();
+  row.Integer(r.seq);
+  row.Comma();
+  row.Integer(r.step);
+  row.Comma();
+  row.Integer(static_cast<unsigned>(r.tag));
+  row.Comma();
+  row.Integer(r.orientation);
+  row.Comma();
+  row.Fixed(r.chamber_c, 3);
+  row.Comma();
+  row.Fixed(r.table_rate_dps, 4);
+  for (uint16_t ticks : r.accel_ticks) {
+    row.Comma();
+    row.Integer(static_cast<unsigned>(ticks));
   }
+  for (int32_t cnt : r.gyro_cnt) {
+    row.Comma();
+    row.Integer(cnt);
+  }
+  for (uint16_t cnt : r.temp_cnt) {
+    row.Comma();
+    row.Integer(static_cast<unsigned>(cnt));
+  }
+  row.Comma();
+  row.Integer(static_cast<unsigned>(r.mode));
+  if (r.comp) {
+    for (double v : *r.comp) {
+      row.Comma();
+      row.Shortest(v);
+    }
+    row.Comma();
+    row.Integer(r.comp_flags);
+  } else {
+    row.Text(",,,,,,,,,,");
+  }
+  row.Char('\n');
+  Write(imu_, row, kImuCsvName);
   ++imu_rows_;
 }
 
@@ -113,30 +128,48 @@ void RecordingWriter::Append(const AdsRecordRow& r) {
     throw std::invalid_argument("ads row of " + r.unit + " at t_s " + std::to_string(r.t_s) +
                                 ": alt_ft and cas_kt must be both present or both absent");
   }
-  std::fprintf(ads_,
-               "%.4f,%s,%u,%d,%u,%.3f,%.2f,%.2f,%d,%d,%d,%d,%d,%u",
-               r.t_s,
-               r.unit.c_str(),
-               r.seq,
-               r.step,
-               static_cast<unsigned>(r.tag),
-               r.chamber_c,
-               r.ps_ref_pa,
-               r.qc_ref_pa,
-               r.ps_counts,
-               r.pt_counts,
-               r.ps_temp_counts,
-               r.pt_temp_counts,
-               r.oat_counts,
-               static_cast<unsigned>(r.mode));
-  if (r.alt_ft) {
-    PutReal(ads_, *r.alt_ft);
-    PutReal(ads_, *r.cas_kt);
-    std::fprintf(ads_, ",%u\n", r.comp_flags);
-  } else {
-    std::fputs(",,,\n", ads_);
+  RowText row(row_buffer_, r.unit.size());
+  row.Fixed(r.t_s, 4);
+  row.Comma();
+  row.Text(r.unit);
+  row.Comma();
+  row.Integer(r.seq);
+  row.Comma();
+  row.Integer(r.step);
+  row.Comma();
+  row.Integer(static_cast<unsigned>(r.tag));
+  row.Comma();
+  row.Fixed(r.chamber_c, 3);
+  row.Comma();
+  row.Fixed(r.ps_ref_pa, 2);
+  row.Comma();
+  row.Fixed(r.qc_ref_pa, 2);
+  for (int32_t counts :
+       {r.ps_counts, r.pt_counts, r.ps_temp_counts, r.pt_temp_counts, r.oat_counts}) {
+    row.Comma();
+    row.Integer(counts);
   }
+  row.Comma();
+  row.Integer(static_cast<unsigned>(r.mode));
+  if (r.alt_ft) {
+    row.Comma();
+    row.Shortest(*r.alt_ft);
+    row.Comma();
+    row.Shortest(*r.cas_kt);
+    row.Comma();
+    row.Integer(r.comp_flags);
+  } else {
+    row.Text(",,,");
+  }
+  row.Char('\n');
+  Write(ads_, row, kAdsCsvName);
   ++ads_rows_;
+}
+
+void RecordingWriter::Write(std::FILE* file, const RowText& row, std::string_view name) {
+  if (std::fwrite(row.data(), 1, row.size(), file) != row.size()) {
+    Check(-1, run_dir_ / name, "write failed");
+  }
 }
 
 void RecordingWriter::Flush(bool durable) {

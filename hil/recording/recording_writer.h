@@ -7,10 +7,13 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "hil/recording/recording_format.h"
+#include "hil/recording/row_text.h"
 
 namespace adahrs::hil {
 
@@ -42,10 +45,13 @@ class RecordingWriter {
   // 1 MiB stdio buffers: a fast rig's rows at the default 4 KiB cost a write() per ~20 rows.
   std::unique_ptr<char[]> imu_buffer_;
   std::unique_ptr<char[]> ads_buffer_;
+  void Write(std::FILE* file, const RowText& row, std::string_view name);
+
   std::FILE* imu_ = nullptr;
   std::FILE* ads_ = nullptr;
   uint64_t imu_rows_ = 0;
   uint64_t ads_rows_ = 0;
+  std::vector<char> row_buffer_;  ///< the row being formatted (RowText), reused
 };
 
 }  // namespace adahrs::hil

@@ -1,0 +1,37 @@
+// Reads a text file line by line in large blocks, handing out each line as a view into its own
+// buffer (valid until the next call): no allocation per line. Says whether a line ended with its
+// LF, so a reader can tell a torn last line (a crash mid-row) from a complete one.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+namespace adahrs::hil {
+
+class CsvLines {
+ public:
+  /// Opens `path`; throws std::runtime_error naming it when it cannot be opened.
+  explicit CsvLines(const std::filesystem::path& path);
+  ~CsvLines();
+  CsvLines(const CsvLines&) = delete;
+  CsvLines& operator=(const CsvLines&) = delete;
+
+  /// The next line without its LF; false at the end of the file. `complete` is false for a last
+  /// line that has no LF.
+  bool Next(std::string_view& line, bool& complete);
+
+ private:
+  // Moves the unread bytes to the front and reads more; false when nothing more was read.
+  bool Refill();
+
+  std::filesystem::path path_;
+  std::FILE* file_ = nullptr;
+  std::vector<char> buffer_;
+  size_t begin_ = 0;  ///< first unread byte in buffer_
+  size_t end_ = 0;    ///< one past the last byte read into buffer_
+  bool at_eof_ = false;
+};
+
+}  // namespace adahrs::hil
