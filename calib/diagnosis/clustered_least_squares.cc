@@ -134,6 +134,25 @@ bool ClusteredLeastSquares::FullRank(const std::vector<int>& subset) const {
   return SolveScaled(a, Eigen::VectorXd::Zero(p), &theta);
 }
 
+Eigen::MatrixXd ClusteredLeastSquares::Information(const std::vector<int>& subset) const {
+  const int p = static_cast<int>(subset.size());
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(p, p);
+  for (size_t c = 0; c < clusters_.size(); ++c) {
+    Eigen::MatrixXd full = clusters_[c].gram.selfadjointView<Eigen::Lower>();
+    const Eigen::VectorXd s = ClusterShrink(static_cast<int>(c), subset);
+    a += Sub(full, subset) - s * Sub(clusters_[c].xtw, subset).transpose();
+  }
+  return a;
+}
+
+Eigen::VectorXd ClusteredLeastSquares::ClusterShrink(int cluster,
+                                                     const std::vector<int>& subset) const {
+  const Cluster& c = clusters_[static_cast<size_t>(cluster)];
+  if (!std::isfinite(lambda_) || !(c.weight > 0.0))
+    return Eigen::VectorXd::Zero(static_cast<int>(subset.size()));
+  return Sub(c.xtw, subset) / (lambda_ + c.weight);
+}
+
 HeldOutComparison CompareHeldOut(const ClusteredFit& a, const ClusteredFit& b) {
   HeldOutComparison out;
   for (size_t c = 0; c < a.held_out_ss.size() && c < b.held_out_ss.size(); ++c) {

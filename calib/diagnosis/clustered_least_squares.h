@@ -51,6 +51,10 @@ class ClusteredLeastSquares {
   ClusteredFit Fit(const std::vector<int>& subset) const;
   /// True when the columns `subset` have full rank over all clusters (no leave-out fits).
   bool FullRank(const std::vector<int>& subset) const;
+  /// The fit's weights on the observations: theta = M^-1 sum_i w_i (x_i - s_c) y_i, with M this
+  /// information matrix of `subset` and s_c = X_c' W 1 / (lambda + W_c) of the row's cluster.
+  Eigen::MatrixXd Information(const std::vector<int>& subset) const;
+  Eigen::VectorXd ClusterShrink(int cluster, const std::vector<int>& subset) const;
 
   int columns() const { return columns_; }
 

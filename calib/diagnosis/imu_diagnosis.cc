@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "calib/diagnosis/clustered_least_squares.h"
+#include "calib/diagnosis/slow_noise.h"
 #include "calib/diagnosis/term_test.h"
 
 namespace adahrs::calib {
@@ -75,7 +76,7 @@ struct Layout {
   std::vector<Candidate> candidates;
 };
 
-Layout MakeLayout(int channel, bool uncalibrated) {
+Layout MakeLayout(int channel, bool hysteresis) {
   Layout l;
   l.channel = channel;
   const bool gyro = IsGyroChannel(channel);
@@ -90,13 +91,11 @@ Layout MakeLayout(int channel, bool uncalibrated) {
   if (!gyro) l.candidates.push_back({Effect::kDieLag, {"delay"}, {}, {}});
   l.candidates.push_back({Effect::kScaleTempco, {"tc1", "tc2"}, {}, {}});
   if (gyro) l.candidates.push_back({Effect::kGSensitivity, {"x", "y", "z"}, {}, {}});
-  if (uncalibrated) {
-    l.candidates.push_back({Effect::kThermalHysteresis, {"half_loop"}, {}, {}});
-    if (!gyro) {
-      for (double tau : kWarmUpTau_s)
-        l.candidates.push_back({Effect::kWarmUp, {"initial_excess"}, tau, {}});
-      l.candidates.push_back({Effect::kAccelNonlinearity, {"k2"}, {}, {}});
-    }
+  if (hysteresis) l.candidates.push_back({Effect::kThermalHysteresis, {"half_loop"}, {}, {}});
+  if (!gyro) {
+    for (double tau : kWarmUpTau_s)
+      l.candidates.push_back({Effect::kWarmUp, {"initial_excess"}, tau, {}});
+    l.candidates.push_back({Effect::kAccelNonlinearity, {"k2"}, {}, {}});
   }
   for (Candidate& c : l.candidates) {
     for (const std::string& comp : c.components) {
@@ -108,13 +107,15 @@ Layout MakeLayout(int channel, bool uncalibrated) {
   return l;
 }
 
-// Every (channel, candidate) test of a unit: the cell model's candidates and table_rate_ripple on
-// each gyro.
-int CandidateTests(bool uncalibrated) {
+// Every (channel, effect) test of a unit: the cell model's effects and table_rate_ripple on each
+// gyro. The warm-up's time constants count as one test: they are nearly collinear alternatives of
+// one effect (the clean false-discovery rate in docs/diagnose.md is measured with this count).
+int CandidateTests(bool hysteresis) {
   int n = 0;
   for (int ch = 0; ch < kImuChannels; ++ch) {
-    n += static_cast<int>(MakeLayout(ch, uncalibrated).candidates.size()) +
-         (IsGyroChannel(ch) ? 1 : 0);
+    for (const Candidate& c : MakeLayout(ch, hysteresis).candidates)
+      n += c.effect != Effect::kWarmUp || c.tau_s == kWarmUpTau_s.front() ? 1 : 0;
+    n += IsGyroChannel(ch) ? 1 : 0;
   }
   return n;
 }
@@ -632,7 +633,7 @@ ChannelModel FitBaseline(const DiagnosisData& data,
                          int ch,
                          const DiagnosisOptions& options,
                          std::vector<std::string>* notes) {
-  Layout layout = MakeLayout(ch, options.uncalibrated_candidates);
+  Layout layout = MakeLayout(ch, options.thermal_hysteresis_candidate);
   ChannelData y = CentredOutput(data, ch);
   const ClusteredLeastSquares ls0 = Accumulate(data, layout, y, BaselineState{});
   std::vector<int> base = BaselineSubset(ls0, layout, notes);
@@ -645,6 +646,49 @@ ChannelModel FitBaseline(const DiagnosisData& data,
   y.offset_ratio = OffsetRatio(data, Residuals(data, layout, st, base_fit0, base, y));
   ClusteredLeastSquares ls = Accumulate(data, layout, y, st);
   return ChannelModel{std::move(layout), std::move(y), st, std::move(ls), std::move(base)};
+}
+
+// The candidates whose column changes only between long stretches of the recording (the sense of
+// the last temperature change, the time since power-on) or between the few input levels the
+// capture quantises (f_axis^2 is 0 or 1 under gravity): tested against the recording's own slow
+// noise as well as by the jackknife (slow_noise.h).
+bool SlowCandidate(Effect e) {
+  return e == Effect::kThermalHysteresis || e == Effect::kWarmUp || e == Effect::kAccelNonlinearity;
+}
+
+// Variance of the estimate of column `subset[pos]` in `fit` under the residual's measured wander,
+// its white noise and, for the nonlinearity, the capture quantiser's bias per input level: an
+// offset per segment uniform over one output step (the edges' tick phase repeats while the input
+// holds still, so the bias need not average away).
+double SlowVariance(const DiagnosisData& data,
+                    const ChannelModel& m,
+                    const std::vector<int>& subset,
+                    const ClusteredFit& fit,
+                    size_t pos,
+                    const Candidate& cand) {
+  const int ch = m.layout.channel;
+  const Eigen::MatrixXd info = m.ls.Information(subset);
+  const Eigen::VectorXd d = info.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(static_cast<int>(subset.size()));
+  e[static_cast<int>(pos)] = 1.0;
+  const Eigen::MatrixXd scaled = d.asDiagonal() * info * d.asDiagonal();
+  const Eigen::VectorXd g = d.asDiagonal() * scaled.ldlt().solve(d.asDiagonal() * e);
+  std::vector<Eigen::VectorXd> shrink;
+  for (size_t sgm = 0; sgm < data.segments.size(); ++sgm)
+    shrink.push_back(m.ls.ClusterShrink(static_cast<int>(sgm), subset));
+  const std::vector<double> r = Residuals(data, m.layout, m.st, fit, subset, m.y);
+  std::vector<SlowNoiseCell> cells;
+  Eigen::VectorXd xs(static_cast<int>(subset.size()));
+  for (size_t i = 0; i < data.cells.size(); ++i) {
+    const DiagnosisCell& c = data.cells[i];
+    const Eigen::VectorXd x = Row(m.layout, c, m.st);
+    for (size_t j = 0; j < subset.size(); ++j) xs[static_cast<int>(j)] = x[subset[j]];
+    const double a = c.rows * g.dot(xs - shrink[static_cast<size_t>(c.segment)]);
+    cells.push_back({c.run, c.segment, c.t_mean_s, r[i], c.y_var[ch] / std::max(1, c.rows), a});
+  }
+  const double q = data.output_quantum[ch];
+  const double offset_var = cand.effect == Effect::kAccelNonlinearity ? q * q / 12.0 : 0.0;
+  return SlowNoiseVariance(cells, offset_var);
 }
 
 // The dependent columns rebuilt from the final baseline once, kept when their fit holds.
@@ -673,8 +717,13 @@ TermSelection SelectCandidates(const DiagnosisData& data,
       return candidates[static_cast<size_t>(c)].effect == candidates[static_cast<size_t>(k)].effect;
     });
   };
-  TermSelection sel =
-      SelectTerms(m.ls, m.base, m.ls.Fit(m.base), columns, alpha, max_findings, one_per_effect);
+  const auto slow_noise = [&](int k, TermTest* t) {
+    const Candidate& c = candidates[static_cast<size_t>(k)];
+    if (!SlowCandidate(c.effect)) return;
+    FloorCandidateVariance(SlowVariance(data, m, t->subset, t->fit, t->subset.size() - 1, c), t);
+  };
+  TermSelection sel = SelectTerms(
+      m.ls, m.base, m.ls.Fit(m.base), columns, alpha, max_findings, one_per_effect, slow_noise);
   if (!sel.chosen.empty()) RebuildFromFinalBaseline(data, m, sel);
   return sel;
 }
@@ -689,6 +738,15 @@ Finding ChosenFinding(const DiagnosisData& data,
   const ClusteredFit fit_without = m.ls.Fit(without);
   Eigen::VectorXd theta, se;
   ColumnEstimates(sel.fit, sel.selected, cand.columns, &theta, &se);
+  TermTest test = RunTest(m.ls, without, fit_without, cand);
+  if (SlowCandidate(cand.effect)) {
+    const size_t pos =
+        static_cast<size_t>(std::find(sel.selected.begin(), sel.selected.end(), cand.columns[0]) -
+                            sel.selected.begin());
+    se[0] = std::max(se[0], std::sqrt(SlowVariance(data, m, sel.selected, sel.fit, pos, cand)));
+    FloorCandidateVariance(
+        SlowVariance(data, m, test.subset, test.fit, test.subset.size() - 1, cand), &test);
+  }
   Finding f;
   f.effect = EffectName(cand.effect);
   f.channel = kImuChannelNames[ch];
@@ -699,13 +757,14 @@ Finding ChosenFinding(const DiagnosisData& data,
   f.rms_unit = RmsUnit(ch);
   f.evidence = Evidence(data, m.layout, m.st, cand, theta);
   f.words = Words(cand, f.components, ch);
-  f.wald_p_value = RunTest(m.ls, without, fit_without, cand).p_value;
+  f.wald_p_value = test.p_value;
   return f;
 }
 
 // The smallest size of the candidate's components the test would find with power_z, or why the
 // recording cannot test it.
-DetectionLimit CandidateLimit(const ChannelModel& m,
+DetectionLimit CandidateLimit(const DiagnosisData& data,
+                              const ChannelModel& m,
                               const TermSelection& sel,
                               const Candidate& cand,
                               double tcrit,
@@ -718,6 +777,12 @@ DetectionLimit CandidateLimit(const ChannelModel& m,
   lim.channel = kImuChannelNames[ch];
   Eigen::VectorXd se;
   if (!LimitStandardErrors(m.ls, sel.selected, cand.columns, &se, &lim.note)) return lim;
+  if (SlowCandidate(cand.effect)) {
+    const std::vector<int> subset =
+        WithColumns(WithoutColumns(sel.selected, cand.columns), cand.columns);
+    const double v = SlowVariance(data, m, subset, m.ls.Fit(subset), subset.size() - 1, cand);
+    se[0] = std::max(se[0], std::sqrt(v));
+  }
   const Eigen::VectorXd limit = se * (tcrit + power_z);
   lim.limits = Components(cand, limit, se, ch, phys);
   for (FindingComponent& c : lim.limits) c.magnitude = std::abs(c.magnitude);
@@ -758,7 +823,7 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data,
         ChosenFinding(data, m, sel, m.layout.candidates[static_cast<size_t>(k)], phys));
   }
   for (const Candidate& cand : m.layout.candidates) {
-    out.limits.push_back(CandidateLimit(m, sel, cand, tcrit, options.power_z, phys));
+    out.limits.push_back(CandidateLimit(data, m, sel, cand, tcrit, options.power_z, phys));
   }
   const ClusteredFit base_fit = m.ls.Fit(m.base);
   out.summary = FitSummary(data, m, base_fit, sel.fit, phys);
@@ -889,7 +954,7 @@ UnitDiagnosis DiagnoseImu(const DiagnosisData& data, const DiagnosisOptions& opt
                         data.spectra.window_rows(),
                         data.spectra.dt_s(),
                         data.spectra.BinHz(1.0)));
-  out.tests = CandidateTests(options.uncalibrated_candidates);
+  out.tests = CandidateTests(options.thermal_hysteresis_candidate);
   out.test_alpha = options.family_alpha / out.tests;
   for (int ch = 0; ch < kImuChannels; ++ch) {
     ChannelResult r = DiagnoseChannel(data, ch, options, out.test_alpha, &out.notes);

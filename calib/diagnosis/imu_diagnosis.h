@@ -7,9 +7,9 @@
 //   gyro:           U = c + b1 s + b2 s^2 + b3 s^3 + n . w_B_dps + q2 u^2 + q3 u^3
 // s = (T - 25 degC) / 62.5 degC of the channel's thermometer, u = w_axis / 150 deg/s.
 // Candidate terms, each one named physical effect in its own unit, written from the physics
-// (they share the simulator's vocabulary, not its code); the last three only with
-// DiagnosisOptions::uncalibrated_candidates, and lag and warm-up only for the accelerometers (a
-// gyro's thermometer is its own die's TEMP pin):
+// (they share the simulator's vocabulary, not its code); thermal_hysteresis only with
+// DiagnosisOptions::thermal_hysteresis_candidate, and lag and warm-up only for the accelerometers
+// (a gyro's thermometer is its own die's TEMP pin):
 //   die_thermal_lag         -dU/dT * dT/dt             delay of the channel's die behind its
 //   thermometer, s scale_factor_tempco     (stimulus part) * dT, dT^2  ppm/degC, ppm/degC^2
 //   gyro_g_sensitivity      f_B_g x, y, z              deg/s/g (gyros)
@@ -51,9 +51,9 @@ struct DiagnosisOptions {
   double family_alpha = 0.001;
   double power_z = 0.8416;  ///< z of 80 % power, for detection limits
   int max_findings_per_channel = 4;
-  /// Also test thermal_hysteresis, self_heating_warm_up and accel_nonlinearity, whose false
-  /// discoveries on clean recordings are not yet controlled (docs/diagnose.md gives the rate).
-  bool uncalibrated_candidates = false;
+  /// Also test thermal_hysteresis: its false discoveries on clean recordings are controlled, but
+  /// its finding when present is not yet proven (docs/diagnose.md).
+  bool thermal_hysteresis_candidate = false;
 };
 
 struct FindingComponent {

@@ -48,13 +48,25 @@ TermTest TestTerm(const ClusteredLeastSquares& ls,
   return t;
 }
 
+void FloorCandidateVariance(double variance, TermTest* t) {
+  if (!t->testable) return;
+  const int pos = static_cast<int>(t->subset.size()) - 1;
+  double& v = t->fit.covariance(pos, pos);
+  if (!(variance > v)) return;
+  v = variance;
+  const double theta = t->fit.theta[pos];
+  const boost::math::fisher_f dist(1, std::max(1, t->fit.clusters - 1));
+  t->p_value = boost::math::cdf(boost::math::complement(dist, theta * theta / v));
+}
+
 TermSelection SelectTerms(const ClusteredLeastSquares& ls,
                           const std::vector<int>& base,
                           const ClusteredFit& base_fit,
                           const std::vector<std::vector<int>>& candidates,
                           double alpha,
                           int max_terms,
-                          const std::function<bool(int, const std::vector<int>&)>& allowed) {
+                          const std::function<bool(int, const std::vector<int>&)>& allowed,
+                          const std::function<void(int, TermTest*)>& adjust) {
   TermSelection out{{}, base, base_fit};
   while (static_cast<int>(out.chosen.size()) < max_terms) {
     int best = -1;
@@ -63,6 +75,7 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
       if (std::find(out.chosen.begin(), out.chosen.end(), k) != out.chosen.end()) continue;
       if (allowed && !allowed(k, out.chosen)) continue;
       TermTest t = TestTerm(ls, out.selected, out.fit, candidates[static_cast<size_t>(k)]);
+      if (adjust && t.testable) adjust(k, &t);
       if (!t.testable || t.p_value >= alpha || t.gain <= 0.0) continue;
       if (best < 0 || t.p_value < best_test.p_value) {
         best = k;

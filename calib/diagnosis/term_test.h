@@ -29,10 +29,15 @@ TermTest TestTerm(const ClusteredLeastSquares& ls,
                   const ClusteredFit& selected_fit,
                   const std::vector<int>& columns);
 
+/// Raises the variance of a one-column candidate (the last of `t->subset`) to at least `variance`
+/// and tests it again against F(1, C-1): a model-based variance the jackknife may miss.
+void FloorCandidateVariance(double variance, TermTest* t);
+
 /// Forward selection: from `base` (fitted as `base_fit`), the candidate (a set of columns) with the
 /// smallest p-value below `alpha` and a positive held-out gain is added, until none qualifies or
 /// `max_terms` are in. `allowed(k, chosen)` may refuse candidate k given those chosen (one of a
-/// family of alternatives).
+/// family of alternatives). `adjust(k, test)`, when given, may revise candidate k's test (its
+/// variance floor) before it is judged.
 struct TermSelection {
   std::vector<int> chosen;    ///< candidate indices, in the order taken
   std::vector<int> selected;  ///< columns: base, then the chosen candidates'
@@ -44,7 +49,8 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
                           const std::vector<std::vector<int>>& candidates,
                           double alpha,
                           int max_terms,
-                          const std::function<bool(int, const std::vector<int>&)>& allowed = {});
+                          const std::function<bool(int, const std::vector<int>&)>& allowed = {},
+                          const std::function<void(int, TermTest*)>& adjust = {});
 
 /// `subset` without `columns`.
 std::vector<int> WithoutColumns(const std::vector<int>& subset, const std::vector<int>& columns);
