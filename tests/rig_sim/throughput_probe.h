@@ -68,9 +68,14 @@ struct ThroughputResult {
   uint64_t host_bytes_lost = 0;   ///< bytes the host could not hand to the ptys
 };
 
-inline ThroughputResult MeasureThroughput(double time_scale, double simulated_s) {
+/// Streams every unit of the default rig at `time_scale` (its top speed when `lockstep`: the
+/// clock then waits for this reader) until `simulated_s` of rig time, reading every port.
+inline ThroughputResult MeasureThroughput(double time_scale,
+                                          double simulated_s,
+                                          bool lockstep = false) {
   nlohmann::json j = DefaultRigConfig();
   j["time_scale"] = time_scale;
+  j["lockstep"] = lockstep;
   j["instruments"] = nlohmann::json::object();
   const auto dir =
       std::filesystem::temp_directory_path() / ("adahrs_throughput_" + std::to_string(::getpid()));
