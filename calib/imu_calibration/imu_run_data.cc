@@ -200,9 +200,15 @@ void ImuRunCollector::Take(const hil::ImuRecordRow& row, int line) {
       row.tag != tags_[static_cast<size_t>(row.step)]) {
     return;
   }
-  if (std::find(serials_.begin(), serials_.end(), row.unit) == serials_.end()) return;
-  ImuUnitData& unit = data_->units[row.unit];
-  unit.serial = row.unit;
+  if (!cached_data_ || row.step != cached_step_ || row.unit != cached_unit_) {
+    if (std::find(serials_.begin(), serials_.end(), row.unit) == serials_.end()) return;
+    cached_data_ = &data_->units[row.unit];
+    cached_data_->serial = row.unit;
+    cached_rows_ = &selected_[{row.unit, row.step}];
+    cached_unit_ = row.unit;
+    cached_step_ = row.step;
+  }
+  ImuUnitData& unit = *cached_data_;
   bool inside = false;
   for (const RejectedInterval& r : rejected_) {
     inside |= r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s;
@@ -218,10 +224,12 @@ void ImuRunCollector::Take(const hil::ImuRecordRow& row, int line) {
   }
   ImuSample sample = ToSample(row);
   sample.run = run_index_;
-  selected_[{row.unit, row.step}].push_back({row.orientation, sample});
+  cached_rows_->push_back({row.orientation, sample});
 }
 
 void ImuRunCollector::Finish() {
+  cached_data_ = nullptr;  // the rows' entries are moved out below
+  cached_rows_ = nullptr;
   int current_orientation = 0;
   for (size_t step = 0; step < sequence_.steps.size(); ++step) {
     const StepBody& body = sequence_.steps[step].body;

@@ -119,6 +119,12 @@ class ImuRunCollector {
   ImuRunData* data_;
   int run_index_ = 0;
   std::map<std::pair<std::string, int>, std::vector<std::pair<int, ImuSample>>> selected_;
+  // The previous row's unit and step with their entries: the consecutive rows of one unit and
+  // step (a one-unit run's) skip the look-ups.
+  std::string cached_unit_;
+  int cached_step_ = -1;
+  ImuUnitData* cached_data_ = nullptr;
+  std::vector<std::pair<int, ImuSample>>* cached_rows_ = nullptr;
 };
 
 /// Labels every unit's thermal rows up-ramp, down-ramp or soak (the rule above).

@@ -12,6 +12,10 @@
 // (a slow ramp or a soak would otherwise dominate the fit). The noise is taken as equal per sample,
 // so the covariance is the sandwich form (linear_least_squares.h, kBalancing) scaled by the
 // residual variance.
+// Method: the rows are never held as a design matrix. The fit streams them into per-band sums of
+// the band-weighted normal equations in the normalised temperature u on [-1, 1] (where the
+// equilibrated design of 1, u, u^2 is well conditioned), solves them with the driver's rank and
+// condition tests, and takes the residuals in a second pass.
 // Reported: the fit over all samples (the constants) and, separately, over up-ramps and over
 // down-ramps with the largest difference of the two curves over their common temperature range
 // (thermal hysteresis, including any lag of the die behind the thermometer).
