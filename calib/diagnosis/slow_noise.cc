@@ -7,7 +7,7 @@
 namespace adahrs::calib {
 namespace {
 
-constexpr size_t kMaxBlocks = 600;   // pairs grow as its square
+constexpr size_t kMaxBlocks = 600;    // pairs grow as its square
 constexpr double kLagBinRatio = 1.5;  // geometric lag bins from 1 s
 constexpr double kBinZ = 2.0;         // a bin counts what lies 2 of its standard errors above 0
 
@@ -26,8 +26,8 @@ std::vector<Block> MakeBlocks(const std::vector<SlowNoiseCell>& cells) {
   size_t n = 0;
   for (size_t i = 0; i < cells.size(); ++i) {
     const SlowNoiseCell& c = cells[i];
-    const bool fresh = i == 0 || n == per || c.segment != cells[i - 1].segment ||
-                       c.run != cells[i - 1].run;
+    const bool fresh =
+        i == 0 || n == per || c.segment != cells[i - 1].segment || c.run != cells[i - 1].run;
     if (fresh) {
       out.push_back({c.run, 0.0, 0.0, 0.0, 0.0});
       n = 0;
@@ -101,7 +101,8 @@ double SlowNoiseVariance(const std::vector<SlowNoiseCell>& cells, double segment
   for (size_t i = 0; i < blocks.size() && !gamma.empty(); ++i) {
     for (size_t j = i + 1; j < blocks.size(); ++j) {
       if (blocks[i].run != blocks[j].run) continue;
-      const size_t bin = std::min(gamma.size() - 1, LagBin(std::abs(blocks[j].t_s - blocks[i].t_s)));
+      const size_t bin =
+          std::min(gamma.size() - 1, LagBin(std::abs(blocks[j].t_s - blocks[i].t_s)));
       wander -= blocks[i].weight * blocks[j].weight * gamma[bin];
     }
   }
