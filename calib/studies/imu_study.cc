@@ -1,12 +1,11 @@
 #include "calib/studies/imu_study.h"
 
-#include <atomic>
+#include "calib/studies/study_runner.h"
+
 #include <cstdio>
 #include <exception>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "calib/acceptance/specification.h"
 #include "calib/evaluation/imu_evaluation.h"
@@ -133,38 +132,9 @@ std::vector<StudyUnitResult> RunImuStudy(const std::vector<StudyDefinition>& str
                                          const StudySettings& settings,
                                          int threads,
                                          const StudyProgress& progress) {
-  std::vector<int> indices;
-  for (int k = 0; k < settings.units; ++k) {
-    if (settings.shard.Holds(k)) indices.push_back(k);
-  }
-  std::vector<StudyUnitResult> results(indices.size());
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = std::min<int>(threads, std::max<int>(1, static_cast<int>(indices.size())));
-  std::atomic<size_t> next{0};
-  std::mutex mutex;
-  int done = 0;
-  std::exception_ptr error;
-  auto work = [&] {
-    for (size_t i = next++; i < indices.size(); i = next++) {
-      try {
-        results[i] = RunImuStudyUnit(strategies, settings, indices[i]);
-      } catch (...) {
-        const std::lock_guard lock(mutex);
-        if (!error) error = std::current_exception();
-        next = indices.size();
-        return;
-      }
-      const std::lock_guard lock(mutex);
-      ++done;
-      if (progress) progress(done, static_cast<int>(indices.size()));
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
-  return results;
+  return RunStudyUnits(settings, threads, progress, [&](int unit_index) {
+    return RunImuStudyUnit(strategies, settings, unit_index);
+  });
 }
 
 }  // namespace adahrs::calib
