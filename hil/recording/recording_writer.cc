@@ -77,18 +77,28 @@ void RecordingWriter::WriteMeta(nlohmann::json meta) const {
   std::filesystem::rename(tmp_path, final_path);
 }
 
+namespace {
+
+// The columns every row starts with: t_s, unit, seq, step, tag (docs/recording-format.md).
+template <class Row>
+void AppendRowPrefix(const Row& r, RowText* row) {
+  row->Fixed(r.t_s, 4);
+  row->Comma();
+  row->Text(r.unit);
+  row->Comma();
+  row->Integer(r.seq);
+  row->Comma();
+  row->Integer(r.step);
+  row->Comma();
+  row->Integer(static_cast<unsigned>(r.tag));
+  row->Comma();
+}
+
+}  // namespace
+
 void RecordingWriter::Append(const ImuRecordRow& r) {
   RowText row(row_buffer_, r.unit.size());
-  row.Fixed(r.t_s, 4);
-  row.Comma();
-  row.Text(r.unit);
-  row.Comma();
-  row.Integer(r.seq);
-  row.Comma();
-  row.Integer(r.step);
-  row.Comma();
-  row.Integer(static_cast<unsigned>(r.tag));
-  row.Comma();
+  AppendRowPrefix(r, &row);
   row.Integer(r.orientation);
   row.Comma();
   row.Fixed(r.chamber_c, 3);
@@ -129,16 +139,7 @@ void RecordingWriter::Append(const AdsRecordRow& r) {
                                 ": alt_ft and cas_kt must be both present or both absent");
   }
   RowText row(row_buffer_, r.unit.size());
-  row.Fixed(r.t_s, 4);
-  row.Comma();
-  row.Text(r.unit);
-  row.Comma();
-  row.Integer(r.seq);
-  row.Comma();
-  row.Integer(r.step);
-  row.Comma();
-  row.Integer(static_cast<unsigned>(r.tag));
-  row.Comma();
+  AppendRowPrefix(r, &row);
   row.Fixed(r.chamber_c, 3);
   row.Comma();
   row.Fixed(r.ps_ref_pa, 2);
