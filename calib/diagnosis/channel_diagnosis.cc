@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "calib/diagnosis/clustered_least_squares.h"
+#include "calib/diagnosis/last_change_sense.h"
 #include "calib/diagnosis/row_spectrum.h"
 #include "calib/diagnosis/term_test.h"
 
@@ -16,7 +17,6 @@ namespace {
 
 constexpr double kCell_s = 1.0;
 constexpr double kMinRateWindow_s = 30.0;
-constexpr double kTrendThreshold = 0.05 / 60.0;  // degC/s: sets the sense of the last change
 constexpr int kMaxBiasDegree = 3;
 constexpr int kMinSegments = 3;
 constexpr std::array<double, 4> kWarmUpTau_s = {150.0, 300.0, 600.0, 1200.0};
@@ -98,7 +98,7 @@ void Segment(const ChannelRecording& r, Prepared* p) {
   }
 }
 
-// Temperature rate per cell (slope within +-W) and the sense of the last change.
+// Temperature rate per cell (slope within +-W) and the sense of the last change (causal).
 void ThermalState(Prepared* p) {
   std::vector<double> starts;
   for (const Cell& c : p->cells) {
@@ -113,7 +113,7 @@ void ThermalState(Prepared* p) {
   const double w =
       std::max(kMinRateWindow_s, spacing.empty() ? 0.0 : 1.1 * spacing[spacing.size() / 2]);
   size_t lo = 0, hi = 0;
-  double sense = 0;
+  LastChangeSense sense;
   for (Cell& c : p->cells) {
     while (p->cells[lo].t_s < c.t_s - w) ++lo;
     while (hi + 1 < p->cells.size() && p->cells[hi + 1].t_s <= c.t_s + w) ++hi;
@@ -128,9 +128,7 @@ void ThermalState(Prepared* p) {
     }
     const double den = sw * stt - st * st;
     c.rate_c_per_s = den > 0.0 ? (sw * stv - st * sv) / den : 0.0;
-    if (c.rate_c_per_s > kTrendThreshold) sense = 1.0;
-    if (c.rate_c_per_s < -kTrendThreshold) sense = -1.0;
-    c.sense = sense;
+    c.sense = sense.Next(c.temp_c);
   }
 }
 

@@ -1,5 +1,7 @@
 #include "calib/diagnosis/diagnosis_cells.h"
 
+#include "calib/diagnosis/last_change_sense.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -316,15 +318,10 @@ void DeriveThermalState(DiagnosisData* data) {
   for (const std::vector<int>& order : by_run) {
     if (order.empty()) continue;
     const double t0 = cells[order.front()].t_first_s;
-    std::array<double, 3> sense{};
+    std::array<LastChangeSense, 3> sense;
     for (int i : order) {
       cells[i].t_since_start_s = cells[i].t_mean_s - t0;
-      for (int k = 0; k < 3; ++k) {
-        const double r = cells[i].dtemp_dt_c_per_s[k];
-        if (r > kTrendThreshold_c_per_s) sense[k] = 1.0;
-        if (r < -kTrendThreshold_c_per_s) sense[k] = -1.0;
-        cells[i].last_change_sense[k] = sense[k];
-      }
+      for (int k = 0; k < 3; ++k) cells[i].last_change_sense[k] = sense[k].Next(cells[i].temp_c[k]);
     }
   }
 }

@@ -32,7 +32,8 @@ namespace adahrs::calib {
 inline constexpr int kImuChannels = 9;
 inline constexpr double kCellDuration_s = 1.0;
 inline constexpr double kRateWindow_s = 60.0;
-/// A thermometer changing faster than this sets the sense of the last change (0.05 degC/min).
+/// A thermometer changing slower than this is still (0.05 degC/min): the soaks the thermometer
+/// map is fitted on.
 inline constexpr double kTrendThreshold_c_per_s = 0.05 / 60.0;
 /// ADXRS150 TEMP through 16 summed 12-bit conversions: 16 * 4096 / 5 V * 8.4 mV/K (datasheet).
 inline constexpr double kDatasheetTempCountsPerC = 110.10;

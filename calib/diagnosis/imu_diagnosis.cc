@@ -196,6 +196,15 @@ ClusteredLeastSquares Accumulate(const DiagnosisData& data,
   return ls;
 }
 
+// The design weighted by white noise alone (no random intercept per segment).
+ClusteredLeastSquares AccumulateWhite(const DiagnosisData& data,
+                                      const Layout& layout,
+                                      ChannelData y,
+                                      const BaselineState& state) {
+  y.offset_ratio = std::numeric_limits<double>::infinity();
+  return Accumulate(data, layout, y, state);
+}
+
 double Coefficient(const ClusteredFit& fit, const std::vector<int>& subset, int column) {
   for (size_t i = 0; i < subset.size(); ++i) {
     if (subset[i] == column) return fit.theta[static_cast<int>(i)];
@@ -626,7 +635,8 @@ struct ChannelModel {
   ChannelData y;
   BaselineState st;
   ClusteredLeastSquares ls;
-  std::vector<int> base;  // the baseline's identifiable columns
+  ClusteredLeastSquares ls_white;  // the same design without the random intercept
+  std::vector<int> base;           // the baseline's identifiable columns
 };
 
 ChannelModel FitBaseline(const DiagnosisData& data,
@@ -645,7 +655,9 @@ ChannelModel FitBaseline(const DiagnosisData& data,
   const BaselineState st = StateFrom(base_fit0, base);
   y.offset_ratio = OffsetRatio(data, Residuals(data, layout, st, base_fit0, base, y));
   ClusteredLeastSquares ls = Accumulate(data, layout, y, st);
-  return ChannelModel{std::move(layout), std::move(y), st, std::move(ls), std::move(base)};
+  ClusteredLeastSquares ls_white = AccumulateWhite(data, layout, y, st);
+  return ChannelModel{
+      std::move(layout), std::move(y), st, std::move(ls), std::move(ls_white), std::move(base)};
 }
 
 // The candidates whose column changes only between long stretches of the recording (the sense of
@@ -662,12 +674,13 @@ bool SlowCandidate(Effect e) {
 // holds still, so the bias need not average away).
 double SlowVariance(const DiagnosisData& data,
                     const ChannelModel& m,
+                    const ClusteredLeastSquares& ls,
                     const std::vector<int>& subset,
                     const ClusteredFit& fit,
                     size_t pos,
                     const Candidate& cand) {
   const int ch = m.layout.channel;
-  const Eigen::MatrixXd info = m.ls.Information(subset);
+  const Eigen::MatrixXd info = ls.Information(subset);
   const Eigen::VectorXd d = info.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
   Eigen::VectorXd e = Eigen::VectorXd::Zero(static_cast<int>(subset.size()));
   e[static_cast<int>(pos)] = 1.0;
@@ -675,7 +688,7 @@ double SlowVariance(const DiagnosisData& data,
   const Eigen::VectorXd g = d.asDiagonal() * scaled.ldlt().solve(d.asDiagonal() * e);
   std::vector<Eigen::VectorXd> shrink;
   for (size_t sgm = 0; sgm < data.segments.size(); ++sgm)
-    shrink.push_back(m.ls.ClusterShrink(static_cast<int>(sgm), subset));
+    shrink.push_back(ls.ClusterShrink(static_cast<int>(sgm), subset));
   const std::vector<double> r = Residuals(data, m.layout, m.st, fit, subset, m.y);
   std::vector<SlowNoiseCell> cells;
   Eigen::VectorXd xs(static_cast<int>(subset.size()));
@@ -699,8 +712,19 @@ void RebuildFromFinalBaseline(const DiagnosisData& data, ChannelModel& m, TermSe
   if (fit2.ok && fit2.jackknife_ok) {
     m.st = refined;
     m.ls = std::move(ls2);
+    m.ls_white = AccumulateWhite(data, m.layout, m.y, refined);
     sel.fit = std::move(fit2);
   }
+}
+
+// The system a candidate is tested and sized in. The slow candidates are contrasts between
+// stretches of the recording: the random intercept per segment, measured on the baseline's
+// residual, would hold the very contrast they are (a thermal hysteresis is an offset per segment
+// set by the sense of the last change) and take it from them; they are weighted by white noise
+// alone, and their variance is the recording's measured slow wander (SlowVariance) where it
+// exceeds the jackknife's.
+const ClusteredLeastSquares& SystemFor(const ChannelModel& m, const Candidate& cand) {
+  return SlowCandidate(cand.effect) ? m.ls_white : m.ls;
 }
 
 // Forward selection over the layout's candidates, at most one per effect (one warm-up time
@@ -720,10 +744,21 @@ TermSelection SelectCandidates(const DiagnosisData& data,
   const auto slow_noise = [&](int k, TermTest* t) {
     const Candidate& c = candidates[static_cast<size_t>(k)];
     if (!SlowCandidate(c.effect)) return;
-    FloorCandidateVariance(SlowVariance(data, m, t->subset, t->fit, t->subset.size() - 1, c), t);
+    FloorCandidateVariance(
+        SlowVariance(data, m, m.ls_white, t->subset, t->fit, t->subset.size() - 1, c), t);
   };
-  TermSelection sel = SelectTerms(
-      m.ls, m.base, m.ls.Fit(m.base), columns, alpha, max_findings, one_per_effect, slow_noise);
+  const auto system = [&](int k) -> const ClusteredLeastSquares& {
+    return SystemFor(m, candidates[static_cast<size_t>(k)]);
+  };
+  TermSelection sel = SelectTerms(m.ls,
+                                  m.base,
+                                  m.ls.Fit(m.base),
+                                  columns,
+                                  alpha,
+                                  max_findings,
+                                  one_per_effect,
+                                  slow_noise,
+                                  system);
   if (!sel.chosen.empty()) RebuildFromFinalBaseline(data, m, sel);
   return sel;
 }
@@ -734,26 +769,29 @@ Finding ChosenFinding(const DiagnosisData& data,
                       const Candidate& cand,
                       double phys) {
   const int ch = m.layout.channel;
+  const ClusteredLeastSquares& ls = SystemFor(m, cand);
   const std::vector<int> without = WithoutColumns(sel.selected, cand.columns);
-  const ClusteredFit fit_without = m.ls.Fit(without);
+  const ClusteredFit fit_without = ls.Fit(without);
+  const ClusteredFit fit_with = &ls == &m.ls ? sel.fit : ls.Fit(sel.selected);
   Eigen::VectorXd theta, se;
-  ColumnEstimates(sel.fit, sel.selected, cand.columns, &theta, &se);
-  TermTest test = RunTest(m.ls, without, fit_without, cand);
+  ColumnEstimates(fit_with, sel.selected, cand.columns, &theta, &se);
+  TermTest test = RunTest(ls, without, fit_without, cand);
   if (SlowCandidate(cand.effect)) {
     const size_t pos =
         static_cast<size_t>(std::find(sel.selected.begin(), sel.selected.end(), cand.columns[0]) -
                             sel.selected.begin());
-    se[0] = std::max(se[0], std::sqrt(SlowVariance(data, m, sel.selected, sel.fit, pos, cand)));
+    se[0] =
+        std::max(se[0], std::sqrt(SlowVariance(data, m, ls, sel.selected, fit_with, pos, cand)));
     FloorCandidateVariance(
-        SlowVariance(data, m, test.subset, test.fit, test.subset.size() - 1, cand), &test);
+        SlowVariance(data, m, ls, test.subset, test.fit, test.subset.size() - 1, cand), &test);
   }
   Finding f;
   f.effect = EffectName(cand.effect);
   f.channel = kImuChannelNames[ch];
   f.components = Components(cand, theta, se, ch, phys);
   f.time_constant_s = cand.tau_s;
-  f.held_out_rms_before = HeldOutRms(fit_without, sel.fit, false, phys);
-  f.held_out_rms_after = HeldOutRms(fit_without, sel.fit, true, phys);
+  f.held_out_rms_before = HeldOutRms(fit_without, fit_with, false, phys);
+  f.held_out_rms_after = HeldOutRms(fit_without, fit_with, true, phys);
   f.rms_unit = RmsUnit(ch);
   f.evidence = Evidence(data, m.layout, m.st, cand, theta);
   f.words = Words(cand, f.components, ch);
@@ -776,11 +814,12 @@ DetectionLimit CandidateLimit(const DiagnosisData& data,
       EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
   lim.channel = kImuChannelNames[ch];
   Eigen::VectorXd se;
-  if (!LimitStandardErrors(m.ls, sel.selected, cand.columns, &se, &lim.note)) return lim;
+  const ClusteredLeastSquares& ls = SystemFor(m, cand);
+  if (!LimitStandardErrors(ls, sel.selected, cand.columns, &se, &lim.note)) return lim;
   if (SlowCandidate(cand.effect)) {
     const std::vector<int> subset =
         WithColumns(WithoutColumns(sel.selected, cand.columns), cand.columns);
-    const double v = SlowVariance(data, m, subset, m.ls.Fit(subset), subset.size() - 1, cand);
+    const double v = SlowVariance(data, m, ls, subset, ls.Fit(subset), subset.size() - 1, cand);
     se[0] = std::max(se[0], std::sqrt(v));
   }
   const Eigen::VectorXd limit = se * (tcrit + power_z);

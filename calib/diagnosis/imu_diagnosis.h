@@ -7,9 +7,8 @@
 //   gyro:           U = c + b1 s + b2 s^2 + b3 s^3 + n . w_B_dps + q2 u^2 + q3 u^3
 // s = (T - 25 degC) / 62.5 degC of the channel's thermometer, u = w_axis / 150 deg/s.
 // Candidate terms, each one named physical effect in its own unit, written from the physics
-// (they share the simulator's vocabulary, not its code); thermal_hysteresis only with
-// DiagnosisOptions::thermal_hysteresis_candidate, and lag and warm-up only for the accelerometers
-// (a gyro's thermometer is its own die's TEMP pin):
+// (they share the simulator's vocabulary, not its code); lag and warm-up only for the
+// accelerometers (a gyro's thermometer is its own die's TEMP pin):
 //   die_thermal_lag         -dU/dT * dT/dt             delay of the channel's die behind its
 //   thermometer, s scale_factor_tempco     (stimulus part) * dT, dT^2  ppm/degC, ppm/degC^2
 //   gyro_g_sensitivity      f_B_g x, y, z              deg/s/g (gyros)
@@ -21,7 +20,9 @@
 // and, on the rows rather than the cells, table_rate_ripple: a line at the table's revolution
 // frequency on the gyro along the table axis, in ppm of the rate (rate_ripple.h; a rig effect).
 // Errors: white per row plus a random offset per segment whose variance is estimated from the
-// baseline's own residuals (clustered_least_squares.h), never from a datasheet or the simulator.
+// baseline's own residuals (clustered_least_squares.h), never from a datasheet or the simulator;
+// the slow candidates (hysteresis, warm-up, nonlinearity: contrasts between stretches) are weighted
+// by white noise alone, with the recording's measured slow wander as their variance floor.
 // Selection, per channel: forward, one candidate at a time, by the jackknife Wald test over
 // segments (clustered_least_squares.h) against an F(q, C-1) quantile at a Bonferroni level over
 // every (channel, candidate) test of the unit, and only if the leave-one-segment-out error drops.
@@ -51,9 +52,8 @@ struct DiagnosisOptions {
   double family_alpha = 0.001;
   double power_z = 0.8416;  ///< z of 80 % power, for detection limits
   int max_findings_per_channel = 4;
-  /// Also test thermal_hysteresis: its false discoveries on clean recordings are controlled, but
-  /// its finding when present is not yet proven (docs/diagnose.md).
-  bool thermal_hysteresis_candidate = false;
+  /// Test thermal_hysteresis (its proof and false-discovery rate: docs/diagnose.md).
+  bool thermal_hysteresis_candidate = true;
 };
 
 struct FindingComponent {

@@ -66,7 +66,8 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
                           double alpha,
                           int max_terms,
                           const std::function<bool(int, const std::vector<int>&)>& allowed,
-                          const std::function<void(int, TermTest*)>& adjust) {
+                          const std::function<void(int, TermTest*)>& adjust,
+                          const std::function<const ClusteredLeastSquares&(int)>& system) {
   TermSelection out{{}, base, base_fit};
   while (static_cast<int>(out.chosen.size()) < max_terms) {
     int best = -1;
@@ -74,7 +75,11 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
     for (int k = 0; k < static_cast<int>(candidates.size()); ++k) {
       if (std::find(out.chosen.begin(), out.chosen.end(), k) != out.chosen.end()) continue;
       if (allowed && !allowed(k, out.chosen)) continue;
-      TermTest t = TestTerm(ls, out.selected, out.fit, candidates[static_cast<size_t>(k)]);
+      const ClusteredLeastSquares& lk = system ? system(k) : ls;
+      TermTest t = TestTerm(lk,
+                            out.selected,
+                            &lk == &ls ? out.fit : lk.Fit(out.selected),
+                            candidates[static_cast<size_t>(k)]);
       if (adjust && t.testable) adjust(k, &t);
       if (!t.testable || t.p_value >= alpha || t.gain <= 0.0) continue;
       if (best < 0 || t.p_value < best_test.p_value) {
@@ -85,7 +90,8 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
     if (best < 0) break;
     out.chosen.push_back(best);
     out.selected = std::move(best_test.subset);
-    out.fit = std::move(best_test.fit);
+    const ClusteredLeastSquares& lb = system ? system(best) : ls;
+    out.fit = &lb == &ls ? std::move(best_test.fit) : ls.Fit(out.selected);
   }
   return out;
 }

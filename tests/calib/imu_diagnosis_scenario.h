@@ -6,6 +6,7 @@
 // never sees this code or the unit's parameters; only the test compares its findings with them.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -31,6 +32,7 @@ class ImuScenario {
 
   /// Unrecorded soak: the air steps to `air_c` and the unit sits there at rest.
   void Soak(double air_c, double seconds) {
+    NoteChange(air_c);
     air_c_ = air_c;
     for (int i = 0; i < Frames(seconds); ++i) Step(Eigen::Vector3d::Zero(), 0.0, nullptr);
   }
@@ -48,6 +50,7 @@ class ImuScenario {
       const ThermalSegment seg =
           target > air_c_ ? ThermalSegment::kUpRamp : ThermalSegment::kDownRamp;
       while (std::abs(target - air_c_) > step_c) {
+        NoteChange(target);
         air_c_ += target > air_c_ ? step_c : -step_c;
         ThermalRow(up, seg);
       }
@@ -78,12 +81,25 @@ class ImuScenario {
   /// rate (1 + k cos(angle)) while the recording keeps the commanded rate (a rig effect).
   void set_table_rate_ripple(double k) { ripple_ratio_ = k; }
 
+  /// A thermal hysteresis the simulator does not have, written onto the gyro counts: gyro g
+  /// reads `half_loop_cnt[g]` more after the air last rose and as much less after it last fell
+  /// (nothing before the first change): the up/down loop of a die whose bias keeps a memory of
+  /// the direction it was last driven.
+  void set_gyro_thermal_hysteresis_cnt(const std::array<double, 3>& half_loop_cnt) {
+    hysteresis_cnt_ = half_loop_cnt;
+  }
+
   ImuUnitData& data() { return data_; }
   double t_s() const { return t_s_; }
 
  private:
   static constexpr double kFrame_s = 0.01;
   static int Frames(double seconds) { return static_cast<int>(std::lround(seconds / kFrame_s)); }
+
+  void NoteChange(double target_c) {
+    if (target_c > air_c_) sense_ = 1.0;
+    if (target_c < air_c_) sense_ = -1.0;
+  }
 
   static Eigen::Vector3d Up(int orientation) {
     const std::array<double, 3> u = UpAxisOf(orientation);
@@ -103,7 +119,8 @@ class ImuScenario {
         out->raw.t2_cnt[ch] = f.accel[ch].t2_cnt;
       }
       for (int g = 0; g < 3; ++g) {
-        out->raw.gyro_cnt[g] = f.gyro_cnt[g];
+        out->raw.gyro_cnt[g] =
+            f.gyro_cnt[g] + static_cast<int32_t>(std::lround(hysteresis_cnt_[g] * sense_));
         out->raw.temp_cnt[g] = f.temp_cnt[g];
       }
       out->t_s = t_s_;
@@ -147,6 +164,8 @@ class ImuScenario {
   std::unique_ptr<sensor_sim::ImuUnit> unit_;
   uint64_t frame_ = 0;  // the packet counter a unit would send
   double ripple_ratio_ = 0.0;
+  std::array<double, 3> hysteresis_cnt_{};
+  double sense_ = 0.0;  // of the air's last change
   double table_angle_rad_ = 0.7;
   double g_scale_;
   double air_c_;

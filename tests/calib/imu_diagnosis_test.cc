@@ -41,8 +41,13 @@ struct Shape {
   int gyro_packets = 300;
 };
 
-ImuUnitData Simulate(const ImuUnitParams& p, uint64_t noise_seed, const Shape& shape) {
+// `gyro_hysteresis_cnt`: a thermal hysteresis written onto the gyro counts (the scenario's own).
+ImuUnitData Simulate(const ImuUnitParams& p,
+                     uint64_t noise_seed,
+                     const Shape& shape,
+                     const std::array<double, 3>& gyro_hysteresis_cnt = {}) {
   ImuScenario s(p, noise_seed, 25.0);
+  s.set_gyro_thermal_hysteresis_cnt(gyro_hysteresis_cnt);
   s.ThermalProfile(31, shape.profile_c, shape.ramp_c_per_min, shape.soak_s);
   int step = 2;
   for (double t : shape.sensor_cal_c) {
@@ -192,7 +197,7 @@ TEST(ImuDiagnosis, FindsGyroGSensitivityConcealedAsOrientationBias) {
               detectable);
   EXPECT_GE(tally.Fraction(), 0.9);
   EXPECT_LE(missed, detectable / 5);
-  EXPECT_GE(detectable, 20);
+  EXPECT_GE(detectable, 18);  // of the 30 drawn gyros, at the family level over 60 tests
   // Measured 2026-11-26: 3 findings not in the truth over these 10 units (die lag, scale tempco
   // on the one-temperature shape), far above the clean shape's rate: docs/diagnose.md, open.
   EXPECT_LE(others, 3);
@@ -616,6 +621,51 @@ TEST(ImuDiagnosis, FindsAccelerometerNonlinearityBeyondTheCaptureQuantisation) {
   ExpectFoundAndSized(t, 24);
 }
 
+// Counts per deg/s of gyro g, measured on the recording's own 25 degC rate acquisitions about
+// its axis (the line through the mean counts at each rate).
+double GyroCountsPerDps(const ImuUnitData& d, int g) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+  for (const ImuAcquisition& a : d.gyro) {
+    if (UpAxisOf(a.orientation)[g] == 0.0 || std::abs(a.samples.front().chamber_c - 25.0) > 1.0)
+      continue;
+    double mean = 0.0;
+    for (const ImuSample& s : a.samples) mean += s.raw.gyro_cnt[g];
+    mean /= static_cast<double>(a.samples.size());
+    const double x = a.rate_dps * UpAxisOf(a.orientation)[g];
+    sx += x, sy += mean, sxx += x * x, sxy += x * mean, n += 1;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// Gyro thermal hysteresis, which the simulator does not have, written onto the counts by the
+// sense of the air's last change (tests/calib/imu_diagnosis_scenario.h): a bias that differs
+// after heating and after cooling at the same temperature, which a single-valued temperature
+// polynomial splits between its branches.
+TEST(ImuDiagnosis, FindsGyroThermalHysteresisBetweenHeatingAndCooling) {
+  EffectTally t;
+  double lo_dps = 1e9, hi_dps = 0.0;
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    const double half_loop_dps = 0.1;
+    const double h_cnt = half_loop_dps * kGyroDatasheetCountsPerDps;
+    const ImuUnitData data =
+        Simulate(Nominal(960 + seed), 9600 + seed, CleanShape(), {h_cnt, -h_cnt, h_cnt});
+    const UnitDiagnosis d = Diagnose(data);
+    for (int g = 0; g < 3; ++g) {
+      const double truth_dps = (g == 1 ? -h_cnt : h_cnt) / GyroCountsPerDps(data, g);
+      Score(d, "thermal_hysteresis", 6 + g, truth_dps, 0.0, &t);
+      const DetectionLimit* l = Limit(d, "thermal_hysteresis", kImuChannelNames[6 + g]);
+      if (l != nullptr && !l->limits.empty()) {
+        lo_dps = std::min(lo_dps, l->limits[0].magnitude);
+        hi_dps = std::max(hi_dps, l->limits[0].magnitude);
+      }
+    }
+    CountOthers(d, "thermal_hysteresis", &t);
+  }
+  t.Print("gyro thermal hysteresis 0.1 deg/s");
+  std::printf("gyro thermal hysteresis limits %.3g ... %.3g deg/s\n", lo_dps, hi_dps);
+  ExpectFoundAndSized(t, 18);  // measured: 22 of 30, the others below the stated limit
+}
+
 // Truth-profile units (every modelled effect on at once) through the demo's calibration shape:
 // the full thermal profile (25 -> -40 -> 25 -> 85 -> 25 degC at 1 degC/min, 1 h soaks) in
 // orientation 31, then the sensor calibration at 25 degC. Die lag is found on every accelerometer
@@ -651,7 +701,10 @@ TEST(ImuDiagnosis, TruthProfileUnitsOnTheDemosShape) {
       for (int k = 0; k < 3; ++k)
         gsens.Check(f->components[k].magnitude, f->components[k].standard_error, truth_B[k]);
     }
-    for (const Finding& f : d.findings) EXPECT_NE(f.effect, "scale_factor_tempco") << f.words;
+    for (const Finding& f : d.findings) {
+      EXPECT_NE(f.effect, "scale_factor_tempco") << f.words;
+      EXPECT_NE(f.effect, "thermal_hysteresis") << f.words;  // the simulator's IMU has none
+    }
   }
   std::printf(
       "truth profile, demo shape: lag %d of %d within 3 SE + 15 %%; g-sensitivity on %d of 6 "
@@ -714,9 +767,9 @@ TEST(ImuDiagnosis, WritesTheDocumentedJsonContract) {
                           "components"}) {
     EXPECT_TRUE(f.contains(key)) << key;
   }
-  // Accelerometers: lag, scale tempco, warm-up at 4 time constants, nonlinearity; gyros: scale
-  // tempco, g-sensitivity, table rate ripple.
-  EXPECT_EQ(j["detection_limits"].size(), 6u * 7u + 3u * 3u);
+  // Accelerometers: lag, scale tempco, warm-up at 4 time constants, nonlinearity, thermal
+  // hysteresis; gyros: scale tempco, g-sensitivity, thermal hysteresis, table rate ripple.
+  EXPECT_EQ(j["detection_limits"].size(), 6u * 8u + 3u * 4u);
   // This shape's 3 s rate acquisitions hold less than 3 turns: the ripple is untestable, and says
   // why.
   for (const nlohmann::json& l : j["detection_limits"]) {
