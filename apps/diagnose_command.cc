@@ -76,7 +76,7 @@ void RegisterDiagnoseCommand(CLI::App& app) {
          "(repeatable; a run not diagnosed is a held-out check)")
       ->needs("--model");
   cmd->add_option("--out", *out, "output directory (diagnosis.json, report.html)")->required();
-  cmd->callback([runs, csvs, unit, model, out, check_runs] {
+  cmd->callback([runs, csvs, unit, profile, model, out, check_runs] {
     if (runs->empty() && csvs->empty())
       throw std::runtime_error("diagnose: give --run DIR or --csv SIDECAR.json");
     std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
@@ -87,6 +87,8 @@ void RegisterDiagnoseCommand(CLI::App& app) {
                                   unit->empty() ? std::nullopt : std::optional<std::string>(*unit))
             : calib::DiagnoseChannelFiles(sidecars);
     calib::WriteDiagnosis(run, *out);
+    std::cout << "compared with the " << *profile
+              << " model: the pipeline's forward model, fitted to each recording\n";
     for (const std::string& n : run.notes) std::cout << "note: " << n << "\n";
     for (const calib::UnitDiagnosis& u : run.units) {
       std::cout << fmt::format(

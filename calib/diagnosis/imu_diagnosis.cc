@@ -35,7 +35,8 @@ enum class Effect {
   kGSensitivity,
   kThermalHysteresis,
   kWarmUp,
-  kAccelNonlinearity
+  kAccelNonlinearity,
+  kCrossAxisTempco
 };
 
 const char* EffectName(Effect e) {
@@ -52,6 +53,8 @@ const char* EffectName(Effect e) {
       return "self_heating_warm_up";
     case Effect::kAccelNonlinearity:
       return "accel_nonlinearity";
+    case Effect::kCrossAxisTempco:
+      return "residual_cross_axis_coupling";
   }
   return "?";
 }
@@ -90,8 +93,18 @@ Layout MakeLayout(int channel, bool hysteresis) {
   // A gyro's thermometer is its own die's TEMP pin: no lag or warm-up can open between the two.
   if (!gyro) l.candidates.push_back({Effect::kDieLag, {"delay"}, {}, {}});
   l.candidates.push_back({Effect::kScaleTempco, {"tc1", "tc2"}, {}, {}});
+  if (gyro) {
+    std::vector<std::string> off_axes;
+    for (int j = 0; j < 3; ++j) {
+      if (j != kChannelAxis[channel]) off_axes.push_back(std::string(1, "xyz"[j]));
+    }
+    l.candidates.push_back({Effect::kCrossAxisTempco, off_axes, {}, {}});
+  }
   if (gyro) l.candidates.push_back({Effect::kGSensitivity, {"x", "y", "z"}, {}, {}});
-  if (hysteresis) l.candidates.push_back({Effect::kThermalHysteresis, {"half_loop"}, {}, {}});
+  // An accelerometer's thermometer is another die: the lag's transients after each ramp carry the
+  // sense of the last change, and a hysteresis could not be told from them.
+  if (hysteresis && gyro)
+    l.candidates.push_back({Effect::kThermalHysteresis, {"half_loop"}, {}, {}});
   if (!gyro) {
     for (double tau : kWarmUpTau_s)
       l.candidates.push_back({Effect::kWarmUp, {"initial_excess"}, tau, {}});
@@ -158,6 +171,13 @@ Eigen::VectorXd Row(const Layout& layout, const DiagnosisCell& c, const Baseline
     }
     if (cand.effect == Effect::kGSensitivity) {
       for (int j = 0; j < 3; ++j) x[col + j] = c.f_B_g[j];
+    }
+    if (cand.effect == Effect::kCrossAxisTempco) {
+      const double sens = std::abs(state.stim[kChannelAxis[ch]]);
+      int n = 0;
+      for (int j = 0; j < 3; ++j) {
+        if (j != kChannelAxis[ch]) x[col + n++] = sens * stim[j] * dt_c;
+      }
     }
   }
   return x;
@@ -264,6 +284,10 @@ std::vector<FindingComponent> Components(const Candidate& cand,
       scale = phys;
       unit = "dps/g";
     }
+    if (cand.effect == Effect::kCrossAxisTempco) {
+      scale = 1e6;
+      unit = "ppm/degC";
+    }
     out.push_back({cand.components[i], theta[k] * scale, se[k] * scale, unit});
   }
   return out;
@@ -313,6 +337,16 @@ std::string Words(const Candidate& cand, const std::vector<FindingComponent>& c,
         "missing from the model",
         name,
         pm(c[0]));
+  }
+  if (cand.effect == Effect::kCrossAxisTempco) {
+    return fmt::format(
+        "{}'s response to its cross axes changes with temperature ({} {}, {} {}, of the input "
+        "along that axis): residual cross-axis coupling is missing from the model",
+        name,
+        c[0].name,
+        pm(c[0]),
+        c[1].name,
+        pm(c[1]));
   }
   size_t big = 0;
   for (size_t i = 1; i < c.size(); ++i) {
@@ -717,6 +751,31 @@ void RebuildFromFinalBaseline(const DiagnosisData& data, ChannelModel& m, TermSe
   }
 }
 
+// A cross-axis coupling's change with temperature needs the cross-axis input at temperatures
+// apart: the temperature span of the cells whose off-axis input is at least half its largest must
+// reach kMinCrossAxisSpan_c (within a soak's few tenths of a degree, the column is the input times
+// the thermometer's noise).
+constexpr double kMinCrossAxisSpan_c = 10.0;
+
+bool CrossAxisExcited(const DiagnosisData& data, int ch) {
+  const bool gyro = IsGyroChannel(ch);
+  const int k = kChannelThermometer[ch];
+  for (int j = 0; j < 3; ++j) {
+    if (j == kChannelAxis[ch]) continue;
+    double largest = 0.0;
+    for (const DiagnosisCell& c : data.cells)
+      largest = std::max(largest, std::abs(gyro ? c.w_B_dps[j] : c.f_B_g[j]));
+    double lo = 1e9, hi = -1e9;
+    for (const DiagnosisCell& c : data.cells) {
+      if (!(largest > 0.0) || std::abs(gyro ? c.w_B_dps[j] : c.f_B_g[j]) < 0.5 * largest) continue;
+      lo = std::min(lo, c.temp_c[k]);
+      hi = std::max(hi, c.temp_c[k]);
+    }
+    if (hi - lo >= kMinCrossAxisSpan_c) return true;
+  }
+  return false;
+}
+
 // The system a candidate is tested and sized in. The slow candidates are contrasts between
 // stretches of the recording: the random intercept per segment, measured on the baseline's
 // residual, would hold the very contrast they are (a thermal hysteresis is an offset per segment
@@ -736,7 +795,10 @@ TermSelection SelectCandidates(const DiagnosisData& data,
   const std::vector<Candidate>& candidates = m.layout.candidates;
   std::vector<std::vector<int>> columns;
   for (const Candidate& c : candidates) columns.push_back(c.columns);
+  const bool cross_excited = CrossAxisExcited(data, m.layout.channel);
   const auto one_per_effect = [&](int k, const std::vector<int>& chosen) {
+    if (candidates[static_cast<size_t>(k)].effect == Effect::kCrossAxisTempco && !cross_excited)
+      return false;
     return std::none_of(chosen.begin(), chosen.end(), [&](int c) {
       return candidates[static_cast<size_t>(c)].effect == candidates[static_cast<size_t>(k)].effect;
     });
@@ -745,7 +807,7 @@ TermSelection SelectCandidates(const DiagnosisData& data,
     const Candidate& c = candidates[static_cast<size_t>(k)];
     if (!SlowCandidate(c.effect)) return;
     FloorCandidateVariance(
-        SlowVariance(data, m, m.ls_white, t->subset, t->fit, t->subset.size() - 1, c), t);
+        SlowVariance(data, m, SystemFor(m, c), t->subset, t->fit, t->subset.size() - 1, c), t);
   };
   const auto system = [&](int k) -> const ClusteredLeastSquares& {
     return SystemFor(m, candidates[static_cast<size_t>(k)]);
@@ -814,6 +876,11 @@ DetectionLimit CandidateLimit(const DiagnosisData& data,
       EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
   lim.channel = kImuChannelNames[ch];
   Eigen::VectorXd se;
+  if (cand.effect == Effect::kCrossAxisTempco && !CrossAxisExcited(data, ch)) {
+    lim.note = fmt::format("not excited: the cross-axis input spans less than {:.0f} degC",
+                           kMinCrossAxisSpan_c);
+    return lim;
+  }
   const ClusteredLeastSquares& ls = SystemFor(m, cand);
   if (!LimitStandardErrors(ls, sel.selected, cand.columns, &se, &lim.note)) return lim;
   if (SlowCandidate(cand.effect)) {

@@ -8,15 +8,16 @@
 // s = (T - 25 degC) / 62.5 degC of the channel's thermometer, u = w_axis / 150 deg/s.
 // Candidate terms, each one named physical effect in its own unit, written from the physics
 // (they share the simulator's vocabulary, not its code); lag and warm-up only for the
-// accelerometers (a gyro's thermometer is its own die's TEMP pin):
-//   die_thermal_lag         -dU/dT * dT/dt             delay of the channel's die behind its
-//   thermometer, s scale_factor_tempco     (stimulus part) * dT, dT^2  ppm/degC, ppm/degC^2
-//   gyro_g_sensitivity      f_B_g x, y, z              deg/s/g (gyros)
-//   thermal_hysteresis      sense of the last change   half the up/down loop, mg or deg/s
-//   self_heating_warm_up    dU/dT * exp(-t/tau_w)      the die's excess over its thermometer at
-//   power-on, degC
-//                                                      (tau_w from a grid: 150, 300, 600, 1200 s)
-//   accel_nonlinearity      |S| f_axis^2               mg/g^2 (accelerometers)
+// accelerometers (a gyro's thermometer is its own die's TEMP pin), thermal hysteresis only for the
+// gyros (an accelerometer's lag transients after each ramp carry the sense of the last change):
+//   die_thermal_lag          -dU/dT * dT/dt            delay of the die behind its thermometer, s
+//   scale_factor_tempco      (stimulus part) * dT, dT^2   ppm/degC, ppm/degC^2
+//   residual_cross_axis_coupling  |S| * (off-axis rate) * dT, per off axis   ppm/degC (gyros)
+//   gyro_g_sensitivity       f_B_g x, y, z             deg/s/g (gyros)
+//   thermal_hysteresis       sense of the last change  half the up/down loop, deg/s (gyros)
+//   self_heating_warm_up     dU/dT * exp(-t/tau_w)     the die's excess at power-on, degC
+//                            (tau_w from a grid: 150, 300, 600, 1200 s)
+//   accel_nonlinearity       |S| f_axis^2              mg/g^2 (accelerometers)
 // and, on the rows rather than the cells, table_rate_ripple: a line at the table's revolution
 // frequency on the gyro along the table axis, in ppm of the rate (rate_ripple.h; a rig effect).
 // Errors: white per row plus a random offset per segment whose variance is estimated from the

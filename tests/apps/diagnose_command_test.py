@@ -35,6 +35,14 @@ def main(adahrs):
         assert [c["channel"] for c in unit["channels"]] == ["gx", "gy", "gz"], unit["channels"]
         assert os.path.getsize(os.path.join(out, "report.html")) > 1000
 
+        named = run(adahrs, "--csv", str(DATA / "tvc_2020-03-07.json"), "--profile", "nominal",
+                    "--out", os.path.join(tmp, "named"))
+        assert named.returncode == 0, named.stderr
+        assert "compared with the nominal model" in named.stdout, named.stdout
+        other = run(adahrs, "--csv", str(DATA / "tvc_2020-03-07.json"), "--profile", "truth",
+                    "--out", os.path.join(tmp, "other"))
+        assert other.returncode != 0 and "--profile" in other.stderr, other
+
         sidecar = json.loads((DATA / "tvc_2020-03-07.json").read_text())
         sidecar["format_version"] = 7
         sidecar["csv"] = str(DATA / "TVCtest3_7_20.csv")

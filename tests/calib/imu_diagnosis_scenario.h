@@ -89,6 +89,13 @@ class ImuScenario {
     hysteresis_cnt_ = half_loop_cnt;
   }
 
+  /// A cross-axis coupling that changes with temperature, which the simulator does not have,
+  /// written onto the gyro counts: gyro g reads k(g, j) (T_air - 25 degC) w_B_j more for each
+  /// axis j other than its own, k in counts per deg/s per degC.
+  void set_gyro_cross_axis_tempco(const Eigen::Matrix3d& k_cnt_per_dps_c) {
+    cross_tempco_ = k_cnt_per_dps_c;
+  }
+
   ImuUnitData& data() { return data_; }
   double t_s() const { return t_s_; }
 
@@ -119,8 +126,11 @@ class ImuScenario {
         out->raw.t2_cnt[ch] = f.accel[ch].t2_cnt;
       }
       for (int g = 0; g < 3; ++g) {
-        out->raw.gyro_cnt[g] =
-            f.gyro_cnt[g] + static_cast<int32_t>(std::lround(hysteresis_cnt_[g] * sense_));
+        double extra_cnt = hysteresis_cnt_[g] * sense_;
+        for (int j = 0; j < 3; ++j) {
+          if (j != g) extra_cnt += cross_tempco_(g, j) * (air_c_ - 25.0) * s.w_B_dps[j];
+        }
+        out->raw.gyro_cnt[g] = f.gyro_cnt[g] + static_cast<int32_t>(std::lround(extra_cnt));
         out->raw.temp_cnt[g] = f.temp_cnt[g];
       }
       out->t_s = t_s_;
@@ -165,6 +175,7 @@ class ImuScenario {
   uint64_t frame_ = 0;  // the packet counter a unit would send
   double ripple_ratio_ = 0.0;
   std::array<double, 3> hysteresis_cnt_{};
+  Eigen::Matrix3d cross_tempco_ = Eigen::Matrix3d::Zero();
   double sense_ = 0.0;  // of the air's last change
   double table_angle_rad_ = 0.7;
   double g_scale_;

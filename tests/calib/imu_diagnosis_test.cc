@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include <fmt/format.h>
@@ -41,13 +42,13 @@ struct Shape {
   int gyro_packets = 300;
 };
 
-// `gyro_hysteresis_cnt`: a thermal hysteresis written onto the gyro counts (the scenario's own).
+// `write`, when given, sets effects the scenario writes onto the counts before the run.
 ImuUnitData Simulate(const ImuUnitParams& p,
                      uint64_t noise_seed,
                      const Shape& shape,
-                     const std::array<double, 3>& gyro_hysteresis_cnt = {}) {
+                     const std::function<void(ImuScenario&)>& write = {}) {
   ImuScenario s(p, noise_seed, 25.0);
-  s.set_gyro_thermal_hysteresis_cnt(gyro_hysteresis_cnt);
+  if (write) write(s);
   s.ThermalProfile(31, shape.profile_c, shape.ramp_c_per_min, shape.soak_s);
   int step = 2;
   for (double t : shape.sensor_cal_c) {
@@ -197,7 +198,7 @@ TEST(ImuDiagnosis, FindsGyroGSensitivityConcealedAsOrientationBias) {
               detectable);
   EXPECT_GE(tally.Fraction(), 0.9);
   EXPECT_LE(missed, detectable / 5);
-  EXPECT_GE(detectable, 18);  // of the 30 drawn gyros, at the family level over 60 tests
+  EXPECT_GE(detectable, 18);  // of the 30 drawn gyros, at the family level over 57 tests
   // Measured 2026-11-26: 3 findings not in the truth over these 10 units (die lag, scale tempco
   // on the one-temperature shape), far above the clean shape's rate: docs/diagnose.md, open.
   EXPECT_LE(others, 3);
@@ -648,7 +649,9 @@ TEST(ImuDiagnosis, FindsGyroThermalHysteresisBetweenHeatingAndCooling) {
     const double half_loop_dps = 0.1;
     const double h_cnt = half_loop_dps * kGyroDatasheetCountsPerDps;
     const ImuUnitData data =
-        Simulate(Nominal(960 + seed), 9600 + seed, CleanShape(), {h_cnt, -h_cnt, h_cnt});
+        Simulate(Nominal(960 + seed), 9600 + seed, CleanShape(), [&](ImuScenario& s) {
+          s.set_gyro_thermal_hysteresis_cnt({h_cnt, -h_cnt, h_cnt});
+        });
     const UnitDiagnosis d = Diagnose(data);
     for (int g = 0; g < 3; ++g) {
       const double truth_dps = (g == 1 ? -h_cnt : h_cnt) / GyroCountsPerDps(data, g);
@@ -664,6 +667,56 @@ TEST(ImuDiagnosis, FindsGyroThermalHysteresisBetweenHeatingAndCooling) {
   t.Print("gyro thermal hysteresis 0.1 deg/s");
   std::printf("gyro thermal hysteresis limits %.3g ... %.3g deg/s\n", lo_dps, hi_dps);
   ExpectFoundAndSized(t, 18);  // measured: 22 of 30, the others below the stated limit
+}
+
+// A cross-axis coupling that changes with temperature, which the simulator does not have, written
+// onto the gyro counts: calibrated at one temperature it is a fixed misalignment, so it shows only
+// in rate acquisitions about the other axes at -20 and 70 degC.
+TEST(ImuDiagnosis, FindsResidualCrossAxisCouplingAwayFromTheCalibrationTemperature) {
+  Tally tally;
+  int detectable = 0, missed = 0, others = 0;
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    const double k_ppm_per_c = 30.0;
+    Eigen::Matrix3d k_ppm;
+    k_ppm << 0, k_ppm_per_c, -k_ppm_per_c, -k_ppm_per_c, 0, k_ppm_per_c, k_ppm_per_c, -k_ppm_per_c,
+        0;
+    const ImuUnitData data =
+        Simulate(Nominal(980 + seed), 9800 + seed, CleanShape(), [&](ImuScenario& s) {
+          s.set_gyro_cross_axis_tempco(k_ppm * 1e-6 * kGyroDatasheetCountsPerDps);
+        });
+    const UnitDiagnosis d = Diagnose(data);
+    for (int g = 0; g < 3; ++g) {
+      const double sens = GyroCountsPerDps(data, g) / kGyroDatasheetCountsPerDps;
+      std::vector<double> truth;
+      for (int j = 0; j < 3; ++j) {
+        if (j != g) truth.push_back(k_ppm(g, j) / sens);
+      }
+      const std::string ch = kImuChannelNames[6 + g];
+      const bool can = Detectable(Limit(d, "residual_cross_axis_coupling", ch), truth);
+      detectable += can;
+      const Finding* f = Find(d, "residual_cross_axis_coupling", ch);
+      if (f == nullptr) {
+        missed += can;
+        continue;
+      }
+      for (size_t k = 0; k < 2; ++k)
+        tally.Check(f->components[k].magnitude, f->components[k].standard_error, truth[k]);
+    }
+    for (const Finding& f : d.findings) {
+      if (f.effect == "residual_cross_axis_coupling" && f.channel[0] == 'g') continue;
+      ++others;
+      std::printf("seed %d, not in the truth: %s\n", static_cast<int>(seed), f.words.c_str());
+    }
+  }
+  std::printf("cross-axis tempco: %d of %d components within 3 SE; %d of %d detectable missed\n",
+              tally.within,
+              tally.total,
+              missed,
+              detectable);
+  EXPECT_GE(detectable, 24);
+  EXPECT_LE(5 * missed, detectable);
+  EXPECT_GE(tally.Fraction(), 0.9);
+  EXPECT_LE(others, 2);
 }
 
 // Truth-profile units (every modelled effect on at once) through the demo's calibration shape:
@@ -767,9 +820,9 @@ TEST(ImuDiagnosis, WritesTheDocumentedJsonContract) {
                           "components"}) {
     EXPECT_TRUE(f.contains(key)) << key;
   }
-  // Accelerometers: lag, scale tempco, warm-up at 4 time constants, nonlinearity, thermal
-  // hysteresis; gyros: scale tempco, g-sensitivity, thermal hysteresis, table rate ripple.
-  EXPECT_EQ(j["detection_limits"].size(), 6u * 8u + 3u * 4u);
+  // Accelerometers: lag, scale tempco, warm-up at 4 time constants, nonlinearity; gyros: scale
+  // tempco, residual cross-axis coupling, g-sensitivity, thermal hysteresis, table rate ripple.
+  EXPECT_EQ(j["detection_limits"].size(), 6u * 7u + 3u * 5u);
   // This shape's 3 s rate acquisitions hold less than 3 turns: the ripple is untestable, and says
   // why.
   for (const nlohmann::json& l : j["detection_limits"]) {
