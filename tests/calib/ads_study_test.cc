@@ -1,7 +1,7 @@
 // The ADS study (calib/studies): the shipped ads_calibration sequence on truth-profile units (every
 // effect on: hysteresis, die lag, converter noise). Checks that the in-memory run gives the
 // calibration points its recording on disk gives, that a unit's result does not depend on the
-// thread count, that shards merge into the unsharded results.csv byte for byte, that a strategy
+// thread count, that shards merge into the unsharded study's files byte for byte, that a strategy
 // whose temperature terms cannot follow the bridge (tolerance_minimax: the 10-term cubic's
 // temperature order) yields less than the improved strategy, and that bad input is refused naming
 // the file and JSON path. Under the sanitizers fewer units.

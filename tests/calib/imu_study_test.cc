@@ -1,8 +1,9 @@
 // The IMU study (calib/studies): a short sequence (tests/data/studies, 5 degC/min ramps over the
 // envelope, 200 packets per acquisition) on nominal units. Checks that a unit's result does not
-// depend on the thread count, that shards merge into the unsharded results.csv byte for byte,
-// that a thermal order of 0 yields less than the improved strategy, and that bad input is refused
-// naming the file and JSON path (or the option). Under the sanitizers fewer units.
+// depend on the thread count, that shards merge into the unsharded study's files byte for byte
+// (study_test_support.h), that a thermal order of 0 yields less than the improved strategy, and
+// that bad input is refused naming the file and JSON path (or the option). Under the sanitizers
+// fewer units.
 #include <filesystem>
 #include <map>
 #include <string>
