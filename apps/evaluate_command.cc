@@ -12,6 +12,7 @@
 #include "apps/commands.h"
 #include "calib/evaluation/imu_evaluation.h"
 #include "calib/evaluation/truth_file.h"
+#include "calib/imu_calibration/imu_fit_diagnostics.h"
 
 namespace adahrs::apps {
 
@@ -29,7 +30,10 @@ void RegisterEvaluateCommand(CLI::App& app) {
     const sensor_sim::ImuUnitParams params =
         calib::ImuTruth(calib::ReadTruthFile(*truth), file.serial);
     calib::ImuEvaluationOptions options;
-    options.g_local_mps2 = file.diagnostics.value("local_gravity_mps2", options.g_local_mps2);
+    if (file.kind == hil::UnitKind::kImu) {
+      options.g_local_mps2 = calib::ImuFitDiagnostics::FromJson(file.diagnostics, *constants)
+                                 .local_gravity_mps2.value_or(options.g_local_mps2);
+    }
     const calib::ImuEvaluation e =
         calib::EvaluateImu(file, params, calib::Specification::Reference(), options);
     const std::string path = out->empty() ? *constants + ".evaluation.json" : *out;

@@ -16,6 +16,7 @@
 
 #include "apps/commands.h"
 #include "calib/campaign/campaign_fits.h"
+#include "calib/imu_calibration/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 
 namespace adahrs::apps {
@@ -63,7 +64,8 @@ void RegisterFitCommand(CLI::App& app) {
       std::cout << fmt::format("{}: strategy {}, {} excluded rows -> {}\n",
                                f.serial,
                                f.strategy,
-                               f.diagnostics.value("excluded_rows", 0),
+                               calib::ImuFitDiagnostics::FromJson(f.diagnostics, path.string())
+                                   .excluded_rows.value_or(0),
                                path.string());
     }
   });

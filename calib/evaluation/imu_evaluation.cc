@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "calib/acceptance/acceptance_judge.h"
 #include "calib/evaluation/simulated_raw_frame.h"
+#include "calib/imu_calibration/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_joint_fit.h"
 #include "calib/imu_calibration/imu_observations.h"
 #include "common/units.h"
@@ -189,28 +191,27 @@ std::string Verdict(const QuantitySummary& q, bool have_crb) {
   return PointVerdictText(PointVerdict::kOutsideBoth);
 }
 
-// The CRB covariance of the constants' numbers (zero when the file carries none); files written
-// before format 3 carry the format-2 numbers' covariance only.
-Eigen::MatrixXd CrbCovariance(const ConstantsFile& file) {
+// The CRB covariance of the constants' numbers (none when the file carries none: the reference
+// strategy); files written before format 3 carry the format-2 numbers' covariance only. A null
+// (not finite) entry counts as zero.
+std::optional<Eigen::MatrixXd> CrbCovariance(const ConstantsFile& file) {
+  const ImuFitDiagnostics diagnostics = ImuFitDiagnostics::FromJson(file.diagnostics, file.serial);
+  if (!diagnostics.joint) return std::nullopt;
+  const std::vector<std::vector<double>>& rows = diagnostics.joint->crb_covariance;
   constexpr int n = kImuFirmwareNumbers;
-  Eigen::MatrixXd crb = Eigen::MatrixXd::Zero(n, n);
-  if (!file.diagnostics.contains("crb_covariance")) return crb;
-  const json& rows = file.diagnostics["crb_covariance"];
-  const int size = rows.is_array() && rows.size() == static_cast<size_t>(kImuFormat2Numbers)
-                       ? kImuFormat2Numbers
-                       : n;
-  if (!rows.is_array() || rows.size() != static_cast<size_t>(size)) {
+  const int size = rows.size() == static_cast<size_t>(kImuFormat2Numbers) ? kImuFormat2Numbers : n;
+  if (rows.size() != static_cast<size_t>(size)) {
     throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance is not " +
                                 std::to_string(n) + "x" + std::to_string(n) + " (or " +
                                 std::to_string(kImuFormat2Numbers) + " square, format 2)");
   }
+  Eigen::MatrixXd crb = Eigen::MatrixXd::Zero(n, n);
   for (int r = 0; r < size; ++r) {
-    if (!rows[r].is_array() || rows[r].size() != static_cast<size_t>(size)) {
+    if (rows[r].size() != static_cast<size_t>(size)) {
       throw std::invalid_argument(file.serial + ": $.diagnostics.crb_covariance[" +
                                   std::to_string(r) + "] is not " + std::to_string(size) + " long");
     }
-    for (int k = 0; k < size; ++k)
-      crb(r, k) = rows[r][k].is_number() ? rows[r][k].get<double>() : 0.0;
+    for (int k = 0; k < size; ++k) crb(r, k) = std::isfinite(rows[r][k]) ? rows[r][k] : 0.0;
   }
   return crb;
 }
@@ -335,8 +336,7 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file,
     throw std::invalid_argument("evaluate: constants of " + file.serial + " are not an IMU's");
   }
   const fm::ImuCalibrationConstants& c = *file.imu;
-  const bool have_crb = file.diagnostics.contains("crb_covariance");
-  const Eigen::MatrixXd crb = CrbCovariance(file);
+  const std::optional<Eigen::MatrixXd> crb = CrbCovariance(file);
   const double g_l = common::Mps2ToG(options.g_local_mps2);
   const std::vector<GridPoint> grid = SimulateGrid(NoiseOff(truth), g_l, options);
   // Format-3 constants are judged against the best format-3 constants.
@@ -351,15 +351,14 @@ ImuEvaluation EvaluateImu(const ConstantsFile& file,
   }
   const std::vector<std::array<double, 6>> floor =
       FloorErrors(projection, grid, options.g_local_mps2);
-  const GridJudgement judged = JudgeGrid(c, grid, errors, floor, have_crb ? &crb : nullptr, spec);
-  const ParameterComparison parameters =
-      CompareParameters(file, projection, have_crb ? &crb : nullptr);
+  const GridJudgement judged = JudgeGrid(c, grid, errors, floor, crb ? &*crb : nullptr, spec);
+  const ParameterComparison parameters = CompareParameters(file, projection, crb ? &*crb : nullptr);
 
   ImuEvaluation e;
   e.worst_accel_mg = judged.accel.worst;
   e.worst_rate_dps = judged.rate.worst;
-  e.accel_verdict = Verdict(judged.accel, have_crb);
-  e.rate_verdict = Verdict(judged.rate, have_crb);
+  e.accel_verdict = Verdict(judged.accel, crb.has_value());
+  e.rate_verdict = Verdict(judged.rate, crb.has_value());
   e.report = {
       {"format", "adahrs-imu-evaluation"},
       {"format_version", 1},

@@ -16,12 +16,9 @@ namespace adahrs::calib {
 namespace {
 
 namespace fm = firmware_model;
-using nlohmann::json;
 
 static_assert(kMaxThermalOrder == fm::kImuThermalDegree);
 
-constexpr std::array<const char*, 9> kChannelNames = {
-    "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
 constexpr std::array<int, 6> kAxisOfChannel = {2, 0, 1, 2, 0, 1};
 constexpr int kPairOfAxis[3][2] = {{1, 4}, {2, 5}, {0, 3}};
 // Temperature counts are fitted in tau = (t - centre) / span (conditioning), re-expanded in Map.
@@ -188,7 +185,7 @@ LinearFit Solve(const std::string& serial,
   const ImuDatasheetNoise& noise = options.noise;
   const long n = static_cast<long>(use.size());
   LinearLeastSquaresProblem p;
-  p.context = "unit " + serial + " joint model of " + kChannelNames[m.channel];
+  p.context = "unit " + serial + " joint model of " + kImuChannelNames[m.channel];
   p.term_names = TermNames(m);
   Eigen::MatrixXd design(n, m.size());
   Eigen::VectorXd y(n), variance(n);
@@ -261,13 +258,13 @@ int ChooseOrder(const std::string& serial,
                 const ImuJointOptions& options,
                 const Eigen::MatrixXd& bias_cnt2,
                 BiasWander wander,
-                json* report) {
+                JointChannelDiagnostics* report) {
   std::vector<size_t> thermal, other;
   for (size_t i = 0; i < obs.size(); ++i) (obs[i].thermal ? thermal : other).push_back(i);
   if (static_cast<int>(thermal.size()) < 4 * options.folds) return 2;
   double best = std::numeric_limits<double>::infinity();
   int best_order = 2;
-  json scores = json::array();
+  std::vector<double> scores;
   for (int order = 0; order <= kMaxThermalOrder; ++order) {
     double sum = 0.0;
     for (int fold = 0; fold < options.folds; ++fold) {
@@ -287,7 +284,7 @@ int ChooseOrder(const std::string& serial,
       best_order = order;
     }
   }
-  (*report)["held_out_normalised_rms_by_order"] = scores;
+  report->held_out_normalised_rms_by_order = scores;
   return best_order;
 }
 
@@ -324,10 +321,10 @@ int ChooseScaleOrder(const std::string& serial,
                      const ImuJointOptions& options,
                      const Eigen::MatrixXd& bias_cnt2,
                      BiasWander wander,
-                     json* report) {
+                     JointChannelDiagnostics* report) {
   int levels = 0;
   const std::vector<int> level_of = ScaleLevels(base, obs, &levels);
-  (*report)["scale_temperature_levels"] = levels;
+  report->scale_temperature_levels = levels;
   const int max_order = std::min(kMaxThermalOrder, levels - 2);
   if (max_order < 1) return 0;
   // The gyro's sensitivity tempco is quadratic in temperature (physics.md: regressors w*dT and
@@ -335,11 +332,10 @@ int ChooseScaleOrder(const std::string& serial,
   // extrapolates, which penalises the quadratic against a line even where the line misses the
   // curvature by several hundred ppm at the range's ends and middle.
   const int min_order = base.gyro() ? std::min(kGyroMinScaleOrder, max_order) : 0;
-  (*report)["scale_min_order"] = min_order;
+  report->scale_min_order = min_order;
   double best = std::numeric_limits<double>::infinity();
   int best_order = min_order;
-  json scores = json::array();
-  for (int order = 0; order < min_order; ++order) scores.push_back(nullptr);  // not tried
+  std::vector<std::optional<double>> scores(static_cast<size_t>(min_order));  // not tried
   for (int order = min_order; order <= max_order; ++order) {
     ChannelModel m = base;
     m.scale_order = order;
@@ -358,7 +354,7 @@ int ChooseScaleOrder(const std::string& serial,
       best_order = order;
     }
   }
-  (*report)["scale_held_out_normalised_rms_by_order"] = scores;
+  report->scale_held_out_normalised_rms_by_order = scores;
   return best_order;
 }
 
@@ -673,7 +669,7 @@ struct ChannelFit {
   Eigen::VectorXd theta;
   Eigen::MatrixXd cov;
   Eigen::MatrixXd crb;
-  json report = json::object();
+  JointChannelDiagnostics report;
 };
 
 // Everything one channel's solves share.
@@ -685,19 +681,15 @@ struct ChannelContext {
   const ImuJointOptions& options;
 };
 
-json WanderReport(const std::optional<GyroWanderEstimate>& estimate,
-                  const ImuDatasheetNoise& noise) {
-  if (!estimate) {
-    return {{"floor_dph", noise.gyro_bias_floor_dph},
-            {"time_scale", 1.0},
-            {"source", "datasheet prior"}};
-  }
-  return {{"floor_dph", estimate->floor_dph},
-          {"time_scale", estimate->time_scale},
-          {"white_variance_scale", estimate->white_scale},
-          {"log_likelihood_gain_over_datasheet", estimate->log_likelihood_gain},
-          {"at_grid_edge", estimate->at_grid_edge},
-          {"source", "estimated from the recording (REML)"}};
+BiasWanderDiagnostics WanderReport(const std::optional<GyroWanderEstimate>& estimate,
+                                   const ImuDatasheetNoise& noise) {
+  if (!estimate) return {noise.gyro_bias_floor_dph, 1.0, {}, {}, {}, "datasheet prior"};
+  return {estimate->floor_dph,
+          estimate->time_scale,
+          estimate->white_scale,
+          estimate->log_likelihood_gain,
+          estimate->at_grid_edge,
+          "estimated from the recording (REML)"};
 }
 
 // Format 3: the scale factors' order in temperature, the accelerometer's f_axis^2, the gyro's
@@ -706,7 +698,7 @@ void ChooseFormat3Terms(const ChannelContext& cx,
                         const Eigen::MatrixXd& bias_cnt2,
                         BiasWander diagonal,
                         ChannelModel* m,
-                        json* report) {
+                        JointChannelDiagnostics* report) {
   m->quadratic = !m->gyro();
   m->g_sensitivity = m->gyro();
   m->lag = !m->gyro() && cx.options.die_lag_terms;
@@ -715,7 +707,7 @@ void ChooseFormat3Terms(const ChannelContext& cx,
           ? *cx.options.scale_order
           : ChooseScaleOrder(
                 cx.serial, *m, cx.obs, cx.n_thermal, cx.options, bias_cnt2, diagonal, report);
-  (*report)["scale_order"] = m->scale_order;
+  report->scale_order = m->scale_order;
   if (m->gyro() && m->scale_order > 0) {
     const LinearFit provisional =
         Solve(cx.serial, *m, cx.obs, cx.all, cx.n_thermal, false, cx.options, bias_cnt2, diagonal);
@@ -754,7 +746,7 @@ double ModelVariance(const ChannelContext& cx,
 void ReportFormat2ScaleTempco(const ChannelContext& cx,
                               const ChannelModel& m,
                               const Eigen::MatrixXd& bias_cnt2,
-                              json* report) {
+                              JointChannelDiagnostics* report) {
   ChannelModel with = m;
   with.scale_order = 1;
   try {
@@ -770,13 +762,13 @@ void ReportFormat2ScaleTempco(const ChannelContext& cx,
     const double s_axis = t.coefficients[with.stimulus_index() + kAxisOfChannel[m.channel]];
     // tau per degC: 110 counts per degC / 4096 counts per tau unit (thermal_drift_fit.h).
     const double per_c = 110.0 / kTempSpan_cnt / s_axis * 1e6;
-    (*report)["scale_tempco_ppm_per_c"] = t.coefficients[t.coefficients.size() - 1] * per_c;
-    (*report)["scale_tempco_se_ppm_per_c"] =
+    report->scale_tempco_ppm_per_c = t.coefficients[t.coefficients.size() - 1] * per_c;
+    report->scale_tempco_se_ppm_per_c =
         t.standard_errors[t.standard_errors.size() - 1] * std::abs(per_c);
-    (*report)["scale_tempco_note"] =
+    report->scale_tempco_note =
         "estimated, not held by the firmware (no scale-vs-temperature term)";
   } catch (const DegenerateDesignError& e) {
-    (*report)["scale_tempco_note"] = std::string("not identifiable from this design: ") + e.what();
+    report->scale_tempco_note = std::string("not identifiable from this design: ") + e.what();
   }
 }
 
@@ -798,7 +790,7 @@ ChannelFit FitChannel(const ChannelContext& cx, int ch, const Eigen::MatrixXd& p
   std::optional<GyroWanderEstimate> estimate;
   if (wanders && options.estimate_gyro_wander)
     estimate = EstimateWander(m, cx.obs, cx.n_thermal, options);
-  if (wanders) out.report["bias_wander"] = WanderReport(estimate, options.noise);
+  if (wanders) out.report.bias_wander = WanderReport(estimate, options.noise);
   const Eigen::MatrixXd& bias_cnt2 = estimate ? estimate->covariance_cnt2 : prior_cnt2;
   if (estimate && !options.thermal_order) {
     m.order =
@@ -816,7 +808,7 @@ ChannelFit FitChannel(const ChannelContext& cx, int ch, const Eigen::MatrixXd& p
                               bias_cnt2,
                               correlated,
                               model_variance);
-  out.report["model_error_rms"] = std::sqrt(model_variance);
+  out.report.model_error_rms = std::sqrt(model_variance);
   // The bound carries the same excess: scatter the datasheet's noise leaves out (rate random
   // walk, TEMP quantisation, drift between a level's visits) limits any estimator of this
   // design on this unit, and a bound without it is beaten by 5-80 standard errors.
@@ -833,10 +825,10 @@ ChannelFit FitChannel(const ChannelContext& cx, int ch, const Eigen::MatrixXd& p
   out.theta = fit.coefficients;
   out.cov = fit.covariance;
   out.crb = bound.covariance;
-  out.report["thermal_order"] = m.order;
-  out.report["observations"] = fit.observations;
-  out.report["residual_rms"] = fit.residual_rms;
-  out.report["sigma_ratio_to_datasheet"] = fit.sigma;
+  out.report.thermal_order = m.order;
+  out.report.observations = fit.observations;
+  out.report.residual_rms = fit.residual_rms;
+  out.report.sigma_ratio_to_datasheet = fit.sigma;
   if (ch < 6 && !options.format3) ReportFormat2ScaleTempco(cx, m, bias_cnt2, &out.report);
   return out;
 }
@@ -891,14 +883,14 @@ ImuFitResult FitImuJoint(const std::string& serial,
   std::array<ChannelModel, 9> models;
   std::array<Eigen::VectorXd, 9> theta;
   std::array<Eigen::MatrixXd, 9> cov, crb;
-  json channels = json::object();
+  JointFitDiagnostics diag;
   for (int ch = 0; ch < 9; ++ch) {
     ChannelFit f = FitChannel(cx, ch, prior_cnt2);
     models[ch] = f.model;
     theta[ch] = std::move(f.theta);
     cov[ch] = std::move(f.cov);
     crb[ch] = std::move(f.crb);
-    channels[kChannelNames[ch]] = std::move(f.report);
+    diag.channels[kImuChannelNames[ch]] = std::move(f.report);
   }
   const std::array<std::array<double, 2>, 3> temp_span_cnt = TemperatureSpans(serial, obs);
   ImuFitResult result;
@@ -912,15 +904,14 @@ ImuFitResult FitImuJoint(const std::string& serial,
     se[kFirstGyroNumber + 5 * g + 1] = std::numeric_limits<double>::quiet_NaN();
   }
   result.standard_errors = UnflattenConstants(se, result.constants);
-  result.diagnostics = {
-      {"channels", channels},
-      {"observations", obs.size()},
-      {"crb_parameters", ConstantNames()},
-      {"crb_covariance", Rows(crb_fw)},
-      {"firmware_cannot_hold",
-       options.format3 ? "thermal and scale-factor orders above 3, the tempco of cross-axis terms"
-                       : "accelerometer scale vs temperature, accelerometer nonlinearity, gyro "
-                         "g-sensitivity, thermal orders above 3"}};
+  diag.observations = static_cast<int64_t>(obs.size());
+  diag.crb_parameters = ConstantNames();
+  diag.crb_covariance = Rows(crb_fw);
+  diag.firmware_cannot_hold =
+      options.format3 ? "thermal and scale-factor orders above 3, the tempco of cross-axis terms"
+                      : "accelerometer scale vs temperature, accelerometer nonlinearity, gyro "
+                        "g-sensitivity, thermal orders above 3";
+  result.diagnostics.joint = std::move(diag);
   return result;
 }
 

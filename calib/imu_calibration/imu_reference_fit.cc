@@ -15,11 +15,8 @@ namespace adahrs::calib {
 namespace {
 
 namespace fm = firmware_model;
-using nlohmann::json;
 
 constexpr double kCrossAxisRate_dps = 150.0;  // CG's reference (thesis Eq. 28)
-constexpr std::array<const char*, 9> kChannelNames = {
-    "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
 
 int UpAxisIndex(int orientation) { return orientation / 10 - 1; }
 double UpSign(int orientation) { return orientation % 10 == 1 ? 1.0 : -1.0; }
@@ -32,18 +29,19 @@ fm::ImuCalibrationConstants Identity() {
   return c;
 }
 
-json ThermalDiagnostics(const ThermalDriftResult& r) {
-  json j = {{"bands", r.all.bands},
-            {"samples", r.all.samples},
-            {"residual_rms", r.all.residual_rms},
-            {"temp_min_cnt", r.all.temp_min_cnt},
-            {"temp_max_cnt", r.all.temp_max_cnt},
-            {"hysteresis", r.hysteresis},
-            {"hysteresis_at_temp_cnt", r.hysteresis_at_temp_cnt}};
-  if (r.up) j["up_ramp_k"] = r.up->k;
-  if (r.down) j["down_ramp_k"] = r.down->k;
-  if (!r.ramp_note.empty()) j["ramp_note"] = r.ramp_note;
-  return j;
+ThermalChannelDiagnostics ThermalDiagnostics(const ThermalDriftResult& r) {
+  ThermalChannelDiagnostics d;
+  d.bands = r.all.bands;
+  d.samples = r.all.samples;
+  d.residual_rms = r.all.residual_rms;
+  d.temp_min_cnt = r.all.temp_min_cnt;
+  d.temp_max_cnt = r.all.temp_max_cnt;
+  d.hysteresis = r.hysteresis;
+  d.hysteresis_at_temp_cnt = r.hysteresis_at_temp_cnt;
+  if (r.up) d.up_ramp_k = r.up->k;
+  if (r.down) d.down_ramp_k = r.down->k;
+  d.ramp_note = r.ramp_note;
+  return d;
 }
 
 }  // namespace
@@ -60,7 +58,7 @@ ChannelMeans MeansOf(const fm::ImuCalibrationConstants& constants,
   ChannelMeans m;
   m.count = static_cast<int>(samples.size());
   for (int i = 0; i < 9; ++i) {
-    const SampleMean s = SummariseSamples(context + " " + kChannelNames[i], columns[i]);
+    const SampleMean s = SummariseSamples(context + " " + kImuChannelNames[i], columns[i]);
     m.mean[i] = s.mean;
     m.standard_error[i] = s.standard_error;
   }
@@ -73,12 +71,12 @@ namespace {
 void FitThermalStage(const ImuUnitData& unit,
                      const std::string& who,
                      const ImuReferenceOptions& options,
+                     ReferenceFitDiagnostics* diag,
                      ImuFitResult* result) {
   if (unit.thermal.empty()) {
     throw ImuInputError(who + ": no thermal_profile rows (give the thermal-calibration run)");
   }
   fm::ImuCalibrationConstants& c = result->constants;
-  json thermal_diag = json::object();
   for (int ch = 0; ch < 9; ++ch) {
     std::vector<ThermalSample> samples;
     samples.reserve(unit.thermal.size());
@@ -90,22 +88,22 @@ void FitThermalStage(const ImuUnitData& unit,
                          unit.thermal_segment[i]});
     }
     const ThermalDriftResult r =
-        FitThermalDrift(who + " thermal " + kChannelNames[ch], samples, options.thermal);
+        FitThermalDrift(who + " thermal " + kImuChannelNames[ch], samples, options.thermal);
     // The reference method's drift is a quadratic: the cubic term is fixed at zero, not estimated.
     c.thermal[ch].k = {r.all.k[0], r.all.k[1], r.all.k[2], 0.0};
     c.thermal[ch].temp_min_cnt = r.all.temp_min_cnt;
     c.thermal[ch].temp_max_cnt = r.all.temp_max_cnt;
     result->standard_errors.thermal[ch].k = {
         r.all.k_se[0], r.all.k_se[1], r.all.k_se[2], std::numeric_limits<double>::quiet_NaN()};
-    thermal_diag[kChannelNames[ch]] = ThermalDiagnostics(r);
+    diag->thermal[kImuChannelNames[ch]] = ThermalDiagnostics(r);
   }
-  result->diagnostics["thermal"] = thermal_diag;
 }
 
 // Stage 2: six-position offsets and scales, the acquisitions pooled per orientation.
 void FitSixPositionStage(const ImuUnitData& unit,
                          const std::string& who,
                          double g_local_mps2,
+                         ReferenceFitDiagnostics* diag,
                          ImuFitResult* result) {
   fm::ImuCalibrationConstants& c = result->constants;
   std::map<int, std::vector<ImuSample>> by_orientation;
@@ -128,21 +126,21 @@ void FitSixPositionStage(const ImuUnitData& unit,
     six.push_back(s);
   }
   const auto accel = FitSixPosition(six, g_local_mps2);
-  json accel_diag = json::array();
   for (int ch = 0; ch < 6; ++ch) {
     c.accel[ch] = accel[ch].fit;
     result->standard_errors.accel[ch] = {accel[ch].offset_se_duty, accel[ch].scale_se_duty_per_g};
-    accel_diag.push_back({{"channel", kChannelNames[ch]},
-                          {"inverse_scale_g_per_duty", accel[ch].inverse_scale_g_per_duty},
-                          {"inverse_scale_se_g_per_duty", accel[ch].inverse_scale_se_g_per_duty}});
+    diag->accel.push_back({kImuChannelNames[ch],
+                           accel[ch].inverse_scale_g_per_duty,
+                           accel[ch].inverse_scale_se_g_per_duty});
   }
-  result->diagnostics["accel"] = accel_diag;
 }
 
 // Stage 3: each gyro's cubic over the rate steps about its axis.
-void FitGyroStage(const ImuUnitData& unit, const std::string& who, ImuFitResult* result) {
+void FitGyroStage(const ImuUnitData& unit,
+                  const std::string& who,
+                  ReferenceFitDiagnostics* diag,
+                  ImuFitResult* result) {
   fm::ImuCalibrationConstants& c = result->constants;
-  json gyro_diag = json::array();
   for (int g = 0; g < 3; ++g) {
     std::vector<GyroRateMean> steps;
     for (const ImuAcquisition& a : unit.gyro) {
@@ -153,14 +151,11 @@ void FitGyroStage(const ImuUnitData& unit, const std::string& who, ImuFitResult*
                                      who + " gyro step " + std::to_string(a.step));
       steps.push_back({a.rate_dps * UpSign(a.orientation), m.mean[6 + g], m.standard_error[6 + g]});
     }
-    const GyroScaleEstimate e = FitGyroScale(who + " " + kChannelNames[6 + g], steps);
+    const GyroScaleEstimate e = FitGyroScale(who + " " + kImuChannelNames[6 + g], steps);
     c.gyro[g] = e.fit;
     result->standard_errors.gyro[g] = {e.null_se_cnt, e.l_se};
-    gyro_diag.push_back({{"channel", kChannelNames[6 + g]},
-                         {"rates", e.rates},
-                         {"residual_rms_dps", e.residual_rms_dps}});
+    diag->gyro.push_back({kImuChannelNames[6 + g], e.rates, e.residual_rms_dps});
   }
-  result->diagnostics["gyro"] = gyro_diag;
 }
 
 // The sensor-calibrated means of one cross-axis acquisition: the accelerometers' (slots 0..2)
@@ -185,6 +180,7 @@ AxisStepMean CrossAxisMean(const fm::ImuCalibrationConstants& c,
 void FitCrossAxisStage(const ImuUnitData& unit,
                        const std::string& who,
                        double g_local_mps2,
+                       ReferenceFitDiagnostics* diag,
                        ImuFitResult* result) {
   fm::ImuCalibrationConstants& c = result->constants;
   const bool have_step = !unit.cross_axis.empty();
@@ -224,21 +220,18 @@ void FitCrossAxisStage(const ImuUnitData& unit,
       result->standard_errors.cg[r][k] = cg.standard_error(r, k);
     }
   }
-  result->diagnostics["cross_axis"] = {
-      {"source", have_step ? "cross_axis step" : "accel and gyro steps"},
-      {"ca_condition", ca.condition_number},
-      {"cg_condition", cg.condition_number}};
+  diag->cross_axis = {have_step ? "cross_axis step" : "accel and gyro steps",
+                      ca.condition_number,
+                      cg.condition_number};
 }
 
-void ReportExclusions(const ImuUnitData& unit, json* diag) {
-  (*diag)["excluded_rows"] = unit.exclusions.size();
-  if (!unit.exclusions.empty()) {
-    constexpr size_t kListed = 100;  // the count above is complete; the list names the first ones
-    (*diag)["exclusions"] = std::vector<std::string>(
-        unit.exclusions.begin(),
-        unit.exclusions.begin() + static_cast<long>(std::min(kListed, unit.exclusions.size())));
-  }
-  (*diag)["rejected_interval_rows"] = unit.rejected_interval_rows;
+void ReportExclusions(const ImuUnitData& unit, ImuFitDiagnostics* diag) {
+  diag->excluded_rows = static_cast<int64_t>(unit.exclusions.size());
+  constexpr size_t kListed = 100;  // the count above is complete; the list names the first ones
+  diag->exclusions.assign(
+      unit.exclusions.begin(),
+      unit.exclusions.begin() + static_cast<long>(std::min(kListed, unit.exclusions.size())));
+  diag->rejected_interval_rows = unit.rejected_interval_rows;
 }
 
 }  // namespace
@@ -250,11 +243,12 @@ ImuFitResult FitImuReference(const ImuUnitData& unit,
   ImuFitResult result;
   result.standard_errors = NotEstimated();
   result.constants = Identity();
-  result.diagnostics["strategy_steps"] = "thermal (order 2), six-position, gyro cubic, cross-axis";
-  FitThermalStage(unit, who, options, &result);
-  FitSixPositionStage(unit, who, g_local_mps2, &result);
-  FitGyroStage(unit, who, &result);
-  FitCrossAxisStage(unit, who, g_local_mps2, &result);
+  ReferenceFitDiagnostics& diag = result.diagnostics.reference.emplace();
+  diag.strategy_steps = "thermal (order 2), six-position, gyro cubic, cross-axis";
+  FitThermalStage(unit, who, options, &diag, &result);
+  FitSixPositionStage(unit, who, g_local_mps2, &diag, &result);
+  FitGyroStage(unit, who, &diag, &result);
+  FitCrossAxisStage(unit, who, g_local_mps2, &diag, &result);
   ReportExclusions(unit, &result.diagnostics);
   return result;
 }

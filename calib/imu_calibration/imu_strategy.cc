@@ -77,10 +77,10 @@ ConstantsFile FitImuUnit(const ImuUnitData& unit,
     fit = FitImuJoint(unit.serial,
                       ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt),
                       options);
-    fit.diagnostics["excluded_rows"] = unit.exclusions.size();
-    fit.diagnostics["rejected_interval_rows"] = unit.rejected_interval_rows;
+    fit.diagnostics.excluded_rows = static_cast<int64_t>(unit.exclusions.size());
+    fit.diagnostics.rejected_interval_rows = unit.rejected_interval_rows;
   }
-  fit.diagnostics["local_gravity_mps2"] = data.local_gravity_mps2;
+  fit.diagnostics.local_gravity_mps2 = data.local_gravity_mps2;
   ConstantsFile f;
   f.serial = unit.serial;
   f.kind = hil::UnitKind::kImu;
@@ -90,7 +90,7 @@ ConstantsFile FitImuUnit(const ImuUnitData& unit,
   f.imu = fit.constants;
   f.standard_errors = ImuStandardErrorsJson(fit.standard_errors);
   f.provenance = {data.recordings, data.sequence_names};
-  f.diagnostics = fit.diagnostics;
+  f.diagnostics = fit.diagnostics.ToJson();
   return f;
 }
 

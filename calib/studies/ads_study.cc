@@ -1,6 +1,5 @@
 #include "calib/studies/ads_study.h"
 
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -10,16 +9,9 @@
 #include "calib/solvers/linear_least_squares.h"
 #include "calib/studies/ads_run_simulator.h"
 #include "calib/studies/study_runner.h"
-#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {
-
-std::string SerialOf(int index) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "SIM-%06d", index + 1);
-  return buf;
-}
 
 // The largest |error| / tolerance over the grid under every history.
 double WorstRatioWithHistory(const AdsQuantityEvaluation& q) {
@@ -64,11 +56,7 @@ StrategyOutcome Judge(const StudyDefinition& d,
 StudyUnitResult RunAdsStudyUnit(const std::vector<StudyDefinition>& strategies,
                                 const StudySettings& settings,
                                 int index) {
-  StudyUnitResult r;
-  r.index = index;
-  r.serial = SerialOf(index);
-  r.draw_seed = common::Rng::Derive(settings.seed, 2 * static_cast<uint64_t>(index));
-  r.noise_seed = common::Rng::Derive(settings.seed, 2 * static_cast<uint64_t>(index) + 1);
+  StudyUnitResult r = NewStudyUnit(settings, index);
   sensor_sim::AdsUnitParams params =
       sensor_sim::AdsUnitParams::Draw(r.serial, r.draw_seed, settings.population.profile);
   params.ApplyVariant(settings.population.variant);

@@ -1,8 +1,8 @@
 // report.html of an ADS study: the settings, a yield table per strategy and criterion (altitude,
 // airspeed, all, no history), the worst-error distributions in tolerances (percentiles; histogram
 // and empirical CDF per quantity, every strategy on one plot, the tolerance drawn at 1) and, with
-// two strategies, the paired differences with their bootstrap intervals. The IMU study's page
-// layout and plots (study_report.h).
+// two strategies, the paired differences with their bootstrap intervals. The page layout and
+// plots are the IMU study's (study_report_parts.h).
 #pragma once
 
 #include <string>

@@ -2,7 +2,6 @@
 
 #include "calib/studies/study_runner.h"
 
-#include <cstdio>
 #include <exception>
 #include <limits>
 #include <stdexcept>
@@ -12,18 +11,11 @@
 #include "calib/imu_calibration/imu_run_data.h"
 #include "calib/solvers/linear_least_squares.h"
 #include "calib/studies/imu_run_simulator.h"
-#include "common/random.h"
 
 namespace adahrs::calib {
 namespace {
 
 constexpr const char* kSoftwareVersion = "study";
-
-std::string SerialOf(int index) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "SIM-%06d", index + 1);
-  return buf;
-}
 
 // The unit's recording of `sequence`, collected as LoadImuRuns collects a recording on disk.
 ImuRunData Simulate(const StudyDefinition& d,
@@ -105,11 +97,7 @@ StudyShard StudyShard::Parse(const std::string& spec, const std::string& field) 
 StudyUnitResult RunImuStudyUnit(const std::vector<StudyDefinition>& strategies,
                                 const StudySettings& settings,
                                 int index) {
-  StudyUnitResult r;
-  r.index = index;
-  r.serial = SerialOf(index);
-  r.draw_seed = common::Rng::Derive(settings.seed, 2 * static_cast<uint64_t>(index));
-  r.noise_seed = common::Rng::Derive(settings.seed, 2 * static_cast<uint64_t>(index) + 1);
+  StudyUnitResult r = NewStudyUnit(settings, index);
   sensor_sim::ImuUnitParams params =
       sensor_sim::ImuUnitParams::Draw(r.serial, r.draw_seed, settings.population.profile);
   params.ApplyVariant(settings.population.variant);

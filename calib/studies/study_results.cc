@@ -1,16 +1,14 @@
 #include "calib/studies/study_results.h"
 
 #include <algorithm>
-#include <cmath>
-#include <fstream>
+#include <cstdlib>
 #include <map>
-#include <random>
-#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "calib/studies/ads_study_results.h"
+#include "calib/studies/study_csv.h"
 #include "calib/studies/study_report.h"
 
 namespace adahrs::calib {
@@ -18,154 +16,81 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kBootstrapResamples = kStudyBootstrapResamples;
 constexpr const char* kCsvHeader =
     "unit_index,serial,draw_seed,noise_seed,strategy,fitted,worst_accel_mg,worst_rate_dps,"
     "accel_verdict,rate_verdict,pass_acceleration,pass_body_rate,pass_body_rate_limit,pass_all,"
     "failure";
-constexpr size_t kCsvColumns = 15;
 
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
+std::string CsvOutcome(const StrategyOutcome& o) {
+  return fmt::format("{},{},{},{},{},{},{},{},{},{}",
+                     StudyCsvBool(o.fitted),
+                     o.worst_accel_mg,
+                     o.worst_rate_dps,
+                     StudyCsvField(o.accel_verdict),
+                     StudyCsvField(o.rate_verdict),
+                     StudyCsvBool(o.pass_acceleration),
+                     StudyCsvBool(o.pass_body_rate),
+                     StudyCsvBool(o.pass_body_rate_limit),
+                     StudyCsvBool(o.pass_all()),
+                     StudyCsvField(o.failure));
 }
 
-// Splits one CSV line (RFC 4180 quoting, no line breaks inside fields).
-std::vector<std::string> CsvSplit(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
+StrategyOutcome OutcomeOf(const std::vector<std::string>& f) {
+  StrategyOutcome o;
+  o.fitted = f[5] == "1";
+  o.worst_accel_mg = std::strtod(f[6].c_str(), nullptr);
+  o.worst_rate_dps = std::strtod(f[7].c_str(), nullptr);
+  o.accel_verdict = f[8];
+  o.rate_verdict = f[9];
+  o.pass_acceleration = f[10] == "1";
+  o.pass_body_rate = f[11] == "1";
+  o.pass_body_rate_limit = f[12] == "1";
+  o.failure = f[14];
+  return o;
 }
 
-std::string Bool(bool b) { return b ? "1" : "0"; }
+const StudyCsvLayout kCsvLayout{kCsvHeader, 15, "study results", CsvOutcome, OutcomeOf};
 
-ErrorDistribution Distribution(std::vector<double> values) {
-  std::erase_if(values, [](double v) { return !std::isfinite(v); });
-  ErrorDistribution d;
-  d.count = static_cast<int>(values.size());
-  if (values.empty()) {
-    d.mean = d.p50 = d.p90 = d.p95 = d.p99 = d.max = std::numeric_limits<double>::quiet_NaN();
-    return d;
-  }
-  std::sort(values.begin(), values.end());
-  auto rank = [&](double p) {
-    const auto k = static_cast<size_t>(std::ceil(p * static_cast<double>(values.size())));
-    return values[std::max<size_t>(k, 1) - 1];
-  };
-  double sum = 0.0;
-  for (double v : values) sum += v;
-  d.mean = sum / static_cast<double>(values.size());
-  d.p50 = rank(0.50);
-  d.p90 = rank(0.90);
-  d.p95 = rank(0.95);
-  d.p99 = rank(0.99);
-  d.max = values.back();
-  return d;
-}
-
-// Mean of `diffs` with the percentile bootstrap (resampling units with replacement).
-PairedInterval Bootstrap(const std::vector<double>& diffs, uint64_t seed) {
-  PairedInterval p;
-  p.units = static_cast<int>(diffs.size());
-  if (diffs.empty()) {
-    p.mean = p.ci95_low = p.ci95_high = std::numeric_limits<double>::quiet_NaN();
-    return p;
-  }
-  double sum = 0.0;
-  for (double d : diffs) sum += d;
-  p.mean = sum / static_cast<double>(diffs.size());
-  std::mt19937_64 rng(seed);
-  std::vector<double> means(kBootstrapResamples);
-  for (double& m : means) {
-    double s = 0.0;
-    for (size_t i = 0; i < diffs.size(); ++i) s += diffs[rng() % diffs.size()];
-    m = s / static_cast<double>(diffs.size());
-  }
-  std::sort(means.begin(), means.end());
-  p.ci95_low = means[static_cast<size_t>(0.025 * kBootstrapResamples)];
-  p.ci95_high = means[static_cast<size_t>(0.975 * kBootstrapResamples) - 1];
-  return p;
-}
+bool PassAcceleration(const StrategyOutcome& o) { return o.pass_acceleration; }
+bool PassBodyRate(const StrategyOutcome& o) { return o.pass_body_rate; }
+bool PassBodyRateLimit(const StrategyOutcome& o) { return o.pass_body_rate_limit; }
+bool PassAll(const StrategyOutcome& o) { return o.pass_all(); }
+double WorstAccel(const StrategyOutcome& o) { return o.worst_accel_mg; }
+double WorstRate(const StrategyOutcome& o) { return o.worst_rate_dps; }
 
 StrategySummary SummariseStrategy(const StudyStrategyInfo& info,
                                   size_t s,
                                   const std::vector<StudyUnitResult>& results) {
+  const StrategyTally t =
+      TallyStrategy(results,
+                    s,
+                    {PassAcceleration, PassBodyRate, PassBodyRateLimit, PassAll},
+                    {WorstAccel, WorstRate});
   StrategySummary out;
   out.info = info;
-  out.units = static_cast<int>(results.size());
-  std::vector<double> accel, rate;
-  int pass_a = 0, pass_r = 0, pass_limit = 0, pass_all = 0;
-  for (const StudyUnitResult& r : results) {
-    const StrategyOutcome& o = r.outcomes.at(s);
-    out.fitted += o.fitted;
-    pass_a += o.pass_acceleration;
-    pass_r += o.pass_body_rate;
-    pass_limit += o.pass_body_rate_limit;
-    pass_all += o.pass_all();
-    accel.push_back(o.worst_accel_mg);
-    rate.push_back(o.worst_rate_dps);
-  }
-  const double n = std::max<double>(1.0, static_cast<double>(results.size()));
-  out.yield_acceleration = pass_a / n;
-  out.yield_body_rate = pass_r / n;
-  out.yield_body_rate_limit = pass_limit / n;
-  out.yield_all = pass_all / n;
-  out.worst_accel_mg = Distribution(accel);
-  out.worst_rate_dps = Distribution(rate);
+  out.units = t.units;
+  out.fitted = t.fitted;
+  out.yield_acceleration = t.yields[0];
+  out.yield_body_rate = t.yields[1];
+  out.yield_body_rate_limit = t.yields[2];
+  out.yield_all = t.yields[3];
+  out.worst_accel_mg = t.errors[0];
+  out.worst_rate_dps = t.errors[1];
   return out;
 }
 
 PairedSummary SummarisePair(const StudyMeta& meta, const std::vector<StudyUnitResult>& results) {
+  const std::vector<PairedInterval> i =
+      PairedIntervals(results, meta.seed, {PassAll, PassAcceleration}, {WorstAccel, WorstRate});
   PairedSummary p;
   p.first = meta.strategies[0].name;
   p.second = meta.strategies[1].name;
-  p.resamples = kBootstrapResamples;
-  std::vector<double> pass, pass_accel, accel, rate;
-  for (const StudyUnitResult& r : results) {
-    const StrategyOutcome& a = r.outcomes[0];
-    const StrategyOutcome& b = r.outcomes[1];
-    pass.push_back(static_cast<double>(b.pass_all()) - static_cast<double>(a.pass_all()));
-    pass_accel.push_back(static_cast<double>(b.pass_acceleration) -
-                         static_cast<double>(a.pass_acceleration));
-    if (a.fitted && b.fitted) {
-      accel.push_back(b.worst_accel_mg - a.worst_accel_mg);
-      rate.push_back(b.worst_rate_dps - a.worst_rate_dps);
-    }
-  }
-  p.yield_all = Bootstrap(pass, meta.seed);
-  p.yield_acceleration = Bootstrap(pass_accel, meta.seed + 1);
-  p.worst_accel_mg = Bootstrap(accel, meta.seed + 2);
-  p.worst_rate_dps = Bootstrap(rate, meta.seed + 3);
+  p.resamples = kStudyBootstrapResamples;
+  p.yield_all = i[0];
+  p.yield_acceleration = i[1];
+  p.worst_accel_mg = i[2];
+  p.worst_rate_dps = i[3];
   return p;
-}
-
-std::string ReadText(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file.string() + ": cannot be read");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void WriteText(const std::filesystem::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error(file.string() + ": cannot be written");
 }
 
 }  // namespace
@@ -206,7 +131,7 @@ json StudyMeta::ToJson() const {
 
 StudyMeta StudyMeta::Read(const std::filesystem::path& file) {
   try {
-    const json j = json::parse(ReadText(file));
+    const json j = json::parse(ReadStudyText(file));
     if (j.at("format") != "adahrs-study-run")
       throw std::runtime_error("$.format is not adahrs-study-run");
     StudyMeta m;
@@ -247,43 +172,51 @@ StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies,
   return m;
 }
 
-json ErrorDistribution::ToJson() const {
-  return {{"count", count},
-          {"mean", mean},
-          {"p50", p50},
-          {"p90", p90},
-          {"p95", p95},
-          {"p99", p99},
-          {"max", max}};
+json StrategySummaryJson(const StudyStrategyInfo& info,
+                         int units,
+                         int fitted,
+                         const json& yield,
+                         const std::vector<std::pair<std::string, ErrorDistribution>>& errors) {
+  json j = {{"name", info.name},
+            {"strategy", info.strategy},
+            {"sequence", info.sequence},
+            {"rig_time_s", info.rig_time_s},
+            {"units", units},
+            {"fitted", fitted},
+            {"yield", yield}};
+  for (const auto& [name, e] : errors) j[name] = e.ToJson();
+  return j;
+}
+
+json PairedSummaryJson(const std::string& first,
+                       const std::string& second,
+                       int resamples,
+                       const std::vector<std::pair<std::string, PairedInterval>>& rows) {
+  json j = {{"difference", second + " - " + first}, {"bootstrap_resamples", resamples}};
+  for (const auto& [name, i] : rows) j[name] = i.ToJson();
+  return j;
 }
 
 json StrategySummary::ToJson() const {
-  return {{"name", info.name},
-          {"strategy", info.strategy},
-          {"sequence", info.sequence},
-          {"rig_time_s", info.rig_time_s},
-          {"units", units},
-          {"fitted", fitted},
-          {"yield",
-           {{"acceleration", yield_acceleration},
-            {"body_rate", yield_body_rate},
-            {"body_rate_limit", yield_body_rate_limit},
-            {"all", yield_all}}},
-          {"worst_accel_mg", worst_accel_mg.ToJson()},
-          {"worst_rate_dps", worst_rate_dps.ToJson()}};
-}
-
-json PairedInterval::ToJson() const {
-  return {{"units", units}, {"mean", mean}, {"ci95_low", ci95_low}, {"ci95_high", ci95_high}};
+  return StrategySummaryJson(
+      info,
+      units,
+      fitted,
+      {{"acceleration", yield_acceleration},
+       {"body_rate", yield_body_rate},
+       {"body_rate_limit", yield_body_rate_limit},
+       {"all", yield_all}},
+      {{"worst_accel_mg", worst_accel_mg}, {"worst_rate_dps", worst_rate_dps}});
 }
 
 json PairedSummary::ToJson() const {
-  return {{"difference", second + " - " + first},
-          {"bootstrap_resamples", resamples},
-          {"yield_all", yield_all.ToJson()},
-          {"yield_acceleration", yield_acceleration.ToJson()},
-          {"worst_accel_mg", worst_accel_mg.ToJson()},
-          {"worst_rate_dps", worst_rate_dps.ToJson()}};
+  return PairedSummaryJson(first,
+                           second,
+                           resamples,
+                           {{"yield_all", yield_all},
+                            {"yield_acceleration", yield_acceleration},
+                            {"worst_accel_mg", worst_accel_mg},
+                            {"worst_rate_dps", worst_rate_dps}});
 }
 
 json StudySummary::ToJson() const {
@@ -309,72 +242,13 @@ StudySummary Summarise(const StudyMeta& meta, const std::vector<StudyUnitResult>
 void WriteResultsCsv(const std::filesystem::path& file,
                      const StudyMeta& meta,
                      const std::vector<StudyUnitResult>& results) {
-  std::string text = std::string(kCsvHeader) + "\n";
-  for (const StudyUnitResult& r : results) {
-    for (size_t s = 0; s < meta.strategies.size(); ++s) {
-      const StrategyOutcome& o = r.outcomes.at(s);
-      text += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-                          r.index,
-                          r.serial,
-                          r.draw_seed,
-                          r.noise_seed,
-                          CsvField(meta.strategies[s].name),
-                          Bool(o.fitted),
-                          o.worst_accel_mg,
-                          o.worst_rate_dps,
-                          CsvField(o.accel_verdict),
-                          CsvField(o.rate_verdict),
-                          Bool(o.pass_acceleration),
-                          Bool(o.pass_body_rate),
-                          Bool(o.pass_body_rate_limit),
-                          Bool(o.pass_all()),
-                          CsvField(o.failure));
-    }
-  }
-  WriteText(file, text);
+  WriteStudyCsv(file, meta, results, kCsvLayout);
 }
 
 std::vector<StudyUnitResult> ReadResultsCsv(const std::filesystem::path& file,
                                             const StudyMeta& meta) {
   if (meta.unit_kind == "ads") return ReadAdsResultsCsv(file, meta);
-  std::istringstream in(ReadText(file));
-  std::string line;
-  if (!std::getline(in, line) || line != kCsvHeader) {
-    throw std::runtime_error(file.string() + " line 1: not the study results header");
-  }
-  std::vector<StudyUnitResult> results;
-  for (int n = 2; std::getline(in, line); ++n) {
-    const std::vector<std::string> f = CsvSplit(line);
-    const size_t s = (n - 2) % meta.strategies.size();
-    auto fail = [&](size_t column, const std::string& why) {
-      throw std::runtime_error(file.string() + " line " + std::to_string(n) + " column " +
-                               std::to_string(column + 1) + ": " + why);
-    };
-    if (f.size() != kCsvColumns) fail(0, "expected " + std::to_string(kCsvColumns) + " fields");
-    if (f[4] != meta.strategies[s].name) fail(4, "expected strategy " + meta.strategies[s].name);
-    if (s == 0) {
-      StudyUnitResult r;
-      r.index = std::stoi(f[0]);
-      r.serial = f[1];
-      r.draw_seed = std::stoull(f[2]);
-      r.noise_seed = std::stoull(f[3]);
-      results.push_back(r);
-    } else if (std::stoi(f[0]) != results.back().index) {
-      fail(0, "expected unit " + std::to_string(results.back().index));
-    }
-    StrategyOutcome o;
-    o.fitted = f[5] == "1";
-    o.worst_accel_mg = std::strtod(f[6].c_str(), nullptr);
-    o.worst_rate_dps = std::strtod(f[7].c_str(), nullptr);
-    o.accel_verdict = f[8];
-    o.rate_verdict = f[9];
-    o.pass_acceleration = f[10] == "1";
-    o.pass_body_rate = f[11] == "1";
-    o.pass_body_rate_limit = f[12] == "1";
-    o.failure = f[14];
-    results.back().outcomes.push_back(o);
-  }
-  return results;
+  return ReadStudyCsv(file, meta, kCsvLayout);
 }
 
 void WriteStudyOutputs(const std::filesystem::path& dir,
@@ -384,12 +258,25 @@ void WriteStudyOutputs(const std::filesystem::path& dir,
     WriteAdsStudyOutputs(dir, meta, results);
     return;
   }
-  std::filesystem::create_directories(dir);
   const StudySummary summary = Summarise(meta, results);
-  WriteText(dir / "study.json", meta.ToJson().dump(2) + "\n");
-  WriteResultsCsv(dir / "results.csv", meta, results);
-  WriteText(dir / "summary.json", summary.ToJson().dump(2) + "\n");
-  WriteText(dir / "report.html", RenderStudyReport(meta, summary, results));
+  WriteStudyFiles(
+      dir,
+      meta,
+      [&](const std::filesystem::path& file) { WriteResultsCsv(file, meta, results); },
+      summary.ToJson(),
+      RenderStudyReport(meta, summary, results));
+}
+
+void WriteStudyFiles(const std::filesystem::path& dir,
+                     const StudyMeta& meta,
+                     const std::function<void(const std::filesystem::path&)>& write_csv,
+                     const json& summary,
+                     const std::string& report_html) {
+  std::filesystem::create_directories(dir);
+  WriteStudyText(dir / "study.json", meta.ToJson().dump(2) + "\n");
+  write_csv(dir / "results.csv");
+  WriteStudyText(dir / "summary.json", summary.dump(2) + "\n");
+  WriteStudyText(dir / "report.html", report_html);
 }
 
 void MergeStudies(const std::vector<std::filesystem::path>& dirs,
@@ -437,24 +324,6 @@ void MergeStudies(const std::vector<std::filesystem::path>& dirs,
   StudyMeta merged = first;
   merged.shard = StudyShard{};
   WriteStudyOutputs(out, merged, results);
-}
-
-ErrorDistribution StudyDistribution(std::vector<double> values) {
-  return Distribution(std::move(values));
-}
-
-PairedInterval StudyBootstrap(const std::vector<double>& diffs, uint64_t seed) {
-  return Bootstrap(diffs, seed);
-}
-
-std::string StudyCsvField(const std::string& text) { return CsvField(text); }
-
-std::vector<std::string> StudyCsvSplit(const std::string& line) { return CsvSplit(line); }
-
-std::string ReadStudyText(const std::filesystem::path& file) { return ReadText(file); }
-
-void WriteStudyText(const std::filesystem::path& file, const std::string& text) {
-  WriteText(file, text);
 }
 
 }  // namespace adahrs::calib

@@ -6,18 +6,23 @@
 // The summary is a function of study.json and results.csv alone, so merged shards summarise
 // exactly as the unsharded study. Errors reading them throw std::runtime_error naming the file
 // and, for results.csv, the line and column. For an ADS study (StudyMeta::unit_kind "ads")
-// WriteStudyOutputs and ReadResultsCsv hand over to ads_study_results.h.
+// WriteStudyOutputs and ReadResultsCsv hand over to ads_study_results.h. What both kinds share:
+// the statistics (study_statistics.h), results.csv's rows (study_csv.h), the report's parts
+// (study_report_parts.h) and the summary's JSON entries and files below.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "calib/studies/imu_study.h"
+#include "calib/studies/study_statistics.h"
 
 namespace adahrs::calib {
 
@@ -51,13 +56,6 @@ struct StudyMeta {
 StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies,
                         const StudySettings& settings);
 
-/// Percentiles by nearest rank over the finite values (units whose fit failed are left out).
-struct ErrorDistribution {
-  int count = 0;
-  double mean = 0.0, p50 = 0.0, p90 = 0.0, p95 = 0.0, p99 = 0.0, max = 0.0;
-  nlohmann::json ToJson() const;
-};
-
 struct StrategySummary {
   StudyStrategyInfo info;
   int units = 0;
@@ -68,13 +66,6 @@ struct StrategySummary {
   double yield_all = 0.0;
   ErrorDistribution worst_accel_mg;
   ErrorDistribution worst_rate_dps;
-  nlohmann::json ToJson() const;
-};
-
-/// The mean of a paired difference with its bootstrap 95 % interval (percentile method).
-struct PairedInterval {
-  int units = 0;
-  double mean = 0.0, ci95_low = 0.0, ci95_high = 0.0;
   nlohmann::json ToJson() const;
 };
 
@@ -111,16 +102,24 @@ void WriteStudyOutputs(const std::filesystem::path& dir,
                        const std::vector<StudyUnitResult>& results);
 
 // Shared with the ADS study's outputs (ads_study_results.h).
-inline constexpr int kStudyBootstrapResamples = 2000;
-/// The distribution of the finite `values` by nearest rank.
-ErrorDistribution StudyDistribution(std::vector<double> values);
-/// The mean of `diffs` with its percentile bootstrap interval (kStudyBootstrapResamples, `seed`).
-PairedInterval StudyBootstrap(const std::vector<double>& diffs, uint64_t seed);
-/// A CSV field, quoted when it holds a comma, quote or line break; a line split back into fields.
-std::string StudyCsvField(const std::string& text);
-std::vector<std::string> StudyCsvSplit(const std::string& line);
-std::string ReadStudyText(const std::filesystem::path& file);
-void WriteStudyText(const std::filesystem::path& file, const std::string& text);
+/// summary.json's entry of one strategy: its info, units, fitted, `yield` and the named errors.
+nlohmann::json StrategySummaryJson(
+    const StudyStrategyInfo& info,
+    int units,
+    int fitted,
+    const nlohmann::json& yield,
+    const std::vector<std::pair<std::string, ErrorDistribution>>& errors);
+/// summary.json's paired comparison: second − first, the resamples and the named intervals.
+nlohmann::json PairedSummaryJson(const std::string& first,
+                                 const std::string& second,
+                                 int resamples,
+                                 const std::vector<std::pair<std::string, PairedInterval>>& rows);
+/// Writes study.json, results.csv (`write_csv`), summary.json and report.html into `dir`.
+void WriteStudyFiles(const std::filesystem::path& dir,
+                     const StudyMeta& meta,
+                     const std::function<void(const std::filesystem::path&)>& write_csv,
+                     const nlohmann::json& summary,
+                     const std::string& report_html);
 
 /// Combines the shard directories of one study (every shard 1/n...n/n exactly once) into `out`:
 /// the outputs the unsharded study writes. Throws std::runtime_error naming the directory and

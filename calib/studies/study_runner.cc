@@ -2,11 +2,25 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <thread>
 
+#include "common/random.h"
+
 namespace adahrs::calib {
+
+StudyUnitResult NewStudyUnit(const StudySettings& settings, int index) {
+  StudyUnitResult r;
+  r.index = index;
+  char serial[16];
+  std::snprintf(serial, sizeof serial, "SIM-%06d", index + 1);
+  r.serial = serial;
+  r.draw_seed = common::Rng::Derive(settings.seed, 2 * static_cast<uint64_t>(index));
+  r.noise_seed = common::Rng::Derive(settings.seed, 2 * static_cast<uint64_t>(index) + 1);
+  return r;
+}
 
 std::vector<StudyUnitResult> RunStudyUnits(const StudySettings& settings,
                                            int threads,

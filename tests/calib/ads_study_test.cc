@@ -1,19 +1,16 @@
 // The ADS study (calib/studies): the shipped ads_calibration sequence on truth-profile units (every
 // effect on: hysteresis, die lag, converter noise). Checks that the in-memory run gives the
 // calibration points its recording on disk gives, that a unit's result does not depend on the
-// thread count, that shards merge into the unsharded results.csv byte for byte, that a strategy
+// thread count, that shards merge into the unsharded study's files byte for byte, that a strategy
 // whose temperature terms cannot follow the bridge (tolerance_minimax: the 10-term cubic's
 // temperature order) yields less than the improved strategy, and that bad input is refused naming
 // the file and JSON path. Under the sanitizers fewer units.
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "adahrs_build_paths.h"
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/studies/ads_run_simulator.h"
 #include "calib/studies/ads_study.h"
@@ -21,6 +18,7 @@
 #include "common/param_reader.h"
 #include "hil/recording/recording_reader.h"
 #include "tests/calib/ads_recording_sim.h"
+#include "tests/calib/study_test_support.h"
 #include "tests/calib/xml_tree.h"
 
 namespace adahrs::calib {
@@ -32,48 +30,28 @@ constexpr int kUnits = 2;
 constexpr int kUnits = 4;
 #endif
 
-const std::filesystem::path kData = std::filesystem::path(ADAHRS_SOURCE_DIR) / "tests/data/studies";
+StudyDefinition Load(const std::string& name) { return testing::LoadTestStudy(name); }
 
-StudyDefinition Load(const std::string& name) {
-  return LoadStudyDefinition(kData / name, ADAHRS_SEQUENCE_DIR);
-}
+struct AdsKind {
+  static constexpr const char* kFirst = "ads_tolerance_minimax.json";
+  static constexpr const char* kSecond = "ads_improved.json";
+  static constexpr const char* kTempPrefix = "adahrs_ads_study_test_";
+  static constexpr testing::StudyRunner kRun = RunAdsStudy;
+  static StudySettings Settings() {
+    StudySettings s;
+    s.units = kUnits;
+    s.seed = 20261128;
+    return s;
+  }
+};
 
-StudySettings Settings() {
-  StudySettings s;
-  s.units = kUnits;
-  s.seed = 20261128;
-  return s;
-}
+class AdsStudy : public testing::StudyFixture<AdsKind> {};
 
-std::string ReadFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+StudySettings Settings() { return AdsKind::Settings(); }
 
 std::filesystem::path TempDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("adahrs_ads_study_test_" + name);
-  std::filesystem::remove_all(dir);
-  return dir;
+  return testing::StudyTempDir(AdsKind::kTempPrefix, name);
 }
-
-class AdsStudy : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    strategies_ = new std::vector<StudyDefinition>{Load("ads_tolerance_minimax.json"),
-                                                   Load("ads_improved.json")};
-    one_thread_ = new std::vector<StudyUnitResult>(RunAdsStudy(*strategies_, Settings(), 1));
-  }
-  static void TearDownTestSuite() {
-    delete strategies_;
-    delete one_thread_;
-  }
-  static std::vector<StudyDefinition>* strategies_;
-  static std::vector<StudyUnitResult>* one_thread_;
-};
-std::vector<StudyDefinition>* AdsStudy::strategies_ = nullptr;
-std::vector<StudyUnitResult>* AdsStudy::one_thread_ = nullptr;
 
 TEST(AdsRunSimulator, InMemoryRunGivesThePointsItsRecordingGives) {
   const auto params =
@@ -100,39 +78,12 @@ TEST(AdsRunSimulator, InMemoryRunGivesThePointsItsRecordingGives) {
 }
 
 TEST_F(AdsStudy, ResultsDoNotDependOnTheThreadCount) {
-  const auto dir1 = TempDir("threads1"), dir2 = TempDir("threads2");
-  const StudyMeta meta = MakeStudyMeta(*strategies_, Settings());
-  EXPECT_EQ(meta.unit_kind, "ads");
-  WriteStudyOutputs(dir1, meta, *one_thread_);
-  WriteStudyOutputs(dir2, meta, RunAdsStudy(*strategies_, Settings(), 2));
+  EXPECT_EQ(MakeStudyMeta(*strategies_, Settings()).unit_kind, "ads");
   ASSERT_EQ(one_thread_->size(), static_cast<size_t>(kUnits));
-  EXPECT_EQ(ReadFile(dir1 / "results.csv"), ReadFile(dir2 / "results.csv"));
-  EXPECT_EQ(ReadFile(dir1 / "summary.json"), ReadFile(dir2 / "summary.json"));
-  std::filesystem::remove_all(dir1);
-  std::filesystem::remove_all(dir2);
+  ExpectIndependentOfThreads(2);
 }
 
-TEST_F(AdsStudy, MergedShardsEqualTheUnshardedStudyByteForByte) {
-  const auto whole = TempDir("whole"), merged = TempDir("merged");
-  WriteStudyOutputs(whole, MakeStudyMeta(*strategies_, Settings()), *one_thread_);
-  std::vector<std::filesystem::path> shards;
-  for (int i = 1; i <= 2; ++i) {
-    StudySettings s = Settings();
-    s.shard = StudyShard::Parse(std::to_string(i) + "/2", "--shard");
-    shards.push_back(TempDir("shard" + std::to_string(i)));
-    const auto results = RunAdsStudy(*strategies_, s, 2);
-    for (const auto& r : results) EXPECT_EQ(r.index % 2, i - 1);
-    WriteStudyOutputs(shards.back(), MakeStudyMeta(*strategies_, s), results);
-  }
-  MergeStudies({shards[1], shards[0]}, merged);
-  for (const char* file : {"study.json", "results.csv", "summary.json", "report.html"}) {
-    EXPECT_EQ(ReadFile(whole / file), ReadFile(merged / file)) << file;
-  }
-  EXPECT_THROW(MergeStudies({shards[0]}, merged), std::runtime_error);  // shard 2/2 missing
-  for (const auto& d : shards) std::filesystem::remove_all(d);
-  std::filesystem::remove_all(whole);
-  std::filesystem::remove_all(merged);
-}
+TEST_F(AdsStudy, MergedShardsEqualTheUnshardedStudyByteForByte) { ExpectShardsMergeByteForByte(); }
 
 TEST_F(AdsStudy, CubicTemperatureOrderYieldsLessThanTheImprovedStrategy) {
   const AdsStudySummary summary =
@@ -172,7 +123,8 @@ TEST_F(AdsStudy, ReportShowsTheYieldAndTheDistributionsOfEveryStrategy) {
         << id;
   }
   EXPECT_EQ(testing::FindTag(html, "svg").size(), 4u);  // histogram and CDF per quantity
-  const nlohmann::json summary = nlohmann::json::parse(ReadFile(dir / "summary.json"));
+  const nlohmann::json summary =
+      nlohmann::json::parse(testing::ReadStudyFile(dir / "summary.json"));
   EXPECT_EQ(summary["unit_kind"], "ads");
   EXPECT_EQ(summary["strategies"][1]["yield"]["all"], 1.0);
   EXPECT_GT(summary["strategies"][1]["rig_time_s"].get<double>(), 3600.0);

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/evaluation/imu_evaluation.h"
+#include "calib/imu_calibration/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "sensor_sim/gravity.h"
 #include "tests/calib/imu_recording_maker.h"
@@ -67,8 +68,10 @@ TEST_P(ImuFormat3Fit, TruthUnitsMeetTheAccelerationSpecificationAndBeatFormat2An
   for (size_t u = 0; u < params.size(); ++u) {
     SCOPED_TRACE(params[u].serial);
     ASSERT_TRUE(fits3[u].imu->scale_temperature.active);
+    const ImuFitDiagnostics diag = ImuFitDiagnostics::FromJson(fits3[u].diagnostics, "fit");
+    ASSERT_TRUE(diag.joint.has_value());
     for (const char* gyro : {"gx", "gy", "gz"}) {  // quadratic sensitivity tempco at least
-      EXPECT_GE(fits3[u].diagnostics["channels"][gyro]["scale_order"].get<int>(), 2) << gyro;
+      EXPECT_GE(diag.joint->channels.at(gyro).scale_order.value_or(0), 2) << gyro;
     }
     const Specification spec = Specification::Reference();
     const ImuEvaluation e3 = EvaluateImu(fits3[u], params[u], spec, evaluation);

@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/evaluation/imu_evaluation.h"
+#include "calib/imu_calibration/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "sensor_sim/gravity.h"
 #include "tests/calib/twenty_nominal_imus.h"
@@ -69,11 +70,14 @@ std::array<Column, 2> RunTwentyUnits(sensor_sim::TruthVariant variant) {
             c[k].error_over_crb.push_back(testing::GyroErrorOverCrb(e));
             c[k].rate_dps.push_back(e.worst_rate_dps);
             c[k].limit_dps.push_back(e.report["body_rate"]["crb_limit_dps_at_worst"].get<double>());
+            const ImuFitDiagnostics diag = ImuFitDiagnostics::FromJson(fits[u].diagnostics, "fit");
+            ASSERT_TRUE(diag.joint.has_value());
             for (const char* g : {"gx", "gy", "gz"}) {
-              const auto& w = fits[u].diagnostics["channels"][g]["bias_wander"];
-              c[k].floor_dph.push_back(w["floor_dph"].get<double>());
-              c[k].time_scale.push_back(w["time_scale"].get<double>());
-              if (k == 1) c[k].white_scale.push_back(w["white_variance_scale"].get<double>());
+              const auto& w = diag.joint->channels.at(g).bias_wander;
+              ASSERT_TRUE(w.has_value()) << g;
+              c[k].floor_dph.push_back(w->floor_dph);
+              c[k].time_scale.push_back(w->time_scale);
+              if (k == 1) c[k].white_scale.push_back(w->white_variance_scale.value());
             }
           }
         }

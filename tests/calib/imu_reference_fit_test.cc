@@ -3,14 +3,19 @@
 // degC, time-compressed) and sensor calibration sequences by the recording maker, written as the
 // executor writes them, read back by LoadImuRuns and fitted by the
 // reference strategy. Expected magnitudes come from the datasheets and the reference tables.
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "calib/constants/constants_file.h"
+#include "calib/imu_calibration/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/imu_calibration/imu_run_data.h"
+#include "calib/imu_calibration/imu_strategy.h"
 #include "imu_recording_maker.h"
 #include "sensor_sim/gravity.h"
 
@@ -29,7 +34,9 @@ struct Runs {
 const Runs& SharedRuns() {
   static const Runs runs = [] {
     Runs r;
-    const auto base = std::filesystem::temp_directory_path() / "adahrs_imu_reference_fit";
+    // One directory per process: ctest runs this file's tests side by side.
+    const auto base = std::filesystem::temp_directory_path() /
+                      ("adahrs_imu_reference_fit_" + std::to_string(::getpid()));
     r.thermal = base / "thermal";
     r.sensor = base / "sensor";
     for (int i = 0; i < 4; ++i) {
@@ -91,9 +98,53 @@ TEST(ImuReferenceFit, ConstantsHaveTheReferenceMagnitudes) {
     }
     EXPECT_GT(largest_off, 0.002);
     // Both ramp directions present and fitted separately.
-    EXPECT_TRUE(fit.diagnostics["thermal"]["gx"].contains("up_ramp_k"));
-    EXPECT_TRUE(fit.diagnostics["thermal"]["gx"].contains("down_ramp_k"));
+    ASSERT_TRUE(fit.diagnostics.reference.has_value());
+    EXPECT_TRUE(fit.diagnostics.reference->thermal.at("gx").up_ramp_k.has_value());
+    EXPECT_TRUE(fit.diagnostics.reference->thermal.at("gx").down_ramp_k.has_value());
   }
+}
+
+// Both strategies' diagnostics survive constants.json: written, read back and parsed, they hold the
+// recording's local gravity, every channel and no excluded row (the recording has none); the joint
+// strategy's bound is a covariance of its named firmware numbers (square, symmetric, non-negative
+// diagonal); and the parsed struct writes back exactly the section read.
+TEST(ImuReferenceFit, DiagnosticsReadBackFromTheConstantsFiles) {
+  const Runs& runs = SharedRuns();
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("adahrs_imu_diagnostics_read_back_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const ImuStrategy& strategy : {ImuStrategy::Reference(), ImuStrategy::Improved()}) {
+    for (const ConstantsFile& f : FitImuRuns({runs.thermal, runs.sensor}, strategy, "test")) {
+      SCOPED_TRACE(strategy.name + " " + f.serial);
+      const auto path = dir / (f.serial + ".json");
+      WriteConstantsFile(path, f);
+      const ConstantsFile read = ReadConstantsFile(path);
+      const ImuFitDiagnostics d = ImuFitDiagnostics::FromJson(read.diagnostics, path.string());
+      EXPECT_EQ(d.local_gravity_mps2.value_or(0.0), kGLocal_mps2);
+      EXPECT_EQ(d.excluded_rows.value_or(-1), 0);
+      EXPECT_EQ(nlohmann::json::parse(d.ToJson().dump()), read.diagnostics);
+      if (strategy.name == "reference") {
+        ASSERT_TRUE(d.reference.has_value());
+        EXPECT_EQ(d.reference->thermal.size(), 9u);
+        EXPECT_EQ(d.reference->accel.size(), 6u);
+        EXPECT_EQ(d.reference->gyro.size(), 3u);
+        continue;
+      }
+      ASSERT_TRUE(d.joint.has_value());
+      EXPECT_EQ(d.joint->channels.size(), 9u);
+      const auto& crb = d.joint->crb_covariance;
+      ASSERT_EQ(crb.size(), d.joint->crb_parameters.size());
+      for (size_t r = 0; r < crb.size(); ++r) {
+        ASSERT_EQ(crb[r].size(), crb.size());
+        EXPECT_GE(crb[r][r], 0.0) << d.joint->crb_parameters[r];
+        for (size_t k = 0; k < r; ++k) {
+          EXPECT_NEAR(crb[r][k], crb[k][r], 1e-9 * std::sqrt(crb[r][r] * crb[k][k]))
+              << r << "," << k;
+        }
+      }
+    }
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -1,21 +1,20 @@
 // The IMU study (calib/studies): a short sequence (tests/data/studies, 5 degC/min ramps over the
 // envelope, 200 packets per acquisition) on nominal units. Checks that a unit's result does not
-// depend on the thread count, that shards merge into the unsharded results.csv byte for byte,
-// that a thermal order of 0 yields less than the improved strategy, and that bad input is refused
-// naming the file and JSON path (or the option). Under the sanitizers fewer units.
+// depend on the thread count, that shards merge into the unsharded study's files byte for byte
+// (study_test_support.h), that a thermal order of 0 yields less than the improved strategy, and
+// that bad input is refused naming the file and JSON path (or the option). Under the sanitizers
+// fewer units.
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "adahrs_build_paths.h"
 #include "calib/studies/imu_study.h"
 #include "calib/studies/study_results.h"
 #include "common/param_reader.h"
+#include "tests/calib/study_test_support.h"
 #include "tests/calib/xml_tree.h"
 
 namespace adahrs::calib {
@@ -27,82 +26,32 @@ constexpr int kUnits = 2;
 constexpr int kUnits = 4;
 #endif
 
-const std::filesystem::path kData = std::filesystem::path(ADAHRS_SOURCE_DIR) / "tests/data/studies";
+StudyDefinition Load(const std::string& name) { return testing::LoadTestStudy(name); }
 
-StudyDefinition Load(const std::string& name) {
-  return LoadStudyDefinition(kData / name, ADAHRS_SEQUENCE_DIR);
-}
-
-StudySettings Settings() {
-  StudySettings s;
-  s.units = kUnits;
-  s.seed = 20261127;
-  s.population = {sensor_sim::ModelProfile::kNominal};
-  return s;
-}
-
-std::string ReadFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::filesystem::path TempDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("adahrs_imu_study_test_" + name);
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
-class ImuStudy : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    strategies_ = new std::vector<StudyDefinition>{Load("short_thermal_order0.json"),
-                                                   Load("short_improved.json")};
-    one_thread_ = new std::vector<StudyUnitResult>(RunImuStudy(*strategies_, Settings(), 1));
+struct ImuKind {
+  static constexpr const char* kFirst = "short_thermal_order0.json";
+  static constexpr const char* kSecond = "short_improved.json";
+  static constexpr const char* kTempPrefix = "adahrs_imu_study_test_";
+  static constexpr testing::StudyRunner kRun = RunImuStudy;
+  static StudySettings Settings() {
+    StudySettings s;
+    s.units = kUnits;
+    s.seed = 20261127;
+    s.population = {sensor_sim::ModelProfile::kNominal};
+    return s;
   }
-  static void TearDownTestSuite() {
-    delete strategies_;
-    delete one_thread_;
-  }
-  static std::vector<StudyDefinition>* strategies_;
-  static std::vector<StudyUnitResult>* one_thread_;
 };
-std::vector<StudyDefinition>* ImuStudy::strategies_ = nullptr;
-std::vector<StudyUnitResult>* ImuStudy::one_thread_ = nullptr;
+
+class ImuStudy : public testing::StudyFixture<ImuKind> {};
+
+StudySettings Settings() { return ImuKind::Settings(); }
 
 TEST_F(ImuStudy, ResultsDoNotDependOnTheThreadCount) {
-  const auto dir1 = TempDir("threads1"), dir3 = TempDir("threads3");
-  const StudyMeta meta = MakeStudyMeta(*strategies_, Settings());
-  WriteStudyOutputs(dir1, meta, *one_thread_);
-  WriteStudyOutputs(dir3, meta, RunImuStudy(*strategies_, Settings(), 3));
   ASSERT_EQ(one_thread_->size(), static_cast<size_t>(kUnits));
-  EXPECT_EQ(ReadFile(dir1 / "results.csv"), ReadFile(dir3 / "results.csv"));
-  EXPECT_EQ(ReadFile(dir1 / "summary.json"), ReadFile(dir3 / "summary.json"));
-  std::filesystem::remove_all(dir1);
-  std::filesystem::remove_all(dir3);
+  ExpectIndependentOfThreads(3);
 }
 
-TEST_F(ImuStudy, MergedShardsEqualTheUnshardedStudyByteForByte) {
-  const auto whole = TempDir("whole"), merged = TempDir("merged");
-  WriteStudyOutputs(whole, MakeStudyMeta(*strategies_, Settings()), *one_thread_);
-  std::vector<std::filesystem::path> shards;
-  for (int i = 1; i <= 2; ++i) {
-    StudySettings s = Settings();
-    s.shard = StudyShard::Parse(std::to_string(i) + "/2", "--shard");
-    shards.push_back(TempDir("shard" + std::to_string(i)));
-    const auto results = RunImuStudy(*strategies_, s, 2);
-    for (const auto& r : results) EXPECT_EQ(r.index % 2, i - 1);
-    WriteStudyOutputs(shards.back(), MakeStudyMeta(*strategies_, s), results);
-  }
-  MergeStudies({shards[1], shards[0]}, merged);
-  EXPECT_EQ(ReadFile(whole / "results.csv"), ReadFile(merged / "results.csv"));
-  EXPECT_EQ(ReadFile(whole / "summary.json"), ReadFile(merged / "summary.json"));
-  EXPECT_THROW(MergeStudies({shards[0]}, merged), std::runtime_error);  // shard 2/2 missing
-  for (const auto& d : shards) std::filesystem::remove_all(d);
-  std::filesystem::remove_all(whole);
-  std::filesystem::remove_all(merged);
-}
+TEST_F(ImuStudy, MergedShardsEqualTheUnshardedStudyByteForByte) { ExpectShardsMergeByteForByte(); }
 
 TEST_F(ImuStudy, ThermalOrderZeroYieldsLessThanTheImprovedStrategy) {
   const StudySummary summary = Summarise(MakeStudyMeta(*strategies_, Settings()), *one_thread_);
