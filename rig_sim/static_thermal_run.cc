@@ -242,7 +242,7 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
   const Eigen::Vector3d f_B_g =
       UpAxis_B(config.orientation) * (g_local_mps2 / common::kStandardGravity_mps2);
   StaticBatch batch(config, run_dir, f_B_g);
-  hil::RecordingWriter writer(run_dir);
+  hil::RecordingWriter writer(run_dir, config.storage);
   nlohmann::json meta = RunMetaJson(config, run_dir, g_local_mps2, batch.units());
   writer.WriteMeta(meta);
 

@@ -18,6 +18,7 @@
 
 #include "calib/executor/executor.h"
 #include "calib/executor/progress.h"
+#include "hil/recording/recording_files.h"
 
 namespace adahrs::calib {
 
@@ -26,6 +27,8 @@ struct NewRunOptions {
   std::string sequence_file;
   std::filesystem::path run_dir;
   ExecutorOptions executor;
+  /// How a new run stores imu.csv and ads.csv; a resumed run keeps the form it has.
+  hil::RecordingStorage storage = hil::RecordingStorage::kGzip;
   /// When set, decorates the station's operator (a logging operator, a test's fixture
   /// disturbance); receives the operator OpenStation made and returns the one the run uses.
   std::function<std::unique_ptr<hil::Operator>(std::unique_ptr<hil::Operator>)> wrap_operator;

@@ -13,6 +13,7 @@
 
 #include "common/printable_text.h"
 #include "hil/recording/csv_lines.h"
+#include "hil/recording/recording_files.h"
 
 namespace adahrs::hil {
 
@@ -54,7 +55,7 @@ class CsvCursor {
     }
     std::string_view first;
     bool complete = false;
-    if (!lines_->Next(first, complete)) {
+    if (!NextLine(first, complete)) {
       throw RecordingError(path_.string() + ": empty file, no header");
     }
     line_ = 1;
@@ -72,7 +73,7 @@ class CsvCursor {
   bool Next(bool allow_truncated_tail, int& truncated) {
     std::string_view text;
     bool complete = false;
-    if (!lines_->Next(text, complete)) return false;
+    if (!NextLine(text, complete)) return false;
     ++line_;
     // One pass over the bytes: a call per cell (find) costs more than the cells' own parsing.
     cells_.clear();
@@ -84,11 +85,16 @@ class CsvCursor {
       cell = c + 1;
     }
     cells_.emplace_back(cell, static_cast<size_t>(end - cell));
+    if (!complete && allow_truncated_tail) {
+      ++truncated;
+      return false;
+    }
+    if (!complete && lines_->stream_truncated()) {
+      throw RecordingError(Where() +
+                           ": truncated: the file ends inside a gzip member (a crash while "
+                           "writing); the rows before this line are complete");
+    }
     if (!complete || cells_.size() != file_columns_) {
-      if (!complete && allow_truncated_tail) {
-        ++truncated;
-        return false;
-      }
       throw RecordingError(Where() + (complete ? "" : " (last line, no newline: truncated?)") +
                            ": " + std::to_string(cells_.size()) + " columns, expected " +
                            std::to_string(file_columns_) + " (as the header)");
@@ -144,6 +150,14 @@ class CsvCursor {
   }
 
  private:
+  // The next line; corrupt compressed data is refused as a RecordingError naming the file.
+  bool NextLine(std::string_view& text, bool& complete) {
+    try {
+      return lines_->Next(text, complete);
+    } catch (const std::runtime_error& e) {
+      throw RecordingError(std::string(e.what()) + " (after line " + std::to_string(line_) + ")");
+    }
+  }
   std::string Where() const { return path_.string() + ":" + std::to_string(line_); }
   std::string Where(size_t column) const {
     return Where() + ": column " + std::to_string(column_of_[column] + 1) + " (" + names_[column] +
@@ -391,6 +405,15 @@ uint64_t RawWord(const AdsRecordRow& r) {
   return w;
 }
 
+// The stored form of `csv_name` (plain or compressed); both forms present is refused.
+std::filesystem::path StoredPath(const std::filesystem::path& run_dir, std::string_view csv_name) {
+  try {
+    return StoredCsvPath(run_dir, csv_name);
+  } catch (const std::runtime_error& e) {
+    throw RecordingError(e.what());
+  }
+}
+
 }  // namespace
 
 Recording StreamRecording(const std::filesystem::path& run_dir,
@@ -400,12 +423,10 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
   const int version = rec.format_version;
   const bool v2 = version >= 2;
 
-  CsvCursor imu(run_dir / kImuCsvName,
-                v2 ? kImuCsvHeader : kImuCsvHeaderV1,
-                kImuCsvHeader,
-                version,
-                &rec.notes);
-  RowOrder imu_order(rec.meta, run_dir / kImuCsvName);
+  const std::filesystem::path imu_path = StoredPath(run_dir, kImuCsvName);
+  const std::filesystem::path ads_path = StoredPath(run_dir, kAdsCsvName);
+  CsvCursor imu(imu_path, v2 ? kImuCsvHeader : kImuCsvHeaderV1, kImuCsvHeader, version, &rec.notes);
+  RowOrder imu_order(rec.meta, imu_path);
   while (imu.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     ImuRecordRow r;
     r.t_s = imu.Real(0);
@@ -431,12 +452,8 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
     imu_order.Check(r.unit, r.step, r.t_s, r.seq, RawWord(r), imu.line());
     if (sinks.imu) sinks.imu(std::move(r), imu.line());
   }
-  CsvCursor ads(run_dir / kAdsCsvName,
-                v2 ? kAdsCsvHeader : kAdsCsvHeaderV1,
-                kAdsCsvHeader,
-                version,
-                &rec.notes);
-  RowOrder ads_order(rec.meta, run_dir / kAdsCsvName);
+  CsvCursor ads(ads_path, v2 ? kAdsCsvHeader : kAdsCsvHeaderV1, kAdsCsvHeader, version, &rec.notes);
+  RowOrder ads_order(rec.meta, ads_path);
   while (ads.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     AdsRecordRow r;
     r.t_s = ads.Real(0);

@@ -76,7 +76,7 @@ class RecordsSourcesTest : public ::testing::Test {
   void WriteRun(const std::function<void(int, hil::ImuRecordRow&)>& edit = {}) {
     std::filesystem::remove(dir_ / "run" / "imu.csv");
     std::filesystem::remove(dir_ / "run" / "ads.csv");
-    hil::RecordingWriter writer(dir_ / "run");
+    hil::RecordingWriter writer(dir_ / "run", hil::RecordingStorage::kPlainCsv);
     int n = 0;
     for (int i = 0; i < 5; ++i) {
       for (const char* serial : {"IMU-0001", "IMU-0002"}) {

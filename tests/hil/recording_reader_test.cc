@@ -22,7 +22,7 @@ class RecordingReaderTest : public ::testing::Test {
            ("adahrs_reader_" + std::to_string(::getpid()) + "_" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::remove_all(dir_);
-    RecordingWriter w(dir_);
+    RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
     for (uint32_t i = 0; i < 3; ++i) {
       ImuRecordRow r;
       r.t_s = 0.01 * (i + 1);
@@ -218,7 +218,7 @@ TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
 
 TEST_F(RecordingReaderTest, CompensatedRowReadsBackExactly) {
   {
-    RecordingWriter w(dir_);
+    RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
     ImuRecordRow r;
     r.t_s = 0.04;
     r.unit = "IMU-0001";
@@ -279,7 +279,7 @@ TEST_F(RecordingReaderTest, VersionOneMetaWithVersionTwoHeaderIsRefused) {
 }
 
 TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {
-  RecordingWriter w(dir_);
+  RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
   w.WriteMeta(
       {{"rejected_intervals",
         {{{"step", 2}, {"t_start_s", 0.015}, {"t_end_s", 0.02}, {"reason", "interlock"}}}}});
@@ -293,7 +293,7 @@ TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {
 }
 
 TEST_F(RecordingReaderTest, MalformedRejectedIntervalNamesItsPath) {
-  RecordingWriter w(dir_);
+  RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
   w.WriteMeta({{"rejected_intervals",
                 {{{"step", 2}, {"t_start_s", 5.0}, {"t_end_s", 4.0}, {"reason", "x"}}}}});
   EXPECT_THAT(ErrorOf(),

@@ -42,7 +42,7 @@ TEST(RecordingWriter, HeadersMatchTheDocumentedContract) {
 TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
   const auto dir = FreshDir("rec");
   {
-    RecordingWriter w(dir);
+    RecordingWriter w(dir, RecordingStorage::kPlainCsv);
     ImuRecordRow row;
     row.t_s = 1.25;
     row.unit = "IMU-0001";
@@ -60,7 +60,8 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
     w.Flush(true);
   }
   {
-    RecordingWriter w(dir);  // a resumed run appends, without a second header
+    RecordingWriter w(
+        dir, RecordingStorage::kPlainCsv);  // a resumed run appends, without a second header
     AdsRecordRow row;
     row.unit = "ADS-0001";
     row.ps_counts = -8388608;
@@ -86,7 +87,7 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
 TEST(RecordingWriter, CompensatedCellsFollowTheMode) {
   const auto dir = FreshDir("rec_comp");
   {
-    RecordingWriter w(dir);
+    RecordingWriter w(dir, RecordingStorage::kPlainCsv);
     ImuRecordRow row;
     row.unit = "IMU-0002";
     row.mode = 2;
@@ -114,7 +115,7 @@ TEST(RecordingWriter, RefusesToAppendToAnotherVersionsFile) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "imu.csv") << kImuCsvHeaderV1 << "\n";
   try {
-    RecordingWriter w(dir);
+    RecordingWriter w(dir, RecordingStorage::kPlainCsv);
     FAIL();
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("imu.csv:1: cannot append"), std::string::npos)
