@@ -211,6 +211,7 @@ class StaticBatch {
     row.t_s = t_s;
     row.unit = serial;
     row.seq = UnitSequence(frame);
+    row.frame = static_cast<int64_t>(frame);
     row.step = static_cast<int>(step);
     row.tag = static_cast<uint8_t>(step + 1);
     row.chamber_c = air_c;

@@ -1,7 +1,7 @@
 // A run from the files to the end: `adahrs run --station FILE --sequence FILE --run-dir DIR`
 // (StartRun) and `adahrs run --resume DIR` (ResumeRun). Loads and validates the station and the
 // sequence (refused before anything moves), opens the station (hil::OpenStation), identifies the
-// batch's units and the instruments, writes meta.json (format v2) and the journal, starts one
+// batch's units and the instruments, writes meta.json (format v3) and the journal, starts one
 // UnitLogger per unit and runs the Executor.
 // Resume reads meta.json (station and sequence as the run started them) and the journal, sets
 // aside torn CSV and journal tails (journaled), continues the pipeline clock after the latest

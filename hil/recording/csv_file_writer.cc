@@ -27,12 +27,9 @@ CsvFileWriter::CsvFileWriter(const std::filesystem::path& path, int gzip_level)
   if (fd_ < 0) Fail("cannot open for appending");
   if (compressed_) {
     deflated_.resize(kDeflatedBytes);
-    if (deflateInit2(&stream_,
-                     gzip_level,
-                     Z_DEFLATED,
-                     kGzipWindowBits,
-                     kMemoryLevel,
-                     Z_DEFAULT_STRATEGY) != Z_OK) {
+    if (deflateInit2(
+            &stream_, gzip_level, Z_DEFLATED, kGzipWindowBits, kMemoryLevel, Z_DEFAULT_STRATEGY) !=
+        Z_OK) {
       ::close(fd_);
       throw std::runtime_error(path_.string() + ": zlib deflateInit2 failed");
     }
@@ -71,8 +68,7 @@ void CsvFileWriter::Deflate(int flush) {
     stream_.avail_out = static_cast<uInt>(deflated_.size());
     const int rc = deflate(&stream_, flush);
     if (rc == Z_STREAM_ERROR) throw std::runtime_error(path_.string() + ": zlib deflate failed");
-    WriteAll(reinterpret_cast<const char*>(deflated_.data()),
-             deflated_.size() - stream_.avail_out);
+    WriteAll(reinterpret_cast<const char*>(deflated_.data()), deflated_.size() - stream_.avail_out);
     if (flush == Z_FINISH ? rc == Z_STREAM_END : stream_.avail_out != 0) break;
   }
   buffered_ = 0;

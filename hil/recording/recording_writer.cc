@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "hil/recording/csv_lines.h"
+#include "hil/recording/last_frames.h"
 #include "hil/recording/row_text.h"
 
 namespace adahrs::hil {
@@ -49,6 +50,18 @@ RecordingWriter::RecordingWriter(const std::filesystem::path& run_dir,
   std::filesystem::create_directories(run_dir_);
   imu_ = OpenCsv(run_dir_, kImuCsvName, kImuCsvHeader, storage, gzip_level);
   ads_ = OpenCsv(run_dir_, kAdsCsvName, kAdsCsvHeader, storage, gzip_level);
+  for (const CsvFileWriter* file : {imu_.get(), ads_.get()}) {
+    for (const auto& [serial, last] : LastFrames(file->path()))
+      frames_[serial] = FrameCounter(last);
+  }
+}
+
+int64_t RecordingWriter::Frame(const std::string& unit, uint32_t seq, double t_s, int64_t frame) {
+  auto it = frames_.find(unit);
+  if (it == frames_.end()) it = frames_.emplace(unit, FrameCounter()).first;
+  if (frame < 0) return it->second.Next(seq, t_s);
+  it->second = FrameCounter(FrameState{frame, seq, t_s});
+  return frame;
 }
 
 void RecordingWriter::WriteMeta(nlohmann::json meta) const {
@@ -64,6 +77,15 @@ void RecordingWriter::WriteMeta(nlohmann::json meta) const {
 }
 
 namespace {
+
+// The columns every row ends with: frame, t_sample_s (docs/recording-format.md).
+void AppendSampleTime(int64_t frame, RowText* row) {
+  row->Comma();
+  row->Integer(frame);
+  row->Comma();
+  row->Fixed(SampleTimeS(frame), 2);
+  row->Char('\n');
+}
 
 // The columns every row starts with: t_s, unit, seq, step, tag (docs/recording-format.md).
 template <class Row>
@@ -114,7 +136,7 @@ void RecordingWriter::Append(const ImuRecordRow& r) {
   } else {
     row.Text(",,,,,,,,,,");
   }
-  row.Char('\n');
+  AppendSampleTime(Frame(r.unit, r.seq, r.t_s, r.frame), &row);
   imu_->Append(std::string_view(row.data(), row.size()));
   ++imu_rows_;
 }
@@ -148,7 +170,7 @@ void RecordingWriter::Append(const AdsRecordRow& r) {
   } else {
     row.Text(",,,");
   }
-  row.Char('\n');
+  AppendSampleTime(Frame(r.unit, r.seq, r.t_s, r.frame), &row);
   ads_->Append(std::string_view(row.data(), row.size()));
   ++ads_rows_;
 }

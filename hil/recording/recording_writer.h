@@ -3,9 +3,12 @@
 // csv_file_writer.h says how a compressed file stays readable after a crash). Flush(durable=true)
 // hands every row to the kernel (ending the gzip members) and fsyncs both files, which the
 // executor does at every step boundary so that a crash loses nothing that was logged before it.
+// Each row's frame index (the frame and t_sample_s columns) is the row's own when it carries one,
+// else counted per unit from seq and t_s (frame_count.h), continuing an existing file's count.
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -14,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hil/recording/csv_file_writer.h"
+#include "hil/recording/frame_count.h"
 #include "hil/recording/recording_files.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/row_text.h"
@@ -59,6 +63,9 @@ class RecordingWriter {
   uint64_t imu_rows_ = 0;
   uint64_t ads_rows_ = 0;
   std::vector<char> row_buffer_;  ///< the row being formatted (RowText), reused
+  // Per unit serial, its frame count (units of both files: serials do not repeat across kinds).
+  std::map<std::string, FrameCounter, std::less<>> frames_;
+  int64_t Frame(const std::string& unit, uint32_t seq, double t_s, int64_t frame);
 };
 
 }  // namespace adahrs::hil

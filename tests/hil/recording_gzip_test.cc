@@ -83,9 +83,10 @@ TEST_F(RecordingGzipTest, PythonsGzipReadsTheMembersAsThePlainText) {
     w.Flush(true);
   }
   const std::filesystem::path out = dir_ / "python.csv";
-  const std::string command = "/usr/bin/python3 -c \"import gzip,sys; "
-                              "open(sys.argv[2],'wb').write(gzip.open(sys.argv[1]).read())\" " +
-                              (dir_ / "imu.csv.gz").string() + " " + out.string();
+  const std::string command =
+      "/usr/bin/python3 -c \"import gzip,sys; "
+      "open(sys.argv[2],'wb').write(gzip.open(sys.argv[1]).read())\" " +
+      (dir_ / "imu.csv.gz").string() + " " + out.string();
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   EXPECT_EQ(ReadAll(out), ReadAll(plain / "imu.csv"));
 }

@@ -32,7 +32,12 @@ std::filesystem::path FreshDir(const std::string& name) {
 TEST(RecordingWriter, HeadersMatchTheDocumentedContract) {
   const std::string doc =
       ReadAll(std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/recording-format.md");
-  for (std::string_view header : {kImuCsvHeader, kAdsCsvHeader, kImuCsvHeaderV1, kAdsCsvHeaderV1}) {
+  for (std::string_view header : {kImuCsvHeader,
+                                  kAdsCsvHeader,
+                                  kImuCsvHeaderV2,
+                                  kAdsCsvHeaderV2,
+                                  kImuCsvHeaderV1,
+                                  kAdsCsvHeaderV1}) {
     std::string quoted(1, '`');
     quoted.append(header).push_back('`');
     EXPECT_NE(doc.find(quoted), std::string::npos) << header;
@@ -73,7 +78,7 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
             std::string(kImuCsvHeader) + "\n" +
                 "1.2500,IMU-0001,65535,2,200,31,-20.500,150.0000,29000,29001,29002,29003,29004,"
                 "29005,29006,29007,29008,29009,29010,29011,4194304,-1,7340032,40000,41000,42000,"
-                "0,,,,,,,,,,\n");
+                "0,,,,,,,,,,,255,2.55\n");  // frame: the one nearest 1.25 s that is seq mod 256
   const std::string ads = ReadAll(dir / "ads.csv");
   EXPECT_EQ(std::count(ads.begin(), ads.end(), '\n'), 2);
   EXPECT_NE(ads.find(",-8388608,"), std::string::npos);
@@ -103,10 +108,10 @@ TEST(RecordingWriter, CompensatedCellsFollowTheMode) {
     w.Flush(false);
   }
   const std::string imu = ReadAll(dir / "imu.csv");
-  EXPECT_NE(imu.find(",2,1,-0.5,7.450580596923828e-09,0,0,0,150,-150,0.25,2\n"), std::string::npos)
+  EXPECT_NE(imu.find(",2,1,-0.5,7.450580596923828e-09,0,0,0,150,-150,0.25,2,"), std::string::npos)
       << imu;
   const std::string ads = ReadAll(dir / "ads.csv");
-  EXPECT_NE(ads.find(",1,35000.5,250.125,0\n"), std::string::npos) << ads;
+  EXPECT_NE(ads.find(",1,35000.5,250.125,0,"), std::string::npos) << ads;
   std::filesystem::remove_all(dir);
 }
 
