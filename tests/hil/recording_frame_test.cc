@@ -86,8 +86,7 @@ TEST_F(RecordingFrameTest, AFrameGoingBackOrOffItsCounterIsRefusedByLine) {
               HasSubstr("imu.csv:4: unit IMU-0001 frame 45 goes back from 300"));
   EXPECT_THAT(edit(",301,3.01\n", ",302,3.02\n"),
               HasSubstr("imu.csv:4: unit IMU-0001 frame 302 is not its seq 45 modulo 256"));
-  EXPECT_THAT(edit(",301,3.01\n", ",301,3.11\n"),
-              HasSubstr("imu.csv:4: column 39 (t_sample_s)"));
+  EXPECT_THAT(edit(",301,3.01\n", ",301,3.11\n"), HasSubstr("imu.csv:4: column 39 (t_sample_s)"));
 }
 
 }  // namespace
