@@ -3,8 +3,9 @@
 // file is a series of gzip members (RFC 1952), each ending at a row boundary: zlib, Python's
 // gzip module, pandas and zcat read the members as one text. Only a complete member is safe
 // from a crash, so compressed text reaches the kernel member by member: Flush ends the current
-// member, FlushIfDue ends it only once it holds kMemberBytes of text (small members cost ratio).
-// Plain text reaches the kernel on either call.
+// member, FlushIfDue ends it only once it holds kMemberBytes of text (small members cost ratio);
+// an unfinished member's bytes are written early only when the 1 MiB buffer fills. Plain text
+// reaches the kernel on either call.
 #pragma once
 
 #include <zlib.h>
