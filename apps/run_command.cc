@@ -70,6 +70,7 @@ struct RunArgs {
   std::string sequence;
   std::string run_dir;
   std::string resume;
+  bool plain_csv = false;
 };
 
 int RunAndReport(const RunArgs& a) {
@@ -85,6 +86,7 @@ int RunAndReport(const RunArgs& a) {
   options.station_file = a.station;
   options.sequence_file = a.sequence;
   options.run_dir = a.run_dir;
+  if (a.plain_csv) options.storage = hil::RecordingStorage::kPlainCsv;
   try {
     const calib::RunSummary summary = a.resume.empty()
                                           ? calib::StartRun(options, progress, g_stop_requested)
@@ -121,7 +123,9 @@ void RegisterRunCommand(CLI::App& app) {
       run->add_option("--sequence", args->sequence, "Sequence file (docs/sequences.md)");
   auto* run_dir = run->add_option("--run-dir", args->run_dir, "Run directory to create");
   auto* resume = run->add_option("--resume", args->resume, "Resume the run in this directory");
-  resume->excludes(station)->excludes(sequence)->excludes(run_dir);
+  auto* plain_csv = run->add_flag(
+      "--plain-csv", args->plain_csv, "Record imu.csv and ads.csv uncompressed (default: .csv.gz)");
+  resume->excludes(station)->excludes(sequence)->excludes(run_dir)->excludes(plain_csv);
   run->callback([args] {
     if (args->resume.empty() &&
         (args->station.empty() || args->sequence.empty() || args->run_dir.empty())) {

@@ -21,6 +21,7 @@ void RegisterReplay(CLI::App* sim) {
     std::vector<std::string> units;
     std::string out;
     bool same_noise = false;
+    bool plain_csv = false;
     rig_sim::ReplayOptions replay;
   };
   auto o = std::make_shared<Options>();
@@ -35,7 +36,9 @@ void RegisterReplay(CLI::App* sim) {
   cmd->add_flag("--same-noise",
                 o->replay.noise_from_unit_file,
                 "Each unit's noise as the rig drew it (the unit file's seed)");
+  cmd->add_flag("--plain-csv", o->plain_csv, "Write imu.csv and ads.csv uncompressed");
   cmd->callback([o] {
+    if (o->plain_csv) o->replay.storage = hil::RecordingStorage::kPlainCsv;
     const auto start = std::chrono::steady_clock::now();
     const std::vector<std::filesystem::path> files(o->units.begin(), o->units.end());
     const rig_sim::ReplaySummary s = rig_sim::ReplayRecording(o->run, files, o->out, o->replay);
@@ -64,6 +67,7 @@ void RegisterSimulateCommand(CLI::App& app) {
   struct Options {
     std::string out_dir = "runs/static-thermal";
     std::string profile = "truth";
+    bool plain_csv = false;
     rig_sim::StaticThermalRunConfig config = rig_sim::StaticThermalRunConfig::Demo();
   };
   auto options = std::make_shared<Options>();
@@ -88,7 +92,9 @@ void RegisterSimulateCommand(CLI::App& app) {
   cmd->add_option("--latitude-deg", options->config.latitude_deg, "Station latitude (gravity)")
       ->check(CLI::Range(-90.0, 90.0))
       ->capture_default_str();
+  cmd->add_flag("--plain-csv", options->plain_csv, "Write imu.csv and ads.csv uncompressed");
   cmd->callback([options] {
+    if (options->plain_csv) options->config.storage = hil::RecordingStorage::kPlainCsv;
     options->config.profile = sensor_sim::ModelProfileFromString(options->profile);
     const auto start = std::chrono::steady_clock::now();
     const auto summary =

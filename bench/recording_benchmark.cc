@@ -1,7 +1,9 @@
 // Writing and reading a recording (hil/recording): rows per second of RecordingWriter::Append and
 // of StreamRecording on a synthetic imu.csv of realistic rows — four units, 100 Hz packets
 // arriving in bursts that share t_s, noisy raw counts, every other step in thermal mode with nine
-// compensated values. Prints the bytes per row as a counter.
+// compensated values. Each benchmark's argument is the storage: 0 plain CSV, else gzip at that
+// deflate level (1 fastest … 9 smallest). Prints the bytes per row as a counter.
+#include <algorithm>
 #include <filesystem>
 #include <random>
 
@@ -59,9 +61,11 @@ std::filesystem::path RunDir(const char* name) {
   return std::filesystem::temp_directory_path() / "adahrs_recording_benchmark" / name;
 }
 
-void WriteRun(const std::filesystem::path& dir) {
+// Level 0: plain CSV; 1…9: gzip at that level.
+void WriteRun(const std::filesystem::path& dir, int level) {
   std::filesystem::remove_all(dir);
-  RecordingWriter writer(dir);
+  RecordingWriter writer(
+      dir, level == 0 ? RecordingStorage::kPlainCsv : RecordingStorage::kGzip, std::max(level, 1));
   writer.WriteMeta({{"units", nlohmann::json::array()}});
   for (const ImuRecordRow& r : Rows()) writer.Append(r);
   writer.Flush(true);
@@ -69,24 +73,25 @@ void WriteRun(const std::filesystem::path& dir) {
 
 void BM_WriteImuRows(benchmark::State& state) {
   const std::filesystem::path dir = RunDir("write");
-  for (auto _ : state) WriteRun(dir);
+  const int level = static_cast<int>(state.range(0));
+  for (auto _ : state) WriteRun(dir, level);
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(Rows().size()));
   state.counters["bytes_per_row"] =
-      static_cast<double>(std::filesystem::file_size(dir / kImuCsvName)) /
+      static_cast<double>(std::filesystem::file_size(StoredCsvPath(dir, kImuCsvName))) /
       static_cast<double>(Rows().size());
 }
-BENCHMARK(BM_WriteImuRows)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteImuRows)->Arg(0)->Arg(1)->Arg(6)->Unit(benchmark::kMillisecond);
 
 void BM_StreamImuRows(benchmark::State& state) {
   const std::filesystem::path dir = RunDir("read");
-  WriteRun(dir);
+  WriteRun(dir, static_cast<int>(state.range(0)));
   int64_t rows = 0;
   for (auto _ : state) {
     StreamRecording(dir, {[&](ImuRecordRow&&, int) { ++rows; }, nullptr});
   }
   state.SetItemsProcessed(rows);
 }
-BENCHMARK(BM_StreamImuRows)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StreamImuRows)->Arg(0)->Arg(1)->Arg(6)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace adahrs::hil

@@ -301,8 +301,8 @@ class RowReplayer {
               hil::RecordingWriter& writer,
               ReplaySummary& summary)
       : models_(models),
-        imu_csv_((run_dir / "imu.csv").string()),
-        ads_csv_((run_dir / "ads.csv").string()),
+        imu_csv_(hil::StoredCsvPath(run_dir, hil::kImuCsvName).string()),
+        ads_csv_(hil::StoredCsvPath(run_dir, hil::kAdsCsvName).string()),
         writer_(writer),
         summary_(summary) {}
 
@@ -403,7 +403,7 @@ ReplaySummary ReplayRecording(const fs::path& run_dir,
   }
   const UnitModels models = LoadUnitModels(files, options, meta, run_dir);
 
-  hil::RecordingWriter writer(out_dir);
+  hil::RecordingWriter writer(out_dir, options.storage);
   WriteReplayMeta(writer, meta, units, files, run_dir, out_dir, options);
   RowReplayer replayer(models, run_dir, writer, summary);
   auto emit_imu = [&](hil::ImuRecordRow&& row, int line, const hil::ImuRecordRow* first) {

@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+#include "hil/recording/recording_files.h"
+
 namespace adahrs::rig_sim {
 
 struct ReplayOptions {
@@ -33,6 +35,7 @@ struct ReplayOptions {
   /// Each unit's noise stream as the rig drew it, from the unit file's "seed" (a truth file has
   /// it): with the file the rig ran, a recording of one row per frame is reproduced bit for bit.
   bool noise_from_unit_file = false;
+  hil::RecordingStorage storage = hil::RecordingStorage::kGzip;  ///< of the written CSVs
 };
 
 struct ReplaySummary {

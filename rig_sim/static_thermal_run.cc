@@ -211,6 +211,7 @@ class StaticBatch {
     row.t_s = t_s;
     row.unit = serial;
     row.seq = UnitSequence(frame);
+    row.frame = static_cast<int64_t>(frame);
     row.step = static_cast<int>(step);
     row.tag = static_cast<uint8_t>(step + 1);
     row.chamber_c = air_c;
@@ -242,7 +243,7 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
   const Eigen::Vector3d f_B_g =
       UpAxis_B(config.orientation) * (g_local_mps2 / common::kStandardGravity_mps2);
   StaticBatch batch(config, run_dir, f_B_g);
-  hil::RecordingWriter writer(run_dir);
+  hil::RecordingWriter writer(run_dir, config.storage);
   nlohmann::json meta = RunMetaJson(config, run_dir, g_local_mps2, batch.units());
   writer.WriteMeta(meta);
 

@@ -14,6 +14,7 @@
 #include <functional>
 #include <vector>
 
+#include "hil/recording/recording_files.h"
 #include "rig_sim/chamber_air.h"
 #include "sensor_sim/model_profile.h"
 
@@ -36,8 +37,9 @@ struct StaticThermalRunConfig {
   double start_c = 25.0;
   double soak_band_c = 1.0;
   double ads_ps_pa = 101325.0;
-  double ads_qc_pa = 1630.3;  ///< 100 kt CAS
-  int log_every = 1;          ///< log every Nth packet (1 = all)
+  double ads_qc_pa = 1630.3;                                     ///< 100 kt CAS
+  int log_every = 1;                                             ///< log every Nth packet (1 = all)
+  hil::RecordingStorage storage = hil::RecordingStorage::kGzip;  ///< imu/ads CSVs, plain or gz
   std::vector<ThermalProfileStep> steps;
   ChamberAirParams chamber;
 

@@ -34,7 +34,7 @@ std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& r
                                                   const std::filesystem::path& fit_dir,
                                                   const std::string& software_version) {
   const nlohmann::json meta = hil::ReadRecordingMeta(run_dir).meta;
-  const std::string source = (run_dir / "ads.csv").string();
+  const std::string source = run_dir.string();
   const RecordingReference reference{run_dir.string(), RecordingSha256(run_dir)};
   const std::string sequence_name = meta.at("sequence").at("name").get<std::string>();
   std::vector<std::string> serials;

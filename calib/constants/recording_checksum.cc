@@ -7,6 +7,7 @@
 
 #include <openssl/evp.h>
 
+#include "hil/recording/recording_files.h"
 #include "hil/recording/recording_format.h"
 
 namespace adahrs::calib {
@@ -17,8 +18,9 @@ std::string RecordingSha256(const std::filesystem::path& run_dir) {
   if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1) {
     throw std::runtime_error("RecordingSha256: OpenSSL SHA-256 initialisation failed");
   }
-  for (std::string_view name : {hil::kMetaJsonName, hil::kImuCsvName, hil::kAdsCsvName}) {
-    const std::filesystem::path path = run_dir / name;
+  for (const std::filesystem::path& path : {run_dir / hil::kMetaJsonName,
+                                            hil::StoredCsvPath(run_dir, hil::kImuCsvName),
+                                            hil::StoredCsvPath(run_dir, hil::kAdsCsvName)}) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(path.string() + ": cannot open for the recording checksum");
     std::array<char, 1 << 16> buffer;

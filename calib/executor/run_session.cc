@@ -22,6 +22,8 @@
 #include "hil/drivers/station_instruments.h"
 #include "hil/drivers/unit_serial.h"
 #include "hil/instruments/instrument_error.h"
+#include "hil/recording/csv_lines.h"
+#include "hil/recording/recording_files.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_writer.h"
 #include "hil/recording/torn_tail.h"
@@ -43,16 +45,18 @@ PlanTiming TimingFor(const hil::Station& station) {
   return timing;
 }
 
-// The t_s of the last complete row of a CSV (0 when it has none); a cell that is not a time of
-// the run is refused naming the file and line.
+// The t_s of the last complete row of a CSV, plain or compressed (0 when it has none); a cell
+// that is not a time of the run is refused naming the file and line.
 double LastRowTime(const std::filesystem::path& csv) {
-  std::ifstream in(csv);
-  std::string line, last;
-  long line_number = 1, last_number = 0;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
+  if (!std::filesystem::exists(csv)) return 0.0;
+  hil::CsvLines lines(csv);
+  std::string_view line;
+  bool complete = false;
+  std::string last;
+  long line_number = 0, last_number = 0;
+  while (lines.Next(line, complete)) {
     ++line_number;
-    if (!line.empty()) {
+    if (line_number > 1 && complete && !line.empty()) {
       last = line;
       last_number = line_number;
     }
@@ -72,6 +76,16 @@ double LastRowTime(const std::filesystem::path& csv) {
                     cell));
   }
   return t_s;
+}
+
+// The stored CSV of `csv_name` (plain or compressed: a resumed run keeps its form); both forms
+// present is refused before anything moves.
+std::filesystem::path StoredCsv(const std::filesystem::path& run_dir, std::string_view csv_name) {
+  try {
+    return hil::StoredCsvPath(run_dir, csv_name);
+  } catch (const std::runtime_error& e) {
+    throw RunError(e.what());
+  }
 }
 
 // Everything a run needs once the station, the sequence and the run directory are decided.
@@ -254,7 +268,7 @@ RunSummary Execute(const Session& s,
   const nlohmann::json meta =
       StartingRunMeta(s, old_meta, links, units, IdentifyInstruments(batch, imu_batch));
 
-  hil::RecordingWriter writer(s.run_dir);
+  hil::RecordingWriter writer(s.run_dir, options.storage);
   SharedRecording recording(writer);
   RunMeta run_meta(meta, recording);
   run_meta.Write();
@@ -342,8 +356,9 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir,
   s.run_dir = run_dir;
 
   std::vector<nlohmann::json> events;
-  for (const std::filesystem::path& file :
-       {run_dir / hil::kImuCsvName, run_dir / hil::kAdsCsvName, run_dir / kJournalName}) {
+  const std::filesystem::path imu_csv = StoredCsv(run_dir, hil::kImuCsvName);
+  const std::filesystem::path ads_csv = StoredCsv(run_dir, hil::kAdsCsvName);
+  for (const std::filesystem::path& file : {imu_csv, ads_csv, run_dir / kJournalName}) {
     if (const auto torn = hil::SetAsideTornTail(file)) {
       events.push_back({{"event", "torn_tail_set_aside"},
                         {"file", file.filename().string()},
@@ -356,9 +371,7 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir,
     throw RunError(run_dir.string() + ": the run is complete; nothing to resume");
   }
   // The clock continues one packet period after the latest time on record.
-  const double last_t_s = std::max({point.last_t_s,
-                                    LastRowTime(run_dir / hil::kImuCsvName),
-                                    LastRowTime(run_dir / hil::kAdsCsvName)});
+  const double last_t_s = std::max({point.last_t_s, LastRowTime(imu_csv), LastRowTime(ads_csv)});
   const std::unique_ptr<hil::Clock> base =
       hil::MakeClock(s.station.time_scale, s.station.clock_file);
   const OffsetClock clock(*base, last_t_s + 1.0 / options.executor.packet_rate_hz);

@@ -1,7 +1,7 @@
 // A run from the files to the end: `adahrs run --station FILE --sequence FILE --run-dir DIR`
 // (StartRun) and `adahrs run --resume DIR` (ResumeRun). Loads and validates the station and the
 // sequence (refused before anything moves), opens the station (hil::OpenStation), identifies the
-// batch's units and the instruments, writes meta.json (format v2) and the journal, starts one
+// batch's units and the instruments, writes meta.json (format v3) and the journal, starts one
 // UnitLogger per unit and runs the Executor.
 // Resume reads meta.json (station and sequence as the run started them) and the journal, sets
 // aside torn CSV and journal tails (journaled), continues the pipeline clock after the latest
@@ -18,6 +18,7 @@
 
 #include "calib/executor/executor.h"
 #include "calib/executor/progress.h"
+#include "hil/recording/recording_files.h"
 
 namespace adahrs::calib {
 
@@ -26,6 +27,8 @@ struct NewRunOptions {
   std::string sequence_file;
   std::filesystem::path run_dir;
   ExecutorOptions executor;
+  /// How a new run stores imu.csv and ads.csv; a resumed run keeps the form it has.
+  hil::RecordingStorage storage = hil::RecordingStorage::kGzip;
   /// When set, decorates the station's operator (a logging operator, a test's fixture
   /// disturbance); receives the operator OpenStation made and returns the one the run uses.
   std::function<std::unique_ptr<hil::Operator>(std::unique_ptr<hil::Operator>)> wrap_operator;

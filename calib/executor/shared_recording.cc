@@ -33,7 +33,7 @@ void SharedRecording::WriterLoop() {
       for (const Row& row : batch) {
         std::visit([&](const auto& r) { writer_.Append(r); }, row);
       }
-      writer_.Flush(false);
+      writer_.FlushIfDue();
     } catch (...) {
       error = std::current_exception();
     }
@@ -53,6 +53,10 @@ void SharedRecording::Flush(bool durable) {
     const uint64_t target = queued_;
     written_cv_.wait(lock, [&] { return written_ >= target; });
     RethrowError();
+  }
+  {
+    std::lock_guard lock(writer_mutex_);
+    writer_.Flush(false);  // ends the gzip members: every row so far is readable after a crash
   }
   if (durable) writer_.SyncFlushed();
 }

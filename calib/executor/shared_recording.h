@@ -3,10 +3,11 @@
 // own, so a logger thread never waits on the disk: under a fast rig a CSV write can block for
 // seconds while the kernel throttles dirty pages (an fsync of a few hundred MB in progress), and a
 // logger that stops reading its unit for that long loses packets on the line. The writer thread
-// writes each batch and flushes it to the kernel as soon as it gets it, so a killed process loses
-// only the rows of the last moments still queued (as it loses those still on the line); the fsync
-// (power loss) happens at step boundaries, in Flush(true), after every row appended before the
-// call has reached the kernel.
+// writes each batch and hands it to the kernel as a crash leaves it readable
+// (RecordingWriter::FlushIfDue: at once for plain CSV, in gzip members of 256 KiB of text when
+// compressed), so a killed process loses only the rows of the last moments (as it loses those
+// still on the line); Flush hands every row appended before the call to the kernel and, at step
+// boundaries (Flush(true)), fsyncs them (power loss).
 // A write error is kept and rethrown by the next Append or Flush, naming the file.
 // Left out: a bound on the queue (memory is the buffer; a disk slower than the units for the
 // whole run would grow it without limit).
@@ -45,8 +46,8 @@ class SharedRecording {
     }
     queue_cv_.notify_one();
   }
-  /// Waits until every row appended before the call has reached the kernel; with `durable`,
-  /// fsyncs them (rows appended meanwhile keep being written).
+  /// Waits until every row appended before the call has reached the kernel (the gzip members
+  /// end); with `durable`, fsyncs them (rows appended meanwhile keep being written).
   void Flush(bool durable);
   void WriteMeta(const nlohmann::json& meta);
 

@@ -1,5 +1,5 @@
 // One thread per unit link that polls continuously and appends every received packet as a row of
-// the recording (format v2, hil/recording): nothing is dropped, whatever its TAG. Each row is
+// the recording (format v3, hil/recording): nothing is dropped, whatever its TAG. Each row is
 // annotated with the current step, the commanded orientation and the latest instrument readings
 // (run_annotations.h). A UnitLink is not thread-safe, so every request to the unit (SET_TAG,
 // SET_MODE, IDENTIFY…) is queued to this thread with Call() and runs between polls.

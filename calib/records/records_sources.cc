@@ -21,7 +21,7 @@
 namespace adahrs::calib {
 namespace {
 
-constexpr int kMetaFormatVersion = 2;
+constexpr int kOldestMetaFormatVersion = 2;  // the first with run id, status and units
 
 // Reads every row as a fit would: the reader refuses a bad cell by file, line and column, a row of
 // a unit meta.json does not list, a unit's time going back and a repeated row, and a torn last
@@ -67,12 +67,13 @@ RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
   const nlohmann::json meta_json = common::ParamReader::LoadFile(meta_path.string());
   const common::ParamReader meta(meta_json, meta_path.string());
   const int64_t version = meta.Integer("format_version", 1, 1000);
-  if (version != kMetaFormatVersion) {
+  if (version < kOldestMetaFormatVersion || version > hil::kRecordingFormatVersion) {
     meta.Fail("$.format_version",
               fmt::format("recording format {} cannot be recorded; the "
-                          "records need format {} (run id, status, units)",
+                          "records need format {} to {} (run id, status, units)",
                           version,
-                          kMetaFormatVersion));
+                          kOldestMetaFormatVersion,
+                          hil::kRecordingFormatVersion));
   }
   RunRecord run;
   run.run_dir = std::filesystem::absolute(run_dir).lexically_normal().string();

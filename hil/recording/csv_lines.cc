@@ -5,6 +5,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "hil/recording/gzip_reader.h"
+#include "hil/recording/recording_files.h"
+
 namespace adahrs::hil {
 namespace {
 
@@ -12,14 +15,22 @@ constexpr size_t kBlockBytes = size_t{1} << 20;
 
 }  // namespace
 
-CsvLines::CsvLines(const std::filesystem::path& path)
-    : path_(path), file_(std::fopen(path.c_str(), "rb")), buffer_(kBlockBytes) {
+CsvLines::CsvLines(const std::filesystem::path& path) : path_(path), buffer_(kBlockBytes) {
+  if (IsCompressed(path_)) {
+    gzip_ = std::make_unique<GzipReader>(path_);
+    return;
+  }
+  file_ = std::fopen(path.c_str(), "rb");
   if (file_ == nullptr) {
     throw std::runtime_error(path_.string() + ": cannot open for reading: " + std::strerror(errno));
   }
 }
 
-CsvLines::~CsvLines() { std::fclose(file_); }
+CsvLines::~CsvLines() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+bool CsvLines::stream_truncated() const { return gzip_ != nullptr && gzip_->truncated(); }
 
 bool CsvLines::Refill() {
   if (at_eof_) return false;
@@ -28,9 +39,10 @@ bool CsvLines::Refill() {
   begin_ = 0;
   end_ = unread;
   if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);  // a line longer than a block
-  const size_t got = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
+  const size_t got = gzip_ ? gzip_->Read(buffer_.data() + end_, buffer_.size() - end_)
+                           : std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
   if (got == 0) {
-    if (std::ferror(file_)) {
+    if (file_ != nullptr && std::ferror(file_)) {
       throw std::runtime_error(path_.string() + ": read failed: " + std::strerror(errno));
     }
     at_eof_ = true;
@@ -55,7 +67,14 @@ bool CsvLines::Next(std::string_view& line, bool& complete) {
     if (!Refill()) break;
     searched = begin_ + scanned;
   }
-  if (begin_ == end_) return false;
+  if (begin_ == end_) {
+    if (!stream_truncated() || truncation_reported_) return false;
+    truncation_reported_ = true;  // a member cut between rows: an empty, incomplete last line
+    line = std::string_view();
+    complete = false;
+    return true;
+  }
+  truncation_reported_ = true;
   line = std::string_view(buffer_.data() + begin_, end_ - begin_);
   begin_ = end_;
   complete = false;

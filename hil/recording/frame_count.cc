@@ -13,4 +13,20 @@ int64_t FramesBetween(uint32_t previous_seq, uint32_t seq, double dt_s, double p
   return step + kPacketCounterModulo * std::max<int64_t>(0, std::llround(extra));
 }
 
+int64_t FrameCounter::Next(uint32_t seq, double t_s) {
+  int64_t frame = 0;
+  if (last_) {
+    frame = last_->frame + FramesBetween(last_->seq, seq, t_s - last_->t_s, kUnitFramePeriod_s);
+  } else {
+    // The frame nearest t_s / period with frame mod 256 = seq mod 256, never negative.
+    const int64_t near = std::llround(std::max(0.0, t_s) / kUnitFramePeriod_s);
+    const int64_t residue = static_cast<int64_t>(seq) & (kPacketCounterModulo - 1);
+    frame = near - ((near - residue) & (kPacketCounterModulo - 1));
+    if (near - frame > kPacketCounterModulo / 2) frame += kPacketCounterModulo;
+    if (frame < 0) frame += kPacketCounterModulo;
+  }
+  last_ = FrameState{frame, seq, t_s};
+  return frame;
+}
+
 }  // namespace adahrs::hil

@@ -2,8 +2,11 @@
 // one CSV per unit kind, one row per received packet. Production recordings from real rigs use it
 // and the analysis tools read it; a change of columns is a change of kRecordingFormatVersion.
 //
-// Version 2 (written) = version 1's columns followed by the compensated columns, which are always
-// in the header and EMPTY in raw mode. Version 1 (still read) has no compensated columns.
+// Version 3 (written) = version 2's columns followed by the packet's sample time on the unit's
+// clock: frame (the frame index carried past the 8-bit counter, frame_count.h) and t_sample_s
+// (frame * 10 ms). Version 2 (still read) = version 1's columns followed by the compensated
+// columns, which are always in the header and EMPTY in raw mode. Version 1 (still read) has no
+// compensated columns. Imu and ads CSVs are stored plain or gzip-compressed (recording_files.h).
 // Compensated values are in the engineering units of the unit's mode (compensated_values.h):
 //   IMU mode 1 (thermal): comp0..5 duty T/T2 - 0.5, comp6..8 gyro counts;
 //   IMU mode 2 (sensor calibrated): comp0..5 g per accel channel, comp6..8 deg/s per gyro;
@@ -21,7 +24,7 @@
 
 namespace adahrs::hil {
 
-inline constexpr int kRecordingFormatVersion = 2;
+inline constexpr int kRecordingFormatVersion = 3;
 /// The oldest version ReadRecording still accepts.
 inline constexpr int kOldestReadableFormatVersion = 1;
 inline constexpr std::string_view kImuCsvName = "imu.csv";
@@ -35,13 +38,21 @@ inline constexpr std::string_view kImuCsvHeaderV1 =
 inline constexpr std::string_view kAdsCsvHeaderV1 =
     "t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,ps_temp_counts,"
     "pt_temp_counts,oat_counts";
-inline constexpr std::string_view kImuCsvHeader =
+inline constexpr std::string_view kImuCsvHeaderV2 =
     "t_s,unit,seq,step,tag,orientation,chamber_c,table_rate_dps,"
     "az1_t1,az1_t2,ax1_t1,ax1_t2,ay1_t1,ay1_t2,az2_t1,az2_t2,ax2_t1,ax2_t2,ay2_t1,ay2_t2,"
     "gx,gy,gz,tx,ty,tz,mode,comp0,comp1,comp2,comp3,comp4,comp5,comp6,comp7,comp8,comp_flags";
-inline constexpr std::string_view kAdsCsvHeader =
+inline constexpr std::string_view kAdsCsvHeaderV2 =
     "t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,ps_temp_counts,"
     "pt_temp_counts,oat_counts,mode,alt_ft,cas_kt,comp_flags";
+inline constexpr std::string_view kImuCsvHeader =
+    "t_s,unit,seq,step,tag,orientation,chamber_c,table_rate_dps,"
+    "az1_t1,az1_t2,ax1_t1,ax1_t2,ay1_t1,ay1_t2,az2_t1,az2_t2,ax2_t1,ax2_t2,ay2_t1,ay2_t2,"
+    "gx,gy,gz,tx,ty,tz,mode,comp0,comp1,comp2,comp3,comp4,comp5,comp6,comp7,comp8,comp_flags,"
+    "frame,t_sample_s";
+inline constexpr std::string_view kAdsCsvHeader =
+    "t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,ps_temp_counts,"
+    "pt_temp_counts,oat_counts,mode,alt_ft,cas_kt,comp_flags,frame,t_sample_s";
 
 /// One received IMU packet with the instrument readings current when it arrived.
 struct ImuRecordRow {
@@ -60,6 +71,9 @@ struct ImuRecordRow {
   /// Compensated values in the mode's engineering units; absent in raw mode and in version 1.
   std::optional<std::array<double, 9>> comp;
   uint32_t comp_flags = 0;  ///< compensation status flags (compensated_frame.h), 0 when absent
+  /// The unit's frame index (frame_count.h); sample time frame * 10 ms. -1: not known yet, the
+  /// writer counts it from seq and t_s.
+  int64_t frame = -1;
 };
 
 /// One received ADS packet with the instrument readings current when it arrived.
@@ -81,6 +95,7 @@ struct AdsRecordRow {
   std::optional<double> alt_ft;  ///< surface-mode pressure altitude; absent in raw mode
   std::optional<double> cas_kt;  ///< surface-mode calibrated airspeed; absent in raw mode
   uint32_t comp_flags = 0;       ///< compensation status flags, 0 when absent
+  int64_t frame = -1;            ///< as ImuRecordRow::frame
 };
 
 }  // namespace adahrs::hil

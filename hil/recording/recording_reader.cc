@@ -13,6 +13,8 @@
 
 #include "common/printable_text.h"
 #include "hil/recording/csv_lines.h"
+#include "hil/recording/frame_count.h"
+#include "hil/recording/recording_files.h"
 
 namespace adahrs::hil {
 
@@ -54,7 +56,7 @@ class CsvCursor {
     }
     std::string_view first;
     bool complete = false;
-    if (!lines_->Next(first, complete)) {
+    if (!NextLine(first, complete)) {
       throw RecordingError(path_.string() + ": empty file, no header");
     }
     line_ = 1;
@@ -72,7 +74,7 @@ class CsvCursor {
   bool Next(bool allow_truncated_tail, int& truncated) {
     std::string_view text;
     bool complete = false;
-    if (!lines_->Next(text, complete)) return false;
+    if (!NextLine(text, complete)) return false;
     ++line_;
     // One pass over the bytes: a call per cell (find) costs more than the cells' own parsing.
     cells_.clear();
@@ -84,11 +86,16 @@ class CsvCursor {
       cell = c + 1;
     }
     cells_.emplace_back(cell, static_cast<size_t>(end - cell));
+    if (!complete && allow_truncated_tail) {
+      ++truncated;
+      return false;
+    }
+    if (!complete && lines_->stream_truncated()) {
+      throw RecordingError(Where() +
+                           ": truncated: the file ends inside a gzip member (a crash while "
+                           "writing); the rows before this line are complete");
+    }
     if (!complete || cells_.size() != file_columns_) {
-      if (!complete && allow_truncated_tail) {
-        ++truncated;
-        return false;
-      }
       throw RecordingError(Where() + (complete ? "" : " (last line, no newline: truncated?)") +
                            ": " + std::to_string(cells_.size()) + " columns, expected " +
                            std::to_string(file_columns_) + " (as the header)");
@@ -125,6 +132,21 @@ class CsvCursor {
 
   bool Empty(size_t column) const { return cells_[column_of_[column]].empty(); }
 
+  // The frame index in `frame_column`, checked against the sample time in `time_column`
+  // (frame * 10 ms, written to the 10 ms digit).
+  int64_t Frame(size_t frame_column, size_t time_column) const {
+    const auto frame = Integer<int64_t>(frame_column);
+    if (frame < 0)
+      throw RecordingError(Where(frame_column) + ": frame " + std::to_string(frame) +
+                           " is negative");
+    const double t_sample_s = Real(time_column);
+    if (std::abs(t_sample_s - SampleTimeS(frame)) > 0.5 * kUnitFramePeriod_s) {
+      throw RecordingError(Where(time_column) + ": " + std::to_string(t_sample_s) +
+                           " s is not frame " + std::to_string(frame) + " times 10 ms");
+    }
+    return frame;
+  }
+
   // The compensated cells [first, last] of a version-2 row: all empty in raw mode (false), all
   // present otherwise (true); a mixture is an error naming the first offending column.
   bool CompensatedPresent(size_t first, size_t last, unsigned mode) const {
@@ -144,6 +166,14 @@ class CsvCursor {
   }
 
  private:
+  // The next line; corrupt compressed data is refused as a RecordingError naming the file.
+  bool NextLine(std::string_view& text, bool& complete) {
+    try {
+      return lines_->Next(text, complete);
+    } catch (const std::runtime_error& e) {
+      throw RecordingError(std::string(e.what()) + " (after line " + std::to_string(line_) + ")");
+    }
+  }
   std::string Where() const { return path_.string() + ":" + std::to_string(line_); }
   std::string Where(size_t column) const {
     return Where() + ": column " + std::to_string(column_of_[column] + 1) + " (" + names_[column] +
@@ -178,9 +208,9 @@ class CsvCursor {
           latest_names.end()) {
         throw RecordingError(path_.string() + ":1: column " + std::to_string(i + 1) + " '" +
                              PrintableText(file_names[i]) +
-                             "' belongs to recording format version " +
-                             std::to_string(kRecordingFormatVersion) +
-                             ", but meta.json says version " + std::to_string(version));
+                             "' belongs to a later recording format version, but meta.json "
+                             "says version " +
+                             std::to_string(version));
       }
       notes->push_back(path_.string() + ": column " + std::to_string(i + 1) + " '" +
                        PrintableText(file_names[i]) + "' is not in the recording format" + format +
@@ -334,7 +364,16 @@ class RowOrder {
     listed_ = !last_.empty();
   }
 
-  void Check(const std::string& unit, int step, double t_s, uint32_t seq, uint64_t raw, int line) {
+  // Checks the row and returns its frame: `frame` as the file gives it (version 3: it must not go
+  // back and must be `seq` modulo 256), or counted from the counter and the arrival time (-1,
+  // older versions) as the writer counts it.
+  int64_t Check(const std::string& unit,
+                int step,
+                double t_s,
+                uint32_t seq,
+                uint64_t raw,
+                int64_t frame,
+                int line) {
     auto it = last_.find(unit);
     if (it == last_.end()) {
       if (listed_) Fail(line, "unit '" + unit + "' is not listed in meta.json $.units");
@@ -348,7 +387,26 @@ class RowOrder {
     if (l.seen && t_s == l.t_s && seq == l.seq && raw == l.raw) {
       Fail(line, Format("unit %s repeats its previous row (seq %u, t_s %.6f s)", unit, seq, t_s));
     }
-    l = {true, t_s, seq, raw};
+    if (frame < 0) {
+      frame = l.frames.Next(seq, t_s);
+    } else {
+      if ((frame - static_cast<int64_t>(seq)) % kPacketCounterModulo != 0) {
+        Fail(line,
+             "unit " + unit + " frame " + std::to_string(frame) + " is not its seq " +
+                 std::to_string(seq) + " modulo 256");
+      }
+      if (l.seen && frame < l.frames.last()->frame) {
+        Fail(line,
+             "unit " + unit + " frame " + std::to_string(frame) + " goes back from " +
+                 std::to_string(l.frames.last()->frame));
+      }
+      l.frames = FrameCounter(FrameState{frame, seq, t_s});
+    }
+    l.seen = true;
+    l.t_s = t_s;
+    l.seq = seq;
+    l.raw = raw;
+    return frame;
   }
 
  private:
@@ -357,6 +415,7 @@ class RowOrder {
     double t_s = 0.0;
     uint32_t seq = 0;
     uint64_t raw = 0;
+    FrameCounter frames;
   };
   template <typename... Args>
   static std::string Format(const char* format, const std::string& unit, Args... args) {
@@ -391,6 +450,15 @@ uint64_t RawWord(const AdsRecordRow& r) {
   return w;
 }
 
+// The stored form of `csv_name` (plain or compressed); both forms present is refused.
+std::filesystem::path StoredPath(const std::filesystem::path& run_dir, std::string_view csv_name) {
+  try {
+    return StoredCsvPath(run_dir, csv_name);
+  } catch (const std::runtime_error& e) {
+    throw RecordingError(e.what());
+  }
+}
+
 }  // namespace
 
 Recording StreamRecording(const std::filesystem::path& run_dir,
@@ -399,13 +467,14 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
   Recording rec = ReadRecordingMeta(run_dir);
   const int version = rec.format_version;
   const bool v2 = version >= 2;
+  const bool v3 = version >= 3;
+  const std::string_view imu_header = v3 ? kImuCsvHeader : v2 ? kImuCsvHeaderV2 : kImuCsvHeaderV1;
+  const std::string_view ads_header = v3 ? kAdsCsvHeader : v2 ? kAdsCsvHeaderV2 : kAdsCsvHeaderV1;
 
-  CsvCursor imu(run_dir / kImuCsvName,
-                v2 ? kImuCsvHeader : kImuCsvHeaderV1,
-                kImuCsvHeader,
-                version,
-                &rec.notes);
-  RowOrder imu_order(rec.meta, run_dir / kImuCsvName);
+  const std::filesystem::path imu_path = StoredPath(run_dir, kImuCsvName);
+  const std::filesystem::path ads_path = StoredPath(run_dir, kAdsCsvName);
+  CsvCursor imu(imu_path, imu_header, kImuCsvHeader, version, &rec.notes);
+  RowOrder imu_order(rec.meta, imu_path);
   while (imu.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     ImuRecordRow r;
     r.t_s = imu.Real(0);
@@ -428,15 +497,12 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
         r.comp_flags = imu.Integer<uint32_t>(36);
       }
     }
-    imu_order.Check(r.unit, r.step, r.t_s, r.seq, RawWord(r), imu.line());
+    r.frame = imu_order.Check(
+        r.unit, r.step, r.t_s, r.seq, RawWord(r), v3 ? imu.Frame(37, 38) : -1, imu.line());
     if (sinks.imu) sinks.imu(std::move(r), imu.line());
   }
-  CsvCursor ads(run_dir / kAdsCsvName,
-                v2 ? kAdsCsvHeader : kAdsCsvHeaderV1,
-                kAdsCsvHeader,
-                version,
-                &rec.notes);
-  RowOrder ads_order(rec.meta, run_dir / kAdsCsvName);
+  CsvCursor ads(ads_path, ads_header, kAdsCsvHeader, version, &rec.notes);
+  RowOrder ads_order(rec.meta, ads_path);
   while (ads.Next(options.allow_truncated_tail, rec.truncated_lines)) {
     AdsRecordRow r;
     r.t_s = ads.Real(0);
@@ -460,7 +526,8 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
         r.comp_flags = ads.Integer<uint32_t>(16);
       }
     }
-    ads_order.Check(r.unit, r.step, r.t_s, r.seq, RawWord(r), ads.line());
+    r.frame = ads_order.Check(
+        r.unit, r.step, r.t_s, r.seq, RawWord(r), v3 ? ads.Frame(17, 18) : -1, ads.line());
     if (sinks.ads) sinks.ads(std::move(r), ads.line());
   }
   return rec;

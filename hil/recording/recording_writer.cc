@@ -1,13 +1,10 @@
 #include "hil/recording/recording_writer.h"
 
-#include <unistd.h>
-
-#include <cerrno>
-#include <charconv>
-#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
+#include "hil/recording/csv_lines.h"
+#include "hil/recording/last_frames.h"
 #include "hil/recording/row_text.h"
 
 namespace adahrs::hil {
@@ -15,54 +12,56 @@ namespace {
 
 // The header line of an existing file, empty if it has none.
 std::string FirstLine(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  return line;
+  CsvLines lines(path);
+  std::string_view line;
+  bool complete = false;
+  return lines.Next(line, complete) ? std::string(line) : std::string();
 }
 
-constexpr size_t kStdioBufferBytes = size_t{1} << 20;
-
-std::FILE* OpenCsv(const std::filesystem::path& path, std::string_view header, char* buffer) {
+// The file of `csv_name` in `run_dir`: the one there already (a resumed run keeps its form),
+// else a new one stored as `storage`, with its header line.
+std::unique_ptr<CsvFileWriter> OpenCsv(const std::filesystem::path& run_dir,
+                                       std::string_view csv_name,
+                                       std::string_view header,
+                                       RecordingStorage storage,
+                                       int gzip_level) {
+  std::filesystem::path path = StoredCsvPath(run_dir, csv_name);
   const bool is_new = !std::filesystem::exists(path) || std::filesystem::file_size(path) == 0;
+  if (!std::filesystem::exists(path)) path = CsvPathFor(run_dir, csv_name, storage);
   if (!is_new && FirstLine(path) != header) {
     throw std::runtime_error(path.string() + ":1: cannot append: the header is not the version " +
                              std::to_string(kRecordingFormatVersion) + " header '" +
                              std::string(header) + "'");
   }
-  std::FILE* f = std::fopen(path.c_str(), "a");
-  if (f == nullptr) {
-    throw std::runtime_error(path.string() +
-                             ": cannot open for appending: " + std::strerror(errno));
+  auto file = std::make_unique<CsvFileWriter>(path, gzip_level);
+  if (is_new) {
+    file->Append(header);
+    file->Append("\n");
   }
-  std::setvbuf(f, buffer, _IOFBF, kStdioBufferBytes);
-  if (is_new) std::fprintf(f, "%.*s\n", static_cast<int>(header.size()), header.data());
-  return f;
-}
-
-void Check(int rc, const std::filesystem::path& path, const char* what) {
-  if (rc < 0) throw std::runtime_error(path.string() + ": " + what + ": " + std::strerror(errno));
+  return file;
 }
 
 }  // namespace
 
-RecordingWriter::RecordingWriter(const std::filesystem::path& run_dir)
-    : run_dir_(run_dir),
-      imu_buffer_(std::make_unique<char[]>(kStdioBufferBytes)),
-      ads_buffer_(std::make_unique<char[]>(kStdioBufferBytes)) {
+RecordingWriter::RecordingWriter(const std::filesystem::path& run_dir,
+                                 RecordingStorage storage,
+                                 int gzip_level)
+    : run_dir_(run_dir) {
   std::filesystem::create_directories(run_dir_);
-  imu_ = OpenCsv(run_dir_ / kImuCsvName, kImuCsvHeader, imu_buffer_.get());
-  try {
-    ads_ = OpenCsv(run_dir_ / kAdsCsvName, kAdsCsvHeader, ads_buffer_.get());
-  } catch (...) {
-    std::fclose(imu_);
-    throw;
+  imu_ = OpenCsv(run_dir_, kImuCsvName, kImuCsvHeader, storage, gzip_level);
+  ads_ = OpenCsv(run_dir_, kAdsCsvName, kAdsCsvHeader, storage, gzip_level);
+  for (const CsvFileWriter* file : {imu_.get(), ads_.get()}) {
+    for (const auto& [serial, last] : LastFrames(file->path()))
+      frames_[serial] = FrameCounter(last);
   }
 }
 
-RecordingWriter::~RecordingWriter() {
-  std::fclose(imu_);
-  std::fclose(ads_);
+int64_t RecordingWriter::Frame(const std::string& unit, uint32_t seq, double t_s, int64_t frame) {
+  auto it = frames_.find(unit);
+  if (it == frames_.end()) it = frames_.emplace(unit, FrameCounter()).first;
+  if (frame < 0) return it->second.Next(seq, t_s);
+  it->second = FrameCounter(FrameState{frame, seq, t_s});
+  return frame;
 }
 
 void RecordingWriter::WriteMeta(nlohmann::json meta) const {
@@ -78,6 +77,15 @@ void RecordingWriter::WriteMeta(nlohmann::json meta) const {
 }
 
 namespace {
+
+// The columns every row ends with: frame, t_sample_s (docs/recording-format.md).
+void AppendSampleTime(int64_t frame, RowText* row) {
+  row->Comma();
+  row->Integer(frame);
+  row->Comma();
+  row->Fixed(SampleTimeS(frame), 2);
+  row->Char('\n');
+}
 
 // The columns every row starts with: t_s, unit, seq, step, tag (docs/recording-format.md).
 template <class Row>
@@ -128,8 +136,8 @@ void RecordingWriter::Append(const ImuRecordRow& r) {
   } else {
     row.Text(",,,,,,,,,,");
   }
-  row.Char('\n');
-  Write(imu_, row, kImuCsvName);
+  AppendSampleTime(Frame(r.unit, r.seq, r.t_s, r.frame), &row);
+  imu_->Append(std::string_view(row.data(), row.size()));
   ++imu_rows_;
 }
 
@@ -162,27 +170,25 @@ void RecordingWriter::Append(const AdsRecordRow& r) {
   } else {
     row.Text(",,,");
   }
-  row.Char('\n');
-  Write(ads_, row, kAdsCsvName);
+  AppendSampleTime(Frame(r.unit, r.seq, r.t_s, r.frame), &row);
+  ads_->Append(std::string_view(row.data(), row.size()));
   ++ads_rows_;
 }
 
-void RecordingWriter::Write(std::FILE* file, const RowText& row, std::string_view name) {
-  if (std::fwrite(row.data(), 1, row.size(), file) != row.size()) {
-    Check(-1, run_dir_ / name, "write failed");
-  }
+void RecordingWriter::Flush(bool durable) {
+  imu_->Flush();
+  ads_->Flush();
+  if (durable) SyncFlushed();
 }
 
-void RecordingWriter::Flush(bool durable) {
-  for (auto [file, name] : {std::pair{imu_, kImuCsvName}, std::pair{ads_, kAdsCsvName}}) {
-    Check(std::fflush(file) == 0 ? 0 : -1, run_dir_ / name, "flush failed");
-    if (durable) Check(::fsync(::fileno(file)), run_dir_ / name, "fsync failed");
-  }
+void RecordingWriter::FlushIfDue() {
+  imu_->FlushIfDue();
+  ads_->FlushIfDue();
 }
 
 void RecordingWriter::SyncFlushed() const {
-  Check(::fsync(::fileno(imu_)), run_dir_ / kImuCsvName, "fsync failed");
-  Check(::fsync(::fileno(ads_)), run_dir_ / kAdsCsvName, "fsync failed");
+  imu_->Sync();
+  ads_->Sync();
 }
 
 }  // namespace adahrs::hil

@@ -1,10 +1,14 @@
 // Writes a run directory in the recording format (recording_format.h). Rows are appended to the
-// CSVs as they arrive; Flush(durable=true) flushes and fsyncs both files, which the executor does
-// at every step boundary so that a crash loses nothing that was logged before it.
+// CSVs as they arrive, stored gzip-compressed (imu.csv.gz, ads.csv.gz) or plain (recording_files.h;
+// csv_file_writer.h says how a compressed file stays readable after a crash). Flush(durable=true)
+// hands every row to the kernel (ending the gzip members) and fsyncs both files, which the
+// executor does at every step boundary so that a crash loses nothing that was logged before it.
+// Each row's frame index (the frame and t_sample_s columns) is the row's own when it carries one,
+// else counted per unit from seq and t_s (frame_count.h), continuing an existing file's count.
 #pragma once
 
-#include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -12,6 +16,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hil/recording/csv_file_writer.h"
+#include "hil/recording/frame_count.h"
+#include "hil/recording/recording_files.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/row_text.h"
 
@@ -19,10 +26,14 @@ namespace adahrs::hil {
 
 class RecordingWriter {
  public:
-  /// Creates `run_dir` (and parents) and opens imu.csv and ads.csv for appending, writing the
-  /// header line into each new file. Throws std::runtime_error naming the path on failure.
-  explicit RecordingWriter(const std::filesystem::path& run_dir);
-  ~RecordingWriter();
+  /// Creates `run_dir` (and parents) and opens its imu and ads CSVs for appending, writing the
+  /// header line into each new file. The files are stored as `storage` says unless `run_dir`
+  /// holds them already (a resumed run): then they keep the form they have. Throws
+  /// std::runtime_error naming the path on failure, on an existing file whose header is not this
+  /// version's, and when both forms of a file exist.
+  explicit RecordingWriter(const std::filesystem::path& run_dir,
+                           RecordingStorage storage = RecordingStorage::kGzip,
+                           int gzip_level = CsvFileWriter::kGzipLevel);
   RecordingWriter(const RecordingWriter&) = delete;
   RecordingWriter& operator=(const RecordingWriter&) = delete;
 
@@ -30,28 +41,31 @@ class RecordingWriter {
   void WriteMeta(nlohmann::json meta) const;
   void Append(const ImuRecordRow& row);
   void Append(const AdsRecordRow& row);
-  /// Flushes buffered rows; with `durable`, also fsyncs the files.
+  /// Hands every appended row to the kernel; with `durable`, also fsyncs the files.
   void Flush(bool durable);
-  /// Fsyncs what was flushed before, without touching the stdio buffers: safe to call while
-  /// another thread appends (under its own lock), so a slow disk does not hold the writers up.
+  /// Hands rows to the kernel in pieces a crash leaves readable (CsvFileWriter::FlushIfDue):
+  /// all of them for plain files, whole gzip members of compressed ones.
+  void FlushIfDue();
+  /// Fsyncs what was handed to the kernel before, without touching the buffers: safe to call
+  /// while another thread appends (under its own lock), so a slow disk does not hold it up.
   void SyncFlushed() const;
 
   const std::filesystem::path& run_dir() const { return run_dir_; }
+  const std::filesystem::path& imu_path() const { return imu_->path(); }
+  const std::filesystem::path& ads_path() const { return ads_->path(); }
   uint64_t imu_rows() const { return imu_rows_; }
   uint64_t ads_rows() const { return ads_rows_; }
 
  private:
   std::filesystem::path run_dir_;
-  // 1 MiB stdio buffers: a fast rig's rows at the default 4 KiB cost a write() per ~20 rows.
-  std::unique_ptr<char[]> imu_buffer_;
-  std::unique_ptr<char[]> ads_buffer_;
-  void Write(std::FILE* file, const RowText& row, std::string_view name);
-
-  std::FILE* imu_ = nullptr;
-  std::FILE* ads_ = nullptr;
+  std::unique_ptr<CsvFileWriter> imu_;
+  std::unique_ptr<CsvFileWriter> ads_;
   uint64_t imu_rows_ = 0;
   uint64_t ads_rows_ = 0;
   std::vector<char> row_buffer_;  ///< the row being formatted (RowText), reused
+  // Per unit serial, its frame count (units of both files: serials do not repeat across kinds).
+  std::map<std::string, FrameCounter, std::less<>> frames_;
+  int64_t Frame(const std::string& unit, uint32_t seq, double t_s, int64_t frame);
 };
 
 }  // namespace adahrs::hil

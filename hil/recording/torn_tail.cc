@@ -6,9 +6,12 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "hil/recording/gzip_reader.h"
+#include "hil/recording/recording_files.h"
 
 namespace adahrs::hil {
 namespace {
@@ -26,28 +29,51 @@ void WriteDurably(const std::filesystem::path& path, const std::string& bytes) {
   if (!ok) Fail(path, "write failed");
 }
 
+// The bytes [offset, offset + size) of `path`.
+std::string ReadRange(const std::filesystem::path& path, uint64_t offset, uint64_t size) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) Fail(path, "cannot open for reading");
+  std::string bytes(size, '\0');
+  in.seekg(static_cast<std::streamoff>(offset));
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) Fail(path, "read failed");
+  return bytes;
+}
+
+// Bytes of `path` (`size` long) that end cleanly: up to its last newline when plain (read
+// backwards from the end), up to its last complete gzip member when compressed.
+uint64_t CleanEnd(const std::filesystem::path& path, uint64_t size) {
+  if (IsCompressed(path)) {
+    GzipReader gzip(path);
+    std::vector<char> sink(size_t{1} << 20);
+    while (gzip.Read(sink.data(), sink.size()) > 0) {
+    }
+    return gzip.truncated() ? gzip.complete_bytes() : size;
+  }
+  constexpr uint64_t kBlockBytes = uint64_t{1} << 16;
+  for (uint64_t end = size; end > 0;) {
+    const uint64_t begin = end > kBlockBytes ? end - kBlockBytes : 0;
+    const std::string block = ReadRange(path, begin, end - begin);
+    const size_t newline = block.rfind('\n');
+    if (newline != std::string::npos) return begin + newline + 1;
+    end = begin;
+  }
+  return 0;
+}
+
 }  // namespace
 
 std::optional<std::filesystem::path> SetAsideTornTail(const std::filesystem::path& csv_path) {
   if (!std::filesystem::exists(csv_path)) return std::nullopt;
-  std::string text;
-  {
-    std::ifstream in(csv_path, std::ios::binary);
-    if (!in) Fail(csv_path, "cannot open for reading");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    text = buffer.str();
-  }
-  if (text.empty() || text.back() == '\n') return std::nullopt;
-  const size_t last_newline = text.rfind('\n');
-  const size_t keep = last_newline == std::string::npos ? 0 : last_newline + 1;
+  const uint64_t size = std::filesystem::file_size(csv_path);
+  const uint64_t keep = CleanEnd(csv_path, size);
+  if (keep == size) return std::nullopt;
   std::filesystem::path torn;
   for (int n = 1;; ++n) {
     torn = csv_path;
     torn += ".torn-" + std::to_string(n);
     if (!std::filesystem::exists(torn)) break;
   }
-  WriteDurably(torn, text.substr(keep));
+  WriteDurably(torn, ReadRange(csv_path, keep, size - keep));
   if (::truncate(csv_path.c_str(), static_cast<off_t>(keep)) != 0)
     Fail(csv_path, "truncate failed");
   return torn;

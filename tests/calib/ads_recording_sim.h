@@ -26,7 +26,7 @@ inline void WriteAdsRecording(const std::filesystem::path& run_dir,
                               const sensor_sim::AdsUnitParams& params,
                               uint64_t noise_seed) {
   const ParsedSequence parsed = ParseSequenceFile(sequence_path);
-  hil::RecordingWriter writer(run_dir);
+  hil::RecordingWriter writer(run_dir, hil::RecordingStorage::kPlainCsv);  // tests edit it
   writer.WriteMeta({{"run_id", "ads-test"},
                     {"status", "complete"},
                     {"sample_rate_hz", 100},

@@ -1,7 +1,8 @@
 // Crash and resume: `adahrs run` as a child process is killed with SIGKILL in the middle of a
-// step, then `adahrs run --resume` finishes the run. Expected: every row in the files at the kill
-// is still there, the interrupted step is repeated and its first attempt marked as a rejected
-// interval, and the calibration rows per unit per acquisition are complete (N each).
+// step, then `adahrs run --resume` finishes the run. Expected: every complete gzip member of
+// imu.csv.gz at the kill is still there byte for byte (a torn one is set aside), the interrupted
+// step is repeated and its first attempt marked as a rejected interval, and the calibration rows
+// per unit per acquisition are complete (N each).
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -15,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/executor/journal.h"
+#include "hil/recording/gzip_reader.h"
 #include "tests/calib/executor_test_util.h"
 
 extern char** environ;
@@ -45,6 +47,26 @@ std::string ReadAll(const std::filesystem::path& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// The compressed bytes of `gz` up to the end of its last complete member, and their text.
+std::pair<std::string, std::string> CompleteMembers(const std::filesystem::path& gz,
+                                                    const std::filesystem::path& scratch) {
+  size_t complete_bytes = 0;
+  {
+    hil::GzipReader reader(gz);
+    std::vector<char> block(1 << 16);
+    while (reader.Read(block.data(), block.size()) > 0) {
+    }
+    complete_bytes = reader.complete_bytes();
+  }
+  const std::string compressed = ReadAll(gz).substr(0, complete_bytes);
+  std::ofstream(scratch, std::ios::binary) << compressed;
+  hil::GzipReader reader(scratch);
+  std::string text;
+  std::vector<char> block(1 << 16);
+  for (size_t n; (n = reader.Read(block.data(), block.size())) > 0;) text.append(block.data(), n);
+  return {compressed, text};
 }
 
 bool JournalHasStepCompleted(const std::filesystem::path& run_dir, int step) {
@@ -79,8 +101,10 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   int status = 0;
   ::waitpid(first, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status)) << ReadAll(dir.path() / "first.log");
-  const std::string imu_at_kill = ReadAll(run_dir / "imu.csv");
-  const std::string complete_at_kill = imu_at_kill.substr(0, imu_at_kill.rfind('\n') + 1);
+  const std::string imu_at_kill = ReadAll(run_dir / "imu.csv.gz");
+  const auto [complete_at_kill, text_at_kill] =
+      CompleteMembers(run_dir / "imu.csv.gz", dir.path() / "members.gz");
+  ASSERT_FALSE(text_at_kill.empty());
   ASSERT_FALSE(JournalHasStepCompleted(run_dir, 2)) << "killed too late to test a partial step";
 
   // A restart takes a moment; an instrument reply to the killed process's last request lands in
@@ -90,15 +114,16 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
 
   // A copy whose last complete row is garbled is refused by file and line before anything moves
-  // (it died with a bare "stod").
+  // (it died with a bare "stod"); the copy's rows are plain text, as `adahrs run --plain-csv`
+  // writes them, and resume reads them in that form.
   const std::filesystem::path garbled = dir.path() / "garbled";
   std::filesystem::copy(run_dir, garbled, std::filesystem::copy_options::recursive);
-  std::filesystem::remove(garbled / "imu.csv");
-  const size_t last_row = complete_at_kill.rfind('\n', complete_at_kill.size() - 2) + 1;
+  std::filesystem::remove(garbled / "imu.csv.gz");
+  const size_t last_row = text_at_kill.rfind('\n', text_at_kill.size() - 2) + 1;
   std::ofstream(garbled / "imu.csv", std::ios::binary)
-      << complete_at_kill.substr(0, last_row) << "x" << complete_at_kill.substr(last_row);
+      << text_at_kill.substr(0, last_row) << "x" << text_at_kill.substr(last_row);
   const long last_line =
-      static_cast<long>(std::count(complete_at_kill.begin(), complete_at_kill.end(), '\n'));
+      static_cast<long>(std::count(text_at_kill.begin(), text_at_kill.end(), '\n'));
   const pid_t refused =
       Spawn({adahrs, "run", "--resume", garbled.string()}, dir.path() / "garbled.log");
   ::waitpid(refused, &status, 0);
@@ -113,11 +138,11 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   ::waitpid(second, &status, 0);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadAll(dir.path() / "second.log");
 
-  // Nothing logged before the kill is lost: the file still starts with every complete row.
-  const std::string imu_after = ReadAll(run_dir / "imu.csv");
+  // Nothing logged before the kill is lost: the file still starts with every complete member.
+  const std::string imu_after = ReadAll(run_dir / "imu.csv.gz");
   EXPECT_EQ(imu_after.compare(0, complete_at_kill.size(), complete_at_kill), 0);
   if (complete_at_kill.size() != imu_at_kill.size()) {
-    EXPECT_EQ(ReadAll(run_dir / "imu.csv.torn-1"), imu_at_kill.substr(complete_at_kill.size()));
+    EXPECT_EQ(ReadAll(run_dir / "imu.csv.gz.torn-1"), imu_at_kill.substr(complete_at_kill.size()));
   }
 
   const hil::Recording rec = hil::ReadRecording(run_dir);

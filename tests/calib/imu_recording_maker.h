@@ -51,7 +51,7 @@ class ImuRecordingMaker {
   /// Runs `sequence` and writes `run_dir` (meta.json, imu.csv, ads.csv, truth/).
   void Run(const Sequence& sequence, const std::filesystem::path& run_dir) {
     std::filesystem::remove_all(run_dir);
-    hil::RecordingWriter writer(run_dir);
+    hil::RecordingWriter writer(run_dir, hil::RecordingStorage::kPlainCsv);  // tests edit it
     const auto& params = simulator_.params();
     nlohmann::json units = nlohmann::json::array();
     for (size_t i = 0; i < params.size(); ++i) {

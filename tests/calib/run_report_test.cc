@@ -59,7 +59,7 @@ class RunReportTest : public ::testing::Test {
     // put its ads.csv in place.
     const auto ads_dir = run.parent_path() / "ads_rows";
     std::filesystem::remove_all(ads_dir);
-    hil::RecordingWriter writer(ads_dir);
+    hil::RecordingWriter writer(ads_dir, hil::RecordingStorage::kPlainCsv);
     int tag = 1;
     for (const double alt_ft : kAimsFt) {
       for (int i = 0; i < 10; ++i) {

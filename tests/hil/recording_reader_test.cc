@@ -22,7 +22,7 @@ class RecordingReaderTest : public ::testing::Test {
            ("adahrs_reader_" + std::to_string(::getpid()) + "_" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::remove_all(dir_);
-    RecordingWriter w(dir_);
+    RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
     for (uint32_t i = 0; i < 3; ++i) {
       ImuRecordRow r;
       r.t_s = 0.01 * (i + 1);
@@ -131,20 +131,20 @@ TEST_F(RecordingReaderTest, TruncatedTailIsReportedOrCountedOnRequest) {
 }
 
 TEST_F(RecordingReaderTest, WrongFormatVersionIsRefused) {
-  ReplaceInFile("meta.json", "\"format_version\": 2", "\"format_version\": 3");
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("meta.json"), HasSubstr("format_version is 3")));
+  ReplaceInFile("meta.json", "\"format_version\": 3", "\"format_version\": 4");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("meta.json"), HasSubstr("format_version is 4")));
 }
 
 // A version that would wrap to a readable one in 32 bits is refused as itself; a version that is
 // not an integer is named as such, not called missing.
 TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
-  ReplaceInFile("meta.json", "\"format_version\": 2", "\"format_version\": 4294967298");
+  ReplaceInFile("meta.json", "\"format_version\": 3", "\"format_version\": 4294967299");
   EXPECT_THAT(ErrorOf(),
-              HasSubstr("$.format_version is 4294967298; this software reads versions 1 to 2"));
-  ReplaceInFile("meta.json", "\"format_version\": 4294967298", "\"format_version\": 2.0");
-  EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is 2.0, not an integer"));
-  ReplaceInFile("meta.json", "\"format_version\": 2.0", "\"format_version\": \"2\"");
-  EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is \"2\", not an integer"));
+              HasSubstr("$.format_version is 4294967299; this software reads versions 1 to 3"));
+  ReplaceInFile("meta.json", "\"format_version\": 4294967299", "\"format_version\": 3.0");
+  EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is 3.0, not an integer"));
+  ReplaceInFile("meta.json", "\"format_version\": 3.0", "\"format_version\": \"3\"");
+  EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is \"3\", not an integer"));
 }
 
 // Per unit, rows come in arrival order; a copy, time going back, a unit meta.json does not list
@@ -210,7 +210,7 @@ TEST_F(RecordingReaderTest, UnitListedTwiceIsRefused) {
 
 TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
   const Recording rec = ReadRecording(dir_);
-  EXPECT_EQ(rec.format_version, 2);
+  EXPECT_EQ(rec.format_version, 3);
   EXPECT_EQ(rec.imu[0].mode, 0);
   EXPECT_FALSE(rec.imu[0].comp.has_value());
   EXPECT_FALSE(rec.ads[0].alt_ft.has_value());
@@ -218,7 +218,7 @@ TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
 
 TEST_F(RecordingReaderTest, CompensatedRowReadsBackExactly) {
   {
-    RecordingWriter w(dir_);
+    RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
     ImuRecordRow r;
     r.t_s = 0.04;
     r.unit = "IMU-0001";
@@ -273,13 +273,28 @@ TEST_F(RecordingReaderTest, VersionOneRecordingIsStillRead) {
   EXPECT_EQ(rec.ads[0].oat_counts, 4);
 }
 
-TEST_F(RecordingReaderTest, VersionOneMetaWithVersionTwoHeaderIsRefused) {
-  ReplaceInFile("meta.json", "\"format_version\": 2", "\"format_version\": 1");
+TEST_F(RecordingReaderTest, VersionOneMetaWithALaterHeaderIsRefused) {
+  ReplaceInFile("meta.json", "\"format_version\": 3", "\"format_version\": 1");
   EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:1"), HasSubstr("version 1")));
 }
 
+// Version 2 has no frame column: the reader counts each unit's frames from seq and t_s as the
+// writer does (frame_count.h), here across a 3 s gap (300 frames, the counter moved 44).
+TEST_F(RecordingReaderTest, VersionTwoRowsGetTheirFramesCounted) {
+  std::ofstream(dir_ / "meta.json") << R"({"format_version": 2})";
+  std::ofstream(dir_ / "imu.csv") << kImuCsvHeaderV2 << "\n";
+  std::ofstream(dir_ / "ads.csv")
+      << kAdsCsvHeaderV2 << "\n"
+      << "1.0000,ADS-0001,100,0,0,20.000,101325.00,0.00,1,1,2,3,4,0,,,\n"
+      << "4.0000,ADS-0001,144,0,0,20.000,101325.00,0.00,2,1,2,3,4,0,,,\n";
+  const Recording rec = ReadRecording(dir_);
+  ASSERT_EQ(rec.ads.size(), 2u);
+  EXPECT_EQ(rec.ads[0].frame, 100);  // 1.00 s: frame 100 has counter 100
+  EXPECT_EQ(rec.ads[1].frame, 400);
+}
+
 TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {
-  RecordingWriter w(dir_);
+  RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
   w.WriteMeta(
       {{"rejected_intervals",
         {{{"step", 2}, {"t_start_s", 0.015}, {"t_end_s", 0.02}, {"reason", "interlock"}}}}});
@@ -293,7 +308,7 @@ TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {
 }
 
 TEST_F(RecordingReaderTest, MalformedRejectedIntervalNamesItsPath) {
-  RecordingWriter w(dir_);
+  RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
   w.WriteMeta({{"rejected_intervals",
                 {{{"step", 2}, {"t_start_s", 5.0}, {"t_end_s", 4.0}, {"reason", "x"}}}}});
   EXPECT_THAT(ErrorOf(),

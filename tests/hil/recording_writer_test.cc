@@ -32,7 +32,12 @@ std::filesystem::path FreshDir(const std::string& name) {
 TEST(RecordingWriter, HeadersMatchTheDocumentedContract) {
   const std::string doc =
       ReadAll(std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/recording-format.md");
-  for (std::string_view header : {kImuCsvHeader, kAdsCsvHeader, kImuCsvHeaderV1, kAdsCsvHeaderV1}) {
+  for (std::string_view header : {kImuCsvHeader,
+                                  kAdsCsvHeader,
+                                  kImuCsvHeaderV2,
+                                  kAdsCsvHeaderV2,
+                                  kImuCsvHeaderV1,
+                                  kAdsCsvHeaderV1}) {
     std::string quoted(1, '`');
     quoted.append(header).push_back('`');
     EXPECT_NE(doc.find(quoted), std::string::npos) << header;
@@ -42,7 +47,7 @@ TEST(RecordingWriter, HeadersMatchTheDocumentedContract) {
 TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
   const auto dir = FreshDir("rec");
   {
-    RecordingWriter w(dir);
+    RecordingWriter w(dir, RecordingStorage::kPlainCsv);
     ImuRecordRow row;
     row.t_s = 1.25;
     row.unit = "IMU-0001";
@@ -60,7 +65,8 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
     w.Flush(true);
   }
   {
-    RecordingWriter w(dir);  // a resumed run appends, without a second header
+    RecordingWriter w(
+        dir, RecordingStorage::kPlainCsv);  // a resumed run appends, without a second header
     AdsRecordRow row;
     row.unit = "ADS-0001";
     row.ps_counts = -8388608;
@@ -72,7 +78,7 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
             std::string(kImuCsvHeader) + "\n" +
                 "1.2500,IMU-0001,65535,2,200,31,-20.500,150.0000,29000,29001,29002,29003,29004,"
                 "29005,29006,29007,29008,29009,29010,29011,4194304,-1,7340032,40000,41000,42000,"
-                "0,,,,,,,,,,\n");
+                "0,,,,,,,,,,,255,2.55\n");  // frame: the one nearest 1.25 s that is seq mod 256
   const std::string ads = ReadAll(dir / "ads.csv");
   EXPECT_EQ(std::count(ads.begin(), ads.end(), '\n'), 2);
   EXPECT_NE(ads.find(",-8388608,"), std::string::npos);
@@ -86,7 +92,7 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
 TEST(RecordingWriter, CompensatedCellsFollowTheMode) {
   const auto dir = FreshDir("rec_comp");
   {
-    RecordingWriter w(dir);
+    RecordingWriter w(dir, RecordingStorage::kPlainCsv);
     ImuRecordRow row;
     row.unit = "IMU-0002";
     row.mode = 2;
@@ -102,10 +108,10 @@ TEST(RecordingWriter, CompensatedCellsFollowTheMode) {
     w.Flush(false);
   }
   const std::string imu = ReadAll(dir / "imu.csv");
-  EXPECT_NE(imu.find(",2,1,-0.5,7.450580596923828e-09,0,0,0,150,-150,0.25,2\n"), std::string::npos)
+  EXPECT_NE(imu.find(",2,1,-0.5,7.450580596923828e-09,0,0,0,150,-150,0.25,2,"), std::string::npos)
       << imu;
   const std::string ads = ReadAll(dir / "ads.csv");
-  EXPECT_NE(ads.find(",1,35000.5,250.125,0\n"), std::string::npos) << ads;
+  EXPECT_NE(ads.find(",1,35000.5,250.125,0,"), std::string::npos) << ads;
   std::filesystem::remove_all(dir);
 }
 
@@ -114,7 +120,7 @@ TEST(RecordingWriter, RefusesToAppendToAnotherVersionsFile) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "imu.csv") << kImuCsvHeaderV1 << "\n";
   try {
-    RecordingWriter w(dir);
+    RecordingWriter w(dir, RecordingStorage::kPlainCsv);
     FAIL();
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("imu.csv:1: cannot append"), std::string::npos)
