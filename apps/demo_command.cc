@@ -88,9 +88,12 @@ class ConsoleObserver : public calib::CampaignObserver {
     std::chrono::steady_clock::time_point last_{};
   };
 
+  // Each stage line starts with the demo's wall time so far.
   void Stage(const std::string& text) override {
     std::lock_guard lock(mutex_);
-    std::cout << text << "\n" << std::flush;
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::cout << fmt::format("[{:4.0f} s] {}\n", wall_s, text) << std::flush;
   }
   calib::ProgressSink& Bench(const std::string& bench) override {
     std::lock_guard lock(mutex_);
@@ -102,6 +105,7 @@ class ConsoleObserver : public calib::CampaignObserver {
  private:
   std::mutex mutex_;
   std::map<std::string, std::unique_ptr<BenchSink>> sinks_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 // Prints every run's rows and lost packets; returns the packets lost in all.
@@ -265,6 +269,9 @@ int RunDemo(const DemoOptions& options) {
                        const std::filesystem::path& to) {
     rig_sim::ReplayRecording(run, files, to);
   };
+  // The rig is not needed after the acceptance runs: stopped then, it leaves both cores to the
+  // analysis stages.
+  campaign.stations_done = [&rig] { rig.Stop(); };
   ConsoleObserver observer;
   try {
     const calib::CampaignResult result = calib::RunCampaign(campaign, observer, g_demo_stop);

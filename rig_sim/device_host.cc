@@ -11,9 +11,13 @@
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <future>
 #include <stdexcept>
+
+#include <sys/inotify.h>
+#include <unistd.h>
 
 namespace adahrs::rig_sim {
 
@@ -28,6 +32,16 @@ namespace asio = boost::asio;
 struct DeviceHost::Impl {
   asio::io_context io;
   asio::steady_timer timer{io};
+  // Opens and closes of the ports' slave paths by clients (non-blocking inotify descriptor, read
+  // at every tick; the pairs' own slave descriptors were opened before the watches); -1 if
+  // inotify is unavailable.
+  int opens_fd = -1;
+  std::array<uint8_t, 4096> opens_buffer{};
+  ~Impl() {
+    if (opens_fd >= 0) ::close(opens_fd);
+  }
+  // The pace the clock runs at (lockstep: the top speed, or kLockstepIdleScale with no client).
+  double pace = 0.0;
   std::chrono::steady_clock::time_point wall_start;
   std::chrono::steady_clock::time_point last_tick;
   bool held = false;  // lockstep: the last tick ended waiting for a reader
@@ -61,6 +75,9 @@ struct DeviceHost::Port {
   // Lockstep: looks at the queue since it last shrank. Saturates; starts "long ago" so a port
   // counts as unread until a client reads.
   uint32_t looks_since_progress = kLockstepMinLooks;
+  // Clients holding the slave path open (inotify watch `watch`; -1 without one).
+  int watch = -1;
+  int clients_open = 0;
 };
 
 DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
@@ -77,10 +94,66 @@ DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
 
 DeviceHost::~DeviceHost() { Stop(); }
 
+void DeviceHost::WatchOpens(Port& port) {
+  if (impl_->opens_fd < 0) impl_->opens_fd = ::inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+  if (impl_->opens_fd < 0) return;
+  port.watch = ::inotify_add_watch(
+      impl_->opens_fd, port.pty.slave_path().c_str(), IN_OPEN | IN_CLOSE_WRITE | IN_CLOSE_NOWRITE);
+}
+
+void DeviceHost::PollOpens() {
+  if (impl_->opens_fd < 0) return;
+  for (;;) {
+    const ssize_t n =
+        ::read(impl_->opens_fd, impl_->opens_buffer.data(), impl_->opens_buffer.size());
+    if (n <= 0) return;  // EAGAIN: nothing new
+    NoteOpens(static_cast<size_t>(n));
+  }
+}
+
+void DeviceHost::NoteOpens(size_t n) {
+  const auto now = std::chrono::steady_clock::now();
+  size_t at = 0;
+  while (at + sizeof(inotify_event) <= n) {
+    inotify_event event;
+    std::memcpy(&event, impl_->opens_buffer.data() + at, sizeof event);
+    at += sizeof event + event.len;
+    if (event.mask & IN_Q_OVERFLOW) {
+      opens_known_ = false;  // events were dropped: the counts are no longer known
+      continue;
+    }
+    for (auto& port : ports_) {
+      if (port->watch != event.wd) continue;
+      if (event.mask & IN_OPEN) {
+        // A client that opens the port counts as reading from then on (it holds the clock for
+        // the stall limit if it never reads).
+        if (port->clients_open++ == 0) {
+          port->last_progress = now;
+          port->looks_since_progress = 0;
+        }
+      } else if (port->clients_open > 0) {
+        --port->clients_open;
+      }
+    }
+  }
+}
+
+bool DeviceHost::Opened(const Port& port) const {
+  return !opens_known_ || port.watch < 0 || port.clients_open > 0;
+}
+
+bool DeviceHost::AnyOpened() const {
+  for (const auto& port : ports_) {
+    if (Opened(*port)) return true;
+  }
+  return false;
+}
+
 std::string DeviceHost::Add(std::unique_ptr<SerialDevice> device) {
   if (started_) throw std::logic_error("DeviceHost::Add after Start");
   auto port = std::make_unique<Port>(impl_->io, std::move(device), hil::PtyPair::Open());
   port->stream.non_blocking(true);
+  if (lockstep_) WatchOpens(*port);
   std::string path = port->pty.slave_path();
   ports_.push_back(std::move(port));
   return path;
@@ -116,9 +189,11 @@ void DeviceHost::RunFrame() {
 bool DeviceHost::ClientReads(const Port& port, std::chrono::steady_clock::time_point now) const {
   const double limit_s = lockstep_ ? kLockstepStallLimit_s : kClientStallLimit_s;
   const bool recent = now - port.last_progress <= std::chrono::duration<double>(limit_s);
-  // In lockstep the host must also have looked often enough to have seen the client read: a host
-  // thread that was itself descheduled for the limit has no evidence against its readers.
-  return recent || (lockstep_ && port.looks_since_progress < kLockstepMinLooks);
+  if (!lockstep_) return recent;
+  // In lockstep a port nobody holds open is not read. One that is open counts as read while its
+  // client took bytes within the limit, and also until the host has looked often enough to have
+  // seen it read: a host thread that was itself descheduled has no evidence against its readers.
+  return Opened(port) && (recent || port.looks_since_progress < kLockstepMinLooks);
 }
 
 size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point now) {
@@ -204,6 +279,15 @@ void DeviceHost::WriteOutputs() {
   }
 }
 
+// Restarts the pacing from the frames done at `now`, at `pace` simulated s per wall s.
+void DeviceHost::Repace(std::chrono::steady_clock::time_point now, double pace) {
+  impl_->pace = pace;
+  impl_->wall_start =
+      now -
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(
+          static_cast<double>(frames_done_.load()) * kWorldFrame_s / pace));
+}
+
 void DeviceHost::OnTick() {
   if (impl_->stopping) return;
   const auto now = std::chrono::steady_clock::now();
@@ -211,8 +295,14 @@ void DeviceHost::OnTick() {
     held_wall_s_.store(held_wall_s_.load() +
                        std::chrono::duration<double>(now - impl_->last_tick).count());
   impl_->last_tick = now;
+  PollOpens();
+  // Lockstep with no client on any port: nobody waits for the world, so it runs at real time
+  // (at most) instead of simulating at top speed what nobody reads.
+  const double pace =
+      lockstep_ && !AnyOpened() ? std::min(time_scale_, kLockstepIdleScale) : time_scale_;
+  if (pace != impl_->pace) Repace(now, pace);
   const double wall_s = std::chrono::duration<double>(now - impl_->wall_start).count();
-  const auto target = static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s);
+  const auto target = static_cast<uint64_t>(wall_s * pace / kWorldFrame_s);
   // Bound the work per tick so reads and control actions interleave with frames.
   bool held = false;
   for (int i = 0; i < 200 && frames_done_.load() < target; ++i) {
@@ -222,14 +312,9 @@ void DeviceHost::OnTick() {
     }
     RunFrame();
   }
-  if (held) {
-    // The clock waited for a reader: restart the pacing from here, so the world does not race
-    // to catch up with the wall once the reader is back.
-    impl_->wall_start =
-        now - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                  std::chrono::duration<double>(static_cast<double>(frames_done_.load()) *
-                                                kWorldFrame_s / time_scale_));
-  }
+  // The clock waited for a reader: restart the pacing from here, so the world does not race to
+  // catch up with the wall once the reader is back.
+  if (held) Repace(now, pace);
   impl_->held = held;
   {
     // Published before the frames' bytes are written: a client that has read a reply sees the
@@ -246,7 +331,7 @@ void DeviceHost::OnTick() {
     asio::post(impl_->io, [this] { OnTick(); });
     return;
   }
-  const auto wall_per_frame = std::chrono::duration<double>(kWorldFrame_s / time_scale_);
+  const auto wall_per_frame = std::chrono::duration<double>(kWorldFrame_s / pace);
   const auto wait = held ? std::chrono::duration<double>(kLockstepRetry_s)
                          : std::min(wall_per_frame, std::chrono::duration<double>(kTickLimit_s));
   impl_->timer.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(wait));
@@ -258,6 +343,9 @@ void DeviceHost::OnTick() {
 void DeviceHost::SetLockstep(bool on) {
   if (started_) throw std::logic_error("DeviceHost::SetLockstep after Start");
   lockstep_ = on;
+  for (auto& port : ports_) {
+    if (on && port->watch < 0) WatchOpens(*port);
+  }
 }
 
 void DeviceHost::SetClockFile(const std::filesystem::path& path) {
@@ -273,6 +361,7 @@ void DeviceHost::Start() {
     // The clock starts when the frame thread runs, not when it was asked to.
     impl_->wall_start = std::chrono::steady_clock::now();
     impl_->last_tick = impl_->wall_start;
+    impl_->pace = time_scale_;
     // Free-running, every port starts as read; in lockstep none does until a client reads, so
     // a port nobody opens never holds the clock.
     const auto never =
@@ -298,8 +387,8 @@ void DeviceHost::Stop() {
     // frames the clock owed at the stop, beyond what one tick's pacing leaves undone.
     const double wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - impl_->wall_start).count();
-    const double frames_per_tick = kTickLimit_s * time_scale_ / kWorldFrame_s;
-    NoteShortfall(static_cast<uint64_t>(wall_s * time_scale_ / kWorldFrame_s),
+    const double frames_per_tick = kTickLimit_s * impl_->pace / kWorldFrame_s;
+    NoteShortfall(static_cast<uint64_t>(wall_s * impl_->pace / kWorldFrame_s),
                   static_cast<uint64_t>(std::ceil(frames_per_tick)) + 1);
     impl_->stopping = true;
     impl_->timer.cancel();

@@ -23,12 +23,13 @@
 // Lockstep (SetLockstep): the clock advances only while every port whose client reads holds at
 // most kLockstepBudgetBytes not yet read (the host's backlog plus the pty's input queue), so a
 // slow or descheduled reader slows the world instead of losing bytes, and time_scale becomes the
-// top speed. A port counts as read from the moment its client reads or flushes the pty's queue,
-// and as unread again after kLockstepStallLimit_s of wall time without that while bytes wait for
-// it (a client that has taken everything is waiting, however long another port holds the clock):
-// a port nobody opens never holds the clock, and one whose client went away holds it that long. The
-// clock file (SetClockFile, hil/rig_clock.h) publishes the frame count for pipelines that follow
-// the rig.
+// top speed. The host counts the clients holding each port open (inotify on the slave path): a
+// port nobody holds open is not read (its output is discarded, it never holds the clock), one a
+// client opens counts as read from the open, and a client that closes releases the clock at once.
+// An open port whose client takes no bytes for kLockstepStallLimit_s of wall time (a hung client)
+// counts as unread until it reads again; a client that has taken everything is waiting, not
+// stalled. With no client on any port the world runs at kLockstepIdleScale (real time). The clock
+// file (SetClockFile, hil/rig_clock.h) publishes the frame count for pipelines that follow the rig.
 #pragma once
 
 #include <atomic>
@@ -64,6 +65,8 @@ inline constexpr double kLockstepStallLimit_s = 5.0;
 /// Lockstep: looks at a port's queue (at least one per tick) without it shrinking that, besides
 /// the stall limit, make its client count as gone.
 inline constexpr uint32_t kLockstepMinLooks = 100;
+/// Lockstep: the clock's pace while no client holds any port open, simulated s per wall s.
+inline constexpr double kLockstepIdleScale = 1.0;
 /// Lockstep: frames between looks at the readers, and the wall wait while one holds the clock.
 inline constexpr int kLockstepCheckFrames = 10;
 inline constexpr double kLockstepRetry_s = 0.0002;
@@ -125,12 +128,20 @@ class DeviceHost {
   // Raises max_frames_behind to `target` - done when that exceeds `tolerance` frames.
   void NoteShortfall(uint64_t target, uint64_t tolerance);
   void RunFrame();
+  void Repace(std::chrono::steady_clock::time_point now, double pace);
   void WriteOutputs();
   // Lockstep: true while a reading client has more than the budget unread.
   bool HeldByAReader();
   // Lockstep: the pty's unread bytes; a client that took bytes since the last look is progress.
   size_t NoteReader(Port& port, std::chrono::steady_clock::time_point now);
   bool ClientReads(const Port& port, std::chrono::steady_clock::time_point now) const;
+  // Lockstep: counts the clients holding each port open (inotify on the slave paths).
+  void WatchOpens(Port& port);
+  void PollOpens();
+  void NoteOpens(size_t bytes);
+  // True if a client holds `port` open, or if that cannot be known (no watch).
+  bool Opened(const Port& port) const;
+  bool AnyOpened() const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -145,6 +156,7 @@ class DeviceHost {
   std::atomic<uint64_t> bytes_lost_{0};
   std::atomic<double> held_wall_s_{0.0};
   bool lockstep_ = false;
+  bool opens_known_ = true;
   std::unique_ptr<hil::RigClockWriter> clock_file_;
   std::thread thread_;
   bool started_ = false;

@@ -160,6 +160,7 @@ CampaignAcceptance AcceptanceRuns(const CampaignOptions& o,
   observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
   const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
   observer.Stage("acceptance runs done:" + RunsText(acceptance));
+  if (o.stations_done) o.stations_done();
   AddRuns(acceptance, result);
   CampaignAcceptance a;
   a.imu_run = RunDir(o, seq.imu_acceptance);

@@ -37,6 +37,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,6 +72,9 @@ struct CampaignOptions {
   /// Re-simulates a run with unit files (the application's rig_sim::ReplayRecording); empty: the
   /// held-out re-simulation check is not run.
   ReplayFunction replay;
+  /// Called once the last run on the stations has ended (e.g. to stop a virtual rig, which the
+  /// analysis stages after it do not need); may be empty.
+  std::function<void()> stations_done;
 };
 
 /// What the campaign tells its user while it runs (thread-safe: benches report concurrently).

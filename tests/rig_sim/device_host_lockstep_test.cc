@@ -1,5 +1,6 @@
-// The host in lockstep: a reader slower than the world holds the clock instead of losing bytes,
-// a port nobody reads holds it only for kLockstepStallLimit_s, and the clock file follows.
+// The host in lockstep: a reader slower than the world holds the clock instead of losing bytes;
+// a port nobody holds open never holds it, one whose client stopped reading holds it for
+// kLockstepStallLimit_s; with no client at all the clock runs at real time; the clock file follows.
 #include <fcntl.h>
 #include <termios.h>
 #include <unistd.h>
@@ -132,39 +133,104 @@ TEST(DeviceHostLockstep, SlowReaderHoldsTheClockAndLosesNothing) {
 TEST(DeviceHostLockstep, PortNobodyOpensNeverHoldsTheClock) {
   DeviceHost host(1000.0);
   host.SetLockstep(true);
-  host.Add(std::make_unique<FrameStream>());
+  host.Add(std::make_unique<FrameStream>("unopened"));
+  const std::string read_path = host.Add(std::make_unique<FrameStream>("read"));
+  const int fd = OpenRaw(read_path);
+  ASSERT_GE(fd, 0);
   host.Start();
+  SlowReader reader;
+  reader.nap = std::chrono::milliseconds(1);
+  reader.drain = true;
+  std::thread reader_thread([&] { reader.Run(fd); });
   // Longer than the rig's grace for bytes on their way into the queue, so writes age out of it.
   std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  reader.stop = true;
+  reader_thread.join();
   host.Stop();
-  EXPECT_GT(host.now_s(), 100.0);  // ~2500 s at 1000x; far past the budget's 4 s of this stream
-  EXPECT_EQ(host.held_wall_s(), 0.0);
-  EXPECT_GT(host.bytes_lost(), 0u);  // discarded as unread: nobody listens
+  ::close(fd);
+  // ~2500 s at 1000x with a reader on the other port; far past the budget's 4 s of this stream.
+  EXPECT_GT(host.now_s(), 100.0);
+  EXPECT_GT(host.bytes_lost(), 0u);  // the unopened port's bytes, discarded: nobody listens
+  EXPECT_EQ(reader.skipped.load(), 0u);
 }
 
-TEST(DeviceHostLockstep, ClientThatLeavesHoldsTheClockForTheStallLimit) {
+TEST(DeviceHostLockstep, WithNoClientOnAnyPortTheClockRunsAtRealTime) {
+  DeviceHost host(1000.0);
+  host.SetLockstep(true);
+  host.Add(std::make_unique<FrameStream>());
+  host.Start();
+  const auto start = std::chrono::steady_clock::now();
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  host.Stop();
+  // kLockstepIdleScale (1x): at most the wall time (plus the frame in progress), never 1000x.
+  EXPECT_LE(host.now_s(), wall_s * kLockstepIdleScale + 2 * kWorldFrame_s);
+  EXPECT_GT(host.now_s(), 0.3);  // it runs: a loaded machine may start the thread late
+  EXPECT_EQ(host.held_wall_s(), 0.0);
+}
+
+// Reads `fd` for `wall_ms`: a client that takes over the line and reads what arrives.
+void ReadFor(int fd, int wall_ms) {
+  ::tcflush(fd, TCIFLUSH);
+  uint8_t buffer[4096];
+  const auto read_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(wall_ms);
+  while (std::chrono::steady_clock::now() < read_until) {
+    if (::read(fd, buffer, sizeof buffer) <= 0)
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+TEST(DeviceHostLockstep, ClientThatStopsReadingHoldsTheClockForTheStallLimit) {
   DeviceHost host(1000.0);
   host.SetLockstep(true);
   const std::string path = host.Add(std::make_unique<FrameStream>());
   host.Start();
   const int fd = OpenRaw(path);
   ASSERT_GE(fd, 0);
-  ::tcflush(fd, TCIFLUSH);  // the client takes over the line
-  uint8_t buffer[4096];
-  const auto read_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
-  while (std::chrono::steady_clock::now() < read_until) {
-    if (::read(fd, buffer, sizeof buffer) <= 0)
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
-  }
-  ::close(fd);
+  ReadFor(fd, 300);
+  // The client keeps the port open and reads no more (a hung logger).
   std::this_thread::sleep_for(std::chrono::duration<double>(kLockstepStallLimit_s * 0.5));
   const double held_s = host.now_s();
   std::this_thread::sleep_for(std::chrono::duration<double>(kLockstepStallLimit_s * 0.5 + 1.5));
   host.Stop();
-  // Held at the budget (~5 s of this stream after the client left), then the port counts as
-  // unread and the world runs on.
+  ::close(fd);
+  // Held at the budget (~5 s of this stream after the client stopped), then the port counts as
+  // unread and the world runs on at top speed (a client still holds it open).
   EXPECT_GT(host.held_wall_s(), 0.5 * kLockstepStallLimit_s);
   EXPECT_GT(host.now_s(), held_s + 100.0);
+}
+
+TEST(DeviceHostLockstep, ClientThatClosesThePortReleasesTheClockAtOnce) {
+  // 100x: slow enough that the other port's reader never holds the clock itself.
+  DeviceHost host(100.0);
+  host.SetLockstep(true);
+  const std::string leaving_path = host.Add(std::make_unique<FrameStream>("leaving"));
+  const std::string read_path = host.Add(std::make_unique<FrameStream>("read"));
+  const int read_fd = OpenRaw(read_path);
+  ASSERT_GE(read_fd, 0);
+  host.Start();
+  SlowReader reader;
+  reader.nap = std::chrono::milliseconds(1);
+  reader.drain = true;
+  std::thread reader_thread([&] { reader.Run(read_fd); });
+  const int fd = OpenRaw(leaving_path);
+  ASSERT_GE(fd, 0);
+  ReadFor(fd, 300);
+  ::close(fd);
+  const double left_s = host.now_s();
+  const double held_before_s = host.held_wall_s();
+  std::this_thread::sleep_for(std::chrono::duration<double>(kLockstepStallLimit_s * 0.5));
+  reader.stop = true;
+  reader_thread.join();
+  host.Stop();
+  ::close(read_fd);
+  // The closed port holds nothing: the clock runs on for the other port's reader at once (a
+  // loaded machine may hold it a little for that reader). Held for the stall limit, it would
+  // have stood still through this whole wait.
+  EXPECT_LT(host.held_wall_s() - held_before_s, 0.25 * kLockstepStallLimit_s);
+  EXPECT_GT(host.now_s(), left_s + 100.0);  // 250 s at 100x
+  EXPECT_EQ(reader.skipped.load(), 0u);
 }
 
 // A logger that has read all its port had is waiting, not gone, however long another port (whose
