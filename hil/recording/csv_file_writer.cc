@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <libdeflate.h>
+
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -13,26 +15,24 @@
 namespace adahrs::hil {
 namespace {
 
-// A fast rig's rows at a small buffer would cost a write() (or a deflate call) per few rows.
+// A fast rig's rows at a small buffer would cost a write() (or a compression) per few rows.
 constexpr size_t kBufferBytes = size_t{1} << 20;
-constexpr size_t kDeflatedBytes = size_t{1} << 18;
-constexpr int kGzipWindowBits = 16 + MAX_WBITS;  // gzip wrapper, 32 KiB window
-constexpr int kMemoryLevel = 8;                  // zlib's default
 
 }  // namespace
 
 CsvFileWriter::CsvFileWriter(const std::filesystem::path& path, int gzip_level)
     : path_(path), compressed_(IsCompressed(path)), buffer_(kBufferBytes) {
-  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd_ < 0) Fail("cannot open for appending");
   if (compressed_) {
-    deflated_.resize(kDeflatedBytes);
-    if (deflateInit2(
-            &stream_, gzip_level, Z_DEFLATED, kGzipWindowBits, kMemoryLevel, Z_DEFAULT_STRATEGY) !=
-        Z_OK) {
-      ::close(fd_);
-      throw std::runtime_error(path_.string() + ": zlib deflateInit2 failed");
+    compressor_ = libdeflate_alloc_compressor(gzip_level);
+    if (compressor_ == nullptr) {
+      throw std::runtime_error(path_.string() + ": cannot make a deflate compressor at level " +
+                               std::to_string(gzip_level));
     }
+  }
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd_ < 0) {
+    libdeflate_free_compressor(compressor_);
+    Fail("cannot open for appending");
   }
 }
 
@@ -41,7 +41,7 @@ CsvFileWriter::~CsvFileWriter() {
     Flush();
   } catch (...) {  // a destructor cannot report; Flush before destruction does
   }
-  if (compressed_) deflateEnd(&stream_);
+  libdeflate_free_compressor(compressor_);
   ::close(fd_);
 }
 
@@ -59,50 +59,33 @@ void CsvFileWriter::WriteAll(const char* data, size_t size) {
   }
 }
 
-void CsvFileWriter::Deflate(int flush) {
-  stream_.next_in = reinterpret_cast<Bytef*>(buffer_.data());
-  stream_.avail_in = static_cast<uInt>(buffered_);
-  member_text_bytes_ += buffered_;
-  for (;;) {
-    stream_.next_out = deflated_.data();
-    stream_.avail_out = static_cast<uInt>(deflated_.size());
-    const int rc = deflate(&stream_, flush);
-    if (rc == Z_STREAM_ERROR) throw std::runtime_error(path_.string() + ": zlib deflate failed");
-    WriteAll(reinterpret_cast<const char*>(deflated_.data()), deflated_.size() - stream_.avail_out);
-    if (flush == Z_FINISH ? rc == Z_STREAM_END : stream_.avail_out != 0) break;
+void CsvFileWriter::WriteBuffer() {
+  if (buffered_ == 0) return;
+  if (!compressed_) {
+    WriteAll(buffer_.data(), buffered_);
+  } else {
+    member_.resize(libdeflate_gzip_compress_bound(compressor_, buffered_));
+    const size_t size = libdeflate_gzip_compress(
+        compressor_, buffer_.data(), buffered_, member_.data(), member_.size());
+    if (size == 0) throw std::runtime_error(path_.string() + ": gzip compression failed");
+    WriteAll(member_.data(), size);
   }
   buffered_ = 0;
-  if (flush == Z_FINISH) {
-    deflateReset(&stream_);  // the next text starts a new member
-    member_text_bytes_ = 0;
-  }
 }
 
 void CsvFileWriter::Append(std::string_view text) {
   if (buffered_ + text.size() > buffer_.size()) {
-    if (compressed_) {
-      Deflate(Z_NO_FLUSH);
-    } else {
-      WriteAll(buffer_.data(), buffered_);
-      buffered_ = 0;
-    }
+    WriteBuffer();
     if (text.size() > buffer_.size()) buffer_.resize(text.size());
   }
   std::memcpy(buffer_.data() + buffered_, text.data(), text.size());
   buffered_ += text.size();
 }
 
-void CsvFileWriter::Flush() {
-  if (!compressed_) {
-    WriteAll(buffer_.data(), buffered_);
-    buffered_ = 0;
-  } else if (buffered_ > 0 || member_text_bytes_ > 0) {
-    Deflate(Z_FINISH);
-  }
-}
+void CsvFileWriter::Flush() { WriteBuffer(); }
 
 void CsvFileWriter::FlushIfDue() {
-  if (!compressed_ || member_text_bytes_ + buffered_ >= kMemberBytes) Flush();
+  if (!compressed_ || buffered_ >= kMemberBytes) Flush();
 }
 
 void CsvFileWriter::Sync() const {

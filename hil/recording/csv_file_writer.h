@@ -1,19 +1,19 @@
 // Appends text to one CSV of a recording, plain or gzip-compressed (by the path: `.gz` is
 // compressed), through a buffer of its own and a file descriptor opened O_APPEND. A compressed
-// file is a series of gzip members (RFC 1952), each ending at a row boundary: zlib, Python's
-// gzip module, pandas and zcat read the members as one text. Only a complete member is safe
-// from a crash, so compressed text reaches the kernel member by member: Flush ends the current
-// member, FlushIfDue ends it only once it holds kMemberBytes of text (small members cost ratio);
-// an unfinished member's bytes are written early only when the 1 MiB buffer fills. Plain text
-// reaches the kernel on either call.
+// file is a series of gzip members (RFC 1952), each compressed whole from the buffer (libdeflate)
+// and ending at a row boundary: zlib, Python's gzip module, pandas and zcat read the members as
+// one text. Only a complete member is safe from a crash, and compressed text reaches the kernel
+// only as complete members: Flush ends the current member, FlushIfDue ends it once it holds
+// kMemberBytes of text (small members cost ratio), and a text that does not fit the 1 MiB
+// buffer ends it first. Plain text reaches the kernel on either call.
 #pragma once
-
-#include <zlib.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <string_view>
 #include <vector>
+
+struct libdeflate_compressor;
 
 namespace adahrs::hil {
 
@@ -31,7 +31,7 @@ class CsvFileWriter {
   CsvFileWriter(const CsvFileWriter&) = delete;
   CsvFileWriter& operator=(const CsvFileWriter&) = delete;
 
-  /// Buffers `text`; writes (compresses) the buffer when it is full.
+  /// Buffers `text`, whole rows; writes (compresses) the buffer first when `text` does not fit.
   void Append(std::string_view text);
   /// Hands everything appended to the kernel; a compressed file's member ends here.
   void Flush();
@@ -43,7 +43,7 @@ class CsvFileWriter {
   const std::filesystem::path& path() const { return path_; }
 
  private:
-  void Deflate(int flush);  // compresses the buffer, writes the output
+  void WriteBuffer();  // writes the buffer: plain, or compressed as one member
   void WriteAll(const char* data, size_t size);
   [[noreturn]] void Fail(const char* what) const;
 
@@ -52,9 +52,8 @@ class CsvFileWriter {
   bool compressed_ = false;
   std::vector<char> buffer_;  ///< text appended and not yet written or compressed
   size_t buffered_ = 0;
-  z_stream stream_{};
-  std::vector<unsigned char> deflated_;  ///< compressed output, written as it fills
-  size_t member_text_bytes_ = 0;         ///< text in the current member
+  libdeflate_compressor* compressor_ = nullptr;
+  std::vector<char> member_;  ///< one compressed member
 };
 
 }  // namespace adahrs::hil

@@ -13,6 +13,7 @@
 
 #include "common/printable_text.h"
 #include "hil/recording/csv_lines.h"
+#include "hil/recording/decimal_parse.h"
 #include "hil/recording/frame_count.h"
 #include "hil/recording/recording_files.h"
 
@@ -106,10 +107,8 @@ class CsvCursor {
   double Real(size_t column) const {
     double v = 0.0;
     const std::string_view cell = cells_[column_of_[column]];
-    const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
-    if (ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v)) {
-      throw RecordingError(Where(column) + ": '" + PrintableText(cell) +
-                           "' is not a finite number");
+    if (!ParseDecimalReal(cell, v) || !std::isfinite(v)) [[unlikely]] {
+      NotANumber(column, cell);
     }
     return v;
   }
@@ -118,16 +117,28 @@ class CsvCursor {
   Int Integer(size_t column) const {
     long long v = 0;
     const std::string_view cell = cells_[column_of_[column]];
-    const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
-    if (ec != std::errc() || end != cell.data() + cell.size() ||
+    if (!ParseDecimalInteger(cell, v) ||
         v < static_cast<long long>(std::numeric_limits<Int>::min()) ||
-        v > static_cast<long long>(std::numeric_limits<Int>::max())) {
-      throw RecordingError(Where(column) + ": '" + PrintableText(cell) +
-                           "' is not an integer in [" +
-                           std::to_string(std::numeric_limits<Int>::min()) + ", " +
-                           std::to_string(std::numeric_limits<Int>::max()) + "]");
+        v > static_cast<long long>(std::numeric_limits<Int>::max())) [[unlikely]] {
+      NotAnInteger(column,
+                   cell,
+                   static_cast<long long>(std::numeric_limits<Int>::min()),
+                   static_cast<long long>(std::numeric_limits<Int>::max()));
     }
     return static_cast<Int>(v);
+  }
+
+  // The errors of Real and Integer, out of the parsing path.
+  [[noreturn, gnu::cold, gnu::noinline]] void NotANumber(size_t column,
+                                                         std::string_view cell) const {
+    throw RecordingError(Where(column) + ": '" + PrintableText(cell) + "' is not a finite number");
+  }
+  [[noreturn, gnu::cold, gnu::noinline]] void NotAnInteger(size_t column,
+                                                           std::string_view cell,
+                                                           long long min,
+                                                           long long max) const {
+    throw RecordingError(Where(column) + ": '" + PrintableText(cell) + "' is not an integer in [" +
+                         std::to_string(min) + ", " + std::to_string(max) + "]");
   }
 
   bool Empty(size_t column) const { return cells_[column_of_[column]].empty(); }
