@@ -5,7 +5,9 @@
 // `cat meta.json imu.csv ads.csv | sha256sum` (or `... imu.csv.gz ads.csv.gz ...`).
 // Not covered: truth/ (simulation only, never an input of calibration), any other file in the run
 // directory. meta.json is rewritten while a run is in progress, so a running recording's checksum
-// changes; checksum a finished run.
+// changes; checksum a finished run. A process keeps each run's checksum with the files' device,
+// inode, size and modification time, and reads the files again when any of them changed (files
+// modified within the last 2 s are always read: the kernel's time stamps are coarser than writes).
 #pragma once
 
 #include <filesystem>

@@ -2,6 +2,7 @@
 // files concatenated (the contract: meta.json, imu.csv, ads.csv in that order).
 #include "calib/constants/recording_checksum.h"
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -42,6 +43,29 @@ TEST(RecordingChecksum, MatchesHashlibOverTheThreeFiles) {
   // One byte more anywhere changes it.
   std::ofstream(dir / "ads.csv", std::ios::app) << "x";
   EXPECT_NE(RecordingSha256(dir), expected);
+  std::filesystem::remove_all(dir);
+}
+
+// The checksum is kept per run directory between calls; a file rewritten in place at the same
+// size (a new modification time) is read again.
+TEST(RecordingChecksum, AFileRewrittenInPlaceIsHashedAgain) {
+  const auto dir = std::filesystem::temp_directory_path() / "adahrs_checksum_rewrite";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "meta.json") << "{}";
+  std::ofstream(dir / "imu.csv") << "t_s\n0.01\n";
+  std::ofstream(dir / "ads.csv") << "t_s\n";
+  const auto old = std::filesystem::file_time_type::clock::now() - std::chrono::hours(1);
+  for (const char* name : {"meta.json", "imu.csv", "ads.csv"}) {
+    std::filesystem::last_write_time(dir / name, old);  // settled: the checksum is kept
+  }
+  const std::string before = RecordingSha256(dir);
+  EXPECT_EQ(RecordingSha256(dir), before);
+  {
+    std::fstream imu(dir / "imu.csv", std::ios::in | std::ios::out | std::ios::binary);
+    imu.seekp(5);
+    imu << "9";  // "t_s\n9.01\n": the same size, other bytes
+  }
+  EXPECT_NE(RecordingSha256(dir), before);
   std::filesystem::remove_all(dir);
 }
 
