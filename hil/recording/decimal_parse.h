@@ -32,8 +32,8 @@ inline bool ParseDecimalInteger(std::string_view cell, long long& value) {
 
 /// A number in std::from_chars' general format, the whole cell; false otherwise.
 inline bool ParseDecimalReal(std::string_view cell, double& value) {
-  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  static constexpr double kPow10[] = {
+      1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
   const char* p = cell.data();
   const char* const end = p + cell.size();
   const bool negative = p != end && *p == '-';
