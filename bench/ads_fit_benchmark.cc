@@ -69,10 +69,10 @@ std::vector<AdsCalibrationPoint> ShippedSequencePoints() {
       for (int k = 0; k < 3; ++k) f = unit.Step({ps_pa, qc_pa, temp_c, temp_c});
       AdsCalibrationPoint p;
       p.step = step++;
-      p.ps_code = f.ps_cnt;
-      p.pt_code = f.pt_cnt;
-      p.ps_temp_code = f.ps_temp_cnt;
-      p.pt_temp_code = f.pt_temp_cnt;
+      p.ps_cnt = f.ps_cnt;
+      p.pt_cnt = f.pt_cnt;
+      p.ps_temp_cnt = f.ps_temp_cnt;
+      p.pt_temp_cnt = f.pt_temp_cnt;
       p.ps_ref_pa = ps_pa;
       p.qc_ref_pa = qc_pa;
       p.chamber_c = temp_c;

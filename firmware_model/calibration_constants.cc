@@ -4,6 +4,7 @@
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 namespace adahrs::firmware_model {
 namespace {
@@ -74,10 +75,10 @@ json SurfaceToJson(const SurfaceFit& s) {
   if (s.hysteresis.active()) {
     const HysteresisCompensation& h = s.hysteresis;
     out["hysteresis"] = {{"pressure_gain", h.pressure_gain},
-                         {"pressure_gain_per_degc", h.pressure_gain_per_degc},
+                         {"pressure_gain_per_c", h.pressure_gain_per_c},
                          {"pressure_span", h.pressure_span},
                          {"thermal_gain", h.thermal_gain},
-                         {"thermal_gain_per_degc", h.thermal_gain_per_degc},
+                         {"thermal_gain_per_c", h.thermal_gain_per_c},
                          {"thermal_span_c", h.thermal_span_c},
                          {"die_temp_origin_code", h.die_temp_origin_code},
                          {"die_temp_c", h.die_temp_c}};
@@ -108,32 +109,32 @@ HysteresisCompensation HysteresisFromJson(const json& j, const std::string& path
   ExpectKeys(j,
              path,
              {"pressure_gain",
-              "pressure_gain_per_degc",
+              "pressure_gain_per_c",
               "pressure_span",
               "thermal_gain",
-              "thermal_gain_per_degc",
+              "thermal_gain_per_c",
               "thermal_span_c",
               "die_temp_origin_code",
               "die_temp_c"});
   HysteresisCompensation h;
   h.pressure_gain = Number(j["pressure_gain"], path + ".pressure_gain");
-  h.pressure_gain_per_degc = Number(j["pressure_gain_per_degc"], path + ".pressure_gain_per_degc");
+  h.pressure_gain_per_c = Number(j["pressure_gain_per_c"], path + ".pressure_gain_per_c");
   h.pressure_span = Number(j["pressure_span"], path + ".pressure_span");
   h.thermal_gain = Number(j["thermal_gain"], path + ".thermal_gain");
-  h.thermal_gain_per_degc = Number(j["thermal_gain_per_degc"], path + ".thermal_gain_per_degc");
+  h.thermal_gain_per_c = Number(j["thermal_gain_per_c"], path + ".thermal_gain_per_c");
   h.thermal_span_c = Number(j["thermal_span_c"], path + ".thermal_span_c");
   h.die_temp_origin_code = Number(j["die_temp_origin_code"], path + ".die_temp_origin_code");
   h.die_temp_c = Numbers<4>(j["die_temp_c"], path + ".die_temp_c");
   for (const auto& [span, gain, slope, name] :
-       {std::tuple{h.pressure_span, h.pressure_gain, h.pressure_gain_per_degc, "pressure"},
-        std::tuple{h.thermal_span_c, h.thermal_gain, h.thermal_gain_per_degc, "thermal"}}) {
+       {std::tuple{h.pressure_span, h.pressure_gain, h.pressure_gain_per_c, "pressure"},
+        std::tuple{h.thermal_span_c, h.thermal_gain, h.thermal_gain_per_c, "thermal"}}) {
     if (span < 0.0) throw std::runtime_error(path + "." + name + " span: must not be negative");
     if (span == 0.0 && (gain != 0.0 || slope != 0.0)) {
       throw std::runtime_error(path + "." + name + "_gain: non-zero with a zero span");
     }
   }
   const bool needs_temperature =
-      h.thermal_span_c != 0.0 || h.pressure_gain_per_degc != 0.0 || h.thermal_gain_per_degc != 0.0;
+      h.thermal_span_c != 0.0 || h.pressure_gain_per_c != 0.0 || h.thermal_gain_per_c != 0.0;
   if (needs_temperature && h.die_temp_c[1] == 0.0 && h.die_temp_c[2] == 0.0 &&
       h.die_temp_c[3] == 0.0) {
     throw std::runtime_error(path +
@@ -322,7 +323,30 @@ json ToJson(const AdsCalibrationConstants& c) {
               {"airspeed_kt", SurfaceToJson(c.airspeed_kt)}};
 }
 
-AdsCalibrationConstants AdsCalibrationConstantsFromJson(const json& j) {
+json WithCurrentAdsKeys(json ads) {
+  if (!ads.is_object()) return ads;
+  for (const char* surface : {"altitude_ft", "airspeed_kt"}) {
+    if (!ads.contains(surface) || !ads[surface].is_object() ||
+        !ads[surface].contains("hysteresis") || !ads[surface]["hysteresis"].is_object()) {
+      continue;
+    }
+    json& h = ads[surface]["hysteresis"];
+    for (const auto& [old_key, key] : {std::pair{"pressure_gain_per_degc", "pressure_gain_per_c"},
+                                       std::pair{"thermal_gain_per_degc", "thermal_gain_per_c"}}) {
+      if (!h.contains(old_key)) continue;
+      if (h.contains(key)) {
+        throw std::runtime_error(std::string("ads.") + surface + ".hysteresis." + old_key +
+                                 ": the same as " + key + ", which is present too");
+      }
+      h[key] = std::move(h[old_key]);
+      h.erase(old_key);
+    }
+  }
+  return ads;
+}
+
+AdsCalibrationConstants AdsCalibrationConstantsFromJson(const json& file_json) {
+  const json j = WithCurrentAdsKeys(file_json);
   ExpectKeys(j, "ads", {"altitude_ft", "airspeed_kt"});
   AdsCalibrationConstants c;
   c.altitude_ft = SurfaceFromJson(j["altitude_ft"], "ads.altitude_ft", SurfaceLaw::kIsaAltitude);

@@ -96,7 +96,7 @@ inline constexpr XyPowers kReferenceCubicTerm[10] = {
     {0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2}, {1, 1}, {3, 0}, {0, 3}, {1, 2}, {2, 1}};
 
 /// The branch terms the unit adds to a surface's z (target/ads_constants.h HysteresisTermQ):
-/// z + gain_P(T) s_P + gain_T(T) s_T, gain(T) = gain + gain_per_degc (T -
+/// z + gain_P(T) s_P + gain_T(T) s_T, gain(T) = gain + gain_per_c (T -
 /// kHysteresisGainReferenceC), each state from a Preisach operator: the pressure one driven by z,
 /// the thermal one by the die temperature T(y) = sum_j die_temp_c[j] (y - die_temp_origin_code)^j
 /// of the surface's y (the bridge-voltage code, or its linearised code), which also gives the
@@ -105,11 +105,11 @@ inline constexpr XyPowers kReferenceCubicTerm[10] = {
 inline constexpr double kHysteresisGainReferenceC = 25.0;
 
 struct HysteresisCompensation {
-  double pressure_gain = 0.0;           ///< z units per unit state at 25 degC
-  double pressure_gain_per_degc = 0.0;  ///< its change per degC of die temperature
-  double pressure_span = 0.0;           ///< z travel after a reversal to the full state
-  double thermal_gain = 0.0;            ///< z units per unit state at 25 degC
-  double thermal_gain_per_degc = 0.0;
+  double pressure_gain = 0.0;        ///< z units per unit state at 25 degC
+  double pressure_gain_per_c = 0.0;  ///< its change per degC of die temperature
+  double pressure_span = 0.0;        ///< z travel after a reversal to the full state
+  double thermal_gain = 0.0;         ///< z units per unit state at 25 degC
+  double thermal_gain_per_c = 0.0;
   double thermal_span_c = 0.0;  ///< die-temperature travel to the full state, degC
   double die_temp_origin_code = 0.0;
   std::array<double, 4> die_temp_c = {};  ///< degC per code^j
@@ -151,5 +151,13 @@ nlohmann::json ToJson(const ImuCalibrationConstants& constants);
 nlohmann::json ToJson(const AdsCalibrationConstants& constants);
 ImuCalibrationConstants ImuCalibrationConstantsFromJson(const nlohmann::json& json);
 AdsCalibrationConstants AdsCalibrationConstantsFromJson(const nlohmann::json& json);
+
+/// `ads` (an ADS constants object, or its standard errors, which have its shape) with the keys that
+/// files of earlier software spell otherwise under today's names: a hysteresis object's
+/// `pressure_gain_per_c` and `thermal_gain_per_c` become `pressure_gain_per_c` and
+/// `thermal_gain_per_c`. A key present under both names is refused (std::runtime_error naming its
+/// JSON path); anything that is not such an object is returned unchanged for the reader to refuse.
+/// AdsCalibrationConstantsFromJson applies it.
+nlohmann::json WithCurrentAdsKeys(nlohmann::json ads);
 
 }  // namespace adahrs::firmware_model

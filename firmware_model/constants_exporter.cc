@@ -477,30 +477,26 @@ double ExportHysteresis(const HysteresisCompensation& h,
     centre_c = c[0];
     scale_c = std::ldexp(Real{1}, scale_e);
   }
-  auto term = [&](double gain,
-                  double per_degc,
-                  double inv_span_input,
-                  int input_e,
-                  const std::string& name) {
-    const Real at_centre = Real{gain} + Real{per_degc} * (centre_c - kHysteresisGainReferenceC);
-    const HysteresisTermQ t{InverseSpan(inv_span_input, input_e, what + " " + name + " span"),
-                            QuantiseGain(static_cast<double>(at_centre),
-                                         static_cast<double>(per_degc * scale_c),
-                                         result_e,
-                                         what + " " + name)};
-    return t;
-  };
-  q->pressure =
-      term(h.pressure_gain, h.pressure_gain_per_degc, h.pressure_span, result_e, "pressure");
+  auto term =
+      [&](double gain, double per_c, double inv_span_input, int input_e, const std::string& name) {
+        const Real at_centre = Real{gain} + Real{per_c} * (centre_c - kHysteresisGainReferenceC);
+        const HysteresisTermQ t{InverseSpan(inv_span_input, input_e, what + " " + name + " span"),
+                                QuantiseGain(static_cast<double>(at_centre),
+                                             static_cast<double>(per_c * scale_c),
+                                             result_e,
+                                             what + " " + name)};
+        return t;
+      };
+  q->pressure = term(h.pressure_gain, h.pressure_gain_per_c, h.pressure_span, result_e, "pressure");
   q->thermal = term(h.thermal_gain,
-                    h.thermal_gain_per_degc,
+                    h.thermal_gain_per_c,
                     static_cast<double>(h.thermal_span_c / scale_c),
                     0,
                     "thermal");
   double bound = 0.0;
   for (const auto& [g, slope, c] :
-       {std::tuple{h.pressure_gain, h.pressure_gain_per_degc, q->pressure.gain},
-        std::tuple{h.thermal_gain, h.thermal_gain_per_degc, q->thermal.gain}}) {
+       {std::tuple{h.pressure_gain, h.pressure_gain_per_c, q->pressure.gain},
+        std::tuple{h.thermal_gain, h.thermal_gain_per_c, q->thermal.gain}}) {
     const double lsb = Q15Lsb(c.exponent);
     bound += 2.0 * lsb + std::fabs(slope) * 3.0 * static_cast<double>(scale_c) / 32768.0 +
              6.0 * lsb + (std::fabs(g) + std::fabs(slope) * 65.0) * 4.0 / 32768.0 + Lsb(result_e);

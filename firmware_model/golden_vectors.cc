@@ -97,11 +97,11 @@ json MakeCompensatorGolden(const ImuConstants& imu,
   AdsHysteresisState state;
   AdsHysteresisReset(&state);
   for (const AdsRawFrame& f : ads_frames) {
-    doc["ads"]["frames"].push_back({{"ps_code", f.ps_code},
-                                    {"pt_code", f.pt_code},
-                                    {"ps_bridge_code", f.ps_bridge_code},
-                                    {"pt_bridge_code", f.pt_bridge_code},
-                                    {"oat_code", f.oat_code},
+    doc["ads"]["frames"].push_back({{"ps_code", f.ps_cnt},
+                                    {"pt_code", f.pt_cnt},
+                                    {"ps_bridge_code", f.ps_bridge_cnt},
+                                    {"pt_bridge_code", f.pt_bridge_cnt},
+                                    {"oat_code", f.oat_cnt},
                                     {"modes", AdsModes(ads, f, &state)}});
   }
   return doc;

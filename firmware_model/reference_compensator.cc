@@ -115,16 +115,16 @@ std::array<double, 2> AdsReference(const AdsCalibrationConstants& c,
                                    const AdsRawFrame& raw,
                                    const AdsReferenceStates& states) {
   if (mode == AdsCompensationMode::kRaw) {
-    return {static_cast<double>(raw.ps_code), static_cast<double>(raw.pt_code)};
+    return {static_cast<double>(raw.ps_cnt), static_cast<double>(raw.pt_cnt)};
   }
   return {SurfaceOutput(c.altitude_ft,
-                        raw.ps_code,
-                        raw.ps_bridge_code,
+                        raw.ps_cnt,
+                        raw.ps_bridge_cnt,
                         states.static_pressure,
                         states.static_thermal),
           SurfaceOutput(c.airspeed_kt,
-                        raw.pt_code,
-                        raw.pt_bridge_code,
+                        raw.pt_cnt,
+                        raw.pt_bridge_cnt,
                         states.pitot_pressure,
                         states.pitot_thermal)};
 }
@@ -137,8 +137,8 @@ double SurfaceOutput(
   for (int j = 3; j >= 0; --j) die_c = die_c * (y - h.die_temp_origin_code) + h.die_temp_c[j];
   const double dt_c = die_c - kHysteresisGainReferenceC;
   const double z = SurfaceAt(s, x_code, y) +
-                   (h.pressure_gain + h.pressure_gain_per_degc * dt_c) * s_pressure +
-                   (h.thermal_gain + h.thermal_gain_per_degc * dt_c) * s_thermal;
+                   (h.pressure_gain + h.pressure_gain_per_c * dt_c) * s_pressure +
+                   (h.thermal_gain + h.thermal_gain_per_c * dt_c) * s_thermal;
   switch (s.law) {
     case SurfaceLaw::kIsaAltitude:
       return IsaAltitudeFtFromStaticPa(z);

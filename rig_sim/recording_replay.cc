@@ -364,11 +364,11 @@ class RowReplayer {
       r.last = r.unit.Step(in);
     }
     const sensor_sim::AdsRawFrame& f = r.last;
-    row.ps_counts = f.ps_cnt;
-    row.pt_counts = f.pt_cnt;
-    row.ps_temp_counts = f.ps_temp_cnt;
-    row.pt_temp_counts = f.pt_temp_cnt;
-    row.oat_counts = f.oat_cnt;
+    row.ps_cnt = f.ps_cnt;
+    row.pt_cnt = f.pt_cnt;
+    row.ps_temp_cnt = f.ps_temp_cnt;
+    row.pt_temp_cnt = f.pt_temp_cnt;
+    row.oat_cnt = f.oat_cnt;
     row.mode = 0;
     row.alt_ft.reset();
     row.cas_kt.reset();

@@ -174,11 +174,11 @@ class StaticBatch {
       const sensor_sim::AdsRawFrame raw = ads.Step(ads_in_);
       if (!log) continue;
       Stamp(ads_row_, ads.params().serial, t_s, frame, step, air_c);
-      ads_row_.ps_counts = raw.ps_cnt;
-      ads_row_.pt_counts = raw.pt_cnt;
-      ads_row_.ps_temp_counts = raw.ps_temp_cnt;
-      ads_row_.pt_temp_counts = raw.pt_temp_cnt;
-      ads_row_.oat_counts = raw.oat_cnt;
+      ads_row_.ps_cnt = raw.ps_cnt;
+      ads_row_.pt_cnt = raw.pt_cnt;
+      ads_row_.ps_temp_cnt = raw.ps_temp_cnt;
+      ads_row_.pt_temp_cnt = raw.pt_temp_cnt;
+      ads_row_.oat_cnt = raw.oat_cnt;
       writer.Append(ads_row_);
     }
   }

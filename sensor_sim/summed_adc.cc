@@ -15,7 +15,7 @@ SummedAdc::SummedAdc(int bits,
                      bool noise_on,
                      bool quantization_on)
     : codes_per_v_(std::ldexp(1.0, bits) / full_scale_v),
-      sum_counts_per_v_(conversions * codes_per_v_),
+      sum_cnt_per_v_(conversions * codes_per_v_),
       max_code_(std::ldexp(1.0, bits) - 1.0),
       max_sum_cnt_(static_cast<int64_t>(conversions) * ((int64_t{1} << bits) - 1)),
       conversions_(conversions),

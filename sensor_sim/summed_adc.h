@@ -51,13 +51,13 @@ class SummedAdc {
   }
 
   /// Counts of the sum per volt of mean input: conversions · 2^bits / full_scale_v.
-  double SumCountsPerVolt() const { return sum_counts_per_v_; }
+  double SumCountsPerVolt() const { return sum_cnt_per_v_; }
   /// Largest possible sum: conversions · (2^bits - 1).
   int64_t MaxSumCounts() const { return max_sum_cnt_; }
 
  private:
   double codes_per_v_;
-  double sum_counts_per_v_;
+  double sum_cnt_per_v_;
   double max_code_;
   int64_t max_sum_cnt_;
   int conversions_;

@@ -108,10 +108,10 @@ void AdsPointSelector::Add(const hil::AdsRecordRow& row, int line) {
   CheckFinite(row.ps_ref_pa, "ps_ref_pa", line, source_);
   CheckFinite(row.qc_ref_pa, "qc_ref_pa", line, source_);
   CheckFinite(row.chamber_c, "chamber_c", line, source_);
-  CheckNotSaturated(row.ps_counts, "ps_counts", line, source_);
-  CheckNotSaturated(row.pt_counts, "pt_counts", line, source_);
-  CheckNotSaturated(row.ps_temp_counts, "ps_temp_counts", line, source_);
-  CheckNotSaturated(row.pt_temp_counts, "pt_temp_counts", line, source_);
+  CheckNotSaturated(row.ps_cnt, "ps_cnt", line, source_);
+  CheckNotSaturated(row.pt_cnt, "pt_cnt", line, source_);
+  CheckNotSaturated(row.ps_temp_cnt, "ps_temp_cnt", line, source_);
+  CheckNotSaturated(row.pt_temp_cnt, "pt_temp_cnt", line, source_);
   Sum& s = by_step_[row.step];
   if (s.point.rows == 0) {
     s.point.step = row.step;
@@ -131,10 +131,10 @@ void AdsPointSelector::Add(const hil::AdsRecordRow& row, int line) {
   s.ps_ref_range.Add(row.ps_ref_pa, line, s.point.rows == 0);
   s.qc_ref_range.Add(row.qc_ref_pa, line, s.point.rows == 0);
   ++s.point.rows;
-  s.ps += row.ps_counts;
-  s.pt += row.pt_counts;
-  s.ps_t += row.ps_temp_counts;
-  s.pt_t += row.pt_temp_counts;
+  s.ps += row.ps_cnt;
+  s.pt += row.pt_cnt;
+  s.ps_t += row.ps_temp_cnt;
+  s.pt_t += row.pt_temp_cnt;
   s.ps_ref += row.ps_ref_pa;
   s.qc_ref += row.qc_ref_pa;
   s.chamber += row.chamber_c;
@@ -151,10 +151,10 @@ std::vector<AdsCalibrationPoint> AdsPointSelector::Points() const {
     CheckSteady(s.qc_ref_range, "qc_ref_pa", step, source_);
     AdsCalibrationPoint p = s.point;
     const double n = p.rows;
-    p.ps_code = s.ps / n;
-    p.pt_code = s.pt / n;
-    p.ps_temp_code = s.ps_t / n;
-    p.pt_temp_code = s.pt_t / n;
+    p.ps_cnt = s.ps / n;
+    p.pt_cnt = s.pt / n;
+    p.ps_temp_cnt = s.ps_t / n;
+    p.pt_temp_cnt = s.pt_t / n;
     p.ps_ref_pa = s.ps_ref / n;
     p.qc_ref_pa = s.qc_ref / n;
     p.chamber_c = s.chamber / n;

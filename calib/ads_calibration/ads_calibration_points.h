@@ -38,10 +38,10 @@ struct AdsCalibrationPoint {
   uint8_t tag = 0;
   int rows = 0;                 ///< packets averaged
   int first_line = 0;           ///< ads.csv line of the first row (1 = header)
-  double ps_code = 0.0;         ///< static bridge output, ADC code
-  double pt_code = 0.0;         ///< pitot bridge output, ADC code
-  double ps_temp_code = 0.0;    ///< static bridge voltage, ADC code
-  double pt_temp_code = 0.0;    ///< pitot bridge voltage, ADC code
+  double ps_cnt = 0.0;          ///< static bridge output, ADC code
+  double pt_cnt = 0.0;          ///< pitot bridge output, ADC code
+  double ps_temp_cnt = 0.0;     ///< static bridge voltage, ADC code
+  double pt_temp_cnt = 0.0;     ///< pitot bridge voltage, ADC code
   double ps_ref_pa = 0.0;       ///< test set static pressure
   double qc_ref_pa = 0.0;       ///< test set impact pressure
   double chamber_c = 0.0;       ///< chamber reading

@@ -7,8 +7,8 @@ using nlohmann::json;
 json HysteresisSpanDiagnostics::ToJson() const {
   return {{"pressure_span_pa", pressure_span_pa},
           {"pressure_span_se_pa", pressure_span_se_pa},
-          {"thermal_span_degc", thermal_span_degc},
-          {"thermal_span_se_degc", thermal_span_se_degc},
+          {"thermal_span_c", thermal_span_c},
+          {"thermal_span_se_c", thermal_span_se_c},
           {"weighted_cost_at_nominal_spans", weighted_cost_at_nominal_spans},
           {"weighted_cost", weighted_cost},
           {"at_search_edge", at_search_edge}};
@@ -20,20 +20,18 @@ json SurfaceHysteresisDiagnostics::ToJson() const {
             {"thermal_half_loop_pa", thermal_half_loop_pa},
             {"thermal_half_loop_se_pa", thermal_half_loop_se_pa},
             {"centre_fit_residual_rms_pa", centre_fit_residual_rms_pa}};
-  if (pressure_half_loop_per_degc_pa)
-    j["pressure_half_loop_per_degc_pa"] = *pressure_half_loop_per_degc_pa;
-  if (thermal_half_loop_per_degc_pa)
-    j["thermal_half_loop_per_degc_pa"] = *thermal_half_loop_per_degc_pa;
-  if (die_temperature_residual_rms_degc)
-    j["die_temperature_residual_rms_degc"] = *die_temperature_residual_rms_degc;
+  if (pressure_half_loop_pa_per_c) j["pressure_half_loop_pa_per_c"] = *pressure_half_loop_pa_per_c;
+  if (thermal_half_loop_pa_per_c) j["thermal_half_loop_pa_per_c"] = *thermal_half_loop_pa_per_c;
+  if (die_temperature_residual_rms_c)
+    j["die_temperature_residual_rms_c"] = *die_temperature_residual_rms_c;
   return j;
 }
 
 json BridgeLinearisationDiagnostics::ToJson() const {
   return {{"curvature_per_code", curvature_per_code},
           {"curvature_se_per_code", curvature_se_per_code},
-          {"slope_code_per_degc", slope_code_per_degc},
-          {"quadratic_residual_rms_degc", quadratic_residual_rms_degc}};
+          {"slope_cnt_per_c", slope_cnt_per_c},
+          {"quadratic_residual_rms_c", quadratic_residual_rms_c}};
 }
 
 json AdsSurfaceDiagnostics::ToJson() const {

@@ -2,7 +2,8 @@
 // terms it used and its residual at them; per strategy, the tolerance ratios at the points, the
 // hysteresis half loops and spans the centre fit separated, and the bridge linearisation. Written
 // into constants.json's `diagnostics` (docs/constants-file.md); informational, never read back
-// into a calibration. Units are in the key names: ft, kt or pa (a pressure surface), degc.
+// into a calibration. Units are in the key names: ft, kt or pa (a pressure surface), c (degrees
+// Celsius).
 #pragma once
 
 #include <map>
@@ -16,8 +17,8 @@ namespace adahrs::calib {
 struct HysteresisSpanDiagnostics {
   double pressure_span_pa = 0.0;
   double pressure_span_se_pa = 0.0;
-  double thermal_span_degc = 0.0;
-  double thermal_span_se_degc = 0.0;
+  double thermal_span_c = 0.0;
+  double thermal_span_se_c = 0.0;
   double weighted_cost_at_nominal_spans = 0.0;
   double weighted_cost = 0.0;
   bool at_search_edge = false;
@@ -30,18 +31,18 @@ struct SurfaceHysteresisDiagnostics {
   double pressure_half_loop_se_pa = 0.0;
   double thermal_half_loop_pa = 0.0;
   double thermal_half_loop_se_pa = 0.0;
-  std::optional<double> pressure_half_loop_per_degc_pa;  ///< strategies with temperature slopes
-  std::optional<double> thermal_half_loop_per_degc_pa;
+  std::optional<double> pressure_half_loop_pa_per_c;  ///< strategies with temperature slopes
+  std::optional<double> thermal_half_loop_pa_per_c;
   double centre_fit_residual_rms_pa = 0.0;
-  std::optional<double> die_temperature_residual_rms_degc;
+  std::optional<double> die_temperature_residual_rms_c;
   nlohmann::json ToJson() const;
 };
 
 struct BridgeLinearisationDiagnostics {
   double curvature_per_code = 0.0;
   double curvature_se_per_code = 0.0;
-  double slope_code_per_degc = 0.0;
-  double quadratic_residual_rms_degc = 0.0;
+  double slope_cnt_per_c = 0.0;
+  double quadratic_residual_rms_c = 0.0;
   nlohmann::json ToJson() const;
 };
 

@@ -45,7 +45,7 @@ BridgeLinearisationFit FitBridgeLinearisation(const std::string& context,
   BridgeLinearisationFit out;
   out.linearisation.origin_code = std::nearbyint(c(0));
   out.linearisation.curvature_per_code = 4.0 * curve / (slope * slope);
-  out.slope_code_per_degc = slope;
+  out.slope_cnt_per_c = slope;
   out.residual_rms_c = fit.fit.residual_rms / std::abs(slope);
   const Eigen::Vector2d gradient(-8.0 * curve / (slope * slope * slope), 4.0 / (slope * slope));
   const Eigen::Matrix2d covariance = fit.raw_covariance.bottomRightCorner<2, 2>();

@@ -28,7 +28,7 @@ namespace adahrs::calib {
 struct BridgeLinearisationFit {
   firmware_model::BridgeLinearisation linearisation;
   double curvature_se_per_code = 0.0;  ///< standard error of kappa
-  double slope_code_per_degc = 0.0;    ///< b: the linearised code's change per degC
+  double slope_cnt_per_c = 0.0;        ///< b: the linearised code's change per degC
   double residual_rms_c = 0.0;         ///< rms of (y - quadratic) / b
 };
 

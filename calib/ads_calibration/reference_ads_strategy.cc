@@ -30,9 +30,9 @@ AdsFitResult FitReferenceAdsStrategy(const std::string& context,
 AdsSurfaceSamples SurfaceSamplesOf(const std::vector<AdsCalibrationPoint>& points) {
   AdsSurfaceSamples out;
   for (const AdsCalibrationPoint& p : points) {
-    out.altitude.push_back({p.ps_code, p.ps_temp_code, p.alt_ft, p.chamber_c});
+    out.altitude.push_back({p.ps_cnt, p.ps_temp_cnt, p.alt_ft, p.chamber_c});
     if (p.airspeed_point) {
-      out.airspeed.push_back({p.pt_code, p.pt_temp_code, p.cas_kt, p.chamber_c});
+      out.airspeed.push_back({p.pt_cnt, p.pt_temp_cnt, p.cas_kt, p.chamber_c});
     }
   }
   return out;

@@ -39,8 +39,8 @@ double Predicted(const SurfaceEstimate& e, const SurfaceSample& s) {
   if (e.history) {
     const HysteresisEstimate& h = *e.history;
     const double dt_c = s.chamber_c - kHysteresisReferenceC;
-    z += (h.pressure + h.pressure_per_degc * dt_c) * s.s_pressure +
-         (h.thermal + h.thermal_per_degc * dt_c) * s.s_thermal;
+    z += (h.pressure + h.pressure_per_c * dt_c) * s.s_pressure +
+         (h.thermal + h.thermal_per_c * dt_c) * s.s_thermal;
   }
   return z;
 }
@@ -203,12 +203,12 @@ PressureSamples PressureSamplesOf(const std::vector<AdsCalibrationPoint>& points
     const PointBands bands = EnvelopeBands(p, spans);
     const BridgeStates& s = history[i].static_bridge;
     out.ps.push_back(
-        {p.ps_code, p.ps_temp_code, p.ps_ref_pa, p.chamber_c, 1.0, s.s_pressure, s.s_thermal});
+        {p.ps_cnt, p.ps_temp_cnt, p.ps_ref_pa, p.chamber_c, 1.0, s.s_pressure, s.s_thermal});
     out.ps_bands.push_back(bands.static_bridge);
     if (p.airspeed_point) {
       const BridgeStates& t = history[i].pitot_bridge;
       out.qc.push_back(
-          {p.pt_code, p.pt_temp_code, p.qc_ref_pa, p.chamber_c, 1.0, t.s_pressure, t.s_thermal});
+          {p.pt_cnt, p.pt_temp_cnt, p.qc_ref_pa, p.chamber_c, 1.0, t.s_pressure, t.s_thermal});
       out.qc_bands.push_back(bands.pitot_bridge);
     }
   }
@@ -321,7 +321,7 @@ namespace {
 // cubic takes up what the linearisation's quadratic leaves.
 struct DieTemperature {
   double origin_code = 0.0;
-  std::array<double, 4> degc_per_code_power = {};
+  std::array<double, 4> c_per_cnt_power = {};
   double residual_rms_c = 0.0;
 };
 
@@ -349,7 +349,7 @@ DieTemperature FitDieTemperature(const std::string& context,
                                           ErrorScale::kResidualVariance);
   DieTemperature out;
   out.origin_code = y0;
-  for (int j = 0; j < 4; ++j) out.degc_per_code_power[j] = fit.raw_coefficients(j);
+  for (int j = 0; j < 4; ++j) out.c_per_cnt_power[j] = fit.raw_coefficients(j);
   out.residual_rms_c = fit.fit.residual_rms;
   return out;
 }
@@ -389,13 +389,13 @@ CompensatedSurface FitCompensated(const std::string& context,
   const DieTemperature die = FitDieTemperature(context, recorded);
   static_assert(kHysteresisReferenceC == fm::kHysteresisGainReferenceC);
   out.hysteresis = {h.pressure,
-                    h.pressure_per_degc,
+                    h.pressure_per_c,
                     pressure_span_pa,
                     h.thermal,
-                    h.thermal_per_degc,
+                    h.thermal_per_c,
                     thermal_span_c,
                     die.origin_code,
-                    die.degc_per_code_power};
+                    die.c_per_cnt_power};
   out.die_temp_residual_rms_c = die.residual_rms_c;
   return out;
 }
@@ -514,9 +514,9 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
        {std::pair{&se.altitude_ft, &alt}, std::pair{&se.airspeed_kt, &cas}}) {
     const HysteresisEstimate& h = *c->centre.history;
     surface->hysteresis.pressure_gain = h.pressure_se;
-    surface->hysteresis.pressure_gain_per_degc = h.pressure_per_degc_se;
+    surface->hysteresis.pressure_gain_per_c = h.pressure_per_c_se;
     surface->hysteresis.thermal_gain = h.thermal_se;
-    surface->hysteresis.thermal_gain_per_degc = h.thermal_per_degc_se;
+    surface->hysteresis.thermal_gain_per_c = h.thermal_per_c_se;
     surface->hysteresis.die_temp_c.fill(std::numeric_limits<double>::quiet_NaN());  // not carried
     surface->y_linearisation.curvature_per_code = c->linearisation.curvature_se_per_code;
   }
@@ -527,19 +527,19 @@ AdsFitResult FitHysteresisAdsStrategy(const std::string& context,
     d->worst_ratio_at_points = c->worst_ratio_at_points;
     d->held_out_worst_ratio_by_y_degree = order->held_out_worst_ratio;
     const HysteresisEstimate& h = *c->centre.history;
-    d->hysteresis = SurfaceHysteresisDiagnostics{
-        .pressure_half_loop_pa = h.pressure,
-        .pressure_half_loop_se_pa = h.pressure_se,
-        .thermal_half_loop_pa = h.thermal,
-        .thermal_half_loop_se_pa = h.thermal_se,
-        .pressure_half_loop_per_degc_pa = h.pressure_per_degc,
-        .thermal_half_loop_per_degc_pa = h.thermal_per_degc,
-        .centre_fit_residual_rms_pa = c->centre.residual_rms,
-        .die_temperature_residual_rms_degc = c->die_temp_residual_rms_c};
+    d->hysteresis =
+        SurfaceHysteresisDiagnostics{.pressure_half_loop_pa = h.pressure,
+                                     .pressure_half_loop_se_pa = h.pressure_se,
+                                     .thermal_half_loop_pa = h.thermal,
+                                     .thermal_half_loop_se_pa = h.thermal_se,
+                                     .pressure_half_loop_pa_per_c = h.pressure_per_c,
+                                     .thermal_half_loop_pa_per_c = h.thermal_per_c,
+                                     .centre_fit_residual_rms_pa = c->centre.residual_rms,
+                                     .die_temperature_residual_rms_c = c->die_temp_residual_rms_c};
     const BridgeLinearisationFit& l = c->linearisation;
     d->bridge_linearisation = BridgeLinearisationDiagnostics{l.linearisation.curvature_per_code,
                                                              l.curvature_se_per_code,
-                                                             l.slope_code_per_degc,
+                                                             l.slope_cnt_per_c,
                                                              l.residual_rms_c};
     d->law = LawName(d == &out.diagnostics.altitude_ft);
     d->hysteresis_spans = spans_of->hysteresis_spans;

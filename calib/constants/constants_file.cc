@@ -129,6 +129,9 @@ ConstantsFile Parse(const json& j, const std::string& source) {
   reader.Child("standard_errors");
   file.standard_errors = j.at("standard_errors");
   CheckShape(constants, file.standard_errors, "$.standard_errors", source);
+  if (file.ads) {  // the constants were read under today's key names; so are their errors
+    file.standard_errors = firmware_model::WithCurrentAdsKeys(file.standard_errors);
+  }
 
   const ParamReader provenance = reader.Child("provenance");
   const size_t n = provenance.ArrayLength("recordings", 0, 1000);

@@ -45,17 +45,17 @@ std::string EffectName(Effect e) {
 // One bridge's points: output code, applied pressure, voltage code, hysteresis states.
 struct Bridge {
   std::string channel;
-  std::vector<double> code, p_pa, v_code, s_p, s_t, chamber_c;
+  std::vector<double> code, p_pa, v_cnt, s_p, s_t, chamber_c;
   std::vector<int> sweep;
   std::vector<int> block;  ///< chamber temperature visited, coldest 0
   int blocks = 0;
   double p_mid = 0, p_half = 1, v_mid = 0, v_half = 1, v_mean = 1;
   double u(size_t i) const { return (p_pa[i] - p_mid) / p_half; }
-  double v(size_t i) const { return (v_code[i] - v_mid) / v_half; }
+  double v(size_t i) const { return (v_cnt[i] - v_mid) / v_half; }
   // A bridge's output is ratiometric: a resistance change, whatever moved it, reads in
   // proportion to the excitation across the bridge, whose code is the thermometer V_B. A
   // hysteresis state's contribution scales with it (with R_B's tempco, ~0.26 %/degC).
-  double excitation(size_t i) const { return v_code[i] / v_mean; }
+  double excitation(size_t i) const { return v_cnt[i] / v_mean; }
 };
 
 void Scale(const std::vector<double>& x, double* mid, double* half) {
@@ -104,17 +104,17 @@ Bridge MakeBridge(bool pitot,
   b.sweep = sweep;
   for (size_t i = 0; i < pts.size(); ++i) {
     const BridgeStates& st = pitot ? hist[i].pitot_bridge : hist[i].static_bridge;
-    b.code.push_back(pitot ? pts[i].pt_code : pts[i].ps_code);
+    b.code.push_back(pitot ? pts[i].pt_cnt : pts[i].ps_cnt);
     b.p_pa.push_back(pitot ? pts[i].qc_ref_pa : pts[i].ps_ref_pa);
-    b.v_code.push_back(pitot ? pts[i].pt_temp_code : pts[i].ps_temp_code);
+    b.v_cnt.push_back(pitot ? pts[i].pt_temp_cnt : pts[i].ps_temp_cnt);
     b.s_p.push_back(st.s_pressure);
     b.s_t.push_back(st.s_thermal);
     b.chamber_c.push_back(pts[i].chamber_c);
   }
   Scale(b.p_pa, &b.p_mid, &b.p_half);
-  Scale(b.v_code, &b.v_mid, &b.v_half);
+  Scale(b.v_cnt, &b.v_mid, &b.v_half);
   b.v_mean =
-      std::accumulate(b.v_code.begin(), b.v_code.end(), 0.0) / static_cast<double>(b.v_code.size());
+      std::accumulate(b.v_cnt.begin(), b.v_cnt.end(), 0.0) / static_cast<double>(b.v_cnt.size());
   std::vector<double> temps = b.chamber_c;
   std::sort(temps.begin(), temps.end());
   std::vector<double> levels;

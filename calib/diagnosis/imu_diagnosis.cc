@@ -787,15 +787,16 @@ const ClusteredLeastSquares& SystemFor(const ChannelModel& m, const Candidate& c
 }
 
 // Forward selection over the layout's candidates, at most one per effect (one warm-up time
-// constant of several); `chosen` indexes m.layout.candidates.
+// constant of several), the cross-axis tempco only when `cross_excited` (CrossAxisExcited); the
+// slow candidates are tested in m.ls_white (SystemFor); `chosen` indexes m.layout.candidates.
 TermSelection SelectCandidates(const DiagnosisData& data,
                                ChannelModel& m,
+                               bool cross_excited,
                                double alpha,
                                int max_findings) {
   const std::vector<Candidate>& candidates = m.layout.candidates;
   std::vector<std::vector<int>> columns;
   for (const Candidate& c : candidates) columns.push_back(c.columns);
-  const bool cross_excited = CrossAxisExcited(data, m.layout.channel);
   const auto one_per_effect = [&](int k, const std::vector<int>& chosen) {
     if (candidates[static_cast<size_t>(k)].effect == Effect::kCrossAxisTempco && !cross_excited)
       return false;
@@ -809,9 +810,7 @@ TermSelection SelectCandidates(const DiagnosisData& data,
     FloorCandidateVariance(
         SlowVariance(data, m, SystemFor(m, c), t->subset, t->fit, t->subset.size() - 1, c), t);
   };
-  const auto system = [&](int k) -> const ClusteredLeastSquares& {
-    return SystemFor(m, candidates[static_cast<size_t>(k)]);
-  };
+  const auto slow = [&](int k) { return SlowCandidate(candidates[static_cast<size_t>(k)].effect); };
   TermSelection sel = SelectTerms(m.ls,
                                   m.base,
                                   m.ls.Fit(m.base),
@@ -820,7 +819,8 @@ TermSelection SelectCandidates(const DiagnosisData& data,
                                   max_findings,
                                   one_per_effect,
                                   slow_noise,
-                                  system);
+                                  &m.ls_white,
+                                  slow);
   if (!sel.chosen.empty()) RebuildFromFinalBaseline(data, m, sel);
   return sel;
 }
@@ -834,7 +834,7 @@ Finding ChosenFinding(const DiagnosisData& data,
   const ClusteredLeastSquares& ls = SystemFor(m, cand);
   const std::vector<int> without = WithoutColumns(sel.selected, cand.columns);
   const ClusteredFit fit_without = ls.Fit(without);
-  const ClusteredFit fit_with = &ls == &m.ls ? sel.fit : ls.Fit(sel.selected);
+  const ClusteredFit fit_with = SlowCandidate(cand.effect) ? ls.Fit(sel.selected) : sel.fit;
   Eigen::VectorXd theta, se;
   ColumnEstimates(fit_with, sel.selected, cand.columns, &theta, &se);
   TermTest test = RunTest(ls, without, fit_without, cand);
@@ -862,11 +862,12 @@ Finding ChosenFinding(const DiagnosisData& data,
 }
 
 // The smallest size of the candidate's components the test would find with power_z, or why the
-// recording cannot test it.
+// recording cannot test it (`cross_excited` as for SelectCandidates).
 DetectionLimit CandidateLimit(const DiagnosisData& data,
                               const ChannelModel& m,
                               const TermSelection& sel,
                               const Candidate& cand,
+                              bool cross_excited,
                               double tcrit,
                               double power_z,
                               double phys) {
@@ -876,7 +877,7 @@ DetectionLimit CandidateLimit(const DiagnosisData& data,
       EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
   lim.channel = kImuChannelNames[ch];
   Eigen::VectorXd se;
-  if (cand.effect == Effect::kCrossAxisTempco && !CrossAxisExcited(data, ch)) {
+  if (cand.effect == Effect::kCrossAxisTempco && !cross_excited) {
     lim.note = fmt::format("not excited: the cross-axis input spans less than {:.0f} degC",
                            kMinCrossAxisSpan_c);
     return lim;
@@ -920,7 +921,9 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data,
                               double alpha,
                               std::vector<std::string>* notes) {
   ChannelModel m = FitBaseline(data, ch, options, notes);
-  const TermSelection sel = SelectCandidates(data, m, alpha, options.max_findings_per_channel);
+  const bool cross_excited = CrossAxisExcited(data, ch);
+  const TermSelection sel =
+      SelectCandidates(data, m, cross_excited, alpha, options.max_findings_per_channel);
   const double phys = PhysicalScale(ch, m.st);
   const double tcrit = TCritical(alpha, sel.fit.clusters);
   ChannelResult out;
@@ -929,7 +932,8 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data,
         ChosenFinding(data, m, sel, m.layout.candidates[static_cast<size_t>(k)], phys));
   }
   for (const Candidate& cand : m.layout.candidates) {
-    out.limits.push_back(CandidateLimit(data, m, sel, cand, tcrit, options.power_z, phys));
+    out.limits.push_back(
+        CandidateLimit(data, m, sel, cand, cross_excited, tcrit, options.power_z, phys));
   }
   const ClusteredFit base_fit = m.ls.Fit(m.base);
   out.summary = FitSummary(data, m, base_fit, sel.fit, phys);

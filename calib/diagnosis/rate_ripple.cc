@@ -22,7 +22,7 @@ double Median(std::vector<double> v) {
 
 // k^2 from every segment but `skip` (-1: none), their standard errors scaled by sqrt(inflation).
 double RatioSquared(const std::vector<RippleSegment>& s,
-                    double counts_per_dps,
+                    double cnt_per_dps,
                     double inflation,
                     int skip) {
   double num = 0.0, den = 0.0;
@@ -31,7 +31,7 @@ double RatioSquared(const std::vector<RippleSegment>& s,
     const LockIn& l = s[i].at_revolution;
     const double r2 = l.cos_amp * l.cos_amp + l.sin_amp * l.sin_amp;
     num += r2 - 2.0 * l.se * l.se * inflation;
-    const double a = s[i].rate_dps * counts_per_dps;
+    const double a = s[i].rate_dps * cnt_per_dps;
     den += a * a;
   }
   return den > 0.0 ? num / den : 0.0;
@@ -99,12 +99,12 @@ std::optional<RippleSegment> MeasureRipple(int segment,
 }
 
 RippleTest TestRipple(const std::vector<RippleSegment>& segments,
-                      double counts_per_dps,
+                      double cnt_per_dps,
                       double alpha,
                       double power_z) {
   RippleTest out;
   out.segments = static_cast<int>(segments.size());
-  if (segments.empty() || !(counts_per_dps > 0.0)) {
+  if (segments.empty() || !(cnt_per_dps > 0.0)) {
     out.note =
         "no rate segment with this gyro on the table axis turning at 36 deg/s (0.1 Hz) or more for "
         "3 turns";
@@ -118,7 +118,7 @@ RippleTest TestRipple(const std::vector<RippleSegment>& segments,
   double statistic = 0.0, signal_per_k2 = 0.0;
   for (const RippleSegment& s : segments) {
     statistic += s.at_revolution.Statistic() / out.inflation;
-    const double a = s.rate_dps * counts_per_dps;
+    const double a = s.rate_dps * cnt_per_dps;
     signal_per_k2 += a * a / (s.at_revolution.se * s.at_revolution.se * out.inflation);
   }
   const double df = 2.0 * static_cast<double>(segments.size());
@@ -129,11 +129,11 @@ RippleTest TestRipple(const std::vector<RippleSegment>& segments,
   out.smallest_detectable_ratio =
       std::sqrt(NeededNoncentrality(df, critical, power_z) / signal_per_k2);
 
-  const double k2 = RatioSquared(segments, counts_per_dps, out.inflation, -1);
+  const double k2 = RatioSquared(segments, cnt_per_dps, out.inflation, -1);
   out.ratio = std::sqrt(std::max(0.0, k2));
   double var_k2 = 0.0, den = 0.0;
   for (const RippleSegment& s : segments) {
-    const double a = s.rate_dps * counts_per_dps;
+    const double a = s.rate_dps * cnt_per_dps;
     const double se2 = s.at_revolution.se * s.at_revolution.se * out.inflation;
     const double amp = out.ratio * std::abs(a);
     var_k2 += 4.0 * se2 * amp * amp + 4.0 * se2 * se2;
@@ -149,16 +149,16 @@ RippleTest TestRipple(const std::vector<RippleSegment>& segments,
     const double r = std::hypot(l.cos_amp, l.sin_amp);
     const double predicted =
         std::sqrt(std::max(
-            0.0, RatioSquared(segments, counts_per_dps, out.inflation, static_cast<int>(i)))) *
-        std::abs(segments[i].rate_dps) * counts_per_dps;
+            0.0, RatioSquared(segments, cnt_per_dps, out.inflation, static_cast<int>(i)))) *
+        std::abs(segments[i].rate_dps) * cnt_per_dps;
     before += r * r;
     after += (r - predicted) * (r - predicted);
     strength.push_back({r, segments[i].segment});
   }
   out.held_out_rms_before_dps =
-      std::sqrt(before / static_cast<double>(segments.size())) / counts_per_dps;
+      std::sqrt(before / static_cast<double>(segments.size())) / cnt_per_dps;
   out.held_out_rms_after_dps =
-      std::sqrt(after / static_cast<double>(segments.size())) / counts_per_dps;
+      std::sqrt(after / static_cast<double>(segments.size())) / cnt_per_dps;
   std::sort(strength.rbegin(), strength.rend());
   for (size_t i = 0; i < std::min<size_t>(3, strength.size()); ++i)
     out.strongest_segments.push_back(strength[i].second);

@@ -73,9 +73,9 @@ struct RippleTest {
   std::vector<int> strongest_segments;  ///< largest measured amplitude first, at most 3
 };
 
-/// Tests and sizes the ripple from one gyro's segments; `counts_per_dps` is the channel's scale.
+/// Tests and sizes the ripple from one gyro's segments; `cnt_per_dps` is the channel's scale.
 RippleTest TestRipple(const std::vector<RippleSegment>& segments,
-                      double counts_per_dps,
+                      double cnt_per_dps,
                       double alpha,
                       double power_z);
 

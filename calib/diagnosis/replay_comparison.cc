@@ -79,8 +79,8 @@ RunMeans ReadMeans(const fs::path& run) {
     if (r.tag == 0) return;
     m.imu[r.unit] = false;
     Acquisition& a = At(&m, r.unit, r.step, r.tag, 0, kAdsChannels);
-    a.channels[0].Add(r.ps_counts);
-    a.channels[1].Add(r.pt_counts);
+    a.channels[0].Add(r.ps_cnt);
+    a.channels[1].Add(r.pt_cnt);
     a.ps_ref_pa.Add(r.ps_ref_pa);
     a.qc_ref_pa.Add(r.qc_ref_pa);
   };

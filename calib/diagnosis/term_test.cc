@@ -67,7 +67,11 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
                           int max_terms,
                           const std::function<bool(int, const std::vector<int>&)>& allowed,
                           const std::function<void(int, TermTest*)>& adjust,
-                          const std::function<const ClusteredLeastSquares&(int)>& system) {
+                          const ClusteredLeastSquares* alternate,
+                          const std::function<bool(int)>& in_alternate) {
+  const auto uses_alternate = [&](int k) {
+    return alternate != nullptr && in_alternate && in_alternate(k);
+  };
   TermSelection out{{}, base, base_fit};
   while (static_cast<int>(out.chosen.size()) < max_terms) {
     int best = -1;
@@ -75,10 +79,10 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
     for (int k = 0; k < static_cast<int>(candidates.size()); ++k) {
       if (std::find(out.chosen.begin(), out.chosen.end(), k) != out.chosen.end()) continue;
       if (allowed && !allowed(k, out.chosen)) continue;
-      const ClusteredLeastSquares& lk = system ? system(k) : ls;
-      TermTest t = TestTerm(lk,
+      const bool alt = uses_alternate(k);
+      TermTest t = TestTerm(alt ? *alternate : ls,
                             out.selected,
-                            &lk == &ls ? out.fit : lk.Fit(out.selected),
+                            alt ? alternate->Fit(out.selected) : out.fit,
                             candidates[static_cast<size_t>(k)]);
       if (adjust && t.testable) adjust(k, &t);
       if (!t.testable || t.p_value >= alpha || t.gain <= 0.0) continue;
@@ -90,8 +94,7 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
     if (best < 0) break;
     out.chosen.push_back(best);
     out.selected = std::move(best_test.subset);
-    const ClusteredLeastSquares& lb = system ? system(best) : ls;
-    out.fit = &lb == &ls ? std::move(best_test.fit) : ls.Fit(out.selected);
+    out.fit = uses_alternate(best) ? ls.Fit(out.selected) : std::move(best_test.fit);
   }
   return out;
 }

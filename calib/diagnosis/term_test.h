@@ -37,8 +37,9 @@ void FloorCandidateVariance(double variance, TermTest* t);
 /// smallest p-value below `alpha` and a positive held-out gain is added, until none qualifies or
 /// `max_terms` are in. `allowed(k, chosen)` may refuse candidate k given those chosen (one of a
 /// family of alternatives). `adjust(k, test)`, when given, may revise candidate k's test (its
-/// variance floor) before it is judged. `system(k)`, when given, is the system candidate k is
-/// tested in (the same design under other weights); the selected fit stays in `ls`.
+/// variance floor) before it is judged. `in_alternate(k)`, when given and true, says candidate k is
+/// tested in `alternate` (the same design under other weights) instead of `ls`; the selected fit
+/// stays in `ls`.
 struct TermSelection {
   std::vector<int> chosen;    ///< candidate indices, in the order taken
   std::vector<int> selected;  ///< columns: base, then the chosen candidates'
@@ -52,7 +53,8 @@ TermSelection SelectTerms(const ClusteredLeastSquares& ls,
                           int max_terms,
                           const std::function<bool(int, const std::vector<int>&)>& allowed = {},
                           const std::function<void(int, TermTest*)>& adjust = {},
-                          const std::function<const ClusteredLeastSquares&(int)>& system = {});
+                          const ClusteredLeastSquares* alternate = nullptr,
+                          const std::function<bool(int)>& in_alternate = {});
 
 /// `subset` without `columns`.
 std::vector<int> WithoutColumns(const std::vector<int>& subset, const std::vector<int>& columns);

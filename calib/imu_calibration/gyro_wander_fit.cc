@@ -60,9 +60,9 @@ GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs,
                                       const Eigen::VectorXd& y,
                                       const Eigen::VectorXd& white_cnt2,
                                       double prior_floor_dph,
-                                      double counts_per_dps,
+                                      double cnt_per_dps,
                                       double frame_period_s) {
-  const double cnt2_per_dps2 = counts_per_dps * counts_per_dps;
+  const double cnt2_per_dps2 = cnt_per_dps * cnt_per_dps;
   GyroWanderEstimate best;
   double best_ll = -std::numeric_limits<double>::infinity(), prior_ll = best_ll;
   int best_b = 0, best_w = 0;

@@ -43,7 +43,7 @@ GyroWanderEstimate EstimateGyroWander(const std::vector<ImuObservation>& obs,
                                       const Eigen::VectorXd& y,
                                       const Eigen::VectorXd& white_cnt2,
                                       double prior_floor_dph,
-                                      double counts_per_dps,
+                                      double cnt_per_dps,
                                       double frame_period_s);
 
 }  // namespace adahrs::calib

@@ -164,7 +164,7 @@ double Variance(const ImuObservation& o,
   // mean over T = n frames has variance N^2 / (2 T).
   const double var_dps2 = noise.gyro_density_dps_per_rthz * noise.gyro_density_dps_per_rthz /
                           (2.0 * n * noise.frame_period_s);
-  return var_dps2 * noise.gyro_counts_per_dps * noise.gyro_counts_per_dps;
+  return var_dps2 * noise.gyro_cnt_per_dps * noise.gyro_cnt_per_dps;
 }
 
 // How the bias wander enters a fit: not at all (accelerometers, projections of a true unit), as
@@ -549,7 +549,7 @@ GyroWanderEstimate EstimateWander(const ChannelModel& m,
                             y,
                             white,
                             options.noise.gyro_bias_floor_dph,
-                            options.noise.gyro_counts_per_dps,
+                            options.noise.gyro_cnt_per_dps,
                             options.noise.frame_period_s);
 }
 
@@ -872,7 +872,7 @@ ImuFitResult FitImuJoint(const std::string& serial,
   for (size_t i = 0; i < obs.size(); ++i) all[i] = i;
   const ChannelContext cx{serial, obs, all, MedianThermalCount(obs), options};
   // The datasheet's gyro bias wander between observations, counts^2.
-  const double cpd = options.noise.gyro_counts_per_dps;
+  const double cpd = options.noise.gyro_cnt_per_dps;
   const Eigen::MatrixXd prior_cnt2 =
       options.unit_weights
           ? Eigen::MatrixXd()

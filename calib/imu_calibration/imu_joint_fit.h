@@ -72,7 +72,7 @@ struct ImuDatasheetNoise {
   double accel_sensitivity_duty_per_g = 0.04;
   double gyro_density_dps_per_rthz = 0.05;  ///< ADXRS150 typical
   double gyro_bias_floor_dph = 75.0;        ///< Allan floor (E)
-  double gyro_counts_per_dps = 20971.52;    ///< 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
+  double gyro_cnt_per_dps = 20971.52;       ///< 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
   double frame_period_s = 0.01;
 };
 

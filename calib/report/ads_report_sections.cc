@@ -111,7 +111,7 @@ void AdsReportAccumulator::Add(const hil::AdsRecordRow& row) {
     unit_values_ = true;
   } else if (constants_ != nullptr) {
     const fm::AdsRawFrame raw{
-        row.ps_counts, row.pt_counts, row.ps_temp_counts, row.pt_temp_counts, row.oat_counts};
+        row.ps_cnt, row.pt_cnt, row.ps_temp_cnt, row.pt_temp_cnt, row.oat_cnt};
     const auto v = fm::AdsReference(*constants_->ads, fm::AdsCompensationMode::kSurface, raw);
     alt_ft = v[0];
     cas_kt = v[1];

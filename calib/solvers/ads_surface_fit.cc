@@ -98,10 +98,10 @@ SurfaceEstimate FitSurface(const std::string& context,
     const Eigen::VectorXd& se = out.fit.raw_standard_errors;
     HysteresisEstimate h{c[k], se[k], c[k + 1], se[k + 1]};
     if (history == HistoryTerms::kWithTemperatureSlopes) {
-      h.pressure_per_degc = c[k + 2] / kSlopeUnitC;
-      h.pressure_per_degc_se = se[k + 2] / kSlopeUnitC;
-      h.thermal_per_degc = c[k + 3] / kSlopeUnitC;
-      h.thermal_per_degc_se = se[k + 3] / kSlopeUnitC;
+      h.pressure_per_c = c[k + 2] / kSlopeUnitC;
+      h.pressure_per_c_se = se[k + 2] / kSlopeUnitC;
+      h.thermal_per_c = c[k + 3] / kSlopeUnitC;
+      h.thermal_per_c_se = se[k + 3] / kSlopeUnitC;
     }
     out.history = h;
   }

@@ -73,10 +73,10 @@ struct HysteresisEstimate {
   double pressure_se = 0.0;
   double thermal = 0.0;  ///< c_T
   double thermal_se = 0.0;
-  double pressure_per_degc = 0.0;  ///< d c_P / dT (kWithTemperatureSlopes; else 0)
-  double pressure_per_degc_se = 0.0;
-  double thermal_per_degc = 0.0;
-  double thermal_per_degc_se = 0.0;
+  double pressure_per_c = 0.0;  ///< d c_P / dT (kWithTemperatureSlopes; else 0)
+  double pressure_per_c_se = 0.0;
+  double thermal_per_c = 0.0;
+  double thermal_per_c_se = 0.0;
 };
 
 struct SurfaceEstimate {

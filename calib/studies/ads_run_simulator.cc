@@ -40,11 +40,11 @@ void AdsRunSimulator::Frames(int64_t n, int step, uint8_t tag, const AdsRowSink*
     if (!sink) continue;
     row.t_s = Rounded(t_s_, 1e4);
     row.seq = seq_;
-    row.ps_counts = f.ps_cnt;
-    row.pt_counts = f.pt_cnt;
-    row.ps_temp_counts = f.ps_temp_cnt;
-    row.pt_temp_counts = f.pt_temp_cnt;
-    row.oat_counts = f.oat_cnt;
+    row.ps_cnt = f.ps_cnt;
+    row.pt_cnt = f.pt_cnt;
+    row.ps_temp_cnt = f.ps_temp_cnt;
+    row.pt_temp_cnt = f.pt_temp_cnt;
+    row.oat_cnt = f.oat_cnt;
     (*sink)(row);
   }
 }

@@ -139,24 +139,24 @@ void AdsCompensate(DspEngine* engine,
   uint16_t flags = 0;
   if (mode == AdsCompensationMode::kRaw) {
     engine->ChargeMov(4);
-    out->value[0] = raw.ps_code;
-    out->value[1] = raw.pt_code;
+    out->value[0] = raw.ps_cnt;
+    out->value[1] = raw.pt_cnt;
     out->flags = flags;
     return;
   }
   out->value[0] = SurfaceAndLaw(engine,
                                 constants.altitude,
                                 kAltitudeExponent,
-                                raw.ps_code,
-                                raw.ps_bridge_code,
+                                raw.ps_cnt,
+                                raw.ps_bridge_cnt,
                                 &state->static_pressure,
                                 &state->static_thermal,
                                 &flags);
   out->value[1] = SurfaceAndLaw(engine,
                                 constants.airspeed,
                                 kAirspeedExponent,
-                                raw.pt_code,
-                                raw.pt_bridge_code,
+                                raw.pt_cnt,
+                                raw.pt_bridge_cnt,
                                 &state->pitot_pressure,
                                 &state->pitot_thermal,
                                 &flags);

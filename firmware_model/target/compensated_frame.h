@@ -52,11 +52,11 @@ struct ImuRawFrame {
 
 /// One ADS sample: ADS1254 24-bit two's-complement codes, sign-extended to int32.
 struct AdsRawFrame {
-  int32_t ps_code;
-  int32_t pt_code;
-  int32_t ps_bridge_code;  ///< static bridge voltage (its temperature)
-  int32_t pt_bridge_code;  ///< pitot bridge voltage (its temperature)
-  int32_t oat_code;        ///< carried, not compensated here
+  int32_t ps_cnt;
+  int32_t pt_cnt;
+  int32_t ps_bridge_cnt;  ///< static bridge voltage (its temperature)
+  int32_t pt_bridge_cnt;  ///< pitot bridge voltage (its temperature)
+  int32_t oat_cnt;        ///< carried, not compensated here
 };
 
 inline constexpr uint8_t kImuOutputValues = 9;

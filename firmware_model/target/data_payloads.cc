@@ -114,11 +114,11 @@ uint8_t EncodeAdsPayload(const AdsDataPayload& data, uint8_t* out, uint8_t capac
   if (capacity < length) {
     return 0;
   }
-  PutI32Le(out, data.raw.ps_code);
-  PutI32Le(out + 4, data.raw.pt_code);
-  PutI32Le(out + 8, data.raw.ps_bridge_code);
-  PutI32Le(out + 12, data.raw.pt_bridge_code);
-  PutI32Le(out + 16, data.raw.oat_code);
+  PutI32Le(out, data.raw.ps_cnt);
+  PutI32Le(out + 4, data.raw.pt_cnt);
+  PutI32Le(out + 8, data.raw.ps_bridge_cnt);
+  PutI32Le(out + 12, data.raw.pt_bridge_cnt);
+  PutI32Le(out + 16, data.raw.oat_cnt);
   out[kAdsModeOffset] = static_cast<uint8_t>(data.mode);
   if (data.mode != AdsCompensationMode::kRaw) {
     PutCompensated(data.compensated.value,
@@ -168,11 +168,11 @@ bool DecodeAdsPayload(const uint8_t* payload, uint8_t length, AdsDataPayload* da
   if (length != AdsPayloadBytes(mode)) {
     return false;
   }
-  data->raw.ps_code = GetI32Le(payload);
-  data->raw.pt_code = GetI32Le(payload + 4);
-  data->raw.ps_bridge_code = GetI32Le(payload + 8);
-  data->raw.pt_bridge_code = GetI32Le(payload + 12);
-  data->raw.oat_code = GetI32Le(payload + 16);
+  data->raw.ps_cnt = GetI32Le(payload);
+  data->raw.pt_cnt = GetI32Le(payload + 4);
+  data->raw.ps_bridge_cnt = GetI32Le(payload + 8);
+  data->raw.pt_bridge_cnt = GetI32Le(payload + 12);
+  data->raw.oat_cnt = GetI32Le(payload + 16);
   data->mode = mode;
   GetCompensated(payload,
                  mode != AdsCompensationMode::kRaw,

@@ -4,8 +4,9 @@
 // times come in bursts (the host reads its ports in turn), so the counter, not the time, gives
 // the step; the time only resolves the turns. 0 means the same packet logged twice.
 // FrameCounter carries this past the counter: the frame index of each packet of one unit, so
-// every recorded packet has a sample time on the unit's 100 Hz clock (recording format version 3,
-// columns frame and t_sample_s) and analyses never divide by the zero time step of a burst.
+// every recorded packet has a sample time on the unit's 100 Hz clock (recording format from
+// version 3, columns frame and t_sample_s) and analyses never divide by the zero time step of a
+// burst.
 #pragma once
 
 #include <cstdint>

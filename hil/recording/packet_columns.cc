@@ -56,11 +56,11 @@ void SetPacketColumns(const fm::ImuDataPayload& data, ImuRecordRow& row) {
 }
 
 void SetPacketColumns(const fm::AdsDataPayload& data, AdsRecordRow& row) {
-  row.ps_counts = data.raw.ps_code;
-  row.pt_counts = data.raw.pt_code;
-  row.ps_temp_counts = data.raw.ps_bridge_code;
-  row.pt_temp_counts = data.raw.pt_bridge_code;
-  row.oat_counts = data.raw.oat_code;
+  row.ps_cnt = data.raw.ps_cnt;
+  row.pt_cnt = data.raw.pt_cnt;
+  row.ps_temp_cnt = data.raw.ps_bridge_cnt;
+  row.pt_temp_cnt = data.raw.pt_bridge_cnt;
+  row.oat_cnt = data.raw.oat_cnt;
   row.mode = static_cast<uint8_t>(data.mode);
   if (data.mode == fm::AdsCompensationMode::kRaw) {
     row.alt_ft.reset();

@@ -2,8 +2,10 @@
 // one CSV per unit kind, one row per received packet. Production recordings from real rigs use it
 // and the analysis tools read it; a change of columns is a change of kRecordingFormatVersion.
 //
-// Version 3 (written) = version 2's columns followed by the packet's sample time on the unit's
-// clock: frame (the frame index carried past the 8-bit counter, frame_count.h) and t_sample_s
+// Version 4 (written) = version 3's columns with the ADS raw counts named ps_cnt, pt_cnt,
+// ps_temp_cnt, pt_temp_cnt, oat_cnt (versions 1 to 3 name them ps_counts … oat_counts). Version 3
+// (still read) = version 2's columns followed by the packet's sample time on the unit's clock:
+// frame (the frame index carried past the 8-bit counter, frame_count.h) and t_sample_s
 // (frame * 10 ms). Version 2 (still read) = version 1's columns followed by the compensated
 // columns, which are always in the header and EMPTY in raw mode. Version 1 (still read) has no
 // compensated columns. Imu and ads CSVs are stored plain or gzip-compressed (recording_files.h).
@@ -24,7 +26,7 @@
 
 namespace adahrs::hil {
 
-inline constexpr int kRecordingFormatVersion = 3;
+inline constexpr int kRecordingFormatVersion = 4;
 /// The oldest version ReadRecording still accepts.
 inline constexpr int kOldestReadableFormatVersion = 1;
 inline constexpr std::string_view kImuCsvName = "imu.csv";
@@ -45,14 +47,18 @@ inline constexpr std::string_view kImuCsvHeaderV2 =
 inline constexpr std::string_view kAdsCsvHeaderV2 =
     "t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,ps_temp_counts,"
     "pt_temp_counts,oat_counts,mode,alt_ft,cas_kt,comp_flags";
+/// The latest version's columns; the IMU columns are the same in versions 3 and 4.
 inline constexpr std::string_view kImuCsvHeader =
     "t_s,unit,seq,step,tag,orientation,chamber_c,table_rate_dps,"
     "az1_t1,az1_t2,ax1_t1,ax1_t2,ay1_t1,ay1_t2,az2_t1,az2_t2,ax2_t1,ax2_t2,ay2_t1,ay2_t2,"
     "gx,gy,gz,tx,ty,tz,mode,comp0,comp1,comp2,comp3,comp4,comp5,comp6,comp7,comp8,comp_flags,"
     "frame,t_sample_s";
-inline constexpr std::string_view kAdsCsvHeader =
+inline constexpr std::string_view kAdsCsvHeaderV3 =
     "t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_counts,pt_counts,ps_temp_counts,"
     "pt_temp_counts,oat_counts,mode,alt_ft,cas_kt,comp_flags,frame,t_sample_s";
+inline constexpr std::string_view kAdsCsvHeader =
+    "t_s,unit,seq,step,tag,chamber_c,ps_ref_pa,qc_ref_pa,ps_cnt,pt_cnt,ps_temp_cnt,pt_temp_cnt,"
+    "oat_cnt,mode,alt_ft,cas_kt,comp_flags,frame,t_sample_s";
 
 /// One received IMU packet with the instrument readings current when it arrived.
 struct ImuRecordRow {
@@ -84,13 +90,13 @@ struct AdsRecordRow {
   int step = 0;
   uint8_t tag = 0;
   double chamber_c = 0.0;
-  double ps_ref_pa = 0.0;  ///< static pressure as the air data test set reports it
-  double qc_ref_pa = 0.0;  ///< impact pressure as the air data test set reports it
-  int32_t ps_counts = 0;
-  int32_t pt_counts = 0;
-  int32_t ps_temp_counts = 0;
-  int32_t pt_temp_counts = 0;
-  int32_t oat_counts = 0;
+  double ps_ref_pa = 0.0;        ///< static pressure as the air data test set reports it
+  double qc_ref_pa = 0.0;        ///< impact pressure as the air data test set reports it
+  int32_t ps_cnt = 0;            ///< static bridge output, ADS1254 code
+  int32_t pt_cnt = 0;            ///< pitot bridge output, ADS1254 code
+  int32_t ps_temp_cnt = 0;       ///< static bridge voltage (its temperature), ADS1254 code
+  int32_t pt_temp_cnt = 0;       ///< pitot bridge voltage (its temperature), ADS1254 code
+  int32_t oat_cnt = 0;           ///< outside-air-temperature probe, ADS1254 code
   uint8_t mode = 0;              ///< the unit's mode byte (0 raw)
   std::optional<double> alt_ft;  ///< surface-mode pressure altitude; absent in raw mode
   std::optional<double> cas_kt;  ///< surface-mode calibrated airspeed; absent in raw mode

@@ -375,9 +375,9 @@ class RowOrder {
     listed_ = !last_.empty();
   }
 
-  // Checks the row and returns its frame: `frame` as the file gives it (version 3: it must not go
-  // back and must be `seq` modulo 256), or counted from the counter and the arrival time (-1,
-  // older versions) as the writer counts it.
+  // Checks the row and returns its frame: `frame` as the file gives it (from version 3: it must
+  // not go back and must be `seq` modulo 256), or counted from the counter and the arrival time
+  // (-1, older versions) as the writer counts it.
   int64_t Check(const std::string& unit,
                 int step,
                 double t_s,
@@ -456,8 +456,7 @@ uint64_t RawWord(const ImuRecordRow& r) {
 uint64_t RawWord(const AdsRecordRow& r) {
   uint64_t w = 1469598103934665603ull;
   const auto mix = [&w](int32_t v) { w = (w ^ static_cast<uint32_t>(v)) * 1099511628211ull; };
-  for (int32_t c : {r.ps_counts, r.pt_counts, r.ps_temp_counts, r.pt_temp_counts, r.oat_counts})
-    mix(c);
+  for (int32_t c : {r.ps_cnt, r.pt_cnt, r.ps_temp_cnt, r.pt_temp_cnt, r.oat_cnt}) mix(c);
   return w;
 }
 
@@ -479,8 +478,12 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
   const int version = rec.format_version;
   const bool v2 = version >= 2;
   const bool v3 = version >= 3;
+  const bool v4 = version >= 4;
   const std::string_view imu_header = v3 ? kImuCsvHeader : v2 ? kImuCsvHeaderV2 : kImuCsvHeaderV1;
-  const std::string_view ads_header = v3 ? kAdsCsvHeader : v2 ? kAdsCsvHeaderV2 : kAdsCsvHeaderV1;
+  const std::string_view ads_header = v4   ? kAdsCsvHeader
+                                      : v3 ? kAdsCsvHeaderV3
+                                      : v2 ? kAdsCsvHeaderV2
+                                           : kAdsCsvHeaderV1;
 
   const std::filesystem::path imu_path = StoredPath(run_dir, kImuCsvName);
   const std::filesystem::path ads_path = StoredPath(run_dir, kAdsCsvName);
@@ -524,11 +527,11 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
     r.chamber_c = ads.Real(5);
     r.ps_ref_pa = ads.Real(6);
     r.qc_ref_pa = ads.Real(7);
-    r.ps_counts = ads.Integer<int32_t>(8);
-    r.pt_counts = ads.Integer<int32_t>(9);
-    r.ps_temp_counts = ads.Integer<int32_t>(10);
-    r.pt_temp_counts = ads.Integer<int32_t>(11);
-    r.oat_counts = ads.Integer<int32_t>(12);
+    r.ps_cnt = ads.Integer<int32_t>(8);
+    r.pt_cnt = ads.Integer<int32_t>(9);
+    r.ps_temp_cnt = ads.Integer<int32_t>(10);
+    r.pt_temp_cnt = ads.Integer<int32_t>(11);
+    r.oat_cnt = ads.Integer<int32_t>(12);
     if (v2) {
       r.mode = ads.Integer<uint8_t>(13);
       if (ads.CompensatedPresent(14, 16, r.mode)) {

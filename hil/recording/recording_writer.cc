@@ -153,8 +153,7 @@ void RecordingWriter::Append(const AdsRecordRow& r) {
   row.Fixed(r.ps_ref_pa, 2);
   row.Comma();
   row.Fixed(r.qc_ref_pa, 2);
-  for (int32_t counts :
-       {r.ps_counts, r.pt_counts, r.ps_temp_counts, r.pt_temp_counts, r.oat_counts}) {
+  for (int32_t counts : {r.ps_cnt, r.pt_cnt, r.ps_temp_cnt, r.pt_temp_cnt, r.oat_cnt}) {
     row.Comma();
     row.Integer(counts);
   }

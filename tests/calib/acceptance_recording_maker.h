@@ -142,8 +142,8 @@ class AcceptanceRecordingMaker {
             row.chamber_c = chamber_c;
             row.ps_ref_pa = sensor_sim::IsaStaticPressurePaFromFt(ref_alt_ft);
             row.qc_ref_pa = sensor_sim::ImpactPressurePaFromKt(ref_cas_kt);
-            row.ps_counts = 1000;
-            row.pt_counts = 1000;
+            row.ps_cnt = 1000;
+            row.pt_cnt = 1000;
             row.mode = 1;
             row.alt_ft = ref_alt_ft + e.alt_ft + e.noise_ft * normal_(rng_);
             row.cas_kt = ref_cas_kt + e.cas_kt + e.noise_kt * normal_(rng_);

@@ -35,7 +35,7 @@ fs::path TempRun(const std::string& name) {
   return dir;
 }
 
-hil::AdsRecordRow Row(int step, uint8_t tag, double t_s, int32_t ps_counts, double ps_ref_pa) {
+hil::AdsRecordRow Row(int step, uint8_t tag, double t_s, int32_t ps_cnt, double ps_ref_pa) {
   hil::AdsRecordRow r;
   r.t_s = t_s;
   r.unit = "ADS-0007";
@@ -44,10 +44,10 @@ hil::AdsRecordRow Row(int step, uint8_t tag, double t_s, int32_t ps_counts, doub
   r.chamber_c = 25.0;
   r.ps_ref_pa = ps_ref_pa;
   r.qc_ref_pa = 0.0;
-  r.ps_counts = ps_counts;
-  r.pt_counts = 1000;
-  r.ps_temp_counts = 5000000;
-  r.pt_temp_counts = 5000000;
+  r.ps_cnt = ps_cnt;
+  r.pt_cnt = 1000;
+  r.ps_temp_cnt = 5000000;
+  r.pt_temp_cnt = 5000000;
   return r;
 }
 
@@ -66,7 +66,7 @@ TEST(AdsCalibrationPoints, SelectsTaggedRowsOutsideRejectedIntervals) {
   EXPECT_EQ(points[0].step, 3);
   EXPECT_EQ(points[0].rows, 6);
   // Mean of 100, 200, 300, 700, 800, 900.
-  EXPECT_DOUBLE_EQ(points[0].ps_code, 500.0);
+  EXPECT_DOUBLE_EQ(points[0].ps_cnt, 500.0);
   // ISA: 101325 Pa is 0 ft (within the formula's round-off, 1e-6 ft).
   EXPECT_NEAR(points[0].alt_ft, 0.0, 1e-6);
   EXPECT_FALSE(points[0].airspeed_point);
@@ -109,7 +109,7 @@ TEST(AdsCalibrationPoints, RefusesBadRowsNamingLineAndColumn) {
   rec.ads[1] = Row(1, 5, 0.2, (1 << 23) - 1, 101325.0);
   EXPECT_THAT([&] { SelectAdsCalibrationPoints(rec, "ADS-0007", "run"); },
               ::testing::ThrowsMessage<std::runtime_error>(
-                  HasSubstr("run/ads.csv line 3 column ps_counts: code 8388607 is at the ADS1254 "
+                  HasSubstr("run/ads.csv line 3 column ps_cnt: code 8388607 is at the ADS1254 "
                             "rail")));
   EXPECT_THAT([&] { SelectAdsCalibrationPoints(rec, "ADS-0099", "run"); },
               ::testing::ThrowsMessage<std::runtime_error>(HasSubstr("no row of unit ADS-0099")));

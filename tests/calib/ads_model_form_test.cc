@@ -99,8 +99,8 @@ Column RunTwentyUnits(Truth truth) {
         const auto& b = unit.static_bridge;
         const double p_true = b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa;
         c.span_error[0] = std::max(c.span_error[0], std::abs(s.pressure_span_pa / p_true - 1.0));
-        c.span_error[1] = std::max(
-            c.span_error[1], std::abs(s.thermal_span_degc / b.thermal_hysteresis_span_c - 1.0));
+        c.span_error[1] = std::max(c.span_error[1],
+                                   std::abs(s.thermal_span_c / b.thermal_hysteresis_span_c - 1.0));
       }
     }
   }

@@ -68,8 +68,8 @@ TEST(AdsRunSimulator, InMemoryRunGivesThePointsItsRecordingGives) {
   ASSERT_EQ(points.size(), 9u * (13 + 2 + 9));  // 9 temperatures x (13 + 2 altitudes, 9 speeds)
   for (size_t i = 0; i < points.size(); ++i) {
     EXPECT_EQ(points[i].rows, 200);
-    EXPECT_EQ(points[i].ps_code, on_disk[i].ps_code) << i;
-    EXPECT_EQ(points[i].pt_temp_code, on_disk[i].pt_temp_code) << i;
+    EXPECT_EQ(points[i].ps_cnt, on_disk[i].ps_cnt) << i;
+    EXPECT_EQ(points[i].pt_temp_cnt, on_disk[i].pt_temp_cnt) << i;
     EXPECT_EQ(points[i].ps_ref_pa, on_disk[i].ps_ref_pa) << i;
     EXPECT_EQ(points[i].qc_ref_pa, on_disk[i].qc_ref_pa) << i;
     EXPECT_EQ(points[i].chamber_c, on_disk[i].chamber_c) << i;

@@ -54,7 +54,7 @@ double RmsPa(const std::vector<AdsCalibrationPoint>& a,
              double codes_per_pa) {
   double s = 0.0;
   for (size_t i = 0; i < a.size(); ++i)
-    s += std::pow((a[i].ps_code - b[i].ps_code) / codes_per_pa, 2);
+    s += std::pow((a[i].ps_cnt - b[i].ps_cnt) / codes_per_pa, 2);
   return std::sqrt(s / static_cast<double>(a.size()));
 }
 
@@ -91,7 +91,7 @@ TEST(AugmentedModel, AdsPressureHysteresisReproducesTheRecording) {
               3.0 * se_pct);
 
   const double codes_per_pa =
-      std::abs(recorded.back().ps_code - recorded.front().ps_code) /
+      std::abs(recorded.back().ps_cnt - recorded.front().ps_cnt) /
       std::max(1.0, std::abs(recorded.back().ps_ref_pa - recorded.front().ps_ref_pa));
   const double before = RmsPa(recorded, Points(base, dir / "base", 600), codes_per_pa);
   const double after = RmsPa(recorded, Points(augmented, dir / "augmented", 600), codes_per_pa);

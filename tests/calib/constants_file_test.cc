@@ -165,11 +165,8 @@ TEST(ConstantsFile, RefusesABadChecksumAndKind) {
   EXPECT_THAT(MessageOf(j), HasSubstr("$.kind: expected \"imu\" or \"ads\""));
 }
 
-TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
-  ConstantsFile f;
-  f.serial = "ADS-0002";
-  f.kind = hil::UnitKind::kAds;
-  f.strategy = "reference";
+// Two direct surfaces over one code box, every coefficient set.
+fm::AdsCalibrationConstants AdsConstants() {
   fm::AdsCalibrationConstants c;
   c.altitude_ft.x_min_code = -1e6;
   c.altitude_ft.x_max_code = 1e6;
@@ -180,6 +177,15 @@ TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
       c.altitude_ft.coeff_xy[p][q] = 1.0 + p + 0.25 * q;
   }
   c.airspeed_kt = c.altitude_ft;
+  return c;
+}
+
+TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
+  ConstantsFile f;
+  f.serial = "ADS-0002";
+  f.kind = hil::UnitKind::kAds;
+  f.strategy = "reference";
+  fm::AdsCalibrationConstants c = AdsConstants();
   c.altitude_ft.y_linearisation = {2500000.0, 7.5e-7};  // the airspeed surface has none
   f.ads = c;
   fm::AdsCalibrationConstants se = c;
@@ -236,6 +242,48 @@ TEST(ConstantsFile, ReadsTheReferenceCubicsLettersFromOlderFiles) {
   EXPECT_THAT([&] { fm::AdsCalibrationConstantsFromJson(ads); },
               ::testing::ThrowsMessage<std::runtime_error>(
                   HasSubstr("airspeed_kt.coeff_x_y[2]: expected an array of 6 numbers")));
+}
+
+// Files of earlier software spell the hysteresis gains' temperature slopes `_per_degc`: read as
+// `_per_c` in the constants and in their standard errors, which then have today's shape; a
+// hysteresis object with both spellings is refused with its path.
+TEST(ConstantsFile, ReadsTheHysteresisSlopesOldSpelling) {
+  ConstantsFile f;
+  f.serial = "ADS-0003";
+  f.kind = hil::UnitKind::kAds;
+  f.strategy = "hysteresis_compensated";
+  fm::AdsCalibrationConstants c = AdsConstants();
+  c.altitude_ft.hysteresis.pressure_gain = -12.5;
+  c.altitude_ft.hysteresis.pressure_gain_per_c = 0.25;
+  c.altitude_ft.hysteresis.pressure_span = 3000.0;
+  c.altitude_ft.hysteresis.thermal_gain = 4.0;
+  c.altitude_ft.hysteresis.thermal_gain_per_c = -0.125;
+  c.altitude_ft.hysteresis.thermal_span_c = 2.0;
+  c.altitude_ft.hysteresis.die_temp_c = {25.0, 1e-5, 0.0, 0.0};
+  f.ads = c;
+  fm::AdsCalibrationConstants se = c;  // standard errors are >= 0
+  se.altitude_ft.hysteresis.pressure_gain = 0.5;
+  se.altitude_ft.hysteresis.pressure_gain_per_c = 0.0625;
+  se.altitude_ft.hysteresis.thermal_gain_per_c = 0.03125;
+  f.standard_errors = AdsStandardErrorsJson(se);
+  json old = ToJson(f);
+  for (json* h : {&old["constants"]["altitude_ft"]["hysteresis"],
+                  &old["standard_errors"]["altitude_ft"]["hysteresis"]}) {
+    for (const char* name : {"pressure_gain", "thermal_gain"}) {
+      (*h)[std::string(name) + "_per_degc"] = (*h)[std::string(name) + "_per_c"];
+      h->erase(std::string(name) + "_per_c");
+    }
+  }
+  const ConstantsFile g = ConstantsFileFromJson(old, "old.json");
+  ASSERT_TRUE(g.ads.has_value());
+  EXPECT_EQ(g.ads->altitude_ft.hysteresis.pressure_gain_per_c, 0.25);
+  EXPECT_EQ(g.ads->altitude_ft.hysteresis.thermal_gain_per_c, -0.125);
+  EXPECT_EQ(g.standard_errors["altitude_ft"]["hysteresis"]["pressure_gain_per_c"], 0.0625);
+  EXPECT_EQ(ToJson(g)["constants"], ToJson(f)["constants"]);
+  old["constants"]["altitude_ft"]["hysteresis"]["pressure_gain_per_c"] = 0.25;
+  EXPECT_THAT(MessageOf(old),
+              HasSubstr("altitude_ft.hysteresis.pressure_gain_per_degc: the same as "
+                        "pressure_gain_per_c, which is present too"));
 }
 
 TEST(ConstantsFile, UtcTimestampIsIso8601) {

@@ -60,7 +60,7 @@ TEST(PolynomialFit, RecoversKnownCubicFromNoiseFreeData) {
   const std::vector<double> truth = {3.0, -0.05, 2.0e-4, -1.0e-6};
   PolynomialObservations obs;
   obs.x = Grid(-40.0, 85.0, 26);
-  for (double t_degc : obs.x) obs.z.push_back(Polynomial(truth, t_degc));
+  for (double t_c : obs.x) obs.z.push_back(Polynomial(truth, t_c));
   const PolynomialFit fit = FitUnivariate("cubic", 3, obs);
   ASSERT_EQ(fit.raw_coefficients.size(), 4);
   for (int k = 0; k < 4; ++k) {
@@ -78,10 +78,9 @@ TEST(PolynomialFit, RecoversKnownCubicFromNoiseFreeData) {
   EXPECT_EQ(fit.fit.rank, 4);
   EXPECT_LT(fit.fit.residual_rms, 1e-14);
   // Evaluate (through the normalised coefficients) reproduces the polynomial between the nodes.
-  for (double t_degc : {-37.3, 0.0, 12.5, 61.1, 84.9}) {
-    EXPECT_NEAR(fit.Evaluate(PolynomialBasis::Univariate(3, "t"), t_degc),
-                Polynomial(truth, t_degc),
-                1e-13);
+  for (double t_c : {-37.3, 0.0, 12.5, 61.1, 84.9}) {
+    EXPECT_NEAR(
+        fit.Evaluate(PolynomialBasis::Univariate(3, "t"), t_c), Polynomial(truth, t_c), 1e-13);
   }
 }
 
@@ -256,9 +255,9 @@ TEST(PolynomialFitNist, PontiusCertifiedValues) {
 constexpr int kMonteCarloSets = 2000;
 constexpr double kSpreadTolerance = 0.06;
 
-// A cubic drift over -40..85 degC observed at `t_degc` with independent noise of `noise_sd` each.
+// A cubic drift over -40..85 degC observed at `t_c` with independent noise of `noise_sd` each.
 struct NoisyCubic {
-  std::vector<double> t_degc;
+  std::vector<double> t_c;
   std::vector<double> noise_sd;
   std::vector<double> weights;  ///< empty for all 1
   WeightKind weight_kind = WeightKind::kInverseVariance;
@@ -274,10 +273,10 @@ void ExpectStandardErrorsMatchSpread(const NoisyCubic& design, uint64_t seed) {
   Eigen::VectorXd sum_se2 = Eigen::VectorXd::Zero(4);
   for (int set = 0; set < kMonteCarloSets; ++set) {
     PolynomialObservations obs;
-    obs.x = design.t_degc;
+    obs.x = design.t_c;
     obs.weights = design.weights;
-    for (size_t i = 0; i < design.t_degc.size(); ++i) {
-      obs.z.push_back(Polynomial(truth, design.t_degc[i]) + design.noise_sd[i] * rng.Normal());
+    for (size_t i = 0; i < design.t_c.size(); ++i) {
+      obs.z.push_back(Polynomial(truth, design.t_c[i]) + design.noise_sd[i] * rng.Normal());
     }
     const PolynomialFit fit =
         FitUnivariate("monte carlo", 3, obs, design.weight_kind, design.error_scale);
@@ -294,7 +293,7 @@ void ExpectStandardErrorsMatchSpread(const NoisyCubic& design, uint64_t seed) {
 // the change of basis.
 TEST(PolynomialFitMonteCarlo, ResidualVarianceStandardErrorsMatchSpread) {
   NoisyCubic design;
-  design.t_degc = Grid(-40.0, 85.0, 12);
+  design.t_c = Grid(-40.0, 85.0, 12);
   design.noise_sd.assign(12, 0.02);
   ExpectStandardErrorsMatchSpread(design, 41);
 }
@@ -305,7 +304,7 @@ TEST(PolynomialFitMonteCarlo, ResidualVarianceStandardErrorsMatchSpread) {
 // unit variance, ~20..200 times too large.
 TEST(PolynomialFitMonteCarlo, InverseVarianceWeightsAreHonoured) {
   NoisyCubic design;
-  design.t_degc = Grid(-40.0, 85.0, 20);
+  design.t_c = Grid(-40.0, 85.0, 20);
   for (int i = 0; i < 20; ++i) {
     design.noise_sd.push_back(0.005 + 0.045 * i / 19.0);
     design.weights.push_back(1.0 / (design.noise_sd.back() * design.noise_sd.back()));
@@ -318,10 +317,10 @@ TEST(PolynomialFitMonteCarlo, InverseVarianceWeightsAreHonoured) {
 // the 10 spread ones): the sandwich covariance carried to the raw coefficients matches the spread.
 TEST(PolynomialFitMonteCarlo, BalancingWeightsStandardErrorsMatchSpread) {
   NoisyCubic design;
-  design.t_degc = Grid(-40.0, 85.0, 10);
+  design.t_c = Grid(-40.0, 85.0, 10);
   design.weights.assign(10, 1.0 / 10.0);
   for (double t : Grid(20.0, 25.0, 30)) {
-    design.t_degc.push_back(t);
+    design.t_c.push_back(t);
     design.weights.push_back(1.0 / 30.0);
   }
   design.noise_sd.assign(40, 0.02);

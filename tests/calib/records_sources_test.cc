@@ -36,7 +36,7 @@ class RecordsSourcesTest : public ::testing::Test {
     std::filesystem::create_directories(dir_ / "run");
     const auto sequence = ParseSequenceFile(std::string(ADAHRS_SOURCE_DIR) +
                                             "/calib/sequences/imu_sensor_calibration.json");
-    meta_ = {{"format_version", 3},
+    meta_ = {{"format_version", 4},
              {"run_id", "20240501-080000-cal"},
              {"started_utc", "2024-05-01T08:00:00Z"},
              {"status", "complete"},
@@ -169,7 +169,7 @@ TEST_F(RecordsSourcesTest, BadMetaIsRefusedWithFileAndPath) {
   WriteRun();
   EXPECT_THAT(ErrorOf(), HasSubstr("meta.json"));
   EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version"));
-  meta_["format_version"] = 3;
+  meta_["format_version"] = 4;
   meta_["rejected_intervals"][1]["step"] = 40;
   WriteRun();
   EXPECT_THAT(ErrorOf(), HasSubstr("$.rejected_intervals[1].step"));

@@ -73,10 +73,10 @@ class RunReportTest : public ::testing::Test {
         row.chamber_c = 25.0;
         row.ps_ref_pa = fm::testing::IsaPressure_pa(alt_ft);
         row.qc_ref_pa = fm::testing::ImpactPressure_pa(150.0);
-        row.ps_counts = raw.ps_code;
-        row.pt_counts = raw.pt_code;
-        row.ps_temp_counts = raw.ps_bridge_code;
-        row.pt_temp_counts = raw.pt_bridge_code;
+        row.ps_cnt = raw.ps_cnt;
+        row.pt_cnt = raw.pt_cnt;
+        row.ps_temp_cnt = raw.ps_bridge_cnt;
+        row.pt_temp_cnt = raw.pt_bridge_cnt;
         writer.Append(row);
       }
       ++tag;

@@ -281,10 +281,10 @@ TEST(ConstantsBlocks, AdsHysteresisWordsRoundTripAndRefusals) {
   const HysteresisCompensation& h = cal.altitude_ft.hysteresis;
   // The die temperature at the y normalisation's centre (the gains are given there) and K, the
   // degC of one unit of tau, from t1 (the bridge code is linear in temperature here).
-  const double degc_per_y = std::ldexp(h.die_temp_c[1], source.altitude.y_norm.shift);
+  const double c_per_y = std::ldexp(h.die_temp_c[1], source.altitude.y_norm.shift);
   const double centre_c =
       h.die_temp_c[0] + h.die_temp_c[1] * (source.altitude.y_norm.centre - h.die_temp_origin_code);
-  const double k_c = degc_per_y / (words[kThermal] / 32768.0);
+  const double k_c = c_per_y / (words[kThermal] / 32768.0);
   auto gain = [&](int at, double tau) {
     return std::ldexp(words[at] + words[at + 1] * tau, words[at + 2] - 15);
   };
@@ -294,19 +294,19 @@ TEST(ConstantsBlocks, AdsHysteresisWordsRoundTripAndRefusals) {
   for (const double temp_c : {-40.0, 85.0}) {
     const double tau = (temp_c - centre_c) / k_c;
     EXPECT_NEAR(gain(kAt + 3, tau),
-                h.pressure_gain + h.pressure_gain_per_degc * (temp_c - 25.0),
+                h.pressure_gain + h.pressure_gain_per_c * (temp_c - 25.0),
                 2 * 64.0 / 32768.0)
         << temp_c;
     EXPECT_NEAR(gain(kThermal + 6, tau),
-                h.thermal_gain + h.thermal_gain_per_degc * (temp_c - 25.0),
+                h.thermal_gain + h.thermal_gain_per_c * (temp_c - 25.0),
                 2 * 128.0 / 32768.0)
         << temp_c;
   }
   // tau = t1 y: t1 = (degC per normalised y) / K, and inv_span = K / 20 degC, so t1 * inv_span is
   // the travel per unit of normalised y whatever K the exporter chose.
   EXPECT_NEAR(words[kThermal] / 32768.0 * coeff(kThermal + 3),
-              degc_per_y / h.thermal_span_c,
-              1e-4 * degc_per_y / h.thermal_span_c);
+              c_per_y / h.thermal_span_c,
+              1e-4 * c_per_y / h.thermal_span_c);
   EXPECT_EQ(words[kThermal + 1], 0);
   EXPECT_EQ(words[kThermal + 2], 0);
 

@@ -88,11 +88,11 @@ TEST(DataPayloadsTest, ImuRoundTripInEveryMode) {
 
 TEST(DataPayloadsTest, AdsLayoutAndRoundTrip) {
   AdsDataPayload data{};
-  data.raw.ps_code = -8388608;  // most negative 24-bit code, sign-extended
-  data.raw.pt_code = 8388607;
-  data.raw.ps_bridge_code = 0x00123456;
-  data.raw.pt_bridge_code = -1;
-  data.raw.oat_code = 42;
+  data.raw.ps_cnt = -8388608;  // most negative 24-bit code, sign-extended
+  data.raw.pt_cnt = 8388607;
+  data.raw.ps_bridge_cnt = 0x00123456;
+  data.raw.pt_bridge_cnt = -1;
+  data.raw.oat_cnt = 42;
   data.mode = AdsCompensationMode::kSurface;
   data.compensated.value[0] = 0x0A0B0C0D;
   data.compensated.value[1] = -7;
@@ -108,11 +108,11 @@ TEST(DataPayloadsTest, AdsLayoutAndRoundTrip) {
   EXPECT_EQ(out[29], 0x02);
   AdsDataPayload decoded{};
   ASSERT_TRUE(DecodeAdsPayload(out, 31, &decoded));
-  EXPECT_EQ(decoded.raw.ps_code, data.raw.ps_code);
-  EXPECT_EQ(decoded.raw.pt_code, data.raw.pt_code);
-  EXPECT_EQ(decoded.raw.ps_bridge_code, data.raw.ps_bridge_code);
-  EXPECT_EQ(decoded.raw.pt_bridge_code, data.raw.pt_bridge_code);
-  EXPECT_EQ(decoded.raw.oat_code, data.raw.oat_code);
+  EXPECT_EQ(decoded.raw.ps_cnt, data.raw.ps_cnt);
+  EXPECT_EQ(decoded.raw.pt_cnt, data.raw.pt_cnt);
+  EXPECT_EQ(decoded.raw.ps_bridge_cnt, data.raw.ps_bridge_cnt);
+  EXPECT_EQ(decoded.raw.pt_bridge_cnt, data.raw.pt_bridge_cnt);
+  EXPECT_EQ(decoded.raw.oat_cnt, data.raw.oat_cnt);
   EXPECT_EQ(decoded.compensated.value[0], data.compensated.value[0]);
   EXPECT_EQ(decoded.compensated.value[1], data.compensated.value[1]);
   EXPECT_EQ(decoded.compensated.flags, data.compensated.flags);

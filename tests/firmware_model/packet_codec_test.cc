@@ -102,7 +102,7 @@ TEST(PacketCodecTest, RoundTripOfEveryPacketTypeWholeAndByteByByte) {
   uint8_t imu_raw_payload[kImuCompensatedPayloadBytes];
   const uint8_t imu_raw_length = EncodeImuPayload(imu, imu_raw_payload, sizeof(imu_raw_payload));
   AdsDataPayload ads{};
-  ads.raw.ps_code = 0x7FFFFF;
+  ads.raw.ps_cnt = 0x7FFFFF;
   ads.mode = AdsCompensationMode::kSurface;
   uint8_t ads_payload[kAdsCompensatedPayloadBytes];
   const uint8_t ads_length = EncodeAdsPayload(ads, ads_payload, sizeof(ads_payload));

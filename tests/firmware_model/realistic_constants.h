@@ -33,13 +33,13 @@ inline ImuCalibrationConstants RealisticImu(uint64_t seed) {
   common::Rng rng(seed);
   ImuCalibrationConstants c;
   const double t25 = TempCounts(25.0);
-  const double counts_per_c = TempCounts(26.0) - t25;
+  const double cnt_per_c = TempCounts(26.0) - t25;
   for (int ch = 0; ch < 9; ++ch) {
     ThermalFit& f = c.thermal[ch];
     f.temp_sensor = ch < 6 ? ch % 3 : ch - 6;
     // Drift xi(t) = x0 + s1 dT + s2 dT^2 + s3 dT^3, dT = (t - t25) counts: ~ +-40 mg (accel, as
     // duty) or +-3 deg/s (gyro, counts) at the envelope edge 60 C away, fitted over -40..85 C.
-    const double edge = 60.0 * counts_per_c;
+    const double edge = 60.0 * cnt_per_c;
     const double full = ch < 6 ? 0.040 / 25.0 : 3.0 * kGyroCountsPerDps;
     const double x0 = ch < 6 ? rng.Uniform(-0.01, 0.01) : 4.2e6 + rng.Uniform(-5e4, 5e4);
     const double s1 = rng.Uniform(-1.0, 1.0) * full / edge;
@@ -294,11 +294,11 @@ inline AdsCalibrationConstants RealisticPressureAds() {
 
 inline AdsRawFrame SynthesiseAds(double alt_ft, double cas_kt, double temp_c) {
   AdsRawFrame raw{};
-  raw.ps_code = static_cast<int32_t>(std::lround(PressureCode(IsaPressure_pa(alt_ft), temp_c)));
-  raw.pt_code = static_cast<int32_t>(std::lround(PressureCode(ImpactPressure_pa(cas_kt), temp_c)));
-  raw.ps_bridge_code = static_cast<int32_t>(std::lround(BridgeCode(temp_c)));
-  raw.pt_bridge_code = static_cast<int32_t>(std::lround(BridgeCode(temp_c) * 1.01));
-  raw.oat_code = 0;
+  raw.ps_cnt = static_cast<int32_t>(std::lround(PressureCode(IsaPressure_pa(alt_ft), temp_c)));
+  raw.pt_cnt = static_cast<int32_t>(std::lround(PressureCode(ImpactPressure_pa(cas_kt), temp_c)));
+  raw.ps_bridge_cnt = static_cast<int32_t>(std::lround(BridgeCode(temp_c)));
+  raw.pt_bridge_cnt = static_cast<int32_t>(std::lround(BridgeCode(temp_c) * 1.01));
+  raw.oat_cnt = 0;
   return raw;
 }
 

@@ -64,11 +64,11 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
     } else {
       AdsDataPayload data{};
       // 24-bit ADS1254 codes, sign-extended.
-      data.raw.ps_code = static_cast<int32_t>(rng.NextU64() % (1 << 24)) - (1 << 23);
-      data.raw.pt_code = static_cast<int32_t>(rng.NextU64() % (1 << 24)) - (1 << 23);
-      data.raw.ps_bridge_code = static_cast<int32_t>(rng.NextU64() % (1 << 23));
-      data.raw.pt_bridge_code = static_cast<int32_t>(rng.NextU64() % (1 << 23));
-      data.raw.oat_code = static_cast<int32_t>(rng.NextU64() % (1 << 23));
+      data.raw.ps_cnt = static_cast<int32_t>(rng.NextU64() % (1 << 24)) - (1 << 23);
+      data.raw.pt_cnt = static_cast<int32_t>(rng.NextU64() % (1 << 24)) - (1 << 23);
+      data.raw.ps_bridge_cnt = static_cast<int32_t>(rng.NextU64() % (1 << 23));
+      data.raw.pt_bridge_cnt = static_cast<int32_t>(rng.NextU64() % (1 << 23));
+      data.raw.oat_cnt = static_cast<int32_t>(rng.NextU64() % (1 << 23));
       data.mode = static_cast<AdsCompensationMode>(rng.NextU64() % 2);
       if (data.mode != AdsCompensationMode::kRaw) {
         for (int32_t& value : data.compensated.value) value = static_cast<int32_t>(rng.NextU64());
@@ -127,11 +127,11 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
     } else {
       const AdsDataPayload& sent = ads_sent[ads_index++];
       const nlohmann::json& ads = f.at("ads");
-      const int32_t codes[5] = {sent.raw.ps_code,
-                                sent.raw.pt_code,
-                                sent.raw.ps_bridge_code,
-                                sent.raw.pt_bridge_code,
-                                sent.raw.oat_code};
+      const int32_t codes[5] = {sent.raw.ps_cnt,
+                                sent.raw.pt_cnt,
+                                sent.raw.ps_bridge_cnt,
+                                sent.raw.pt_bridge_cnt,
+                                sent.raw.oat_cnt};
       for (int c = 0; c < 5; ++c) EXPECT_EQ(ads.at("codes")[c].get<int32_t>(), codes[c]);
       EXPECT_EQ(ads.at("mode").get<int>(), static_cast<int>(sent.mode));
       if (sent.mode != AdsCompensationMode::kRaw) {

@@ -65,15 +65,15 @@ TEST(PacketColumns, FullyCalibratedModeIsMps2DpsAndG) {
 
 TEST(PacketColumns, AdsSurfaceModeIsFeetAndKnots) {
   fm::AdsDataPayload p{};
-  p.raw.ps_code = -8388608;
-  p.raw.oat_code = 77;
+  p.raw.ps_cnt = -8388608;
+  p.raw.oat_cnt = 77;
   p.mode = fm::AdsCompensationMode::kSurface;
   p.compensated.value[0] = 35000 << 15;  // 35,000 ft at 2^-15 ft
   p.compensated.value[1] = 250 << 22;    // 250 kt at 2^-22 kt
   AdsRecordRow row;
   SetPacketColumns(p, row);
-  EXPECT_EQ(row.ps_counts, -8388608);
-  EXPECT_EQ(row.oat_counts, 77);
+  EXPECT_EQ(row.ps_cnt, -8388608);
+  EXPECT_EQ(row.oat_cnt, 77);
   EXPECT_EQ(row.mode, 1);
   EXPECT_EQ(row.alt_ft, 35000.0);
   EXPECT_EQ(row.cas_kt, 250.0);

@@ -39,7 +39,7 @@ class RecordingReaderTest : public ::testing::Test {
     AdsRecordRow a;
     a.unit = "ADS-0001";
     a.ps_ref_pa = 69681.64;
-    a.ps_counts = -8388608;
+    a.ps_cnt = -8388608;
     w.Append(a);
     w.WriteMeta({{"sample_rate_hz", 100}});
     w.Flush(true);
@@ -76,7 +76,7 @@ TEST_F(RecordingReaderTest, ReadsBackWhatTheWriterWrote) {
   EXPECT_EQ(rec.imu[0].orientation, 21);
   EXPECT_DOUBLE_EQ(rec.imu[1].chamber_c, -40.0);
   ASSERT_EQ(rec.ads.size(), 1u);
-  EXPECT_EQ(rec.ads[0].ps_counts, -8388608);
+  EXPECT_EQ(rec.ads[0].ps_cnt, -8388608);
   EXPECT_DOUBLE_EQ(rec.ads[0].ps_ref_pa, 69681.64);
   EXPECT_EQ(rec.meta["sample_rate_hz"], 100);
 }
@@ -84,12 +84,10 @@ TEST_F(RecordingReaderTest, ReadsBackWhatTheWriterWrote) {
 TEST_F(RecordingReaderTest, StreamingHandsEachRowWithItsLineAndHoldsNone) {
   std::vector<std::pair<uint32_t, int>> imu;
   std::vector<int> ads_lines;
-  const Recording rec =
-      StreamRecording(dir_,
-                      {[&](ImuRecordRow&& r, int line) { imu.emplace_back(r.seq, line); },
-                       [&](AdsRecordRow&& r, int line) {
-                         ads_lines.push_back(r.ps_counts == -8388608 ? line : -1);
-                       }});
+  const Recording rec = StreamRecording(
+      dir_,
+      {[&](ImuRecordRow&& r, int line) { imu.emplace_back(r.seq, line); },
+       [&](AdsRecordRow&& r, int line) { ads_lines.push_back(r.ps_cnt == -8388608 ? line : -1); }});
   EXPECT_TRUE(rec.imu.empty());
   EXPECT_TRUE(rec.ads.empty());
   EXPECT_EQ(rec.meta["sample_rate_hz"], 100);
@@ -131,16 +129,16 @@ TEST_F(RecordingReaderTest, TruncatedTailIsReportedOrCountedOnRequest) {
 }
 
 TEST_F(RecordingReaderTest, WrongFormatVersionIsRefused) {
-  ReplaceInFile("meta.json", "\"format_version\": 3", "\"format_version\": 4");
-  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("meta.json"), HasSubstr("format_version is 4")));
+  ReplaceInFile("meta.json", "\"format_version\": 4", "\"format_version\": 5");
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("meta.json"), HasSubstr("format_version is 5")));
 }
 
 // A version that would wrap to a readable one in 32 bits is refused as itself; a version that is
 // not an integer is named as such, not called missing.
 TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
-  ReplaceInFile("meta.json", "\"format_version\": 3", "\"format_version\": 4294967299");
+  ReplaceInFile("meta.json", "\"format_version\": 4", "\"format_version\": 4294967299");
   EXPECT_THAT(ErrorOf(),
-              HasSubstr("$.format_version is 4294967299; this software reads versions 1 to 3"));
+              HasSubstr("$.format_version is 4294967299; this software reads versions 1 to 4"));
   ReplaceInFile("meta.json", "\"format_version\": 4294967299", "\"format_version\": 3.0");
   EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is 3.0, not an integer"));
   ReplaceInFile("meta.json", "\"format_version\": 3.0", "\"format_version\": \"3\"");
@@ -210,7 +208,7 @@ TEST_F(RecordingReaderTest, UnitListedTwiceIsRefused) {
 
 TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
   const Recording rec = ReadRecording(dir_);
-  EXPECT_EQ(rec.format_version, 3);
+  EXPECT_EQ(rec.format_version, 4);
   EXPECT_EQ(rec.imu[0].mode, 0);
   EXPECT_FALSE(rec.imu[0].comp.has_value());
   EXPECT_FALSE(rec.ads[0].alt_ft.has_value());
@@ -269,12 +267,12 @@ TEST_F(RecordingReaderTest, VersionOneRecordingIsStillRead) {
   EXPECT_EQ(rec.imu[0].mode, 0);
   EXPECT_FALSE(rec.imu[0].comp.has_value());
   ASSERT_EQ(rec.ads.size(), 1u);
-  EXPECT_EQ(rec.ads[0].ps_counts, -8388608);
-  EXPECT_EQ(rec.ads[0].oat_counts, 4);
+  EXPECT_EQ(rec.ads[0].ps_cnt, -8388608);
+  EXPECT_EQ(rec.ads[0].oat_cnt, 4);
 }
 
 TEST_F(RecordingReaderTest, VersionOneMetaWithALaterHeaderIsRefused) {
-  ReplaceInFile("meta.json", "\"format_version\": 3", "\"format_version\": 1");
+  ReplaceInFile("meta.json", "\"format_version\": 4", "\"format_version\": 1");
   EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("imu.csv:1"), HasSubstr("version 1")));
 }
 
@@ -291,6 +289,23 @@ TEST_F(RecordingReaderTest, VersionTwoRowsGetTheirFramesCounted) {
   ASSERT_EQ(rec.ads.size(), 2u);
   EXPECT_EQ(rec.ads[0].frame, 100);  // 1.00 s: frame 100 has counter 100
   EXPECT_EQ(rec.ads[1].frame, 400);
+}
+
+// Versions 1 to 3 name the ADS raw counts ps_counts … oat_counts; they land in the same fields.
+// A version-3 file with version 4's names says meta.json's version is wrong.
+TEST_F(RecordingReaderTest, VersionThreeAdsCountColumnsAreReadByTheirOldNames) {
+  std::ofstream(dir_ / "meta.json") << R"({"format_version": 3})";
+  std::ofstream(dir_ / "imu.csv") << kImuCsvHeader << "\n";
+  std::ofstream(dir_ / "ads.csv")
+      << kAdsCsvHeaderV3 << "\n"
+      << "1.0000,ADS-0001,100,0,0,20.000,101325.00,0.00,-8388608,1,2,3,4,0,,,,100,1.00\n";
+  const Recording rec = ReadRecording(dir_);
+  ASSERT_EQ(rec.ads.size(), 1u);
+  EXPECT_EQ(rec.ads[0].ps_cnt, -8388608);
+  EXPECT_EQ(rec.ads[0].pt_temp_cnt, 3);
+  EXPECT_EQ(rec.ads[0].oat_cnt, 4);
+  std::ofstream(dir_ / "ads.csv") << kAdsCsvHeader << "\n";
+  EXPECT_THAT(ErrorOf(), AllOf(HasSubstr("ads.csv:1"), HasSubstr("'ps_counts' is missing")));
 }
 
 TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {

@@ -69,7 +69,7 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
         dir, RecordingStorage::kPlainCsv);  // a resumed run appends, without a second header
     AdsRecordRow row;
     row.unit = "ADS-0001";
-    row.ps_counts = -8388608;
+    row.ps_cnt = -8388608;
     w.Append(row);
     w.Flush(true);
   }

@@ -67,8 +67,7 @@ Differences Compare(const hil::Recording& a, const hil::Recording& b) {
     d.mean_gyro_cnt += (double(x.gyro_cnt[0]) - y.gyro_cnt[0]) / static_cast<double>(n);
   }
   for (size_t i = 0; i < std::min(a.ads.size(), b.ads.size()); ++i) {
-    d.max_ps_cnt =
-        std::max(d.max_ps_cnt, std::abs(double(a.ads[i].ps_counts) - b.ads[i].ps_counts));
+    d.max_ps_cnt = std::max(d.max_ps_cnt, std::abs(double(a.ads[i].ps_cnt) - b.ads[i].ps_cnt));
   }
   return d;
 }

@@ -296,11 +296,11 @@ TEST(AdsUnitDevice, PacketsCarryTheTestSetPressuresAndTheBenchChamberAir) {
   for (const fm::Frame& f : d.data) {
     const sensor_sim::AdsRawFrame expected = reference.Step(stimulus);
     const fm::AdsDataPayload got = fm::ParseAdsData(f);
-    EXPECT_EQ(got.raw.ps_code, expected.ps_cnt);
-    EXPECT_EQ(got.raw.pt_code, expected.pt_cnt);
-    EXPECT_EQ(got.raw.ps_bridge_code, expected.ps_temp_cnt);
-    EXPECT_EQ(got.raw.pt_bridge_code, expected.pt_temp_cnt);
-    EXPECT_EQ(got.raw.oat_code, expected.oat_cnt);
+    EXPECT_EQ(got.raw.ps_cnt, expected.ps_cnt);
+    EXPECT_EQ(got.raw.pt_cnt, expected.pt_cnt);
+    EXPECT_EQ(got.raw.ps_bridge_cnt, expected.ps_temp_cnt);
+    EXPECT_EQ(got.raw.pt_bridge_cnt, expected.pt_temp_cnt);
+    EXPECT_EQ(got.raw.oat_cnt, expected.oat_cnt);
   }
   fm::UnitProtocolClient client;
   double t = 1.0;

@@ -62,9 +62,9 @@ TEST(AdsUnit, PressureSlopesFollowTheBridgeSensitivity) {
     // Each end point may sit off the best-fit straight line by the BFSL nonlinearity (% FSO), so
     // the secant differs from the BFSL slope by at most twice that in counts; the ADC reference
     // error (ppm) adds 0.1 % at most.
-    const double fso_counts = v_b * b.sensitivity_mv_per_v * 1e-3 * CodesPerVolt(p);
+    const double fso_cnt = v_b * b.sensitivity_mv_per_v * 1e-3 * CodesPerVolt(p);
     const double allowed =
-        2.0 * std::abs(b.nonlinearity_bfsl_pct_fso) / 100.0 * fso_counts + 0.001 * expected;
+        2.0 * std::abs(b.nonlinearity_bfsl_pct_fso) / 100.0 * fso_cnt + 0.001 * expected;
     EXPECT_NEAR(measured, expected, allowed) << (pitot ? "pitot" : "static");
   }
 }
