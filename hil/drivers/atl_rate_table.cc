@@ -14,6 +14,10 @@ namespace {
 
 using Kind = InstrumentError::Kind;
 
+// Silence that ends a resynchronisation: several replies' worth at 9600 baud (a 22-character
+// refusal takes 23 ms).
+constexpr double kResyncQuiet_s = 0.2;
+
 std::string CommandText(const std::string& mnemonic, std::optional<double> argument, bool query) {
   if (query) return mnemonic + "?";
   return argument ? fmt::format("{} {:g}", mnemonic, *argument) : mnemonic;
@@ -38,14 +42,18 @@ std::string AtlRateTable::Command(const std::string& mnemonic,
   const AtlFraming& framing = table.framing();
   const std::string terminator = framing.line_end + framing.prompt + framing.line_end;
   // A client that wrote here by mistake (a station with its ports swapped; Modbus bytes hold no
-  // line end) leaves a partial line in the table's input. The first command leads with a line
-  // end, which ends that line; the table refuses it before it answers the command.
+  // line end) leaves a partial line in the table's input, and the table may still be refusing
+  // its lines after it closed. The first command is preceded by a line end, which ends that
+  // line, and by a wait for the table to fall silent; a refusal later than that wait is skipped.
   const bool resync = !line_synced_;
-  const std::vector<std::string> replies = port_.ExchangeUntil(
-      text,
-      (resync ? framing.line_end : "") + request,
-      terminator,
-      [resync](std::string_view reply) { return !resync || !reply.starts_with('?'); });
+  if (resync) {
+    port_.Send(text, framing.line_end);
+    port_.DrainUntilQuiet(text, kResyncQuiet_s);
+  }
+  const std::vector<std::string> replies =
+      port_.ExchangeUntil(text, request, terminator, [resync](std::string_view reply) {
+        return !resync || !reply.starts_with('?');
+      });
   line_synced_ = true;
   const std::string& reply = replies.back();
   const std::string data = reply.substr(0, reply.size() - terminator.size());

@@ -42,6 +42,26 @@ void InstrumentPort::Send(const std::string& command, std::string_view request) 
   }
 }
 
+size_t InstrumentPort::DrainUntilQuiet(const std::string& command, double quiet_s) {
+  const ReplyDeadline limit(clock_, entry_.timeout_ms / 1000.0, reply_timeout());
+  ReplyDeadline quiet(clock_, quiet_s, std::max(kMinWallQuiet, clock_.WallTimeout(quiet_s)));
+  size_t dropped = 0;
+  std::array<uint8_t, 256> chunk{};
+  while (!quiet.Passed() && !limit.Passed()) {
+    size_t n = 0;
+    try {
+      n = port_->ReadSome(chunk, std::min(quiet.WaitLeft(), limit.WaitLeft()));
+    } catch (const TransportError& e) {
+      Fail(InstrumentError::Kind::kNoReply, command, "", e.what());
+    }
+    if (n > 0) {
+      dropped += n;
+      quiet.Restart();
+    }
+  }
+  return dropped;
+}
+
 std::string InstrumentPort::Exchange(const std::string& command,
                                      std::string_view request,
                                      std::string_view terminator) {

@@ -28,6 +28,10 @@ namespace adahrs::hil {
 /// "no reply" verdicts, and it costs only when an instrument really is silent.
 inline constexpr std::chrono::milliseconds kMinWallReplyTimeout{1000};
 
+/// Floor of the wall-clock silence that DrainUntilQuiet takes for a quiet line: a rig or an
+/// instrument adapter still sending can be unscheduled for tens of milliseconds on a busy PC.
+inline constexpr std::chrono::milliseconds kMinWallQuiet{100};
+
 /// The wall-clock wait for a reply promised within `timeout_ms` of clock time.
 std::chrono::milliseconds WallReplyTimeout(const Clock& clock, int timeout_ms);
 
@@ -61,6 +65,13 @@ class InstrumentPort {
                                          std::string_view request,
                                          std::string_view terminator,
                                          const std::function<bool(std::string_view)>& is_answer);
+
+  /// Reads and drops what arrives until nothing has arrived for `quiet_s` of clock time (and
+  /// kMinWallQuiet of wall time), or until one reply timeout has passed on a line that never
+  /// falls quiet. For a first command after a stranger used the line (a station with swapped
+  /// ports): the instrument may still be answering that client's commands after it closed, and
+  /// the tail of such an answer would read as the reply to ours. Returns the bytes dropped.
+  size_t DrainUntilQuiet(const std::string& command, double quiet_s);
 
   [[noreturn]] void Fail(InstrumentError::Kind kind,
                          const std::string& command,

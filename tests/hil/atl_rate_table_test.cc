@@ -72,6 +72,25 @@ TEST(AtlRateTable, SilentTableIsNoReplyAfterTheBoundedRetries) {
   }
 }
 
+// A client that wrote here by mistake (a Prologix driver on the table's port) closes while the
+// table is still refusing its lines: the next driver's first reply must be its own, not the tail
+// of a refusal that was on the wire when it opened.
+TEST(AtlRateTable, FirstReplyIsItsOwnWhileTheTableStillRefusesAStrangersLines) {
+  RigStation s;
+  for (int round = 0; round < 5; ++round) {
+    {
+      SerialPort stranger(s.Entry("rate_table").port, "stranger");
+      std::string lines;
+      // 200 refusals of 22 characters at 9600 baud: 4.6 simulated s, 23 ms of wall time.
+      for (int i = 0; i < 200; ++i) lines += "++addr 5\n";
+      stranger.Write(lines, std::chrono::seconds(5));
+    }
+    AtlRateTable table(s.Entry("rate_table"), s.clock);
+    EXPECT_THAT(table.Identify().detail, HasSubstr("status word")) << "round " << round;
+    EXPECT_NEAR(table.ReadRateDps(), 0.0, 0.01) << "round " << round;
+  }
+}
+
 TEST(AtlRateTable, OpenInterlockIsAFault) {
   RigStation s;
   AtlRateTable table(s.Entry("rate_table"), s.clock);
