@@ -6,9 +6,13 @@
 #include <libdeflate.h>
 
 #include <cerrno>
+#include <condition_variable>
 #include <cstring>
+#include <exception>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "hil/recording/recording_files.h"
 
@@ -20,19 +24,102 @@ constexpr size_t kBufferBytes = size_t{1} << 20;
 
 }  // namespace
 
-CsvFileWriter::CsvFileWriter(const std::filesystem::path& path, int gzip_level)
-    : path_(path), compressed_(IsCompressed(path)), buffer_(kBufferBytes) {
-  if (compressed_) {
-    compressor_ = libdeflate_alloc_compressor(gzip_level);
-    if (compressor_ == nullptr) {
-      throw std::runtime_error(path_.string() + ": cannot make a deflate compressor at level " +
+// Compresses one member at a time on a thread of its own and writes it to the file. The appending
+// thread hands a full buffer over and takes back the one the thread has finished with, so at most
+// one member waits while the next is being filled.
+class CsvFileWriter::Compressor {
+ public:
+  Compressor(CsvFileWriter& file, int gzip_level)
+      : file_(file), deflate_(libdeflate_alloc_compressor(gzip_level)) {
+    if (deflate_ == nullptr) {
+      throw std::runtime_error(file_.path_.string() +
+                               ": cannot make a deflate compressor at level " +
                                std::to_string(gzip_level));
     }
+    thread_ = std::thread([this] { Run(); });
   }
+
+  ~Compressor() {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+    libdeflate_free_compressor(deflate_);
+  }
+
+  // Takes the first `size` bytes of `buffer` as the next member; `buffer` comes back as a buffer
+  // of no particular content. Waits while the previous member is being compressed.
+  void Hand(std::vector<char>& buffer, size_t size) {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [&] { return !busy_; });
+    if (error_) std::rethrow_exception(error_);
+    buffer.swap(text_);
+    text_size_ = size;
+    busy_ = true;
+    cv_.notify_all();
+  }
+
+  // Waits until every member handed over is written; throws what the thread failed with.
+  void Wait() {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [&] { return !busy_; });
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  void Run() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+      cv_.wait(lock, [&] { return busy_ || stopping_; });
+      if (!busy_) return;  // stopping, nothing handed over
+      lock.unlock();
+      std::exception_ptr error;
+      try {
+        Compress();
+      } catch (...) {
+        error = std::current_exception();
+      }
+      lock.lock();
+      if (error && !error_) error_ = error;
+      busy_ = false;
+      cv_.notify_all();
+    }
+  }
+
+  void Compress() {
+    member_.resize(libdeflate_gzip_compress_bound(deflate_, text_size_));
+    const size_t size = libdeflate_gzip_compress(
+        deflate_, text_.data(), text_size_, member_.data(), member_.size());
+    if (size == 0) throw std::runtime_error(file_.path_.string() + ": gzip compression failed");
+    file_.WriteAll(member_.data(), size);
+  }
+
+  CsvFileWriter& file_;
+  libdeflate_compressor* deflate_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::vector<char> text_;  // the member being compressed (when busy_)
+  size_t text_size_ = 0;
+  bool busy_ = false;
+  bool stopping_ = false;
+  std::exception_ptr error_;
+  std::vector<char> member_;  // one compressed member
+  std::thread thread_;
+};
+
+CsvFileWriter::CsvFileWriter(const std::filesystem::path& path, int gzip_level)
+    : path_(path), buffer_(kBufferBytes) {
   fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd_ < 0) {
-    libdeflate_free_compressor(compressor_);
-    Fail("cannot open for appending");
+  if (fd_ < 0) Fail("cannot open for appending");
+  if (IsCompressed(path)) {
+    try {
+      compressor_ = std::make_unique<Compressor>(*this, gzip_level);
+    } catch (...) {
+      ::close(fd_);
+      throw;
+    }
   }
 }
 
@@ -41,7 +128,7 @@ CsvFileWriter::~CsvFileWriter() {
     Flush();
   } catch (...) {  // a destructor cannot report; Flush before destruction does
   }
-  libdeflate_free_compressor(compressor_);
+  compressor_.reset();
   ::close(fd_);
 }
 
@@ -61,14 +148,11 @@ void CsvFileWriter::WriteAll(const char* data, size_t size) {
 
 void CsvFileWriter::WriteBuffer() {
   if (buffered_ == 0) return;
-  if (!compressed_) {
+  if (!compressor_) {
     WriteAll(buffer_.data(), buffered_);
   } else {
-    member_.resize(libdeflate_gzip_compress_bound(compressor_, buffered_));
-    const size_t size = libdeflate_gzip_compress(
-        compressor_, buffer_.data(), buffered_, member_.data(), member_.size());
-    if (size == 0) throw std::runtime_error(path_.string() + ": gzip compression failed");
-    WriteAll(member_.data(), size);
+    compressor_->Hand(buffer_, buffered_);
+    if (buffer_.size() < kBufferBytes) buffer_.resize(kBufferBytes);
   }
   buffered_ = 0;
 }
@@ -82,10 +166,17 @@ void CsvFileWriter::Append(std::string_view text) {
   buffered_ += text.size();
 }
 
-void CsvFileWriter::Flush() { WriteBuffer(); }
+void CsvFileWriter::Flush() {
+  WriteBuffer();
+  if (compressor_) compressor_->Wait();
+}
 
 void CsvFileWriter::FlushIfDue() {
-  if (!compressed_ || buffered_ >= kMemberBytes) Flush();
+  if (!compressor_) {
+    Flush();
+  } else if (buffered_ >= kMemberBytes) {
+    WriteBuffer();
+  }
 }
 
 void CsvFileWriter::Sync() const {
