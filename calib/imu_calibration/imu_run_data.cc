@@ -81,19 +81,21 @@ ImuSample ToSample(const hil::ImuRecordRow& row) {
 void GroupByRate(const std::string& run,
                  int step,
                  const std::string& kind,
-                 const std::vector<std::pair<int, ImuSample>>& samples,
+                 const std::vector<int>& orientations,
+                 const std::vector<ImuSample>& samples,
                  std::vector<ImuAcquisition>* out) {
   std::vector<ImuAcquisition> groups;
-  for (const auto& [orientation, s] : samples) {
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const ImuSample& s = samples[i];
     ImuAcquisition* group = nullptr;
     for (ImuAcquisition& g : groups) {
-      if (g.orientation == orientation &&
+      if (g.orientation == orientations[i] &&
           std::abs(g.samples.front().table_rate_dps - s.table_rate_dps) < kRateGroupWidth_dps) {
         group = &g;
       }
     }
     if (!group) {
-      groups.push_back({run, step, kind, orientation, 0.0, {}});
+      groups.push_back({run, step, kind, orientations[i], 0.0, {}});
       group = &groups.back();
     }
     group->samples.push_back(s);
@@ -224,7 +226,8 @@ void ImuRunCollector::Take(const hil::ImuRecordRow& row, int line) {
   }
   ImuSample sample = ToSample(row);
   sample.run = run_index_;
-  cached_rows_->push_back({row.orientation, sample});
+  cached_rows_->orientation.push_back(row.orientation);
+  cached_rows_->samples.push_back(sample);
 }
 
 void ImuRunCollector::Finish() {
@@ -244,34 +247,43 @@ void ImuRunCollector::Finish() {
                               ", tag " + std::to_string(tags_[step]) + ")";
     for (const std::string& serial : serials_) {
       auto it = selected_.find({serial, static_cast<int>(step)});
-      if (it == selected_.end() || it->second.size() < 2) {
+      if (it == selected_.end() || it->second.samples.size() < 2) {
         Fail("unit " + serial + " is missing from " + where +
              ": fewer than 2 usable rows with the step's tag");
       }
       ImuUnitData& unit = data_->units[serial];
       unit.serial = serial;
-      const std::vector<std::pair<int, ImuSample>> rows = std::move(it->second);  // freed after use
+      SelectedRows rows = std::move(it->second);  // freed after use
       selected_.erase(it);
       if (const auto* a = std::get_if<AccelStep>(&body)) {
-        ImuAcquisition acq{run_, static_cast<int>(step), "accel", a->orientation, 0.0, {}};
-        for (const auto& [orientation, s] : rows) {
+        for (const int orientation : rows.orientation) {
           if (orientation != a->orientation) {
             Fail("unit " + serial + " " + where + ": a row carries orientation " +
                  std::to_string(orientation) + ", the step commands " +
                  std::to_string(a->orientation));
           }
-          acq.samples.push_back(s);
         }
-        unit.accel.push_back(std::move(acq));
+        unit.accel.push_back(
+            {run_, static_cast<int>(step), "accel", a->orientation, 0.0, std::move(rows.samples)});
       } else if (std::holds_alternative<GyroStep>(body)) {
-        GroupByRate(run_, static_cast<int>(step), "gyro", rows, &unit.gyro);
+        GroupByRate(
+            run_, static_cast<int>(step), "gyro", rows.orientation, rows.samples, &unit.gyro);
       } else if (std::holds_alternative<CrossAxisStep>(body)) {
-        GroupByRate(run_, static_cast<int>(step), "cross_axis", rows, &unit.cross_axis);
+        GroupByRate(run_,
+                    static_cast<int>(step),
+                    "cross_axis",
+                    rows.orientation,
+                    rows.samples,
+                    &unit.cross_axis);
       } else {
-        unit.thermal.reserve(unit.thermal.size() + rows.size());
-        for (const auto& [orientation, s] : rows) unit.thermal.push_back(s);
+        // The thermal rows are most of a run's: moved, not copied, when they are the first.
+        if (unit.thermal.empty()) {
+          unit.thermal = std::move(rows.samples);
+        } else {
+          unit.thermal.insert(unit.thermal.end(), rows.samples.begin(), rows.samples.end());
+        }
         unit.thermal_orientation =
-            rows.front().first != 0 ? rows.front().first : current_orientation;
+            rows.orientation.front() != 0 ? rows.orientation.front() : current_orientation;
       }
     }
   }

@@ -109,6 +109,12 @@ class ImuRunCollector {
   void Finish();
 
  private:
+  // The rows selected for one (unit, step): each sample with its row's fixture orientation.
+  struct SelectedRows {
+    std::vector<int> orientation;
+    std::vector<ImuSample> samples;
+  };
+
   [[noreturn]] void Fail(const std::string& message) const;
 
   std::string run_;
@@ -118,13 +124,13 @@ class ImuRunCollector {
   std::vector<RejectedInterval> rejected_;
   ImuRunData* data_;
   int run_index_ = 0;
-  std::map<std::pair<std::string, int>, std::vector<std::pair<int, ImuSample>>> selected_;
+  std::map<std::pair<std::string, int>, SelectedRows> selected_;
   // The previous row's unit and step with their entries: the consecutive rows of one unit and
   // step (a one-unit run's) skip the look-ups.
   std::string cached_unit_;
   int cached_step_ = -1;
   ImuUnitData* cached_data_ = nullptr;
-  std::vector<std::pair<int, ImuSample>>* cached_rows_ = nullptr;
+  SelectedRows* cached_rows_ = nullptr;
 };
 
 /// Labels every unit's thermal rows up-ramp, down-ramp or soak (the rule above).

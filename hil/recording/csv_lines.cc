@@ -1,5 +1,10 @@
 #include "hil/recording/csv_lines.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include <bit>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -14,6 +19,33 @@ namespace {
 constexpr size_t kBlockBytes = size_t{1} << 20;
 
 }  // namespace
+
+void SplitCells(std::string_view line, std::vector<std::string_view>& cells) {
+  cells.clear();
+  const char* cell = line.data();
+  const char* c = line.data();
+  const char* const end = line.data() + line.size();
+#if defined(__SSE2__)
+  // A byte at a time costs a compare and a branch per byte of a 150-byte row; sixteen at a time
+  // the commas come out of one mask.
+  const __m128i comma = _mm_set1_epi8(',');
+  for (; end - c >= 16; c += 16) {
+    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c));
+    auto mask = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(bytes, comma)));
+    for (; mask != 0; mask &= mask - 1) {
+      const char* at = c + std::countr_zero(mask);
+      cells.emplace_back(cell, static_cast<size_t>(at - cell));
+      cell = at + 1;
+    }
+  }
+#endif
+  for (; c != end; ++c) {
+    if (*c != ',') continue;
+    cells.emplace_back(cell, static_cast<size_t>(c - cell));
+    cell = c + 1;
+  }
+  cells.emplace_back(cell, static_cast<size_t>(end - cell));
+}
 
 CsvLines::CsvLines(const std::filesystem::path& path) : path_(path), buffer_(kBlockBytes) {
   if (IsCompressed(path_)) {

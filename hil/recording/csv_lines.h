@@ -3,7 +3,8 @@
 // decompressed (gzip_reader.h), any other is read as it is. Says whether a line ended with its
 // LF, so a reader can tell a torn last line (a crash mid-row) from a complete one; a compressed
 // file whose last gzip member is cut short ends with an incomplete line too (empty when the cut
-// fell between rows), so that cut is never passed over in silence.
+// fell between rows), so that cut is never passed over in silence. SplitCells cuts a line at its
+// commas (no quoting: the recording format has none).
 #pragma once
 
 #include <cstdio>
@@ -15,6 +16,10 @@
 namespace adahrs::hil {
 
 class GzipReader;
+
+/// Replaces `cells` with the views of `line`'s comma-separated cells (one more than its commas;
+/// an empty line is one empty cell). Scans 16 bytes at a time where SSE2 is available.
+void SplitCells(std::string_view line, std::vector<std::string_view>& cells);
 
 class CsvLines {
  public:

@@ -77,16 +77,7 @@ class CsvCursor {
     bool complete = false;
     if (!NextLine(text, complete)) return false;
     ++line_;
-    // One pass over the bytes: a call per cell (find) costs more than the cells' own parsing.
-    cells_.clear();
-    const char* cell = text.data();
-    const char* const end = text.data() + text.size();
-    for (const char* c = cell; c != end; ++c) {
-      if (*c != ',') continue;
-      cells_.emplace_back(cell, static_cast<size_t>(c - cell));
-      cell = c + 1;
-    }
-    cells_.emplace_back(cell, static_cast<size_t>(end - cell));
+    SplitCells(text, cells_);
     if (!complete && allow_truncated_tail) {
       ++truncated;
       return false;
