@@ -77,9 +77,12 @@ void FitThermalStage(const ImuUnitData& unit,
     throw ImuInputError(who + ": no thermal_profile rows (give the thermal-calibration run)");
   }
   fm::ImuCalibrationConstants& c = result->constants;
+  // One buffer for the nine channels: a fresh one per channel faulted its pages in afresh each
+  // time (tens of MB per channel on a full thermal profile).
+  std::vector<ThermalSample> samples;
+  samples.reserve(unit.thermal.size());
   for (int ch = 0; ch < 9; ++ch) {
-    std::vector<ThermalSample> samples;
-    samples.reserve(unit.thermal.size());
+    samples.clear();
     for (size_t i = 0; i < unit.thermal.size(); ++i) {
       const ImuSample& s = unit.thermal[i];
       const double u = fm::ImuReference(c, fm::ImuCompensationMode::kRaw, s.raw)[ch];

@@ -230,9 +230,26 @@ void ImuRunCollector::Take(const hil::ImuRecordRow& row, int line) {
   cached_rows_->samples.push_back(sample);
 }
 
+// The thermal rows are most of a run's, over several steps: each unit's are copied once into
+// room made for all of them, not into a vector that grows (and is copied) step by step.
+void ImuRunCollector::ReserveThermalRows() {
+  std::map<std::string, size_t> rows_of;
+  for (const auto& [key, rows] : selected_) {
+    const auto step = static_cast<size_t>(key.second);
+    if (std::holds_alternative<ThermalProfileStep>(sequence_.steps[step].body)) {
+      rows_of[key.first] += rows.samples.size();
+    }
+  }
+  for (const auto& [serial, rows] : rows_of) {
+    std::vector<ImuSample>& thermal = data_->units[serial].thermal;
+    thermal.reserve(thermal.size() + rows);
+  }
+}
+
 void ImuRunCollector::Finish() {
   cached_data_ = nullptr;  // the rows' entries are moved out below
   cached_rows_ = nullptr;
+  ReserveThermalRows();
   int current_orientation = 0;
   for (size_t step = 0; step < sequence_.steps.size(); ++step) {
     const StepBody& body = sequence_.steps[step].body;
@@ -276,12 +293,7 @@ void ImuRunCollector::Finish() {
                     rows.samples,
                     &unit.cross_axis);
       } else {
-        // The thermal rows are most of a run's: moved, not copied, when they are the first.
-        if (unit.thermal.empty()) {
-          unit.thermal = std::move(rows.samples);
-        } else {
-          unit.thermal.insert(unit.thermal.end(), rows.samples.begin(), rows.samples.end());
-        }
+        unit.thermal.insert(unit.thermal.end(), rows.samples.begin(), rows.samples.end());
         unit.thermal_orientation =
             rows.orientation.front() != 0 ? rows.orientation.front() : current_orientation;
       }

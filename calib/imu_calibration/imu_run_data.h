@@ -116,6 +116,7 @@ class ImuRunCollector {
   };
 
   [[noreturn]] void Fail(const std::string& message) const;
+  void ReserveThermalRows();
 
   std::string run_;
   Sequence sequence_;
