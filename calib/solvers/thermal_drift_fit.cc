@@ -12,13 +12,28 @@
 namespace adahrs::calib {
 namespace {
 
-using SegmentFilter = std::optional<ThermalSegment>;  // the samples fitted: one segment, or all
+// The three sets of samples fitted (every sample, the up-ramps', the down-ramps'), each fitted as
+// if alone; one pass over the samples serves all three.
+constexpr int kSubsets = 3;
+constexpr std::array<const char*, kSubsets> kSubsetNames = {
+    "all samples", "up-ramps", "down-ramps"};
 
-bool Selected(const ThermalSample& s, const SegmentFilter& filter) {
-  return !filter || s.segment == *filter;
+// The subsets a sample belongs to: every sample to the first, a ramp's to its direction's too.
+int SecondSubset(const ThermalSample& s) {
+  return s.segment == ThermalSegment::kUpRamp ? 1 : s.segment == ThermalSegment::kDownRamp ? 2 : -1;
 }
 
-// Samples per temperature band (band index - first), over the selected samples.
+template <typename Visit>
+void ForEachSubset(const ThermalSample& s, Visit visit) {
+  visit(0);
+  if (const int second = SecondSubset(s); second >= 0) visit(second);
+}
+
+long long BandOf(const ThermalSample& s, double band_width_cnt) {
+  return static_cast<long long>(std::floor(s.temp_cnt / band_width_cnt));
+}
+
+// Samples per temperature band (band index - first), over one subset's samples.
 struct BandCounts {
   long long first = 0;
   std::vector<int> count;
@@ -27,35 +42,40 @@ struct BandCounts {
   double temp_min_cnt = 0.0, temp_max_cnt = 0.0;
 };
 
-BandCounts CountBands(const std::vector<ThermalSample>& samples,
-                      const SegmentFilter& filter,
-                      double band_width_cnt,
-                      const std::string& context) {
-  BandCounts b;
-  long long lo = 0, hi = -1;
+std::array<BandCounts, kSubsets> CountBands(const std::vector<ThermalSample>& samples,
+                                            double band_width_cnt,
+                                            const std::string& context) {
+  std::array<BandCounts, kSubsets> b;
+  std::array<long long, kSubsets> lo{}, hi{};
   for (const ThermalSample& s : samples) {
-    if (!Selected(s, filter)) continue;
     if (!std::isfinite(s.temp_cnt) || !std::isfinite(s.value)) {
       throw DegenerateDesignError(
-          fmt::format("{}: design refused: observation {} is not finite or has a weight <= 0",
+          fmt::format("{} ({}): design refused: observation {} is not finite or has a weight <= 0",
                       context,
-                      b.samples));
+                      kSubsetNames[0],
+                      b[0].samples));
     }
-    const auto band = static_cast<long long>(std::floor(s.temp_cnt / band_width_cnt));
-    if (b.samples == 0 || band < lo) lo = band;
-    if (b.samples == 0 || band > hi) hi = band;
-    b.temp_min_cnt = b.samples == 0 ? s.temp_cnt : std::min(b.temp_min_cnt, s.temp_cnt);
-    b.temp_max_cnt = b.samples == 0 ? s.temp_cnt : std::max(b.temp_max_cnt, s.temp_cnt);
-    ++b.samples;
+    const long long band = BandOf(s, band_width_cnt);
+    ForEachSubset(s, [&](int k) {
+      BandCounts& c = b[k];
+      if (c.samples == 0 || band < lo[k]) lo[k] = band;
+      if (c.samples == 0 || band > hi[k]) hi[k] = band;
+      c.temp_min_cnt = c.samples == 0 ? s.temp_cnt : std::min(c.temp_min_cnt, s.temp_cnt);
+      c.temp_max_cnt = c.samples == 0 ? s.temp_cnt : std::max(c.temp_max_cnt, s.temp_cnt);
+      ++c.samples;
+    });
   }
-  b.first = lo;
-  b.count.assign(static_cast<size_t>(hi - lo + 1), 0);
+  for (int k = 0; k < kSubsets; ++k) {
+    b[k].first = lo[k];
+    b[k].count.assign(b[k].samples == 0 ? 0 : static_cast<size_t>(hi[k] - lo[k] + 1), 0);
+  }
   for (const ThermalSample& s : samples) {
-    if (!Selected(s, filter)) continue;
-    ++b.count[static_cast<size_t>(static_cast<long long>(std::floor(s.temp_cnt / band_width_cnt)) -
-                                  lo)];
+    const long long band = BandOf(s, band_width_cnt);
+    ForEachSubset(s, [&](int k) { ++b[k].count[static_cast<size_t>(band - b[k].first)]; });
   }
-  for (int c : b.count) b.bands += c > 0 ? 1 : 0;
+  for (BandCounts& c : b) {
+    for (int n : c.count) c.bands += n > 0 ? 1 : 0;
+  }
   return b;
 }
 
@@ -68,38 +88,60 @@ struct NormalEquations {
   Eigen::Matrix3d g = Eigen::Matrix3d::Zero();
 };
 
-NormalEquations Accumulate(const std::vector<ThermalSample>& samples,
-                           const SegmentFilter& filter,
-                           const BandCounts& bands,
-                           const InputScaling& scaling,
-                           double band_width_cnt) {
-  // Per band: sum u^k (k = 0..4) and sum u^k y (k = 0..2).
-  std::vector<std::array<double, 8>> per_band(bands.count.size(), std::array<double, 8>{});
-  for (const ThermalSample& s : samples) {
-    if (!Selected(s, filter)) continue;
-    const double u = scaling.Normalise(s.temp_cnt);
-    const double u2 = u * u;
-    auto& a = per_band[static_cast<size_t>(
-        static_cast<long long>(std::floor(s.temp_cnt / band_width_cnt)) - bands.first)];
-    a[0] += 1.0;
-    a[1] += u;
-    a[2] += u2;
-    a[3] += u2 * u;
-    a[4] += u2 * u2;
-    a[5] += s.value;
-    a[6] += u * s.value;
-    a[7] += u2 * s.value;
+// One subset's fit as it goes: its bands, scaling, sums and solution; `error` says why it has
+// none (too few bands, a degenerate design).
+struct SubsetFit {
+  BandCounts bands;
+  InputScaling scaling;
+  std::vector<std::array<double, 8>> per_band;  // sums of u^k (k = 0..4) and u^k y (k = 0..2)
+  NormalEquations ne;
+  Eigen::Vector3d beta = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d m_inv = Eigen::Matrix3d::Zero();
+  double condition = 0.0;
+  double sum_sq = 0.0;
+  std::string error;
+  bool ok() const { return error.empty(); }
+};
+
+// Per band: sum u^k (k = 0..4) and sum u^k y (k = 0..2) of every usable subset, in one pass.
+void AccumulateBands(const std::vector<ThermalSample>& samples,
+                     double band_width_cnt,
+                     std::array<SubsetFit, kSubsets>& fits) {
+  for (SubsetFit& f : fits) {
+    if (f.ok()) f.per_band.assign(f.bands.count.size(), std::array<double, 8>{});
   }
+  for (const ThermalSample& s : samples) {
+    const long long band = BandOf(s, band_width_cnt);
+    ForEachSubset(s, [&](int k) {
+      SubsetFit& f = fits[k];
+      if (!f.ok()) return;
+      const double u = f.scaling.Normalise(s.temp_cnt);
+      const double u2 = u * u;
+      auto& a = f.per_band[static_cast<size_t>(band - f.bands.first)];
+      a[0] += 1.0;
+      a[1] += u;
+      a[2] += u2;
+      a[3] += u2 * u;
+      a[4] += u2 * u2;
+      a[5] += s.value;
+      a[6] += u * s.value;
+      a[7] += u2 * s.value;
+    });
+  }
+}
+
+// The band-weighted normal equations from the per-band sums.
+NormalEquations NormalFromBands(const SubsetFit& f) {
   std::array<double, 5> moment{}, moment_sq{};
   NormalEquations ne;
-  for (size_t b = 0; b < per_band.size(); ++b) {
-    if (bands.count[b] == 0) continue;
-    const double w = 1.0 / bands.count[b];
+  for (size_t b = 0; b < f.per_band.size(); ++b) {
+    if (f.bands.count[b] == 0) continue;
+    const double w = 1.0 / f.bands.count[b];
     for (int k = 0; k < 5; ++k) {
-      moment[k] += w * per_band[b][k];
-      moment_sq[k] += w * w * per_band[b][k];
+      moment[k] += w * f.per_band[b][k];
+      moment_sq[k] += w * w * f.per_band[b][k];
     }
-    for (int k = 0; k < 3; ++k) ne.rhs[k] += w * per_band[b][5 + k];
+    for (int k = 0; k < 3; ++k) ne.rhs[k] += w * f.per_band[b][5 + k];
   }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
@@ -149,54 +191,83 @@ Eigen::Vector3d SolveNormal(const NormalEquations& ne,
   return d.asDiagonal() * (ms_inv * d.cwiseProduct(ne.rhs));
 }
 
-// Equal weight per temperature band: w_i = 1 / (samples in the band of sample i). The rows are
-// never held as a design matrix: the fit streams them into per-band sums (normal equations in the
-// normalised temperature, where the equilibrated design's condition number is small), then a
-// second pass takes the residuals.
-ThermalPolynomial FitSubset(const std::string& context,
-                            const std::vector<ThermalSample>& samples,
-                            const SegmentFilter& filter,
-                            const ThermalFitOptions& options) {
-  const BandCounts bands = CountBands(samples, filter, options.band_width_cnt, context);
-  if (bands.bands < options.min_bands) {
-    throw DegenerateDesignError(fmt::format(
-        "{}: design refused: the samples cover {} temperature band(s) of {} counts, at least {} "
-        "are needed (too few temperatures)",
-        context,
-        bands.bands,
-        options.band_width_cnt,
-        options.min_bands));
-  }
-  const InputScaling scaling = InputScaling::FromRange(bands.temp_min_cnt, bands.temp_max_cnt);
-  const NormalEquations ne = Accumulate(samples, filter, bands, scaling, options.band_width_cnt);
-  Eigen::Matrix3d m_inv;
-  double condition = 0.0;
-  const Eigen::Vector3d beta = SolveNormal(ne, options.least_squares, context, &m_inv, &condition);
-  double sum_sq = 0.0;
-  for (const ThermalSample& s : samples) {
-    if (!Selected(s, filter)) continue;
-    const double u = scaling.Normalise(s.temp_cnt);
-    const double r = s.value - (beta[0] + beta[1] * u + beta[2] * (u * u));
-    sum_sq += r * r;
-  }
-  const double sigma2 = sum_sq / (bands.samples - 3);
-  const Eigen::Matrix3d covariance = sigma2 * m_inv * ne.g * m_inv;  // the sandwich (kBalancing)
+// The fitted polynomial in raw temperature counts with its sandwich covariance.
+ThermalPolynomial Polynomial(const SubsetFit& f) {
+  const double sigma2 = f.sum_sq / (f.bands.samples - 3);
+  const Eigen::Matrix3d covariance = sigma2 * f.m_inv * f.ne.g * f.m_inv;  // kBalancing
   const PolynomialBasis basis = PolynomialBasis::Univariate(2, "t");
-  const Eigen::Matrix3d t = basis.NormalisedToRaw(scaling, InputScaling{});
-  const Eigen::Vector3d raw = t * beta;
+  const Eigen::Matrix3d t = basis.NormalisedToRaw(f.scaling, InputScaling{});
+  const Eigen::Vector3d raw = t * f.beta;
   ThermalPolynomial out;
   out.covariance = t * covariance * t.transpose();
   for (int i = 0; i < 3; ++i) {
     out.k[i] = raw[i];
     out.k_se[i] = std::sqrt(out.covariance(i, i));
   }
-  out.temp_min_cnt = bands.temp_min_cnt;
-  out.temp_max_cnt = bands.temp_max_cnt;
-  out.bands = bands.bands;
-  out.samples = bands.samples;
-  out.residual_rms = std::sqrt(sum_sq / bands.samples);
-  out.condition_number = condition;
+  out.temp_min_cnt = f.bands.temp_min_cnt;
+  out.temp_max_cnt = f.bands.temp_max_cnt;
+  out.bands = f.bands.bands;
+  out.samples = f.bands.samples;
+  out.residual_rms = std::sqrt(f.sum_sq / f.bands.samples);
+  out.condition_number = f.condition;
   return out;
+}
+
+// Equal weight per temperature band: w_i = 1 / (samples in the band of sample i). The rows are
+// never held as a design matrix: the fits stream them into per-band sums (normal equations in
+// the normalised temperature, where the equilibrated design's condition number is small), then a
+// last pass takes the residuals. The fit of all samples throws its DegenerateDesignError; a ramp
+// direction's is kept in its `error`.
+std::array<SubsetFit, kSubsets> FitSubsets(const std::string& channel,
+                                           const std::vector<ThermalSample>& samples,
+                                           const ThermalFitOptions& options) {
+  const std::string context = fmt::format("thermal fit of {}", channel);
+  std::array<SubsetFit, kSubsets> fits;
+  const std::array<BandCounts, kSubsets> bands =
+      CountBands(samples, options.band_width_cnt, context);
+  for (int k = 0; k < kSubsets; ++k) {
+    SubsetFit& f = fits[k];
+    f.bands = bands[k];
+    if (f.bands.bands < options.min_bands) {
+      f.error = fmt::format(
+          "{} ({}): design refused: the samples cover {} temperature band(s) of {} counts, at "
+          "least {} are needed (too few temperatures)",
+          context,
+          kSubsetNames[k],
+          f.bands.bands,
+          options.band_width_cnt,
+          options.min_bands);
+      if (k == 0) throw DegenerateDesignError(f.error);
+      continue;
+    }
+    f.scaling = InputScaling::FromRange(f.bands.temp_min_cnt, f.bands.temp_max_cnt);
+  }
+  AccumulateBands(samples, options.band_width_cnt, fits);
+  for (int k = 0; k < kSubsets; ++k) {
+    SubsetFit& f = fits[k];
+    if (!f.ok()) continue;
+    f.ne = NormalFromBands(f);
+    try {
+      f.beta = SolveNormal(f.ne,
+                           options.least_squares,
+                           context + " (" + kSubsetNames[k] + ")",
+                           &f.m_inv,
+                           &f.condition);
+    } catch (const DegenerateDesignError& e) {
+      if (k == 0) throw;
+      f.error = e.what();
+    }
+  }
+  for (const ThermalSample& s : samples) {
+    ForEachSubset(s, [&](int k) {
+      SubsetFit& f = fits[k];
+      if (!f.ok()) return;
+      const double u = f.scaling.Normalise(s.temp_cnt);
+      const double r = s.value - (f.beta[0] + f.beta[1] * u + f.beta[2] * (u * u));
+      f.sum_sq += r * r;
+    });
+  }
+  return fits;
 }
 
 }  // namespace
@@ -210,20 +281,16 @@ ThermalDriftResult FitThermalDrift(const std::string& channel,
                                    const std::vector<ThermalSample>& samples,
                                    const ThermalFitOptions& options) {
   ThermalDriftResult result;
-  result.all = FitSubset(
-      fmt::format("thermal fit of {} (all samples)", channel), samples, std::nullopt, options);
-
-  auto direction =
-      [&](ThermalSegment segment, const char* name, std::optional<ThermalPolynomial>* out) {
-        try {
-          *out = FitSubset(
-              fmt::format("thermal fit of {} ({})", channel, name), samples, segment, options);
-        } catch (const DegenerateDesignError& e) {
-          result.ramp_note += (result.ramp_note.empty() ? "" : "; ") + std::string(e.what());
-        }
-      };
-  direction(ThermalSegment::kUpRamp, "up-ramps", &result.up);
-  direction(ThermalSegment::kDownRamp, "down-ramps", &result.down);
+  const std::array<SubsetFit, kSubsets> fits = FitSubsets(channel, samples, options);
+  result.all = Polynomial(fits[0]);
+  for (int k = 1; k < kSubsets; ++k) {
+    std::optional<ThermalPolynomial>& out = k == 1 ? result.up : result.down;
+    if (fits[k].ok()) {
+      out = Polynomial(fits[k]);
+    } else {
+      result.ramp_note += (result.ramp_note.empty() ? "" : "; ") + fits[k].error;
+    }
+  }
 
   if (result.up && result.down) {
     const double lo = std::max(result.up->temp_min_cnt, result.down->temp_min_cnt);
