@@ -15,29 +15,6 @@ namespace {
 
 using hil::RejectedInterval;
 
-std::vector<RejectedInterval> RejectedIntervals(const nlohmann::json& meta,
-                                                const std::string& source) {
-  std::vector<RejectedInterval> out;
-  if (!meta.contains("rejected_intervals")) return out;
-  const nlohmann::json& list = meta["rejected_intervals"];
-  if (!list.is_array()) {
-    throw std::runtime_error(
-        fmt::format("{}/meta.json: rejected_intervals: expected an array", source));
-  }
-  for (size_t i = 0; i < list.size(); ++i) {
-    const nlohmann::json& r = list[i];
-    const auto path = fmt::format("{}/meta.json: rejected_intervals[{}]", source, i);
-    if (!r.is_object() || !r.contains("step") || !r["step"].is_number_integer() ||
-        !r.contains("t_start_s") || !r["t_start_s"].is_number() || !r.contains("t_end_s") ||
-        !r["t_end_s"].is_number()) {
-      throw std::runtime_error(path + ": expected {\"step\": int, \"t_start_s\", \"t_end_s\"}");
-    }
-    out.push_back(
-        {r["step"].get<int>(), r["t_start_s"].get<double>(), r["t_end_s"].get<double>(), ""});
-  }
-  return out;
-}
-
 bool Rejected(const std::vector<RejectedInterval>& intervals, const hil::AdsRecordRow& row) {
   for (const RejectedInterval& r : intervals) {
     if (r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s) return true;
@@ -99,7 +76,7 @@ AdsPointSelector::AdsPointSelector(const nlohmann::json& meta,
                                    std::string source)
     : serial_(std::move(serial)),
       source_(std::move(source)),
-      rejected_(RejectedIntervals(meta, source_)) {}
+      rejected_(hil::ParseRejectedIntervals(meta, source_ + "/meta.json")) {}
 
 void AdsPointSelector::Add(const hil::AdsRecordRow& row, int line) {
   if (row.unit != serial_) return;

@@ -148,15 +148,8 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
       }
     }
   }
-  std::vector<RejectedInterval> rejected;
-  if (meta.contains("rejected_intervals")) {
-    for (const json& r : meta["rejected_intervals"]) {
-      rejected.push_back({r.at("step").get<int>(),
-                          r.at("t_start_s").get<double>(),
-                          r.at("t_end_s").get<double>()});
-    }
-  }
-  ImuRunCollector collector(run, RecordingSha256(dir), sequence, g, serials, rejected, data);
+  ImuRunCollector collector(
+      run, RecordingSha256(dir), sequence, g, serials, rec.rejected_intervals, data);
   // Rows streamed from imu.csv: a recording of ten million rows is never held twice.
   const hil::Recording read = hil::StreamRecording(
       dir, {[&](hil::ImuRecordRow&& row, int line) { collector.Take(row, line); }, {}});
@@ -171,7 +164,7 @@ ImuRunCollector::ImuRunCollector(std::string run,
                                  const Sequence& sequence,
                                  double local_gravity_mps2,
                                  std::vector<std::string> serials,
-                                 std::vector<RejectedInterval> rejected,
+                                 std::vector<hil::RejectedInterval> rejected,
                                  ImuRunData* data)
     : run_(std::move(run)),
       sequence_(sequence),
@@ -212,7 +205,7 @@ void ImuRunCollector::Take(const hil::ImuRecordRow& row, int line) {
   }
   ImuUnitData& unit = *cached_data_;
   bool inside = false;
-  for (const RejectedInterval& r : rejected_) {
+  for (const hil::RejectedInterval& r : rejected_) {
     inside |= r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s;
   }
   if (inside) {

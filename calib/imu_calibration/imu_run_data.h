@@ -32,6 +32,7 @@
 #include "calib/solvers/thermal_drift_fit.h"
 #include "firmware_model/target/compensated_frame.h"
 #include "hil/recording/recording_format.h"
+#include "hil/recording/recording_reader.h"
 
 namespace adahrs::calib {
 
@@ -84,13 +85,6 @@ struct ImuRunData {
 /// hil::RecordingError with the reason.
 ImuRunData LoadImuRuns(const std::vector<std::filesystem::path>& run_dirs);
 
-/// A stretch of one step whose rows the operator rejected (meta.json $.rejected_intervals).
-struct RejectedInterval {
-  int step = 0;
-  double t_start_s = 0.0;
-  double t_end_s = 0.0;
-};
-
 /// Collects one run's rows into `data` by the rules above, from rows handed over one at a time:
 /// a recording streamed from disk (LoadImuRuns) or a run simulated in memory (calib/studies).
 /// The constructor and Finish throw ImuInputError naming `run`.
@@ -101,7 +95,7 @@ class ImuRunCollector {
                   const Sequence& sequence,
                   double local_gravity_mps2,
                   std::vector<std::string> serials,
-                  std::vector<RejectedInterval> rejected,
+                  std::vector<hil::RejectedInterval> rejected,
                   ImuRunData* data);
   /// Selects or excludes one row (`line`: its line in imu.csv, for exclusion messages).
   void Take(const hil::ImuRecordRow& row, int line);
@@ -122,7 +116,7 @@ class ImuRunCollector {
   Sequence sequence_;
   std::vector<uint8_t> tags_;
   std::vector<std::string> serials_;
-  std::vector<RejectedInterval> rejected_;
+  std::vector<hil::RejectedInterval> rejected_;
   ImuRunData* data_;
   int run_index_ = 0;
   std::map<std::pair<std::string, int>, SelectedRows> selected_;

@@ -242,38 +242,6 @@ double MetaNumber(const nlohmann::json& item, const char* key, const std::string
   return item[key].get<double>();
 }
 
-std::vector<RejectedInterval> ReadRejectedIntervals(const nlohmann::json& meta,
-                                                    const std::string& meta_path) {
-  std::vector<RejectedInterval> intervals;
-  if (!meta.contains("rejected_intervals")) return intervals;
-  const nlohmann::json& list = meta["rejected_intervals"];
-  if (!list.is_array()) {
-    throw RecordingError(meta_path + ": $.rejected_intervals is not an array");
-  }
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string where = meta_path + ": $.rejected_intervals[" + std::to_string(i) + "]";
-    const nlohmann::json& item = list[i];
-    if (!item.is_object()) throw RecordingError(where + " is not an object");
-    RejectedInterval r;
-    if (!item.contains("step") || !item["step"].is_number_integer()) {
-      throw RecordingError(where + ".step missing or not an integer");
-    }
-    r.step = item["step"].get<int>();
-    r.t_start_s = MetaNumber(item, "t_start_s", where);
-    r.t_end_s = MetaNumber(item, "t_end_s", where);
-    if (!(r.t_end_s >= r.t_start_s)) {
-      throw RecordingError(where + ": t_end_s " + std::to_string(r.t_end_s) +
-                           " is before t_start_s " + std::to_string(r.t_start_s));
-    }
-    if (!item.contains("reason") || !item["reason"].is_string()) {
-      throw RecordingError(where + ".reason missing or not a string");
-    }
-    r.reason = item["reason"].get<std::string>();
-    intervals.push_back(std::move(r));
-  }
-  return intervals;
-}
-
 }  // namespace
 
 Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions& options) {
@@ -343,7 +311,7 @@ Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
   }
   rec.format_version = static_cast<int>(version);
   RefuseRepeatedUnits(rec.meta, meta_path.string());
-  rec.rejected_intervals = ReadRejectedIntervals(rec.meta, meta_path.string());
+  rec.rejected_intervals = ParseRejectedIntervals(rec.meta, meta_path.string());
   return rec;
 }
 
@@ -543,6 +511,38 @@ bool IsRejected(const Recording& recording, double t_s) {
     if (t_s >= r.t_start_s && t_s <= r.t_end_s) return true;
   }
   return false;
+}
+
+std::vector<RejectedInterval> ParseRejectedIntervals(const nlohmann::json& meta,
+                                                     const std::string& meta_path) {
+  std::vector<RejectedInterval> intervals;
+  if (!meta.contains("rejected_intervals")) return intervals;
+  const nlohmann::json& list = meta["rejected_intervals"];
+  if (!list.is_array()) {
+    throw RecordingError(meta_path + ": $.rejected_intervals is not an array");
+  }
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string where = meta_path + ": $.rejected_intervals[" + std::to_string(i) + "]";
+    const nlohmann::json& item = list[i];
+    if (!item.is_object()) throw RecordingError(where + " is not an object");
+    RejectedInterval r;
+    if (!item.contains("step") || !item["step"].is_number_integer()) {
+      throw RecordingError(where + ".step missing or not an integer");
+    }
+    r.step = item["step"].get<int>();
+    r.t_start_s = MetaNumber(item, "t_start_s", where);
+    r.t_end_s = MetaNumber(item, "t_end_s", where);
+    if (!(r.t_end_s >= r.t_start_s)) {
+      throw RecordingError(where + ": t_end_s " + std::to_string(r.t_end_s) +
+                           " is before t_start_s " + std::to_string(r.t_start_s));
+    }
+    if (!item.contains("reason") || !item["reason"].is_string()) {
+      throw RecordingError(where + ".reason missing or not a string");
+    }
+    r.reason = item["reason"].get<std::string>();
+    intervals.push_back(std::move(r));
+  }
+  return intervals;
 }
 
 }  // namespace adahrs::hil

@@ -81,6 +81,11 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
                           const RowSinks& sinks,
                           const ReadOptions& options = {});
 
+/// meta.json's "rejected_intervals", checked as ReadRecording checks them (none when absent);
+/// errors name `meta_path` and the JSON path, "$.rejected_intervals[2].t_end_s".
+std::vector<RejectedInterval> ParseRejectedIntervals(const nlohmann::json& meta,
+                                                     const std::string& meta_path);
+
 /// True when `t_s` lies inside one of the recording's rejected intervals (its rows there are not
 /// calibration data).
 bool IsRejected(const Recording& recording, double t_s);

@@ -53,7 +53,8 @@ hil::AdsRecordRow Row(int step, uint8_t tag, double t_s, int32_t ps_cnt, double 
 
 TEST(AdsCalibrationPoints, SelectsTaggedRowsOutsideRejectedIntervals) {
   hil::Recording rec;
-  rec.meta = {{"rejected_intervals", {{{"step", 3}, {"t_start_s", 0.5}, {"t_end_s", 0.75}}}}};
+  rec.meta = {{"rejected_intervals",
+               {{{"step", 3}, {"t_start_s", 0.5}, {"t_end_s", 0.75}, {"reason", "interlock"}}}}};
   // Step 3 (tag 7): rows at 0.125..1.125 s (exact binary fractions), codes 100..900; 0.5..0.75 s
   // rejected (i = 4, 5, 6). Tag-0 rows between acquisitions and another unit's rows must not count.
   for (int i = 1; i <= 9; ++i) rec.ads.push_back(Row(3, 7, 0.125 * i, 100 * i, 101325.0));
@@ -85,7 +86,8 @@ TEST(AdsCalibrationPoints, RefusesAReferenceThatMovedWithinTheAcquisition) {
               ::testing::ThrowsMessage<std::runtime_error>(HasSubstr(
                   "run/ads.csv lines 2 and 4 column ps_ref_pa: the test set's reference moved "
                   "1916.8 Pa within step 121's acquisition")));
-  rec.meta = {{"rejected_intervals", {{{"step", 121}, {"t_start_s", 0.0}, {"t_end_s", 0.3}}}}};
+  rec.meta = {{"rejected_intervals",
+               {{{"step", 121}, {"t_start_s", 0.0}, {"t_end_s", 0.3}, {"reason", "interlock"}}}}};
   const auto points = SelectAdsCalibrationPoints(rec, "ADS-0007", "run");
   ASSERT_EQ(points.size(), 1u);
   EXPECT_EQ(points[0].rows, 8);
@@ -116,7 +118,7 @@ TEST(AdsCalibrationPoints, RefusesBadRowsNamingLineAndColumn) {
   rec.meta = {{"rejected_intervals", {{{"step", "x"}}}}};
   EXPECT_THAT([&] { SelectAdsCalibrationPoints(rec, "ADS-0007", "run"); },
               ::testing::ThrowsMessage<std::runtime_error>(
-                  HasSubstr("run/meta.json: rejected_intervals[0]")));
+                  HasSubstr("run/meta.json: $.rejected_intervals[0].step")));
 }
 
 // A drawn unit (every effect on) run through the shipped ads_calibration sequence: its truth and
