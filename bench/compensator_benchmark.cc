@@ -4,8 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "firmware_model/constants_exporter.h"
-#include "firmware_model/target/ads_compensator.h"
-#include "firmware_model/target/imu_compensator.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 namespace {

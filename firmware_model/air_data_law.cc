@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "firmware_model/target/air_data_tables.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -34,7 +34,7 @@ void WriteArray(std::ostringstream& out,
                 const char* name,
                 const char* size,
                 const std::vector<int32_t>& values) {
-  out << "const int32_t " << name << "[" << size << "] = {\n";
+  out << "const int32_t " << name << "[" << size << "] FW_ROM = {\n";
   for (size_t i = 0; i < values.size(); ++i) {
     out << (i % 6 == 0 ? "    " : " ") << values[i] << ",";
     if (i % 6 == 5 || i + 1 == values.size()) out << "\n";
@@ -85,13 +85,11 @@ std::string AirDataTablesSource() {
          "build/bin/firmware_model_tests\n"
          "// --gtest_filter=AirDataTables.*\n"
          "// clang-format off\n"
-         "#include \"firmware_model/target/air_data_tables.h\"\n\n"
-         "namespace adahrs::firmware_model {\n\n"
+         "#include \"air_data_tables.h\"\n\n"
          "// ISA pressure altitude, ft * 2^15, at p = k * 128 Pa.\n";
-  WriteArray(out, "kIsaAltitudeTableQ31", "kIsaTableEntries", IsaAltitudeTable());
+  WriteArray(out, "fw_isa_altitude_table_q31", "FW_ISA_TABLE_ENTRIES", IsaAltitudeTable());
   out << "\n// Calibrated airspeed squared, kt^2 * 2^12, at qc = k * 256 Pa.\n";
-  WriteArray(out, "kCasSquaredTableQ31", "kCasTableEntries", CasSquaredTable());
-  out << "\n}  // namespace adahrs::firmware_model\n";
+  WriteArray(out, "fw_cas_squared_table_q31", "FW_CAS_TABLE_ENTRIES", CasSquaredTable());
   return out.str();
 }
 

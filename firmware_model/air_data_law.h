@@ -27,7 +27,7 @@ double CasKtFromImpactPa(double qc_pa);
 std::vector<int32_t> IsaAltitudeTable();
 std::vector<int32_t> CasSquaredTable();
 
-/// The text of target/air_data_tables.cc for these tables.
+/// The text of target/air_data_tables.c for these tables (C99, in program memory: rom.h).
 std::string AirDataTablesSource();
 
 }  // namespace adahrs::firmware_model

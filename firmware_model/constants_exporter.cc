@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 
 #include "firmware_model/air_data_law.h"
-#include "firmware_model/target/air_data_tables.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 namespace {

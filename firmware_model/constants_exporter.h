@@ -20,8 +20,7 @@
 #pragma once
 
 #include "firmware_model/calibration_constants.h"
-#include "firmware_model/target/ads_constants.h"
-#include "firmware_model/target/imu_constants.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 

@@ -5,8 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "firmware_model/target/ads_compensator.h"
-#include "firmware_model/target/imu_compensator.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 namespace {

@@ -15,9 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "firmware_model/target/ads_constants.h"
-#include "firmware_model/target/compensated_frame.h"
-#include "firmware_model/target/imu_constants.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 

@@ -3,8 +3,7 @@
 #include <cmath>
 
 #include "firmware_model/air_data_law.h"
-#include "firmware_model/target/ads_constants.h"
-#include "firmware_model/target/imu_constants.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 namespace {

@@ -10,7 +10,7 @@
 #include <array>
 
 #include "firmware_model/calibration_constants.h"
-#include "firmware_model/target/compensated_frame.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 

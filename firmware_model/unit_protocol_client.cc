@@ -5,7 +5,7 @@
 
 #include <boost/crc.hpp>
 
-#include "firmware_model/target/byte_order.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 namespace {

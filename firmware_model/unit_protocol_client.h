@@ -15,9 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "firmware_model/target/data_payloads.h"
-#include "firmware_model/target/packet_codec.h"
-#include "firmware_model/target/unit_protocol.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 

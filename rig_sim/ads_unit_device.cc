@@ -1,8 +1,6 @@
 #include "rig_sim/ads_unit_device.h"
 
-#include "firmware_model/target/ads_compensator.h"
-#include "firmware_model/target/data_payloads.h"
-#include "firmware_model/target/dsp_engine.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::rig_sim {
 
@@ -31,32 +29,16 @@ uint16_t AdsUnitDevice::Acquire(double,
   stimulus.oat_c = env.ads_chamber_air_c;
   const sensor_sim::AdsRawFrame measured = unit_.Step(stimulus);
   if (!encode) {
-    compensating_ = false;  // unpowered: the operators' RAM is lost
+    adahrs_fw_ads_power_lost(&firmware_ads_);  // unpowered: the operators' RAM is lost
     return 0;
   }
-
-  fm::AdsDataPayload payload{};
-  payload.raw = {measured.ps_cnt,
-                 measured.pt_cnt,
-                 measured.ps_temp_cnt,
-                 measured.pt_temp_cnt,
-                 measured.oat_cnt};
-  payload.mode = handler.ads_mode();
-  if (payload.mode == fm::AdsCompensationMode::kRaw) {
-    compensating_ = false;
-  } else {
-    if (!compensating_) fm::AdsHysteresisReset(&hysteresis_);
-    compensating_ = true;
-    fm::DspEngine engine;
-    fm::AdsCompensate(&engine,
-                      handler.ads_constants(),
-                      payload.mode,
-                      payload.raw,
-                      &hysteresis_,
-                      &payload.compensated);
-  }
-  const uint8_t tag = handler.tag();
-  return fm::EncodeAdsDataFrame(payload, handler.TakeDataSequence(), tag, frame, capacity);
+  const FwAdsRawFrame raw = {measured.ps_cnt,
+                             measured.pt_cnt,
+                             measured.ps_temp_cnt,
+                             measured.pt_temp_cnt,
+                             measured.oat_cnt};
+  fm::DspEngine engine;
+  return adahrs_fw_ads_sample(handler.c(), &firmware_ads_, engine.c(), &raw, frame, capacity);
 }
 
 }  // namespace adahrs::rig_sim

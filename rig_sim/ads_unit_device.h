@@ -6,7 +6,8 @@
 // Stimulus per sample, from RigEnvironment: ps_pa and qc_pa as the air data test set delivers
 // them to the ports, ads_chamber_air_c around the board and at the OAT probe (the probe sits in
 // the bench chamber with the unit).
-// Firmware per sample: the handler's mode; in surface mode AdsCompensate with the handler's RAM
+// Firmware per sample: the firmware's own sample function (adahrs_fw_ads_sample,
+// target/adahrs_fw.h) on the handler: in surface mode the compensator with the handler's RAM
 // constants and the hysteresis operators' memory, which starts fresh whenever the unit enters the
 // surface mode or is powered (RAM is lost unpowered; the firmware does not keep it in flash); the
 // packet carries the handler's next sequence number and current TAG (§5).
@@ -16,7 +17,7 @@
 #include <cstdint>
 #include <string>
 
-#include "firmware_model/target/ads_compensator.h"
+#include "firmware_model/unit_firmware.h"
 #include "rig_sim/unit_device.h"
 #include "sensor_sim/ads_unit.h"
 
@@ -48,8 +49,7 @@ class AdsUnitDevice : public UnitDevice {
 
  private:
   sensor_sim::AdsUnit unit_;
-  firmware_model::AdsHysteresisState hysteresis_{};
-  bool compensating_ = false;  ///< the last sample ran the compensator
+  AdahrsFwAdsState firmware_ads_{};  ///< the hysteresis operators; zero: fresh, not compensating
 };
 
 }  // namespace adahrs::rig_sim

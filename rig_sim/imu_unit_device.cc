@@ -3,9 +3,7 @@
 #include <stdexcept>
 
 #include "common/units.h"
-#include "firmware_model/target/data_payloads.h"
-#include "firmware_model/target/dsp_engine.h"
-#include "firmware_model/target/imu_compensator.h"
+#include "firmware_model/unit_firmware.h"
 #include "rig_sim/fixture_orientation.h"
 
 namespace adahrs::rig_sim {
@@ -48,23 +46,17 @@ uint16_t ImuUnitDevice::Acquire(double,
   const sensor_sim::ImuRawFrame measured = unit_.Step(stimulus);
   if (!encode) return 0;
 
-  fm::ImuDataPayload payload{};
+  FwImuRawFrame raw{};
   for (int ch = 0; ch < 6; ++ch) {
-    payload.raw.t1_cnt[ch] = measured.accel[static_cast<size_t>(ch)].t1_cnt;
-    payload.raw.t2_cnt[ch] = measured.accel[static_cast<size_t>(ch)].t2_cnt;
+    raw.t1_cnt[ch] = measured.accel[static_cast<size_t>(ch)].t1_cnt;
+    raw.t2_cnt[ch] = measured.accel[static_cast<size_t>(ch)].t2_cnt;
   }
   for (int i = 0; i < 3; ++i) {
-    payload.raw.gyro_cnt[i] = measured.gyro_cnt[static_cast<size_t>(i)];
-    payload.raw.temp_cnt[i] = measured.temp_cnt[static_cast<size_t>(i)];
+    raw.gyro_cnt[i] = measured.gyro_cnt[static_cast<size_t>(i)];
+    raw.temp_cnt[i] = measured.temp_cnt[static_cast<size_t>(i)];
   }
-  payload.mode = handler.imu_mode();
-  if (payload.mode != fm::ImuCompensationMode::kRaw) {
-    fm::DspEngine engine;
-    fm::ImuCompensate(
-        &engine, handler.imu_constants(), payload.mode, payload.raw, &payload.compensated);
-  }
-  const uint8_t tag = handler.tag();
-  return fm::EncodeImuDataFrame(payload, handler.TakeDataSequence(), tag, frame, capacity);
+  fm::DspEngine engine;
+  return adahrs_fw_imu_sample(handler.c(), engine.c(), &raw, frame, capacity);
 }
 
 }  // namespace adahrs::rig_sim

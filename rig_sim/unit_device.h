@@ -25,8 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "firmware_model/target/flash_store.h"
-#include "firmware_model/target/maintenance_handler.h"
+#include "firmware_model/unit_firmware.h"
 #include "rig_sim/paced_line.h"
 #include "rig_sim/serial_device.h"
 

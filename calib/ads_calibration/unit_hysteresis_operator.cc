@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "firmware_model/target/preisach_q15.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::calib {
 namespace {

@@ -4,8 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "firmware_model/target/ads_constants.h"
-#include "firmware_model/target/imu_constants.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::calib {
 namespace {

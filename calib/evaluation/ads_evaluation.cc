@@ -8,8 +8,7 @@
 #include "calib/evaluation/ads_tolerance.h"
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/reference_compensator.h"
-#include "firmware_model/target/ads_compensator.h"
-#include "firmware_model/target/dsp_engine.h"
+#include "firmware_model/unit_firmware.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
 

@@ -14,7 +14,7 @@
 #include "common/units.h"
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/reference_compensator.h"
-#include "firmware_model/target/imu_compensator.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::calib {
 namespace {

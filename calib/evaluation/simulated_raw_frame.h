@@ -4,7 +4,7 @@
 // Left out: the rig's unit device builds its packet payload directly (rig_sim cannot use calib).
 #pragma once
 
-#include "firmware_model/target/compensated_frame.h"
+#include "firmware_model/unit_firmware.h"
 #include "sensor_sim/imu_unit.h"
 
 namespace adahrs::calib {

@@ -10,7 +10,7 @@
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/solvers/linear_least_squares.h"
 #include "common/units.h"
-#include "firmware_model/target/imu_constants.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::calib {
 namespace {

@@ -30,7 +30,7 @@
 #include "calib/constants/constants_file.h"
 #include "calib/sequence/sequence.h"
 #include "calib/solvers/thermal_drift_fit.h"
-#include "firmware_model/target/compensated_frame.h"
+#include "firmware_model/unit_firmware.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_reader.h"
 

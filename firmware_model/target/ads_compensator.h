@@ -6,7 +6,7 @@
 // code and y = normalised bridge-voltage (temperature) code, by nested Horner: the four b_k(y)
 // first (Horner at their own working exponents), then Horner in x at the surface's working
 // exponent, then one saturating SFTAC to the output format: altitude and airspeed themselves
-// (kAdsLawDirect), or static / impact pressure in Pa that the ISA altitude or CAS law of
+// (FW_ADS_LAW_DIRECT), or static / impact pressure in Pa that the ISA altitude or CAS law of
 // air_data_law.h then turns into the output. Input normalisation is exact (32-bit
 // centring in the accumulator, a power-of-two shift), which the 24-bit codes need: a Q15 x would
 // resolve only 3e-5 of the fit span, ~1.5 ft over a 50,000 ft span before any other error.
@@ -14,36 +14,43 @@
 // (preisach_q15.h) advance, the pressure one on the surface's result and the thermal one on
 // the die temperature tau(y) (a Q15 cubic of the normalised bridge-voltage code), and
 // gain_P s_P + gain_T s_T (Q15 gains, one MPY each) is added to the result before the law. The
-// operators' memory is the caller's (AdsHysteresisState, RAM); it must see every frame in order.
+// operators' memory is the caller's (FwAdsHysteresisState, RAM); it must see every frame in order.
 // Operators that saturate while clamping their travel are not reported: that clamp is the law.
 // Not modelled: Mach, TAS, OAT calibration; the ADC driver.
-#pragma once
+#ifndef ADAHRS_FW_ADS_COMPENSATOR_H
+#define ADAHRS_FW_ADS_COMPENSATOR_H
 
-#include "firmware_model/target/ads_constants.h"
-#include "firmware_model/target/compensated_frame.h"
-#include "firmware_model/target/dsp_engine.h"
-#include "firmware_model/target/preisach_q15.h"
+#include "ads_constants.h"
+#include "compensated_frame.h"
+#include "dsp_engine.h"
+#include "preisach_q15.h"
 
-namespace adahrs::firmware_model {
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /// The hysteresis operators' memory of one unit: pressure and thermal state per bridge.
-struct AdsHysteresisState {
-  PreisachQ15 static_pressure;
-  PreisachQ15 static_thermal;
-  PreisachQ15 pitot_pressure;
-  PreisachQ15 pitot_thermal;
-};
+typedef struct {
+  FwPreisachQ15 static_pressure;
+  FwPreisachQ15 static_thermal;
+  FwPreisachQ15 pitot_pressure;
+  FwPreisachQ15 pitot_thermal;
+} FwAdsHysteresisState;
 
 /// Fresh operators (power-on, or new constants).
-void AdsHysteresisReset(AdsHysteresisState* state);
+void fw_ads_hysteresis_reset(FwAdsHysteresisState* state);
 
-/// Compensates one ADS frame in `mode` with `constants`, advancing `state` (untouched in kRaw);
+/// Compensates one ADS frame in `mode` with `constants`, advancing `state` (untouched in RAW);
 /// charges every instruction to `engine`.
-void AdsCompensate(DspEngine* engine,
-                   const AdsConstants& constants,
-                   AdsCompensationMode mode,
-                   const AdsRawFrame& raw,
-                   AdsHysteresisState* state,
-                   AdsCompensatedFrame* out);
+void fw_ads_compensate(FwDspEngine* engine,
+                       const FwAdsConstants* constants,
+                       FwAdsMode mode,
+                       const FwAdsRawFrame* raw,
+                       FwAdsHysteresisState* state,
+                       FwAdsCompensatedFrame* out);
 
-}  // namespace adahrs::firmware_model
+#ifdef __cplusplus
+}  // extern "C"
+#endif
+
+#endif  // ADAHRS_FW_ADS_COMPENSATOR_H

@@ -10,90 +10,94 @@
 // docs/firmware-compensator.md ("Constants blocks", "Hysteresis compensation", "Bridge-code
 // linearisation").
 // Not modelled: Mach and TAS (need OAT; computed downstream), OAT calibration.
-#pragma once
+#ifndef ADAHRS_FW_ADS_CONSTANTS_H
+#define ADAHRS_FW_ADS_CONSTANTS_H
 
-#include <cstdint>
+#include <stdint.h>
 
-#include "firmware_model/target/air_data_law.h"
-#include "firmware_model/target/bridge_linearisation.h"
-#include "firmware_model/target/fixed_coeff.h"
+#include "air_data_law.h"
+#include "bridge_linearisation.h"
+#include "fixed_coeff.h"
 
-namespace adahrs::firmware_model {
+#ifdef __cplusplus
+extern "C" {
+#endif
 
-inline constexpr int8_t kAltitudeExponent = 16;  ///< altitude in ft, |alt| < 65,536 ft
-inline constexpr int8_t kAirspeedExponent = 9;   ///< airspeed in kt, |cas| < 512 kt
-inline constexpr uint8_t kAdsSurfaceXDegree = 3;
-inline constexpr uint8_t kAdsSurfaceYDegree = 5;
-inline constexpr uint8_t kSurfaceTerms = (kAdsSurfaceXDegree + 1) * (kAdsSurfaceYDegree + 1);
-static_assert(kAdsSurfaceYDegree <= kMaxPolyDegree);
+#define FW_ALTITUDE_EXPONENT 16  ///< altitude in ft, |alt| < 65,536 ft
+#define FW_AIRSPEED_EXPONENT 9   ///< airspeed in kt, |cas| < 512 kt
+#define FW_ADS_SURFACE_X_DEGREE 3u
+#define FW_ADS_SURFACE_Y_DEGREE 5u  ///< at most FW_MAX_POLY_DEGREE
+#define FW_SURFACE_TERMS ((FW_ADS_SURFACE_X_DEGREE + 1u) * (FW_ADS_SURFACE_Y_DEGREE + 1u))
 
 /// A gain linear in the die temperature tau (Q15): (at_centre + per_tau tau) 2^(exponent - 15).
-struct GainQ15 {
+typedef struct {
   int16_t at_centre_q15;
   int16_t per_tau_q15;
   int8_t exponent;
-};
+} FwGainQ15;
 
 /// One hysteresis state's compensation term (docs/firmware-compensator.md "Hysteresis
 /// compensation"); zero gain and inv_span leave the surface static.
-struct HysteresisTermQ {
-  CoeffQ31 inv_span;  ///< per unit of the operator's input; 0 = the state never moves
-  GainQ15 gain;       ///< the surface's result units per unit state
-};
+typedef struct {
+  FwCoeffQ31 inv_span;  ///< per unit of the operator's input; 0 = the state never moves
+  FwGainQ15 gain;       ///< the surface's result units per unit state
+} FwHysteresisTermQ;
 
-struct SurfaceQ31 {
-  InputNormQ31 x_norm;  ///< pressure code normalisation
-  InputNormQ31 y_norm;  ///< normalisation of the (linearised) bridge-voltage code
+typedef struct {
+  FwInputNormQ31 x_norm;  ///< pressure code normalisation
+  FwInputNormQ31 y_norm;  ///< normalisation of the (linearised) bridge-voltage code
   int8_t outer_work_exponent;
-  PolyQ31 b[kAdsSurfaceXDegree + 1];  ///< b_k(y), degree kAdsSurfaceYDegree
-  HysteresisTermQ pressure;           ///< driven by the surface's result
-  HysteresisTermQ thermal;            ///< driven by tau(y)
+  FwPolyQ31 b[FW_ADS_SURFACE_X_DEGREE + 1u];  ///< b_k(y), degree FW_ADS_SURFACE_Y_DEGREE
+  FwHysteresisTermQ pressure;                 ///< driven by the surface's result
+  FwHysteresisTermQ thermal;                  ///< driven by tau(y)
   /// t1, t2, t3 of tau(y) = t1 y + t2 y^2 + t3 y^3 (Q15): the die temperature's change from y's
   /// centre, in a power of two of degC the exporter chooses
   int16_t die_temp_q15[3];
-  BridgeLinearisationQ y_linearisation;  ///< bridge code -> the surface's y code
-  uint8_t law;                           ///< AdsSurfaceLaw: what follows the surface
-};
+  FwBridgeLinearisationQ y_linearisation;  ///< bridge code -> the surface's y code
+  uint8_t law;                             ///< FW_ADS_LAW_*: what follows the surface
+} FwSurfaceQ31;
 
-struct AdsConstants {
-  SurfaceQ31 altitude;  ///< ft
-  SurfaceQ31 airspeed;  ///< kt
-};
+typedef struct {
+  FwSurfaceQ31 altitude;  ///< ft
+  FwSurfaceQ31 airspeed;  ///< kt
+} FwAdsConstants;
 
-enum AdsBlockId : uint8_t {
-  kAdsBlockAltitude = 0x21,
-  kAdsBlockAirspeed = 0x22,
-};
+#define FW_ADS_BLOCK_ALTITUDE 0x21u
+#define FW_ADS_BLOCK_AIRSPEED 0x22u
 
-inline constexpr uint8_t kGainWords = 3;
-inline constexpr uint8_t kAdsHysteresisWords = 2 * (kCoeffWords + kGainWords) + 3;
-inline constexpr uint8_t kAdsSurfaceBlockWords = 2 * kNormWords + 5 + kSurfaceTerms * kCoeffWords +
-                                                 kAdsHysteresisWords + kBridgeLinearisationWords +
-                                                 1;
-inline constexpr uint8_t kAdsMaxBlockWords = kAdsSurfaceBlockWords;
+#define FW_GAIN_WORDS 3u
+#define FW_ADS_HYSTERESIS_WORDS ((2u * (FW_COEFF_WORDS + FW_GAIN_WORDS)) + 3u)
+#define FW_ADS_SURFACE_BLOCK_WORDS                                                             \
+  ((2u * FW_NORM_WORDS) + 5u + (FW_SURFACE_TERMS * FW_COEFF_WORDS) + FW_ADS_HYSTERESIS_WORDS + \
+   FW_BRIDGE_LINEARISATION_WORDS + 1u)
+#define FW_ADS_MAX_BLOCK_WORDS FW_ADS_SURFACE_BLOCK_WORDS
 
 /// The exponent a surface's result must reach: the output's (`out_exponent`) when `law` is
-/// direct, the pressure's (kPressureExponent) under a law.
-int8_t AdsSurfaceExponent(uint8_t law, int8_t out_exponent);
+/// direct, the pressure's (FW_PRESSURE_EXPONENT) under a law.
+int8_t fw_ads_surface_exponent(uint8_t law, int8_t out_exponent);
 
 /// Uncalibrated state: all-zero direct surfaces (outputs read zero), centres 0, shifts 23, no
 /// hysteresis terms, no linearisation.
-void AdsConstantsInit(AdsConstants* constants);
+void fw_ads_constants_init(FwAdsConstants* constants);
 
 /// Words in block `block_id`, or 0 if the block is unknown.
-uint8_t AdsConstantsBlockLength(uint8_t block_id);
+uint8_t fw_ads_constants_block_length(uint8_t block_id);
 
-/// Replaces block `block_id` from `count` words; on any status but kOk nothing changes.
-ConstantsStatus AdsConstantsWriteBlock(AdsConstants* constants,
-                                       uint8_t block_id,
-                                       const int16_t* words,
-                                       uint8_t count);
+/// Replaces block `block_id` from `count` words; on any status but OK nothing changes.
+FwConstantsStatus fw_ads_constants_write_block(FwAdsConstants* constants,
+                                               uint8_t block_id,
+                                               const int16_t* words,
+                                               uint8_t count);
 
 /// Writes block `block_id` into `words` (capacity `capacity`), its length into `*count`.
-ConstantsStatus AdsConstantsReadBlock(const AdsConstants* constants,
-                                      uint8_t block_id,
-                                      int16_t* words,
-                                      uint8_t capacity,
-                                      uint8_t* count);
+FwConstantsStatus fw_ads_constants_read_block(const FwAdsConstants* constants,
+                                              uint8_t block_id,
+                                              int16_t* words,
+                                              uint8_t capacity,
+                                              uint8_t* count);
 
-}  // namespace adahrs::firmware_model
+#ifdef __cplusplus
+}  // extern "C"
+#endif
+
+#endif  // ADAHRS_FW_ADS_CONSTANTS_H

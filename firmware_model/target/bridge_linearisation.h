@@ -13,13 +13,13 @@
 //
 // Fixed point, with v = (y - origin) 2^-shift (the raw normalisation, |v| < 1) and
 // k = kappa 2^shift:
-//   v       Q15, the normalised code's high word (|v| >= 1 sets kFlagInputSaturated);
+//   v       Q15, the normalised code's high word (|v| >= 1 sets FW_FLAG_INPUT_SATURATED);
 //   k       Q13 (|k| < 4: a model-1230 bridge's quadratic tempco makes the radicand run from
 //           about 0.27 to 2.2 over -40...+85 degC, kappa |y - origin| up to 1.2, and the
 //           power-of-two half-width adds up to 2x);
 //   r       1 + k v as r 2^28 (MUL.SS of k and v, plus 2^28), r < 5; a negative r (a code beyond
 //           where the quadratic turns, outside any calibrated range) is taken as 0 and sets
-//           kFlagInputSaturated;
+//           FW_FLAG_INPUT_SATURATED;
 //   root    sqrt(r) 2^14 by the restoring integer square root (q31_kernels.h);
 //   q       v / (1 + root) in Q15: DIV.SD of v 2^28 by (1 + root) 2^13 (< 26,600), |q| <= 1;
 //   s       origin + q 2^(shift - 14), an int32 code the surface's own normalisation takes.
@@ -31,33 +31,41 @@
 // tests/firmware_model/bridge_linearisation_test.cc).
 // Left out: the cubic term of the current source's tempco and the bridge resistance's pressure
 // dependence; what they leave is smooth in y and the surface's polynomial takes it up.
-#pragma once
+#ifndef ADAHRS_FW_BRIDGE_LINEARISATION_H
+#define ADAHRS_FW_BRIDGE_LINEARISATION_H
 
-#include <cstdint>
+#include <stdint.h>
 
-#include "firmware_model/target/dsp_engine.h"
-#include "firmware_model/target/fixed_coeff.h"
+#include "dsp_engine.h"
+#include "fixed_coeff.h"
 
-namespace adahrs::firmware_model {
+#ifdef __cplusplus
+extern "C" {
+#endif
 
-/// Words of a linearisation in a surface block: [InputNormQ31 raw][int16 k].
-inline constexpr uint8_t kBridgeLinearisationWords = kNormWords + 1;
+/// Words of a linearisation in a surface block: [FwInputNormQ31 raw][int16 k].
+#define FW_BRIDGE_LINEARISATION_WORDS (FW_NORM_WORDS + 1u)
 
-struct BridgeLinearisationQ {
-  InputNormQ31 raw_norm;  ///< centre = the origin code, shift: v = (y - origin) 2^-shift
-  int16_t curvature_q13;  ///< k = kappa 2^shift in Q13; 0: s = y
-};
+typedef struct {
+  FwInputNormQ31 raw_norm;  ///< centre = the origin code, shift: v = (y - origin) 2^-shift
+  int16_t curvature_q13;    ///< k = kappa 2^shift in Q13; 0: s = y
+} FwBridgeLinearisationQ;
 
-/// The linearised code s of bridge-voltage code `y_code`; sets kFlagInputSaturated in *flags
+/// The linearised code s of bridge-voltage code `y_code`; sets FW_FLAG_INPUT_SATURATED in *flags
 /// when |v| >= 1 or r < 0.
-int32_t LinearisedBridgeCode(DspEngine* engine,
-                             const BridgeLinearisationQ& linearisation,
-                             int32_t y_code,
-                             uint16_t* flags);
+int32_t fw_linearised_bridge_code(FwDspEngine* engine,
+                                  const FwBridgeLinearisationQ* linearisation,
+                                  int32_t y_code,
+                                  uint16_t* flags);
 
 /// Block words <-> linearisation; a shift beyond 24 or an origin outside +-2^24 (the ADS1254's
-/// codes: s then stays inside int32) is kOutOfRange.
-ConstantsStatus BridgeLinearisationFromWords(const int16_t* words, BridgeLinearisationQ* out);
-void BridgeLinearisationToWords(const BridgeLinearisationQ& linearisation, int16_t* words);
+/// codes: s then stays inside int32) is OUT_OF_RANGE.
+FwConstantsStatus fw_bridge_linearisation_from_words(const int16_t* words,
+                                                     FwBridgeLinearisationQ* out);
+void fw_bridge_linearisation_to_words(const FwBridgeLinearisationQ* linearisation, int16_t* words);
 
-}  // namespace adahrs::firmware_model
+#ifdef __cplusplus
+}  // extern "C"
+#endif
+
+#endif  // ADAHRS_FW_BRIDGE_LINEARISATION_H

@@ -1,38 +1,57 @@
 // Little-endian field access for the unit serial protocol (docs/unit-protocol.md §2: every
-// multi-byte field is little-endian, the dsPIC's native order). Fixed-width integers only.
-// Signed values travel as their two's-complement bit pattern; conversions go through the
-// unsigned type so no implementation-defined shift of a negative value happens.
-#pragma once
+// multi-byte field is little-endian, the dsPIC's native order). Fixed-width integers only; every
+// byte is widened to the field's own width before it is shifted, so no shift depends on the width
+// of int. Signed values travel as their two's-complement bit pattern (q_math.h's conversions).
+#ifndef ADAHRS_FW_BYTE_ORDER_H
+#define ADAHRS_FW_BYTE_ORDER_H
 
-#include <cstdint>
+#include <stdint.h>
 
-namespace adahrs::firmware_model {
+#include "q_math.h"
 
-inline void PutU16Le(uint8_t* out, uint16_t value) {
-  out[0] = static_cast<uint8_t>(value & 0xFFu);
-  out[1] = static_cast<uint8_t>(value >> 8);
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+static inline void fw_put_u16_le(uint8_t* out, uint16_t value) {
+  out[0] = (uint8_t)(value & 0xFFu);
+  out[1] = (uint8_t)(value >> 8);
 }
 
-inline void PutU32Le(uint8_t* out, uint32_t value) {
-  out[0] = static_cast<uint8_t>(value & 0xFFu);
-  out[1] = static_cast<uint8_t>((value >> 8) & 0xFFu);
-  out[2] = static_cast<uint8_t>((value >> 16) & 0xFFu);
-  out[3] = static_cast<uint8_t>(value >> 24);
+static inline void fw_put_u32_le(uint8_t* out, uint32_t value) {
+  out[0] = (uint8_t)(value & 0xFFu);
+  out[1] = (uint8_t)((value >> 8) & 0xFFu);
+  out[2] = (uint8_t)((value >> 16) & 0xFFu);
+  out[3] = (uint8_t)(value >> 24);
 }
 
-inline void PutI16Le(uint8_t* out, int16_t value) { PutU16Le(out, static_cast<uint16_t>(value)); }
-
-inline void PutI32Le(uint8_t* out, int32_t value) { PutU32Le(out, static_cast<uint32_t>(value)); }
-
-inline uint16_t GetU16Le(const uint8_t* in) { return static_cast<uint16_t>(in[0] | (in[1] << 8)); }
-
-inline uint32_t GetU32Le(const uint8_t* in) {
-  return static_cast<uint32_t>(in[0]) | (static_cast<uint32_t>(in[1]) << 8) |
-         (static_cast<uint32_t>(in[2]) << 16) | (static_cast<uint32_t>(in[3]) << 24);
+static inline void fw_put_i16_le(uint8_t* out, int16_t value) {
+  fw_put_u16_le(out, (uint16_t)value);
 }
 
-inline int16_t GetI16Le(const uint8_t* in) { return static_cast<int16_t>(GetU16Le(in)); }
+static inline void fw_put_i32_le(uint8_t* out, int32_t value) {
+  fw_put_u32_le(out, (uint32_t)value);
+}
 
-inline int32_t GetI32Le(const uint8_t* in) { return static_cast<int32_t>(GetU32Le(in)); }
+static inline uint16_t fw_get_u16_le(const uint8_t* in) {
+  return (uint16_t)((uint16_t)in[0] | (uint16_t)((uint16_t)in[1] << 8));
+}
 
-}  // namespace adahrs::firmware_model
+static inline uint32_t fw_get_u32_le(const uint8_t* in) {
+  return (uint32_t)in[0] | ((uint32_t)in[1] << 8) | ((uint32_t)in[2] << 16) |
+         ((uint32_t)in[3] << 24);
+}
+
+static inline int16_t fw_get_i16_le(const uint8_t* in) {
+  return fw_s16_from_bits(fw_get_u16_le(in));
+}
+
+static inline int32_t fw_get_i32_le(const uint8_t* in) {
+  return fw_s32_from_bits(fw_get_u32_le(in));
+}
+
+#ifdef __cplusplus
+}  // extern "C"
+#endif
+
+#endif  // ADAHRS_FW_BYTE_ORDER_H

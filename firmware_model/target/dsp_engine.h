@@ -1,5 +1,8 @@
-// Bit-exact host model of the dsPIC30F/33F DSP engine and the few MCU instructions the
-// compensator needs, with an instruction and cycle counter (physics.md sections 5.1-5.2).
+// Bit-exact model of the dsPIC30F/33F DSP engine and the few MCU instructions the compensator
+// needs, with an instruction and cycle counter (physics.md sections 5.1-5.2). One function per
+// instruction, so the compensator reads as the instruction sequence it is; on the dsPIC each maps
+// to one instruction (XC16's DSP builtins __builtin_mpy, __builtin_mac, __builtin_sac, ...) or runs
+// as it stands, a C emulation with the same results.
 //
 // Modelled: two 40-bit accumulators A and B (int64 kept sign-extended to 40 bits); the 17x17
 // multiplier in fractional (product shifted left 1) or integer mode, signed or unsigned (CORCON IF
@@ -18,317 +21,297 @@
 // saturated quotient. Not modelled: the X/Y prefetch AGUs and W13 write-back of MAC-class
 // instructions (the compensator loads operands with explicit MOVs, which costs more, not less),
 // the pipeline, interrupts, DO/REPEAT hardware beyond their cycle charge, OA/OB traps.
-#pragma once
+#ifndef ADAHRS_FW_DSP_ENGINE_H
+#define ADAHRS_FW_DSP_ENGINE_H
 
-#include <cstdint>
+#include <stdbool.h>
+#include <stdint.h>
 
-#include "firmware_model/target/q_math.h"
+#include "q_math.h"
 
-namespace adahrs::firmware_model {
+#ifdef __cplusplus
+extern "C" {
+#endif
 
-enum class Acc : uint8_t { kA = 0, kB = 1 };
+typedef enum { FW_ACC_A = 0, FW_ACC_B = 1 } FwAcc;
 
 /// The other accumulator.
-constexpr Acc Other(Acc acc) { return acc == Acc::kA ? Acc::kB : Acc::kA; }
+static inline FwAcc fw_other_acc(FwAcc acc) { return (acc == FW_ACC_A) ? FW_ACC_B : FW_ACC_A; }
 
 /// Instruction classes counted by the engine (one entry of the cycle table each).
-enum class DspOp : uint8_t {
-  kMpy,
-  kMac,
-  kMsc,
-  kLac,
-  kSac,
-  kSacR,
-  kSftac,
-  kAddAcc,
-  kSubAcc,
-  kNegAcc,
-  kAddWordAcc,
-  kClrAcc,
-  kMovAccWord,
-  kMulSS,
-  kMulSU,
-  kMulUU,
-  kDivF,
-  kDivSD,
-  kDivUD,
-  kMov,
-  kAlu,
-  kBranch,
-  kCall,
-  kReturn,
-  kCount
-};
+typedef enum {
+  FW_OP_MPY,
+  FW_OP_MAC,
+  FW_OP_MSC,
+  FW_OP_LAC,
+  FW_OP_SAC,
+  FW_OP_SAC_R,
+  FW_OP_SFTAC,
+  FW_OP_ADD_ACC,
+  FW_OP_SUB_ACC,
+  FW_OP_NEG_ACC,
+  FW_OP_ADD_WORD_ACC,
+  FW_OP_CLR_ACC,
+  FW_OP_MOV_ACC_WORD,
+  FW_OP_MUL_SS,
+  FW_OP_MUL_SU,
+  FW_OP_MUL_UU,
+  FW_OP_DIV_F,
+  FW_OP_DIV_SD,
+  FW_OP_DIV_UD,
+  FW_OP_MOV,
+  FW_OP_ALU,
+  FW_OP_BRANCH,
+  FW_OP_CALL,
+  FW_OP_RETURN,
+  FW_OP_COUNT
+} FwDspOp;
 
-// physics.md 5.1: MAC-class, LAC/SAC, SFTAC, MOV, MUL are single cycle; DIVx 19 with REPEAT #17;
-// a taken branch, CALL 2; RETURN 3.
-inline constexpr uint8_t kDspOpCycles[static_cast<uint8_t>(DspOp::kCount)] = {
-    1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 19, 19, 19, 1, 1, 2, 2, 3};
-
-/// Documented cycle cost of one instruction of class `op`.
-constexpr uint8_t DspOpCycles(DspOp op) { return kDspOpCycles[static_cast<uint8_t>(op)]; }
+/// Documented cycle cost of one instruction of class `op` (physics.md 5.1: MAC-class, LAC/SAC,
+/// SFTAC, MOV, MUL are single cycle; DIVx 19 with REPEAT #17; a taken branch, CALL 2; RETURN 3).
+uint8_t fw_dsp_op_cycles(FwDspOp op);
 /// Mnemonic of `op` for cycle tables.
-const char* DspOpName(DspOp op);
+const char* fw_dsp_op_name(FwDspOp op);
 
 /// CORCON bits that the arithmetic depends on.
-struct DspConfig {
-  bool integer_mode = false;        ///< IF: 1 = integer, 0 = fractional (product << 1)
-  bool unsigned_mode = false;       ///< US: operands of MPY/MAC unsigned
-  bool saturate_a = true;           ///< SATA
-  bool saturate_b = true;           ///< SATB
-  bool super_saturation = false;    ///< ACCSAT: 1 = bit-39 (9.31), 0 = bit-31 (1.31)
-  bool saturate_writes = true;      ///< SATDW
-  bool convergent_rounding = true;  ///< RND: 0 = convergent (reset default), 1 = conventional
-};
+typedef struct {
+  bool integer_mode;         ///< IF: 1 = integer, 0 = fractional (product << 1)
+  bool unsigned_mode;        ///< US: operands of MPY/MAC unsigned
+  bool saturate_a;           ///< SATA
+  bool saturate_b;           ///< SATB
+  bool super_saturation;     ///< ACCSAT: 1 = bit-39 (9.31), 0 = bit-31 (1.31)
+  bool saturate_writes;      ///< SATDW
+  bool convergent_rounding;  ///< RND: 0 = convergent (reset default), 1 = conventional
+} FwDspConfig;
 
-struct DivResult {
+/// Fractional, signed, SATA, SATB, 1.31 saturation, SATDW, convergent rounding.
+FwDspConfig fw_dsp_config_default(void);
+
+typedef struct {
   int32_t quotient;
   int32_t remainder;
-};
+} FwDivResult;
 
-class DspEngine {
- public:
-  DspEngine() = default;
-  explicit DspEngine(const DspConfig& config) : config_(config) {}
+/// The engine's state and its counters.
+typedef struct {
+  FwDspConfig config;
+  int64_t acc[2];  ///< indexed by FwAcc
+  bool sa;         ///< sticky saturation of A
+  bool sb;         ///< sticky saturation of B
+  bool math_error;
+  uint32_t cycles;
+  uint32_t instructions;
+  uint32_t op_counts[FW_OP_COUNT];
+} FwDspEngine;
 
-  const DspConfig& config() const { return config_; }
-  void set_config(const DspConfig& config) { config_ = config; }
+/// Accumulators cleared, flags and counters zero, configuration `config`.
+void fw_dsp_init(FwDspEngine* engine, FwDspConfig config);
+void fw_dsp_reset_counters(FwDspEngine* engine);
+/// Reads and clears SA/SB (a BTSC on SR plus a BCLR: charged 2 cycles).
+bool fw_dsp_test_and_clear_saturation(FwDspEngine* engine);
+/// OA / OB: the accumulator holds a value beyond 1.31.
+bool fw_dsp_overflowed31(const FwDspEngine* engine, FwAcc acc);
 
-  // ---- DSP instructions (1 cycle each). Shifts: positive = right, negative = left.
-  /// MPY a*b -> acc.
-  void Mpy(Acc acc, int16_t a, int16_t b);
-  /// MAC acc += a*b.
-  void Mac(Acc acc, int16_t a, int16_t b);
-  /// MSC acc -= a*b.
-  void Msc(Acc acc, int16_t a, int16_t b);
-  /// LAC: word into bits 31..16, sign-extended, low word cleared, then shifted by -8..+7.
-  void Lac(Acc acc, int16_t word, int8_t shift);
-  /// SAC: stores bits 31..16 of (acc shifted by -8..+7), truncated, with SATDW.
-  int16_t Sac(Acc acc, int8_t shift);
-  /// SAC.R: as Sac but rounded per RND.
-  int16_t SacR(Acc acc, int8_t shift);
-  /// SFTAC by -16..16.
-  void Sftac(Acc acc, int8_t shift);
-  /// ADD Acc: dst += other.
-  void AddAcc(Acc dst);
-  /// SUB Acc: dst -= other.
-  void SubAcc(Acc dst);
-  /// NEG Acc.
-  void NegAcc(Acc acc);
-  /// ADD Ws,#shift,Acc: word aligned like LAC, added to acc.
-  void AddWordAcc(Acc acc, int16_t word, int8_t shift);
-  /// CLR Acc.
-  void ClrAcc(Acc acc);
+// ---- MCU divide (19 cycles each).
+/// DIVF: fractional num/den, needs |num| < |den|; quotient Q15, remainder.
+FwDivResult fw_dsp_div_f(FwDspEngine* engine, int16_t num, int16_t den);
+/// DIV.SD: signed 32/16, quotient must fit int16.
+FwDivResult fw_dsp_div_sd(FwDspEngine* engine, int32_t num, int16_t den);
+/// DIV.UD: unsigned 32/16, quotient must fit uint16.
+FwDivResult fw_dsp_div_ud(FwDspEngine* engine, uint32_t num, uint16_t den);
 
-  // ---- MOV to/from the memory-mapped accumulator words (1 cycle each, no saturation).
-  void MovToAccLow(Acc acc, uint16_t word);
-  void MovToAccHigh(Acc acc, int16_t word);  ///< writes bits 31..16 and sign-extends into ACCxU
-  uint16_t MovFromAccLow(Acc acc);
-  int16_t MovFromAccHigh(Acc acc);
-  int16_t MovFromAccUpper(Acc acc);  ///< bits 39..32, sign-extended
+// The single-instruction operations are defined here so that the compensator's instruction
+// sequences compile to straight-line arithmetic (a call per instruction was most of the rig's
+// time on the host). The cycle table is read through fw_dsp_op_cycles' table.
+extern const uint8_t fw_dsp_op_cycles_table[FW_OP_COUNT];
 
-  // ---- MCU multiply and divide.
-  int32_t MulSS(int16_t a, int16_t b);
-  int32_t MulSU(int16_t a, uint16_t b);
-  uint32_t MulUU(uint16_t a, uint16_t b);
-  /// DIVF: fractional num/den, needs |num| < |den|; quotient Q15, remainder.
-  DivResult DivF(int16_t num, int16_t den);
-  /// DIV.SD: signed 32/16, quotient must fit int16.
-  DivResult DivSD(int32_t num, int16_t den);
-  /// DIV.UD: unsigned 32/16, quotient must fit uint16.
-  DivResult DivUD(uint32_t num, uint16_t den);
-
-  // ---- Charges for plain MCU instructions whose result the caller computes itself.
-  void ChargeMov(uint8_t count = 1) { Charge(DspOp::kMov, count); }
-  void ChargeAlu(uint8_t count = 1) { Charge(DspOp::kAlu, count); }
-  void ChargeBranch(uint8_t count = 1) { Charge(DspOp::kBranch, count); }
-  /// CALL + RETURN of one subroutine.
-  void ChargeCallReturn() {
-    Charge(DspOp::kCall, 1);
-    Charge(DspOp::kReturn, 1);
-  }
-
-  // ---- State.
-  int64_t acc(Acc acc) const { return acc_[Index(acc)]; }
-  /// Sets an accumulator directly (test set-up; no cycles).
-  void set_acc(Acc acc, int64_t value40) { acc_[Index(acc)] = value40; }
-  bool sa() const { return sa_; }
-  bool sb() const { return sb_; }
-  bool oa() const { return Overflowed31(acc_[0]); }
-  bool ob() const { return Overflowed31(acc_[1]); }
-  bool math_error() const { return math_error_; }
-  /// Reads and clears SA/SB (a BTSC on SR plus a BCLR: charged 2 cycles).
-  bool TestAndClearSaturation();
-
-  uint32_t cycles() const { return cycles_; }
-  uint32_t instructions() const { return instructions_; }
-  uint32_t op_count(DspOp op) const { return op_counts_[static_cast<uint8_t>(op)]; }
-  void ResetCounters();
-
- private:
-  static constexpr uint8_t Index(Acc acc) { return static_cast<uint8_t>(acc); }
-  static bool Overflowed31(int64_t v) {
-    return v > INT64_C(0x7FFFFFFF) || v < -INT64_C(0x80000000);
-  }
-  void Charge(DspOp op, uint8_t count);
-  int64_t Product(int16_t a, int16_t b) const;
-  /// Applies the saturation mode of `acc` to an exact result and stores it.
-  void Write(Acc acc, int64_t exact);
-  int16_t Store(Acc acc, int8_t shift, bool round);
-
-  DspConfig config_{};
-  int64_t acc_[2] = {0, 0};
-  bool sa_ = false;
-  bool sb_ = false;
-  bool math_error_ = false;
-  uint32_t cycles_ = 0;
-  uint32_t instructions_ = 0;
-  uint32_t op_counts_[static_cast<uint8_t>(DspOp::kCount)] = {};
-};
-
-// The single-instruction operations are defined here so the compensator's instruction sequences
-// compile to straight-line arithmetic (a call per instruction was most of the rig's time).
-
-inline void DspEngine::Charge(DspOp op, uint8_t count) {
-  const uint8_t i = static_cast<uint8_t>(op);
-  op_counts_[i] += count;
-  instructions_ += count;
-  cycles_ += static_cast<uint32_t>(count) * kDspOpCycles[i];
+static inline void fw_dsp_charge(FwDspEngine* engine, FwDspOp op, uint8_t count) {
+  engine->op_counts[op] += count;
+  engine->instructions += count;
+  engine->cycles += (uint32_t)count * (uint32_t)fw_dsp_op_cycles_table[op];
 }
 
-inline int64_t DspEngine::Product(int16_t a, int16_t b) const {
-  // 17x17 multiplier: operands sign- or zero-extended into bit 17, 33-bit product.
-  const int64_t ea = config_.unsigned_mode ? static_cast<int64_t>(static_cast<uint16_t>(a)) : a;
-  const int64_t eb = config_.unsigned_mode ? static_cast<int64_t>(static_cast<uint16_t>(b)) : b;
+// ---- Charges for plain MCU instructions whose result the caller computes itself.
+static inline void fw_dsp_charge_mov(FwDspEngine* engine, uint8_t count) {
+  fw_dsp_charge(engine, FW_OP_MOV, count);
+}
+static inline void fw_dsp_charge_alu(FwDspEngine* engine, uint8_t count) {
+  fw_dsp_charge(engine, FW_OP_ALU, count);
+}
+static inline void fw_dsp_charge_branch(FwDspEngine* engine, uint8_t count) {
+  fw_dsp_charge(engine, FW_OP_BRANCH, count);
+}
+/// CALL + RETURN of one subroutine.
+static inline void fw_dsp_charge_call_return(FwDspEngine* engine) {
+  fw_dsp_charge(engine, FW_OP_CALL, 1u);
+  fw_dsp_charge(engine, FW_OP_RETURN, 1u);
+}
+
+/// The 17x17 multiplier: operands sign- or zero-extended into bit 17, 33-bit product, doubled in
+/// fractional mode.
+static inline int64_t fw_dsp_product(const FwDspEngine* engine, int16_t a, int16_t b) {
+  const int64_t ea = engine->config.unsigned_mode ? (int64_t)(uint16_t)a : (int64_t)a;
+  const int64_t eb = engine->config.unsigned_mode ? (int64_t)(uint16_t)b : (int64_t)b;
   const int64_t p = ea * eb;
-  return config_.integer_mode ? p : p * 2;
+  return engine->config.integer_mode ? p : (p * 2);
 }
 
-inline void DspEngine::Write(Acc acc, int64_t exact) {
-  const bool saturate = acc == Acc::kA ? config_.saturate_a : config_.saturate_b;
-  bool& sticky = acc == Acc::kA ? sa_ : sb_;
-  int64_t value = exact;
+/// Applies the saturation mode of `acc` to an exact result and stores it.
+static inline void fw_dsp_write(FwDspEngine* engine, FwAcc acc, int64_t exact) {
+  const bool saturate = (acc == FW_ACC_A) ? engine->config.saturate_a : engine->config.saturate_b;
+  bool overflowed = false;
+  int64_t value = 0;
   if (saturate) {
-    bool clipped = false;
-    value = config_.super_saturation ? Clamp64(exact, kAcc40Min, kAcc40Max, &clipped)
-                                     : Clamp64(exact, kAcc31Min, kAcc31Max, &clipped);
-    if (clipped) sticky = true;
+    value = engine->config.super_saturation
+                ? fw_clamp64(exact, FW_ACC40_MIN, FW_ACC40_MAX, &overflowed)
+                : fw_clamp64(exact, FW_ACC31_MIN, FW_ACC31_MAX, &overflowed);
   } else {
-    value = SignExtend40(exact);
-    if (value != exact) sticky = true;  // catastrophic overflow past bit 39
+    value = fw_sign_extend40(exact);
+    overflowed = (value != exact);  // catastrophic overflow past bit 39
   }
-  acc_[Index(acc)] = value;
+  if (overflowed) {
+    if (acc == FW_ACC_A) {
+      engine->sa = true;
+    } else {
+      engine->sb = true;
+    }
+  }
+  engine->acc[acc] = value;
 }
 
-inline void DspEngine::Mpy(Acc acc, int16_t a, int16_t b) {
-  Charge(DspOp::kMpy, 1);
-  Write(acc, Product(a, b));
+// ---- DSP instructions (1 cycle each). Shifts: positive = right, negative = left.
+/// MPY a*b -> acc.
+static inline void fw_dsp_mpy(FwDspEngine* engine, FwAcc acc, int16_t a, int16_t b) {
+  fw_dsp_charge(engine, FW_OP_MPY, 1u);
+  fw_dsp_write(engine, acc, fw_dsp_product(engine, a, b));
 }
 
-inline void DspEngine::Mac(Acc acc, int16_t a, int16_t b) {
-  Charge(DspOp::kMac, 1);
-  Write(acc, acc_[Index(acc)] + Product(a, b));
+/// MAC acc += a*b.
+static inline void fw_dsp_mac(FwDspEngine* engine, FwAcc acc, int16_t a, int16_t b) {
+  fw_dsp_charge(engine, FW_OP_MAC, 1u);
+  fw_dsp_write(engine, acc, engine->acc[acc] + fw_dsp_product(engine, a, b));
 }
 
-inline void DspEngine::Msc(Acc acc, int16_t a, int16_t b) {
-  Charge(DspOp::kMsc, 1);
-  Write(acc, acc_[Index(acc)] - Product(a, b));
+/// MSC acc -= a*b.
+static inline void fw_dsp_msc(FwDspEngine* engine, FwAcc acc, int16_t a, int16_t b) {
+  fw_dsp_charge(engine, FW_OP_MSC, 1u);
+  fw_dsp_write(engine, acc, engine->acc[acc] - fw_dsp_product(engine, a, b));
 }
 
-inline void DspEngine::Lac(Acc acc, int16_t word, int8_t shift) {
-  Charge(DspOp::kLac, 1);
-  Write(acc, ShiftArith(static_cast<int64_t>(word) * 65536, shift));
+/// LAC: word into bits 31..16, sign-extended, low word cleared, then shifted by -8..+7.
+static inline void fw_dsp_lac(FwDspEngine* engine, FwAcc acc, int16_t word, int8_t shift) {
+  fw_dsp_charge(engine, FW_OP_LAC, 1u);
+  fw_dsp_write(engine, acc, fw_shift_arith((int64_t)word * INT64_C(65536), shift));
 }
 
-inline int16_t DspEngine::Store(Acc acc, int8_t shift, bool round) {
-  // The shifted value stays 40 bits wide (the barrel shifter output), then bits 31..16 are taken.
-  const int64_t shifted = SignExtend40(ShiftArith(acc_[Index(acc)], shift));
-  const int64_t high =
-      round ? RoundHighWord(shifted, config_.convergent_rounding) : (shifted >> 16);
-  if (config_.saturate_writes) return SatQ15(high);
-  return static_cast<int16_t>(static_cast<uint16_t>(static_cast<uint64_t>(high) & 0xFFFFu));
+/// Bits 31..16 of the accumulator shifted by -8..+7 (the barrel shifter's 40-bit output),
+/// truncated or rounded per RND, saturated per SATDW or wrapped to 16 bits.
+static inline int16_t fw_dsp_store(const FwDspEngine* engine, FwAcc acc, int8_t shift, bool round) {
+  const int64_t shifted = fw_sign_extend40(fw_shift_arith(engine->acc[acc], shift));
+  const int64_t high = round ? fw_round_high_word(shifted, engine->config.convergent_rounding)
+                             : fw_asr64(shifted, 16u);
+  return engine->config.saturate_writes
+             ? fw_sat_q15(high)
+             : fw_s16_from_bits((uint16_t)((uint64_t)high & UINT64_C(0xFFFF)));
 }
 
-inline int16_t DspEngine::Sac(Acc acc, int8_t shift) {
-  Charge(DspOp::kSac, 1);
-  return Store(acc, shift, false);
+/// SAC: stores bits 31..16 of (acc shifted by -8..+7), truncated, with SATDW.
+static inline int16_t fw_dsp_sac(FwDspEngine* engine, FwAcc acc, int8_t shift) {
+  fw_dsp_charge(engine, FW_OP_SAC, 1u);
+  return fw_dsp_store(engine, acc, shift, false);
 }
 
-inline int16_t DspEngine::SacR(Acc acc, int8_t shift) {
-  Charge(DspOp::kSacR, 1);
-  return Store(acc, shift, true);
+/// SAC.R: as SAC but rounded per RND.
+static inline int16_t fw_dsp_sac_r(FwDspEngine* engine, FwAcc acc, int8_t shift) {
+  fw_dsp_charge(engine, FW_OP_SAC_R, 1u);
+  return fw_dsp_store(engine, acc, shift, true);
 }
 
-inline void DspEngine::Sftac(Acc acc, int8_t shift) {
-  Charge(DspOp::kSftac, 1);
-  Write(acc, ShiftArith(acc_[Index(acc)], shift));
+/// SFTAC by -16..16.
+static inline void fw_dsp_sftac(FwDspEngine* engine, FwAcc acc, int8_t shift) {
+  fw_dsp_charge(engine, FW_OP_SFTAC, 1u);
+  fw_dsp_write(engine, acc, fw_shift_arith(engine->acc[acc], shift));
 }
 
-inline void DspEngine::AddAcc(Acc dst) {
-  Charge(DspOp::kAddAcc, 1);
-  Write(dst, acc_[Index(dst)] + acc_[Index(Other(dst))]);
+/// ADD Acc: dst += other.
+static inline void fw_dsp_add_acc(FwDspEngine* engine, FwAcc dst) {
+  fw_dsp_charge(engine, FW_OP_ADD_ACC, 1u);
+  fw_dsp_write(engine, dst, engine->acc[dst] + engine->acc[fw_other_acc(dst)]);
 }
 
-inline void DspEngine::SubAcc(Acc dst) {
-  Charge(DspOp::kSubAcc, 1);
-  Write(dst, acc_[Index(dst)] - acc_[Index(Other(dst))]);
+/// SUB Acc: dst -= other.
+static inline void fw_dsp_sub_acc(FwDspEngine* engine, FwAcc dst) {
+  fw_dsp_charge(engine, FW_OP_SUB_ACC, 1u);
+  fw_dsp_write(engine, dst, engine->acc[dst] - engine->acc[fw_other_acc(dst)]);
 }
 
-inline void DspEngine::NegAcc(Acc acc) {
-  Charge(DspOp::kNegAcc, 1);
-  Write(acc, -acc_[Index(acc)]);
+/// NEG Acc.
+static inline void fw_dsp_neg_acc(FwDspEngine* engine, FwAcc acc) {
+  fw_dsp_charge(engine, FW_OP_NEG_ACC, 1u);
+  fw_dsp_write(engine, acc, -engine->acc[acc]);
 }
 
-inline void DspEngine::AddWordAcc(Acc acc, int16_t word, int8_t shift) {
-  Charge(DspOp::kAddWordAcc, 1);
-  Write(acc, acc_[Index(acc)] + ShiftArith(static_cast<int64_t>(word) * 65536, shift));
+/// ADD Ws,#shift,Acc: word aligned like LAC, added to acc.
+static inline void fw_dsp_add_word_acc(FwDspEngine* engine, FwAcc acc, int16_t word, int8_t shift) {
+  fw_dsp_charge(engine, FW_OP_ADD_WORD_ACC, 1u);
+  fw_dsp_write(
+      engine, acc, engine->acc[acc] + fw_shift_arith((int64_t)word * INT64_C(65536), shift));
 }
 
-inline void DspEngine::ClrAcc(Acc acc) {
-  Charge(DspOp::kClrAcc, 1);
-  acc_[Index(acc)] = 0;
+/// CLR Acc.
+static inline void fw_dsp_clr_acc(FwDspEngine* engine, FwAcc acc) {
+  fw_dsp_charge(engine, FW_OP_CLR_ACC, 1u);
+  engine->acc[acc] = 0;
 }
 
-inline void DspEngine::MovToAccLow(Acc acc, uint16_t word) {
-  Charge(DspOp::kMovAccWord, 1);
-  const int64_t v = acc_[Index(acc)];
-  acc_[Index(acc)] = (v - (v & 0xFFFF)) + word;
+// ---- MOV to/from the memory-mapped accumulator words (1 cycle each, no saturation).
+static inline void fw_dsp_mov_to_acc_low(FwDspEngine* engine, FwAcc acc, uint16_t word) {
+  fw_dsp_charge(engine, FW_OP_MOV_ACC_WORD, 1u);
+  const int64_t v = engine->acc[acc];
+  engine->acc[acc] = (v - (int64_t)((uint64_t)v & UINT64_C(0xFFFF))) + (int64_t)word;
 }
 
-inline void DspEngine::MovToAccHigh(Acc acc, int16_t word) {
-  Charge(DspOp::kMovAccWord, 1);
-  const int64_t v = acc_[Index(acc)];
-  acc_[Index(acc)] = static_cast<int64_t>(word) * 65536 + (v & 0xFFFF);
+/// Writes bits 31..16 and sign-extends into ACCxU.
+static inline void fw_dsp_mov_to_acc_high(FwDspEngine* engine, FwAcc acc, int16_t word) {
+  fw_dsp_charge(engine, FW_OP_MOV_ACC_WORD, 1u);
+  const int64_t v = engine->acc[acc];
+  engine->acc[acc] = ((int64_t)word * INT64_C(65536)) + (int64_t)((uint64_t)v & UINT64_C(0xFFFF));
 }
 
-inline uint16_t DspEngine::MovFromAccLow(Acc acc) {
-  Charge(DspOp::kMovAccWord, 1);
-  return static_cast<uint16_t>(acc_[Index(acc)] & 0xFFFF);
+static inline uint16_t fw_dsp_mov_from_acc_low(FwDspEngine* engine, FwAcc acc) {
+  fw_dsp_charge(engine, FW_OP_MOV_ACC_WORD, 1u);
+  return (uint16_t)((uint64_t)engine->acc[acc] & UINT64_C(0xFFFF));
 }
 
-inline int16_t DspEngine::MovFromAccHigh(Acc acc) {
-  Charge(DspOp::kMovAccWord, 1);
-  return static_cast<int16_t>(static_cast<uint16_t>((acc_[Index(acc)] >> 16) & 0xFFFF));
+static inline int16_t fw_dsp_mov_from_acc_high(FwDspEngine* engine, FwAcc acc) {
+  fw_dsp_charge(engine, FW_OP_MOV_ACC_WORD, 1u);
+  return fw_s16_from_bits((uint16_t)(((uint64_t)engine->acc[acc] >> 16) & UINT64_C(0xFFFF)));
 }
 
-inline int16_t DspEngine::MovFromAccUpper(Acc acc) {
-  Charge(DspOp::kMovAccWord, 1);
-  return static_cast<int16_t>(acc_[Index(acc)] >> 32);
+/// Bits 39..32, sign-extended.
+static inline int16_t fw_dsp_mov_from_acc_upper(FwDspEngine* engine, FwAcc acc) {
+  fw_dsp_charge(engine, FW_OP_MOV_ACC_WORD, 1u);
+  return (int16_t)fw_asr64(engine->acc[acc], 32u);
 }
 
-inline int32_t DspEngine::MulSS(int16_t a, int16_t b) {
-  Charge(DspOp::kMulSS, 1);
-  return static_cast<int32_t>(a) * static_cast<int32_t>(b);
+// ---- MCU multiply into a W-register pair (1 cycle each).
+static inline int32_t fw_dsp_mul_ss(FwDspEngine* engine, int16_t a, int16_t b) {
+  fw_dsp_charge(engine, FW_OP_MUL_SS, 1u);
+  return (int32_t)a * (int32_t)b;
 }
 
-inline int32_t DspEngine::MulSU(int16_t a, uint16_t b) {
-  Charge(DspOp::kMulSU, 1);
-  return static_cast<int32_t>(static_cast<int64_t>(a) * static_cast<int64_t>(b));
+static inline int32_t fw_dsp_mul_su(FwDspEngine* engine, int16_t a, uint16_t b) {
+  fw_dsp_charge(engine, FW_OP_MUL_SU, 1u);
+  return (int32_t)a * (int32_t)b;
 }
 
-inline uint32_t DspEngine::MulUU(uint16_t a, uint16_t b) {
-  Charge(DspOp::kMulUU, 1);
-  return static_cast<uint32_t>(a) * static_cast<uint32_t>(b);
+static inline uint32_t fw_dsp_mul_uu(FwDspEngine* engine, uint16_t a, uint16_t b) {
+  fw_dsp_charge(engine, FW_OP_MUL_UU, 1u);
+  return (uint32_t)a * (uint32_t)b;
 }
 
-}  // namespace adahrs::firmware_model
+#ifdef __cplusplus
+}  // extern "C"
+#endif
+
+#endif  // ADAHRS_FW_DSP_ENGINE_H

@@ -14,7 +14,7 @@
 //      x = (T - centre) 2^-shift, deg/s.
 //      Format 3: each channel times its scale factor F(tau_s) = 1 + delta, tau_s the normalised
 //      count of the temperature sensor its thermal block names, delta a MAC chain on tau_s's Q15
-//      powers (imu_constants.h ScaleDeltaQ15).
+//      powers (imu_constants.h FwScaleDeltaQ15).
 //   4. Full calibration: Ca_axis = (ch1 + ch2)/2 (pair mean), format 3: + q ca_axis^2;
 //      A = CA Ca (Eq. 26) in m/s^2, G = CG Cg (Eq. 29), format 3: + GS A (q, GS, ca and A in
 //      Q15 there); slots 6..8 carry the pair half-difference (ch1 - ch2)/2 in g.
@@ -22,23 +22,30 @@
 // (one CORCON write). Saturation anywhere sets a flag in the frame; values are never wrapped.
 // Not modelled: the capture ISR that produces t1/t2, the gyro ADC driver, and run-time bias
 // estimation (the unit's adaptive filter).
-#pragma once
+#ifndef ADAHRS_FW_IMU_COMPENSATOR_H
+#define ADAHRS_FW_IMU_COMPENSATOR_H
 
-#include "firmware_model/target/compensated_frame.h"
-#include "firmware_model/target/dsp_engine.h"
-#include "firmware_model/target/imu_constants.h"
+#include "compensated_frame.h"
+#include "dsp_engine.h"
+#include "imu_constants.h"
 
-namespace adahrs::firmware_model {
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /// Compensates one IMU frame in `mode` with `constants`; charges every instruction to `engine`.
-void ImuCompensate(DspEngine* engine,
-                   const ImuConstants& constants,
-                   ImuCompensationMode mode,
-                   const ImuRawFrame& raw,
-                   ImuCompensatedFrame* out);
+void fw_imu_compensate(FwDspEngine* engine,
+                       const FwImuConstants* constants,
+                       FwImuMode mode,
+                       const FwImuRawFrame* raw,
+                       FwImuCompensatedFrame* out);
 
 /// The DSP configuration the compensators run in (fractional, 1.31 saturation on A and B,
 /// SATDW on, convergent rounding).
-DspConfig CompensatorDspConfig();
+FwDspConfig fw_compensator_dsp_config(void);
 
-}  // namespace adahrs::firmware_model
+#ifdef __cplusplus
+}  // extern "C"
+#endif
+
+#endif  // ADAHRS_FW_IMU_COMPENSATOR_H

@@ -13,7 +13,7 @@
 // few frames on a slow ramp) from holding the state back. A fresh operator (power-on) is in the
 // virgin state at its first input u0: state 0, and moving away from u0 follows the virgin curve
 // state = -d w(2 |u - u0| |inv_span|), which the oldest branch rejoins at its mirror point
-// 2 u0 - u_b. The branch starts are a stack of kPreisachDepth entries in RAM; when it is full
+// 2 u0 - u_b. The branch starts are a stack of FW_PREISACH_DEPTH entries in RAM; when it is full
 // the smallest minor loop below the current branch is forgotten (noise makes small loops; a major
 // branch's start is far from its neighbours and stays).
 // The input u is a Q31 mantissa at `input_exponent` (fixed_coeff.h): the surface's pressure for
@@ -29,44 +29,51 @@
 // stack's bookkeeping), 109 at most measured with the stack full (preisach_q15_test.cc). Not
 // modelled, as in the law it follows: creep. The bridge's own state survives power cycles, which
 // the fresh operator cannot know.
-#pragma once
+#ifndef ADAHRS_FW_PREISACH_Q15_H
+#define ADAHRS_FW_PREISACH_Q15_H
 
-#include <cstdint>
+#include <stdint.h>
 
-#include "firmware_model/target/dsp_engine.h"
-#include "firmware_model/target/fixed_coeff.h"
+#include "dsp_engine.h"
+#include "fixed_coeff.h"
 
-namespace adahrs::firmware_model {
+#ifdef __cplusplus
+extern "C" {
+#endif
 
-inline constexpr uint8_t kPreisachDepth = 8;
+#define FW_PREISACH_DEPTH 8u
 
 /// The start of one branch.
-struct BranchStartQ15 {
+typedef struct {
   int32_t input;
   int16_t state_q15;
-};
+} FwBranchStartQ15;
 
 /// One operator's memory (RAM; zero-initialised is the fresh operator).
-struct PreisachQ15 {
-  BranchStartQ15 branches[kPreisachDepth];  ///< oldest first
-  uint8_t depth;                            ///< 0: on the virgin curve
-  int32_t origin_input;                     ///< the first input: the virgin curve's centre
+typedef struct {
+  FwBranchStartQ15 branches[FW_PREISACH_DEPTH];  ///< oldest first
+  uint8_t depth;                                 ///< 0: on the virgin curve
+  int32_t origin_input;                          ///< the first input: the virgin curve's centre
   int32_t last_input;
   int16_t state_q15;
   int8_t direction;  ///< of the physical quantity on the current branch: +1, -1, 0 before any move
   uint8_t started;
-};
+} FwPreisachQ15;
 
 /// Returns the operator to its fresh state (virgin, state 0, no input seen).
-void PreisachResetQ15(PreisachQ15* op);
+void fw_preisach_reset_q15(FwPreisachQ15* op);
 
 /// Advances `op` to `input` (Q31 mantissa at `input_exponent`) and returns the state, Q15.
-/// The caller guarantees inv_span.mantissa_q31 != INT32_MIN and
-/// -31 <= input_exponent + inv_span.exponent <= 31 (ads_constants.cc validates both).
-int16_t PreisachUpdateQ15(DspEngine* engine,
-                          PreisachQ15* op,
-                          int32_t input,
-                          int8_t input_exponent,
-                          const CoeffQ31& inv_span);
+/// The caller guarantees inv_span->mantissa_q31 != INT32_MIN and
+/// -31 <= input_exponent + inv_span->exponent <= 31 (ads_constants.c validates both).
+int16_t fw_preisach_update_q15(FwDspEngine* engine,
+                               FwPreisachQ15* op,
+                               int32_t input,
+                               int8_t input_exponent,
+                               const FwCoeffQ31* inv_span);
 
-}  // namespace adahrs::firmware_model
+#ifdef __cplusplus
+}  // extern "C"
+#endif
+
+#endif  // ADAHRS_FW_PREISACH_Q15_H

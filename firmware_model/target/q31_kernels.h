@@ -1,8 +1,8 @@
-// Double-word (Q31) kernels built only from DspEngine instructions, so that every cycle they cost
+// Double-word (Q31) kernels built only from DSP-engine instructions, so that every cycle they cost
 // is counted (physics.md 5.3: "The 32-bit (Q31) variants need three partial products per multiply.
 // On the 30F the mixed-sign lo x hi terms go through MUL.SU into W registers").
 //
-// MulQ31(a, b) derivation. Split a = ah*2^16 + al (ah signed, al unsigned), b likewise. Then
+// fw_mul_q31(a, b) derivation. Split a = ah*2^16 + al (ah signed, al unsigned), b likewise. Then
 //   a*b / 2^31 = 2*ah*bh + (ah*bl + al*bh) / 2^15 + al*bl / 2^31.
 // The engine computes 2*ah*bh exactly with a fractional MPY, each mixed term with MUL.SU into a
 // W pair, loads it into an accumulator (LAC high + MOV ACCxL), shifts it right 15 (floor), and
@@ -14,35 +14,47 @@
 //
 // Horner at a working exponent E (fixed_coeff.h): y_n = c_n; y_k = y_{k+1} x + c_k, every c_k
 // aligned to E by a right shift (E - e_k) (one SFTAC with the shift in a W register), each step
-// 25 cycles: MulQ31 15, load c_k 2, the shift's SUB and MOV 2, SFTAC 1, ADD 1, read y 2, loop
+// 25 cycles: fw_mul_q31 15, load c_k 2, the shift's SUB and MOV 2, SFTAC 1, ADD 1, read y 2, loop
 // DEC and branch 2; plus a pointer and count set-up of 2.
-#pragma once
+#ifndef ADAHRS_FW_Q31_KERNELS_H
+#define ADAHRS_FW_Q31_KERNELS_H
 
-#include <cstdint>
+#include <stdint.h>
 
-#include "firmware_model/target/dsp_engine.h"
-#include "firmware_model/target/fixed_coeff.h"
+#include "dsp_engine.h"
+#include "fixed_coeff.h"
 
-namespace adahrs::firmware_model {
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /// acc = v (LAC high word, MOV low word to ACCxL): 2 cycles.
-void LoadQ31(DspEngine* engine, Acc acc, int32_t v);
+void fw_load_q31(FwDspEngine* engine, FwAcc acc, int32_t v);
 /// Reads ACCxH:ACCxL as int32 (2 cycles); exact while the accumulator is within 1.31.
-int32_t ReadQ31(DspEngine* engine, Acc acc);
+int32_t fw_read_q31(FwDspEngine* engine, FwAcc acc);
 /// SFTAC by a shift held in a W register (-16..16): the MOV that loads it, then the SFTAC.
-void SftacBy(DspEngine* engine, Acc acc, int32_t shift);
+void fw_sftac_by(FwDspEngine* engine, FwAcc acc, int16_t shift);
 /// Shifts acc by `shift` (positive right), using as many SFTACs (+-16 each) as needed, at least
 /// one.
-void ShiftAcc(DspEngine* engine, Acc acc, int32_t shift);
+void fw_shift_acc(FwDspEngine* engine, FwAcc acc, int16_t shift);
 /// acc = a*b in Q31 (see derivation above); uses the other accumulator as scratch.
-void MulQ31(DspEngine* engine, Acc acc, int32_t a_q31, int32_t b_q31);
-/// x = (v - centre) * 2^(v_exponent - shift) in Q31, saturating (SA set) if |x| >= 1: 10-11 cycles.
-int32_t NormaliseQ31(DspEngine* engine, int32_t v, int8_t v_exponent, const InputNormQ31& norm);
-/// p(x) by Horner at poly.work_exponent; result (Q31 at that exponent) in `acc` and returned.
-int32_t HornerQ31(DspEngine* engine, Acc acc, const PolyQ31& poly, uint8_t degree, int32_t x_q31);
+void fw_mul_q31(FwDspEngine* engine, FwAcc acc, int32_t a_q31, int32_t b_q31);
+/// x = (v - centre) * 2^(v_exponent - shift) in Q31, saturating (SA set) if |x| >= 1: 10-11
+/// cycles.
+int32_t fw_normalise_q31(FwDspEngine* engine,
+                         int32_t v,
+                         int8_t v_exponent,
+                         const FwInputNormQ31* norm);
+/// p(x) by Horner at poly->work_exponent; result (Q31 at that exponent) in `acc` and returned.
+int32_t fw_horner_q31(
+    FwDspEngine* engine, FwAcc acc, const FwPolyQ31* poly, uint8_t degree, int32_t x_q31);
 /// floor(sqrt(radicand)) by 16 steps of the restoring method on 32-bit W pairs: 192 cycles. The
 /// root of a radicand at 2^(2n) is at 2^n (CAS: kt^2 2^14 -> kt 2^7; the bridge code's
 /// linearisation: r 2^28 -> sqrt(r) 2^14).
-uint16_t IntegerSqrt(DspEngine* engine, uint32_t radicand);
+uint16_t fw_integer_sqrt(FwDspEngine* engine, uint32_t radicand);
 
-}  // namespace adahrs::firmware_model
+#ifdef __cplusplus
+}  // extern "C"
+#endif
+
+#endif  // ADAHRS_FW_Q31_KERNELS_H

@@ -2,8 +2,7 @@
 
 #include <cmath>
 
-#include "firmware_model/target/ads_constants.h"
-#include "firmware_model/target/imu_constants.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::hil {
 namespace {

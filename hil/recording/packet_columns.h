@@ -10,7 +10,7 @@
 
 #include <array>
 
-#include "firmware_model/target/data_payloads.h"
+#include "firmware_model/unit_firmware.h"
 #include "hil/recording/recording_format.h"
 
 namespace adahrs::hil {

@@ -8,8 +8,12 @@
 2. No inverse crime: calib/ code that turns recordings into constants, verdicts or diagnoses
    includes none of the simulator's sensor models (only evaluation/, campaign/ and study/, which
    judge against truth or draw units, may); calib/diagnosis/ includes nothing of sensor_sim/.
-3. firmware_model/target/ is target-clean for the 16-bit dsPIC: no floating point, heap,
-   exceptions or STL containers.
+3. firmware_model/target/ is target-clean for the 16-bit dsPIC, whose compiler (MPLAB XC16) is a
+   C compiler: only C99 sources (.c, .h), no C++ (namespaces, classes, templates, constexpr, casts
+   of C++, nullptr, #pragma once), no floating point, heap or exceptions; it includes only its own
+   headers (by bare name, so the folder drops into an MPLAB project as it is) and the C standard
+   library's freestanding headers <stdint.h>, <stdbool.h>, <stddef.h> (and avr-libc's, in the
+   AVR branch of rom.h).
 4. Inside calib/, a subfolder includes only the calib subfolders its CMakeLists.txt declares
    (adahrs_calib_<folder> among its DEPS, followed transitively), so the order between them is
    the one the build states, and the declared graph has no cycle.
@@ -36,12 +40,16 @@ SENSOR_MODELS = re.compile(
     r'preisach_hysteresis|gyro_bias_process|imu_unit|ads_unit|ads1254|die_thermal|summed_adc|'
     r'duty_cycle_modulator|oat_probe)\.h')
 MAY_USE_SENSOR_MODELS = ("evaluation", "campaign", "study", "studies")
-SOURCE_SUFFIXES = {".h", ".hpp", ".cc", ".cpp"}
+SOURCE_SUFFIXES = {".h", ".hpp", ".cc", ".cpp", ".c"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([./]*)([A-Za-z_]+)/')
 TARGET_BANNED = re.compile(
-    r"\b(float|double|new|delete|malloc|free|throw|try|catch)\b"
-    r"|std::(vector|string|map|function|shared_ptr|unique_ptr)"
-    r"|#\s*include\s*<(iostream|Eigen|vector|string|map|memory)")
+    r"\b(float|double|new|delete|malloc|calloc|realloc|free|throw|try|catch|namespace|class|"
+    r"template|typename|constexpr|nullptr|static_cast|reinterpret_cast|const_cast|"
+    r"dynamic_cast|using)\b"
+    r"|std::|#\s*pragma\s+once")
+TARGET_SUFFIXES = {".c", ".h"}
+TARGET_SYSTEM_HEADERS = {"stdint.h", "stdbool.h", "stddef.h", "avr/pgmspace.h"}
+TARGET_INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 
 def sources(folder):
@@ -94,6 +102,44 @@ def calib_order_violations(root):
     return violations
 
 
+def target_violations(root):
+    """Rule 3: firmware_model/target/ holds only C99 that the dsPIC's C compiler takes."""
+    violations = []
+    target = root / "firmware_model" / "target"
+    files = sorted(p for p in target.rglob("*") if p.is_file())
+    own_headers = {p.name for p in files if p.suffix == ".h"}
+    for path in files:
+        where = path.relative_to(root)
+        if path.suffix not in TARGET_SUFFIXES:
+            violations.append(f"{where}: firmware_model/target/ holds only C99 sources (.c, .h)")
+            continue
+        in_block_comment = False
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            stripped = line.strip()
+            if in_block_comment:
+                if "*/" in stripped:
+                    in_block_comment = False
+                continue
+            if stripped.startswith("/*"):
+                in_block_comment = "*/" not in stripped
+                continue
+            if stripped.startswith("*"):
+                continue
+            code = strip_comment(line)
+            if TARGET_BANNED.search(code):
+                violations.append(f"{where}:{number}: firmware_model/target/ must stay C99 and "
+                                  f"target-clean: {stripped}")
+            include = TARGET_INCLUDE.match(code)
+            if include:
+                system, header = include.group(1) == "<", include.group(2)
+                if (system and header not in TARGET_SYSTEM_HEADERS) or (
+                        not system and header not in own_headers):
+                    violations.append(f"{where}:{number}: firmware_model/target/ includes only its "
+                                      f"own headers by name and <stdint.h>, <stdbool.h>, "
+                                      f"<stddef.h>: {stripped}")
+    return violations
+
+
 def main(root):
     root = pathlib.Path(root)
     violations = []
@@ -119,30 +165,14 @@ def main(root):
                 if match and match.group(2) in forbidden:
                     violations.append(f"{path.relative_to(root)}:{number}: {folder}/ must not "
                                       f"include {match.group(2)}/ (no inverse crime)")
-    for path in sources(root / "firmware_model" / "target"):
-        in_block_comment = False
-        for number, line in enumerate(path.read_text().splitlines(), 1):
-            stripped = line.strip()
-            if in_block_comment:
-                if "*/" in stripped:
-                    in_block_comment = False
-                continue
-            if stripped.startswith("/*"):
-                in_block_comment = "*/" not in stripped
-                continue
-            if stripped.startswith("*"):
-                continue
-            code = strip_comment(line)
-            if TARGET_BANNED.search(code):
-                violations.append(f"{path.relative_to(root)}:{number}: firmware_model/target/ must "
-                                  f"stay target-clean: {stripped}")
+    violations += target_violations(root)
     violations += calib_order_violations(root)
     for v in violations:
         print(v)
     if violations:
         print(f"architecture: {len(violations)} violation(s)")
         return 1
-    print("architecture: one-way dependencies hold; firmware_model/target is target-clean")
+    print("architecture: one-way dependencies hold; firmware_model/target is C99 and target-clean")
     return 0
 
 

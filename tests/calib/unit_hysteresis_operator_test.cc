@@ -7,8 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/ads_calibration/unit_hysteresis_operator.h"
-#include "firmware_model/target/dsp_engine.h"
-#include "firmware_model/target/preisach_q15.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::calib {
 namespace {

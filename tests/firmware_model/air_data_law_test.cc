@@ -1,8 +1,8 @@
 // The ADS firmware's air-data laws (target/air_data_law.h) against independent truth: the
 // published ISA pressures (US Standard Atmosphere 1976 / ICAO) and sensor_sim's own atmosphere and
 // airspeed formulas, over the whole envelope; the compiled ROM tables against their generator.
-#include "firmware_model/target/air_data_law.h"
 #include "adahrs_build_paths.h"
+#include "firmware_model/unit_firmware.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,10 +14,6 @@
 #include <gtest/gtest.h>
 
 #include "firmware_model/air_data_law.h"
-#include "firmware_model/target/ads_constants.h"
-#include "firmware_model/target/air_data_tables.h"
-#include "firmware_model/target/compensated_frame.h"
-#include "firmware_model/target/imu_compensator.h"
 #include "sensor_sim/air_data.h"
 #include "sensor_sim/atmosphere.h"
 
@@ -42,7 +38,7 @@ double AirspeedKt(double qc_pa, uint16_t* flags) {
 
 TEST(AirDataTables, CompiledTablesAreTheGeneratorsOutput) {
   if (std::getenv("ADAHRS_WRITE_AIR_DATA_TABLES") != nullptr) {
-    std::ofstream(std::string(ADAHRS_SOURCE_DIR) + "/firmware_model/target/air_data_tables.cc")
+    std::ofstream(std::string(ADAHRS_SOURCE_DIR) + "/firmware_model/target/air_data_tables.c")
         << AirDataTablesSource();
   }
   const std::vector<int32_t> isa = IsaAltitudeTable(), cas = CasSquaredTable();
@@ -50,10 +46,10 @@ TEST(AirDataTables, CompiledTablesAreTheGeneratorsOutput) {
     ASSERT_EQ(kIsaAltitudeTableQ31[k], isa[k]) << "ISA entry " << k;
   for (size_t k = 0; k < cas.size(); ++k)
     ASSERT_EQ(kCasSquaredTableQ31[k], cas[k]) << "CAS entry " << k;
-  std::ifstream file(std::string(ADAHRS_SOURCE_DIR) + "/firmware_model/target/air_data_tables.cc");
+  std::ifstream file(std::string(ADAHRS_SOURCE_DIR) + "/firmware_model/target/air_data_tables.c");
   std::stringstream text;
   text << file.rdbuf();
-  EXPECT_EQ(text.str(), AirDataTablesSource()) << "air_data_tables.cc differs from its generator";
+  EXPECT_EQ(text.str(), AirDataTablesSource()) << "air_data_tables.c differs from its generator";
 }
 
 // Published ISA static pressure (hPa, to 0.01 hPa) at pressure altitudes; the tolerance is the

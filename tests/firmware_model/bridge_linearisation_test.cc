@@ -11,8 +11,7 @@
 #include <cstdio>
 #include <utility>
 
-#include "firmware_model/target/bridge_linearisation.h"
-#include "firmware_model/target/compensated_frame.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 namespace {

@@ -15,8 +15,7 @@
 
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/reference_compensator.h"
-#include "firmware_model/target/ads_compensator.h"
-#include "firmware_model/target/imu_compensator.h"
+#include "firmware_model/unit_firmware.h"
 #include "tests/firmware_model/realistic_constants.h"
 
 namespace adahrs::firmware_model {

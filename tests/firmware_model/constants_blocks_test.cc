@@ -11,10 +11,7 @@
 #include <utility>
 
 #include "firmware_model/constants_exporter.h"
-#include "firmware_model/target/ads_constants.h"
-#include "firmware_model/target/air_data_tables.h"
-#include "firmware_model/target/imu_constants.h"
-#include "firmware_model/target/q_math.h"
+#include "firmware_model/unit_firmware.h"
 #include "tests/firmware_model/realistic_constants.h"
 
 namespace adahrs::firmware_model {

@@ -1,6 +1,6 @@
 // Data packet payloads (docs/unit-protocol.md §4-5): byte layout at the documented offsets,
 // round trips in every mode with extreme values, and refusal of inconsistent payloads.
-#include "firmware_model/target/data_payloads.h"
+#include "firmware_model/unit_firmware.h"
 
 #include <cstdint>
 #include <limits>

@@ -1,13 +1,12 @@
 // Bit-exact corners of the DSP engine model; expected values are worked out by hand from the
 // rules in physics.md 5.1-5.2 (dsPIC30F/33F family reference manual DSP-engine section).
-#include "firmware_model/target/dsp_engine.h"
+#include "firmware_model/unit_firmware.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 
 #include "common/random.h"
-#include "firmware_model/target/q31_kernels.h"
 
 namespace adahrs::firmware_model {
 namespace {

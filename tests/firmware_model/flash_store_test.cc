@@ -1,6 +1,6 @@
 // Emulated constants flash (docs/unit-protocol.md §7): the image layout and CRC recomputed here
 // from the document with Boost.CRC, versioning, and detection of every single-bit corruption.
-#include "firmware_model/target/flash_store.h"
+#include "firmware_model/unit_firmware.h"
 
 #include <cstdint>
 #include <vector>

@@ -2,7 +2,7 @@
 // by UnitProtocolClient (Boost.CRC framing), bytes through MaintenanceHandler::Receive, responses
 // decoded and parsed on the PC side. Covers every command, every NAK code with the state shown
 // unchanged, and commit / power-cycle semantics.
-#include "firmware_model/target/maintenance_handler.h"
+#include "firmware_model/unit_firmware.h"
 
 #include <algorithm>
 #include <cstdint>

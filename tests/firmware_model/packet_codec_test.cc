@@ -1,13 +1,12 @@
 // Frame codec (docs/unit-protocol.md §2-3): the worked example from the document, round trips of
 // every packet type fed whole and byte by byte, and each rejection path with its counter.
-#include "firmware_model/target/packet_codec.h"
+#include "firmware_model/unit_firmware.h"
 
 #include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "firmware_model/target/data_payloads.h"
 #include "firmware_model/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {

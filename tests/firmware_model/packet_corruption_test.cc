@@ -9,8 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/random.h"
-#include "firmware_model/target/data_payloads.h"
-#include "firmware_model/target/packet_codec.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model {
 namespace {

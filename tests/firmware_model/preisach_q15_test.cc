@@ -9,8 +9,7 @@
 #include <cstdio>
 
 #include "common/random.h"
-#include "firmware_model/target/air_data_tables.h"
-#include "firmware_model/target/preisach_q15.h"
+#include "firmware_model/unit_firmware.h"
 #include "sensor_sim/preisach_hysteresis.h"
 
 namespace adahrs::firmware_model {

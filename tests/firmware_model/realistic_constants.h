@@ -16,7 +16,7 @@
 #include "common/random.h"
 #include "firmware_model/calibration_constants.h"
 #include "firmware_model/reference_compensator.h"
-#include "firmware_model/target/compensated_frame.h"
+#include "firmware_model/unit_firmware.h"
 
 namespace adahrs::firmware_model::testing {
 

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/random.h"
-#include "firmware_model/target/data_payloads.h"
+#include "firmware_model/unit_firmware.h"
 #include "firmware_model/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {

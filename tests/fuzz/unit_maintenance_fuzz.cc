@@ -8,8 +8,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "firmware_model/target/flash_store.h"
-#include "firmware_model/target/maintenance_handler.h"
+#include "firmware_model/unit_firmware.h"
 #include "firmware_model/unit_protocol_client.h"
 
 namespace fm = adahrs::firmware_model;

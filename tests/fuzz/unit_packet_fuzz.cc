@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <span>
 
-#include "firmware_model/target/data_payloads.h"
+#include "firmware_model/unit_firmware.h"
 #include "firmware_model/unit_protocol_client.h"
 
 namespace fm = adahrs::firmware_model;

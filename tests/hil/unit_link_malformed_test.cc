@@ -13,8 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include "firmware_model/target/data_payloads.h"
-#include "firmware_model/target/packet_codec.h"
+#include "firmware_model/unit_firmware.h"
 #include "hil/clock.h"
 
 namespace adahrs::hil {

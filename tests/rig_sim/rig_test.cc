@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "firmware_model/constants_exporter.h"
-#include "firmware_model/target/imu_constants.h"
+#include "firmware_model/unit_firmware.h"
 #include "firmware_model/unit_protocol_client.h"
 #include "hil/codecs/modbus_rtu.h"
 #include "tests/firmware_model/realistic_constants.h"

@@ -2,12 +2,10 @@
 // air_data_tables.h). Rewrite: ADAHRS_WRITE_AIR_DATA_TABLES=1 build/bin/firmware_model_tests
 // --gtest_filter=AirDataTables.*
 // clang-format off
-#include "firmware_model/target/air_data_tables.h"
-
-namespace adahrs::firmware_model {
+#include "air_data_tables.h"
 
 // ISA pressure altitude, ft * 2^15, at p = k * 128 Pa.
-const int32_t kIsaAltitudeTableQ31[kIsaTableEntries] = {
+const int32_t fw_isa_altitude_table_q31[FW_ISA_TABLE_ENTRIES] FW_ROM = {
     2071519532, 2071519532, 2071519532, 2071519532, 2071519532, 2071519532,
     2071519532, 2071519532, 2071519532, 2071519532, 2071519532, 2071519532,
     2071519532, 2071519532, 2071519532, 2071519532, 2071519532, 2071519532,
@@ -182,7 +180,7 @@ const int32_t kIsaAltitudeTableQ31[kIsaTableEntries] = {
 };
 
 // Calibrated airspeed squared, kt^2 * 2^12, at qc = k * 256 Pa.
-const int32_t kCasSquaredTableQ31[kCasTableEntries] = {
+const int32_t fw_cas_squared_table_q31[FW_CAS_TABLE_ENTRIES] FW_ROM = {
     0, 6462869, 12914115, 19353787, 25781936, 32198610,
     38603859, 44997731, 51380276, 57751540, 64111571, 70460418,
     76798127, 83124744, 89440317, 95744891, 102038513, 108321228,
@@ -270,5 +268,3 @@ const int32_t kCasSquaredTableQ31[kCasTableEntries] = {
     1067088764, 1067088764, 1067088764, 1067088764, 1067088764, 1067088764,
     1067088764, 1067088764, 1067088764,
 };
-
-}  // namespace adahrs::firmware_model
