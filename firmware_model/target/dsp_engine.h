@@ -297,7 +297,7 @@ static inline int16_t fw_dsp_mov_from_acc_upper(FwDspEngine* engine, FwAcc acc) 
 // ---- MCU multiply into a W-register pair (1 cycle each).
 static inline int32_t fw_dsp_mul_ss(FwDspEngine* engine, int16_t a, int16_t b) {
   fw_dsp_charge(engine, FW_OP_MUL_SS, 1u);
-  return (int32_t)(a * b);  // PLANTED: no widening cast; right only where int has 32 bits
+  return (int32_t)a * (int32_t)b;
 }
 
 static inline int32_t fw_dsp_mul_su(FwDspEngine* engine, int16_t a, uint16_t b) {
