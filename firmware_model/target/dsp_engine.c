@@ -2,12 +2,6 @@
 
 #include "q_math.h"
 
-const uint8_t fw_dsp_op_cycles_table[FW_OP_COUNT] = {1u,  1u,  1u,  1u, 1u, 1u, 1u, 1u,
-                                                     1u,  1u,  1u,  1u, 1u, 1u, 1u, 1u,
-                                                     19u, 19u, 19u, 1u, 1u, 2u, 2u, 3u};
-
-uint8_t fw_dsp_op_cycles(FwDspOp op) { return fw_dsp_op_cycles_table[op]; }
-
 const char* fw_dsp_op_name(FwDspOp op) {
   static const char* const kOpNames[FW_OP_COUNT] = {
       "MPY",     "MAC",     "MSC",        "LAC",     "SAC",      "SAC.R",       "SFTAC",  "ADD Acc",

@@ -69,7 +69,20 @@ typedef enum {
 
 /// Documented cycle cost of one instruction of class `op` (physics.md 5.1: MAC-class, LAC/SAC,
 /// SFTAC, MOV, MUL are single cycle; DIVx 19 with REPEAT #17; a taken branch, CALL 2; RETURN 3).
-uint8_t fw_dsp_op_cycles(FwDspOp op);
+/// Inline, so that a charge of a known instruction compiles to a constant.
+static inline uint8_t fw_dsp_op_cycles(FwDspOp op) {
+  uint8_t cycles = 1u;
+  if ((op == FW_OP_DIV_F) || (op == FW_OP_DIV_SD) || (op == FW_OP_DIV_UD)) {
+    cycles = 19u;
+  } else if ((op == FW_OP_BRANCH) || (op == FW_OP_CALL)) {
+    cycles = 2u;
+  } else if (op == FW_OP_RETURN) {
+    cycles = 3u;
+  } else {
+    // single cycle
+  }
+  return cycles;
+}
 /// Mnemonic of `op` for cycle tables.
 const char* fw_dsp_op_name(FwDspOp op);
 
@@ -122,13 +135,12 @@ FwDivResult fw_dsp_div_ud(FwDspEngine* engine, uint32_t num, uint16_t den);
 
 // The single-instruction operations are defined here so that the compensator's instruction
 // sequences compile to straight-line arithmetic (a call per instruction was most of the rig's
-// time on the host). The cycle table is read through fw_dsp_op_cycles' table.
-extern const uint8_t fw_dsp_op_cycles_table[FW_OP_COUNT];
+// time on the host).
 
 static inline void fw_dsp_charge(FwDspEngine* engine, FwDspOp op, uint8_t count) {
   engine->op_counts[op] += count;
   engine->instructions += count;
-  engine->cycles += (uint32_t)count * (uint32_t)fw_dsp_op_cycles_table[op];
+  engine->cycles += (uint32_t)count * (uint32_t)fw_dsp_op_cycles(op);
 }
 
 // ---- Charges for plain MCU instructions whose result the caller computes itself.

@@ -66,19 +66,13 @@ static inline int64_t fw_s64_from_bits(uint64_t bits) {
 }
 
 /// Arithmetic right shift: floor(v / 2^shift), shift 0..63. Toward minus infinity for every v, as
-/// the dsPIC's ASR and SFTAC do; a negative v is never shifted itself (-1 - v is non-negative).
+/// the dsPIC's ASR and SFTAC do. Only the bit pattern is shifted, logically: a negative v is
+/// complemented first (~v is v's magnitude minus one) and the result complemented back, without
+/// a branch.
 static inline int64_t fw_asr64(int64_t v, uint8_t shift) {
-  int64_t result = 0;
-  if (v >= 0) {
-    const uint64_t shifted = (uint64_t)v >> shift;
-    result = (int64_t)shifted;
-  } else {
-    const int64_t complement_signed = -1 - v;  // ~v, non-negative
-    const uint64_t complement = (uint64_t)complement_signed;
-    const uint64_t shifted = complement >> shift;
-    result = -1 - (int64_t)shifted;
-  }
-  return result;
+  const uint64_t bits = (uint64_t)v;
+  const uint64_t sign_fill = (uint64_t)0u - (bits >> 63);  // all ones for a negative v
+  return fw_s64_from_bits(((bits ^ sign_fill) >> shift) ^ sign_fill);
 }
 
 /// Wraps any int64 to 40 bits and sign-extends (what the 40-bit adder does without saturation).
