@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "common/imu_layout.h"
 #include "firmware_model/target/ads_constants.h"
 #include "firmware_model/target/imu_constants.h"
 
@@ -12,12 +13,9 @@ namespace {
 
 namespace fm = firmware_model;
 
-constexpr const char* kChannelNames[fm::kImuChannels] = {
-    "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
-
 std::string ImuBlockName(uint8_t id) {
   if (id >= fm::kImuBlockThermalFirst && id <= fm::kImuBlockThermalLast) {
-    return fmt::format("thermal {}", kChannelNames[id - fm::kImuBlockThermalFirst]);
+    return fmt::format("thermal {}", common::kImuChannelNames[id - fm::kImuBlockThermalFirst]);
   }
   if (id == fm::kImuBlockAccelOffsetScale) return "accel offsets and scales";
   if (id >= fm::kImuBlockGyroCubicFirst && id <= fm::kImuBlockGyroCubicLast) {
@@ -27,7 +25,8 @@ std::string ImuBlockName(uint8_t id) {
   if (id == fm::kImuBlockCg) return "CG";
   if (id == fm::kImuBlockScaleSwitch) return "scale-temperature switch";
   if (id >= fm::kImuBlockScaleFactorFirst && id <= fm::kImuBlockScaleFactorLast) {
-    return fmt::format("scale factor {}", kChannelNames[id - fm::kImuBlockScaleFactorFirst]);
+    return fmt::format("scale factor {}",
+                       common::kImuChannelNames[id - fm::kImuBlockScaleFactorFirst]);
   }
   return id == fm::kImuBlockAccelQuadratic ? "accel nonlinearity" : "gyro g-sensitivity";
 }

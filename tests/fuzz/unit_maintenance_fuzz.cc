@@ -10,7 +10,7 @@
 
 #include "firmware_model/target/flash_store.h"
 #include "firmware_model/target/maintenance_handler.h"
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 
 namespace fm = adahrs::firmware_model;
 
@@ -31,9 +31,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     at += 1 + frame.payload_length;
     const uint16_t bytes = handler.HandleRequest(frame, response, sizeof response);
     if (bytes == 0) continue;
-    fm::StreamReader reader;
+    hil::StreamReader reader;
     for (const fm::Frame& reply : reader.Push({response, bytes})) {
-      (void)fm::ParseMaintenanceResponse(reply);  // a ProtocolError here is a finding
+      (void)hil::ParseMaintenanceResponse(reply);  // a ProtocolError here is a finding
     }
   }
   return 0;

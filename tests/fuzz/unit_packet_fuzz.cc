@@ -7,7 +7,7 @@
 #include <span>
 
 #include "firmware_model/target/data_payloads.h"
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 
 namespace fm = adahrs::firmware_model;
 
@@ -18,20 +18,20 @@ template <typename Parse>
 void Refusable(Parse parse) {
   try {
     parse();
-  } catch (const fm::ProtocolError&) {
+  } catch (const hil::ProtocolError&) {
   }
 }
 
 void ParseFrame(const fm::Frame& frame) {
   Refusable([&] {
-    const fm::MaintenanceResponse response = fm::ParseMaintenanceResponse(frame);
-    Refusable([&] { (void)fm::ParseIdentify(response); });
-    Refusable([&] { (void)fm::ParseCommit(response); });
-    Refusable([&] { (void)fm::ParseReadBlock(response); });
-    Refusable([&] { (void)fm::ParseCounters(response); });
+    const hil::MaintenanceResponse response = hil::ParseMaintenanceResponse(frame);
+    Refusable([&] { (void)hil::ParseIdentify(response); });
+    Refusable([&] { (void)hil::ParseCommit(response); });
+    Refusable([&] { (void)hil::ParseReadBlock(response); });
+    Refusable([&] { (void)hil::ParseCounters(response); });
   });
-  Refusable([&] { (void)fm::ParseImuData(frame); });
-  Refusable([&] { (void)fm::ParseAdsData(frame); });
+  Refusable([&] { (void)hil::ParseImuData(frame); });
+  Refusable([&] { (void)hil::ParseAdsData(frame); });
 }
 
 }  // namespace
@@ -40,7 +40,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
   const size_t chunk_bytes = 1 + data[0] % 64;  // first byte: the transport's read size
   std::span<const uint8_t> stream(data + 1, size - 1);
-  fm::StreamReader reader;
+  hil::StreamReader reader;
   for (size_t at = 0; at < stream.size(); at += chunk_bytes) {
     for (const fm::Frame& frame :
          reader.Push(stream.subspan(at, std::min(chunk_bytes, stream.size() - at)))) {
