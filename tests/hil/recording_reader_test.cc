@@ -323,9 +323,14 @@ TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {
 }
 
 TEST_F(RecordingReaderTest, MalformedRejectedIntervalNamesItsPath) {
+  // Planted in the file: the writer itself refuses such a meta (WriteMetaJson reads it first).
+  const nlohmann::json meta_file = {
+      {"format_version", kRecordingFormatVersion},
+      {"rejected_intervals",
+       {{{"step", 2}, {"t_start_s", 5.0}, {"t_end_s", 4.0}, {"reason", "x"}}}}};
   RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
-  w.WriteMetaJson({{"rejected_intervals",
-                    {{{"step", 2}, {"t_start_s", 5.0}, {"t_end_s", 4.0}, {"reason", "x"}}}}});
+  EXPECT_THROW(w.WriteMetaJson(meta_file), RecordingError);
+  std::ofstream(dir_ / "meta.json", std::ios::trunc) << meta_file.dump();
   EXPECT_THAT(ErrorOf(),
               AllOf(HasSubstr("$.rejected_intervals[0]"), HasSubstr("before t_start_s")));
 }
