@@ -31,9 +31,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     at += 1 + frame.payload_length;
     const uint16_t bytes = handler.HandleRequest(frame, response, sizeof response);
     if (bytes == 0) continue;
-    hil::StreamReader reader;
+    adahrs::hil::StreamReader reader;
     for (const fm::Frame& reply : reader.Push({response, bytes})) {
-      (void)hil::ParseMaintenanceResponse(reply);  // a ProtocolError here is a finding
+      (void)adahrs::hil::ParseMaintenanceResponse(reply);  // a ProtocolError here is a finding
     }
   }
   return 0;
