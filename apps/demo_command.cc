@@ -22,8 +22,8 @@
 
 #include "apps/commands.h"
 #include "calib/acceptance/acceptance_file.h"
-#include "calib/campaign/campaign.h"
 #include "calib/campaign/quick_sequences.h"
+#include "proving/demo/demo_campaign.h"
 #include "rig_sim/recording_replay.h"
 #include "rig_sim/rig_bench_stations.h"
 #include "rig_sim/rig_child_process.h"
@@ -128,14 +128,14 @@ uint64_t PrintRuns(const std::vector<calib::RunSummary>& runs) {
   return lost;
 }
 
-void PrintSummary(const calib::CampaignResult& result,
+void PrintSummary(const proving::DemoCampaignResult& result,
                   double wall_s,
                   sensor_sim::TruthVariant variant) {
   std::cout << fmt::format("\ndemo finished in {:.0f} s wall\n", wall_s);
   std::cout << fmt::format("truth: every modelled effect on, variant {}: {}\n",
                            sensor_sim::ToString(variant),
                            sensor_sim::Describe(variant));
-  for (const calib::UnitOutcome& u : result.units) {
+  for (const calib::UnitOutcome& u : result.production.units) {
     std::cout << fmt::format(
         "{} {}: constants version {} (records v{}, {} strategy, {} blocks "
         "verified)\n",
@@ -166,7 +166,10 @@ void PrintSummary(const calib::CampaignResult& result,
       std::cout
           << "  acceptance against the specification: the unit is not in the acceptance run\n";
     }
-    for (const calib::EvaluatedQuantity& q : u.evaluation) {
+    const auto evaluation = result.evaluation.find(u.serial);
+    for (const proving::EvaluatedQuantity& q : evaluation == result.evaluation.end()
+                                                   ? std::vector<proving::EvaluatedQuantity>{}
+                                                   : evaluation->second) {
       std::cout << fmt::format("  evaluated worst {}: {:.4g} {} (spec {:g}) -> {}\n",
                                q.quantity,
                                q.worst,
@@ -177,7 +180,7 @@ void PrintSummary(const calib::CampaignResult& result,
     std::cout << "  report: " << u.report.string() << "\n";
   }
   for (const auto* evaluation : {&result.reference_evaluation, &result.ads_reference_evaluation}) {
-    for (const calib::EvaluatedQuantity& q : *evaluation) {
+    for (const proving::EvaluatedQuantity& q : *evaluation) {
       std::cout << fmt::format("reference strategy, {} worst {}: {:.4g} {} -> {}\n",
                                q.serial,
                                q.quantity,
@@ -188,19 +191,19 @@ void PrintSummary(const calib::CampaignResult& result,
   }
   std::cout << "diagnosis of the IMU and ADS calibration runs against the nominal model ("
             << (result.diagnosis_dir / "report.html").string() << "):\n";
-  for (const calib::UnitDiagnosis& u : result.diagnosis) {
+  for (const diagnosis::UnitDiagnosis& u : result.diagnosis) {
     std::cout << fmt::format(
         "  {}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());
   }
-  for (const calib::DiagnosisTruthLine& l : result.diagnosis_truth) {
+  for (const proving::DiagnosisTruthLine& l : result.diagnosis_truth) {
     std::cout << fmt::format("  {} {} {}: {}\n", l.serial, l.channel, l.effect, l.text);
   }
-  for (const calib::ReplayComparison& c : result.replay_checks) {
+  for (const diagnosis::ReplayComparison& c : result.replay_checks) {
     std::cout << fmt::format(
         "held-out check: {} re-simulated, RMS of its acquisition means, recorded - replayed:\n",
         c.recording.filename().string());
-    for (const calib::UnitReplayFit& u : c.units) {
-      for (const calib::ChannelReplayFit& ch : u.channels) {
+    for (const diagnosis::UnitReplayFit& u : c.units) {
+      for (const diagnosis::ChannelReplayFit& ch : u.channels) {
         std::cout << fmt::format(
             "  {} {:<3}: {:.3g} {} with the base model, {:.3g} with model.json (noise alone "
             "{:.2g})\n",
@@ -213,9 +216,10 @@ void PrintSummary(const calib::CampaignResult& result,
       }
     }
   }
-  for (const std::string& s : result.not_run) std::cout << "not run: " << s << "\n";
-  std::cout << "records: " << result.records_file.string() << " (adahrs units show SERIAL --db "
-            << result.records_file.string() << ")\n";
+  for (const std::string& s : result.production.not_run) std::cout << "not run: " << s << "\n";
+  std::cout << "records: " << result.production.records_file.string()
+            << " (adahrs units show SERIAL --db " << result.production.records_file.string()
+            << ")\n";
 }
 
 int RunDemo(const DemoOptions& options) {
@@ -254,7 +258,8 @@ int RunDemo(const DemoOptions& options) {
         rig_sim::BenchStation(bench, rig.manifest(), rig_config, path.string()), path);
     return path.string();
   };
-  calib::CampaignOptions campaign;
+  proving::DemoCampaignOptions demo;
+  calib::CampaignOptions& campaign = demo.campaign;
   campaign.out_dir = out;
   campaign.imu_station_file = station_file(rig_sim::RigBench::kImu, "station-imu.json");
   campaign.ads_station_file = station_file(rig_sim::RigBench::kAds, "station-ads.json");
@@ -266,24 +271,23 @@ int RunDemo(const DemoOptions& options) {
   if (options.quick) {
     campaign.sequences = calib::WriteQuickSequences(campaign.sequences, out / "sequences");
   }
-  campaign.truth_dir = rig.truth_dir();
+  demo.truth_dir = rig.truth_dir();
   campaign.software_version = ADAHRS_VERSION;
-  campaign.replay = [](const std::filesystem::path& run,
-                       const std::vector<std::filesystem::path>& files,
-                       const std::filesystem::path& to) {
-    rig_sim::ReplayRecording(run, files, to);
-  };
+  demo.replay = [](const std::filesystem::path& run,
+                   const std::vector<std::filesystem::path>& files,
+                   const std::filesystem::path& to) { rig_sim::ReplayRecording(run, files, to); };
   // The rig is not needed after the acceptance runs: stopped then, it leaves both cores to the
   // analysis stages.
   campaign.stations_done = [&rig] { rig.Stop(); };
   ConsoleObserver observer;
   try {
-    const calib::CampaignResult result = calib::RunCampaign(campaign, observer, g_demo_stop);
+    const proving::DemoCampaignResult result =
+        proving::RunDemoCampaign(demo, observer, g_demo_stop);
     rig.Stop();
     PrintSummary(result,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                  rig_config.truth_variant);
-    if (const uint64_t lost = PrintRuns(result.runs); lost > 0) {
+    if (const uint64_t lost = PrintRuns(result.production.runs); lost > 0) {
       std::cout << fmt::format("adahrs demo: {} packets lost: the runs are not complete\n", lost);
       return kExitPacketsLost;
     }

@@ -13,22 +13,22 @@
 #include <fmt/format.h>
 
 #include "apps/commands.h"
-#include "calib/campaign/augmented_model.h"
-#include "calib/diagnosis/diagnosis_output.h"
-#include "calib/diagnosis/replay_check_report.h"
-#include "calib/diagnosis/replay_comparison.h"
+#include "diagnosis/diagnosis_output.h"
+#include "diagnosis/replay_check_report.h"
+#include "diagnosis/replay_comparison.h"
+#include "proving/demo/augmented_model.h"
 #include "rig_sim/recording_replay.h"
 
 namespace adahrs::apps {
 namespace {
 
-void PrintReplayCheck(const calib::ReplayComparison& c) {
+void PrintReplayCheck(const diagnosis::ReplayComparison& c) {
   std::cout << fmt::format(
       "re-simulation of {} ({}): RMS of the acquisition means, recorded - replayed\n",
       c.recording.string(),
       c.held_out ? "held out: not a diagnosed run" : "a diagnosed run");
-  for (const calib::UnitReplayFit& u : c.units) {
-    for (const calib::ChannelReplayFit& ch : u.channels) {
+  for (const diagnosis::UnitReplayFit& u : c.units) {
+    for (const diagnosis::ChannelReplayFit& ch : u.channels) {
       std::cout << fmt::format(
           "  {} {:<3} base model {:9.4g}  model.json {:9.4g}  noise alone {:9.4g} {} ({} "
           "acquisitions)\n",
@@ -81,20 +81,20 @@ void RegisterDiagnoseCommand(CLI::App& app) {
       throw std::runtime_error("diagnose: give --run DIR or --csv SIDECAR.json");
     std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
     std::vector<std::filesystem::path> sidecars(csvs->begin(), csvs->end());
-    const calib::DiagnosisRun run =
+    const diagnosis::DiagnosisRun run =
         sidecars.empty()
-            ? calib::DiagnoseRuns(dirs,
-                                  unit->empty() ? std::nullopt : std::optional<std::string>(*unit))
-            : calib::DiagnoseChannelFiles(sidecars);
-    calib::WriteDiagnosis(run, *out);
+            ? diagnosis::DiagnoseRuns(
+                  dirs, unit->empty() ? std::nullopt : std::optional<std::string>(*unit))
+            : diagnosis::DiagnoseChannelFiles(sidecars);
+    diagnosis::WriteDiagnosis(run, *out);
     std::cout << "compared with the " << *profile
               << " model: the pipeline's forward model, fitted to each recording\n";
     for (const std::string& n : run.notes) std::cout << "note: " << n << "\n";
-    for (const calib::UnitDiagnosis& u : run.units) {
+    for (const diagnosis::UnitDiagnosis& u : run.units) {
       std::cout << fmt::format(
           "{}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());
-      for (const calib::Finding& f : u.findings) std::cout << "  " << f.words << "\n";
-      for (const calib::Unexplained& x : u.unexplained)
+      for (const diagnosis::Finding& f : u.findings) std::cout << "  " << f.words << "\n";
+      for (const diagnosis::Unexplained& x : u.unexplained)
         std::cout << "  unexplained: " << x.channel << " " << x.where << ": " << x.description
                   << "\n";
       if (u.findings.empty() && u.unexplained.empty()) std::cout << "  no missing physics found\n";
@@ -102,17 +102,17 @@ void RegisterDiagnoseCommand(CLI::App& app) {
     std::cout << "wrote " << (std::filesystem::path(*out) / "diagnosis.json").string()
               << " and report.html\n";
     if (!model->empty()) {
-      const calib::AugmentedModel m = calib::WriteAugmentedModel(run, *model, *out);
+      const proving::AugmentedModel m = proving::WriteAugmentedModel(run, *model, *out);
       for (const std::string& a : m.applied) std::cout << "  model: " << a << "\n";
       for (const std::string& n : m.not_applied) std::cout << "  model, not applied: " << n << "\n";
       std::cout << "wrote " << (std::filesystem::path(*out) / "model.json").string() << "\n";
     }
-    std::vector<calib::ReplayComparison> checks;
+    std::vector<diagnosis::ReplayComparison> checks;
     for (const std::string& check : *check_runs) {
       const std::filesystem::path dir(check);
       bool diagnosed = false;
       for (const std::string& r : *runs) diagnosed |= std::filesystem::equivalent(r, dir);
-      const calib::ReplayComparison c = calib::CheckByReplay(
+      const diagnosis::ReplayComparison c = diagnosis::CheckByReplay(
           dir,
           {*model},
           {std::filesystem::path(*out) / "model.json"},
@@ -125,7 +125,7 @@ void RegisterDiagnoseCommand(CLI::App& app) {
       checks.push_back(c);
     }
     if (!check_runs->empty()) {
-      calib::WriteReplayCheck(checks, *out);
+      diagnosis::WriteReplayCheck(checks, *out);
       std::cout << "wrote " << (std::filesystem::path(*out) / "replay_check.json").string()
                 << " and replay_check.html\n";
     }

@@ -1,5 +1,5 @@
 // adahrs evaluate --constants FILE --truth FILE [--out FILE]: truth evaluation of IMU constants
-// of a simulated unit (calib/evaluation/imu_evaluation.h); prints the worst errors and verdicts
+// of a simulated unit (proving/evaluation/imu_evaluation.h); prints the worst errors and verdicts
 // and writes evaluation.json (default: beside the constants).
 #include <filesystem>
 #include <fstream>
@@ -10,9 +10,9 @@
 #include <fmt/format.h>
 
 #include "apps/commands.h"
-#include "calib/evaluation/imu_evaluation.h"
-#include "calib/evaluation/truth_file.h"
 #include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "proving/evaluation/imu_evaluation.h"
+#include "proving/evaluation/truth_file.h"
 
 namespace adahrs::apps {
 
@@ -28,14 +28,14 @@ void RegisterEvaluateCommand(CLI::App& app) {
   cmd->callback([constants, truth, out] {
     const calib::ConstantsFile file = calib::ReadConstantsFile(*constants);
     const sensor_sim::ImuUnitParams params =
-        calib::ImuTruth(calib::ReadTruthFile(*truth), file.serial);
-    calib::ImuEvaluationOptions options;
+        proving::ImuTruth(proving::ReadTruthFile(*truth), file.serial);
+    proving::ImuEvaluationOptions options;
     if (file.kind == hil::UnitKind::kImu) {
       options.g_local_mps2 = calib::ImuFitDiagnostics::FromJson(file.diagnostics, *constants)
                                  .local_gravity_mps2.value_or(options.g_local_mps2);
     }
-    const calib::ImuEvaluation e =
-        calib::EvaluateImu(file, params, calib::Specification::Reference(), options);
+    const proving::ImuEvaluation e =
+        proving::EvaluateImu(file, params, calib::Specification::Reference(), options);
     const std::string path = out->empty() ? *constants + ".evaluation.json" : *out;
     std::ofstream written(path);
     written << e.report.dump(2) << "\n";

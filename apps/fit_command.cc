@@ -1,6 +1,7 @@
 // adahrs fit --run DIR [--run DIR ...] [--strategy FILE] --out DIR: fits every IMU of the runs
-// (a thermal-calibration run and a sensor-calibration run) with the strategy (default: the
-// improved "joint" strategy) and writes OUT/<serial>.constants.json per unit.
+// (a thermal-calibration run and a sensor-calibration run) with the strategy (default: the joint
+// strategy for firmware format 3, what the campaign downloads) and writes OUT/<serial>.json per
+// unit, as the campaign does.
 // adahrs fit --run DIR --ads-strategy NAME --out DIR: fits every ADS unit of one ADS calibration
 // run with the ADS strategy NAME (reference, tolerance_minimax, pressure_minimax,
 // hysteresis_compensated) and writes
@@ -28,8 +29,10 @@ void RegisterFitCommand(CLI::App& app) {
   auto ads_strategy = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   cmd->add_option("--run", *runs, "Run directory (repeat for several)")->required();
-  CLI::Option* imu_option = cmd->add_option(
-      "--strategy", *strategy_file, "IMU strategy file (default: joint, auto order)");
+  CLI::Option* imu_option =
+      cmd->add_option("--strategy",
+                      *strategy_file,
+                      "IMU strategy file (default: joint, firmware format 3, auto order)");
   cmd->add_option("--ads-strategy",
                   *ads_strategy,
                   "Fit the ADS units of one ADS calibration run with this strategy: reference, "
@@ -53,20 +56,18 @@ void RegisterFitCommand(CLI::App& app) {
       return;
     }
     const calib::ImuStrategy strategy = strategy_file->empty()
-                                            ? calib::ImuStrategy::Improved()
+                                            ? calib::ImuStrategy::JointFormat3()
                                             : calib::ImuStrategy::Load(*strategy_file);
     const std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
-    const auto files = calib::FitImuRuns(dirs, strategy, ADAHRS_VERSION);
-    std::filesystem::create_directories(*out);
-    for (const calib::ConstantsFile& f : files) {
-      const auto path = std::filesystem::path(*out) / (f.serial + ".constants.json");
-      calib::WriteConstantsFile(path, f);
-      std::cout << fmt::format("{}: strategy {}, {} excluded rows -> {}\n",
-                               f.serial,
-                               f.strategy,
-                               calib::ImuFitDiagnostics::FromJson(f.diagnostics, path.string())
-                                   .excluded_rows.value_or(0),
-                               path.string());
+    for (const calib::WrittenConstants& w :
+         calib::FitImuIntoDirectory(dirs, strategy, *out, ADAHRS_VERSION)) {
+      std::cout << fmt::format(
+          "{}: strategy {}, {} excluded rows -> {}\n",
+          w.file.serial,
+          w.file.strategy,
+          calib::ImuFitDiagnostics::FromJson(w.file.diagnostics, w.path.string())
+              .excluded_rows.value_or(0),
+          w.path.string());
     }
   });
 }

@@ -17,9 +17,9 @@
 
 #include "adahrs_build_paths.h"
 #include "apps/commands.h"
-#include "calib/studies/ads_study.h"
-#include "calib/studies/imu_study.h"
-#include "calib/studies/study_results.h"
+#include "proving/studies/ads_study.h"
+#include "proving/studies/imu_study.h"
+#include "proving/studies/study_results.h"
 
 namespace adahrs::apps {
 namespace {
@@ -38,7 +38,7 @@ struct StudyArgs {
 };
 
 // Units done, units per minute and ETA on one line (redrawn on a terminal, else every 5 %).
-calib::StudyProgress ProgressPrinter() {
+proving::StudyProgress ProgressPrinter() {
   const auto start = std::chrono::steady_clock::now();
   const bool tty = isatty(fileno(stderr)) != 0;
   return [start, tty](int done, int total) {
@@ -73,9 +73,9 @@ void RunStudy(const StudyArgs& a) {
   if (a.strategy.empty()) throw CLI::ValidationError("--strategy", "required (a study file)");
   if (a.out.empty()) throw CLI::ValidationError("--out", "required (the output directory)");
   if (a.units < 1) throw CLI::ValidationError("--units", "required, at least 1");
-  std::vector<calib::StudyDefinition> strategies{
-      calib::LoadStudyDefinition(a.strategy, ADAHRS_SEQUENCE_DIR)};
-  if (!a.vs.empty()) strategies.push_back(calib::LoadStudyDefinition(a.vs, ADAHRS_SEQUENCE_DIR));
+  std::vector<proving::StudyDefinition> strategies{
+      proving::LoadStudyDefinition(a.strategy, ADAHRS_SEQUENCE_DIR)};
+  if (!a.vs.empty()) strategies.push_back(proving::LoadStudyDefinition(a.vs, ADAHRS_SEQUENCE_DIR));
   if (strategies.size() == 2 && strategies[0].name == strategies[1].name) {
     throw CLI::ValidationError(
         "--vs", "the two study files have the same name \"" + strategies[0].name + "\"");
@@ -85,18 +85,18 @@ void RunStudy(const StudyArgs& a) {
                                strategies[1].file + ": $.unit_kind differs from " +
                                    strategies[0].file + " (a paired study draws one kind of unit)");
   }
-  calib::StudySettings settings;
+  proving::StudySettings settings;
   settings.units = a.units;
   settings.seed = a.seed;
-  settings.shard = calib::StudyShard::Parse(a.shard, "--shard");
+  settings.shard = proving::StudyShard::Parse(a.shard, "--shard");
   if (!a.profile.empty()) {
-    settings.population = calib::ParsePopulation(
+    settings.population = proving::ParsePopulation(
         a.profile, std::filesystem::current_path(), "command line", "--profile");
   } else if (strategies[0].population) {
     settings.population = *strategies[0].population;
   }
   for (const auto& d : strategies) {
-    const calib::StudyPopulation population = d.population.value_or(calib::StudyPopulation{});
+    const proving::StudyPopulation population = d.population.value_or(proving::StudyPopulation{});
     if (a.profile.empty() && !(population == settings.population)) {
       throw CLI::ValidationError("--vs",
                                  d.file + ": $.population differs from " + strategies[0].file +
@@ -105,9 +105,10 @@ void RunStudy(const StudyArgs& a) {
   }
   KeepLargeBlocksForReuse();
   const bool ads = strategies[0].unit_kind == calib::UnitKind::kAds;
-  const auto results = ads ? calib::RunAdsStudy(strategies, settings, a.threads, ProgressPrinter())
-                           : calib::RunImuStudy(strategies, settings, a.threads, ProgressPrinter());
-  calib::WriteStudyOutputs(a.out, calib::MakeStudyMeta(strategies, settings), results);
+  const auto results =
+      ads ? proving::RunAdsStudy(strategies, settings, a.threads, ProgressPrinter())
+          : proving::RunImuStudy(strategies, settings, a.threads, ProgressPrinter());
+  proving::WriteStudyOutputs(a.out, proving::MakeStudyMeta(strategies, settings), results);
   std::cout << fmt::format("{} units, shard {}: {}/results.csv, summary.json, report.html\n",
                            results.size(),
                            settings.shard.Label(),
@@ -134,7 +135,7 @@ void RegisterStudyCommand(CLI::App& app) {
   merge->add_option("--out", a->merge_out, "Output directory")->required();
   merge->callback([a] {
     std::vector<std::filesystem::path> dirs(a->merge_dirs.begin(), a->merge_dirs.end());
-    calib::MergeStudies(dirs, a->merge_out);
+    proving::MergeStudies(dirs, a->merge_out);
     std::cout << fmt::format("{} shards merged into {}\n", dirs.size(), a->merge_out);
   });
   study->callback([a, merge] {

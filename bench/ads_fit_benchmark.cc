@@ -17,9 +17,9 @@
 
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/solvers/ads_surface_fit.h"
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 #include "sensor_sim/ads_unit.h"
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
 #include "sensor_sim/pressure_bridge.h"
 
 namespace adahrs::calib {
@@ -38,7 +38,7 @@ std::vector<SurfaceSample> Samples() {
     const double temp_c = -40.0 + 125.0 * (i % kTemps) / (kTemps - 1);
     const double alt_ft = -1000.0 + 51000.0 * (i / kTemps) / (kPoints / kTemps - 1);
     sensor_sim::PressureBridge bridge(params, 0);
-    const auto o = bridge.Step({sensor_sim::IsaStaticPressurePaFromFt(alt_ft), temp_c});
+    const auto o = bridge.Step({common::IsaStaticPressurePaFromFt(alt_ft), temp_c});
     out.push_back({o.signal_v * kCodesPerVolt, 0.5 * o.bridge_v * kCodesPerVolt, alt_ft, temp_c});
   }
   return out;
@@ -79,11 +79,11 @@ std::vector<AdsCalibrationPoint> ShippedSequencePoints() {
       p.airspeed_point = airspeed;
       points.push_back(p);
     };
-    for (double alt_ft : alts_ft) take(sensor_sim::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
+    for (double alt_ft : alts_ft) take(common::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
     for (double alt_ft : {20000.0, 7500.0})
-      take(sensor_sim::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
+      take(common::IsaStaticPressurePaFromFt(alt_ft), 0.0, false);
     for (double kt : cas_kt) {
-      take(sensor_sim::kIsaSeaLevelPressure_pa, sensor_sim::ImpactPressurePaFromKt(kt), true);
+      take(common::kIsaSeaLevelPressure_pa, common::ImpactPressurePaFromKt(kt), true);
     }
     std::reverse(alts_ft.begin(), alts_ft.end());
     std::reverse(cas_kt.begin(), cas_kt.end());

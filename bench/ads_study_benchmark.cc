@@ -9,7 +9,7 @@
 #include <benchmark/benchmark.h>
 
 #include "adahrs_build_paths.h"
-#include "calib/studies/ads_study.h"
+#include "proving/studies/ads_study.h"
 
 namespace adahrs::calib {
 namespace {
@@ -17,13 +17,14 @@ namespace {
 void BM_AdsStudyUnit(benchmark::State& state) {
   const std::filesystem::path examples =
       std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/examples/studies";
-  const std::vector<StudyDefinition> strategies = {
-      LoadStudyDefinition(examples / "ads_reference.json", ADAHRS_SEQUENCE_DIR),
-      LoadStudyDefinition(examples / "ads_improved.json", ADAHRS_SEQUENCE_DIR)};
-  StudySettings settings;
+  const std::vector<proving::StudyDefinition> strategies = {
+      proving::LoadStudyDefinition(examples / "ads_reference.json", ADAHRS_SEQUENCE_DIR),
+      proving::LoadStudyDefinition(examples / "ads_improved.json", ADAHRS_SEQUENCE_DIR)};
+  proving::StudySettings settings;
   settings.seed = 7;
   int index = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(RunAdsStudyUnit(strategies, settings, index++));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(proving::RunAdsStudyUnit(strategies, settings, index++));
 }
 BENCHMARK(BM_AdsStudyUnit)->Unit(benchmark::kMillisecond)->Iterations(10);
 

@@ -8,9 +8,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "calib/diagnosis/diagnosis_output.h"
-#include "sensor_sim/gravity.h"
-#include "tests/calib/imu_recording_maker.h"
+#include "common/gravity.h"
+#include "diagnosis/diagnosis_output.h"
+#include "tests/support/imu_recording_maker.h"
 
 namespace adahrs::calib {
 namespace {
@@ -26,7 +26,7 @@ std::filesystem::path Runs(int speedup) {
   }
   testing::MakerOptions options;
   options.thermal_speedup = speedup;
-  testing::ImuRecordingMaker maker(params, sensor_sim::NormalGravityMps2(32.6, 200.0), 9, options);
+  testing::ImuRecordingMaker maker(params, common::NormalGravityMps2(32.6, 200.0), 9, options);
   maker.Run(testing::ShippedSequence("imu_thermal_calibration_full", 1000), dir / "thermal");
   maker.Run(testing::ShippedSequence("imu_sensor_calibration", 1000), dir / "sensor");
   return dir;
@@ -37,9 +37,9 @@ void BM_DiagnoseFourUnits(benchmark::State& state) {
   const std::vector<std::filesystem::path> runs = {dir / "thermal", dir / "sensor"};
   int rows = 0;
   for (auto _ : state) {
-    const DiagnosisRun run = DiagnoseRuns(runs, std::nullopt);
+    const diagnosis::DiagnosisRun run = diagnosis::DiagnoseRuns(runs, std::nullopt);
     rows = 0;
-    for (const UnitDiagnosis& u : run.units) rows += u.rows;
+    for (const diagnosis::UnitDiagnosis& u : run.units) rows += u.rows;
     benchmark::DoNotOptimize(run);
   }
   state.counters["rows"] = rows;

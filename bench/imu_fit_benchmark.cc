@@ -7,9 +7,9 @@
 #include <benchmark/benchmark.h>
 
 #include "calib/imu_calibration/imu_strategy.h"
+#include "common/gravity.h"
 #include "hil/recording/recording_reader.h"
-#include "sensor_sim/gravity.h"
-#include "tests/calib/imu_recording_maker.h"
+#include "tests/support/imu_recording_maker.h"
 
 namespace adahrs::calib {
 namespace {
@@ -23,7 +23,7 @@ testing::ImuRecordingMaker FourUnitMaker(double thermal_speedup) {
   }
   testing::MakerOptions options;
   options.thermal_speedup = thermal_speedup;
-  return testing::ImuRecordingMaker(params, sensor_sim::NormalGravityMps2(32.6, 200.0), 7, options);
+  return testing::ImuRecordingMaker(params, common::NormalGravityMps2(32.6, 200.0), 7, options);
 }
 
 const std::filesystem::path& Runs() {
@@ -43,7 +43,8 @@ void BM_FitFourUnits(benchmark::State& state, const ImuStrategy& strategy) {
 }
 BENCHMARK_CAPTURE(BM_FitFourUnits, reference, ImuStrategy::Reference())
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_FitFourUnits, joint, ImuStrategy::Improved())->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitFourUnits, joint, ImuStrategy::JointFormat2())
+    ->Unit(benchmark::kMillisecond);
 
 // A recording of the demo's size: the shipped imu_thermal_sensor_calibration sequence (the demo's
 // IMU calibration run: ramps over -40...+85 degC at real speed, then the six positions and rates
@@ -71,7 +72,7 @@ void BM_FitDemoSizeRecording(benchmark::State& state, const ImuStrategy& strateg
 BENCHMARK_CAPTURE(BM_FitDemoSizeRecording, reference, ImuStrategy::Reference())
     ->Unit(benchmark::kSecond)
     ->Iterations(3);
-BENCHMARK_CAPTURE(BM_FitDemoSizeRecording, joint, ImuStrategy::Improved())
+BENCHMARK_CAPTURE(BM_FitDemoSizeRecording, joint, ImuStrategy::JointFormat2())
     ->Unit(benchmark::kSecond)
     ->Iterations(3);
 

@@ -11,7 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include "adahrs_build_paths.h"
-#include "calib/studies/imu_study.h"
+#include "proving/studies/imu_study.h"
 
 namespace adahrs::calib {
 namespace {
@@ -19,15 +19,16 @@ namespace {
 void BM_ImuStudyUnit(benchmark::State& state) {
   const std::filesystem::path examples =
       std::filesystem::path(ADAHRS_SOURCE_DIR) / "docs/examples/studies";
-  const std::vector<StudyDefinition> strategies = {
-      LoadStudyDefinition(examples / "imu_reference.json", ADAHRS_SEQUENCE_DIR),
-      LoadStudyDefinition(examples / "imu_improved.json", ADAHRS_SEQUENCE_DIR)};
+  const std::vector<proving::StudyDefinition> strategies = {
+      proving::LoadStudyDefinition(examples / "imu_reference.json", ADAHRS_SEQUENCE_DIR),
+      proving::LoadStudyDefinition(examples / "imu_improved.json", ADAHRS_SEQUENCE_DIR)};
   mallopt(M_MMAP_THRESHOLD, 512 << 20);  // as adahrs study does: large blocks stay for reuse
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  StudySettings settings;
+  proving::StudySettings settings;
   settings.seed = 7;
   int index = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(RunImuStudyUnit(strategies, settings, index++));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(proving::RunImuStudyUnit(strategies, settings, index++));
 }
 BENCHMARK(BM_ImuStudyUnit)->Unit(benchmark::kSecond)->Iterations(5);
 

@@ -69,7 +69,7 @@ void WriteRun(const std::filesystem::path& dir, int level) {
   std::filesystem::remove_all(dir);
   RecordingWriter writer(
       dir, level == 0 ? RecordingStorage::kPlainCsv : RecordingStorage::kGzip, std::max(level, 1));
-  writer.WriteMeta({{"units", nlohmann::json::array()}});
+  writer.WriteMetaJson({{"units", nlohmann::json::array()}});
   for (const ImuRecordRow& r : Rows()) writer.Append(r);
   writer.Flush(true);
 }

@@ -1,6 +1,6 @@
 // Named unit conversions and physical constants that are definitions, not measurements.
 // Formulas use these names instead of bare factors. Local gravity is NOT here: it is a parameter
-// of the station (sensor_sim/gravity.h); kStandardGravity is only the definition of the unit "g".
+// of the station (common/gravity.h); kStandardGravity is only the definition of the unit "g".
 #pragma once
 
 namespace adahrs::common {

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "sensor_sim/gravity.h"
+#include "common/gravity.h"
 
 namespace adahrs::hil {
 namespace {
@@ -121,7 +121,7 @@ Station Station::FromJson(const ParamReader& r) {
   st.latitude_deg = site.Number("latitude_deg", -90.0, 90.0, "deg");
   st.height_m = site.Number("height_m", -500.0, 5000.0, "m");
   site.ExpectAllKeysUsed();
-  st.local_gravity_mps2 = sensor_sim::NormalGravityMps2(st.latitude_deg, st.height_m);
+  st.local_gravity_mps2 = common::NormalGravityMps2(st.latitude_deg, st.height_m);
 
   std::vector<std::pair<PortIdentity, std::string>> claimed;  // identity, the path that claimed it
   const auto claim_path = [&](const ParamReader& where, const std::string& path) {

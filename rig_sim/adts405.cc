@@ -6,14 +6,13 @@
 #include <cmath>
 #include <utility>
 
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 #include "common/units.h"
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
 
 namespace adahrs::rig_sim {
 
 using hil::ScpiCommand;
-namespace ss = sensor_sim;
 
 namespace {
 
@@ -70,7 +69,7 @@ std::string Upper(std::string_view s) {
 }
 
 double CasKt(double qc_pa) {
-  return qc_pa >= 0.0 ? ss::CalibratedAirspeedKt(qc_pa) : -ss::CalibratedAirspeedKt(-qc_pa);
+  return qc_pa >= 0.0 ? common::CalibratedAirspeedKt(qc_pa) : -common::CalibratedAirspeedKt(-qc_pa);
 }
 
 double KtPerSpeedUnit(const std::string& unit) {
@@ -323,7 +322,7 @@ Adts405::Reply Adts405::Measure(const Args& args) {
   } else if (p == "PT") {
     value = (ps + qc) / pa_per_unit;
   } else if (p == "ALT") {
-    const double alt_ft = ss::IsaPressureAltitudeFt(ps);
+    const double alt_ft = common::IsaPressureAltitudeFt(ps);
     value = altitude_in_m_ ? common::FtToM(alt_ft) : alt_ft;
   } else if (p == "CAS") {
     value = CasKt(qc) / KtPerSpeedUnit(speed_unit_);
@@ -334,10 +333,10 @@ Adts405::Reply Adts405::Measure(const Args& args) {
       PushError(hil::kScpiDataOutOfRange);  // supersonic: not modelled
       return std::nullopt;
     }
-    const double mach = ss::MachNumber(std::max(qc, 0.0), ps);
-    const double static_k = ss::IsaTemperatureK(ss::IsaPressureAltitudeM(ps));
+    const double mach = common::MachNumber(std::max(qc, 0.0), ps);
+    const double static_k = common::IsaTemperatureK(common::IsaPressureAltitudeM(ps));
     value = p == "MACH" ? mach
-                        : common::MpsToKt(ss::TrueAirspeedMps(mach, static_k)) /
+                        : common::MpsToKt(common::TrueAirspeedMps(mach, static_k)) /
                               KtPerSpeedUnit(speed_unit_);
   } else {
     PushError(hil::kScpiIllegalParameterValue);
@@ -357,7 +356,7 @@ Adts405::Reply Adts405::Aim(const Args& args) {
   } else if (p == "PT") {
     value = (ps_.aim_pa + qc_.aim_pa) / pa_per_unit;
   } else if (p == "ALT") {
-    const double alt_ft = ss::IsaPressureAltitudeFt(ps_.aim_pa);
+    const double alt_ft = common::IsaPressureAltitudeFt(ps_.aim_pa);
     value = altitude_in_m_ ? common::FtToM(alt_ft) : alt_ft;
   } else if (p == "CAS") {
     value = CasKt(qc_.aim_pa) / KtPerSpeedUnit(speed_unit_);
@@ -380,19 +379,19 @@ void Adts405::SetAim(const Args& args) {
   const double pa = *PressureUnitToPa(*value);
   if (p == "ALT") {
     const double alt_ft = altitude_in_m_ ? common::MToFt(*value) : *value;
-    if (alt_ft < common::MToFt(ss::kIsaMinAltitude_m) ||
-        alt_ft > common::MToFt(ss::kIsaMaxAltitude_m)) {
+    if (alt_ft < common::MToFt(common::kIsaMinAltitude_m) ||
+        alt_ft > common::MToFt(common::kIsaMaxAltitude_m)) {
       PushError(hil::kScpiDataOutOfRange);
       return;
     }
-    ps_aim = ss::IsaStaticPressurePaFromFt(alt_ft);
+    ps_aim = common::IsaStaticPressurePaFromFt(alt_ft);
   } else if (p == "CAS") {
     const double cas_kt = *value * KtPerSpeedUnit(speed_unit_);
-    if (cas_kt < 0.0 || cas_kt > common::MpsToKt(ss::SeaLevelSpeedOfSoundMps())) {
+    if (cas_kt < 0.0 || cas_kt > common::MpsToKt(common::SeaLevelSpeedOfSoundMps())) {
       PushError(hil::kScpiDataOutOfRange);
       return;
     }
-    qc_aim = ss::ImpactPressurePaFromKt(cas_kt);
+    qc_aim = common::ImpactPressurePaFromKt(cas_kt);
   } else if (p == "PS") {
     ps_aim = pa;
   } else if (p == "PT") {
@@ -487,10 +486,10 @@ void Adts405::Slew(Channel& channel, double& value_pa, bool is_ps) {
   // Linear in altitude (ft) or in calibrated airspeed (kt), mapped back to pressure.
   const bool altitude = channel.rate_kind == Rate::kAltitude && is_ps;
   auto to_x = [&](double pa) {
-    return altitude ? ss::IsaPressureAltitudeFt(pa) : ss::CalibratedAirspeedKt(pa);
+    return altitude ? common::IsaPressureAltitudeFt(pa) : common::CalibratedAirspeedKt(pa);
   };
   auto to_pa = [&](double x) {
-    return altitude ? ss::IsaStaticPressurePaFromFt(x) : ss::ImpactPressurePaFromKt(x);
+    return altitude ? common::IsaStaticPressurePaFromFt(x) : common::ImpactPressurePaFromKt(x);
   };
   const double error = to_x(channel.aim_pa) - to_x(value_pa);
   value_pa =

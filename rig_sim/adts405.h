@@ -5,8 +5,8 @@
 //
 // Physics. Two channels: static Ps and impact Qc = Pt − Ps (Pa). In control (`SOUR:STAT ON`) each
 // channel moves from its value towards its aim at the commanded rate, linearly in the quantity the
-// rate was given in: altitude (ft/min, ISA, sensor_sim/atmosphere.h) or pressure (per min) for Ps;
-// calibrated airspeed (kt/min, sensor_sim/air_data.h) or pressure for Qc. It reaches the aim
+// rate was given in: altitude (ft/min, ISA, common/atmosphere.h) or pressure (per min) for Ps;
+// calibrated airspeed (kt/min, common/air_data.h) or pressure for Qc. It reaches the aim
 // without overshoot (§4.7). On top, the controller's stability noise: a first-order Gauss-Markov
 // process per channel (τ = noise_tau_s) whose ±3σ is the DOC stability figure (±0.038 mbar Ps,
 // ±0.045 mbar Qc). `SOUR:STAT OFF` (measure) and `HOLD` stop the slewing; the sealed system keeps

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "sensor_sim/atmosphere.h"
+#include "common/atmosphere.h"
 
 namespace adahrs::rig_sim {
 
@@ -146,9 +146,9 @@ std::unique_ptr<SerialDevice> MakePrologixAdtsDevice(const common::ParamReader& 
   p.response_delay_s = config.Number("response_delay_s", 0.0, 0.4, "s");  // §4.7: within 400 ms
   const common::ParamReader a = config.Child("adts");
   Adts405Params& q = p.adts;
-  // The ISA model covers −5 km … 20 km (sensor_sim/atmosphere.h): Ps limits stay inside it.
-  const double isa_low_pa = sensor_sim::IsaStaticPressurePa(sensor_sim::kIsaMaxAltitude_m);
-  const double isa_high_pa = sensor_sim::IsaStaticPressurePa(sensor_sim::kIsaMinAltitude_m);
+  // The ISA model covers −5 km … 20 km (common/atmosphere.h): Ps limits stay inside it.
+  const double isa_low_pa = common::IsaStaticPressurePa(common::kIsaMaxAltitude_m);
+  const double isa_high_pa = common::IsaStaticPressurePa(common::kIsaMinAltitude_m);
   q.ps_min_pa = a.Number("ps_min_pa", isa_low_pa, isa_high_pa, "Pa");
   q.ps_max_pa = a.Number("ps_max_pa", q.ps_min_pa, isa_high_pa, "Pa");
   q.qc_max_pa = a.Number("qc_max_pa", 0.0, 90000.0, "Pa");  // subsonic only

@@ -154,12 +154,12 @@ class LeadingZeros {
   std::deque<std::pair<Row, int>> held_;
 };
 
-double LocalGravity(const nlohmann::json& meta, const fs::path& run_dir) {
-  for (const nlohmann::json* j : {&meta, meta.contains("station") ? &meta["station"] : nullptr}) {
-    if (j != nullptr && j->is_object() && j->contains("local_gravity_mps2") &&
-        (*j)["local_gravity_mps2"].is_number()) {
-      return (*j)["local_gravity_mps2"].get<double>();
-    }
+double LocalGravity(const hil::RecordingMeta& meta, const fs::path& run_dir) {
+  if (meta.local_gravity_mps2) return *meta.local_gravity_mps2;
+  // The station file as the executor read it: its schema is hil::Station's.
+  if (meta.station && meta.station->is_object() && meta.station->contains("local_gravity_mps2") &&
+      meta.station->at("local_gravity_mps2").is_number()) {
+    return meta.station->at("local_gravity_mps2").get<double>();
   }
   throw std::runtime_error((run_dir / "meta.json").string() +
                            ": no local_gravity_mps2 (top level or in station): an IMU replay needs "
@@ -191,15 +191,15 @@ std::map<std::string, UnitFile> ReadUnitFiles(const std::vector<fs::path>& unit_
 // The recording's units that have a unit file (meta.json "units" of the replay), noted in
 // `summary` as replayed or skipped. A unit file of another kind than the recorded unit, or of a
 // serial the recording does not hold, is refused.
-nlohmann::json ReplayedUnits(const nlohmann::json& meta,
-                             const std::map<std::string, UnitFile>& files,
-                             const fs::path& run_dir,
-                             ReplaySummary& summary) {
-  nlohmann::json units = nlohmann::json::array();
+std::vector<hil::RecordingUnit> ReplayedUnits(const hil::RecordingMeta& meta,
+                                              const std::map<std::string, UnitFile>& files,
+                                              const fs::path& run_dir,
+                                              ReplaySummary& summary) {
+  std::vector<hil::RecordingUnit> units;
   std::map<std::string, std::string> recorded_kind;
-  for (const nlohmann::json& u : meta.value("units", nlohmann::json::array())) {
-    const std::string serial = u.value("serial", "");
-    const std::string kind = u.value("kind", "");
+  for (const hil::RecordingUnit& u : meta.units) {
+    const std::string& serial = u.serial;
+    const std::string& kind = u.kind;
     recorded_kind[serial] = kind;
     const auto f = files.find(serial);
     if (f == files.end()) {
@@ -241,7 +241,7 @@ struct UnitModels {
 
 UnitModels LoadUnitModels(const std::map<std::string, UnitFile>& files,
                           const ReplayOptions& options,
-                          const nlohmann::json& meta,
+                          const hil::RecordingMeta& meta,
                           const fs::path& run_dir) {
   UnitModels m;
   bool any_imu = false;
@@ -268,22 +268,23 @@ UnitModels LoadUnitModels(const std::map<std::string, UnitFile>& files,
 
 // meta.json (the recording's, with "replay" and only the replayed units) and truth/<serial>.json.
 void WriteReplayMeta(hil::RecordingWriter& writer,
-                     const nlohmann::json& meta,
-                     const nlohmann::json& units,
+                     const hil::RecordingMeta& meta,
+                     const std::vector<hil::RecordingUnit>& units,
                      const std::map<std::string, UnitFile>& files,
                      const fs::path& run_dir,
                      const fs::path& out_dir,
                      const ReplayOptions& options) {
-  nlohmann::json out_meta = meta;
-  out_meta.erase("format_version");
-  out_meta["units"] = units;
+  hil::RecordingMeta out_meta = meta;
+  out_meta.units = units;
+  out_meta.has_units = true;
   nlohmann::json file_list = nlohmann::json::array();
   for (const auto& [serial, f] : files) file_list.push_back(fs::absolute(f.path).string());
-  out_meta["replay"] = {{"of", fs::absolute(run_dir).string()},
-                        {"noise",
-                         options.noise_from_unit_file ? nlohmann::json("the unit files' seeds")
-                                                      : nlohmann::json(options.noise_seed)},
-                        {"unit_files", file_list}};
+  out_meta.extra["replay"] = {
+      {"of", fs::absolute(run_dir).string()},
+      {"noise",
+       options.noise_from_unit_file ? nlohmann::json("the unit files' seeds")
+                                    : nlohmann::json(options.noise_seed)},
+      {"unit_files", file_list}};
   writer.WriteMeta(out_meta);
   fs::create_directories(out_dir / "truth");
   for (const auto& [serial, f] : files) {
@@ -394,10 +395,10 @@ ReplaySummary ReplayRecording(const fs::path& run_dir,
                               const fs::path& out_dir,
                               const ReplayOptions& options) {
   const hil::Recording meta_only = hil::ReadRecordingMeta(run_dir);
-  const nlohmann::json& meta = meta_only.meta;
+  const hil::RecordingMeta& meta = meta_only.meta;
   const std::map<std::string, UnitFile> files = ReadUnitFiles(unit_files);
   ReplaySummary summary;
-  const nlohmann::json units = ReplayedUnits(meta, files, run_dir, summary);
+  const std::vector<hil::RecordingUnit> units = ReplayedUnits(meta, files, run_dir, summary);
   if (fs::exists(out_dir)) {
     throw std::runtime_error(out_dir.string() + ": exists; the replay writes a new run directory");
   }

@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <set>
 
+#include "common/gravity.h"
 #include "rig_sim/prologix_adts_device.h"
 #include "rig_sim/rate_table_device.h"
 #include "rig_sim/watlow_942_device.h"
 #include "rig_sim/watlow_f4_device.h"
 #include "sensor_sim/ads_unit.h"
-#include "sensor_sim/gravity.h"
 #include "sensor_sim/imu_unit.h"
 
 namespace adahrs::rig_sim {
@@ -115,7 +115,7 @@ std::string ImuSerial(uint32_t serial_number) { return ImuSerialName(serial_numb
 std::string AdsSerial(uint32_t serial_number) { return AdsSerialName(serial_number); }
 
 double RigConfig::LocalGravityMps2() const {
-  return sensor_sim::NormalGravityMps2(station.latitude_deg, station.height_m);
+  return common::NormalGravityMps2(station.latitude_deg, station.height_m);
 }
 
 RigConfig RigConfig::FromJson(const nlohmann::json& json, const std::string& source) {

@@ -2,7 +2,7 @@
 // the units on their ports, the instruments and the faults switched on at start.
 //
 //   station      name, latitude_deg, height_m (→ local gravity, WGS-84 normal gravity,
-//                sensor_sim/gravity.h), supply_v (the units' supply rail)
+//                common/gravity.h), supply_v (the units' supply rail)
 //   time_scale   simulated seconds per wall second (0.01…100,000; --time-scale overrides it)
 //   lockstep     optional, default false: the clock waits for slow readers and time_scale is
 //                its top speed (rig_sim/device_host.h; --lockstep sets it)

@@ -8,13 +8,13 @@
 
 #include <fmt/format.h>
 
+#include "common/gravity.h"
 #include "common/random.h"
 #include "common/units.h"
 #include "hil/recording/recording_writer.h"
 #include "hil/utc_time.h"
 #include "rig_sim/fixture_orientation.h"
 #include "sensor_sim/ads_unit.h"
-#include "sensor_sim/gravity.h"
 #include "sensor_sim/imu_unit.h"
 
 namespace adahrs::rig_sim {
@@ -77,48 +77,51 @@ nlohmann::json ProfileSequence(const StaticThermalRunConfig& config) {
 
 // meta.json as the executor writes it (docs/recording-format.md), so fit, records and report take
 // the simulator's recordings as they take a rig's, plus what only a simulation knows.
-nlohmann::json RunMetaJson(const StaticThermalRunConfig& config,
+hil::RecordingMeta RunMeta(const StaticThermalRunConfig& config,
                            const std::filesystem::path& run_dir,
                            double g_local_mps2,
-                           const nlohmann::json& units) {
+                           std::vector<hil::RecordingUnit> units) {
   nlohmann::json ramps = nlohmann::json::array();
   for (const auto& s : config.steps) ramps.push_back(s.ramp_c_per_min);
   const std::string started_utc = hil::UtcNowIso8601();
   const std::filesystem::path name =
       std::filesystem::absolute(run_dir).lexically_normal().filename();
-  return {{"run_id",
-           (name.empty() ? std::string("static-thermal") : name.string()) + "-" + started_utc},
-          {"started_utc", started_utc},
-          {"status", "running"},
-          {"station",
-           {{"name", "simulated static thermal bench"},
-            {"latitude_deg", config.latitude_deg},
-            {"height_m", config.height_m},
-            {"local_gravity_mps2", g_local_mps2},
-            {"time_scale", 0}}},
-          {"sequence", ProfileSequence(config)},
-          {"sequence_file", "(adahrs simulate static-thermal)"},
-          {"time_base", "seconds since the batch was powered on"},
-          {"sample_rate_hz", 1.0 / kFramePeriod_s},
-          {"local_gravity_mps2", g_local_mps2},
-          {"units", units},
-          {"instruments", nlohmann::json::array()},
-          {"rejected_intervals", nlohmann::json::array()},
-          {"orientation", config.orientation},
-          {"model_profile", sensor_sim::ToString(config.profile)},
-          {"simulated_chamber_ramps_c_per_min", ramps},
-          {"log_every", config.log_every}};
+  hil::RecordingMeta m;
+  m.run_id = (name.empty() ? std::string("static-thermal") : name.string()) + "-" + started_utc;
+  m.started_utc = started_utc;
+  m.status = "running";
+  m.station = nlohmann::json{{"name", "simulated static thermal bench"},
+                             {"latitude_deg", config.latitude_deg},
+                             {"height_m", config.height_m},
+                             {"local_gravity_mps2", g_local_mps2},
+                             {"time_scale", 0}};
+  m.sequence = ProfileSequence(config);
+  m.sequence_file = "(adahrs simulate static-thermal)";
+  m.time_base = "seconds since the batch was powered on";
+  m.sample_rate_hz = 1.0 / kFramePeriod_s;
+  m.local_gravity_mps2 = g_local_mps2;
+  m.units = std::move(units);
+  m.has_units = true;
+  m.instruments.emplace();
+  m.has_rejected_intervals = true;
+  m.extra = {{"orientation", config.orientation},
+             {"model_profile", sensor_sim::ToString(config.profile)},
+             {"simulated_chamber_ramps_c_per_min", ramps},
+             {"log_every", config.log_every}};
+  return m;
 }
 
-nlohmann::json UnitJson(const std::string& serial, const char* kind, int index) {
-  return {{"role", fmt::format("{}{}", kind, index + 1)},
-          {"kind", kind},
-          {"serial", serial},
-          {"serial_number", index + 1},
-          {"firmware", "simulated"},
-          {"slot", index + 1},
-          {"constants_version", 0},
-          {"mode", 0}};
+hil::RecordingUnit RecordedUnit(const std::string& serial, const char* kind, int index) {
+  hil::RecordingUnit u;
+  u.role = fmt::format("{}{}", kind, index + 1);
+  u.kind = kind;
+  u.serial = serial;
+  u.serial_number = index + 1;
+  u.firmware = "simulated";
+  u.slot = index + 1;
+  u.constants_version = 0;
+  u.mode = 0;
+  return u;
 }
 
 void CheckConfig(const StaticThermalRunConfig& config) {
@@ -150,7 +153,7 @@ class StaticBatch {
   }
 
   /// meta.json's "units".
-  const nlohmann::json& units() const { return units_; }
+  const std::vector<hil::RecordingUnit>& units() const { return units_; }
 
   /// Steps every unit one frame in the chamber air `air_c`; writes their rows when `log`.
   void Frame(double air_c, uint64_t frame, size_t step, bool log, hil::RecordingWriter& writer) {
@@ -200,7 +203,7 @@ class StaticBatch {
       const auto params = Params::Draw(serial, seed, config.profile);
       WriteTruth(run_dir / "truth", serial, kind, seed, config.profile, params.ToJson());
       units.emplace_back(params, common::Rng::Derive(seed, 1), config.start_c);
-      units_.push_back(UnitJson(serial, kind, i));
+      units_.push_back(RecordedUnit(serial, kind, i));
     }
   }
 
@@ -219,7 +222,7 @@ class StaticBatch {
 
   std::vector<sensor_sim::ImuUnit> imus_;
   std::vector<sensor_sim::AdsUnit> adss_;
-  nlohmann::json units_ = nlohmann::json::array();
+  std::vector<hil::RecordingUnit> units_;
   sensor_sim::ImuStimulus imu_in_;
   sensor_sim::AdsStimulus ads_in_;
   hil::ImuRecordRow imu_row_;
@@ -239,12 +242,12 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
                                          const std::filesystem::path& run_dir,
                                          const std::function<void(int, double)>& on_step) {
   CheckConfig(config);
-  const double g_local_mps2 = sensor_sim::NormalGravityMps2(config.latitude_deg, config.height_m);
+  const double g_local_mps2 = common::NormalGravityMps2(config.latitude_deg, config.height_m);
   const Eigen::Vector3d f_B_g =
       UpAxis_B(config.orientation) * (g_local_mps2 / common::kStandardGravity_mps2);
   StaticBatch batch(config, run_dir, f_B_g);
   hil::RecordingWriter writer(run_dir, config.storage);
-  nlohmann::json meta = RunMetaJson(config, run_dir, g_local_mps2, batch.units());
+  hil::RecordingMeta meta = RunMeta(config, run_dir, g_local_mps2, batch.units());
   writer.WriteMeta(meta);
 
   ChamberAir chamber(config.chamber, config.start_c);
@@ -264,7 +267,7 @@ StaticThermalRunSummary RunStaticThermal(const StaticThermalRunConfig& config,
     writer.Flush(true);
     if (on_step) on_step(static_cast<int>(step), static_cast<double>(frame) * kFramePeriod_s);
   }
-  meta["status"] = "complete";
+  meta.status = "complete";
   writer.WriteMeta(meta);
   StaticThermalRunSummary summary;
   summary.frames = frame;

@@ -23,23 +23,10 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
+#include "common/imu_layout.h"
 #include "common/param_reader.h"
 
 namespace adahrs::sensor_sim {
-
-/// The six accelerometer channels in the order the unit reports them.
-enum class AccelChannel : int { kAz1 = 0, kAx1, kAy1, kAz2, kAx2, kAy2 };
-inline constexpr std::array<const char*, 6> kAccelChannelNames = {
-    "az1", "ax1", "ay1", "az2", "ax2", "ay2"};
-inline constexpr std::array<const char*, 3> kGyroChannelNames = {"gx", "gy", "gz"};
-
-/// Chip and sensitive axis (0 = x_C, 1 = y_C) of each accelerometer channel.
-struct ChipAxis {
-  int chip;
-  int axis;
-};
-inline constexpr std::array<ChipAxis, 6> kAccelChannelChipAxis = {
-    ChipAxis{0, 0}, ChipAxis{0, 1}, ChipAxis{1, 0}, ChipAxis{1, 1}, ChipAxis{2, 0}, ChipAxis{2, 1}};
 
 struct Im3Geometry {
   /// Mounting misalignment of each accelerometer chip: small-rotation vector in B, degrees.
@@ -62,10 +49,6 @@ struct Im3Geometry {
   Eigen::Matrix3d R_CB(int chip) const;
   /// R_GB of gyro `gyro` (0..2), misalignment included when switched on.
   Eigen::Matrix3d R_GB(int gyro) const;
-
-  /// Nominal R_CB and R_GB (no misalignment).
-  static Eigen::Matrix3d NominalR_CB(int chip);
-  static Eigen::Matrix3d NominalR_GB(int gyro);
 };
 
 }  // namespace adahrs::sensor_sim

@@ -10,10 +10,10 @@
 
 #include "calib/constants/recording_checksum.h"
 #include "calib/sequence/sequence_json.h"
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 #include "common/units.h"
 #include "hil/recording/recording_reader.h"
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
 
 namespace adahrs::calib {
 namespace {
@@ -176,7 +176,7 @@ void ReadRows(const std::filesystem::path& run_dir, RunContext* ctx) {
 
 template <typename Row>
 bool Rejected(const RunContext& ctx, const Row& row) {
-  for (const hil::RejectedInterval& r : ctx.recording.rejected_intervals) {
+  for (const hil::RejectedInterval& r : ctx.recording.meta.rejected_intervals) {
     if (r.step == row.step && row.t_s >= r.t_start_s && row.t_s <= r.t_end_s) return true;
   }
   return false;
@@ -439,8 +439,8 @@ void JudgeAdsUnit(
       double ref_alt_ft = 0.0;
       double ref_cas_kt = 0.0;
       try {
-        ref_alt_ft = sensor_sim::IsaPressureAltitudeFt(row->ps_ref_pa);
-        ref_cas_kt = sensor_sim::CalibratedAirspeedKt(std::max(0.0, row->qc_ref_pa));
+        ref_alt_ft = common::IsaPressureAltitudeFt(row->ps_ref_pa);
+        ref_cas_kt = common::CalibratedAirspeedKt(std::max(0.0, row->qc_ref_pa));
       } catch (const std::exception& e) {
         Refuse(where,
                fmt::format("t_s {}: reference ps_ref_pa {} / qc_ref_pa {}: {}",
@@ -565,36 +565,31 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir,
   }
   ctx.since_calibration_s = options.since_calibration_h * 3600.0;
   ReadRows(run_dir, &ctx);
-  const json& meta = ctx.recording.meta;
+  const hil::RecordingMeta& meta = ctx.recording.meta;
   ctx.packet_period_s = 1.0 / kDefaultSampleRate_hz;
-  if (meta.contains("sample_rate_hz")) {
-    if (!meta["sample_rate_hz"].is_number() || !(meta["sample_rate_hz"].get<double>() > 0.0)) {
-      fail("meta.json: $.sample_rate_hz is not a positive number");
-    }
-    ctx.packet_period_s = 1.0 / meta["sample_rate_hz"].get<double>();
+  if (meta.sample_rate_hz) {
+    if (!(*meta.sample_rate_hz > 0.0)) fail("meta.json: $.sample_rate_hz is not a positive number");
+    ctx.packet_period_s = 1.0 / *meta.sample_rate_hz;
   }
-  if (!meta.contains("sequence")) fail("meta.json: $.sequence missing");
-  ctx.sequence = SequenceFromJson(meta["sequence"], ctx.run + "/meta.json $.sequence");
+  if (!meta.sequence) fail("meta.json: $.sequence missing");
+  ctx.sequence = SequenceFromJson(*meta.sequence, ctx.run + "/meta.json $.sequence");
   ctx.tags = EffectiveTags(ctx.sequence);
 
   AcceptanceRun run;
   run.run_dir = ctx.run;
-  run.run_id = meta.contains("run_id") && meta["run_id"].is_string()
-                   ? meta["run_id"].get<std::string>()
-                   : run_dir.filename().string();
+  run.run_id = meta.run_id.value_or(run_dir.filename().string());
   run.recording_sha256 = RecordingSha256(run_dir);
   run.sequence_name = ctx.sequence.name;
   run.since_calibration_h = options.since_calibration_h;
-  if (!meta.contains("units") || !meta["units"].is_array()) fail("meta.json: $.units missing");
-  for (size_t i = 0; i < meta["units"].size(); ++i) {
-    const json& u = meta["units"][i];
+  if (!meta.has_units) fail("meta.json: $.units missing");
+  for (size_t i = 0; i < meta.units.size(); ++i) {
+    const hil::RecordingUnit& u = meta.units[i];
     const std::string path = fmt::format("meta.json: $.units[{}]", i);
-    if (!u.contains("serial") || !u["serial"].is_string()) fail(path + ".serial missing");
-    const std::string kind = u.value("kind", "");
-    if (kind != "imu" && kind != "ads")
-      fail(path + ".kind: \"" + kind + "\" is neither imu nor ads");
-    if (kind == UnitKindName(ctx.sequence.unit_kind)) {
-      run.units.push_back({u["serial"].get<std::string>(), kind, 0, {}, std::nullopt});
+    if (u.serial.empty()) fail(path + ".serial missing");
+    if (u.kind != "imu" && u.kind != "ads")
+      fail(path + ".kind: \"" + u.kind + "\" is neither imu nor ads");
+    if (u.kind == UnitKindName(ctx.sequence.unit_kind)) {
+      run.units.push_back({u.serial, u.kind, 0, {}, std::nullopt});
     }
   }
   if (run.units.empty()) {
@@ -604,12 +599,12 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir,
   const bool has_imu = std::any_of(
       run.units.begin(), run.units.end(), [](const UnitAcceptance& u) { return u.kind == "imu"; });
   if (has_imu) {
-    if (!meta.contains("local_gravity_mps2") || !meta["local_gravity_mps2"].is_number()) {
+    if (!meta.local_gravity_mps2) {
       fail(
           "meta.json: $.local_gravity_mps2 missing (the station's local gravity is the "
           "accelerometers' reference)");
     }
-    run.local_gravity_mps2 = meta["local_gravity_mps2"].get<double>();
+    run.local_gravity_mps2 = *meta.local_gravity_mps2;
     if (!(run.local_gravity_mps2 > 9.7 && run.local_gravity_mps2 < 9.9)) {
       fail(
           fmt::format("meta.json: $.local_gravity_mps2 {} is not Earth's", run.local_gravity_mps2));

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 
 namespace adahrs::calib {
 namespace {
@@ -71,12 +71,10 @@ void AdsPointSelector::Extremes::Add(double v, int line, bool first) {
   if (first || v > max) max = v, max_line = line;
 }
 
-AdsPointSelector::AdsPointSelector(const nlohmann::json& meta,
+AdsPointSelector::AdsPointSelector(const hil::RecordingMeta& meta,
                                    std::string serial,
                                    std::string source)
-    : serial_(std::move(serial)),
-      source_(std::move(source)),
-      rejected_(hil::ParseRejectedIntervals(meta, source_ + "/meta.json")) {}
+    : serial_(std::move(serial)), source_(std::move(source)), rejected_(meta.rejected_intervals) {}
 
 void AdsPointSelector::Add(const hil::AdsRecordRow& row, int line) {
   if (row.unit != serial_) return;
@@ -136,8 +134,8 @@ std::vector<AdsCalibrationPoint> AdsPointSelector::Points() const {
     p.qc_ref_pa = s.qc_ref / n;
     p.chamber_c = s.chamber / n;
     try {
-      p.alt_ft = sensor_sim::IsaPressureAltitudeFt(p.ps_ref_pa);
-      p.cas_kt = sensor_sim::CalibratedAirspeedKt(std::max(0.0, p.qc_ref_pa));
+      p.alt_ft = common::IsaPressureAltitudeFt(p.ps_ref_pa);
+      p.cas_kt = common::CalibratedAirspeedKt(std::max(0.0, p.qc_ref_pa));
     } catch (const std::domain_error& e) {
       throw std::runtime_error(fmt::format(
           "{}/ads.csv line {} columns ps_ref_pa/qc_ref_pa: step {} reference outside ISA: {}",
@@ -166,7 +164,7 @@ std::map<std::string, std::vector<AdsCalibrationPoint>> StreamAdsCalibrationPoin
     const std::filesystem::path& run_dir,
     const std::vector<std::string>& serials,
     const std::string& source) {
-  const nlohmann::json meta = hil::ReadRecordingMeta(run_dir).meta;
+  const hil::RecordingMeta meta = hil::ReadRecordingMeta(run_dir).meta;
   std::vector<AdsPointSelector> selectors;
   for (const std::string& serial : serials) selectors.emplace_back(meta, serial, source);
   hil::RowSinks sinks;

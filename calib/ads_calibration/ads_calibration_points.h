@@ -5,7 +5,7 @@
 // Each point carries the mean ADS1254 codes (static and pitot bridge outputs and their bridge
 // voltages, the sensors' temperature signals), the mean pressures the air data test set reported
 // (ps_ref_pa, qc_ref_pa), the chamber reading, and the reference altitude and calibrated airspeed
-// computed from those pressures by ISA (sensor_sim/atmosphere.h, air_data.h): the standard
+// computed from those pressures by ISA (common/atmosphere.h, air_data.h): the standard
 // formulas, as the test set itself converts. A point is an airspeed point when its impact pressure
 // is above that of kMinAirspeedPointKt; every point is an altitude point (the static sensor reads
 // its pressure whatever the pitot does).
@@ -55,7 +55,7 @@ struct AdsCalibrationPoint {
 class AdsPointSelector {
  public:
   /// `meta` is the run's meta.json (its rejected intervals); `source` is named in errors.
-  AdsPointSelector(const nlohmann::json& meta, std::string serial, std::string source);
+  AdsPointSelector(const hil::RecordingMeta& meta, std::string serial, std::string source);
 
   void Add(const hil::AdsRecordRow& row, int line);
   /// The points in step order; throws as SelectAdsCalibrationPoints does.

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
+#include "calib/acceptance/ads_tolerance.h"
 #include "calib/ads_calibration/unit_hysteresis_operator.h"
-#include "calib/evaluation/ads_tolerance.h"
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 
 namespace adahrs::calib {
 namespace {
@@ -33,7 +33,7 @@ std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>
   UnitHysteresisOperator impact_p(spans.impact_pressure_pa);
   UnitHysteresisOperator static_t(spans.static_temperature_c);
   UnitHysteresisOperator pitot_t(spans.pitot_temperature_c);
-  static_p.Update(sensor_sim::kIsaSeaLevelPressure_pa);
+  static_p.Update(common::kIsaSeaLevelPressure_pa);
   impact_p.Update(0.0);
   static_t.Update(kRoomTemperatureC);
   pitot_t.Update(kRoomTemperatureC);
@@ -59,11 +59,11 @@ StateBand EnvelopeStateBand(double x, double low, double high, double span) {
 }
 
 PointBands EnvelopeBands(const AdsCalibrationPoint& point, const HysteresisSpans& spans) {
-  using sensor_sim::IsaStaticPressurePaFromFt;
+  using common::IsaStaticPressurePaFromFt;
   const double ps_low = IsaStaticPressurePaFromFt(kAdsMaxAltitudeFt);
   const double ps_high = IsaStaticPressurePaFromFt(kAdsMinAltitudeFt);
-  const double qc_low = sensor_sim::ImpactPressurePaFromKt(kAdsMinAirspeedKt);
-  const double qc_high = sensor_sim::ImpactPressurePaFromKt(kAdsMaxAirspeedKt);
+  const double qc_low = common::ImpactPressurePaFromKt(kAdsMinAirspeedKt);
+  const double qc_high = common::ImpactPressurePaFromKt(kAdsMaxAirspeedKt);
   auto thermal = [&](double span_c) {
     return EnvelopeStateBand(point.chamber_c, kAdsMinTempC, kAdsMaxTempC, span_c);
   };

@@ -58,7 +58,7 @@ std::vector<PointHistory> BridgeHistoryOf(
 
 /// The band of states that the operating envelope's histories can leave at input `x`: fresh (0),
 /// after a major loop low -> high -> x, and after high -> low -> x (the histories
-/// calib/evaluation/ads_evaluation.h judges a unit under). A surface that reads the middle of
+/// proving/evaluation/ads_evaluation.h judges a unit under). A surface that reads the middle of
 /// that band at every point has the smallest worst error over them, and no surface does better
 /// than the band's half-width times the half loop; near the envelope's ends only one branch is
 /// reachable (nothing arrives at -40 degC but by cooling), so the middle there is not the loop's

@@ -12,11 +12,11 @@
 
 #include <fmt/format.h>
 
+#include "calib/acceptance/ads_tolerance.h"
 #include "calib/ads_calibration/bridge_history.h"
 #include "calib/ads_calibration/bridge_linearisation_fit.h"
 #include "calib/ads_calibration/hysteresis_span_fit.h"
 #include "calib/constants/constants_file.h"
-#include "calib/evaluation/ads_tolerance.h"
 #include "calib/solvers/polynomial_fit.h"
 #include "firmware_model/air_data_law.h"
 #include "firmware_model/reference_compensator.h"

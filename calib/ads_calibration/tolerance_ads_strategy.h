@@ -6,7 +6,7 @@
 // iteratively reweighted least squares (C. L. Lawson, 1961; Rice and Usow, Math. Comp. 22, 1968):
 // start from w_i = 1/tol_i^2 (the weighted mean-square fit), then w_i <- w_i |r_i| / tol_i,
 // normalised, for kLawsonIterations; the iterate with the smallest worst ratio is kept. Tolerances
-// are calib/evaluation/ads_tolerance.h's, with points outside the operating limits weighed at the
+// are calib/acceptance/ads_tolerance.h's, with points outside the operating limits weighed at the
 // nearest limit's tolerance.
 // Output as the reference's (constants, standard errors from the weighted residual variance,
 // diagnostics) plus, per output, the worst ratio at the points of the first (1/tol^2) fit and of

@@ -6,7 +6,6 @@
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/campaign/bench_runs.h"
 #include "calib/campaign/campaign_fits.h"
-#include "calib/diagnosis/diagnosis_output.h"
 #include "calib/records/acceptance_records.h"
 #include "calib/records/records_sources.h"
 #include "calib/records/records_store.h"
@@ -86,32 +85,25 @@ std::vector<std::filesystem::path> CalibrationRuns(const CampaignOptions& o,
   return imu_runs;
 }
 
-// The fits of both strategies per unit kind, each written into its own directory.
-struct CampaignFits {
-  std::filesystem::path imu_reference_dir, imu_joint_dir, ads_reference_dir, ads_improved_dir;
-  std::vector<WrittenConstants> imu_reference, imu_joint, ads_reference, ads_improved;
-};
-
-// Stage 2: fits every strategy and records every constants file.
-CampaignFits FitStrategies(const CampaignOptions& o,
-                           CampaignObserver& observer,
-                           const std::vector<std::filesystem::path>& imu_runs,
-                           const std::filesystem::path& ads_run,
-                           RecordsStore& records) {
+// Stage 2: fits every strategy into `f`'s directories and records every constants file.
+void FitStrategies(const CampaignOptions& o,
+                   CampaignObserver& observer,
+                   CampaignArtifacts& f,
+                   RecordsStore& records) {
+  const std::vector<std::filesystem::path>& imu_runs = f.imu_calibration_runs;
+  const std::filesystem::path& ads_run = f.ads_calibration_run;
   observer.Stage(
       "2/8 fits: IMU reference and improved (joint, firmware format 3) strategies, ADS "
       "reference and improved (hysteresis-compensated pressure surfaces, ISA / CAS "
       "laws) strategies");
-  CampaignFits f;
   f.imu_reference_dir = o.out_dir / "fits" / "imu-reference";
   f.imu_joint_dir = o.out_dir / "fits" / "imu-joint";
   f.ads_reference_dir = o.out_dir / "fits" / "ads-reference";
   f.ads_improved_dir = o.out_dir / "fits" / "ads-hysteresis-compensated";
   f.imu_reference = FitImuIntoDirectory(
       imu_runs, ImuStrategy::Reference(), f.imu_reference_dir, o.software_version);
-  ImuStrategy improved = ImuStrategy::Improved();
-  improved.format3 = true;
-  f.imu_joint = FitImuIntoDirectory(imu_runs, improved, f.imu_joint_dir, o.software_version);
+  f.imu_joint = FitImuIntoDirectory(
+      imu_runs, ImuStrategy::JointFormat3(), f.imu_joint_dir, o.software_version);
   f.ads_reference = FitAdsIntoDirectory(
       ads_run, kReferenceAdsStrategyName, f.ads_reference_dir, o.software_version);
   f.ads_improved = FitAdsIntoDirectory(
@@ -122,7 +114,6 @@ CampaignFits FitStrategies(const CampaignOptions& o,
   observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
                              f.imu_joint.size(),
                              f.ads_reference.size()));
-  return f;
 }
 
 struct ImprovedDownloads {
@@ -133,7 +124,7 @@ struct ImprovedDownloads {
 ImprovedDownloads DownloadImprovedConstants(CampaignObserver& observer,
                                             const hil::Station& imu_station,
                                             const hil::Station& ads_station,
-                                            const CampaignFits& f,
+                                            const CampaignArtifacts& f,
                                             RecordsStore& records) {
   observer.Stage(
       "3/8 download: improved IMU and ADS constants into every unit, read back bit for "
@@ -173,72 +164,12 @@ CampaignAcceptance AcceptanceRuns(const CampaignOptions& o,
   return a;
 }
 
-// The evaluation of the downloaded (improved) constants against the truth; empty without one.
-struct ImprovedEvaluation {
-  std::vector<EvaluatedQuantity> imu, ads;
-};
-
-// Stage 5: every fit through the firmware compensator against the rig's truth, when there is one.
-ImprovedEvaluation EvaluateFits(const CampaignOptions& o,
-                                CampaignObserver& observer,
-                                const CampaignFits& f,
-                                const hil::Station& imu_station,
-                                const hil::Station& ads_station,
-                                CampaignResult& result) {
-  ImprovedEvaluation eval;
-  if (!o.truth_dir) {
-    result.not_run.push_back("evaluation against truth: no truth directory (not a simulated rig)");
-    return eval;
-  }
-  observer.Stage(
-      "5/8 evaluation against the rig's truth: every fit through the firmware "
-      "compensator on the envelope grid");
-  const double imu_g = imu_station.local_gravity_mps2;
-  const double ads_g = ads_station.local_gravity_mps2;
-  result.reference_evaluation =
-      EvaluateAgainstTruth(f.imu_reference, *o.truth_dir, imu_g, f.imu_reference_dir);
-  eval.imu = EvaluateAgainstTruth(f.imu_joint, *o.truth_dir, imu_g, f.imu_joint_dir);
-  result.ads_reference_evaluation =
-      EvaluateAgainstTruth(f.ads_reference, *o.truth_dir, ads_g, f.ads_reference_dir);
-  eval.ads = EvaluateAgainstTruth(f.ads_improved, *o.truth_dir, ads_g, f.ads_improved_dir);
-  return eval;
-}
-
-// Stage 6: the calibration runs diagnosed against the nominal model, beside the truth and checked
-// by replaying the acceptance runs when the rig's truth and a replay function are given.
-void DiagnoseCalibrationRuns(const CampaignOptions& o,
-                             CampaignObserver& observer,
-                             std::vector<std::filesystem::path> diagnosed_runs,
-                             const CampaignAcceptance& acceptance,
-                             CampaignResult& result) {
-  observer.Stage(
-      "6/8 diagnosis: the IMU and ADS calibration runs against the pipeline's nominal model "
-      "(adahrs diagnose) -> " +
-      (o.out_dir / "diagnosis").string());
-  result.diagnosis_dir = o.out_dir / "diagnosis";
-  const DiagnosisRun diagnosed = DiagnoseRuns(diagnosed_runs, std::nullopt);
-  WriteDiagnosis(diagnosed, result.diagnosis_dir);
-  result.diagnosis = diagnosed.units;
-  if (o.truth_dir)
-    result.diagnosis_truth = CompareDiagnosisWithTruth(diagnosed.units, *o.truth_dir);
-  if (o.truth_dir && o.replay) {
-    result.replay_checks = CheckDiagnosisByReplay(diagnosed,
-                                                  *o.truth_dir,
-                                                  result.diagnosis_dir,
-                                                  {acceptance.imu_run, acceptance.ads_run},
-                                                  o.replay);
-  } else {
-    result.not_run.push_back(
-        "re-simulation check of the diagnosis: needs the rig's truth and a replay function");
-  }
-}
-
 // Stage 7: report.html per run with the improved fit of its unit kind; the acceptance runs' with
 // their judgement.
 void WriteReports(CampaignObserver& observer,
                   const std::vector<std::filesystem::path>& imu_runs,
                   const std::filesystem::path& ads_run,
-                  const CampaignFits& f,
+                  const CampaignArtifacts& f,
                   const CampaignAcceptance& acceptance,
                   CampaignResult& result) {
   observer.Stage("7/8 report.html per run");
@@ -258,18 +189,14 @@ void WriteReports(CampaignObserver& observer,
   }
 }
 
-// Each downloaded unit with its evaluation and acceptance judgement.
+// Each downloaded unit with its acceptance judgement.
 void AddUnitOutcomes(const std::vector<UnitDownload>& downloads,
                      const std::string& strategy,
-                     const std::vector<EvaluatedQuantity>& eval,
                      const AcceptanceRun& judged,
                      const std::filesystem::path& report,
                      CampaignResult& result) {
   for (const UnitDownload& d : downloads) {
-    UnitOutcome u{d.role, d.serial, strategy, d, {}, std::nullopt, report};
-    for (const EvaluatedQuantity& q : eval) {
-      if (q.serial == d.serial) u.evaluation.push_back(q);
-    }
+    UnitOutcome u{d.role, d.serial, strategy, d, std::nullopt, report};
     for (const UnitAcceptance& a : judged.units) {
       if (a.serial == d.serial) u.acceptance = a;
     }
@@ -288,34 +215,36 @@ CampaignResult RunCampaign(const CampaignOptions& o,
   result.records_file = o.out_dir / "records.sqlite";
   RecordsStore records(result.records_file);
 
-  const std::vector<std::filesystem::path> imu_runs = CalibrationRuns(o, observer, stop, result);
-  const std::filesystem::path ads_run = RunDir(o, o.sequences.ads_calibration);
-  const CampaignFits fits = FitStrategies(o, observer, imu_runs, ads_run, records);
+  CampaignArtifacts artifacts;
+  artifacts.imu_local_gravity_mps2 = imu_station.local_gravity_mps2;
+  artifacts.ads_local_gravity_mps2 = ads_station.local_gravity_mps2;
+  artifacts.imu_calibration_runs = CalibrationRuns(o, observer, stop, result);
+  artifacts.ads_calibration_run = RunDir(o, o.sequences.ads_calibration);
+  FitStrategies(o, observer, artifacts, records);
 
   const ImprovedDownloads downloads =
-      DownloadImprovedConstants(observer, imu_station, ads_station, fits, records);
+      DownloadImprovedConstants(observer, imu_station, ads_station, artifacts, records);
 
   const CampaignAcceptance acceptance = AcceptanceRuns(o, observer, stop, records, result);
-  const ImprovedEvaluation eval = EvaluateFits(o, observer, fits, imu_station, ads_station, result);
-  std::vector<std::filesystem::path> diagnosed_runs = imu_runs;
-  diagnosed_runs.push_back(ads_run);
-  DiagnoseCalibrationRuns(o, observer, std::move(diagnosed_runs), acceptance, result);
-  WriteReports(observer, imu_runs, ads_run, fits, acceptance, result);
+  artifacts.imu_acceptance_run = acceptance.imu_run;
+  artifacts.ads_acceptance_run = acceptance.ads_run;
+  if (o.before_reports) o.before_reports(artifacts, result);
+  WriteReports(observer,
+               artifacts.imu_calibration_runs,
+               artifacts.ads_calibration_run,
+               artifacts,
+               acceptance,
+               result);
 
   observer.Stage("8/8 production records: runs, constants versions, downloads -> " +
                  result.records_file.string());
   for (const std::filesystem::path& run : result.run_dirs) {
     records.AddRun(RunRecordFromDirectory(run));
   }
-  AddUnitOutcomes(downloads.imu,
-                  "joint",
-                  eval.imu,
-                  acceptance.imu_judged,
-                  acceptance.imu_run / "report.html",
-                  result);
+  AddUnitOutcomes(
+      downloads.imu, "joint", acceptance.imu_judged, acceptance.imu_run / "report.html", result);
   AddUnitOutcomes(downloads.ads,
                   kHysteresisAdsStrategyName,
-                  eval.ads,
                   acceptance.ads_judged,
                   acceptance.ads_run / "report.html",
                   result);

@@ -3,6 +3,7 @@
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/constants/recording_checksum.h"
+#include "calib/sequence/sequence_json.h"
 #include "hil/recording/recording_reader.h"
 
 namespace adahrs::calib {
@@ -33,13 +34,15 @@ std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& r
                                                   const std::string& strategy,
                                                   const std::filesystem::path& fit_dir,
                                                   const std::string& software_version) {
-  const nlohmann::json meta = hil::ReadRecordingMeta(run_dir).meta;
+  const hil::RecordingMeta meta = hil::ReadRecordingMeta(run_dir).meta;
   const std::string source = run_dir.string();
   const RecordingReference reference{run_dir.string(), RecordingSha256(run_dir)};
-  const std::string sequence_name = meta.at("sequence").at("name").get<std::string>();
+  if (!meta.sequence) throw std::runtime_error(source + "/meta.json: $.sequence missing");
+  const std::string sequence_name =
+      SequenceFromJson(*meta.sequence, source + "/meta.json $.sequence").name;
   std::vector<std::string> serials;
-  for (const nlohmann::json& unit : meta.at("units")) {
-    if (unit.at("kind") == "ads") serials.push_back(unit.at("serial"));
+  for (const hil::RecordingUnit& unit : meta.units) {
+    if (unit.kind == "ads") serials.push_back(unit.serial);
   }
   const auto points = StreamAdsCalibrationPoints(run_dir, serials, source);
   std::vector<WrittenConstants> written;

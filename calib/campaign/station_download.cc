@@ -18,7 +18,7 @@ std::vector<UnitDownload> DownloadStation(const hil::Station& station,
   std::vector<UnitDownload> downloads;
   for (const hil::UnitEntry& entry : station.units) {
     hil::UnitLink link(entry, *clock);
-    const firmware_model::IdentifyInfo id = link.Identify();
+    const hil::IdentifyInfo id = link.Identify();
     UnitDownload d;
     d.role = entry.role;
     d.serial = hil::UnitSerialText(entry.kind, id.serial_number);

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "common/imu_layout.h"
 #include "firmware_model/unit_firmware.h"
 
 namespace adahrs::calib {
@@ -11,12 +12,9 @@ namespace {
 
 namespace fm = firmware_model;
 
-constexpr const char* kChannelNames[fm::kImuChannels] = {
-    "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
-
 std::string ImuBlockName(uint8_t id) {
   if (id >= fm::kImuBlockThermalFirst && id <= fm::kImuBlockThermalLast) {
-    return fmt::format("thermal {}", kChannelNames[id - fm::kImuBlockThermalFirst]);
+    return fmt::format("thermal {}", common::kImuChannelNames[id - fm::kImuBlockThermalFirst]);
   }
   if (id == fm::kImuBlockAccelOffsetScale) return "accel offsets and scales";
   if (id >= fm::kImuBlockGyroCubicFirst && id <= fm::kImuBlockGyroCubicLast) {
@@ -26,7 +24,8 @@ std::string ImuBlockName(uint8_t id) {
   if (id == fm::kImuBlockCg) return "CG";
   if (id == fm::kImuBlockScaleSwitch) return "scale-temperature switch";
   if (id >= fm::kImuBlockScaleFactorFirst && id <= fm::kImuBlockScaleFactorLast) {
-    return fmt::format("scale factor {}", kChannelNames[id - fm::kImuBlockScaleFactorFirst]);
+    return fmt::format("scale factor {}",
+                       common::kImuChannelNames[id - fm::kImuBlockScaleFactorFirst]);
   }
   return id == fm::kImuBlockAccelQuadratic ? "accel nonlinearity" : "gyro g-sensitivity";
 }

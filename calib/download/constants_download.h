@@ -19,7 +19,7 @@
 
 #include "calib/constants/constants_file.h"
 #include "calib/download/constants_blocks.h"
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 #include "hil/drivers/unit_link.h"
 
 namespace adahrs::calib {
@@ -36,9 +36,9 @@ class DownloadError : public std::runtime_error {
 };
 
 struct DownloadResult {
-  firmware_model::IdentifyInfo before{};
-  firmware_model::IdentifyInfo after{};
-  firmware_model::CommitInfo commit{};
+  hil::IdentifyInfo before{};
+  hil::IdentifyInfo after{};
+  hil::CommitInfo commit{};
   ConstantsBlocks blocks;
 };
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "calib/sequence/sequence.h"
-#include "sensor_sim/im3_geometry.h"
+#include "common/imu_layout.h"
 
 namespace adahrs::calib {
 namespace {
@@ -38,8 +38,8 @@ Eigen::Vector3d NominalSpecificForce_B_g(const RawAverage& average) {
   // g_k = r_k . f_B with r_k = ±e_i; each axis has two channels, so f_i = Σ r_k,i g_k / Σ r_k,i².
   Eigen::Vector3d weighted = Eigen::Vector3d::Zero(), count = Eigen::Vector3d::Zero();
   for (int ch = 0; ch < 6; ++ch) {
-    const auto [chip, axis] = sensor_sim::kAccelChannelChipAxis[ch];
-    const Eigen::Vector3d r_B = sensor_sim::Im3Geometry::NominalR_CB(chip).row(axis).transpose();
+    const int chip = common::kImuChannels[ch].package, axis = common::kImuChannels[ch].package_axis;
+    const Eigen::Vector3d r_B = common::NominalR_CB(chip).row(axis).transpose();
     const double g_k = average.duty_offset[ch] / kDutyPerG;
     weighted += r_B * g_k;
     count += r_B.cwiseAbs2();

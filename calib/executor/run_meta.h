@@ -6,9 +6,8 @@
 
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "calib/executor/shared_recording.h"
+#include "hil/recording/recording_meta.h"
 
 namespace adahrs::calib {
 
@@ -20,14 +19,14 @@ inline constexpr const char* kStatusInterrupted = "interrupted";
 
 class RunMeta {
  public:
-  RunMeta(nlohmann::json meta, SharedRecording& recording)
+  RunMeta(hil::RecordingMeta meta, SharedRecording& recording)
       : meta_(std::move(meta)), recording_(recording) {}
 
-  const nlohmann::json& json() const { return meta_; }
+  const hil::RecordingMeta& meta() const { return meta_; }
   /// Writes meta.json now.
   void Write() { recording_.WriteMeta(meta_); }
   void SetStatus(const std::string& status) {
-    meta_["status"] = status;
+    meta_.status = status;
     Write();
   }
   /// Rows with t_start_s <= t_s <= t_end_s are not calibration data.
@@ -35,13 +34,13 @@ class RunMeta {
                            double t_start_s,
                            double t_end_s,
                            const std::string& reason) {
-    meta_["rejected_intervals"].push_back(
-        {{"step", step}, {"t_start_s", t_start_s}, {"t_end_s", t_end_s}, {"reason", reason}});
+    meta_.rejected_intervals.push_back({static_cast<int>(step), t_start_s, t_end_s, reason});
+    meta_.has_rejected_intervals = true;
     Write();
   }
 
  private:
-  nlohmann::json meta_;
+  hil::RecordingMeta meta_;
   SharedRecording& recording_;
 };
 

@@ -25,6 +25,7 @@
 #include "hil/recording/csv_lines.h"
 #include "hil/recording/recording_files.h"
 #include "hil/recording/recording_format.h"
+#include "hil/recording/recording_reader.h"
 #include "hil/recording/recording_writer.h"
 #include "hil/recording/torn_tail.h"
 #include "hil/utc_time.h"
@@ -117,26 +118,26 @@ std::vector<hil::UnitLink*> BatchLinks(const hil::StationInstruments& instrument
 
 // What the units say of themselves: meta.json's $.units and their serials, in batch order.
 struct BatchUnits {
-  nlohmann::json units = nlohmann::json::array();
+  std::vector<hil::RecordingUnit> units;
   std::vector<std::string> serials;
 };
 
 BatchUnits IdentifyUnits(const std::vector<hil::UnitLink*>& links, bool imu_batch) {
   BatchUnits out;
   for (hil::UnitLink* link : links) {
-    const firmware_model::IdentifyInfo id = link->Identify();
+    const hil::IdentifyInfo id = link->Identify();
     const std::string serial = hil::UnitSerialText(link->entry().kind, id.serial_number);
     out.serials.push_back(serial);
-    out.units.push_back(
-        {{"role", link->entry().role},
-         {"kind", imu_batch ? "imu" : "ads"},
-         {"serial", serial},
-         {"serial_number", id.serial_number},
-         {"firmware",
-          fmt::format("{}.{}.{}", id.firmware_major, id.firmware_minor, id.firmware_patch)},
-         {"slot", link->entry().slot},
-         {"constants_version", id.constants_version},
-         {"mode", id.mode}});
+    hil::RecordingUnit u;
+    u.role = link->entry().role;
+    u.kind = imu_batch ? "imu" : "ads";
+    u.serial = serial;
+    u.serial_number = id.serial_number;
+    u.firmware = fmt::format("{}.{}.{}", id.firmware_major, id.firmware_minor, id.firmware_patch);
+    u.slot = link->entry().slot;
+    u.constants_version = id.constants_version;
+    u.mode = id.mode;
+    out.units.push_back(std::move(u));
   }
   return out;
 }
@@ -153,14 +154,15 @@ BatchInstruments BatchInstrumentsFor(const hil::StationInstruments& instruments,
 }
 
 // meta.json's $.instruments: what each instrument of the batch says it is.
-nlohmann::json IdentifyInstruments(const BatchInstruments& batch, bool imu_batch) {
-  nlohmann::json identities = nlohmann::json::array();
+std::vector<hil::RecordingInstrument> IdentifyInstruments(const BatchInstruments& batch,
+                                                          bool imu_batch) {
+  std::vector<hil::RecordingInstrument> identities;
   // A crashed predecessor's late replies on a line are the drivers' business (they flush and
   // repeat a garbled exchange within their bounded retries).
   const auto identify = [&](const char* role, auto* instrument) {
     if (instrument == nullptr) return;
     const hil::InstrumentIdentity id = instrument->Identify();
-    identities.push_back({{"role", role}, {"model", id.model}, {"detail", id.detail}});
+    identities.push_back({role, id.model, id.detail});
   };
   identify("rate_table", batch.rate_table);
   identify(imu_batch ? "imu_chamber" : "ads_chamber", batch.chamber);
@@ -169,48 +171,52 @@ nlohmann::json IdentifyInstruments(const BatchInstruments& batch, bool imu_batch
 }
 
 // The interrupted run's meta, refused when the batch is not the same units in the same order.
-nlohmann::json ResumedRunMeta(nlohmann::json meta,
-                              const Session& s,
-                              const std::vector<hil::UnitLink*>& links,
-                              const std::vector<std::string>& serials) {
+hil::RecordingMeta ResumedRunMeta(hil::RecordingMeta meta,
+                                  const Session& s,
+                                  const std::vector<hil::UnitLink*>& links,
+                                  const std::vector<std::string>& serials) {
   for (size_t u = 0; u < serials.size(); ++u) {
-    const auto& old_units = meta["units"];
-    if (old_units.size() != serials.size() || old_units[u]["serial"] != serials[u]) {
-      throw RunError(
-          fmt::format("{}: the batch differs from the interrupted run's: {} is now {}, was {}",
-                      (s.run_dir / hil::kMetaJsonName).string(),
-                      links[u]->entry().role,
-                      serials[u],
-                      u < old_units.size() ? old_units[u]["serial"].dump() : "absent"));
+    const std::vector<hil::RecordingUnit>& old_units = meta.units;
+    if (old_units.size() != serials.size() || old_units[u].serial != serials[u]) {
+      throw RunError(fmt::format(
+          "{}: the batch differs from the interrupted run's: {} is now {}, was {}",
+          (s.run_dir / hil::kMetaJsonName).string(),
+          links[u]->entry().role,
+          serials[u],
+          u < old_units.size() ? nlohmann::json(old_units[u].serial).dump() : "absent"));
     }
   }
   return meta;
 }
 
-nlohmann::json NewRunMeta(const Session& s, const nlohmann::json& units) {
-  return {{"run_id", s.run_dir.filename().string() + "-" + hil::UtcNowIso8601()},
-          {"started_utc", hil::UtcNowIso8601()},
-          {"station", s.station.ToJson()},
-          {"sequence", SequenceToJson(s.sequence)},
-          {"sequence_file", s.sequence_file},
-          {"time_base", kTimeBase},
-          {"sample_rate_hz", 100},
-          {"local_gravity_mps2", s.station.local_gravity_mps2},
-          {"units", units},
-          {"rejected_intervals", nlohmann::json::array()}};
+hil::RecordingMeta NewRunMeta(const Session& s, const std::vector<hil::RecordingUnit>& units) {
+  hil::RecordingMeta m;
+  m.format_version = hil::kRecordingFormatVersion;
+  m.run_id = s.run_dir.filename().string() + "-" + hil::UtcNowIso8601();
+  m.started_utc = hil::UtcNowIso8601();
+  m.station = s.station.ToJson();
+  m.sequence = SequenceToJson(s.sequence);
+  m.sequence_file = s.sequence_file;
+  m.time_base = kTimeBase;
+  m.sample_rate_hz = 100.0;
+  m.local_gravity_mps2 = s.station.local_gravity_mps2;
+  m.units = units;
+  m.has_units = true;
+  m.has_rejected_intervals = true;
+  return m;
 }
 
 // The run's meta as it starts: new, or the interrupted run's; either way running, with the
 // instruments of this session.
-nlohmann::json StartingRunMeta(const Session& s,
-                               const std::optional<nlohmann::json>& old_meta,
-                               const std::vector<hil::UnitLink*>& links,
-                               const BatchUnits& units,
-                               const nlohmann::json& identities) {
-  nlohmann::json meta =
+hil::RecordingMeta StartingRunMeta(const Session& s,
+                                   const std::optional<hil::RecordingMeta>& old_meta,
+                                   const std::vector<hil::UnitLink*>& links,
+                                   const BatchUnits& units,
+                                   std::vector<hil::RecordingInstrument> identities) {
+  hil::RecordingMeta meta =
       old_meta ? ResumedRunMeta(*old_meta, s, links, units.serials) : NewRunMeta(s, units.units);
-  meta["instruments"] = identities;
-  meta["status"] = kStatusRunning;
+  meta.instruments = std::move(identities);
+  meta.status = kStatusRunning;
   return meta;
 }
 
@@ -252,7 +258,7 @@ std::vector<UnitLogger*> Pointers(const std::vector<std::unique_ptr<UnitLogger>>
 
 RunSummary Execute(const Session& s,
                    const hil::Clock& clock,
-                   std::optional<nlohmann::json> old_meta,
+                   std::optional<hil::RecordingMeta> old_meta,
                    size_t first_step,
                    std::optional<double> repeated_from_s,
                    std::vector<nlohmann::json> resume_events,
@@ -265,12 +271,12 @@ RunSummary Execute(const Session& s,
   const std::vector<hil::UnitLink*> links = BatchLinks(instruments, s);
   const BatchUnits units = IdentifyUnits(links, imu_batch);
   const BatchInstruments batch = BatchInstrumentsFor(instruments, imu_batch);
-  const nlohmann::json meta =
+  hil::RecordingMeta meta =
       StartingRunMeta(s, old_meta, links, units, IdentifyInstruments(batch, imu_batch));
 
   hil::RecordingWriter writer(s.run_dir, options.storage);
   SharedRecording recording(writer);
-  RunMeta run_meta(meta, recording);
+  RunMeta run_meta(std::move(meta), recording);
   run_meta.Write();
   Journal journal(s.run_dir);
   JournalSessionStart(journal, clock, old_meta.has_value(), first_step, std::move(resume_events));
@@ -291,7 +297,7 @@ RunSummary Execute(const Session& s,
                     stop,
                     options.executor);
   const auto summary = [&] {
-    RunSummary out{s.run_dir, run_meta.json()["status"].get<std::string>(), 0, 0};
+    RunSummary out{s.run_dir, run_meta.meta().status.value_or(""), 0, 0};
     for (auto& l : loggers) {
       l->Stop();
       out.rows += l->rows();
@@ -341,17 +347,16 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir,
   if (!std::filesystem::exists(meta_path))
     throw RunError(meta_path.string() + ": no run to resume here");
   const RunDirectoryLock lock(run_dir);  // before anything of the run is read or moved
-  const nlohmann::json meta = common::ParamReader::LoadFile(meta_path.string());
-  if (!meta.contains("format_version") || meta["format_version"] != hil::kRecordingFormatVersion ||
-      !meta.contains("station") || !meta.contains("sequence")) {
+  const hil::RecordingMeta meta = hil::ReadRecordingMeta(run_dir).meta;
+  if (meta.format_version != hil::kRecordingFormatVersion || !meta.station || !meta.sequence) {
     throw RunError(meta_path.string() + ": not an executor run of recording format version " +
                    std::to_string(hil::kRecordingFormatVersion) + " ($.station, $.sequence)");
   }
   const SequenceLimits limits;
   Session s;
   s.station =
-      hil::Station::FromJson(common::ParamReader(meta["station"], meta_path.string(), "$.station"));
-  s.sequence = SequenceFromJson(meta["sequence"], meta_path.string() + " $.sequence");
+      hil::Station::FromJson(common::ParamReader(*meta.station, meta_path.string(), "$.station"));
+  s.sequence = SequenceFromJson(*meta.sequence, meta_path.string() + " $.sequence");
   s.plan = ExpandSequence(s.sequence, limits, TimingFor(s.station));
   s.run_dir = run_dir;
 

@@ -61,7 +61,7 @@ void SharedRecording::Flush(bool durable) {
   if (durable) writer_.SyncFlushed();
 }
 
-void SharedRecording::WriteMeta(const nlohmann::json& meta) {
+void SharedRecording::WriteMeta(const hil::RecordingMeta& meta) {
   std::lock_guard lock(writer_mutex_);
   writer_.WriteMeta(meta);
 }

@@ -49,7 +49,7 @@ class SharedRecording {
   /// Waits until every row appended before the call has reached the kernel (the gzip members
   /// end); with `durable`, fsyncs them (rows appended meanwhile keep being written).
   void Flush(bool durable);
-  void WriteMeta(const nlohmann::json& meta);
+  void WriteMeta(const hil::RecordingMeta& meta);
 
  private:
   using Row = std::variant<hil::ImuRecordRow, hil::AdsRecordRow>;

@@ -21,10 +21,6 @@
 
 namespace adahrs::calib {
 
-/// The nine channels in the firmware's order: the keys of the per-channel maps below.
-inline constexpr std::array<const char*, 9> kImuChannelNames = {
-    "az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
-
 /// Reference strategy, stage 1: one channel's quadratic drift in its TEMP count.
 struct ThermalChannelDiagnostics {
   int bands = 0;

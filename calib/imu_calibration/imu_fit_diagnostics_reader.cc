@@ -6,6 +6,7 @@
 
 #include "calib/constants/constants_file.h"
 #include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "common/imu_layout.h"
 
 namespace adahrs::calib {
 namespace {
@@ -93,8 +94,8 @@ class Reader {
   std::vector<std::string> ChannelKeys() const {
     std::vector<std::string> keys;
     for (const auto& [key, value] : j_->items()) {
-      if (std::find(kImuChannelNames.begin(), kImuChannelNames.end(), key) ==
-          kImuChannelNames.end()) {
+      if (std::find(common::kImuChannelNames.begin(), common::kImuChannelNames.end(), key) ==
+          common::kImuChannelNames.end()) {
         Fail(PathOf(key), "not a channel (az1, ax1, ay1, az2, ax2, ay2, gx, gy, gz)");
       }
       keys.push_back(key);

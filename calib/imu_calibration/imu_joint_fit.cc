@@ -9,6 +9,7 @@
 #include "calib/imu_calibration/gyro_wander_fit.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/solvers/linear_least_squares.h"
+#include "common/imu_layout.h"
 #include "common/units.h"
 #include "firmware_model/unit_firmware.h"
 
@@ -44,7 +45,7 @@ struct ChannelModel {
   double nl3_per_dps2 = 0.0;  // stimulus is w + nl2 w^2 + nl3 w^3)
 
   bool gyro() const { return channel >= 6; }
-  int sensor() const { return kThermalSensorOfChannel[channel]; }
+  int sensor() const { return common::kImuChannels[channel].thermometer; }
   int stimulus_index() const { return 1 + order; }
   int scale_index() const { return stimulus_index() + (gyro() ? 5 : 3); }
   int extra_index() const { return scale_index() + scale_order; }
@@ -185,7 +186,7 @@ LinearFit Solve(const std::string& serial,
   const ImuDatasheetNoise& noise = options.noise;
   const long n = static_cast<long>(use.size());
   LinearLeastSquaresProblem p;
-  p.context = "unit " + serial + " joint model of " + kImuChannelNames[m.channel];
+  p.context = "unit " + serial + " joint model of " + common::kImuChannelNames[m.channel];
   p.term_names = TermNames(m);
   Eigen::MatrixXd design(n, m.size());
   Eigen::VectorXd y(n), variance(n);
@@ -890,7 +891,7 @@ ImuFitResult FitImuJoint(const std::string& serial,
     theta[ch] = std::move(f.theta);
     cov[ch] = std::move(f.cov);
     crb[ch] = std::move(f.crb);
-    diag.channels[kImuChannelNames[ch]] = std::move(f.report);
+    diag.channels[common::kImuChannelNames[ch]] = std::move(f.report);
   }
   const std::array<std::array<double, 2>, 3> temp_span_cnt = TemperatureSpans(serial, obs);
   ImuFitResult result;

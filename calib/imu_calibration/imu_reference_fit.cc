@@ -9,6 +9,7 @@
 #include "calib/solvers/gyro_scale_fit.h"
 #include "calib/solvers/sample_statistics.h"
 #include "calib/solvers/six_position_fit.h"
+#include "common/imu_layout.h"
 #include "firmware_model/reference_compensator.h"
 
 namespace adahrs::calib {
@@ -25,7 +26,7 @@ fm::ImuCalibrationConstants Identity() {
   fm::ImuCalibrationConstants c;
   c.ca_mps2_per_g = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
   c.cg = c.ca_mps2_per_g;
-  for (int ch = 0; ch < 9; ++ch) c.thermal[ch].temp_sensor = kThermalSensorOfChannel[ch];
+  for (int ch = 0; ch < 9; ++ch) c.thermal[ch].temp_sensor = common::kImuChannels[ch].thermometer;
   return c;
 }
 
@@ -58,7 +59,7 @@ ChannelMeans MeansOf(const fm::ImuCalibrationConstants& constants,
   ChannelMeans m;
   m.count = static_cast<int>(samples.size());
   for (int i = 0; i < 9; ++i) {
-    const SampleMean s = SummariseSamples(context + " " + kImuChannelNames[i], columns[i]);
+    const SampleMean s = SummariseSamples(context + " " + common::kImuChannelNames[i], columns[i]);
     m.mean[i] = s.mean;
     m.standard_error[i] = s.standard_error;
   }
@@ -86,19 +87,19 @@ void FitThermalStage(const ImuUnitData& unit,
     for (size_t i = 0; i < unit.thermal.size(); ++i) {
       const ImuSample& s = unit.thermal[i];
       const double u = fm::ImuReference(c, fm::ImuCompensationMode::kRaw, s.raw)[ch];
-      samples.push_back({static_cast<double>(s.raw.temp_cnt[kThermalSensorOfChannel[ch]]),
+      samples.push_back({static_cast<double>(s.raw.temp_cnt[common::kImuChannels[ch].thermometer]),
                          u,
                          unit.thermal_segment[i]});
     }
     const ThermalDriftResult r =
-        FitThermalDrift(who + " thermal " + kImuChannelNames[ch], samples, options.thermal);
+        FitThermalDrift(who + " thermal " + common::kImuChannelNames[ch], samples, options.thermal);
     // The reference method's drift is a quadratic: the cubic term is fixed at zero, not estimated.
     c.thermal[ch].k = {r.all.k[0], r.all.k[1], r.all.k[2], 0.0};
     c.thermal[ch].temp_min_cnt = r.all.temp_min_cnt;
     c.thermal[ch].temp_max_cnt = r.all.temp_max_cnt;
     result->standard_errors.thermal[ch].k = {
         r.all.k_se[0], r.all.k_se[1], r.all.k_se[2], std::numeric_limits<double>::quiet_NaN()};
-    diag->thermal[kImuChannelNames[ch]] = ThermalDiagnostics(r);
+    diag->thermal[common::kImuChannelNames[ch]] = ThermalDiagnostics(r);
   }
 }
 
@@ -132,7 +133,7 @@ void FitSixPositionStage(const ImuUnitData& unit,
   for (int ch = 0; ch < 6; ++ch) {
     c.accel[ch] = accel[ch].fit;
     result->standard_errors.accel[ch] = {accel[ch].offset_se_duty, accel[ch].scale_se_duty_per_g};
-    diag->accel.push_back({kImuChannelNames[ch],
+    diag->accel.push_back({common::kImuChannelNames[ch],
                            accel[ch].inverse_scale_g_per_duty,
                            accel[ch].inverse_scale_se_g_per_duty});
   }
@@ -154,10 +155,10 @@ void FitGyroStage(const ImuUnitData& unit,
                                      who + " gyro step " + std::to_string(a.step));
       steps.push_back({a.rate_dps * UpSign(a.orientation), m.mean[6 + g], m.standard_error[6 + g]});
     }
-    const GyroScaleEstimate e = FitGyroScale(who + " " + kImuChannelNames[6 + g], steps);
+    const GyroScaleEstimate e = FitGyroScale(who + " " + common::kImuChannelNames[6 + g], steps);
     c.gyro[g] = e.fit;
     result->standard_errors.gyro[g] = {e.null_se_cnt, e.l_se};
-    diag->gyro.push_back({kImuChannelNames[6 + g], e.rates, e.residual_rms_dps});
+    diag->gyro.push_back({common::kImuChannelNames[6 + g], e.rates, e.residual_rms_dps});
   }
 }
 

@@ -28,9 +28,6 @@
 
 namespace adahrs::calib {
 
-/// Channel order az1 ax1 ay1 az2 ax2 ay2 gx gy gz -> TEMP sensor 0..2 (see above).
-inline constexpr std::array<int, 9> kThermalSensorOfChannel = {0, 0, 1, 1, 2, 2, 0, 1, 2};
-
 struct ImuReferenceOptions {
   ThermalFitOptions thermal;
 };

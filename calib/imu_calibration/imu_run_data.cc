@@ -133,23 +133,19 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
   const hil::Recording rec = hil::ReadRecordingMeta(dir);  // the rows are streamed below
   const std::string run = dir.string();
   auto fail = [&](const std::string& message) { throw ImuInputError(run + ": " + message); };
-  const json& meta = rec.meta;
-  if (!meta.contains("local_gravity_mps2") || !meta["local_gravity_mps2"].is_number()) {
+  const hil::RecordingMeta& meta = rec.meta;
+  if (!meta.local_gravity_mps2) {
     fail("meta.json: $.local_gravity_mps2 missing (the station's local gravity is needed)");
   }
-  const double g = meta["local_gravity_mps2"].get<double>();
-  if (!meta.contains("sequence")) fail("meta.json: $.sequence missing");
-  const Sequence sequence = SequenceFromJson(meta["sequence"], run + "/meta.json $.sequence");
+  const double g = *meta.local_gravity_mps2;
+  if (!meta.sequence) fail("meta.json: $.sequence missing");
+  const Sequence sequence = SequenceFromJson(*meta.sequence, run + "/meta.json $.sequence");
   std::vector<std::string> serials;
-  if (meta.contains("units") && meta["units"].is_array()) {
-    for (const json& u : meta["units"]) {
-      if (u.value("kind", "") == "imu" && u.contains("serial")) {
-        serials.push_back(u["serial"].get<std::string>());
-      }
-    }
+  for (const hil::RecordingUnit& u : meta.units) {
+    if (u.kind == "imu" && !u.serial.empty()) serials.push_back(u.serial);
   }
   ImuRunCollector collector(
-      run, RecordingSha256(dir), sequence, g, serials, rec.rejected_intervals, data);
+      run, RecordingSha256(dir), sequence, g, serials, rec.meta.rejected_intervals, data);
   // Rows streamed from imu.csv: a recording of ten million rows is never held twice.
   const hil::Recording read = hil::StreamRecording(
       dir, {[&](hil::ImuRecordRow&& row, int line) { collector.Take(row, line); }, {}});

@@ -14,7 +14,13 @@ ImuStrategy ImuStrategy::Reference() {
   return s;
 }
 
-ImuStrategy ImuStrategy::Improved() { return ImuStrategy{}; }
+ImuStrategy ImuStrategy::JointFormat2() { return ImuStrategy{}; }
+
+ImuStrategy ImuStrategy::JointFormat3() {
+  ImuStrategy s;
+  s.format3 = true;
+  return s;
+}
 
 ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
   const nlohmann::json j = common::ParamReader::LoadFile(path.string());

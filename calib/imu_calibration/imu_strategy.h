@@ -26,8 +26,13 @@ struct ImuStrategy {
   bool estimate_gyro_wander = false;  ///< joint: the wander from the recording, else datasheet's
   bool format3 = false;               ///< joint: fit the firmware's format-3 terms too
 
+  /// The reference method exactly.
   static ImuStrategy Reference();
-  static ImuStrategy Improved();
+  /// The joint strategy for the firmware's format 2 (no scale-temperature terms).
+  static ImuStrategy JointFormat2();
+  /// The joint strategy for the firmware's format 3: what `adahrs fit` fits and the campaign
+  /// downloads when no strategy is named.
+  static ImuStrategy JointFormat3();
   /// Reads a strategy file; throws common::ParamError naming the file and JSON path.
   static ImuStrategy Load(const std::filesystem::path& path);
 };

@@ -13,6 +13,7 @@
 #include "calib/constants/constants_file.h"
 #include "calib/constants/provenance_check.h"
 #include "calib/constants/recording_checksum.h"
+#include "calib/records/sqlite_database.h"
 #include "calib/sequence/sequence_json.h"
 #include "common/param_reader.h"
 #include "hil/recording/recording_format.h"
@@ -62,60 +63,97 @@ std::string FileSha256(const std::filesystem::path& file) {
   return hex;
 }
 
+namespace {
+
+// A field the records need, present in meta.json: `where` is its JSON path.
+template <typename T>
+const T& Required(const std::optional<T>& value,
+                  const std::string& source,
+                  const std::string& where) {
+  if (!value) throw RecordsError(source + ": " + where + " missing (the records need it)");
+  return *value;
+}
+
+RunUnitRecord UnitRecord(const hil::RecordingUnit& unit, const std::string& source, size_t i) {
+  const std::string where = fmt::format("$.units[{}]", i);
+  RunUnitRecord record;
+  for (const auto& [value, key] : {std::pair{&unit.role, "role"},
+                                   std::pair{&unit.kind, "kind"},
+                                   std::pair{&unit.serial, "serial"}}) {
+    if (value->empty()) throw RecordsError(source + ": " + where + "." + key + " missing");
+  }
+  record.role = unit.role;
+  record.kind = unit.kind;
+  if (record.kind != "imu" && record.kind != "ads") {
+    throw RecordsError(source + ": " + where + ".kind '" + record.kind +
+                       "' is neither imu nor ads");
+  }
+  record.serial = unit.serial;
+  record.slot = static_cast<int>(Required(unit.slot, source, where + ".slot"));
+  record.firmware = Required(unit.firmware, source, where + ".firmware");
+  record.constants_version = Required(unit.constants_version, source, where + ".constants_version");
+  record.mode = static_cast<int>(Required(unit.mode, source, where + ".mode"));
+  return record;
+}
+
+}  // namespace
+
 RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
   const std::filesystem::path meta_path = run_dir / hil::kMetaJsonName;
-  const nlohmann::json meta_json = common::ParamReader::LoadFile(meta_path.string());
-  const common::ParamReader meta(meta_json, meta_path.string());
-  const int64_t version = meta.Integer("format_version", 1, 1000);
-  if (version < kOldestMetaFormatVersion || version > hil::kRecordingFormatVersion) {
-    meta.Fail("$.format_version",
-              fmt::format("recording format {} cannot be recorded; the "
-                          "records need format {} to {} (run id, status, units)",
-                          version,
-                          kOldestMetaFormatVersion,
-                          hil::kRecordingFormatVersion));
+  const std::string source = meta_path.string();
+  // The file as written is kept in the records beside the fields read from it.
+  const nlohmann::json meta_json = common::ParamReader::LoadFile(source);
+  if (!meta_json.is_object() || !meta_json.contains("format_version") ||
+      !meta_json.at("format_version").is_number_integer()) {
+    throw RecordsError(source + ": $.format_version missing or not an integer");
+  }
+  const hil::RecordingMeta meta = hil::RecordingMeta::FromJson(meta_json, source);
+  if (meta.format_version < kOldestMetaFormatVersion ||
+      meta.format_version > hil::kRecordingFormatVersion) {
+    throw RecordsError(
+        fmt::format("{}: $.format_version: recording format {} cannot be recorded; "
+                    "the records need format {} to {} (run id, status, units)",
+                    source,
+                    meta.format_version,
+                    kOldestMetaFormatVersion,
+                    hil::kRecordingFormatVersion));
   }
   RunRecord run;
   run.run_dir = std::filesystem::absolute(run_dir).lexically_normal().string();
-  run.run_id = meta.String("run_id");
-  run.started_utc = meta.String("started_utc");
-  run.status = meta.String("status");
+  run.run_id = Required(meta.run_id, source, "$.run_id");
+  run.started_utc = Required(meta.started_utc, source, "$.started_utc");
+  run.status = Required(meta.status, source, "$.status");
   if (run.status != "running" && run.status != "complete" && run.status != "aborted" &&
       run.status != "interrupted") {
-    meta.Fail("$.status", "'" + run.status + "' is not running, complete, aborted or interrupted");
+    throw RecordsError(source + ": $.status '" + run.status +
+                       "' is not running, complete, aborted or interrupted");
   }
-  run.station_name = meta.Child("station").String("name");
-  run.sequence_file = meta.String("sequence_file");
+  const nlohmann::json& station = Required(meta.station, source, "$.station");
+  run.station_name = common::ParamReader(station, source, "$.station").String("name");
+  run.sequence_file = Required(meta.sequence_file, source, "$.sequence_file");
   const Sequence sequence =
-      SequenceFromJson(meta_json.at("sequence"), meta_path.string() + " $.sequence");
+      SequenceFromJson(Required(meta.sequence, source, "$.sequence"), source + " $.sequence");
   run.sequence_name = sequence.name;
   const std::vector<uint8_t> tags = EffectiveTags(sequence);
   for (size_t i = 0; i < sequence.steps.size(); ++i) {
     run.steps.push_back({static_cast<int>(i), StepKindName(sequence.steps[i].body), tags[i], 0.0});
   }
-  const size_t rejected = meta.ArrayLength("rejected_intervals", 0, 1000000);
-  for (size_t i = 0; i < rejected; ++i) {
-    const common::ParamReader interval = meta.Element("rejected_intervals", i, rejected);
-    const int64_t step = interval.Integer("step", 0, static_cast<int64_t>(run.steps.size()) - 1);
-    const double t_start_s = interval.Number("t_start_s", 0.0, 1e9, "s");
-    const double t_end_s = interval.Number("t_end_s", t_start_s, 1e9, "s");
-    run.steps[static_cast<size_t>(step)].rejected_s += t_end_s - t_start_s;
-  }
-  const size_t units = meta.ArrayLength("units", 0, 64);
-  for (size_t i = 0; i < units; ++i) {
-    const common::ParamReader unit = meta.Element("units", i, units);
-    RunUnitRecord record;
-    record.role = unit.String("role");
-    record.kind = unit.String("kind");
-    if (record.kind != "imu" && record.kind != "ads") {
-      unit.Fail(unit.path() + ".kind", "'" + record.kind + "' is neither imu nor ads");
+  for (size_t i = 0; i < meta.rejected_intervals.size(); ++i) {
+    const hil::RejectedInterval& interval = meta.rejected_intervals[i];
+    if (interval.step < 0 || static_cast<size_t>(interval.step) >= run.steps.size()) {
+      throw RecordsError(
+          fmt::format("{}: $.rejected_intervals[{}].step {} is not a step of the "
+                      "sequence (0...{})",
+                      source,
+                      i,
+                      interval.step,
+                      run.steps.size() - 1));
     }
-    record.serial = unit.String("serial");
-    record.slot = static_cast<int>(unit.Integer("slot", 0, 64));
-    record.firmware = unit.String("firmware");
-    record.constants_version = unit.Integer("constants_version", 0, 65535);
-    record.mode = static_cast<int>(unit.Integer("mode", 0, 255));
-    run.units.push_back(record);
+    run.steps[static_cast<size_t>(interval.step)].rejected_s +=
+        interval.t_end_s - interval.t_start_s;
+  }
+  for (size_t i = 0; i < meta.units.size(); ++i) {
+    run.units.push_back(UnitRecord(meta.units[i], source, i));
   }
   run.meta_json = meta_json.dump();
   CheckRecordingRows(run_dir, run.status == "complete");

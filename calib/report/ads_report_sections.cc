@@ -12,9 +12,9 @@
 #include "calib/report/constants_table.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 #include "firmware_model/reference_compensator.h"
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
 
 namespace adahrs::calib {
 namespace {
@@ -26,13 +26,9 @@ constexpr double kTemperatureBinC = 5.0;
 
 using Acquisition = AdsReportAccumulator::Acquisition;
 
-bool Rejected(const nlohmann::json& meta, int step, double t_s) {
-  if (!meta.contains("rejected_intervals")) return false;
-  for (const auto& r : meta["rejected_intervals"]) {
-    if (r.value("step", -1) == step && t_s >= r.value("t_start_s", 0.0) &&
-        t_s <= r.value("t_end_s", 0.0)) {
-      return true;
-    }
+bool Rejected(const hil::RecordingMeta& meta, int step, double t_s) {
+  for (const hil::RejectedInterval& r : meta.rejected_intervals) {
+    if (r.step == step && t_s >= r.t_start_s && t_s <= r.t_end_s) return true;
   }
   return false;
 }
@@ -98,7 +94,7 @@ std::string ErrorPlot(const std::string& serial,
 }  // namespace
 
 AdsReportAccumulator::AdsReportAccumulator(std::string serial,
-                                           nlohmann::json meta,
+                                           hil::RecordingMeta meta,
                                            const ConstantsFile* constants)
     : serial_(std::move(serial)), meta_(std::move(meta)), constants_(constants) {}
 
@@ -121,8 +117,8 @@ void AdsReportAccumulator::Add(const hil::AdsRecordRow& row) {
   }
   Acquisition& a =
       groups_[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
-  a.alt_ref_ft += sensor_sim::IsaPressureAltitudeFt(row.ps_ref_pa);
-  a.cas_ref_kt += row.qc_ref_pa > 0.0 ? sensor_sim::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
+  a.alt_ref_ft += common::IsaPressureAltitudeFt(row.ps_ref_pa);
+  a.cas_ref_kt += row.qc_ref_pa > 0.0 ? common::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
   a.temp_c += row.chamber_c;
   a.alt_ft += alt_ft;
   a.cas_kt += cas_kt;
@@ -163,7 +159,7 @@ std::string AdsReportAccumulator::Sections() const {
 
 std::string AdsReportSections(const std::string& serial,
                               const std::vector<hil::AdsRecordRow>& rows,
-                              const nlohmann::json& meta,
+                              const hil::RecordingMeta& meta,
                               const ConstantsFile* constants) {
   AdsReportAccumulator accumulator(serial, meta, constants);
   for (const hil::AdsRecordRow& row : rows) accumulator.Add(row);

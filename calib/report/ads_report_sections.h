@@ -17,6 +17,7 @@
 
 #include "calib/constants/constants_file.h"
 #include "hil/recording/recording_format.h"
+#include "hil/recording/recording_meta.h"
 
 namespace adahrs::calib {
 
@@ -25,7 +26,7 @@ namespace adahrs::calib {
 class AdsReportAccumulator {
  public:
   /// `meta` supplies rejected intervals; `constants` may be null and must outlive this.
-  AdsReportAccumulator(std::string serial, nlohmann::json meta, const ConstantsFile* constants);
+  AdsReportAccumulator(std::string serial, hil::RecordingMeta meta, const ConstantsFile* constants);
 
   void Add(const hil::AdsRecordRow& row);
   const std::string& serial() const { return serial_; }
@@ -40,7 +41,7 @@ class AdsReportAccumulator {
 
  private:
   std::string serial_;
-  nlohmann::json meta_;
+  hil::RecordingMeta meta_;
   const ConstantsFile* constants_;
   std::map<std::tuple<int, int, long, long>, Acquisition> groups_;
   bool unit_values_ = false, reference_values_ = false;
@@ -49,7 +50,7 @@ class AdsReportAccumulator {
 /// Every ADS section for `serial`; `constants` may be null. `meta` supplies rejected intervals.
 std::string AdsReportSections(const std::string& serial,
                               const std::vector<hil::AdsRecordRow>& rows,
-                              const nlohmann::json& meta,
+                              const hil::RecordingMeta& meta,
                               const ConstantsFile* constants);
 
 }  // namespace adahrs::calib

@@ -11,6 +11,7 @@
 #include "calib/report/html_builder.h"
 #include "calib/report/imu_noise_section.h"
 #include "calib/report/svg_plot.h"
+#include "common/imu_layout.h"
 #include "common/units.h"
 #include "firmware_model/reference_compensator.h"
 
@@ -20,8 +21,6 @@ namespace {
 namespace fm = firmware_model;
 using Mode = fm::ImuCompensationMode;
 
-constexpr const char* kChannels[9] = {"az1", "ax1", "ay1", "az2", "ax2", "ay2", "gx", "gy", "gz"};
-constexpr int kAxisOfAccelChannel[6] = {2, 0, 1, 2, 0, 1};
 constexpr const char* kAxes[3] = {"x", "y", "z"};
 constexpr size_t kMaxPlotPoints = 400;
 constexpr double kMpsPerMg = common::kMpsPerMilliG;
@@ -64,7 +63,7 @@ std::string ThermalSection(const ImuUnitData& d, const ConstantsFile* constants)
         {},
         {}};
     for (int ch = gyro ? 6 : 0; ch < (gyro ? 9 : 6); ++ch) {
-      PlotSeries s{kChannels[ch], {}, {}, PlotSeries::Style::kLine};
+      PlotSeries s{common::kImuChannelNames[ch], {}, {}, PlotSeries::Style::kLine};
       double mean = 0.0;
       for (const ImuSample& x : d.thermal) mean += fm::ImuReference(none, Mode::kRaw, x.raw)[ch];
       mean /= static_cast<double>(d.thermal.size());
@@ -97,11 +96,12 @@ std::string ThermalSection(const ImuUnitData& d, const ConstantsFile* constants)
       mean /= static_cast<double>(t.size());
       std::array<double, 3> sum_sq{}, count{};
       for (const ThermalSegment segment : {ThermalSegment::kUpRamp, ThermalSegment::kDownRamp}) {
-        PlotSeries s{
-            fmt::format("{} {}", kChannels[ch], segment == ThermalSegment::kUpRamp ? "up" : "down"),
-            {},
-            {},
-            PlotSeries::Style::kPoints};
+        PlotSeries s{fmt::format("{} {}",
+                                 common::kImuChannelNames[ch],
+                                 segment == ThermalSegment::kUpRamp ? "up" : "down"),
+                     {},
+                     {},
+                     PlotSeries::Style::kPoints};
         for (size_t i = 0; i < t.size(); i += stride) {
           if (d.thermal_segment[i] != segment) continue;
           s.x.push_back(d.thermal[i].chamber_c);
@@ -114,7 +114,7 @@ std::string ThermalSection(const ImuUnitData& d, const ConstantsFile* constants)
         sum_sq[k] += (t[i] - mean) * (t[i] - mean);
         count[k] += 1.0;
       }
-      std::vector<std::string> row = {kChannels[ch]};
+      std::vector<std::string> row = {common::kImuChannelNames[ch]};
       for (size_t k = 0; k < 3; ++k) {
         row.push_back(count[k] > 0 ? FormatNumber(std::sqrt(sum_sq[k] / count[k]), 3) : "no rows");
       }
@@ -192,7 +192,7 @@ std::string GyroSection(const ImuUnitData& d, const ConstantsFile* constants) {
     }
     const auto mean = Mean(*constants->imu, Mode::kSensorCalibrated, acq.samples);
     const double residual = mean[6 + axis] - acq.rate_dps * up[axis];
-    const std::string channel = kChannels[6 + axis];
+    const std::string channel = common::kImuChannelNames[6 + axis];
     auto& s = series[channel];
     s.label = channel;
     s.x.push_back(acq.rate_dps * up[axis]);

@@ -62,46 +62,45 @@ FitInputs LoadFit(const std::optional<std::filesystem::path>& fit_dir) {
   return fit;
 }
 
-std::string Summary(const std::filesystem::path& run_dir, const nlohmann::json& meta) {
-  const auto text = [&](const char* key) {
-    return meta.contains(key) && meta[key].is_string() ? meta[key].get<std::string>()
-                                                       : std::string("(not recorded)");
+std::string Summary(const std::filesystem::path& run_dir, const hil::RecordingMeta& meta) {
+  const auto text = [](const std::optional<std::string>& value) {
+    return value.value_or("(not recorded)");
   };
   HtmlTable run{"run", {"item", "value"}, {}};
   run.rows.push_back({"run directory", run_dir.string()});
-  run.rows.push_back({"run id", text("run_id")});
-  run.rows.push_back({"started (UTC)", text("started_utc")});
-  run.rows.push_back({"status", text("status")});
-  run.rows.push_back({"sequence file", text("sequence_file")});
-  if (meta.contains("sequence") && meta["sequence"].contains("name")) {
-    run.rows.push_back({"sequence", meta["sequence"]["name"].get<std::string>()});
+  run.rows.push_back({"run id", text(meta.run_id)});
+  run.rows.push_back({"started (UTC)", text(meta.started_utc)});
+  run.rows.push_back({"status", text(meta.status)});
+  run.rows.push_back({"sequence file", text(meta.sequence_file)});
+  // The sequence and station documents are kept as written; only their names are shown here.
+  for (const auto& [label, document] :
+       {std::pair{"sequence", &meta.sequence}, std::pair{"station", &meta.station}}) {
+    if (*document && (*document)->contains("name")) {
+      run.rows.push_back({label, (*document)->at("name").get<std::string>()});
+    }
   }
-  if (meta.contains("station") && meta["station"].contains("name")) {
-    run.rows.push_back({"station", meta["station"]["name"].get<std::string>()});
-  }
-  run.rows.push_back({"time base", text("time_base")});
-  if (meta.contains("local_gravity_mps2")) {
-    run.rows.push_back(
-        {"local gravity (m/s^2)", FormatNumber(meta["local_gravity_mps2"].get<double>(), 8)});
+  run.rows.push_back({"time base", text(meta.time_base)});
+  if (meta.local_gravity_mps2) {
+    run.rows.push_back({"local gravity (m/s^2)", FormatNumber(*meta.local_gravity_mps2, 8)});
   }
   std::string html = RenderTable(run);
   HtmlTable units{
       "units", {"role", "kind", "serial", "firmware", "slot", "constants version", "mode"}, {}};
-  for (const auto& u : meta.value("units", nlohmann::json::array())) {
-    units.rows.push_back({u.value("role", ""),
-                          u.value("kind", ""),
-                          u.value("serial", ""),
-                          u.value("firmware", ""),
-                          std::to_string(u.value("slot", 0)),
-                          std::to_string(u.value("constants_version", 0)),
-                          std::to_string(u.value("mode", 0))});
+  for (const hil::RecordingUnit& u : meta.units) {
+    units.rows.push_back({u.role,
+                          u.kind,
+                          u.serial,
+                          u.firmware.value_or(""),
+                          std::to_string(u.slot.value_or(0)),
+                          std::to_string(u.constants_version.value_or(0)),
+                          std::to_string(u.mode.value_or(0))});
   }
   html += RenderTable(units);
-  const auto rejected = meta.value("rejected_intervals", nlohmann::json::array());
-  if (rejected.empty()) {
+  if (meta.rejected_intervals.empty()) {
     html += "<p>No rejected intervals.</p>\n";
   } else {
-    html += RenderJsonTables("rejected intervals (rows inside are not calibration data)", rejected);
+    html += RenderJsonTables("rejected intervals (rows inside are not calibration data)",
+                             hil::RejectedIntervalsJson(meta.rejected_intervals));
   }
   return html;
 }
@@ -133,13 +132,12 @@ const ConstantsFile* ConstantsOf(const FitInputs& fit, const std::string& serial
 // The ADS sections of every ADS unit of the run, by serial, from one streamed pass over the
 // recording (every row is still read and checked; only per-acquisition sums are kept).
 std::map<std::string, std::string> AdsSectionsBySerial(const std::filesystem::path& run_dir,
-                                                       const nlohmann::json& meta,
+                                                       const hil::RecordingMeta& meta,
                                                        const FitInputs& fit) {
   std::vector<AdsReportAccumulator> units;
-  for (const auto& u : meta.value("units", nlohmann::json::array())) {
-    if (u.value("kind", "") == "imu") continue;
-    const std::string serial = u.value("serial", "");
-    units.emplace_back(serial, meta, ConstantsOf(fit, serial));
+  for (const hil::RecordingUnit& u : meta.units) {
+    if (u.kind == "imu") continue;
+    units.emplace_back(u.serial, meta, ConstantsOf(fit, u.serial));
   }
   hil::RowSinks sinks;
   sinks.ads = [&](hil::AdsRecordRow&& row, int) {
@@ -156,16 +154,15 @@ std::map<std::string, std::string> AdsSectionsBySerial(const std::filesystem::pa
 std::string BuildRunReport(const std::filesystem::path& run_dir,
                            const std::optional<std::filesystem::path>& fit_dir,
                            const std::optional<std::filesystem::path>& acceptance_dir) {
-  const nlohmann::json meta = hil::ReadRecordingMeta(run_dir).meta;
+  const hil::RecordingMeta meta = hil::ReadRecordingMeta(run_dir).meta;
   const FitInputs fit = LoadFit(fit_dir);
   const std::map<std::string, std::string> ads_html = AdsSectionsBySerial(run_dir, meta, fit);
-  const double g_local_mps2 = meta.value("local_gravity_mps2", 0.0);
+  const double g_local_mps2 = meta.local_gravity_mps2.value_or(0.0);
 
   std::optional<ImuRunData> imu;
   std::string imu_why;
   bool has_imu = false;
-  for (const auto& u : meta.value("units", nlohmann::json::array()))
-    has_imu |= u.value("kind", "") == "imu";
+  for (const hil::RecordingUnit& u : meta.units) has_imu |= u.kind == "imu";
   if (has_imu) {
     try {
       imu = LoadImuRuns({run_dir});
@@ -175,14 +172,14 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
   }
 
   const std::string title =
-      fmt::format("Calibration report: run {}", meta.value("run_id", run_dir.filename().string()));
+      fmt::format("Calibration report: run {}", meta.run_id.value_or(run_dir.filename().string()));
   std::string body = Section("summary", 2, "Run", Summary(run_dir, meta));
   std::string units;
-  for (const auto& u : meta.value("units", nlohmann::json::array())) {
-    const std::string serial = u.value("serial", "");
+  for (const hil::RecordingUnit& u : meta.units) {
+    const std::string& serial = u.serial;
     const ConstantsFile* constants = ConstantsOf(fit, serial);
     std::string unit_html;
-    if (u.value("kind", "") == "imu") {
+    if (u.kind == "imu") {
       if (imu && imu->units.count(serial)) {
         unit_html = ImuReportSections(imu->units.at(serial), constants, g_local_mps2);
       } else {
@@ -192,8 +189,7 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
     } else {
       unit_html = ads_html.at(serial);
     }
-    units +=
-        Section(serial, 2, fmt::format("Unit {} ({})", serial, u.value("role", "")), unit_html);
+    units += Section(serial, 2, fmt::format("Unit {} ({})", serial, u.role), unit_html);
   }
   body += units;
   body += Section("acceptance", 2, "Acceptance", Acceptance(run_dir, acceptance_dir, fit));

@@ -8,9 +8,9 @@
 #include <fmt/format.h>
 
 #include "calib/sequence/sequence_json.h"
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 #include "common/overloaded.h"
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
 
 namespace adahrs::calib {
 
@@ -258,7 +258,7 @@ class Checker {
     constexpr double kIsaMin_ft = -16000.0;
     constexpr double kIsaMax_ft = 65000.0;
     if (s.alt_ft >= kIsaMin_ft && s.alt_ft <= kIsaMax_ft) {
-      const double ps_pa = sensor_sim::IsaStaticPressurePaFromFt(s.alt_ft);
+      const double ps_pa = common::IsaStaticPressurePaFromFt(s.alt_ft);
       if (ps_pa > limits_.ads_static_max_pa) {
         Add(alt_path,
             fmt::format("altitude {:g} ft is a static pressure of {:.0f} Pa ({:.3f} psi), above "
@@ -297,9 +297,9 @@ class Checker {
           fmt::format("{} 0…{:g} kt", limits_.adts_name, limits_.adts_cas_max_kt));
     }
     // The subsonic relation holds to a0 = 661.5 kt; beyond it the unit check has refused.
-    const double a0_kt = common::MpsToKt(sensor_sim::SeaLevelSpeedOfSoundMps());
+    const double a0_kt = common::MpsToKt(common::SeaLevelSpeedOfSoundMps());
     if (s.cas_kt >= 0.0 && s.cas_kt <= a0_kt) {
-      const double qc_pa = sensor_sim::ImpactPressurePaFromKt(s.cas_kt);
+      const double qc_pa = common::ImpactPressurePaFromKt(s.cas_kt);
       if (qc_pa > limits_.ads_pitot_max_pa) {
         Add(cas_path,
             fmt::format("airspeed {:g} kt is an impact pressure of {:.0f} Pa, above the ADS "

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "calib/solvers/linear_least_squares.h"
+#include "common/imu_layout.h"
 #include "common/units.h"
-#include "sensor_sim/im3_geometry.h"
 
 namespace adahrs::calib {
 namespace {
@@ -29,7 +29,7 @@ const AccelOrientationMeans& FindStep(const std::vector<AccelOrientationMeans>& 
         fmt::format("six-position fit: design refused: orientation {} is missing (channel {} needs "
                     "{}1 and {}2)",
                     orientation,
-                    sensor_sim::kAccelChannelNames[channel],
+                    common::kAccelChannelNames[channel],
                     orientation / 10,
                     orientation / 10));
   }
@@ -47,7 +47,7 @@ std::array<AccelScaleEstimate, 6> FitSixPosition(const std::vector<AccelOrientat
     const AccelOrientationMeans& up = FindStep(steps, 10 * axis + 1, ch);
     const AccelOrientationMeans& down = FindStep(steps, 10 * axis + 2, ch);
     LinearLeastSquaresProblem problem;
-    problem.context = fmt::format("six-position fit of {}", sensor_sim::kAccelChannelNames[ch]);
+    problem.context = fmt::format("six-position fit of {}", common::kAccelChannelNames[ch]);
     problem.term_names = {"O", "S"};
     problem.design.resize(2, 2);
     problem.design << 1.0, g_local_g, 1.0, -g_local_g;

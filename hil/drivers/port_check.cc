@@ -32,7 +32,7 @@ InstrumentIdentity IdentifyInstrument(const InstrumentEntry& e, const Clock& clo
 
 std::string UnitIdentity(const UnitEntry& u, const Clock& clock) {
   UnitLink link(u, clock);
-  const firmware_model::IdentifyInfo info = link.Identify();
+  const hil::IdentifyInfo info = link.Identify();
   return fmt::format(
       "{} firmware {}.{}.{} mode {} constants {}",
       UnitSerialText(u.kind, info.serial_number),

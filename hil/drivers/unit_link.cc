@@ -23,12 +23,12 @@ std::unique_ptr<SerialPort> OpenPort(const UnitEntry& entry) {
   }
 }
 
-std::string ResponseText(const fm::MaintenanceResponse& response) {
+std::string ResponseText(const hil::MaintenanceResponse& response) {
   return fmt::format("command 0x{:02x} seq {} {}{}",
                      static_cast<int>(response.command),
                      response.sequence,
-                     fm::ResultCodeName(response.result),
-                     response.data.empty() ? "" : " data " + fm::HexTrace(response.data));
+                     hil::ResultCodeName(response.result),
+                     response.data.empty() ? "" : " data " + hil::HexTrace(response.data));
 }
 
 }  // namespace
@@ -49,18 +49,18 @@ void UnitLink::Fail(Kind kind,
 
 void UnitLink::Accept(const fm::Frame& frame,
                       double t_s,
-                      std::vector<fm::MaintenanceResponse>* responses) {
+                      std::vector<hil::MaintenanceResponse>* responses) {
   const auto type = static_cast<fm::PacketType>(frame.type);
   const fm::PacketType expected =
       entry_.kind == UnitKind::kImu ? fm::PacketType::kImuData : fm::PacketType::kAdsData;
   if (type == fm::PacketType::kMaintenanceResponse) {
     if (responses == nullptr) return;  // an answer to a request that already gave up
     try {
-      responses->push_back(fm::ParseMaintenanceResponse(frame));
-    } catch (const fm::ProtocolError& e) {
+      responses->push_back(hil::ParseMaintenanceResponse(frame));
+    } catch (const hil::ProtocolError& e) {
       Fail(Kind::kBadReply,
            "maintenance response",
-           fm::HexTrace(std::span<const uint8_t>(frame.payload, frame.payload_length)),
+           hil::HexTrace(std::span<const uint8_t>(frame.payload, frame.payload_length)),
            e.what());
     }
     return;
@@ -77,11 +77,11 @@ void UnitLink::Accept(const fm::Frame& frame,
   packet.t_s = t_s;
   try {
     if (entry_.kind == UnitKind::kImu) {
-      packet.data = fm::ParseImuData(frame);
+      packet.data = hil::ParseImuData(frame);
     } else {
-      packet.data = fm::ParseAdsData(frame);
+      packet.data = hil::ParseAdsData(frame);
     }
-  } catch (const fm::ProtocolError&) {
+  } catch (const hil::ProtocolError&) {
     // A data frame that passed its CRC but whose payload no unit sends: bytes cut from a stream
     // that overran and spliced into a frame whose CRC matches by chance (1 in 65,536). Its
     // contents cannot be trusted, so it is dropped and counted; its sequence number is not
@@ -96,11 +96,11 @@ void UnitLink::Accept(const fm::Frame& frame,
 void UnitLink::RestartStream() {
   port_->DiscardInput();
   queue_.clear();
-  tracker_ = fm::SequenceTracker{};
+  tracker_ = hil::SequenceTracker{};
 }
 
 size_t UnitLink::ReadInto(std::chrono::milliseconds timeout,
-                          std::vector<fm::MaintenanceResponse>* responses) {
+                          std::vector<hil::MaintenanceResponse>* responses) {
   std::array<uint8_t, kReadChunkBytes> chunk{};
   size_t n = 0;
   try {
@@ -116,16 +116,16 @@ size_t UnitLink::ReadInto(std::chrono::milliseconds timeout,
   return n;
 }
 
-fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
-                                           fm::MaintenanceCommand command,
-                                           const BuildRequest& build) {
+hil::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
+                                            fm::MaintenanceCommand command,
+                                            const BuildRequest& build) {
   const std::chrono::milliseconds timeout = ReplyTimeout();
   std::vector<uint8_t> sequences;
   for (int attempt = 0; attempt < kUnitRequestAttempts; ++attempt) {
     std::vector<uint8_t> request;
     try {
       request = build();
-    } catch (const fm::ProtocolError& e) {
+    } catch (const hil::ProtocolError& e) {
       Fail(Kind::kRefused, command_text, "", e.what());
     }
     sequences.push_back(client_.last_sequence());
@@ -139,11 +139,11 @@ fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
         clock_, kUnitBacklogPatience * timeout_s, kUnitBacklogPatience * timeout);
     ReplyDeadline quiet(clock_, timeout_s, timeout);
     while (!quiet.Passed() && !patience.Passed()) {
-      std::vector<fm::MaintenanceResponse> responses;
+      std::vector<hil::MaintenanceResponse> responses;
       if (ReadInto(std::min(quiet.WaitLeft(), patience.WaitLeft()), &responses) > 0) {
         quiet.Restart();
       }
-      for (const fm::MaintenanceResponse& response : responses) {
+      for (const hil::MaintenanceResponse& response : responses) {
         // Responses to other requests (answers that came after their request gave up) are stale.
         if (response.command != command ||
             std::find(sequences.begin(), sequences.end(), response.sequence) == sequences.end()) {
@@ -153,7 +153,7 @@ fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
           Fail(Kind::kRefused,
                command_text,
                ResponseText(response),
-               fm::ResultCodeName(response.result));
+               hil::ResultCodeName(response.result));
         }
         return response;
       }
@@ -165,13 +165,13 @@ fm::MaintenanceResponse UnitLink::Transact(const std::string& command_text,
        fmt::format("{} attempts of {} ms wall each", kUnitRequestAttempts, timeout.count()));
 }
 
-fm::IdentifyInfo UnitLink::Identify() {
-  const fm::MaintenanceResponse response = Transact(
+hil::IdentifyInfo UnitLink::Identify() {
+  const hil::MaintenanceResponse response = Transact(
       "IDENTIFY", fm::MaintenanceCommand::kIdentify, [this] { return client_.Identify(); });
-  fm::IdentifyInfo info{};
+  hil::IdentifyInfo info{};
   try {
-    info = fm::ParseIdentify(response);
-  } catch (const fm::ProtocolError& e) {
+    info = hil::ParseIdentify(response);
+  } catch (const hil::ProtocolError& e) {
     Fail(Kind::kBadReply, "IDENTIFY", ResponseText(response), e.what());
   }
   const fm::UnitKind expected =
@@ -213,12 +213,12 @@ void UnitLink::WriteBlock(uint8_t block_id, std::span<const int16_t> words) {
 
 std::vector<int16_t> UnitLink::ReadBlock(uint8_t block_id) {
   const std::string text = fmt::format("READ_BLOCK {}", block_id);
-  const fm::MaintenanceResponse response =
+  const hil::MaintenanceResponse response =
       Transact(text, fm::MaintenanceCommand::kReadBlock, [this, block_id] {
         return client_.ReadBlock(block_id);
       });
   try {
-    fm::BlockReadback readback = fm::ParseReadBlock(response);
+    hil::BlockReadback readback = hil::ParseReadBlock(response);
     if (readback.block_id != block_id) {
       Fail(Kind::kBadReply,
            text,
@@ -226,28 +226,28 @@ std::vector<int16_t> UnitLink::ReadBlock(uint8_t block_id) {
            fmt::format("answers block {}", readback.block_id));
     }
     return std::move(readback.words);
-  } catch (const fm::ProtocolError& e) {
+  } catch (const hil::ProtocolError& e) {
     Fail(Kind::kBadReply, text, ResponseText(response), e.what());
   }
 }
 
-fm::CommitInfo UnitLink::Commit() {
-  const fm::MaintenanceResponse response =
+hil::CommitInfo UnitLink::Commit() {
+  const hil::MaintenanceResponse response =
       Transact("COMMIT", fm::MaintenanceCommand::kCommit, [this] { return client_.Commit(); });
   try {
-    return fm::ParseCommit(response);
-  } catch (const fm::ProtocolError& e) {
+    return hil::ParseCommit(response);
+  } catch (const hil::ProtocolError& e) {
     Fail(Kind::kBadReply, "COMMIT", ResponseText(response), e.what());
   }
 }
 
-fm::UnitCounters UnitLink::ReadCounters() {
-  const fm::MaintenanceResponse response = Transact("READ_COUNTERS",
-                                                    fm::MaintenanceCommand::kReadCounters,
-                                                    [this] { return client_.ReadCounters(); });
+hil::UnitCounters UnitLink::ReadCounters() {
+  const hil::MaintenanceResponse response = Transact("READ_COUNTERS",
+                                                     fm::MaintenanceCommand::kReadCounters,
+                                                     [this] { return client_.ReadCounters(); });
   try {
-    return fm::ParseCounters(response);
-  } catch (const fm::ProtocolError& e) {
+    return hil::ParseCounters(response);
+  } catch (const hil::ProtocolError& e) {
     Fail(Kind::kBadReply, "READ_COUNTERS", ResponseText(response), e.what());
   }
 }

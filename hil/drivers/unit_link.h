@@ -30,8 +30,8 @@
 #include <variant>
 #include <vector>
 
-#include "firmware_model/unit_protocol_client.h"
 #include "hil/clock.h"
+#include "hil/codecs/unit_protocol_client.h"
 #include "hil/drivers/instrument_port.h"
 #include "hil/instruments/instrument_error.h"
 #include "hil/station.h"
@@ -62,14 +62,14 @@ class UnitLink {
   const UnitEntry& entry() const { return entry_; }
 
   /// IDENTIFY; throws kWrongIdentity when the unit is of the other kind than the station says.
-  firmware_model::IdentifyInfo Identify();
+  hil::IdentifyInfo Identify();
   void SetTag(uint8_t tag);
   void SetImuMode(firmware_model::ImuCompensationMode mode);
   void SetAdsMode(firmware_model::AdsCompensationMode mode);
   void WriteBlock(uint8_t block_id, std::span<const int16_t> words);
   std::vector<int16_t> ReadBlock(uint8_t block_id);
-  firmware_model::CommitInfo Commit();
-  firmware_model::UnitCounters ReadCounters();
+  hil::CommitInfo Commit();
+  hil::UnitCounters ReadCounters();
 
   /// Data packets received since the last call (including those that arrived while a
   /// maintenance request waited for its response: nothing is dropped), waiting up to `timeout`
@@ -95,15 +95,15 @@ class UnitLink {
 
  private:
   using BuildRequest = std::function<std::vector<uint8_t>()>;
-  firmware_model::MaintenanceResponse Transact(const std::string& command_text,
-                                               firmware_model::MaintenanceCommand command,
-                                               const BuildRequest& build);
+  hil::MaintenanceResponse Transact(const std::string& command_text,
+                                    firmware_model::MaintenanceCommand command,
+                                    const BuildRequest& build);
   // Reads what arrives within `timeout` into the packet queue; responses go to `responses`.
   size_t ReadInto(std::chrono::milliseconds timeout,
-                  std::vector<firmware_model::MaintenanceResponse>* responses);
+                  std::vector<hil::MaintenanceResponse>* responses);
   void Accept(const firmware_model::Frame& frame,
               double t_s,
-              std::vector<firmware_model::MaintenanceResponse>* responses);
+              std::vector<hil::MaintenanceResponse>* responses);
   [[noreturn]] void Fail(InstrumentError::Kind kind,
                          const std::string& command,
                          const std::string& reply,
@@ -113,9 +113,9 @@ class UnitLink {
   UnitEntry entry_;
   const Clock& clock_;
   std::unique_ptr<SerialPort> port_;
-  firmware_model::UnitProtocolClient client_;
-  firmware_model::StreamReader reader_;
-  firmware_model::SequenceTracker tracker_;
+  hil::UnitProtocolClient client_;
+  hil::StreamReader reader_;
+  hil::SequenceTracker tracker_;
   uint64_t malformed_data_packets_ = 0;
   std::vector<ReceivedPacket> queue_;
 };

@@ -233,17 +233,6 @@ class CsvCursor {
 
 }  // namespace
 
-namespace {
-
-double MetaNumber(const nlohmann::json& item, const char* key, const std::string& where) {
-  if (!item.contains(key) || !item[key].is_number()) {
-    throw RecordingError(where + "." + key + " missing or not a number");
-  }
-  return item[key].get<double>();
-}
-
-}  // namespace
-
 Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions& options) {
   Recording rows;
   Recording rec =
@@ -256,44 +245,23 @@ Recording ReadRecording(const std::filesystem::path& run_dir, const ReadOptions&
   return rec;
 }
 
-namespace {
-
-// A unit listed twice would have its rows read twice by any consumer that walks the list.
-void RefuseRepeatedUnits(const nlohmann::json& meta, const std::string& meta_path) {
-  if (!meta.contains("units") || !meta["units"].is_array()) return;
-  const nlohmann::json& units = meta["units"];
-  for (size_t i = 0; i < units.size(); ++i) {
-    if (!units[i].is_object() || !units[i].contains("serial") || !units[i]["serial"].is_string())
-      continue;
-    for (size_t j = 0; j < i; ++j) {
-      if (units[j].is_object() &&
-          units[j].value("serial", nlohmann::json()) == units[i]["serial"]) {
-        throw RecordingError(meta_path + ": $.units[" + std::to_string(i) + "].serial " +
-                             units[i]["serial"].dump() + " is listed already as $.units[" +
-                             std::to_string(j) + "]");
-      }
-    }
-  }
-}
-
-}  // namespace
-
 Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
   Recording rec;
   const std::filesystem::path meta_path = run_dir / kMetaJsonName;
   std::ifstream meta_in(meta_path);
   if (!meta_in) throw RecordingError(meta_path.string() + ": cannot open for reading");
+  nlohmann::json meta;
   try {
-    rec.meta = nlohmann::json::parse(meta_in);
+    meta = nlohmann::json::parse(meta_in);
   } catch (const nlohmann::json::parse_error& e) {
     throw RecordingError(meta_path.string() + ": not valid JSON at byte " + std::to_string(e.byte));
   } catch (const nlohmann::json::exception& e) {  // a number beyond double's range (1e400)
     throw RecordingError(meta_path.string() + ": not valid JSON: " + e.what());
   }
-  if (!rec.meta.is_object() || !rec.meta.contains("format_version")) {
+  if (!meta.is_object() || !meta.contains("format_version")) {
     throw RecordingError(meta_path.string() + ": $.format_version missing");
   }
-  const nlohmann::json& v = rec.meta["format_version"];
+  const nlohmann::json& v = meta.at("format_version");
   if (!v.is_number_integer()) {
     throw RecordingError(meta_path.string() + ": $.format_version is " + v.dump() +
                          ", not an integer");
@@ -309,9 +277,7 @@ Recording ReadRecordingMeta(const std::filesystem::path& run_dir) {
                          std::to_string(kOldestReadableFormatVersion) + " to " +
                          std::to_string(kRecordingFormatVersion));
   }
-  rec.format_version = static_cast<int>(version);
-  RefuseRepeatedUnits(rec.meta, meta_path.string());
-  rec.rejected_intervals = ParseRejectedIntervals(rec.meta, meta_path.string());
+  rec.meta = RecordingMeta::FromJson(meta, meta_path.string());
   return rec;
 }
 
@@ -324,12 +290,9 @@ namespace {
 // standard errors.
 class RowOrder {
  public:
-  RowOrder(const nlohmann::json& meta, std::filesystem::path file) : file_(std::move(file)) {
-    if (!meta.contains("units") || !meta["units"].is_array()) return;
-    for (const nlohmann::json& u : meta["units"]) {
-      if (u.is_object() && u.contains("serial") && u["serial"].is_string()) {
-        last_[u["serial"].get<std::string>()];
-      }
+  RowOrder(const RecordingMeta& meta, std::filesystem::path file) : file_(std::move(file)) {
+    for (const RecordingUnit& u : meta.units) {
+      if (!u.serial.empty()) last_[u.serial];
     }
     listed_ = !last_.empty();
   }
@@ -434,7 +397,7 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
                           const RowSinks& sinks,
                           const ReadOptions& options) {
   Recording rec = ReadRecordingMeta(run_dir);
-  const int version = rec.format_version;
+  const int version = rec.meta.format_version;
   const bool v2 = version >= 2;
   const bool v3 = version >= 3;
   const bool v4 = version >= 4;
@@ -507,42 +470,10 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
 }
 
 bool IsRejected(const Recording& recording, double t_s) {
-  for (const RejectedInterval& r : recording.rejected_intervals) {
+  for (const RejectedInterval& r : recording.meta.rejected_intervals) {
     if (t_s >= r.t_start_s && t_s <= r.t_end_s) return true;
   }
   return false;
-}
-
-std::vector<RejectedInterval> ParseRejectedIntervals(const nlohmann::json& meta,
-                                                     const std::string& meta_path) {
-  std::vector<RejectedInterval> intervals;
-  if (!meta.contains("rejected_intervals")) return intervals;
-  const nlohmann::json& list = meta["rejected_intervals"];
-  if (!list.is_array()) {
-    throw RecordingError(meta_path + ": $.rejected_intervals is not an array");
-  }
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string where = meta_path + ": $.rejected_intervals[" + std::to_string(i) + "]";
-    const nlohmann::json& item = list[i];
-    if (!item.is_object()) throw RecordingError(where + " is not an object");
-    RejectedInterval r;
-    if (!item.contains("step") || !item["step"].is_number_integer()) {
-      throw RecordingError(where + ".step missing or not an integer");
-    }
-    r.step = item["step"].get<int>();
-    r.t_start_s = MetaNumber(item, "t_start_s", where);
-    r.t_end_s = MetaNumber(item, "t_end_s", where);
-    if (!(r.t_end_s >= r.t_start_s)) {
-      throw RecordingError(where + ": t_end_s " + std::to_string(r.t_end_s) +
-                           " is before t_start_s " + std::to_string(r.t_start_s));
-    }
-    if (!item.contains("reason") || !item["reason"].is_string()) {
-      throw RecordingError(where + ".reason missing or not a string");
-    }
-    r.reason = item["reason"].get<std::string>();
-    intervals.push_back(std::move(r));
-  }
-  return intervals;
 }
 
 }  // namespace adahrs::hil

@@ -27,32 +27,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hil/recording/recording_error.h"
 #include "hil/recording/recording_format.h"
+#include "hil/recording/recording_meta.h"
 
 namespace adahrs::hil {
-
-class RecordingError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct ReadOptions {
   bool allow_truncated_tail = false;
 };
 
-/// A span of the run whose rows are not calibration data (a failed interlock, the first attempt of
-/// a step repeated after a resume), from meta.json's "rejected_intervals".
-struct RejectedInterval {
-  int step = 0;            ///< index of the sequence step the interval belongs to
-  double t_start_s = 0.0;  ///< first rejected time on the run's time base, inclusive
-  double t_end_s = 0.0;    ///< last rejected time, inclusive
-  std::string reason;
-};
-
 struct Recording {
-  nlohmann::json meta;
-  int format_version = 0;
-  std::vector<RejectedInterval> rejected_intervals;
+  RecordingMeta meta;
   std::vector<ImuRecordRow> imu;
   std::vector<AdsRecordRow> ads;
   int truncated_lines = 0;  ///< incomplete last lines skipped (only with allow_truncated_tail)
@@ -80,11 +66,6 @@ struct RowSinks {
 Recording StreamRecording(const std::filesystem::path& run_dir,
                           const RowSinks& sinks,
                           const ReadOptions& options = {});
-
-/// meta.json's "rejected_intervals", checked as ReadRecording checks them (none when absent);
-/// errors name `meta_path` and the JSON path, "$.rejected_intervals[2].t_end_s".
-std::vector<RejectedInterval> ParseRejectedIntervals(const nlohmann::json& meta,
-                                                     const std::string& meta_path);
 
 /// True when `t_s` lies inside one of the recording's rejected intervals (its rows there are not
 /// calibration data).

@@ -8,6 +8,11 @@
 #include "hil/recording/row_text.h"
 
 namespace adahrs::hil {
+void RecordingWriter::WriteMetaJson(nlohmann::json meta) const {
+  meta["format_version"] = kRecordingFormatVersion;
+  WriteMeta(RecordingMeta::FromJson(meta, (run_dir_ / kMetaJsonName).string()));
+}
+
 namespace {
 
 // The header line of an existing file, empty if it has none.
@@ -64,13 +69,13 @@ int64_t RecordingWriter::Frame(const std::string& unit, uint32_t seq, double t_s
   return frame;
 }
 
-void RecordingWriter::WriteMeta(nlohmann::json meta) const {
-  meta["format_version"] = kRecordingFormatVersion;
+void RecordingWriter::WriteMeta(RecordingMeta meta) const {
+  meta.format_version = kRecordingFormatVersion;
   const std::filesystem::path final_path = run_dir_ / kMetaJsonName;
   const std::filesystem::path tmp_path = run_dir_ / (std::string(kMetaJsonName) + ".tmp");
   {
     std::ofstream out(tmp_path);
-    out << meta.dump(2) << "\n";
+    out << meta.ToJson().dump(2) << "\n";
     if (!out) throw std::runtime_error(tmp_path.string() + ": write failed");
   }
   std::filesystem::rename(tmp_path, final_path);

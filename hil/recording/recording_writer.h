@@ -20,6 +20,7 @@
 #include "hil/recording/frame_count.h"
 #include "hil/recording/recording_files.h"
 #include "hil/recording/recording_format.h"
+#include "hil/recording/recording_meta.h"
 #include "hil/recording/row_text.h"
 
 namespace adahrs::hil {
@@ -38,7 +39,10 @@ class RecordingWriter {
   RecordingWriter& operator=(const RecordingWriter&) = delete;
 
   /// Writes meta.json atomically (temporary file + rename); `meta` gets format_version added.
-  void WriteMeta(nlohmann::json meta) const;
+  void WriteMeta(RecordingMeta meta) const;
+  /// meta.json given as JSON (tests, tools): read as RecordingMeta first, so it is refused as a
+  /// reader would refuse it, then written as WriteMeta writes it.
+  void WriteMetaJson(nlohmann::json meta) const;
   void Append(const ImuRecordRow& row);
   void Append(const AdsRecordRow& row);
   /// Hands every appended row to the kernel; with `durable`, also fsyncs the files.

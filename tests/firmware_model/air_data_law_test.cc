@@ -13,9 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 #include "firmware_model/air_data_law.h"
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -95,7 +95,7 @@ Worst WorstOver(double from, double to, double step, ErrorOf error_of) {
 // Up to 63,000 ft (6.2 kPa) within 1.2 ft (the table's curvature error grows as 1/p^2).
 TEST(AirDataLaw, IsaAltitudeWithinHalfAFootOfTheAtmosphereModelOverTheEnvelope) {
   auto error_of = [](double pa, uint16_t* flags) {
-    return AltitudeFt(pa, flags) - sensor_sim::IsaPressureAltitudeFt(pa);
+    return AltitudeFt(pa, flags) - common::IsaPressureAltitudeFt(pa);
   };
   EXPECT_LT(WorstOver(6200.0, 10990.0, 10.0, error_of).error, 1.2);
   const Worst w = WorstOver(11000.0, 125000.0, 10.0, error_of);
@@ -107,7 +107,7 @@ TEST(AirDataLaw, IsaAltitudeWithinHalfAFootOfTheAtmosphereModelOverTheEnvelope) 
 // square root, the rest from the CAS^2 table's interpolation, largest at low speed).
 TEST(AirDataLaw, CasWithinAFiftiethOfAKnotOfTheAirspeedLaw) {
   const Worst w = WorstOver(5.0, 510.0, 0.25, [](double kt, uint16_t* flags) {
-    return AirspeedKt(sensor_sim::ImpactPressurePaFromKt(kt), flags) - kt;
+    return AirspeedKt(common::ImpactPressurePaFromKt(kt), flags) - kt;
   });
   std::printf("worst CAS error %.4f kt at %.2f kt\n", w.error, w.at);
   EXPECT_LT(w.error, 0.02);
@@ -118,7 +118,7 @@ TEST(AirDataLaw, OutsideTheTablesTheOutputIsHeldAndFlagged) {
   EXPECT_EQ(AirspeedKt(0.0, &flags), 0.0);
   EXPECT_EQ(AirspeedKt(-200.0, &flags), 0.0);
   EXPECT_EQ(flags, 0);
-  const double top_kt = AirspeedKt(sensor_sim::ImpactPressurePaFromKt(540.0), &flags);
+  const double top_kt = AirspeedKt(common::ImpactPressurePaFromKt(540.0), &flags);
   EXPECT_EQ(flags, kFlagOutputSaturated);
   EXPECT_NEAR(top_kt, CasKtFromImpactPa(kCasLastValidEntry * 256.0), 0.01);
   EXPECT_LT(top_kt, 512.0);

@@ -9,7 +9,7 @@
 #include <boost/crc.hpp>
 
 #include "common/random.h"
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -20,7 +20,7 @@ TEST(Crc16Test, PublishedCheckValue) {
   // "Catalogue of parametrised CRC algorithms", CRC-16/IBM-3740 (alias CCITT-FALSE): check 0x29B1.
   const uint8_t message[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
   EXPECT_EQ(Crc16CcittFalse(message, sizeof(message)), 0x29B1);
-  EXPECT_EQ(HostCrc16(message), 0x29B1);
+  EXPECT_EQ(hil::HostCrc16(message), 0x29B1);
 }
 
 // The firmware's ROM table is a literal (C99 has no compile-time evaluation): entry i is the CRC of

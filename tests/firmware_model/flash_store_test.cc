@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -24,7 +24,7 @@ uint16_t DocumentedImageCrc(UnitKind kind, uint16_t version, const std::vector<i
     bytes.push_back(static_cast<uint8_t>(word & 0xFF));
     bytes.push_back(static_cast<uint8_t>(word >> 8));
   }
-  return HostCrc16(bytes);
+  return hil::HostCrc16(bytes);
 }
 
 TEST(FlashStoreTest, ErasedPageHoldsNoImage) {

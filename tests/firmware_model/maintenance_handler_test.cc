@@ -14,7 +14,7 @@
 #include "firmware_model/constants_exporter.h"
 #include "tests/firmware_model/realistic_constants.h"
 
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -96,8 +96,8 @@ class Unit {
   explicit Unit(const UnitIdentity& identity) : handler_(identity, &flash_) {}
 
   // Sends request bytes and returns every response the unit produced.
-  std::vector<MaintenanceResponse> SendRaw(const std::vector<uint8_t>& bytes) {
-    std::vector<MaintenanceResponse> responses;
+  std::vector<hil::MaintenanceResponse> SendRaw(const std::vector<uint8_t>& bytes) {
+    std::vector<hil::MaintenanceResponse> responses;
     std::vector<uint8_t> out(kMaxFrameBytes);
     size_t offset = 0;
     while (true) {
@@ -108,18 +108,18 @@ class Unit {
       offset += result.consumed_bytes;
       if (result.response_bytes == 0) break;
       for (const Frame& frame : reader_.Push({out.data(), result.response_bytes})) {
-        responses.push_back(ParseMaintenanceResponse(frame));
+        responses.push_back(hil::ParseMaintenanceResponse(frame));
       }
     }
     return responses;
   }
 
   // Sends one request and returns its single response, checking the sequence echo.
-  MaintenanceResponse Send(const std::vector<uint8_t>& request) {
-    const std::vector<MaintenanceResponse> responses = SendRaw(request);
-    EXPECT_EQ(responses.size(), 1u) << HexTrace(request);
+  hil::MaintenanceResponse Send(const std::vector<uint8_t>& request) {
+    const std::vector<hil::MaintenanceResponse> responses = SendRaw(request);
+    EXPECT_EQ(responses.size(), 1u) << hil::HexTrace(request);
     if (responses.empty())
-      return MaintenanceResponse{0, MaintenanceCommand::kNone, ResultCode::kFlashError, {}};
+      return hil::MaintenanceResponse{0, MaintenanceCommand::kNone, ResultCode::kFlashError, {}};
     EXPECT_EQ(responses[0].sequence, request[4]) << "response must echo the request sequence";
     return responses[0];
   }
@@ -133,7 +133,7 @@ class Unit {
   }
 
   std::vector<int16_t> ReadBack(uint8_t block_id) {
-    const BlockReadback readback = ParseReadBlock(Send(client_.ReadBlock(block_id)));
+    const hil::BlockReadback readback = hil::ParseReadBlock(Send(client_.ReadBlock(block_id)));
     EXPECT_EQ(readback.block_id, block_id);
     return readback.words;
   }
@@ -172,13 +172,13 @@ class Unit {
 
   FlashStore flash_;
   MaintenanceHandler handler_;
-  UnitProtocolClient client_;
-  StreamReader reader_;
+  hil::UnitProtocolClient client_;
+  hil::StreamReader reader_;
 };
 
 TEST(MaintenanceHandlerTest, IdentifyReportsTheFactoryIdentityAndNoConstants) {
   Unit unit(kImuIdentity);
-  const IdentifyInfo info = ParseIdentify(unit.Send(unit.client_.Identify()));
+  const hil::IdentifyInfo info = hil::ParseIdentify(unit.Send(unit.client_.Identify()));
   EXPECT_EQ(info.unit_kind, UnitKind::kImu);
   EXPECT_EQ(info.serial_number, 150042u);
   EXPECT_EQ(info.firmware_major, 2);
@@ -193,11 +193,11 @@ TEST(MaintenanceHandlerTest, IdentifyReportsTheFactoryIdentityAndNoConstants) {
 
 TEST(MaintenanceHandlerTest, SetTagIsCarriedByEveryLaterResponse) {
   Unit unit(kImuIdentity);
-  const MaintenanceResponse ack = unit.Send(unit.client_.SetTag(0xB7));
+  const hil::MaintenanceResponse ack = unit.Send(unit.client_.SetTag(0xB7));
   EXPECT_EQ(ack.result, ResultCode::kAck);
   EXPECT_EQ(ack.data, std::vector<uint8_t>{0xB7});
   EXPECT_EQ(unit.handler_.tag(), 0xB7);
-  EXPECT_EQ(ParseIdentify(unit.Send(unit.client_.Identify())).tag, 0xB7);
+  EXPECT_EQ(hil::ParseIdentify(unit.Send(unit.client_.Identify())).tag, 0xB7);
 }
 
 TEST(MaintenanceHandlerTest, WriteAndReadBackEveryImuBlock) {
@@ -205,8 +205,9 @@ TEST(MaintenanceHandlerTest, WriteAndReadBackEveryImuBlock) {
   for (const uint8_t id : BlockIds(UnitKind::kImu)) {
     const std::vector<int16_t> block =
         ValidBlock(UnitKind::kImu, id, static_cast<int16_t>(100 + id));
-    const MaintenanceResponse ack = unit.Send(unit.client_.WriteBlock(id, block));
-    ASSERT_EQ(ack.result, ResultCode::kAck) << ResultCodeName(ack.result) << " for block " << +id;
+    const hil::MaintenanceResponse ack = unit.Send(unit.client_.WriteBlock(id, block));
+    ASSERT_EQ(ack.result, ResultCode::kAck)
+        << hil::ResultCodeName(ack.result) << " for block " << +id;
     EXPECT_EQ(unit.ReadBack(id), block) << "block " << +id;
   }
 }
@@ -214,7 +215,7 @@ TEST(MaintenanceHandlerTest, WriteAndReadBackEveryImuBlock) {
 TEST(MaintenanceHandlerTest, CommitPersistsAcrossPowerCycleAndUncommittedWritesAreLost) {
   Unit unit(kImuIdentity);
   unit.WriteAllBlocks(11);
-  const CommitInfo commit = ParseCommit(unit.Send(unit.client_.Commit()));
+  const hil::CommitInfo commit = hil::ParseCommit(unit.Send(unit.client_.Commit()));
   EXPECT_EQ(commit.constants_version, 1);
   EXPECT_EQ(commit.constants_crc, unit.flash_.Inspect(UnitKind::kImu).image_crc);
   ASSERT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kFullyCalibrated)).result,
@@ -225,11 +226,11 @@ TEST(MaintenanceHandlerTest, CommitPersistsAcrossPowerCycleAndUncommittedWritesA
   ASSERT_EQ(unit.Send(unit.client_.WriteBlock(kImuBlockCa, changed)).result, ResultCode::kAck);
   EXPECT_EQ(unit.ReadBack(kImuBlockCa), changed);
 
-  const MaintenanceResponse reset = unit.Send(unit.client_.Reset());
+  const hil::MaintenanceResponse reset = unit.Send(unit.client_.Reset());
   ASSERT_EQ(reset.result, ResultCode::kAck);
   EXPECT_EQ(reset.data, std::vector<uint8_t>{1});  // valid constants after the power cycle
   EXPECT_EQ(unit.ReadBack(kImuBlockCa), ValidBlock(UnitKind::kImu, kImuBlockCa, 11));
-  const IdentifyInfo info = ParseIdentify(unit.Send(unit.client_.Identify()));
+  const hil::IdentifyInfo info = hil::ParseIdentify(unit.Send(unit.client_.Identify()));
   EXPECT_EQ(info.mode, 0);  // power-on mode is raw
   EXPECT_EQ(info.tag, 0);
   EXPECT_TRUE(info.constants_valid);
@@ -239,7 +240,7 @@ TEST(MaintenanceHandlerTest, CommitPersistsAcrossPowerCycleAndUncommittedWritesA
             ResultCode::kAck);
 
   // Constants loaded from flash count as complete: a commit right away is accepted.
-  EXPECT_EQ(ParseCommit(unit.Send(unit.client_.Commit())).constants_version, 2);
+  EXPECT_EQ(hil::ParseCommit(unit.Send(unit.client_.Commit())).constants_version, 2);
 
   // A second unit powered on with the same flash gets the committed constants.
   MaintenanceHandler second(kImuIdentity, &unit.flash_);
@@ -276,7 +277,7 @@ TEST(MaintenanceHandlerTest, EveryMalformedRequestIsRefusedWithItsCodeAndChanges
   ASSERT_EQ(unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kSensorCalibrated)).result,
             ResultCode::kAck);
   ASSERT_EQ(unit.Send(unit.client_.SetTag(0x33)).result, ResultCode::kAck);
-  UnitProtocolClient& c = unit.client_;
+  hil::UnitProtocolClient& c = unit.client_;
   const auto cmd = [](MaintenanceCommand command) { return static_cast<uint8_t>(command); };
   std::vector<int16_t> ca = ValidBlock(UnitKind::kImu, kImuBlockCa, 1);
   std::vector<int16_t> ca_out_of_range = ca;
@@ -368,10 +369,10 @@ TEST(MaintenanceHandlerTest, EveryMalformedRequestIsRefusedWithItsCodeAndChanges
   for (const Case& test_case : cases) {
     const uint32_t naks_before =
         unit.handler_.counters().naks_by_code[static_cast<uint8_t>(test_case.expected)];
-    const MaintenanceResponse response = unit.Send(test_case.request);
+    const hil::MaintenanceResponse response = unit.Send(test_case.request);
     EXPECT_EQ(response.result, test_case.expected)
-        << test_case.what << ": got " << ResultCodeName(response.result) << " for "
-        << HexTrace(test_case.request);
+        << test_case.what << ": got " << hil::ResultCodeName(response.result) << " for "
+        << hil::HexTrace(test_case.request);
     EXPECT_EQ(response.command, test_case.echoed) << test_case.what;
     EXPECT_TRUE(response.data.empty()) << test_case.what;
     EXPECT_EQ(unit.handler_.counters().naks_by_code[static_cast<uint8_t>(test_case.expected)],
@@ -381,11 +382,11 @@ TEST(MaintenanceHandlerTest, EveryMalformedRequestIsRefusedWithItsCodeAndChanges
   }
   // Header errors are counted by the decoder but not answered.
   const uint32_t unknown_before = unit.handler_.decoder_counters().unknown_type;
-  EXPECT_TRUE(unit.SendRaw(BuildFrame(0x44, 0, 0, std::vector<uint8_t>{1})).empty());
+  EXPECT_TRUE(unit.SendRaw(hil::BuildFrame(0x44, 0, 0, std::vector<uint8_t>{1})).empty());
   EXPECT_EQ(unit.handler_.decoder_counters().unknown_type, unknown_before + 1);
   EXPECT_TRUE(unit.Take() == before);
   // The counters the unit reports agree with the handler's.
-  const UnitCounters counters = ParseCounters(unit.Send(c.ReadCounters()));
+  const hil::UnitCounters counters = hil::ParseCounters(unit.Send(c.ReadCounters()));
   EXPECT_EQ(counters.requests_naked, cases.size());
   EXPECT_EQ(counters.decoder.bad_crc, 1u);
   EXPECT_EQ(counters.decoder.unknown_type, 1u);
@@ -491,7 +492,7 @@ TEST(MaintenanceHandlerTest, AdsUnitModesBlocksAndPowerCycle) {
       ResultCode::kUnknownBlock);
   unit.WriteAllBlocks(21);
   EXPECT_EQ(unit.ReadBack(kAdsBlockAirspeed), ValidBlock(UnitKind::kAds, kAdsBlockAirspeed, 21));
-  ASSERT_EQ(ParseCommit(unit.Send(unit.client_.Commit())).constants_version, 1);
+  ASSERT_EQ(hil::ParseCommit(unit.Send(unit.client_.Commit())).constants_version, 1);
   ASSERT_EQ(unit.Send(unit.client_.SetAdsMode(AdsCompensationMode::kSurface)).result,
             ResultCode::kAck);
   ASSERT_EQ(unit.Send(unit.client_.WriteBlock(kAdsBlockAltitude,
@@ -501,7 +502,7 @@ TEST(MaintenanceHandlerTest, AdsUnitModesBlocksAndPowerCycle) {
   ASSERT_EQ(unit.Send(unit.client_.Reset()).result, ResultCode::kAck);
   EXPECT_EQ(unit.handler_.ads_mode(), AdsCompensationMode::kRaw);
   EXPECT_EQ(unit.ReadBack(kAdsBlockAltitude), ValidBlock(UnitKind::kAds, kAdsBlockAltitude, 21));
-  const IdentifyInfo info = ParseIdentify(unit.Send(unit.client_.Identify()));
+  const hil::IdentifyInfo info = hil::ParseIdentify(unit.Send(unit.client_.Identify()));
   EXPECT_EQ(info.unit_kind, UnitKind::kAds);
   EXPECT_EQ(info.serial_number, 230017u);
   EXPECT_TRUE(info.constants_valid);
@@ -519,7 +520,7 @@ TEST(MaintenanceHandlerTest, ResetClearsCountersAndDataSequence) {
   ASSERT_EQ(unit.Send(unit.client_.Request(0x77, {})).result, ResultCode::kUnknownCommand);
   ASSERT_EQ(unit.Send(unit.client_.Reset()).result, ResultCode::kAck);
   EXPECT_EQ(unit.handler_.TakeDataSequence(), 0);
-  const UnitCounters counters = ParseCounters(unit.Send(unit.client_.ReadCounters()));
+  const hil::UnitCounters counters = hil::ParseCounters(unit.Send(unit.client_.ReadCounters()));
   EXPECT_EQ(counters.requests_naked, 0u);
   EXPECT_EQ(counters.requests_acked, 1u);     // the RESET ACK itself, counted after the power cycle
   EXPECT_EQ(counters.decoder.frames_ok, 1u);  // READ_COUNTERS
@@ -527,31 +528,31 @@ TEST(MaintenanceHandlerTest, ResetClearsCountersAndDataSequence) {
 
 TEST(MaintenanceHandlerTest, ClientParsersRejectNaksAndMismatchesWithContext) {
   Unit unit(kImuIdentity);
-  const MaintenanceResponse nak =
+  const hil::MaintenanceResponse nak =
       unit.Send(unit.client_.SetImuMode(ImuCompensationMode::kFullyCalibrated));
   try {
-    ParseCommit(nak);
+    hil::ParseCommit(nak);
     FAIL() << "ParseCommit accepted a response to SET_MODE";
-  } catch (const ProtocolError& e) {
+  } catch (const hil::ProtocolError& e) {
     EXPECT_THAT(e.what(), HasSubstr("expected a response to COMMIT, got one to SET_MODE"));
   }
-  const MaintenanceResponse commit_nak = unit.Send(unit.client_.Commit());
+  const hil::MaintenanceResponse commit_nak = unit.Send(unit.client_.Commit());
   try {
-    ParseCommit(commit_nak);
+    hil::ParseCommit(commit_nak);
     FAIL() << "ParseCommit accepted a NAK";
-  } catch (const ProtocolError& e) {
+  } catch (const hil::ProtocolError& e) {
     EXPECT_THAT(e.what(), HasSubstr("COMMIT refused by the unit: NAK incomplete constants"));
   }
   Frame data_frame{};
   data_frame.type = static_cast<uint8_t>(PacketType::kImuData);
   data_frame.payload_length = 44;
   try {
-    ParseImuData(data_frame);
+    hil::ParseImuData(data_frame);
     FAIL() << "ParseImuData accepted a 44-byte payload";
-  } catch (const ProtocolError& e) {
+  } catch (const hil::ProtocolError& e) {
     EXPECT_THAT(e.what(), HasSubstr("IMU data payload of 44 bytes is malformed"));
   }
-  EXPECT_THROW(ParseMaintenanceResponse(data_frame), ProtocolError);
+  EXPECT_THROW(hil::ParseMaintenanceResponse(data_frame), hil::ProtocolError);
 }
 
 }  // namespace

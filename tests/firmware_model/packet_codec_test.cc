@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -79,7 +79,7 @@ TEST(PacketCodecTest, WorkedExampleOfTheProtocolDocument) {
   const std::vector<uint8_t> expected = {
       0xA5, 0x5A, 0x02, 0x20, 0x07, 0x00, 0x02, 0x2A, 0x83, 0x3F};
   EXPECT_EQ(Encode(kRequest, 7, 0, {0x02, 0x2A}), expected);
-  UnitProtocolClient client;
+  hil::UnitProtocolClient client;
   for (int i = 0; i < 7; ++i) {
     client.Identify();
   }
@@ -133,17 +133,17 @@ TEST(PacketCodecTest, RoundTripOfEveryPacketTypeWholeAndByteByByte) {
     ASSERT_EQ(frame.size(), 8 + cases[i].payload.size());
     // Boost.CRC framing on the PC side produces the same bytes.
     EXPECT_EQ(frame,
-              BuildFrame(cases[i].type,
-                         static_cast<uint8_t>(250 + i),
-                         static_cast<uint8_t>(i),
-                         cases[i].payload));
+              hil::BuildFrame(cases[i].type,
+                              static_cast<uint8_t>(250 + i),
+                              static_cast<uint8_t>(i),
+                              cases[i].payload));
     stream.insert(stream.end(), frame.begin(), frame.end());
   }
   PacketDecoder by_bytes;
   const Collected collected = FeedByBytes(&by_bytes, stream);
   ASSERT_EQ(collected.frames.size(), cases.size());
   EXPECT_TRUE(collected.errors.empty());
-  StreamReader whole;
+  hil::StreamReader whole;
   const std::vector<Frame> frames = whole.Push(stream);
   ASSERT_EQ(frames.size(), cases.size());
   for (size_t i = 0; i < cases.size(); ++i) {
@@ -169,7 +169,7 @@ TEST(PacketCodecTest, EncoderRefusesOversizePayloadAndSmallBuffer) {
   EXPECT_EQ(EncodeFrame(kRequest, 0, 0, payload.data(), 10, out.data(), 17), 0);
   EXPECT_EQ(out[0], 0xEE);  // nothing written
   EXPECT_EQ(EncodeFrame(kRequest, 0, 0, payload.data(), 10, out.data(), 18), 18);
-  EXPECT_THROW(BuildFrame(kRequest, 0, 0, payload), ProtocolError);
+  EXPECT_THROW(hil::BuildFrame(kRequest, 0, 0, payload), hil::ProtocolError);
 }
 
 TEST(PacketCodecTest, BadCrcIsCountedAndTheNextFrameRecovered) {
@@ -271,7 +271,7 @@ TEST(PacketCodecTest, ChunkFeedReportsOneEventPerCallAndCountZeroDrainsTheBuffer
 }
 
 TEST(PacketCodecTest, SequenceTrackerCountsLossAcrossTheWrap) {
-  SequenceTracker tracker;
+  hil::SequenceTracker tracker;
   EXPECT_EQ(tracker.Observe(250), 0u);
   EXPECT_EQ(tracker.Observe(251), 0u);
   EXPECT_EQ(tracker.Observe(254), 2u);  // 252, 253 lost

@@ -14,7 +14,7 @@
 
 #include "common/random.h"
 #include "firmware_model/unit_firmware.h"
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 
 namespace adahrs::firmware_model {
 namespace {
@@ -87,7 +87,7 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
     }
   }
   // A maintenance exchange on the same line.
-  UnitProtocolClient client;
+  hil::UnitProtocolClient client;
   const std::vector<uint8_t> request = client.WriteBlock(0x0E, std::vector<int16_t>{1, -1, 300});
   stream.insert(stream.end(), request.begin(), request.end());
 
@@ -149,7 +149,7 @@ TEST(UnitProtocolPeerTest, PythonDecoderReadsOurStreamFieldByField) {
   // impossible; the peer and our decoder must both count exactly those.
   EXPECT_EQ(decoded.at("errors").at("bad_length").get<int>(), 30);
   EXPECT_EQ(decoded.at("errors").at("bad_crc").get<int>(), 0);
-  StreamReader ours;
+  hil::StreamReader ours;
   EXPECT_EQ(ours.Push(stream).size(), 301u);
   EXPECT_EQ(ours.counters().bad_length, 30u);
   EXPECT_EQ(ours.counters().bad_crc, 0u);

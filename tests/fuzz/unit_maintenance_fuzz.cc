@@ -9,7 +9,7 @@
 #include <cstring>
 
 #include "firmware_model/unit_firmware.h"
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 
 namespace fm = adahrs::firmware_model;
 
@@ -30,9 +30,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     at += 1 + frame.payload_length;
     const uint16_t bytes = handler.HandleRequest(frame, response, sizeof response);
     if (bytes == 0) continue;
-    fm::StreamReader reader;
+    adahrs::hil::StreamReader reader;
     for (const fm::Frame& reply : reader.Push({response, bytes})) {
-      (void)fm::ParseMaintenanceResponse(reply);  // a ProtocolError here is a finding
+      (void)adahrs::hil::ParseMaintenanceResponse(reply);  // a ProtocolError here is a finding
     }
   }
   return 0;

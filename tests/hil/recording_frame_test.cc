@@ -31,7 +31,7 @@ class RecordingFrameTest : public ::testing::Test {
   // writer is given no frame.
   void Write(int64_t from, int64_t to, RecordingStorage storage) {
     RecordingWriter w(dir_, storage);
-    w.WriteMeta({});
+    w.WriteMetaJson({});
     for (int64_t f = from; f < to; ++f) {
       for (const char* unit : {"IMU-0001", "IMU-0002"}) {
         ImuRecordRow r;

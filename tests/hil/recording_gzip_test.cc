@@ -51,7 +51,7 @@ class RecordingGzipTest : public ::testing::Test {
   // Rows [first, first + count) in members of `per_member` rows: Flush ends each member.
   void Write(int first, int count, int per_member) {
     RecordingWriter w(dir_);
-    w.WriteMeta({{"units", {{{"kind", "imu"}, {"serial", "IMU-0001"}}}}});
+    w.WriteMetaJson({{"units", {{{"kind", "imu"}, {"serial", "IMU-0001"}}}}});
     for (int i = first; i < first + count; ++i) {
       w.Append(Row(i));
       if ((i - first + 1) % per_member == 0) w.Flush(false);
@@ -168,7 +168,7 @@ TEST_F(RecordingGzipTest, BothFormsOfAFileAreRefusedByName) {
 TEST_F(RecordingGzipTest, AResumedRunKeepsItsForm) {
   {
     RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
-    w.WriteMeta({});
+    w.WriteMetaJson({});
     w.Append(Row(1));
     w.Flush(true);
   }

@@ -41,7 +41,7 @@ class RecordingReaderTest : public ::testing::Test {
     a.ps_ref_pa = 69681.64;
     a.ps_cnt = -8388608;
     w.Append(a);
-    w.WriteMeta({{"sample_rate_hz", 100}});
+    w.WriteMetaJson({{"sample_rate_hz", 100}});
     w.Flush(true);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
@@ -78,7 +78,7 @@ TEST_F(RecordingReaderTest, ReadsBackWhatTheWriterWrote) {
   ASSERT_EQ(rec.ads.size(), 1u);
   EXPECT_EQ(rec.ads[0].ps_cnt, -8388608);
   EXPECT_DOUBLE_EQ(rec.ads[0].ps_ref_pa, 69681.64);
-  EXPECT_EQ(rec.meta["sample_rate_hz"], 100);
+  EXPECT_EQ(rec.meta.sample_rate_hz.value_or(0.0), 100.0);
 }
 
 TEST_F(RecordingReaderTest, StreamingHandsEachRowWithItsLineAndHoldsNone) {
@@ -90,7 +90,7 @@ TEST_F(RecordingReaderTest, StreamingHandsEachRowWithItsLineAndHoldsNone) {
        [&](AdsRecordRow&& r, int line) { ads_lines.push_back(r.ps_cnt == -8388608 ? line : -1); }});
   EXPECT_TRUE(rec.imu.empty());
   EXPECT_TRUE(rec.ads.empty());
-  EXPECT_EQ(rec.meta["sample_rate_hz"], 100);
+  EXPECT_EQ(rec.meta.sample_rate_hz.value_or(0.0), 100.0);
   ASSERT_EQ(imu.size(), 3u);
   for (uint32_t i = 0; i < 3; ++i)
     EXPECT_EQ(imu[i], std::make_pair(i, static_cast<int>(i) + 2));  // line 1: header
@@ -170,10 +170,10 @@ TEST_F(RecordingReaderTest, RowsOutOfArrivalOrderAreRefusedByLine) {
   ReplaceInFile("imu.csv", "0.0200,IMU-0001,1,0,", "0.0200,IMU-0001,1,-4,");
   EXPECT_THAT(ErrorOf(), HasSubstr("imu.csv:3: unit IMU-0001 step -4 is negative"));
   ReplaceInFile("imu.csv", "0.0200,IMU-0001,1,-4,", "0.0200,IMU-0001,1,0,");
-  nlohmann::json meta = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
-  meta["units"] = {{{"kind", "imu"}, {"serial", "IMU-0002"}},
-                   {{"kind", "ads"}, {"serial", "ADS-0001"}}};
-  std::ofstream(dir_ / "meta.json") << meta.dump();
+  nlohmann::json meta_file = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
+  meta_file["units"] = {{{"kind", "imu"}, {"serial", "IMU-0002"}},
+                        {{"kind", "ads"}, {"serial", "ADS-0001"}}};
+  std::ofstream(dir_ / "meta.json") << meta_file.dump();
   EXPECT_THAT(ErrorOf(),
               HasSubstr("imu.csv:2: unit 'IMU-0001' is not listed in meta.json $.units"));
 }
@@ -190,17 +190,17 @@ TEST_F(RecordingReaderTest, ABurstSharingOneTimeIsRead) {
     r.gyro_cnt = {static_cast<int32_t>(1000 + i % 7), static_cast<int32_t>(i), 5};
     w.Append(r);
   }
-  w.WriteMeta({});
+  w.WriteMetaJson({});
   w.Flush(true);
   EXPECT_EQ(ReadRecording(dir_ / "burst").imu.size(), 300u);
 }
 
 // A unit listed twice would have its rows counted twice by whoever walks the list.
 TEST_F(RecordingReaderTest, UnitListedTwiceIsRefused) {
-  nlohmann::json meta = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
-  meta["units"] = {{{"kind", "imu"}, {"serial", "IMU-0001"}},
-                   {{"kind", "imu"}, {"serial", "IMU-0001"}}};
-  std::ofstream(dir_ / "meta.json") << meta.dump();
+  nlohmann::json meta_file = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
+  meta_file["units"] = {{{"kind", "imu"}, {"serial", "IMU-0001"}},
+                        {{"kind", "imu"}, {"serial", "IMU-0001"}}};
+  std::ofstream(dir_ / "meta.json") << meta_file.dump();
   EXPECT_THAT(
       ErrorOf(),
       HasSubstr("meta.json: $.units[1].serial \"IMU-0001\" is listed already as $.units[0]"));
@@ -208,7 +208,7 @@ TEST_F(RecordingReaderTest, UnitListedTwiceIsRefused) {
 
 TEST_F(RecordingReaderTest, RawRowsHaveNoCompensatedValues) {
   const Recording rec = ReadRecording(dir_);
-  EXPECT_EQ(rec.format_version, 4);
+  EXPECT_EQ(rec.meta.format_version, 4);
   EXPECT_EQ(rec.imu[0].mode, 0);
   EXPECT_FALSE(rec.imu[0].comp.has_value());
   EXPECT_FALSE(rec.ads[0].alt_ft.has_value());
@@ -259,7 +259,7 @@ TEST_F(RecordingReaderTest, VersionOneRecordingIsStillRead) {
       << kAdsCsvHeaderV1 << "\n"
       << "0.0100,ADS-0001,9,1,2,20.000,101325.00,0.00,-8388608,1,2,3,4\n";
   const Recording rec = ReadRecording(dir_);
-  EXPECT_EQ(rec.format_version, 1);
+  EXPECT_EQ(rec.meta.format_version, 1);
   ASSERT_EQ(rec.imu.size(), 1u);
   EXPECT_EQ(rec.imu[0].seq, 7u);
   EXPECT_EQ(rec.imu[0].accel_ticks[11], 12);
@@ -310,22 +310,27 @@ TEST_F(RecordingReaderTest, VersionThreeAdsCountColumnsAreReadByTheirOldNames) {
 
 TEST_F(RecordingReaderTest, RejectedIntervalsAreReadAndApplied) {
   RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
-  w.WriteMeta(
+  w.WriteMetaJson(
       {{"rejected_intervals",
         {{{"step", 2}, {"t_start_s", 0.015}, {"t_end_s", 0.02}, {"reason", "interlock"}}}}});
   const Recording rec = ReadRecording(dir_);
-  ASSERT_EQ(rec.rejected_intervals.size(), 1u);
-  EXPECT_EQ(rec.rejected_intervals[0].step, 2);
-  EXPECT_EQ(rec.rejected_intervals[0].reason, "interlock");
+  ASSERT_EQ(rec.meta.rejected_intervals.size(), 1u);
+  EXPECT_EQ(rec.meta.rejected_intervals[0].step, 2);
+  EXPECT_EQ(rec.meta.rejected_intervals[0].reason, "interlock");
   EXPECT_FALSE(IsRejected(rec, rec.imu[0].t_s));  // 0.01
   EXPECT_TRUE(IsRejected(rec, rec.imu[1].t_s));   // 0.02, the inclusive end
   EXPECT_FALSE(IsRejected(rec, rec.imu[2].t_s));  // 0.03
 }
 
 TEST_F(RecordingReaderTest, MalformedRejectedIntervalNamesItsPath) {
+  // Planted in the file: the writer itself refuses such a meta (WriteMetaJson reads it first).
+  const nlohmann::json meta_file = {
+      {"format_version", kRecordingFormatVersion},
+      {"rejected_intervals",
+       {{{"step", 2}, {"t_start_s", 5.0}, {"t_end_s", 4.0}, {"reason", "x"}}}}};
   RecordingWriter w(dir_, RecordingStorage::kPlainCsv);
-  w.WriteMeta({{"rejected_intervals",
-                {{{"step", 2}, {"t_start_s", 5.0}, {"t_end_s", 4.0}, {"reason", "x"}}}}});
+  EXPECT_THROW(w.WriteMetaJson(meta_file), RecordingError);
+  std::ofstream(dir_ / "meta.json", std::ios::trunc) << meta_file.dump();
   EXPECT_THAT(ErrorOf(),
               AllOf(HasSubstr("$.rejected_intervals[0]"), HasSubstr("before t_start_s")));
 }

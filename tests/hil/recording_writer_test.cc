@@ -61,7 +61,7 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
     row.gyro_cnt = {4194304, -1, 7340032};
     row.temp_cnt = {40000, 41000, 42000};
     w.Append(row);
-    w.WriteMeta({{"sample_rate_hz", 100}});
+    w.WriteMetaJson({{"sample_rate_hz", 100}});
     w.Flush(true);
   }
   {
@@ -83,7 +83,7 @@ TEST(RecordingWriter, WritesRowsWithEveryColumnAndAppendsAcrossReopen) {
   EXPECT_EQ(std::count(ads.begin(), ads.end(), '\n'), 2);
   EXPECT_NE(ads.find(",-8388608,"), std::string::npos);
   const auto meta = nlohmann::json::parse(ReadAll(dir / "meta.json"));
-  EXPECT_EQ(meta["format_version"], kRecordingFormatVersion);
+  EXPECT_EQ(meta.at("format_version"), kRecordingFormatVersion);
   std::filesystem::remove_all(dir);
 }
 

@@ -1,7 +1,8 @@
 // UnitLink against the virtual rig as a separate process (tests/support/rig_process.h): every
 // request of the unit protocol, the TAG in the packets, zero loss over simulated minutes, and the
 // faults the executor must report (a silent unit, a NAK, a unit of the wrong kind).
-// ctest: RUN_SERIAL — the silent-unit test times its drain on the wall clock.
+// Runs alone (SERIAL in tests/CMakeLists.txt): the silent-unit test times its drain on the wall
+// clock.
 #include "hil/drivers/unit_link.h"
 
 #include <gmock/gmock.h>
@@ -83,7 +84,7 @@ TEST(UnitLink, IdentifiesEachUnitAsTheRigNamesIt) {
   for (const nlohmann::json& unit : rig.manifest()["units"]) {
     const UnitEntry& entry = Unit(station, unit["role"]);
     UnitLink link(entry, clock);
-    const fm::IdentifyInfo info = link.Identify();
+    const hil::IdentifyInfo info = link.Identify();
     EXPECT_EQ(UnitSerialText(entry.kind, info.serial_number), unit["serial"].get<std::string>());
     EXPECT_TRUE(std::filesystem::exists(rig.dir() / unit["truth"].get<std::string>()));
     // The rig's units start uncalibrated (docs/rig.md): raw mode, TAG 0, no constants.
@@ -233,7 +234,7 @@ TEST(UnitLink, CalibratedModeWithoutConstantsIsRefusedWithTheNakReason) {
     EXPECT_EQ(e.kind(), InstrumentError::Kind::kRefused);
     EXPECT_EQ(e.role(), "imu1");
     EXPECT_THAT(e.command(), HasSubstr("SET_MODE 3"));
-    EXPECT_THAT(e.what(), HasSubstr(fm::ResultCodeName(fm::ResultCode::kNoValidConstants)));
+    EXPECT_THAT(e.what(), HasSubstr(hil::ResultCodeName(fm::ResultCode::kNoValidConstants)));
   }
 }
 

@@ -5,9 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "common/air_data.h"
+#include "common/atmosphere.h"
 #include "common/random.h"
-#include "sensor_sim/air_data.h"
-#include "sensor_sim/atmosphere.h"
 #include "tests/rig_sim/device_bench.h"
 
 namespace adahrs::rig_sim {
@@ -107,8 +107,8 @@ TEST(PrologixAdtsDevice, ReachesAimAtTheCommandedRatesAndRaisesStable15sLater) {
   EXPECT_EQ(std::stoi(bench.Query("STAT:OPER:EVEN?")) & kStable, kStable);
   EXPECT_EQ(std::stoi(bench.Query("STAT:OPER:EVEN?")) & kStable, 0);  // latched, read once
   // The delivered pressures reach the units.
-  EXPECT_NEAR(bench.env_.ps_pa, sensor_sim::IsaStaticPressurePaFromFt(10000.0), 6.0);
-  EXPECT_NEAR(bench.env_.qc_pa, sensor_sim::ImpactPressurePaFromKt(250.0), 7.0);
+  EXPECT_NEAR(bench.env_.ps_pa, common::IsaStaticPressurePaFromFt(10000.0), 6.0);
+  EXPECT_NEAR(bench.env_.qc_pa, common::ImpactPressurePaFromKt(250.0), 7.0);
   // Go to ground at the set rates: 10 000 ft down at 6 000 ft/min is again 100 s, 250 kt 150 s.
   bench.Query("SOUR:GTGR");
   bench.RunFor(150.1);

@@ -100,7 +100,7 @@ TEST(RecordingReplay, TheRigsOwnModelAndNoiseReproduceTheRecording) {
   EXPECT_LE(d.max_temp_cnt, 1.0);
   EXPECT_LE(d.max_t1_ticks, 1.0);
   EXPECT_LE(d.max_ps_cnt, 4.0);
-  EXPECT_EQ(replayed.meta["replay"]["of"], fs::absolute(rec).string());
+  EXPECT_EQ(replayed.meta.extra["replay"]["of"], fs::absolute(rec).string());
 
   // Fresh noise and only the IMU's file: the rows differ by the noise, the means do not, and the
   // ADS is not written.
@@ -155,10 +155,10 @@ TEST(RecordingReplay, RowsBeforeTheChambersFirstReportTakeIt) {
       << nlohmann::json{{"kind", "imu"}, {"params", params.ToJson()}}.dump();
   {
     hil::RecordingWriter writer(dir / "rec");
-    writer.WriteMeta({{"run_id", "zeros"},
-                      {"status", "complete"},
-                      {"local_gravity_mps2", 9.80665},
-                      {"units", {{{"kind", "imu"}, {"serial", "IMU-0001"}}}}});
+    writer.WriteMetaJson({{"run_id", "zeros"},
+                          {"status", "complete"},
+                          {"local_gravity_mps2", 9.80665},
+                          {"units", {{{"kind", "imu"}, {"serial", "IMU-0001"}}}}});
     hil::ImuRecordRow row;
     row.unit = "IMU-0001";
     for (int i = 1; i <= 3000; ++i) {

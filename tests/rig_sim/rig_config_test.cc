@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/gravity.h"
 #include "sensor_sim/ads_unit.h"
-#include "sensor_sim/gravity.h"
 
 namespace adahrs::rig_sim {
 namespace {
@@ -62,7 +62,7 @@ TEST(RigConfig, ReadsUnitsStationAndFaults) {
   EXPECT_DOUBLE_EQ(c.faults[0].rate, 0.01);
   EXPECT_TRUE(c.faults[1].on);
   EXPECT_EQ(c.faults[1].where, "$.faults[1]");
-  EXPECT_DOUBLE_EQ(c.LocalGravityMps2(), sensor_sim::NormalGravityMps2(0.0, 1000.0));
+  EXPECT_DOUBLE_EQ(c.LocalGravityMps2(), common::NormalGravityMps2(0.0, 1000.0));
 }
 
 // A slot naming a unit file (a truth file, or the model.json of `adahrs diagnose --model`) takes

@@ -13,8 +13,8 @@
 
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/unit_firmware.h"
-#include "firmware_model/unit_protocol_client.h"
 #include "hil/codecs/modbus_rtu.h"
+#include "hil/codecs/unit_protocol_client.h"
 #include "tests/firmware_model/realistic_constants.h"
 #include "tests/rig_sim/pty_client.h"
 
@@ -45,18 +45,18 @@ RigConfig SmallConfig(double time_scale, bool lockstep = false) {
 
 struct Stream {
   std::vector<fm::Frame> data;
-  std::vector<fm::MaintenanceResponse> responses;
+  std::vector<hil::MaintenanceResponse> responses;
   fm::DecoderCounters counters{};
   uint64_t lost = 0;
 };
 
 Stream Decode(const std::vector<uint8_t>& bytes) {
-  fm::StreamReader reader;
-  fm::SequenceTracker tracker;
+  hil::StreamReader reader;
+  hil::SequenceTracker tracker;
   Stream s;
   for (const fm::Frame& f : reader.Push(bytes)) {
     if (f.type == static_cast<uint8_t>(fm::PacketType::kMaintenanceResponse)) {
-      s.responses.push_back(fm::ParseMaintenanceResponse(f));
+      s.responses.push_back(hil::ParseMaintenanceResponse(f));
     } else {
       s.data.push_back(f);
       tracker.Observe(f.sequence);
@@ -126,7 +126,7 @@ TEST(Rig, MaintenanceCommandsOverThePty) {
   Rig rig(SmallConfig(10.0), dir);
   rig.Start(dir / "manifest.json");
   PtyClient port(rig.ports().at("imu1"));
-  fm::UnitProtocolClient client;
+  hil::UnitProtocolClient client;
   // Sends a request and returns the response (data packets around it are skipped).
   auto ask = [&](const std::vector<uint8_t>& request) {
     port.Drain();
@@ -138,9 +138,9 @@ TEST(Rig, MaintenanceCommandsOverThePty) {
       if (!s.responses.empty()) return s.responses.front();
     }
     ADD_FAILURE() << "no response";
-    return fm::MaintenanceResponse{};
+    return hil::MaintenanceResponse{};
   };
-  const fm::IdentifyInfo id = fm::ParseIdentify(ask(client.Identify()));
+  const hil::IdentifyInfo id = hil::ParseIdentify(ask(client.Identify()));
   EXPECT_EQ(id.unit_kind, fm::UnitKind::kImu);
   EXPECT_EQ(id.serial_number, 1u);
   EXPECT_EQ(ask(client.SetTag(77)).result, fm::ResultCode::kAck);
@@ -151,7 +151,7 @@ TEST(Rig, MaintenanceCommandsOverThePty) {
   const Stream tagged = Decode(bytes);
   ASSERT_FALSE(tagged.data.empty());
   EXPECT_EQ(tagged.data.back().tag, 77);
-  EXPECT_EQ(fm::ParseReadBlock(ask(client.ReadBlock(fm::kImuBlockCa))).words.size(),
+  EXPECT_EQ(hil::ParseReadBlock(ask(client.ReadBlock(fm::kImuBlockCa))).words.size(),
             fm::kImuMatrixBlockWords);
   // A full constant set written block by block, committed, then a compensated mode.
   const fm::ImuConstants constants = fm::ExportImuConstants(fm::testing::RealisticImu(8)).constants;
@@ -161,20 +161,20 @@ TEST(Rig, MaintenanceCommandsOverThePty) {
     fm::ImuConstantsReadBlock(&constants, block, words, fm::kImuMaxBlockWords, &count);
     ASSERT_EQ(ask(client.WriteBlock(block, {words, count})).result, fm::ResultCode::kAck);
   }
-  EXPECT_EQ(fm::ParseCommit(ask(client.Commit())).constants_version, 1);
+  EXPECT_EQ(hil::ParseCommit(ask(client.Commit())).constants_version, 1);
   EXPECT_EQ(ask(client.SetImuMode(fm::ImuCompensationMode::kSensorCalibrated)).result,
             fm::ResultCode::kAck);
   bytes.clear();
   port.ReadFor(0.2, bytes);
-  EXPECT_EQ(fm::ParseImuData(Decode(bytes).data.back()).mode,
+  EXPECT_EQ(hil::ParseImuData(Decode(bytes).data.back()).mode,
             fm::ImuCompensationMode::kSensorCalibrated);
   EXPECT_EQ(ask(client.Reset()).result, fm::ResultCode::kAck);
   bytes.clear();
   port.ReadFor(0.2, bytes);
   EXPECT_EQ(Decode(bytes).data.back().tag, 0);
-  EXPECT_EQ(fm::ParseImuData(Decode(bytes).data.back()).mode, fm::ImuCompensationMode::kRaw);
+  EXPECT_EQ(hil::ParseImuData(Decode(bytes).data.back()).mode, fm::ImuCompensationMode::kRaw);
   // The committed set survived the power cycle: the calibrated mode is accepted again.
-  EXPECT_TRUE(fm::ParseIdentify(ask(client.Identify())).constants_valid);
+  EXPECT_TRUE(hil::ParseIdentify(ask(client.Identify())).constants_valid);
   rig.Stop();
   std::filesystem::remove_all(dir);
 }
@@ -312,7 +312,7 @@ TEST(Rig, TheChamberBehindItsModbusPortWarmsTheUnits) {
     imu.ReadFor(0.05, bytes);
     const Stream s = Decode(bytes);
     EXPECT_FALSE(s.data.empty());
-    return s.data.empty() ? 0 : fm::ParseImuData(s.data.back()).raw.temp_cnt[2];
+    return s.data.empty() ? 0 : hil::ParseImuData(s.data.back()).raw.temp_cnt[2];
   };
   const int before = temp_counts();
   PtyClient chamber(rig.ports().at("imu_chamber"));
@@ -355,7 +355,7 @@ TEST(Rig, TheRateTableTurnsTheUnitsOnIt) {
     imu.ReadFor(0.3, bytes);
     const Stream s = Decode(bytes);
     EXPECT_FALSE(s.data.empty());
-    return s.data.empty() ? fm::ImuDataPayload{} : fm::ParseImuData(s.data.back());
+    return s.data.empty() ? fm::ImuDataPayload{} : hil::ParseImuData(s.data.back());
   };
   const fm::ImuDataPayload at_rest = gyro_counts();
   PtyClient table(rig.ports().at("rate_table"));

@@ -4,8 +4,9 @@
 // loses packets: that test finds the highest of a few time scales at which one simulated hour
 // arrives without loss on this machine, now, and states it (the benchmark,
 // bench/rig_throughput_benchmark.cc, measures it finely; docs/performance.md "Rig throughput").
-// ctest: RUN_SERIAL — each runs a rig flat out and a reader against it; beside other rigs of the
-// suite (or each other) the free-running one measures the machine's load, not the rig.
+// Runs alone (SERIAL in tests/CMakeLists.txt): each runs a rig flat out and a reader against it;
+// beside other rigs of the suite (or each other) the free-running one measures the machine's load,
+// not the rig.
 #include <cstdlib>
 #include <string>
 

@@ -55,9 +55,9 @@ TEST(StaticThermalRun, WritesARecordingWhoseTemperatureCountsFollowTheChamber) {
   const auto truth = common::ParamReader::LoadFile((dir / "truth" / "IMU-0001.json").string());
   const common::ParamReader reader(truth, "IMU-0001.json");
   EXPECT_EQ(sensor_sim::ImuUnitParams::FromJson(reader.Child("params")).serial, "IMU-0001");
-  const auto meta = common::ParamReader::LoadFile((dir / "meta.json").string());
-  EXPECT_EQ(meta["units"].size(), 3u);
-  EXPECT_EQ(meta["log_every"], 100);
+  const hil::RecordingMeta meta = hil::ReadRecordingMeta(dir).meta;
+  EXPECT_EQ(meta.units.size(), 3u);
+  EXPECT_EQ(meta.extra.at("log_every"), 100);
   std::filesystem::remove_all(dir);
 }
 

@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 #include "rig_sim/rig.h"
 #include "rig_sim/unit_device.h"
 #include "tests/rig_sim/pty_client.h"
@@ -40,7 +40,7 @@ class FrameWalker {
           size_t{f[2]} + firmware_model::kFrameHeaderBytes + firmware_model::kFrameTrailerBytes;
       if (pending_.size() - pos < length) break;
       const uint16_t crc = static_cast<uint16_t>(f[length - 2] | (f[length - 1] << 8));
-      if (firmware_model::HostCrc16({f + 2, length - 4}) != crc) {
+      if (hil::HostCrc16({f + 2, length - 4}) != crc) {
         ++bad_frames;
         ++pos;
         continue;
@@ -53,7 +53,7 @@ class FrameWalker {
   }
   uint64_t packets = 0;
   uint64_t bad_frames = 0;
-  firmware_model::SequenceTracker tracker;
+  hil::SequenceTracker tracker;
 
  private:
   std::vector<uint8_t> pending_;

@@ -1,12 +1,12 @@
 // The unit devices driven through their SerialDevice interface on simulated time, read back by the
-// PC-side codec (firmware_model/unit_protocol_client.h, an independent CRC implementation).
+// PC-side codec (hil/codecs/unit_protocol_client.h, an independent CRC implementation).
 #include <gtest/gtest.h>
 
 #include "common/random.h"
 #include "common/units.h"
 #include "firmware_model/constants_exporter.h"
 #include "firmware_model/unit_firmware.h"
-#include "firmware_model/unit_protocol_client.h"
+#include "hil/codecs/unit_protocol_client.h"
 #include "rig_sim/ads_unit_device.h"
 #include "rig_sim/fixture_orientation.h"
 #include "rig_sim/imu_unit_device.h"
@@ -54,15 +54,15 @@ std::vector<uint8_t> RunDevice(SerialDevice& device,
 
 struct Decoded {
   std::vector<fm::Frame> data;
-  std::vector<fm::MaintenanceResponse> responses;
+  std::vector<hil::MaintenanceResponse> responses;
 };
 
 Decoded Decode(const std::vector<uint8_t>& bytes) {
-  fm::StreamReader reader;
+  hil::StreamReader reader;
   Decoded d;
   for (const fm::Frame& f : reader.Push(bytes)) {
     if (f.type == static_cast<uint8_t>(fm::PacketType::kMaintenanceResponse)) {
-      d.responses.push_back(fm::ParseMaintenanceResponse(f));
+      d.responses.push_back(hil::ParseMaintenanceResponse(f));
     } else {
       d.data.push_back(f);
     }
@@ -71,14 +71,14 @@ Decoded Decode(const std::vector<uint8_t>& bytes) {
 }
 
 // Sends one request and runs 50 ms; returns the (single) response.
-fm::MaintenanceResponse Ask(SerialDevice& device,
-                            RigEnvironment& env,
-                            double& t,
-                            const std::vector<uint8_t>& request) {
+hil::MaintenanceResponse Ask(SerialDevice& device,
+                             RigEnvironment& env,
+                             double& t,
+                             const std::vector<uint8_t>& request) {
   const Decoded d = Decode(RunDevice(device, env, t, t + 0.05, 0.01, request));
   t += 0.05;
   EXPECT_EQ(d.responses.size(), 1u);
-  return d.responses.empty() ? fm::MaintenanceResponse{} : d.responses.front();
+  return d.responses.empty() ? hil::MaintenanceResponse{} : d.responses.front();
 }
 
 TEST(ImuUnitDevice, Streams100HzPacketsWithConsecutiveSequenceNumbers) {
@@ -88,11 +88,11 @@ TEST(ImuUnitDevice, Streams100HzPacketsWithConsecutiveSequenceNumbers) {
   // Samples at 10 ms … 10 s: the packet of the last one is still on the line (7.7 ms at 115,200
   // baud for 51 bytes → 4.4 ms), so 999 complete packets have arrived by t = 10 s.
   ASSERT_EQ(d.data.size(), 999u);
-  fm::SequenceTracker tracker;
+  hil::SequenceTracker tracker;
   for (size_t k = 0; k < d.data.size(); ++k) {
     EXPECT_EQ(d.data[k].sequence, static_cast<uint8_t>(k));
     tracker.Observe(d.data[k].sequence);
-    EXPECT_EQ(fm::ParseImuData(d.data[k]).mode, fm::ImuCompensationMode::kRaw);
+    EXPECT_EQ(hil::ParseImuData(d.data[k]).mode, fm::ImuCompensationMode::kRaw);
   }
   EXPECT_EQ(tracker.lost_total(), 0u);
 }
@@ -115,7 +115,7 @@ TEST(ImuUnitDevice, PacketsCarryThePhysicsOfTheRigEnvironment) {
   stimulus.air_temp_c = 31.0;
   for (const fm::Frame& f : d.data) {
     const sensor_sim::ImuRawFrame expected = reference.Step(stimulus);
-    const fm::ImuDataPayload got = fm::ParseImuData(f);
+    const fm::ImuDataPayload got = hil::ParseImuData(f);
     for (int ch = 0; ch < 6; ++ch) {
       EXPECT_EQ(got.raw.t1_cnt[ch], expected.accel[static_cast<size_t>(ch)].t1_cnt);
       EXPECT_EQ(got.raw.t2_cnt[ch], expected.accel[static_cast<size_t>(ch)].t2_cnt);
@@ -140,10 +140,10 @@ TEST(ImuUnitDevice, SameTimelineWhateverTheCallGranularity) {
 TEST(ImuUnitDevice, MaintenanceCommandsSetTagModeConstantsCommitAndReset) {
   ImuUnitDevice device(ImuConfig());
   RigEnvironment env;
-  fm::UnitProtocolClient client;
+  hil::UnitProtocolClient client;
   double t = 0.0;
 
-  const fm::IdentifyInfo id = fm::ParseIdentify(Ask(device, env, t, client.Identify()));
+  const hil::IdentifyInfo id = hil::ParseIdentify(Ask(device, env, t, client.Identify()));
   EXPECT_EQ(id.unit_kind, fm::UnitKind::kImu);
   EXPECT_EQ(id.serial_number, 7u);
   EXPECT_FALSE(id.constants_valid);
@@ -164,7 +164,7 @@ TEST(ImuUnitDevice, MaintenanceCommandsSetTagModeConstantsCommitAndReset) {
               fm::ResultCode::kAck)
         << "block " << int(block);
   }
-  const fm::CommitInfo commit = fm::ParseCommit(Ask(device, env, t, client.Commit()));
+  const hil::CommitInfo commit = hil::ParseCommit(Ask(device, env, t, client.Commit()));
   EXPECT_EQ(commit.constants_version, 1);
 
   ASSERT_EQ(Ask(device, env, t, client.SetTag(42)).result, fm::ResultCode::kAck);
@@ -179,7 +179,7 @@ TEST(ImuUnitDevice, MaintenanceCommandsSetTagModeConstantsCommitAndReset) {
   ASSERT_GE(d.data.size(), 19u);
   for (const fm::Frame& f : d.data) {
     EXPECT_EQ(f.tag, 42);
-    const fm::ImuDataPayload got = fm::ParseImuData(f);
+    const fm::ImuDataPayload got = hil::ParseImuData(f);
     ASSERT_EQ(got.mode, fm::ImuCompensationMode::kFullyCalibrated);
     fm::ImuCompensatedFrame expected{};
     fm::DspEngine engine;
@@ -204,17 +204,17 @@ TEST(ImuUnitDevice, MaintenanceCommandsSetTagModeConstantsCommitAndReset) {
   EXPECT_EQ(after_reset.responses[0].result, fm::ResultCode::kAck);
   ASSERT_FALSE(after_reset.data.empty());
   EXPECT_EQ(after_reset.data.back().tag, 0);
-  EXPECT_EQ(fm::ParseImuData(after_reset.data.back()).mode, fm::ImuCompensationMode::kRaw);
+  EXPECT_EQ(hil::ParseImuData(after_reset.data.back()).mode, fm::ImuCompensationMode::kRaw);
   EXPECT_LT(after_reset.data.back().sequence, 10);  // restarted from 0 within the 100 ms
-  const fm::BlockReadback back =
-      fm::ParseReadBlock(Ask(device, env, t, client.ReadBlock(fm::kImuBlockCa)));
+  const hil::BlockReadback back =
+      hil::ParseReadBlock(Ask(device, env, t, client.ReadBlock(fm::kImuBlockCa)));
   EXPECT_EQ(back.words, std::vector<int16_t>(ca, ca + ca_count));
 }
 
 TEST(ImuUnitDevice, UnpluggedPassesNoBytesEitherWayAndTheSequenceRunsOn) {
   ImuUnitDevice device(ImuConfig());
   RigEnvironment env;
-  fm::UnitProtocolClient client;
+  hil::UnitProtocolClient client;
   RunDevice(device, env, 0.0, 1.0);
   device.SetPhysicalFault("unplugged", true);
   const std::vector<uint8_t> during = RunDevice(device, env, 1.0, 2.0, 0.01, client.SetTag(5));
@@ -233,7 +233,7 @@ TEST(ImuUnitDevice, UnpluggedPassesNoBytesEitherWayAndTheSequenceRunsOn) {
 TEST(ImuUnitDevice, ResetFaultIsAPowerCycleThatLosesUncommittedState) {
   ImuUnitDevice device(ImuConfig());
   RigEnvironment env;
-  fm::UnitProtocolClient client;
+  hil::UnitProtocolClient client;
   double t = 0.0;
   ASSERT_EQ(Ask(device, env, t, client.SetTag(9)).result, fm::ResultCode::kAck);
   device.SetPhysicalFault("reset", true);
@@ -251,11 +251,11 @@ TEST(ImuUnitDevice, AtTooSlowALineCompensatedPacketsAreDroppedAndSeenAsGaps) {
   // docs/unit-protocol.md §1: 57,600 baud cannot carry 89-byte packets at 100 Hz.
   ImuUnitDevice device(ImuConfig(57600));
   RigEnvironment env;
-  fm::UnitProtocolClient client;
+  hil::UnitProtocolClient client;
   double t = 0.0;
   // Raw packets (51 bytes, 8.9 ms) still fit: no loss.
   const Decoded raw = Decode(RunDevice(device, env, 0.0, 2.0));
-  fm::SequenceTracker raw_tracker;
+  hil::SequenceTracker raw_tracker;
   for (const auto& f : raw.data) raw_tracker.Observe(f.sequence);
   EXPECT_EQ(raw_tracker.lost_total(), 0u);
   EXPECT_EQ(device.counters().packets_dropped, 0u);
@@ -271,7 +271,7 @@ TEST(ImuUnitDevice, AtTooSlowALineCompensatedPacketsAreDroppedAndSeenAsGaps) {
   Ask(device, env, t, client.Commit());
   Ask(device, env, t, client.SetImuMode(fm::ImuCompensationMode::kThermal));
   const Decoded comp = Decode(RunDevice(device, env, t, t + 2.0));
-  fm::SequenceTracker tracker;
+  hil::SequenceTracker tracker;
   for (const auto& f : comp.data) tracker.Observe(f.sequence);
   // 5,760 B/s of line for 8,900 B/s of packets: about 35 % of the packets are lost.
   EXPECT_GT(tracker.lost_total(), 50u);
@@ -294,16 +294,16 @@ TEST(AdsUnitDevice, PacketsCarryTheTestSetPressuresAndTheBenchChamberAir) {
   sensor_sim::AdsStimulus stimulus{70000.0, 2500.0, -10.0, -10.0};
   for (const fm::Frame& f : d.data) {
     const sensor_sim::AdsRawFrame expected = reference.Step(stimulus);
-    const fm::AdsDataPayload got = fm::ParseAdsData(f);
+    const fm::AdsDataPayload got = hil::ParseAdsData(f);
     EXPECT_EQ(got.raw.ps_cnt, expected.ps_cnt);
     EXPECT_EQ(got.raw.pt_cnt, expected.pt_cnt);
     EXPECT_EQ(got.raw.ps_bridge_cnt, expected.ps_temp_cnt);
     EXPECT_EQ(got.raw.pt_bridge_cnt, expected.pt_temp_cnt);
     EXPECT_EQ(got.raw.oat_cnt, expected.oat_cnt);
   }
-  fm::UnitProtocolClient client;
+  hil::UnitProtocolClient client;
   double t = 1.0;
-  const fm::IdentifyInfo id = fm::ParseIdentify(Ask(device, env, t, client.Identify()));
+  const hil::IdentifyInfo id = hil::ParseIdentify(Ask(device, env, t, client.Identify()));
   EXPECT_EQ(id.unit_kind, fm::UnitKind::kAds);
   EXPECT_EQ(id.serial_number, 3u);
 }

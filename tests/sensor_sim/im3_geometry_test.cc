@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/imu_layout.h"
 #include "common/units.h"
 
 namespace adahrs::sensor_sim {
@@ -24,16 +25,16 @@ constexpr std::array<Expected, 6> kReferenceChannels = {Expected{2, -1},
 
 TEST(Im3Geometry, NominalChannelsSenseTheReferenceAxesAndSigns) {
   for (int ch = 0; ch < 6; ++ch) {
-    const ChipAxis ca = kAccelChannelChipAxis[ch];
-    const Eigen::Matrix3d r = Im3Geometry::NominalR_CB(ca.chip);
+    const common::ImuChannel& ca = common::kImuChannels[ch];
+    const Eigen::Matrix3d r = common::NominalR_CB(ca.package);
     for (int body_axis = 0; body_axis < 3; ++body_axis) {
       const double expected =
           body_axis == kReferenceChannels[ch].body_axis ? kReferenceChannels[ch].sign : 0.0;
-      EXPECT_EQ(r(ca.axis, body_axis), expected) << kAccelChannelNames[ch];
+      EXPECT_EQ(r(ca.package_axis, body_axis), expected) << common::kAccelChannelNames[ch];
     }
   }
   for (int g = 0; g < 3; ++g) {
-    EXPECT_EQ(Im3Geometry::NominalR_GB(g).row(2), Eigen::Vector3d::Unit(g).transpose());
+    EXPECT_EQ(common::NominalR_GB(g).row(2), Eigen::Vector3d::Unit(g).transpose());
   }
 }
 
@@ -57,7 +58,7 @@ TEST(Im3Geometry, DrawnMisalignmentStaysWithinOneDegreePerComponent) {
     const Im3Geometry g = Im3Geometry::Draw(seed);
     for (int k = 0; k < 3; ++k) {
       EXPECT_LE(g.accel_misalignment_deg[k].cwiseAbs().maxCoeff(), 1.0);
-      const Eigen::Matrix3d delta = g.R_CB(k) * Im3Geometry::NominalR_CB(k).transpose();
+      const Eigen::Matrix3d delta = g.R_CB(k) * common::NominalR_CB(k).transpose();
       const double angle_deg = common::RadToDeg(std::acos(std::clamp(delta(0, 0), -1.0, 1.0)));
       EXPECT_LE(angle_deg, std::sqrt(2.0) + 1e-9);
       max_cross = std::max(max_cross, std::abs(delta(0, 1)));
@@ -69,10 +70,10 @@ TEST(Im3Geometry, DrawnMisalignmentStaysWithinOneDegreePerComponent) {
 
 TEST(Im3Geometry, MisalignmentEffectOffGivesNominal) {
   Im3Geometry g = Im3Geometry::Draw(3);
-  EXPECT_GT((g.R_CB(1) - Im3Geometry::NominalR_CB(1)).norm(), 1e-4);
+  EXPECT_GT((g.R_CB(1) - common::NominalR_CB(1)).norm(), 1e-4);
   g.misalignment = false;
-  EXPECT_EQ(g.R_CB(1), Im3Geometry::NominalR_CB(1));
-  EXPECT_EQ(g.R_GB(2), Im3Geometry::NominalR_GB(2));
+  EXPECT_EQ(g.R_CB(1), common::NominalR_CB(1));
+  EXPECT_EQ(g.R_GB(2), common::NominalR_GB(2));
 }
 
 TEST(Im3Geometry, JsonRoundTripIsExact) {

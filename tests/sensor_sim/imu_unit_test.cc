@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/imu_layout.h"
 #include "common/units.h"
 
 namespace adahrs::sensor_sim {
@@ -62,16 +63,16 @@ TEST(ImuUnit, SixPositionPairsSeeEachChannelsAxisWithTheReferenceSigns) {
     const double half_diff = (Average(up, AtRest(axis), kFrames).duty[ch] -
                               Average(down, AtRest(-axis), kFrames).duty[ch]) /
                              2;
-    const ChipAxis ca = kAccelChannelChipAxis[ch];
+    const common::ImuChannel& ca = common::kImuChannels[ch];
     const Adxl210eAxisParams& ap =
-        ca.axis == 0 ? p.accel_chips[ca.chip].x : p.accel_chips[ca.chip].y;
-    const double expected =
-        ap.sensitivity_pct_per_g / 100.0 * p.geometry.R_CB(ca.chip)(ca.axis, channel_axis[ch]);
-    EXPECT_EQ(std::signbit(half_diff), reference_sign[ch] < 0) << kAccelChannelNames[ch];
+        ca.package_axis == 0 ? p.accel_chips[ca.package].x : p.accel_chips[ca.package].y;
+    const double expected = ap.sensitivity_pct_per_g / 100.0 *
+                            p.geometry.R_CB(ca.package)(ca.package_axis, channel_axis[ch]);
+    EXPECT_EQ(std::signbit(half_diff), reference_sign[ch] < 0) << common::kAccelChannelNames[ch];
     // 1.8 mg rms per frame, averaged over 4000 correlated frames, plus cross-axis terms of the
     // chip (≤ 2 % of the 1 g on the other axes is zero here: the other axes see 0 g): 1 % covers
     // it.
-    EXPECT_NEAR(half_diff, expected, 0.01 * std::abs(expected)) << kAccelChannelNames[ch];
+    EXPECT_NEAR(half_diff, expected, 0.01 * std::abs(expected)) << common::kAccelChannelNames[ch];
   }
 }
 
@@ -88,7 +89,7 @@ TEST(ImuUnit, TableRateReachesEachGyroThroughItsMounting) {
     const double expected = 100.0 * gyro.RateCountsPerDps() * p.geometry.R_GB(g)(2, g);
     // Same noise seed in both runs cancels white noise; the 0.1 % FS nonlinearity at 100 °/s is
     // below 0.15 °/s of 100: 0.2 % covers it.
-    EXPECT_NEAR(diff, expected, 0.002 * expected) << kGyroChannelNames[g];
+    EXPECT_NEAR(diff, expected, 0.002 * expected) << common::kGyroChannelNames[g];
   }
 }
 
