@@ -46,24 +46,6 @@ void WriteAtomically(const std::filesystem::path& out, const std::string& text) 
   std::filesystem::rename(temporary, out);
 }
 
-// Checks that `j[key]` exists and has the type `is`; returns it.
-const json& Require(const json& j,
-                    const std::string& key,
-                    bool (json::*is)() const noexcept,
-                    const char* type,
-                    const std::string& path,
-                    const std::string& source) {
-  if (!j.is_object() || !j.contains(key)) {
-    throw AcceptanceFileError(fmt::format("{}: {}.{}: missing", source, path, key));
-  }
-  const json& value = j.at(key);
-  if (!(value.*is)()) {
-    throw AcceptanceFileError(
-        fmt::format("{}: {}.{}: expected {}, got {}", source, path, key, type, value.dump()));
-  }
-  return value;
-}
-
 }  // namespace
 
 json AcceptanceJson(const AcceptanceRun& run,
@@ -141,49 +123,6 @@ std::vector<std::filesystem::path> WriteAcceptanceFiles(const AcceptanceRun& run
     paths.push_back(file);
   }
   return paths;
-}
-
-json ReadAcceptanceFile(const std::filesystem::path& file) {
-  const std::string source = file.string();
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw AcceptanceFileError(source + ": cannot open");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::exception& e) {  // a syntax error, or a number beyond double's range
-    throw AcceptanceFileError(source + ": not JSON: " + e.what());
-  }
-  const std::string format = Require(j, "format", &json::is_string, "a string", "$", source);
-  if (format != kAcceptanceFormatName) {
-    throw AcceptanceFileError(fmt::format(
-        "{}: $.format: expected \"{}\", got \"{}\"", source, kAcceptanceFormatName, format));
-  }
-  const int version =
-      Require(j, "format_version", &json::is_number_integer, "an integer", "$", source);
-  if (version < 1 || version > kAcceptanceFormatVersion) {
-    throw AcceptanceFileError(fmt::format(
-        "{}: $.format_version: {} is not 1...{}", source, version, kAcceptanceFormatVersion));
-  }
-  Require(j, "serial", &json::is_string, "a string", "$", source);
-  Require(j, "kind", &json::is_string, "a string", "$", source);
-  Require(j, "verdict", &json::is_string, "a string", "$", source);
-  const json& run = Require(j, "run", &json::is_object, "an object", "$", source);
-  Require(run, "run_id", &json::is_string, "a string", "$.run", source);
-  Require(run, "recording_sha256", &json::is_string, "a string", "$.run", source);
-  const json& points = Require(j, "points", &json::is_array, "an array", "$", source);
-  for (size_t i = 0; i < points.size(); ++i) {
-    const std::string path = fmt::format("$.points[{}]", i);
-    Require(points[i], "step", &json::is_number_integer, "an integer", path, source);
-    for (const char* key : {"kind", "quantity", "unit", "condition"}) {
-      Require(points[i], key, &json::is_string, "a string", path, source);
-    }
-    for (const char* key :
-         {"chamber_c", "measured", "reference", "error", "std_error", "tolerance"}) {
-      Require(points[i], key, &json::is_number, "a number", path, source);
-    }
-    Require(points[i], "pass", &json::is_boolean, "a boolean", path, source);
-  }
-  return j;
 }
 
 std::vector<std::filesystem::path> FindAcceptanceFiles(const std::filesystem::path& dir) {

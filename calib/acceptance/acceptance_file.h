@@ -5,12 +5,15 @@
 // (temporary file + rename) as <out>/<serial>/acceptance.json. The file holds no time stamp: the
 // same recording judged by the same software gives the same bytes, so the records (keyed by the
 // file's SHA-256) hold it once however often it is judged.
-// The reader is strict: a wrong format or version, a missing key or a wrong type is refused with
-// the file and JSON path (AcceptanceFileError).
+// The reader is strict and typed (AcceptanceFile): a wrong format or version, a missing key or a
+// wrong type is refused with the file and JSON path (AcceptanceFileError). Version 1 files, which
+// lack noise and verdicts, read with noise = std_error and the verdict their pass implies.
 // Also here: the plain-text table `adahrs acceptance` prints.
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,8 +45,49 @@ std::vector<std::filesystem::path> WriteAcceptanceFiles(const AcceptanceRun& run
                                                         const std::string& software_version,
                                                         const std::filesystem::path& out_dir);
 
+/// The recording an acceptance.json judged.
+struct AcceptanceFileRun {
+  std::string dir;
+  std::string run_id;
+  std::string sequence;
+  std::string recording_sha256;
+};
+
+/// One judged point as the file holds it: the point and the words written beside it.
+struct AcceptanceFilePoint {
+  AcceptancePoint point;
+  std::string condition;  ///< "orientation 11, 62.5 deg/s, 25.0 degC" as written
+  std::string verdict;    ///< PointVerdictText as written
+};
+
+/// What the physical limits of the rate points were computed from.
+struct AcceptanceFileLimit {
+  double since_calibration_h = 0.0;
+  double rest_record_s = 0.0;
+  double rest_chamber_c = 0.0;
+};
+
+/// One acceptance.json, read back.
+struct AcceptanceFile {
+  std::filesystem::path source;
+  int format_version = 0;
+  std::string serial;
+  std::string kind;  ///< "imu" | "ads"
+  int mode = 0;
+  std::string software_version;
+  AcceptanceFileRun run;
+  bool pass = false;
+  int points_failed = 0;
+  /// family ("acceleration", "body_rate", ...) -> verdict text -> number of points
+  std::map<std::string, std::map<std::string, int>> point_verdicts;
+  std::optional<AcceptanceFileLimit> physical_limit;
+  std::vector<WorstMargin> worst_margin;
+  std::vector<AcceptanceFilePoint> points;
+  nlohmann::json specification;  ///< Specification::ToJson as written (shown, not judged again)
+};
+
 /// Reads and validates an acceptance.json; throws AcceptanceFileError naming file and JSON path.
-nlohmann::json ReadAcceptanceFile(const std::filesystem::path& file);
+AcceptanceFile ReadAcceptanceFile(const std::filesystem::path& file);
 
 /// Every acceptance.json under `dir` (the layout WriteAcceptanceFiles makes), sorted by path.
 std::vector<std::filesystem::path> FindAcceptanceFiles(const std::filesystem::path& dir);

@@ -83,10 +83,7 @@ void Executor::Run(size_t first_step, std::optional<double> resumed_from_s) {
     if (resumed_from_s) {
       const double now_s = clock_.NowS();
       meta_.AddRejectedInterval(first_step, *resumed_from_s, now_s, "repeated partial step");
-      journal_.Append({{"event", "step_repeated"},
-                       {"t_s", now_s},
-                       {"step", first_step},
-                       {"first_attempt_t_start_s", *resumed_from_s}});
+      journal_.Append(StepRepeated{now_s, first_step, *resumed_from_s});
       journal_.Sync();
       progress_.Note(fmt::format("repeating step {} (its rows since t = {:.2f} s are rejected)",
                                  first_step,
@@ -95,26 +92,20 @@ void Executor::Run(size_t first_step, std::optional<double> resumed_from_s) {
     if (first_action > 0) RestoreState(first_action);
     RunActions(first_action);
   } catch (const RunInterrupted& e) {
-    journal_.Append({{"event", "interrupted"},
-                     {"t_s", clock_.NowS()},
-                     {"action", current_action_},
-                     {"reason", e.what()}});
+    journal_.Append(RunStopped{clock_.NowS(), current_action_, e.what(), false});
     MakeSafe();
     meta_.SetStatus(kStatusInterrupted);
     throw;
   } catch (const std::exception& e) {
     const std::string message =
         dynamic_cast<const RunError*>(&e) ? std::string(e.what()) : Where() + ": " + e.what();
-    journal_.Append({{"event", "aborted"},
-                     {"t_s", clock_.NowS()},
-                     {"action", current_action_},
-                     {"reason", message}});
+    journal_.Append(RunStopped{clock_.NowS(), current_action_, message, true});
     MakeSafe();
     meta_.SetStatus(kStatusAborted);
     throw RunError(message);
   }
   MakeSafe();
-  journal_.Append({{"event", "run_completed"}, {"t_s", clock_.NowS()}});
+  journal_.Append(RunCompleted{clock_.NowS()});
   journal_.Sync();
   meta_.SetStatus(kStatusComplete);
 }
@@ -125,19 +116,14 @@ void Executor::RunActions(size_t first_action) {
     current_action_ = i;
     action_started_s_ = clock_.NowS();
     annotations_.Update([&](RowAnnotations& r) { r.step = static_cast<int>(a.step); });
-    journal_.Append({{"event", "action_started"},
-                     {"t_s", action_started_s_},
-                     {"index", i},
-                     {"step", a.step},
-                     {"action", Describe(a.action)}});
+    journal_.Append(ActionStarted{action_started_s_, i, a.step, Describe(a.action)});
     Report(true);
     Execute(a);
-    journal_.Append(
-        {{"event", "action_completed"}, {"t_s", clock_.NowS()}, {"index", i}, {"step", a.step}});
+    journal_.Append(ActionCompleted{clock_.NowS(), i, a.step});
     const bool step_ends = i + 1 == plan_.actions.size() || plan_.actions[i + 1].step != a.step;
     if (step_ends) {
       recording_.Flush(true);
-      journal_.Append({{"event", "step_completed"}, {"t_s", clock_.NowS()}, {"step", a.step}});
+      journal_.Append(StepCompleted{clock_.NowS(), a.step});
       journal_.Sync();
     }
   }
@@ -197,7 +183,7 @@ void Executor::RestoreState(size_t first_action) {
   if (altitude) Adts().SetAltitude(altitude->alt_ft, altitude->rate_ft_per_min);
   if (airspeed) Adts().SetAirspeed(airspeed->cas_kt, airspeed->rate_kt_per_min);
   if (altitude || airspeed) WaitAdtsStable(0.0);
-  journal_.Append({{"event", "state_restored"}, {"t_s", clock_.NowS()}});
+  journal_.Append(StateRestored{clock_.NowS()});
 }
 
 void Executor::StopTableAndWait() {
@@ -221,10 +207,10 @@ void Executor::StopTableAndWait() {
 }
 
 void Executor::SafeStart() {
-  nlohmann::json event = {{"event", "rig_safe_at_start"}};
+  RigSafeAtStart event;
   if (instruments_.rate_table != nullptr) {
     const double found_dps = instruments_.rate_table->ReadRateDps();
-    event["table_found_dps"] = found_dps;
+    event.table_found_dps = found_dps;
     if (std::abs(found_dps) > options_.table_rate_tolerance_dps) {
       progress_.Note(
           fmt::format("rate table found turning at {:.2f} deg/s: stopping it first", found_dps));
@@ -233,7 +219,7 @@ void Executor::SafeStart() {
   }
   if (instruments_.chamber != nullptr) instruments_.chamber->Hold();
   if (instruments_.adts != nullptr) instruments_.adts->GoToGround();
-  event["t_s"] = clock_.NowS();
+  event.t_s = clock_.NowS();
   journal_.Append(event);
   journal_.Sync();
 }
@@ -243,10 +229,7 @@ void Executor::MakeSafe() {
     try {
       f();
     } catch (const std::exception& e) {
-      journal_.Append({{"event", "safe_stop_failed"},
-                       {"t_s", clock_.NowS()},
-                       {"what", what},
-                       {"reason", e.what()}});
+      journal_.Append(SafeStopFailed{clock_.NowS(), what, e.what()});
       progress_.Note(fmt::format("safe stop: {} failed: {}", what, e.what()));
     }
   };
@@ -261,7 +244,7 @@ void Executor::MakeSafe() {
     attempt(l->role().c_str(), [&] { l->EndAcquisition().get(); });
   }
   attempt("recording flush", [&] { recording_.Flush(true); });
-  journal_.Append({{"event", "rig_safe"}, {"t_s", clock_.NowS()}});
+  journal_.Append(RigSafe{clock_.NowS()});
   journal_.Sync();
 }
 
@@ -423,12 +406,7 @@ void Executor::InterlockFailed(const PlannedAction& a,
     instruments_.rate_table->Stop(options_.safe_stop_accel_dps2);
   const double t_end_s = clock_.NowS();
   meta_.AddRejectedInterval(a.step, t_start_s, t_end_s, kind + " interlock failed");
-  journal_.Append({{"event", "interlock_failed"},
-                   {"t_s", t_end_s},
-                   {"step", a.step},
-                   {"interlock", kind},
-                   {"attempt", attempt},
-                   {"units", failures}});
+  journal_.Append(InterlockFailed{t_end_s, a.step, kind, attempt, failures});
   journal_.Sync();
   const std::string text = fmt::format("{}: {} interlock failed (attempt {} of {}): {}",
                                        Where(),

@@ -25,8 +25,8 @@ Journal::Journal(const std::filesystem::path& run_dir) : path_(run_dir / kJourna
 
 Journal::~Journal() { std::fclose(file_); }
 
-void Journal::Append(const nlohmann::json& event) {
-  const std::string line = event.dump() + "\n";
+void Journal::Append(const JournalEvent& event) {
+  const std::string line = ToJson(event).dump() + "\n";
   if (std::fwrite(line.data(), 1, line.size(), file_) != line.size() || std::fflush(file_) != 0) {
     Fail(path_, "write failed");
   }
@@ -66,11 +66,8 @@ JournalContents ReadJournal(const std::filesystem::path& run_dir) {
       throw JournalError(path.string() + ":" + std::to_string(line) +
                          ": not JSON: " + common::PrintableText(e.what()));
     }
-    if (!event.is_object() || !event.contains("event") || !event["event"].is_string()) {
-      throw JournalError(path.string() + ":" + std::to_string(line) +
-                         ": not an object with a string \"event\"");
-    }
-    contents.events.push_back(std::move(event));
+    contents.events.push_back(
+        JournalEventFromJson(event, path.string() + ":" + std::to_string(line)));
   }
   return contents;
 }

@@ -1,5 +1,5 @@
 // The run's append-only journal, `journal.jsonl` in the run directory: one JSON object per line,
-// each with "event" and the pipeline clock time "t_s" (docs/executor.md lists the events: run
+// each with "event" and the pipeline clock time "t_s" (journal_events.h; docs/executor.md: run
 // started/resumed, action started/completed with its index, step completed, interlock failures,
 // torn rows set aside, aborts and interruptions, run completed). It is what a resume reads to
 // find where the run stopped. Every line is flushed to the kernel as it is appended (a killed
@@ -12,20 +12,14 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include "calib/executor/journal_events.h"
 
 namespace adahrs::calib {
 
 inline constexpr const char* kJournalName = "journal.jsonl";
-
-class JournalError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 class Journal {
  public:
@@ -36,8 +30,8 @@ class Journal {
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
 
-  /// Appends `event` (an object that has "event") as one line and flushes it to the kernel.
-  void Append(const nlohmann::json& event);
+  /// Appends `event` as one line and flushes it to the kernel.
+  void Append(const JournalEvent& event);
   /// Flushes and fsyncs the journal: everything appended so far survives a crash.
   void Sync();
 
@@ -49,12 +43,12 @@ class Journal {
 };
 
 struct JournalContents {
-  std::vector<nlohmann::json> events;
+  std::vector<JournalEvent> events;
   int torn_lines = 0;  ///< 1 when the last line was incomplete (a crash mid-write), else 0
 };
 
 /// Reads `run_dir`/journal.jsonl. Throws JournalError naming the file and line for a missing
-/// file, or a complete line that is not a JSON object with a string "event".
+/// file, or a complete line that is not one of the events (journal_events.h).
 JournalContents ReadJournal(const std::filesystem::path& run_dir);
 
 }  // namespace adahrs::calib

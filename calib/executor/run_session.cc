@@ -226,13 +226,10 @@ void JournalSessionStart(Journal& journal,
                          const hil::Clock& clock,
                          bool resumed,
                          size_t first_step,
-                         std::vector<nlohmann::json> resume_events) {
-  journal.Append({{"event", resumed ? "run_resumed" : "run_started"},
-                  {"t_s", clock.NowS()},
-                  {"utc", hil::UtcNowIso8601()},
-                  {"first_step", first_step}});
-  for (nlohmann::json& e : resume_events) {
-    e["t_s"] = clock.NowS();
+                         std::vector<TornTailSetAside> resume_events) {
+  journal.Append(RunStarted{clock.NowS(), hil::UtcNowIso8601(), first_step, resumed});
+  for (TornTailSetAside& e : resume_events) {
+    e.t_s = clock.NowS();
     journal.Append(e);
   }
   journal.Sync();
@@ -261,7 +258,7 @@ RunSummary Execute(const Session& s,
                    std::optional<hil::RecordingMeta> old_meta,
                    size_t first_step,
                    std::optional<double> repeated_from_s,
-                   std::vector<nlohmann::json> resume_events,
+                   std::vector<TornTailSetAside> resume_events,
                    ProgressSink& progress,
                    const std::atomic<bool>& stop,
                    const NewRunOptions& options) {
@@ -360,14 +357,12 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir,
   s.plan = ExpandSequence(s.sequence, limits, TimingFor(s.station));
   s.run_dir = run_dir;
 
-  std::vector<nlohmann::json> events;
+  std::vector<TornTailSetAside> events;
   const std::filesystem::path imu_csv = StoredCsv(run_dir, hil::kImuCsvName);
   const std::filesystem::path ads_csv = StoredCsv(run_dir, hil::kAdsCsvName);
   for (const std::filesystem::path& file : {imu_csv, ads_csv, run_dir / kJournalName}) {
     if (const auto torn = hil::SetAsideTornTail(file)) {
-      events.push_back({{"event", "torn_tail_set_aside"},
-                        {"file", file.filename().string()},
-                        {"moved_to", torn->filename().string()}});
+      events.push_back({0.0, file.filename().string(), torn->filename().string()});
       progress.Note(fmt::format("torn last line of {} moved to {}", file.string(), torn->string()));
     }
   }

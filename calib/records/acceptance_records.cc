@@ -6,21 +6,19 @@
 namespace adahrs::calib {
 
 AcceptanceRecords AcceptanceRecordsFromFile(const std::filesystem::path& acceptance_json) {
-  const nlohmann::json file = ReadAcceptanceFile(acceptance_json);
+  const AcceptanceFile file = ReadAcceptanceFile(acceptance_json);
   AcceptanceRecords records;
   records.source_sha256 = FileSha256(acceptance_json);
-  const std::string serial = file["serial"].get<std::string>();
-  const std::string run_id = file["run"]["run_id"].get<std::string>();
-  for (const nlohmann::json& p : file["points"]) {
-    records.points.push_back(
-        {serial,
-         run_id,
-         p["quantity"].get<std::string>(),
-         "step " + std::to_string(p["step"].get<int>()) + ", " + p["condition"].get<std::string>(),
-         p["error"].get<double>(),
-         p["tolerance"].get<double>(),
-         p["unit"].get<std::string>(),
-         p["pass"].get<bool>()});
+  for (const AcceptanceFilePoint& read : file.points) {
+    const AcceptancePoint& p = read.point;
+    records.points.push_back({file.serial,
+                              file.run.run_id,
+                              p.quantity,
+                              "step " + std::to_string(p.step) + ", " + read.condition,
+                              p.error,
+                              p.tolerance,
+                              p.unit,
+                              p.pass});
   }
   return records;
 }

@@ -2,18 +2,18 @@
 // (calib/acceptance/acceptance_file.h, docs/acceptance.md), the overall verdict, the worst margin
 // per quantity and one row per judged point — step, kind, quantity, condition, measured,
 // reference, error with its standard error, tolerance, margin (each in the point's unit) and
-// PASS/FAIL. Documents are taken as ReadAcceptanceFile validated them.
+// PASS/FAIL, as ReadAcceptanceFile read them.
 // Left out: figures (the ADS error map and IMU residual figures show the calibration run).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include "calib/acceptance/acceptance_file.h"
 
 namespace adahrs::calib {
 
 /// The section body for the acceptance files of a run (one document per unit).
-std::string AcceptanceSectionBody(const std::vector<nlohmann::json>& documents);
+std::string AcceptanceSectionBody(const std::vector<AcceptanceFile>& files);
 
 }  // namespace adahrs::calib

@@ -113,11 +113,11 @@ std::string Acceptance(const std::filesystem::path& run_dir,
     throw std::runtime_error(acceptance_dir->string() + ": acceptance directory does not exist");
   }
   const std::filesystem::path dir = acceptance_dir.value_or(run_dir / "acceptance");
-  std::vector<nlohmann::json> documents;
+  std::vector<AcceptanceFile> files;
   for (const std::filesystem::path& file : FindAcceptanceFiles(dir)) {
-    documents.push_back(ReadAcceptanceFile(file));
+    files.push_back(ReadAcceptanceFile(file));
   }
-  if (!documents.empty()) return AcceptanceSectionBody(documents);
+  if (!files.empty()) return AcceptanceSectionBody(files);
   if (fit.acceptance) return RenderJsonTables("acceptance", *fit.acceptance);
   return NotAvailable(
       "acceptance.json",

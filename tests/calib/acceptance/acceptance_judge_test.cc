@@ -335,12 +335,27 @@ TEST_F(AcceptanceJudgeTest, AcceptanceFilesRoundTripIntoTheRecordsAndReport) {
   EXPECT_EQ(files[1], dir_ / "run" / "acceptance" / "IMU-0002" / "acceptance.json");
   EXPECT_EQ(FindAcceptanceFiles(dir_ / "run" / "acceptance"), files);
 
-  const nlohmann::json doc = ReadAcceptanceFile(files[1]);
-  EXPECT_EQ(doc["verdict"], "fail");
-  EXPECT_EQ(doc["points_failed"], 12);
-  EXPECT_EQ(doc["run"]["recording_sha256"].get<std::string>().size(), 64u);
-  EXPECT_EQ(doc["points"][0]["pass"], false);  // step 1, accel_x at +1.5 mg
-  EXPECT_EQ(doc["points"][0]["orientation"], 11);
+  const AcceptanceFile doc = ReadAcceptanceFile(files[1]);
+  EXPECT_FALSE(doc.pass);
+  EXPECT_EQ(doc.points_failed, 12);
+  EXPECT_EQ(doc.run.recording_sha256.size(), 64u);
+  ASSERT_EQ(doc.points.size(), run.units[1].points.size());
+  EXPECT_FALSE(doc.points[0].point.pass);  // step 1, accel_x at +1.5 mg
+  EXPECT_EQ(doc.points[0].point.orientation, 11);
+  // Read back, every judged point is the one judged: the file loses nothing the judge said.
+  for (size_t i = 0; i < doc.points.size(); ++i) {
+    const AcceptancePoint& judged = run.units[1].points[i];
+    const AcceptancePoint& read = doc.points[i].point;
+    EXPECT_EQ(read.Condition(), judged.Condition()) << i;
+    EXPECT_EQ(doc.points[i].condition, judged.Condition()) << i;
+    EXPECT_EQ(read.error, judged.error) << i;
+    EXPECT_EQ(read.noise, judged.noise) << i;
+    EXPECT_EQ(read.physical_limit, judged.physical_limit) << i;
+    EXPECT_EQ(read.verdict(), judged.verdict()) << i;
+    EXPECT_EQ(doc.points[i].verdict, PointVerdictText(judged.verdict())) << i;
+  }
+  ASSERT_EQ(doc.worst_margin.size(), run.units[1].WorstMargins().size());
+  EXPECT_EQ(doc.worst_margin[0].point, run.units[1].WorstMargins()[0].point);
 
   RecordsStore store(dir_ / "records.sqlite");
   for (const auto& file : files) {
@@ -397,6 +412,19 @@ TEST_F(AcceptanceJudgeTest, MalformedAcceptanceFileIsRefusedNamingThePath) {
                 AllOf(HasSubstr(files[0].string()),
                       HasSubstr("$.points[3].error"),
                       HasSubstr("expected a number")));
+  }
+  // A verdict that its points contradict (an edited file) is refused, not shown as written.
+  doc = nlohmann::json::parse(std::ifstream(files[1]));
+  doc["verdict"] = "pass";
+  std::ofstream(files[1]) << doc.dump();
+  try {
+    ReadAcceptanceFile(files[1]);
+    FAIL() << "accepted";
+  } catch (const AcceptanceFileError& e) {
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr(files[1].string()),
+                      HasSubstr("$.verdict"),
+                      HasSubstr("disagrees with its points")));
   }
 }
 

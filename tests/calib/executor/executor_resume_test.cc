@@ -72,7 +72,8 @@ std::pair<std::string, std::string> CompleteMembers(const std::filesystem::path&
 bool JournalHasStepCompleted(const std::filesystem::path& run_dir, int step) {
   if (!std::filesystem::exists(run_dir / kJournalName)) return false;
   for (const auto& e : ReadJournal(run_dir).events) {
-    if (e["event"] == "step_completed" && e["step"] == step) return true;
+    const auto* completed = std::get_if<StepCompleted>(&e);
+    if (completed != nullptr && completed->step == static_cast<size_t>(step)) return true;
   }
   return false;
 }
@@ -152,7 +153,7 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   EXPECT_EQ(rec.meta.rejected_intervals[0].reason, "repeated partial step");
   bool repeat_journaled = false;
   for (const auto& e : ReadJournal(run_dir).events)
-    repeat_journaled |= e["event"] == "step_repeated";
+    repeat_journaled |= std::holds_alternative<StepRepeated>(e);
   EXPECT_TRUE(repeat_journaled);
   // Time keeps increasing across the resume.
   for (size_t i = 1; i < rec.imu.size(); ++i) {

@@ -142,10 +142,11 @@ TEST(ExecutorRig, ATableLeftTurningIsStoppedBeforeTheFirstStep) {
   for (const auto& r : tagged.at({"IMU-0001", 1})) ASSERT_NEAR(r.table_rate_dps, 0.0, 0.01);
   const JournalContents journal = ReadJournal(options.run_dir);
   const auto safe = std::find_if(journal.events.begin(), journal.events.end(), [](const auto& e) {
-    return e["event"] == "rig_safe_at_start";
+    return std::holds_alternative<RigSafeAtStart>(e);
   });
   ASSERT_NE(safe, journal.events.end());
-  EXPECT_NEAR((*safe)["table_found_dps"].get<double>(), 50.0, 0.1);
+  ASSERT_TRUE(std::get<RigSafeAtStart>(*safe).table_found_dps.has_value());
+  EXPECT_NEAR(*std::get<RigSafeAtStart>(*safe).table_found_dps, 50.0, 0.1);
   EXPECT_THAT(progress.notes, ::testing::Contains(HasSubstr("rate table found turning at 50")));
 }
 
