@@ -1,4 +1,4 @@
-// ADS calibration points from a recording (docs/recording-format.md, contract C2): the rows of one
+// ADS calibration points from a recording (docs/recording-format.md): the rows of one
 // unit whose TAG is a step's TAG (non-zero) and that lie outside every rejected interval of
 // meta.json are that step's calibration data; each step's rows are averaged into one point.
 //

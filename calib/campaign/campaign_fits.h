@@ -1,5 +1,5 @@
 // The fitting stage of a calibration campaign: recordings in, one constants.json per unit out
-// (contract C3, constants_file.h), written to `<fit_dir>/<serial>.json`.
+// (constants_file.h, docs/constants-file.md), written to `<fit_dir>/<serial>.json`.
 //   IMU: FitImuRuns (imu_strategy.h) over the thermal and sensor-calibration runs together, with
 //        the strategy given (the reference method or the improved joint fit);
 //   ADS: a 10-term cubic strategy by name (reference_ads_strategy.h, tolerance_ads_strategy.h) on

@@ -1,4 +1,4 @@
-// constants.json (contract C3, docs/constants-file.md): one file per calibrated unit holding the
+// constants.json (docs/constants-file.md): one file per calibrated unit holding the
 // double-precision firmware constants (firmware_model/calibration_constants.h) with the 1-sigma
 // standard error of every number, the strategy that produced them, and the provenance (the
 // recordings' SHA-256 and sequence names) needed to reproduce or audit them.

@@ -1,7 +1,7 @@
 // The checksum that ties constants (constants.json provenance) to the recording they came from:
 // SHA-256 over the bytes of meta.json, imu.csv and ads.csv of a run directory as they are stored
 // (imu.csv.gz and ads.csv.gz when compressed: the compressed bytes), concatenated in that order
-// (contract C3), computed with OpenSSL's libcrypto. Equal to
+// (docs/constants-file.md), computed with OpenSSL's libcrypto. Equal to
 // `cat meta.json imu.csv ads.csv | sha256sum` (or `... imu.csv.gz ads.csv.gz ...`).
 // Not covered: truth/ (simulation only, never an input of calibration), any other file in the run
 // directory. meta.json is rewritten while a run is in progress, so a running recording's checksum

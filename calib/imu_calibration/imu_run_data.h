@@ -1,5 +1,5 @@
-// The calibration data of each IMU in one or more recordings (docs/recording-format.md, contract
-// C2), selected as the executor defines it: the rows of a step are those whose TAG equals the
+// The calibration data of each IMU in one or more recordings (docs/recording-format.md), selected
+// as the executor defines it: the rows of a step are those whose TAG equals the
 // step's TAG (EffectiveTags of meta.json's sequence), of the step's index, not inside one of
 // meta.json's rejected intervals for that step. Grouped per unit serial and per acquisition:
 //   accel step       one acquisition (its orientation)

@@ -1,4 +1,4 @@
-// Test helper: makes IMU recordings in-process exactly as the executor writes them (contract C2)
+// Test helper: makes IMU recordings in-process exactly as the executor writes them (docs/recording-format.md)
 // without a rig: the product's in-process runner (proving/studies/imu_run_simulator.h) drives the
 // simulated units through a sequence and every packet is written with hil::RecordingWriter.
 // Time is compressed where the physics allows it: target_temperature soaks last `soak_frames`, and

@@ -1,4 +1,4 @@
-// constants.json (contract C3): round trip, and the strict reader refusing each kind of bad input
+// constants.json (docs/constants-file.md): round trip, and the strict reader refusing each kind of bad input
 // with the file and JSON path in the message.
 #include "calib/constants/constants_file.h"
 
