@@ -1,53 +1,16 @@
-// Acceptance judging (docs/acceptance.md): a calibrated unit's own compensated output,
-// recorded during an acceptance sequence (recording format 2, docs/recording-format.md), against
-// the REFERENCE the instruments report — never simulator truth — and the specification
-// (specification.h). Rows of a step are those with the step's TAG, of the step's index, outside
-// meta.json's rejected intervals (as the executor defines them).
-//
-// Units of meta.json whose kind is the sequence's unit_kind are judged, each per acquisition
-// ("point"), one judgement per quantity:
-//   accel step            orientation from the row's commanded fixture code; reference
-//                         f_B = up axis * local gravity (meta.json local_gravity_mps2) in g;
-//                         accel_x, accel_y, accel_z in mg (1 mg = 9.80665e-3 m/s^2)
-//   gyro step             one point per commanded rate (rows grouped by the table's REPORTED rate
-//                         within 1 deg/s, matched to the nearest command); reference per row
-//                         w_B = up axis * table_rate_dps, the other axes 0; rate_x, rate_y, rate_z
-//   cross_axis step       per (orientation, rate): at rest as an accel point, at rate as a gyro one
-//   thermal_profile step  one point per 5 degC bin [5k, 5k+5) of the chamber's reported
-//                         temperature: the accel and rate quantities of the unit at rest in its
-//                         orientation; a bin with fewer than kMinThermalBinPackets is not judged
-//   ADS log step          altitude against ISA pressure altitude of ps_ref_pa (sensor_sim
-//                         atmosphere) and, when the aimed airspeed is inside 30...450 kt, airspeed
-//                         against the calibrated airspeed of qc_ref_pa (sensor_sim air_data)
-// The input a tolerance is looked up at is the sequence's command (orientation, rate, the last
-// altitude/airspeed aim before the log step), the reference is what the instruments reported.
-// Statistic: the mean over the point's packets of (measured - reference) per packet, with its
-// standard error s/sqrt(n) (packets taken as independent: the units' output filters, 3.2 ms
-// accel and 4 ms gyro, are shorter than the 10 ms packet period). Verdict: pass when
-// |mean error| <= tolerance. When the unit has a rest record in the run (rest_stability.h), the
-// point's noise is max(s/sqrt(n), the rest record's Allan deviation at the point's duration),
-// which counts the correlated part the independent-packet error misses, and each rate point
-// carries its physical limit: the 3-sigma error point noise and bias wander since calibration
-// impose on a unit with no systematic residual. A rate point outside the specification is then
-// "outside specification, within the physical limit" or "outside specification and the physical
-// limit"; the specification stays the verdict (pass), the limit says what it can be held to.
-// "beyond_noise" says the verdict holds with 2 noise sigmas to spare.
-// Measured quantities by mode: IMU mode 3 (fully calibrated) A (m/s^2) and G (deg/s); IMU mode 2
-// (sensor calibrated) the mean of each axis's two channels (g) and the Eq. 23 rates — judged
-// without the cross-axis correction, which mode 2 does not apply; ADS mode 1 alt_ft and cas_kt.
-// Earth rate (15.04 deg/h, up to 0.0042 deg/s, 28 % of the 0.015 deg/s tolerance) is NOT added to
-// the reference, as the reference method judges against the table rate alone: the calibration's
-// 0 deg/s normalisation absorbed the Earth rate of its own orientation into the null, and a real
-// rig's remaining Earth-rate error counts against the unit (docs/acceptance.md).
-// Refused (AcceptanceInputError, naming the run, unit and step): a recording the reader refuses
-// (hil::RecordingError passes through with file, line, column), meta.json without sequence,
-// units or (IMU) local gravity; a unit of meta.json with no rows in an acquiring step or a gyro
-// command without rows; rows in raw mode (0) or IMU thermal mode (1), which carry no engineering
-// units; a step whose rows mix modes; an orientation code that is not 11...32; a point's mean
-// chamber temperature outside -40...+85 degC by more than kRatingMarginC; an input outside the
-// specification's operating limits.
-// Not judged: heading and attitude (no attitude solution), accelerations during rotation,
-// rates in accel steps, Mach/TAS.
+// Acceptance judging: a calibrated unit's own compensated output, recorded during an acceptance
+// sequence, against the reference the instruments report (never simulator truth) and the
+// specification (specification.h). Rows of a step are those with the step's TAG and index,
+// outside meta.json's rejected intervals. One point per acquisition and quantity: accel and
+// cross_axis steps at rest (f_B = up axis * local gravity, mg), gyro steps per commanded rate
+// (w_B = up axis * table_rate_dps, deg/s), thermal_profile steps per 5 degC chamber bin, ADS log
+// steps in ft and kt (ISA pressure altitude, calibrated airspeed). Statistic: mean of (measured -
+// reference) per packet with its standard error; pass when |mean error| <= tolerance; with a
+// rest record, rate points carry their physical limit (rest_stability.h).
+// Frames: body axes B of the IMU; units in each point's `unit`.
+// Derivations, mode by mode quantities, Earth rate, refusals: docs/acceptance.md ("What is
+// compared with what", "Rate points", "Refused input").
+// Left out: heading and attitude, accelerations during rotation, rates in accel steps, Mach/TAS.
 #pragma once
 
 #include <filesystem>
