@@ -584,6 +584,7 @@ BridgeResult DiagnoseBridge(Bridge b,
   const std::vector<int> base = Range(bc.layout.baseline);
   out.summary.channel = b.channel;
   out.summary.unit = "Pa";
+  out.summary.residuals = ChannelFitSummary::Residuals::kPerCalibrationPoint;
   out.summary.held_out_rms_baseline = HeldOutRms(bc.fit, selected_fit, false, pa);
   out.summary.held_out_rms_final = HeldOutRms(bc.fit, selected_fit, true, pa);
   for (const auto& [a, c] : bc.layout.terms)

@@ -78,7 +78,7 @@ std::string Figures(const UnitDiagnosis& u) {
     for (const Unexplained& x : u.unexplained) found = found || x.channel == c.channel;
     if (!found || c.plot_t_s.empty()) continue;
     calib::Plot p;
-    const bool points = c.unit == "Pa";
+    const bool points = c.residuals == ChannelFitSummary::Residuals::kPerCalibrationPoint;
     p.title = fmt::format("{} {}: residual of each {}",
                           u.serial,
                           c.channel,

@@ -1,5 +1,5 @@
-// What a diagnosis says of one unit (docs/diagnose.md "diagnosis.json"): the effects found with their
-// components and standard errors in physical units, the structure no candidate explains, the
+// What a diagnosis says of one unit (docs/diagnose.md "diagnosis.json"): the effects found with
+// their components and standard errors in physical units, the structure no candidate explains, the
 // smallest size each untested or absent effect would have been found at, and each channel's fit.
 // The IMU diagnosis (imu_diagnosis.h) and the ADS one (ads_diagnosis.h) both fill it; ToJson is
 // the diagnosis.json schema.
@@ -59,6 +59,9 @@ struct ChannelFitSummary {
   double held_out_rms_final = 0.0;
   double white_noise_rms = 0.0;  ///< what white noise alone would leave in a cell mean, median
   std::vector<std::string> baseline_terms;
+  /// What one residual value is the mean of: a 1 s cell of rows (IMU, channel CSVs), or an ADS
+  /// calibration point (a step's rows), which the report's figure says.
+  enum class Residuals { kPerCell, kPerCalibrationPoint } residuals = Residuals::kPerCell;
   /// For the report's figures (not in ToJson): cell times, thermometer temperature and the
   /// residual of the baseline and of the final model, channel unit, at most kPlotCells cells.
   std::vector<double> plot_t_s, plot_temp_c, plot_residual_baseline, plot_residual_final;
