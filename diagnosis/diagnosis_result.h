@@ -17,7 +17,7 @@ struct FindingComponent {
   std::string name;  ///< "delay", "x", "tc1", ...
   double magnitude = 0.0;
   double standard_error = 0.0;
-  std::string unit;  ///< "s", "mg", "dps", "degC", "ppm/degC", "ppm/degC^2", "mg/g^2", "dps/g"
+  std::string unit;  ///< "s", "mg", "deg/s", "degC", "ppm/degC", "ppm/degC^2", "mg/g^2", "deg/s/g"
   nlohmann::json ToJson() const;
 };
 

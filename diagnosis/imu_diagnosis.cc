@@ -244,7 +244,7 @@ double PhysicalScale(int ch, const BaselineState& st) {
   return 1000.0 / (sens > 0.0 ? sens : kAccelDatasheetDutyPerG);
 }
 
-std::string RmsUnit(int ch) { return common::IsGyroChannel(ch) ? "dps" : "mg"; }
+std::string RmsUnit(int ch) { return common::IsGyroChannel(ch) ? "deg/s" : "mg"; }
 
 TermTest RunTest(const ClusteredLeastSquares& ls,
                  const std::vector<int>& selected,
@@ -280,7 +280,7 @@ std::vector<FindingComponent> Components(const Candidate& cand,
     }
     if (cand.effect == Effect::kGSensitivity) {
       scale = phys;
-      unit = "dps/g";
+      unit = "deg/s/g";
     }
     if (cand.effect == Effect::kCrossAxisTempco) {
       scale = 1e6;
@@ -352,7 +352,7 @@ std::string Words(const Candidate& cand, const std::vector<FindingComponent>& c,
     if (std::abs(c[i].magnitude) > std::abs(c[big].magnitude)) big = i;
   }
   return fmt::format(
-      "{} responds {:.3g} ± {:.2g} deg/s per g along {}{} (x {:.3g}, y {:.3g}, z {:.3g} dps/g): "
+      "{} responds {:.3g} ± {:.2g} deg/s per g along {}{} (x {:.3g}, y {:.3g}, z {:.3g} deg/s/g): "
       "gyro g-sensitivity is missing from the model",
       name,
       std::abs(c[big].magnitude),
@@ -508,7 +508,7 @@ void DiagnoseRipple(const DiagnosisData& data,
   f.wald_p_value = r.p_value;
   f.held_out_rms_before = r.held_out_rms_before_dps;
   f.held_out_rms_after = r.held_out_rms_after_dps;
-  f.rms_unit = "dps (amplitude at the revolution frequency)";
+  f.rms_unit = "deg/s (amplitude at the revolution frequency)";
   for (int seg : r.strongest_segments)
     f.evidence.push_back(data.segments[static_cast<size_t>(seg)].label);
   f.words = fmt::format(

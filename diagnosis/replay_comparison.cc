@@ -122,7 +122,7 @@ ChannelReplayFit CompareChannel(const std::string& serial,
   fit.channel = imu ? common::kImuChannelNames[ch] : kAdsChannelNames[ch];
   double scale = 1.0;  // channel unit per mean value
   if (imu) {
-    fit.unit = ch < 6 ? "mg" : "dps";
+    fit.unit = ch < 6 ? "mg" : "deg/s";
   } else {
     const double codes_per_pa = CodesPerPa(rec, serial, ch);
     fit.unit = codes_per_pa != 0.0 ? "Pa" : "code";
@@ -137,7 +137,7 @@ ChannelReplayFit CompareChannel(const std::string& serial,
     AcquisitionResidual res;
     res.label = fmt::format("step {} tag {}", std::get<1>(key), std::get<2>(key));
     if (imu && std::get<3>(key) != 0)
-      res.label += fmt::format(" at {:g} dps", 0.1 * static_cast<double>(std::get<3>(key)));
+      res.label += fmt::format(" at {:g} deg/s", 0.1 * static_cast<double>(std::get<3>(key)));
     res.base = (r.Mean() - rb.Mean()) * scale;
     res.model = (r.Mean() - rm.Mean()) * scale;
     res.noise_se =

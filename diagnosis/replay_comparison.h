@@ -30,7 +30,7 @@ struct AcquisitionResidual {
 
 struct ChannelReplayFit {
   std::string channel;
-  std::string unit;  ///< "mg", "dps" or "Pa"
+  std::string unit;  ///< "mg", "deg/s" or "Pa"
   double rms_base = 0.0;
   double rms_model = 0.0;
   double rms_noise = 0.0;  ///< RMS of the acquisitions' standard errors: what noise alone leaves

@@ -173,7 +173,7 @@ TEST(ReplayCheck, ComparesAcquisitionMeansInPhysicalUnits) {
   EXPECT_EQ(channels[0].acquisitions.size(), 2u);
   EXPECT_NEAR(channels[0].acquisitions[0].base, -10.0, 1e-6);
   EXPECT_EQ(channels[6].channel, "gx");
-  EXPECT_EQ(channels[6].unit, "dps");
+  EXPECT_EQ(channels[6].unit, "deg/s");
   EXPECT_NEAR(channels[6].rms_base, 20972.0 / 20971.52, 1e-9);
   EXPECT_NEAR(channels[6].rms_model, 2097.0 / 20971.52, 1e-9);
   // Rows alternate ±500 counts: each mean has a standard error of 500/√99·√(100/100)/√100.
