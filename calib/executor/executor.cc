@@ -406,7 +406,7 @@ void Executor::InterlockFailed(const PlannedAction& a,
     instruments_.rate_table->Stop(options_.safe_stop_accel_dps2);
   const double t_end_s = clock_.NowS();
   meta_.AddRejectedInterval(a.step, t_start_s, t_end_s, kind + " interlock failed");
-  journal_.Append(InterlockFailed{t_end_s, a.step, kind, attempt, failures});
+  journal_.Append(calib::InterlockFailed{t_end_s, a.step, kind, attempt, failures});
   journal_.Sync();
   const std::string text = fmt::format("{}: {} interlock failed (attempt {} of {}): {}",
                                        Where(),
