@@ -10,6 +10,7 @@
 
 #include "common/imu_layout.h"
 #include "diagnosis/clustered_least_squares.h"
+#include "diagnosis/imu_effects.h"
 #include "diagnosis/slow_noise.h"
 #include "diagnosis/structure_location.h"
 #include "diagnosis/term_selection.h"
@@ -22,40 +23,9 @@ using nlohmann::json;
 constexpr double kTempRef_c = 25.0;
 constexpr double kTempHalfSpan_c = 62.5;
 constexpr double kRateFullScale_dps = 150.0;
-constexpr std::array<double, 4> kWarmUpTau_s = {150.0, 300.0, 600.0, 1200.0};
 
 // Column indices of the baseline, per channel kind.
 enum Baseline { kOffset = 0, kTemp1, kTemp2, kTemp3, kStim0, kStim1, kStim2, kRate2, kRate3 };
-
-enum class Effect {
-  kDieLag,
-  kScaleTempco,
-  kGSensitivity,
-  kThermalHysteresis,
-  kWarmUp,
-  kAccelNonlinearity,
-  kCrossAxisTempco
-};
-
-const char* EffectName(Effect e) {
-  switch (e) {
-    case Effect::kDieLag:
-      return "die_thermal_lag";
-    case Effect::kScaleTempco:
-      return "scale_factor_tempco";
-    case Effect::kGSensitivity:
-      return "gyro_g_sensitivity";
-    case Effect::kThermalHysteresis:
-      return "thermal_hysteresis";
-    case Effect::kWarmUp:
-      return "self_heating_warm_up";
-    case Effect::kAccelNonlinearity:
-      return "accel_nonlinearity";
-    case Effect::kCrossAxisTempco:
-      return "residual_cross_axis_coupling";
-  }
-  return "?";
-}
 
 struct Candidate {
   Effect effect;
@@ -77,6 +47,8 @@ struct Layout {
   std::vector<Candidate> candidates;
 };
 
+const char* EffectName(Effect e) { return EffectRow(e).name; }
+
 Layout MakeLayout(int channel, bool hysteresis) {
   Layout l;
   l.channel = channel;
@@ -88,25 +60,10 @@ Layout MakeLayout(int channel, bool hysteresis) {
     for (const char* n : {"f_x", "f_y", "f_z"}) l.names.push_back(n);
   }
   l.baseline = static_cast<int>(l.names.size());
-  // A gyro's thermometer is its own die's TEMP pin: no lag or warm-up can open between the two.
-  if (!gyro) l.candidates.push_back({Effect::kDieLag, {"delay"}, {}, {}});
-  l.candidates.push_back({Effect::kScaleTempco, {"tc1", "tc2"}, {}, {}});
-  if (gyro) {
-    std::vector<std::string> off_axes;
-    for (int j = 0; j < 3; ++j) {
-      if (j != common::kImuChannels[channel].axis) off_axes.push_back(std::string(1, "xyz"[j]));
-    }
-    l.candidates.push_back({Effect::kCrossAxisTempco, off_axes, {}, {}});
-  }
-  if (gyro) l.candidates.push_back({Effect::kGSensitivity, {"x", "y", "z"}, {}, {}});
-  // An accelerometer's thermometer is another die: the lag's transients after each ramp carry the
-  // sense of the last change, and a hysteresis could not be told from them.
-  if (hysteresis && gyro)
-    l.candidates.push_back({Effect::kThermalHysteresis, {"half_loop"}, {}, {}});
-  if (!gyro) {
-    for (double tau : kWarmUpTau_s)
-      l.candidates.push_back({Effect::kWarmUp, {"initial_excess"}, tau, {}});
-    l.candidates.push_back({Effect::kAccelNonlinearity, {"k2"}, {}, {}});
+  for (const ImuEffect& e : ImuEffects()) {
+    if (!(gyro ? e.on_gyro : e.on_accel) || (e.needs_hysteresis_option && !hysteresis)) continue;
+    if (e.taus_s.empty()) l.candidates.push_back({e.effect, e.components(channel), {}, {}});
+    for (double tau : e.taus_s) l.candidates.push_back({e.effect, e.components(channel), tau, {}});
   }
   for (Candidate& c : l.candidates) {
     for (const std::string& comp : c.components) {
@@ -119,13 +76,16 @@ Layout MakeLayout(int channel, bool hysteresis) {
 }
 
 // Every (channel, effect) test of a unit: the cell model's effects and table_rate_ripple on each
-// gyro. The warm-up's time constants count as one test: they are nearly collinear alternatives of
-// one effect (the clean false-discovery rate in docs/diagnose.md is measured with this count).
+// gyro. An effect's alternatives (the warm-up's time constants) count as one test: they are
+// nearly collinear (the clean false-discovery rate in docs/diagnose.md is measured with this
+// count).
 int CandidateTests(bool hysteresis) {
   int n = 0;
   for (int ch = 0; ch < kImuChannels; ++ch) {
-    for (const Candidate& c : MakeLayout(ch, hysteresis).candidates)
-      n += c.effect != Effect::kWarmUp || c.tau_s == kWarmUpTau_s.front() ? 1 : 0;
+    for (const Candidate& c : MakeLayout(ch, hysteresis).candidates) {
+      const std::vector<double>& taus = EffectRow(c.effect).taus_s;
+      n += taus.empty() || c.tau_s == taus.front() ? 1 : 0;
+    }
     n += common::IsGyroChannel(ch) ? 1 : 0;
   }
   return n;
@@ -151,32 +111,17 @@ Eigen::VectorXd Row(const Layout& layout, const DiagnosisCell& c, const Baseline
   }
   const double dudt_per_c =
       (state.temp[0] + 2.0 * state.temp[1] * s + 3.0 * state.temp[2] * s * s) / kTempHalfSpan_c;
-  const double stim_part = state.stim.dot(stim);
-  const double dt_c = c.temp_c[k] - kTempRef_c;
+  const double own_sensitivity = std::abs(state.stim[common::kImuChannels[ch].axis]);
   for (const Candidate& cand : layout.candidates) {
-    const int col = cand.columns[0];
-    if (cand.effect == Effect::kDieLag) x[col] = -dudt_per_c * c.dtemp_dt_c_per_s[k];
-    if (cand.effect == Effect::kThermalHysteresis) x[col] = c.last_change_sense[k];
-    if (cand.effect == Effect::kWarmUp)
-      x[col] = dudt_per_c * std::exp(-c.t_since_start_s / *cand.tau_s);
-    if (cand.effect == Effect::kScaleTempco) {
-      x[col] = stim_part * dt_c;
-      x[col + 1] = stim_part * dt_c * dt_c;
-    }
-    if (cand.effect == Effect::kAccelNonlinearity) {
-      const double f = c.f_B_g[common::kImuChannels[ch].axis];
-      x[col] = std::abs(state.stim[common::kImuChannels[ch].axis]) * f * f;
-    }
-    if (cand.effect == Effect::kGSensitivity) {
-      for (int j = 0; j < 3; ++j) x[col + j] = c.f_B_g[j];
-    }
-    if (cand.effect == Effect::kCrossAxisTempco) {
-      const double sens = std::abs(state.stim[common::kImuChannels[ch].axis]);
-      int n = 0;
-      for (int j = 0; j < 3; ++j) {
-        if (j != common::kImuChannels[ch].axis) x[col + n++] = sens * stim[j] * dt_c;
-      }
-    }
+    const EffectInputs in{c,
+                          ch,
+                          dudt_per_c,
+                          c.temp_c[k] - kTempRef_c,
+                          stim,
+                          state.stim.dot(stim),
+                          own_sensitivity,
+                          cand.tau_s};
+    EffectRow(cand.effect).columns(in, x.data() + cand.columns[0]);
   }
   return x;
 }
@@ -262,106 +207,16 @@ std::vector<FindingComponent> Components(const Candidate& cand,
   std::vector<FindingComponent> out;
   for (size_t i = 0; i < cand.components.size(); ++i) {
     const int k = static_cast<int>(i);
-    double scale = 1.0;
-    std::string unit;
-    if (cand.effect == Effect::kDieLag) unit = "s";
-    if (cand.effect == Effect::kThermalHysteresis) {
-      scale = phys;
-      unit = RmsUnit(ch);
-    }
-    if (cand.effect == Effect::kWarmUp) unit = "degC";
-    if (cand.effect == Effect::kScaleTempco) {
-      scale = 1e6;
-      unit = i == 0 ? "ppm/degC" : "ppm/degC^2";
-    }
-    if (cand.effect == Effect::kAccelNonlinearity) {
-      scale = 1000.0;
-      unit = "mg/g^2";
-    }
-    if (cand.effect == Effect::kGSensitivity) {
-      scale = phys;
-      unit = "deg/s/g";
-    }
-    if (cand.effect == Effect::kCrossAxisTempco) {
-      scale = 1e6;
-      unit = "ppm/degC";
-    }
-    out.push_back({cand.components[i], theta[k] * scale, se[k] * scale, unit});
+    const EffectUnit u = EffectRow(cand.effect).unit(i, ch, phys);
+    out.push_back({cand.components[i], theta[k] * u.scale, se[k] * u.scale, u.unit});
   }
   return out;
 }
 
 std::string Words(const Candidate& cand, const std::vector<FindingComponent>& c, int ch) {
-  const std::string name = common::kImuChannelNames[ch];
   const std::string thermometer =
       std::string("TEMP ") + "xyz"[common::kImuChannels[ch].thermometer];
-  auto pm = [](const FindingComponent& x) {
-    return fmt::format("{:.3g} ± {:.2g} {}", x.magnitude, x.standard_error, x.unit);
-  };
-  if (cand.effect == Effect::kDieLag) {
-    return fmt::format(
-        "{} follows its thermometer ({}) {} late: die thermal lag between the sensor and its "
-        "thermometer is missing from the model",
-        name,
-        thermometer,
-        pm(c[0]));
-  }
-  if (cand.effect == Effect::kThermalHysteresis) {
-    return fmt::format(
-        "{} reads {} higher after heating than after cooling (half the loop): thermal "
-        "hysteresis is missing from the model",
-        name,
-        pm(c[0]));
-  }
-  if (cand.effect == Effect::kWarmUp) {
-    return fmt::format(
-        "{}'s die starts {} above its thermometer ({}) at power-on and settles with tau ≈ "
-        "{:.0f} s: self-heating warm-up is missing from the model",
-        name,
-        pm(c[0]),
-        thermometer,
-        *cand.tau_s);
-  }
-  if (cand.effect == Effect::kScaleTempco) {
-    return fmt::format(
-        "{}'s scale factor changes {} and {}: scale factor vs temperature is missing from "
-        "the model",
-        name,
-        pm(c[0]),
-        pm(c[1]));
-  }
-  if (cand.effect == Effect::kAccelNonlinearity) {
-    return fmt::format(
-        "{} deviates {} of its input squared: second-order accelerometer nonlinearity is "
-        "missing from the model",
-        name,
-        pm(c[0]));
-  }
-  if (cand.effect == Effect::kCrossAxisTempco) {
-    return fmt::format(
-        "{}'s response to its cross axes changes with temperature ({} {}, {} {}, of the input "
-        "along that axis): residual cross-axis coupling is missing from the model",
-        name,
-        c[0].name,
-        pm(c[0]),
-        c[1].name,
-        pm(c[1]));
-  }
-  size_t big = 0;
-  for (size_t i = 1; i < c.size(); ++i) {
-    if (std::abs(c[i].magnitude) > std::abs(c[big].magnitude)) big = i;
-  }
-  return fmt::format(
-      "{} responds {:.3g} ± {:.2g} deg/s per g along {}{} (x {:.3g}, y {:.3g}, z {:.3g} deg/s/g): "
-      "gyro g-sensitivity is missing from the model",
-      name,
-      std::abs(c[big].magnitude),
-      c[big].standard_error,
-      c[big].magnitude >= 0 ? "+" : "-",
-      "XYZ"[big],
-      c[0].magnitude,
-      c[1].magnitude,
-      c[2].magnitude);
+  return EffectRow(cand.effect).words(common::kImuChannelNames[ch], thermometer, c, cand.tau_s);
 }
 
 // Segments where the term's contribution is largest (mean |x theta| over the segment's cells).
@@ -560,9 +415,7 @@ ChannelModel FitBaseline(const DiagnosisData& data,
 // the last temperature change, the time since power-on) or between the few input levels the
 // capture quantises (f_axis^2 is 0 or 1 under gravity): tested against the recording's own slow
 // noise as well as by the jackknife (slow_noise.h).
-bool SlowCandidate(Effect e) {
-  return e == Effect::kThermalHysteresis || e == Effect::kWarmUp || e == Effect::kAccelNonlinearity;
-}
+bool SlowCandidate(Effect e) { return EffectRow(e).slow; }
 
 // Variance of the estimate of column `subset[pos]` in `fit` under the residual's measured wander,
 // its white noise and, for the nonlinearity, the capture quantiser's bias per input level: an
@@ -596,7 +449,7 @@ double SlowVariance(const DiagnosisData& data,
     cells.push_back({c.run, c.segment, c.t_mean_s, r[i], c.y_var[ch] / std::max(1, c.rows), a});
   }
   const double q = data.output_quantum[ch];
-  const double offset_var = cand.effect == Effect::kAccelNonlinearity ? q * q / 12.0 : 0.0;
+  const double offset_var = EffectRow(cand.effect).quantised_input ? q * q / 12.0 : 0.0;
   return SlowNoiseVariance(cells, offset_var);
 }
 
@@ -660,7 +513,8 @@ TermSelection SelectCandidates(const DiagnosisData& data,
   std::vector<std::vector<int>> columns;
   for (const Candidate& c : candidates) columns.push_back(c.columns);
   const auto one_per_effect = [&](int k, const std::vector<int>& chosen) {
-    if (candidates[static_cast<size_t>(k)].effect == Effect::kCrossAxisTempco && !cross_excited)
+    if (EffectRow(candidates[static_cast<size_t>(k)].effect).needs_cross_excitation &&
+        !cross_excited)
       return false;
     return std::none_of(chosen.begin(), chosen.end(), [&](int c) {
       return candidates[static_cast<size_t>(c)].effect == candidates[static_cast<size_t>(k)].effect;
@@ -739,7 +593,7 @@ DetectionLimit CandidateLimit(const DiagnosisData& data,
       EffectName(cand.effect) + (cand.tau_s ? fmt::format(" (tau_w {:.0f} s)", *cand.tau_s) : "");
   lim.channel = common::kImuChannelNames[ch];
   Eigen::VectorXd se;
-  if (cand.effect == Effect::kCrossAxisTempco && !cross_excited) {
+  if (EffectRow(cand.effect).needs_cross_excitation && !cross_excited) {
     lim.note = fmt::format("not excited: the cross-axis input spans less than {:.0f} degC",
                            kMinCrossAxisSpan_c);
     return lim;

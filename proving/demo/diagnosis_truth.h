@@ -28,7 +28,8 @@ struct DiagnosisTruthLine {
   std::string effect;
   std::string channel;
   bool found = false;
-  std::string text;  ///< "found 0.21 +- 0.03 deg/s/g along -X; truth -0.20 deg/s/g", or why not found
+  std::string
+      text;  ///< "found 0.21 +- 0.03 deg/s/g along -X; truth -0.20 deg/s/g", or why not found
 };
 
 /// One line per (unit, channel, effect) the truth has and the nominal model lacks, or that the

@@ -1,8 +1,9 @@
 // Test helper: an ADS calibration or acceptance recording written in-process as the executor
-// would (docs/recording-format.md): the sequence file is run against one simulated ADS unit by the studies' run
-// simulator (proving/studies/ads_run_simulator.h: an exact air data test set whose pressures move
-// as monotone jumps, the chamber air at its set point at once and the soak at frame rate, 1 s of
-// untagged packets per WaitAdtsStable, no packet lost) and every packet written to ads.csv.
+// would (docs/recording-format.md): the sequence file is run against one simulated ADS unit by the
+// studies' run simulator (proving/studies/ads_run_simulator.h: an exact air data test set whose
+// pressures move as monotone jumps, the chamber air at its set point at once and the soak at frame
+// rate, 1 s of untagged packets per WaitAdtsStable, no packet lost) and every packet written to
+// ads.csv.
 #pragma once
 
 #include <filesystem>

@@ -1,10 +1,11 @@
-// Test helper: makes IMU recordings in-process exactly as the executor writes them (docs/recording-format.md)
-// without a rig: the product's in-process runner (proving/studies/imu_run_simulator.h) drives the
-// simulated units through a sequence and every packet is written with hil::RecordingWriter.
-// Time is compressed where the physics allows it: target_temperature soaks last `soak_frames`, and
-// thermal profile ramps and soaks run `thermal_speedup` times faster than written. That is exact
-// for units without die lag (ModelProfile::kNominal); with lag on, the ramps would bias the fit.
-// truth/<serial>.json holds each unit's parameters, as the rig writes it.
+// Test helper: makes IMU recordings in-process exactly as the executor writes them
+// (docs/recording-format.md) without a rig: the product's in-process runner
+// (proving/studies/imu_run_simulator.h) drives the simulated units through a sequence and every
+// packet is written with hil::RecordingWriter. Time is compressed where the physics allows it:
+// target_temperature soaks last `soak_frames`, and thermal profile ramps and soaks run
+// `thermal_speedup` times faster than written. That is exact for units without die lag
+// (ModelProfile::kNominal); with lag on, the ramps would bias the fit. truth/<serial>.json holds
+// each unit's parameters, as the rig writes it.
 #pragma once
 
 #include <filesystem>

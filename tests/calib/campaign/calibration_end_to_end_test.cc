@@ -10,7 +10,8 @@
 //     exactly 1 (mod 256, the unit protocol's one-byte counter) between consecutive rows of a unit;
 //   - every acquiring step complete: rows with the step's index and TAG outside rejected intervals
 //     number exactly the packets the sequence file asks for (the sum of its acquisitions, from the
-//     sequence expansion), for every unit (docs/recording-format.md: tagged rows are exactly the acquisitions).
+//     sequence expansion), for every unit (docs/recording-format.md: tagged rows are exactly the
+//     acquisitions).
 // Runs alone (SERIAL in tests/CMakeLists.txt): the run takes both cores for a minute or more.
 // Under ASan/UBSan the build checks memory and arithmetic, not speed: the same code paths run the
 // --quick variants of both sequences (calib/campaign/quick_sequences.h) at 200x with every loss

@@ -1,5 +1,5 @@
-// constants.json (docs/constants-file.md): round trip, and the strict reader refusing each kind of bad input
-// with the file and JSON path in the message.
+// constants.json (docs/constants-file.md): round trip, and the strict reader refusing each kind of
+// bad input with the file and JSON path in the message.
 #include "calib/constants/constants_file.h"
 
 #include <cmath>
