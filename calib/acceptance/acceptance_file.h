@@ -12,7 +12,6 @@
 #pragma once
 
 #include <filesystem>
-#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -53,13 +52,6 @@ struct AcceptanceFileRun {
   std::string recording_sha256;
 };
 
-/// One judged point as the file holds it: the point and the words written beside it.
-struct AcceptanceFilePoint {
-  AcceptancePoint point;
-  std::string condition;  ///< "orientation 11, 62.5 deg/s, 25.0 degC" as written
-  std::string verdict;    ///< PointVerdictText as written
-};
-
 /// What the physical limits of the rate points were computed from.
 struct AcceptanceFileLimit {
   double since_calibration_h = 0.0;
@@ -67,22 +59,15 @@ struct AcceptanceFileLimit {
   double rest_chamber_c = 0.0;
 };
 
-/// One acceptance.json, read back.
+/// One acceptance.json, read back: the unit's judged points (their verdicts, worst margins and
+/// counts follow from them as when judged) and what the file says about where they came from.
 struct AcceptanceFile {
   std::filesystem::path source;
   int format_version = 0;
-  std::string serial;
-  std::string kind;  ///< "imu" | "ads"
-  int mode = 0;
   std::string software_version;
   AcceptanceFileRun run;
-  bool pass = false;
-  int points_failed = 0;
-  /// family ("acceleration", "body_rate", ...) -> verdict text -> number of points
-  std::map<std::string, std::map<std::string, int>> point_verdicts;
+  UnitAcceptance unit;  ///< serial, kind, mode and points; no rest record (see physical_limit)
   std::optional<AcceptanceFileLimit> physical_limit;
-  std::vector<WorstMargin> worst_margin;
-  std::vector<AcceptanceFilePoint> points;
   nlohmann::json specification;  ///< Specification::ToJson as written (shown, not judged again)
 };
 

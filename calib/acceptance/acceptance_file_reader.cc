@@ -1,203 +1,121 @@
-// ReadAcceptanceFile (acceptance_file.h): acceptance.json into an AcceptanceFile, every refusal
-// with the file and the JSON path of the offending value.
-#include <fstream>
+// ReadAcceptanceFile (acceptance_file.h): acceptance.json into an AcceptanceFile through the
+// strict parameter reader, every refusal with the file and the JSON path of the offending value.
+#include <cstdint>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "calib/acceptance/acceptance_file.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
 
-using nlohmann::json;
+using common::ParamReader;
 
-// One object of the file being read: typed fields by key, every refusal naming file and path.
-class FileObject {
- public:
-  FileObject(const json& object, std::string path, std::string source)
-      : object_(object), path_(std::move(path)), source_(std::move(source)) {
-    if (!object_.is_object()) Refuse(path_, "expected an object, got " + object_.dump());
-  }
-  std::string Path(const char* key) const { return path_ + "." + key; }
-  bool Has(const char* key) const { return object_.contains(key) && !object_[key].is_null(); }
+constexpr double kAny = std::numeric_limits<double>::max();
 
-  const json& Get(const char* key) const {
-    if (!object_.contains(key)) Refuse(Path(key), "missing");
-    return object_[key];
-  }
-  std::string String(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_string()) Refuse(Path(key), "expected a string, got " + v.dump());
-    return v.get<std::string>();
-  }
-  double Number(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_number()) Refuse(Path(key), "expected a number, got " + v.dump());
-    return v.get<double>();
-  }
-  int Integer(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_number_integer() || v.get<int64_t>() < INT32_MIN || v.get<int64_t>() > INT32_MAX) {
-      Refuse(Path(key), "expected an integer, got " + v.dump());
-    }
-    return v.get<int>();
-  }
-  bool Boolean(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_boolean()) Refuse(Path(key), "expected a boolean, got " + v.dump());
-    return v.get<bool>();
-  }
-  const json& Array(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_array()) Refuse(Path(key), "expected an array, got " + v.dump());
-    return v;
-  }
-  std::optional<double> OptionalNumber(const char* key) const {
-    return Has(key) ? std::optional<double>(Number(key)) : std::nullopt;
-  }
-  FileObject Object(const char* key) const { return FileObject(Get(key), Path(key), source_); }
-  const json& Get() const { return object_; }
-
-  [[noreturn]] void Refuse(const std::string& path, const std::string& why) const {
-    throw AcceptanceFileError(fmt::format("{}: {}: {}", source_, path, why));
-  }
-
- private:
-  const json& object_;
-  std::string path_;
-  std::string source_;
-};
-
-AcceptanceFilePoint PointFrom(const FileObject& o) {
-  AcceptanceFilePoint read;
-  AcceptancePoint& p = read.point;
-  p.step = o.Integer("step");
-  p.kind = o.String("kind");
-  p.quantity = o.String("quantity");
-  p.unit = o.String("unit");
-  p.orientation = o.Has("orientation") ? o.Integer("orientation") : 0;
-  p.rate_dps = o.OptionalNumber("rate_dps");
-  p.alt_ft = o.OptionalNumber("alt_ft");
-  p.cas_kt = o.OptionalNumber("cas_kt");
-  p.chamber_c = o.Number("chamber_c");
-  p.samples = o.Has("samples") ? o.Integer("samples") : 0;
-  p.measured = o.Number("measured");
-  p.reference = o.Number("reference");
-  p.error = o.Number("error");
-  p.std_error = o.Number("std_error");
-  p.duration_s = o.OptionalNumber("duration_s").value_or(0.0);
-  p.noise = o.OptionalNumber("noise").value_or(p.std_error);
-  p.tolerance = o.Number("tolerance");
-  p.physical_limit = o.OptionalNumber("physical_limit");
-  p.pass = o.Boolean("pass");
-  p.beyond_noise = o.Has("beyond_noise") && o.Boolean("beyond_noise");
-  read.condition = o.String("condition");
-  read.verdict = o.Has("verdict") ? o.String("verdict") : PointVerdictText(p.verdict());
-  return read;
+double Number(const ParamReader& r, const char* key) { return r.Number(key, -kAny, kAny, ""); }
+int Int(const ParamReader& r, const char* key) {
+  return static_cast<int>(r.Integer(key, INT32_MIN, INT32_MAX));
+}
+std::optional<double> OptionalNumber(const ParamReader& r, const char* key) {
+  return r.Has(key) ? std::optional<double>(Number(r, key)) : std::nullopt;
 }
 
-WorstMargin WorstFrom(const FileObject& o) {
-  return {o.String("quantity"),
-          o.String("unit"),
-          o.Number("margin"),
-          o.Integer("step"),
-          o.String("point")};
+AcceptancePoint PointFrom(const ParamReader& r) {
+  AcceptancePoint p;
+  p.step = Int(r, "step");
+  p.kind = r.String("kind");
+  p.quantity = r.String("quantity");
+  p.unit = r.String("unit");
+  (void)r.String("condition");  // written from the fields below; checked for its type only
+  p.orientation = r.Has("orientation") ? Int(r, "orientation") : 0;
+  p.rate_dps = OptionalNumber(r, "rate_dps");
+  p.alt_ft = OptionalNumber(r, "alt_ft");
+  p.cas_kt = OptionalNumber(r, "cas_kt");
+  p.chamber_c = Number(r, "chamber_c");
+  p.samples = r.Has("samples") ? Int(r, "samples") : 0;
+  p.measured = Number(r, "measured");
+  p.reference = Number(r, "reference");
+  p.error = Number(r, "error");
+  p.std_error = Number(r, "std_error");
+  p.duration_s = OptionalNumber(r, "duration_s").value_or(0.0);
+  p.noise = OptionalNumber(r, "noise").value_or(p.std_error);  // version 1 had no noise
+  p.tolerance = Number(r, "tolerance");
+  p.physical_limit = OptionalNumber(r, "physical_limit");
+  p.pass = r.Flag("pass");
+  p.beyond_noise = r.Has("beyond_noise") && r.Flag("beyond_noise");
+  return p;
 }
 
-AcceptanceFileLimit LimitFrom(const FileObject& o) {
-  const FileObject rest = o.Object("rest_record");
-  return {o.Number("since_calibration_h"), rest.Number("record_s"), rest.Number("chamber_c")};
+AcceptanceFileLimit LimitFrom(const ParamReader& r) {
+  const ParamReader rest = r.Child("rest_record");
+  return {Number(r, "since_calibration_h"), Number(rest, "record_s"), Number(rest, "chamber_c")};
 }
 
-std::map<std::string, std::map<std::string, int>> VerdictsFrom(const FileObject& o) {
-  std::map<std::string, std::map<std::string, int>> out;
-  for (const auto& [family, counts] : o.Object("point_verdicts").Get().items()) {
-    if (!counts.is_object()) {
-      o.Refuse(o.Path("point_verdicts") + "." + family, "expected an object, got " + counts.dump());
-    }
-    for (const auto& [verdict, n] : counts.items()) {
-      if (!n.is_number_integer() || n.get<int64_t>() < 0) {
-        o.Refuse(o.Path("point_verdicts") + "." + family + "." + verdict,
-                 "expected a count, got " + n.dump());
-      }
-      out[family][verdict] = n.get<int>();
-    }
-  }
-  return out;
-}
-
-json ParseFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw AcceptanceFileError(file.string() + ": cannot open");
-  try {
-    return json::parse(in);
-  } catch (const json::exception& e) {  // a syntax error, or a number beyond double's range
-    throw AcceptanceFileError(file.string() + ": not JSON: " + e.what());
-  }
-}
-
-void CheckFormat(const FileObject& o, AcceptanceFile& out) {
-  const std::string format = o.String("format");
+void CheckFormat(const ParamReader& r, AcceptanceFile& out) {
+  const std::string format = r.String("format");
   if (format != kAcceptanceFormatName) {
-    o.Refuse("$.format", fmt::format("expected \"{}\", got \"{}\"", kAcceptanceFormatName, format));
+    r.Fail("$.format", fmt::format("expected \"{}\", got \"{}\"", kAcceptanceFormatName, format));
   }
-  out.format_version = o.Integer("format_version");
+  out.format_version = Int(r, "format_version");
   if (out.format_version < 1 || out.format_version > kAcceptanceFormatVersion) {
-    o.Refuse("$.format_version",
-             fmt::format("{} is not 1...{}", out.format_version, kAcceptanceFormatVersion));
+    r.Fail("$.format_version",
+           fmt::format("{} is not 1...{}", out.format_version, kAcceptanceFormatVersion));
   }
+}
+
+// The verdict and failure count the file states must be those its points give.
+void CheckStatedVerdict(const ParamReader& r, const UnitAcceptance& unit) {
+  const std::string verdict = r.String("verdict");
+  if (verdict != "pass" && verdict != "fail") {
+    r.Fail("$.verdict", "expected \"pass\" or \"fail\", got \"" + verdict + "\"");
+  }
+  const int stated_failed = r.Has("points_failed") ? Int(r, "points_failed") : unit.failed();
+  if (stated_failed != unit.failed() || (verdict == "pass") != unit.pass()) {
+    r.Fail("$.verdict",
+           fmt::format("\"{}\" with points_failed {} disagrees with its points ({} of {} fail)",
+                       verdict,
+                       stated_failed,
+                       unit.failed(),
+                       unit.points.size()));
+  }
+}
+
+AcceptanceFile Read(const nlohmann::json& j, const ParamReader& r) {
+  AcceptanceFile out;
+  CheckFormat(r, out);
+  out.unit.serial = r.String("serial");
+  out.unit.kind = r.String("kind");
+  out.unit.mode = r.Has("mode") ? Int(r, "mode") : 0;
+  out.software_version = r.Has("software_version") ? r.String("software_version") : "";
+  const ParamReader run = r.Child("run");
+  out.run = {run.Has("dir") ? run.String("dir") : "",
+             run.String("run_id"),
+             run.Has("sequence") ? run.String("sequence") : "",
+             run.String("recording_sha256")};
+  const size_t n = r.ArrayLength("points", 0, SIZE_MAX);
+  for (size_t i = 0; i < n; ++i) out.unit.points.push_back(PointFrom(r.Element("points", i, n)));
+  CheckStatedVerdict(r, out.unit);
+  if (j.contains("physical_limit") && !j["physical_limit"].is_null()) {
+    out.physical_limit = LimitFrom(r.Child("physical_limit"));  // null: no rest record
+  }
+  out.specification = j.value("specification", nlohmann::json());
+  return out;
 }
 
 }  // namespace
 
 AcceptanceFile ReadAcceptanceFile(const std::filesystem::path& file) {
-  const json j = ParseFile(file);
-  const std::string source = file.string();
-  const FileObject o(j, "$", source);
-  AcceptanceFile out;
-  out.source = file;
-  CheckFormat(o, out);
-  out.serial = o.String("serial");
-  out.kind = o.String("kind");
-  out.mode = o.Has("mode") ? o.Integer("mode") : 0;
-  out.software_version = o.Has("software_version") ? o.String("software_version") : "";
-  const FileObject run = o.Object("run");
-  out.run = {run.Has("dir") ? run.String("dir") : "",
-             run.String("run_id"),
-             run.Has("sequence") ? run.String("sequence") : "",
-             run.String("recording_sha256")};
-  const std::string verdict = o.String("verdict");
-  if (verdict != "pass" && verdict != "fail") {
-    o.Refuse("$.verdict", "expected \"pass\" or \"fail\", got \"" + verdict + "\"");
+  try {
+    const nlohmann::json j = ParamReader::LoadFile(file.string());
+    AcceptanceFile out = Read(j, ParamReader(j, file.string()));
+    out.source = file;
+    return out;
+  } catch (const common::ParamError& e) {
+    throw AcceptanceFileError(e.what());
   }
-  out.pass = verdict == "pass";
-  const json& points = o.Array("points");
-  for (size_t i = 0; i < points.size(); ++i) {
-    out.points.push_back(PointFrom(FileObject(points[i], fmt::format("$.points[{}]", i), source)));
-  }
-  int failed = 0;
-  for (const AcceptanceFilePoint& p : out.points) failed += p.point.pass ? 0 : 1;
-  out.points_failed = o.Has("points_failed") ? o.Integer("points_failed") : failed;
-  if (out.points_failed != failed || out.pass != (failed == 0)) {
-    o.Refuse("$.verdict",
-             fmt::format("\"{}\" with points_failed {} disagrees with its points ({} "
-                         "of {} fail)",
-                         verdict,
-                         out.points_failed,
-                         failed,
-                         out.points.size()));
-  }
-  if (o.Has("point_verdicts")) out.point_verdicts = VerdictsFrom(o);
-  if (o.Has("physical_limit")) out.physical_limit = LimitFrom(o.Object("physical_limit"));
-  if (o.Has("worst_margin")) {
-    const json& worst = o.Array("worst_margin");
-    for (size_t i = 0; i < worst.size(); ++i) {
-      out.worst_margin.push_back(
-          WorstFrom(FileObject(worst[i], fmt::format("$.worst_margin[{}]", i), source)));
-    }
-  }
-  if (o.Has("specification")) out.specification = o.Get("specification");
-  return out;
 }
 
 }  // namespace adahrs::calib

@@ -1,7 +1,9 @@
 #include "calib/executor/journal_events.h"
 
-#include <fmt/format.h>
+#include <cstdint>
+#include <limits>
 
+#include "common/param_reader.h"
 #include "common/printable_text.h"
 
 namespace adahrs::calib {
@@ -16,63 +18,38 @@ struct Overloaded : F... {
 template <class... F>
 Overloaded(F...) -> Overloaded<F...>;
 
-// The fields of one journal line, typed by key; every refusal names the line and the field.
+// The fields of one journal line, read strictly (common::ParamReader: a missing field or one of the
+// wrong type is refused naming the line, the event and the field).
 class Fields {
  public:
-  Fields(const json& line, std::string where) : line_(line), where_(std::move(where)) {}
+  Fields(const json& line, const std::string& where) : line_(line), reader_(line, where) {}
 
-  double Number(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_number()) Refuse(key, v, "not a number");
-    return v.get<double>();
-  }
+  double Number(const char* key) const { return reader_.Number(key, -kAny, kAny, "s"); }
   size_t Index(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_number_integer() || v.get<int64_t>() < 0) {
-      Refuse(key, v, "not an index (a non-negative integer)");
-    }
-    return static_cast<size_t>(v.get<int64_t>());
+    return static_cast<size_t>(reader_.Integer(key, 0, INT64_MAX));
   }
   int Integer(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_number_integer() || v.get<int64_t>() < INT32_MIN || v.get<int64_t>() > INT32_MAX) {
-      Refuse(key, v, "not an integer");
-    }
-    return v.get<int>();
+    return static_cast<int>(reader_.Integer(key, INT32_MIN, INT32_MAX));
   }
-  std::string String(const char* key) const {
-    const json& v = Get(key);
-    if (!v.is_string()) Refuse(key, v, "not a string");
-    return v.get<std::string>();
-  }
+  std::string String(const char* key) const { return reader_.String(key); }
   std::vector<std::string> Strings(const char* key) const {
-    const json& v = Get(key);
     std::vector<std::string> out;
-    if (!v.is_array()) Refuse(key, v, "not an array of strings");
+    const json& v = line_.contains(key) ? line_.at(key) : json();
+    if (!v.is_array()) reader_.Fail(std::string("$.") + key, "expected an array of strings");
     for (const json& item : v) {
-      if (!item.is_string()) Refuse(key, v, "not an array of strings");
+      if (!item.is_string()) reader_.Fail(std::string("$.") + key, "expected an array of strings");
       out.push_back(item.get<std::string>());
     }
     return out;
   }
   std::optional<double> OptionalNumber(const char* key) const {
-    if (!line_.contains(key)) return std::nullopt;
-    return Number(key);
+    return reader_.Has(key) ? std::optional<double>(Number(key)) : std::nullopt;
   }
 
  private:
-  const json& Get(const char* key) const {
-    if (!line_.contains(key)) {
-      throw JournalError(fmt::format("{}: \"{}\" missing", where_, key));
-    }
-    return line_.at(key);
-  }
-  [[noreturn]] void Refuse(const char* key, const json& v, const char* why) const {
-    throw JournalError(fmt::format("{}: \"{}\" {} is {}", where_, key, v.dump(), why));
-  }
-
+  static constexpr double kAny = std::numeric_limits<double>::max();
   const json& line_;
-  std::string where_;
+  common::ParamReader reader_;
 };
 
 // The event `name` from its fields; nullopt for a name that is no event of this journal.
@@ -198,7 +175,12 @@ JournalEvent JournalEventFromJson(const json& line, const std::string& where) {
   }
   const std::string name = line["event"].get<std::string>();
   const std::string at = where + ": " + common::PrintableText(name);
-  std::optional<JournalEvent> event = Parse(name, Fields(line, at));
+  std::optional<JournalEvent> event;
+  try {
+    event = Parse(name, Fields(line, at));
+  } catch (const common::ParamError& e) {
+    throw JournalError(e.what());
+  }
   if (!event) throw JournalError(at + ": not an event of this journal (docs/executor.md)");
   return *event;
 }

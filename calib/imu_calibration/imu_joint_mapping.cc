@@ -8,8 +8,6 @@
 
 namespace adahrs::calib::joint_fit {
 
-// F_c(t) = 1 / (1 + delta_c(tau) / S_c) as a least-squares cubic in (t - origin) over the
-// sensor's span, delta_c = sum_p theta_p tau^p and S_c the channel's own stimulus coefficient.
 std::array<double, 4> ScaleFactorCubic(const ChannelModel& m,
                                        const Eigen::VectorXd& theta,
                                        double own_scale,
@@ -31,9 +29,6 @@ std::array<double, 4> ScaleFactorCubic(const ChannelModel& m,
   return {b[0], b[1] / half, b[2] / (half * half), b[3] / (half * half * half)};
 }
 
-// The format-3 terms (calibration_constants.h ImuScaleTemperature): the scale factors, q_axis =
-// -(k2_i / S_i + k2_j / S_j) / 2 (the pair mean's f^2 coefficient, removed), and GS = -CG
-// diag(1 / n_gg) Gsens / g0 (Gsens in counts per g, A = g0 f).
 void MapScaleTemperature(const std::array<ChannelModel, 9>& models,
                          const std::array<Eigen::VectorXd, 9>& theta,
                          const std::array<std::array<double, 2>, 3>& temp_span_cnt,
@@ -71,8 +66,6 @@ void MapScaleTemperature(const std::array<ChannelModel, 9>& models,
   }
 }
 
-// The channel models -> the firmware numbers (the mapping of the header comment); each
-// channel's thermal span is `temp_span_cnt[sensor]`.
 fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
                                 const std::array<Eigen::VectorXd, 9>& theta,
                                 const std::array<std::array<double, 2>, 3>& temp_span_cnt) {
@@ -148,7 +141,6 @@ fm::ImuCalibrationConstants Map(const std::array<ChannelModel, 9>& models,
   return c;
 }
 
-// Cov of the firmware numbers from per-channel covariances through the mapping's Jacobian.
 Eigen::MatrixXd Propagate(const std::array<ChannelModel, 9>& models,
                           const std::array<Eigen::VectorXd, 9>& theta,
                           const std::array<Eigen::MatrixXd, 9>& cov,

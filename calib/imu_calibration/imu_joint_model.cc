@@ -10,19 +10,15 @@
 
 namespace adahrs::calib::joint_fit {
 
-// The stimulus along the channel's own axis: f_axis in g, or the rate about the gyro's axis.
 double OwnStimulus(const ChannelModel& m, const ImuObservation& o) {
   return m.gyro() ? o.w_B_dps[m.channel - 6] : o.f_B_g[kAxisOfChannel[m.channel]];
 }
 
-// What the scale terms multiply: the own stimulus, a gyro's through its nonlinearity.
 double ScaledStimulus(const ChannelModel& m, const ImuObservation& o) {
   const double s = OwnStimulus(m, o);
   return m.gyro() ? s + m.nl2_per_dps * s * s + m.nl3_per_dps2 * s * s * s : s;
 }
 
-// Mean of tau^p over an observation's rows from its raw temperature moments E[t^i]:
-// E[((t - c)/s)^p] = sum_i C(p, i) E[t^i] (-c)^(p - i) / s^p.
 double TauPowerMean(const ImuObservation& o, int sensor, int p) {
   const double moment[kMaxThermalOrder + 1] = {
       1.0, o.t_mean_cnt[sensor], o.t2_mean_cnt2[sensor], o.t3_mean_cnt3[sensor]};
@@ -93,8 +89,6 @@ double MedianThermalCount(const std::vector<ImuObservation>& obs) {
   return counts[counts.size() / 2];
 }
 
-// Variance of an observation's mean from white noise: measured (fit weights) or datasheet (CRB).
-// The gyro bias wander is not in it: it correlates observations (gyro_bias_covariance.h).
 double Variance(const ImuObservation& o,
                 int ch,
                 double n_thermal,
@@ -182,8 +176,6 @@ LinearFit Solve(const std::string& serial,
   return fit;
 }
 
-// Sum over `test` of the squared residuals of `m` fitted to `train`, each over its observation's
-// variance (white noise, plus the bias wander unless `wander` is kNone).
 double HeldOutSquares(const std::string& serial,
                       ChannelModel& m,
                       const std::vector<ImuObservation>& obs,
@@ -203,7 +195,6 @@ double HeldOutSquares(const std::string& serial,
   return sum;
 }
 
-// 5-fold held-out error over the thermal bands for each order; the order with the least.
 int ChooseOrder(const std::string& serial,
                 int ch,
                 const std::vector<ImuObservation>& obs,

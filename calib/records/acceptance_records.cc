@@ -9,12 +9,11 @@ AcceptanceRecords AcceptanceRecordsFromFile(const std::filesystem::path& accepta
   const AcceptanceFile file = ReadAcceptanceFile(acceptance_json);
   AcceptanceRecords records;
   records.source_sha256 = FileSha256(acceptance_json);
-  for (const AcceptanceFilePoint& read : file.points) {
-    const AcceptancePoint& p = read.point;
-    records.points.push_back({file.serial,
+  for (const AcceptancePoint& p : file.unit.points) {
+    records.points.push_back({file.unit.serial,
                               file.run.run_id,
                               p.quantity,
-                              "step " + std::to_string(p.step) + ", " + read.condition,
+                              "step " + std::to_string(p.step) + ", " + p.Condition(),
                               p.error,
                               p.tolerance,
                               p.unit,

@@ -1,6 +1,8 @@
 #include "calib/report/acceptance_section.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -9,19 +11,33 @@
 namespace adahrs::calib {
 namespace {
 
+// "outside specification: 3; within specification: 60": the body-rate points per verdict, in the
+// order of the verdicts' words.
+std::string RateVerdictCounts(const UnitAcceptance& unit) {
+  std::vector<std::pair<std::string, int>> counts;
+  for (PointVerdict v : {PointVerdict::kWithinSpecification,
+                         PointVerdict::kWithinPhysicalLimit,
+                         PointVerdict::kOutsideBoth,
+                         PointVerdict::kOutsideSpecification}) {
+    if (const int n = unit.Count("body_rate", v); n > 0) counts.push_back({PointVerdictText(v), n});
+  }
+  std::sort(counts.begin(), counts.end());
+  std::string text;
+  for (const auto& [verdict, n] : counts) {
+    text += fmt::format("{}{}: {}", text.empty() ? "" : "; ", verdict, n);
+  }
+  return text;
+}
+
 HtmlTable SummaryTable(const AcceptanceFile& f) {
-  HtmlTable summary{fmt::format("{}: acceptance verdict", f.serial), {"item", "value"}, {}};
+  const UnitAcceptance& u = f.unit;
+  HtmlTable summary{fmt::format("{}: acceptance verdict", u.serial), {"item", "value"}, {}};
   summary.rows.push_back({"run id", f.run.run_id});
   summary.rows.push_back({"recording sha256", f.run.recording_sha256});
-  summary.rows.push_back({"mode", std::to_string(f.mode)});
-  summary.rows.push_back(
-      {"points failed", fmt::format("{} of {}", f.points_failed, f.points.size())});
-  summary.rows.push_back({"verdict", f.pass ? "PASS" : "FAIL"});
-  if (const auto rate = f.point_verdicts.find("body_rate"); rate != f.point_verdicts.end()) {
-    std::string counts;
-    for (const auto& [verdict, n] : rate->second) {
-      counts += fmt::format("{}{}: {}", counts.empty() ? "" : "; ", verdict, n);
-    }
+  summary.rows.push_back({"mode", std::to_string(u.mode)});
+  summary.rows.push_back({"points failed", fmt::format("{} of {}", u.failed(), u.points.size())});
+  summary.rows.push_back({"verdict", u.pass() ? "PASS" : "FAIL"});
+  if (const std::string counts = RateVerdictCounts(u); !counts.empty()) {
     summary.rows.push_back({"body-rate points", counts});
   }
   if (f.physical_limit) {
@@ -37,10 +53,10 @@ HtmlTable SummaryTable(const AcceptanceFile& f) {
 }
 
 HtmlTable WorstTable(const AcceptanceFile& f) {
-  HtmlTable worst{fmt::format("{}: worst margin per quantity (tolerance - |error|)", f.serial),
+  HtmlTable worst{fmt::format("{}: worst margin per quantity (tolerance - |error|)", f.unit.serial),
                   {"quantity", "margin", "unit", "step", "point", "verdict"},
                   {}};
-  for (const WorstMargin& w : f.worst_margin) {
+  for (const WorstMargin& w : f.unit.WorstMargins()) {
     worst.rows.push_back({w.quantity,
                           FormatNumber(w.margin, 4),
                           w.unit,
@@ -54,7 +70,7 @@ HtmlTable WorstTable(const AcceptanceFile& f) {
 HtmlTable PointsTable(const AcceptanceFile& f) {
   HtmlTable points{fmt::format("{}: acceptance points (mean over the step's packets; noise 1 "
                                "sigma; physical limit 3 sigma)",
-                               f.serial),
+                               f.unit.serial),
                    {"step",
                     "kind",
                     "quantity",
@@ -70,12 +86,11 @@ HtmlTable PointsTable(const AcceptanceFile& f) {
                     "verdict",
                     "against specification and physical limit"},
                    {}};
-  for (const AcceptanceFilePoint& read : f.points) {
-    const AcceptancePoint& p = read.point;
+  for (const AcceptancePoint& p : f.unit.points) {
     points.rows.push_back({std::to_string(p.step),
                            p.kind,
                            p.quantity,
-                           read.condition,
+                           p.Condition(),
                            FormatNumber(p.measured, 8),
                            FormatNumber(p.reference, 8),
                            FormatNumber(p.error, 4),
@@ -85,7 +100,7 @@ HtmlTable PointsTable(const AcceptanceFile& f) {
                            FormatNumber(p.tolerance - std::abs(p.error), 4),
                            p.unit,
                            p.pass ? "PASS" : "FAIL",
-                           read.verdict});
+                           PointVerdictText(p.verdict())});
   }
   return points;
 }

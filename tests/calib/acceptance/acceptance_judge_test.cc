@@ -336,27 +336,27 @@ TEST_F(AcceptanceJudgeTest, AcceptanceFilesRoundTripIntoTheRecordsAndReport) {
   EXPECT_EQ(FindAcceptanceFiles(dir_ / "run" / "acceptance"), files);
 
   const AcceptanceFile doc = ReadAcceptanceFile(files[1]);
-  EXPECT_FALSE(doc.pass);
-  EXPECT_EQ(doc.points_failed, 12);
+  EXPECT_FALSE(doc.unit.pass());
+  EXPECT_EQ(doc.unit.failed(), 12);
   EXPECT_EQ(doc.run.recording_sha256.size(), 64u);
-  ASSERT_EQ(doc.points.size(), run.units[1].points.size());
-  EXPECT_FALSE(doc.points[0].point.pass);  // step 1, accel_x at +1.5 mg
-  EXPECT_EQ(doc.points[0].point.orientation, 11);
+  ASSERT_EQ(doc.unit.points.size(), run.units[1].points.size());
+  EXPECT_FALSE(doc.unit.points[0].pass);  // step 1, accel_x at +1.5 mg
+  EXPECT_EQ(doc.unit.points[0].orientation, 11);
   // Read back, every judged point is the one judged: the file loses nothing the judge said.
-  for (size_t i = 0; i < doc.points.size(); ++i) {
+  const nlohmann::json written = nlohmann::json::parse(std::ifstream(files[1]));
+  for (size_t i = 0; i < doc.unit.points.size(); ++i) {
     const AcceptancePoint& judged = run.units[1].points[i];
-    const AcceptancePoint& read = doc.points[i].point;
+    const AcceptancePoint& read = doc.unit.points[i];
     EXPECT_EQ(read.Condition(), judged.Condition()) << i;
-    EXPECT_EQ(doc.points[i].condition, judged.Condition()) << i;
+    EXPECT_EQ(written["points"][i]["condition"], read.Condition()) << i;
     EXPECT_EQ(read.error, judged.error) << i;
     EXPECT_EQ(read.noise, judged.noise) << i;
     EXPECT_EQ(read.physical_limit, judged.physical_limit) << i;
     EXPECT_EQ(read.verdict(), judged.verdict()) << i;
-    EXPECT_EQ(doc.points[i].verdict, PointVerdictText(judged.verdict())) << i;
+    EXPECT_EQ(written["points"][i]["verdict"], PointVerdictText(read.verdict())) << i;
   }
-  ASSERT_EQ(doc.worst_margin.size(), run.units[1].WorstMargins().size());
-  EXPECT_EQ(doc.worst_margin[0].point, run.units[1].WorstMargins()[0].point);
-
+  ASSERT_EQ(doc.unit.WorstMargins().size(), run.units[1].WorstMargins().size());
+  EXPECT_EQ(doc.unit.WorstMargins()[0].point, written["worst_margin"][0]["point"]);
   RecordsStore store(dir_ / "records.sqlite");
   for (const auto& file : files) {
     const AcceptanceRecords records = AcceptanceRecordsFromFile(file);
