@@ -3,7 +3,8 @@
 // their TEMP pins (dsPIC 12-bit ADC, 0..5 V, 16 conversions, uint16 sum up to 65520), given the
 // mean input voltage over the frame: without dither every conversion gives the same code (the
 // staircase), with dither the rounding errors are independent (Widrow) and added as variance
-// before one final rounding; with quantisation off the ideal sum at 1-count resolution.
+// before one final rounding; with quantisation off the ideal sum at 1-count resolution. The caller
+// adds all analog noise and MeanNoiseVariance_v2() to the mean voltage before SumCounts.
 // Units: input in V, noise in LSB rms per conversion, output in counts (_cnt).
 // Derivation: docs/models/adxrs150.md ("Equations", the ADC item); scales: reference-method.md
 // "Scales implied".

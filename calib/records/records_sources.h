@@ -1,8 +1,8 @@
 // Turns the pipeline's files into production records (records_store.h): a run directory
 // (meta.json of recording format 2, docs/recording-format.md; checksum recording_checksum.h) and a
-// constants.json (constants_file.h, docs/constants-file.md). The files are validated by their own strict
-// readers first, so nothing malformed reaches the database; errors name the file and JSON path.
-// Left out: acceptance files (acceptance_records.h reads those).
+// constants.json (constants_file.h, docs/constants-file.md). The files are validated by their own
+// strict readers first, so nothing malformed reaches the database; errors name the file and JSON
+// path. Left out: acceptance files (acceptance_records.h reads those).
 #pragma once
 
 #include <filesystem>

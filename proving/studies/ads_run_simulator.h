@@ -2,10 +2,10 @@
 // pressure bridges with their die temperatures and hysteresis, the ADS1254, the OAT divider) is
 // driven through a sequence's execution plan (ExpandSequence) — chamber set points, the air data
 // test set's altitude and airspeed — and every packet is handed to a sink as the executor records
-// it (docs/recording-format.md): TAG = the step's TAG while acquiring, 0 for the second of packets logged while
-// the test set settles (WaitAdtsStable); the reference columns are the applied pressures (an exact
-// test set), the chamber column the commanded air temperature; each column at the resolution
-// ads.csv writes it, so the rows equal those a reader gets back from the recording.
+// it (docs/recording-format.md): TAG = the step's TAG while acquiring, 0 for the second of packets
+// logged while the test set settles (WaitAdtsStable); the reference columns are the applied
+// pressures (an exact test set), the chamber column the commanded air temperature; each column at
+// the resolution ads.csv writes it, so the rows equal those a reader gets back from the recording.
 // Time: 100 frames/s. The chamber air reaches its set point at once and the soak runs frame by
 // frame without logging (the die's thermal lag is simulated); the test set moves the pressures as
 // monotone jumps (the bridges' hysteresis is rate independent, so the branches are the same).
