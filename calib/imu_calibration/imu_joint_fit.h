@@ -11,8 +11,8 @@
 // counts of the channel's sensor (kThermalSensorOfChannel), tau = (t - 32768) / 4096.
 // Derivations: docs/calibration-strategies.md ("`joint`: the improved strategy", "Format 3 on the
 // truth profile").
-// Left out: supply; die lag without format 3 (the accelerometer scale tempco is then estimated and
-// reported only); cross-axis terms times the tempco.
+// Left out: supply; cross-axis terms times the tempco; without format 3, die lag (and the
+// accelerometer scale tempco is then estimated and reported only, not held).
 #pragma once
 
 #include <optional>
