@@ -1,27 +1,15 @@
 // Diagnosis of one ADS unit's calibration points against the pipeline's forward model of its two
-// pressure bridges (docs/diagnose.md "ADS"). Per bridge (channel "ps": static, "pt": pitot) each
-// point's output code is predicted from the pressure the test set applied and the bridge's own
-// voltage code (its thermometer):
-//   code = sum_{a <= dp, c <= dv_a} k_ac u^a v^c,  u, v: pressure and voltage code scaled to [-1,
-//   1]
-// the bivariate polynomial the calibration inverts, its degrees (dp 2..3, dv_a 1..7) chosen by the
-// error at each interior chamber temperature under the fit made without it (coordinate descent over
-// the voltage degree of each power of u). Segments are sweeps: consecutive points at one chamber
-// temperature along which one reference pressure moves one way. Candidates, each in Pa through the
-// bridge's mean sensitivity dcode/dP:
-//   pressure_hysteresis   s_P: state of the bridge's pressure history under the Preisach law the
-//                         unit's firmware runs (bridge_history.h, the class's nominal spans); half
-//                         loop
-//   thermal_hysteresis    s_T: likewise of the chamber temperature; half loop
-//   bridge_nonlinearity   u^(dp+1) (1, v): beyond the modelled order; the deviation at the largest
-//                         travel and its change across the temperature span
-// Selection as for the IMU (term_selection.h): forward, by the jackknife Wald test over sweeps at a
-// Bonferroni level over the unit's six tests, kept only if the leave-one-sweep-out error drops.
-// When a hysteresis term is chosen its spans are fitted to the points (hysteresis_span_fit.h,
-// the calibration's profile search) and the selection is made again with them.
-// Not done: unexplained structure (the pitot's residual at its top points is the baseline's own,
-// so a point-outlier rule misfires), die lag and self-heating (a point is a mean after a soak: no
-// time structure left), ADC integral nonlinearity.
+// pressure bridges ("ps" static, "pt" pitot): each point's code predicted from the applied
+// pressure and the bridge's own voltage code (its thermometer) by the bivariate polynomial the
+// calibration inverts, its degrees chosen by held-out chamber temperatures. Segments are sweeps.
+// Candidates pressure_hysteresis, thermal_hysteresis (Preisach states of the reference history,
+// bridge_history.h) and bridge_nonlinearity, selected as for the IMU (term_selection.h); a chosen
+// hysteresis gets its spans fitted (hysteresis_span_fit.h) and the selection made again.
+// Units: every candidate in Pa through the bridge's mean dcode/dP; spans in Pa and degC.
+// Baseline, candidates, selection and why: docs/diagnose.md ("ADS", "Vocabulary").
+// Left out: unexplained structure (point outliers misfire on the pitot's top points), die lag and
+// self-heating (a point is a mean after a soak), ADC integral nonlinearity (inside the baseline's
+// span).
 #pragma once
 
 #include <vector>

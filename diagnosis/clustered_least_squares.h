@@ -1,20 +1,13 @@
 // Weighted linear least squares whose observations fall into clusters (the recording's segments),
 // solved for any subset of the design's columns from per-cluster Gram matrices, with the
-// leave-one-cluster-out fits that give both
-//   - the held-out error: each cluster's residual sum of squares under the fit made without it
-//     (folds by segment, never by interleaved rows), and
-//   - the jackknife covariance (C-1)/C * sum_c (theta_-c - mean)(theta_-c - mean)', which holds
-//     whatever the correlation of the errors within a cluster (bias wander over a segment) and
-//     is honest when a column rests on few clusters.
-// A cluster whose removal leaves the design singular is one that alone supports a column: the
-// fit then reports jackknife_ok = false (the column cannot be told from that segment's own
-// disturbance). Columns are scaled to unit diagonal before every factorisation.
-// A random intercept per cluster (SetClusterOffsetRatio): each cluster's errors share an offset of
-// variance sigma_w^2 beside the per-weight variance sigma_e^2 (a segment-wide bias the sensor
-// wanders to), so a long segment counts as one offset plus its within-segment detail, not as
-// thousands of independent cells. Solved by generalised least squares with the closed-form
-// inverse of diag(1/w) sigma_e^2 + sigma_w^2 11' per cluster.
-// Not done: iteration (the model is linear), outlier rejection.
+// leave-one-cluster-out fits that give the held-out error (folds by segment) and the jackknife
+// covariance, which holds whatever the correlation of the errors within a cluster. A random
+// intercept per cluster (SetClusterOffsetRatio) makes a long segment count as one offset plus its
+// detail; solved by generalised least squares in closed form per cluster. A cluster that alone
+// supports a column sets jackknife_ok = false.
+// Units: those of the caller's rows.
+// Formulas: docs/diagnose.md ("Method (IMU)", step 3).
+// Left out: iteration (the model is linear), outlier rejection.
 #pragma once
 
 #include <limits>

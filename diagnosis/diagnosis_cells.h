@@ -1,20 +1,17 @@
-// One IMU's recorded rows cut into segments and cells, the units of diagnosis (docs/diagnose.md).
-// A segment is a stretch the recording's own structure delimits: one acquisition (step,
-// orientation, table rate) or one contiguous thermal-profile stretch of one trend (up-ramp,
-// down-ramp, soak). Segments are the clusters of every inference and the folds of every held-out
-// check, so a segment-wide disturbance (bias wander, a chamber hiccup) never counts as evidence
-// twice. A cell is at most kCellDuration_s of consecutive rows of one segment; it holds the means
-// of the raw outputs and of the stimulus, so a model linear in its parameters averages exactly.
-// Raw outputs, per channel az1 ax1 ay1 az2 ax2 ay2 gx gy gz: accelerometer duty T1/T2 - 0.5,
-// gyro counts. Thermometers: the three gyro TEMP pins, mapped to degC by a line fitted on the
-// recording's own soaks against the chamber's reported temperature (the datasheet's 110.1
-// counts/degC when the recording visits one temperature only).
-// Derived per cell from the recording alone: each thermometer's temperature, its rate of change
-// (least-squares slope over +-kRateWindow_s within the run), the sense of its last change
-// (+1 heated, -1 cooled, 0 none yet) and the time since the run's first row (power-on proxy).
-// Also the row-level spectra of every segment (row_spectrum.h), for periodic structure, and the
-// gyros' lock-ins at the table's revolution frequency (rate_ripple.h).
-// Not done: interpolation across gaps (a gap only splits cells), any model of the sensors.
+// One IMU's recorded rows cut into segments and cells, the units of diagnosis. A segment is one
+// acquisition (step, orientation, table rate) or one contiguous thermal-profile stretch of one
+// trend: the clusters of every inference and the folds of every held-out check, so a segment-wide
+// disturbance never counts as evidence twice. A cell is at most kCellDuration_s of one segment's
+// rows, holding the means of the raw outputs and of the stimulus (a linear model averages
+// exactly), and per thermometer the temperature, its rate (slope over +-kRateWindow_s within the
+// run), the sense of its last change and the time since the run's first row. Also each segment's
+// row spectra (row_spectrum.h) and the gyros' lock-ins at the table's revolution frequency
+// (rate_ripple.h).
+// Units: accelerometer duty T1/T2 - 0.5, gyro counts (az1 ax1 ay1 az2 ax2 ay2 gx gy gz); the gyro
+// TEMP pins in degC by a line fitted on the recording's own soaks (110.1 counts/degC datasheet
+// slope when it visits one temperature); f_B in g, rates in deg/s, times in s.
+// Segments, cells and their derived values: docs/diagnose.md ("Method (IMU)", steps 1, 6, 7).
+// Left out: interpolation across gaps (a gap only splits cells), any model of the sensors.
 #pragma once
 
 #include <array>

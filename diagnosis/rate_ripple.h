@@ -1,17 +1,11 @@
 // Table rate ripple: a once-per-revolution error of the rate table's rate, seen by the gyro whose
-// axis is the table axis as a sinusoid at the revolution frequency f = |rate| / 360 Hz with an
-// amplitude k |rate| (k: the table's relative rate ripple; an encoder's once-per-revolution angle
-// error e sin(theta) gives k = e in radians). It averages away in 1 s cells, so it is measured on
-// the rows: per rate segment, a least-squares lock-in y = a + b t + c cos(2 pi f t) + d sin(2 pi f
-// t) (t from the packet counter; the phase is free per segment, since the table angle is not
-// recorded), and the same lock-in at control frequencies away from f and its harmonics.
-// Test, per gyro: T = sum over segments of (c^2 + d^2) / se^2 against chi^2 with 2 S degrees of
-// freedom, after dividing T by the control frequencies' inflation (their median statistic over
-// chi^2_2's median, when above 1), so a coloured floor is not taken for a line.
-// Estimate: k^2 = sum (R^2 - 2 se^2) / sum (rate S)^2, R the segment's amplitude, S the channel's
-// counts per deg/s; its standard error by the delta method (Var R^2 = 4 se^2 A^2 + 4 se^4).
-// Held out: per segment, the amplitude predicted by k from the other segments against the one
-// measured, RMS in deg/s, beside the measured amplitudes' RMS.
+// axis is the table axis as a sinusoid at f = |rate| / 360 Hz of amplitude k |rate| (k the table's
+// relative rate ripple). It averages away in 1 s cells, so it is measured on the rows: per rate
+// segment a least-squares lock-in at f (packet-counter time, phase free per segment) and at
+// control frequencies; tested per gyro against chi^2 after the controls' inflation; k estimated
+// with its delta-method standard error and checked held out segment by segment.
+// Units: k in ppm of the rate (ratio), amplitudes in deg/s, f in Hz.
+// Derivation of the test and the estimate: docs/diagnose.md ("Method (IMU)", step 7).
 // Left out: harmonics of the revolution frequency, wobble (a tilt of the table axis), a ripple on
 // gyros across the table axis.
 #pragma once

@@ -1,27 +1,17 @@
 // The calibration pipeline's double-precision constants for one IM3 and one ADS unit, in the raw
 // units of the reference method (reference-method.md steps 2-6), with a JSON round trip. The
 // calibration solvers produce these; constants_exporter.h turns them into target blocks.
-//
-// IMU, per channel (order az1 ax1 ay1 az2 ax2 ay2 gx gy gz, imu_constants.h):
-//   thermal (Eq. 4-5, extended to a cubic): xi(t) = k[0] + k[1] t + k[2] t^2 + k[3] t^3,
-//     t = temperature counts of sensor `temp_sensor`, xi in the channel's U units (duty for
-//     accelerometers, counts for gyros); the reference method's quadratic has k[3] = 0. The fit is
-//     valid over [temp_min_cnt, temp_max_cnt], the span of the temperatures it was fitted on: the
-//     exporter normalises t to that span, and the target holds xi constant beyond it.
-//   accelerometer (Eq. 12 as the reference summary states it): Ca_g = (T - offset_duty) /
-//     scale_duty_per_g, S ~ +-0.04 duty per g (1/S ~ +-25 g per duty, Table 16)
-//   gyro (Eq. 23): rate_dps = l[0] + l[1] d + l[2] d^2 + l[3] d^3, d = T - null_cnt
-//   cross axis (Eq. 26, 29): A_mps2 = ca_mps2_per_g Ca_g (Ca per axis = mean of its two channels),
-//     G_dps = cg G_dps
-//   scale-temperature terms (constants format 3, optional): every channel's sensor-calibrated
-//     value times F(t) = sum_j scale[j] (t - origin_cnt)^j, t the count of the channel's thermal
-//     sensor; Ca per axis + q Ca^2 after the pair mean; G_dps + gs A_mps2.
-// ADS, per output: z = sum_{p<=3, q<=5} coeff_xy[p][q] x^p y^q, x = pressure code, y = bridge-
-//   voltage code, with the code box the surface was fitted over (the exporter normalises to it).
-//   The reference method's 10-term cubic (thesis section 2.9, Table 25)
-//   z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y
-//   is the instance with every other coefficient zero (ReferenceCubicTerm maps its letters).
-// Not modelled: uncertainty of the constants, fit residual statistics (the solvers report those).
+// IMU, per channel (az1 ax1 ay1 az2 ax2 ay2 gx gy gz, imu_constants.h): thermal cubic xi(t) over
+// [temp_min_cnt, temp_max_cnt] (Eq. 4-5 extended; the reference's quadratic has k[3] = 0),
+// accelerometer offset and scale (Eq. 12), gyro null and cubic (Eq. 23), cross-axis CA and CG
+// (Eq. 26, 29), and optionally the format-3 scale-temperature terms. ADS, per output: a surface
+// z = sum_{p<=3, q<=5} coeff_xy[p][q] x^p y^q in the pressure and bridge-voltage codes with its
+// code box, the reference's 10-term cubic as the instance with every other term zero
+// (ReferenceCubicTerm), plus law, hysteresis and linearisation options.
+// Units: raw units (duty, counts, codes), Ca in g, A in m/s^2, rates in deg/s, ft, kt, Pa.
+// Every field, its unit and its JSON key: docs/constants-file.md; the stages that apply them:
+// docs/firmware-compensator.md ("Stages").
+// Left out: uncertainty of the constants, fit residual statistics (the solvers report those).
 #pragma once
 
 #include <array>

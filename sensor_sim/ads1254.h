@@ -1,32 +1,14 @@
 // One channel of the TI/Burr-Brown ADS1254 24-bit delta-sigma converter (datasheet SBAS213,
-// shared/physics.md §3.3 and §6 row 8), as the ADS air-data board reads it: a differential
-// input voltage becomes a 24-bit two's complement code, the firmware averaging N consecutive
-// conversions per frame.
-//
-//   v_ref_true = vref_v·(1 + reference_error_ppm·1e-6)                  (reference error)
-//   v_inl      = inl_ppm_fsr·1e-6·FSR·(1 − (v_in/v_ref_true)²), FSR = 2·v_ref_true  (INL bow)
-//   v_noise    ~ N(0, (noise_uv_rms·1e-6)² / N)                         (N-sample averaging)
-//   code       = round((v_in + v_inl + v_noise) / v_ref_true · 2^23), clipped to
-//                [−2^23, 2^23 − 1]
-//
-// Inputs: input_v, differential volts. Output: the averaged, rounded 24-bit code as int32_t
-// (sign-extended). The reader interprets codes with the nominal vref_v, so the reference error
-// appears as a gain error of −reference_error_ppm.
-//
-// Parameters and sources: full-scale range ±VREF, VREF 0.5…5 V (V); noise 14.6 µV rms per
-// conversion at VREF = 4.096 V and 20 kHz, falling as 1/√N with N averaged conversions (3.65 µV
-// at N = 16, V, datasheet p.15); INL ≤ 15 ppm FSR (V, max), modelled as a symmetric bow that
-// is zero at ±full scale and peaks at mid-scale (E: the shape is not given in the datasheet);
-// reference error: the external reference's initial accuracy (E, ±0.2 % for a common 4.096 V
-// reference).
-//
-// Not modelled: offset and gain error of the converter itself (calibration absorbs them like the
-// reference error), the digital filter's settling after a CHSEL channel change (physics.md §3.3,
-// still to verify; the model assumes settled conversions), quantisation of the individual
-// conversions before averaging (the noise is ≥ 0.23 µV ≈ 0.5 LSB at VREF 4.096 V for N ≤ 4096,
-// so averaging rounded codes and rounding the average agree in distribution), noise that
-// changes with VREF (the µV figure is taken as independent of VREF), input impedance and
-// source loading, temperature drift of the converter.
+// shared/physics.md §3.3 and §6 row 8), as the ADS air-data board reads it: a differential input
+// voltage becomes a 24-bit two's complement code, the firmware averaging N consecutive conversions
+// per frame, with the reference's error (a gain error to a reader using the nominal vref_v), the
+// INL as a symmetric bow zero at ±full scale, and noise falling as 1/√N, clipped to the code range.
+// Units: input in V (differential), output the averaged, rounded code as int32_t (sign-extended).
+// Equations, parameters and datasheet figures: docs/models/ads1254.md.
+// Left out: the converter's own offset and gain error (calibration absorbs them), digital-filter
+// settling after a CHSEL change (settled conversions assumed), quantisation of each conversion
+// before averaging, noise that changes with VREF, input impedance and source loading, temperature
+// drift of the converter.
 #pragma once
 
 #include <cstdint>

@@ -1,34 +1,16 @@
 // One ADXL210E dual-axis ±10 g accelerometer chip with duty-cycle outputs, read by a dsPIC's
-// input capture once per firmware frame (physics.md §1; equations and sources in
-// docs/models/adxl210e.md).
-//
-// Frame: the chip package frame C (docs/frames-and-units.md): x_C and y_C are the sensitive axes,
-// z_C the package normal. Inputs are specific force in g (1 g = 9.80665 m/s²), die temperature in
-// °C and supply in V, held constant over each frame. Package alignment to the unit (±1°, R) is NOT
-// modelled here: the unit's geometry (im3_geometry.h) rotates f_B into C before calling Step.
-//
-// Per axis (i = x, y), with ΔT = T − 25 °C and ΔV = Vs − 5 V:
-//   a_in  = f_i + c_io·f_o + c_iz·f_z        (+ sin(δ_xy)·f_x on Y)      [cross_axis]
-//   a_f   = one-pole low-pass of a_in, τ = R_filt·C_filt (32 kΩ on chip)    [filter]
-//           + Ornstein-Uhlenbeck noise: white density N through the same pole   [noise]
-//   D0    = D0_25 + S_25·(b1·ΔT + b2·ΔT² + b3·ΔT³)[zero_g_tempco] + k_V·ΔV[supply_sensitivity]
-//   S     = S_25·(1 + s1·ΔT + s2·ΔT² + s3·ΔT³)                               [sensitivity_tempco]
-//   D     = D0 + S·(a_f + k2·a_f²)                                            [nonlinearity]
-// and for the chip: T2 = RSET/125 MΩ·(1 + δ_osc)·(1 + α·ΔT)[t2_tempco] with period jitter
-// [t2_jitter]; T1 = D·T2. The DCM samples a_f at the rising edge that starts a period; the frame
-// reports the last complete period (duty_cycle_modulator.h) with edges floored to the timer tick
-// grid [capture_quantization]. A duty outside [0, 1] is clipped (a duty cycle cannot leave it).
-//
-// Noise is exact at any sample spacing: the sampled one-pole filtered white noise is an AR(1)
-// sequence with stationary variance N²/(4τ) = N²·(π/2)·f−3dB, advanced with the exact transition
-// between consecutive DCM sample instants. The `filter` switch removes the signal lag only; the
-// noise keeps the RC bandwidth (unfiltered white noise has no finite sample variance).
-//
-// Left out: the sensor's own resonance (10…14 kHz, R) and its output clipping beyond ±FS, the
-// self-test step, turn-on transient (the filter starts settled on the first input), vibration
-// inside a frame (the input is one value per frame, so DCM aliasing of vibration above 1/(2·T2)
-// is not represented), supply dependence of T2 and of the sensitivity, thermal lag (the caller
-// supplies the die temperature), timer-clock error (cancels in T1/T2).
+// input capture once per firmware frame (physics.md §1). Per axis: cross-axis input, one-pole
+// output filter with exact Ornstein-Uhlenbeck noise through it, zero-g and sensitivity polynomials
+// in ΔT = T − 25 °C, supply sensitivity, nonlinearity k2·a², duty clipped to [0, 1]; for the chip
+// the T2 period (RSET, oscillator tolerance, tempco, jitter) and T1 = D·T2, captured on the timer
+// grid by duty_cycle_modulator.h. Each term has its Adxl210eEffects switch.
+// Frame: the chip package frame C (docs/frames-and-units.md): x_C, y_C sensitive, z_C the normal.
+// Inputs: specific force in g (1 g = 9.80665 m/s²), die temperature in °C, supply in V, held
+// constant over each frame; outputs T1, T2 in timer ticks (_cnt).
+// Equations, sampling, noise, parameters and sources: docs/models/adxl210e.md.
+// Left out: package alignment (im3_geometry.h rotates f_B into C), resonance and clipping beyond
+// ±FS, self-test, turn-on transient, vibration inside a frame, supply dependence of T2 and
+// sensitivity, thermal lag (the caller supplies the die temperature), timer-clock error.
 #pragma once
 
 #include <cstdint>

@@ -1,31 +1,17 @@
-// ADXRS150 single-axis yaw-rate gyro (Analog Devices, +-150 deg/s, sensitive axis = package z)
+// ADXRS150 single-axis yaw-rate gyro (Analog Devices, ±150 deg/s, sensitive axis = package z)
 // with the unit's read-out of it: RATEOUT through the output filter into an external 19-bit ADC
-// (0..5 V), 16 conversions summed per 100 Hz frame (int32 counts), and the TEMP pin read by the
-// dsPIC's 12-bit ADC (0..5 V), 16 conversions summed (uint16 counts, at most 65520).
-// Sources: shared/physics.md §2.1-2.2 and §6 rows 1-3, 13; shared/reference-method.md "Scales
-// implied" (20,971.52 counts per deg/s = 16 · 2^19/5 V · 12.5 mV/(deg/s)). Full equations,
-// parameters with their status tags, and what is left out: docs/models/adxrs150.md.
-//
-// Model of one frame (each term with its Adxrs150Effects switch in [brackets]):
-//   dT    = T_die - 25 degC
-//   w_nl  = w + d(w),  d = 150 deg/s · [A·1.5(u^2 - 1/3) + B·2.5(u^3 - 3u/5)] / 100,  u = w/150
-//           [nonlinearity]; both shapes are orthogonal to the least-squares line over +-150 deg/s,
-//           so sensitivity and null keep their best-fit meaning; max deviation = (|A|+|B|) % FS
-//   b     = n1 dT + n2 dT^2 + n3 dT^3 [null_tempco] + G·f_g [g_sensitivity]
-//           + k_vs (Vs - 5 V) [supply_sensitivity] + b_BI(t) [bias_instability] + b_RW(t)
-//           [rate_random_walk]                                                        (deg/s)
-//   V_in  = r · (V_null + S25 · (b + (1 + s1 dT + s2 dT^2) [sensitivity_tempco] · w_nl)),
-//           r = Vs / 5 V if output_ratiometric [supply_sensitivity], else 1
-//   RATEOUT = one-pole low-pass of (V_in + white noise, one-sided density S25·N [noise]) with
-//           tau = R_OUT·C_OUT; V_in is held constant over the frame.
-//   The 16 conversions sample RATEOUT at T/16, 2T/16, ..., T within the frame; the sum of their
-//   codes is the output (summed_adc.h) [adc_quantization, noise]. The filter state and the frame
-//   mean are advanced exactly with a 2x2 Gaussian draw per frame (see adxrs150.cc), so a Step
-//   costs two draws, not sixteen.
-//   TEMP  = r_T · (V_T298 + k_T · (T_die + 273.15 K - 298.15 K)), r_T as r.
-//
-// Left out: turn-on transient, self-test, resonator (14 kHz) spikes, vibration rectification,
-// cross-axis sensitivity (the unit model applies misalignment), thermal lag (the caller gives die
+// (0..5 V), 16 conversions summed per 100 Hz frame (int32 counts, 20,971.52 counts per deg/s),
+// and the TEMP pin read by the dsPIC's 12-bit ADC (0..5 V), 16 conversions summed (uint16 counts,
+// at most 65520). Per frame: span nonlinearity orthogonal to the best-fit line, null tempco,
+// g-sensitivity, supply sensitivity, bias instability and rate random walk (gyro_bias_process.h),
+// sensitivity tempco, white noise through the one-pole filter, summed conversions (summed_adc.h),
+// each term with its Adxrs150Effects switch; filter state and frame mean advanced exactly with
+// two Gaussian draws per frame.
+// Frames and units: gyro package frame G (z_G sensitive); rate in deg/s, die temperature in degC,
+// supply in V, g-sensitivity input in g; outputs in counts (_cnt).
+// Equations, parameters with status tags, sources: docs/models/adxrs150.md.
+// Left out: turn-on transient, self-test, resonator spikes, vibration rectification, cross-axis
+// sensitivity (the unit model applies misalignment), thermal lag (the caller gives the die
 // temperature), thermal hysteresis, amplifier swing limits inside the ADC range, ADC linearity.
 #pragma once
 

@@ -1,26 +1,15 @@
 // Edge timing of a free-running duty-cycle modulator (DCM) seen through a microcontroller's input
-// capture, one report per firmware frame.
-//
-// What is modelled (physics.md §1.3, D): the DCM starts a period with a rising edge every T2 and
-// falls T1 = D·T2 later; a free-running 16-bit timer timestamps every edge, floored to its tick
-// grid. Once per frame the firmware reports the last period that completed inside the frame:
-// T2 = r_{j+1} − r_j (rising to rising) and T1 = f_j − r_j (rising to falling), both modulo 2^16.
-// The DCM phase is continuous across frames, so the edges' position on the tick grid moves from
-// frame to frame: the quantisation error is not the same every frame, and it becomes periodic
-// (a limit cycle) when T2 is near a rational number of ticks (physics.md §6 row 14).
-//
-// Time here is in timer ticks ("_cnt") relative to the start of the current frame.
-//
-// Period jitter: each period lasts T2·(1 + j·z) with z standard normal and independent per period.
-// The periods between the end of the previously reported period and the start of this frame's
-// reported one are summed in one draw (a sum of m independent normal errors is exactly normal with
-// variance m·j²·T2²); the reported period has its own draw. Approximation: which period is "the
-// last complete one" is decided from the nominal period; only when jitter pushes its end past the
-// frame end is the period before reported instead (an ordering effect of order j, about 1e-5).
-//
-// Left out: the synchronisation delay of the capture input (a constant that cancels in both
-// differences), capture FIFO overflow and missed interrupts, timer-clock error (it scales T1 and T2
-// alike and cancels in the ratio).
+// capture, one report per firmware frame (physics.md §1.3, D): a rising edge every T2, the fall
+// T1 = D·T2 later, every edge timestamped by a free-running 16-bit timer floored to its tick
+// grid; once per frame the last period completed inside the frame is reported, T2 and T1 modulo
+// 2^16. The DCM phase is continuous across frames, so the quantisation error moves from frame to
+// frame and becomes a limit cycle when T2 is near a rational number of ticks (physics.md §6
+// row 14). Period jitter T2·(1 + j·z), the unreported periods summed in one exact normal draw.
+// Units: timer ticks (_cnt) relative to the start of the current frame.
+// Capture formulas, jitter approximation, limit cycles: docs/models/adxl210e.md ("Edges and
+// captures", "Limit cycles").
+// Left out: the capture input's synchronisation delay (cancels in both differences), capture FIFO
+// overflow and missed interrupts, timer-clock error (cancels in the ratio).
 #pragma once
 
 #include <array>

@@ -1,31 +1,16 @@
-// Inline replacements for the libm calls on the sensors' 100 Hz hot path. On the baseline x86-64
-// target (SSE2, no SSE4.1 `roundsd`; we build without -march so CI and production machines agree)
-// std::floor, std::llround and std::exp are out-of-line library calls; a call also forces every
-// live floating-point register to be spilled. These functions compile to a few inline instructions.
-//
+// Inline replacements for the libm calls on the sensors' 100 Hz hot path (on the baseline x86-64
+// target, built without -march, std::floor, std::llround and std::exp are out-of-line calls that
+// also spill every live floating-point register):
 //   FloorToInt64(x)          == (int64_t)std::floor(x)   exactly, for |x| < 2^62
 //   RoundHalfAwayToInt64(x)  == std::llround(x)          exactly, for |x| < 2^62
-//   RoundHalfEven(x)         == std::nearbyint(x)        exactly, for |x| < 2^51, in the default
-//                                                        rounding mode (the simulator never changes
-//                                                        it)
-//   BoundedExp(x)            ≈ std::exp(x) within 1 ulp, for x in [−kBoundedExpMaxArg,
-//   kBoundedExpMaxArg]
-//
-// The first three are exact (no approximation): the truncating conversion cvttsd2si is exact for an
-// in-range double, x − trunc(x) is exactly representable (it is x's own low mantissa bits), and the
-// correction compares exact quantities; adding and subtracting 1.5·2^52 makes the FPU's own
-// round-to-nearest-even drop x's fraction bits, the rounding nearbyint performs. BoundedExp is
-// Tang's table method (ACM TOMS 15(2), 1989):
-//   x = k·ln2/64 + r,  k = round(64·x/ln2),  |r| ≤ ln2/128 (plus rounding, < 2^-60 relative),
-//   e^x = 2^(k div 64) · 2^((k mod 64)/64) · e^r,
-// with 2^(j/64) from a table of correctly rounded doubles, the power of two built in the exponent
-// field, and e^r by its Taylor polynomial to r^5 (truncation r^6/720 ≤ 3.4e-17 relative, 0.15 ulp
-// of 1). ln2/64 is split in a 36-bit head (exact product with k, |k| < 2^17) and a tail (Cody and
-// Waite, 1980). The remaining error is the table's rounding (≤ 0.5 ulp) and four roundings in the
-// final sum T + T·q (|T·q| < T/128), together < 1 ulp; tests/sensor_sim/fast_math_test.cc measures
-// it against std::exp over the whole range. No special cases: arguments outside the range are the
-// caller's to exclude (beyond it the result is meaningless; NaN, infinities or |x| ≥ 2^50 make the
-// float-to-integer conversion undefined, as they do for the integer functions beyond 2^62).
+//   RoundHalfEven(x)         == std::nearbyint(x)        exactly, for |x| < 2^51, default rounding
+//   BoundedExp(x)            ≈ std::exp(x) within 1 ulp, for |x| <= kBoundedExpMaxArg (Tang's
+//                            table method, ACM TOMS 15(2), 1989)
+// Units: none (pure arithmetic).
+// Why they are exact, the error budget of BoundedExp: docs/performance.md ("Sensor physics",
+// the fast_math.h item).
+// Left out: special cases (arguments outside the ranges are the caller's to exclude; NaN,
+// infinities or |x| >= 2^50 make the float-to-integer conversion undefined).
 #pragma once
 
 #include <bit>

@@ -1,24 +1,13 @@
-// Slow stochastic gyro bias: bias instability (a flicker, 1/f, floor in the Allan deviation) and
-// rate random walk. Output in deg/s, referred to the gyro input; one value per frame.
-//
-// Bias instability: flicker noise has no finite-state exact form, so it is approximated by the sum
-// of kBiasInstabilityPoles first-order Gauss-Markov processes with correlation times one decade
-// apart (5, 50, 500, 5000 s) and equal variance sigma^2 each. Equal variance per decade of
-// correlation time gives a PSD falling as 1/f between the corners, hence an Allan deviation that is
-// flat within +-4 % for tau in [10 s, 5000 s] (the ADXRS645 sibling quotes its floor over 1 min to
-// 1 h; physics.md §2.1). sigma is chosen in the constructor so that the analytic Allan deviation of
-// the sum, averaged in log(tau) over that band, equals `bias_instability_dps` (the floor value read
-// off an Allan plot). The analytic Allan variance of one Gauss-Markov process of variance q^2 and
-// correlation time T (IEEE Std 952 Annex C; El-Sheimy et al. 2008) is
-//   AVAR(tau) = (2 q^2 T / tau) · [1 - (T / (2 tau)) (3 - 4 e^{-tau/T} + e^{-2 tau/T})].
-// Each process is advanced exactly (x <- phi x + q sqrt(1 - phi^2) n) every T/50 (at least every
-// frame) and held in between: the hold only changes the spectrum above 50/(2 pi T), where white
-// rate noise dominates by orders of magnitude, and it costs ~0.1 Gaussian draws per frame.
-//
-// Rate random walk: b <- b + K sqrt(h) n every h = 1 s (100 frames at 100 Hz), held in between;
-// AVAR(tau) = K^2 tau / 3 for tau >> 1 s. Starts at zero at construction.
-//
-// Left out: bias-temperature coupling (see null tempco in adxrs150.h), turn-on bias repeatability.
+// Slow stochastic gyro bias: bias instability (a flicker, 1/f, floor in the Allan deviation) as
+// the sum of kBiasInstabilityPoles first-order Gauss-Markov processes one decade apart (5, 50,
+// 500, 5000 s) of equal variance, set so that the analytic Allan deviation averaged in log(tau)
+// over 10...5000 s equals bias_instability_dps; and rate random walk, a step K sqrt(h) n every
+// h = 1 s. Each process advanced exactly every T/50 and held in between. Starts at zero.
+// Units: deg/s referred to the gyro input, one value per frame; times in s.
+// Why four poles, the Allan variance formula (IEEE Std 952 Annex C; El-Sheimy et al. 2008), the
+// hold's cost: docs/models/adxrs150.md ("Bias instability: what was chosen and why").
+// Left out: bias-temperature coupling (see null tempco in adxrs150.h), turn-on bias
+// repeatability.
 #pragma once
 
 #include <array>

@@ -1,20 +1,15 @@
 // Geometry of the IM³ inertial cube: where each sensor package sits relative to the unit case.
-//
-// Frames (docs/frames-and-units.md): B unit case (axes as marked), C_k accelerometer chip k's
-// package frame (x_C, y_C sensitive axes, z_C package normal), G_k gyro k's package frame (z_G
-// sensitive). A vector is taken from B into a package frame by R_CB (f_C = R_CB · f_B).
-//
 // Nominal mounting (reference-method.md "The unit"): three dual-axis ADXL210E chips give six
 // channels az1 ax1 ay1 az2 ax2 ay2, every body axis sensed twice with opposite polarity, with the
-// reference's signs (az1 −, ax1 −, ay1 +, az2 +, ax2 +, ay2 −):
-//   chip 0: x_C = −z_B (az1), y_C = −x_B (ax1)      chip 1: x_C = +y_B (ay1), y_C = +z_B (az2)
-//   chip 2: x_C = +x_B (ax2), y_C = −y_B (ay2)
-// and gyros gx gy gz with z_G along +x_B, +y_B, +z_B.
-// Each package carries its own small mounting misalignment, a rotation vector θ (body frame) with
-// R_CB = R_CB,nominal · Rot(θ); drawn within ±1° per component (ADXL210E alignment ±1°, physics.md
-// §1.1, R; the same tolerance is assumed for the gyro packages, E).
-// Left out: lever arms (the cube is ~20 mm; centripetal terms on the rate table are modelled by the
-// rig, not here), flexure of the boards, misalignment of the cube within the case.
+// reference's signs; gyros gx gy gz with z_G along +x_B, +y_B, +z_B. Each package carries its own
+// small mounting misalignment, a rotation vector θ in B, R_CB = R_CB,nominal · Rot(θ), drawn
+// within ±1° per component (ADXL210E alignment ±1°, physics.md §1.1, R; gyros assumed alike, E).
+// Frames: B unit case, C_k accelerometer chip k's package (x_C, y_C sensitive), G_k gyro k's
+// package (z_G sensitive); f_C = R_CB · f_B. Angles in deg.
+// Channel table: docs/frames-and-units.md ("IM³ channels"); parameters: docs/sensor-models.md
+// ("IM³ geometry").
+// Left out: lever arms (the rig models centripetal terms on the table), flexure of the boards,
+// misalignment of the cube within the case.
 #pragma once
 
 #include <array>

@@ -1,23 +1,13 @@
 // Outside-air-temperature probe of the ADS unit: a platinum RTD (PT500 or PT1000, IEC 60751
-// Callendar–Van Dusen curve) at the bottom of a voltage divider, excited from the ADS1254
-// reference so that the reading is ratiometric; SignalV() is the voltage an ADS1254 channel
-// (ads1254.h) digitises.
-//
-//   R_T(t)  = R0·(1 + e_R0)·(1 + A·t + B·t² + C·(t − 100)·t³),  C = 0 for t ≥ 0 °C  [rtd_tolerance]
-//   R_meas  = R_T(t_rtd) + R_lead [lead_resistance] t_rtd   = t_air + I²·R_T/δ,   I = V_exc/(R_s +
-//   R_meas)                          [self_heating] SignalV = V_exc·R_meas/(R_s + R_meas)
-//
-// IEC 60751 coefficients A = 3.9083e-3 /°C, B = −5.775e-7 /°C², C = −4.183e-12 /°C⁴ (the
-// standard's definition, valid −200…850 °C). Parameters, units in the names: R0 nominal from the
-// element type, the unit's R0 error (class B: ±0.3 °C at 0 °C, i.e. ±0.117 %), series resistor
-// R_s, excitation V_exc (the ADC reference for a ratiometric reading), two-wire lead resistance,
-// dissipation constant δ of the probe in its airflow (E). Self-heating is solved by two
-// fixed-point iterations (the power changes by 0.4 %/°C, so the residual is < 1e-7 °C).
-//
-// Not modelled: the probe's thermal time constant and the recovery of total temperature (the
-// input is the temperature the element would reach with no self-heating), series-resistor
-// tempco and the board temperature, insulation leakage, thermoelectric EMFs, noise (the ADS1254
-// channel adds it). Throws std::domain_error outside −200…850 °C.
+// Callendar-Van Dusen curve, valid −200…850 °C) at the bottom of a voltage divider, excited from
+// the ADS1254 reference so that the reading is ratiometric, with the element's R0 tolerance,
+// two-wire lead resistance and self-heating (two fixed-point iterations); SignalV() is the voltage
+// an ADS1254 channel (ads1254.h) digitises. Throws std::domain_error outside −200…850 °C.
+// Units: °C, Ω, V, mW/°C via the names.
+// Equations, IEC coefficients, parameters and sources: docs/models/oat-probe.md.
+// Left out: the probe's thermal time constant and total-temperature recovery (the input is the
+// element temperature with no self-heating), series-resistor tempco and the board temperature,
+// insulation leakage, thermoelectric EMFs, noise (the ADS1254 channel adds it).
 #pragma once
 
 #include <cstdint>

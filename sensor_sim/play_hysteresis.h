@@ -1,24 +1,14 @@
 // A second hysteresis law for the pressure bridges, of another family than preisach_hysteresis.h
-// (a truth variant: the calibration's operator follows the travel law, so a unit on this law
-// tests a pipeline whose hysteresis model does not have the truth's form).
-//
-// Law: a generalised Prandtl-Ishlinskii model (K. Kuhnen, "Modeling, identification and
-// compensation of complex hysteretic nonlinearities: a modified Prandtl-Ishlinskii approach",
-// European Journal of Control 9, 2003): kOperators play operators of radius
-// r_i = (span / 2) i / kOperators, each p_i <- clamp(p_i, x - r_i, x + r_i), read as
-// h_i = (p_i - x) / r_i in [-1, 1] (-1 after a rise of 2 r_i, +1 after a fall: the bridges'
-// convention), weighted w_i ~ exp(-r_i / (0.15 span)) (sum 1), and scaled by an envelope that
-// grows across the input's working range [low, high]:
-//   s = clamp(g(x) sum_i w_i h_i, -1, 1),   g(x) = 1 + kEnvelopeSlope (x - centre) / half_range.
-// Against the travel law: a branch leaves its reversal with a finite slope (sum w_i / r_i) where
-// the travel law leaves it with zero slope; it is concave all the way to saturation at a travel
-// of `span`; and the same excursion makes a loop 1.6 / 0.4 = 4 times larger at the top of the
-// range than at the bottom, where the travel law's loops depend on the travel alone. The weights
-// and the envelope are engineering estimates chosen to differ from the travel law, not fitted
-// to a part (docs/sensor-models.md).
-// A fresh operator starts at its first input x0 with every p_i = x0: state 0.
-// Wiping-out and exact minor-loop closure hold (each play operator has them).
-// Not modelled: creep, rate dependence.
+// (a truth variant: the calibration's operator follows the travel law, so a unit on this law tests
+// a pipeline whose hysteresis model does not have the truth's form). A generalised
+// Prandtl-Ishlinskii model (K. Kuhnen, European Journal of Control 9, 2003): kOperators play
+// operators of radii up to span / 2, weights falling with radius, scaled by an envelope that grows
+// across the input's working range; unlike the travel law a branch leaves its reversal with a
+// finite slope and loop size depends on where the loop lies. Starts at state 0.
+// Units: the input's (Pa or °C); state dimensionless in [−1, 1], −1 after a rise.
+// Law, weights, envelope (engineering estimates, not fitted to a part): docs/sensor-models.md
+// ("Truth variants (model form)", the play-operator law).
+// Left out: creep, rate dependence.
 #pragma once
 
 #include <array>

@@ -1,28 +1,16 @@
 // A rate-independent hysteresis state with Preisach's memory rules (shared/physics.md §6 rows 4
 // and 7): the state is −1 when the input has risen far enough, +1 when it has fallen far enough,
-// and in between it is set by the extremes the input has visited that are not wiped out.
-//
-// Law (a Preisach model whose Everett function depends only on the travel, written through its
-// branches): along a branch that began at a reversal x_b with state s_b, moving in direction
-// d = ±1,
-//
-//   s(x) = s_b − 2·d·F(|x − x_b| / span),   F(t) = t²(3 − 2t) for t < 1, 1 beyond,
-//
-// so a branch leaves its reversal with zero slope (Rayleigh's law: the hysteretic part grows
-// with the square of the travel) and a full branch from one saturated state to the other takes
-// a travel of `span`. Minor loops close exactly: returning to a branch's start restores its
-// state, so a loop of any size leaves no trace. Wiping-out (return-point memory): when the input
-// passes back beyond the start of the previous branch, the loop between them is forgotten and the
-// state continues the older branch, continuously. Hence noise reversals on a slow ramp are
-// harmless: the state depends only on the dominant extremes, not on the noise, the rate or the
-// step size.
-// A fresh operator is in the demagnetised (virgin) state at its first input x0: state 0, as if
-// it had seen alternating extremes x0 ± a of every amplitude a; moving away from x0 by u follows
-// the virgin curve s = −sign(x − x0)·F(2u/span), which meets every branch from an extreme at the
-// mirror point of that extreme (2·x0 − x_b) and is wiped out progressively as the input explores.
-// Not modelled: nesting deeper than kMaxBranches (the smallest minor loop is then forgotten, a
-// jump of at most 12·(a/span)² for a loop of travel a), creep and relaxation with time, an
-// Everett function that depends on where the loop lies (only on its travel here).
+// and in between it is set by the extremes the input has visited that are not wiped out. Along a
+// branch from a reversal x_b at state s_b in direction d = ±1: s(x) = s_b − 2·d·F(|x − x_b| /
+// span), F(t) = t²(3 − 2t) for t < 1, 1 beyond (Rayleigh's law at the reversal). Minor loops close
+// exactly; passing back beyond the previous branch's start wipes the loop out (return-point
+// memory), so noise reversals on a slow ramp are harmless. A fresh operator starts demagnetised
+// (state 0) at its first input and follows the virgin curve.
+// Units: the input's (Pa or °C, with span in the same unit); state dimensionless in [−1, 1].
+// Law, virgin curve and why these rules: docs/models/pressure-bridge.md ("Equations",
+// Hysteresis).
+// Left out: nesting deeper than kMaxBranches (the smallest minor loop is forgotten), creep and
+// relaxation with time, an Everett function that depends on where the loop lies.
 #pragma once
 
 #include <algorithm>

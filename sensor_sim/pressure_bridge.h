@@ -1,49 +1,18 @@
 // One IC Sensors / MSI model-1230 class piezoresistive pressure bridge under constant-current
 // excitation (shared/physics.md §3.1, §3.2 and §6 rows 4, 6, 7): the static (absolute) or pitot
 // (differential) sensor of the ADS air-data board. Step() takes the true pressure and die
-// temperature and returns the differential bridge output and the voltage across the bridge,
-// which is the on-die thermometer.
-//
-// Model (physics.md §3.2 "suggested model"), with ΔT = die_temp_c − reference_temp_c and
-// u = pressure_pa / full_scale_pa:
-//
-//   R_B   = R_B0·(1 + α·ΔT + β·ΔT²)·(1 + γ_P·u)                        [bridge_tcr,
-//   resistance_pressure] I     = I_0·(1 + k_I·ΔT) [excitation_tempco] V_B   = I·R_B signal_v =
-//   V_B·[ o0 + o1·ΔT + o2·ΔT²                                 [offset_tempco: o1, o2]
-//                  + S_lin·(1 + t1·ΔT + t2·ΔT²)·u                        [span_tempco: t1, t2]
-//                  + K·u²                                                [nonlinearity]
-//                  + S·(h_P/2)·s_P + S·(h_T/2)·s_T ] [pressure_/thermal_hysteresis]
-//            + noise                                                     [noise]
-//
-// S = sensitivity_mv_per_v is the full-scale output per volt of V_B at the reference temperature
-// (FSO = V_B·S, the datasheet's FSO definition: output at full scale minus output at zero). The
-// span nonlinearity K·u² is parameterised by its best-fit-straight-line value NL (least-squares
-// BFSL over 0…FS, as % FSO): for a parabola the largest BFSL residual is K/6, at the end points,
-// so K = 6·NL·S and S_lin = S − K keeps FSO = V_B·S (NL > 0: ends above the BFSL).
-// s_P and s_T ∈ [−1, 1] are hysteresis states of pressure and die temperature (−1 after a rise,
-// +1 after a fall) under the bridge's hysteresis law: the travel law of preisach_hysteresis.h (the
-// typical part, and the law the firmware runs) or the play-operator law of play_hysteresis.h
-// (a truth variant of another family, over 0…FS and −55…+125 °C); h_P and h_T are the configured
-// hysteresis as the full difference between falling and rising branches, in fractions of FSO.
-//
-// The coefficients o·, t· describe the ratio signal_v/V_B (the ratiometric output, as a constant
-// voltage datasheet gives them). Under constant current the span tempco of signal_v is α + t1
-// (physics.md §3.2, [AVS]): with α = +2600 ppm/°C (V, [MAX1450]) and the typical t1 = −2500
-// ppm/°C the compensated part's net span tempco is +100 ppm/°C (0.45 % FSO over 25…70 °C, inside
-// the ±0.5…1 % FSO of physics.md §3.1, R/E).
-//
-// Self-heating: the bridge dissipates I·V_B (a few mW); SelfHeatingW() reports it for the unit's
-// thermal model, which owns the die temperature, and self_heating_c_per_w is the die-to-case
-// thermal resistance that model may use (E, 100…200 °C/W).
-//
-// Units: Pa, °C, V, A via the names. The input pressure is absolute for kAbsolute and differential
-// (pitot − static) for kDifferential; the model itself is the same polynomial for both.
-//
-// Not modelled: line-pressure (common-mode) sensitivity of the differential sensor, the
-// thermal gradient between the current source and the die (the current source is taken at die
-// temperature), long-term drift, creep, g-sensitivity of the diaphragm, media effects,
-// overpressure damage, noise on V_B (ADC noise dominates both channels), 1/f noise.
-// Every number marked R or E in physics.md is a parameter here, not a limit.
+// temperature and returns the differential bridge output and the voltage across the bridge V_B,
+// which is the on-die thermometer. The output is V_B times a ratiometric polynomial in ΔT and
+// u = pressure / full scale: offset and its tempcos, span and its tempcos, BFSL nonlinearity,
+// pressure and thermal hysteresis (states of preisach_hysteresis.h or play_hysteresis.h), noise;
+// R_B has its TCR (α, β) and pressure dependence, the current source its tempco. SelfHeatingW()
+// reports I·V_B for the unit's thermal model, which owns the die temperature.
+// Units: Pa, °C, V, A via the names; pressure absolute for kAbsolute, pitot − static for
+// kDifferential (the same polynomial for both).
+// Equations, FSO and BFSL definitions, parameters with sources: docs/models/pressure-bridge.md.
+// Left out: common-mode sensitivity of the differential sensor, current-source-to-die gradient,
+// long-term drift, creep, diaphragm g-sensitivity, media effects, overpressure, noise on V_B, 1/f
+// noise. Every number marked R or E in physics.md is a parameter here, not a limit.
 #pragma once
 
 #include <cstdint>

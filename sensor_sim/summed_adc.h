@@ -1,22 +1,15 @@
 // A unipolar ADC channel whose output per frame is the SUM of several conversions, as the unit
 // reads its gyros (external 19-bit ADC, 0..5 V, 16 conversions per 100 Hz frame, int32 sum) and
-// their TEMP pins (dsPIC 12-bit ADC, 0..5 V, 16 conversions, uint16 sum up to 65520)
-// (reference-method.md "Scales implied"; docs/models/adxrs150.md).
-//
-// Model of one frame, given the mean input voltage v over the frame's conversions (the caller adds
-// all analog noise and this channel's MeanNoiseVariance_v2() to v before calling SumCounts):
-//   lsb_v = full_scale_v / 2^bits;  c = v / lsb_v  (clipped to the code range [0, 2^bits - 1])
-//   quantisation on, no dither (noise off): every conversion gives the same code round(c), so
-//     sum = n · round(c)        (the staircase of n codes a noiseless input really shows);
-//   quantisation on, dithered (noise on): the per-conversion rounding errors are independent and
-//     uniform (Widrow's quantisation theorem holds because the input noise spans many LSB, see the
-//     model doc), so their sum has variance n/12 LSB^2; it is represented by adding (n - 1)/12 to
-//     the variance of the mean and rounding the sum once (the final rounding supplies the last
-//     1/12);
-//   quantisation off: sum = round(n · c), the ideal sum at the output type's 1-count resolution.
-// ADC noise: `noise_lsb_rms` per conversion, independent between conversions (variance of the mean
-// noise_lsb_rms^2 / n). Left out: differential/integral nonlinearity, reference error and drift,
-// partially clipped frames (the clip applies to the frame mean).
+// their TEMP pins (dsPIC 12-bit ADC, 0..5 V, 16 conversions, uint16 sum up to 65520), given the
+// mean input voltage over the frame: without dither every conversion gives the same code (the
+// staircase), with dither the rounding errors are independent (Widrow) and added as variance
+// before one final rounding; with quantisation off the ideal sum at 1-count resolution. The caller
+// adds all analog noise and MeanNoiseVariance_v2() to the mean voltage before SumCounts.
+// Units: input in V, noise in LSB rms per conversion, output in counts (_cnt).
+// Derivation: docs/models/adxrs150.md ("Equations", the ADC item); scales: reference-method.md
+// "Scales implied".
+// Left out: differential/integral nonlinearity, reference error and drift, partially clipped
+// frames (the clip applies to the frame mean).
 #pragma once
 
 #include <algorithm>

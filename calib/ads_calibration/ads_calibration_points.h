@@ -1,19 +1,13 @@
-// ADS calibration points from a recording (docs/recording-format.md): the rows of one
-// unit whose TAG is a step's TAG (non-zero) and that lie outside every rejected interval of
-// meta.json are that step's calibration data; each step's rows are averaged into one point.
-//
-// Each point carries the mean ADS1254 codes (static and pitot bridge outputs and their bridge
-// voltages, the sensors' temperature signals), the mean pressures the air data test set reported
-// (ps_ref_pa, qc_ref_pa), the chamber reading, and the reference altitude and calibrated airspeed
-// computed from those pressures by ISA (common/atmosphere.h, air_data.h): the standard
-// formulas, as the test set itself converts. A point is an airspeed point when its impact pressure
-// is above that of kMinAirspeedPointKt; every point is an altitude point (the static sensor reads
-// its pressure whatever the pitot does).
-// Refused, naming ads.csv, the line and the column: a non-finite reference or chamber value, a
-// code at the converter's rail (saturated), a recording without rows of the unit, a reference
-// pressure that moved more than kMaxReferenceSpanPa within one step's acquisition (the point's
-// truth is then unknown: a test set still settling, or a stale reading on the first rows). Not
-// modelled: outlier rejection inside a step (the executor's rejected intervals do that), the test
+// ADS calibration points from a recording: the rows of one unit whose TAG is a step's TAG
+// (non-zero) and that lie outside every rejected interval of meta.json, averaged per step into
+// one point of mean ADS1254 codes (static and pitot bridge outputs, bridge voltages, temperature
+// signals), mean test-set pressures, chamber reading, and the reference altitude and calibrated
+// airspeed by ISA (common/atmosphere.h, air_data.h), as the test set converts. Every point is an
+// altitude point; airspeed points are those at or above kMinAirspeedPointKt.
+// Units: codes in counts, pressures in Pa, altitude in ft, airspeed in kt, temperature in degC.
+// Refusals (naming ads.csv, line and column): docs/calibration-strategies.md ("Calibration points
+// from a recording").
+// Left out: outlier rejection inside a step (the executor's rejected intervals do that), the test
 // set's own uncertainty (taken as exact).
 #pragma once
 

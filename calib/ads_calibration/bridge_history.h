@@ -1,28 +1,17 @@
 // The hysteresis states of the ADS's two pressure bridges at each calibration point, from the
-// history the reference instruments imposed (shared/physics.md section 6 rows 4 and 7): a
-// bridge's output carries S (h_P/2) s_P + S (h_T/2) s_T, where
-// s_P and s_T in [-1, 1] are Preisach states of pressure and of die temperature (-1 after a
-// rise, +1 after a fall, set by the extremes that are not wiped out). A single-valued surface
-// fitted to points recorded on one branch returns that branch, not the loop's centre; with the
-// states as regressors (tolerance_ads_strategy.h) it returns the centre.
-//
-// The states are those of the Preisach operator the unit runs (unit_hysteresis_operator.h) driven
-// by the reference history in step order: the test set's static pressure (static bridge) and impact
-// pressure (pitot bridge), and the chamber temperature (both dies; after a soak the die sits at
-// the chamber's temperature). Between calibration points the test set and the chamber move
-// monotonically from one aim to the next (the sequence's steps), so every reversal that matters
-// happens at a point and the points alone carry the history: the test set's noise and the
-// chamber's overshoot make minor loops that the operator's return-point memory forgets once the
-// input passes back, which it does on the way to the next point. Before the first point the unit
-// is taken to be at rest in the room, demagnetised (the operator's virgin state): 25 degC,
-// standard sea-level static pressure, no impact pressure; the sequence's first full excursions
-// wipe that out.
-// Spans: each bridge has its own (a part's spans are not given by any datasheet). Nominal() holds
-// the class's estimate (physics.md section 6: E), 20 % of full scale and 20 degC, which the
-// hysteresis-compensated strategy starts from and then estimates from the recording
-// (hysteresis_span_fit.h).
-// Left out: die temperature lagging the chamber during a step's dwell (the points are taken after
-// the soak); a real unit's history before the run (a full excursion of the sequence erases it).
+// history the reference instruments imposed (shared/physics.md section 6 rows 4 and 7): a bridge's
+// output carries S (h_P/2) s_P + S (h_T/2) s_T, s_P and s_T in [-1, 1] the Preisach states of
+// pressure and die temperature (-1 after a rise, +1 after a fall). The states are those of the
+// operator the unit runs (unit_hysteresis_operator.h) driven in step order by the test set's
+// static (static bridge) and impact (pitot bridge) pressure and the chamber temperature, from the
+// virgin state; with them as regressors a surface returns the loop's centre, not one branch.
+// Spans per bridge; Nominal() is the class's estimate (20 % of full scale, 20 degC), which
+// hysteresis_span_fit.h refines from the recording.
+// Units: pressures in Pa, temperatures in degC, states dimensionless.
+// Why the points alone carry the history, the initial state: docs/calibration-strategies.md
+// (`pressure_minimax` item 3, "The states at the points").
+// Left out: die temperature lagging the chamber during a step's dwell (points are taken after the
+// soak); a real unit's history before the run (a full excursion of the sequence erases it).
 #pragma once
 
 #include <vector>

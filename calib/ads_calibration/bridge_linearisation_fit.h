@@ -1,20 +1,13 @@
 // The bridge-voltage code's linearisation in die temperature (firmware_model's
-// BridgeLinearisation, target/bridge_linearisation.h), estimated from the calibration points.
-//
-// Model: at each soak the bridge code y is a quadratic of the chamber temperature T,
-//   y = a + b t + c t^2,   t = T - (mean chamber temperature of the points),
-// fitted by the project's least-squares driver (calib/solvers/polynomial_fit.h; every point
-// weighs the same). The linearisation's origin is a, rounded to a whole code, and its curvature
-// kappa = 4 c / b^2, which makes s(y) = origin + b t exactly for the fitted quadratic. The die's
-// self-heating is an offset between die and chamber that t does not need to know; what the fit
-// leaves (the current source's tempco, a cubic; the bridge resistance's pressure dependence, a
-// scatter across the points of one soak) stays in the residual, reported in degC.
-// Standard error of kappa: first order through (b, c), from the fit's residual-variance
-// covariance (the residual is partly systematic, so it is an indication rather than a bound).
-// Refused (DegenerateDesignError, naming the context): fewer than 3 chamber temperatures, a
-// design the driver refuses, a slope of less than one code over the temperatures' travel, or a
-// curvature that turns the quadratic inside the points' code range (1 + kappa (y - origin) <= 0
-// at some point).
+// BridgeLinearisation, target/bridge_linearisation.h), estimated from the calibration points: the
+// bridge code y as a quadratic of the chamber temperature, y = a + b t + c t^2 (t the chamber
+// temperature less the points' mean), gives origin = a rounded to a whole code and curvature
+// kappa = 4 c / b^2, which make s(y) = origin + b t exactly for the fitted quadratic.
+// Units: codes in counts, t in degC, residual in degC.
+// Derivation, standard error of kappa, refusals (DegenerateDesignError):
+// docs/calibration-strategies.md ("The bridge code's linearisation").
+// Left out: self-heating (an offset t need not know); the current source's tempco and the bridge
+// resistance's pressure dependence stay in the residual.
 #pragma once
 
 #include <string>

@@ -1,21 +1,14 @@
-// The hysteresis spans of one pressure bridge estimated from its calibration points. No datasheet
-// gives a model-1230 part's spans (physics.md section 6: estimated), and the surface's error
-// grows with the distance between the spans the operators assume and the part's own: so the
-// spans are the values that let the centre fit (surface plus gains times the states) explain the
-// points best. The states are nonlinear in the spans, the fit is linear given them: a profile
-// search, each candidate scored by the caller's weighted residual sum of squares.
-// Search: the spans between kSpanSearchMin and kSpanSearchMax times the starting values, on a
-// 17 x 17 grid uniform in log(span), then refined twice on 9 x 9 grids of a quarter of the last
-// step around the best; each span's standard error from the profile's curvature in log(span) at
-// the optimum (a parabola through the best and its two neighbours along that axis), in the
-// units of the cost: cost / (points - parameters) is the residual variance, and an increase of
-// that much is one standard error.
-// Left out: the spans' correlation and the law's own error (each standard error is along its
-// axis with the other held and takes the law as exact: on the demo's unit the thermal spans came
-// out 3-4 % from the truth, 8-10 of these standard errors);
-// the shape of the law (the spans are those of the unit's own operator,
-// unit_hysteresis_operator.h: a bridge on another law gets the spans that fit its points best,
-// and the residual says how far that is).
+// The hysteresis spans of one pressure bridge estimated from its calibration points (no datasheet
+// gives a model-1230 part's spans, physics.md section 6). The states are nonlinear in the spans,
+// the centre fit is linear given them: a profile search over a grid uniform in log(span), refined
+// twice, each candidate scored by the caller's weighted residual sum of squares; each span's
+// standard error from the profile's curvature at the optimum.
+// Units: pressure span in Pa, thermal span in degC; cost in the caller's units.
+// Search grid, standard errors, measured accuracy: docs/calibration-strategies.md ("Hysteresis
+// spans from the recording").
+// Left out: the spans' correlation and the law's own error (each standard error is along its axis
+// with the other held, the law taken as exact); the shape of the law (the spans are those of the
+// unit's own operator, unit_hysteresis_operator.h).
 #pragma once
 
 #include <functional>

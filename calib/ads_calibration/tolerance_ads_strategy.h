@@ -1,19 +1,16 @@
 // Improved ADS strategies that the firmware runs: surfaces fitted for the specification rather
-// than for the mean square. The tolerance is tight at low altitude (+-15 ft) and loose at 50,000 ft
-// (+-80 ft), tight at 300-450 kt (+-1 kt) and loose at 60 kt (+-5 kt); an equal-weight fit spends
-// its freedom evenly and leaves the tight end far outside. Here the quantity minimised is the worst
-// error in units of the tolerance at the calibration points, max_i |r_i| / tol_i, by Lawson's
-// iteratively reweighted least squares (C. L. Lawson, 1961; Rice and Usow, Math. Comp. 22, 1968):
-// start from w_i = 1/tol_i^2 (the weighted mean-square fit), then w_i <- w_i |r_i| / tol_i,
-// normalised, for kLawsonIterations; the iterate with the smallest worst ratio is kept. Tolerances
-// are calib/acceptance/ads_tolerance.h's, with points outside the operating limits weighed at the
-// nearest limit's tolerance.
-// Output as the reference's (constants, standard errors from the weighted residual variance,
-// diagnostics) plus, per output, the worst ratio at the points of the first (1/tol^2) fit and of
-// the kept one.
-// Left out: hysteresis (a single-valued surface returns one branch; the evaluation quantifies the
-// loop: docs/calibration-strategies.md); tolerance_minimax also keeps the 10-term cubic's
-// temperature order, which cannot follow the bridge over -40...+85 degC.
+// than for the mean square, minimising the worst error in units of the tolerance at the calibration
+// points, max_i |r_i| / tol_i, by Lawson's iteratively reweighted least squares from w_i =
+// 1/tol_i^2 (tolerance_minimax), plus pressure surfaces with a law, held-out temperature order and
+// hysteresis regressors (pressure_minimax, hysteresis_compensated). Tolerances are
+// calib/acceptance/ads_tolerance.h's. Output as the reference's (constants, standard errors,
+// diagnostics) plus the worst ratio at the points of the first and the kept fit.
+// Units: altitude in ft, airspeed in kt, pressures in Pa, codes in counts.
+// Derivations, citations, measured figures: docs/calibration-strategies.md ("Improved strategies:
+// `tolerance_minimax`, `pressure_minimax`, `hysteresis_compensated`").
+// Left out: hysteresis in the static strategies (a single-valued surface returns one branch);
+// tolerance_minimax keeps the 10-term cubic's temperature order, which cannot follow the bridge
+// over -40...+85 degC.
 #pragma once
 
 #include <string>

@@ -1,18 +1,15 @@
 // A calibration campaign: the production chain over two benches, each stage a call into its own
-// library, each stage's output a directory under `out_dir` (docs/demo.md):
-//   1. calibration runs, IMU bench and ADS bench concurrently (bench_runs.h)  -> runs/<sequence>/
-//   2. fits of both strategies per unit kind (campaign_fits.h)     -> fits/<kind>-<strategy>/
-//   3. download of the improved constants into every unit, read back, recorded
-//      (station_download.h)
-//   4. acceptance runs in the calibrated modes, judged against the reference specification
-//                                          -> runs/<sequence>/acceptance/<serial>/acceptance.json
-//   5-6. stages injected by the caller (CampaignOptions::before_reports), e.g. the demo's truth
-//      stages (proving/demo/demo_campaign.h); the production chain never knows the truth
-//   7. report.html per run (run_report.h) with the fit of its unit kind
-//   8. production records: every run, constants file and download -> records.sqlite
-// A unit that fails acceptance is a result, not an error. Errors of a stage pass through with its
-// own context (run, step, unit, file); a stop request (SIGINT) stops the benches safely and throws
+// library, each stage's output a directory under `out_dir`: (1) calibration runs, both benches
+// concurrently (bench_runs.h) -> runs/<sequence>/; (2) fits of both strategies per unit kind
+// (campaign_fits.h) -> fits/<kind>-<strategy>/; (3) download of the improved constants
+// (station_download.h); (4) acceptance runs judged against the reference specification ->
+// runs/<sequence>/acceptance/<serial>/acceptance.json; (5-6) stages injected by the caller
+// (CampaignOptions::before_reports, e.g. proving/demo/demo_campaign.h); (7) report.html per run;
+// (8) production records -> records.sqlite. The production chain never knows the truth.
+// A unit that fails acceptance is a result, not an error; a stage's errors pass through with its
+// context (run, step, unit, file); a stop request (SIGINT) stops the benches safely and throws
 // RunInterrupted.
+// Stage by stage: docs/demo.md ("What runs", "Directories written").
 // Left out: resuming a campaign (each run resumes with `adahrs run --resume`), choosing the
 // downloaded strategy by evaluation (the improved one is downloaded by design).
 #pragma once

@@ -1,23 +1,15 @@
-// The reference strategy (reference-method.md, Method 2-5; docs/calibration-strategies.md):
-// sequential, exactly as the reference method runs it, on the data LoadImuRuns selected:
-//   1. thermal (Eq. 10-11): per channel xi(t) = k0 + k1 t + k2 t^2 over the thermal_profile rows
-//      (thermal_drift_fit.h: every 1 degC band weighs the same; up- and down-ramps fitted and
-//      reported separately, their largest gap reported as hysteresis);
-//   2. six-position offset and scale (Eq. 17-20) on thermally compensated means; acquisitions of
-//      the same orientation (e.g. the thermal run's accel step) are pooled;
-//   3. gyro cubic (Eq. 23) per gyro from the acquisitions whose up axis is the gyro's axis, the
-//      reference rate being the table's reported rate about that axis;
-//   4. cross-axis (Eq. 25, 28, column form): CA from the rest acquisitions in 11/21/31 with the
-//      station's local gravity, CG from those at the largest rate (each column scaled to 150 deg/s
-//      by its reported rate). The cross_axis step's acquisitions are used when present, else
-//      the accel steps' and the gyro steps' at their largest rate.
-// Temperature sensor driving each channel (a documented choice, ThermalSensorOfChannel): the
-// accelerometers have no thermometer, every die follows the same chamber air, and chip k sits
-// on the board of gyro k, so chip k (az1/ax1, ay1/az2, ax2/ay2) uses TEMP k; gyro g uses its own.
-// Refused (DegenerateDesignError / ImuInputError with the reason): no thermal rows, a missing
-// orientation, fewer than 5 rates or no 0 deg/s acquisition for a gyro, too few temperatures.
-// Not modelled: anything the firmware constants cannot hold (scale vs temperature, accelerometer
-// nonlinearity, g-sensitivity, lag), see the improved strategies.
+// The reference strategy: sequential, exactly as the reference method runs it (reference-method.md,
+// Method 2-5), on the data LoadImuRuns selected: thermal (Eq. 10-11, quadratic per channel),
+// six-position offset and scale (Eq. 17-20) on thermally compensated means, gyro cubic (Eq. 23),
+// cross-axis (Eq. 25, 28, column form). Each channel's thermometer is kThermalSensorOfChannel
+// (accelerometer chip k uses TEMP k, the gyro on its board).
+// Frames and units: body axes B, orientation codes of frames-and-units.md; raw duty and counts in,
+// firmware constants (calibration_constants.h) out; rates in deg/s, local gravity in m/s^2.
+// Steps, pooling and refusals (DegenerateDesignError / ImuInputError):
+// docs/calibration-strategies.md ("`reference`: the reference method exactly", "Selecting the
+// calibration data") and docs/calibration-solvers.md ("Models").
+// Left out: anything the firmware constants cannot hold (scale vs temperature, accelerometer
+// nonlinearity, g-sensitivity, lag), see the joint strategy.
 #pragma once
 
 #include <array>

@@ -1,24 +1,15 @@
-// The calibration data of each IMU in one or more recordings (docs/recording-format.md), selected
-// as the executor defines it: the rows of a step are those whose TAG equals the
-// step's TAG (EffectiveTags of meta.json's sequence), of the step's index, not inside one of
-// meta.json's rejected intervals for that step. Grouped per unit serial and per acquisition:
-//   accel step       one acquisition (its orientation)
-//   gyro step        one acquisition per table rate (rows grouped by the table's REPORTED rate,
-//                    within 1 deg/s of each other; the acquisition's rate is their mean)
-//   cross_axis step  one acquisition per (orientation, reported rate): at rest and at rate_dps in
-//                    each of 11, 21, 31
-//   thermal_profile  every row, each labelled up-ramp, down-ramp or soak from the chamber's
-//                    reported temperature trend (slope over +-30 s beyond +-0.05 degC/min,
-//                    within the row's own run: each run's clock starts at zero)
-// Rows that cannot be calibration data are excluded and each exclusion is reported with the file,
-// line and column: a duty that is undefined (t2 = 0 or t1 >= t2), a gyro or temperature count at
-// its converter's limit (saturated), a row not in raw mode (v2 `mode` column non-zero).
-// Refused (ImuInputError, naming the run, step and unit): an unreadable, truncated or malformed
-// recording or wrong format version (hil::RecordingError passes through with file, line and
-// column), meta.json without local gravity or sequence, a unit of meta.json with no rows in a step
-// that acquires (a unit missing from a step), an accel step whose rows carry another orientation,
-// runs with different local gravity.
-// Not done here: any fitting; interpretation of the temperature counts (the strategies decide).
+// The calibration data of each IMU in one or more recordings, selected as the executor defines it
+// (the step's TAG and index, outside meta.json's rejected intervals) and grouped per unit serial
+// and acquisition: one per accel step, one per reported table rate of a gyro step, one per
+// (orientation, reported rate) of a cross_axis step, and every thermal_profile row labelled
+// up-ramp, down-ramp or soak from the chamber's reported trend (each run's clock starts at zero).
+// Rows that cannot be calibration data (undefined duty, saturated counts, not raw mode) are
+// excluded and reported with file, line and column; bad input is refused with ImuInputError
+// naming the run, step and unit (hil::RecordingError passes through).
+// Units: duty (accelerometers), counts (gyros, TEMP), deg/s (table rates), m/s^2 (local gravity).
+// Selection rules, trend labelling, exclusions and refusals: docs/calibration-strategies.md
+// ("Selecting the calibration data").
+// Left out: any fitting; interpretation of the temperature counts (the strategies decide).
 #pragma once
 
 #include <filesystem>

@@ -1,19 +1,14 @@
 // The IMU parts of report.html for one unit, from its calibration data (imu_run_data.h) and, when
-// the fit produced one, its constants.json:
-//   thermal     raw channel output vs chamber air temperature over the thermal profile, and the
-//               residual after the thermal fit T = U - xi(t) (mean removed), up- and down-ramps
-//               drawn separately so hysteresis shows;
-//   six-position mean sensor-calibrated Ca per channel (g) in each orientation, and the residual of
-//               the fully calibrated A against g_local along the up axis (mg, 1 mg = 9.80665e-3
-//               m/s^2);
-//   gyro        residual of the sensor-calibrated rate (Eq. 23) against the table's reported rate
-//               about the up axis (deg/s) at each rate;
-//   cross-axis  CA (m/s^2 per g) and CG with standard errors, and the fully calibrated residuals at
-//               rest (mg) and at rate (deg/s) in orientations 11, 21, 31;
-//   noise       Allan deviation at rest and the noise terms read off it (imu_noise_section.h).
-// Compensated values come from the double reference compensator (firmware_model/
-// reference_compensator.h) applied to the recorded raw frames with the file's constants.
-// A missing input makes its section say "not available (why)".
+// the fit produced one, its constants.json: thermal (raw output and the residual T = U - xi(t) vs
+// chamber temperature, up- and down-ramps apart), six-position (Ca per channel and orientation,
+// residual of A along the up axis), gyro (Eq. 23 rate residual per rate), cross-axis (CA, CG with
+// standard errors, residuals at rest and at rate) and noise (imu_noise_section.h). Compensated
+// values come from the double reference compensator (firmware_model/reference_compensator.h)
+// applied to the recorded raw frames with the file's constants.
+// Frames and units: body axes B, orientations 11...32; Ca in g, residuals in mg (1 mg =
+// 9.80665e-3 m/s^2) and deg/s, CA in m/s^2 per g.
+// Section by section: docs/report.md (the section table, "IMU thermal" to "IMU noise").
+// Left out: a section whose input is missing says "not available (why)" instead.
 #pragma once
 
 #include <string>

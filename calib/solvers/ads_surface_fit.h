@@ -1,29 +1,13 @@
 // Air-data surfaces (thesis sections 2.9.1 and 4.3.1, Table 25): a bivariate polynomial of the
-// pressure code x (static for altitude or static pressure, pitot for airspeed or impact pressure)
-// and the same bridge's temperature code y (its bridge voltage), fitted to the reference values of
-// an air data test set at several chamber temperatures. The reference method's is the 10-term cubic
-//   z = a + b x + c y + d x^2 + e y^2 + f x y + g x^3 + h y^3 + i x y^2 + j x^2 y
-// (FitReferenceSurface); FitSurface takes any basis the firmware can hold (powers of x up to 3,
-// of y up to 5: firmware_model::SurfaceFit). Fitted in normalised inputs (the code box mapped onto
-// [-1, 1]^2) and re-expanded in raw codes for firmware_model::SurfaceFit, with the box, which the
-// exporter normalises to again (polynomial_basis.h).
-// Weighting: equal, as the reference's TableCurve 3-D fit (the reference instead places more
-// points where the tolerance is tight), unless the samples carry weights (the tolerance-weighted
-// strategies, tolerance_ads_strategy.h): then sum w_i r_i^2 is minimised, w_i read as relative
-// inverse variances. Standard errors from the residual variance; the residuals here are mostly
-// model error (a polynomial cannot follow the bridge's temperature behaviour exactly), so they
-// describe the fit's spread, not noise.
-// Refused: fewer distinct chamber temperatures than the highest power of y plus one (the bridge-
-// voltage code alone cannot show it, since pressure and noise move it slightly even at one
-// temperature and normalisation would stretch that into a spurious regressor), fewer distinct
-// reference values than the highest power of x plus one (likewise: the pressure code moves with
-// temperature), no more points than terms, or a degenerate design (the message names the
-// near-null combination of terms).
-// Hysteresis: a single-valued surface cannot hold it; with HistoryTerms the fit separates the
-// points' branch (their hysteresis states, bridge_history.h) from the surface, which is then the
-// loop's centre. The states must vary independently of x and y for that (a sequence that
-// approaches temperatures and pressures from both sides); otherwise the design is refused as
-// degenerate, naming the state.
+// pressure code x (static or pitot) and the same bridge's voltage code y, fitted to the reference
+// values of an air data test set at several chamber temperatures. FitReferenceSurface is the
+// reference's 10-term cubic; FitSurface takes any basis firmware_model::SurfaceFit holds (x up to
+// 3, y up to 5), optionally weighted and with HistoryTerms separating the hysteresis branch from
+// the surface. Fitted in the normalised code box and re-expanded in raw codes with the box.
+// Units: codes in counts; z in the reference's unit (ft, kt, Pa); standard errors from the
+// residual variance (mostly model error).
+// Derivation, weighting and refusals: docs/calibration-solvers.md ("Models", ADS surface).
+// Left out: hysteresis without HistoryTerms (a single-valued surface cannot hold it).
 #pragma once
 
 #include <cmath>

@@ -1,19 +1,12 @@
 // The noise terms of a record taken at rest, read off its overlapping Allan deviation (IEEE Std
-// 952-1997 Annex C; the estimator and its conventions are common/allan.h):
-//   white noise        read at tau = 1 s: N_952 = sigma(1 s) * sqrt(1 s) is IEEE 952's random-walk
-//                      coefficient (unit/sqrt(s); x60 gives unit/sqrt(h): deg/sqrt(h) for a gyro's
-//                      angle random walk, m/s/sqrt(h) for an accelerometer's velocity random walk);
-//                      the ONE-SIDED density of the datasheets is sqrt(2) * N_952 (unit/sqrt(Hz)).
-//                      A record too short to reach 1 s (under ~10 s) is read at its longest tau,
-//                      and white_tau_s says so.
-//   bias instability   the curve's minimum sigma_min, B = sigma_min / 0.664 (IEEE 952 C.2, flicker
-//                      floor), with the tau where it was read. If the curve is still falling at
-//                      its longest tau the record is too short to show the floor: B is then only an
-//                      upper bound (minimum_at_longest_tau).
+// 952-1997 Annex C; the estimator and its conventions are common/allan.h): the white term at
+// tau = 1 s (IEEE 952's random-walk coefficient N and the datasheets' one-sided density sqrt(2) N)
+// and the bias instability B = sigma_min / 0.664 with the tau it was read at, flagged when the
+// record is too short to reach 1 s or to show the floor.
 // Units: those of the samples (the caller names them); tau in s.
-// Left out: rate random walk, rate ramp and quantisation terms (they need hours of record or a
-// curve fit, not a calibration run's seconds at rest), confidence intervals beyond each curve
-// point's relative error.
+// Derivation: docs/calibration-solvers.md ("Models", Allan terms).
+// Left out: rate random walk, rate ramp and quantisation terms, confidence intervals beyond each
+// curve point's relative error.
 #pragma once
 
 #include <vector>

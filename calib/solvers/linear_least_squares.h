@@ -1,29 +1,14 @@
 // Generic weighted linear least-squares driver (Eigen) for the calibration models: it knows nothing
-// about sensors. A model supplies the design matrix (one row per observation, one column per term,
-// named for messages), the observations and optional weights; the driver returns the estimate with
-// its covariance and standard errors, and refuses a degenerate design with the reason.
-//
-// Method (derivation in docs/calibration-solvers.md, "The driver"):
-//   minimise sum_i w_i (y_i - a_i . beta)^2.
-//   Columns are first equilibrated (each scaled to unit 2-norm of sqrt(w) a_j) so that the rank and
-//   condition tests do not depend on the units of the terms; the scaled problem is solved by a
-//   Householder QR, and the singular values of its R factor give rank and condition number.
-//   Covariance, by the meaning of the weights:
-//     kInverseVariance: var(e_i) = sigma^2 / w_i  ->  Cov = sigma^2 (A'WA)^-1, with
-//       sigma^2 = 1 when the variances are known (kKnownVariance), else
-//       sigma^2 = sum w_i r_i^2 / (n - p) (kResidualVariance);
-//     kBalancing: equal noise variance sigma^2, weights only re-balance the design (e.g. every
-//       temperature band weighs the same)  ->  Cov = sigma^2 (A'WA)^-1 (A'W^2A) (A'WA)^-1 (the
-//       sandwich form), sigma^2 = sum r_i^2 / (n - p).
-//   Standard errors are the square roots of the covariance diagonal.
-// Refusals (DegenerateDesignError, naming the context): fewer observations than terms, no degree of
-// freedom when the variance must come from the residuals, a non-finite or negative input, numerical
-// rank below the number of terms, or condition number above the limit; the message names the
-// near-null combination of terms (the right singular vector of the smallest singular value).
-// Not modelled: correlated observation errors (per-packet samples of a slowly drifting sensor are
-// correlated, so residual-variance standard errors are then optimistic; a caller that knows the
-// covariance whitens its rows first, as the joint IMU strategy does), robust losses, nonlinear
-// models.
+// about sensors. A model supplies the design matrix (one row per observation, one column per named
+// term), the observations and optional weights; the driver minimises sum_i w_i (y_i - a_i . beta)^2
+// by Householder QR on equilibrated columns and returns the estimate with its covariance
+// (inverse-variance weights with known or residual variance, or balancing weights with the
+// sandwich form), standard errors, rank and condition number. A degenerate design is refused
+// (DegenerateDesignError) naming the near-null combination of terms.
+// Units: those of the caller's rows.
+// Derivation and refusals: docs/calibration-solvers.md ("The driver").
+// Left out: correlated observation errors (a caller that knows the covariance whitens its rows
+// first), robust losses, nonlinear models.
 #pragma once
 
 #include <stdexcept>

@@ -1,30 +1,15 @@
 // Reference thermal model (thesis section 2.8.1, Eq. 4-11): per channel (six accelerometer duty
 // channels, three gyro count channels) the drift xi(t) = k0 + k1 t + k2 t^2 of the raw output U
-// against temperature counts t over a thermal profile, applied as T = U - xi(t).
-//
-// Inputs: per-packet samples of one channel, in its raw units (accelerometer duty T1/T2 - 0.5,
-// gyro counts), with the temperature counts of the sensor that drives its compensation and the
-// profile segment (up-ramp, down-ramp, soak) the packet was taken in. The unit is static in one
-// orientation throughout, so U - xi carries the orientation's gravity term in k0; the six-position
-// offset later absorbs it.
-// Weighting: samples are grouped into temperature bands of band_width_cnt; each sample weighs
-// 1 / (samples in its band), so every band weighs the same whatever the heating or cooling rate
-// (a slow ramp or a soak would otherwise dominate the fit). The noise is taken as equal per sample,
-// so the covariance is the sandwich form (linear_least_squares.h, kBalancing) scaled by the
-// residual variance.
-// Method: the rows are never held as a design matrix. The fit streams them into per-band sums of
-// the band-weighted normal equations in the normalised temperature u on [-1, 1] (where the
-// equilibrated design of 1, u, u^2 is well conditioned), solves them with the driver's rank and
-// condition tests, and takes the residuals in a second pass.
-// Reported: the fit over all samples (the constants) and, separately, over up-ramps and over
-// down-ramps with the largest difference of the two curves over their common temperature range
-// (thermal hysteresis, including any lag of the die behind the thermometer).
-// Refused: fewer than min_bands distinct temperature bands (too few temperatures for a quadratic
-// with a residual degree of freedom), or a degenerate design. A ramp direction with too few bands
-// is reported as absent with the reason, not refused.
-// Not modelled: the lag itself (the reference has none), orders other than 2, correlation of
-// successive samples (standard errors assume independent samples, so a drifting bias makes them
-// optimistic; the residual rms shows the model error).
+// against temperature counts t over a thermal profile, applied as T = U - xi(t). Samples are
+// grouped in temperature bands of band_width_cnt, every band weighing the same (sandwich
+// covariance), streamed into per-band normal equations in normalised temperature. Reported: the
+// fit over all samples (the constants) and up- and down-ramp fits with their largest gap
+// (thermal hysteresis).
+// Units: U in duty (T1/T2 - 0.5) or counts; t in counts of the driving sensor.
+// Derivation, weighting and refusals: docs/calibration-solvers.md ("Models", "The driver").
+// Left out: the die's lag itself (the reference has none), orders other than 2, correlation of
+// successive samples (standard errors are then optimistic; the residual rms shows the model
+// error).
 #pragma once
 
 #include <array>

@@ -1,33 +1,16 @@
-// Evaluation of ADS calibration constants against a simulated unit's TRUE model
-// (`adahrs evaluate`): the constants go through the exporter and the fixed-point firmware
-// compensator (firmware_model/target/ads_compensator.h), fed with the codes the unit's true model
-// (sensor_sim::AdsUnitParams from truth/<serial>.json) produces on a dense grid, noise off; the
-// outputs are compared with the true altitude (ISA of the applied static pressure) and calibrated
-// airspeed (of the applied impact pressure).
-//
-// Grid: altitude -1,000...50,000 ft (at zero airspeed) and airspeed 30...450 kt (at sea level),
-// each x -40...+85 degC, in the steps of AdsEvaluationOptions; the die at its steady state in the
-// chamber air (self-heating included; the thermal lag is not exercised: every point is a soak).
-//
-// History. The bridges' pressure and thermal hysteresis depend on the pressure and temperature
-// extremes not yet wiped out (sensor_sim/preisach_hysteresis.h), which no static calibration sees.
-// The evaluation never switches them off; it evaluates every grid point under each history of the
-// major loops of the operating envelope:
-//   pressure: "none" (operator fresh, the loop centre), "rising" (after the opposite end of the
-//     envelope: static 50,000 -> -1,000 ft then climbing; pitot 450 -> 30 kt then accelerating is
-//     written "rising" for the impact pressure), "falling" (the reverse);
-//   temperature: "none", "heating" (85 -> -40 degC then heating), "cooling" (-40 -> 85 then
-//   cooling).
-// The firmware sees the whole history too: its hysteresis operators (ads_compensator.h) start
-// fresh with the unit and compensate every frame of it, as in a unit powered through the history.
-// Per grid point: the error without history (both operators fresh), the worst |error| over the
-// nine histories, and the loop half-width (max - min)/2 of the error over them: a static
-// calibration returns one value where the truth spans that band, so no static calibration can
-// have a worst error below the half-width. Verdict: pass (worst <= tolerance); for a static
-// surface (no hysteresis terms), unreachable where the half-width > tolerance (says so with the
-// number); else fail. A surface with hysteresis terms is not static: what its half-width shows
-// is what its compensation left, so it has no unreachable points.
-// Not modelled: the converter noise (off by design), pneumatic lag, Mach/TAS.
+// Evaluation of ADS calibration constants against a simulated unit's TRUE model (`adahrs
+// evaluate`): the constants go through the exporter and the fixed-point firmware compensator
+// (firmware_model/target/ads_compensator.h), fed with the codes the true model
+// (sensor_sim::AdsUnitParams from truth/<serial>.json) produces on a dense grid, noise off, die
+// soaked; outputs compared with the true altitude and calibrated airspeed. Every grid point is
+// evaluated under nine histories of the envelope's major loops (pressure none/rising/falling x
+// temperature none/heating/cooling), the firmware's own hysteresis operators seeing them too:
+// error without history, worst error over the histories, loop half-width. Verdict pass, fail, or
+// (static surfaces only) unreachable where the half-width exceeds the tolerance.
+// Units: altitude in ft, airspeed in kt, temperature in degC, pressures in Pa.
+// Grid, histories, verdicts and measured figures: docs/calibration-strategies.md ("Evaluation
+// against the truth").
+// Left out: the converter noise (off by design), pneumatic lag, Mach/TAS.
 #pragma once
 
 #include <string>

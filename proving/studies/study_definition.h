@@ -1,20 +1,11 @@
-// A study file (docs/studies.md): which sequence a strategy's units run, which fit strategy turns
-// the recording into constants, and optionally the unit population.
-//
-//   {"format": "adahrs-study", "format_version": 1, "unit_kind": "imu" | "ads",
-//    "sequence": "imu_thermal_sensor_calibration" | "<file>.json",   (a shipped name, or a file
-//                                                                     relative to the study file)
-//    "strategy": "reference" | "improved" | "<file>.json",           (an adahrs-imu-strategy file)
-//                (ADS: "reference" | "improved" | a FitAdsStrategy name; improved is
-//                 hysteresis_compensated)
-//    "population": "truth" | "nominal" | "<file>.json"}              (optional; default truth)
-//
-// A population file: {"format": "adahrs-population", "format_version": 1,
-//                     "profile": "truth" | "nominal", "variant": "standard" | ...}.
-// The sequence must pass the validator (calib/sequence/validation.h); its rig time is the
+// A study file: which sequence a strategy's units run, which fit strategy turns the recording into
+// constants ("reference", "improved" or a strategy file; for ADS also a FitAdsStrategy name), and
+// optionally the unit population ("truth", "nominal" or an adahrs-population file). The sequence
+// (a shipped name or a file relative to the study file) must pass the validator
+// (calib/sequence/validation.h) and be for the study file's unit kind; its rig time is the
 // execution plan's duration estimate on real instruments (ExpandSequence). Errors throw
-// common::ParamError naming the file and the JSON path. The sequence's unit kind must be the study
-// file's.
+// common::ParamError naming the file and the JSON path.
+// Keys, values and refusals: docs/studies.md ("Study files").
 #pragma once
 
 #include <filesystem>
