@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "common/imu_layout.h"
+#include "common/median.h"
 #include "diagnosis/clustered_least_squares.h"
 #include "diagnosis/slow_noise.h"
 #include "diagnosis/term_selection.h"
@@ -392,12 +393,6 @@ std::vector<std::string> Evidence(const DiagnosisData& data,
   return out;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 std::vector<double> Residuals(const DiagnosisData& data,
                               const Layout& layout,
                               const BaselineState& st,
@@ -433,10 +428,10 @@ void LocateStructure(const DiagnosisData& data,
   }
   std::vector<double> mean(segs, 0.0);
   for (size_t s = 0; s < segs; ++s) mean[s] = w[s] > 0 ? sum[s] / w[s] : 0.0;
-  const double med = Median(mean);
+  const double med = common::Median(mean);
   std::vector<double> dev;
   for (double m : mean) dev.push_back(std::abs(m - med));
-  const double robust = 1.4826 * Median(dev);
+  const double robust = 1.4826 * common::Median(dev);
   for (size_t s = 0; s < segs; ++s) {
     if (!(w[s] > 0)) continue;
     const double white_se = std::sqrt(var[s] / w[s] / w[s]);
@@ -474,13 +469,13 @@ void LocateStructure(const DiagnosisData& data,
       }
       d.push_back((right - left) / L);
     }
-    const double d_med = Median(d);
+    const double d_med = common::Median(d);
     std::vector<double> dev_d;
     for (double v : d) dev_d.push_back(std::abs(v - d_med));
-    const double spread = 1.4826 * Median(dev_d);
+    const double spread = 1.4826 * common::Median(dev_d);
     std::vector<double> diff;
     for (int i = 1; i < n; ++i) diff.push_back(std::abs(r[i] - r[i - 1]));
-    const double white = 1.4826 * Median(diff) / std::sqrt(2.0) * std::sqrt(2.0 / L);
+    const double white = 1.4826 * common::Median(diff) / std::sqrt(2.0) * std::sqrt(2.0 / L);
     size_t at = 0;
     for (size_t i = 0; i < d.size(); ++i) {
       if (std::abs(d[i] - d_med) > std::abs(d[at] - d_med)) at = i;
@@ -606,13 +601,13 @@ double OffsetRatio(const DiagnosisData& data, const std::vector<double>& residua
     w[c.segment] += c.rows;
   }
   if (diff.empty()) return std::numeric_limits<double>::infinity();
-  const double sigma_cell = 1.4826 * Median(diff) / std::sqrt(2.0);
-  const double sigma_e2 = sigma_cell * sigma_cell * Median(rows);
+  const double sigma_cell = 1.4826 * common::Median(diff) / std::sqrt(2.0);
+  const double sigma_e2 = sigma_cell * sigma_cell * common::Median(rows);
   std::vector<double> excess;
   for (size_t s = 0; s < sum.size(); ++s) {
     if (w[s] > 0.0) excess.push_back(std::pow(sum[s] / w[s], 2) - sigma_e2 / w[s]);
   }
-  const double sigma_w2 = std::max(0.0, Median(excess) / 0.455);
+  const double sigma_w2 = std::max(0.0, common::Median(excess) / 0.455);
   return sigma_w2 > 0.0 ? sigma_e2 / sigma_w2 : std::numeric_limits<double>::infinity();
 }
 
@@ -912,7 +907,7 @@ ChannelFitSummary FitSummary(const DiagnosisData& data,
   summary.unit = RmsUnit(ch);
   summary.held_out_rms_baseline = HeldOutRms(base_fit, final_fit, false, phys);
   summary.held_out_rms_final = HeldOutRms(base_fit, final_fit, true, phys);
-  summary.white_noise_rms = Median(white) * phys;
+  summary.white_noise_rms = common::Median(white) * phys;
   for (int col : m.base) summary.baseline_terms.push_back(m.layout.names[col]);
   return summary;
 }

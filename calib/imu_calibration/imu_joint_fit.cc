@@ -10,6 +10,7 @@
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/solvers/linear_least_squares.h"
 #include "common/imu_layout.h"
+#include "common/median.h"
 #include "common/units.h"
 #include "firmware_model/unit_firmware.h"
 
@@ -126,14 +127,11 @@ std::vector<std::string> TermNames(const ChannelModel& m) {
 }
 
 double MedianThermalCount(const std::vector<ImuObservation>& obs) {
-  std::vector<int> counts;
+  std::vector<double> counts;
   for (const ImuObservation& o : obs) {
     if (o.thermal) counts.push_back(o.count);
   }
-  if (counts.empty()) return 1.0;
-  std::nth_element(
-      counts.begin(), counts.begin() + static_cast<long>(counts.size() / 2), counts.end());
-  return counts[counts.size() / 2];
+  return counts.empty() ? 1.0 : common::Median(counts);
 }
 
 // Variance of an observation's mean from white noise: measured (fit weights) or datasheet (CRB).
