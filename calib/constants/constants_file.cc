@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "common/param_reader.h"
+#include "common/unit_kind.h"
 
 namespace adahrs::calib {
 namespace {
@@ -100,13 +101,9 @@ ConstantsFile Parse(const json& j, const std::string& source) {
   file.serial = reader.String("serial");
   if (file.serial.empty()) reader.Fail("$.serial", "empty");
   const std::string kind = reader.String("kind");
-  if (kind == "imu") {
-    file.kind = hil::UnitKind::kImu;
-  } else if (kind == "ads") {
-    file.kind = hil::UnitKind::kAds;
-  } else {
-    reader.Fail("$.kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
-  }
+  const std::optional<hil::UnitKind> parsed = common::ParseUnitKind(kind);
+  if (!parsed) reader.Fail("$.kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
+  file.kind = *parsed;
   file.strategy = reader.String("strategy");
   file.created_utc = reader.String("created_utc");
   file.software_version = reader.String("software_version");
@@ -245,7 +242,7 @@ json ToJson(const ConstantsFile& file) {
   return json{{"format", kConstantsFormatName},
               {"format_version", format3 ? kConstantsFormatVersion : kConstantsOldestFormatVersion},
               {"serial", file.serial},
-              {"kind", file.kind == hil::UnitKind::kImu ? "imu" : "ads"},
+              {"kind", common::UnitKindName(file.kind)},
               {"strategy", file.strategy},
               {"created_utc", file.created_utc},
               {"software_version", file.software_version},
