@@ -1,7 +1,6 @@
 #include "diagnosis/diagnosis_output.h"
 
 #include <algorithm>
-#include <fstream>
 #include <set>
 #include <stdexcept>
 
@@ -11,6 +10,7 @@
 #include "calib/constants/recording_checksum.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
+#include "common/atomic_file.h"
 #include "diagnosis/ads_diagnosis.h"
 #include "diagnosis/channel_diagnosis.h"
 
@@ -284,21 +284,10 @@ std::string DiagnosisHtml(const DiagnosisRun& run) {
          body + "</body></html>\n";
 }
 
-void WriteTextAtomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << text;
-    f.flush();
-    if (!f) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::filesystem::rename(tmp, path);
-}
-
 void WriteDiagnosis(const DiagnosisRun& run, const std::filesystem::path& out_dir) {
   std::filesystem::create_directories(out_dir);
-  WriteTextAtomically(out_dir / "diagnosis.json", run.ToJson().dump(2) + "\n");
-  WriteTextAtomically(out_dir / "report.html", DiagnosisHtml(run));
+  common::WriteFileAtomically(out_dir / "diagnosis.json", run.ToJson().dump(2) + "\n");
+  common::WriteFileAtomically(out_dir / "report.html", DiagnosisHtml(run));
 }
 
 }  // namespace adahrs::diagnosis

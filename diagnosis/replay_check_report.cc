@@ -4,6 +4,7 @@
 
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
+#include "common/atomic_file.h"
 #include "diagnosis/diagnosis_output.h"
 
 namespace adahrs::diagnosis {
@@ -88,8 +89,8 @@ void WriteReplayCheck(const std::vector<ReplayComparison>& checks,
   nlohmann::json all = nlohmann::json::array();
   for (const ReplayComparison& c : checks) all.push_back(c.ToJson());
   std::filesystem::create_directories(out_dir);
-  WriteTextAtomically(out_dir / "replay_check.json", all.dump(2) + "\n");
-  WriteTextAtomically(out_dir / "replay_check.html", ReplayCheckHtml(checks));
+  common::WriteFileAtomically(out_dir / "replay_check.json", all.dump(2) + "\n");
+  common::WriteFileAtomically(out_dir / "replay_check.html", ReplayCheckHtml(checks));
 }
 
 }  // namespace adahrs::diagnosis

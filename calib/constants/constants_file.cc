@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <ctime>
-#include <fstream>
 #include <limits>
 
+#include "common/atomic_file.h"
 #include "common/param_reader.h"
 #include "common/unit_kind.h"
 
@@ -272,19 +272,11 @@ ConstantsFile ReadConstantsFile(const std::filesystem::path& path) {
 }
 
 void WriteConstantsFile(const std::filesystem::path& path, const ConstantsFile& file) {
-  const std::string text = ToJson(file).dump(2) + "\n";
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw ConstantsFileError(tmp.string() + ": cannot open for writing");
-    out << text;
-    out.flush();
-    if (!out) throw ConstantsFileError(tmp.string() + ": write failed");
+  try {
+    common::WriteFileAtomically(path, ToJson(file).dump(2) + "\n");
+  } catch (const common::AtomicWriteError& e) {
+    throw ConstantsFileError(e.what());
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw ConstantsFileError(path.string() + ": cannot rename into place: " + ec.message());
 }
 
 }  // namespace adahrs::calib

@@ -1,6 +1,5 @@
 #include "calib/report/run_report.h"
 
-#include <fstream>
 #include <map>
 #include <stdexcept>
 
@@ -15,6 +14,7 @@
 #include "calib/report/imu_report_sections.h"
 #include "calib/report/json_tables.h"
 #include "calib/report/svg_plot.h"
+#include "common/atomic_file.h"
 #include "common/param_reader.h"
 #include "hil/recording/recording_reader.h"
 
@@ -216,15 +216,7 @@ void WriteRunReport(const std::filesystem::path& run_dir,
                     const std::optional<std::filesystem::path>& fit_dir,
                     const std::filesystem::path& out,
                     const std::optional<std::filesystem::path>& acceptance_dir) {
-  const std::string html = BuildRunReport(run_dir, fit_dir, acceptance_dir);
-  const std::filesystem::path temporary = out.string() + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    if (!file || !(file << html) || !file.flush()) {
-      throw std::runtime_error(temporary.string() + ": cannot write the report");
-    }
-  }
-  std::filesystem::rename(temporary, out);
+  common::WriteFileAtomically(out, BuildRunReport(run_dir, fit_dir, acceptance_dir));
 }
 
 }  // namespace adahrs::calib
