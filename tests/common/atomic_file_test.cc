@@ -108,8 +108,8 @@ TEST_F(AtomicFile, AMissingDirectoryIsNamed) {
 TEST_F(AtomicFile, ADirectoryThatRefusesNewFilesLeavesTheOldFile) {
   if (::geteuid() == 0) GTEST_SKIP() << "root writes into a read-only directory";
   WriteByHand(dir_ / "a.json", "old");
-  std::filesystem::permissions(dir_,
-                               std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  std::filesystem::permissions(
+      dir_, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
   const std::string error = FailureOf(dir_ / "a.json", "new");
   EXPECT_THAT(error, HasSubstr((dir_ / "a.json").string() + ": cannot create the temporary"));
   EXPECT_THAT(error, HasSubstr("Permission denied"));
