@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "common/median.h"
 #include "diagnosis/clustered_least_squares.h"
 #include "diagnosis/last_change_sense.h"
 #include "diagnosis/row_spectrum.h"
@@ -107,11 +108,7 @@ void ThermalState(Prepared* p) {
   }
   std::vector<double> spacing;
   for (size_t i = 1; i < starts.size(); ++i) spacing.push_back(starts[i] - starts[i - 1]);
-  std::nth_element(spacing.begin(),
-                   spacing.begin() + static_cast<std::ptrdiff_t>(spacing.size() / 2),
-                   spacing.end());
-  const double w =
-      std::max(kMinRateWindow_s, spacing.empty() ? 0.0 : 1.1 * spacing[spacing.size() / 2]);
+  const double w = std::max(kMinRateWindow_s, 1.1 * common::Median(spacing));
   size_t lo = 0, hi = 0;
   LastChangeSense sense;
   for (Cell& c : p->cells) {
@@ -377,9 +374,7 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec,
   std::vector<double> white;
   for (const Cell& c : p.cells)
     white.push_back(std::sqrt(c.var[static_cast<size_t>(out)] / c.rows));
-  std::nth_element(
-      white.begin(), white.begin() + static_cast<std::ptrdiff_t>(white.size() / 2), white.end());
-  r.summary.white_noise_rms = white[white.size() / 2];
+  r.summary.white_noise_rms = common::Median(white);
   for (int c : base)
     r.summary.baseline_terms.push_back(c <= kMaxBiasDegree ? fmt::format("s^{}", c) : "reference");
   const std::vector<double> rb = Residuals(cols, p, out, bias, base_fit, base);
@@ -400,10 +395,9 @@ void LocatePeriodic(const ChannelRecording& rec,
                     UnitDiagnosis* out) {
   std::vector<double> rows;
   for (const auto& [a, b] : p.segment_rows) rows.push_back(static_cast<double>(b - a));
-  std::nth_element(
-      rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(rows.size() / 2), rows.end());
+  const double median_rows = common::Median(rows);
   int window = 64;
-  while (window * 2 <= std::min(512.0, rows[rows.size() / 2])) window *= 2;
+  while (window * 2 <= std::min(512.0, median_rows)) window *= 2;
   RowSpectra spectra(static_cast<int>(rec.outputs.size()), MedianInterval(rec.t_s), window);
   for (size_t s = 0; s < p.segment_rows.size(); ++s) {
     const size_t a = p.segment_rows[s].first;

@@ -1,7 +1,6 @@
 #include "diagnosis/diagnosis_output.h"
 
 #include <algorithm>
-#include <fstream>
 #include <set>
 #include <stdexcept>
 
@@ -11,6 +10,8 @@
 #include "calib/constants/recording_checksum.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
+#include "common/atomic_file.h"
+#include "common/html_page.h"
 #include "diagnosis/ads_diagnosis.h"
 #include "diagnosis/channel_diagnosis.h"
 
@@ -275,30 +276,13 @@ std::string DiagnosisHtml(const DiagnosisRun& run) {
   for (const std::string& n : run.notes)
     body += "<p class=\"note\">" + calib::XmlEscape(n) + "</p>";
   for (const UnitDiagnosis& u : run.units) body += UnitSection(u);
-  return "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\"><head><meta "
-         "charset=\"utf-8\"/>"
-         "<title>adahrs "
-         "diagnosis</title><style>body{font-family:sans-serif;max-width:72em;margin:auto}"
-         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #999;padding:2px 6px}"
-         ".note{color:#555}</style></head><body>" +
-         body + "</body></html>\n";
-}
-
-void WriteTextAtomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << text;
-    f.flush();
-    if (!f) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::filesystem::rename(tmp, path);
+  return common::HtmlPage("adahrs diagnosis", body);
 }
 
 void WriteDiagnosis(const DiagnosisRun& run, const std::filesystem::path& out_dir) {
   std::filesystem::create_directories(out_dir);
-  WriteTextAtomically(out_dir / "diagnosis.json", run.ToJson().dump(2) + "\n");
-  WriteTextAtomically(out_dir / "report.html", DiagnosisHtml(run));
+  common::WriteFileAtomically(out_dir / "diagnosis.json", run.ToJson().dump(2) + "\n");
+  common::WriteFileAtomically(out_dir / "report.html", DiagnosisHtml(run));
 }
 
 }  // namespace adahrs::diagnosis

@@ -45,10 +45,6 @@ DiagnosisRun DiagnoseChannelFiles(const std::vector<std::filesystem::path>& side
 /// report.html of a diagnosis.
 std::string DiagnosisHtml(const DiagnosisRun& run);
 
-/// Writes `text` to `path` through `path`.tmp and a rename, so a reader never sees half a file;
-/// throws std::runtime_error naming the file it could not write.
-void WriteTextAtomically(const std::filesystem::path& path, const std::string& text);
-
 /// Writes OUT/diagnosis.json and OUT/report.html (creating OUT); throws std::runtime_error naming
 /// the file it could not write.
 void WriteDiagnosis(const DiagnosisRun& run, const std::filesystem::path& out_dir);

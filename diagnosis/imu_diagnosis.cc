@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "common/imu_layout.h"
+#include "common/median.h"
 #include "diagnosis/clustered_least_squares.h"
 #include "diagnosis/imu_effects.h"
 #include "diagnosis/slow_noise.h"
@@ -244,12 +245,6 @@ std::vector<std::string> Evidence(const DiagnosisData& data,
   return out;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 std::vector<double> Residuals(const DiagnosisData& data,
                               const Layout& layout,
                               const BaselineState& st,
@@ -321,13 +316,13 @@ double OffsetRatio(const DiagnosisData& data, const std::vector<double>& residua
     w[c.segment] += c.rows;
   }
   if (diff.empty()) return std::numeric_limits<double>::infinity();
-  const double sigma_cell = 1.4826 * Median(diff) / std::sqrt(2.0);
-  const double sigma_e2 = sigma_cell * sigma_cell * Median(rows);
+  const double sigma_cell = 1.4826 * common::Median(diff) / std::sqrt(2.0);
+  const double sigma_e2 = sigma_cell * sigma_cell * common::Median(rows);
   std::vector<double> excess;
   for (size_t s = 0; s < sum.size(); ++s) {
     if (w[s] > 0.0) excess.push_back(std::pow(sum[s] / w[s], 2) - sigma_e2 / w[s]);
   }
-  const double sigma_w2 = std::max(0.0, Median(excess) / 0.455);
+  const double sigma_w2 = std::max(0.0, common::Median(excess) / 0.455);
   return sigma_w2 > 0.0 ? sigma_e2 / sigma_w2 : std::numeric_limits<double>::infinity();
 }
 
@@ -626,7 +621,7 @@ ChannelFitSummary FitSummary(const DiagnosisData& data,
   summary.unit = RmsUnit(ch);
   summary.held_out_rms_baseline = HeldOutRms(base_fit, final_fit, false, phys);
   summary.held_out_rms_final = HeldOutRms(base_fit, final_fit, true, phys);
-  summary.white_noise_rms = Median(white) * phys;
+  summary.white_noise_rms = common::Median(white) * phys;
   for (int col : m.base) summary.baseline_terms.push_back(m.layout.names[col]);
   return summary;
 }

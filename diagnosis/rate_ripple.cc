@@ -7,6 +7,8 @@
 #include <Eigen/Dense>
 #include <boost/math/distributions/chi_squared.hpp>
 
+#include "common/median.h"
+
 namespace adahrs::diagnosis {
 namespace {
 
@@ -14,11 +16,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kChi2TwoMedian = 1.3862943611198906;  // 2 ln 2
 constexpr int kLockInColumns = 4;
 constexpr int kMinLockInRows = 8;
-
-double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
 
 // k^2 from every segment but `skip` (-1: none), their standard errors scaled by sqrt(inflation).
 double RatioSquared(const std::vector<RippleSegment>& s,
@@ -114,7 +111,7 @@ RippleTest TestRipple(const std::vector<RippleSegment>& segments,
   for (const RippleSegment& s : segments) {
     for (const LockIn& c : s.controls) control.push_back(c.Statistic());
   }
-  out.inflation = control.empty() ? 1.0 : std::max(1.0, Median(control) / kChi2TwoMedian);
+  out.inflation = control.empty() ? 1.0 : std::max(1.0, common::Median(control) / kChi2TwoMedian);
   double statistic = 0.0, signal_per_k2 = 0.0;
   for (const RippleSegment& s : segments) {
     statistic += s.at_revolution.Statistic() / out.inflation;

@@ -4,6 +4,8 @@
 
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
+#include "common/atomic_file.h"
+#include "common/html_page.h"
 #include "diagnosis/diagnosis_output.h"
 
 namespace adahrs::diagnosis {
@@ -74,13 +76,7 @@ std::string ReplayCheckHtml(const std::vector<ReplayComparison>& checks) {
       "started from and with the model it wrote (docs/diagnose.md).</p>";
   if (checks.empty()) body += calib::NotAvailable("a check", "no run held a diagnosed unit");
   for (size_t i = 0; i < checks.size(); ++i) body += CheckSection(checks[i], i);
-  return "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\"><head><meta "
-         "charset=\"utf-8\"/>"
-         "<title>adahrs re-simulation "
-         "check</title><style>body{font-family:sans-serif;max-width:72em;margin:auto}"
-         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #999;padding:2px "
-         "6px}</style></head><body>" +
-         body + "</body></html>\n";
+  return common::HtmlPage("adahrs re-simulation check", body);
 }
 
 void WriteReplayCheck(const std::vector<ReplayComparison>& checks,
@@ -88,8 +84,8 @@ void WriteReplayCheck(const std::vector<ReplayComparison>& checks,
   nlohmann::json all = nlohmann::json::array();
   for (const ReplayComparison& c : checks) all.push_back(c.ToJson());
   std::filesystem::create_directories(out_dir);
-  WriteTextAtomically(out_dir / "replay_check.json", all.dump(2) + "\n");
-  WriteTextAtomically(out_dir / "replay_check.html", ReplayCheckHtml(checks));
+  common::WriteFileAtomically(out_dir / "replay_check.json", all.dump(2) + "\n");
+  common::WriteFileAtomically(out_dir / "replay_check.html", ReplayCheckHtml(checks));
 }
 
 }  // namespace adahrs::diagnosis

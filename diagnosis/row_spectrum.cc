@@ -10,19 +10,14 @@
 #include <boost/math/special_functions/digamma.hpp>
 #include <unsupported/Eigen/FFT>
 
+#include "common/median.h"
+
 namespace adahrs::diagnosis {
 namespace {
 
 constexpr int kFloorHalfWidth = 12;  // neighbours each side that carry the floor
 constexpr int kLobeHalfWidth = 2;    // a Hann line's main lobe, bins each side
 constexpr double kSegmentZ = 3.0;
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-  return v[mid];
-}
 
 // Log floor at each bin: a quadratic in ln(bin) fitted to the log power of the neighbours
 // within kFloorHalfWidth, the bin's own lobe left out (a power law, flicker or a filter's
@@ -161,10 +156,10 @@ Excess ExcessOverFloor(const std::vector<double>& log_p,
     if (!masked[static_cast<size_t>(k)])
       excess.push_back(log_p[static_cast<size_t>(k)] - out.floor[static_cast<size_t>(k)]);
   }
-  const double med = Median(excess);
+  const double med = common::Median(excess);
   std::vector<double> dev;
   for (double e : excess) dev.push_back(std::abs(e - med));
-  const double spread = 1.4826 * Median(dev);
+  const double spread = 1.4826 * common::Median(dev);
   out.z.assign(log_p.size(), 0.0);
   if (!(spread > 0.0)) return out;
   for (int k = first; k <= last; ++k) {
@@ -245,7 +240,7 @@ double MedianInterval(const std::vector<double>& times_s) {
   for (size_t i = 1; i < times_s.size(); ++i) {
     if (times_s[i] > times_s[i - 1]) d.push_back(times_s[i] - times_s[i - 1]);
   }
-  return Median(d);
+  return common::Median(d);
 }
 
 }  // namespace adahrs::diagnosis

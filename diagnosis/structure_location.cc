@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "common/imu_layout.h"
+#include "common/median.h"
 #include "diagnosis/row_spectrum.h"
 
 namespace adahrs::diagnosis {
@@ -16,12 +17,6 @@ constexpr double kOutlierRobustZ = 10.0;
 constexpr double kOutlierNoiseZ = 6.0;
 constexpr double kStepZ = 10.0;
 constexpr int kStepWindowCells = 30;
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 }  // namespace
 
@@ -43,10 +38,10 @@ void LocateStructure(const DiagnosisData& data,
   }
   std::vector<double> mean(segs, 0.0);
   for (size_t s = 0; s < segs; ++s) mean[s] = w[s] > 0 ? sum[s] / w[s] : 0.0;
-  const double med = Median(mean);
+  const double med = common::Median(mean);
   std::vector<double> dev;
   for (double m : mean) dev.push_back(std::abs(m - med));
-  const double robust = 1.4826 * Median(dev);
+  const double robust = 1.4826 * common::Median(dev);
   for (size_t s = 0; s < segs; ++s) {
     if (!(w[s] > 0)) continue;
     const double white_se = std::sqrt(var[s] / w[s] / w[s]);
@@ -84,13 +79,13 @@ void LocateStructure(const DiagnosisData& data,
       }
       d.push_back((right - left) / L);
     }
-    const double d_med = Median(d);
+    const double d_med = common::Median(d);
     std::vector<double> dev_d;
     for (double v : d) dev_d.push_back(std::abs(v - d_med));
-    const double spread = 1.4826 * Median(dev_d);
+    const double spread = 1.4826 * common::Median(dev_d);
     std::vector<double> diff;
     for (int i = 1; i < n; ++i) diff.push_back(std::abs(r[i] - r[i - 1]));
-    const double white = 1.4826 * Median(diff) / std::sqrt(2.0) * std::sqrt(2.0 / L);
+    const double white = 1.4826 * common::Median(diff) / std::sqrt(2.0) * std::sqrt(2.0 / L);
     size_t at = 0;
     for (size_t i = 0; i < d.size(); ++i) {
       if (std::abs(d[i] - d_med) > std::abs(d[at] - d_med)) at = i;

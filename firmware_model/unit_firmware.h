@@ -11,6 +11,7 @@
 
 #include <cstdint>
 
+#include "common/unit_kind.h"
 #include "firmware_model/target/adahrs_fw.h"
 #include "firmware_model/target/ads_compensator.h"
 #include "firmware_model/target/ads_constants.h"
@@ -113,10 +114,9 @@ enum class PacketType : uint8_t {
   kMaintenanceRequest = FW_PACKET_MAINTENANCE_REQUEST,
   kMaintenanceResponse = FW_PACKET_MAINTENANCE_RESPONSE,
 };
-enum class UnitKind : uint8_t {
-  kImu = FW_UNIT_IMU,
-  kAds = FW_UNIT_ADS,
-};
+using common::UnitKind;  // the firmware's FwUnitKind codes, checked here:
+static_assert(static_cast<uint8_t>(UnitKind::kImu) == FW_UNIT_IMU);
+static_assert(static_cast<uint8_t>(UnitKind::kAds) == FW_UNIT_ADS);
 inline constexpr uint8_t kImuRawPayloadBytes = FW_IMU_RAW_PAYLOAD_BYTES;
 inline constexpr uint8_t kImuCompensatedPayloadBytes = FW_IMU_COMPENSATED_PAYLOAD_BYTES;
 inline constexpr uint8_t kAdsRawPayloadBytes = FW_ADS_RAW_PAYLOAD_BYTES;

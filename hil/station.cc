@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/gravity.h"
+#include "common/unit_kind.h"
 
 namespace adahrs::hil {
 namespace {
@@ -102,7 +103,6 @@ PortIdentity IdentityOf(const std::string& path) {
 }  // namespace
 
 std::string ToString(InstrumentType type) { return TypeName(type); }
-std::string ToString(UnitKind kind) { return kind == UnitKind::kImu ? "imu" : "ads"; }
 std::string ToString(OperatorType type) {
   return type == OperatorType::kVirtualFixture ? "virtual_fixture" : "console";
 }
@@ -166,12 +166,9 @@ Station Station::FromJson(const ParamReader& r) {
     u.role = ur.String("role");
     if (!roles.insert(u.role).second) ur.Fail(ur.path() + ".role", "duplicate role " + u.role);
     const std::string kind = ur.String("kind");
-    if (kind == "imu")
-      u.kind = UnitKind::kImu;
-    else if (kind == "ads")
-      u.kind = UnitKind::kAds;
-    else
-      ur.Fail(ur.path() + ".kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
+    const std::optional<UnitKind> parsed = common::ParseUnitKind(kind);
+    if (!parsed) ur.Fail(ur.path() + ".kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
+    u.kind = *parsed;
     if (u.kind == UnitKind::kImu && ++imus > 4) {
       ur.Fail(ur.path(), "a batch holds at most 4 IMU units (the fixture has 4 slots)");
     }
@@ -217,7 +214,7 @@ nlohmann::json Station::ToJson() const {
   nlohmann::json units = nlohmann::json::array();
   for (const UnitEntry& u : this->units) {
     units.push_back({{"role", u.role},
-                     {"kind", ToString(u.kind)},
+                     {"kind", common::UnitKindName(u.kind)},
                      {"port", PortJson(u.port)},
                      {"slot", u.slot},
                      {"timeout_ms", u.timeout_ms}});

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/param_reader.h"
+#include "common/unit_kind.h"
 #include "hil/transport/serial_port.h"
 
 namespace adahrs::hil {
@@ -25,7 +26,7 @@ struct InstrumentEntry {
   int retries = 2;        ///< bounded retries of an unanswered command
 };
 
-enum class UnitKind { kImu, kAds };
+using common::UnitKind;
 
 struct UnitEntry {
   std::string role;  ///< "imu1" … "imu4", "ads1" …
@@ -69,7 +70,6 @@ struct Station {
 };
 
 std::string ToString(InstrumentType type);
-std::string ToString(UnitKind kind);
 std::string ToString(OperatorType type);
 
 }  // namespace adahrs::hil

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "common/atomic_file.h"
 #include "common/random.h"
 #include "rig_sim/ads_unit_device.h"
 #include "rig_sim/imu_unit_device.h"
@@ -32,17 +33,6 @@ constexpr uint64_t kNoiseStream = 1;
 // Byte-fault streams are derived from the role's position so adding a fault never shifts another.
 constexpr uint64_t kByteFaultSeedBase = 0xB17EFA17;
 
-void WriteFileAtomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
-  }
-  std::filesystem::rename(tmp, path);
-}
-
 void WriteTruth(const std::filesystem::path& dir,
                 const std::string& serial,
                 const char* kind,
@@ -50,14 +40,14 @@ void WriteTruth(const std::filesystem::path& dir,
                 sensor_sim::ModelProfile profile,
                 const nlohmann::json& params) {
   std::filesystem::create_directories(dir);
-  WriteFileAtomically(dir / (serial + ".json"),
-                      nlohmann::json{{"serial", serial},
-                                     {"kind", kind},
-                                     {"seed", seed},
-                                     {"model_profile", sensor_sim::ToString(profile)},
-                                     {"params", params}}
-                              .dump(2) +
-                          "\n");
+  common::WriteFileAtomically(dir / (serial + ".json"),
+                              nlohmann::json{{"serial", serial},
+                                             {"kind", kind},
+                                             {"seed", seed},
+                                             {"model_profile", sensor_sim::ToString(profile)},
+                                             {"params", params}}
+                                      .dump(2) +
+                                  "\n");
 }
 
 RigEnvironment InitialEnvironment(const RigConfig& config) {
@@ -215,7 +205,7 @@ void Rig::Start(const std::filesystem::path& manifest_path) {
   WriteLinks();
   if (manifest_path.has_parent_path())
     std::filesystem::create_directories(manifest_path.parent_path());
-  WriteFileAtomically(manifest_path, Manifest().dump(2) + "\n");
+  common::WriteFileAtomically(manifest_path, Manifest().dump(2) + "\n");
   manifest_path_ = manifest_path;
 }
 

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "common/atomic_file.h"
+
 namespace adahrs::calib {
 namespace {
 
@@ -36,14 +38,11 @@ json PointJson(const AcceptancePoint& p) {
 }
 
 void WriteAtomically(const std::filesystem::path& out, const std::string& text) {
-  const std::filesystem::path temporary = out.string() + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    if (!file || !(file << text) || !file.flush()) {
-      throw AcceptanceFileError(temporary.string() + ": cannot write");
-    }
+  try {
+    common::WriteFileAtomically(out, text);
+  } catch (const common::AtomicWriteError& e) {
+    throw AcceptanceFileError(e.what());
   }
-  std::filesystem::rename(temporary, out);
 }
 
 }  // namespace

@@ -2,10 +2,11 @@
 
 #include <cmath>
 #include <ctime>
-#include <fstream>
 #include <limits>
 
+#include "common/atomic_file.h"
 #include "common/param_reader.h"
+#include "common/unit_kind.h"
 
 namespace adahrs::calib {
 namespace {
@@ -100,13 +101,9 @@ ConstantsFile Parse(const json& j, const std::string& source) {
   file.serial = reader.String("serial");
   if (file.serial.empty()) reader.Fail("$.serial", "empty");
   const std::string kind = reader.String("kind");
-  if (kind == "imu") {
-    file.kind = hil::UnitKind::kImu;
-  } else if (kind == "ads") {
-    file.kind = hil::UnitKind::kAds;
-  } else {
-    reader.Fail("$.kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
-  }
+  const std::optional<hil::UnitKind> parsed = common::ParseUnitKind(kind);
+  if (!parsed) reader.Fail("$.kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
+  file.kind = *parsed;
   file.strategy = reader.String("strategy");
   file.created_utc = reader.String("created_utc");
   file.software_version = reader.String("software_version");
@@ -245,7 +242,7 @@ json ToJson(const ConstantsFile& file) {
   return json{{"format", kConstantsFormatName},
               {"format_version", format3 ? kConstantsFormatVersion : kConstantsOldestFormatVersion},
               {"serial", file.serial},
-              {"kind", file.kind == hil::UnitKind::kImu ? "imu" : "ads"},
+              {"kind", common::UnitKindName(file.kind)},
               {"strategy", file.strategy},
               {"created_utc", file.created_utc},
               {"software_version", file.software_version},
@@ -275,19 +272,11 @@ ConstantsFile ReadConstantsFile(const std::filesystem::path& path) {
 }
 
 void WriteConstantsFile(const std::filesystem::path& path, const ConstantsFile& file) {
-  const std::string text = ToJson(file).dump(2) + "\n";
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw ConstantsFileError(tmp.string() + ": cannot open for writing");
-    out << text;
-    out.flush();
-    if (!out) throw ConstantsFileError(tmp.string() + ": write failed");
+  try {
+    common::WriteFileAtomically(path, ToJson(file).dump(2) + "\n");
+  } catch (const common::AtomicWriteError& e) {
+    throw ConstantsFileError(e.what());
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw ConstantsFileError(path.string() + ": cannot rename into place: " + ec.message());
 }
 
 }  // namespace adahrs::calib

@@ -50,8 +50,7 @@ DownloadResult DownloadConstants(hil::UnitLink& link,
     context.Fail("export", e.what(), false);
   }
   result.before = context.Run("identify", false, [&] { return link.Identify(); });
-  const hil::UnitKind unit_kind =
-      result.before.unit_kind == fm::UnitKind::kImu ? hil::UnitKind::kImu : hil::UnitKind::kAds;
+  const hil::UnitKind unit_kind = result.before.unit_kind;  // UnitLink::Identify checked it
   const std::string unit_serial = hil::UnitSerialText(unit_kind, result.before.serial_number);
   if (unit_kind != file.kind || unit_serial != file.serial) {
     context.Fail("identify",

@@ -36,10 +36,6 @@ namespace {
 constexpr const char* kTimeBase =
     "pipeline clock seconds since the run started (simulated seconds on a scaled rig)";
 
-hil::UnitKind StationKind(UnitKind kind) {
-  return kind == UnitKind::kImu ? hil::UnitKind::kImu : hil::UnitKind::kAds;
-}
-
 PlanTiming TimingFor(const hil::Station& station) {
   PlanTiming timing;
   if (station.op.type == hil::OperatorType::kVirtualFixture) timing.operator_prompt_s = 0.0;
@@ -104,7 +100,7 @@ std::vector<hil::UnitLink*> BatchLinks(const hil::StationInstruments& instrument
   const bool imu_batch = s.sequence.unit_kind == UnitKind::kImu;
   std::vector<hil::UnitLink*> links;
   for (const auto& link : instruments.units) {
-    if (link->entry().kind == StationKind(s.sequence.unit_kind)) links.push_back(link.get());
+    if (link->entry().kind == s.sequence.unit_kind) links.push_back(link.get());
   }
   if (links.empty() || (imu_batch && links.size() > 4)) {
     throw RunError(fmt::format("station '{}' has {} {} units; a batch is 1 to {} of them",

@@ -6,6 +6,7 @@
 
 #include "calib/imu_calibration/gyro_bias_covariance.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
+#include "common/median.h"
 #include "common/units.h"
 
 namespace adahrs::calib::joint_fit {
@@ -79,14 +80,11 @@ std::vector<std::string> TermNames(const ChannelModel& m) {
 }
 
 double MedianThermalCount(const std::vector<ImuObservation>& obs) {
-  std::vector<int> counts;
+  std::vector<double> counts;
   for (const ImuObservation& o : obs) {
     if (o.thermal) counts.push_back(o.count);
   }
-  if (counts.empty()) return 1.0;
-  std::nth_element(
-      counts.begin(), counts.begin() + static_cast<long>(counts.size() / 2), counts.end());
-  return counts[counts.size() / 2];
+  return counts.empty() ? 1.0 : common::Median(counts);
 }
 
 double Variance(const ImuObservation& o,

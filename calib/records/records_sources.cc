@@ -16,6 +16,7 @@
 #include "calib/records/sqlite_database.h"
 #include "calib/sequence/sequence_json.h"
 #include "common/param_reader.h"
+#include "common/unit_kind.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_reader.h"
 
@@ -166,7 +167,7 @@ ConstantsRecord ConstantsRecordFromFile(const std::filesystem::path& constants_j
   RequireUnchangedRecordings(file, constants_json.string());  // never record what no longer stands
   ConstantsRecord record;
   record.serial = file.serial;
-  record.kind = file.kind == hil::UnitKind::kImu ? "imu" : "ads";
+  record.kind = common::UnitKindName(file.kind);
   record.strategy = file.strategy;
   record.created_utc = file.created_utc;
   record.software_version = file.software_version;

@@ -1,6 +1,5 @@
 #include "calib/report/run_report.h"
 
-#include <fstream>
 #include <map>
 #include <stdexcept>
 
@@ -15,17 +14,13 @@
 #include "calib/report/imu_report_sections.h"
 #include "calib/report/json_tables.h"
 #include "calib/report/svg_plot.h"
+#include "common/atomic_file.h"
+#include "common/html_page.h"
 #include "common/param_reader.h"
 #include "hil/recording/recording_reader.h"
 
 namespace adahrs::calib {
 namespace {
-
-constexpr const char* kStyle =
-    "body{font-family:sans-serif;max-width:70em;margin:1em auto}"
-    "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:2px 6px;"
-    "font-size:90%}caption{text-align:left;font-weight:bold}.pass{background:#d8f0d8}"
-    ".fail{background:#f6d0d0}.unavailable{color:#a33;font-style:italic}";
 
 struct FitInputs {
   std::map<std::string, ConstantsFile> constants;  // by serial
@@ -198,33 +193,23 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
                   "Evaluation against simulator truth",
                   fit.evaluation ? RenderJsonTables("evaluation", *fit.evaluation)
                                  : NotAvailable("evaluation.json", fit.why_missing));
-  return fmt::format(
-      "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\" lang=\"en\">\n<head>\n"
-      "<meta "
-      "charset=\"utf-8\"/>\n<title>{}</title>\n<style>{}</style>\n</head>\n<body>\n<h1>{}</h1>\n"
-      "<p>Units: accelerations in g or mg (1 mg = 9.80665e-3 m/s^2) or m/s^2, rates in deg/s, "
-      "altitude in ft, airspeed in kt, temperatures in degC as the chamber controller reports "
-      "them; raw channels in duty (T1/T2 - 0.5) and converter counts. Standard errors are 1 "
-      "sigma.</p>\n{}</body>\n</html>\n",
-      XmlEscape(title),
-      kStyle,
-      XmlEscape(title),
-      body);
+  return common::HtmlPage(
+      title,
+      fmt::format(
+          "<h1>{}</h1>\n"
+          "<p>Units: accelerations in g or mg (1 mg = 9.80665e-3 m/s^2) or m/s^2, rates in deg/s, "
+          "altitude in ft, airspeed in kt, temperatures in degC as the chamber controller reports "
+          "them; raw channels in duty (T1/T2 - 0.5) and converter counts. Standard errors are 1 "
+          "sigma.</p>\n{}",
+          XmlEscape(title),
+          body));
 }
 
 void WriteRunReport(const std::filesystem::path& run_dir,
                     const std::optional<std::filesystem::path>& fit_dir,
                     const std::filesystem::path& out,
                     const std::optional<std::filesystem::path>& acceptance_dir) {
-  const std::string html = BuildRunReport(run_dir, fit_dir, acceptance_dir);
-  const std::filesystem::path temporary = out.string() + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    if (!file || !(file << html) || !file.flush()) {
-      throw std::runtime_error(temporary.string() + ": cannot write the report");
-    }
-  }
-  std::filesystem::rename(temporary, out);
+  common::WriteFileAtomically(out, BuildRunReport(run_dir, fit_dir, acceptance_dir));
 }
 
 }  // namespace adahrs::calib

@@ -289,33 +289,6 @@ std::string Legend(const Plot& plot, const Frame& f) {
 
 }  // namespace
 
-std::string XmlEscape(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string RenderSvg(const Plot& data_plot) {
   const Plot plot = ToAxisCoordinates(data_plot);
   const Frame f = FrameFor(plot, CheckedDataRanges(plot));

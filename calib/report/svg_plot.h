@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "common/html_page.h"
+
 namespace adahrs::calib {
 
 struct PlotSeries {
@@ -47,7 +49,7 @@ struct Plot {
 /// drawable.
 std::string RenderSvg(const Plot& plot);
 
-/// Escapes &, <, >, " and ' for XML text and attributes.
-std::string XmlEscape(const std::string& text);
+/// The XML escape of every text in the reports (common/html_page.h).
+using common::XmlEscape;
 
 }  // namespace adahrs::calib

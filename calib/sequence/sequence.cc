@@ -55,8 +55,6 @@ const char* F4EndActionName(F4EndAction action) {
   return "hold";
 }
 
-const char* UnitKindName(UnitKind kind) { return kind == UnitKind::kImu ? "imu" : "ads"; }
-
 std::vector<double> GyroRates_dps(const GyroStep& step) {
   if (!(step.rate_increment_dps > 0.0)) {
     throw std::invalid_argument("gyro step: rate_increment_dps must be positive, got " +

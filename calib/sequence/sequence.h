@@ -37,12 +37,14 @@
 #include <variant>
 #include <vector>
 
+#include "common/unit_kind.h"
 #include "hil/instruments/f4_profile.h"
 
 namespace adahrs::calib {
 
 /// What the batch under test is: decides which step kinds a sequence may hold.
-enum class UnitKind { kImu, kAds };
+using common::UnitKind;
+using common::UnitKindName;
 
 /// The six fixture orientation codes, in the reference's order (reference-method.md §3).
 inline constexpr int kOrientationCodes[] = {11, 12, 21, 22, 31, 32};
@@ -152,7 +154,6 @@ const char* StepKindName(const StepBody& body);
 /// The JSON name of an F4 step type ("ramp_time", ...).
 const char* F4StepTypeName(const F4ProfileStep& step);
 const char* F4EndActionName(F4EndAction action);
-const char* UnitKindName(UnitKind kind);
 
 /// The equidistant rate commands of a gyro step: rate_min + i·rate_increment for
 /// i = 0…round((rate_max − rate_min)/rate_increment). Throws std::invalid_argument when the

@@ -6,6 +6,7 @@
 
 #include "common/overloaded.h"
 #include "common/param_reader.h"
+#include "common/unit_kind.h"
 
 namespace adahrs::calib {
 
@@ -193,13 +194,9 @@ ParsedSequence ParseSequence(const nlohmann::json& document, const std::string& 
   Collect(
       [&] {
         const std::string kind = r.String("unit_kind");
-        if (kind == "imu") {
-          sequence.unit_kind = UnitKind::kImu;
-        } else if (kind == "ads") {
-          sequence.unit_kind = UnitKind::kAds;
-        } else {
-          r.Fail("$.unit_kind", "unknown unit kind \"" + kind + "\"; one of imu, ads");
-        }
+        const std::optional<UnitKind> parsed = common::ParseUnitKind(kind);
+        if (!parsed) r.Fail("$.unit_kind", "unknown unit kind \"" + kind + "\"; one of imu, ads");
+        sequence.unit_kind = *parsed;
       },
       source,
       problems);

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "common/unit_kind.h"
+
 namespace adahrs::hil {
 namespace {
 
@@ -69,7 +71,7 @@ void UnitLink::Accept(const fm::Frame& frame,
     Fail(Kind::kWrongIdentity,
          "data packet",
          fmt::format("packet type 0x{:02x}", static_cast<int>(frame.type)),
-         fmt::format("the station holds an {} unit here", ToString(entry_.kind)));
+         fmt::format("the station holds an {} unit here", common::UnitKindName(entry_.kind)));
   }
   ReceivedPacket packet;
   packet.seq = frame.sequence;
@@ -174,14 +176,12 @@ hil::IdentifyInfo UnitLink::Identify() {
   } catch (const hil::ProtocolError& e) {
     Fail(Kind::kBadReply, "IDENTIFY", ResponseText(response), e.what());
   }
-  const fm::UnitKind expected =
-      entry_.kind == UnitKind::kImu ? fm::UnitKind::kImu : fm::UnitKind::kAds;
-  if (info.unit_kind != expected) {
+  if (info.unit_kind != entry_.kind) {
     Fail(Kind::kWrongIdentity,
          "IDENTIFY",
          ResponseText(response),
          fmt::format("the station holds an {} unit on this port, the unit says kind {}",
-                     ToString(entry_.kind),
+                     common::UnitKindName(entry_.kind),
                      static_cast<int>(info.unit_kind)));
   }
   return info;

@@ -1,8 +1,8 @@
 #include "hil/recording/recording_writer.h"
 
-#include <fstream>
 #include <stdexcept>
 
+#include "common/atomic_file.h"
 #include "hil/recording/csv_lines.h"
 #include "hil/recording/last_frames.h"
 #include "hil/recording/row_text.h"
@@ -71,14 +71,7 @@ int64_t RecordingWriter::Frame(const std::string& unit, uint32_t seq, double t_s
 
 void RecordingWriter::WriteMeta(RecordingMeta meta) const {
   meta.format_version = kRecordingFormatVersion;
-  const std::filesystem::path final_path = run_dir_ / kMetaJsonName;
-  const std::filesystem::path tmp_path = run_dir_ / (std::string(kMetaJsonName) + ".tmp");
-  {
-    std::ofstream out(tmp_path);
-    out << meta.ToJson().dump(2) << "\n";
-    if (!out) throw std::runtime_error(tmp_path.string() + ": write failed");
-  }
-  std::filesystem::rename(tmp_path, final_path);
+  common::WriteFileAtomically(run_dir_ / kMetaJsonName, meta.ToJson().dump(2) + "\n");
 }
 
 namespace {

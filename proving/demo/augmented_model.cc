@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "common/atomic_file.h"
 #include "common/imu_layout.h"
 #include "common/param_reader.h"
 #include "sensor_sim/ads_unit.h"
@@ -197,7 +198,7 @@ AugmentedModel WriteAugmentedModel(const diagnosis::DiagnosisRun& run,
     if (u.serial != serial) continue;
     AugmentedModel m = AugmentUnitModel(u, base_file);
     std::filesystem::create_directories(out_dir);
-    diagnosis::WriteTextAtomically(out_dir / "model.json", m.model.dump(2) + "\n");
+    common::WriteFileAtomically(out_dir / "model.json", m.model.dump(2) + "\n");
     return m;
   }
   throw ParamError(

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "common/atomic_file.h"
 #include "common/imu_layout.h"
 #include "common/param_reader.h"
 #include "diagnosis/replay_check_report.h"
@@ -197,8 +198,8 @@ std::vector<diagnosis::ReplayComparison> CheckDiagnosisByReplay(
   for (const diagnosis::UnitDiagnosis& u : diagnosed.units) {
     const std::filesystem::path dir = diagnosis_dir / "models" / u.serial;
     std::filesystem::create_directories(dir);
-    diagnosis::WriteTextAtomically(dir / "base.json",
-                                   BaseModelFromTruth(truth_dir, u.serial).dump(2) + "\n");
+    common::WriteFileAtomically(dir / "base.json",
+                                BaseModelFromTruth(truth_dir, u.serial).dump(2) + "\n");
     WriteAugmentedModel(diagnosed, dir / "base.json", dir);
     files[u.serial] = {dir / "base.json", dir / "model.json"};
   }

@@ -5,6 +5,7 @@
 #include "calib/sequence/sequence_json.h"
 #include "calib/sequence/validation.h"
 #include "common/param_reader.h"
+#include "common/unit_kind.h"
 
 namespace adahrs::proving {
 namespace {
@@ -92,12 +93,11 @@ StudyDefinition LoadStudyDefinition(const std::filesystem::path& file,
   if (r.String("format") != "adahrs-study") r.Fail("$.format", "expected \"adahrs-study\"");
   r.Integer("format_version", 1, 1);
   const std::string kind = r.String("unit_kind");
-  if (kind != "imu" && kind != "ads") {
-    r.Fail("$.unit_kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
-  }
+  const std::optional<calib::UnitKind> parsed = common::ParseUnitKind(kind);
+  if (!parsed) r.Fail("$.unit_kind", "expected \"imu\" or \"ads\", got \"" + kind + "\"");
 
   StudyDefinition d;
-  d.unit_kind = kind == "ads" ? calib::UnitKind::kAds : calib::UnitKind::kImu;
+  d.unit_kind = *parsed;
   d.name = file.stem().string();
   d.file = file.string();
   const std::string sequence = r.String("sequence");

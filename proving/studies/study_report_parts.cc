@@ -7,16 +7,12 @@
 
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
+#include "common/html_page.h"
 
 namespace adahrs::proving {
 namespace {
 
 constexpr int kHistogramBins = 30;
-constexpr const char* kStyle =
-    "body{font-family:sans-serif;max-width:70em;margin:1em auto}"
-    "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:2px 6px;"
-    "font-size:90%}caption{text-align:left;font-weight:bold}.unavailable{color:#a33;font-style:"
-    "italic}";
 
 using Quantity = std::function<double(const StrategyOutcome&)>;
 
@@ -67,16 +63,8 @@ calib::PlotSeries Cdf(const std::string& label, const std::vector<double>& v) {
 std::string StudyPage(const std::string& title,
                       const std::string& intro_html,
                       const std::string& body) {
-  return fmt::format(
-      "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xhtml\" lang=\"en\">\n<head>\n"
-      "<meta "
-      "charset=\"utf-8\"/>\n<title>{}</title>\n<style>{}</style>\n</head>\n<body>\n<h1>{}</h1>\n"
-      "{}\n{}</body>\n</html>\n",
-      calib::XmlEscape(title),
-      kStyle,
-      calib::XmlEscape(title),
-      intro_html,
-      body);
+  return common::HtmlPage(
+      title, fmt::format("<h1>{}</h1>\n{}\n{}", calib::XmlEscape(title), intro_html, body));
 }
 
 std::string StudyStrategiesTable(const StudyMeta& meta) {

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "common/unit_kind.h"
 #include "proving/studies/ads_study_results.h"
 #include "proving/studies/study_csv.h"
 #include "proving/studies/study_report.h"
@@ -158,7 +159,7 @@ bool StudyMeta::SameStudy(const StudyMeta& o) const {
 StudyMeta MakeStudyMeta(const std::vector<StudyDefinition>& strategies,
                         const StudySettings& settings) {
   StudyMeta m;
-  if (!strategies.empty() && strategies[0].unit_kind == calib::UnitKind::kAds) m.unit_kind = "ads";
+  if (!strategies.empty()) m.unit_kind = common::UnitKindName(strategies[0].unit_kind);
   m.units = settings.units;
   m.seed = settings.seed;
   m.population = settings.population.Label();

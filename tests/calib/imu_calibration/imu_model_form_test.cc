@@ -23,6 +23,7 @@
 #include "calib/imu_calibration/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "common/gravity.h"
+#include "common/median.h"
 #include "proving/evaluation/imu_evaluation.h"
 #include "tests/support/twenty_nominal_imus.h"
 
@@ -32,11 +33,6 @@ namespace {
 using sensor_sim::ImuUnitParams;
 
 const double kGLocal_mps2 = common::NormalGravityMps2(32.6, 200.0);
-
-double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 struct Column {
   std::map<std::string, int> verdicts;
@@ -90,16 +86,16 @@ std::array<Column, 2> RunTwentyUnits(sensor_sim::TruthVariant variant) {
         "median %.1f\n",
         sensor_sim::ToString(variant).c_str(),
         k == 0 ? "datasheet" : "estimated",
-        Median(col.error_over_crb),
+        common::Median(col.error_over_crb),
         *std::max_element(col.error_over_crb.begin(), col.error_over_crb.end()),
         *std::min_element(col.rate_dps.begin(), col.rate_dps.end()),
         *std::max_element(col.rate_dps.begin(), col.rate_dps.end()),
         *std::min_element(col.limit_dps.begin(), col.limit_dps.end()),
         *std::max_element(col.limit_dps.begin(), col.limit_dps.end()),
-        Median(col.floor_dph),
-        Median(col.time_scale));
+        common::Median(col.floor_dph),
+        common::Median(col.time_scale));
     if (!col.white_scale.empty())
-      std::printf("  white variance scale median %.2f\n", Median(col.white_scale));
+      std::printf("  white variance scale median %.2f\n", common::Median(col.white_scale));
     for (const auto& [v, n] : col.verdicts) std::printf("  %2d x body rate %s\n", n, v.c_str());
   }
   return c;
@@ -118,8 +114,8 @@ int WithinSpecOrBound(const Column& c) {
 TEST(ImuModelForm, MatchedWanderBothCovariancesGiveAnHonestBound) {
   const std::array<Column, 2> c = RunTwentyUnits(sensor_sim::TruthVariant::kStandard);
   for (int k = 0; k < 2; ++k) {
-    EXPECT_GT(Median(c[k].error_over_crb), 0.5) << k;
-    EXPECT_LT(Median(c[k].error_over_crb), 1.5) << k;
+    EXPECT_GT(common::Median(c[k].error_over_crb), 0.5) << k;
+    EXPECT_LT(common::Median(c[k].error_over_crb), 1.5) << k;
   }
   EXPECT_EQ(WithinSpecOrBound(c[0]), 20);
   EXPECT_GE(WithinSpecOrBound(c[1]), 18);
@@ -131,11 +127,11 @@ TEST(ImuModelForm, MatchedWanderBothCovariancesGiveAnHonestBound) {
 // the default; a bound optimistic by a sixth is what the mismatch costs it.
 TEST(ImuModelForm, SlowerWanderThanThePrior) {
   const std::array<Column, 2> c = RunTwentyUnits(sensor_sim::TruthVariant::kSlowBiasWander);
-  EXPECT_GT(Median(c[0].error_over_crb), 1.0);
-  EXPECT_LT(Median(c[0].error_over_crb), 1.5);
+  EXPECT_GT(common::Median(c[0].error_over_crb), 1.0);
+  EXPECT_LT(common::Median(c[0].error_over_crb), 1.5);
   EXPECT_GE(WithinSpecOrBound(c[0]), 17);
-  EXPECT_LT(Median(c[1].error_over_crb), 2.0);
-  EXPECT_GT(Median(c[1].time_scale), 1.0);  // it moves toward the truth's slower poles
+  EXPECT_LT(common::Median(c[1].error_over_crb), 2.0);
+  EXPECT_GT(common::Median(c[1].time_scale), 1.0);  // it moves toward the truth's slower poles
 }
 
 }  // namespace
