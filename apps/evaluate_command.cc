@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "apps/commands.h"
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "proving/evaluation/imu_evaluation.h"
 #include "proving/evaluation/truth_file.h"
 
@@ -30,9 +30,8 @@ void RegisterEvaluateCommand(CLI::App& app) {
     const sensor_sim::ImuUnitParams params =
         proving::ImuTruth(proving::ReadTruthFile(*truth), file.serial);
     proving::ImuEvaluationOptions options;
-    if (file.kind == hil::UnitKind::kImu) {
-      options.g_local_mps2 = calib::ImuFitDiagnostics::FromJson(file.diagnostics, *constants)
-                                 .local_gravity_mps2.value_or(options.g_local_mps2);
+    if (file.imu_diagnostics && file.imu_diagnostics->local_gravity_mps2) {
+      options.g_local_mps2 = *file.imu_diagnostics->local_gravity_mps2;
     }
     const proving::ImuEvaluation e =
         proving::EvaluateImu(file, params, calib::Specification::Reference(), options);

@@ -17,7 +17,7 @@
 
 #include "apps/commands.h"
 #include "calib/campaign/campaign_fits.h"
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 
 namespace adahrs::apps {
@@ -65,8 +65,7 @@ void RegisterFitCommand(CLI::App& app) {
           "{}: strategy {}, {} excluded rows -> {}\n",
           w.file.serial,
           w.file.strategy,
-          calib::ImuFitDiagnostics::FromJson(w.file.diagnostics, w.path.string())
-              .excluded_rows.value_or(0),
+          w.file.imu_diagnostics ? w.file.imu_diagnostics->excluded_rows.value_or(0) : 0,
           w.path.string());
     }
   });

@@ -12,6 +12,7 @@
 #include "calib/report/svg_plot.h"
 #include "common/atomic_file.h"
 #include "common/html_page.h"
+#include "common/unit_kind.h"
 #include "diagnosis/ads_diagnosis.h"
 #include "diagnosis/channel_diagnosis.h"
 
@@ -36,7 +37,7 @@ constexpr const char* kChannelModel =
 std::set<std::string> UnitKinds(const std::filesystem::path& run) {
   std::set<std::string> kinds;
   for (const hil::RecordingUnit& u : hil::ReadRecordingMeta(run).meta.units) {
-    if (!u.kind.empty()) kinds.insert(u.kind);
+    if (u.kind) kinds.insert(common::UnitKindName(*u.kind));
   }
   return kinds;
 }

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/ads_calibration/ads_calibration_points.h"
-#include "calib/ads_calibration/ads_fit_diagnostics.h"
+#include "calib/constants/ads_fit_diagnostics.h"
 #include "calib/solvers/ads_surface_fit.h"
 #include "firmware_model/calibration_constants.h"
 

@@ -42,7 +42,7 @@ std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& r
       SequenceFromJson(*meta.sequence, source + "/meta.json $.sequence").name;
   std::vector<std::string> serials;
   for (const hil::RecordingUnit& unit : meta.units) {
-    if (unit.kind == "ads") serials.push_back(unit.serial);
+    if (unit.kind == hil::UnitKind::kAds) serials.push_back(unit.serial);
   }
   const auto points = StreamAdsCalibrationPoints(run_dir, serials, source);
   std::vector<WrittenConstants> written;
@@ -57,7 +57,7 @@ std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& r
     file.ads = fit.constants;
     file.standard_errors = fit.standard_errors;
     file.provenance = {{reference}, {sequence_name}};
-    file.diagnostics = fit.diagnostics.ToJson();
+    file.ads_diagnostics = fit.diagnostics;
     written.push_back(Write(fit_dir, std::move(file)));
   }
   return written;

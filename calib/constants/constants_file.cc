@@ -148,9 +148,25 @@ ConstantsFile Parse(const json& j, const std::string& source) {
   }
   provenance.ExpectAllKeysUsed();
   reader.Child("diagnostics");
-  file.diagnostics = j.at("diagnostics");
+  const json& diagnostics = j.at("diagnostics");
+  if (file.kind == hil::UnitKind::kImu) {
+    file.imu_diagnostics = ImuFitDiagnostics::FromJson(diagnostics, source);
+  } else if (!(diagnostics.is_object() && diagnostics.empty())) {
+    file.ads_diagnostics = AdsFitDiagnostics::FromJson(diagnostics, source);
+  }
   reader.ExpectAllKeysUsed();
   return file;
+}
+
+// The diagnostics of the file's kind; a section of the other kind is an inconsistent file.
+json DiagnosticsJson(const ConstantsFile& file, const std::string& source) {
+  const bool imu = file.kind == hil::UnitKind::kImu;
+  if (imu ? file.ads_diagnostics.has_value() : file.imu_diagnostics.has_value()) {
+    throw ConstantsFileError(source + ": $.diagnostics: diagnostics of the other unit kind");
+  }
+  if (file.imu_diagnostics) return file.imu_diagnostics->ToJson();
+  if (file.ads_diagnostics) return file.ads_diagnostics->ToJson();
+  return json::object();
 }
 
 }  // namespace
@@ -250,7 +266,7 @@ json ToJson(const ConstantsFile& file) {
               {"standard_errors", file.standard_errors},
               {"provenance",
                {{"recordings", recordings}, {"sequence_names", file.provenance.sequence_names}}},
-              {"diagnostics", NullForNaN(file.diagnostics)}};
+              {"diagnostics", NullForNaN(DiagnosticsJson(file, source))}};
 }
 
 ConstantsFile ConstantsFileFromJson(const json& j, const std::string& source) {

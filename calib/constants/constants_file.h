@@ -8,7 +8,7 @@
 //    "constants": firmware_model::ToJson(...),
 //    "standard_errors": same shape as "constants", each number its standard error or null,
 //    "provenance": {"recordings": [{"path", "sha256"}], "sequence_names": [...]},
-//    "diagnostics": {free-form per strategy}}
+//    "diagnostics": ImuFitDiagnostics or AdsFitDiagnostics as JSON}
 //
 // Units are those of the constants themselves (duty, counts, deg/s per count^i, m/s^2 per g, ft,
 // kt). The reader is strict: a missing or unexpected key, a wrong type, a wrong format or version,
@@ -26,6 +26,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calib/constants/ads_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "firmware_model/calibration_constants.h"
 #include "hil/station.h"
 #include "hil/utc_time.h"
@@ -65,7 +67,8 @@ struct ConstantsFile {
   std::optional<firmware_model::AdsCalibrationConstants> ads;  ///< set when kind is kAds
   nlohmann::json standard_errors;  ///< same shape as ToJson(constants); null = not estimated
   ConstantsProvenance provenance;
-  nlohmann::json diagnostics = nlohmann::json::object();
+  std::optional<ImuFitDiagnostics> imu_diagnostics;  ///< kind kImu; absent: written as {}
+  std::optional<AdsFitDiagnostics> ads_diagnostics;  ///< kind kAds; absent: written as {}
 };
 
 /// The standard-error JSON of an IMU set from a struct holding the standard errors in place of

@@ -126,7 +126,7 @@ BatchUnits IdentifyUnits(const std::vector<hil::UnitLink*>& links, bool imu_batc
     out.serials.push_back(serial);
     hil::RecordingUnit u;
     u.role = link->entry().role;
-    u.kind = imu_batch ? "imu" : "ads";
+    u.kind = imu_batch ? hil::UnitKind::kImu : hil::UnitKind::kAds;
     u.serial = serial;
     u.serial_number = id.serial_number;
     u.firmware = fmt::format("{}.{}.{}", id.firmware_major, id.firmware_minor, id.firmware_patch);

@@ -4,7 +4,7 @@
 // (imu_fit_diagnostics.h), which go into constants.json (constants_file.h).
 #pragma once
 
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "firmware_model/calibration_constants.h"
 
 namespace adahrs::calib {

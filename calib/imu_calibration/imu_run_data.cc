@@ -142,7 +142,7 @@ void LoadRun(const std::filesystem::path& dir, ImuRunData* data) {
   const Sequence sequence = SequenceFromJson(*meta.sequence, run + "/meta.json $.sequence");
   std::vector<std::string> serials;
   for (const hil::RecordingUnit& u : meta.units) {
-    if (u.kind == "imu" && !u.serial.empty()) serials.push_back(u.serial);
+    if (u.kind == hil::UnitKind::kImu && !u.serial.empty()) serials.push_back(u.serial);
   }
   ImuRunCollector collector(
       run, RecordingSha256(dir), sequence, g, serials, rec.meta.rejected_intervals, data);

@@ -96,7 +96,7 @@ ConstantsFile FitImuUnit(const ImuUnitData& unit,
   f.imu = fit.constants;
   f.standard_errors = ImuStandardErrorsJson(fit.standard_errors);
   f.provenance = {data.recordings, data.sequence_names};
-  f.diagnostics = fit.diagnostics.ToJson();
+  f.imu_diagnostics = fit.diagnostics;
   return f;
 }
 

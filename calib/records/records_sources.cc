@@ -78,17 +78,13 @@ const T& Required(const std::optional<T>& value,
 RunUnitRecord UnitRecord(const hil::RecordingUnit& unit, const std::string& source, size_t i) {
   const std::string where = fmt::format("$.units[{}]", i);
   RunUnitRecord record;
-  for (const auto& [value, key] : {std::pair{&unit.role, "role"},
-                                   std::pair{&unit.kind, "kind"},
-                                   std::pair{&unit.serial, "serial"}}) {
+  for (const auto& [value, key] :
+       {std::pair{&unit.role, "role"}, std::pair{&unit.serial, "serial"}}) {
     if (value->empty()) throw RecordsError(source + ": " + where + "." + key + " missing");
   }
   record.role = unit.role;
-  record.kind = unit.kind;
-  if (record.kind != "imu" && record.kind != "ads") {
-    throw RecordsError(source + ": " + where + ".kind '" + record.kind +
-                       "' is neither imu nor ads");
-  }
+  if (!unit.kind) throw RecordsError(source + ": " + where + ".kind missing");
+  record.kind = common::UnitKindName(*unit.kind);
   record.serial = unit.serial;
   record.slot = static_cast<int>(Required(unit.slot, source, where + ".slot"));
   record.firmware = Required(unit.firmware, source, where + ".firmware");

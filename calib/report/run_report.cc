@@ -17,6 +17,7 @@
 #include "common/atomic_file.h"
 #include "common/html_page.h"
 #include "common/param_reader.h"
+#include "common/unit_kind.h"
 #include "hil/recording/recording_reader.h"
 
 namespace adahrs::calib {
@@ -83,7 +84,7 @@ std::string Summary(const std::filesystem::path& run_dir, const hil::RecordingMe
       "units", {"role", "kind", "serial", "firmware", "slot", "constants version", "mode"}, {}};
   for (const hil::RecordingUnit& u : meta.units) {
     units.rows.push_back({u.role,
-                          u.kind,
+                          u.kind ? common::UnitKindName(*u.kind) : "",
                           u.serial,
                           u.firmware.value_or(""),
                           std::to_string(u.slot.value_or(0)),
@@ -131,7 +132,7 @@ std::map<std::string, std::string> AdsSectionsBySerial(const std::filesystem::pa
                                                        const FitInputs& fit) {
   std::vector<AdsReportAccumulator> units;
   for (const hil::RecordingUnit& u : meta.units) {
-    if (u.kind == "imu") continue;
+    if (u.kind == common::UnitKind::kImu) continue;
     units.emplace_back(u.serial, meta, ConstantsOf(fit, u.serial));
   }
   hil::RowSinks sinks;
@@ -157,7 +158,7 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
   std::optional<ImuRunData> imu;
   std::string imu_why;
   bool has_imu = false;
-  for (const hil::RecordingUnit& u : meta.units) has_imu |= u.kind == "imu";
+  for (const hil::RecordingUnit& u : meta.units) has_imu |= u.kind == common::UnitKind::kImu;
   if (has_imu) {
     try {
       imu = LoadImuRuns({run_dir});
@@ -174,7 +175,7 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
     const std::string& serial = u.serial;
     const ConstantsFile* constants = ConstantsOf(fit, serial);
     std::string unit_html;
-    if (u.kind == "imu") {
+    if (u.kind == common::UnitKind::kImu) {
       if (imu && imu->units.count(serial)) {
         unit_html = ImuReportSections(imu->units.at(serial), constants, g_local_mps2);
       } else {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/param_reader.h"
 #include "hil/recording/recording_error.h"
 
 namespace adahrs::hil {
@@ -10,63 +11,42 @@ namespace {
 
 using nlohmann::json;
 
-// One object of meta.json being read: typed fields by key, every refusal with its JSON path.
-class MetaObject {
- public:
-  MetaObject(const json& object, std::string where) : object_(object), where_(std::move(where)) {
-    if (!object_.is_object()) throw RecordingError(where_ + " is not an object");
-  }
-  bool Has(const char* key) const { return object_.contains(key); }
-  const json& Raw(const char* key) const { return object_.at(key); }
-  std::string Path(const char* key) const { return where_ + "." + key; }
+using common::ParamReader;
 
-  std::optional<std::string> String(const char* key) const {
-    if (!Has(key)) return std::nullopt;
-    if (!object_[key].is_string()) throw RecordingError(Path(key) + " is not a string");
-    return object_[key].get<std::string>();
-  }
-  std::optional<double> Number(const char* key) const {
-    if (!Has(key)) return std::nullopt;
-    if (!object_[key].is_number()) throw RecordingError(Path(key) + " is not a number");
-    return object_[key].get<double>();
-  }
-  std::optional<int64_t> Integer(const char* key) const {
-    if (!Has(key)) return std::nullopt;
-    const json& v = object_[key];
-    if (!v.is_number_integer() ||
-        (v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX))) {
-      throw RecordingError(Path(key) + " is " + v.dump() + ", not an integer");
-    }
-    return v.get<int64_t>();
-  }
-  const json& Array(const char* key) const {
-    if (!object_[key].is_array()) throw RecordingError(Path(key) + " is not an array");
-    return object_[key];
-  }
+// An optional key of meta.json: absent is nullopt; present, it must be of its type.
+std::optional<std::string> OptionalString(const ParamReader& r, const char* key) {
+  return r.Has(key) ? std::optional(r.String(key)) : std::nullopt;
+}
+std::optional<double> OptionalNumber(const ParamReader& r,
+                                     const char* key,
+                                     double max,
+                                     const char* unit) {
+  return r.Has(key) ? std::optional(r.Number(key, 0.0, max, unit)) : std::nullopt;
+}
+std::optional<int64_t> OptionalInteger(const ParamReader& r, const char* key, int64_t max) {
+  return r.Has(key) ? std::optional(r.Integer(key, 0, max)) : std::nullopt;
+}
 
- private:
-  const json& object_;
-  std::string where_;
-};
-
-RecordingUnit UnitFromJson(const json& item, const std::string& where) {
-  const MetaObject o(item, where);
+RecordingUnit UnitFromJson(const ParamReader& r) {
   RecordingUnit u;
-  u.role = o.String("role").value_or("");
-  u.kind = o.String("kind").value_or("");
-  u.serial = o.String("serial").value_or("");
-  u.serial_number = o.Integer("serial_number");
-  u.firmware = o.String("firmware");
-  u.slot = o.Integer("slot");
-  u.constants_version = o.Integer("constants_version");
-  u.mode = o.Integer("mode");
+  u.role = OptionalString(r, "role").value_or("");
+  if (const std::optional<std::string> kind = OptionalString(r, "kind")) {
+    u.kind = common::ParseUnitKind(*kind);
+    if (!u.kind) r.Fail(r.path() + ".kind", json(*kind).dump() + " is not \"imu\" or \"ads\"");
+  }
+  u.serial = OptionalString(r, "serial").value_or("");
+  u.serial_number = OptionalInteger(r, "serial_number", INT64_MAX);
+  u.firmware = OptionalString(r, "firmware");
+  u.slot = OptionalInteger(r, "slot", INT64_MAX);
+  u.constants_version = OptionalInteger(r, "constants_version", INT64_MAX);
+  u.mode = OptionalInteger(r, "mode", INT64_MAX);
   return u;
 }
 
 json UnitToJson(const RecordingUnit& u) {
   json j = json::object();
   if (!u.role.empty()) j["role"] = u.role;
-  if (!u.kind.empty()) j["kind"] = u.kind;
+  if (u.kind) j["kind"] = common::UnitKindName(*u.kind);
   if (!u.serial.empty()) j["serial"] = u.serial;
   if (u.serial_number) j["serial_number"] = *u.serial_number;
   if (u.firmware) j["firmware"] = *u.firmware;
@@ -76,28 +56,18 @@ json UnitToJson(const RecordingUnit& u) {
   return j;
 }
 
-RejectedInterval IntervalFromJson(const json& item, const std::string& where) {
-  const MetaObject o(item, where);
-  RejectedInterval r;
-  if (!o.Has("step") || !item["step"].is_number_integer()) {
-    throw RecordingError(where + ".step missing or not an integer");
+RejectedInterval IntervalFromJson(const ParamReader& r) {
+  RejectedInterval out;
+  out.step = static_cast<int>(r.Integer("step", 0, INT32_MAX));
+  out.t_start_s = r.Number("t_start_s", -1e12, 1e12, "s");
+  out.t_end_s = r.Number("t_end_s", -1e12, 1e12, "s");
+  if (!(out.t_end_s >= out.t_start_s)) {
+    r.Fail(r.path(),
+           "t_end_s " + std::to_string(out.t_end_s) + " is before t_start_s " +
+               std::to_string(out.t_start_s));
   }
-  r.step = item["step"].get<int>();
-  for (auto [key, out] : {std::pair{"t_start_s", &r.t_start_s}, {"t_end_s", &r.t_end_s}}) {
-    if (!o.Has(key) || !item[key].is_number()) {
-      throw RecordingError(where + "." + key + " missing or not a number");
-    }
-    *out = item[key].get<double>();
-  }
-  if (!(r.t_end_s >= r.t_start_s)) {
-    throw RecordingError(where + ": t_end_s " + std::to_string(r.t_end_s) +
-                         " is before t_start_s " + std::to_string(r.t_start_s));
-  }
-  if (!o.Has("reason") || !item["reason"].is_string()) {
-    throw RecordingError(where + ".reason missing or not a string");
-  }
-  r.reason = item["reason"].get<std::string>();
-  return r;
+  out.reason = r.String("reason");
+  return out;
 }
 
 // The format version, read wide so 4294967298 is refused as itself instead of wrapping to 2.
@@ -139,6 +109,59 @@ json RateJson(double hz) {
   return hz;
 }
 
+// The keys RecordingMeta holds as fields; the others go to `extra`.
+constexpr const char* kTyped[] = {"format_version",
+                                  "run_id",
+                                  "started_utc",
+                                  "status",
+                                  "station",
+                                  "sequence",
+                                  "sequence_file",
+                                  "time_base",
+                                  "sample_rate_hz",
+                                  "local_gravity_mps2",
+                                  "units",
+                                  "instruments",
+                                  "rejected_intervals"};
+
+void ReadTyped(const json& meta, const ParamReader& r, RecordingMeta* m) {
+  m->run_id = OptionalString(r, "run_id");
+  m->started_utc = OptionalString(r, "started_utc");
+  m->status = OptionalString(r, "status");
+  for (auto [key, out] : {std::pair{"station", &m->station}, {"sequence", &m->sequence}}) {
+    if (r.Has(key)) {
+      r.Child(key);  // an object, or refused with its path
+      *out = meta[key];
+    }
+  }
+  m->sequence_file = OptionalString(r, "sequence_file");
+  m->time_base = OptionalString(r, "time_base");
+  m->sample_rate_hz = OptionalNumber(r, "sample_rate_hz", 1e6, "Hz");
+  m->local_gravity_mps2 = OptionalNumber(r, "local_gravity_mps2", 1e3, "m/s^2");
+  if (r.Has("units")) {
+    m->has_units = true;
+    const size_t n = r.ArrayLength("units", 0, 100000);
+    for (size_t i = 0; i < n; ++i) m->units.push_back(UnitFromJson(r.Element("units", i, n)));
+  }
+  if (r.Has("instruments")) {
+    const size_t n = r.ArrayLength("instruments", 0, 100000);
+    m->instruments.emplace();
+    for (size_t i = 0; i < n; ++i) {
+      const ParamReader item = r.Element("instruments", i, n);
+      m->instruments->push_back({OptionalString(item, "role").value_or(""),
+                                 OptionalString(item, "model").value_or(""),
+                                 OptionalString(item, "detail").value_or("")});
+    }
+  }
+  if (r.Has("rejected_intervals")) {
+    m->has_rejected_intervals = true;
+    const size_t n = r.ArrayLength("rejected_intervals", 0, 10000000);
+    for (size_t i = 0; i < n; ++i) {
+      m->rejected_intervals.push_back(IntervalFromJson(r.Element("rejected_intervals", i, n)));
+    }
+  }
+}
+
 }  // namespace
 
 const RecordingUnit* RecordingMeta::Unit(const std::string& serial) const {
@@ -151,55 +174,12 @@ const RecordingUnit* RecordingMeta::Unit(const std::string& serial) const {
 RecordingMeta RecordingMeta::FromJson(const json& meta, const std::string& source) {
   RecordingMeta m;
   m.format_version = FormatVersion(meta, source);
-  const MetaObject o(meta, source + ": $");
-  m.run_id = o.String("run_id");
-  m.started_utc = o.String("started_utc");
-  m.status = o.String("status");
-  if (o.Has("station")) m.station = meta["station"];
-  if (o.Has("sequence")) m.sequence = meta["sequence"];
-  m.sequence_file = o.String("sequence_file");
-  m.time_base = o.String("time_base");
-  m.sample_rate_hz = o.Number("sample_rate_hz");
-  m.local_gravity_mps2 = o.Number("local_gravity_mps2");
-  if (o.Has("units")) {
-    m.has_units = true;
-    const json& units = o.Array("units");
-    for (size_t i = 0; i < units.size(); ++i) {
-      m.units.push_back(UnitFromJson(units[i], source + ": $.units[" + std::to_string(i) + "]"));
-    }
-    RefuseRepeatedUnits(m.units, source);
+  try {
+    ReadTyped(meta, ParamReader(meta, source), &m);
+  } catch (const common::ParamError& e) {
+    throw RecordingError(e.what());
   }
-  if (o.Has("instruments")) {
-    const json& list = o.Array("instruments");
-    m.instruments.emplace();
-    for (size_t i = 0; i < list.size(); ++i) {
-      const MetaObject item(list[i], source + ": $.instruments[" + std::to_string(i) + "]");
-      m.instruments->push_back({item.String("role").value_or(""),
-                                item.String("model").value_or(""),
-                                item.String("detail").value_or("")});
-    }
-  }
-  if (o.Has("rejected_intervals")) {
-    m.has_rejected_intervals = true;
-    const json& list = o.Array("rejected_intervals");
-    for (size_t i = 0; i < list.size(); ++i) {
-      m.rejected_intervals.push_back(
-          IntervalFromJson(list[i], source + ": $.rejected_intervals[" + std::to_string(i) + "]"));
-    }
-  }
-  static const char* const kTyped[] = {"format_version",
-                                       "run_id",
-                                       "started_utc",
-                                       "status",
-                                       "station",
-                                       "sequence",
-                                       "sequence_file",
-                                       "time_base",
-                                       "sample_rate_hz",
-                                       "local_gravity_mps2",
-                                       "units",
-                                       "instruments",
-                                       "rejected_intervals"};
+  RefuseRepeatedUnits(m.units, source);
   for (auto it = meta.begin(); it != meta.end(); ++it) {
     if (std::find(std::begin(kTyped), std::end(kTyped), it.key()) == std::end(kTyped)) {
       m.extra[it.key()] = it.value();

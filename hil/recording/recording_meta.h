@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/unit_kind.h"
+
 namespace adahrs::hil {
 
 /// A span of the run whose rows are not calibration data (a failed interlock, the first attempt of
@@ -29,8 +31,8 @@ struct RejectedInterval {
 /// One unit of the batch as the run found it ($.units[i]).
 struct RecordingUnit {
   std::string role;
-  std::string kind;    ///< "imu" or "ads"; empty when the producer did not say
-  std::string serial;  ///< "IMU-0001"; empty when the producer did not say
+  std::optional<common::UnitKind> kind;  ///< "imu" or "ads" in the file; absent if not said
+  std::string serial;                    ///< "IMU-0001"; empty when the producer did not say
   std::optional<int64_t> serial_number;
   std::optional<std::string> firmware;  ///< "M.m.p", or "simulated"
   std::optional<int64_t> slot;

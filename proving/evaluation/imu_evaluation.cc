@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "calib/acceptance/acceptance_judge.h"
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_joint_fit.h"
 #include "calib/imu_calibration/imu_observations.h"
 #include "common/units.h"
@@ -195,10 +195,8 @@ std::string Verdict(const QuantitySummary& q, bool have_crb) {
 // strategy); files written before format 3 carry the format-2 numbers' covariance only. A null
 // (not finite) entry counts as zero.
 std::optional<Eigen::MatrixXd> CrbCovariance(const calib::ConstantsFile& file) {
-  const calib::ImuFitDiagnostics diagnostics =
-      calib::ImuFitDiagnostics::FromJson(file.diagnostics, file.serial);
-  if (!diagnostics.joint) return std::nullopt;
-  const std::vector<std::vector<double>>& rows = diagnostics.joint->crb_covariance;
+  if (!file.imu_diagnostics || !file.imu_diagnostics->joint) return std::nullopt;
+  const std::vector<std::vector<double>>& rows = file.imu_diagnostics->joint->crb_covariance;
   constexpr int n = calib::kImuFirmwareNumbers;
   const int size =
       rows.size() == static_cast<size_t>(calib::kImuFormat2Numbers) ? calib::kImuFormat2Numbers : n;

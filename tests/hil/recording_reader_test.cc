@@ -145,6 +145,23 @@ TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
   EXPECT_THAT(ErrorOf(), HasSubstr("$.format_version is \"3\", not an integer"));
 }
 
+// A unit's kind is one of the two the house knows, read as a kind, not kept as text.
+TEST_F(RecordingReaderTest, UnknownUnitKindIsRefusedByItsPath) {
+  nlohmann::json meta_file = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
+  meta_file["units"] = {{{"kind", "imu"}, {"serial", "IMU-0001"}},
+                        {{"kind", "IMU"}, {"serial", "IMU-0002"}}};
+  std::ofstream(dir_ / "meta.json") << meta_file.dump(2);
+  EXPECT_THAT(ErrorOf(),
+              AllOf(HasSubstr("meta.json"),
+                    HasSubstr("$.units[1].kind: \"IMU\" is not \"imu\" or \"ads\"")));
+  meta_file["units"][1]["kind"] = "ads";
+  std::ofstream(dir_ / "meta.json") << meta_file.dump(2);
+  const Recording rec = ReadRecording(dir_, {});
+  ASSERT_EQ(rec.meta.units.size(), 2u);
+  EXPECT_EQ(rec.meta.units[0].kind, common::UnitKind::kImu);
+  EXPECT_EQ(rec.meta.units[1].kind, common::UnitKind::kAds);
+}
+
 // Per unit, rows come in arrival order; a copy, time going back, a unit meta.json does not list
 // and a negative step are refused by file and line. Rows 2-4 of imu.csv are seq 0, 1, 2.
 TEST_F(RecordingReaderTest, RowsOutOfArrivalOrderAreRefusedByLine) {

@@ -115,7 +115,7 @@ void CheckRows(const hil::Recording& recording,
     }
   }
   for (const hil::RecordingUnit& unit : recording.meta.units) {
-    if (unit.kind != kind) continue;
+    if (!unit.kind || common::UnitKindName(*unit.kind) != kind) continue;
     const std::string& serial = unit.serial;
     ASSERT_TRUE(last_seq.count(serial)) << serial << " has no rows";
     EXPECT_EQ(gaps[serial], 0) << serial << ": seq column jumps (lost packets)";

@@ -48,8 +48,21 @@ ConstantsFile ImuFile() {
   f.standard_errors = ImuStandardErrorsJson(se);
   f.provenance.recordings = {{"runs/cal1", std::string(64, 'a')}};
   f.provenance.sequence_names = {"imu_sensor_calibration"};
-  f.diagnostics = {{"residual_rms", {1.0, 2.0}}};
+  ImuFitDiagnostics& d = f.imu_diagnostics.emplace();
+  d.excluded_rows = 3;
+  d.local_gravity_mps2 = 9.80665;
+  d.joint.emplace().crb_parameters = {"k0_az1", "k1_az1"};
+  d.joint->crb_covariance = {{1e-4, kNaN}, {kNaN, 2e-6}};  // NaN is written null
   return f;
+}
+
+// `j` with NaN numbers as null, as the file writes them.
+json NullJson(json j) {
+  if (j.is_number_float() && std::isnan(j.get<double>())) return nullptr;
+  if (j.is_structured()) {
+    for (auto& item : j) item = NullJson(item);
+  }
+  return j;
 }
 
 std::string MessageOf(const json& j) {
@@ -77,7 +90,29 @@ TEST(ConstantsFile, RoundTripsThroughDisk) {
   EXPECT_TRUE(g.standard_errors["thermal"][0]["k"][2].is_null());  // NaN = not estimated
   EXPECT_TRUE(g.standard_errors["thermal"][0]["temp_sensor"].is_null());
   EXPECT_DOUBLE_EQ(g.standard_errors["gyro"][1]["l"][1].get<double>(), 1e-9);
-  EXPECT_EQ(g.diagnostics, f.diagnostics);
+  ASSERT_TRUE(g.imu_diagnostics.has_value());
+  EXPECT_FALSE(g.ads_diagnostics.has_value());
+  EXPECT_EQ(g.imu_diagnostics->excluded_rows, 3);
+  EXPECT_EQ(g.imu_diagnostics->local_gravity_mps2, 9.80665);
+  ASSERT_TRUE(g.imu_diagnostics->joint.has_value());
+  EXPECT_EQ(g.imu_diagnostics->joint->crb_parameters, f.imu_diagnostics->joint->crb_parameters);
+  EXPECT_EQ(g.imu_diagnostics->joint->crb_covariance[1][1], 2e-6);
+  EXPECT_TRUE(std::isnan(g.imu_diagnostics->joint->crb_covariance[0][1]));
+}
+
+// The diagnostics section is read as the kind's typed diagnostics: an unknown key or a wrong type
+// is refused with its JSON path, and a section of the other kind's shape is not taken.
+TEST(ConstantsFile, DiagnosticsAreReadTypedAndRefusedByPath) {
+  json j = ToJson(ImuFile());
+  j["diagnostics"]["excluded_rowz"] = 1;
+  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.diagnostics.excluded_rowz: unknown key"));
+  j = ToJson(ImuFile());
+  j["diagnostics"]["local_gravity_mps2"] = "9.8";
+  EXPECT_THAT(MessageOf(j),
+              HasSubstr("unit.json: $.diagnostics.local_gravity_mps2: expected a number"));
+  ConstantsFile f = ImuFile();
+  f.ads_diagnostics.emplace();
+  EXPECT_THROW(ToJson(f), ConstantsFileError);
 }
 
 TEST(ConstantsFile, RefusesWrongFormatAndVersion) {
@@ -191,7 +226,25 @@ TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
   fm::AdsCalibrationConstants se = c;
   se.altitude_ft.y_linearisation.curvature_per_code = 6e-10;
   f.standard_errors = AdsStandardErrorsJson(se);
+  AdsFitDiagnostics& d = f.ads_diagnostics.emplace();
+  d.altitude_ft = {.unit = "pa", .points = 40, .terms = 12, .y_degree = 3, .dof = 28};
+  d.altitude_ft.residual_rms = 1.25;
+  d.altitude_ft.held_out_worst_ratio_by_y_degree = {{2, 0.8}, {3, 0.5}};
+  d.altitude_ft.hysteresis_spans = HysteresisSpanDiagnostics{.pressure_span_pa = 2000.0};
+  d.airspeed_kt = {.unit = "kt", .points = 36, .terms = 10, .y_degree = 2, .dof = 26};
+  d.airspeed_kt.worst_ratio_at_points = kNaN;  // written null, read back NaN
+  d.airspeed_kt.law = "cas_from_qc";
   const ConstantsFile g = ConstantsFileFromJson(ToJson(f), "ads.json");
+  ASSERT_TRUE(g.ads_diagnostics.has_value());
+  EXPECT_EQ(g.ads_diagnostics->ToJson().dump(), NullJson(d.ToJson()).dump());
+  EXPECT_EQ(g.ads_diagnostics->altitude_ft.unit, "pa");
+  EXPECT_EQ(g.ads_diagnostics->altitude_ft.held_out_worst_ratio_by_y_degree.at(3), 0.5);
+  EXPECT_TRUE(std::isnan(*g.ads_diagnostics->airspeed_kt.worst_ratio_at_points));
+  json renamed = ToJson(f);
+  renamed["diagnostics"]["airspeed_kt"]["residual_rms_kts"] =
+      renamed["diagnostics"]["airspeed_kt"]["residual_rms_kt"];
+  EXPECT_THAT(MessageOf(renamed),
+              HasSubstr("unit.json: $.diagnostics.airspeed_kt.residual_rms_kts: unknown key"));
   ASSERT_TRUE(g.ads.has_value());
   EXPECT_EQ(g.ads->altitude_ft.coeff_xy, c.altitude_ft.coeff_xy);
   EXPECT_EQ(g.ads->altitude_ft.y_linearisation.origin_code, 2500000.0);

@@ -16,7 +16,7 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "common/gravity.h"
 #include "proving/evaluation/imu_evaluation.h"

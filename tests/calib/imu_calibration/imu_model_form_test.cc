@@ -20,7 +20,7 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "common/gravity.h"
 #include "common/median.h"

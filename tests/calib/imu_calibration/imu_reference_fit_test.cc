@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/constants/constants_file.h"
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
 #include "calib/imu_calibration/imu_run_data.h"
 #include "calib/imu_calibration/imu_strategy.h"

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/constants/constants_file.h"
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 
 namespace adahrs::calib {
 namespace {

@@ -1,9 +1,9 @@
 // What an ADS fit reports beside its constants, per surface (altitude, airspeed): the points and
 // terms it used and its residual at them; per strategy, the tolerance ratios at the points, the
 // hysteresis half loops and spans the centre fit separated, and the bridge linearisation. Written
-// into constants.json's `diagnostics` (docs/constants-file.md); informational, never read back
-// into a calibration. Units are in the key names: ft, kt or pa (a pressure surface), c (degrees
-// Celsius).
+// into constants.json's `diagnostics` (docs/constants-file.md); read back typed (FromJson) with
+// the file, never into a calibration. Units are in the key names: ft, kt or pa (a pressure
+// surface), c (degrees Celsius).
 #pragma once
 
 #include <map>
@@ -69,6 +69,11 @@ struct AdsFitDiagnostics {
   AdsSurfaceDiagnostics altitude_ft;
   AdsSurfaceDiagnostics airspeed_kt;
   nlohmann::json ToJson() const;
+  /// Reads ToJson's object back; refuses a wrong type, a missing or an unknown key with
+  /// ConstantsFileError naming `source` and the JSON path. Null numbers are read as NaN.
+  static AdsFitDiagnostics FromJson(const nlohmann::json& j,
+                                    const std::string& source,
+                                    const std::string& path = "$.diagnostics");
 };
 
 }  // namespace adahrs::calib

@@ -1,119 +1,13 @@
 // ImuFitDiagnostics::FromJson: the diagnostics section of a constants.json read back strictly.
-#include <algorithm>
-#include <cmath>
-#include <limits>
-#include <set>
-
-#include "calib/constants/constants_file.h"
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/diagnostics_reader.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 #include "common/imu_layout.h"
 
 namespace adahrs::calib {
 namespace {
 
 using nlohmann::json;
-
-// One JSON object of the section: every value read by key, the keys read recorded so that an
-// unknown key is refused. Numbers may be null (a NaN when written) and read back as NaN.
-class Reader {
- public:
-  Reader(const json& j, const std::string& source, std::string path)
-      : j_(&j), source_(&source), path_(std::move(path)) {
-    if (!j.is_object()) Fail(path_, "expected an object");
-  }
-
-  [[noreturn]] void Fail(const std::string& where, const std::string& message) const {
-    throw ConstantsFileError(*source_ + ": " + where + ": " + message);
-  }
-  std::string PathOf(const std::string& key) const { return path_ + "." + key; }
-  bool Has(const std::string& key) const { return j_->contains(key); }
-
-  const json& Require(const std::string& key) const {
-    const auto it = j_->find(key);
-    if (it == j_->end()) Fail(PathOf(key), "missing key");
-    used_.insert(key);
-    return *it;
-  }
-  double NumberAt(const json& v, const std::string& where) const {
-    if (v.is_null()) return std::numeric_limits<double>::quiet_NaN();
-    if (!v.is_number()) Fail(where, "expected a number or null");
-    return v.get<double>();
-  }
-  double Number(const std::string& key) const { return NumberAt(Require(key), PathOf(key)); }
-  int64_t Integer(const std::string& key) const {
-    const json& v = Require(key);
-    if (!v.is_number_integer()) Fail(PathOf(key), "expected an integer");
-    return v.get<int64_t>();
-  }
-  int Int(const std::string& key) const {
-    const int64_t x = Integer(key);
-    if (x < std::numeric_limits<int>::min() || x > std::numeric_limits<int>::max())
-      Fail(PathOf(key), "out of range");
-    return static_cast<int>(x);
-  }
-  bool Flag(const std::string& key) const {
-    const json& v = Require(key);
-    if (!v.is_boolean()) Fail(PathOf(key), "expected true or false");
-    return v.get<bool>();
-  }
-  std::string String(const std::string& key) const {
-    const json& v = Require(key);
-    if (!v.is_string()) Fail(PathOf(key), "expected a string");
-    return v.get<std::string>();
-  }
-  const json& Array(const std::string& key) const {
-    const json& v = Require(key);
-    if (!v.is_array()) Fail(PathOf(key), "expected an array");
-    return v;
-  }
-  std::vector<double> Numbers(const json& array, const std::string& where) const {
-    if (!array.is_array()) Fail(where, "expected an array");
-    std::vector<double> out;
-    for (size_t i = 0; i < array.size(); ++i)
-      out.push_back(NumberAt(array[i], where + "[" + std::to_string(i) + "]"));
-    return out;
-  }
-  std::vector<double> Numbers(const std::string& key) const {
-    return Numbers(Require(key), PathOf(key));
-  }
-  std::vector<std::string> Strings(const std::string& key) const {
-    const json& array = Array(key);
-    std::vector<std::string> out;
-    for (size_t i = 0; i < array.size(); ++i) {
-      if (!array[i].is_string())
-        Fail(PathOf(key) + "[" + std::to_string(i) + "]", "expected a string");
-      out.push_back(array[i].get<std::string>());
-    }
-    return out;
-  }
-  Reader Child(const std::string& key) const { return Reader(Require(key), *source_, PathOf(key)); }
-  Reader Element(const json& array, size_t i, const std::string& key) const {
-    return Reader(array[i], *source_, PathOf(key) + "[" + std::to_string(i) + "]");
-  }
-  // The keys of a per-channel map, each one of the nine channels.
-  std::vector<std::string> ChannelKeys() const {
-    std::vector<std::string> keys;
-    for (const auto& [key, value] : j_->items()) {
-      if (std::find(common::kImuChannelNames.begin(), common::kImuChannelNames.end(), key) ==
-          common::kImuChannelNames.end()) {
-        Fail(PathOf(key), "not a channel (az1, ax1, ay1, az2, ax2, ay2, gx, gy, gz)");
-      }
-      keys.push_back(key);
-    }
-    return keys;
-  }
-  void ExpectAllKeysUsed() const {
-    for (const auto& [key, value] : j_->items()) {
-      if (!used_.contains(key)) Fail(PathOf(key), "unknown key");
-    }
-  }
-
- private:
-  const json* j_;
-  const std::string* source_;
-  std::string path_;
-  mutable std::set<std::string> used_;
-};
+using Reader = DiagnosticsReader;
 
 std::array<double, 3> Three(const Reader& r, const std::string& key) {
   const std::vector<double> v = r.Numbers(key);

@@ -1,4 +1,4 @@
-#include "calib/ads_calibration/ads_fit_diagnostics.h"
+#include "calib/constants/ads_fit_diagnostics.h"
 
 namespace adahrs::calib {
 

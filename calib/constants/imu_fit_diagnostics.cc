@@ -1,4 +1,4 @@
-#include "calib/imu_calibration/imu_fit_diagnostics.h"
+#include "calib/constants/imu_fit_diagnostics.h"
 
 namespace adahrs::calib {
 namespace {
