@@ -199,7 +199,7 @@ std::vector<hil::RecordingUnit> ReplayedUnits(const hil::RecordingMeta& meta,
   std::map<std::string, std::string> recorded_kind;
   for (const hil::RecordingUnit& u : meta.units) {
     const std::string& serial = u.serial;
-    const std::string& kind = u.kind;
+    const std::string kind = u.kind ? common::UnitKindName(*u.kind) : "";
     recorded_kind[serial] = kind;
     const auto f = files.find(serial);
     if (f == files.end()) {

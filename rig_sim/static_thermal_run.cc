@@ -114,7 +114,7 @@ hil::RecordingMeta RunMeta(const StaticThermalRunConfig& config,
 hil::RecordingUnit RecordedUnit(const std::string& serial, const char* kind, int index) {
   hil::RecordingUnit u;
   u.role = fmt::format("{}{}", kind, index + 1);
-  u.kind = kind;
+  u.kind = common::ParseUnitKind(kind);
   u.serial = serial;
   u.serial_number = index + 1;
   u.firmware = "simulated";

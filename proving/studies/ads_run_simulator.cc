@@ -82,7 +82,7 @@ hil::Recording AdsRunRecording(const calib::Sequence& sequence,
   recording.meta.sample_rate_hz = 100.0;
   recording.meta.sequence = nlohmann::json{{"name", sequence.name}};
   hil::RecordingUnit unit;
-  unit.kind = hil::UnitKind::kAds;
+  unit.kind = common::UnitKind::kAds;
   unit.serial = params.serial;
   recording.meta.units = {unit};
   recording.meta.has_units = true;

@@ -241,7 +241,7 @@ TEST(ImprovedAdsStrategies, KeepEveryGridPointInsideTheTolerancesOnTwentyUnits) 
         file.ads = fit.constants;
         file.standard_errors = fit.standard_errors;
         file.provenance.recordings = {{"run", std::string(64, 'a')}};
-        file.diagnostics = fit.diagnostics.ToJson();
+        file.ads_diagnostics = fit.diagnostics;
         const ConstantsFile back = ConstantsFileFromJson(ToJson(file), serial + ".json");
         EXPECT_EQ(ToJson(back), ToJson(file)) << kStrategies[k];
       }

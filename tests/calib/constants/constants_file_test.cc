@@ -227,11 +227,13 @@ TEST(ConstantsFile, AdsRoundTripAndWriterConsistency) {
   se.altitude_ft.y_linearisation.curvature_per_code = 6e-10;
   f.standard_errors = AdsStandardErrorsJson(se);
   AdsFitDiagnostics& d = f.ads_diagnostics.emplace();
-  d.altitude_ft = {.unit = "pa", .points = 40, .terms = 12, .y_degree = 3, .dof = 28};
+  d.altitude_ft.unit = "pa";
+  d.altitude_ft.points = 40;
   d.altitude_ft.residual_rms = 1.25;
   d.altitude_ft.held_out_worst_ratio_by_y_degree = {{2, 0.8}, {3, 0.5}};
-  d.altitude_ft.hysteresis_spans = HysteresisSpanDiagnostics{.pressure_span_pa = 2000.0};
-  d.airspeed_kt = {.unit = "kt", .points = 36, .terms = 10, .y_degree = 2, .dof = 26};
+  d.altitude_ft.hysteresis_spans.emplace().pressure_span_pa = 2000.0;
+  d.airspeed_kt.unit = "kt";
+  d.airspeed_kt.y_degree = 2;
   d.airspeed_kt.worst_ratio_at_points = kNaN;  // written null, read back NaN
   d.airspeed_kt.law = "cas_from_qc";
   const ConstantsFile g = ConstantsFileFromJson(ToJson(f), "ads.json");

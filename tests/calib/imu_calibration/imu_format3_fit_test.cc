@@ -68,7 +68,8 @@ TEST_P(ImuFormat3Fit, TruthUnitsMeetTheAccelerationSpecificationAndBeatFormat2An
   for (size_t u = 0; u < params.size(); ++u) {
     SCOPED_TRACE(params[u].serial);
     ASSERT_TRUE(fits3[u].imu->scale_temperature.active);
-    const ImuFitDiagnostics diag = ImuFitDiagnostics::FromJson(fits3[u].diagnostics, "fit");
+    ASSERT_TRUE(fits3[u].imu_diagnostics.has_value());
+    const ImuFitDiagnostics& diag = *fits3[u].imu_diagnostics;
     ASSERT_TRUE(diag.joint.has_value());
     for (const char* gyro : {"gx", "gy", "gz"}) {  // quadratic sensitivity tempco at least
       EXPECT_GE(diag.joint->channels.at(gyro).scale_order.value_or(0), 2) << gyro;

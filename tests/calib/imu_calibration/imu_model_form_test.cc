@@ -66,7 +66,8 @@ std::array<Column, 2> RunTwentyUnits(sensor_sim::TruthVariant variant) {
             c[k].error_over_crb.push_back(testing::GyroErrorOverCrb(e));
             c[k].rate_dps.push_back(e.worst_rate_dps);
             c[k].limit_dps.push_back(e.report["body_rate"]["crb_limit_dps_at_worst"].get<double>());
-            const ImuFitDiagnostics diag = ImuFitDiagnostics::FromJson(fits[u].diagnostics, "fit");
+            ASSERT_TRUE(fits[u].imu_diagnostics.has_value());
+            const ImuFitDiagnostics& diag = *fits[u].imu_diagnostics;
             ASSERT_TRUE(diag.joint.has_value());
             for (const char* g : {"gx", "gy", "gz"}) {
               const auto& w = diag.joint->channels.at(g).bias_wander;
