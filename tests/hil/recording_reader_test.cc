@@ -149,7 +149,7 @@ TEST_F(RecordingReaderTest, FormatVersionIsReadWideAndNamedByItsValue) {
 TEST_F(RecordingReaderTest, UnknownUnitKindIsRefusedByItsPath) {
   nlohmann::json meta_file = nlohmann::json::parse(std::ifstream(dir_ / "meta.json"));
   meta_file["units"] = {{{"kind", "imu"}, {"serial", "IMU-0001"}},
-                        {{"kind", "IMU"}, {"serial", "IMU-0002"}}};
+                        {{"kind", "IMU"}, {"serial", "ADS-0001"}}};
   std::ofstream(dir_ / "meta.json") << meta_file.dump(2);
   EXPECT_THAT(ErrorOf(),
               AllOf(HasSubstr("meta.json"),
