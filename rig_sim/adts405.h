@@ -1,22 +1,14 @@
 // The virtual Druck ADTS 405 air data test set: its SCPI command set as the ADTS 405 programs use
 // it (shared/protocols.md §4.2-4.4, DRV) and the physics of its two pressure controllers (§4.7,
 // DOC ADTS 405 Mk2 manual ch. 8). GPIB transport (the Prologix adapter) is
-// rig_sim/prologix_adts_device.h; this class sees program messages only.
-//
-// Physics. Two channels: static Ps and impact Qc = Pt − Ps (Pa). In control (`SOUR:STAT ON`) each
-// channel moves from its value towards its aim at the commanded rate, linearly in the quantity the
-// rate was given in: altitude (ft/min, ISA, common/atmosphere.h) or pressure (per min) for Ps;
-// calibrated airspeed (kt/min, common/air_data.h) or pressure for Qc. It reaches the aim
-// without overshoot (§4.7). On top, the controller's stability noise: a first-order Gauss-Markov
-// process per channel (τ = noise_tau_s) whose ±3σ is the DOC stability figure (±0.038 mbar Ps,
-// ±0.045 mbar Qc). `SOUR:STAT OFF` (measure) and `HOLD` stop the slewing; the sealed system keeps
-// its pressures. Status (§4.4, DRV): bit 8 Ps / bit 10 Pt at set point in control; bit 9 / 11
-// ramping; bit 3 ramping (either channel, INF); bit 2 safe at ground; bit 1 stable at aim,
-// raised `stable_delay_s` (15 s) after bits 8 and 10 are both set.
-// Limits: aims outside [ps_min_pa, ps_max_pa] / [0, qc_max_pa], supersonic aims and rates above
-// the DOC maxima (100 000 ft/min, 2 000 kt/min, pressure max_pressure_rate_pa_per_min) are refused
-// with SCPI error −222 in the error queue (`SYST:ERR?`, INF: the 405's error format is UNKNOWN),
-// never clamped.
+// rig_sim/prologix_adts_device.h; this class sees program messages only. In control each channel
+// slews linearly towards its aim in the quantity the rate was given in (altitude via
+// common/atmosphere.h, CAS via common/air_data.h, or pressure), without overshoot, plus
+// Gauss-Markov stability noise (tau noise_tau_s, ±3 sigma = ±0.038 mbar Ps, ±0.045 mbar Qc).
+// Status bit 1 (stable) rises stable_delay_s (15 s) after bits 8 and 10. Aims and rates beyond the
+// limits are refused with SCPI error −222 in the error queue, never clamped.
+// Units: Ps and Qc = Pt − Ps in Pa; altitude ft, ft/min; CAS kt, kt/min; seconds.
+// Commands, status bits, limits and physics: docs/rig/adts.md.
 // Left out: leaks and auto leak recovery, limit sets, the dynamic (sinusoidal) test, EPR/TAS/Mach
 // aims (measured only), the supersonic branch (qc_max_pa ≤ qc at 661.5 kt), the ADTS's own
 // measurement uncertainty, volume effects on the rates, QFE/QNH.

@@ -1,35 +1,16 @@
-// Serves a set of virtual devices (rig_sim::SerialDevice) on pseudo-terminals, advancing the
-// rig's world in fixed 10 ms frames on a clock that runs `time_scale` times faster than the wall.
-//
-// One background thread runs a Boost.Asio io_context: an async read on every pty master collects
-// the client's bytes; a timer takes as many world frames as the scaled clock allows. In each frame,
-// in the order devices were added: Receive(bytes collected so far, frame time), Advance(one frame,
-// shared RigEnvironment), TakeOutput(bytes released by the frame time) → written to the master.
-// The simulated timeline is therefore independent of the time scale and of wall-clock jitter;
-// only the moment a client's bytes are noticed is quantised to the frame (10 ms simulated).
-// If the host cannot keep up it falls behind rather than skipping frames, and says so
-// (frames_behind()). The bytes a tick's frames release are written to the master once per tick
-// (one write per port however many frames the tick took: at high time scales a tick runs up to
-// 200 frames); what the pty does not take waits in a per-port backlog (the PC's receive buffer),
-// and bytes beyond it are lost, as on a real line whose client does not read (bytes_lost()).
-// The backlog is kMinBacklogBytes (≈ 12 s of a raw IMU stream at 1x) scaled by time_scale/5
-// above 5x, up to 512 times (32 MiB; at 1000x, 12.8 MiB ≈ 2.5 s of wall time of an IMU stream), so
-// a reading client descheduled for a second on a busy machine loses nothing. A port whose client
-// has taken no bytes for kClientStallLimit_s of wall time counts as unread: its output is discarded
-// until a client reads again, as on a line with no listener, so a client that opens the port late
-// and flushes the kernel's buffer (pyserial's reset_input_buffer) reads current data. Report()
-// says, per port, how many bytes were lost that way and what the device itself dropped.
-//
-// Lockstep (SetLockstep): the clock advances only while every port whose client reads holds at
-// most kLockstepBudgetBytes not yet read (the host's backlog plus the pty's input queue), so a
-// slow or descheduled reader slows the world instead of losing bytes, and time_scale becomes the
-// top speed. The host counts the clients holding each port open (inotify on the slave path): a
-// port nobody holds open is not read (its output is discarded, it never holds the clock), one a
-// client opens counts as read from the open, and a client that closes releases the clock at once.
-// An open port whose client takes no bytes for kLockstepStallLimit_s of wall time (a hung client)
-// counts as unread until it reads again; a client that has taken everything is waiting, not
-// stalled. With no client on any port the world runs at kLockstepIdleScale (real time). The clock
-// file (SetClockFile, hil/rig_clock.h) publishes the frame count for pipelines that follow the rig.
+// Serves a set of virtual devices (rig_sim::SerialDevice) on pseudo-terminals, advancing the rig's
+// world in fixed 10 ms frames on a clock that runs `time_scale` times faster than the wall. One
+// Boost.Asio thread collects each client's bytes and runs every device per frame (Receive, Advance
+// on the shared RigEnvironment, TakeOutput), so the simulated timeline is independent of the time
+// scale and of wall-clock jitter; a host that cannot keep up falls behind (frames_behind()) rather
+// than skipping frames. Output waits in a per-port backlog sized from kMinBacklogBytes and the
+// time scale; a port whose client takes nothing for kClientStallLimit_s is unread and its output
+// discarded. Lockstep (SetLockstep) holds the clock while a reading client has more than
+// kLockstepBudgetBytes unread, so a slow reader slows the world instead of losing bytes. The clock
+// file (SetClockFile, hil/rig_clock.h) publishes the frame count.
+// Units: simulated seconds and frames; wall seconds where a name says wall; bytes.
+// Frame order, backlog sizes, lockstep's open/progress rules: docs/rig.md ("Time").
+// Quantised: the moment a client's bytes are noticed, to the next frame (10 ms simulated).
 #pragma once
 
 #include <atomic>

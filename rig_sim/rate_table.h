@@ -1,43 +1,14 @@
 // Physics of a single-axis rate table under its controller (Ideal Aerosmith 1621-class platter,
-// Aero 8xx controller): the model behind the virtual ATL table (rate_table_device.h).
-//
-// Frames and units: the platter P turns about the table axis (L's z, up); angle_deg is P's angle
-// about that axis from the table's zero, positive counter-clockwise seen from above; rate_dps its
-// rate. Time in seconds of simulated time.
-//
-// Model. The controller builds a reference rate r(t) and the platter rate y follows it through the
-// closed rate loop, taken as first order with time constant tau (rate_loop_tau_s):
-//   y' = (r − y)/tau.
-// r is piecewise linear (slew at the acceleration setting a), so within a segment
-// r(t) = r0 + s·t and the lag is integrated exactly:
-//   y(t) = r(t) − s·tau + (y0 − r0 + s·tau)·e^(−t/tau),
-//   θ(t) = θ0 + r0·t + s·t²/2 − s·tau·t + (y0 − r0 + s·tau)·tau·(1 − e^(−t/tau)).
-// Hence a rate change Δr from rest reaches the band ε around the new rate after
-//   t = |Δr|/a + tau·ln(a·tau/ε)   (ramp, then the exponential tail of the following error a·tau),
-// which is what the tests check. Modes:
-//   rate (JOG, STO)      r slews toward the commanded rate at a;
-//   position (P, HOM)    r follows the braking curve of the reference angle,
-//                        v = sign(e)·min(v_move, √(2·a·|e|)), e = target − reference angle, slewed
-//                        at a; targets are reached the shortest way round. The loop conserves
-//                        (reference angle) − (θ + tau·y), because ∫(r − y)dt = tau·(y_end −
-//                        y_start), so a move whose reference starts at the lead angle θ + tau·y
-//                        ends, at rest, exactly at the target even when it starts while turning;
-//   sine (SGO)           reference angle θ0 + A·(1 − cos 2πf·τ) for N cycles, starting and ending
-//   at
-//                        rest (peak rate 2πf·A, peak acceleration (2πf)²·A, both checked);
-//   servo off (SRV 0)    no torque: the platter coasts down, y' = −y/coast_tau_s;
-//   interlock open       the drive brakes at max_accel_dps2 to rest and the servo drops out; motion
-//                        commands are refused until the interlock closes and the servo is
-//                        re-enabled.
-// Rate ripple: the controller servoes its encoder angle θe; the platter's true angle differs by
-// the encoder's once-per-revolution error, θ = θe + k·sin θe (radians, k = rate_ripple_ratio), so
-// the true rate carries a ripple proportional to rate, ω = θe'·(1 + k·cos θe), and the
-// controller's reports (encoder angle, encoder rate) differ from the truth written to the rig.
-// physics.md §6 #10 (E): good tables 0.001…0.01 % rate error; default k = 1e-5 (2 arcsec).
-// Time is quantised to a fixed 1 ms tick (kTick_s): AdvanceTo(t) runs every whole tick up to t, so
-// the timeline is identical whatever the pattern of calls.
-// Fault: "stalled" (a jammed platter or dead amplifier: the encoder reads no motion while the
-// controller believes it is moving).
+// Aero 8xx controller): the model behind the virtual ATL table (rate_table_device.h). The platter
+// rate follows a piecewise-linear reference through a first-order closed rate loop (tau =
+// rate_loop_tau_s), integrated exactly; modes rate (JOG, STO), position (P, HOM: a braking curve
+// that ends exactly on target), sine (SGO), servo off (coast-down), interlock open (brake to rest).
+// A once-per-revolution encoder error (rate_ripple_ratio) makes the true rate differ from the
+// controller's reports. Time is quantised to a fixed 1 ms tick (kTick_s), so the timeline is the
+// same whatever the pattern of AdvanceTo calls. Fault: "stalled" (no encoder motion).
+// Frames and units: the platter turns about the table axis (L's z, up); angle_deg from the table's
+// zero and rate_dps positive counter-clockwise seen from above; simulated seconds.
+// Loop equations, settling time, modes and ripple: docs/rig/rate-table.md ("Physics").
 // Left out: wobble and axis tilt, encoder quantisation, torque saturation beyond the acceleration
 // limit, thermal drift of the rate loop, the real controller's position-loop overshoot, Earth rate.
 #pragma once

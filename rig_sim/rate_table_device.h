@@ -1,21 +1,16 @@
 // The virtual rate table on the rig's serial port: an Aero 8xx controller speaking ATL
 // (hil/codecs/atl_codec.h, command table rig_sim/data/atl_commands.json) in front of the table
 // physics (rig_sim/rate_table.h). Writes env.table_rate_dps and env.table_angle_deg (the true
-// platter motion, ripple included) every world frame.
-//
-// Timing, all on the simulated clock: a line is executed at the 1 ms physics tick at or before
-// the time it was received (shared/protocols.md §1.4 gives no processing time; reply_latency_s is
-// an estimate), and its reply leaves at the line rate: 10 bits per byte at 9600 8N1 (DRV) is
-// 1.04 ms per byte, one byte after another, never overlapping an earlier reply.
-// Refusals (all reply texts UNKNOWN, templates in the command table): unknown mnemonic or form,
-// bad argument, argument beyond the table's limits or beyond the configured drive limits
-// (max_rate_dps, max_accel_dps2: never clamped), motion with the servo off, motion or servo-on
-// with the interlock open. Garbage bytes only ever produce error replies or silence (empty
-// lines); an over-long line is answered with the line_too_long template.
+// platter motion, ripple included) every world frame. A line runs at the 1 ms physics tick at or
+// before its arrival, its reply leaves after reply_latency_s at 9600 8N1 (1.04 ms per byte).
+// Refusals (reply texts UNKNOWN, templates in the command table) are never clamped: unknown
+// mnemonic or form, bad argument, beyond the table's or the drive's limits (max_rate_dps,
+// max_accel_dps2), motion with the servo off, motion or servo-on with the interlock open.
 // Physical faults: "interlock_open" (the door/e-stop input), "stalled" (platter jammed).
-// Byte-level faults (silence, garbage, drops, corruption) belong to the rig around the device.
-// Left out: echo of received characters (the table can switch it on; UNKNOWN on the real unit),
-// XON/XOFF flow control, input overrun (the pty never overruns), a power-on banner.
+// Units: deg/s, deg/s^2, deg; simulated seconds.
+// Timing, refusals, faults: docs/rig/rate-table.md ("Refusals", "Faults", the device's timing).
+// Left out: echo of received characters (UNKNOWN on the real unit), XON/XOFF flow control, input
+// overrun (the pty never overruns), a power-on banner; byte-level faults belong to the rig.
 #pragma once
 
 #include <cstdint>

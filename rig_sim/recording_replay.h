@@ -2,23 +2,16 @@
 // is driven by a unit model file (the truth schema {kind, params}: a rig's truth/<serial>.json, or
 // the augmented model.json `adahrs diagnose --model` writes) with the recording's own reference
 // columns, and a run of the same rows is written with the model's raw outputs in place of the
-// recorded ones. Comparing the two says how well the model explains the recording.
-// Stimulus per row: IMU, 1 local g (meta.json local_gravity_mps2) and the table rate along the
-// up axis of the row's fixture code, the chamber column as the air around the unit; ADS, the
-// reference static and impact pressures, the chamber column as the air around the board and at
-// the OAT probe. The unit is powered on at t = 0 of the time base (at its first row when that is
-// not within 30 days after it) and stepped at its frame period: a row takes the frames its packet
-// counter (seq) moved since the unit's previous row, lost packets included, with the counter's
-// 256-frame turns that the arrival times say passed (arrival times jitter, the counter does not).
-// A row whose counter did not move is the same packet logged twice: it repeats the last frame.
-// Before an instrument's first report the recording holds 0 in its column
-// (docs/recording-format.md): IMU rows before the first with a chamber value other than 0 or a
-// fixture code, and ADS rows before the first with a static pressure (a test set never reads 0 Pa),
-// are replayed at that row's values (their chamber column only where it reads 0). After it, 0 °C is
-// a temperature. A row with no fixture code (0) keeps the last one, z up before any. Left out: the
-// rig's own errors (fixture levelling, table wobble, the chamber air's difference from its
-// controller's probe, the test set's pressure error), the firmware (rows are written in raw mode,
-// mode 0, without compensated values).
+// recorded ones. Comparing the two says how well the model explains the recording. A row takes the
+// frames its packet counter (seq) moved since the unit's previous row, plus the 256-frame turns the
+// arrival times say passed; rows before an instrument's first report take that report's values.
+// Frames and units: IMU stimulus 1 local g (meta.json local_gravity_mps2) and the table rate along
+// the up axis of the row's fixture code, body frame; ADS the reference ps and qc in Pa; chamber
+// column in degC as the air around the unit.
+// Stimulus, power-on time, frame counting and the zero-before-first-report rules: docs/diagnose.md
+// ("Re-simulation").
+// Left out: the rig's own errors (fixture levelling, table wobble, the chamber air's difference
+// from its controller's probe, the test set's pressure error), the firmware (rows in raw mode 0).
 #pragma once
 
 #include <cstdint>

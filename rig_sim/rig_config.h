@@ -1,22 +1,14 @@
-// The rig's configuration file (JSON, docs/rig.md "Configuration"): the station, the time scale,
-// the units on their ports, the instruments and the faults switched on at start.
-//
-//   station      name, latitude_deg, height_m (→ local gravity, WGS-84 normal gravity,
-//                common/gravity.h), supply_v (the units' supply rail)
-//   time_scale   simulated seconds per wall second (0.01…100,000; --time-scale overrides it)
-//   lockstep     optional, default false: the clock waits for slow readers and time_scale is
-//                its top speed (rig_sim/device_host.h; --lockstep sets it)
-//   initial_air_c  air in both chambers and every die at power-on
-//   units        model_profile ("nominal" or "truth"), truth_variant (optional: "standard",
-//                "play_hysteresis" or "slow_bias_wander", sensor_sim/model_profile.h),
-//                imu: 0…4 entries, ads: 0…4 entries, each
-//                {serial_number, seed, baud} and for IMUs the fixture orientation code
-//   instruments  one section per instrument kind present (InstrumentKinds()), read by that
-//                instrument's own factory; a kind left out is not on this rig
-//   faults       [{role, fault, on} | {role, fault, rate}] applied before the clock starts
-// Every value is read through common::ParamReader: unknown keys, wrong types and values out
-// of range are refused with the file and JSON path. Roles and fault names are checked when the
-// rig is built (rig.h), against the devices themselves.
+// The rig's configuration file (JSON, docs/rig.md "Configuration"): the station (name,
+// latitude_deg, height_m → local gravity by WGS-84 normal gravity, common/gravity.h; supply_v), the
+// time scale and lockstep, initial_air_c, the units on their ports (model_profile, truth_variant,
+// imu and ads entries of 0…4 each: serial_number, seed, baud, an IMU's fixture orientation code),
+// one section per instrument kind present (InstrumentKinds(), read by that instrument's factory;
+// a kind left out is not on this rig), and the faults switched on at start.
+// Every value is read through common::ParamReader: unknown keys, wrong types and values out of
+// range are refused with the file and JSON path. Roles and fault names are checked when the rig is
+// built (rig.h), against the devices themselves.
+// Units in the key names (deg, m, V, degC); time_scale in simulated seconds per wall second.
+// Every key with its range: docs/rig.md ("Configuration").
 #pragma once
 
 #include <cstdint>

@@ -1,21 +1,13 @@
 // What an IMU and an ADS unit have in common behind their serial port: the firmware's maintenance
 // port (firmware_model MaintenanceHandler with its emulated flash), the 100 Hz acquisition clock,
-// the paced transmit line, and the unit's physical faults. Subclasses supply one acquisition:
-// read the rig's world, step the unit's physics, compensate and encode one data packet.
-//
-// Timing (simulated clock): sample k is taken at k · 10 ms; its packet is queued on the line at
-// that instant and reaches the client when its last byte has left (89 bytes of a compensated IMU
-// packet take 7.7 ms at 115,200 baud, so it arrives before the next sample). A maintenance request
-// is answered when it has arrived; the response queues behind whatever the line is sending.
-// docs/unit-protocol.md §1: 57,600 baud is too slow for compensated IMU packets; here the
-// transmit buffer then fills and whole packets are dropped, which the client sees as sequence gaps.
-// Physical faults (SerialDevice::SetPhysicalFault):
-//   "unplugged": the serial cable is out. No bytes either way; the unit keeps running (its
-//                sequence counter advances), so the client sees a gap when it is plugged back.
-//   "reset":     the unit is held without power. On: nothing is acquired or sent, the transmit
-//                buffer is lost mid-frame. Off: power-on, as the RESET command does (RAM constants
-//                from the committed flash image, uncommitted writes lost, mode raw, TAG 0,
-//                sequence 0).
+// the paced transmit line, and the unit's physical faults. Subclasses supply one acquisition: read
+// the rig's world, step the unit's physics, compensate and encode one data packet. Sample k is
+// taken at k · 10 ms and its packet reaches the client when its last byte has left; a maintenance
+// response queues behind whatever the line is sending. A full transmit buffer drops whole packets
+// (sequence gaps). Physical faults: "unplugged" (no bytes either way, the unit keeps running) and
+// "reset" (held unpowered; off is a power-on as RESET does).
+// Units: simulated seconds; line rate in baud (8N1).
+// Timing, faults and stimulus: docs/rig.md ("Units on their ports", "Faults").
 // Left out: the firmware's UART receive overrun, the power-up delay before the first packet,
 // physics while unpowered (the sensors keep their thermal state and self-heating).
 #pragma once

@@ -1,23 +1,15 @@
-// The virtual Watlow Series 942 ramping controller on the ADS bench chamber: the parameters a
-// host reads and writes over the ASCII protocol (shared/protocols.md §3, DOC: 942 Data
-// Communications manual pp. 18-25), the 24-step profile engine (pp. 21-23) and the chamber air it
-// controls (rig_sim/chamber_air.h). Protocol bytes are handled by Watlow942Device; this class
-// sees decoded messages only.
-//
+// The virtual Watlow Series 942 ramping controller on the ADS bench chamber: the parameters a host
+// reads and writes over the ASCII protocol (shared/protocols.md §3, DOC: 942 Data Communications
+// manual pp. 18-25), the 24-step profile engine (pp. 21-23) and the chamber air it controls
+// (rig_sim/chamber_air.h). Protocol bytes are handled by Watlow942Device; this class sees decoded
+// messages only. Modes 1 run, 2 hold (power-up), 34 off; step types 1 set point, 2 soak, 3 jump
+// loop, 0 end. Writes beyond a limit are refused with ER2 25, never clamped; the other refusals
+// carry ER2 30, 31, 32 (p. 23, p. 18). Time advances in fixed 10 ms ticks from t = 0, so the state
+// at any time is the same whatever granularity AdvanceTo is called with.
 // Units: temperatures in °C (`_c`), ramp rates in °C/min, times in s; simulated time `now_s`.
-// Modes (`? MODE` bit sum, p. 18): 1 run, 2 hold (static control at the current set point, also
-// the power-up mode here), 34 off (control off after an `End 1` step; the value is as rendered in
-// the manual, UNKNOWN). Profile steps (p. 21): type 1 set point (ramp by rate or by time, per
-// `profile_by_rate`, the 942's PtYP), 2 soak, 3 jump loop, 0 end (0 hold / 1 off). Writes beyond
-// a limit are refused with ER2 25, never clamped; writes invalid in run mode with ER2 32; STRT
-// while running / RESU while running or with no profile in progress with 30; HOLD while holding
-// with 31 (p. 23, p. 18).
-//
-// Time advances in fixed 10 ms ticks counted from t = 0, so the state at any time is the same
-// whatever granularity AdvanceTo is called with. Left out: events 1/2 drive nothing (stored and
-// reported only), no guaranteed-soak band (an F4 feature, not documented for the 942), alarms,
-// the set-up menus beyond rL/rH, calibration mode, the ER2 communication codes 1, 3-8 (a pty has
-// no framing or parity errors).
+// Parameters, step fields, error codes and physics: docs/rig/watlow-942.md.
+// Left out: events drive nothing, no guaranteed-soak band, alarms, the set-up menus beyond rL/rH,
+// calibration mode, the ER2 communication codes 1, 3-8 (a pty has no framing or parity errors).
 #pragma once
 
 #include <array>

@@ -2,30 +2,16 @@
 // static set point with its limits, and the profile engine (ramp time, ramp rate, soak, jump with
 // repeat count, end; guaranteed-soak band). The chamber physics lives elsewhere
 // (rig_sim/watlow_f4_device.h drives a ChamberAir with WorkingSetPointC()); this class only sees
-// the process value it is given each control tick.
-//
-// Sources (shared/protocols.md): register numbers §2.3–2.4 (DRV, three independent drivers agree);
-// data format §2.2 (signed 16-bit integers with implied decimals, `decimals` 0 or 1; ramp rate
-// register 4043 = rate × 10 in units per minute; times as h/m/s registers); exceptions §2.1 (DOC:
-// 01 illegal function, 02 illegal data address — also for writing a read-only register —, 03
-// illegal data value); profile recipes §2.5 (DRV); guaranteed soak §2.6 (INF). The confidence of
-// every behaviour is listed in docs/rig/watlow-f4.md.
-// Units: temperatures °C (register 901 reads 1); times s; rates °C/min.
-// Choices where the drivers are silent (INF, documented): FC 16 writes register by register in
-// order and stops at the first refused register (earlier ones stay written), as a sequence of FC 06
-// would; a profile starts ramping from the process value; a soak holds the set point it starts
-// with; a jump with repeat count N is taken N times, then the profile goes on with the next step;
-// the running profile cannot be edited (03); editing registers for a step or profile that does not
-// exist gives 03; hold/resume without a running profile give 03, terminate is always accepted.
-// Identification (registers 0-5): model 5270, which a public F4 client decodes as "F4" (DRV);
-// serial number, software and date of manufacture read 0 (their values were not found: UNKNOWN).
-// Input 1 sensor (600) and error latching (607) read 0. Alarm 1 status (102) reads 0: no alarm is
-// modelled. Output power 103 / 107: the fraction of the chamber's heating / cooling capacity the
-// loop asks for, in 0.01 % (DRV scale; the chamber's own model, INF).
-// Left out: channel 2 and cascade (F4S single channel: channel-2 registers are unmapped → 02),
-// autostart steps and wait-for events / analog inputs (enabling them → 03: nothing would satisfy
-// them), alarms, PID tuning (the chamber's closed loop is ChamberAir's), the real-time clock,
-// non-volatile storage (register 25 is accepted; nothing is lost at power-off in the simulation).
+// the process value it is given each control tick. Sources: shared/protocols.md §2.1–2.6 (register
+// numbers DRV, exceptions 01/02/03 DOC, recipes DRV, guaranteed soak INF). Choices where the
+// drivers are silent (INF): FC 16 writes register by register and stops at the first refusal; a
+// profile starts ramping from the process value; a soak holds the set point it starts with; a jump
+// with count N is taken N times; the running profile cannot be edited (03).
+// Units: temperatures °C (register 901 reads 1), signed 16-bit with `decimals` implied decimals;
+// times s; rates °C/min (register 4043 = rate × 10).
+// Every register with its confidence, the profile engine: docs/rig/watlow-f4.md.
+// Left out: channel 2 and cascade, autostart and wait-fors (→ 03), alarms, PID tuning, the
+// real-time clock, non-volatile storage (register 25 accepted).
 #pragma once
 
 #include <array>

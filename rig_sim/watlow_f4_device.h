@@ -1,30 +1,16 @@
 // The IMU thermal chamber behind a Watlow F4 controller, as a virtual serial device speaking
-// Modbus RTU (hil/codecs/modbus_rtu.h) on the simulated clock.
-//
-// Line: 8N1 at `baud` (10 bits per character, shared/protocols.md §2.1 DRV: 9600 8N1, address 1).
-// Receiving: a request is complete when its length (from its function code) has arrived; a frame
-// with a bad CRC, and everything after it until the line falls silent, is ignored without a reply
-// (§2.1 DOC, Watlow convention); a frame whose function code is unknown is delimited by the line's
-// silence and, if its CRC is good and it is addressed to us, answered with exception 01. The
-// silence that abandons a partial frame is `partial_frame_timeout_s`, not 3.5 characters: the rig
-// notices client bytes only at 10 ms world frames (rig_sim/device_host.h), so a request split by a
-// frame boundary would otherwise be lost. Frames for other addresses are skipped; broadcasts
-// (address 0) are executed without a reply (Modbus over Serial Line §2.1).
-// Replying: the first reply byte starts no earlier than 3.5 character times (1.75 ms above
-// 19200 baud, Serial Line §2.5.1.1) plus `reply_latency_s` after the request's last byte, and
-// the bytes are released at the line rate, all on the simulated clock.
-// Physics: every `control_tick_s` the controller (rig_sim/watlow_f4.h) is given the air
-// temperature as its process value and the air (rig_sim/chamber_air.h) is stepped toward the
-// controller's working set point; with control off (an end step's "control off"/"all off") the
-// air relaxes to `ambient_c` with `control_off_tau_s`. The air is written to
-// RigEnvironment::imu_chamber_air_c every Advance. Timers run in whole control ticks counted from
-// t = 0, so the timeline is the same for any Advance granularity (the values at tick instants are
-// identical; between ticks the last tick's value holds).
-// Physical fault "cannot_reach_set_point": heating and cooling capacity collapse to
-// `capacity_ratio_in_fault` of nominal (a failed compressor/heater), so PV stalls short of a
-// distant set point while the controller keeps reporting it.
-// Left out: the process-value sensor's lag and error (PV is the air temperature rounded to the
-// register's resolution), humidity, load, RS-485 bus contention and echo, parity other than none.
+// Modbus RTU (hil/codecs/modbus_rtu.h) on the simulated clock. A request is complete when its
+// length (from its function code) has arrived; a bad CRC is ignored without a reply until the line
+// falls silent; a partial frame is abandoned after partial_frame_timeout_s (the rig notices client
+// bytes only at 10 ms world frames). Replies start 3.5 character times plus reply_latency_s after
+// the request and leave at the line rate. Every control_tick_s the controller (watlow_f4.h) gets
+// the air temperature as its process value and the air (chamber_air.h) steps toward the working set
+// point; with control off it relaxes to ambient_c. Fault "cannot_reach_set_point": the capacity
+// falls to capacity_ratio_in_fault of nominal while the controller keeps reporting the set point.
+// Units: 8N1 at `baud`; °C; simulated seconds; writes RigEnvironment::imu_chamber_air_c.
+// Link, timing, physics and faults: docs/rig/watlow-f4.md ("Link", "Physics and faults").
+// Left out: the process-value sensor's lag and error, humidity, load, RS-485 bus contention and
+// echo, parity other than none.
 #pragma once
 
 #include <cstdint>

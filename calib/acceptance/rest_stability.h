@@ -1,27 +1,16 @@
 // How still a calibrated IMU's own output is at rest, read from an acceptance recording, and the
-// error limit that noise and bias wander impose on an acceptance point (docs/acceptance.md).
-//
-// Rest record: the unit's longest run of consecutive compensated packets (mode 2 or 3; one frame
-// apart by hil::FramesBetween) with the table at rest
-// (|reported rate| <= kRestRate_dps) in one orientation, the chamber within kRestBand_c of the
-// stretch's first packet (a soak, not a ramp); its last kRestRecordMax_s only (the end of a soak
-// is the stillest part). The samples are one frame period apart (the unit's clock, not the
-// bursty arrival times). Per body axis the overlapping Allan deviation of f_B (mg) and w_B (deg/s)
-// (calib/solvers/allan_terms.h).
-//
-// Limit of a point of duration tau_p judged T after calibration, per axis:
-//   sigma_point  = max(s / sqrt(n), sigma_A(tau_p))   the point's mean against the unit's long-run
-//                                                      mean (sigma_A read off the rest curve)
-//   sigma_wander = sqrt(2 B2(T / tau_p)) sigma_floor  the bias then against the bias now, a flicker
-//                  floor sigma_floor (the curve's minimum, 0.664 B in IEEE 952's terms) separated
-//                  by T: B2 is Barnes's bias function for flicker noise (NIST TN 1318), 1 at r = 1,
-//                  (2 ln r + 3) / (4 ln 2) for large r
-//   limit        = 3 sqrt(sigma_point^2 + sigma_wander^2)  (a per-point 99.7 % bound)
-// This is the error a unit calibrated without any systematic residual would still show at that
-// point; acceptance reports it beside the specification, it never widens the specification.
-// Left out: rate random walk and rate ramp beyond the rest record (their growth with T), the
-// calibration's own estimation error (the constants' CRB, judged by the evaluation), temperature
-// dependence of the noise (the rest record is taken at one temperature).
+// error limit that noise and bias wander impose on an acceptance point. Rest record: the unit's
+// longest run of consecutive compensated packets (mode 2 or 3, one frame apart by
+// hil::FramesBetween) with the table at rest (kRestRate_dps), one orientation, the chamber within
+// kRestBand_c, its last kRestRecordMax_s; per body axis the overlapping Allan deviation
+// (calib/solvers/allan_terms.h). Limit of a point of duration tau_p judged T after calibration:
+// 3 sqrt(sigma_point^2 + sigma_wander^2), sigma_point = max(s / sqrt(n), sigma_A(tau_p)),
+// sigma_wander from the flicker floor and Barnes's B2 (NIST TN 1318). Acceptance reports it beside
+// the specification; it never widens the specification.
+// Units and frames: f_B in mg, w_B in deg/s, body axes; tau and T in seconds.
+// The rest record, the formulas and their sources: docs/acceptance.md ("Rate points").
+// Left out: rate random walk and rate ramp beyond the rest record, the calibration's own
+// estimation error (the constants' CRB), temperature dependence of the noise.
 #pragma once
 
 #include <array>

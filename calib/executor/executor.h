@@ -1,27 +1,15 @@
-// The run executor (docs/executor.md): a state machine over the PlannedActions of
-// calib::ExpandSequence for one batch — up to 4 IMUs, or 1+ ADS units — logged in parallel by one
-// UnitLogger thread per unit. Each action runs to a real condition read from the instruments
-// (hil/instruments/instruments.h): chamber process value inside ±band for the soak, table at rate,
-// ADTS stable, N packets tagged per unit, the profile no longer running. Conditions are polled at
-// `poll_interval_s` of pipeline clock, but never more often than every `min_poll_wall_s` of wall
-// time (a virtual rig at 600x would otherwise be polled every 0.4 ms of wall time); every wait is
-// bounded by
-//   timeout = timeout_factor × the action's plan estimate + margin,
-//   margin  = max(timeout_margin_s, min_margin_wall_s × the clock's time scale)
-// so the pipeline always has a few seconds of wall time to drain the units' lines, however fast
-// the rig runs (at 600x, 60 s of clock time is 0.1 s of wall time: a busy 2-core host falls that
-// far behind in reading packets).
-// and ends the run with a RunError naming the step, the instrument and the last reading; nothing
-// is ever a fixed sleep standing in for a condition.
-//
-// Acquisitions set every unit's TAG to the step's TAG and back to 0 (unit_logger.h). Interlocks
-// (interlocks.h) run before accelerometer and gyro acquisitions; on a mismatch the table stops,
-// the failure is journaled, the check's time span becomes a rejected interval, the operator is
-// prompted and the batch re-mounted, up to `interlock_attempts` times, then the run aborts with a
-// message naming the step and the units.
-// Journal: action started/completed with its index, step completed (then the recording and the
-// journal are flushed and fsync'd). On any error, a stop request (SIGINT) or the end: table
-// Stop, chamber Hold, ADTS GoToGround, every unit's TAG 0, meta.json status, journal synced.
+// The run executor: a state machine over the PlannedActions of calib::ExpandSequence for one batch
+// (1–4 IMUs, or 1+ ADS units), logged in parallel by one UnitLogger thread per unit. Each action
+// runs to a real condition read from the instruments (hil/instruments/instruments.h), polled on the
+// pipeline clock with a wall-time floor, every wait bounded by timeout_factor × the plan estimate +
+// margin; a timeout ends the run with a RunError naming the step, the instrument and the last
+// reading. Nothing is ever a fixed sleep standing in for a condition. Acquisitions set every unit's
+// TAG to the step's TAG and back to 0; interlocks (interlocks.h) run before accelerometer and gyro
+// acquisitions, with up to `interlock_attempts` re-mounts. On any error, stop request or the end,
+// the rig is made safe and meta.json and the journal are synced.
+// Units: seconds of pipeline clock unless a name says wall.
+// The waits, margins, interlock handling, journal and safe stop: docs/executor.md ("State
+// machine", "Interlocks", "Safety", "Journal and durability").
 // Left out: opening the station and the files (run_session.h), changing unit modes.
 #pragma once
 

@@ -3,20 +3,12 @@
 // annotated with the current step, the commanded orientation and the latest instrument readings
 // (run_annotations.h). A UnitLink is not thread-safe, so every request to the unit (SET_TAG,
 // SET_MODE, IDENTIFY…) is queued to this thread with Call() and runs between polls.
-//
-// Acquisition accounting: StartAcquisition(tag, quota) sets the unit's TAG and counts packets that
-// carry it; the first `quota` of them are recorded with that TAG, any later one (sent while the
-// executor was still resetting the unit's TAG: at a high time scale a round trip spans many 10 ms
-// packets) and any packet carrying a TAG no acquisition asked for are recorded with TAG 0. So the
-// rows tagged T are exactly the acquisitions' packets (docs/recording-format.md). Both run on the
-// logger thread as requests, so packets that arrived while a request waited for its response are
-// recorded before the next request changes the accounting. Loss comes from the link's 8-bit
-// sequence counter. Raw averages (duty T1/T2 - 0.5 per accelerometer channel, gyro counts) over
-// N packets feed the interlocks (interlocks.h); they start after a READ_COUNTERS round trip, so
-// every packet still in transit from before the request (from before a fixture move or a table
-// change: a fast rig's output backlog can hold seconds of packets) is left out.
-// A request's response travels behind every data packet still in the line; the link itself waits
-// for it while data keeps arriving (hil/drivers/unit_link.h).
+// StartAcquisition(tag, quota) sets the unit's TAG; the first `quota` packets carrying it are
+// recorded with that TAG, any later one or any TAG no acquisition asked for with TAG 0, so the rows
+// tagged T are exactly the acquisitions' packets. Raw averages for the interlocks start after a
+// READ_COUNTERS round trip, leaving out packets still in transit. Loss: the 8-bit sequence counter.
+// Which rows are a step's data: docs/recording-format.md; requests and averages: docs/executor.md
+// ("Unit requests", "Interlocks").
 // Left out: retrying a failed poll (a transport error stops the thread; CheckHealthy rethrows it).
 #pragma once
 

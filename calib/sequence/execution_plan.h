@@ -1,30 +1,11 @@
 // The expansion of a valid sequence into the primitive actions an executor runs, in order, each
-// with the step and TAG it belongs to and a duration estimate. Pure data: no instrument is
-// touched, and the executor still waits on real conditions (chamber inside its band, table at
-// rate, ADTS stable), never on these estimates, which only feed the plan's ETA.
-//
-// Expansions (reference-method.md Table 9 and thesis §3.5, Fig. 45–46):
-//   accel              [mount o] · check gravity o · acquire N
-//   gyro               [mount o] · check gyro axis o (jog at interlock_jog_rate) ·
-//                      for each rate r of GyroRates_dps: set table rate r · wait at rate · acquire
-//                      N · stop table
-//   target_temperature set chamber set point · wait inside band for the soak
-//   cross_axis         for o in 11, 21, 31: [mount o] · check gravity · acquire N at rest ·
-//                      check gyro axis · set rate · wait at rate · acquire N · stop table
-//   thermal_profile    download profile · run profile, logging until its end step
-//   altitude, airspeed set ADTS aim at the rate · wait ADTS stable
-//   log                acquire N, or log for the duration
-//   prompt             prompt operator
-// "[mount o]" appears only when the orientation differs from the one mounted before.
-//
-// Duration model (PlanTiming, all E unless cited): table ramps |Δω|/α then settles; the chamber
-// moves at a nominal rate then soaks; a profile's time is its ramps (by time, or |ΔT|/rate from
-// the set point reached before) and soaks, each jump repeating its loop `count` times (the F4
-// profile engine as rig_sim models it: a jump is taken count times, then the profile goes on); the
-// ADTS slews at the commanded rate then takes 15 s to flag "stable" (protocols.md §4.4, DRV);
-// acquisition takes N / packet rate. A command (set rate, set point, ADTS aim) is estimated at
-// 0 s and the wait that follows it carries the motion, because the executor bounds each wait by
-// its own estimate.
+// with the step and TAG it belongs to and a duration estimate (PlanTiming: table ramps, chamber
+// moves and soaks, F4 profile loops, ADTS slews and its 15 s to "stable", N / packet rate). Pure
+// data: no instrument is touched, and the executor still waits on real conditions, never on these
+// estimates, which only feed the plan's ETA. A command is estimated at 0 s and the wait after it
+// carries the motion.
+// Units: seconds; rates in deg/s, deg/s^2, degC/min, ft/min, kt/min as the fields name them.
+// The expansion of each step kind and the duration model: docs/sequences.md ("Expansion").
 // Not modelled: instrument command latency, packet loss, interlock retries, operator delays
 // beyond the fixed prompt time.
 #pragma once

@@ -1,34 +1,16 @@
 // The calibration sequence language: what a production calibration, burn-in or acceptance run
 // does, as an ordered list of steps (shared/reference-method.md "Calibration sequence steps",
 // Table 9 of the reference thesis, and its ADS steps of §3.3). A sequence is pure data: it is
-// loaded from and saved to JSON (sequence_json.h), refused when invalid (validation.h) and
-// expanded into the primitive actions an executor runs (execution_plan.h). Nothing here talks to
-// an instrument. The language is described for its users in docs/sequences.md.
-//
-// Step kinds, with units in every field name:
-//   accel               OA of Table 9: mount in fixture orientation 11…32, acquire N packets.
-//   gyro                OG of Table 9: mount, then equidistant table rates rate_min…rate_max by
-//                       rate_increment (°/s), acquire N packets at each.
-//   target_temperature  TT of Table 9: chamber to target_c, wait until inside ±band_c, soak soak_s.
-//   cross_axis          CA: orientations 11, 21, 31; 1 g along each axis at rest and the table at
-//                       rate_dps about each axis; N packets each (thesis Eq. 24–29, Fig. 46).
-//   thermal_profile     a ramping-controller profile (Watlow F4 steps: ramp time, ramp rate, soak,
-//                       jump, end; protocols.md §2.4), downloaded, then run while logging.
-//   altitude, airspeed  air data test set aims (ft, kt CAS) with their slew rates.
-//   log                 acquire ADS packets: N packets or a duration.
-//   prompt              an operator action; answered by the virtual fixture in simulated runs.
-// TAG: every step carries a one-byte TAG (1…255) written into every packet acquired in it
-// (docs/recording-format.md). A step may state it (each stated TAG once); steps that do not take
-// the TAGs no step states, in ascending order and step order, starting over after the last: a
-// sequence may be longer than 255 steps, and consecutive steps never share a TAG, which is all
-// the TAG has to tell apart (a packet still in flight from the step before). Every row also
-// carries its step index, so a TAG reused many steps later is never mistaken
-// (EffectiveTags()).
-// Orientation codes: two digits, axis made vertical (1 x_B, 2 y_B, 3 z_B) and sense (1 up,
-// 2 down), as rig_sim/fixture_orientation.h defines them for the rig.
-// Not represented: the chamber's guaranteed-soak flag per profile step, event outputs and
-// wait-for inputs of F4 steps, autostart steps; the executor's interlock thresholds (they belong
-// to the station, not the sequence).
+// loaded from and saved to JSON (sequence_json.h), refused when invalid (validation.h) and expanded
+// into the primitive actions an executor runs (execution_plan.h). Nothing here talks to an
+// instrument. Step kinds: accel, gyro, target_temperature, cross_axis, thermal_profile (Watlow F4
+// steps), altitude, airspeed, log, prompt. Every step has a one-byte TAG (1…255), stated or
+// assigned (EffectiveTags()); consecutive steps never share one.
+// Units in every field name (°/s, °C, s, ft, kt CAS); orientation codes as
+// rig_sim/fixture_orientation.h (axis made vertical 1 x_B, 2 y_B, 3 z_B; sense 1 up, 2 down).
+// Every step kind, field and TAG rule: docs/sequences.md ("Step kinds", "TAGs").
+// Not represented: the F4's guaranteed-soak flag per profile step, event outputs and wait-for
+// inputs, autostart steps; the executor's interlock thresholds (they belong to the station).
 #pragma once
 
 #include <cstdint>

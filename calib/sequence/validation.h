@@ -1,27 +1,12 @@
 // Refusing invalid sequences before anything moves. Every problem is collected, none stops the
 // check: each names the file, the JSON path of the offending value, the rule broken and, when a
-// limit is exceeded, the instrument or unit limit with its value (SequenceLimits).
-//
-// Rules (docs/sequences.md "Validation" lists them for users):
-//   structure   at least one step; step kinds allowed for the sequence's unit kind (accel, gyro,
-//               cross_axis on IMU sequences; altitude, airspeed, log on ADS sequences);
-//   TAG         1…255, unique among explicit TAGs, enough free TAGs for the steps without one;
-//   orientation one of 11, 12, 21, 22, 31, 32;
-//   acquisition packets 1…max_packets, log duration in (0, max_log_duration_s];
-//   gyro        rate_min ≤ rate_max, increment > 0 and a whole number of increments from min to
-//               max; every rate within the gyro range and the table's rate limit; the table
-//               acceleration within the table's limit;
-//   cross_axis  rate within the gyro range and the table's rate limit, accel within the table's;
-//   temperature every target (and F4 idle set point) inside the unit's rating and the chamber's
-//               range; band > 0; soak ≥ 0;
-//   profile     name of 1…10 A–Z, 0–9 or space; 1…chamber_max_profile_steps steps; one end step,
-//               the last; ramp rate in (0, chamber_max_ramp]; ramp-time ramps no faster than that;
-//               durations in (0, chamber_max_step_duration]; jumps only backwards to a ramp or
-//               soak step, count 1…chamber_max_jump_count;
-//   altitude    inside the unit's and the ADTS's range, static pressure below the ADS static
-//               limit; rate in (0, min(ADS safe rate, ADTS max rate)];
-//   airspeed    0…min(unit, ADTS) limit, impact pressure below the pitot limit; rate likewise;
-//   prompt      non-empty text.
+// limit is exceeded, the instrument or unit limit with its value (SequenceLimits). Rules cover the
+// structure (step kinds per unit kind), TAGs (1…255, explicit ones unique, enough free ones),
+// orientations (11, 12, 21, 22, 31, 32), packet counts and log durations, gyro and cross-axis
+// rates and table accelerations, chamber set points and F4 profiles, ADTS altitudes and airspeeds
+// against the unit's pressure limits and slew rates, and prompt text.
+// Units as the fields name them (deg/s, deg/s^2, degC, ft, kt, s).
+// Every rule with its default limit: docs/sequences.md ("Validation").
 // Not checked: anything the sequence does not state (interlock thresholds, station wiring).
 #pragma once
 

@@ -1,18 +1,15 @@
 // The unit firmware's C API: what an MPLAB X project includes to run the compensation on the
-// dsPIC (docs/firmware-compensator.md "Dropping target/ into an MPLAB X project").
-//
-// One unit holds a maintenance port (FwMaintenanceHandler: mode, TAG, the RAM constants and their
-// validity, backed by the committed flash image), a DSP engine (the cycle model), and for an ADS
-// unit the hysteresis operators' memory (AdahrsFwAdsState). Everything is caller-owned, fixed-size
-// RAM: declare them static.
-//   power-on           adahrs_fw_power_on: loads the committed constants and verifies their CRC
-//   UART RX            adahrs_fw_receive: maintenance requests in, one response frame out
-//   100 Hz sample ISR  adahrs_fw_imu_sample / adahrs_fw_ads_sample: raw frame in, compensated in
-//                      the port's current mode, encoded as the data packet for UART TX
-//   constants          adahrs_fw_load_block (a block without a request frame, as WRITE_BLOCK),
-//                      adahrs_fw_verify_constants (the committed image's CRC, version, validity)
-// The compensators themselves (frame in, compensated frame out) are fw_imu_compensate and
-// fw_ads_compensate (imu_compensator.h, ads_compensator.h).
+// dsPIC. One unit holds a maintenance port (FwMaintenanceHandler: mode, TAG, the RAM constants and
+// their validity, backed by the committed flash image), a DSP engine (the cycle model), and for an
+// ADS unit the hysteresis operators' memory (AdahrsFwAdsState), all caller-owned fixed-size RAM.
+// Entry points: adahrs_fw_power_on (loads the committed constants, verifies their CRC),
+// adahrs_fw_receive (maintenance requests in, one response frame out), adahrs_fw_imu_sample /
+// adahrs_fw_ads_sample (the 100 Hz sample: raw frame in, compensated in the port's mode, encoded
+// as the data packet), adahrs_fw_load_block and adahrs_fw_verify_constants. The compensators
+// themselves are fw_imu_compensate and fw_ads_compensate (imu_compensator.h, ads_compensator.h).
+// Units: raw frames in counts and timer ticks; outputs as compensated_frame.h says.
+// Use, RAM and cycle figures: docs/firmware-compensator.md ("Dropping target/ into an MPLAB X
+// project").
 // Not modelled: the ISRs themselves, the UART and timer drivers, the NVM driver that would program
 // the flash page (flash_store.h models the page in RAM).
 #ifndef ADAHRS_FW_H

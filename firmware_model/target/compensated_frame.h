@@ -1,27 +1,17 @@
-// Raw input frames and compensated output frames of the IM3 and ADS compensators.
-//
-// Every compensated value is an int32 Q31 mantissa of a power-of-two full scale,
-//   value = word * 2^(exponent - 31),  |value| < 2^exponent,
-// with the exponents of imu_constants.h / ads_constants.h. The protocol carries them opaquely.
-//
-// IMU, 9 values per frame, by mode (slot: quantity, unit, full scale, LSB):
-//   RAW                0..5  U = T1/T2 - 0.5 of az1 ax1 ay1 az2 ax2 ay2, duty, +-1, 2^-31
-//                      6..8  gyro counts gx gy gz, counts, +-2^23, 2^-8 count
-//   THERMAL            as RAW, after T = U - xi(t) (Eq. 4-5)
-//   SENSOR_CALIBRATED  0..5  (T - O)/S per accel channel, g along the channel's body axis (both
-//                            channels of an axis read +1 g with that axis up), +-16 g, 2^-27 g
-//                      6..8  Eq. 23 rate of gx gy gz, deg/s, +-256 deg/s, 2^-23 deg/s
-//   FULLY_CALIBRATED   0..2  A = CA * Ca (Eq. 26), x y z, m/s^2, +-256 m/s^2, 2^-23 m/s^2, where
-//                            Ca_axis = (ch1 + ch2)/2, the mean of the axis's two opposite-polarity
-//                            channels after (T - O)/S (their independent errors average down)
-//                      3..5  G = CG * Cg (Eq. 29), x y z, deg/s, +-256 deg/s, 2^-23 deg/s
-//                      6..8  (ch1 - ch2)/2 per axis x y z in g, +-16 g: the pair disagreement, a
-//                            health monitor (zero for a perfect calibration)
-// ADS, 2 values per frame:
-//   RAW                0 ps code, 1 pt code (raw ADS1254 codes, exponent 31)
-//   SURFACE            0 altitude, ft, +-65,536 ft, 2^-15 ft; 1 airspeed, kt, +-512 kt, 2^-22 kt
-// Status flags report saturation: an input outside its normalisation range or a result clipped
-// to full scale. The value is then the saturated one, never a wrapped one.
+// Raw input frames and compensated output frames of the IM3 and ADS compensators. Every
+// compensated value is an int32 Q31 mantissa of a power-of-two full scale,
+// value = word * 2^(exponent - 31), |value| < 2^exponent, with the exponents of imu_constants.h /
+// ads_constants.h; the protocol carries them opaquely.
+// IMU, 9 values by mode: RAW and THERMAL slots 0..5 duty U = T1/T2 - 0.5 (THERMAL after
+// T = U - xi, Eq. 4-5), 6..8 gyro counts; SENSOR_CALIBRATED 0..5 g along each channel's body axis
+// (Eq. 12), 6..8 deg/s (Eq. 23); FULLY_CALIBRATED 0..2 A in m/s^2 (Eq. 26, from the pair mean
+// Ca_axis = (ch1 + ch2)/2), 3..5 G in deg/s (Eq. 29), 6..8 the pair disagreement (ch1 - ch2)/2
+// in g, a health monitor. ADS, 2 values: RAW the ps and pt codes (exponent 31); SURFACE altitude
+// in ft and airspeed in kt. Frames: body axes x y z of the unit.
+// Full scales and LSBs per slot: docs/firmware-compensator.md ("Number formats") and
+// docs/recording-format.md ("imu.csv"). Status flags report saturation (an input outside its
+// normalisation range or a result clipped to full scale): the value is then the saturated one,
+// never a wrapped one.
 #ifndef ADAHRS_FW_COMPENSATED_FRAME_H
 #define ADAHRS_FW_COMPENSATED_FRAME_H
 

@@ -2,25 +2,16 @@
 // needs, with an instruction and cycle counter (physics.md sections 5.1-5.2). One function per
 // instruction, so the compensator reads as the instruction sequence it is; on the dsPIC each maps
 // to one instruction (XC16's DSP builtins __builtin_mpy, __builtin_mac, __builtin_sac, ...) or runs
-// as it stands, a C emulation with the same results.
-//
-// Modelled: two 40-bit accumulators A and B (int64 kept sign-extended to 40 bits); the 17x17
-// multiplier in fractional (product shifted left 1) or integer mode, signed or unsigned (CORCON IF
-// and US); MPY / MAC / MSC; LAC / SAC / SAC.R with the -8..+7 shift; SFTAC (-16..16, positive =
-// right); ADD / SUB / NEG accumulators; ADD of a 16-bit word to an accumulator; MOV to and from
-// ACCxL/ACCxH/ACCxU (memory-mapped on the 30F/33F); accumulator saturation per SATA/SATB with
-// ACCSAT choosing bit-39 super saturation (9.31) or bit-31 normal saturation (1.31), or none
-// (40-bit wrap, SA/SB set on catastrophic overflow); sticky SA/SB and live OA/OB flags; SATDW data
-// write saturation with the sign from bit 39; conventional or convergent rounding (RND);
-// MUL.SS/SU/UU into a W-register pair; DIVF, DIV.SD and DIV.UD (truncated quotient and remainder,
-// 19 cycles each with the REPEAT #17); and MOV, SUB/SUBB, LSR/RRC, compare-and-branch charges.
-// Cycle costs (physics.md 5.1, Programmer's Reference Manual DS70157): every instruction here is
-// 1 cycle except DIVx (19 incl. REPEAT), a taken branch (2), CALL (2) and RETURN (3).
-// Assumptions (R): a left SFTAC/LAC shift saturates on the exact shifted value; a division whose
-// quotient does not fit, or by zero, sets the math-error flag (the chip traps) and returns a
-// saturated quotient. Not modelled: the X/Y prefetch AGUs and W13 write-back of MAC-class
-// instructions (the compensator loads operands with explicit MOVs, which costs more, not less),
-// the pipeline, interrupts, DO/REPEAT hardware beyond their cycle charge, OA/OB traps.
+// as it stands, a C emulation with the same results. Modelled: the two 40-bit accumulators, the
+// 17x17 multiplier (fractional or integer, signed or unsigned), MAC-class and accumulator
+// instructions, MUL.xx, DIVF / DIV.SD / DIV.UD, saturation modes (SATA/SATB, ACCSAT, SATDW), the
+// SA/SB/OA/OB flags and rounding (RND). Cycle costs (DS70157): 1 per instruction except DIVx (19
+// incl. REPEAT), a taken branch (2), CALL (2) and RETURN (3).
+// Units: 16-bit words, 40-bit accumulators (int64, sign-extended); cycles.
+// The instruction list, assumptions (R) and what is left out: docs/firmware-compensator.md ("What
+// the model covers", after "Dropping target/ into an MPLAB X project").
+// Not modelled: the X/Y prefetch AGUs and W13 write-back, the pipeline, interrupts, DO/REPEAT
+// hardware beyond their cycle charge, OA/OB traps.
 #ifndef ADAHRS_FW_DSP_ENGINE_H
 #define ADAHRS_FW_DSP_ENGINE_H
 

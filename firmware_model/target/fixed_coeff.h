@@ -1,21 +1,14 @@
 // Fixed-point building blocks shared by the IMU and ADS constant sets (target code, dsPIC30F/33F).
-//
-// Number format. Every stored quantity is a Q31 mantissa m (int32_t) with an exponent e (int8_t):
-//   value = m * 2^(e - 31),   |value| < 2^e.
-// A raw integer such as an ADC code is the same format with e = 31. The exponent is a block
-// exponent chosen offline by the host exporter (firmware_model/constants_exporter.h), so a
-// coefficient such as 4.2e6 counts and one of 1e-20 deg/s per count^3 both keep 31 significant
-// bits (physics.md section 5.3, "Horner with per-coefficient Q scaling").
-//
-// Input normalisation. A polynomial is evaluated in x = (v - centre) * 2^-shift, held in Q31, so
-// |x| < 1. The scale is a power of two on purpose: the normalisation is then an exact shift of the
-// centred 32-bit value (no rounding error, one SFTAC on the target), and the centre removes the
-// large common part of, e.g., a 24-bit ADC code before any multiply.
-//
-// Word layout (the maintenance port carries int16 words, big part first):
-//   FwCoeffQ31      3 words: mantissa bits 31..16, mantissa bits 15..0 (as int16 bit pattern), e
-//   FwInputNormQ31  3 words: centre bits 31..16, centre bits 15..0, shift
-//   FwPolyQ31       1 + 3*(degree+1) words: working exponent, then coefficients c0 .. c_degree
+// Every stored quantity is a Q31 mantissa m (int32_t) with an exponent e (int8_t):
+// value = m * 2^(e - 31), |value| < 2^e; a raw integer such as an ADC code has e = 31. Exponents
+// are chosen offline by the host exporter (firmware_model/constants_exporter.h), so every
+// coefficient keeps 31 significant bits. A polynomial is evaluated in x = (v - centre) * 2^-shift,
+// held in Q31 (|x| < 1): a power-of-two scale makes the normalisation an exact shift of the centred
+// 32-bit value, and the centre removes the large common part of, e.g., a 24-bit ADC code before
+// any multiply. Words on the maintenance port (int16, big part first): FwCoeffQ31 3,
+// FwInputNormQ31 3, FwPolyQ31 1 + 3*(degree+1).
+// Number formats, normalisation and word layouts: docs/firmware-compensator.md ("Number formats",
+// "Normalisation").
 // Not modelled here: the meaning of each block (see imu_constants.h, ads_constants.h).
 #ifndef ADAHRS_FW_FIXED_COEFF_H
 #define ADAHRS_FW_FIXED_COEFF_H

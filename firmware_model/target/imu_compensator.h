@@ -1,25 +1,15 @@
 // The IM3 compensator as the dsPIC runs it: one raw frame in, nine Q31 values out, every operation
-// an instruction of the DSP engine model so the frame's cycle cost is counted.
-//
-// Stages (reference-method.md steps 2-5; formats in imu_constants.h, outputs in
-// compensated_frame.h):
-//   1. Duty U = T1/T2 - 0.5 per accelerometer channel: two DIV.UD give floor(t1 2^32 / t2)
-//      exactly (t1 << 16 / t2, then remainder << 16 / t2), then U_q31 = (r >> 1) - 2^30
-//      = floor(U 2^31). A 16-bit DIVF alone resolves only 3e-5 duty (0.76 mg at 25 g/duty), 8x
-//      the 0.1 mg budget, so the 32-bit quotient is needed (38 cycles per channel).
-//      Gyro U = counts << 8 (exponent 23), saturating for |counts| >= 2^23.
-//   2. Thermal (Eq. 4-5): tau = (t - centre) 2^-shift, xi(tau) by Horner (degree 3), T = U - xi;
-//      format 2 in Q31 x Q31 steps, format 3 in Q31 x Q15 steps (tau rounded to Q15).
-//   3. Sensor calibration: accel Ca = (T - O) (1/S) in g (Eq. 12); gyro Eq. 23 cubic in
-//      x = (T - centre) 2^-shift, deg/s.
-//      Format 3: each channel times its scale factor F(tau_s) = 1 + delta, tau_s the normalised
-//      count of the temperature sensor its thermal block names, delta a MAC chain on tau_s's Q15
-//      powers (imu_constants.h FwScaleDeltaQ15).
-//   4. Full calibration: Ca_axis = (ch1 + ch2)/2 (pair mean), format 3: + q ca_axis^2;
-//      A = CA Ca (Eq. 26) in m/s^2, G = CG Cg (Eq. 29), format 3: + GS A (q, GS, ca and A in
-//      Q15 there); slots 6..8 carry the pair half-difference (ch1 - ch2)/2 in g.
+// an instruction of the DSP engine model so the frame's cycle cost is counted. Stages
+// (reference-method.md steps 2-5; formats in imu_constants.h, outputs in compensated_frame.h):
+// 1. duty U = T1/T2 - 0.5 by two DIV.UD (a 16-bit DIVF would miss the 0.1 mg budget 8x); gyro
+// U = counts << 8. 2. thermal T = U - xi(tau), xi a cubic by Horner (format 2 Q31 x Q31, format 3
+// Q31 x Q15). 3. sensor: accel (T - O)(1/S) in g (Eq. 12), gyro Eq. 23 cubic in deg/s; format 3
+// times the scale factor F(tau_s) = 1 + delta. 4. full: pair mean Ca_axis (format 3: + q Ca^2),
+// A = CA Ca (Eq. 26), G = CG Cg (Eq. 29; format 3: + GS A); slots 6..8 the pair half-difference.
 // The engine is put in fractional mode with 1.31 saturation and convergent rounding at entry
 // (one CORCON write). Saturation anywhere sets a flag in the frame; values are never wrapped.
+// Units and frames: duty, counts, g, m/s^2 and deg/s in the body frame.
+// Each stage's arithmetic and cycles: docs/firmware-compensator.md ("Stages", "Cycle table").
 // Not modelled: the capture ISR that produces t1/t2, the gyro ADC driver, and run-time bias
 // estimation (the unit's adaptive filter).
 #ifndef ADAHRS_FW_IMU_COMPENSATOR_H

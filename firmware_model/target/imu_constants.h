@@ -1,58 +1,16 @@
 // The IM3 unit's calibration constants in target (fixed-point) form, and the block-wise access the
 // maintenance port uses to write and read them (reference-method.md, Chapter 2 steps 2-5).
-//
-// Channels, in this order everywhere (reference-method.md, "The unit"):
-//   0 az1, 1 ax1, 2 ay1, 3 az2, 4 ax2, 5 ay2   ADXL210E duty-cycle channels, two per body axis with
-//                                            opposite polarity
-//   6 gx, 7 gy, 8 gz                          ADXRS150 rate channels
-// Temperature sensors: 0, 1, 2 are the gyro on-chip sensors of gx, gy, gz (16 summed 12-bit
-// conversions each); every channel names the sensor that drives its thermal compensation.
-//
-// Stages and the formats of their values (value = mantissa * 2^(exponent - 31), fixed_coeff.h):
-//   U   raw channel value: accel duty T1/T2 - 0.5 at exponent FW_DUTY_EXPONENT (0), gyro counts at
-//       FW_GYRO_COUNT_EXPONENT (23, i.e. counts * 2^8)
-//   xi  thermal drift (Eq. 4-5, extended to a cubic): xi(tau) = k0 + k1 tau + k2 tau^2 + k3 tau^3,
-//       tau = normalised temperature counts (saturating at +-1, which flags the input: beyond the
-//       normalised span xi is held at its end value); evaluated at the poly's working exponent,
-//       then brought to U's exponent. The reference method's quadratic is the case k3 = 0.
-//   T   = U - xi, same format as U
-//   Ca  accel, Eq. 12 as the reference summary states it: (T - O) / S, stored as offset O (duty,
-//       exponent 0) and the reciprocal scale 1/S (g per duty, ~ +-25), result in g at
-//       FW_ACCEL_G_EXPONENT
-//   Cg  gyro, Eq. 23: l0 + l1 x + l2 x^2 + l3 x^3, x = (T - centre) * 2^-shift, result in deg/s at
-//       FW_RATE_EXPONENT
-//   A = CA * mean-pair(Ca) (Eq. 26, m/s^2), G = CG * Cg (Eq. 29, deg/s); see compensated_frame.h.
-// Scale-temperature stages (constants format 3; run only when block 0x10 enables them, so a
-// format-2 set computes bit for bit what it did before):
-//   tau_s = (t_cnt[s] - centre_s) * 2^-shift_s, one normalisation per temperature sensor s
-//   Ca_i *= F_i(tau_s(i)); the gyro's x *= F_g(tau_s(g)) before its cubic: a dimensionless scale
-//       factor, cubic in tau of the sensor the channel's thermal block names, evaluated at
-//       FW_SCALE_FACTOR_EXPONENT (|F| < 2); scaling the count first leaves the cubic a
-//       temperature-free response to invert (the sensitivity tempco scales the gyro's
-//       nonlinearity with its rate)
-//   ca_axis += q_axis ca_axis^2 after the pair mean (accelerometer second-order nonlinearity)
-//   G = CG * Cg + GS * A, GS in deg/s per m/s^2 (gyro g-sensitivity on the compensated A)
-//   The blocks hold Q31 words; a write derives the Q15 forms the compensator runs (F - 1, q, GS)
-//   and the thermal coefficients aligned to their working exponent.
-//
-// Blocks (id: content, length in int16 words; layouts in fixed_coeff.h):
-//   0x01..0x09 thermal, channel id-1: [temperature sensor 0..2][InputNormQ31 tau (shift <= 16)]
-//              [PolyQ31 degree 3 (xi)]                                           17 words
-//   0x0A       accelerometer offsets and scales: 6 x ([offset duty Q31 hi][lo][CoeffQ31 1/S])
-//                                                                                30 words
-//   0x0B..0x0D gyro x, y, z cubic: [InputNormQ31 on T (shift <= 23)][PolyQ31 degree 3, working
-//              exponent must equal FW_RATE_EXPONENT]                              16 words
-//   0x0E       CA, row-major 3x3 CoeffQ31 (m/s^2 per g)                             27 words
-//   0x0F       CG, row-major 3x3 CoeffQ31 (deg/s per deg/s)                         27 words
-//   0x10       format-3 switch and temperature normalisation: [enabled 0|1]
-//              3 x [InputNormQ31 tau_s (shift <= 16)]                                10 words
-//   0x11..0x19 scale factor F of channel id-0x11: [PolyQ31 degree 3, working exponent
-//              FW_SCALE_FACTOR_EXPONENT]                                         13 words
-//   0x1A       accelerometer nonlinearity q, 3 x CoeffQ31 (g per g^2)                  9 words
-//   0x1B       GS, row-major 3x3 CoeffQ31 (deg/s per m/s^2)                          27 words
-// Blocks 0x01..0x0F are the format-2 set and must all be written before a commit; 0x10..0x1B
-// are written all together or not at all (maintenance_handler.h).
-// A write validates the whole block first and changes nothing unless it returns OK.
+// Channels 0 az1, 1 ax1, 2 ay1, 3 az2, 4 ax2, 5 ay2 (ADXL210E duty, two per body axis with opposite
+// polarity), 6 gx, 7 gy, 8 gz (ADXRS150); temperature sensors 0..2 are the gyros' on-chip sensors.
+// Stages: U raw, xi thermal cubic in the normalised temperature (Eq. 4-5 extended; held at its end
+// value beyond the span), T = U - xi, Ca = (T - O)(1/S) (Eq. 12), Cg gyro cubic (Eq. 23),
+// A = CA mean-pair(Ca) (Eq. 26), G = CG Cg (Eq. 29); format 3 (block 0x10 on) adds a scale factor
+// F(tau_s) per channel, q Ca^2 per axis and GS A. Blocks 0x01..0x0F are the format-2 set, all
+// needed before a commit; 0x10..0x1B are written all together or not at all. A write validates the
+// whole block first and derives the Q15 run-time forms.
+// Units: value = mantissa * 2^(exponent - 31) (fixed_coeff.h); duty, counts, g, m/s^2, deg/s.
+// Channels, stage formats, the block table: docs/firmware-compensator.md ("Constants blocks",
+// "Stages", "Scale-temperature stages").
 // Not modelled: run-time bias estimation, and any constants version or CRC (the maintenance
 // handler's).
 #ifndef ADAHRS_FW_IMU_CONSTANTS_H

@@ -1,20 +1,14 @@
 // The unit side of the maintenance port (docs/unit-protocol.md §6-7): decodes request frames,
 // executes commands against the unit's RAM state and emulated flash, and answers every request
-// with an ACK or a NAK carrying a reason code.
-//
-// State: output mode, step TAG, the RAM constant set (FwImuConstants or FwAdsConstants, per
-// unit kind), which of its blocks hold valid constants, whether a valid committed image backs them,
-// and the data-packet sequence counter. Commands: SET_MODE, SET_TAG, WRITE_BLOCK, READ_BLOCK,
-// COMMIT, IDENTIFY, RESET, READ_COUNTERS.
-// Rules (§6.3): a refused request never changes state (only counters move); calibrated modes are
-// refused unless valid constants are committed; COMMIT is refused until every block of the set has
-// been written (or loaded from flash) since power-on; RESET is a simulated power cycle: RAM
-// constants are replaced by the committed image (uncommitted writes are lost), mode returns to raw,
-// TAG and sequence to 0, counters to 0. A request frame that fails its CRC is answered with a NAK
-// (command NONE, the sequence byte as received); header errors (unknown type, impossible length)
-// are only counted, as nothing in such a frame can be trusted.
-// Fixed-width integers, fixed buffers (the handler is one static struct), status returns: builds
-// for the dsPIC.
+// with an ACK or a NAK carrying a reason code. State: output mode, step TAG, the RAM constant set
+// (FwImuConstants or FwAdsConstants), which of its blocks hold valid constants, whether a valid
+// committed image backs them, and the data-packet sequence counter. Commands: SET_MODE, SET_TAG,
+// WRITE_BLOCK, READ_BLOCK, COMMIT, IDENTIFY, RESET, READ_COUNTERS. Rules (§6.3): a refused request
+// never changes state; calibrated modes need committed constants; COMMIT needs every block of the
+// set; RESET is a simulated power cycle; a bad CRC gets a NAK, header errors are only counted.
+// Fixed-width integers, fixed buffers (one static struct), status returns: builds for the dsPIC.
+// Rules, result codes and the flash image: docs/unit-protocol.md ("6.3 Rules", "6.4 Result codes",
+// "7. Emulated flash image").
 // Not modelled: UART timing, the real unit's watchdog and brown-out behaviour, and concurrency with
 // the 100 Hz acquisition interrupt (on the target, mode/TAG/constant updates must be applied
 // between frames).

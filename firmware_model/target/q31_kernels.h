@@ -1,21 +1,12 @@
 // Double-word (Q31) kernels built only from DSP-engine instructions, so that every cycle they cost
-// is counted (physics.md 5.3: "The 32-bit (Q31) variants need three partial products per multiply.
-// On the 30F the mixed-sign lo x hi terms go through MUL.SU into W registers").
-//
-// fw_mul_q31(a, b) derivation. Split a = ah*2^16 + al (ah signed, al unsigned), b likewise. Then
-//   a*b / 2^31 = 2*ah*bh + (ah*bl + al*bh) / 2^15 + al*bl / 2^31.
-// The engine computes 2*ah*bh exactly with a fractional MPY, each mixed term with MUL.SU into a
-// W pair, loads it into an accumulator (LAC high + MOV ACCxL), shifts it right 15 (floor), and
-// adds. The al*bl term (< 2 LSB) is dropped. Result: acc = 2 ah bh + floor(ah bl / 2^15) + floor(al
-// bh / 2^15), within [-3, 0] LSB of floor(a b / 2^31); the only saturation is
-// (-1)*(-1) -> 0x7FFFFFFF under 1.31 saturation. Cost: 11 cycles (2 MUL.SU, 2 LAC, 2 MOV ACCxL,
-// 2 SFTAC, 1 MPY, 2 ADD) plus 4 MOVs that bring the operands' words into W registers, as a
-// compiler emits them: 15. The engine must be in fractional mode with 1.31 saturation.
-//
-// Horner at a working exponent E (fixed_coeff.h): y_n = c_n; y_k = y_{k+1} x + c_k, every c_k
-// aligned to E by a right shift (E - e_k) (one SFTAC with the shift in a W register), each step
-// 25 cycles: fw_mul_q31 15, load c_k 2, the shift's SUB and MOV 2, SFTAC 1, ADD 1, read y 2, loop
-// DEC and branch 2; plus a pointer and count set-up of 2.
+// is counted (physics.md 5.3). fw_mul_q31(a, b) splits each operand into a signed high and an
+// unsigned low word and sums three partial products (2 ah bh by a fractional MPY, the mixed terms
+// by MUL.SU shifted right 15; al bl dropped): within [-3, 0] LSB of floor(a b / 2^31), 15 cycles,
+// saturating only (-1)*(-1) -> 0x7FFFFFFF. Horner at a working exponent E (fixed_coeff.h):
+// y_k = y_{k+1} x + c_k with every c_k aligned to E by one SFTAC, 25 cycles a step. The engine
+// must be in fractional mode with 1.31 saturation.
+// Units: Q31 mantissas and exponents (value = m * 2^(e - 31)); cycles.
+// Derivation and cycle breakdown: docs/firmware-compensator.md ("Stages", fw_mul_q31).
 #ifndef ADAHRS_FW_Q31_KERNELS_H
 #define ADAHRS_FW_Q31_KERNELS_H
 

@@ -1,20 +1,13 @@
 // The command table of the Ideal Aerosmith Table Language (ATL) as data: which mnemonics exist,
 // what argument each takes (type, limits, unit), whether it has a query form (`MNE?`), the reply
-// template of each form, the framing (line end, prompt, echo) and the error reply templates.
-//
-// Why data: no ATL manual was found (shared/protocols.md §1.1); the default table
-// (rig_sim/data/atl_commands.json) is built from the mnemonics seen in third-party clients
-// (protocols.md §1.2) and marks each entry DOC / DRV / INF / UNKNOWN, so the lab can correct the
-// wire syntax from the Aero 800 manual without touching code. Both sides use it: the virtual table
-// (rig_sim/) to parse commands and format replies, the pipeline's driver to format commands.
-//
-// Each command names an `operation` (the controller function it reaches: "rate", "stop", …); the
-// device binds operations, not spellings, so a renamed mnemonic needs only a new table.
-// Reply templates hold `{value}`, printed with the entry's `decimals`; error templates may hold
-// `{line}`, `{mnemonic}`, `{argument}`, `{min}`, `{max}`, `{unit}`.
-// Loading is strict (common::ParamReader): a missing or unknown key, a bad type, limits in the
-// wrong order, an unknown argument type or confidence, a duplicate mnemonic or a template without
-// `{value}` throws ParamError naming the file and JSON path.
+// template of each form, the framing (line end, prompt, echo) and the error reply templates. Data
+// because no ATL manual was found (shared/protocols.md §1.1): the default table
+// (rig_sim/data/atl_commands.json) marks each entry DOC / DRV / INF / UNKNOWN so the lab can
+// correct the wire syntax from the Aero 800 manual without touching code. The virtual table and the
+// pipeline's driver both use it; the device binds each command's `operation`, not its spelling.
+// Units: each argument's limits in the unit the entry names (deg/s, deg/s^2, deg, Hz).
+// Templates, strict loading (ParamError naming the file and JSON path) and the commands:
+// docs/rig/rate-table.md (the command table, "Framing", "Commands", "Refusals").
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -1,22 +1,12 @@
 // Air data test set driver: a Druck ADTS 405 on GPIB behind a Prologix GPIB-USB adapter
-// (shared/protocols.md §4 and §6; docs/rig/adts.md), implementing AirDataTestSet.
-// Adapter set-up, once before the first command (DOC, Prologix manual §8; the pyvisa-py recipe):
-// `++mode 1` (controller), `++addr <address>`, `++auto 0` (no read-after-write: a query is followed
-// by `++read eoi`), `++eos 2` (LF appended to data), `++eoi 1`, `++eot_enable 0`; then `*CLS` and
-// `UNIT:PRES PA` so every pressure is in pascals. Data lines are ESC-escaped
-// (hil/codecs/prologix.h). SCPI (DRV unless noted; numbers by hil/codecs/scpi.h):
-//   Identify      `++ver`, `*IDN?` (must name an ADTS, else kWrongIdentity)
-//   SetAltitude   `SOUR:STAT ON`, `SOUR:RATE ALT,<ft/min>`, `SOUR:PRES ALT,<ft>`
-//   SetAirspeed   `SOUR:STAT ON`, `SOUR:RATE CAS,<kt/min>`, `SOUR:PRES CAS,<kt>`
-//   Stable        `STAT:OPER:COND?`: bits 1 (stable at aim, 15 s after 8 and 10), 8 (Ps at set
-//                 point) and 10 (Pt at set point) all set (§4.4). The condition register, not
-//                 `STAT:OPER:EVEN?`: the event register is latched and cleared on read, so a poll
-//                 would see a stale "stable" from an earlier aim.
-//   Read          `MEAS:PRES? PS`, `MEAS:PRES? QC`
-//   GoToGround    `SOUR:STAT ON`, `SOUR:GTGR` (needs control mode)
-// Every command that returns nothing is followed by `SYST:ERR?` (INF: the 405's error queue format
-// is UNKNOWN; `<code>,"<message>"` here): a non-zero code becomes kRefused with that text.
-// Replies end in LF; timeouts and retries are the station entry's (instrument_port.h).
+// (shared/protocols.md §4 and §6; docs/rig/adts.md), implementing AirDataTestSet. The adapter is
+// set up once (controller mode, no read-after-write, LF appended), then `*CLS` and `UNIT:PRES PA`;
+// data lines are ESC-escaped (hil/codecs/prologix.h), numbers by hil/codecs/scpi.h. Stable polls
+// `STAT:OPER:COND?` bits 1, 8 and 10 (the condition register, not the latched event register);
+// every command without a reply is followed by `SYST:ERR?`, a non-zero code becoming kRefused.
+// Units: pressures in Pa, altitude aims in ft and ft/min, airspeed aims in kt CAS and kt/min.
+// Every command with its confidence label: docs/drivers.md ("Air data test set"); timeouts and
+// retries: the station entry's (instrument_port.h, docs/drivers.md "Timeouts and retries").
 // Left out: Mach/EPR/TAS aims, altitude and speed unit commands (UNKNOWN; ft and kt assumed),
 // leak tests, limit sets, service requests.
 #pragma once

@@ -1,24 +1,16 @@
 // The PC's link to one unit (IMU or ADS) on its serial port (docs/unit-protocol.md): maintenance
-// requests answered by one response each, and the unit's 100 Hz data packets, which keep
-// streaming on the same line while a request waits. Every data packet that arrives, before,
-// during or after a request, is kept for the next Poll(): nothing is dropped on the PC side, and
-// losses on the line show as gaps of the 8-bit sequence counter (lost_packets()).
-//
-// Requests: each attempt is a new frame with a new request sequence; a response is accepted when
-// it echoes the command and the sequence of any attempt of the same request (a late answer to an
-// earlier attempt is as good as the last). An attempt waits the station's `timeout_ms` of clock
-// time (converted to wall time by the Clock, never below kMinWallReplyTimeout so that the PC's
-// own scheduling cannot fake a silent unit on a fast rig). The response travels behind every data
-// packet the unit sent before it, so on a fast rig whose line holds a backlog the wait is for
-// silence, not for a fixed time: it restarts whenever bytes arrive, up to kUnitBacklogPatience
-// reply timeouts per attempt (a unit that streams but never answers still fails, later). After
-// kUnitRequestAttempts unanswered attempts the request throws InstrumentError kNoReply. A NAK
-// throws kRefused with its reason; a response that does not parse, or a data packet of the other
-// unit kind, throws kBadReply / kWrongIdentity. Each error names the unit role, the port, the
-// command and the reply. Retrying COMMIT whose ACK was lost commits twice (constants_version counts
-// both): harmless for the image, visible in the version. Packet times are clock seconds at arrival
-// (all packets read in one chunk share one time). Not thread-safe: one thread uses a link at a
-// time. Left out: RESET (the executor never power-cycles a unit mid-run), baud-rate detection.
+// requests answered by one response each, and the unit's 100 Hz data packets, which keep streaming
+// on the same line while a request waits. Every data packet that arrives, before, during or after
+// a request, is kept for the next Poll(): nothing is dropped on the PC side, and losses on the line
+// show as gaps of the 8-bit sequence counter (lost_packets()). A request is tried
+// kUnitRequestAttempts times, each a new frame and sequence; a response echoing any attempt is
+// accepted; an attempt waits for silence behind the data backlog (up to kUnitBacklogPatience reply
+// timeouts, never below kMinWallReplyTimeout of wall time), then kNoReply. A NAK is kRefused; an
+// unparsable reply kBadReply; the other unit kind kWrongIdentity. A COMMIT retried after a lost
+// ACK commits twice (visible in constants_version). Not thread-safe.
+// Units: packet times in clock seconds at arrival; timeouts in the station's clock ms.
+// Retries, backlog, errors: docs/drivers.md ("Units: UnitLink", "Timeouts and retries").
+// Left out: RESET (the executor never power-cycles a unit mid-run), baud-rate detection.
 #pragma once
 
 #include <chrono>

@@ -1,24 +1,15 @@
 // IMU thermal-chamber driver: a Watlow Series F4 ramping controller on Modbus RTU, with libmodbus
 // as the master (modbus_new_rtu on the station's port, slave = the entry's address), implementing
 // Chamber. Registers as shared/protocols.md §2.3-2.5 give them (DRV; docs/rig/watlow-f4.md lists
-// what the virtual F4 does with each):
-//   Identify        901 (units: 1 = degC, else kWrongIdentity), 606 (implied decimals)
-//   ReadProcessC    100 PV and 101 input error (non-zero: kFault)
-//   SetSetPointC    300 static set point (signed, `decimals` implied decimals)
-//   ReadSetPointC   4122 current set point (a running profile's ramp, or 300 when static)
-//   Hold            200 (2 running, 3 holding) → 4122 read, 1217 = 1 (terminate), 300 = that set
-//   point DownloadProfile names 3500+10(n-1); an existing profile of that name deleted (4000 = n,
-//                   4001 = 1, 4002 = 3) and its name blanked; 4002 = 1 create, 4000 read back;
-//                   name written; per step FC16 4001 = [i, 2] (insert), 4003 type, then 4009-4011
-//                   h/m/s, 4043 rate x10, 4044 target, 4050-4052 jump; the end step 4003 = 5,
-//                   4060/4061; 25 = 0 (save)
-//   StartProfile    4000 = n, 4001 = 1, 4002 = 5;  ProfileRunning: 200 is 2 or 3
-// Durations are whole seconds (F4 resolution, rounded to nearest), at most 99:59:59 per step.
+// what the virtual F4 does with each): identify 901/606, PV 100 and input error 101, static set
+// point 300, current set point 4122, status 200, profiles at 3500+10(n-1) and 4000-4061.
 // A Modbus exception becomes kRefused naming the register and the exception code; a timeout is
-// retried `retries` times, then kNoReply. Response timeout: the entry's, scaled by the clock
-// (instrument_port.h).
-// Left out: guaranteed soak, events, wait-fors, PID sets, autostart; the model/serial registers 0-4
-// (the virtual F4 does not map them; their values are UNKNOWN).
+// retried `retries` times, then kNoReply (timeouts: instrument_port.h).
+// Units: degC as signed registers with register 606's implied decimals; step durations in whole
+// seconds (at most 99:59:59); ramp rates in 0.1 degC/min.
+// Every method's registers: docs/drivers.md ("IMU chamber").
+// Left out: guaranteed soak, events, wait-fors, PID sets, autostart; the model/serial registers
+// 0-4 (the virtual F4 does not map them; their values are UNKNOWN).
 #pragma once
 
 #include <map>

@@ -1,20 +1,13 @@
 // The recording format (a contract, docs/recording-format.md): a run directory with meta.json and
 // one CSV per unit kind, one row per received packet. Production recordings from real rigs use it
 // and the analysis tools read it; a change of columns is a change of kRecordingFormatVersion.
-//
-// Version 4 (written) = version 3's columns with the ADS raw counts named ps_cnt, pt_cnt,
-// ps_temp_cnt, pt_temp_cnt, oat_cnt (versions 1 to 3 name them ps_counts … oat_counts). Version 3
-// (still read) = version 2's columns followed by the packet's sample time on the unit's clock:
-// frame (the frame index carried past the 8-bit counter, frame_count.h) and t_sample_s
-// (frame * 10 ms). Version 2 (still read) = version 1's columns followed by the compensated
-// columns, which are always in the header and EMPTY in raw mode. Version 1 (still read) has no
-// compensated columns. Imu and ads CSVs are stored plain or gzip-compressed (recording_files.h).
-// Compensated values are in the engineering units of the unit's mode (compensated_values.h):
-//   IMU mode 1 (thermal): comp0..5 duty T/T2 - 0.5, comp6..8 gyro counts;
-//   IMU mode 2 (sensor calibrated): comp0..5 g per accel channel, comp6..8 deg/s per gyro;
-//   IMU mode 3 (fully calibrated): comp0..2 A x,y,z m/s^2, comp3..5 G x,y,z deg/s,
-//                                  comp6..8 pair disagreement x,y,z g;
-//   ADS mode 1 (surface): alt_ft, cas_kt.
+// Version 4 is written (ADS raw counts named ps_cnt … oat_cnt); versions 1 to 3 are still read
+// (ps_counts … oat_counts; version 3 adds frame and t_sample_s, version 2 the compensated columns,
+// EMPTY in raw mode). Imu and ads CSVs are stored plain or gzip-compressed (recording_files.h).
+// Units: every column's unit is in its name or the format doc; compensated values are in the
+// engineering units of the unit's mode (compensated_values.h: duty, counts, g, deg/s, m/s^2, ft,
+// kt), body frame for IMU mode 3.
+// Columns, modes and versions: docs/recording-format.md ("imu.csv", "ads.csv", "Version 3" …).
 // Left out: the time base and every run-level fact, which live in meta.json.
 #pragma once
 

@@ -1,22 +1,14 @@
 // Reads a run directory in the recording format (docs/recording-format.md) back into rows, as the
-// solvers and reports consume it. Refuses what it cannot trust and says exactly where: a missing
-// or unreadable file, a format version it does not know, a header that lacks one of the contract's
-// columns or repeats a name, a row with another number of columns than its header, a cell that is
-// not a number of its column's type or is out of its type's range — each error names the file, the
-// 1-based line and the column name. Per unit, rows must come in arrival order: a row of a unit
-// meta.json does not list, a negative step, a unit's time going back or its previous row repeated
-// is refused by file and line. A truncated last line (a crash while writing) is reported as such,
-// not silently dropped: `ReadOptions::allow_truncated_tail` accepts it and counts it, as a resumed
-// run needs. Reads format versions 1 to 4 (recording_format.h), each CSV plain or gzip-compressed
-// (recording_files.h); the ADS raw-count columns are found by the name the file's version gives
-// them (ps_counts … in versions 1 to 3, ps_cnt … in 4); version 1 rows have no compensated
-// values; rows of versions 1 and 2 get their frame counted from seq and t_s (frame_count.h), rows
-// of versions 3 and 4 carry it and it must not go back. Columns are found by name, in any order;
-// a column the contract does not know is ignored and named in `Recording::notes` (a foreign
-// logger's extra channels lose nothing that is read).
-// From version 2 the compensated cells are all empty exactly when the row's mode is 0 (raw).
-// meta.json's optional "rejected_intervals" (rows that are NOT calibration data) are parsed
-// strictly too; the rest of meta.json is handed over as JSON.
+// solvers and reports consume it. Refuses what it cannot trust and says exactly where: each error
+// names the file, the 1-based line and the column name. Per unit, rows must come in arrival order.
+// A truncated last line (a crash while writing) is reported, not silently dropped;
+// `ReadOptions::allow_truncated_tail` accepts it and counts it, as a resumed run needs. Reads
+// format versions 1 to 4 (recording_format.h), each CSV plain or gzip-compressed
+// (recording_files.h), columns found by name in any order; a column the contract does not know is
+// ignored and named in `Recording::notes`. Rows of versions 1 and 2 get their frame counted from
+// seq and t_s (frame_count.h). meta.json's optional "rejected_intervals" are parsed strictly too.
+// Units: as the format's columns (t_s and t_sample_s in seconds, raw counts, compensated values).
+// Every refusal: docs/recording-format.md ("Errors"); frames: "Sample time".
 #pragma once
 
 #include <filesystem>

@@ -3,18 +3,16 @@
 // --manifest <dir>/manifest.json --run-dir <dir> --time-scale K` in a fresh temporary directory,
 // waits (bounded) for the manifest, and exposes the port of every role, the truth directory and a
 // station file for those ports. The destructor sends SIGTERM, waits for the process and removes
-// the directory.
-//
+// the directory. Example:
 //   adahrs::testing::RigProcess rig(200.0);
 //   const hil::Station station = hil::Station::Load(rig.WriteStation());
 //   rig.Control("fault imu2 silent on");   // "OK imu2 silent on"
-//
 // The station lists every role the rig serves: its instruments (addresses from the rig config),
 // its units (baud from the manifest), the rig's site and time scale, and the control port as the
 // "virtual_fixture" operator. Control() opens the control port for one command; do not call it
-// while an OpenStation()'s operator is mid-command on the same port.
-// The rig's stdout and stderr go to <dir>/rig.log, quoted in the error if it fails to start.
-// Header-only; links nothing but the standard library, POSIX and nlohmann::json.
+// while an OpenStation()'s operator is mid-command on the same port. The rig's stdout and stderr
+// go to <dir>/rig.log, quoted in the error if it fails to start. Header-only; links nothing but
+// the standard library, POSIX and nlohmann::json.
 #pragma once
 
 #include <fcntl.h>
