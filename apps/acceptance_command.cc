@@ -1,6 +1,7 @@
-// adahrs acceptance --run DIR [--out DIR] [--db FILE] [--since-calibration-h H]: judges an
-// acceptance run against the specification (calib/acceptance/, docs/acceptance.md), and its rate
-// points against the physical limit of bias wander over H hours since calibration; writes
+// adahrs acceptance --run DIR [--specification FILE] [--out DIR] [--db FILE]
+// [--since-calibration-h H]: judges an acceptance run against a specification file (default: the
+// AHR150A -A file compiled in; calib/acceptance/, docs/acceptance.md), and its rate points against
+// the physical limit of bias wander over H hours since calibration; writes
 // <out>/<serial>/acceptance.json per unit (default out: DIR/acceptance), prints the table and, with
 // --db, records every point in the production records. Exit code 0 when every point passes, 1 when
 // any fails, 2 on bad input (or when the files or the records cannot be written: no verdict reached
@@ -30,11 +31,16 @@ void RegisterAcceptanceCommand(CLI::App& app) {
   auto run = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto db = std::make_shared<std::string>();
+  auto specification = std::make_shared<std::string>();
   auto options = std::make_shared<calib::AcceptanceOptions>();
   cmd->add_option("--run", *run, "Acceptance run directory (recording in a calibrated mode)")
       ->required();
   cmd->add_option(
       "--out", *out, "Output directory for <serial>/acceptance.json (default: RUN/acceptance)");
+  cmd->add_option("--specification",
+                  *specification,
+                  "Specification file (calib/specifications/*.json; default: AHR150A -A, "
+                  "calib/specifications/ahr150a-a.json as compiled in)");
   cmd->add_option("--db", *db, "Production records database to record the points in");
   cmd->add_option("--since-calibration-h",
                   options->since_calibration_h,
@@ -42,11 +48,15 @@ void RegisterAcceptanceCommand(CLI::App& app) {
                   "physical limit counts")
       ->capture_default_str()
       ->check(CLI::Range(0.0, calib::kMaxSinceCalibration_h));
-  cmd->callback([run, out, db, options] {
-    const calib::Specification spec = calib::Specification::Reference();
+  cmd->callback([run, out, db, specification, options] {
     calib::AcceptanceRun result;
     std::vector<std::filesystem::path> files;
     try {
+      const calib::Specification spec = specification->empty()
+                                            ? calib::Specification::Reference()
+                                            : calib::ReadSpecificationFile(*specification);
+      std::cout << fmt::format(
+          "specification {} version {} (sha256 {})\n", spec.name, spec.version, spec.sha256);
       result = calib::JudgeAcceptance(*run, spec, *options);
       const std::filesystem::path out_dir =
           out->empty() ? std::filesystem::path(*run) / "acceptance" : std::filesystem::path(*out);

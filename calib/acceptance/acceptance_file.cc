@@ -31,7 +31,9 @@ json PointJson(const AcceptancePoint& p) {
   j["tolerance"] = p.tolerance;
   j["margin"] = p.margin();
   if (p.physical_limit) j["physical_limit"] = *p.physical_limit;
+  j["marginal_band_fraction"] = p.marginal_band;
   j["pass"] = p.pass;
+  j["outcome"] = OutcomeText(p.outcome());
   j["verdict"] = PointVerdictText(p.verdict());
   j["beyond_noise"] = p.beyond_noise;
   return j;
@@ -101,8 +103,10 @@ json AcceptanceJson(const AcceptanceRun& run,
           {"specification", spec.ToJson()},
           {"reference", reference},
           {"verdict", unit.pass() ? "pass" : "fail"},
+          {"outcome", OutcomeText(unit.outcome())},
           {"points_total", unit.points.size()},
           {"points_failed", unit.failed()},
+          {"points_marginal", unit.marginal()},
           {"point_verdicts", verdicts},
           {"physical_limit", physical_limit},
           {"worst_margin", worst},
@@ -199,7 +203,7 @@ std::string AcceptanceText(const AcceptanceRun& run) {
           p.tolerance,
           p.physical_limit ? fmt::format("{:.4f}", *p.physical_limit) : "-",
           p.unit,
-          p.pass ? "PASS" : "FAIL",
+          OutcomeText(p.outcome()),
           p.pass ? "" : std::string(" (") + PointVerdictText(p.verdict()) + ")",
           p.beyond_noise ? "" : " (within noise of the tolerance)");
     }
@@ -212,11 +216,12 @@ std::string AcceptanceText(const AcceptanceRun& run) {
                          w.point);
     }
     out += RateVerdictLine(unit);
-    out += fmt::format("{}: {} ({} of {} points failed)\n",
+    out += fmt::format("{}: {} ({} of {} points failed, {} marginal)\n",
                        unit.serial,
-                       unit.pass() ? "PASS" : "FAIL",
+                       OutcomeText(unit.outcome()),
                        unit.failed(),
-                       unit.points.size());
+                       unit.points.size(),
+                       unit.marginal());
   }
   return out;
 }

@@ -1,14 +1,16 @@
-// acceptance.json (docs/acceptance.md, format "adahrs-acceptance" version 1): one file per unit
+// acceptance.json (docs/acceptance.md, format "adahrs-acceptance" version 3): one file per unit
 // with every judged point of an acceptance run (acceptance_judge.h), the unit's overall verdict and
-// its worst margin per quantity, the specification it was judged against and the recording it
-// came from (run id, SHA-256 of meta.json + imu.csv + ads.csv). Files are written atomically
-// (temporary file + rename) as <out>/<serial>/acceptance.json. The file holds no time stamp: the
-// same recording judged by the same software gives the same bytes, so the records (keyed by the
-// file's SHA-256) hold it once however often it is judged.
-// The reader is strict and typed (AcceptanceFile): a wrong format or version, a missing key or a
-// wrong type is refused with the file and JSON path (AcceptanceFileError). Version 1 files, which
-// lack noise and verdicts, read with noise = std_error and the verdict their pass implies.
-// Also here: the plain-text table `adahrs acceptance` prints.
+// outcome (PASS, MARGINAL, FAIL) and its worst margin per quantity, the specification it was
+// judged against (name, version, SHA-256 of its file) and the recording it came from (run id,
+// SHA-256 of meta.json + imu.csv + ads.csv). Files are written atomically (temporary file + rename)
+// as <out>/<serial>/acceptance.json. The file holds no time stamp: the same recording judged by the
+// same software gives the same bytes, so the records (keyed by the file's SHA-256) hold it once
+// however often it is judged. The reader is strict and typed (AcceptanceFile): a wrong format or
+// version, a missing key or a wrong type is refused with the file and JSON path
+// (AcceptanceFileError). Version 1 files, which lack noise and verdicts, read with noise =
+// std_error and the verdict their pass implies; versions 1 and 2, which lack the marginal band and
+// the specification's identity, read with band 0 (PASS or FAIL only) and an empty identity. Also
+// here: the plain-text table `adahrs acceptance` prints.
 #pragma once
 
 #include <filesystem>
@@ -24,7 +26,8 @@
 namespace adahrs::calib {
 
 inline constexpr const char* kAcceptanceFormatName = "adahrs-acceptance";
-inline constexpr int kAcceptanceFormatVersion = 2;  ///< 2 adds noise, physical limits, verdicts
+/// 2 adds noise, physical limits, verdicts; 3 the specification's identity and the outcomes.
+inline constexpr int kAcceptanceFormatVersion = 3;
 inline constexpr const char* kAcceptanceFileName = "acceptance.json";
 
 class AcceptanceFileError : public std::runtime_error {
@@ -52,6 +55,13 @@ struct AcceptanceFileRun {
   std::string recording_sha256;
 };
 
+/// Which specification the file was judged against (empty for files before version 3).
+struct AcceptanceFileSpecification {
+  std::string name;
+  std::string version;
+  std::string sha256;  ///< of the specification file's bytes
+};
+
 /// What the physical limits of the rate points were computed from.
 struct AcceptanceFileLimit {
   double since_calibration_h = 0.0;
@@ -68,6 +78,7 @@ struct AcceptanceFile {
   AcceptanceFileRun run;
   UnitAcceptance unit;  ///< serial, kind, mode and points; no rest record (see physical_limit)
   std::optional<AcceptanceFileLimit> physical_limit;
+  AcceptanceFileSpecification specification_id;
   nlohmann::json specification;  ///< Specification::ToJson as written (shown, not judged again)
 };
 

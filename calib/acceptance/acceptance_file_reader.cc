@@ -23,7 +23,7 @@ std::optional<double> OptionalNumber(const ParamReader& r, const char* key) {
   return r.Has(key) ? std::optional<double>(Number(r, key)) : std::nullopt;
 }
 
-AcceptancePoint PointFrom(const ParamReader& r) {
+AcceptancePoint PointFrom(const ParamReader& r, int format_version) {
   AcceptancePoint p;
   p.step = Int(r, "step");
   p.kind = r.String("kind");
@@ -46,6 +46,16 @@ AcceptancePoint PointFrom(const ParamReader& r) {
   p.physical_limit = OptionalNumber(r, "physical_limit");
   p.pass = r.Flag("pass");
   p.beyond_noise = r.Has("beyond_noise") && r.Flag("beyond_noise");
+  if (format_version >= 3) {  // before 3: no band, PASS or FAIL only
+    p.marginal_band = r.Number("marginal_band_fraction", 0.0, 1.0, "");
+    const std::string outcome = r.String("outcome");
+    if (outcome != OutcomeText(p.outcome())) {
+      r.Fail(r.path() + ".outcome",
+             fmt::format("\"{}\" disagrees with the point's error, tolerance and band ({})",
+                         outcome,
+                         OutcomeText(p.outcome())));
+    }
+  }
   return p;
 }
 
@@ -67,7 +77,7 @@ void CheckFormat(const ParamReader& r, AcceptanceFile& out) {
 }
 
 // The verdict and failure count the file states must be those its points give.
-void CheckStatedVerdict(const ParamReader& r, const UnitAcceptance& unit) {
+void CheckStatedVerdict(const ParamReader& r, const UnitAcceptance& unit, int format_version) {
   const std::string verdict = r.String("verdict");
   if (verdict != "pass" && verdict != "fail") {
     r.Fail("$.verdict", "expected \"pass\" or \"fail\", got \"" + verdict + "\"");
@@ -81,6 +91,26 @@ void CheckStatedVerdict(const ParamReader& r, const UnitAcceptance& unit) {
                        unit.failed(),
                        unit.points.size()));
   }
+  if (format_version < 3) return;
+  const std::string outcome = r.String("outcome");
+  const int stated_marginal = Int(r, "points_marginal");
+  if (outcome != OutcomeText(unit.outcome()) || stated_marginal != unit.marginal()) {
+    r.Fail("$.outcome",
+           fmt::format("\"{}\" with points_marginal {} disagrees with its points ({}, {} marginal)",
+                       outcome,
+                       stated_marginal,
+                       OutcomeText(unit.outcome()),
+                       unit.marginal()));
+  }
+}
+
+AcceptanceFileSpecification SpecificationIdFrom(const ParamReader& r) {
+  const ParamReader spec = r.Child("specification");
+  const std::string sha256 = spec.String("sha256");
+  if (sha256.size() != 64 || sha256.find_first_not_of("0123456789abcdef") != std::string::npos) {
+    spec.Fail("$.specification.sha256", "expected 64 lowercase hex digits");
+  }
+  return {spec.String("name"), spec.String("version"), sha256};
 }
 
 AcceptanceFile Read(const nlohmann::json& j, const ParamReader& r) {
@@ -96,8 +126,11 @@ AcceptanceFile Read(const nlohmann::json& j, const ParamReader& r) {
              run.Has("sequence") ? run.String("sequence") : "",
              run.String("recording_sha256")};
   const size_t n = r.ArrayLength("points", 0, SIZE_MAX);
-  for (size_t i = 0; i < n; ++i) out.unit.points.push_back(PointFrom(r.Element("points", i, n)));
-  CheckStatedVerdict(r, out.unit);
+  for (size_t i = 0; i < n; ++i) {
+    out.unit.points.push_back(PointFrom(r.Element("points", i, n), out.format_version));
+  }
+  CheckStatedVerdict(r, out.unit, out.format_version);
+  if (out.format_version >= 3) out.specification_id = SpecificationIdFrom(r);
   if (j.contains("physical_limit") && !j["physical_limit"].is_null()) {
     out.physical_limit = LimitFrom(r.Child("physical_limit"));  // null: no rest record
   }

@@ -81,6 +81,7 @@ struct NoiseModel {
 AcceptancePoint Judge(AcceptancePoint p,
                       const Series& s,
                       double tolerance,
+                      double marginal_band,
                       const NoiseModel& noise = {}) {
   p.samples = s.error.n;
   p.measured = s.measured.Mean();
@@ -96,6 +97,7 @@ AcceptancePoint Judge(AcceptancePoint p,
     }
   }
   p.tolerance = tolerance;
+  p.marginal_band = marginal_band;
   p.pass = std::abs(p.error) <= tolerance;
   p.beyond_noise = std::abs(std::abs(p.error) - tolerance) > 2.0 * p.noise;
   return p;
@@ -341,9 +343,10 @@ void JudgeImuGroup(const Where& where,
   base.duration_s = static_cast<double>(group.rows.size()) * ctx.packet_period_s;
   if (group.rate_cmd_dps && std::abs(*group.rate_cmd_dps) > spec.rated_rate_dps) {
     Refuse(where,
-           fmt::format("commanded rate {} deg/s is outside the rated +-{} deg/s",
+           fmt::format("commanded rate {} deg/s is outside the rated +-{} deg/s of {}",
                        *group.rate_cmd_dps,
-                       spec.rated_rate_dps));
+                       spec.rated_rate_dps,
+                       spec.name));
   }
   for (size_t i = 0; i < 3; ++i) {
     if (group.judge_accel) {
@@ -351,7 +354,8 @@ void JudgeImuGroup(const Where& where,
       p.quantity = std::string("accel_") + kAxisNames[i];
       p.unit = "mg";
       const NoiseModel noise{unit->rest ? &unit->rest->accel_mg[i] : nullptr, false, 0.0};
-      unit->points.push_back(Judge(p, accel_mg[i], spec.accel_mg, noise));
+      unit->points.push_back(
+          Judge(p, accel_mg[i], spec.accel_mg, spec.marginal_band.acceleration, noise));
     }
   }
   for (size_t i = 0; i < 3; ++i) {
@@ -361,7 +365,8 @@ void JudgeImuGroup(const Where& where,
       p.unit = "deg/s";
       const NoiseModel noise{
           unit->rest ? &unit->rest->rate_dps[i] : nullptr, true, ctx.since_calibration_s};
-      unit->points.push_back(Judge(p, rate_dps[i], spec.body_rate_dps, noise));
+      unit->points.push_back(
+          Judge(p, rate_dps[i], spec.body_rate_dps, spec.marginal_band.body_rate, noise));
     }
   }
 }
@@ -463,18 +468,35 @@ void JudgeAdsUnit(
     AcceptancePoint alt = base;
     alt.quantity = "altitude";
     alt.unit = "ft";
-    unit->points.push_back(Judge(alt, alt_ft, ToleranceAt(where, spec.altitude_ft, *base.alt_ft)));
+    unit->points.push_back(Judge(alt,
+                                 alt_ft,
+                                 ToleranceAt(where, spec.altitude_ft, *base.alt_ft),
+                                 spec.marginal_band.altitude));
     if (*base.cas_kt >= spec.airspeed_kt.input_min()) {
       AcceptancePoint cas = base;
       cas.quantity = "airspeed";
       cas.unit = "kt";
-      unit->points.push_back(
-          Judge(cas, cas_kt, ToleranceAt(where, spec.airspeed_kt, *base.cas_kt)));
+      unit->points.push_back(Judge(cas,
+                                   cas_kt,
+                                   ToleranceAt(where, spec.airspeed_kt, *base.cas_kt),
+                                   spec.marginal_band.airspeed));
     }
   }
 }
 
 }  // namespace
+
+const char* OutcomeText(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::kPass:
+      return "PASS";
+    case Outcome::kMarginal:
+      return "MARGINAL";
+    case Outcome::kFail:
+      return "FAIL";
+  }
+  return "?";
+}
 
 const char* PointVerdictText(PointVerdict verdict) {
   switch (verdict) {
@@ -505,6 +527,11 @@ PointVerdict AcceptancePoint::verdict() const {
                                             : PointVerdict::kOutsideBoth;
 }
 
+Outcome AcceptancePoint::outcome() const {
+  if (!pass) return Outcome::kFail;
+  return std::abs(error) > (1.0 - marginal_band) * tolerance ? Outcome::kMarginal : Outcome::kPass;
+}
+
 std::string AcceptancePoint::Condition() const {
   std::string text;
   if (orientation != 0) text += fmt::format("orientation {}, ", orientation);
@@ -519,6 +546,17 @@ bool UnitAcceptance::pass() const { return failed() == 0; }
 int UnitAcceptance::failed() const {
   return static_cast<int>(std::count_if(
       points.begin(), points.end(), [](const AcceptancePoint& p) { return !p.pass; }));
+}
+
+int UnitAcceptance::marginal() const {
+  return static_cast<int>(std::count_if(points.begin(), points.end(), [](const AcceptancePoint& p) {
+    return p.outcome() == Outcome::kMarginal;
+  }));
+}
+
+Outcome UnitAcceptance::outcome() const {
+  if (failed() > 0) return Outcome::kFail;
+  return marginal() > 0 ? Outcome::kMarginal : Outcome::kPass;
 }
 
 int UnitAcceptance::Count(const std::string& family, PointVerdict verdict) const {

@@ -5,8 +5,9 @@
 // cross_axis steps at rest (f_B = up axis * local gravity, mg), gyro steps per commanded rate
 // (w_B = up axis * table_rate_dps, deg/s), thermal_profile steps per 5 degC chamber bin, ADS log
 // steps in ft and kt (ISA pressure altitude, calibrated airspeed). Statistic: mean of (measured -
-// reference) per packet with its standard error; pass when |mean error| <= tolerance; with a
-// rest record, rate points carry their physical limit (rest_stability.h).
+// reference) per packet with its standard error; pass when |mean error| <= tolerance, MARGINAL
+// when it passes inside the specification's marginal band; with a rest record, rate points carry
+// their physical limit (rest_stability.h).
 // Frames: body axes B of the IMU; units in each point's `unit`.
 // Derivations, mode by mode quantities, Earth rate, refusals: docs/acceptance.md ("What is
 // compared with what", "Rate points", "Refused input").
@@ -57,6 +58,12 @@ enum class PointVerdict {
   kOutsideSpecification
 };
 
+/// PASS, MARGINAL (passes within the marginal band below the tolerance) or FAIL.
+enum class Outcome { kPass, kMarginal, kFail };
+
+/// "PASS", "MARGINAL", "FAIL".
+const char* OutcomeText(Outcome outcome);
+
 /// "within specification", "outside specification, within the physical limit", "outside
 /// specification and the physical limit", "outside specification" (no limit known): the wording
 /// the acceptance table, acceptance.json, the report and the demo summary share.
@@ -81,11 +88,14 @@ struct AcceptancePoint {
   double duration_s = 0.0;  ///< IMU: packets x frame period; ADS: first to last arrival
   double noise = 0.0;       ///< 1-sigma noise of `error`: std_error, or the rest record's if larger
   double tolerance = 0.0;   ///< +- at the input, from the specification
+  double marginal_band = 0.0;            ///< fraction of the tolerance below it that is MARGINAL
   std::optional<double> physical_limit;  ///< rate points with a rest record (rest_stability.h)
   bool pass = false;
   bool beyond_noise = false;  ///< | |error| - tolerance | > 2 noise
 
   PointVerdict verdict() const;
+  /// FAIL unless pass; MARGINAL when |error| > (1 - marginal_band) x tolerance; else PASS.
+  Outcome outcome() const;
   double margin() const;  ///< tolerance - |error| (negative when failing)
   /// "orientation 11, 62.5 deg/s, 25.0 degC" / "5000 ft, 60 kt, -20.0 degC": where it was judged.
   std::string Condition() const;
@@ -109,6 +119,9 @@ struct UnitAcceptance {
 
   bool pass() const;
   int failed() const;
+  int marginal() const;  ///< points that pass inside the marginal band
+  /// FAIL when any point fails, MARGINAL when none fails and any is marginal, else PASS.
+  Outcome outcome() const;
   /// Points of `family` ("acceleration", "body_rate", "altitude", "airspeed") with `verdict`.
   int Count(const std::string& family, PointVerdict verdict) const;
   std::vector<WorstMargin> WorstMargins() const;

@@ -1,7 +1,21 @@
 #include "calib/acceptance/specification.h"
 
+#include <openssl/evp.h>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "common/param_reader.h"
+#include "common/printable_text.h"
+#include "reference_specification_text.h"
 
 namespace adahrs::calib {
 
@@ -45,24 +59,6 @@ double ToleranceTable::At(double input) const {
   return points_.back().tolerance;
 }
 
-Specification Specification::Reference() {
-  return Specification{
-      .accel_mg = 1.0,
-      .body_rate_dps = 0.015,
-      .rated_rate_dps = 150.0,
-      .temp_min_c = -40.0,
-      .temp_max_c = 85.0,
-      .altitude_ft =
-          ToleranceTable("altitude",
-                         "ft",
-                         {{-1000.0, 15.0}, {10000.0, 15.0}, {30000.0, 20.0}, {50000.0, 80.0}},
-                         -1000.0,
-                         50000.0),
-      .airspeed_kt = ToleranceTable(
-          "airspeed", "kt", {{60.0, 5.0}, {100.0, 2.0}, {300.0, 1.0}, {450.0, 1.0}}, 30.0, 450.0),
-  };
-}
-
 namespace {
 nlohmann::json TableJson(const ToleranceTable& t) {
   nlohmann::json points = nlohmann::json::array();
@@ -77,13 +73,229 @@ nlohmann::json TableJson(const ToleranceTable& t) {
 }  // namespace
 
 nlohmann::json Specification::ToJson() const {
-  return {{"accel_mg", accel_mg},
+  return {{"name", name},
+          {"version", version},
+          {"sha256", sha256},
+          {"accel_mg", accel_mg},
           {"body_rate_dps", body_rate_dps},
           {"rated_rate_dps", rated_rate_dps},
+          {"rated_accel_g", rated_accel_g},
           {"temp_min_c", temp_min_c},
           {"temp_max_c", temp_max_c},
           {"altitude_ft", TableJson(altitude_ft)},
-          {"airspeed_kt", TableJson(airspeed_kt)}};
+          {"airspeed_kt", TableJson(airspeed_kt)},
+          {"marginal_band_fraction",
+           {{"acceleration", marginal_band.acceleration},
+            {"body_rate", marginal_band.body_rate},
+            {"altitude", marginal_band.altitude},
+            {"airspeed", marginal_band.airspeed}}}};
+}
+
+double Specification::MarginalBandOf(const std::string& family) const {
+  if (family == "acceleration") return marginal_band.acceleration;
+  if (family == "body_rate") return marginal_band.body_rate;
+  if (family == "altitude") return marginal_band.altitude;
+  if (family == "airspeed") return marginal_band.airspeed;
+  throw std::invalid_argument("no marginal band for the quantity family \"" + family + "\"");
+}
+
+namespace {
+
+using common::ParamReader;
+
+constexpr const char* kQuantities[] = {"acceleration", "body_rate", "altitude", "airspeed"};
+// Wide enough for any unit's figures, narrow enough to catch a value in the wrong unit.
+constexpr double kMaxBandFraction = 0.5;
+
+double Band(const ParamReader& q) {
+  return q.Number("marginal_band_fraction", 0.0, kMaxBandFraction, "(fraction of the tolerance)");
+}
+
+// A tolerance table: "points_<unit>": [[input, tolerance], ...] strictly increasing in input,
+// inside "input_min_<unit>"..."input_max_<unit>", the last point at input_max.
+ToleranceTable TableFrom(const ParamReader& q,
+                         const nlohmann::json& object,
+                         const std::string& quantity,
+                         const std::string& unit,
+                         double input_lo,
+                         double input_hi,
+                         double tolerance_max) {
+  const std::string key = "points_" + unit;
+  const size_t n = q.ArrayLength(key, 1, 64);
+  const nlohmann::json& rows = object.at(key);
+  std::vector<TolerancePoint> points;
+  for (size_t i = 0; i < n; ++i) {
+    const std::string where = fmt::format("{}.{}[{}]", q.path(), key, i);
+    const nlohmann::json& row = rows[i];
+    if (!row.is_array() || row.size() != 2 || !row[0].is_number() || !row[1].is_number()) {
+      q.Fail(where, fmt::format("expected [input {}, tolerance {}], two numbers", unit, unit));
+    }
+    const TolerancePoint point{row[0].get<double>(), row[1].get<double>()};
+    if (!(point.input >= input_lo && point.input <= input_hi)) {
+      q.Fail(where + "[0]",
+             fmt::format("input {} out of range; allowed range [{}, {}] {}",
+                         point.input,
+                         input_lo,
+                         input_hi,
+                         unit));
+    }
+    if (!(point.tolerance > 0.0 && point.tolerance <= tolerance_max)) {
+      q.Fail(where + "[1]",
+             fmt::format("tolerance {} out of range; allowed range (0, {}] {}",
+                         point.tolerance,
+                         tolerance_max,
+                         unit));
+    }
+    if (!points.empty() && !(point.input > points.back().input)) {
+      q.Fail(where + "[0]", "inputs must increase strictly from point to point");
+    }
+    points.push_back(point);
+  }
+  const double min = q.Number("input_min_" + unit, input_lo, input_hi, unit);
+  const double max = q.Number("input_max_" + unit, input_lo, input_hi, unit);
+  if (min > points.front().input) {
+    q.Fail(q.path() + ".input_min_" + unit, "lies above the first point's input");
+  }
+  if (max != points.back().input) {
+    q.Fail(q.path() + ".input_max_" + unit, "must equal the last point's input");
+  }
+  return ToleranceTable(quantity, unit, std::move(points), min, max);
+}
+
+// Refuses a quantity this program does not judge (a typo, or heading before it is judged).
+void CheckQuantityNames(const ParamReader& r, const nlohmann::json& quantities) {
+  for (const auto& [key, value] : quantities.items()) {
+    if (std::find(std::begin(kQuantities), std::end(kQuantities), key) == std::end(kQuantities)) {
+      r.Fail(r.path() + "." + key,
+             "unknown quantity (known: acceleration, body_rate, altitude, airspeed)");
+    }
+  }
+}
+
+void CheckNotes(const ParamReader& r, const nlohmann::json& doc) {
+  const size_t n = r.ArrayLength("notes", 0, 256);
+  for (size_t i = 0; i < n; ++i) {
+    if (!doc["notes"][i].is_string()) r.Fail(fmt::format("$.notes[{}]", i), "expected a string");
+  }
+}
+
+Specification FromJson(const nlohmann::json& doc, const std::string& source) {
+  const ParamReader r(doc, source);
+  const std::string format = r.String("format");
+  if (format != kSpecificationFormatName) {
+    r.Fail("$.format",
+           fmt::format("expected \"{}\", got \"{}\"", kSpecificationFormatName, format));
+  }
+  const int64_t format_version = r.Integer("format_version", 1, 1'000'000);
+  if (format_version != kSpecificationFormatVersion) {
+    r.Fail("$.format_version",
+           fmt::format("{} is not {} (this program reads version {})",
+                       format_version,
+                       kSpecificationFormatVersion,
+                       kSpecificationFormatVersion));
+  }
+  const std::string name = r.String("name");
+  if (name.empty()) r.Fail("$.name", "must not be empty");
+  const std::string version = r.String("version");
+  if (version.empty()) r.Fail("$.version", "must not be empty");
+  (void)r.String("description");
+  CheckNotes(r, doc);
+
+  const ParamReader temperature = r.Child("temperature");
+  const double temp_min_c = temperature.Number("min_c", -100.0, 200.0, "degC");
+  const double temp_max_c = temperature.Number("max_c", temp_min_c, 200.0, "degC");
+  temperature.ExpectAllKeysUsed();
+  const ParamReader limits = r.Child("operating_limits");
+  const double rated_rate_dps = limits.Number("rate_dps", 1.0, 10000.0, "deg/s");
+  const double rated_accel_g = limits.Number("accel_g", 1.0, 1000.0, "g");
+  limits.ExpectAllKeysUsed();
+
+  const ParamReader quantities = r.Child("quantities");
+  CheckQuantityNames(quantities, doc.at("quantities"));
+  const nlohmann::json& q_json = doc.at("quantities");
+  const ParamReader accel = quantities.Child("acceleration");
+  const double accel_mg = accel.Number("tolerance_mg", 1e-6, 1000.0, "mg");
+  const double accel_band = Band(accel);
+  accel.ExpectAllKeysUsed();
+  const ParamReader rate = quantities.Child("body_rate");
+  const double body_rate_dps = rate.Number("tolerance_dps", 1e-9, 100.0, "deg/s");
+  const double rate_band = Band(rate);
+  rate.ExpectAllKeysUsed();
+  const ParamReader altitude = quantities.Child("altitude");
+  ToleranceTable altitude_ft =
+      TableFrom(altitude, q_json.at("altitude"), "altitude", "ft", -2000.0, 100000.0, 10000.0);
+  const double altitude_band = Band(altitude);
+  altitude.ExpectAllKeysUsed();
+  const ParamReader airspeed = quantities.Child("airspeed");
+  ToleranceTable airspeed_kt =
+      TableFrom(airspeed, q_json.at("airspeed"), "airspeed", "kt", 0.0, 1500.0, 500.0);
+  const double airspeed_band = Band(airspeed);
+  airspeed.ExpectAllKeysUsed();
+  quantities.ExpectAllKeysUsed();
+  r.ExpectAllKeysUsed();
+
+  return Specification{
+      .name = name,
+      .version = version,
+      .sha256 = "",
+      .accel_mg = accel_mg,
+      .body_rate_dps = body_rate_dps,
+      .rated_rate_dps = rated_rate_dps,
+      .rated_accel_g = rated_accel_g,
+      .temp_min_c = temp_min_c,
+      .temp_max_c = temp_max_c,
+      .altitude_ft = std::move(altitude_ft),
+      .airspeed_kt = std::move(airspeed_kt),
+      .marginal_band = {accel_band, rate_band, altitude_band, airspeed_band},
+  };
+}
+
+}  // namespace
+
+std::string Sha256Hex(const std::string& bytes) {
+  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
+  unsigned int length = 0;
+  if (EVP_Digest(bytes.data(), bytes.size(), digest.data(), &length, EVP_sha256(), nullptr) != 1) {
+    throw std::runtime_error("SHA-256: OpenSSL's digest failed");
+  }
+  std::string hex;
+  for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
+  return hex;
+}
+
+Specification ParseSpecification(const std::string& text, const std::string& source) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw SpecificationError(source + ": not valid JSON at byte " + std::to_string(e.byte) + ": " +
+                             common::PrintableText(e.what()));
+  } catch (const nlohmann::json::exception& e) {
+    throw SpecificationError(source + ": not valid JSON: " + common::PrintableText(e.what()));
+  }
+  try {
+    Specification spec = FromJson(doc, source);
+    spec.sha256 = Sha256Hex(text);
+    return spec;
+  } catch (const common::ParamError& e) {
+    throw SpecificationError(e.what());
+  } catch (const std::invalid_argument& e) {  // ToleranceTable's own checks
+    throw SpecificationError(source + ": " + e.what());
+  }
+}
+
+Specification ReadSpecificationFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SpecificationError(file.string() + ": cannot open the specification file");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw SpecificationError(file.string() + ": cannot read the specification file");
+  return ParseSpecification(text, file.string());
+}
+
+Specification Specification::Reference() {
+  static const Specification reference =
+      ParseSpecification(kReferenceSpecificationText, kReferenceSpecificationSource);
+  return reference;
 }
 
 }  // namespace adahrs::calib

@@ -1,26 +1,18 @@
 // The unit specification as data (reference-method.md "Specification the unit must meet", thesis
-// Tables 1-5): the tolerances acceptance and evaluation judge against.
-//
-//   accelerations      1.0 mg (1 mg = 9.80665e-3 m/s^2, the unit g, not local gravity)
-//   body rates         0.015 deg/s
-//   altitude           +-15 ft from -1,000 ft to 10,000 ft; +-20 ft at 30,000 ft; +-80 ft at
-//                      50,000 ft (operating limits -1,000...50,000 ft)
-//   airspeed           +-5 kt at 60 kt; +-2 at 100; +-1 at 300 and 450 (operating 30...450 kt)
-//   temperature        -40...+85 degC (every tolerance holds over it)
-//
-// Interpolation between table points (ASSUMPTION — the specification states only the points):
-// the tolerance is linear in the input between neighbouring stated points (altitude between
-// 10,000 and 30,000 ft goes 15 -> 20 ft, between 30,000 and 50,000 ft 20 -> 80 ft; airspeed between
-// 60 and 100 kt 5 -> 2 kt, 100 -> 300 kt 2 -> 1 kt). Below the first stated airspeed (30...60 kt)
-// the 60 kt tolerance is held (ASSUMPTION: the table does not go lower, the operating range does).
-// Outside the operating limits there is no tolerance: the lookup throws std::out_of_range.
-// The linear rule is the natural reading of a tolerance that widens with altitude as the
-// pressure sensitivity falls; a user who reads the table as steps can compare with the
-// stated points only (ToleranceTable::points()).
-// Not modelled: heading and attitude tolerances (no attitude solution in this product yet),
-// tolerances that depend on temperature (the specification states none).
+// Tables 1-5): tolerances, operating limits, rated temperature and a marginal band per quantity,
+// read from a versioned specification file (docs/acceptance.md "Specification file"; shipped in
+// calib/specifications/: ahr150a-a.json, ahr150a-b.json). Reference() is ahr150a-a.json compiled
+// in byte for byte, so its SHA-256 is the shipped file's. A passing point whose |error| exceeds
+// (1 - band fraction) x tolerance is MARGINAL.
+// Altitude and airspeed tolerances are linear between the stated points (an ASSUMPTION: the
+// tables state points only), the first point's tolerance held down to the lower operating limit
+// (30...60 kt); outside the operating limits there is no tolerance (std::out_of_range).
+// Not modelled: heading and attitude tolerances (no attitude solution yet), tolerances that
+// depend on temperature (the tables state none).
 #pragma once
 
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -63,19 +55,54 @@ class ToleranceTable {
   double input_max_;
 };
 
+inline constexpr const char* kSpecificationFormatName = "adahrs-specification";
+inline constexpr int kSpecificationFormatVersion = 1;
+
+/// A specification file that cannot be read or is malformed; what() names the file and JSON path.
+class SpecificationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The fraction of each family's tolerance, just below it, in which a passing point is MARGINAL.
+struct MarginalBands {
+  double acceleration = 0.0;
+  double body_rate = 0.0;
+  double altitude = 0.0;
+  double airspeed = 0.0;
+};
+
 struct Specification {
+  std::string name;               ///< "AHR150A-A"
+  std::string version;            ///< the specification's own revision, as the file states it
+  std::string sha256;             ///< of the file's bytes, 64 lowercase hex digits
   double accel_mg = 1.0;          ///< per axis, any orientation
   double body_rate_dps = 0.015;   ///< per axis
   double rated_rate_dps = 150.0;  ///< operating limit of the body rates
+  double rated_accel_g = 10.0;    ///< operating limit of the accelerations (stated, not judged)
   double temp_min_c = -40.0;
   double temp_max_c = 85.0;
   ToleranceTable altitude_ft;  ///< tolerance in ft vs pressure altitude in ft
   ToleranceTable airspeed_kt;  ///< tolerance in kt vs calibrated airspeed in kt
+  MarginalBands marginal_band;
 
-  /// The reference specification (Tables 1-5) with the interpolation rule above.
+  /// The AHR150A -A specification: calib/specifications/ahr150a-a.json as compiled in.
   static Specification Reference();
-  /// The tables and scalars as JSON (for acceptance.json and evaluation.json).
+  /// The band fraction of a family ("acceleration", "body_rate", "altitude", "airspeed").
+  double MarginalBandOf(const std::string& family) const;
+  /// The identity, tables, scalars and bands as JSON (for acceptance.json and evaluation.json).
   nlohmann::json ToJson() const;
 };
+
+/// Parses a specification file's text (`source` names it in messages); sha256 is of `text`.
+/// Throws SpecificationError naming the source and the JSON path of a missing key, a wrong type,
+/// a value out of range, an unknown key or quantity, or tables that do not enclose their points.
+Specification ParseSpecification(const std::string& text, const std::string& source);
+
+/// Reads and parses a specification file (ParseSpecification over the file's bytes).
+Specification ReadSpecificationFile(const std::filesystem::path& file);
+
+/// SHA-256 of `bytes` as 64 lowercase hex digits.
+std::string Sha256Hex(const std::string& bytes);
 
 }  // namespace adahrs::calib

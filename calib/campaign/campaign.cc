@@ -49,9 +49,9 @@ std::string RunsText(const std::vector<std::vector<RunSummary>>& benches) {
 // Judges an acceptance run, writes acceptance.json per unit into `run`/acceptance and records
 // every point; returns the judgement.
 AcceptanceRun JudgeIntoRecords(const std::filesystem::path& run,
+                               const Specification& spec,
                                const std::string& software_version,
                                RecordsStore& records) {
-  const Specification spec = Specification::Reference();
   const AcceptanceRun judged = JudgeAcceptance(run, spec);
   for (const std::filesystem::path& file :
        WriteAcceptanceFiles(judged, spec, software_version, run / "acceptance")) {
@@ -143,6 +143,7 @@ struct CampaignAcceptance {
 
 // Stage 4: the acceptance runs on both benches, judged and recorded.
 CampaignAcceptance AcceptanceRuns(const CampaignOptions& o,
+                                  const Specification& spec,
                                   CampaignObserver& observer,
                                   const std::atomic<bool>& stop,
                                   RecordsStore& records,
@@ -156,8 +157,8 @@ CampaignAcceptance AcceptanceRuns(const CampaignOptions& o,
   CampaignAcceptance a;
   a.imu_run = RunDir(o, seq.imu_acceptance);
   a.ads_run = RunDir(o, seq.ads_acceptance);
-  a.imu_judged = JudgeIntoRecords(a.imu_run, o.software_version, records);
-  a.ads_judged = JudgeIntoRecords(a.ads_run, o.software_version, records);
+  a.imu_judged = JudgeIntoRecords(a.imu_run, spec, o.software_version, records);
+  a.ads_judged = JudgeIntoRecords(a.ads_run, spec, o.software_version, records);
   observer.Stage(fmt::format("acceptance against the specification: IMU batch {}, ADS {}",
                              a.imu_judged.pass() ? "PASS" : "FAIL",
                              a.ads_judged.pass() ? "PASS" : "FAIL"));
@@ -210,6 +211,10 @@ CampaignResult RunCampaign(const CampaignOptions& o,
                            CampaignObserver& observer,
                            const std::atomic<bool>& stop) {
   CampaignResult result;
+  // Read before anything runs: a bad specification file stops the campaign, not its judgement.
+  const Specification spec = o.specification_file.empty()
+                                 ? Specification::Reference()
+                                 : ReadSpecificationFile(o.specification_file);
   const hil::Station imu_station = hil::Station::Load(o.imu_station_file);
   const hil::Station ads_station = hil::Station::Load(o.ads_station_file);
   result.records_file = o.out_dir / "records.sqlite";
@@ -225,7 +230,7 @@ CampaignResult RunCampaign(const CampaignOptions& o,
   const ImprovedDownloads downloads =
       DownloadImprovedConstants(observer, imu_station, ads_station, artifacts, records);
 
-  const CampaignAcceptance acceptance = AcceptanceRuns(o, observer, stop, records, result);
+  const CampaignAcceptance acceptance = AcceptanceRuns(o, spec, observer, stop, records, result);
   artifacts.imu_acceptance_run = acceptance.imu_run;
   artifacts.ads_acceptance_run = acceptance.ads_run;
   if (o.before_reports) o.before_reports(artifacts, result);

@@ -55,6 +55,8 @@ struct CampaignOptions {
   std::string imu_station_file;
   std::string ads_station_file;
   CampaignSequences sequences;
+  /// The specification file acceptance judges against; empty: Specification::Reference() (-A).
+  std::string specification_file;
   std::string software_version;
   ExecutorOptions executor;
   /// Called once the last run on the stations has ended (e.g. to stop a virtual rig, which the

@@ -17,7 +17,9 @@ AcceptanceRecords AcceptanceRecordsFromFile(const std::filesystem::path& accepta
                               p.error,
                               p.tolerance,
                               p.unit,
-                              p.pass});
+                              p.pass,
+                              OutcomeText(p.outcome()),
+                              file.specification_id.sha256});
   }
   return records;
 }

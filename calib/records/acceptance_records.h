@@ -3,7 +3,9 @@
 // condition ("orientation 11, 62.5 deg/s, 25.0 degC"), error, tolerance, unit and verdict; the
 // file's SHA-256 identifies it, so recording the same file twice changes nothing.
 // The file is validated by its strict reader first (errors name the file and JSON path).
-// Left out: the worst margins and the specification (the file itself keeps them).
+// Each record carries the point's outcome (PASS, MARGINAL, FAIL) and the SHA-256 of the
+// specification file it was judged against. Left out: the worst margins and the specification's
+// tables (the file itself keeps them).
 #pragma once
 
 #include <filesystem>

@@ -94,6 +94,14 @@ CREATE TABLE acceptance_results (
 );
 CREATE INDEX acceptance_by_unit ON acceptance_results(serial, source_sha256);
 )sql",
+    // Version 2: which specification file each point was judged against (its SHA-256) and the
+    // point's outcome. Points recorded before were judged without a marginal band: their outcome
+    // is PASS or FAIL as `pass` says; their specification is not known ('').
+    R"sql(
+ALTER TABLE acceptance_results ADD COLUMN specification_sha256 TEXT NOT NULL DEFAULT '';
+ALTER TABLE acceptance_results ADD COLUMN outcome TEXT NOT NULL DEFAULT '';
+UPDATE acceptance_results SET outcome = CASE pass WHEN 1 THEN 'PASS' ELSE 'FAIL' END;
+)sql",
 };
 
 static_assert(std::size(kMigrations) == kRecordsSchemaVersion);

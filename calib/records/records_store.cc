@@ -176,8 +176,8 @@ bool RecordsStore::AddAcceptance(const std::string& source_sha256,
     EnsureUnit(point.serial, KindOfSerial(database_.file(), point.serial));
     SqliteStatement(database_,
                     "INSERT INTO acceptance_results (serial, source_sha256, run_id, quantity, "
-                    "condition, error, tolerance, unit, pass, recorded_utc) "
-                    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)")
+                    "condition, error, tolerance, unit, pass, recorded_utc, outcome, "
+                    "specification_sha256) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)")
         .Bind(1, point.serial)
         .Bind(2, source_sha256)
         .Bind(3, point.run_id)
@@ -188,6 +188,8 @@ bool RecordsStore::AddAcceptance(const std::string& source_sha256,
         .Bind(8, point.unit)
         .Bind(9, int64_t{point.pass})
         .Bind(10, now)
+        .Bind(11, point.outcome)
+        .Bind(12, point.specification_sha256)
         .Run();
   }
   transaction.Commit();
@@ -248,15 +250,17 @@ UnitHistory RecordsStore::History(const std::string& serial) {
 
   SqliteStatement acceptance(database_,
                              "SELECT run_id, source_sha256, quantity, condition, error, tolerance, "
-                             "unit, pass FROM acceptance_results WHERE serial = ? ORDER BY id");
+                             "unit, pass, outcome, specification_sha256 FROM acceptance_results "
+                             "WHERE serial = ? ORDER BY id");
   acceptance.Bind(1, serial);
   while (acceptance.Step()) {
     const std::string source = acceptance.Text(1);
     if (history.acceptance.empty() || history.acceptance.back().source_sha256 != source) {
-      history.acceptance.push_back({acceptance.Text(0), source, 0, 0, {}});
+      history.acceptance.push_back({acceptance.Text(0), source, 0, 0, 0, acceptance.Text(9), {}});
     }
     AcceptanceVerdict& verdict = history.acceptance.back();
     ++verdict.points;
+    if (acceptance.Text(8) == "MARGINAL") ++verdict.marginal;
     if (acceptance.Int(7) == 0) {
       ++verdict.failed;
       verdict.failures.push_back({serial,
@@ -266,7 +270,9 @@ UnitHistory RecordsStore::History(const std::string& serial) {
                                   acceptance.Real(4),
                                   acceptance.Real(5),
                                   acceptance.Text(6),
-                                  false});
+                                  false,
+                                  acceptance.Text(8),
+                                  acceptance.Text(9)});
     }
   }
   return history;

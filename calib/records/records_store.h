@@ -81,6 +81,8 @@ struct AcceptancePointRecord {
   double tolerance = 0.0;
   std::string unit;  ///< of error and tolerance
   bool pass = false;
+  std::string outcome;               ///< "PASS", "MARGINAL", "FAIL"
+  std::string specification_sha256;  ///< of the specification file judged against ("": unknown)
 };
 
 /// One constants version of a unit as the history shows it.
@@ -111,6 +113,8 @@ struct AcceptanceVerdict {
   std::string source_sha256;
   int points = 0;
   int failed = 0;
+  int marginal = 0;
+  std::string specification_sha256;             ///< "" when recorded before it was kept
   std::vector<AcceptancePointRecord> failures;  ///< the failed points, for the history
 };
 

@@ -34,11 +34,16 @@ std::string FormatUnitHistory(const UnitHistory& history) {
   }
   out += fmt::format("acceptance: {}\n", history.acceptance.size());
   for (const AcceptanceVerdict& a : history.acceptance) {
-    out += fmt::format("  {}  {}: {} of {} points within tolerance\n",
+    const char* outcome = a.failed > 0 ? "FAIL" : a.marginal > 0 ? "MARGINAL" : "PASS";
+    out += fmt::format("  {}  {}: {} of {} points within tolerance, {} marginal{}\n",
                        a.run_id,
-                       a.failed == 0 ? "PASS" : "FAIL",
+                       outcome,
                        a.points - a.failed,
-                       a.points);
+                       a.points,
+                       a.marginal,
+                       a.specification_sha256.empty()
+                           ? ""
+                           : "  specification sha256 " + a.specification_sha256.substr(0, 16));
     for (const AcceptancePointRecord& p : a.failures) {
       out += fmt::format("    FAIL {} at {}: error {:.6g} {} > tolerance {:.6g} {}\n",
                          p.quantity,

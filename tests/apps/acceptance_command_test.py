@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
 """adahrs acceptance end to end on a hand-written ADS recording (format 2): the test set's static
 pressure from ISA computed here (independently of sensor_sim), the unit reading the reference
-altitude + 14 ft (passes +-15 ft at 5,000 ft: exit 0) or + 16 ft (fails: exit 1); raw-mode rows
-are bad input (exit 2, naming run, unit and step). With --db the points land in the records'
-acceptance_results, read back with Python's sqlite3.
+altitude + 14 ft (passes +-15 ft at 5,000 ft: exit 0, MARGINAL: inside the shipped -A file's band
+of 0.1 x 15 ft) or + 16 ft (fails: exit 1); raw-mode rows are bad input (exit 2, naming run, unit
+and step). With --db the points land in the records' acceptance_results, read back with Python's
+sqlite3. The specification's SHA-256 in acceptance.json and in the records is the one hashlib
+computes over the shipped file's bytes, for the default (-A) and for --specification (-B); a
+malformed --specification is bad input naming the file and JSON path.
 Usage: acceptance_command_test.py ADAHRS"""
+import hashlib
 import json
 import pathlib
 import sqlite3
@@ -23,6 +27,13 @@ def isa_static_pa(alt_ft):
     # ISA troposphere: p0 (1 - L h / T0)^(g0 / (R L)), ICAO Doc 7488.
     h_m = alt_ft * 0.3048
     return 101325.0 * (1.0 - 0.0065 * h_m / 288.15) ** (9.80665 / (287.05287 * 0.0065))
+
+
+SPEC_DIR = pathlib.Path(__file__).resolve().parents[2] / "calib" / "specifications"
+
+
+def sha256_of(path):
+    return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def run(*args):
@@ -59,9 +70,14 @@ def main(adahrs):
         write_run(tmp / "pass", 14.0)
         ok = run(adahrs, "acceptance", "--run", tmp / "pass", "--db", db)
         assert ok.returncode == 0, (ok.returncode, ok.stdout, ok.stderr)
-        assert "ADS-0009: PASS" in ok.stdout, ok.stdout
+        assert "ADS-0009: MARGINAL" in ok.stdout, ok.stdout
+        assert "acceptance: PASS" in ok.stdout, ok.stdout
         doc = json.loads((tmp / "pass" / "acceptance" / "ADS-0009" / "acceptance.json").read_text())
         assert doc["format"] == "adahrs-acceptance" and doc["verdict"] == "pass", doc
+        assert doc["outcome"] == "MARGINAL" and doc["points"][0]["outcome"] == "MARGINAL", doc
+        a_sha = sha256_of(SPEC_DIR / "ahr150a-a.json")
+        assert doc["specification"]["sha256"] == a_sha, (doc["specification"], a_sha)
+        assert doc["specification"]["name"] == "AHR150A-A", doc["specification"]
         (point,) = doc["points"]
         assert point["quantity"] == "altitude" and point["tolerance"] == 15.0, point
         assert abs(point["reference"] - 5000.0) < 0.01, point  # our ISA and the judge's agree
@@ -71,6 +87,24 @@ def main(adahrs):
         bad = run(adahrs, "acceptance", "--run", tmp / "fail", "--out", tmp / "out", "--db", db)
         assert bad.returncode == 1, (bad.returncode, bad.stdout, bad.stderr)
         assert "FAIL" in bad.stdout and (tmp / "out" / "ADS-0009" / "acceptance.json").exists()
+
+        b_sha = sha256_of(SPEC_DIR / "ahr150a-b.json")
+        b_run = run(adahrs, "acceptance", "--run", tmp / "pass", "--out", tmp / "b",
+                    "--specification", SPEC_DIR / "ahr150a-b.json", "--db", db)
+        assert b_run.returncode == 0, (b_run.returncode, b_run.stdout, b_run.stderr)
+        b_doc = json.loads((tmp / "b" / "ADS-0009" / "acceptance.json").read_text())
+        assert b_doc["specification"]["sha256"] == b_sha != a_sha, b_doc["specification"]
+        assert b_doc["specification"]["rated_rate_dps"] == 300.0, b_doc["specification"]
+
+        broken = json.loads((SPEC_DIR / "ahr150a-a.json").read_text())
+        del broken["quantities"]["altitude"]["input_max_ft"]
+        (tmp / "broken.json").write_text(json.dumps(broken))
+        refused = run(adahrs, "acceptance", "--run", tmp / "pass", "--out", tmp / "c",
+                      "--specification", tmp / "broken.json")
+        assert refused.returncode == 2, (refused.returncode, refused.stdout, refused.stderr)
+        for text in (str(tmp / "broken.json"), "$.quantities.altitude.input_max_ft", "missing"):
+            assert text in refused.stderr, refused.stderr
+        assert not (tmp / "c").exists()
 
         write_run(tmp / "raw", 0.0, mode=0)
         raw = run(adahrs, "acceptance", "--run", tmp / "raw")
@@ -85,10 +119,13 @@ def main(adahrs):
 
         with sqlite3.connect(db) as connection:
             rows = connection.execute(
-                "SELECT serial, run_id, quantity, condition, error, tolerance, unit, pass "
-                "FROM acceptance_results ORDER BY id").fetchall()
-        # The pass run and the fail run, the fail run's second judgement recorded once.
-        assert [r[1] for r in rows] == ["acc-14.0-1", "acc-16.0-1"], rows
+                "SELECT serial, run_id, quantity, condition, error, tolerance, unit, pass, "
+                "outcome, specification_sha256 FROM acceptance_results ORDER BY id").fetchall()
+        # The pass run, the fail run, the pass run judged against -B; the fail run's second
+        # judgement recorded once.
+        assert [r[1] for r in rows] == ["acc-14.0-1", "acc-16.0-1", "acc-14.0-1"], rows
+        assert [r[8] for r in rows] == ["MARGINAL", "FAIL", "MARGINAL"], rows
+        assert [r[9] for r in rows] == [a_sha, a_sha, b_sha], rows
         assert rows[0][0] == "ADS-0009" and rows[0][2] == "altitude" and rows[0][7] == 1, rows
         assert rows[0][3] == "step 1, 5000 ft, 25.0 degC", rows
         assert abs(rows[1][4] - 16.0) < 0.01 and rows[1][5] == 15.0 and rows[1][6] == "ft", rows

@@ -16,6 +16,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "adahrs_build_paths.h"
 #include "calib/acceptance/acceptance_file.h"
 #include "calib/records/acceptance_records.h"
 #include "calib/records/records_store.h"
@@ -199,7 +200,7 @@ TEST_F(AcceptanceJudgeTest, RatePointsCarryTheirPhysicalLimitAndTwoLevelVerdict)
   // The counts and the wording reach acceptance.json and the terminal.
   const Specification spec = Specification::Reference();
   const nlohmann::json doc = AcceptanceJson(run, Unit(run, "IMU-0002"), spec, "test");
-  EXPECT_EQ(doc["format_version"], 2);
+  EXPECT_EQ(doc["format_version"], 3);
   EXPECT_EQ(doc["point_verdicts"]["body_rate"]["outside specification, within the physical limit"],
             27);
   EXPECT_EQ(doc["physical_limit"]["since_calibration_h"], 24.0);
@@ -245,6 +246,119 @@ TEST_F(AcceptanceJudgeTest, AdsVerdictsUseTheTestSetReferenceAndInterpolatedTole
   EXPECT_TRUE(Unit(run, "ADS-0001").pass());
   EXPECT_EQ(Unit(run, "ADS-0002").failed(), 2);  // 16 ft at 5,000 and at 0 ft; 20,000 ft passes
   EXPECT_EQ(Unit(run, "ADS-0003").failed(), 4);  // 18 ft > 17.5 at 20,000 ft; 2.1 kt > 2 kt
+}
+
+// The marginal band (0.1 of the tolerance in the shipped -A file, a stated figure of ours): at
+// 5,000 ft and 0 ft (+-15 ft, Table 2) an error of 12 ft passes clear, 14.25 ft passes inside
+// the band (13.5...15 ft) and is MARGINAL, 16 ft fails; at 20,000 ft (+-17.5 ft interpolated,
+// band from 15.75 ft) 14.25 ft passes clear and 16 ft is MARGINAL. Noise 0.5 ft over 100 packets
+// (0.05 ft standard error) keeps every error at least 5 standard errors from an edge.
+TEST_F(AcceptanceJudgeTest, PointInsideTheMarginalBandIsMarginal) {
+  AdsErrors clear, marginal, fail;
+  clear.alt_ft = 12.0;
+  marginal.alt_ft = 14.25;
+  fail.alt_ft = 16.0;
+  for (AdsErrors* e : {&clear, &marginal, &fail}) e->noise_ft = 0.5;
+  marginal.cas_kt = 1.9;  // +-2 kt at 100 kt: band 1.8...2 kt
+  AcceptanceRecordingMaker maker;
+  maker.RunAds(testing::AdsAcceptanceSequence(),
+               {{"ADS-0001", clear}, {"ADS-0002", marginal}, {"ADS-0003", fail}},
+               dir_ / "run");
+  const Specification spec = Specification::Reference();
+  ASSERT_EQ(spec.marginal_band.altitude, 0.1);
+  const AcceptanceRun run = JudgeAcceptance(dir_ / "run", spec);
+  const auto outcomes = [&](const std::string& serial) {
+    std::vector<Outcome> out;
+    for (const AcceptancePoint& p : Unit(run, serial).points) out.push_back(p.outcome());
+    return out;
+  };
+  // Points: 5,000 ft, 20,000 ft, 0 ft, 100 kt.
+  using O = Outcome;
+  EXPECT_EQ(outcomes("ADS-0001"), (std::vector<O>{O::kPass, O::kPass, O::kPass, O::kPass}));
+  EXPECT_EQ(outcomes("ADS-0002"),
+            (std::vector<O>{O::kMarginal, O::kPass, O::kMarginal, O::kMarginal}));
+  EXPECT_EQ(outcomes("ADS-0003"), (std::vector<O>{O::kFail, O::kMarginal, O::kFail, O::kPass}));
+  EXPECT_EQ(Unit(run, "ADS-0001").outcome(), Outcome::kPass);
+  EXPECT_EQ(Unit(run, "ADS-0002").outcome(), Outcome::kMarginal);
+  EXPECT_TRUE(Unit(run, "ADS-0002").pass());  // MARGINAL passes: the verdict stays "pass"
+  EXPECT_EQ(Unit(run, "ADS-0003").outcome(), Outcome::kFail);
+
+  // acceptance.json says so per point and per unit, and reads back the same.
+  const auto files = WriteAcceptanceFiles(run, spec, "test", dir_ / "out");
+  const nlohmann::json written = nlohmann::json::parse(std::ifstream(files[1]));
+  EXPECT_EQ(written["verdict"], "pass");
+  EXPECT_EQ(written["outcome"], "MARGINAL");
+  EXPECT_EQ(written["points_marginal"], 3);
+  EXPECT_EQ(written["points"][0]["outcome"], "MARGINAL");
+  EXPECT_EQ(written["points"][1]["outcome"], "PASS");
+  const AcceptanceFile doc = ReadAcceptanceFile(files[1]);
+  EXPECT_EQ(doc.unit.outcome(), Outcome::kMarginal);
+  EXPECT_EQ(doc.unit.marginal(), 3);
+  EXPECT_EQ(doc.specification_id.name, "AHR150A-A");
+  EXPECT_EQ(doc.specification_id.sha256, spec.sha256);
+  // An outcome the point contradicts (an edited file) is refused with its path.
+  nlohmann::json edited = written;
+  edited["points"][1]["outcome"] = "MARGINAL";
+  std::ofstream(files[1]) << edited.dump();
+  try {
+    ReadAcceptanceFile(files[1]);
+    FAIL() << "accepted";
+  } catch (const AcceptanceFileError& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("$.points[1].outcome"), HasSubstr("disagrees")));
+  }
+  // A version 2 file (no band, no identity) still reads: PASS or FAIL only.
+  edited = written;
+  edited["format_version"] = 2;
+  for (auto& p : edited["points"]) {
+    p.erase("outcome");
+    p.erase("marginal_band_fraction");
+  }
+  edited.erase("outcome");
+  edited.erase("points_marginal");
+  std::ofstream(files[1]) << edited.dump();
+  const AcceptanceFile old = ReadAcceptanceFile(files[1]);
+  EXPECT_EQ(old.unit.outcome(), Outcome::kPass);
+  EXPECT_EQ(old.specification_id.sha256, "");
+}
+
+// Table 4: the -A model is rated +-150 deg/s, the -B model +-300 deg/s. The same recording of a
+// gyro step at -200, 0, +200 deg/s (errors 0.010 deg/s, inside 0.015) is refused under -A,
+// naming the rate and the specification, and judged (every point passes) under -B; the rates of
+// +-125 deg/s, inside both, are judged alike by both.
+TEST_F(AcceptanceJudgeTest, BVariantJudgesRatesBeyondTheARange) {
+  Sequence sequence = testing::ImuAcceptanceSequence();
+  const Specification b = ReadSpecificationFile(std::filesystem::path(ADAHRS_SOURCE_DIR) /
+                                                "calib/specifications/ahr150a-b.json");
+  ImuErrors good;
+  good.rate_dps = {0.010, 0.010, 0.010};
+  AcceptanceRecordingMaker maker;
+  maker.RunImu(sequence, {{"IMU-0001", good}}, dir_ / "inside");
+  const AcceptanceRun a_inside = JudgeAcceptance(dir_ / "inside", Specification::Reference());
+  const AcceptanceRun b_inside = JudgeAcceptance(dir_ / "inside", b);
+  ASSERT_EQ(a_inside.units[0].points.size(), b_inside.units[0].points.size());
+  for (size_t i = 0; i < a_inside.units[0].points.size(); ++i) {
+    EXPECT_EQ(a_inside.units[0].points[i].error, b_inside.units[0].points[i].error);
+    EXPECT_EQ(a_inside.units[0].points[i].outcome(), b_inside.units[0].points[i].outcome());
+  }
+
+  sequence.steps.push_back({std::nullopt, GyroStep{31, 100, -200.0, 200.0, 200.0, 100.0}});
+  AcceptanceRecordingMaker wide;
+  wide.RunImu(sequence, {{"IMU-0001", good}}, dir_ / "run");
+  EXPECT_THAT(JudgeError(),
+              AllOf(HasSubstr("step 7"),
+                    HasSubstr("commanded rate -200 deg/s is outside the rated +-150 deg/s"),
+                    HasSubstr("AHR150A-A")));
+  const AcceptanceRun judged = JudgeAcceptance(dir_ / "run", b);
+  int wide_points = 0;
+  for (const AcceptancePoint& p : judged.units[0].points) {
+    if (p.step != 7) continue;
+    ++wide_points;
+    SCOPED_TRACE(p.quantity + " " + p.Condition());
+    EXPECT_EQ(p.tolerance, 0.015);
+    EXPECT_TRUE(p.pass);
+  }
+  EXPECT_EQ(wide_points, 9);  // 3 rates x 3 axes
+  EXPECT_TRUE(judged.pass());
 }
 
 TEST_F(AcceptanceJudgeTest, UnitMissingFromAStepIsRefusedNamingIt) {

@@ -79,7 +79,7 @@ class RecordsStoreTest : public ::testing::Test {
 
 TEST_F(RecordsStoreTest, NewDatabaseIsAtTheCurrentSchemaVersionInWalMode) {
   { RecordsStore store(db_); }
-  EXPECT_EQ(PythonQuery("SELECT version FROM schema_version"), "[(1,)]\n");
+  EXPECT_EQ(PythonQuery("SELECT version FROM schema_version"), "[(2,)]\n");
   EXPECT_EQ(PythonQuery("PRAGMA journal_mode"), "[('wal',)]\n");
   EXPECT_EQ(PythonQuery("SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name"),
             "[('acceptance_results',), ('constants',), ('downloads',), ('run_units',), "
@@ -194,8 +194,8 @@ TEST_F(RecordsStoreTest, HistoryShowsDownloadsAndAcceptanceVerdicts) {
   store.AddDownload(
       {"IMU-0001", 2, "virtual lab", "imu1", true, true, int64_t{1}, int64_t{0xBEEF}, "ok"});
   const std::vector<AcceptancePointRecord> points = {
-      {"IMU-0001", "acc-1", "accel_x", "orientation 11", 0.0004, 0.001, "g", true},
-      {"IMU-0001", "acc-1", "rate_z", "150 deg/s", 0.02, 0.015, "deg/s", false}};
+      {"IMU-0001", "acc-1", "accel_x", "orientation 11", 0.0004, 0.001, "g", true, "PASS", "ab"},
+      {"IMU-0001", "acc-1", "rate_z", "150 deg/s", 0.02, 0.015, "deg/s", false, "FAIL", "ab"}};
   EXPECT_TRUE(store.AddAcceptance("s1", points));
   EXPECT_FALSE(store.AddAcceptance("s1", points));
 
@@ -212,6 +212,39 @@ TEST_F(RecordsStoreTest, HistoryShowsDownloadsAndAcceptanceVerdicts) {
   ASSERT_EQ(history.acceptance[0].failures.size(), 1u);
   EXPECT_EQ(history.acceptance[0].failures[0].quantity, "rate_z");
   EXPECT_DOUBLE_EQ(history.acceptance[0].failures[0].error, 0.02);
+}
+
+// A version 1 database (no outcome, no specification column) with one passing and one failing
+// point: migrating keeps both rows, gives them the outcome their pass says and an unknown ('')
+// specification, and new points carry both.
+TEST_F(RecordsStoreTest, Version1AcceptanceRowsMigrateWithTheirOutcome) {
+  { RecordsStore store(db_); }
+  {
+    SqliteDatabase raw(db_, false);
+    raw.Execute(
+        "ALTER TABLE acceptance_results DROP COLUMN specification_sha256;"
+        "ALTER TABLE acceptance_results DROP COLUMN outcome;"
+        "UPDATE schema_version SET version = 1;"
+        "INSERT INTO units VALUES ('ADS-0001', 'ads', '2024-05-01T09:00:00Z');"
+        "INSERT INTO acceptance_results (serial, source_sha256, run_id, quantity, condition, "
+        "error, tolerance, unit, pass, recorded_utc) VALUES "
+        "('ADS-0001', 'old', 'acc-0', 'altitude', 'step 1', 14.0, 15.0, 'ft', 1, 'x'), "
+        "('ADS-0001', 'old', 'acc-0', 'airspeed', 'step 1', 2.5, 2.0, 'kt', 0, 'x');");
+  }
+  RecordsStore store(db_);
+  EXPECT_EQ(PythonQuery("SELECT version FROM schema_version"), "[(2,)]\n");
+  EXPECT_EQ(PythonQuery("SELECT quantity, pass, outcome, specification_sha256 FROM "
+                        "acceptance_results ORDER BY id"),
+            "[('altitude', 1, 'PASS', ''), ('airspeed', 0, 'FAIL', '')]\n");
+  store.AddAcceptance(
+      "new",
+      {{"ADS-0001", "acc-1", "altitude", "step 1", 14.0, 15.0, "ft", true, "MARGINAL", "cd"}});
+  const UnitHistory history = store.History("ADS-0001");
+  ASSERT_EQ(history.acceptance.size(), 2u);
+  EXPECT_EQ(history.acceptance[0].specification_sha256, "");
+  EXPECT_EQ(history.acceptance[0].failed, 1);
+  EXPECT_EQ(history.acceptance[1].specification_sha256, "cd");
+  EXPECT_EQ(history.acceptance[1].marginal, 1);
 }
 
 TEST_F(RecordsStoreTest, FailedAddLeavesNothingBehind) {
