@@ -20,21 +20,21 @@ std::optional<Unexplained> HeldOutExcess(const ChannelFitSummary& summary,
   if (!(noise > 0.0) || !(summary.held_out_rms_final >= kHeldOutExcessRatio * noise))
     return std::nullopt;
   std::vector<std::pair<double, size_t>> per_segment;  // held-out RMS, segment
-  for (size_t c = 0; c < final_fit.held_out_ss.size() && c < final_fit.cluster_weight.size();
-       ++c) {
+  for (size_t c = 0; c < final_fit.held_out_ss.size() && c < final_fit.cluster_weight.size(); ++c) {
     if (std::isnan(final_fit.held_out_ss[c]) || !(final_fit.cluster_weight[c] > 0.0)) continue;
     per_segment.emplace_back(
         std::sqrt(std::max(0.0, final_fit.held_out_ss[c] / final_fit.cluster_weight[c])) * scale,
         c);
   }
   std::sort(per_segment.rbegin(), per_segment.rend());
-  const size_t beyond = static_cast<size_t>(
-      std::count_if(per_segment.begin(), per_segment.end(), [&](const auto& s) {
+  const size_t beyond =
+      static_cast<size_t>(std::count_if(per_segment.begin(), per_segment.end(), [&](const auto& s) {
         return s.first >= kHeldOutExcessRatio * noise;
       }));
-  std::string where = fmt::format(
-      "{} of {} segments held out at >= {:.0f} x the noise", beyond, per_segment.size(),
-      kHeldOutExcessRatio);
+  std::string where = fmt::format("{} of {} segments held out at >= {:.0f} x the noise",
+                                  beyond,
+                                  per_segment.size(),
+                                  kHeldOutExcessRatio);
   for (size_t i = 0; i < per_segment.size() && i < kNamedSegments; ++i) {
     const size_t c = per_segment[i].second;
     where += fmt::format("{} {} ({:.3g} {})",
