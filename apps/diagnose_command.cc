@@ -87,17 +87,32 @@ void RegisterDiagnoseCommand(CLI::App& app) {
                   dirs, unit->empty() ? std::nullopt : std::optional<std::string>(*unit))
             : diagnosis::DiagnoseChannelFiles(sidecars);
     diagnosis::WriteDiagnosis(run, *out);
-    std::cout << "compared with the " << *profile
-              << " model: the pipeline's forward model, fitted to each recording\n";
+    if (sidecars.empty())
+      std::cout << "compared with the " << *profile << " model: " << run.model << "\n";
+    else
+      std::cout << "compared with: " << run.model << " (--profile does not apply to --csv)\n";
     for (const std::string& n : run.notes) std::cout << "note: " << n << "\n";
     for (const diagnosis::UnitDiagnosis& u : run.units) {
       std::cout << fmt::format(
           "{}: {} finding(s), {} unexplained\n", u.serial, u.findings.size(), u.unexplained.size());
+      for (const diagnosis::ChannelFitSummary& c : u.channels) {
+        if (!c.bias_slope_per_c) continue;
+        std::cout << fmt::format(
+            "  {}: bias slope against temperature {:.4g} ± {:.2g} {}/degC (linear law); held-out "
+            "RMS {:.3g} {} against {:.3g} of white noise\n",
+            c.channel,
+            *c.bias_slope_per_c,
+            c.bias_slope_se_per_c.value_or(0.0),
+            c.unit,
+            c.held_out_rms_final,
+            c.unit,
+            c.white_noise_rms);
+      }
       for (const diagnosis::Finding& f : u.findings) std::cout << "  " << f.words << "\n";
       for (const diagnosis::Unexplained& x : u.unexplained)
         std::cout << "  unexplained: " << x.channel << " " << x.where << ": " << x.description
                   << "\n";
-      if (u.findings.empty() && u.unexplained.empty()) std::cout << "  no missing physics found\n";
+      std::cout << "  verdict: " << u.Verdict() << "\n";
     }
     std::cout << "wrote " << (std::filesystem::path(*out) / "diagnosis.json").string()
               << " and report.html\n";

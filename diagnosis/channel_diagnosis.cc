@@ -6,10 +6,13 @@
 #include <numeric>
 
 #include <fmt/format.h>
+#include <boost/math/distributions/fisher_f.hpp>
 
 #include "common/median.h"
 #include "diagnosis/clustered_least_squares.h"
+#include "diagnosis/held_out_excess.h"
 #include "diagnosis/last_change_sense.h"
+#include "diagnosis/plausible_range.h"
 #include "diagnosis/row_spectrum.h"
 #include "diagnosis/term_selection.h"
 
@@ -20,6 +23,9 @@ constexpr double kCell_s = 1.0;
 constexpr double kMinRateWindow_s = 30.0;
 constexpr int kMaxBiasDegree = 3;
 constexpr int kMinSegments = 3;
+// A lag or warm-up acts through the bias's change with temperature: unless the bias polynomial's
+// temperature terms are jointly significant at this level, they are not testable here.
+constexpr double kBiasChangeLevel = 0.01;
 constexpr std::array<double, 4> kWarmUpTau_s = {150.0, 300.0, 600.0, 1200.0};
 enum Candidate { kLag = 0, kHysteresis = 1, kWarmUp0 = 2 };
 constexpr int kCandidates = 2 + static_cast<int>(kWarmUpTau_s.size());
@@ -79,7 +85,7 @@ void Segment(const ChannelRecording& r, Prepared* p) {
   size_t seg_start = 0;
   for (size_t i = 1; i <= r.t_s.size(); ++i) {
     const bool end = i == r.t_s.size() || r.t_s[i] - r.t_s[i - 1] > max_gap ||
-                     r.t_s[i] - r.t_s[seg_start] >= kChannelSegment_s;
+                     r.t_s[i] - r.t_s[seg_start] >= r.segment_s;
     if (!end) continue;
     const int segment = static_cast<int>(p->segment_rows.size());
     p->segment_rows.emplace_back(seg_start, i);
@@ -133,11 +139,16 @@ Prepared Prepare(const ChannelRecording& r) {
   Prepared p;
   Segment(r, &p);
   if (static_cast<int>(p.segment_rows.size()) < kMinSegments) {
-    throw ChannelInputError(
-        fmt::format("{}: {} segment(s); diagnosis needs at least {} to hold one out",
-                    r.csv,
-                    p.segment_rows.size(),
-                    kMinSegments));
+    throw ChannelInputError(fmt::format(
+        "{}: {} segment(s) in {:.4g} s of rows; diagnosis needs at least {} to hold one out. The "
+        "segment cut is the reason: segments are cut every {:.4g} s (sidecar 'segment_s') and at "
+        "gaps longer than {:.4g} s ('max_gap_s'); a shorter segment_s gives more",
+        r.csv,
+        p.segment_rows.size(),
+        r.t_s.back() - r.t_s.front(),
+        kMinSegments,
+        r.segment_s,
+        r.max_gap_s > 0.0 ? r.max_gap_s : 10.0 * MedianInterval(r.t_s)));
   }
   ThermalState(&p);
   bool rose = false, fell = false;
@@ -253,20 +264,93 @@ std::string Words(int k, const std::vector<FindingComponent>& c, const std::stri
       kWarmUpTau_s[static_cast<size_t>(k - kWarmUp0)]);
 }
 
+// The bias's slope against temperature under the linear law, unit per degC, and its jackknife
+// standard error; false when the temperatures do not tell it.
+bool LinearBiasSlope(const Columns& cols,
+                     const Prepared& p,
+                     const ClusteredLeastSquares& ls,
+                     double* slope,
+                     double* se) {
+  const std::vector<int> linear = BaseColumns(cols, 1);
+  if (!ls.FullRank(linear)) return false;
+  const ClusteredFit fit = ls.Fit(linear);
+  if (!fit.ok || !fit.jackknife_ok) return false;
+  *slope = fit.theta[1] / p.t_half;
+  *se = std::sqrt(fit.covariance(1, 1)) / p.t_half;
+  return true;
+}
+
+// p-value of the bias polynomial's temperature terms in `base` (jackknife Wald against
+// F(degree, C-1)); 1 when there are none.
+double BiasChangeP(const ClusteredLeastSquares& ls, const std::vector<int>& base, int degree) {
+  if (degree < 1) return 1.0;
+  const ClusteredFit fit = ls.Fit(base);
+  if (!fit.ok || !fit.jackknife_ok) return 1.0;
+  const Eigen::VectorXd theta = fit.theta.segment(1, degree);
+  const Eigen::MatrixXd v = fit.covariance.block(1, 1, degree, degree);
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(v);
+  if (ldlt.info() != Eigen::Success || !(v.diagonal().minCoeff() > 0.0)) return 1.0;
+  const double wald = theta.dot(ldlt.solve(theta));
+  if (!std::isfinite(wald) || wald < 0.0) return 1.0;
+  const boost::math::fisher_f dist(degree, std::max(1, fit.clusters - 1));
+  return boost::math::cdf(boost::math::complement(dist, wald / degree));
+}
+
+// The candidate's detection limit added alone to `selected`, or why the recording cannot test it:
+// its term is not excited, or the smallest magnitude it would find is beyond what the effect can
+// physically be (plausible_range.h).
+DetectionLimit CandidateLimit(const ChannelRecording& rec,
+                              const ClusteredLeastSquares& ls,
+                              const std::vector<int>& selected,
+                              const std::vector<int>& columns,
+                              int k,
+                              double tcrit,
+                              double power_z,
+                              const ChannelSeries& series,
+                              const std::string& slope_words,
+                              double bias_change_p) {
+  DetectionLimit lim;
+  lim.effect =
+      EffectName(k) + (k >= kWarmUp0 ? fmt::format(" (tau_w {:.0f} s)",
+                                                   kWarmUpTau_s[static_cast<size_t>(k - kWarmUp0)])
+                                     : "");
+  lim.channel = series.name;
+  Eigen::VectorXd se;
+  if (!LimitStandardErrors(ls, selected, columns, &se, &lim.note)) return lim;
+  if (k != kHysteresis && bias_change_p > kBiasChangeLevel) {
+    lim.note = fmt::format(
+        "not testable here: the bias does not change measurably with temperature (its temperature "
+        "terms jointly p = {:.2g}, above {:g}); {}",
+        bias_change_p,
+        kBiasChangeLevel,
+        slope_words);
+    return lim;
+  }
+  lim.limits = Components(k, se * (tcrit + power_z), se, series.unit);
+  for (FindingComponent& c : lim.limits) c.magnitude = std::abs(c.magnitude);
+  lim.note = NotTestableReason(lim.limits, rec.t_s.back() - rec.t_s.front());
+  if (!lim.note.empty()) {
+    lim.limits.clear();
+    if (k != kHysteresis) lim.note += "; " + slope_words;  // a lag or warm-up acts through it
+  }
+  return lim;
+}
+
 struct OutputResult {
   std::vector<Finding> findings;
+  std::vector<Unexplained> unexplained;
   std::vector<DetectionLimit> limits;
   ChannelFitSummary summary;
 };
 
-// The bias degree with the smallest leave-one-segment-out error.
+// The bias degree (0: none) with the smallest leave-one-segment-out error.
 int ChooseDegree(const Columns& cols,
                  const ClusteredLeastSquares& ls,
                  std::vector<std::string>* notes,
                  const std::string& name) {
   int best = -1;
   double best_ss = 0.0;
-  for (int d = 1; d <= kMaxBiasDegree; ++d) {
+  for (int d = 0; d <= kMaxBiasDegree; ++d) {
     const std::vector<int> base = BaseColumns(cols, d);
     if (!ls.FullRank(base)) continue;
     const ClusteredFit fit = ls.Fit(base);
@@ -321,8 +405,38 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec,
     return k < kWarmUp0 ||
            std::none_of(chosen.begin(), chosen.end(), [](int c) { return c >= kWarmUp0; });
   };
+  const double bias_change_p = BiasChangeP(ls, base, degree);
+  double slope = 0.0, slope_se = 0.0;
+  const bool has_slope = LinearBiasSlope(cols, p, ls, &slope, &slope_se);
+  const std::string slope_words =
+      has_slope ? fmt::format(
+                      "the bias's slope against temperature is {:.3g} ± {:.2g} {}/degC, "
+                      "and a lag or warm-up acts only through it",
+                      slope,
+                      slope_se,
+                      series.unit)
+                : "the temperatures do not tell the bias's slope";
+  // A candidate the recording cannot test (its limit beyond physics) is never a finding.
+  const double tcrit_base = TCritical(alpha, ls.Fit(base).clusters);
+  std::vector<bool> testable;
+  for (int k = 0; k < kCandidates; ++k) {
+    testable.push_back(!CandidateLimit(rec,
+                                       ls,
+                                       base,
+                                       candidates[static_cast<size_t>(k)],
+                                       k,
+                                       tcrit_base,
+                                       options.power_z,
+                                       series,
+                                       slope_words,
+                                       bias_change_p)
+                            .limits.empty());
+  }
+  const auto allowed = [&](int k, const std::vector<int>& chosen) {
+    return testable[static_cast<size_t>(k)] && one_warm_up(k, chosen);
+  };
   TermSelection sel = SelectTerms(
-      ls, base, ls.Fit(base), candidates, alpha, options.max_findings_per_channel, one_warm_up);
+      ls, base, ls.Fit(base), candidates, alpha, options.max_findings_per_channel, allowed);
   if (!sel.chosen.empty()) {  // the dependent columns rebuilt from the final bias once
     const std::array<double, 4> refined = BiasOf(sel.fit, sel.selected);
     ClusteredLeastSquares ls2 = Accumulate(cols, p, out, refined);
@@ -354,17 +468,16 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec,
   }
   const double tcrit = TCritical(alpha, sel.fit.clusters);
   for (int k = 0; k < kCandidates; ++k) {
-    DetectionLimit lim;
-    lim.effect = EffectName(k) + (k >= kWarmUp0
-                                      ? fmt::format(" (tau_w {:.0f} s)",
-                                                    kWarmUpTau_s[static_cast<size_t>(k - kWarmUp0)])
-                                      : "");
-    lim.channel = series.name;
-    Eigen::VectorXd se;
-    if (LimitStandardErrors(ls, sel.selected, candidates[static_cast<size_t>(k)], &se, &lim.note)) {
-      lim.limits = Components(k, se * (tcrit + options.power_z), se, series.unit);
-    }
-    r.limits.push_back(std::move(lim));
+    r.limits.push_back(CandidateLimit(rec,
+                                      ls,
+                                      sel.selected,
+                                      candidates[static_cast<size_t>(k)],
+                                      k,
+                                      tcrit,
+                                      options.power_z,
+                                      series,
+                                      slope_words,
+                                      bias_change_p));
   }
   const ClusteredFit base_fit = ls.Fit(base);
   r.summary.channel = series.name;
@@ -375,6 +488,12 @@ OutputResult DiagnoseOutput(const ChannelRecording& rec,
   for (const Cell& c : p.cells)
     white.push_back(std::sqrt(c.var[static_cast<size_t>(out)] / c.rows));
   r.summary.white_noise_rms = common::Median(white);
+  if (has_slope) {
+    r.summary.bias_slope_per_c = slope;
+    r.summary.bias_slope_se_per_c = slope_se;
+  }
+  if (auto excess = HeldOutExcess(r.summary, sel.fit, p.labels, 1.0))
+    r.unexplained.push_back(std::move(*excess));
   for (int c : base)
     r.summary.baseline_terms.push_back(c <= kMaxBiasDegree ? fmt::format("s^{}", c) : "reference");
   const std::vector<double> rb = Residuals(cols, p, out, bias, base_fit, base);
@@ -454,6 +573,7 @@ UnitDiagnosis DiagnoseChannels(const ChannelRecording& rec, const DiagnosisOptio
     OutputResult r =
         DiagnoseOutput(rec, p, static_cast<int>(o), out.test_alpha, options, &out.notes);
     for (Finding& f : r.findings) out.findings.push_back(std::move(f));
+    for (Unexplained& u : r.unexplained) out.unexplained.push_back(std::move(u));
     for (DetectionLimit& l : r.limits) out.detection_limits.push_back(std::move(l));
     out.channels.push_back(std::move(r.summary));
   }

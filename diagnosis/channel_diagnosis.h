@@ -4,7 +4,7 @@
 // reference input, a scale and its temperature coefficient. Candidates thermal_lag,
 // thermal_hysteresis and self_heating_warm_up; selection, limits and periodic lines as for the IMU
 // (term_selection.h, row_spectrum.h). Segments are stretches without a gap longer than max_gap_s,
-// cut every kChannelSegment_s; cells of 1 s.
+// cut every segment_s (the sidecar's, default 120 s); cells of 1 s.
 // Units: the sidecar's output and reference units; temperature in degC, delay and tau in s.
 // Model, segments, temperature rate window, measured figures: docs/diagnose.md ("Generic channel
 // CSV").
@@ -16,10 +16,8 @@
 
 namespace adahrs::diagnosis {
 
-inline constexpr double kChannelSegment_s = 120.0;
-
-/// Throws ChannelInputError when the recording has fewer than 3 segments or a baseline cannot be
-/// fitted.
+/// Throws ChannelInputError when the recording has fewer than 3 segments (saying the segment cut
+/// and the sidecar options that change it) or a baseline cannot be fitted.
 UnitDiagnosis DiagnoseChannels(const ChannelRecording& recording,
                                const DiagnosisOptions& options = {});
 

@@ -90,6 +90,12 @@ std::vector<std::string> SplitCsv(const std::string& line) {
   return cells;
 }
 
+// A cell that does not parse: the row is skipped, not the recording refused (ReadRows).
+class CellError : public ChannelInputError {
+ public:
+  using ChannelInputError::ChannelInputError;
+};
+
 double Cell(const std::vector<std::string>& cells,
             const ColumnMap& m,
             const std::string& csv,
@@ -99,22 +105,21 @@ double Cell(const std::vector<std::string>& cells,
   errno = 0;
   double v = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) {
-    throw ChannelInputError(fmt::format("{} line {} column {} ('{}'): '{}' is not a finite number",
-                                        csv,
-                                        line,
-                                        m.index + 1,
-                                        m.column,
-                                        text));
+    throw CellError(fmt::format("{} line {} column {} ('{}'): '{}' is not a finite number",
+                                csv,
+                                line,
+                                m.index + 1,
+                                m.column,
+                                text));
   }
   if (m.int16) {
     if (v != std::floor(v) || v < -32768.0 || v > 65535.0) {
-      throw ChannelInputError(
-          fmt::format("{} line {} column {} ('{}'): '{}' is not a 16-bit integer",
-                      csv,
-                      line,
-                      m.index + 1,
-                      m.column,
-                      text));
+      throw CellError(fmt::format("{} line {} column {} ('{}'): '{}' is not a 16-bit integer",
+                                  csv,
+                                  line,
+                                  m.index + 1,
+                                  m.column,
+                                  text));
     }
     if (v > 32767.0) v -= 65536.0;
   }
@@ -122,14 +127,18 @@ double Cell(const std::vector<std::string>& cells,
 }
 
 struct Layout {
+  double rate_hz = 0.0;  ///< > 0: time is the data row's index over it, no time column
   ColumnMap time, temp;
   std::vector<ColumnMap> outputs, references;
 };
 
-void Locate(const std::vector<std::string>& header, ColumnMap* m, const std::string& csv) {
+void Locate(const std::vector<std::string>& header,
+            ColumnMap* m,
+            const std::string& csv,
+            int header_line) {
   const auto it = std::find(header.begin(), header.end(), m->column);
   if (it == header.end())
-    throw ChannelInputError(fmt::format("{} line 1: no column '{}'", csv, m->column));
+    throw ChannelInputError(fmt::format("{} line {}: no column '{}'", csv, header_line, m->column));
   m->index = static_cast<int>(it - header.begin());
 }
 
@@ -165,22 +174,26 @@ double TimeScale(const Sidecar& sc) {
   return it->second;
 }
 
-void ReadRows(std::ifstream& in,
+// One data row parsed into `r`, or the reason it does not parse (line and column named).
+bool ParseRow(const std::vector<std::string>& cells,
               const Layout& l,
               const std::string& csv,
               size_t header_size,
-              ChannelRecording* r) {
-  std::string line;
-  int number = 1;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> cells = SplitCsv(line);
-    if (cells.size() < header_size) {
-      throw ChannelInputError(fmt::format(
-          "{} line {}: {} cells where the header has {}", csv, number, cells.size(), header_size));
-    }
-    const double t = Cell(cells, l.time, csv, number);
+              int number,
+              double t,
+              ChannelRecording* r,
+              std::string* why) {
+  if (cells.size() < header_size) {
+    *why = fmt::format(
+        "{} line {}: {} cells where the header has {}", csv, number, cells.size(), header_size);
+    return false;
+  }
+  try {
+    if (l.rate_hz == 0.0) t = Cell(cells, l.time, csv, number);
+    const double temp = Cell(cells, l.temp, csv, number);
+    std::vector<double> out, ref;
+    for (const ColumnMap& m : l.outputs) out.push_back(Cell(cells, m, csv, number));
+    for (const ColumnMap& m : l.references) ref.push_back(Cell(cells, m, csv, number));
     if (!r->t_s.empty() && !(t > r->t_s.back())) {
       throw ChannelInputError(
           fmt::format("{} line {} column {} ('{}'): time {:.6g} s does not increase (previous "
@@ -193,14 +206,60 @@ void ReadRows(std::ifstream& in,
                       r->t_s.back()));
     }
     r->t_s.push_back(t);
-    r->temp_c.push_back(Cell(cells, l.temp, csv, number));
-    for (size_t k = 0; k < l.outputs.size(); ++k)
-      r->outputs[k].values.push_back(Cell(cells, l.outputs[k], csv, number));
-    for (size_t k = 0; k < l.references.size(); ++k) {
-      r->references[k].values.push_back(Cell(cells, l.references[k], csv, number));
+    r->temp_c.push_back(temp);
+    for (size_t k = 0; k < out.size(); ++k) r->outputs[k].values.push_back(out[k]);
+    for (size_t k = 0; k < ref.size(); ++k) r->references[k].values.push_back(ref[k]);
+  } catch (const CellError& e) {
+    *why = e.what();
+    return false;
+  }
+  return true;
+}
+
+// Rows that do not parse are counted and skipped, the first named in a note; a recording where
+// more than half do not parse is refused (the sidecar's mapping is then wrong, not the logger).
+void ReadRows(std::ifstream& in,
+              const Layout& l,
+              const std::string& csv,
+              size_t header_size,
+              int first_line,
+              ChannelRecording* r) {
+  std::string line, first_bad;
+  int number = first_line, data_rows = 0, bad = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line == "\r") continue;
+    const double t = l.rate_hz > 0.0 ? data_rows / l.rate_hz : 0.0;  // row index / rate
+    ++data_rows;
+    std::string why;
+    if (!ParseRow(SplitCsv(line), l, csv, header_size, number, t, r, &why)) {
+      if (bad++ == 0) first_bad = why;
     }
   }
-  if (r->t_s.size() < 2) throw ChannelInputError(csv + ": fewer than 2 rows");
+  r->skipped_rows = bad;
+  if (bad > 0 && 2 * bad > data_rows) {
+    throw ChannelInputError(fmt::format(
+        "{}: {} of {} rows do not parse (the sidecar's columns may not be this file's); the first: "
+        "{}",
+        csv,
+        bad,
+        data_rows,
+        first_bad));
+  }
+  if (r->t_s.size() < 2) {
+    throw ChannelInputError(
+        fmt::format("{}: fewer than 2 rows{}",
+                    csv,
+                    bad > 0 ? "; the first that does not parse: " + first_bad : ""));
+  }
+  if (bad > 0) {
+    r->notes.push_back(fmt::format(
+        "{}: {} of {} rows do not parse and were skipped (nothing interpolated); the first: {}",
+        csv,
+        bad,
+        data_rows,
+        first_bad));
+  }
 }
 
 }  // namespace
@@ -224,38 +283,65 @@ ChannelRecording ReadChannelRecording(const std::filesystem::path& sidecar_path)
   }
   ChannelRecording r;
   r.sidecar = sidecar_path.string();
-  r.unit = sc.String(sc.root(), "unit", "$");
+  // The device's name: `device`, or `unit` as format version 1 first spelt it.
+  r.unit = sc.String(sc.root(), sc.root().contains("device") ? "device" : "unit", "$");
   r.csv = (sidecar_path.parent_path() / sc.String(sc.root(), "csv", "$")).string();
   Layout l;
-  l.time = sc.Column(sc.Require(sc.root(), "time", "$"), "$.time");
-  l.time.scale *= TimeScale(sc);
+  const json& time = sc.Require(sc.root(), "time", "$");
+  l.rate_hz = sc.Number(time, "rate_hz", 0.0, "$.time");
+  if (l.rate_hz < 0.0) sc.Fail("$.time.rate_hz", "expected a rate above 0 Hz");
+  if (l.rate_hz == 0.0) {
+    l.time = sc.Column(time, "$.time");
+    l.time.scale *= TimeScale(sc);
+  } else if (time.contains("column")) {
+    sc.Fail("$.time", "give either 'column' (with 'unit') or 'rate_hz', not both");
+  }
   l.temp = sc.Column(sc.Require(sc.root(), "temperature", "$"), "$.temperature");
   r.outputs = Series(sc, "outputs", true, &l.outputs);
   r.references = Series(sc, "references", false, &l.references);
   r.max_gap_s = sc.Number(sc.root(), "max_gap_s", 0.0, "$");
+  r.segment_s = sc.Number(sc.root(), "segment_s", r.segment_s, "$");
+  if (!(r.segment_s > 0.0)) sc.Fail("$.segment_s", "expected a length above 0 s");
+  const double skip = sc.Number(sc.root(), "skip_lines", 0.0, "$");
+  if (skip < 0.0 || skip != std::floor(skip) || skip > 1e6)
+    sc.Fail("$.skip_lines", "expected a whole number of lines >= 0");
 
   std::ifstream in(r.csv);
   if (!in) throw ChannelInputError(r.csv + ": cannot be read (named by " + r.sidecar + " $.csv)");
   std::string header_line;
-  std::getline(in, header_line);
+  const int header_number = static_cast<int>(skip) + 1;
+  for (int i = 0; i < header_number; ++i) {
+    if (!std::getline(in, header_line)) {
+      throw ChannelInputError(
+          fmt::format("{}: ends before its header row (line {}, after skip_lines {})",
+                      r.csv,
+                      header_number,
+                      static_cast<int>(skip)));
+    }
+  }
   if (header_line.rfind("\xEF\xBB\xBF", 0) == 0)
     header_line.erase(0, 3);  // a UTF-8 byte-order mark
   const std::vector<std::string> header = SplitCsv(header_line);
   std::vector<bool> used(header.size(), false);
-  for (ColumnMap* m : {&l.time, &l.temp}) Locate(header, m, r.csv);
+  std::vector<ColumnMap*> named = {&l.temp};
+  if (l.rate_hz == 0.0) named.push_back(&l.time);
   for (auto* group : {&l.outputs, &l.references}) {
-    for (ColumnMap& m : *group) Locate(header, &m, r.csv);
+    for (ColumnMap& m : *group) named.push_back(&m);
   }
-  for (const ColumnMap* m : {&l.time, &l.temp}) used[static_cast<size_t>(m->index)] = true;
-  for (auto* group : {&l.outputs, &l.references}) {
-    for (const ColumnMap& m : *group) used[static_cast<size_t>(m.index)] = true;
+  for (ColumnMap* m : named) {
+    Locate(header, m, r.csv, header_number);
+    used[static_cast<size_t>(m->index)] = true;
   }
   for (size_t i = 0; i < header.size(); ++i) {
     if (!used[i] && !header[i].empty())
       r.notes.push_back(
           fmt::format("{}: column '{}' ignored (not in the sidecar)", r.csv, header[i]));
   }
-  ReadRows(in, l, r.csv, header.size(), &r);
+  if (l.rate_hz > 0.0) {
+    r.notes.push_back(fmt::format(
+        "{}: time is the data row's index over {:.6g} Hz (no time column)", r.csv, l.rate_hz));
+  }
+  ReadRows(in, l, r.csv, header.size(), header_number, &r);
   r.sha256 = calib::FileSha256(r.csv);
   return r;
 }

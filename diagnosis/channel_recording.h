@@ -3,9 +3,12 @@
 // optional reference inputs), described by a JSON sidecar that names the columns and maps each to
 // its physical unit: value = (raw, as a signed 16-bit integer when `int16`) * scale + offset.
 // Time in s; temperature in degC; outputs and references in the units the sidecar names.
+// Real logs: `skip_lines` banner lines before the header; time from a column or, with
+// `time.rate_hz`, the data row's index over that rate; a row that does not parse (a cell that is
+// not a finite number, too few cells) is counted and skipped, the first named in a note.
 // Refused, naming the sidecar and its JSON path or the CSV, its line and column: a wrong format
-// or format_version, a missing key or column, a cell that is not a finite number, a time that does
-// not increase. Columns the sidecar does not name are ignored with a note. Rows are never
+// or format_version, a missing key or column, a time that does not increase, more than half the
+// rows not parsing. Columns the sidecar does not name are ignored with a note. Rows are never
 // interpolated: a gap longer than max_gap_s only splits segments.
 #pragma once
 
@@ -18,6 +21,7 @@ namespace adahrs::diagnosis {
 
 inline constexpr const char* kChannelCsvFormat = "adahrs-channel-csv";
 inline constexpr int kChannelCsvFormatVersion = 1;
+inline constexpr double kDefaultChannelSegment_s = 120.0;
 
 class ChannelInputError : public std::runtime_error {
  public:
@@ -41,7 +45,9 @@ struct ChannelRecording {
   std::vector<double> temp_c;
   std::vector<ChannelSeries> outputs;
   std::vector<ChannelSeries> references;
-  double max_gap_s = 0.0;  ///< a longer interval between rows splits segments
+  double max_gap_s = 0.0;                       ///< a longer interval between rows splits segments
+  double segment_s = kDefaultChannelSegment_s;  ///< segments are cut this long (`segment_s`)
+  int skipped_rows = 0;  ///< data rows that did not parse, skipped (named in `notes`)
   std::vector<std::string> notes;
 };
 

@@ -109,10 +109,12 @@ std::string UnitSection(const UnitDiagnosis& u) {
                          u.cells,
                          u.temp_span_c)) +
                      "</p>";
-  if (u.findings.empty()) {
+  if (u.NoMissingPhysics()) {
     body +=
-        "<p>No missing physics found: every candidate term stays below its detection limit (table "
-        "below).</p>";
+        "<p>No missing physics found: every candidate this recording can test stays below its "
+        "detection limit; those it cannot test are said so (table below).</p>";
+  } else if (u.findings.empty()) {
+    body += "<p>" + calib::XmlEscape(u.Verdict()) + ": see the unexplained structure below.</p>";
   } else {
     body += "<ul>";
     for (const Finding& f : u.findings) body += "<li>" + calib::XmlEscape(f.words) + "</li>";
@@ -178,7 +180,9 @@ std::string UnitSection(const UnitDiagnosis& u) {
       v += fmt::format(
           "{}{} {} {}", v.empty() ? "" : "; ", c.name, calib::FormatNumber(c.magnitude, 2), c.unit);
     }
-    lim.rows.push_back({d.effect, d.channel, d.limits.empty() ? "untestable: " + d.note : v});
+    const bool said = d.note.rfind("not testable here", 0) == 0;
+    lim.rows.push_back(
+        {d.effect, d.channel, d.limits.empty() ? (said ? "" : "not testable here: ") + d.note : v});
   }
   body += calib::RenderTable(lim);
   for (const std::string& n : u.notes) body += "<p class=\"note\">" + calib::XmlEscape(n) + "</p>";
@@ -264,6 +268,12 @@ DiagnosisRun DiagnoseChannelFiles(const std::vector<std::filesystem::path>& side
     const ChannelRecording rec = ReadChannelRecording(sidecar);
     out.recordings.push_back({rec.csv, rec.sha256});
     out.units.push_back(DiagnoseChannels(rec, options));
+    // The reader's notes are about the recording as read: the run's notes, printed, not the unit's.
+    std::vector<std::string>& unit_notes = out.units.back().notes;
+    unit_notes.erase(
+        unit_notes.begin(),
+        unit_notes.begin() + static_cast<long>(std::min(unit_notes.size(), rec.notes.size())));
+    out.notes.insert(out.notes.end(), rec.notes.begin(), rec.notes.end());
   }
   return out;
 }

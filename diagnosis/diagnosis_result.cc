@@ -53,12 +53,28 @@ json DetectionLimit::ToJson() const {
 }
 
 json ChannelFitSummary::ToJson() const {
-  return {{"channel", channel},
-          {"unit", unit},
-          {"held_out_rms_baseline", held_out_rms_baseline},
-          {"held_out_rms_final", held_out_rms_final},
-          {"white_noise_rms_per_cell", white_noise_rms},
-          {"baseline_terms", baseline_terms}};
+  json j = {{"channel", channel},
+            {"unit", unit},
+            {"held_out_rms_baseline", held_out_rms_baseline},
+            {"held_out_rms_final", held_out_rms_final},
+            {"white_noise_rms_per_cell", white_noise_rms},
+            {"baseline_terms", baseline_terms}};
+  if (bias_slope_per_c) {
+    j["bias_slope_per_degc"] = {{"value", *bias_slope_per_c},
+                                {"standard_error", bias_slope_se_per_c.value_or(0.0)},
+                                {"unit", unit + "/degC"},
+                                {"law", "linear in temperature"}};
+  }
+  return j;
+}
+
+std::string UnitDiagnosis::Verdict() const {
+  if (NoMissingPhysics()) return "no missing physics found";
+  if (unexplained.empty()) return "missing physics found";
+  if (findings.empty())
+    return "no candidate term found, but the model does not explain this recording (unexplained)";
+  return "missing physics found, and the model still does not explain all of this recording "
+         "(unexplained)";
 }
 
 json UnitDiagnosis::ToJson() const {
@@ -75,6 +91,7 @@ json UnitDiagnosis::ToJson() const {
           {"thermometers_fitted", thermometers_fitted},
           {"tests", tests},
           {"per_test_alpha", test_alpha},
+          {"verdict", Verdict()},
           {"findings", f},
           {"unexplained", u},
           {"detection_limits", d},

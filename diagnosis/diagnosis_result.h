@@ -59,6 +59,10 @@ struct ChannelFitSummary {
   double held_out_rms_final = 0.0;
   double white_noise_rms = 0.0;  ///< what white noise alone would leave in a cell mean, median
   std::vector<std::string> baseline_terms;
+  /// The bias's slope against temperature under a linear law (offset + slope per degC, the
+  /// reference inputs' terms as in the baseline) and its jackknife standard error, unit per degC;
+  /// filled by the generic channel diagnosis where the temperatures tell it.
+  std::optional<double> bias_slope_per_c, bias_slope_se_per_c;
   /// What one residual value is the mean of: a 1 s cell of rows (IMU, channel CSVs), or an ADS
   /// calibration point (a step's rows), which the report's figure says.
   enum class Residuals { kPerCell, kPerCalibrationPoint } residuals = Residuals::kPerCell;
@@ -84,6 +88,11 @@ struct UnitDiagnosis {
   std::vector<DetectionLimit> detection_limits;
   std::vector<ChannelFitSummary> channels;
   std::vector<std::string> notes;
+  /// True only with no finding and nothing unexplained (a held-out error far above the noise is
+  /// unexplained, held_out_excess.h): only then may a report say "no missing physics found".
+  bool NoMissingPhysics() const { return findings.empty() && unexplained.empty(); }
+  /// The one-line verdict the CLI, report.html and diagnosis.json's `verdict` share.
+  std::string Verdict() const;
   nlohmann::json ToJson() const;
 };
 

@@ -11,7 +11,9 @@
 #include "common/imu_layout.h"
 #include "common/median.h"
 #include "diagnosis/clustered_least_squares.h"
+#include "diagnosis/held_out_excess.h"
 #include "diagnosis/imu_effects.h"
+#include "diagnosis/plausible_range.h"
 #include "diagnosis/slow_noise.h"
 #include "diagnosis/structure_location.h"
 #include "diagnosis/term_selection.h"
@@ -572,6 +574,16 @@ Finding ChosenFinding(const DiagnosisData& data,
   return f;
 }
 
+// Time from the first cell to the last, s (a delay longer than that is not seen as one).
+double RecordingDuration(const DiagnosisData& data) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const DiagnosisCell& c : data.cells) {
+    lo = std::min(lo, c.t_mean_s);
+    hi = std::max(hi, c.t_mean_s);
+  }
+  return hi > lo ? hi - lo : 0.0;
+}
+
 // The smallest size of the candidate's components the test would find with power_z, or why the
 // recording cannot test it (`cross_excited` as for SelectCandidates).
 DetectionLimit CandidateLimit(const DiagnosisData& data,
@@ -604,6 +616,8 @@ DetectionLimit CandidateLimit(const DiagnosisData& data,
   const Eigen::VectorXd limit = se * (tcrit + power_z);
   lim.limits = Components(cand, limit, se, ch, phys);
   for (FindingComponent& c : lim.limits) c.magnitude = std::abs(c.magnitude);
+  lim.note = NotTestableReason(lim.limits, RecordingDuration(data));
+  if (!lim.note.empty()) lim.limits.clear();
   return lim;
 }
 
@@ -648,6 +662,10 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data,
   }
   const ClusteredFit base_fit = m.ls.Fit(m.base);
   out.summary = FitSummary(data, m, base_fit, sel.fit, phys);
+  std::vector<std::string> labels;
+  for (const DiagnosisSegment& s : data.segments) labels.push_back(s.label);
+  if (auto excess = HeldOutExcess(out.summary, sel.fit, labels, phys))
+    out.unexplained.push_back(std::move(*excess));
   const std::vector<double> residual = Residuals(data, m.layout, m.st, sel.fit, sel.selected, m.y);
   FillPlot(data,
            Residuals(data, m.layout, m.st, base_fit, m.base, m.y),
