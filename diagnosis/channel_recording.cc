@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "calib/records/records_sources.h"
+#include "common/sha256.h"
 
 namespace adahrs::diagnosis {
 namespace {
@@ -342,7 +342,7 @@ ChannelRecording ReadChannelRecording(const std::filesystem::path& sidecar_path)
         "{}: time is the data row's index over {:.6g} Hz (no time column)", r.csv, l.rate_hz));
   }
   ReadRows(in, l, r.csv, header.size(), header_number, &r);
-  r.sha256 = calib::FileSha256(r.csv);
+  r.sha256 = common::FileSha256(r.csv);
   return r;
 }
 

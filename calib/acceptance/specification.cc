@@ -1,7 +1,5 @@
 #include "calib/acceptance/specification.h"
 
-#include <openssl/evp.h>
-
 #include <algorithm>
 #include <array>
 #include <fstream>
@@ -15,6 +13,7 @@
 
 #include "common/param_reader.h"
 #include "common/printable_text.h"
+#include "common/sha256.h"
 #include "reference_specification_text.h"
 
 namespace adahrs::calib {
@@ -252,17 +251,6 @@ Specification FromJson(const nlohmann::json& doc, const std::string& source) {
 
 }  // namespace
 
-std::string Sha256Hex(const std::string& bytes) {
-  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
-  unsigned int length = 0;
-  if (EVP_Digest(bytes.data(), bytes.size(), digest.data(), &length, EVP_sha256(), nullptr) != 1) {
-    throw std::runtime_error("SHA-256: OpenSSL's digest failed");
-  }
-  std::string hex;
-  for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
-  return hex;
-}
-
 Specification ParseSpecification(const std::string& text, const std::string& source) {
   nlohmann::json doc;
   try {
@@ -275,7 +263,7 @@ Specification ParseSpecification(const std::string& text, const std::string& sou
   }
   try {
     Specification spec = FromJson(doc, source);
-    spec.sha256 = Sha256Hex(text);
+    spec.sha256 = common::Sha256Hex(text);
     return spec;
   } catch (const common::ParamError& e) {
     throw SpecificationError(e.what());

@@ -102,7 +102,4 @@ Specification ParseSpecification(const std::string& text, const std::string& sou
 /// Reads and parses a specification file (ParseSpecification over the file's bytes).
 Specification ReadSpecificationFile(const std::filesystem::path& file);
 
-/// SHA-256 of `bytes` as 64 lowercase hex digits.
-std::string Sha256Hex(const std::string& bytes);
-
 }  // namespace adahrs::calib

@@ -12,8 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include <openssl/evp.h>
-
+#include "common/sha256.h"
 #include "hil/recording/recording_files.h"
 #include "hil/recording/recording_format.h"
 
@@ -75,36 +74,9 @@ std::string RecordingSha256(const std::filesystem::path& run_dir) {
 namespace {
 
 std::string Sha256OfFiles(const std::vector<std::filesystem::path>& files) {
-  const std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(),
-                                                                    &EVP_MD_CTX_free);
-  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1) {
-    throw std::runtime_error("RecordingSha256: OpenSSL SHA-256 initialisation failed");
-  }
-  for (const std::filesystem::path& path : files) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path.string() + ": cannot open for the recording checksum");
-    std::array<char, 1 << 16> buffer;
-    while (in) {
-      in.read(buffer.data(), buffer.size());
-      if (in.gcount() > 0 &&
-          EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<size_t>(in.gcount())) != 1) {
-        throw std::runtime_error(path.string() + ": SHA-256 update failed");
-      }
-    }
-    if (in.bad()) throw std::runtime_error(path.string() + ": read error");
-  }
-  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
-  unsigned int length = 0;
-  if (EVP_DigestFinal_ex(ctx.get(), digest.data(), &length) != 1) {
-    throw std::runtime_error("RecordingSha256: SHA-256 finalisation failed");
-  }
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string hex;
-  for (unsigned int i = 0; i < length; ++i) {
-    hex += kHex[digest[i] >> 4];
-    hex += kHex[digest[i] & 0xF];
-  }
-  return hex;
+  common::Sha256 hash;
+  for (const std::filesystem::path& path : files) hash.UpdateFile(path);
+  return hash.HexDigest();
 }
 
 }  // namespace

@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
-#include <openssl/evp.h>
 
 #include "calib/constants/constants_file.h"
 #include "calib/constants/provenance_check.h"
@@ -16,6 +15,7 @@
 #include "calib/records/sqlite_database.h"
 #include "calib/sequence/sequence_json.h"
 #include "common/param_reader.h"
+#include "common/sha256.h"
 #include "common/unit_kind.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_reader.h"
@@ -36,33 +36,6 @@ void CheckRecordingRows(const std::filesystem::path& run_dir, bool complete) {
 }
 
 }  // namespace
-
-std::string FileSha256(const std::filesystem::path& file) {
-  const std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(),
-                                                                    &EVP_MD_CTX_free);
-  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1) {
-    throw std::runtime_error(file.string() + ": OpenSSL SHA-256 initialisation failed");
-  }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file.string() + ": cannot open for its checksum");
-  std::array<char, 1 << 16> buffer;
-  while (in) {
-    in.read(buffer.data(), buffer.size());
-    if (in.gcount() > 0 &&
-        EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<size_t>(in.gcount())) != 1) {
-      throw std::runtime_error(file.string() + ": SHA-256 update failed");
-    }
-  }
-  if (in.bad()) throw std::runtime_error(file.string() + ": read error");
-  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
-  unsigned int length = 0;
-  if (EVP_DigestFinal_ex(ctx.get(), digest.data(), &length) != 1) {
-    throw std::runtime_error(file.string() + ": SHA-256 finalisation failed");
-  }
-  std::string hex;
-  for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
-  return hex;
-}
 
 namespace {
 
@@ -167,7 +140,7 @@ ConstantsRecord ConstantsRecordFromFile(const std::filesystem::path& constants_j
   record.strategy = file.strategy;
   record.created_utc = file.created_utc;
   record.software_version = file.software_version;
-  record.file_sha256 = FileSha256(constants_json);
+  record.file_sha256 = common::FileSha256(constants_json);
   std::ifstream in(constants_json, std::ios::binary);
   record.json.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   record.provenance_json = ToJson(file).at("provenance").dump();

@@ -22,8 +22,4 @@ RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir);
 /// on changed since the fit (provenance_check.h).
 ConstantsRecord ConstantsRecordFromFile(const std::filesystem::path& constants_json);
 
-/// SHA-256 of one file's bytes, 64 lowercase hex digits (OpenSSL libcrypto); throws
-/// std::runtime_error naming the file.
-std::string FileSha256(const std::filesystem::path& file);
-
 }  // namespace adahrs::calib
