@@ -33,11 +33,10 @@ std::string Describe(const hil::UnitModeReading& r) {
                      id.firmware_major,
                      id.firmware_minor,
                      id.firmware_patch,
-                     id.constants_valid
-                         ? fmt::format("committed (version {}, crc 0x{:04x})",
-                                       id.constants_version,
-                                       id.constants_crc)
-                         : std::string("none committed"),
+                     id.constants_valid ? fmt::format("committed (version {}, crc 0x{:04x})",
+                                                      id.constants_version,
+                                                      id.constants_crc)
+                                        : std::string("none committed"),
                      id.mode,
                      hil::UnitModeName(r.kind, id.mode));
 }
@@ -66,8 +65,7 @@ void RegisterMode(CLI::App* unit) {
       std::cout << o->port << ": " << read << "\n";
       return;
     }
-    const hil::UnitModeReading r =
-        hil::SetUnitMode(port, static_cast<uint8_t>(*o->set), *clock);
+    const hil::UnitModeReading r = hil::SetUnitMode(port, static_cast<uint8_t>(*o->set), *clock);
     std::cout << fmt::format("{}: {}; read back, {} data packets since in mode {}\n",
                              o->port,
                              Describe(r),

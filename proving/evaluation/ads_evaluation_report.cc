@@ -47,8 +47,7 @@ AdsFileEvaluation EvaluateAds(const calib::ConstantsFile& constants,
                               const sensor_sim::AdsUnitParams& truth,
                               const AdsEvaluationOptions& options) {
   if (constants.kind != hil::UnitKind::kAds || !constants.ads) {
-    throw std::invalid_argument("evaluate: constants of " + constants.serial +
-                                " are not an ADS's");
+    throw std::invalid_argument("evaluate: constants of " + constants.serial + " are not an ADS's");
   }
   AdsFileEvaluation e;
   try {

@@ -41,8 +41,7 @@ struct CommandResult {
 };
 
 CommandResult RunAdahrs(const std::string& args) {
-  const std::string cmd =
-      std::string(std::getenv("ADAHRS_BIN_DIR")) + "/adahrs " + args + " 2>&1";
+  const std::string cmd = std::string(std::getenv("ADAHRS_BIN_DIR")) + "/adahrs " + args + " 2>&1";
   FILE* pipe = ::popen(cmd.c_str(), "r");
   CommandResult r;
   char buffer[4096];
@@ -52,9 +51,7 @@ CommandResult RunAdahrs(const std::string& args) {
   return r;
 }
 
-nlohmann::json ReadJson(const fs::path& path) {
-  return nlohmann::json::parse(std::ifstream(path));
-}
+nlohmann::json ReadJson(const fs::path& path) { return nlohmann::json::parse(std::ifstream(path)); }
 
 void WriteJson(const fs::path& path, const nlohmann::json& json) {
   std::ofstream(path) << json.dump(2) << "\n";
@@ -66,7 +63,8 @@ struct Campaign {
   fs::path dir;
   std::vector<calib::WrittenConstants> written;
 
-  Campaign() : dir(fs::temp_directory_path() / ("adahrs_ads_evaluate_" + std::to_string(::getpid()))) {
+  Campaign()
+      : dir(fs::temp_directory_path() / ("adahrs_ads_evaluate_" + std::to_string(::getpid()))) {
     fs::remove_all(dir);
     fs::create_directories(dir / "truth");
     const sensor_sim::AdsUnitParams truth =
@@ -103,9 +101,9 @@ TEST(AdsEvaluateCommand, WritesTheDemoStagesEvaluationForTheSameFiles) {
   const std::vector<EvaluatedQuantity> demo =
       EvaluateAgainstTruth(c.written, c.dir / "truth", 9.80665, c.dir / "demo");
   const fs::path out = c.dir / "evaluation.json";
-  const CommandResult r = RunAdahrs("evaluate --constants '" + c.ConstantsPath().string() +
-                                    "' --truth '" + c.TruthPath().string() + "' --out '" +
-                                    out.string() + "'");
+  const CommandResult r =
+      RunAdahrs("evaluate --constants '" + c.ConstantsPath().string() + "' --truth '" +
+                c.TruthPath().string() + "' --out '" + out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   std::printf("%s", r.output.c_str());
   const nlohmann::json e = ReadJson(out);
@@ -132,9 +130,9 @@ TEST(AdsEvaluateCommand, WritesTheDemoStagesEvaluationForTheSameFiles) {
 TEST(AdsEvaluateCommand, ErrorsWithoutHistoryAgreeWithTheTruthFileThroughTheDoubleCompensator) {
   const Campaign& campaign = Made();
   const fs::path out = campaign.dir / "independent.json";
-  const CommandResult r = RunAdahrs("evaluate --constants '" + campaign.ConstantsPath().string() +
-                                    "' --truth '" + campaign.TruthPath().string() + "' --out '" +
-                                    out.string() + "'");
+  const CommandResult r =
+      RunAdahrs("evaluate --constants '" + campaign.ConstantsPath().string() + "' --truth '" +
+                campaign.TruthPath().string() + "' --out '" + out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json e = ReadJson(out);
   const nlohmann::json file = ReadJson(campaign.TruthPath());
@@ -202,16 +200,16 @@ TEST(AdsEvaluateCommand, BadInputIsRefusedNamingTheFileAndTheJsonPath) {
   truth = ReadJson(c.TruthPath());
   truth["kind"] = "imu";
   WriteJson(other, truth);
-  r = RunAdahrs("evaluate --constants '" + constants + "' --truth '" + other.string() +
-                "' --out " + (c.dir / "x.json").string());
+  r = RunAdahrs("evaluate --constants '" + constants + "' --truth '" + other.string() + "' --out " +
+                (c.dir / "x.json").string());
   EXPECT_NE(r.status, 0);
   EXPECT_THAT(r.output, HasSubstr(other.string() + ": $.kind: 'imu', not an ads truth file"));
   // A truth parameter out of its range.
   truth = ReadJson(c.TruthPath());
   truth["params"]["frame_period_s"] = -1.0;
   WriteJson(other, truth);
-  r = RunAdahrs("evaluate --constants '" + constants + "' --truth '" + other.string() +
-                "' --out " + (c.dir / "x.json").string());
+  r = RunAdahrs("evaluate --constants '" + constants + "' --truth '" + other.string() + "' --out " +
+                (c.dir / "x.json").string());
   EXPECT_NE(r.status, 0);
   EXPECT_THAT(r.output, HasSubstr(other.string()));
   EXPECT_THAT(r.output, HasSubstr("$.params.frame_period_s"));
