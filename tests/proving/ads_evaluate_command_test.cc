@@ -143,7 +143,7 @@ TEST(AdsEvaluateCommand, ErrorsWithoutHistoryAgreeWithTheTruthFileThroughTheDoub
   p.adc.effects.noise = false;
   p.static_thermal.effects.lag = false;
   p.pitot_thermal.effects.lag = false;
-  const firmware_model::AdsCalibrationConstants& c = campaign.written->at(0).file.ads;
+  const firmware_model::AdsCalibrationConstants& c = *campaign.written.at(0).file.ads;
   ASSERT_FALSE(c.altitude_ft.hysteresis.active());  // the reference runs no operator
   const firmware_model::AdsExportReport bound = firmware_model::ExportAdsConstants(c).report;
   for (int slot : {0, 1}) {
@@ -215,7 +215,7 @@ TEST(AdsEvaluateCommand, BadInputIsRefusedNamingTheFileAndTheJsonPath) {
   EXPECT_THAT(r.output, HasSubstr("$.params.frame_period_s"));
   // Constants without their altitude surface.
   nlohmann::json broken = ReadJson(c.ConstantsPath());
-  broken["ads"].erase("altitude_ft");
+  broken["constants"].erase("altitude_ft");
   const fs::path broken_path = c.dir / "broken.json";
   WriteJson(broken_path, broken);
   r = RunAdahrs("evaluate --constants '" + broken_path.string() + "' --truth '" +
