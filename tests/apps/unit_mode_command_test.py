@@ -25,6 +25,7 @@ sys.path.insert(0, str(HERE.parent / "firmware_model"))
 sys.path.insert(0, str(HERE))
 import unit_protocol_peer as peer  # noqa: E402
 from fit_command_test import write_run  # noqa: E402  (an ADS-0007 run with exact codes)
+from rig_command_test import read_for, request_frame  # noqa: E402
 from run_command_test import station_for  # noqa: E402
 
 IDENTIFY, SET_MODE = 0x06, 0x01
@@ -39,20 +40,6 @@ def run(*args, timeout=60):
     r = subprocess.run([str(a) for a in args], capture_output=True, text=True, timeout=timeout)
     print(f"$ {' '.join(str(a) for a in args[1:])} -> {r.returncode}\n{r.stdout}{r.stderr}", end="")
     return r
-
-
-def request_frame(sequence, payload):
-    body = bytes([len(payload), peer.REQUEST, sequence, 0]) + bytes(payload)
-    crc = peer.crc16_ccitt_false(body)
-    return peer.SYNC + body + bytes([crc & 0xFF, crc >> 8])
-
-
-def read_for(port, seconds):
-    data = bytearray()
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        data += port.read(65536)
-    return bytes(data)
 
 
 class Client:

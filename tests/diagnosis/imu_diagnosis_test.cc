@@ -463,6 +463,31 @@ TEST(ImuDiagnosis, ReportsPacketsMissingByTheSequenceCounter) {
       << ::testing::PrintToString(d.notes);
 }
 
+// The per-row spread of a gyro's counts over the last soak (differences remove the slow drift).
+double GyroRowSpreadCnt(const calib::ImuUnitData& data, int axis) {
+  double sum2 = 0.0;
+  const size_t n = 20000;
+  for (size_t i = data.thermal.size() - n; i < data.thermal.size(); ++i) {
+    const double d = static_cast<double>(data.thermal[i].raw.gyro_cnt[axis]) -
+                     data.thermal[i - 1].raw.gyro_cnt[axis];
+    sum2 += d * d;
+  }
+  return std::sqrt(sum2 / n / 2.0);
+}
+
+// A tone written onto one gyro's counts in every thermal, accelerometer and gyro row.
+void AddGyroTone(calib::ImuUnitData* data, int axis, double amplitude_cnt, double f_hz, int phase) {
+  auto add = [&](calib::ImuSample& s) {
+    s.raw.gyro_cnt[axis] += static_cast<int32_t>(
+        std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s + phase)));
+  };
+  for (calib::ImuSample& s : data->thermal) add(s);
+  for (calib::ImuAcquisition& a : data->accel)
+    for (calib::ImuSample& s : a.samples) add(s);
+  for (calib::ImuAcquisition& a : data->gyro)
+    for (calib::ImuSample& s : a.samples) add(s);
+}
+
 // Periodic interference (outside the library) at a fifth of the per-row noise: visible only in
 // the rows' aggregated spectrum. On 10 units, each with a tone on one gyro at its own frequency,
 // it is located within half a bin of its frequency and 15 % of its amplitude on at least 9, never
@@ -475,24 +500,8 @@ TEST(ImuDiagnosis, LocatesPeriodicInterferenceBelowTheRowNoise) {
     calib::ImuUnitData data = Simulate(Nominal(610 + unit), 7010 + unit, shape);
     const int axis = unit % 3;
     const double f_hz = 1.5 + 4.3 * unit;  // 1.5 ... 40.2 Hz
-    // The per-row spread of the channel over the last soak (differences remove the slow drift).
-    double sum2 = 0.0;
-    const size_t n = 20000;
-    for (size_t i = data.thermal.size() - n; i < data.thermal.size(); ++i) {
-      const double d = static_cast<double>(data.thermal[i].raw.gyro_cnt[axis]) -
-                       data.thermal[i - 1].raw.gyro_cnt[axis];
-      sum2 += d * d;
-    }
-    const double amplitude_cnt = 0.2 * std::sqrt(sum2 / n / 2.0);
-    auto add = [&](calib::ImuSample& s) {
-      s.raw.gyro_cnt[axis] += static_cast<int32_t>(
-          std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s + unit)));
-    };
-    for (calib::ImuSample& s : data.thermal) add(s);
-    for (calib::ImuAcquisition& a : data.accel)
-      for (calib::ImuSample& s : a.samples) add(s);
-    for (calib::ImuAcquisition& a : data.gyro)
-      for (calib::ImuSample& s : a.samples) add(s);
+    const double amplitude_cnt = 0.2 * GyroRowSpreadCnt(data, axis);
+    AddGyroTone(&data, axis, amplitude_cnt, f_hz, unit);
     const DiagnosisData cells = BuildDiagnosisData(data, 9.80665);
     const UnitDiagnosis d = DiagnoseImu(cells);
     for (const Finding& f : d.findings) ADD_FAILURE() << f.words;
@@ -537,23 +546,8 @@ TEST(ImuDiagnosis, LocatesSlowPeriodicInterferenceBelowOneHertz) {
     calib::ImuUnitData data = Simulate(Nominal(640 + unit), 7040 + unit, shape);
     const int axis = unit % 3;
     const double f_hz = 0.3 + 0.1 * unit;  // 0.3 ... 1.0 Hz
-    double sum2 = 0.0;
-    const size_t n = 20000;
-    for (size_t i = data.thermal.size() - n; i < data.thermal.size(); ++i) {
-      const double d = static_cast<double>(data.thermal[i].raw.gyro_cnt[axis]) -
-                       data.thermal[i - 1].raw.gyro_cnt[axis];
-      sum2 += d * d;
-    }
-    const double amplitude_cnt = 0.5 * std::sqrt(sum2 / n / 2.0);
-    auto add = [&](calib::ImuSample& s) {
-      s.raw.gyro_cnt[axis] += static_cast<int32_t>(
-          std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s + unit)));
-    };
-    for (calib::ImuSample& s : data.thermal) add(s);
-    for (calib::ImuAcquisition& a : data.accel)
-      for (calib::ImuSample& s : a.samples) add(s);
-    for (calib::ImuAcquisition& a : data.gyro)
-      for (calib::ImuSample& s : a.samples) add(s);
+    const double amplitude_cnt = 0.5 * GyroRowSpreadCnt(data, axis);
+    AddGyroTone(&data, axis, amplitude_cnt, f_hz, unit);
     const DiagnosisData cells = BuildDiagnosisData(data, 9.80665);
     const UnitDiagnosis d = DiagnoseImu(cells);
     for (const Finding& f : d.findings) std::printf("finding: %s\n", f.words.c_str());
