@@ -12,6 +12,7 @@
 #include "calib/ads_calibration/bridge_history.h"
 #include "calib/ads_calibration/hysteresis_span_fit.h"
 #include "diagnosis/clustered_least_squares.h"
+#include "diagnosis/plausible_range.h"
 #include "diagnosis/term_selection.h"
 
 namespace adahrs::diagnosis {
@@ -25,6 +26,7 @@ constexpr std::array<int, 2> kPressureDegrees = {2, 3};
 constexpr int kMinVoltageDegree = 1;
 constexpr int kMaxVoltageDegree = 7;
 constexpr int kStartVoltageDegree = 3;
+constexpr int kPointsPerRun = 5;  // one temperature: consecutive points held out together
 
 enum class Effect { kPressureHysteresis, kThermalHysteresis, kNonlinearity };
 constexpr std::array<Effect, 3> kEffects = {
@@ -95,6 +97,27 @@ std::vector<int> Sweeps(const std::vector<calib::AdsCalibrationPoint>& pts,
   return sweep;
 }
 
+// At one temperature a few sweeps hold every point: each sweep is cut into runs of at most
+// kPointsPerRun consecutive points, the clusters the jackknife and the held-out error leave out.
+std::vector<int> RunsOfSweeps(const std::vector<calib::AdsCalibrationPoint>& pts,
+                              const std::vector<int>& sweep,
+                              const std::vector<std::string>& sweep_labels,
+                              std::vector<std::string>* labels) {
+  std::vector<int> run(pts.size(), 0);
+  labels->clear();
+  int in_run = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    if (i == 0 || sweep[i] != sweep[i - 1] || in_run == kPointsPerRun) {
+      labels->push_back(fmt::format(
+          "{}, points from step {}", sweep_labels[static_cast<size_t>(sweep[i])], pts[i].step));
+      in_run = 0;
+    }
+    ++in_run;
+    run[i] = static_cast<int>(labels->size()) - 1;
+  }
+  return run;
+}
+
 Bridge MakeBridge(bool pitot,
                   const std::vector<calib::AdsCalibrationPoint>& pts,
                   const std::vector<calib::PointHistory>& hist,
@@ -152,6 +175,7 @@ void SetStates(Bridge* b,
 // Column layout: the baseline terms u^a v^c, c <= dv[a], for a <= dp, then each candidate's
 // columns.
 struct Layout {
+  bool one_temperature = false;  ///< no temperature terms: thermal hysteresis is not a candidate
   int dp = 0;
   std::vector<int> dv;                     ///< per power of u
   std::vector<std::pair<int, int>> terms;  ///< (a, c) of each baseline column
@@ -160,8 +184,9 @@ struct Layout {
   int columns = 0;
 };
 
-Layout MakeLayout(const std::vector<int>& dv) {
+Layout MakeLayout(const std::vector<int>& dv, bool one_temperature) {
   Layout l;
+  l.one_temperature = one_temperature;
   l.dp = static_cast<int>(dv.size()) - 1;
   l.dv = dv;
   for (int a = 0; a <= l.dp; ++a) {
@@ -170,9 +195,10 @@ Layout MakeLayout(const std::vector<int>& dv) {
   l.baseline = static_cast<int>(l.terms.size());
   int next = l.baseline;
   l.candidate[0] = {next++};
-  l.candidate[1] = {next++};
-  l.candidate[2] = {next, next + 1};
-  l.columns = next + 2;
+  if (!one_temperature) l.candidate[1] = {next++};
+  l.candidate[2] = {next++};
+  if (!one_temperature) l.candidate[2].push_back(next++);
+  l.columns = next;
   return l;
 }
 
@@ -183,9 +209,9 @@ Eigen::VectorXd Row(const Layout& l, const Bridge& b, size_t i) {
     x[static_cast<int>(k)] = std::pow(u, l.terms[k].first) * std::pow(v, l.terms[k].second);
   }
   x[l.candidate[0][0]] = b.s_p[i] * b.excitation(i);
-  x[l.candidate[1][0]] = b.s_t[i] * b.excitation(i);
+  if (!l.candidate[1].empty()) x[l.candidate[1][0]] = b.s_t[i] * b.excitation(i);
   x[l.candidate[2][0]] = std::pow(u, l.dp + 1);
-  x[l.candidate[2][1]] = std::pow(u, l.dp + 1) * v;
+  if (l.candidate[2].size() > 1) x[l.candidate[2][1]] = std::pow(u, l.dp + 1) * v;
   return x;
 }
 
@@ -222,26 +248,38 @@ struct BaselineChoice {
   double held_out_ss = 0.0;
 };
 
-// Fits the baseline of degrees `dv` (per power of u); false when it cannot be fitted or held out.
-// The score is the error at each interior temperature under the fit made without it (the
-// coldest and hottest are extrapolation): a degree in the voltage code is chosen by temperatures
-// it did not see, as the calibration chooses it, never by sweeps that share a temperature.
-bool TryBaseline(
-    const Bridge& b, int sweeps, double y_mid, const std::vector<int>& dv, BaselineChoice* out) {
-  const Layout l = MakeLayout(dv);
+// The baseline's error at each interior temperature under the fit made without it (the coldest
+// and hottest are extrapolation): a degree in the voltage code is chosen by temperatures it did
+// not see, as the calibration chooses it, never by sweeps that share a temperature. NaN when a
+// leave-out fit is singular.
+double HeldOutTemperatureSs(const Layout& l, const Bridge& b, double y_mid) {
   const std::vector<int> base = Range(l.baseline);
   ClusteredLeastSquares by_temp(l.columns, b.blocks);
   for (size_t i = 0; i < b.code.size(); ++i)
     by_temp.Add(b.block[i], Row(l, b, i), b.code[i] - y_mid, 1.0);
-  if (!by_temp.FullRank(base)) return false;
+  if (!by_temp.FullRank(base)) return std::nan("");
   const ClusteredFit held = by_temp.Fit(base);
-  if (!held.ok) return false;
+  if (!held.ok) return std::nan("");
   double ss = 0.0;
   for (int k = 1; k + 1 < b.blocks; ++k) ss += held.held_out_ss[static_cast<size_t>(k)];
-  if (!std::isfinite(ss)) return false;
+  return ss;
+}
+
+// Fits the baseline of degrees `dv` (per power of u); false when it cannot be fitted or held out.
+// Scored by held-out temperatures; at one temperature (no voltage terms) by held-out sweeps.
+bool TryBaseline(
+    const Bridge& b, int sweeps, double y_mid, const std::vector<int>& dv, BaselineChoice* out) {
+  const Layout l = MakeLayout(dv, b.blocks == 1);
   ClusteredLeastSquares ls = Accumulate(l, b, sweeps, y_mid);
-  ClusteredFit fit = ls.Fit(base);
+  ClusteredFit fit = ls.Fit(Range(l.baseline));
   if (!fit.ok || !fit.jackknife_ok) return false;
+  double ss = 0.0;
+  if (l.one_temperature) {
+    for (double s : fit.held_out_ss) ss += s;
+  } else {
+    ss = HeldOutTemperatureSs(l, b, y_mid);
+  }
+  if (!std::isfinite(ss)) return false;
   *out = {l, std::move(ls), std::move(fit), ss};
   return true;
 }
@@ -252,10 +290,10 @@ BaselineChoice ChooseBaseline(const Bridge& b, int sweeps, double y_mid) {
   BaselineChoice best;
   bool found = false;
   for (int dp : kPressureDegrees) {
-    std::vector<int> dv(static_cast<size_t>(dp) + 1, kStartVoltageDegree);
+    std::vector<int> dv(static_cast<size_t>(dp) + 1, b.blocks == 1 ? 0 : kStartVoltageDegree);
     BaselineChoice current;
     if (!TryBaseline(b, sweeps, y_mid, dv, &current)) continue;
-    for (bool improved = true; improved;) {
+    for (bool improved = b.blocks > 1; improved;) {
       improved = false;
       for (size_t a = 0; a < dv.size(); ++a) {
         for (int d = kMinVoltageDegree; d <= kMaxVoltageDegree; ++d) {
@@ -291,9 +329,13 @@ std::vector<FindingComponent> Components(Effect e,
   double u_max = 0.0;
   for (size_t i = 0; i < b.p_pa.size(); ++i) u_max = std::max(u_max, std::abs(b.u(i)));
   const double k = std::pow(u_max, l.dp + 1) / sens;
+  std::vector<FindingComponent> out = {
+      {"at_largest_travel", theta[0] * k, se[0] * std::abs(k), "Pa"}};
   // v spans [-1, 1]: the change across the temperature span is twice the v coefficient.
-  return {{"at_largest_travel", theta[0] * k, se[0] * std::abs(k), "Pa"},
-          {"change_across_temperature_span", 2.0 * theta[1] * k, 2.0 * se[1] * std::abs(k), "Pa"}};
+  if (theta.size() > 1)
+    out.push_back(
+        {"change_across_temperature_span", 2.0 * theta[1] * k, 2.0 * se[1] * std::abs(k), "Pa"});
+  return out;
 }
 
 std::string Words(Effect e,
@@ -319,15 +361,12 @@ std::string Words(Effect e,
           pm(c[0]));
     case Effect::kNonlinearity:
       return fmt::format(
-          "{} departs from a degree-{} polynomial in pressure by {} at its largest travel ({} "
-          "across "
-          "the temperature span): bridge nonlinearity beyond the modelled order is missing from "
-          "the "
-          "model",
+          "{} departs from a degree-{} polynomial in pressure by {} at its largest travel{}: "
+          "bridge nonlinearity beyond the modelled order is missing from the model",
           name,
           l.dp,
           pm(c[0]),
-          pm(c[1]));
+          c.size() > 1 ? fmt::format(" ({} across the temperature span)", pm(c[1])) : "");
   }
   return "";
 }
@@ -386,8 +425,12 @@ std::vector<Effect> Select(const BaselineChoice& bc,
                            ClusteredFit* selected_fit) {
   const std::vector<std::vector<int>> candidates(bc.layout.candidate.begin(),
                                                  bc.layout.candidate.end());
-  TermSelection sel =
-      SelectTerms(bc.ls, Range(bc.layout.baseline), bc.fit, candidates, alpha, max_findings);
+  // A candidate without columns is not testable on these points (one temperature).
+  const auto testable = [&](int k, const std::vector<int>&) {
+    return !candidates[static_cast<size_t>(k)].empty();
+  };
+  TermSelection sel = SelectTerms(
+      bc.ls, Range(bc.layout.baseline), bc.fit, candidates, alpha, max_findings, testable);
   *selected = std::move(sel.selected);
   *selected_fit = std::move(sel.fit);
   std::vector<Effect> chosen;
@@ -575,9 +618,13 @@ BridgeResult DiagnoseBridge(Bridge b,
     lim.effect = EffectName(kEffects[e]);
     lim.channel = b.channel;
     Eigen::VectorXd se;
-    if (LimitStandardErrors(bc.ls, selected, bc.layout.candidate[e], &se, &lim.note)) {
+    if (bc.layout.candidate[e].empty()) {
+      lim.note = "not testable here: the points visit one chamber temperature";
+    } else if (LimitStandardErrors(bc.ls, selected, bc.layout.candidate[e], &se, &lim.note)) {
       lim.limits = Components(kEffects[e], se * (tcrit + options.power_z), se, sens, bc.layout, b);
       for (FindingComponent& c : lim.limits) c.magnitude = std::abs(c.magnitude);
+      lim.note = NotTestableBridgeReason(lim.limits, 2.0 * b.p_half);
+      if (!lim.note.empty()) lim.limits.clear();
     }
     out.limits.push_back(std::move(lim));
   }
@@ -608,7 +655,13 @@ UnitDiagnosis DiagnoseAds(const std::string& serial,
   std::vector<std::string> labels;
   if (points.empty())
     throw std::runtime_error(fmt::format("{}: no calibration points to diagnose", serial));
-  const std::vector<int> sweep = Sweeps(points, &labels);
+  std::vector<int> sweep = Sweeps(points, &labels);
+  const std::vector<calib::PointHistory> hist = calib::BridgeHistoryOf(points);
+  const int temperatures = MakeBridge(false, points, hist, sweep).blocks;
+  if (temperatures == 1) {
+    const std::vector<std::string> sweep_labels = std::move(labels);
+    sweep = RunsOfSweeps(points, sweep, sweep_labels, &labels);
+  }
   if (static_cast<int>(labels.size()) < kMinSweeps) {
     throw std::runtime_error(
         fmt::format("{}: {} sweep(s) of calibration points; diagnosis needs at least {} to hold "
@@ -617,12 +670,13 @@ UnitDiagnosis DiagnoseAds(const std::string& serial,
                     labels.size(),
                     kMinSweeps));
   }
-  const std::vector<calib::PointHistory> hist = calib::BridgeHistoryOf(points);
-  if (MakeBridge(false, points, hist, sweep).blocks < kMinTemperatures) {
+  if (temperatures > 1 && temperatures < kMinTemperatures) {
     throw std::runtime_error(
-        fmt::format("{}: the points visit fewer than {} chamber temperatures; the baseline's "
-                    "temperature degree cannot be chosen",
+        fmt::format("{}: the points visit {} chamber temperatures; the baseline's degree in "
+                    "temperature is chosen by held-out interior temperatures and needs at least "
+                    "{} (or one, where temperature is not modelled)",
                     serial,
+                    temperatures,
                     kMinTemperatures));
   }
   UnitDiagnosis out;
@@ -636,11 +690,17 @@ UnitDiagnosis DiagnoseAds(const std::string& serial,
     hi = std::max(hi, p.chamber_c);
   }
   out.temp_span_c = hi - lo;
-  out.tests = 2 * static_cast<int>(kEffects.size());
+  // At one temperature thermal hysteresis has no column on either bridge.
+  out.tests = 2 * static_cast<int>(kEffects.size() - (temperatures == 1 ? 1 : 0));
   out.test_alpha = options.family_alpha / out.tests;
   out.notes.push_back(
       "points are step means after a soak: die lag and self-heating leave no trace in them and are "
       "not tested");
+  if (temperatures == 1)
+    out.notes.push_back(
+        "one chamber temperature: the baseline is a polynomial in pressure alone, its degree "
+        "chosen by held-out runs of at most 5 consecutive points of a sweep; thermal hysteresis "
+        "and any change with temperature are not testable");
   for (bool pitot : {false, true}) {
     BridgeResult r = DiagnoseBridge(MakeBridge(pitot, points, hist, sweep),
                                     pitot,

@@ -21,6 +21,25 @@ constexpr double kMaxInitialExcess_c = 20.0;
 constexpr double kMaxTempco_ppm_per_c = 10000.0;
 constexpr double kMaxTempcoCurvature_ppm_per_c2 = 100.0;
 
+// A pressure bridge's half loop, pressure or thermal: +-0.05...0.1 % FSO typical, +-0.7 % worst
+// (physics.md, the KPY33-R sibling); 1 % of the travel the points visit is beyond every figure.
+// Its departure from the fitted polynomial: BFSL nonlinearity +-0.1...0.25 % FSO, +-0.5 % max; 2 %.
+constexpr double kMaxHalfLoopOfTravel = 0.01;
+constexpr double kMaxDepartureOfTravel = 0.02;
+
+std::string Reason(const FindingComponent& c, double max, const std::string& why) {
+  return fmt::format(
+      "not testable here: the smallest {} this recording would find, {:.3g} {}, is beyond what "
+      "the effect can physically be (at most {:.4g} {}{}); the recording gives the term no "
+      "leverage",
+      c.name,
+      std::abs(c.magnitude),
+      c.unit,
+      max,
+      c.unit,
+      why);
+}
+
 }  // namespace
 
 double PlausibleMagnitude(const std::string& component,
@@ -37,16 +56,21 @@ double PlausibleMagnitude(const std::string& component,
 std::string NotTestableReason(const std::vector<FindingComponent>& limits, double duration_s) {
   for (const FindingComponent& c : limits) {
     const double max = PlausibleMagnitude(c.name, c.unit, duration_s);
+    if (std::abs(c.magnitude) > max || !std::isfinite(c.magnitude)) return Reason(c, max, "");
+  }
+  return "";
+}
+
+std::string NotTestableBridgeReason(const std::vector<FindingComponent>& limits, double travel_pa) {
+  for (const FindingComponent& c : limits) {
+    const bool loop = c.name == "half_loop";
+    const double max = (loop ? kMaxHalfLoopOfTravel : kMaxDepartureOfTravel) * travel_pa;
     if (std::abs(c.magnitude) > max || !std::isfinite(c.magnitude)) {
-      return fmt::format(
-          "not testable here: the smallest {} this recording would find, {:.3g} {}, is beyond "
-          "what the effect can physically be (at most {:.4g} {}); the recording gives the term no "
-          "leverage",
-          c.name,
-          std::abs(c.magnitude),
-          c.unit,
+      return Reason(
+          c,
           max,
-          c.unit);
+          fmt::format(
+              ", {:.0f} % of the {:.4g} Pa the points travel", (loop ? 1.0 : 2.0), travel_pa));
     }
   }
   return "";

@@ -3,14 +3,17 @@
 // points on the opposite branch). A unit whose truth carries pressure hysteresis the model lacks
 // must have it found on both bridges and sized within the stated uncertainty; clean units must give
 // no finding. The recordings come from the simulator (ads_recording_sim.h); the diagnoser
-// (calib/diagnosis) never includes it.
+// (diagnosis/) never includes it.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "diagnosis/ads_diagnosis.h"
@@ -24,11 +27,13 @@ namespace {
 namespace fs = std::filesystem;
 using sensor_sim::AdsUnitParams;
 
-UnitDiagnosis Diagnose(const AdsUnitParams& unit, uint64_t noise_seed) {
+UnitDiagnosis Diagnose(
+    const AdsUnitParams& unit,
+    uint64_t noise_seed,
+    const std::string& sequence = calib::testing::ShippedSequencePath("ads_calibration")) {
   const fs::path run = fs::temp_directory_path() / ("adahrs_ads_diagnosis_" + unit.serial);
   fs::remove_all(run);
-  calib::testing::WriteAdsRecording(
-      run, calib::testing::ShippedSequencePath("ads_calibration"), unit, noise_seed);
+  calib::testing::WriteAdsRecording(run, sequence, unit, noise_seed);
   const std::vector<calib::AdsCalibrationPoint> points =
       calib::SelectAdsCalibrationPoints(hil::ReadRecording(run), unit.serial, run.string());
   fs::remove_all(run);
@@ -128,6 +133,132 @@ TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
   EXPECT_GE(within[0], 9);
   EXPECT_GE(found[1], 8);
   EXPECT_GE(within[1], 8);
+}
+
+// The shipped ads_calibration sequence cut to its first prompt and the steps at `target_c`: one
+// soak, then its altitude and airspeed sweeps with their return points. Written under `dir`.
+std::string OneTemperatureSequence(const fs::path& dir, double target_c) {
+  std::ifstream in(calib::testing::ShippedSequencePath("ads_calibration"));
+  nlohmann::json seq = nlohmann::json::parse(in);
+  nlohmann::json steps = nlohmann::json::array({seq["steps"][0]});
+  bool inside = false;
+  for (const nlohmann::json& step : seq["steps"]) {
+    if (step["kind"] == "target_temperature") {
+      if (inside) break;
+      inside = step["target_c"].get<double>() == target_c;
+    }
+    if (inside) steps.push_back(step);
+  }
+  seq["steps"] = steps;
+  seq["name"] = "ads_calibration_one_temperature";
+  fs::create_directories(dir);
+  const fs::path path = dir / "ads_calibration_one_temperature.json";
+  std::ofstream(path) << seq.dump(2);
+  return path.string();
+}
+
+// Points at one chamber temperature (25 degC: the shipped sequence's sweeps there, 50 points):
+// pressure hysteresis is still tested, with the baseline a polynomial in pressure alone; thermal
+// hysteresis is stated as not testable rather than given a limit (the pitot's loop and
+// nonlinearity mostly are too, by their range: its airspeeds go down once and its top points are
+// extrapolation when held out; printed, not asserted). On the static bridge (five spans of travel
+// down and back) the loop is found on at least 9 of 10 units and its half loop within 3 standard
+// errors plus 1 % of the truth on at least 9 of those found (the 1 %: the diagnoser's loop law is
+// not the simulated unit's, and one temperature averages nothing; docs/diagnose.md gives the
+// measured offsets); clean units give a finding on at most 1 of 10 (the family level is 1 % per
+// unit).
+TEST(AdsDiagnosis, OneTemperatureStillTestsPressureHysteresis) {
+  const std::string sequence =
+      OneTemperatureSequence(fs::temp_directory_path() / "adahrs_ads_one_temperature", 25.0);
+  int found = 0, within = 0, clean_with_findings = 0, pitot_not_testable = 0;
+  for (int i = 0; i < 10; ++i) {
+    AdsUnitParams unit = AdsUnitParams::Draw(
+        "ADS-" + std::to_string(9600 + i), 6600 + i, sensor_sim::ModelProfile::kNominal);
+    const UnitDiagnosis clean = Diagnose(unit, 600 + i, sequence);
+    if (!clean.findings.empty()) {
+      ++clean_with_findings;
+      std::printf("clean %s:\n", unit.serial.c_str());
+      Print(clean);
+    }
+    for (sensor_sim::PressureBridgeParams* b : {&unit.static_bridge, &unit.pitot_bridge})
+      b->effects.pressure_hysteresis = true;
+    const UnitDiagnosis d = Diagnose(unit, 700 + i, sequence);
+    for (const DetectionLimit& l : d.detection_limits) {
+      if (l.channel == "pt" && l.effect != "thermal_hysteresis")
+        pitot_not_testable += l.limits.empty() ? 1 : 0;
+      if (l.effect != "thermal_hysteresis") continue;
+      EXPECT_TRUE(l.limits.empty()) << l.effect << " " << l.channel;
+      EXPECT_EQ(l.note.rfind("not testable here: ", 0), 0u) << l.note;
+    }
+    for (const Finding& f : d.findings) {
+      EXPECT_NE(f.effect, "thermal_hysteresis") << f.words;
+      if (f.effect != "pressure_hysteresis" || f.channel != "ps") continue;
+      const double truth = HalfLoopPa(unit.static_bridge);
+      const FindingComponent& half = f.components[0];
+      std::printf(
+          "%s ps: half loop %.2f +- %.2f Pa, truth %.2f Pa; span %.0f +- %.0f Pa, truth %.0f Pa\n",
+          unit.serial.c_str(),
+          half.magnitude,
+          half.standard_error,
+          truth,
+          f.components[1].magnitude,
+          f.components[1].standard_error,
+          unit.static_bridge.pressure_hysteresis_span_pct_fs / 100.0 *
+              unit.static_bridge.full_scale_pa);
+      ++found;
+      if (std::abs(half.magnitude - truth) <= 3.0 * half.standard_error + 0.01 * truth) ++within;
+      EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
+    }
+    if (i == 0) {
+      Print(d);
+      for (const DetectionLimit& l : d.detection_limits)
+        std::printf(
+            "  limit %s %s: %s\n",
+            l.effect.c_str(),
+            l.channel.c_str(),
+            l.limits.empty()
+                ? l.note.c_str()
+                : fmt::format("{:.3g} {}", l.limits[0].magnitude, l.limits[0].unit).c_str());
+      for (const std::string& n : d.notes) std::printf("  note: %s\n", n.c_str());
+    }
+  }
+  std::printf(
+      "one temperature: static pressure hysteresis found on %d of 10 (%d within 3 SE + 1 %%); "
+      "clean units with a finding: %d of 10; pitot loop and nonlinearity not testable on %d of "
+      "20\n",
+      found,
+      within,
+      clean_with_findings,
+      pitot_not_testable);
+  EXPECT_GE(found, 9);
+  EXPECT_GE(within, found - found / 10);
+  EXPECT_LE(clean_with_findings, 1);
+}
+
+// Two or three chamber temperatures cannot choose the baseline's degree in temperature by held-out
+// interior temperatures: refused naming the unit and the count.
+TEST(AdsDiagnosis, TwoTemperaturesAreRefusedNamingTheCount) {
+  std::vector<calib::AdsCalibrationPoint> points;
+  const fs::path dir = fs::temp_directory_path() / "adahrs_ads_two_temperatures";
+  const AdsUnitParams unit =
+      AdsUnitParams::Draw("ADS-9700", 6700, sensor_sim::ModelProfile::kNominal);
+  for (double t : {25.0, 65.0}) {
+    const fs::path run = dir / std::to_string(static_cast<int>(t));
+    fs::remove_all(run);
+    calib::testing::WriteAdsRecording(run, OneTemperatureSequence(dir, t), unit, 800);
+    for (const calib::AdsCalibrationPoint& p :
+         calib::SelectAdsCalibrationPoints(hil::ReadRecording(run), unit.serial, run.string()))
+      points.push_back(p);
+  }
+  fs::remove_all(dir);
+  try {
+    DiagnoseAds(unit.serial, points);
+    ADD_FAILURE() << "two temperatures were diagnosed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("ADS-9700: the points visit 2 chamber temperatures"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // Appends a column the recording format does not know to every line of `csv`.
