@@ -16,6 +16,7 @@ Usage: campaign_command_test.py ADAHRS_BINARY
 """
 import json
 import pathlib
+import re
 import signal
 import sqlite3
 import subprocess
@@ -193,8 +194,11 @@ def records_shape(out):
         "downloads": q("SELECT c.serial, c.strategy, d.station_name, d.role, d.verified, "
                        "d.committed, d.detail FROM downloads d JOIN constants c "
                        "ON c.id = d.constants"),
-        "acceptance": q("SELECT serial, quantity, condition, tolerance, unit "
-                        "FROM acceptance_results"),
+        # A condition ends with the measured chamber temperature ("..., 25.1 degC"): a value.
+        "acceptance": sorted((serial, quantity, re.sub(r", -?[0-9.]+ degC$", "", condition),
+                              tolerance, unit) for serial, quantity, condition, tolerance, unit
+                             in q("SELECT serial, quantity, condition, tolerance, unit "
+                                  "FROM acceptance_results")),
     }
     db.close()
     return shape
