@@ -101,14 +101,15 @@ CampaignInputs ResumedCampaign(const std::filesystem::path& out) {
 }
 
 void PrintUnit(const calib::UnitOutcome& u) {
-  std::cout << fmt::format("{} {}: constants version {} (records v{}, {} strategy, {} blocks "
-                           "verified)\n",
-                           u.role,
-                           u.serial,
-                           u.download.unit_constants_version,
-                           u.download.records_version,
-                           u.strategy,
-                           u.download.blocks);
+  std::cout << fmt::format(
+      "{} {}: constants version {} (records v{}, {} strategy, {} blocks "
+      "verified)\n",
+      u.role,
+      u.serial,
+      u.download.unit_constants_version,
+      u.download.records_version,
+      u.strategy,
+      u.download.blocks);
   if (!u.acceptance) {
     std::cout << "  acceptance: the unit is not in the acceptance run\n";
     return;
@@ -150,8 +151,7 @@ int PrintSummary(const calib::CampaignResult& result) {
   std::cout << "records: " << result.records_file.string() << " (adahrs units show SERIAL --db "
             << result.records_file.string() << ")\n";
   if (lost > 0) {
-    std::cout << fmt::format("adahrs campaign: {} packets lost: the runs are not complete\n",
-                             lost);
+    std::cout << fmt::format("adahrs campaign: {} packets lost: the runs are not complete\n", lost);
     return kExitPacketsLost;
   }
   return all_accepted ? 0 : kExitUnitsNotAccepted;
@@ -175,10 +175,8 @@ int RunCampaignCommand(const CampaignCommandOptions& o) {
   options.expected_serials = in.campaign.expected_serials;
   options.specification_file = in.campaign.specification_file;
   options.software_version = ADAHRS_VERSION;
-  std::cout << fmt::format("campaign \"{}\" {} in {}\n",
-                           in.campaign.name,
-                           resume ? "resumed" : "started",
-                           out.string());
+  std::cout << fmt::format(
+      "campaign \"{}\" {} in {}\n", in.campaign.name, resume ? "resumed" : "started", out.string());
   ConsoleObserver observer;
   try {
     return PrintSummary(calib::RunCampaign(options, observer, g_campaign_stop));

@@ -105,8 +105,7 @@ CampaignFile CampaignFile::FromJson(const nlohmann::json& document,
 
 CampaignFile CampaignFile::Load(const std::filesystem::path& path) {
   const std::filesystem::path absolute = std::filesystem::absolute(path);
-  return FromJson(
-      ParamReader::LoadFile(path.string()), path.string(), absolute.parent_path());
+  return FromJson(ParamReader::LoadFile(path.string()), path.string(), absolute.parent_path());
 }
 
 nlohmann::json CampaignFile::ToJson() const {

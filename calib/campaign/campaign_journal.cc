@@ -96,7 +96,8 @@ void CampaignJournal::RecordDownload(const UnitDownload& download) {
 
 nlohmann::json CampaignJournal::ToJson() const {
   nlohmann::json stages = nlohmann::json::array();
-  for (const Stage& s : stages_) stages.push_back({{"stage", s.name}, {"finished_utc", s.finished_utc}});
+  for (const Stage& s : stages_)
+    stages.push_back({{"stage", s.name}, {"finished_utc", s.finished_utc}});
   nlohmann::json downloads = nlohmann::json::array();
   for (const Download& d : downloads_) {
     downloads.push_back({{"unit", DownloadJson(d.unit)}, {"verified_utc", d.verified_utc}});
@@ -107,8 +108,6 @@ nlohmann::json CampaignJournal::ToJson() const {
           {"downloads", downloads}};
 }
 
-void CampaignJournal::Write() const {
-  common::WriteFileAtomically(file_, ToJson().dump(2) + "\n");
-}
+void CampaignJournal::Write() const { common::WriteFileAtomically(file_, ToJson().dump(2) + "\n"); }
 
 }  // namespace adahrs::calib

@@ -133,8 +133,7 @@ TEST_F(CampaignJournalTest, AMalformedJournalIsRefusedWithItsPath) {
   std::ofstream(dir_ / kCampaignJournalFile)
       << R"({"format": "adahrs-campaign-journal", "format_version": 1,
              "stages": [{"stage": "fits"}], "downloads": []})";
-  const std::string error =
-      ErrorText<common::ParamError>([&] { CampaignJournal journal(dir_); });
+  const std::string error = ErrorText<common::ParamError>([&] { CampaignJournal journal(dir_); });
   EXPECT_NE(error.find(kCampaignJournalFile), std::string::npos) << error;
   EXPECT_NE(error.find("$.stages[0].finished_utc"), std::string::npos) << error;
 }
