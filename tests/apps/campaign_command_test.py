@@ -42,7 +42,9 @@ def port(path, baud, flow):
 
 
 def bench_station(manifest, config, kind):
-    """The IMU bench (rate table, IMU chamber, IMUs) or the ADS bench (942 chamber, ADTS, ADS)."""
+    """The IMU bench (rate table, IMU chamber, IMUs) or the ADS bench (942 chamber, ADTS, ADS).
+    Instruments get 3 s of wall time per reply: four builds beside the test once starved the
+    ADTS past 3 x 1 s at the start of a run."""
     bench_instruments = {"imu": ("aerosmith_atl", "watlow_f4"),
                          "ads": ("watlow_942", "druck_adts_prologix")}[kind]
     instruments = {}
@@ -59,7 +61,7 @@ def bench_station(manifest, config, kind):
         if itype == "watlow_942":
             flow = "xonxoff"
         instruments[role] = {"type": itype, "port": port(manifest["links"][role], baud, flow),
-                             "address": address, "timeout_ms": 1000, "retries": 2}
+                             "address": address, "timeout_ms": 3000, "retries": 2}
     units = [{"role": u["role"], "kind": u["kind"], "slot": u["slot"], "timeout_ms": 500,
               "port": port(manifest["links"][u["role"]], u["baud"], "none")}
              for u in manifest["units"] if u["kind"] == kind]
