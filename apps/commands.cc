@@ -19,6 +19,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterDiagnoseCommand(app);
   RegisterAcceptanceCommand(app);
   RegisterStudyCommand(app);
+  RegisterUnitCommand(app);
 }
 
 }  // namespace adahrs::apps

@@ -24,5 +24,6 @@ void RegisterEvaluateCommand(CLI::App& app);
 void RegisterDiagnoseCommand(CLI::App& app);
 void RegisterAcceptanceCommand(CLI::App& app);
 void RegisterStudyCommand(CLI::App& app);
+void RegisterUnitCommand(CLI::App& app);
 
 }  // namespace adahrs::apps

@@ -67,11 +67,13 @@ class CellCutter {
               ? t[i - 1] + static_cast<uint8_t>(rows[i]->seq - rows[i - 1]->seq) * frame_period_s_
               : rows[i]->t_s;
     }
-    data_->spectra.AddSegment(
-        index,
-        rows.size(),
-        [&](size_t i) { return t[i]; },
-        [&](size_t i, int ch) { return Output(*rows[i], ch); });
+    for (RowSpectra* spectra : {&data_->spectra, &data_->slow_spectra}) {
+      spectra->AddSegment(
+          index,
+          rows.size(),
+          [&](size_t i) { return t[i]; },
+          [&](size_t i, int ch) { return Output(*rows[i], ch); });
+    }
     MeasureRippleOfSegment(index, rows, t, w_B_dps);
     data_->rows += segment.rows;
     data_->segments.push_back(std::move(segment));
@@ -411,9 +413,11 @@ DiagnosisData BuildDiagnosisData(const calib::ImuUnitData& unit,
   data.serial = unit.serial;
   const double g_scale = g_local_mps2 / 9.80665;
   const double frame_period_s = FramePeriod(unit);
-  data.spectra = RowSpectra(
-      kImuChannels,
-      frame_period_s > 0.0 ? UsualCounterStep(unit) * frame_period_s : NominalInterval(unit));
+  const double row_interval_s =
+      frame_period_s > 0.0 ? UsualCounterStep(unit) * frame_period_s : NominalInterval(unit);
+  data.spectra = RowSpectra(kImuChannels, row_interval_s);
+  data.slow_spectra =
+      RowSpectra(kImuChannels, row_interval_s, kSpectrumWindowRows * kSlowWindowFactor);
   CellCutter cutter(&data, cell_duration_s, frame_period_s);
   CutThermal(unit, g_scale, &cutter);
   CutAcquisitions(unit.accel, g_scale, &cutter);

@@ -92,6 +92,8 @@ struct DiagnosisData {
   /// Row-level spectra of the raw outputs, per channel and segment, at the recording's median
   /// row interval (row_spectrum.h).
   RowSpectra spectra{kImuChannels, 0.0};
+  /// The same rows in windows kSlowWindowFactor times longer: the slow band below `spectra`'s.
+  RowSpectra slow_spectra{kImuChannels, 0.0, kSpectrumWindowRows* kSlowWindowFactor};
   /// The step of each raw output: one timer tick over the mean period (duty), or one count.
   std::array<double, kImuChannels> output_quantum{};
   /// Packets missing inside segments, by the 8-bit sequence counter against its usual step in

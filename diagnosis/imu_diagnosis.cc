@@ -673,7 +673,7 @@ ChannelResult DiagnoseChannel(const DiagnosisData& data,
            ch,
            phys,
            &out.summary);
-  LocateStructure(data, ch, residual, phys, RmsUnit(ch), &out.unexplained);
+  LocateStructure(data, ch, residual, phys, RmsUnit(ch), &out.unexplained, notes);
   LocatePeriodic(
       data, ch, options.family_alpha / kImuChannels, phys, RmsUnit(ch), &out.unexplained, notes);
   if (common::IsGyroChannel(ch)) DiagnoseRipple(data, ch, phys, alpha, options.power_z, &out);

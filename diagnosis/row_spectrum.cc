@@ -15,8 +15,9 @@
 namespace adahrs::diagnosis {
 namespace {
 
-constexpr int kFloorHalfWidth = 12;  // neighbours each side that carry the floor
-constexpr int kLobeHalfWidth = 2;    // a Hann line's main lobe, bins each side
+constexpr int kFloorHalfWidth = 12;    // neighbours each side that carry the floor
+constexpr int kLobeHalfWidth = 2;      // a Hann line's main lobe, bins each side
+constexpr int kMinSideNeighbours = 3;  // for a quadratic floor, on each side of the bin
 constexpr double kSegmentZ = 3.0;
 
 // Log floor at each bin: a quadratic in ln(bin) fitted to the log power of the neighbours
@@ -33,6 +34,7 @@ std::vector<double> LogFloor(const std::vector<double>& log_p,
   for (int k = first; k <= last; ++k) {
     Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
     Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+    int below = 0, above = 0;
     for (int j = std::max(1, k - kFloorHalfWidth); j <= k + kFloorHalfWidth; ++j) {
       if (std::abs(j - k) <= kLobeHalfWidth) continue;
       const int mirrored = j > nyquist ? 2 * nyquist - j : j;
@@ -41,8 +43,13 @@ std::vector<double> LogFloor(const std::vector<double>& log_p,
       const Eigen::Vector3d a(1.0, x, x * x);
       ata += a * a.transpose();
       atb += a * log_p[static_cast<size_t>(mirrored)];
+      ++(j < k ? below : above);
     }
-    floor[static_cast<size_t>(k)] = ata.ldlt().solve(atb)[0];
+    // With neighbours on one side only (lines masked next to the lowest bins) a quadratic would
+    // be extrapolated: a line in ln(frequency) is.
+    const int terms = below < kMinSideNeighbours || above < kMinSideNeighbours ? 2 : 3;
+    floor[static_cast<size_t>(k)] =
+        ata.topLeftCorner(terms, terms).ldlt().solve(atb.head(terms))[0];
   }
   return floor;
 }
@@ -177,9 +184,12 @@ Excess ExcessOverFloor(const std::vector<double>& log_p,
 std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra,
                                             int channel,
                                             double alpha,
-                                            int max_lines) {
+                                            int max_lines,
+                                            int max_bin,
+                                            const std::vector<double>& known_hz) {
   const std::vector<double> p = spectra.MeanPower(channel);
-  const int last = spectra.bins() - 2;  // the Nyquist bin is left out
+  int last = spectra.bins() - 2;  // the Nyquist bin is left out
+  if (max_bin > 0) last = std::min(last, max_bin);
   if (p.empty() || last < kFloorHalfWidth) return {};
   std::vector<double> log_p(p.size());
   for (size_t k = 0; k < p.size(); ++k) log_p[k] = std::log(std::max(p[k], 1e-300));
@@ -191,6 +201,12 @@ std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra,
   const double log_bias = boost::math::digamma(m) - std::log(m);
 
   std::vector<bool> masked(p.size(), false);
+  for (double f : known_hz) {
+    const int k = static_cast<int>(std::lround(f / spectra.BinHz(1.0)));
+    for (int j = k - kLobeHalfWidth; j <= k + kLobeHalfWidth; ++j) {
+      if (j >= 0 && j < static_cast<int>(masked.size())) masked[static_cast<size_t>(j)] = true;
+    }
+  }
   std::vector<PeriodicLine> lines;
   while (static_cast<int>(lines.size()) < max_lines) {
     const Excess ex = ExcessOverFloor(log_p, masked, kMinLineBin, last);
@@ -233,6 +249,13 @@ std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra,
     }
   }
   return lines;
+}
+
+int TestedBins(const RowSpectra& spectra, int max_bin) {
+  if (spectra.windows() == 0) return 0;
+  int last = spectra.bins() - 2;
+  if (max_bin > 0) last = std::min(last, max_bin);
+  return std::max(0, last - kMinLineBin + 1);
 }
 
 double MedianInterval(const std::vector<double>& times_s) {

@@ -6,10 +6,11 @@
 // the channel's and the segment's sums. Power per bin is |X_k|^2 / (N sum w^2): white noise of
 // variance s^2 gives s^2 / N per bin, and a sinusoid of amplitude A puts A^2 / 4 into the bins
 // of its positive-frequency lobe. Units: the raw output's, squared.
-// A line is a bin whose log power stands above a quadratic in ln(frequency) fitted to its
-// neighbours' (so a coloured floor, flicker or a filter's roll-off, is not a line) by more than the
-// channel's own robust spread of that excess times a normal quantile at the given level,
-// Bonferroni-divided over the bins tested.
+// A line is a bin whose log power stands above a floor fitted to its neighbours' (a quadratic in
+// ln(frequency), so flicker or a filter's roll-off is not a line) by more than the channel's own
+// robust spread of that excess times a normal quantile, Bonferroni-divided over the bins tested.
+// Windows kSlowWindowFactor times longer carry the band below kMinLineBin (docs/diagnose.md
+// "Method (IMU)", item 6).
 // Not done: windows across a gap, lines below kMinLineBin bins (those are drift, not tones).
 #pragma once
 
@@ -20,6 +21,7 @@ namespace adahrs::diagnosis {
 
 inline constexpr int kSpectrumWindowRows = 512;
 inline constexpr int kMinLineBin = 6;
+inline constexpr int kSlowWindowFactor = 8;
 
 class RowSpectra {
  public:
@@ -67,11 +69,18 @@ struct PeriodicLine {
   int segments_with_windows = 0;
 };
 
-/// Lines of one channel at level `alpha` over its bins, strongest first, at most `max_lines`.
+/// Lines of one channel at level `alpha` over its bins kMinLineBin ... `max_bin` (0: up to the
+/// last below Nyquist), strongest first, at most `max_lines`. The lobes of the lines at
+/// `known_hz` (found by other windows) are left out of the search and of every floor.
 std::vector<PeriodicLine> FindPeriodicLines(const RowSpectra& spectra,
                                             int channel,
                                             double alpha,
-                                            int max_lines = 5);
+                                            int max_lines = 5,
+                                            int max_bin = 0,
+                                            const std::vector<double>& known_hz = {});
+
+/// The bins a search of FindPeriodicLines tests (0 when the spectra have no window).
+int TestedBins(const RowSpectra& spectra, int max_bin = 0);
 
 /// The median interval between consecutive times that are increasing (0 when there is none).
 double MedianInterval(const std::vector<double>& times_s);

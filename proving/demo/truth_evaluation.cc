@@ -4,10 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include <fmt/format.h>
-
 #include "calib/acceptance/specification.h"
-#include "proving/evaluation/ads_evaluation.h"
+#include "proving/evaluation/ads_evaluation_report.h"
 #include "proving/evaluation/imu_evaluation.h"
 #include "proving/evaluation/truth_file.h"
 
@@ -21,19 +19,11 @@ void WriteJson(const std::filesystem::path& path, const nlohmann::json& json) {
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
 
-// ADS verdict over the grid: the evaluation's own classes counted.
-std::string AdsVerdictText(const AdsQuantityEvaluation& q) {
-  if (q.fail == 0 && q.unreachable == 0) return "within specification";
-  return fmt::format("{} of {} grid points fail, {} unreachable by any static calibration",
-                     q.fail,
-                     q.grid.size(),
-                     q.unreachable);
-}
-
 EvaluatedQuantity AdsRow(const std::string& serial,
                          const std::string& name,
-                         const AdsQuantityEvaluation& q) {
-  return {serial, name, "x tolerance", q.worst_ratio_no_history, 1.0, AdsVerdictText(q)};
+                         const AdsQuantityEvaluation& q,
+                         const std::string& verdict) {
+  return {serial, name, "x tolerance", q.worst_ratio_no_history, 1.0, verdict};
 }
 
 }  // namespace
@@ -73,10 +63,10 @@ std::vector<EvaluatedQuantity> EvaluateAgainstTruth(
         detail = {{"serial", file.serial}, {"error", e.what()}};
       }
     } else {
-      const AdsEvaluation e = EvaluateAdsConstants(*file.ads, AdsTruth(truth, file.serial));
-      rows.push_back(AdsRow(file.serial, "altitude", e.altitude));
-      rows.push_back(AdsRow(file.serial, "airspeed", e.airspeed));
-      detail = e.ToJson();
+      const AdsFileEvaluation e = EvaluateAds(file, AdsTruth(truth, file.serial));
+      rows.push_back(AdsRow(file.serial, "altitude", e.evaluation.altitude, e.altitude_verdict));
+      rows.push_back(AdsRow(file.serial, "airspeed", e.evaluation.airspeed, e.airspeed_verdict));
+      detail = e.report;
     }
     WriteJson(fit_dir / "evaluation" / (file.serial + ".json"), detail);
   }

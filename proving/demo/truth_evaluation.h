@@ -1,7 +1,7 @@
 // The truth-evaluation stage of a campaign on a simulated rig: each unit's constants
 // (constants.json) are evaluated against the unit's true model, which the rig wrote to
 // `<truth_dir>/<serial>.json` ({"serial", "kind", "seed", "model_profile", "params"}): IMUs with
-// EvaluateImu (imu_evaluation.h), ADS units with EvaluateAdsConstants (ads_evaluation.h). Only a
+// EvaluateImu (imu_evaluation.h), ADS units with EvaluateAds (ads_evaluation_report.h). Only a
 // caller that made the rig knows where its truth is; no pipeline stage reads it.
 // Writes `<fit_dir>/evaluation.json` ({"units": [one row per unit and quantity]}, the table the
 // report shows) and each unit's full evaluation to `<fit_dir>/evaluation/<serial>.json`.

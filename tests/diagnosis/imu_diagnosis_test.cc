@@ -3,11 +3,13 @@
 // uncertainty; clean units must give no finding. The scenario generator (imu_diagnosis_scenario.h)
 // is the simulator; the diagnoser (calib/diagnosis) never includes it.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <string>
 
 #include <fmt/format.h>
@@ -153,6 +155,14 @@ TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
       Print(d);
     }
     if (!d.unexplained.empty()) ++with_unexplained;
+    for (const Unexplained& u : d.unexplained) {
+      if (d.findings.empty())
+        std::printf("seed %d: unexplained: %s %s: %s\n",
+                    static_cast<int>(seed),
+                    u.channel.c_str(),
+                    u.where.c_str(),
+                    u.description.c_str());
+    }
   }
   std::printf("clean: %d of 100 units with a finding, %d with unexplained structure\n",
               with_findings,
@@ -338,6 +348,96 @@ TEST(ImuDiagnosis, LocatesABiasStepWithoutFittingAnyTerm) {
   EXPECT_TRUE(located);
 }
 
+// The worst segment's stated 90 % step limit of `channel` from the unit's notes, in its unit.
+double StatedStepLimit(const UnitDiagnosis& d, const std::string& channel) {
+  for (const std::string& n : d.notes) {
+    if (n.rfind(channel + ": steps located", 0) != 0) continue;
+    const size_t to = n.find(") to ");
+    if (to != std::string::npos) return std::stod(n.substr(to + 5));
+  }
+  return 0.0;
+}
+
+// Gyro bias steps halfway up a 2 degC/min ramp (a thermal run's pace), written onto the counts of
+// 10 units (each gyro axis in turn): 0.1 deg/s, about 3 times the spread the simulated ADXRS150's
+// bias flicker gives a 30 s contrast (bias instability 50-100 deg/h, physics.md), and 0.3 deg/s.
+// A step above the unit's stated 90 % limit is located within 60 s of where it was written on at
+// least 9 of 10 units; the clean units show no step at all (the rule's design rate, 1e-3 per
+// channel-hour, gives 0.2 expected over these 10 units' 180 channel-hours).
+TEST(ImuDiagnosis, LocatesGyroBiasStepsAboveTheStatedLimitOnASlowThermalRamp) {
+  Shape shape;
+  shape.ramp_c_per_min = 2.0;
+  int clean_steps = 0;
+  std::map<double, std::array<int, 3>> tally;  // size: above limit, located of those, located
+  for (int unit = 0; unit < 10; ++unit) {
+    const calib::ImuUnitData clean_data = Simulate(Nominal(620 + unit), 7020 + unit, shape);
+    const UnitDiagnosis clean = Diagnose(clean_data);
+    for (const Unexplained& u : clean.unexplained) {
+      if (u.description.find("a step of") == std::string::npos) continue;
+      ++clean_steps;
+      std::printf("clean unit %d: %s %s: %s\n",
+                  unit,
+                  u.channel.c_str(),
+                  u.where.c_str(),
+                  u.description.c_str());
+    }
+    // Halfway up the -20 -> 70 degC ramp, in the rows' own time.
+    double t_step = 0.0;
+    for (size_t i = 0; i < clean_data.thermal.size(); ++i) {
+      if (clean_data.thermal_segment[i] == calib::ThermalSegment::kUpRamp &&
+          clean_data.thermal[i].chamber_c >= 25.0) {
+        t_step = clean_data.thermal[i].t_s;
+        break;
+      }
+    }
+    const int axis = unit % 3;
+    const std::string channel = common::kImuChannelNames[6 + axis];
+    for (double size_dps : {0.1, 0.3}) {
+      calib::ImuUnitData data = clean_data;
+      for (calib::ImuSample& s : data.thermal) {
+        if (s.t_s >= t_step)
+          s.raw.gyro_cnt[axis] +=
+              static_cast<int32_t>(std::lround(size_dps * kGyroDatasheetCountsPerDps));
+      }
+      const UnitDiagnosis d = Diagnose(data);
+      bool located = false;
+      for (const Unexplained& u : d.unexplained) {
+        const size_t at = u.where.find("t = ");
+        if (u.channel == channel && at != std::string::npos &&
+            std::abs(std::stod(u.where.substr(at + 4)) - t_step) <= 60.0)
+          located = true;
+      }
+      const double limit_dps = StatedStepLimit(d, channel);
+      std::printf("unit %d %s: step %.2f deg/s at t = %.1f s %s; stated limit %.3g deg/s\n",
+                  unit,
+                  channel.c_str(),
+                  size_dps,
+                  t_step,
+                  located ? "located" : "not located",
+                  limit_dps);
+      EXPECT_GT(limit_dps, 0.0) << "no step limit stated for " << channel;
+      std::array<int, 3>& t = tally[size_dps];
+      if (size_dps > limit_dps) {
+        ++t[0];
+        if (located) ++t[1];
+      }
+      if (located) ++t[2];
+    }
+  }
+  for (const auto& [size_dps, t] : tally) {
+    std::printf(
+        "step %.2f deg/s: above the stated limit on %d units, located on %d of those; "
+        "located on %d of 10 in all\n",
+        size_dps,
+        t[0],
+        t[1],
+        t[2]);
+    EXPECT_GE(t[1], t[0] - t[0] / 10) << size_dps << " deg/s";
+  }
+  EXPECT_EQ(tally[0.3][0], 10) << "0.3 deg/s should exceed every stated limit";
+  EXPECT_EQ(clean_steps, 0);
+}
+
 // Packets lost inside a segment are counted by the sequence counter and said, never interpolated.
 TEST(ImuDiagnosis, ReportsPacketsMissingByTheSequenceCounter) {
   Shape shape;
@@ -363,6 +463,31 @@ TEST(ImuDiagnosis, ReportsPacketsMissingByTheSequenceCounter) {
       << ::testing::PrintToString(d.notes);
 }
 
+// The per-row spread of a gyro's counts over the last soak (differences remove the slow drift).
+double GyroRowSpreadCnt(const calib::ImuUnitData& data, int axis) {
+  double sum2 = 0.0;
+  const size_t n = 20000;
+  for (size_t i = data.thermal.size() - n; i < data.thermal.size(); ++i) {
+    const double d = static_cast<double>(data.thermal[i].raw.gyro_cnt[axis]) -
+                     data.thermal[i - 1].raw.gyro_cnt[axis];
+    sum2 += d * d;
+  }
+  return std::sqrt(sum2 / n / 2.0);
+}
+
+// A tone written onto one gyro's counts in every thermal, accelerometer and gyro row.
+void AddGyroTone(calib::ImuUnitData* data, int axis, double amplitude_cnt, double f_hz, int phase) {
+  auto add = [&](calib::ImuSample& s) {
+    s.raw.gyro_cnt[axis] += static_cast<int32_t>(
+        std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s + phase)));
+  };
+  for (calib::ImuSample& s : data->thermal) add(s);
+  for (calib::ImuAcquisition& a : data->accel)
+    for (calib::ImuSample& s : a.samples) add(s);
+  for (calib::ImuAcquisition& a : data->gyro)
+    for (calib::ImuSample& s : a.samples) add(s);
+}
+
 // Periodic interference (outside the library) at a fifth of the per-row noise: visible only in
 // the rows' aggregated spectrum. On 10 units, each with a tone on one gyro at its own frequency,
 // it is located within half a bin of its frequency and 15 % of its amplitude on at least 9, never
@@ -375,24 +500,8 @@ TEST(ImuDiagnosis, LocatesPeriodicInterferenceBelowTheRowNoise) {
     calib::ImuUnitData data = Simulate(Nominal(610 + unit), 7010 + unit, shape);
     const int axis = unit % 3;
     const double f_hz = 1.5 + 4.3 * unit;  // 1.5 ... 40.2 Hz
-    // The per-row spread of the channel over the last soak (differences remove the slow drift).
-    double sum2 = 0.0;
-    const size_t n = 20000;
-    for (size_t i = data.thermal.size() - n; i < data.thermal.size(); ++i) {
-      const double d = static_cast<double>(data.thermal[i].raw.gyro_cnt[axis]) -
-                       data.thermal[i - 1].raw.gyro_cnt[axis];
-      sum2 += d * d;
-    }
-    const double amplitude_cnt = 0.2 * std::sqrt(sum2 / n / 2.0);
-    auto add = [&](calib::ImuSample& s) {
-      s.raw.gyro_cnt[axis] += static_cast<int32_t>(
-          std::lround(amplitude_cnt * std::sin(2.0 * M_PI * f_hz * s.t_s + unit)));
-    };
-    for (calib::ImuSample& s : data.thermal) add(s);
-    for (calib::ImuAcquisition& a : data.accel)
-      for (calib::ImuSample& s : a.samples) add(s);
-    for (calib::ImuAcquisition& a : data.gyro)
-      for (calib::ImuSample& s : a.samples) add(s);
+    const double amplitude_cnt = 0.2 * GyroRowSpreadCnt(data, axis);
+    AddGyroTone(&data, axis, amplitude_cnt, f_hz, unit);
     const DiagnosisData cells = BuildDiagnosisData(data, 9.80665);
     const UnitDiagnosis d = DiagnoseImu(cells);
     for (const Finding& f : d.findings) ADD_FAILURE() << f.words;
@@ -421,6 +530,55 @@ TEST(ImuDiagnosis, LocatesPeriodicInterferenceBelowTheRowNoise) {
     }
   }
   EXPECT_GE(located, 9);
+}
+
+// Interference below the rows' windows' lowest searched bin (about 1.2 Hz at 512 rows of 10 ms):
+// 0.3 ... 1.0 Hz at half the per-row noise, found by the slow windows at its frequency (within
+// half a slow bin) and amplitude (15 %), on its channel only, on at least 7 of 8 units. Below
+// about 0.5 Hz 1 s cells keep most of it (sin(pi f) / (pi f) = 0.86 at 0.3 Hz), so the held-out
+// error on that channel stands above the noise as well, rightly; a term fitted to it is a false
+// finding, allowed on at most 1 of the 8.
+TEST(ImuDiagnosis, LocatesSlowPeriodicInterferenceBelowOneHertz) {
+  Shape shape;
+  shape.sensor_cal_c = {-20.0, 25.0, 70.0};
+  int located = 0, with_findings = 0;
+  for (int unit = 0; unit < 8; ++unit) {
+    calib::ImuUnitData data = Simulate(Nominal(640 + unit), 7040 + unit, shape);
+    const int axis = unit % 3;
+    const double f_hz = 0.3 + 0.1 * unit;  // 0.3 ... 1.0 Hz
+    const double amplitude_cnt = 0.5 * GyroRowSpreadCnt(data, axis);
+    AddGyroTone(&data, axis, amplitude_cnt, f_hz, unit);
+    const DiagnosisData cells = BuildDiagnosisData(data, 9.80665);
+    const UnitDiagnosis d = DiagnoseImu(cells);
+    for (const Finding& f : d.findings) std::printf("finding: %s\n", f.words.c_str());
+    if (!d.findings.empty()) ++with_findings;
+    const std::string channel = common::kImuChannelNames[6 + axis];
+    const double half_bin_hz = cells.slow_spectra.BinHz(0.5);
+    bool found = false;
+    for (const Unexplained& u : d.unexplained) {
+      std::printf("%s: injected %.0f counts at %.2f Hz; unexplained %s %s: %s\n",
+                  channel.c_str(),
+                  amplitude_cnt,
+                  f_hz,
+                  u.channel.c_str(),
+                  u.where.c_str(),
+                  u.description.c_str());
+      EXPECT_EQ(u.channel, channel) << u.description;
+      const size_t at = u.description.find("periodic ");
+      if (u.channel != channel || at == std::string::npos) continue;
+      const double found_hz = std::stod(u.description.substr(at + 9));
+      const size_t amp = u.description.find("amplitude ");
+      const double found_cnt =
+          amp == std::string::npos ? 0.0 : std::stod(u.description.substr(amp + 10));
+      if (std::abs(found_hz - f_hz) < half_bin_hz &&
+          std::abs(found_cnt - amplitude_cnt) < 0.15 * amplitude_cnt)
+        found = true;
+    }
+    if (found) ++located;
+  }
+  std::printf("slow tones: located on %d of 8 units, a finding on %d\n", located, with_findings);
+  EXPECT_GE(located, 7);
+  EXPECT_LE(with_findings, 1);
 }
 
 // On a real line packets arrive in bursts: their arrival times share values and jump. The row
