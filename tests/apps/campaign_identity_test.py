@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """`adahrs campaign` refuses a unit by its serial before anything moves: on `adahrs rig` (a
 separate process), an IMU-bench-only campaign whose file expects imu1's serial on imu2 and imu2's on
-imu1 (two units swapped between ports) and the right serials on imu3 and imu4. The serials expected
-are the labels the rig's manifest gives its units, not what the pipeline reads.
+imu1 (two units swapped between ports) and the right serials on imu3 and imu4, on the short
+sequences of campaign_command_test. The serials expected are the labels the rig's manifest gives
+its units, not what the pipeline reads.
 Checks: both swapped slots are refused naming role, serial read and serial expected; no run holds
 them (meta.json units) and the records have no run, download or acceptance of theirs; imu3 and
 imu4 complete (downloaded once, judged); exit status 4 (complete, a unit refused).
