@@ -1,6 +1,8 @@
-// adahrs sequence check FILE: validates a calibration sequence against the reference hardware's
-// limits (calib/sequence/sequence_limits.h) and prints its expanded plan with a duration
-// estimate, or every problem found (exit status 1).
+// adahrs sequence check FILE [--station STATION]: validates a calibration sequence against the
+// limits of the station's instruments (calib/sequence/station_limits.h; without --station, the
+// reference hardware's defaults of calib/sequence/sequence_limits.h) and prints its expanded plan
+// with a duration estimate (on the station's declared chamber rates and operator when given), or
+// every problem found (exit status 1).
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -9,6 +11,7 @@
 
 #include "apps/commands.h"
 #include "calib/sequence/execution_plan.h"
+#include "calib/sequence/station_limits.h"
 #include "calib/sequence/validation.h"
 
 namespace adahrs::apps {
@@ -45,11 +48,25 @@ void RegisterSequenceCommand(CLI::App& app) {
   CLI::App* check = sequence->add_subcommand(
       "check", "Validate a sequence file; print its expanded plan or every problem");
   auto file = std::make_shared<std::string>();
+  auto station_file = std::make_shared<std::string>();
   check->add_option("FILE", *file, "Sequence JSON file")->required();
-  check->callback([file] {
-    const calib::SequenceLimits limits;
+  check->add_option("--station",
+                    *station_file,
+                    "Station file whose instrument limits the sequence must keep (default: the "
+                    "reference hardware's)");
+  check->callback([file, station_file] {
+    if (station_file->empty()) {
+      const calib::SequenceLimits limits;
+      const calib::Sequence sequence = calib::LoadValidSequence(*file, limits);
+      PrintPlan(sequence, calib::ExpandSequence(sequence, limits));
+      return;
+    }
+    const hil::Station station = hil::Station::Load(*station_file);
+    const calib::SequenceLimits limits = calib::LimitsForStation(station);
     const calib::Sequence sequence = calib::LoadValidSequence(*file, limits);
-    PrintPlan(sequence, calib::ExpandSequence(sequence, limits));
+    PrintPlan(sequence,
+              calib::ExpandSequence(
+                  sequence, limits, calib::TimingForStation(station, sequence.unit_kind)));
   });
 }
 

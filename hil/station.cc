@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common/gravity.h"
 #include "common/unit_kind.h"
 
@@ -100,6 +102,111 @@ PortIdentity IdentityOf(const std::string& path) {
   return {false, 0, 0, std::filesystem::absolute(path).lexically_normal().string()};
 }
 
+// One end pair of a range: both ends or neither, the low one below the high one.
+void ReadRange(const ParamReader& r,
+               std::optional<double>& low,
+               std::optional<double>& high,
+               const char* low_key,
+               const char* high_key,
+               double min,
+               double max,
+               const char* unit) {
+  if (!r.Has(low_key) && !r.Has(high_key)) return;
+  if (!r.Has(low_key) || !r.Has(high_key)) {
+    r.Fail(r.path() + "." + (r.Has(low_key) ? high_key : low_key),
+           std::string("missing: a range states ") + low_key + " and " + high_key + " together");
+  }
+  low = r.Number(low_key, min, max, unit);
+  high = r.Number(high_key, min, max, unit);
+  if (!(*low < *high)) {
+    r.Fail(r.path() + "." + high_key,
+           fmt::format(
+               "{} {:g} {} is not above {} {:g} {}", high_key, *high, unit, low_key, *low, unit));
+  }
+}
+
+// The entry's optional "limits": the keys of its instrument type, each optional, each within
+// what an instrument of the kind could have (a wider value is a typo or a wrong unit).
+InstrumentLimits ReadLimits(const ParamReader& ir, InstrumentType type) {
+  InstrumentLimits l;
+  if (!ir.Has("limits")) return l;
+  const ParamReader lr = ir.Child("limits");
+  const auto number =
+      [&](std::optional<double>& out, const char* key, double min, double max, const char* unit) {
+        if (lr.Has(key)) out = lr.Number(key, min, max, unit);
+      };
+  switch (type) {
+    case InstrumentType::kAerosmithAtl:
+      number(l.max_rate_dps, "max_rate_dps", 1.0, 10000.0, "deg/s");
+      number(l.max_accel_dps2, "max_accel_dps2", 0.1, 100000.0, "deg/s^2");
+      break;
+    case InstrumentType::kWatlowF4:
+    case InstrumentType::kWatlow942:
+      ReadRange(lr, l.min_c, l.max_c, "min_c", "max_c", -200.0, 500.0, "degC");
+      number(l.max_ramp_c_per_min, "max_ramp_c_per_min", 0.01, 1000.0, "degC/min");
+      number(l.heat_rate_c_per_min, "heat_rate_c_per_min", 0.01, 1000.0, "degC/min");
+      number(l.cool_rate_c_per_min, "cool_rate_c_per_min", 0.01, 1000.0, "degC/min");
+      break;
+    case InstrumentType::kDruckAdtsPrologix:
+      ReadRange(lr, l.ps_min_pa, l.ps_max_pa, "ps_min_pa", "ps_max_pa", 1.0, 1e6, "Pa");
+      number(l.qc_max_pa, "qc_max_pa", 1.0, 1e6, "Pa");
+      number(l.max_alt_rate_ft_per_min, "max_alt_rate_ft_per_min", 1.0, 1e6, "ft/min");
+      number(l.max_cas_rate_kt_per_min, "max_cas_rate_kt_per_min", 1.0, 1e5, "kt/min");
+      break;
+  }
+  lr.ExpectAllKeysUsed();
+  return l;
+}
+
+// The optional "interlocks" object: thresholds within what still tells a right mounting from a
+// wrong one (a wider value is a typo), attempts 1…10.
+InterlockSettings ReadInterlocks(const ParamReader& r) {
+  InterlockSettings s;
+  if (!r.Has("interlocks")) return s;
+  const ParamReader ir = r.Child("interlocks");
+  if (ir.Has("relative_tolerance_g"))
+    s.relative_tolerance_g = ir.Number("relative_tolerance_g", 0.01, 1.0, "g");
+  if (ir.Has("first_check_margin_g"))
+    s.first_check_margin_g = ir.Number("first_check_margin_g", 0.01, 2.0, "g");
+  if (ir.Has("min_gyro_response"))
+    s.min_gyro_response = ir.Number("min_gyro_response", 0.01, 1.0, "ratio");
+  if (ir.Has("max_gyro_response"))
+    s.max_gyro_response = ir.Number("max_gyro_response", 1.0, 10.0, "ratio");
+  if (ir.Has("attempts")) s.attempts = static_cast<int>(ir.Integer("attempts", 1, 10));
+  ir.ExpectAllKeysUsed();
+  return s;
+}
+
+nlohmann::json InterlocksJson(const InterlockSettings& s) {
+  nlohmann::json j = nlohmann::json::object();
+  if (s.relative_tolerance_g) j["relative_tolerance_g"] = *s.relative_tolerance_g;
+  if (s.first_check_margin_g) j["first_check_margin_g"] = *s.first_check_margin_g;
+  if (s.min_gyro_response) j["min_gyro_response"] = *s.min_gyro_response;
+  if (s.max_gyro_response) j["max_gyro_response"] = *s.max_gyro_response;
+  if (s.attempts) j["attempts"] = *s.attempts;
+  return j;
+}
+
+nlohmann::json LimitsJson(const InstrumentLimits& l) {
+  nlohmann::json j = nlohmann::json::object();
+  const auto put = [&](const char* key, const std::optional<double>& value) {
+    if (value) j[key] = *value;
+  };
+  put("max_rate_dps", l.max_rate_dps);
+  put("max_accel_dps2", l.max_accel_dps2);
+  put("min_c", l.min_c);
+  put("max_c", l.max_c);
+  put("max_ramp_c_per_min", l.max_ramp_c_per_min);
+  put("heat_rate_c_per_min", l.heat_rate_c_per_min);
+  put("cool_rate_c_per_min", l.cool_rate_c_per_min);
+  put("ps_min_pa", l.ps_min_pa);
+  put("ps_max_pa", l.ps_max_pa);
+  put("qc_max_pa", l.qc_max_pa);
+  put("max_alt_rate_ft_per_min", l.max_alt_rate_ft_per_min);
+  put("max_cas_rate_kt_per_min", l.max_cas_rate_kt_per_min);
+  return j;
+}
+
 }  // namespace
 
 std::string ToString(InstrumentType type) { return TypeName(type); }
@@ -152,6 +259,7 @@ Station Station::FromJson(const ParamReader& r) {
     e.address = static_cast<int>(ir.Integer("address", 0, 247));
     e.timeout_ms = static_cast<int>(ir.Integer("timeout_ms", 10, 60000));
     e.retries = static_cast<int>(ir.Integer("retries", 0, 10));
+    e.limits = ReadLimits(ir, e.type);
     ir.ExpectAllKeysUsed();
     st.instruments.push_back(e);
   }
@@ -198,6 +306,7 @@ Station Station::FromJson(const ParamReader& r) {
     }
     orr.ExpectAllKeysUsed();
   }
+  st.interlocks = ReadInterlocks(r);
   r.ExpectAllKeysUsed();
   return st;
 }
@@ -205,11 +314,13 @@ Station Station::FromJson(const ParamReader& r) {
 nlohmann::json Station::ToJson() const {
   nlohmann::json instruments = nlohmann::json::object();
   for (const InstrumentEntry& e : this->instruments) {
-    instruments[e.role] = {{"type", TypeName(e.type)},
-                           {"port", PortJson(e.port)},
-                           {"address", e.address},
-                           {"timeout_ms", e.timeout_ms},
-                           {"retries", e.retries}};
+    nlohmann::json& entry = instruments[e.role];
+    entry = {{"type", TypeName(e.type)},
+             {"port", PortJson(e.port)},
+             {"address", e.address},
+             {"timeout_ms", e.timeout_ms},
+             {"retries", e.retries}};
+    if (nlohmann::json limits = LimitsJson(e.limits); !limits.empty()) entry["limits"] = limits;
   }
   nlohmann::json units = nlohmann::json::array();
   for (const UnitEntry& u : this->units) {
@@ -228,6 +339,7 @@ nlohmann::json Station::ToJson() const {
                       {"units", units},
                       {"operator", op_json}};
   if (!clock_file.empty()) j["clock_file"] = clock_file;
+  if (nlohmann::json i = InterlocksJson(interlocks); !i.empty()) j["interlocks"] = i;
   return j;
 }
 

@@ -41,6 +41,49 @@ bool OnBench(RigBench bench, const std::string& kind) {
   return kind == "watlow_942" || kind == "druck_adts_prologix";
 }
 
+// The virtual instrument's limits as the rig's config sets them, in the station's terms
+// (docs/station.md "Limits"): the rate table's drive limits (docs/rig/rate-table.md), each
+// chamber's set point range within what its air can reach, its heating and cooling capacity and
+// as ramp limit the slower of the two (rig_sim/chamber_air.h; for the 942 also at most its
+// controller's ramp limit, docs/rig/watlow-942.md), the ADTS's pressure ranges and rates
+// (docs/rig/adts.md).
+nlohmann::json Limits(const std::string& kind, const nlohmann::json& section) {
+  const auto range_and_ramp = [](double low_c, double high_c, const nlohmann::json& air) {
+    const double follow_c_per_min = std::min(air.at("heat_rate_c_per_min").get<double>(),
+                                             air.at("cool_rate_c_per_min").get<double>());
+    return nlohmann::json{{"min_c", std::max(low_c, air.at("min_c").get<double>())},
+                          {"max_c", std::min(high_c, air.at("max_c").get<double>())},
+                          {"max_ramp_c_per_min", follow_c_per_min},
+                          {"heat_rate_c_per_min", air.at("heat_rate_c_per_min")},
+                          {"cool_rate_c_per_min", air.at("cool_rate_c_per_min")}};
+  };
+  if (kind == "aerosmith_atl") {
+    const nlohmann::json& physics = section.at("physics");
+    return {{"max_rate_dps", physics.at("max_rate_dps")},
+            {"max_accel_dps2", physics.at("max_accel_dps2")}};
+  }
+  if (kind == "watlow_f4") {
+    const nlohmann::json& controller = section.at("controller");
+    return range_and_ramp(controller.at("set_point_low_limit_c").get<double>(),
+                          controller.at("set_point_high_limit_c").get<double>(),
+                          section.at("chamber"));
+  }
+  if (kind == "watlow_942") {
+    nlohmann::json limits = range_and_ramp(section.at("range_low_c").get<double>(),
+                                           section.at("range_high_c").get<double>(),
+                                           section.at("air"));
+    limits["max_ramp_c_per_min"] = std::min(limits["max_ramp_c_per_min"].get<double>(),
+                                            section.at("max_ramp_rate_c_per_min").get<double>());
+    return limits;
+  }
+  const nlohmann::json& adts = section.at("adts");
+  return {{"ps_min_pa", adts.at("ps_min_pa")},
+          {"ps_max_pa", adts.at("ps_max_pa")},
+          {"qc_max_pa", adts.at("qc_max_pa")},
+          {"max_alt_rate_ft_per_min", adts.at("max_alt_rate_ft_per_min")},
+          {"max_cas_rate_kt_per_min", adts.at("max_cas_rate_kt_per_min")}};
+}
+
 }  // namespace
 
 hil::Station BenchStation(RigBench bench,
@@ -68,7 +111,8 @@ hil::Station BenchStation(RigBench bench,
                          {"port", Port(links.at(role).get<std::string>(), baud, flow)},
                          {"address", address},
                          {"timeout_ms", TimeoutMs(kInstrumentTimeoutMs, time_scale)},
-                         {"retries", kInstrumentRetries}};
+                         {"retries", kInstrumentRetries},
+                         {"limits", Limits(kind, section)}};
   }
   const std::string unit_kind = bench == RigBench::kImu ? "imu" : "ads";
   nlohmann::json units = nlohmann::json::array();

@@ -6,11 +6,11 @@
 //              (an ADS sequence only prompts, which the fixture logs without touching the port).
 // Both carry the rig's site (latitude_deg, height_m) and time scale, so the pipeline's clock and
 // local gravity are the rig's. Ports are the rig's ports/<role> links from its manifest; baud,
-// parity and flow are those each virtual instrument serves (docs/rig/), the addresses those of the
-// rig config. Each station goes through hil::Station::FromJson and back through ToJson, so it is
-// validated exactly like a hand-written file.
-// Left out: instruments the benches do not use; a rig without a bench's instruments gives a bench
-// without them (the station reader and the sequence validation then say what is missing).
+// parity and flow are those each virtual instrument serves (docs/rig/), the addresses and the
+// instrument limits (docs/station.md "Limits") those of the rig config. Each station goes through
+// hil::Station::FromJson and back through ToJson, so it is validated exactly like a hand-written
+// file. Left out: instruments the benches do not use; a rig without a bench's instruments gives a
+// bench without them (the station reader and the sequence validation then say what is missing).
 #pragma once
 
 #include <filesystem>

@@ -359,8 +359,10 @@ void Executor::GravityInterlock(const PlannedAction& a, int orientation) {
     std::vector<std::string> failures;
     for (size_t u = 0; u < loggers_.size(); ++u) {
       const auto& reference = gravity_references_[u];
-      const InterlockVerdict v =
-          GravityVerdict(averages[u], orientation, reference ? &*reference : nullptr);
+      const InterlockVerdict v = GravityVerdict(averages[u],
+                                                orientation,
+                                                reference ? &*reference : nullptr,
+                                                options_.interlock_thresholds);
       if (!v.ok)
         failures.push_back(
             fmt::format("{} ({}): {}", loggers_[u]->role(), loggers_[u]->serial(), v.detail));
@@ -386,7 +388,8 @@ void Executor::GyroInterlock(const PlannedAction& a, int orientation, double jog
     WaitTableAt(0.0, jog_rate_dps / options_.jog_accel_dps2);
     std::vector<std::string> failures;
     for (size_t u = 0; u < loggers_.size(); ++u) {
-      const InterlockVerdict v = GyroAxisVerdict(rest[u], jog[u], orientation, jog_rate_dps);
+      const InterlockVerdict v = GyroAxisVerdict(
+          rest[u], jog[u], orientation, jog_rate_dps, options_.interlock_thresholds);
       if (!v.ok)
         failures.push_back(
             fmt::format("{} ({}): {}", loggers_[u]->role(), loggers_[u]->serial(), v.detail));

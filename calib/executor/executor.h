@@ -48,14 +48,16 @@ struct ExecutorOptions {
   double poll_interval_s = 0.25;    ///< clock seconds between condition polls
   double refresh_interval_s = 1.0;  ///< clock seconds between instrument readings for the rows
   double timeout_factor = 3.0;      ///< wait timeout = factor × estimate + margin
-  /// The chamber's mean rate to a new set point, as the plan's model (PlanTiming): a chamber wait
-  /// is budgeted from the process value it starts at, at this rate, when that is longer.
+  /// The chamber's mean rate to a new set point, as the plan's default (PlanTiming): a chamber
+  /// wait is budgeted from the process value it starts at, at this rate, when that is longer
+  /// (the station's declared rates only shorten the plan's estimate, never this floor).
   double chamber_ramp_c_per_min = PlanTiming{}.chamber_ramp_c_per_min;
-  double timeout_margin_s = 60.0;   ///< clock seconds
-  double min_margin_wall_s = 3.0;   ///< wall seconds the margin never falls below
-  double min_poll_wall_s = 0.005;   ///< wall seconds between polls at least
-  int interlock_attempts = 3;       ///< interlock tries (with a prompt between) before aborting
-  double interlock_sample_s = 1.0;  ///< packets averaged by an interlock check
+  double timeout_margin_s = 60.0;  ///< clock seconds
+  double min_margin_wall_s = 3.0;  ///< wall seconds the margin never falls below
+  double min_poll_wall_s = 0.005;  ///< wall seconds between polls at least
+  int interlock_attempts = 3;      ///< interlock tries (with a prompt between) before aborting
+  InterlockThresholds interlock_thresholds;  ///< what the interlocks accept
+  double interlock_sample_s = 1.0;           ///< packets averaged by an interlock check
   double packet_rate_hz = 100.0;
   double jog_accel_dps2 = 100.0;  ///< table acceleration of the gyro interlock's jog
   double safe_stop_accel_dps2 = 100.0;

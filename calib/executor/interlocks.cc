@@ -13,10 +13,6 @@ namespace {
 
 constexpr double kDutyPerG = 0.04;              // ADXL210E nominal 4 %/g
 constexpr double kGyroCountsPerDps = 20971.52;  // 16 * 2^19 / 5 V * 12.5 mV/(deg/s)
-constexpr double kRelativeTolerance_g = 0.5;
-constexpr double kFirstCheckMargin_g = 1.0;
-constexpr double kMinGyroResponse = 0.5;
-constexpr double kMaxGyroResponse = 1.5;
 constexpr const char* kAxisNames[] = {"x_B", "y_B", "z_B"};
 
 std::string AxisText(int orientation) {
@@ -24,6 +20,21 @@ std::string AxisText(int orientation) {
 }
 
 }  // namespace
+
+InterlockThresholds ThresholdsForStation(const hil::Station& station,
+                                         const InterlockThresholds& base) {
+  InterlockThresholds t = base;
+  const hil::InterlockSettings& s = station.interlocks;
+  if (s.relative_tolerance_g) t.relative_tolerance_g = *s.relative_tolerance_g;
+  if (s.first_check_margin_g) t.first_check_margin_g = *s.first_check_margin_g;
+  if (s.min_gyro_response) t.min_gyro_response = *s.min_gyro_response;
+  if (s.max_gyro_response) t.max_gyro_response = *s.max_gyro_response;
+  return t;
+}
+
+int InterlockAttemptsForStation(const hil::Station& station, int base) {
+  return station.interlocks.attempts.value_or(base);
+}
 
 Eigen::Vector3d UpAxis_B(int orientation) {
   if (!IsOrientationCode(orientation)) {
@@ -49,17 +60,18 @@ Eigen::Vector3d NominalSpecificForce_B_g(const RawAverage& average) {
 
 InterlockVerdict GravityVerdict(const RawAverage& average,
                                 int orientation,
-                                const GravityReference* reference) {
+                                const GravityReference* reference,
+                                const InterlockThresholds& thresholds) {
   const Eigen::Vector3d f_B_g = NominalSpecificForce_B_g(average);
   InterlockVerdict v;
   if (reference != nullptr) {
     const Eigen::Vector3d change_g = f_B_g - NominalSpecificForce_B_g(reference->average);
     const Eigen::Vector3d expected_g = UpAxis_B(orientation) - UpAxis_B(reference->orientation);
     const double worst_g = (change_g - expected_g).cwiseAbs().maxCoeff();
-    v.ok = worst_g <= kRelativeTolerance_g;
+    v.ok = worst_g <= thresholds.relative_tolerance_g;
     v.detail = fmt::format(
         "f_B changed by ({:.2f}, {:.2f}, {:.2f}) g since orientation {}, expected ({:.0f}, {:.0f}, "
-        "{:.0f}) g for orientation {} ({} up): off by {:.2f} g (tolerance {:.1f} g)",
+        "{:.0f}) g for orientation {} ({} up): off by {:.2f} g (tolerance {:g} g)",
         change_g.x(),
         change_g.y(),
         change_g.z(),
@@ -70,7 +82,7 @@ InterlockVerdict GravityVerdict(const RawAverage& average,
         orientation,
         AxisText(orientation),
         worst_g,
-        kRelativeTolerance_g);
+        thresholds.relative_tolerance_g);
     return v;
   }
   int best = 0;
@@ -83,7 +95,7 @@ InterlockVerdict GravityVerdict(const RawAverage& average,
     }
   }
   const double along_up_g = f_B_g.dot(UpAxis_B(orientation));
-  v.ok = best_dot - along_up_g <= kFirstCheckMargin_g;
+  v.ok = best_dot - along_up_g <= thresholds.first_check_margin_g;
   v.detail = fmt::format(
       "measured f_B = ({:.2f}, {:.2f}, {:.2f}) g over {} packets: {:.2f} g along the commanded "
       "orientation {} ({} up), {:.2f} g along orientation {} ({} up)",
@@ -103,7 +115,8 @@ InterlockVerdict GravityVerdict(const RawAverage& average,
 InterlockVerdict GyroAxisVerdict(const RawAverage& rest,
                                  const RawAverage& jog,
                                  int orientation,
-                                 double jog_rate_dps) {
+                                 double jog_rate_dps,
+                                 const InterlockThresholds& thresholds) {
   const Eigen::Vector3d up = UpAxis_B(orientation);
   Eigen::Vector3d response_dps;
   for (int i = 0; i < 3; ++i)
@@ -114,7 +127,8 @@ InterlockVerdict GyroAxisVerdict(const RawAverage& rest,
   const int axis = orientation / 10 - 1;
   const double ratio = response_dps[axis] / expected_dps[axis];
   InterlockVerdict v;
-  v.ok = moved == axis && ratio >= kMinGyroResponse && ratio <= kMaxGyroResponse;
+  v.ok = moved == axis && ratio >= thresholds.min_gyro_response &&
+         ratio <= thresholds.max_gyro_response;
   v.detail = fmt::format(
       "table jog {:.0f} deg/s: gyro change (gx, gy, gz) = ({:.1f}, {:.1f}, {:.1f}) deg/s nominal; "
       "expected {:.0f} deg/s on g{} ({} up, orientation {})",

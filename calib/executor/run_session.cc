@@ -18,6 +18,7 @@
 #include "calib/executor/run_meta.h"
 #include "calib/executor/unit_logger.h"
 #include "calib/sequence/sequence_json.h"
+#include "calib/sequence/station_limits.h"
 #include "calib/sequence/validation.h"
 #include "hil/drivers/station_instruments.h"
 #include "hil/drivers/unit_serial.h"
@@ -35,12 +36,6 @@ namespace {
 
 constexpr const char* kTimeBase =
     "pipeline clock seconds since the run started (simulated seconds on a scaled rig)";
-
-PlanTiming TimingFor(const hil::Station& station) {
-  PlanTiming timing;
-  if (station.op.type == hil::OperatorType::kVirtualFixture) timing.operator_prompt_s = 0.0;
-  return timing;
-}
 
 // The t_s of the last complete row of a CSV, plain or compressed (0 when it has none); a cell
 // that is not a time of the run is refused naming the file and line.
@@ -258,6 +253,11 @@ RunSummary Execute(const Session& s,
                    ProgressSink& progress,
                    const std::atomic<bool>& stop,
                    const NewRunOptions& options) {
+  ExecutorOptions executor_options = options.executor;
+  executor_options.interlock_thresholds =
+      ThresholdsForStation(s.station, executor_options.interlock_thresholds);
+  executor_options.interlock_attempts =
+      InterlockAttemptsForStation(s.station, executor_options.interlock_attempts);
   hil::StationInstruments instruments = hil::OpenStation(s.station, clock);
   if (options.wrap_operator) instruments.op = options.wrap_operator(std::move(instruments.op));
   const bool imu_batch = s.sequence.unit_kind == UnitKind::kImu;
@@ -288,7 +288,7 @@ RunSummary Execute(const Session& s,
                     run_meta,
                     progress,
                     stop,
-                    options.executor);
+                    executor_options);
   const auto summary = [&] {
     RunSummary out{s.run_dir, run_meta.meta().status.value_or(""), 0, 0};
     for (auto& l : loggers) {
@@ -313,11 +313,11 @@ RunSummary Execute(const Session& s,
 RunSummary StartRun(const NewRunOptions& options,
                     ProgressSink& progress,
                     const std::atomic<bool>& stop) {
-  const SequenceLimits limits;
   Session s;
   s.station = hil::Station::Load(options.station_file);
+  const SequenceLimits limits = LimitsForStation(s.station);
   s.sequence = LoadValidSequence(options.sequence_file, limits);
-  s.plan = ExpandSequence(s.sequence, limits, TimingFor(s.station));
+  s.plan = ExpandSequence(s.sequence, limits, TimingForStation(s.station, s.sequence.unit_kind));
   s.run_dir = options.run_dir;
   s.sequence_file = options.sequence_file;
   if (std::filesystem::exists(s.run_dir / hil::kMetaJsonName)) {
@@ -345,12 +345,12 @@ RunSummary ResumeRun(const std::filesystem::path& run_dir,
     throw RunError(meta_path.string() + ": not an executor run of recording format version " +
                    std::to_string(hil::kRecordingFormatVersion) + " ($.station, $.sequence)");
   }
-  const SequenceLimits limits;
   Session s;
   s.station =
       hil::Station::FromJson(common::ParamReader(*meta.station, meta_path.string(), "$.station"));
+  const SequenceLimits limits = LimitsForStation(s.station);
   s.sequence = SequenceFromJson(*meta.sequence, meta_path.string() + " $.sequence");
-  s.plan = ExpandSequence(s.sequence, limits, TimingFor(s.station));
+  s.plan = ExpandSequence(s.sequence, limits, TimingForStation(s.station, s.sequence.unit_kind));
   s.run_dir = run_dir;
 
   std::vector<TornTailSetAside> events;

@@ -1,8 +1,10 @@
 // A run from the files to the end: `adahrs run --station FILE --sequence FILE --run-dir DIR`
 // (StartRun) and `adahrs run --resume DIR` (ResumeRun). Loads and validates the station and the
-// sequence (refused before anything moves), opens the station (hil::OpenStation), identifies the
-// batch's units and the instruments, writes meta.json (format v3) and the journal, starts one
-// UnitLogger per unit and runs the Executor.
+// sequence against the station's instrument limits (refused before anything moves;
+// calib/sequence/station_limits.h), takes the station's interlock thresholds and attempts
+// (interlocks.h), opens the station (hil::OpenStation), identifies the batch's units and the
+// instruments, writes meta.json (format v3) and the journal, starts one UnitLogger per unit and
+// runs the Executor.
 // Resume reads meta.json (station and sequence as the run started them) and the journal, sets
 // aside torn CSV and journal tails (journaled), continues the pipeline clock after the latest
 // recorded t_s, refuses a batch whose unit serials differ from the recorded ones, and restarts at

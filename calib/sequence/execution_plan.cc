@@ -69,9 +69,12 @@ class Planner {
 
   void Chamber(const TargetTemperatureStep& s) {
     Add(SetChamberSetPoint{s.target_c}, 0.0);
+    const double rate_c_per_min =
+        s.target_c > chamber_c_
+            ? timing_.chamber_heat_c_per_min.value_or(timing_.chamber_ramp_c_per_min)
+            : timing_.chamber_cool_c_per_min.value_or(timing_.chamber_ramp_c_per_min);
     Add(WaitChamberSoak{s.target_c, s.band_c, s.soak_s},
-        std::abs(s.target_c - chamber_c_) / timing_.chamber_ramp_c_per_min * kSecondsPerMinute +
-            s.soak_s);
+        std::abs(s.target_c - chamber_c_) / rate_c_per_min * kSecondsPerMinute + s.soak_s);
     chamber_c_ = s.target_c;
   }
 

@@ -1,17 +1,19 @@
 // The expansion of a valid sequence into the primitive actions an executor runs, in order, each
 // with the step and TAG it belongs to and a duration estimate (PlanTiming: table ramps, chamber
-// moves and soaks, F4 profile loops, ADTS slews and its 15 s to "stable", N / packet rate). Pure
-// data: no instrument is touched, and the executor still waits on real conditions, never on these
-// estimates, which only feed the plan's ETA. A command is estimated at 0 s and the wait after it
-// carries the motion.
+// moves at the station's declared heating and cooling rates and soaks, F4 profile loops, ADTS
+// slews and its 15 s to "stable", N / packet rate). Pure data: no instrument is touched, and the
+// executor still waits on real conditions, never on these estimates, which only feed the plan's
+// ETA. A command is estimated at 0 s and the wait after it carries the motion.
 // Units: seconds; rates in deg/s, deg/s^2, degC/min, ft/min, kt/min as the fields name them.
 // The expansion of each step kind and the duration model: docs/sequences.md ("Expansion").
 // Not modelled: instrument command latency, packet loss, interlock retries, operator delays
-// beyond the fixed prompt time.
+// beyond the fixed prompt time, a chamber's slower first-order approach in the last degrees
+// before a set point.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -105,14 +107,19 @@ struct PlannedAction {
 
 /// Rig behaviour assumed by the duration estimate (E unless stated).
 struct PlanTiming {
-  double operator_prompt_s = 60.0;      ///< operator reads and acts (0 for a virtual fixture)
-  double table_settle_s = 2.0;          ///< after a ramp, until the table reports at rate
-  double interlock_sample_s = 1.0;      ///< packets averaged by an interlock check
-  double chamber_ramp_c_per_min = 1.0;  ///< a loaded chamber's mean rate to a new set point
-  double adts_stable_s = 15.0;          ///< ADTS "stable" flag delay (protocols.md §4.4, DRV)
-  double profile_download_s = 10.0;     ///< Modbus transactions of a profile download
-  double initial_chamber_c = 25.0;      ///< chamber set point before the run
-  double initial_alt_ft = 0.0;          ///< ADTS at ground before the run
+  double operator_prompt_s = 60.0;  ///< operator reads and acts (0 for a virtual fixture)
+  double table_settle_s = 2.0;      ///< after a ramp, until the table reports at rate
+  double interlock_sample_s = 1.0;  ///< packets averaged by an interlock check
+  /// A loaded chamber's mean rate to a new set point, where the station declares none.
+  double chamber_ramp_c_per_min = 1.0;
+  /// The chamber's declared heating and cooling rates (station file, station_limits.h): a set
+  /// point change upwards takes |change| / heat, downwards |change| / cool.
+  std::optional<double> chamber_heat_c_per_min;
+  std::optional<double> chamber_cool_c_per_min;
+  double adts_stable_s = 15.0;       ///< ADTS "stable" flag delay (protocols.md §4.4, DRV)
+  double profile_download_s = 10.0;  ///< Modbus transactions of a profile download
+  double initial_chamber_c = 25.0;   ///< chamber set point before the run
+  double initial_alt_ft = 0.0;       ///< ADTS at ground before the run
   double initial_cas_kt = 0.0;
 };
 

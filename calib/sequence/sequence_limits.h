@@ -1,9 +1,9 @@
 // What the units under test and the station's instruments can take: the limits a sequence is
-// validated against before anything moves (validation.h). The station file fills them for the
-// instruments it names; the defaults below are those of the reference hardware, each with its
-// source and its status (V verified, R recalled, D derived, E estimate, DRV seen in drivers,
-// INF inferred) from shared/physics.md, shared/protocols.md and shared/reference-method.md.
-// Units are in the names: °C, °/s, °/s², ft, kt, Pa, per minute, s, Hz.
+// validated against before anything moves (validation.h). A station file's declared instrument
+// limits replace the instrument defaults (station_limits.h); the defaults below are those of the
+// reference hardware, each with its source and its status (V verified, R recalled, D derived, E
+// estimate, DRV seen in drivers, INF inferred) from shared/physics.md, shared/protocols.md and
+// shared/reference-method.md. Units are in the names: °C, °/s, °/s², ft, kt, Pa, per minute, s, Hz.
 // Not limited here: the fixture's mechanical limits and centripetal acceleration on the platter
 // (under 0.2 g at 150 °/s within 0.25 m of the axis, far inside the ADXL210E's ±10 g), the
 // chamber's humidity, the ADTS leak rate.
@@ -74,9 +74,13 @@ struct SequenceLimits {
   /// The 942 itself stores profiles of up to 24 steps (protocols.md §3.6, DOC), but its driver
   /// (hil/drivers/watlow942_chamber.h) runs set points only: a thermal_profile step in an ADS
   /// sequence would be refused by the driver after the chamber had soaked. Its set point range
-  /// and ramp are taken as the F4's above.
+  /// and ramp default to the F4's above (E: the bench's rL/rH are set up per lab, §3.5).
+  /// An ADS sequence's chamber steps are checked against these instead of the F4's.
   std::string ads_chamber_name = "chamber (Watlow 942)";
   bool ads_chamber_runs_profiles = false;
+  double ads_chamber_min_c = -70.0;
+  double ads_chamber_max_c = 180.0;
+  double ads_chamber_max_ramp_c_per_min = 5.0;
 
   // --- Air data test set (Druck ADTS 403/405) ---
   std::string adts_name = "air data test set (ADTS)";

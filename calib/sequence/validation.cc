@@ -421,9 +421,22 @@ class Checker {
   std::vector<SequenceProblem>& problems_;
 };
 
+// The limits a sequence of `kind` is checked against: an ADS batch's chamber is the ADS bench's.
+SequenceLimits BatchLimits(const SequenceLimits& limits, UnitKind kind) {
+  SequenceLimits batch = limits;
+  if (kind == UnitKind::kAds) {
+    batch.chamber_name = limits.ads_chamber_name;
+    batch.chamber_min_c = limits.ads_chamber_min_c;
+    batch.chamber_max_c = limits.ads_chamber_max_c;
+    batch.chamber_max_ramp_c_per_min = limits.ads_chamber_max_ramp_c_per_min;
+  }
+  return batch;
+}
+
 std::vector<SequenceProblem> Validate(const Sequence& sequence,
-                                      const SequenceLimits& limits,
+                                      const SequenceLimits& all_limits,
                                       const std::vector<std::string>& step_paths) {
+  const SequenceLimits limits = BatchLimits(all_limits, sequence.unit_kind);
   std::vector<SequenceProblem> problems;
   Checker check(limits, problems);
   if (sequence.steps.empty()) check.Add("$.steps", "a sequence needs at least one step");

@@ -1,7 +1,7 @@
 // Diagnosis proofs (docs/diagnose.md): simulated units whose truth has one effect more than the
 // pipeline's model, the effect concealed, must be found, named and sized within the stated
 // uncertainty; clean units must give no finding. The scenario generator (imu_diagnosis_scenario.h)
-// is the simulator; the diagnoser (calib/diagnosis) never includes it.
+// is the simulator; the diagnoser (diagnosis/) never includes it.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -22,6 +22,7 @@
 #include "sensor_sim/im3_geometry.h"
 #include "sensor_sim/imu_unit.h"
 #include "tests/diagnosis/imu_diagnosis_scenario.h"
+#include "tests/support/sanitized_units.h"
 
 namespace adahrs::diagnosis {
 namespace {
@@ -142,12 +143,14 @@ struct Tally {
 };
 
 // Clean units (nominal profile, every effect the model expresses): no finding on at least 95 of
-// 100 seeds (the family level is 1 % per unit), and no unexplained structure on 95 either.
+// 100 seeds (the family level is 1 % per unit), and no unexplained structure on 95 either (under
+// the sanitizers 20 seeds, at most 1 of each: tests/support/sanitized_units.h).
 TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
   Shape shape;
   shape.sensor_cal_c = {-20.0, 25.0, 70.0};
+  const int units = adahrs::testing::Units(100, 20);
   int with_findings = 0, with_unexplained = 0;
-  for (uint64_t seed = 1; seed <= 100; ++seed) {
+  for (uint64_t seed = 1; seed <= static_cast<uint64_t>(units); ++seed) {
     const UnitDiagnosis d = Diagnose(Simulate(Nominal(seed), 1000 + seed, shape));
     if (!d.findings.empty()) {
       ++with_findings;
@@ -164,11 +167,12 @@ TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
                     u.description.c_str());
     }
   }
-  std::printf("clean: %d of 100 units with a finding, %d with unexplained structure\n",
+  std::printf("clean: %d of %d units with a finding, %d with unexplained structure\n",
               with_findings,
+              units,
               with_unexplained);
-  EXPECT_LE(with_findings, 5);
-  EXPECT_LE(with_unexplained, 5);
+  EXPECT_LE(with_findings, units / 20);
+  EXPECT_LE(with_unexplained, units / 20);
 }
 
 // Gyro g-sensitivity looks like an orientation-dependent bias: found on every gyro where the truth
@@ -283,7 +287,7 @@ TEST(ImuDiagnosis, ScaleFactorTempcoIsUndetectableFromOneCalibrationTemperature)
 // on a monotone ramp it is indistinguishable from a shifted temperature polynomial; the up and
 // down ramps of two thermal cycles tell it apart (with one cycle the jackknife has too few
 // informative segments: docs/diagnose.md). Sized within 3 SE plus 15 % of the truth (the
-// first-order lag term is exact only on a steady ramp).
+// first-order lag term is exact only on a steady ramp). Under the sanitizers 3 units.
 TEST(ImuDiagnosis, FindsDieLagConfoundedWithTheTemperaturePolynomial) {
   Shape shape;
   shape.profile_c = {0.0, 50.0, 0.0, 50.0, 25.0};
@@ -291,7 +295,7 @@ TEST(ImuDiagnosis, FindsDieLagConfoundedWithTheTemperaturePolynomial) {
   shape.soak_s = 1500.0;
   Tally tally;
   int missed = 0, detectable = 0;
-  for (uint64_t seed = 1; seed <= 10; ++seed) {
+  for (uint64_t seed = 1; seed <= static_cast<uint64_t>(adahrs::testing::Units(10, 3)); ++seed) {
     ImuUnitParams p = Nominal(400 + seed);
     for (auto& t : p.accel_thermal) t.effects.lag = true;
     for (auto& t : p.gyro_thermal) t.effects.lag = true;
@@ -363,13 +367,15 @@ double StatedStepLimit(const UnitDiagnosis& d, const std::string& channel) {
 // bias flicker gives a 30 s contrast (bias instability 50-100 deg/h, physics.md), and 0.3 deg/s.
 // A step above the unit's stated 90 % limit is located within 60 s of where it was written on at
 // least 9 of 10 units; the clean units show no step at all (the rule's design rate, 1e-3 per
-// channel-hour, gives 0.2 expected over these 10 units' 180 channel-hours).
+// channel-hour, gives 0.2 expected over these 10 units' 180 channel-hours). Under the sanitizers
+// 3 units.
 TEST(ImuDiagnosis, LocatesGyroBiasStepsAboveTheStatedLimitOnASlowThermalRamp) {
   Shape shape;
   shape.ramp_c_per_min = 2.0;
   int clean_steps = 0;
   std::map<double, std::array<int, 3>> tally;  // size: above limit, located of those, located
-  for (int unit = 0; unit < 10; ++unit) {
+  const int units = adahrs::testing::Units(10, 3);
+  for (int unit = 0; unit < units; ++unit) {
     const calib::ImuUnitData clean_data = Simulate(Nominal(620 + unit), 7020 + unit, shape);
     const UnitDiagnosis clean = Diagnose(clean_data);
     for (const Unexplained& u : clean.unexplained) {
@@ -427,14 +433,15 @@ TEST(ImuDiagnosis, LocatesGyroBiasStepsAboveTheStatedLimitOnASlowThermalRamp) {
   for (const auto& [size_dps, t] : tally) {
     std::printf(
         "step %.2f deg/s: above the stated limit on %d units, located on %d of those; "
-        "located on %d of 10 in all\n",
+        "located on %d of %d in all\n",
         size_dps,
         t[0],
         t[1],
-        t[2]);
+        t[2],
+        units);
     EXPECT_GE(t[1], t[0] - t[0] / 10) << size_dps << " deg/s";
   }
-  EXPECT_EQ(tally[0.3][0], 10) << "0.3 deg/s should exceed every stated limit";
+  EXPECT_EQ(tally[0.3][0], units) << "0.3 deg/s should exceed every stated limit";
   EXPECT_EQ(clean_steps, 0);
 }
 

@@ -134,5 +134,59 @@ TEST(Station, RefusesWhatARealLabWouldGetWrong) {
   EXPECT_THAT(ErrorOf(j), AllOf(HasSubstr("$.time_scale"), HasSubstr("out of range")));
 }
 
+TEST(Station, InstrumentLimitsAreTypedAndOptional) {
+  // The example declares the table's and the F4's limits (docs/station.md "Limits").
+  const Station st = Station::Load(kExample);
+  const InstrumentLimits& table = st.Instrument("rate_table")->limits;
+  EXPECT_EQ(table.max_rate_dps, 360.0);
+  EXPECT_EQ(table.max_accel_dps2, 500.0);
+  EXPECT_FALSE(table.min_c.has_value());
+  const InstrumentLimits& chamber = st.Instrument("imu_chamber")->limits;
+  EXPECT_EQ(chamber.min_c, -70.0);
+  EXPECT_EQ(chamber.max_c, 180.0);
+  EXPECT_EQ(chamber.max_ramp_c_per_min, 3.5);
+  EXPECT_EQ(chamber.heat_rate_c_per_min, 5.0);
+  EXPECT_EQ(chamber.cool_rate_c_per_min, 3.5);
+
+  // Missing: every limit unset (the pipeline's defaults apply), and none written back.
+  nlohmann::json j = Example();
+  j["instruments"]["imu_chamber"].erase("limits");
+  j["instruments"]["rate_table"]["limits"] = {{"max_accel_dps2", 200.0}};
+  const Station partial = Station::FromJson(common::ParamReader(j, "station.json"));
+  const InstrumentLimits& none = partial.Instrument("imu_chamber")->limits;
+  EXPECT_FALSE(none.min_c || none.max_c || none.max_ramp_c_per_min || none.heat_rate_c_per_min ||
+               none.cool_rate_c_per_min);
+  EXPECT_FALSE(partial.Instrument("rate_table")->limits.max_rate_dps.has_value());
+  EXPECT_EQ(partial.Instrument("rate_table")->limits.max_accel_dps2, 200.0);
+  const nlohmann::json back = partial.ToJson();
+  EXPECT_FALSE(back["instruments"]["imu_chamber"].contains("limits"));
+  EXPECT_EQ(back["instruments"]["rate_table"]["limits"],
+            nlohmann::json({{"max_accel_dps2", 200.0}}));
+  EXPECT_EQ(Station::FromJson(common::ParamReader(back, "again")).ToJson(), back);
+}
+
+TEST(Station, RefusesMalformedLimitsNamingThePath) {
+  nlohmann::json j = Example();
+  j["instruments"]["imu_chamber"]["limits"]["max_rate_dps"] = 100.0;  // a table's key
+  EXPECT_THAT(ErrorOf(j), HasSubstr("$.instruments.imu_chamber.limits.max_rate_dps"));
+  j = Example();
+  j["instruments"]["imu_chamber"]["limits"].erase("min_c");
+  EXPECT_THAT(ErrorOf(j),
+              AllOf(HasSubstr("$.instruments.imu_chamber.limits.min_c"), HasSubstr("together")));
+  j = Example();
+  j["instruments"]["imu_chamber"]["limits"]["min_c"] = 200.0;
+  EXPECT_THAT(ErrorOf(j),
+              AllOf(HasSubstr("$.instruments.imu_chamber.limits.max_c"), HasSubstr("not above")));
+  j = Example();
+  j["instruments"]["imu_chamber"]["limits"]["max_ramp_c_per_min"] = "fast";
+  EXPECT_THAT(ErrorOf(j), HasSubstr("$.instruments.imu_chamber.limits.max_ramp_c_per_min"));
+  j = Example();
+  j["instruments"]["rate_table"]["limits"]["max_rate_dps"] = 0.0;
+  EXPECT_THAT(ErrorOf(j), HasSubstr("$.instruments.rate_table.limits.max_rate_dps"));
+  j = Example();
+  j["instruments"]["rate_table"]["limits"] = 5;
+  EXPECT_THAT(ErrorOf(j), HasSubstr("$.instruments.rate_table.limits"));
+}
+
 }  // namespace
 }  // namespace adahrs::hil

@@ -114,6 +114,36 @@ TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
   EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
 }
 
+// The station file's interlock attempts bound the retries: one attempt, one rejected interval,
+// where the default's three gave three above.
+TEST(ExecutorRig, TheStationsInterlockAttemptsBoundTheRetries) {
+  adahrs::testing::RigProcess rig(kTimeScale);
+  TempDir dir("interlock_attempts");
+  NewRunOptions options;
+  options.station_file = rig.WriteStation("station.json", [](nlohmann::json& j) {
+    j["interlocks"] = {{"attempts", 1}};
+  });
+  options.sequence_file = testing::WriteSequence(dir.path(), "imu", kShortImuSteps);
+  options.run_dir = dir.path() / "run";
+  std::string reply;
+  options.wrap_operator =
+      testing::DisturbingOperator::Wrapper(rig, 32, "orientation imu2 31", reply);
+  RecordingProgress progress;
+  std::atomic<bool> stop{false};
+  try {
+    StartRun(options, progress, stop);
+    FAIL() << "the run should have stopped";
+  } catch (const RunError& e) {
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr("gravity interlock failed (attempt 1 of 1)"),
+                      HasSubstr("imu2 (IMU-0002)")));
+  }
+  const hil::Recording rec = hil::ReadRecording(options.run_dir);
+  EXPECT_EQ(rec.meta.status.value_or(""), "aborted");
+  EXPECT_EQ(rec.meta.rejected_intervals.size(), 1u);
+  EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
+}
+
 // A killed run leaves the table turning: the next run stops it before its first step, so no
 // accelerometer row is acquired on a spinning table.
 TEST(ExecutorRig, ATableLeftTurningIsStoppedBeforeTheFirstStep) {

@@ -5,7 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "adahrs_build_paths.h"
 #include "calib/sequence/sequence.h"
+#include "common/param_reader.h"
 
 namespace adahrs::calib {
 namespace {
@@ -71,6 +73,68 @@ TEST(Interlocks, GyroCheckWantsTheUpAxisGyroWithItsSign) {
   RawAverage weak = rest;
   weak.gyro_cnt[2] += 30.0 * 20971.52;  // 30 % of the nominal response: not the table's rate
   EXPECT_FALSE(GyroAxisVerdict(rest, weak, 31, 100.0).ok);
+}
+
+// A tightened threshold trips where the default does not (docs/executor.md "Interlocks").
+TEST(Interlocks, ATightenedGravityToleranceTripsWhereTheDefaultPasses) {
+  const GravityReference ref{AtRest(UpAxis_B(11)), 11};
+  // In 31 the change should be (−1, 0, +1) g; this unit shows 0.3 g more on y_B (a fixture
+  // tilted some 17°), inside the default 0.5 g and outside 0.25 g.
+  const RawAverage tilted = AtRest({0.0, 0.3, 1.0});
+  EXPECT_TRUE(GravityVerdict(tilted, 31, &ref).ok);
+  InterlockThresholds tight;
+  tight.relative_tolerance_g = 0.25;
+  const InterlockVerdict v = GravityVerdict(tilted, 31, &ref, tight);
+  EXPECT_FALSE(v.ok);
+  EXPECT_THAT(v.detail, HasSubstr("off by 0.30 g (tolerance 0.25 g)"));
+}
+
+TEST(Interlocks, ATightenedGyroResponseBandTripsWhereTheDefaultPasses) {
+  const RawAverage rest = AtRest({0, 0, 1});
+  RawAverage jog = rest;
+  jog.gyro_cnt[2] += 60.0 * 20971.52;  // 60 % of a 100 deg/s jog: inside 50…150 %
+  EXPECT_TRUE(GyroAxisVerdict(rest, jog, 31, 100.0).ok);
+  InterlockThresholds tight;
+  tight.min_gyro_response = 0.7;
+  EXPECT_FALSE(GyroAxisVerdict(rest, jog, 31, 100.0, tight).ok);
+  RawAverage strong = rest;
+  strong.gyro_cnt[2] += 140.0 * 20971.52;  // 140 %: inside the default, above a 1.2 ceiling
+  EXPECT_TRUE(GyroAxisVerdict(rest, strong, 31, 100.0).ok);
+  tight.max_gyro_response = 1.2;
+  EXPECT_FALSE(GyroAxisVerdict(rest, strong, 31, 100.0, tight).ok);
+}
+
+TEST(Interlocks, TheStationFileSetsThresholdsAndAttempts) {
+  nlohmann::json j = common::ParamReader::LoadFile(std::string(ADAHRS_SOURCE_DIR) +
+                                                   "/docs/examples/station-virtual-rig.json");
+  const hil::Station plain = hil::Station::FromJson(common::ParamReader(j, "station.json"));
+  const InterlockThresholds defaults = ThresholdsForStation(plain);
+  EXPECT_EQ(defaults.relative_tolerance_g, 0.5);
+  EXPECT_EQ(defaults.first_check_margin_g, 1.0);
+  EXPECT_EQ(defaults.min_gyro_response, 0.5);
+  EXPECT_EQ(defaults.max_gyro_response, 1.5);
+  EXPECT_EQ(InterlockAttemptsForStation(plain, 3), 3);
+
+  j["interlocks"] = {{"relative_tolerance_g", 0.25}, {"min_gyro_response", 0.7}, {"attempts", 1}};
+  const hil::Station set = hil::Station::FromJson(common::ParamReader(j, "station.json"));
+  const InterlockThresholds t = ThresholdsForStation(set);
+  EXPECT_EQ(t.relative_tolerance_g, 0.25);
+  EXPECT_EQ(t.first_check_margin_g, 1.0);
+  EXPECT_EQ(t.min_gyro_response, 0.7);
+  EXPECT_EQ(t.max_gyro_response, 1.5);
+  EXPECT_EQ(InterlockAttemptsForStation(set, 3), 1);
+  EXPECT_EQ(hil::Station::FromJson(common::ParamReader(set.ToJson(), "again")).ToJson(),
+            set.ToJson());
+
+  j["interlocks"] = {{"attempts", 0}};
+  EXPECT_THROW(hil::Station::FromJson(common::ParamReader(j, "station.json")), common::ParamError);
+  j["interlocks"] = {{"tolerance_g", 0.3}};
+  try {
+    hil::Station::FromJson(common::ParamReader(j, "station.json"));
+    FAIL() << "an unknown interlock key was accepted";
+  } catch (const common::ParamError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("$.interlocks.tolerance_g"));
+  }
 }
 
 }  // namespace
