@@ -101,32 +101,7 @@ CampaignInputs ResumedCampaign(const std::filesystem::path& out) {
 }
 
 void PrintUnit(const calib::UnitOutcome& u) {
-  std::cout << fmt::format(
-      "{} {}: constants version {} (records v{}, {} strategy, {} blocks "
-      "verified)\n",
-      u.role,
-      u.serial,
-      u.download.unit_constants_version,
-      u.download.records_version,
-      u.strategy,
-      u.download.blocks);
-  if (!u.acceptance) {
-    std::cout << "  acceptance: the unit is not in the acceptance run\n";
-    return;
-  }
-  std::cout << fmt::format("  acceptance: {} ({} of {} points fail, {} marginal)\n",
-                           calib::OutcomeText(u.acceptance->outcome()),
-                           u.acceptance->failed(),
-                           u.acceptance->points.size(),
-                           u.acceptance->marginal());
-  for (const calib::WorstMargin& w : u.acceptance->WorstMargins()) {
-    std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n",
-                             w.quantity,
-                             w.margin,
-                             w.unit,
-                             w.step,
-                             w.point);
-  }
+  PrintUnitOutcome(u);
   std::cout << "  report: " << u.report.string() << "\n";
 }
 

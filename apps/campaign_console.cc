@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "calib/acceptance/acceptance_file.h"
+
 namespace adahrs::apps {
 namespace {
 
@@ -56,6 +58,36 @@ calib::ProgressSink& ConsoleObserver::Bench(const std::string& bench) {
   auto& sink = sinks_[bench];
   if (!sink) sink = std::make_unique<BenchSink>(bench, mutex_);
   return *sink;
+}
+
+void PrintUnitOutcome(const calib::UnitOutcome& u) {
+  std::cout << fmt::format(
+      "{} {}: constants version {} (records v{}, {} strategy, {} blocks verified)\n",
+      u.role,
+      u.serial,
+      u.download.unit_constants_version,
+      u.download.records_version,
+      u.strategy,
+      u.download.blocks);
+  if (!u.acceptance) {
+    std::cout << "  acceptance: the unit is not in the acceptance run\n";
+    return;
+  }
+  std::cout << fmt::format("  acceptance: {} ({} of {} points fail, {} marginal)\n",
+                           calib::OutcomeText(u.acceptance->outcome()),
+                           u.acceptance->failed(),
+                           u.acceptance->points.size(),
+                           u.acceptance->marginal());
+  for (const calib::WorstMargin& w : u.acceptance->WorstMargins()) {
+    std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n",
+                             w.quantity,
+                             w.margin,
+                             w.unit,
+                             w.step,
+                             w.point);
+  }
+  if (const std::string line = calib::RateVerdictLine(*u.acceptance); !line.empty())
+    std::cout << "    " << line;
 }
 
 }  // namespace adahrs::apps

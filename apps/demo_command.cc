@@ -78,36 +78,7 @@ void PrintSummary(const proving::DemoCampaignResult& result,
                            sensor_sim::ToString(variant),
                            sensor_sim::Describe(variant));
   for (const calib::UnitOutcome& u : result.production.units) {
-    std::cout << fmt::format(
-        "{} {}: constants version {} (records v{}, {} strategy, {} blocks "
-        "verified)\n",
-        u.role,
-        u.serial,
-        u.download.unit_constants_version,
-        u.download.records_version,
-        u.strategy,
-        u.download.blocks);
-    if (u.acceptance) {
-      std::cout << fmt::format(
-          "  acceptance against the specification: {} ({} of {} points fail)\n",
-          u.acceptance->pass() ? "PASS" : "FAIL",
-          u.acceptance->failed(),
-          u.acceptance->points.size());
-      for (const calib::WorstMargin& w : u.acceptance->WorstMargins()) {
-        std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n",
-                                 w.quantity,
-                                 w.margin,
-                                 w.unit,
-                                 w.step,
-                                 w.point);
-      }
-      if (const std::string line = calib::RateVerdictLine(*u.acceptance); !line.empty()) {
-        std::cout << "    " << line;
-      }
-    } else {
-      std::cout
-          << "  acceptance against the specification: the unit is not in the acceptance run\n";
-    }
+    PrintUnitOutcome(u);
     const auto evaluation = result.evaluation.find(u.serial);
     for (const proving::EvaluatedQuantity& q : evaluation == result.evaluation.end()
                                                    ? std::vector<proving::EvaluatedQuantity>{}
