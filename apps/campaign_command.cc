@@ -8,7 +8,6 @@
 // Exit status: 0 every unit accepted (PASS or MARGINAL); 4 complete, but a unit failed acceptance
 // or was refused by its serial; 3 complete, but a run lost packets; 1 an error; 128 + N stopped by
 // signal N (resumable).
-#include <signal.h>
 #include "adahrs_build_paths.h"
 
 #include <atomic>
@@ -20,6 +19,7 @@
 
 #include "apps/campaign_console.h"
 #include "apps/commands.h"
+#include "apps/stop_signals.h"
 #include "calib/acceptance/acceptance_file.h"
 #include "calib/campaign/campaign_file.h"
 #include "calib/campaign/quick_sequences.h"
@@ -28,13 +28,6 @@
 
 namespace adahrs::apps {
 namespace {
-
-std::atomic<bool> g_campaign_stop{false};
-std::atomic<int> g_campaign_signal{SIGINT};
-extern "C" void OnCampaignStopSignal(int signal_number) {
-  g_campaign_signal = signal_number;
-  g_campaign_stop = true;
-}
 
 constexpr int kExitPacketsLost = 3;
 constexpr int kExitUnitsNotAccepted = 4;
@@ -123,6 +116,7 @@ int PrintSummary(const calib::CampaignResult& result) {
                              r.lost);
     lost += r.lost;
   }
+  if (result.yield) std::cout << result.yield->Text() << "\n";
   std::cout << "records: " << result.records_file.string() << " (adahrs units show SERIAL --db "
             << result.records_file.string() << ")\n";
   if (lost > 0) {
@@ -133,10 +127,7 @@ int PrintSummary(const calib::CampaignResult& result) {
 }
 
 int RunCampaignCommand(const CampaignCommandOptions& o) {
-  struct sigaction action {};
-  action.sa_handler = OnCampaignStopSignal;
-  sigemptyset(&action.sa_mask);
-  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal_number, &action, nullptr);
+  const std::atomic<bool>& stop = InstallStopSignals();
   const bool resume = !o.resume.empty();
   const std::filesystem::path out = std::filesystem::absolute(resume ? o.resume : o.out);
   const CampaignInputs in = resume ? ResumedCampaign(out) : NewCampaign(o, out);
@@ -149,20 +140,21 @@ int RunCampaignCommand(const CampaignCommandOptions& o) {
   options.ads_strategy = in.campaign.ads_strategy;
   options.expected_serials = in.campaign.expected_serials;
   options.specification_file = in.campaign.specification_file;
+  options.max_acceptance_attempts = in.campaign.max_acceptance_attempts;
   options.software_version = ADAHRS_VERSION;
   std::cout << fmt::format(
       "campaign \"{}\" {} in {}\n", in.campaign.name, resume ? "resumed" : "started", out.string());
   ConsoleObserver observer;
   try {
-    return PrintSummary(calib::RunCampaign(options, observer, g_campaign_stop));
+    return PrintSummary(calib::RunCampaign(options, observer, stop));
   } catch (const calib::RunInterrupted& e) {
     std::cerr << fmt::format(
-        "adahrs campaign: interrupted by signal {} ({}); the instruments are left safe; "
+        "adahrs campaign: interrupted by {} ({}); the instruments are left safe; "
         "continue with: adahrs campaign --resume {}\n",
-        g_campaign_signal.load(),
+        StopSignalName(),
         e.what(),
         out.string());
-    return 128 + g_campaign_signal.load();
+    return StopExitStatus();
   }
 }
 

@@ -73,11 +73,13 @@ void PrintUnitOutcome(const calib::UnitOutcome& u) {
     std::cout << "  acceptance: the unit is not in the acceptance run\n";
     return;
   }
-  std::cout << fmt::format("  acceptance: {} ({} of {} points fail, {} marginal)\n",
-                           calib::OutcomeText(u.acceptance->outcome()),
-                           u.acceptance->failed(),
-                           u.acceptance->points.size(),
-                           u.acceptance->marginal());
+  std::cout << fmt::format(
+      "  acceptance: {} ({} of {} points fail, {} marginal){}\n",
+      calib::OutcomeText(u.acceptance->outcome()),
+      u.acceptance->failed(),
+      u.acceptance->points.size(),
+      u.acceptance->marginal(),
+      u.attempts > 1 ? fmt::format(", attempt {} of {}", u.attempts, u.attempts) : std::string());
   for (const calib::WorstMargin& w : u.acceptance->WorstMargins()) {
     std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n",
                              w.quantity,

@@ -5,7 +5,6 @@
 // and always stops the rig. Thin: the rig process and the stations are rig_sim's, the chain is
 // calib's; this file picks the files, prints, and handles SIGINT, SIGTERM and SIGHUP alike (exit
 // 128 + the signal's number).
-#include <signal.h>
 #include "adahrs_build_paths.h"
 
 #include <atomic>
@@ -20,6 +19,7 @@
 
 #include "apps/campaign_console.h"
 #include "apps/commands.h"
+#include "apps/stop_signals.h"
 #include "calib/acceptance/acceptance_file.h"
 #include "calib/campaign/quick_sequences.h"
 #include "proving/demo/demo_campaign.h"
@@ -30,13 +30,6 @@
 
 namespace adahrs::apps {
 namespace {
-
-std::atomic<bool> g_demo_stop{false};
-std::atomic<int> g_demo_signal{SIGINT};
-extern "C" void OnDemoStopSignal(int signal_number) {
-  g_demo_signal = signal_number;
-  g_demo_stop = true;
-}
 
 struct DemoOptions {
   std::string out = "runs/demo";
@@ -136,10 +129,7 @@ void PrintSummary(const proving::DemoCampaignResult& result,
 }
 
 int RunDemo(const DemoOptions& options) {
-  struct sigaction action {};
-  action.sa_handler = OnDemoStopSignal;
-  sigemptyset(&action.sa_mask);
-  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal_number, &action, nullptr);
+  const std::atomic<bool>& stop = InstallStopSignals();
   const auto start = std::chrono::steady_clock::now();
   const double time_scale = options.time_scale > 0.0 ? options.time_scale
                             : options.free_running   ? kFreeRunningTimeScale
@@ -194,8 +184,7 @@ int RunDemo(const DemoOptions& options) {
   campaign.stations_done = [&rig] { rig.Stop(); };
   ConsoleObserver observer;
   try {
-    const proving::DemoCampaignResult result =
-        proving::RunDemoCampaign(demo, observer, g_demo_stop);
+    const proving::DemoCampaignResult result = proving::RunDemoCampaign(demo, observer, stop);
     rig.Stop();
     PrintSummary(result,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
@@ -206,9 +195,9 @@ int RunDemo(const DemoOptions& options) {
     }
     return 0;
   } catch (const calib::RunInterrupted& e) {
-    std::cerr << "adahrs demo: interrupted by signal " << g_demo_signal.load() << " (" << e.what()
+    std::cerr << "adahrs demo: interrupted by " << StopSignalName() << " (" << e.what()
               << "); the rig is stopped\n";
-    return 128 + g_demo_signal.load();
+    return StopExitStatus();
   } catch (const std::exception& e) {
     if (const std::optional<std::string> exit = rig.ExitDescription()) {
       throw std::runtime_error(std::string(e.what()) + " (the rig " + *exit + ")");

@@ -1,6 +1,7 @@
-// adahrs records add-run DIR | add-constants FILE... and adahrs units show SERIAL: the production
-// records database (calib/records/, docs/records.md). Recording is explicit and repeatable: adding
-// the same run recording or constants file twice changes nothing.
+// adahrs records add-run DIR | add-constants FILE... | yield [--campaign ID] [--json] and adahrs
+// units show SERIAL: the production records database (calib/records/, docs/records.md). Recording
+// is explicit and repeatable: adding the same run recording or constants file twice changes
+// nothing.
 #include <iostream>
 #include <memory>
 #include <string>
@@ -50,6 +51,30 @@ void RegisterRecordsCommand(CLI::App& app) {
       std::cout << fmt::format(
           "{}: {} constants version {}\n", file, record.serial, store.AddConstants(record));
     }
+  });
+
+  CLI::App* yield = records->add_subcommand(
+      "yield", "First-pass and final acceptance yield per campaign (docs/records.md)");
+  auto campaign = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  yield->add_option("--campaign", *campaign, "Campaign id (campaign-journal.json); default: all");
+  yield->add_flag("--json", *json, "One JSON array of the campaigns' yields");
+  yield->add_option("--db", *db, "Records database file")->capture_default_str();
+  yield->callback([campaign, json, db] {
+    if (!std::filesystem::exists(*db)) {
+      throw calib::RecordsError(fmt::format("records database {}: no such file", *db));
+    }
+    calib::RecordsStore store = calib::RecordsStore::OpenForReading(*db);
+    const std::vector<calib::CampaignYield> yields = store.Yields(*campaign);
+    if (*json) {
+      nlohmann::json all = nlohmann::json::array();
+      for (const calib::CampaignYield& y : yields) all.push_back(y.ToJson());
+      std::cout << all.dump(2) << "\n";
+      return;
+    }
+    if (yields.empty())
+      std::cout << "no campaign acceptance attempt is recorded in " << *db << "\n";
+    for (const calib::CampaignYield& y : yields) std::cout << y.Text() << "\n";
   });
 
   CLI::App* units = app.add_subcommand("units", "Units in the production records");

@@ -4,7 +4,6 @@
 // signal's number: 130, 143, 129), prints progress lines.
 //   adahrs run --station FILE --sequence FILE --run-dir DIR
 //   adahrs run --resume DIR
-#include <signal.h>
 
 #include <atomic>
 #include <cmath>
@@ -16,31 +15,11 @@
 #include <fmt/format.h>
 
 #include "apps/commands.h"
+#include "apps/stop_signals.h"
 #include "calib/executor/run_session.h"
 
 namespace adahrs::apps {
 namespace {
-
-std::atomic<bool> g_stop_requested{false};
-std::atomic<int> g_stop_signal{0};
-
-extern "C" void OnStopSignal(int signal_number) {
-  g_stop_signal = signal_number;
-  g_stop_requested = true;
-}
-
-const char* SignalName(int signal_number) {
-  switch (signal_number) {
-    case SIGINT:
-      return "SIGINT";
-    case SIGTERM:
-      return "SIGTERM";
-    case SIGHUP:
-      return "SIGHUP";
-    default:
-      return "a signal";
-  }
-}
 
 class ConsoleProgress : public calib::ProgressSink {
  public:
@@ -74,12 +53,7 @@ struct RunArgs {
 };
 
 int RunAndReport(const RunArgs& a) {
-  struct sigaction action {};
-  action.sa_handler = OnStopSignal;
-  action.sa_flags = SA_RESTART;  // a serial read in progress goes on; the executor sees the flag
-  sigemptyset(&action.sa_mask);
-  // Ctrl-C, `kill`, and a closed terminal session all stop the run the same safe way.
-  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal_number, &action, nullptr);
+  const std::atomic<bool>& stop = InstallStopSignals();
   ConsoleProgress progress;
   const std::string dir = a.resume.empty() ? a.run_dir : a.resume;
   calib::NewRunOptions options;
@@ -88,9 +62,8 @@ int RunAndReport(const RunArgs& a) {
   options.run_dir = a.run_dir;
   if (a.plain_csv) options.storage = hil::RecordingStorage::kPlainCsv;
   try {
-    const calib::RunSummary summary = a.resume.empty()
-                                          ? calib::StartRun(options, progress, g_stop_requested)
-                                          : calib::ResumeRun(a.resume, progress, g_stop_requested);
+    const calib::RunSummary summary = a.resume.empty() ? calib::StartRun(options, progress, stop)
+                                                       : calib::ResumeRun(a.resume, progress, stop);
     std::cout << fmt::format("run {}: {}; {} rows recorded, {} packets lost\n",
                              summary.run_dir.string(),
                              summary.status,
@@ -98,14 +71,13 @@ int RunAndReport(const RunArgs& a) {
                              summary.lost);
     return 0;
   } catch (const calib::RunInterrupted& e) {
-    const int signal_number = g_stop_signal.load();
     std::cerr << fmt::format(
         "adahrs run: interrupted by {} ({}); the rig is safe. Resume with: "
         "adahrs run --resume {}\n",
-        SignalName(signal_number),
+        StopSignalName(),
         e.what(),
         dir);
-    return 128 + (signal_number != 0 ? signal_number : SIGINT);
+    return StopExitStatus();
   } catch (const calib::RunError& e) {
     std::cerr << "adahrs run: aborted: " << e.what() << "\n";
     return 1;

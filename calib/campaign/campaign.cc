@@ -1,10 +1,15 @@
 #include "calib/campaign/campaign.h"
 
+#include <map>
+#include <set>
+#include <tuple>
+
 #include <fmt/format.h>
 
 #include "calib/acceptance/acceptance_file.h"
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/campaign/bench_runs.h"
+#include "calib/campaign/campaign_attempts.h"
 #include "calib/campaign/campaign_fits.h"
 #include "calib/campaign/campaign_identity.h"
 #include "calib/campaign/campaign_journal.h"
@@ -50,19 +55,33 @@ void ThrowIfStopped(const Context& c, const char* before) {
   if (c.stop) throw RunInterrupted(std::string("stopped before the ") + before);
 }
 
+// One bench's runs: its station file (empty: the bench does not run) and its (sequence, run
+// directory) pairs, in order.
+struct BenchRuns {
+  std::string station_file;
+  std::vector<BenchSequenceRun> runs;
+};
+
+BenchRuns Runs(const CampaignOptions& o,
+               const std::optional<hil::Station>& station,
+               const std::string& station_file,
+               const std::vector<std::string>& sequences) {
+  BenchRuns bench;
+  if (!station) return bench;
+  bench.station_file = station_file;
+  for (const std::string& s : sequences) bench.runs.push_back({s, RunDir(o, s)});
+  return bench;
+}
+
 std::vector<std::vector<RunSummary>> RunBenches(Context& c,
-                                                const std::vector<std::string>& imu_sequences,
-                                                const std::vector<std::string>& ads_sequences) {
+                                                const BenchRuns& imu,
+                                                const BenchRuns& ads) {
   std::vector<BenchPlan> benches;
-  if (c.imu_station) {
-    BenchPlan imu{kImuBench, c.imu_station_file, {}, &c.observer.Bench(kImuBench)};
-    for (const std::string& s : imu_sequences) imu.runs.push_back({s, RunDir(c.o, s)});
-    benches.push_back(std::move(imu));
+  if (!imu.station_file.empty() && !imu.runs.empty()) {
+    benches.push_back({kImuBench, imu.station_file, imu.runs, &c.observer.Bench(kImuBench)});
   }
-  if (c.ads_station) {
-    BenchPlan ads{kAdsBench, c.ads_station_file, {}, &c.observer.Bench(kAdsBench)};
-    for (const std::string& s : ads_sequences) ads.runs.push_back({s, RunDir(c.o, s)});
-    benches.push_back(std::move(ads));
+  if (!ads.station_file.empty() && !ads.runs.empty()) {
+    benches.push_back({kAdsBench, ads.station_file, ads.runs, &c.observer.Bench(kAdsBench)});
   }
   return RunBenchesConcurrently(benches, c.o.executor, c.stop);
 }
@@ -78,17 +97,24 @@ std::string RunsText(const std::vector<std::vector<RunSummary>>& benches) {
   return text;
 }
 
-// Judges an acceptance run; unless the journal says it was done, writes acceptance.json per unit
-// into `run`/acceptance and records every point. Returns the judgement.
+// Judges attempt `attempt` of an acceptance run, writes acceptance.json per unit into
+// `run`/acceptance (kept if a resumed campaign wrote them before), records every point and the
+// attempt of every unit (recording is idempotent, so a resumed judgement records nothing twice).
 AcceptanceRun JudgeIntoRecords(Context& c,
                                const std::filesystem::path& run,
-                               const Specification& spec) {
+                               int attempt,
+                               const Specification& spec,
+                               const std::map<std::string, std::string>& role_of_serial) {
   const AcceptanceRun judged = JudgeAcceptance(run, spec);
-  if (c.journal.Done(kStageJudgement)) return judged;
-  for (const std::filesystem::path& file :
-       WriteAcceptanceFiles(judged, spec, c.o.software_version, run / "acceptance")) {
+  const std::vector<std::filesystem::path> files =
+      AcceptanceFilesOf(judged, spec, c.o.software_version, run / "acceptance");
+  for (const std::filesystem::path& file : files) {
     const AcceptanceRecords points = AcceptanceRecordsFromFile(file);
     c.records.AddAcceptance(points.source_sha256, points.points);
+  }
+  for (const AcceptanceAttemptRecord& a :
+       AttemptRecords(c.journal.campaign_id(), attempt, judged, files, role_of_serial)) {
+    c.records.AddAcceptanceAttempt(a);
   }
   return judged;
 }
@@ -105,7 +131,10 @@ void CalibrationRuns(Context& c, CampaignResult& result) {
   c.observer.Stage(
       "1/8 calibration runs: IMU calibration on the IMU bench, ADS calibration on the "
       "ADS bench, concurrently");
-  const auto calibration = RunBenches(c, seq.imu_calibration, {seq.ads_calibration});
+  const auto calibration =
+      RunBenches(c,
+                 Runs(c.o, c.imu_station, c.imu_station_file, seq.imu_calibration),
+                 Runs(c.o, c.ads_station, c.ads_station_file, {seq.ads_calibration}));
   c.observer.Stage("calibration runs done:" + RunsText(calibration));
   AddRuns(calibration, result);
   c.journal.MarkDone(kStageCalibration);
@@ -191,35 +220,127 @@ ImprovedDownloads DownloadConstantsStage(Context& c, const CampaignArtifacts& f)
   return d;
 }
 
-// The acceptance runs and their judgements.
-struct CampaignAcceptance {
-  std::filesystem::path imu_run, ads_run;
-  AcceptanceRun imu_judged, ads_judged;
+// A unit's last acceptance attempt.
+struct LastAttempt {
+  UnitAcceptance acceptance;
+  std::filesystem::path run;
+  int attempts = 0;
 };
 
-// Stage 4: the acceptance runs on both benches, judged and recorded.
-CampaignAcceptance AcceptanceRuns(Context& c, const Specification& spec, CampaignResult& result) {
+// The acceptance runs and their judgements.
+struct CampaignAcceptance {
+  std::filesystem::path imu_run, ads_run;  // the first attempts (every unit)
+  AcceptanceRun imu_judged, ads_judged;    // the first attempts' judgements
+  std::vector<std::pair<std::filesystem::path, bool>> retest_runs;  // (run, of the IMU bench)
+  std::map<std::string, LastAttempt> last;                          // by serial
+};
+
+std::map<std::string, std::string> RoleOfSerial(const ImprovedDownloads& d) {
+  std::map<std::string, std::string> roles;
+  for (const auto* bench : {&d.imu, &d.ads}) {
+    for (const UnitDownload& u : *bench) roles[u.serial] = u.role;
+  }
+  return roles;
+}
+
+std::set<std::string> AllRoles(const std::optional<hil::Station>& station) {
+  std::set<std::string> roles;
+  if (station) {
+    for (const hil::UnitEntry& u : station->units) roles.insert(u.role);
+  }
+  return roles;
+}
+
+// The station file attempt `attempt` of a bench runs on: the campaign's for the first, else one
+// naming only `roles`, written under stations/attempt<N>/.
+std::string AttemptStationFile(const Context& c,
+                               const std::optional<hil::Station>& station,
+                               const std::string& station_file,
+                               int attempt,
+                               const std::set<std::string>& roles) {
+  if (!station || roles.empty()) return {};
+  if (attempt == 1) return station_file;
+  return WriteCheckedStation(StationWithRoles(*station, roles),
+                             c.o.out_dir / "stations" / fmt::format("attempt{}", attempt),
+                             std::filesystem::path(station_file));
+}
+
+std::string StageOfAttempt(const char* stage, int attempt) {
+  return attempt == 1 ? std::string(stage) : fmt::format("{}_attempt{}", stage, attempt);
+}
+
+// One acceptance attempt on the benches with units in `imu_roles` / `ads_roles`: runs, judges,
+// records; returns the roles that failed, IMU bench then ADS bench.
+std::pair<std::set<std::string>, std::set<std::string>> AcceptanceAttempt(
+    Context& c,
+    const Specification& spec,
+    int attempt,
+    const std::set<std::string>& imu_roles,
+    const std::set<std::string>& ads_roles,
+    const std::map<std::string, std::string>& role_of_serial,
+    CampaignAcceptance& a,
+    CampaignResult& result) {
   const CampaignSequences& seq = c.o.sequences;
-  c.observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
-  const auto acceptance = RunBenches(c, {seq.imu_acceptance}, {seq.ads_acceptance});
-  c.observer.Stage("acceptance runs done:" + RunsText(acceptance));
-  c.journal.MarkDone(kStageAcceptance);
-  if (c.o.stations_done) c.o.stations_done();
-  AddRuns(acceptance, result);
-  CampaignAcceptance a;
+  const std::filesystem::path imu_run = AttemptRunDir(RunDir(c.o, seq.imu_acceptance), attempt);
+  const std::filesystem::path ads_run = AttemptRunDir(RunDir(c.o, seq.ads_acceptance), attempt);
+  const BenchRuns imu{AttemptStationFile(c, c.imu_station, c.imu_station_file, attempt, imu_roles),
+                      {{seq.imu_acceptance, imu_run}}};
+  const BenchRuns ads{AttemptStationFile(c, c.ads_station, c.ads_station_file, attempt, ads_roles),
+                      {{seq.ads_acceptance, ads_run}}};
+  const auto runs = RunBenches(c, imu, ads);
+  c.observer.Stage("acceptance runs done:" + RunsText(runs));
+  c.journal.MarkDone(StageOfAttempt(kStageAcceptance, attempt));
+  AddRuns(runs, result);
+  std::pair<std::set<std::string>, std::set<std::string>> failed;
   std::string verdicts;
-  if (c.imu_station) {
-    a.imu_run = RunDir(c.o, seq.imu_acceptance);
-    a.imu_judged = JudgeIntoRecords(c, a.imu_run, spec);
-    verdicts += fmt::format(" IMU batch {}", a.imu_judged.pass() ? "PASS" : "FAIL");
+  for (const auto& [bench, run, judged_first, failed_roles] :
+       {std::tuple{"IMU", &imu, &a.imu_judged, &failed.first},
+        std::tuple{"ADS", &ads, &a.ads_judged, &failed.second}}) {
+    if (run->station_file.empty()) continue;
+    const std::filesystem::path dir = run->runs.front().run_dir;
+    const AcceptanceRun judged = JudgeIntoRecords(c, dir, attempt, spec, role_of_serial);
+    if (attempt == 1) *judged_first = judged;
+    if (attempt > 1) a.retest_runs.emplace_back(dir, run == &imu);
+    for (const UnitAcceptance& u : judged.units) {
+      LastAttempt& last = a.last[u.serial];
+      last = {u, dir, last.attempts + 1};
+    }
+    *failed_roles = FailedRoles(judged, role_of_serial);
+    verdicts += fmt::format(
+        " {} {} {}", bench, attempt == 1 ? "batch" : "retest", judged.pass() ? "PASS" : "FAIL");
   }
-  if (c.ads_station) {
-    a.ads_run = RunDir(c.o, seq.ads_acceptance);
-    a.ads_judged = JudgeIntoRecords(c, a.ads_run, spec);
-    verdicts += fmt::format(" ADS {}", a.ads_judged.pass() ? "PASS" : "FAIL");
+  c.journal.MarkDone(StageOfAttempt(kStageJudgement, attempt));
+  c.observer.Stage(
+      fmt::format("acceptance attempt {} against the specification:{}", attempt, verdicts));
+  return failed;
+}
+
+// Stage 4: the acceptance runs on both benches, judged and recorded; units that failed are run
+// again up to the retest policy's attempts (campaign_attempts.h).
+CampaignAcceptance AcceptanceRuns(Context& c,
+                                  const Specification& spec,
+                                  const ImprovedDownloads& downloads,
+                                  CampaignResult& result) {
+  c.observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
+  CampaignAcceptance a;
+  a.imu_run = RunDir(c.o, c.o.sequences.imu_acceptance);
+  a.ads_run = RunDir(c.o, c.o.sequences.ads_acceptance);
+  const std::map<std::string, std::string> role_of_serial = RoleOfSerial(downloads);
+  std::set<std::string> imu_roles = AllRoles(c.imu_station);
+  std::set<std::string> ads_roles = AllRoles(c.ads_station);
+  for (int attempt = 1; attempt <= c.o.max_acceptance_attempts; ++attempt) {
+    if (imu_roles.empty() && ads_roles.empty()) break;
+    if (attempt > 1) {
+      ThrowIfStopped(c, "retest");
+      c.observer.Stage(fmt::format("4/8 retest, attempt {} of {}: {} unit(s) that failed",
+                                   attempt,
+                                   c.o.max_acceptance_attempts,
+                                   imu_roles.size() + ads_roles.size()));
+    }
+    std::tie(imu_roles, ads_roles) =
+        AcceptanceAttempt(c, spec, attempt, imu_roles, ads_roles, role_of_serial, a, result);
   }
-  c.journal.MarkDone(kStageJudgement);
-  c.observer.Stage("acceptance against the specification:" + verdicts);
+  if (c.o.stations_done) c.o.stations_done();
   return a;
 }
 
@@ -239,8 +360,13 @@ void WriteReports(Context& c,
   if (c.ads_station) reports.emplace_back(f.ads_calibration_run, DownloadedAdsDir(c.o, f));
   if (c.imu_station) reports.emplace_back(acceptance.imu_run, DownloadedImuDir(c.o, f));
   if (c.ads_station) reports.emplace_back(acceptance.ads_run, DownloadedAdsDir(c.o, f));
-  for (const auto& [run, fit] : reports) {
-    const bool judged = run == acceptance.imu_run || run == acceptance.ads_run;
+  const size_t first_judged = reports.size() - (c.imu_station ? 1 : 0) - (c.ads_station ? 1 : 0);
+  for (const auto& [run, imu] : acceptance.retest_runs) {
+    reports.emplace_back(run, imu ? DownloadedImuDir(c.o, f) : DownloadedAdsDir(c.o, f));
+  }
+  for (size_t i = 0; i < reports.size(); ++i) {
+    const auto& [run, fit] = reports[i];
+    const bool judged = i >= first_judged;
     WriteRunReport(
         run,
         fit,
@@ -251,16 +377,18 @@ void WriteReports(Context& c,
   c.journal.MarkDone(kStageReports);
 }
 
-// Each downloaded unit with its acceptance judgement.
+// Each downloaded unit with its last acceptance attempt.
 void AddUnitOutcomes(const std::vector<UnitDownload>& downloads,
                      const std::string& strategy,
-                     const AcceptanceRun& judged,
-                     const std::filesystem::path& report,
+                     const CampaignAcceptance& acceptance,
                      CampaignResult& result) {
   for (const UnitDownload& d : downloads) {
-    UnitOutcome u{d.role, d.serial, strategy, d, std::nullopt, report};
-    for (const UnitAcceptance& a : judged.units) {
-      if (a.serial == d.serial) u.acceptance = a;
+    UnitOutcome u{d.role, d.serial, strategy, d, std::nullopt, {}, 0};
+    const auto last = acceptance.last.find(d.serial);
+    if (last != acceptance.last.end()) {
+      u.acceptance = last->second.acceptance;
+      u.report = last->second.run / "report.html";
+      u.attempts = last->second.attempts;
     }
     result.units.push_back(std::move(u));
   }
@@ -346,7 +474,7 @@ CampaignResult RunCampaign(const CampaignOptions& o,
   const ImprovedDownloads downloads = DownloadConstantsStage(c, artifacts);
   ThrowIfStopped(c, "acceptance runs");
 
-  const CampaignAcceptance acceptance = AcceptanceRuns(c, spec, result);
+  const CampaignAcceptance acceptance = AcceptanceRuns(c, spec, downloads, result);
   artifacts.imu_acceptance_run = acceptance.imu_run;
   artifacts.ads_acceptance_run = acceptance.ads_run;
   if (o.before_reports) o.before_reports(artifacts, result);
@@ -358,16 +486,9 @@ CampaignResult RunCampaign(const CampaignOptions& o,
     c.records.AddRun(RunRecordFromDirectory(run));
   }
   c.journal.MarkDone(kStageRecords);
-  AddUnitOutcomes(downloads.imu,
-                  o.imu_strategy,
-                  acceptance.imu_judged,
-                  acceptance.imu_run / "report.html",
-                  result);
-  AddUnitOutcomes(downloads.ads,
-                  o.ads_strategy,
-                  acceptance.ads_judged,
-                  acceptance.ads_run / "report.html",
-                  result);
+  AddUnitOutcomes(downloads.imu, o.imu_strategy, acceptance, result);
+  AddUnitOutcomes(downloads.ads, o.ads_strategy, acceptance, result);
+  if (!acceptance.last.empty()) result.yield = c.records.Yields(c.journal.campaign_id()).front();
   return result;
 }
 

@@ -5,18 +5,19 @@
 // (bench_runs.h) -> runs/<sequence>/; (2) fits of both strategies per unit kind (campaign_fits.h)
 // -> fits/<kind>-<strategy>/; (3) download of the chosen strategy's constants
 // (station_download.h); (4) acceptance runs judged against the specification ->
-// runs/<sequence>/acceptance/<serial>/acceptance.json; (5-6) stages injected by the caller
-// (CampaignOptions::before_reports, e.g. proving/demo/demo_campaign.h); (7) report.html per run;
-// (8) production records -> records.sqlite. The production chain never knows the truth.
-// A unit that fails acceptance is a result, not an error; a stage's errors pass through with its
-// context (run, step, unit, file); a stop request (SIGINT) stops the benches safely, or is
+// runs/<sequence>/acceptance/<serial>/acceptance.json, a unit that failed run again up to the
+// retest policy's attempts (campaign_attempts.h) -> runs/<sequence>-attempt<N>/; (5-6) stages
+// injected by the caller (CampaignOptions::before_reports, e.g. proving/demo/demo_campaign.h); (7)
+// report.html per run; (8) production records -> records.sqlite. The production chain never knows
+// the truth. A unit that fails acceptance is a result, not an error; a stage's errors pass through
+// with its context (run, step, unit, file); a stop request (SIGINT) stops the benches safely, or is
 // honoured between stages and between downloads, and throws RunInterrupted.
 // Resuming: the campaign journal in `out_dir` (campaign_journal.h) records the finished stages and
 // the verified downloads; called again on the same `out_dir`, the campaign keeps what is done,
 // resumes an unfinished run as `adahrs run --resume` does and downloads again only a unit whose
 // constants changed. The injected stages are not journaled (they run again).
 // Stage by stage: docs/campaign.md, docs/demo.md ("What runs", "Directories written").
-// Left out: choosing the downloaded strategy by evaluation (the options name it), retests.
+// Left out: choosing the downloaded strategy by evaluation (the options name it).
 #pragma once
 
 #include <atomic>
@@ -33,6 +34,7 @@
 #include "calib/executor/executor.h"
 #include "calib/executor/progress.h"
 #include "calib/executor/run_session.h"
+#include "calib/records/yield_records.h"
 
 namespace adahrs::calib {
 
@@ -69,6 +71,9 @@ struct CampaignOptions {
   std::map<std::string, std::string> expected_serials;
   /// The specification file acceptance judges against; empty: Specification::Reference() (-A).
   std::string specification_file;
+  /// Acceptance attempts per unit, the first included: a unit that FAILs is retested up to this
+  /// (campaign_attempts.h).
+  int max_acceptance_attempts = 1;
   std::string software_version;
   ExecutorOptions executor;
   /// Called once the last run on the stations has ended (e.g. to stop a virtual rig, which the
@@ -94,8 +99,9 @@ struct UnitOutcome {
   std::string serial;
   std::string strategy;  ///< of the downloaded constants
   UnitDownload download;
-  std::optional<UnitAcceptance> acceptance;  ///< the unit's acceptance judgement
-  std::filesystem::path report;              ///< the acceptance run's report.html
+  std::optional<UnitAcceptance> acceptance;  ///< the unit's last acceptance attempt's judgement
+  std::filesystem::path report;              ///< that attempt's run's report.html
+  int attempts = 0;                          ///< acceptance attempts (1: no retest)
 };
 
 struct CampaignResult {
@@ -107,6 +113,8 @@ struct CampaignResult {
   /// Units refused by their serial (role, port, serial read, serial expected), left out.
   std::vector<std::string> refused_units;
   std::filesystem::path records_file;
+  /// First-pass and final yield of this campaign's judged units, from the records.
+  std::optional<CampaignYield> yield;
 };
 
 CampaignResult RunCampaign(const CampaignOptions& options,

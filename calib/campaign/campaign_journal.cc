@@ -1,6 +1,9 @@
 #include "calib/campaign/campaign_journal.h"
 
 #include <cstdint>
+#include <random>
+
+#include <fmt/format.h>
 
 #include "common/atomic_file.h"
 #include "common/param_reader.h"
@@ -38,16 +41,28 @@ UnitDownload DownloadFromJson(const ParamReader& r) {
   return d;
 }
 
+// "2026-12-07T10:20:00Z-3f9a1c07": when the campaign started, and 32 random bits so that two
+// campaigns started in the same second into one records database keep apart.
+std::string NewCampaignId() {
+  std::random_device random;
+  return fmt::format("{}-{:08x}", hil::UtcNowIso8601(), random());
+}
+
 }  // namespace
 
 CampaignJournal::CampaignJournal(const std::filesystem::path& out_dir)
     : file_(out_dir / kCampaignJournalFile) {
-  if (!std::filesystem::exists(file_)) return;
+  if (!std::filesystem::exists(file_)) {
+    campaign_id_ = NewCampaignId();
+    Write();
+    return;
+  }
   const nlohmann::json document = ParamReader::LoadFile(file_.string());
   const ParamReader r(document, file_.string());
   if (r.String("format") != kFormat || r.Integer("format_version", 1, 1000) != kFormatVersion) {
     r.Fail("$", std::string("not a ") + kFormat + " version " + std::to_string(kFormatVersion));
   }
+  campaign_id_ = r.String("campaign_id");
   const size_t stages = r.ArrayLength("stages", 0, 1000);
   for (size_t i = 0; i < stages; ++i) {
     const ParamReader s = r.Element("stages", i, stages);
@@ -104,6 +119,7 @@ nlohmann::json CampaignJournal::ToJson() const {
   }
   return {{"format", kFormat},
           {"format_version", kFormatVersion},
+          {"campaign_id", campaign_id_},
           {"stages", stages},
           {"downloads", downloads}};
 }

@@ -6,6 +6,8 @@
 // the SHA-256 of its constants file: the same unit with changed constants is downloaded again.
 // The journal is written after the fact: a campaign killed between a unit's commit and the
 // journal's write downloads that unit again on resume (and the records show both downloads).
+// The journal also holds the campaign's id (its start time in UTC and a random suffix, made when
+// the journal is first written), under which the records keep the campaign's acceptance attempts.
 // A malformed journal is refused naming the file and the JSON path.
 #pragma once
 
@@ -24,7 +26,8 @@ inline constexpr const char* kCampaignJournalFile = "campaign-journal.json";
 
 class CampaignJournal {
  public:
-  /// Reads `<out_dir>/campaign-journal.json` if there is one; an empty journal otherwise.
+  /// Reads `<out_dir>/campaign-journal.json` if there is one; otherwise starts an empty journal
+  /// with a new campaign id and writes it (`out_dir` must exist).
   explicit CampaignJournal(const std::filesystem::path& out_dir);
 
   bool Done(const std::string& stage) const;
@@ -36,6 +39,7 @@ class CampaignJournal {
   /// Records a verified and committed download and writes the journal.
   void RecordDownload(const UnitDownload& download);
 
+  const std::string& campaign_id() const { return campaign_id_; }
   const std::filesystem::path& file() const { return file_; }
   nlohmann::json ToJson() const;
 
@@ -51,6 +55,7 @@ class CampaignJournal {
   void Write() const;
 
   std::filesystem::path file_;
+  std::string campaign_id_;
   std::vector<Stage> stages_;
   std::vector<Download> downloads_;
 };

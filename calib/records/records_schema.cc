@@ -102,6 +102,25 @@ ALTER TABLE acceptance_results ADD COLUMN specification_sha256 TEXT NOT NULL DEF
 ALTER TABLE acceptance_results ADD COLUMN outcome TEXT NOT NULL DEFAULT '';
 UPDATE acceptance_results SET outcome = CASE pass WHEN 1 THEN 'PASS' ELSE 'FAIL' END;
 )sql",
+    // Version 3: each unit's acceptance attempts in a campaign (first pass, retests), from which
+    // first-pass and final yield are counted (yield_records.h).
+    R"sql(
+CREATE TABLE acceptance_attempts (
+  campaign TEXT NOT NULL,
+  serial TEXT NOT NULL REFERENCES units(serial),
+  role TEXT NOT NULL,
+  attempt INTEGER NOT NULL CHECK (attempt >= 1),
+  run_id TEXT NOT NULL,
+  source_sha256 TEXT NOT NULL,
+  outcome TEXT NOT NULL CHECK (outcome IN ('PASS', 'MARGINAL', 'FAIL')),
+  recorded_utc TEXT NOT NULL,
+  PRIMARY KEY (campaign, serial, attempt)
+);
+CREATE TRIGGER acceptance_attempts_never_updated BEFORE UPDATE ON acceptance_attempts
+BEGIN SELECT RAISE(ABORT, 'acceptance attempts are never updated'); END;
+CREATE TRIGGER acceptance_attempts_never_deleted BEFORE DELETE ON acceptance_attempts
+BEGIN SELECT RAISE(ABORT, 'acceptance attempts are never deleted'); END;
+)sql",
 };
 
 static_assert(std::size(kMigrations) == kRecordsSchemaVersion);

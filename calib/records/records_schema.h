@@ -9,7 +9,7 @@
 
 namespace adahrs::calib {
 
-inline constexpr int kRecordsSchemaVersion = 2;
+inline constexpr int kRecordsSchemaVersion = 3;
 
 /// The version the database is at (0 for a new, empty file).
 int RecordsSchemaVersionOf(SqliteDatabase& database);

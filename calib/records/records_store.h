@@ -1,6 +1,7 @@
 // The production records (docs/records.md): what was run on which unit, which constants each unit
 // was given (every version kept, never overwritten), whether they were downloaded and committed,
-// and every acceptance point's verdict. Backed by one SQLite file (sqlite_database.h), schema and
+// every acceptance point's verdict and each unit's acceptance attempts in a campaign (first pass
+// and retests, yield_records.h). Backed by one SQLite file (sqlite_database.h), schema and
 // migrations in records_schema.h; every Add* runs in one transaction, so a failure leaves nothing
 // half-recorded. Adding the same run recording (same run id and checksum), the same constants file
 // (same serial and file checksum) or the same acceptance file again changes nothing and returns
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "calib/records/sqlite_database.h"
+#include "calib/records/yield_records.h"
 
 namespace adahrs::calib {
 
@@ -146,6 +148,14 @@ class RecordsStore {
   /// that file was recorded before.
   bool AddAcceptance(const std::string& source_sha256,
                      const std::vector<AcceptancePointRecord>& points);
+
+  /// Records one acceptance attempt of a unit in a campaign (yield_records.h); returns false if
+  /// that attempt was recorded from the same acceptance file before; throws RecordsError if it was
+  /// recorded from another.
+  bool AddAcceptanceAttempt(const AcceptanceAttemptRecord& attempt);
+  /// The yields of `campaign`, or of every campaign recorded when it is empty (by campaign id);
+  /// throws RecordsError if a campaign named has no attempt.
+  std::vector<CampaignYield> Yields(const std::string& campaign = "");
 
   /// The unit's version whose file checksum is `file_sha256`, if recorded.
   std::optional<int64_t> FindConstantsVersion(const std::string& serial,

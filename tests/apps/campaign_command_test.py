@@ -288,6 +288,8 @@ def records_shape(out):
                               tolerance, unit) for serial, quantity, condition, tolerance, unit
                              in q("SELECT serial, quantity, condition, tolerance, unit "
                                   "FROM acceptance_results")),
+        # One attempt per unit (no retest allowed), recorded once however often resumed.
+        "attempts": q("SELECT serial, role, attempt FROM acceptance_attempts"),
     }
     db.close()
     return shape

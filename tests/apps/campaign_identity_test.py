@@ -8,6 +8,14 @@ Checks: both swapped slots are refused naming role, serial read and serial expec
 them (meta.json units) and the records have no run, download or acceptance of theirs; imu3 and
 imu4 complete (downloaded once, judged); exit status 4 (complete, a unit refused).
 
+The campaign file also allows two acceptance attempts (docs/campaign.md "Retests"). The IMUs
+calibrated by the short sequences fail their first acceptance (campaign_command_test's docstring),
+which forces a retest. Checks: the units whose first acceptance.json says FAIL, and only those,
+are run again in runs/imu_acceptance-attempt2 (its meta.json names them alone); the records hold
+one attempt per judged unit and run, with the outcome its acceptance.json states; first-pass and
+final yield, counted here from those acceptance.json files, are what `adahrs records yield --json`
+and the campaign's summary line say.
+
 Usage: campaign_identity_test.py ADAHRS_BINARY
 """
 import json
@@ -19,6 +27,50 @@ import tempfile
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from campaign_command_test import CAMPAIGN_TIMEOUT_S, Rig, campaign_file, fail  # noqa: E402
+
+
+def outcome_of(run_dir, serial):
+    return json.loads((run_dir / "acceptance" / serial / "acceptance.json").read_text())["outcome"]
+
+
+def check_retests(adahrs, out, stdout, judged):
+    first_run = next(d for d in (out / "runs").iterdir()
+                     if d.name.startswith("imu_acceptance") and "-attempt" not in d.name)
+    retest_run = first_run.with_name(first_run.name + "-attempt2")
+    first = {s: outcome_of(first_run, s) for s in judged}
+    failed = sorted(s for s, o in first.items() if o == "FAIL")
+    if not failed:
+        fail(f"no unit failed its first acceptance ({first}): no retest to check; force one "
+             "with a tighter specification file")
+    retested = sorted(u["serial"] for u in json.loads((retest_run / "meta.json").read_text())["units"])
+    if retested != failed:
+        fail(f"retest run holds {retested}, the units that failed are {failed}")
+    second = {s: outcome_of(retest_run, s) for s in failed}
+    db = sqlite3.connect(out / "records.sqlite")
+    rows = sorted(db.execute("SELECT serial, attempt, outcome, run_id FROM acceptance_attempts"))
+    run_id = {1: json.loads((first_run / "meta.json").read_text())["run_id"],
+              2: json.loads((retest_run / "meta.json").read_text())["run_id"]}
+    expected = sorted([(s, 1, o, run_id[1]) for s, o in first.items()] +
+                      [(s, 2, o, run_id[2]) for s, o in second.items()])
+    if rows != expected:
+        fail(f"acceptance_attempts rows {rows}, expected {expected}")
+    passed = ("PASS", "MARGINAL")
+    first_pass = sum(first[s] in passed for s in judged)
+    final_pass = sum(second.get(s, first[s]) in passed for s in judged)
+    report = json.loads(subprocess.run(
+        [adahrs, "records", "yield", "--json", "--db", str(out / "records.sqlite")],
+        capture_output=True, text=True, check=True).stdout)
+    if len(report) != 1 or (report[0]["units_judged"], report[0]["first_pass"],
+                            report[0]["final_pass"], report[0]["retested"]) != (
+                                len(judged), first_pass, final_pass, len(failed)):
+        fail(f"records yield {report}: expected {len(judged)} judged, first pass {first_pass}, "
+             f"final {final_pass}, {len(failed)} retested")
+    line = (f"first-pass yield {first_pass} of {len(judged)}", f"final yield {final_pass} of "
+            f"{len(judged)}")
+    if not all(part in stdout for part in line):
+        fail(f"the campaign's summary does not say {line}")
+    print(f"retests: first {first}, second {second}; yield first-pass {first_pass}, "
+          f"final {final_pass} of {len(judged)}")
 
 
 def main():
@@ -33,6 +85,7 @@ def main():
             document = json.loads(campaign.read_text())
             document["expected_serials"] = {"imu1": label["imu2"], "imu2": label["imu1"],
                                             "imu3": label["imu3"], "imu4": label["imu4"]}
+            document["retest"] = {"max_attempts": 2}
             campaign.write_text(json.dumps(document))
             out = tmp / "out"
             result = subprocess.run(
@@ -48,8 +101,11 @@ def main():
             line = [x for x in result.stdout.splitlines() if x.startswith(f"refused: {role} ")]
             if not line or label[role] not in line[0] or label[other] not in line[0]:
                 fail(f"no refusal of {role} naming {label[role]} and {label[other]}: {line}")
+        check_retests(adahrs, out, result.stdout, sorted([label["imu3"], label["imu4"]]))
         for meta in (out / "runs").glob("*/meta.json"):
             roles = sorted(u["role"] for u in json.loads(meta.read_text())["units"])
+            if "-attempt" in meta.parent.name:  # a retest: the failed units (check_retests)
+                roles = sorted(set(roles) | {"imu3", "imu4"})
             if roles != ["imu3", "imu4"]:
                 fail(f"{meta} holds units {roles}, expected imu3 and imu4 only")
         db = sqlite3.connect(out / "records.sqlite")

@@ -81,6 +81,10 @@ TEST(CampaignFile, MalformedPartsAreRefusedWithTheirJsonPath) {
   j = Example();
   j["retest"]["max_attempts"] = 0;
   EXPECT_NE(Refusal(j).find("$.retest.max_attempts"), std::string::npos) << Refusal(j);
+  j["retest"]["max_attempts"] = 6;  // more than docs/campaign.md allows
+  EXPECT_NE(Refusal(j).find("$.retest.max_attempts"), std::string::npos) << Refusal(j);
+  j["retest"]["max_attempts"] = 5;
+  EXPECT_EQ(CampaignFile::FromJson(j, "c.json", "/base").max_acceptance_attempts, 5);
 
   j = Example();
   j["format_version"] = 2;
@@ -121,6 +125,21 @@ TEST_F(CampaignJournalTest, StagesAndDownloadsSurviveAReopen) {
   EXPECT_FALSE(reopened.VerifiedDownload("IMU-000003", "ab12").has_value());
 }
 
+// The id the records keep the campaign's attempts under: written with the new journal, the same
+// after a reopen, another for another campaign.
+TEST_F(CampaignJournalTest, TheCampaignIdIsWrittenAtOnceAndKept) {
+  std::string id;
+  {
+    const CampaignJournal journal(dir_);
+    id = journal.campaign_id();
+    EXPECT_TRUE(std::filesystem::exists(dir_ / kCampaignJournalFile));
+  }
+  EXPECT_EQ(CampaignJournal(dir_).campaign_id(), id);
+  EXPECT_EQ(id.size(), std::string("2026-12-07T10:20:00Z-3f9a1c07").size()) << id;
+  std::filesystem::remove(dir_ / kCampaignJournalFile);
+  EXPECT_NE(CampaignJournal(dir_).campaign_id(), id);
+}
+
 TEST_F(CampaignJournalTest, NewerConstantsSupersedeAnOlderVerifiedDownload) {
   CampaignJournal journal(dir_);
   journal.RecordDownload({"imu1", "IMU-000001", "a.json", "old", 1, 1, 1, 9});
@@ -131,7 +150,7 @@ TEST_F(CampaignJournalTest, NewerConstantsSupersedeAnOlderVerifiedDownload) {
 
 TEST_F(CampaignJournalTest, AMalformedJournalIsRefusedWithItsPath) {
   std::ofstream(dir_ / kCampaignJournalFile)
-      << R"({"format": "adahrs-campaign-journal", "format_version": 1,
+      << R"({"format": "adahrs-campaign-journal", "format_version": 1, "campaign_id": "x",
              "stages": [{"stage": "fits"}], "downloads": []})";
   const std::string error = ErrorText<common::ParamError>([&] { CampaignJournal journal(dir_); });
   EXPECT_NE(error.find(kCampaignJournalFile), std::string::npos) << error;

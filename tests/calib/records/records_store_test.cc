@@ -11,6 +11,7 @@
 
 #include "calib/records/download_records.h"
 #include "calib/records/records_schema.h"
+#include "tests/support/python_sqlite.h"
 
 namespace adahrs::calib {
 namespace {
@@ -31,17 +32,8 @@ class RecordsStoreTest : public ::testing::Test {
 
   // Reads the database with Python's own sqlite3 module: an independent reader of what we wrote.
   std::string PythonQuery(const std::string& sql) {
-    const auto script = dir_ / "query.py";
-    std::ofstream(script) << "import sqlite3, sys\n"
-                          << "c = sqlite3.connect(sys.argv[1])\n"
-                          << "print(repr(c.execute(sys.argv[2]).fetchall()))\n";
-    const std::string command = std::string(ADAHRS_PYTHON) + " " + script.string() + " " +
-                                db_.string() + " \"" + sql + "\"";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    std::string out;
-    char buffer[512];
-    while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
-    EXPECT_EQ(::pclose(pipe), 0) << command;
+    const auto [out, status] = adahrs::testing::PythonSqlite(db_, sql, dir_);
+    EXPECT_EQ(status, 0) << sql << ": " << out;
     return out;
   }
 
@@ -79,10 +71,11 @@ class RecordsStoreTest : public ::testing::Test {
 
 TEST_F(RecordsStoreTest, NewDatabaseIsAtTheCurrentSchemaVersionInWalMode) {
   { RecordsStore store(db_); }
-  EXPECT_EQ(PythonQuery("SELECT version FROM schema_version"), "[(2,)]\n");
+  EXPECT_EQ(PythonQuery("SELECT version FROM schema_version"), "[(3,)]\n");
   EXPECT_EQ(PythonQuery("PRAGMA journal_mode"), "[('wal',)]\n");
   EXPECT_EQ(PythonQuery("SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name"),
-            "[('acceptance_results',), ('constants',), ('downloads',), ('run_units',), "
+            "[('acceptance_attempts',), ('acceptance_results',), ('constants',), ('downloads',), "
+            "('run_units',), "
             "('runs',), ('schema_version',), ('steps',), ('units',)]\n");
   // Reopening an up-to-date database changes nothing.
   { RecordsStore again(db_); }
@@ -224,6 +217,7 @@ TEST_F(RecordsStoreTest, Version1AcceptanceRowsMigrateWithTheirOutcome) {
     raw.Execute(
         "ALTER TABLE acceptance_results DROP COLUMN specification_sha256;"
         "ALTER TABLE acceptance_results DROP COLUMN outcome;"
+        "DROP TABLE acceptance_attempts;"
         "UPDATE schema_version SET version = 1;"
         "INSERT INTO units VALUES ('ADS-0001', 'ads', '2024-05-01T09:00:00Z');"
         "INSERT INTO acceptance_results (serial, source_sha256, run_id, quantity, condition, "
@@ -232,7 +226,7 @@ TEST_F(RecordsStoreTest, Version1AcceptanceRowsMigrateWithTheirOutcome) {
         "('ADS-0001', 'old', 'acc-0', 'airspeed', 'step 1', 2.5, 2.0, 'kt', 0, 'x');");
   }
   RecordsStore store(db_);
-  EXPECT_EQ(PythonQuery("SELECT version FROM schema_version"), "[(2,)]\n");
+  EXPECT_EQ(PythonQuery("SELECT version FROM schema_version"), "[(3,)]\n");
   EXPECT_EQ(PythonQuery("SELECT quantity, pass, outcome, specification_sha256 FROM "
                         "acceptance_results ORDER BY id"),
             "[('altitude', 1, 'PASS', ''), ('airspeed', 0, 'FAIL', '')]\n");
