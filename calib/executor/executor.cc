@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "calib/executor/chamber_eta.h"
 #include "calib/executor/interlocks.h"
 #include "common/overloaded.h"
 
@@ -115,6 +116,7 @@ void Executor::RunActions(size_t first_action) {
     const PlannedAction& a = plan_.actions[i];
     current_action_ = i;
     action_started_s_ = clock_.NowS();
+    measured_remaining_s_.reset();
     annotations_.Update([&](RowAnnotations& r) { r.step = static_cast<int>(a.step); });
     journal_.Append(ActionStarted{action_started_s_, i, a.step, Describe(a.action)});
     Report(true);
@@ -446,6 +448,7 @@ void Executor::WaitChamberInBand(double target_c, double band_c, double soak_s, 
       estimate_s, std::abs(target_c - start_c) / options_.chamber_ramp_c_per_min * 60.0 + soak_s);
   double pv_c = start_c;
   double inside_since_s = -1.0;  // clock time the value entered the band, < 0 when outside
+  ChamberEta eta(target_c, band_c, soak_s);
   WaitFor(
       fmt::format(
           "{} inside {:.2f} +- {:.2f} degC for {:.0f} s", ChamberRole(), target_c, band_c, soak_s),
@@ -456,10 +459,12 @@ void Executor::WaitChamberInBand(double target_c, double band_c, double soak_s, 
         const double now_s = clock_.NowS();
         if (std::abs(pv_c - target_c) > band_c) {
           inside_since_s = -1.0;
-          return false;
+        } else if (inside_since_s < 0.0) {
+          inside_since_s = now_s;
         }
-        if (inside_since_s < 0.0) inside_since_s = now_s;
-        return now_s - inside_since_s >= soak_s;
+        eta.Observe(now_s, pv_c, inside_since_s);
+        measured_remaining_s_ = eta.RemainingS();
+        return inside_since_s >= 0.0 && now_s - inside_since_s >= soak_s;
       },
       [&] { return fmt::format("{} process value {:.2f} degC", ChamberRole(), pv_c); });
 }
@@ -567,7 +572,10 @@ void Executor::Report(bool force) {
   r.action_count = plan_.actions.size();
   r.action_text = Describe(a.action);
   r.t_s = clock_.NowS();
-  double remaining_s = std::max(0.0, a.estimate_s - (r.t_s - action_started_s_));
+  // The running action by what it measures, if it can (a chamber wait: chamber_eta.h), else by
+  // the plan; the actions after it by the plan.
+  double remaining_s =
+      measured_remaining_s_.value_or(std::max(0.0, a.estimate_s - (r.t_s - action_started_s_)));
   for (size_t i = current_action_ + 1; i < plan_.actions.size(); ++i)
     remaining_s += plan_.actions[i].estimate_s;
   r.eta_s = remaining_s;

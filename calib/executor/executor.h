@@ -161,6 +161,7 @@ class Executor {
   std::vector<std::optional<GravityReference>> gravity_references_;  // per unit
   size_t current_action_ = 0;
   double action_started_s_ = 0.0;
+  std::optional<double> measured_remaining_s_;  // of the running action, when it measures one
   double last_refresh_s_ = -1e300;
   std::chrono::steady_clock::time_point last_report_{};
 };

@@ -23,8 +23,8 @@ inline std::pair<std::string, int> PythonSqlite(const std::filesystem::path& db,
                         << "    print(repr(c.execute(sys.argv[2]).fetchall())); c.commit()\n"
                         << "except sqlite3.Error as e:\n"
                         << "    print(e); sys.exit(3)\n";
-  const std::string command = std::string(ADAHRS_PYTHON) + " " + script.string() + " " +
-                              db.string() + " \"" + sql + "\"";
+  const std::string command =
+      std::string(ADAHRS_PYTHON) + " " + script.string() + " " + db.string() + " \"" + sql + "\"";
   FILE* pipe = ::popen(command.c_str(), "r");
   std::string out;
   char buffer[512];

@@ -95,9 +95,13 @@ class DisturbingOperator : public hil::Operator {
 
 class RecordingProgress : public ProgressSink {
  public:
-  void Report(const ProgressReport& r) override { last = r; }
+  void Report(const ProgressReport& r) override {
+    last = r;
+    reports.push_back(r);
+  }
   void Note(const std::string& text) override { notes.push_back(text); }
   ProgressReport last;
+  std::vector<ProgressReport> reports;
   std::vector<std::string> notes;
 };
 
