@@ -8,7 +8,8 @@ constexpr const char* kStyle =
     "body{font-family:sans-serif;max-width:70em;margin:1em auto}"
     "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:2px 6px;"
     "font-size:90%}caption{text-align:left;font-weight:bold}.pass{background:#d8f0d8}"
-    ".fail{background:#f6d0d0}.unavailable{color:#a33;font-style:italic}.note{color:#555}";
+    ".fail{background:#f6d0d0}.marginal{background:#f6ecc8}.unavailable{color:#a33;font-style:"
+    "italic}.note{color:#555}";
 
 }  // namespace
 

@@ -63,7 +63,7 @@ std::optional<double> ChamberEta::RemainingS() const {
   const auto exp = [](double v) { return std::exp(v); };
   const Line settle = FitLine(window_, now_s, log_distance, exp);
   if (ramp.b >= 0.0) return std::nullopt;  // not approaching, by the fit
-  const double e_now = ramp.a;  // the fitted distance now (t - t0 = 0)
+  const double e_now = ramp.a;             // the fitted distance now (t - t0 = 0)
   if (e_now <= band_c_) return soak_s_;
   if (band_c_ > 0.0 && settle.b < 0.0 && settle.rss < ramp.rss) {
     return (settle.a - std::log(band_c_)) / -settle.b + soak_s_;

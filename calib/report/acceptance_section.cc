@@ -36,7 +36,7 @@ HtmlTable SummaryTable(const AcceptanceFile& f) {
   summary.rows.push_back({"recording sha256", f.run.recording_sha256});
   summary.rows.push_back({"mode", std::to_string(u.mode)});
   summary.rows.push_back({"points failed", fmt::format("{} of {}", u.failed(), u.points.size())});
-  summary.rows.push_back({"verdict", u.pass() ? "PASS" : "FAIL"});
+  summary.rows.push_back({"verdict", OutcomeText(u.outcome())});
   if (const std::string counts = RateVerdictCounts(u); !counts.empty()) {
     summary.rows.push_back({"body-rate points", counts});
   }

@@ -15,9 +15,10 @@ std::string RenderTable(const HtmlTable& table) {
   for (const auto& row : table.rows) {
     html += "<tr>";
     for (const std::string& cell : row) {
-      const char* css = cell == "PASS"   ? " class=\"pass\""
-                        : cell == "FAIL" ? " class=\"fail\""
-                                         : "";
+      const char* css = cell == "PASS"       ? " class=\"pass\""
+                        : cell == "FAIL"     ? " class=\"fail\""
+                        : cell == "MARGINAL" ? " class=\"marginal\""
+                                             : "";
       html += fmt::format("<td{}>{}</td>", css, XmlEscape(cell));
     }
     html += "</tr>\n";

@@ -10,7 +10,7 @@
 namespace adahrs::calib {
 
 /// A table: a caption naming what and in which units, column headers, rows of cell texts.
-/// A cell "PASS" or "FAIL" gets class pass / fail.
+/// A cell "PASS", "FAIL" or "MARGINAL" gets class pass / fail / marginal.
 struct HtmlTable {
   std::string caption;
   std::vector<std::string> header;

@@ -14,6 +14,7 @@
 #include "calib/report/imu_report_sections.h"
 #include "calib/report/json_tables.h"
 #include "calib/report/svg_plot.h"
+#include "calib/report/verdict_section.h"
 #include "common/atomic_file.h"
 #include "common/html_page.h"
 #include "common/param_reader.h"
@@ -101,20 +102,29 @@ std::string Summary(const std::filesystem::path& run_dir, const hil::RecordingMe
   return html;
 }
 
-// The acceptance section: per-unit acceptance files first, a fit directory's acceptance.json next.
-std::string Acceptance(const std::filesystem::path& run_dir,
-                       const std::optional<std::filesystem::path>& acceptance_dir,
-                       const FitInputs& fit) {
+// The acceptance files of the run: those of `acceptance_dir`, else of <run>/acceptance.
+std::vector<AcceptanceFile> AcceptanceFilesOfRun(
+    const std::filesystem::path& run_dir,
+    const std::optional<std::filesystem::path>& acceptance_dir) {
   if (acceptance_dir && !std::filesystem::is_directory(*acceptance_dir)) {
     throw std::runtime_error(acceptance_dir->string() + ": acceptance directory does not exist");
   }
-  const std::filesystem::path dir = acceptance_dir.value_or(run_dir / "acceptance");
   std::vector<AcceptanceFile> files;
-  for (const std::filesystem::path& file : FindAcceptanceFiles(dir)) {
+  for (const std::filesystem::path& file :
+       FindAcceptanceFiles(acceptance_dir.value_or(run_dir / "acceptance"))) {
     files.push_back(ReadAcceptanceFile(file));
   }
+  return files;
+}
+
+// The acceptance section: per-unit acceptance files first, a fit directory's acceptance.json next.
+std::string Acceptance(const std::filesystem::path& run_dir,
+                       const std::optional<std::filesystem::path>& acceptance_dir,
+                       const std::vector<AcceptanceFile>& files,
+                       const FitInputs& fit) {
   if (!files.empty()) return AcceptanceSectionBody(files);
   if (fit.acceptance) return RenderJsonTables("acceptance", *fit.acceptance);
+  const std::filesystem::path dir = acceptance_dir.value_or(run_dir / "acceptance");
   return NotAvailable(
       "acceptance.json",
       "no <serial>/acceptance.json in " + dir.string() + "; fit directory: " + fit.why_missing);
@@ -158,7 +168,9 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
   std::optional<ImuRunData> imu;
   std::string imu_why;
   bool has_imu = false;
-  for (const hil::RecordingUnit& u : meta.units) has_imu |= u.kind == common::UnitKind::kImu;
+  for (const hil::RecordingUnit& u : meta.units) {
+    has_imu |= u.kind == common::UnitKind::kImu && u.mode.value_or(0) == 0;  // raw rows to show
+  }
   if (has_imu) {
     try {
       imu = LoadImuRuns({run_dir});
@@ -169,14 +181,28 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
 
   const std::string title =
       fmt::format("Calibration report: run {}", meta.run_id.value_or(run_dir.filename().string()));
-  std::string body = Section("summary", 2, "Run", Summary(run_dir, meta));
+  const std::vector<AcceptanceFile> acceptance = AcceptanceFilesOfRun(run_dir, acceptance_dir);
+  std::string body = Section(
+      "verdict",
+      2,
+      "Verdict",
+      VerdictSectionBody(acceptance, meta.sequence ? meta.sequence->value("name", "") : ""));
+  body += Section("summary", 2, "Run", Summary(run_dir, meta));
   std::string units;
   for (const hil::RecordingUnit& u : meta.units) {
     const std::string& serial = u.serial;
     const ConstantsFile* constants = ConstantsOf(fit, serial);
     std::string unit_html;
     if (u.kind == common::UnitKind::kImu) {
-      if (imu && imu->units.count(serial)) {
+      if (u.mode.value_or(0) != 0) {
+        // Calibration figures are of raw rows; a unit recorded in a compensated mode (an
+        // acceptance run) has none, and its judgement is page one's.
+        unit_html = fmt::format(
+            "<p class=\"note\">Recorded in mode {} (compensated): the calibration figures need "
+            "raw rows (mode 0). This unit's outputs are judged in the Verdict and Acceptance "
+            "sections.</p>\n",
+            *u.mode);
+      } else if (imu && imu->units.count(serial)) {
         unit_html = ImuReportSections(imu->units.at(serial), constants, g_local_mps2);
       } else {
         unit_html = NotAvailable("IMU calibration data",
@@ -188,7 +214,8 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
     units += Section(serial, 2, fmt::format("Unit {} ({})", serial, u.role), unit_html);
   }
   body += units;
-  body += Section("acceptance", 2, "Acceptance", Acceptance(run_dir, acceptance_dir, fit));
+  body +=
+      Section("acceptance", 2, "Acceptance", Acceptance(run_dir, acceptance_dir, acceptance, fit));
   body += Section("evaluation",
                   2,
                   "Evaluation against simulator truth",

@@ -24,6 +24,7 @@ import sqlite3
 import subprocess
 import sys
 import tempfile
+import xml.etree.ElementTree as ET
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from campaign_command_test import CAMPAIGN_TIMEOUT_S, Rig, campaign_file, fail  # noqa: E402
@@ -33,10 +34,31 @@ def outcome_of(run_dir, serial):
     return json.loads((run_dir / "acceptance" / serial / "acceptance.json").read_text())["outcome"]
 
 
+def check_report_page_one(run_dir, judged):
+    """The acceptance run's report.html opens on the verdict: one row per unit with the outcome its
+    acceptance.json states; the units recorded in mode 3 get no "missing from step" complaint."""
+    root = ET.parse(run_dir / "report.html").getroot()
+    sections = [e for e in root.iter() if e.tag.split("}")[-1] == "section"]
+    if not sections or sections[0].get("id") != "verdict":
+        fail(f"{run_dir}/report.html does not open on the verdict section")
+    rows = {}
+    for tr in sections[0].iter():
+        cells = ["".join(td.itertext()) for td in tr if td.tag.split("}")[-1] == "td"]
+        if len(cells) == 7:
+            rows[cells[0]] = cells[2]
+    expected = {s: outcome_of(run_dir, s) for s in judged}
+    if rows != expected:
+        fail(f"page one says {rows}, the acceptance files {expected}")
+    text = "".join(root.itertext())
+    if "is missing from step" in text:
+        fail(f"{run_dir}/report.html still says a unit is missing from a step")
+
+
 def check_retests(adahrs, out, stdout, judged):
     first_run = next(d for d in (out / "runs").iterdir()
                      if d.name.startswith("imu_acceptance") and "-attempt" not in d.name)
     retest_run = first_run.with_name(first_run.name + "-attempt2")
+    check_report_page_one(first_run, judged)
     first = {s: outcome_of(first_run, s) for s in judged}
     failed = sorted(s for s, o in first.items() if o == "FAIL")
     if not failed:

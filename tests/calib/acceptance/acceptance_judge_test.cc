@@ -507,6 +507,36 @@ TEST_F(AcceptanceJudgeTest, AcceptanceFilesRoundTripIntoTheRecordsAndReport) {
   // Failed points (12 + 3) plus IMU-0002's and IMU-0004's verdicts and worst margins (2 + 1 each).
   EXPECT_EQ(fail_cells.size(), 15u + 3u + 2u);
   EXPECT_EQ(pass_cells.size(), 4u * 36u - 15u + 2u + 2u * 2u + 1u);
+
+  // Page one: the verdict section comes first, one row per unit whose outcome is the one its
+  // acceptance.json states.
+  const auto all_sections =
+      testing::FindAll(html, [](const nlohmann::json& n) { return n["tag"] == "section"; });
+  ASSERT_FALSE(all_sections.empty());
+  EXPECT_EQ(all_sections[0]["attrib"].value("id", ""), "verdict");
+  const auto rows = testing::FindAll(all_sections[0], [](const nlohmann::json& n) {
+    return n["tag"] == "tr" && testing::FindAll(n, [](const nlohmann::json& c) {
+                                 return c["tag"] == "td";
+                               }).size() == 7u;
+  });
+  ASSERT_EQ(rows.size(), 4u);
+  int accepted = 0;
+  for (const auto& row : rows) {
+    const auto cells =
+        testing::FindAll(row, [](const nlohmann::json& c) { return c["tag"] == "td"; });
+    const std::string serial = cells[0]["text"];
+    const nlohmann::json file = nlohmann::json::parse(
+        std::ifstream(dir_ / "run" / "acceptance" / serial / "acceptance.json"));
+    EXPECT_EQ(cells[2]["text"], file["outcome"]) << serial;
+    EXPECT_EQ(cells[3]["text"], std::to_string(file["points_failed"].get<int>())) << serial;
+    accepted += file["outcome"] != "FAIL" ? 1 : 0;
+  }
+  EXPECT_EQ(accepted, 2);
+  const auto verdict_line = testing::FindAll(all_sections[0], [](const nlohmann::json& n) {
+    return n["tag"] == "p" && n["attrib"].value("class", "") == "verdict";
+  });
+  ASSERT_EQ(verdict_line.size(), 1u);
+  EXPECT_THAT(verdict_line[0]["text"].get<std::string>(), HasSubstr("2 of 4 unit(s) accepted"));
 }
 
 TEST_F(AcceptanceJudgeTest, MalformedAcceptanceFileIsRefusedNamingThePath) {

@@ -266,6 +266,15 @@ TEST_F(RunReportTest, WithoutAFitDirectoryEverySectionSaysWhy) {
               HasSubstr("no fit directory given"));
 }
 
+// A calibration run has no acceptance files: page one says it was not judged, and where from.
+TEST_F(RunReportTest, AnUnjudgedRunSaysSoOnPageOne) {
+  const nlohmann::json html = Report(true);
+  const auto paragraphs = FindTag(SectionById(html, "verdict"), "p");
+  ASSERT_EQ(paragraphs.size(), 1u);
+  EXPECT_THAT(paragraphs[0]["text"].get<std::string>(), HasSubstr("Not judged"));
+  EXPECT_TRUE(FindTag(SectionById(html, "verdict"), "table").empty());
+}
+
 TEST_F(RunReportTest, AcceptanceVerdictsShowAsPassAndFail) {
   std::ofstream(dir_ / "fit" / "acceptance.json")
       << R"({"run_id": "acc", "points": [{"serial": "IMU-0001", "quantity": "rate_z",
