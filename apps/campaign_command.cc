@@ -1,5 +1,6 @@
 // adahrs campaign --campaign FILE [--station-imu FILE] [--station-ads FILE] --out DIR [--quick]
-// adahrs campaign --resume DIR
+//                 [--operator NAME]
+// adahrs campaign --resume DIR [--operator NAME]
 // The production entry point (docs/campaign.md): runs the campaign file's stages
 // (calib/campaign/campaign.h) on the stations the station files name, no simulator anywhere.
 // The inputs as resolved (absolute paths, the --quick sequences) go to DIR/campaign.json, from
@@ -40,6 +41,7 @@ struct CampaignCommandOptions {
   std::string out;
   std::string resume;
   bool quick = false;
+  std::string operator_name;
 };
 
 // What a campaign was started with, as DIR/campaign.json keeps it for --resume.
@@ -96,6 +98,11 @@ CampaignInputs ResumedCampaign(const std::filesystem::path& out) {
 void PrintUnit(const calib::UnitOutcome& u) {
   PrintUnitOutcome(u);
   std::cout << "  report: " << u.report.string() << "\n";
+  if (u.certificate.empty()) return;
+  std::cout << "  certificate: " << u.certificate.string()
+            << (u.certificate_pdf ? " and " + u.certificate_pdf->string()
+                                  : " (" + u.certificate_pdf_error + ")")
+            << "\n";
 }
 
 // Prints the summary; returns the exit status.
@@ -142,6 +149,7 @@ int RunCampaignCommand(const CampaignCommandOptions& o) {
   options.specification_file = in.campaign.specification_file;
   options.max_acceptance_attempts = in.campaign.max_acceptance_attempts;
   options.software_version = ADAHRS_VERSION;
+  options.operator_name = o.operator_name;
   std::cout << fmt::format(
       "campaign \"{}\" {} in {}\n", in.campaign.name, resume ? "resumed" : "started", out.string());
   ConsoleObserver observer;
@@ -173,6 +181,7 @@ void RegisterCampaignCommand(CLI::App& app) {
   cmd->add_flag("--quick",
                 o->quick,
                 "Shorter variants of the campaign's sequences (docs/demo.md \"--quick\")");
+  cmd->add_option("--operator", o->operator_name, "Operator's name, on every certificate");
   auto* resume = cmd->add_option(
       "--resume", o->resume, "Continue the campaign in this directory where it stopped");
   resume->excludes(cmd->get_option("--campaign"))

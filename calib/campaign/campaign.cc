@@ -16,6 +16,7 @@
 #include "calib/records/acceptance_records.h"
 #include "calib/records/records_sources.h"
 #include "calib/records/records_store.h"
+#include "calib/report/certificate.h"
 #include "calib/report/run_report.h"
 #include "calib/sequence/sequence_json.h"
 #include "hil/station.h"
@@ -377,18 +378,28 @@ void WriteReports(Context& c,
   c.journal.MarkDone(kStageReports);
 }
 
-// Each downloaded unit with its last acceptance attempt.
-void AddUnitOutcomes(const std::vector<UnitDownload>& downloads,
+// Each downloaded unit with its last acceptance attempt and its certificate.
+void AddUnitOutcomes(const CampaignOptions& o,
+                     const std::vector<UnitDownload>& downloads,
                      const std::string& strategy,
                      const CampaignAcceptance& acceptance,
                      CampaignResult& result) {
   for (const UnitDownload& d : downloads) {
-    UnitOutcome u{d.role, d.serial, strategy, d, std::nullopt, {}, 0};
+    UnitOutcome u{d.role, d.serial, strategy, d, std::nullopt, {}, 0, {}, std::nullopt, {}};
     const auto last = acceptance.last.find(d.serial);
     if (last != acceptance.last.end()) {
       u.acceptance = last->second.acceptance;
       u.report = last->second.run / "report.html";
       u.attempts = last->second.attempts;
+      const WrittenCertificate c = WriteCertificate(
+          ReadCertificateInputs(last->second.run / "acceptance" / d.serial / kAcceptanceFileName,
+                                d.constants_file,
+                                o.operator_name,
+                                o.software_version),
+          o.out_dir / "certificates");
+      u.certificate = c.html;
+      u.certificate_pdf = c.pdf;
+      u.certificate_pdf_error = c.pdf_error;
     }
     result.units.push_back(std::move(u));
   }
@@ -486,8 +497,9 @@ CampaignResult RunCampaign(const CampaignOptions& o,
     c.records.AddRun(RunRecordFromDirectory(run));
   }
   c.journal.MarkDone(kStageRecords);
-  AddUnitOutcomes(downloads.imu, o.imu_strategy, acceptance, result);
-  AddUnitOutcomes(downloads.ads, o.ads_strategy, acceptance, result);
+  observer.Stage("certificates: one per judged unit -> " + (o.out_dir / "certificates").string());
+  AddUnitOutcomes(o, downloads.imu, o.imu_strategy, acceptance, result);
+  AddUnitOutcomes(o, downloads.ads, o.ads_strategy, acceptance, result);
   if (!acceptance.last.empty()) result.yield = c.records.Yields(c.journal.campaign_id()).front();
   return result;
 }

@@ -75,6 +75,7 @@ struct CampaignOptions {
   /// (campaign_attempts.h).
   int max_acceptance_attempts = 1;
   std::string software_version;
+  std::string operator_name;  ///< on the certificates; "" not recorded
   ExecutorOptions executor;
   /// Called once the last run on the stations has ended (e.g. to stop a virtual rig, which the
   /// analysis stages after it do not need); may be empty.
@@ -102,6 +103,10 @@ struct UnitOutcome {
   std::optional<UnitAcceptance> acceptance;  ///< the unit's last acceptance attempt's judgement
   std::filesystem::path report;              ///< that attempt's run's report.html
   int attempts = 0;                          ///< acceptance attempts (1: no retest)
+  /// certificates/<serial>.html and .pdf (calib/report/certificate.h); no PDF: why.
+  std::filesystem::path certificate;
+  std::optional<std::filesystem::path> certificate_pdf;
+  std::string certificate_pdf_error;
 };
 
 struct CampaignResult {

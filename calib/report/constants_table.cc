@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "calib/constants/provenance_check.h"
+#include "calib/report/constant_names.h"
 #include "calib/report/svg_plot.h"
 
 namespace adahrs::calib {
@@ -14,7 +15,7 @@ HtmlTable ConstantsTable(const ConstantsFile& file) {
   HtmlTable table{fmt::format("{} constants ({} strategy), units of calibration_constants.h",
                               file.serial,
                               file.strategy),
-                  {"constant (JSON path)", "value", "standard error (1 sigma)"},
+                  {"constant", "JSON path", "value", "standard error (1 sigma)"},
                   {}};
   for (const auto& [path, value] : values.items()) {
     if (!value.is_number()) continue;
@@ -22,7 +23,8 @@ HtmlTable ConstantsTable(const ConstantsFile& file) {
     const std::string se = error == errors.end() || error->is_null()
                                ? "not estimated"
                                : FormatNumber(error->get<double>(), 3);
-    table.rows.push_back({path, FormatNumber(value.get<double>(), 10), se});
+    const std::string name = file.kind == hil::UnitKind::kImu ? ImuConstantName(path) : path;
+    table.rows.push_back({name, path, FormatNumber(value.get<double>(), 10), se});
   }
   return table;
 }

@@ -11,7 +11,7 @@
 
 namespace adahrs::calib {
 
-/// Rows: JSON path, value, standard error ("not estimated" for null).
+/// Rows: name (constant_names.h), JSON path, value, standard error ("not estimated" for null).
 HtmlTable ConstantsTable(const ConstantsFile& file);
 
 /// The strategy / created / software / provenance lines and the table.

@@ -47,10 +47,16 @@ std::string VerdictSectionBody(const std::vector<AcceptanceFile>& files,
            "). A calibration run is judged through the acceptance run of the constants it gave "
            "(its report), or with adahrs acceptance --run on this run.</p>\n";
   }
-  HtmlTable table{"Acceptance outcome per unit (worst margin = tolerance - |error|; negative fails)",
-                  {"unit", "kind", "outcome", "points failed", "points marginal", "points judged",
-                   "worst margin per quantity"},
-                  {}};
+  HtmlTable table{
+      "Acceptance outcome per unit (worst margin = tolerance - |error|; negative fails)",
+      {"unit",
+       "kind",
+       "outcome",
+       "points failed",
+       "points marginal",
+       "points judged",
+       "worst margin per quantity"},
+      {}};
   int failed_units = 0;
   for (const AcceptanceFile& f : files) {
     const UnitAcceptance& u = f.unit;

@@ -14,10 +14,12 @@ which forces a retest. Checks: the units whose first acceptance.json says FAIL, 
 are run again in runs/imu_acceptance-attempt2 (its meta.json names them alone); the records hold
 one attempt per judged unit and run, with the outcome its acceptance.json states; first-pass and
 final yield, counted here from those acceptance.json files, are what `adahrs records yield --json`
-and the campaign's summary line say.
+and the campaign's summary line say. The campaign's certificates are checked in their PDF form
+(check_certificates).
 
 Usage: campaign_identity_test.py ADAHRS_BINARY
 """
+import hashlib
 import json
 import pathlib
 import sqlite3
@@ -52,6 +54,51 @@ def check_report_page_one(run_dir, judged):
     text = "".join(root.itertext())
     if "is missing from step" in text:
         fail(f"{run_dir}/report.html still says a unit is missing from a step")
+
+
+def pdf_text(pdf):
+    result = subprocess.run(["pdftotext", "-layout", str(pdf), "-"], capture_output=True,
+                            text=True, timeout=60)
+    if result.returncode != 0:
+        fail(f"pdftotext {pdf}: {result.stderr}")
+    return " ".join(result.stdout.split())
+
+
+def check_certificates(adahrs, out, judged):
+    """A certificate per judged unit, as HTML and PDF: the PDF's text (Poppler's pdftotext, not our
+    code) holds the serial, the outcome of the unit's last acceptance.json, the specification's
+    SHA-256 that file names and the SHA-256 of the constants file the unit was given (hashlib).
+    `adahrs report --certificate` writes the same from the run and the fit directory."""
+    db = sqlite3.connect(out / "records.sqlite")
+    last_run = dict(db.execute("SELECT serial, run_id FROM acceptance_attempts a WHERE attempt = "
+                               "(SELECT max(attempt) FROM acceptance_attempts b WHERE "
+                               "b.serial = a.serial)"))
+    runs = {json.loads(m.read_text())["run_id"]: m.parent for m in (out / "runs").glob("*/meta.json")}
+    fits = out / "fits" / "imu-joint"
+    for serial in judged:
+        acceptance = json.loads((runs[last_run[serial]] / "acceptance" / serial /
+                                 "acceptance.json").read_text())
+        constants_sha = hashlib.sha256((fits / f"{serial}.json").read_bytes()).hexdigest()
+        wanted = [serial, f"Acceptance: {acceptance['outcome']}", acceptance["specification"]["sha256"],
+                  constants_sha]
+        pdf = out / "certificates" / f"{serial}.pdf"
+        text = pdf_text(pdf)
+        missing = [w for w in wanted if w not in text]
+        if missing:
+            fail(f"{pdf} lacks {missing}: {text[:1500]}")
+        certs = out / "report-certificates" / last_run[serial]
+        if not certs.exists():  # one report per run certifies every unit judged in it
+            result = subprocess.run(
+                [adahrs, "report", "--run", str(runs[last_run[serial]]), "--fit", str(fits),
+                 "--out", str(out / "again.html"), "--certificate", str(certs), "--operator",
+                 "T. Tester"], capture_output=True, text=True, timeout=300)
+            if result.returncode != 0:
+                fail(f"adahrs report --certificate: {result.stdout} {result.stderr}")
+        text = pdf_text(certs / f"{serial}.pdf")
+        missing = [w for w in wanted + ["T. Tester"] if w not in text]
+        if missing:
+            fail(f"report --certificate {serial}.pdf lacks {missing}")
+    print(f"certificates: {len(judged)} units, PDF text checked")
 
 
 def check_retests(adahrs, out, stdout, judged):
@@ -124,6 +171,7 @@ def main():
             if not line or label[role] not in line[0] or label[other] not in line[0]:
                 fail(f"no refusal of {role} naming {label[role]} and {label[other]}: {line}")
         check_retests(adahrs, out, result.stdout, sorted([label["imu3"], label["imu4"]]))
+        check_certificates(adahrs, out, sorted([label["imu3"], label["imu4"]]))
         for meta in (out / "runs").glob("*/meta.json"):
             roles = sorted(u["role"] for u in json.loads(meta.read_text())["units"])
             if "-attempt" in meta.parent.name:  # a retest: the failed units (check_retests)

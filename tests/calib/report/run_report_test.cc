@@ -9,6 +9,8 @@
 #include <cmath>
 #include <fstream>
 
+#include <map>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -182,20 +184,29 @@ TEST_F(RunReportTest, SectionsFiguresAndConstantsMatchTheFiles) {
       nlohmann::json::parse(std::ifstream(dir_ / "fit" / "IMU-0001.json"))["constants"].flatten();
   const auto table = FindTag(SectionById(html, "IMU-0001-constants"), "table").at(0);
   size_t rows = 0;
+  std::map<std::string, std::string> names;  // by JSON path
   for (const auto& tr : FindTag(table, "tr")) {
     const auto cells = FindTag(tr, "td");
     if (cells.empty()) continue;
-    const std::string path = cells[0]["text"];
+    const std::string path = cells[1]["text"];
     ASSERT_TRUE(file.contains(path)) << path;
     const double expected = file[path].get<double>();
     // Printed to 10 significant digits.
-    EXPECT_NEAR(std::stod(cells[1]["text"].get<std::string>()), expected, 1e-9 * std::abs(expected))
+    EXPECT_NEAR(std::stod(cells[2]["text"].get<std::string>()), expected, 1e-9 * std::abs(expected))
         << path;
+    names[path] = cells[0]["text"];
     ++rows;
   }
   size_t numbers = 0;
   for (const auto& [path, value] : file.items()) numbers += value.is_number() ? 1 : 0;
   EXPECT_EQ(rows, numbers);
+  // Named by channel and axis as docs/unit-protocol.md orders them (az1 ax1 ay1 az2 ax2 ay2 gx gy
+  // gz; CA rows and columns x y z).
+  EXPECT_EQ(names["/thermal/6/k/1"], "thermal gx k1");
+  EXPECT_EQ(names["/accel/4/scale_duty_per_g"], "accel ax2 scale_duty_per_g");
+  EXPECT_EQ(names["/gyro/2/null_cnt"], "gyro gz null_cnt");
+  EXPECT_EQ(names["/ca_mps2_per_g/1/2"], "CA[y][z]");
+  EXPECT_EQ(names["/cg/0/1"], "CG[x][y]");
   // No thermal profile in this run: said, not faked.
   EXPECT_THAT(SectionById(html, "IMU-0001-thermal")["text"].get<std::string>(),
               HasSubstr("Thermal drift not available"));
