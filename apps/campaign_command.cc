@@ -95,21 +95,12 @@ CampaignInputs ResumedCampaign(const std::filesystem::path& out) {
   return in;
 }
 
-void PrintUnit(const calib::UnitOutcome& u) {
-  PrintUnitOutcome(u);
-  std::cout << "  report: " << u.report.string() << "\n";
-  if (u.certificate.empty()) return;
-  std::cout << "  certificate: " << u.certificate.string()
-            << (u.certificate_pdf ? " and " + u.certificate_pdf->string()
-                                  : " (" + u.certificate_pdf_error + ")")
-            << "\n";
-}
-
 // Prints the summary; returns the exit status.
 int PrintSummary(const calib::CampaignResult& result) {
   bool all_accepted = result.refused_units.empty();
   for (const calib::UnitOutcome& u : result.units) {
-    PrintUnit(u);
+    PrintUnitOutcome(u);
+    PrintUnitFiles(u);
     if (!u.acceptance || !u.acceptance->pass()) all_accepted = false;
   }
   for (const std::string& r : result.refused_units) std::cout << "refused: " << r << "\n";

@@ -92,4 +92,13 @@ void PrintUnitOutcome(const calib::UnitOutcome& u) {
     std::cout << "    " << line;
 }
 
+void PrintUnitFiles(const calib::UnitOutcome& u) {
+  std::cout << "  report: " << u.report.string() << "\n";
+  if (u.certificate.empty()) return;
+  std::cout << "  certificate: " << u.certificate.string()
+            << (u.certificate_pdf ? " and " + u.certificate_pdf->string()
+                                  : " (" + u.certificate_pdf_error + ")")
+            << "\n";
+}
+
 }  // namespace adahrs::apps

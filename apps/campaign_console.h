@@ -30,4 +30,8 @@ class ConsoleObserver : public calib::CampaignObserver {
 /// before it).
 void PrintUnitOutcome(const calib::UnitOutcome& u);
 
+/// The unit's report.html and certificate (HTML, and PDF or why there is none), to standard
+/// output.
+void PrintUnitFiles(const calib::UnitOutcome& u);
+
 }  // namespace adahrs::apps

@@ -83,7 +83,7 @@ void PrintSummary(const proving::DemoCampaignResult& result,
                                q.tolerance,
                                q.verdict);
     }
-    std::cout << "  report: " << u.report.string() << "\n";
+    PrintUnitFiles(u);
   }
   for (const auto* evaluation : {&result.reference_evaluation, &result.ads_reference_evaluation}) {
     for (const proving::EvaluatedQuantity& q : *evaluation) {

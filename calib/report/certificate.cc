@@ -29,22 +29,23 @@ HtmlTable IdentityTable(const CertificateInputs& in) {
   t.rows.push_back({"mode judged", std::to_string(u.mode)});
   t.rows.push_back(
       {"station", in.run.station ? in.run.station->value("name", "not named") : "not recorded"});
-  for (const hil::RecordingInstrument& i : in.run.instruments.value_or(
-           std::vector<hil::RecordingInstrument>{})) {
+  for (const hil::RecordingInstrument& i :
+       in.run.instruments.value_or(std::vector<hil::RecordingInstrument>{})) {
     t.rows.push_back({"instrument " + i.role, i.model + (i.detail.empty() ? "" : ", " + i.detail)});
   }
-  t.rows.push_back({"acceptance run", in.acceptance.run.run_id + " (" + in.acceptance.run.sequence +
-                                          ", recording SHA-256 " +
-                                          in.acceptance.run.recording_sha256 + ")"});
+  t.rows.push_back({"acceptance run",
+                    in.acceptance.run.run_id + " (" + in.acceptance.run.sequence +
+                        ", recording SHA-256 " + in.acceptance.run.recording_sha256 + ")"});
   if (in.constants) {
-    t.rows.push_back({"constants", fmt::format("{}, strategy {}, created {}",
-                                               ConstantsFormat(*in.constants),
-                                               in.constants->strategy,
-                                               in.constants->created_utc)});
+    t.rows.push_back({"constants",
+                      fmt::format("{}, strategy {}, created {}",
+                                  ConstantsFormat(*in.constants),
+                                  in.constants->strategy,
+                                  in.constants->created_utc)});
   }
-  t.rows.push_back({"constants SHA-256",
-                    in.constants_sha256.empty() ? "not known (no constants file given)"
-                                                : in.constants_sha256});
+  t.rows.push_back(
+      {"constants SHA-256",
+       in.constants_sha256.empty() ? "not known (no constants file given)" : in.constants_sha256});
   const AcceptanceFileSpecification& s = in.acceptance.specification_id;
   t.rows.push_back({"specification", s.name + " version " + s.version});
   t.rows.push_back({"specification SHA-256", s.sha256.empty() ? "not recorded" : s.sha256});
@@ -114,7 +115,9 @@ std::string CertificateHtml(const CertificateInputs& in) {
       "<h1>{}</h1>\n<p class=\"verdict {}\">Acceptance: {} ({} of {} points fail, {} "
       "marginal)</p>\n",
       common::XmlEscape(title),
-      outcome == "FAIL" ? "fail" : outcome == "MARGINAL" ? "marginal" : "pass",
+      outcome == "FAIL"       ? "fail"
+      : outcome == "MARGINAL" ? "marginal"
+                              : "pass",
       outcome,
       u.failed(),
       u.points.size(),
@@ -127,7 +130,7 @@ std::string CertificateHtml(const CertificateInputs& in) {
       "point.</p>\n",
       common::XmlEscape(in.issued_utc),
       common::XmlEscape(in.operator_name.empty() ? std::string("operator not recorded")
-                                         : "operator " + in.operator_name),
+                                                 : "operator " + in.operator_name),
       common::XmlEscape(in.software_version));
   return common::HtmlPage(title, body);
 }

@@ -41,8 +41,10 @@ std::string Term(const std::vector<std::string>& p, size_t from) {
   return term;
 }
 
-std::string Matrix(const char* name, const std::array<const char*, 3>& rows,
-                   const std::string& r, const std::string& c) {
+std::string Matrix(const char* name,
+                   const std::array<const char*, 3>& rows,
+                   const std::string& r,
+                   const std::string& c) {
   return std::string(name) + "[" + Name(rows, r) + "][" + Name(kAxes, c) + "]";
 }
 

@@ -20,8 +20,7 @@ namespace {
 
 // Waits for `pid` up to `timeout_s`; kills it after. Returns the wait status, or -1 on timeout.
 int WaitWithTimeout(pid_t pid, double timeout_s) {
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   for (;;) {
     int status = 0;
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
@@ -42,10 +41,10 @@ void RenderPdf(const std::filesystem::path& html,
                double timeout_s) {
   const std::string page = std::filesystem::absolute(html).string();
   if (::access(kChromiumPath, X_OK) != 0) {
-    throw PdfRenderError(fmt::format(
-        "{}: no PDF: {} is not installed (scripts/setup installs Debian's chromium)",
-        page,
-        kChromiumPath));
+    throw PdfRenderError(
+        fmt::format("{}: no PDF: {} is not installed (scripts/setup installs Debian's chromium)",
+                    page,
+                    kChromiumPath));
   }
   const std::filesystem::path profile =
       std::filesystem::temp_directory_path() / fmt::format("adahrs-chromium-{}", ::getpid());
@@ -81,8 +80,8 @@ void RenderPdf(const std::filesystem::path& html,
   const int status = WaitWithTimeout(pid, timeout_s);
   std::filesystem::remove_all(profile);
   if (status == -1) {
-    throw PdfRenderError(
-        fmt::format("{}: no PDF: {} did not finish within {:.0f} s", page, kChromiumPath, timeout_s));
+    throw PdfRenderError(fmt::format(
+        "{}: no PDF: {} did not finish within {:.0f} s", page, kChromiumPath, timeout_s));
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !std::filesystem::exists(pdf) ||
       std::filesystem::file_size(pdf) == 0) {
