@@ -14,6 +14,7 @@
 #include "calib/report/imu_report_sections.h"
 #include "calib/report/json_tables.h"
 #include "calib/report/svg_plot.h"
+#include "calib/report/time_series.h"
 #include "calib/report/verdict_section.h"
 #include "common/atomic_file.h"
 #include "common/html_page.h"
@@ -135,24 +136,34 @@ const ConstantsFile* ConstantsOf(const FitInputs& fit, const std::string& serial
   return found == fit.constants.end() ? nullptr : &found->second;
 }
 
-// The ADS sections of every ADS unit of the run, by serial, from one streamed pass over the
-// recording (every row is still read and checked; only per-acquisition sums are kept).
-std::map<std::string, std::string> AdsSectionsBySerial(const std::filesystem::path& run_dir,
-                                                       const hil::RecordingMeta& meta,
-                                                       const FitInputs& fit) {
+// What one streamed pass over the recording gives the report (every row is still read and
+// checked; only per-acquisition sums and decimated series are kept): the ADS sections of every
+// ADS unit by serial, and the time series of the run.
+struct StreamedSections {
+  std::map<std::string, std::string> ads_html;
+  std::string time_series_html;
+};
+
+StreamedSections StreamSections(const std::filesystem::path& run_dir,
+                                const hil::RecordingMeta& meta,
+                                const FitInputs& fit) {
   std::vector<AdsReportAccumulator> units;
   for (const hil::RecordingUnit& u : meta.units) {
     if (u.kind == common::UnitKind::kImu) continue;
     units.emplace_back(u.serial, meta, ConstantsOf(fit, u.serial));
   }
+  TimeSeriesAccumulator time_series;
   hil::RowSinks sinks;
   sinks.ads = [&](hil::AdsRecordRow&& row, int) {
     for (AdsReportAccumulator& unit : units) unit.Add(row);
+    time_series.Add(row);
   };
+  sinks.imu = [&](hil::ImuRecordRow&& row, int) { time_series.Add(row); };
   hil::StreamRecording(run_dir, sinks);
-  std::map<std::string, std::string> html;
-  for (const AdsReportAccumulator& unit : units) html[unit.serial()] = unit.Sections();
-  return html;
+  StreamedSections streamed;
+  for (const AdsReportAccumulator& unit : units) streamed.ads_html[unit.serial()] = unit.Sections();
+  streamed.time_series_html = time_series.Figures();
+  return streamed;
 }
 
 }  // namespace
@@ -162,7 +173,8 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
                            const std::optional<std::filesystem::path>& acceptance_dir) {
   const hil::RecordingMeta meta = hil::ReadRecordingMeta(run_dir).meta;
   const FitInputs fit = LoadFit(fit_dir);
-  const std::map<std::string, std::string> ads_html = AdsSectionsBySerial(run_dir, meta, fit);
+  const StreamedSections streamed = StreamSections(run_dir, meta, fit);
+  const std::map<std::string, std::string>& ads_html = streamed.ads_html;
   const double g_local_mps2 = meta.local_gravity_mps2.value_or(0.0);
 
   std::optional<ImuRunData> imu;
@@ -188,6 +200,12 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
       "Verdict",
       VerdictSectionBody(acceptance, meta.sequence ? meta.sequence->value("name", "") : ""));
   body += Section("summary", 2, "Run", Summary(run_dir, meta));
+  body += Section("time-series",
+                  2,
+                  "Time series",
+                  streamed.time_series_html.empty()
+                      ? NotAvailable("time series", "the recording has no rows")
+                      : streamed.time_series_html);
   std::string units;
   for (const hil::RecordingUnit& u : meta.units) {
     const std::string& serial = u.serial;

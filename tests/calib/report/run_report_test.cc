@@ -174,7 +174,10 @@ TEST_F(RunReportTest, SectionsFiguresAndConstantsMatchTheFiles) {
   const auto svgs = FindTag(html, "svg");
   // Six-position residual, gyro residual, gyro and accelerometer Allan deviation, ADS altitude
   // and airspeed error maps.
-  EXPECT_EQ(svgs.size(), 6u);
+  // 6 calibration figures, and the time series: the instruments, IMU-0001's gyro counts and
+  // accelerometer duty, ADS-0001's bridge codes.
+  EXPECT_EQ(svgs.size(), 6u + 4u);
+  EXPECT_EQ(FindTag(SectionById(html, "time-series"), "svg").size(), 4u);
   for (const auto& svg : svgs) {
     EXPECT_THAT(FindTag(svg, "text", "xlabel").at(0)["text"].get<std::string>(), HasSubstr("("));
     EXPECT_THAT(FindTag(svg, "text", "ylabel").at(0)["text"].get<std::string>(), HasSubstr("("));
