@@ -1,12 +1,14 @@
 // The unit specification as data (reference-method.md "Specification the unit must meet", thesis
 // Tables 1-5): tolerances, operating limits, rated temperature and a marginal band per quantity,
-// read from a versioned specification file (docs/acceptance.md "Specification file"; shipped:
-// calib/specifications/ahr150a-a.json, ahr150a-b.json). Reference() is ahr150a-a.json compiled in
-// byte for byte, so its SHA-256 is the shipped file's. A passing point whose |error| exceeds
-// (1 - band fraction) x tolerance is MARGINAL. Altitude and airspeed tolerances are linear between
-// the stated points (an ASSUMPTION, docs/acceptance.md); outside the operating limits there is no
-// tolerance (std::out_of_range).
-// Not modelled: heading and attitude tolerances, tolerances that depend on temperature.
+// read from a versioned specification file (docs/acceptance.md "Specification file"; shipped in
+// calib/specifications/: ahr150a-a.json, ahr150a-b.json). Reference() is ahr150a-a.json compiled
+// in byte for byte, so its SHA-256 is the shipped file's. A passing point whose |error| exceeds
+// (1 - band fraction) x tolerance is MARGINAL.
+// Altitude and airspeed tolerances are linear between the stated points (an ASSUMPTION: the
+// tables state points only), the first point's tolerance held down to the lower operating limit
+// (30...60 kt); outside the operating limits there is no tolerance (std::out_of_range).
+// Not modelled: heading and attitude tolerances (no attitude solution yet), tolerances that
+// depend on temperature (the tables state none).
 #pragma once
 
 #include <filesystem>

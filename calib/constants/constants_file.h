@@ -1,11 +1,19 @@
 // constants.json (docs/constants-file.md): one file per calibrated unit holding the
 // double-precision firmware constants (firmware_model/calibration_constants.h) with the 1-sigma
-// standard error of every number (null where none), the strategy that produced them, the
-// provenance (the recordings' SHA-256 and sequence names) needed to reproduce or audit them, and
-// the fit's diagnostics typed by the unit's kind. Units are those of the constants themselves.
-// The reader is strict: a missing or unexpected key, a wrong type, format or version, a negative
-// standard error or one whose shape differs from the constants' is refused with ConstantsFileError
-// naming the file and the JSON path.
+// standard error of every number, the strategy that produced them, and the provenance (the
+// recordings' SHA-256 and sequence names) needed to reproduce or audit them.
+//
+//   {"format": "adahrs-constants", "format_version": 1, "serial": "IMU-0001", "kind": "imu"|"ads",
+//    "strategy", "created_utc", "software_version",
+//    "constants": firmware_model::ToJson(...),
+//    "standard_errors": same shape as "constants", each number its standard error or null,
+//    "provenance": {"recordings": [{"path", "sha256"}], "sequence_names": [...]},
+//    "diagnostics": ImuFitDiagnostics or AdsFitDiagnostics as JSON}
+//
+// Units are those of the constants themselves (duty, counts, deg/s per count^i, m/s^2 per g, ft,
+// kt). The reader is strict: a missing or unexpected key, a wrong type, a wrong format or version,
+// a standard error that is negative or whose shape differs from the constants' is refused with
+// ConstantsFileError naming the file and the JSON path.
 // Not held: the fixed-point blocks (constants_exporter.h derives them), covariances between
 // constants (only the standard errors), the recordings themselves.
 #pragma once
