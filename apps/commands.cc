@@ -13,6 +13,7 @@ void RegisterCommands(CLI::App& app) {
   RegisterPortsCommand(app);
   RegisterRunCommand(app);
   RegisterDemoCommand(app);
+  RegisterCampaignCommand(app);
   RegisterFitCommand(app);
   RegisterEvaluateCommand(app);
   RegisterDiagnoseCommand(app);

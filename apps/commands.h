@@ -18,6 +18,7 @@ void RegisterReportCommand(CLI::App& app);
 void RegisterPortsCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
 void RegisterDemoCommand(CLI::App& app);
+void RegisterCampaignCommand(CLI::App& app);
 void RegisterFitCommand(CLI::App& app);
 void RegisterEvaluateCommand(CLI::App& app);
 void RegisterDiagnoseCommand(CLI::App& app);

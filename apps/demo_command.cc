@@ -13,13 +13,12 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include <fmt/format.h>
 
+#include "apps/campaign_console.h"
 #include "apps/commands.h"
 #include "calib/acceptance/acceptance_file.h"
 #include "calib/campaign/quick_sequences.h"
@@ -39,9 +38,6 @@ extern "C" void OnDemoStopSignal(int signal_number) {
   g_demo_stop = true;
 }
 
-// Wall seconds between two progress lines of one bench.
-constexpr double kProgressLineIntervalS = 5.0;
-
 struct DemoOptions {
   std::string out = "runs/demo";
   double time_scale = 0.0;  // 0: kLockstepTimeScale, or kFreeRunningTimeScale with --free-running
@@ -58,60 +54,6 @@ constexpr double kFreeRunningTimeScale = 300.0;
 
 // Exit status of a demo that completed but lost packets in a run.
 constexpr int kExitPacketsLost = 3;
-
-class ConsoleObserver : public calib::CampaignObserver {
- public:
-  class BenchSink : public calib::ProgressSink {
-   public:
-    BenchSink(std::string name, std::mutex& mutex) : name_(std::move(name)), mutex_(mutex) {}
-    void Report(const calib::ProgressReport& r) override {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last_ < std::chrono::duration<double>(kProgressLineIntervalS)) return;
-      last_ = now;
-      uint64_t lost = 0;
-      for (const calib::UnitProgress& u : r.units) lost += u.lost;
-      std::lock_guard lock(mutex_);
-      std::cout << fmt::format("  [{}] t={:.0f} s step {}/{} {} | {} | ETA {:.0f} s | lost {}\n",
-                               name_,
-                               r.t_s,
-                               r.step + 1,
-                               r.step_count,
-                               r.step_kind,
-                               r.action_text,
-                               r.eta_s,
-                               lost)
-                << std::flush;
-    }
-    void Note(const std::string& text) override {
-      std::lock_guard lock(mutex_);
-      std::cout << fmt::format("  [{}] note: {}\n", name_, text) << std::flush;
-    }
-
-   private:
-    std::string name_;
-    std::mutex& mutex_;
-    std::chrono::steady_clock::time_point last_{};
-  };
-
-  // Each stage line starts with the demo's wall time so far.
-  void Stage(const std::string& text) override {
-    std::lock_guard lock(mutex_);
-    const double wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    std::cout << fmt::format("[{:4.0f} s] {}\n", wall_s, text) << std::flush;
-  }
-  calib::ProgressSink& Bench(const std::string& bench) override {
-    std::lock_guard lock(mutex_);
-    auto& sink = sinks_[bench];
-    if (!sink) sink = std::make_unique<BenchSink>(bench, mutex_);
-    return *sink;
-  }
-
- private:
-  std::mutex mutex_;
-  std::map<std::string, std::unique_ptr<BenchSink>> sinks_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 // Prints every run's rows and lost packets; returns the packets lost in all.
 uint64_t PrintRuns(const std::vector<calib::RunSummary>& runs) {
@@ -136,36 +78,7 @@ void PrintSummary(const proving::DemoCampaignResult& result,
                            sensor_sim::ToString(variant),
                            sensor_sim::Describe(variant));
   for (const calib::UnitOutcome& u : result.production.units) {
-    std::cout << fmt::format(
-        "{} {}: constants version {} (records v{}, {} strategy, {} blocks "
-        "verified)\n",
-        u.role,
-        u.serial,
-        u.download.unit_constants_version,
-        u.download.records_version,
-        u.strategy,
-        u.download.blocks);
-    if (u.acceptance) {
-      std::cout << fmt::format(
-          "  acceptance against the specification: {} ({} of {} points fail)\n",
-          u.acceptance->pass() ? "PASS" : "FAIL",
-          u.acceptance->failed(),
-          u.acceptance->points.size());
-      for (const calib::WorstMargin& w : u.acceptance->WorstMargins()) {
-        std::cout << fmt::format("    worst {} margin {:+.4g} {} at step {}: {}\n",
-                                 w.quantity,
-                                 w.margin,
-                                 w.unit,
-                                 w.step,
-                                 w.point);
-      }
-      if (const std::string line = calib::RateVerdictLine(*u.acceptance); !line.empty()) {
-        std::cout << "    " << line;
-      }
-    } else {
-      std::cout
-          << "  acceptance against the specification: the unit is not in the acceptance run\n";
-    }
+    PrintUnitOutcome(u);
     const auto evaluation = result.evaluation.find(u.serial);
     for (const proving::EvaluatedQuantity& q : evaluation == result.evaluation.end()
                                                    ? std::vector<proving::EvaluatedQuantity>{}

@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include "calib/executor/run_meta.h"
+#include "common/param_reader.h"
+
 namespace adahrs::calib {
 namespace {
 
@@ -35,6 +38,25 @@ class FirstFailure {
   std::exception_ptr error_;
 };
 
+// The run in `run_dir` as the campaign finds it: started fresh, resumed (ResumeRun, as `adahrs run
+// --resume` does), or, complete already, left as it is.
+RunSummary StartOrContinue(const BenchPlan& bench,
+                           const BenchSequenceRun& run,
+                           const ExecutorOptions& options,
+                           const std::atomic<bool>& stop) {
+  NewRunOptions run_options;
+  run_options.station_file = bench.station_file;
+  run_options.sequence_file = run.sequence_file;
+  run_options.run_dir = run.run_dir;
+  run_options.executor = options;
+  const std::filesystem::path meta = run.run_dir / "meta.json";
+  if (!std::filesystem::exists(meta)) return StartRun(run_options, *bench.progress, stop);
+  const std::string status = common::ParamReader::LoadFile(meta.string()).value("status", "");
+  if (status == kStatusComplete) return RunSummary{run.run_dir, status, 0, 0};
+  bench.progress->Note("resuming the " + status + " run " + run.run_dir.string());
+  return ResumeRun(run.run_dir, *bench.progress, stop, run_options);
+}
+
 }  // namespace
 
 std::vector<std::vector<RunSummary>> RunBenchesConcurrently(const std::vector<BenchPlan>& benches,
@@ -51,12 +73,7 @@ std::vector<std::vector<RunSummary>> RunBenchesConcurrently(const std::vector<Be
       for (const BenchSequenceRun& run : bench.runs) {
         try {
           if (stop_all) throw RunInterrupted("stopped before it started");
-          NewRunOptions run_options;
-          run_options.station_file = bench.station_file;
-          run_options.sequence_file = run.sequence_file;
-          run_options.run_dir = run.run_dir;
-          run_options.executor = options;
-          summaries[b].push_back(StartRun(run_options, *bench.progress, stop_all));
+          summaries[b].push_back(StartOrContinue(bench, run, options, stop_all));
         } catch (...) {
           failure.Record(bench.name + ", run " + run.run_dir.string());
           stop_all = true;

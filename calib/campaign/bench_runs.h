@@ -3,7 +3,10 @@
 // other with StartRun (run_session.h), each into its own run directory. When a run of one bench
 // fails or is interrupted, the other bench is asked to stop too (it leaves its rig safe and its run
 // resumable, as Ctrl-C does), and the first failure is rethrown once both threads have ended.
-// Left out: resuming (adahrs run --resume RUN does that per run), more than one batch per bench.
+// A run directory that already holds a run is continued, not refused: a complete run is left as it
+// is (its summary counts no rows), any other is resumed with ResumeRun from its first step not
+// completed, as `adahrs run --resume` does. That is how a campaign resumes its bench stages.
+// Left out: more than one batch per bench.
 #pragma once
 
 #include <atomic>

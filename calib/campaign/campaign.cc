@@ -6,6 +6,8 @@
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/campaign/bench_runs.h"
 #include "calib/campaign/campaign_fits.h"
+#include "calib/campaign/campaign_identity.h"
+#include "calib/campaign/campaign_journal.h"
 #include "calib/records/acceptance_records.h"
 #include "calib/records/records_sources.h"
 #include "calib/records/records_store.h"
@@ -19,20 +21,50 @@ namespace {
 constexpr const char* kImuBench = "IMU bench";
 constexpr const char* kAdsBench = "ADS bench";
 
+// The journal's stage names (docs/campaign.md "Resuming").
+constexpr const char* kStageCalibration = "calibration_runs";
+constexpr const char* kStageFits = "fits";
+constexpr const char* kStageDownloads = "downloads";
+constexpr const char* kStageAcceptance = "acceptance_runs";
+constexpr const char* kStageJudgement = "judgement";
+constexpr const char* kStageReports = "reports";
+constexpr const char* kStageRecords = "records";
+
+// The campaign as it runs: its inputs, the benches present (after the identity check), the
+// journal, the records.
+struct Context {
+  const CampaignOptions& o;
+  CampaignObserver& observer;
+  const std::atomic<bool>& stop;
+  CampaignJournal journal;
+  RecordsStore records;
+  std::optional<hil::Station> imu_station, ads_station;
+  std::string imu_station_file, ads_station_file;  // the files the runs use
+};
+
 std::filesystem::path RunDir(const CampaignOptions& o, const std::string& sequence_file) {
   return o.out_dir / "runs" / ParseSequenceFile(sequence_file).sequence.name;
 }
 
-std::vector<std::vector<RunSummary>> RunBenches(const CampaignOptions& o,
-                                                CampaignObserver& observer,
+void ThrowIfStopped(const Context& c, const char* before) {
+  if (c.stop) throw RunInterrupted(std::string("stopped before the ") + before);
+}
+
+std::vector<std::vector<RunSummary>> RunBenches(Context& c,
                                                 const std::vector<std::string>& imu_sequences,
-                                                const std::vector<std::string>& ads_sequences,
-                                                const std::atomic<bool>& stop) {
-  BenchPlan imu{kImuBench, o.imu_station_file, {}, &observer.Bench(kImuBench)};
-  for (const std::string& s : imu_sequences) imu.runs.push_back({s, RunDir(o, s)});
-  BenchPlan ads{kAdsBench, o.ads_station_file, {}, &observer.Bench(kAdsBench)};
-  for (const std::string& s : ads_sequences) ads.runs.push_back({s, RunDir(o, s)});
-  return RunBenchesConcurrently({imu, ads}, o.executor, stop);
+                                                const std::vector<std::string>& ads_sequences) {
+  std::vector<BenchPlan> benches;
+  if (c.imu_station) {
+    BenchPlan imu{kImuBench, c.imu_station_file, {}, &c.observer.Bench(kImuBench)};
+    for (const std::string& s : imu_sequences) imu.runs.push_back({s, RunDir(c.o, s)});
+    benches.push_back(std::move(imu));
+  }
+  if (c.ads_station) {
+    BenchPlan ads{kAdsBench, c.ads_station_file, {}, &c.observer.Bench(kAdsBench)};
+    for (const std::string& s : ads_sequences) ads.runs.push_back({s, RunDir(c.o, s)});
+    benches.push_back(std::move(ads));
+  }
+  return RunBenchesConcurrently(benches, c.o.executor, c.stop);
 }
 
 std::string RunsText(const std::vector<std::vector<RunSummary>>& benches) {
@@ -46,17 +78,17 @@ std::string RunsText(const std::vector<std::vector<RunSummary>>& benches) {
   return text;
 }
 
-// Judges an acceptance run, writes acceptance.json per unit into `run`/acceptance and records
-// every point; returns the judgement.
-AcceptanceRun JudgeIntoRecords(const std::filesystem::path& run,
-                               const Specification& spec,
-                               const std::string& software_version,
-                               RecordsStore& records) {
+// Judges an acceptance run; unless the journal says it was done, writes acceptance.json per unit
+// into `run`/acceptance and records every point. Returns the judgement.
+AcceptanceRun JudgeIntoRecords(Context& c,
+                               const std::filesystem::path& run,
+                               const Specification& spec) {
   const AcceptanceRun judged = JudgeAcceptance(run, spec);
+  if (c.journal.Done(kStageJudgement)) return judged;
   for (const std::filesystem::path& file :
-       WriteAcceptanceFiles(judged, spec, software_version, run / "acceptance")) {
+       WriteAcceptanceFiles(judged, spec, c.o.software_version, run / "acceptance")) {
     const AcceptanceRecords points = AcceptanceRecordsFromFile(file);
-    records.AddAcceptance(points.source_sha256, points.points);
+    c.records.AddAcceptance(points.source_sha256, points.points);
   }
   return judged;
 }
@@ -67,71 +99,95 @@ void AddRuns(const std::vector<std::vector<RunSummary>>& benches, CampaignResult
   }
 }
 
-// Stage 1: the calibration runs on both benches; returns the IMU runs' directories in order.
-std::vector<std::filesystem::path> CalibrationRuns(const CampaignOptions& o,
-                                                   CampaignObserver& observer,
-                                                   const std::atomic<bool>& stop,
-                                                   CampaignResult& result) {
-  const CampaignSequences& seq = o.sequences;
-  observer.Stage(
+// Stage 1: the calibration runs on both benches (each left as it is if complete, resumed if not).
+void CalibrationRuns(Context& c, CampaignResult& result) {
+  const CampaignSequences& seq = c.o.sequences;
+  c.observer.Stage(
       "1/8 calibration runs: IMU calibration on the IMU bench, ADS calibration on the "
       "ADS bench, concurrently");
-  const auto calibration =
-      RunBenches(o, observer, seq.imu_calibration, {seq.ads_calibration}, stop);
-  observer.Stage("calibration runs done:" + RunsText(calibration));
+  const auto calibration = RunBenches(c, seq.imu_calibration, {seq.ads_calibration});
+  c.observer.Stage("calibration runs done:" + RunsText(calibration));
   AddRuns(calibration, result);
-  std::vector<std::filesystem::path> imu_runs;
-  for (const std::string& s : seq.imu_calibration) imu_runs.push_back(RunDir(o, s));
-  return imu_runs;
+  c.journal.MarkDone(kStageCalibration);
 }
 
 // Stage 2: fits every strategy into `f`'s directories and records every constants file.
-void FitStrategies(const CampaignOptions& o,
-                   CampaignObserver& observer,
-                   CampaignArtifacts& f,
-                   RecordsStore& records) {
-  const std::vector<std::filesystem::path>& imu_runs = f.imu_calibration_runs;
-  const std::filesystem::path& ads_run = f.ads_calibration_run;
-  observer.Stage(
-      "2/8 fits: IMU reference and improved (joint, firmware format 3) strategies, ADS "
-      "reference and improved (hysteresis-compensated pressure surfaces, ISA / CAS "
-      "laws) strategies");
+void FitStrategies(Context& c, CampaignArtifacts& f) {
+  const CampaignOptions& o = c.o;
   f.imu_reference_dir = o.out_dir / "fits" / "imu-reference";
   f.imu_joint_dir = o.out_dir / "fits" / "imu-joint";
   f.ads_reference_dir = o.out_dir / "fits" / "ads-reference";
   f.ads_improved_dir = o.out_dir / "fits" / "ads-hysteresis-compensated";
-  f.imu_reference = FitImuIntoDirectory(
-      imu_runs, ImuStrategy::Reference(), f.imu_reference_dir, o.software_version);
-  f.imu_joint = FitImuIntoDirectory(
-      imu_runs, ImuStrategy::JointFormat3(), f.imu_joint_dir, o.software_version);
-  f.ads_reference = FitAdsIntoDirectory(
-      ads_run, kReferenceAdsStrategyName, f.ads_reference_dir, o.software_version);
-  f.ads_improved = FitAdsIntoDirectory(
-      ads_run, kHysteresisAdsStrategyName, f.ads_improved_dir, o.software_version);
-  for (const auto* fits : {&f.imu_reference, &f.imu_joint, &f.ads_reference, &f.ads_improved}) {
-    for (const WrittenConstants& w : *fits) records.AddConstants(ConstantsRecordFromFile(w.path));
+  if (c.journal.Done(kStageFits)) {
+    c.observer.Stage("2/8 fits: done before, kept");
+    f.imu_reference = ReadFitDirectory(f.imu_reference_dir);
+    f.imu_joint = ReadFitDirectory(f.imu_joint_dir);
+    f.ads_reference = ReadFitDirectory(f.ads_reference_dir);
+    f.ads_improved = ReadFitDirectory(f.ads_improved_dir);
+    return;
   }
-  observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
-                             f.imu_joint.size(),
-                             f.ads_reference.size()));
+  c.observer.Stage(
+      "2/8 fits: IMU reference and improved (joint, firmware format 3) strategies, ADS "
+      "reference and improved (hysteresis-compensated pressure surfaces, ISA / CAS "
+      "laws) strategies");
+  if (c.imu_station) {
+    f.imu_reference = FitImuIntoDirectory(
+        f.imu_calibration_runs, ImuStrategy::Reference(), f.imu_reference_dir, o.software_version);
+    f.imu_joint = FitImuIntoDirectory(
+        f.imu_calibration_runs, ImuStrategy::JointFormat3(), f.imu_joint_dir, o.software_version);
+  }
+  if (c.ads_station) {
+    f.ads_reference = FitAdsIntoDirectory(
+        f.ads_calibration_run, kReferenceAdsStrategyName, f.ads_reference_dir, o.software_version);
+    f.ads_improved = FitAdsIntoDirectory(
+        f.ads_calibration_run, kHysteresisAdsStrategyName, f.ads_improved_dir, o.software_version);
+  }
+  for (const auto* fits : {&f.imu_reference, &f.imu_joint, &f.ads_reference, &f.ads_improved}) {
+    for (const WrittenConstants& w : *fits) c.records.AddConstants(ConstantsRecordFromFile(w.path));
+  }
+  c.observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
+                               f.imu_joint.size(),
+                               f.ads_reference.size()));
+  c.journal.MarkDone(kStageFits);
 }
 
 struct ImprovedDownloads {
   std::vector<UnitDownload> imu, ads;
 };
 
-// Stage 3: the improved constants into every unit of both stations.
-ImprovedDownloads DownloadImprovedConstants(CampaignObserver& observer,
-                                            const hil::Station& imu_station,
-                                            const hil::Station& ads_station,
-                                            const CampaignArtifacts& f,
-                                            RecordsStore& records) {
-  observer.Stage(
-      "3/8 download: improved IMU and ADS constants into every unit, read back bit for "
-      "bit, committed");
+// The fit directory of the downloaded strategy of each kind.
+std::filesystem::path DownloadedImuDir(const CampaignOptions& o, const CampaignArtifacts& f) {
+  return o.imu_strategy == "reference" ? f.imu_reference_dir : f.imu_joint_dir;
+}
+std::filesystem::path DownloadedAdsDir(const CampaignOptions& o, const CampaignArtifacts& f) {
+  return o.ads_strategy == kReferenceAdsStrategyName ? f.ads_reference_dir : f.ads_improved_dir;
+}
+
+// Stage 3: the chosen constants into every unit of both stations, each unit once per constants.
+ImprovedDownloads DownloadConstantsStage(Context& c, const CampaignArtifacts& f) {
+  c.observer.Stage(fmt::format(
+      "3/8 download: IMU {} and ADS {} constants into every unit, read back bit for bit, "
+      "committed",
+      c.o.imu_strategy,
+      c.o.ads_strategy));
+  DownloadLedger ledger;
+  ledger.verified_before = [&c](const std::string& serial, const std::string& sha256) {
+    std::optional<UnitDownload> before = c.journal.VerifiedDownload(serial, sha256);
+    if (before) {
+      c.observer.Stage(fmt::format(
+          "  {} {}: these constants verified before, not downloaded again", before->role, serial));
+    }
+    return before;
+  };
+  ledger.verified = [&c](const UnitDownload& d) { c.journal.RecordDownload(d); };
   ImprovedDownloads d;
-  d.imu = DownloadStation(imu_station, f.imu_joint_dir, records);
-  d.ads = DownloadStation(ads_station, f.ads_improved_dir, records);
+  if (c.imu_station) {
+    d.imu = DownloadStation(*c.imu_station, DownloadedImuDir(c.o, f), c.records, ledger, &c.stop);
+  }
+  if (c.ads_station) {
+    d.ads = DownloadStation(*c.ads_station, DownloadedAdsDir(c.o, f), c.records, ledger, &c.stop);
+  }
+  c.journal.MarkDone(kStageDownloads);
   return d;
 }
 
@@ -142,43 +198,47 @@ struct CampaignAcceptance {
 };
 
 // Stage 4: the acceptance runs on both benches, judged and recorded.
-CampaignAcceptance AcceptanceRuns(const CampaignOptions& o,
-                                  const Specification& spec,
-                                  CampaignObserver& observer,
-                                  const std::atomic<bool>& stop,
-                                  RecordsStore& records,
-                                  CampaignResult& result) {
-  const CampaignSequences& seq = o.sequences;
-  observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
-  const auto acceptance = RunBenches(o, observer, {seq.imu_acceptance}, {seq.ads_acceptance}, stop);
-  observer.Stage("acceptance runs done:" + RunsText(acceptance));
-  if (o.stations_done) o.stations_done();
+CampaignAcceptance AcceptanceRuns(Context& c, const Specification& spec, CampaignResult& result) {
+  const CampaignSequences& seq = c.o.sequences;
+  c.observer.Stage("4/8 acceptance runs in the calibrated modes, both benches concurrently");
+  const auto acceptance = RunBenches(c, {seq.imu_acceptance}, {seq.ads_acceptance});
+  c.observer.Stage("acceptance runs done:" + RunsText(acceptance));
+  c.journal.MarkDone(kStageAcceptance);
+  if (c.o.stations_done) c.o.stations_done();
   AddRuns(acceptance, result);
   CampaignAcceptance a;
-  a.imu_run = RunDir(o, seq.imu_acceptance);
-  a.ads_run = RunDir(o, seq.ads_acceptance);
-  a.imu_judged = JudgeIntoRecords(a.imu_run, spec, o.software_version, records);
-  a.ads_judged = JudgeIntoRecords(a.ads_run, spec, o.software_version, records);
-  observer.Stage(fmt::format("acceptance against the specification: IMU batch {}, ADS {}",
-                             a.imu_judged.pass() ? "PASS" : "FAIL",
-                             a.ads_judged.pass() ? "PASS" : "FAIL"));
+  std::string verdicts;
+  if (c.imu_station) {
+    a.imu_run = RunDir(c.o, seq.imu_acceptance);
+    a.imu_judged = JudgeIntoRecords(c, a.imu_run, spec);
+    verdicts += fmt::format(" IMU batch {}", a.imu_judged.pass() ? "PASS" : "FAIL");
+  }
+  if (c.ads_station) {
+    a.ads_run = RunDir(c.o, seq.ads_acceptance);
+    a.ads_judged = JudgeIntoRecords(c, a.ads_run, spec);
+    verdicts += fmt::format(" ADS {}", a.ads_judged.pass() ? "PASS" : "FAIL");
+  }
+  c.journal.MarkDone(kStageJudgement);
+  c.observer.Stage("acceptance against the specification:" + verdicts);
   return a;
 }
 
-// Stage 7: report.html per run with the improved fit of its unit kind; the acceptance runs' with
-// their judgement.
-void WriteReports(CampaignObserver& observer,
-                  const std::vector<std::filesystem::path>& imu_runs,
-                  const std::filesystem::path& ads_run,
+// Stage 7: report.html per run with the downloaded fit of its unit kind; the acceptance runs'
+// with their judgement.
+void WriteReports(Context& c,
                   const CampaignArtifacts& f,
                   const CampaignAcceptance& acceptance,
                   CampaignResult& result) {
-  observer.Stage("7/8 report.html per run");
+  c.observer.Stage("7/8 report.html per run");
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports;
-  for (const std::filesystem::path& run : imu_runs) reports.emplace_back(run, f.imu_joint_dir);
-  reports.emplace_back(ads_run, f.ads_improved_dir);
-  reports.emplace_back(acceptance.imu_run, f.imu_joint_dir);
-  reports.emplace_back(acceptance.ads_run, f.ads_improved_dir);
+  if (c.imu_station) {
+    for (const std::filesystem::path& run : f.imu_calibration_runs) {
+      reports.emplace_back(run, DownloadedImuDir(c.o, f));
+    }
+  }
+  if (c.ads_station) reports.emplace_back(f.ads_calibration_run, DownloadedAdsDir(c.o, f));
+  if (c.imu_station) reports.emplace_back(acceptance.imu_run, DownloadedImuDir(c.o, f));
+  if (c.ads_station) reports.emplace_back(acceptance.ads_run, DownloadedAdsDir(c.o, f));
   for (const auto& [run, fit] : reports) {
     const bool judged = run == acceptance.imu_run || run == acceptance.ads_run;
     WriteRunReport(
@@ -188,6 +248,7 @@ void WriteReports(CampaignObserver& observer,
         judged ? std::optional<std::filesystem::path>(run / "acceptance") : std::nullopt);
     result.run_dirs.push_back(run);
   }
+  c.journal.MarkDone(kStageReports);
 }
 
 // Each downloaded unit with its acceptance judgement.
@@ -205,6 +266,32 @@ void AddUnitOutcomes(const std::vector<UnitDownload>& downloads,
   }
 }
 
+// Loads a bench's station, checks its units' serials, and sets the station file its runs use.
+void PrepareBench(Context& c,
+                  const std::string& station_file,
+                  const char* bench,
+                  std::optional<hil::Station>& station,
+                  std::string& run_station_file,
+                  CampaignResult& result) {
+  if (station_file.empty()) return;
+  station = hil::Station::Load(station_file);
+  run_station_file = station_file;
+  const IdentityCheck check = CheckUnitIdentities(*station, c.o.expected_serials);
+  for (const std::string& refusal : check.refused) {
+    c.observer.Stage(std::string("  ") + bench + ": " + refusal);
+    result.refused_units.push_back(refusal);
+  }
+  if (check.refused.empty()) return;
+  if (check.station.units.empty()) {
+    result.not_run.push_back(std::string(bench) + ": every unit refused by its serial");
+    station.reset();
+    return;
+  }
+  station = check.station;
+  run_station_file =
+      WriteCheckedStation(*station, c.o.out_dir / "stations", std::filesystem::path(station_file));
+}
+
 }  // namespace
 
 CampaignResult RunCampaign(const CampaignOptions& o,
@@ -215,41 +302,69 @@ CampaignResult RunCampaign(const CampaignOptions& o,
   const Specification spec = o.specification_file.empty()
                                  ? Specification::Reference()
                                  : ReadSpecificationFile(o.specification_file);
-  const hil::Station imu_station = hil::Station::Load(o.imu_station_file);
-  const hil::Station ads_station = hil::Station::Load(o.ads_station_file);
+  std::filesystem::create_directories(o.out_dir);
   result.records_file = o.out_dir / "records.sqlite";
-  RecordsStore records(result.records_file);
+  Context c{o,
+            observer,
+            stop,
+            CampaignJournal(o.out_dir),
+            RecordsStore(result.records_file),
+            std::nullopt,
+            std::nullopt,
+            {},
+            {}};
+  RequireExpectedRolesExist(o.expected_serials, o.imu_station_file, o.ads_station_file);
+  observer.Stage("0/8 identity: every unit's serial read from the unit" +
+                 std::string(o.expected_serials.empty() ? " (no serial expected)"
+                                                        : ", checked against the expected one"));
+  PrepareBench(c, o.imu_station_file, kImuBench, c.imu_station, c.imu_station_file, result);
+  PrepareBench(c, o.ads_station_file, kAdsBench, c.ads_station, c.ads_station_file, result);
+  if (!c.imu_station && !c.ads_station) {
+    throw RunError("no bench to run: " + (result.not_run.empty() ? std::string("no station given")
+                                                                 : result.not_run.front()));
+  }
 
   CampaignArtifacts artifacts;
-  artifacts.imu_local_gravity_mps2 = imu_station.local_gravity_mps2;
-  artifacts.ads_local_gravity_mps2 = ads_station.local_gravity_mps2;
-  artifacts.imu_calibration_runs = CalibrationRuns(o, observer, stop, result);
-  artifacts.ads_calibration_run = RunDir(o, o.sequences.ads_calibration);
-  FitStrategies(o, observer, artifacts, records);
+  if (c.imu_station) {
+    artifacts.imu_local_gravity_mps2 = c.imu_station->local_gravity_mps2;
+    for (const std::string& s : o.sequences.imu_calibration) {
+      artifacts.imu_calibration_runs.push_back(RunDir(o, s));
+    }
+  }
+  if (c.ads_station) {
+    artifacts.ads_local_gravity_mps2 = c.ads_station->local_gravity_mps2;
+    artifacts.ads_calibration_run = RunDir(o, o.sequences.ads_calibration);
+  }
+  if (c.journal.Done(kStageCalibration)) {
+    observer.Stage("1/8 calibration runs: done before, kept");
+  } else {
+    CalibrationRuns(c, result);
+  }
+  ThrowIfStopped(c, "fits");
+  FitStrategies(c, artifacts);
+  ThrowIfStopped(c, "download");
+  const ImprovedDownloads downloads = DownloadConstantsStage(c, artifacts);
+  ThrowIfStopped(c, "acceptance runs");
 
-  const ImprovedDownloads downloads =
-      DownloadImprovedConstants(observer, imu_station, ads_station, artifacts, records);
-
-  const CampaignAcceptance acceptance = AcceptanceRuns(o, spec, observer, stop, records, result);
+  const CampaignAcceptance acceptance = AcceptanceRuns(c, spec, result);
   artifacts.imu_acceptance_run = acceptance.imu_run;
   artifacts.ads_acceptance_run = acceptance.ads_run;
   if (o.before_reports) o.before_reports(artifacts, result);
-  WriteReports(observer,
-               artifacts.imu_calibration_runs,
-               artifacts.ads_calibration_run,
-               artifacts,
-               acceptance,
-               result);
+  WriteReports(c, artifacts, acceptance, result);
 
   observer.Stage("8/8 production records: runs, constants versions, downloads -> " +
                  result.records_file.string());
   for (const std::filesystem::path& run : result.run_dirs) {
-    records.AddRun(RunRecordFromDirectory(run));
+    c.records.AddRun(RunRecordFromDirectory(run));
   }
-  AddUnitOutcomes(
-      downloads.imu, "joint", acceptance.imu_judged, acceptance.imu_run / "report.html", result);
+  c.journal.MarkDone(kStageRecords);
+  AddUnitOutcomes(downloads.imu,
+                  o.imu_strategy,
+                  acceptance.imu_judged,
+                  acceptance.imu_run / "report.html",
+                  result);
   AddUnitOutcomes(downloads.ads,
-                  kHysteresisAdsStrategyName,
+                  o.ads_strategy,
                   acceptance.ads_judged,
                   acceptance.ads_run / "report.html",
                   result);

@@ -1,22 +1,28 @@
-// A calibration campaign: the production chain over two benches, each stage a call into its own
-// library, each stage's output a directory under `out_dir`: (1) calibration runs, both benches
-// concurrently (bench_runs.h) -> runs/<sequence>/; (2) fits of both strategies per unit kind
-// (campaign_fits.h) -> fits/<kind>-<strategy>/; (3) download of the improved constants
-// (station_download.h); (4) acceptance runs judged against the reference specification ->
+// A calibration campaign: the production chain over two benches (either may be absent), each stage
+// a call into its own library, each stage's output a directory under `out_dir`: (0) identity: the
+// serial each unit gives checked against the expected one (campaign_identity.h; a refused unit's
+// slot is left out, the others go on); (1) calibration runs, both benches concurrently
+// (bench_runs.h) -> runs/<sequence>/; (2) fits of both strategies per unit kind (campaign_fits.h)
+// -> fits/<kind>-<strategy>/; (3) download of the chosen strategy's constants
+// (station_download.h); (4) acceptance runs judged against the specification ->
 // runs/<sequence>/acceptance/<serial>/acceptance.json; (5-6) stages injected by the caller
 // (CampaignOptions::before_reports, e.g. proving/demo/demo_campaign.h); (7) report.html per run;
 // (8) production records -> records.sqlite. The production chain never knows the truth.
 // A unit that fails acceptance is a result, not an error; a stage's errors pass through with its
-// context (run, step, unit, file); a stop request (SIGINT) stops the benches safely and throws
-// RunInterrupted.
-// Stage by stage: docs/demo.md ("What runs", "Directories written").
-// Left out: resuming a campaign (each run resumes with `adahrs run --resume`), choosing the
-// downloaded strategy by evaluation (the improved one is downloaded by design).
+// context (run, step, unit, file); a stop request (SIGINT) stops the benches safely, or is
+// honoured between stages and between downloads, and throws RunInterrupted.
+// Resuming: the campaign journal in `out_dir` (campaign_journal.h) records the finished stages and
+// the verified downloads; called again on the same `out_dir`, the campaign keeps what is done,
+// resumes an unfinished run as `adahrs run --resume` does and downloads again only a unit whose
+// constants changed. The injected stages are not journaled (they run again).
+// Stage by stage: docs/campaign.md, docs/demo.md ("What runs", "Directories written").
+// Left out: choosing the downloaded strategy by evaluation (the options name it), retests.
 #pragma once
 
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,9 +58,15 @@ struct CampaignResult;
 
 struct CampaignOptions {
   std::filesystem::path out_dir;
-  std::string imu_station_file;
-  std::string ads_station_file;
+  std::string imu_station_file;  ///< empty: no IMU bench
+  std::string ads_station_file;  ///< empty: no ADS bench
   CampaignSequences sequences;
+  /// The strategy whose constants are downloaded: IMU "joint" or "reference", ADS
+  /// "hysteresis_compensated" or "reference".
+  std::string imu_strategy = "joint";
+  std::string ads_strategy = "hysteresis_compensated";
+  /// Expected serial per station unit role; a unit giving another serial is refused.
+  std::map<std::string, std::string> expected_serials;
   /// The specification file acceptance judges against; empty: Specification::Reference() (-A).
   std::string specification_file;
   std::string software_version;
@@ -92,6 +104,8 @@ struct CampaignResult {
   /// Every bench run as its session ended: rows recorded and packets lost.
   std::vector<RunSummary> runs;
   std::vector<std::string> not_run;  ///< stages that could not run, with the reason
+  /// Units refused by their serial (role, port, serial read, serial expected), left out.
+  std::vector<std::string> refused_units;
   std::filesystem::path records_file;
 };
 

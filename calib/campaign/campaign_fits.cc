@@ -1,5 +1,7 @@
 #include "calib/campaign/campaign_fits.h"
 
+#include <algorithm>
+
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/ads_calibration/tolerance_ads_strategy.h"
 #include "calib/constants/recording_checksum.h"
@@ -60,6 +62,20 @@ std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& r
     file.ads_diagnostics = fit.diagnostics;
     written.push_back(Write(fit_dir, std::move(file)));
   }
+  return written;
+}
+
+std::vector<WrittenConstants> ReadFitDirectory(const std::filesystem::path& fit_dir) {
+  std::vector<std::filesystem::path> files;
+  if (std::filesystem::is_directory(fit_dir)) {
+    for (const auto& entry : std::filesystem::directory_iterator(fit_dir)) {
+      const std::filesystem::path& p = entry.path();
+      if (p.extension() == ".json" && p.filename() != "evaluation.json") files.push_back(p);
+    }
+  }
+  std::sort(files.begin(), files.end());
+  std::vector<WrittenConstants> written;
+  for (const std::filesystem::path& p : files) written.push_back({p, ReadConstantsFile(p)});
   return written;
 }
 

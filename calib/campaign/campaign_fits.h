@@ -39,4 +39,8 @@ std::vector<WrittenConstants> FitAdsIntoDirectory(const std::filesystem::path& r
                                                   const std::filesystem::path& fit_dir,
                                                   const std::string& software_version);
 
+/// The constants files a fit stage wrote into `fit_dir` (every `*.json` but evaluation.json, the
+/// proving stage's), sorted by name; none if the directory does not exist.
+std::vector<WrittenConstants> ReadFitDirectory(const std::filesystem::path& fit_dir);
+
 }  // namespace adahrs::calib

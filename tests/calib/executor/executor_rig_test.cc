@@ -81,31 +81,41 @@ TEST(ExecutorRig, ShortImuSequenceRecordsExactlyTheAcquisitionsOfFourUnits) {
   EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
 }
 
-TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
-  adahrs::testing::RigProcess rig(kTimeScale);
-  TempDir dir("interlock");
+// Runs the short IMU sequence on `station_file` with imu2 turned back to 31 (the wrong way up)
+// after every mount in 32; returns the RunError's text ("" and a failure if the run completed).
+std::string RunWithImu2TurnedBack(const adahrs::testing::RigProcess& rig,
+                                  const TempDir& dir,
+                                  const std::string& station_file,
+                                  std::string* reply) {
   NewRunOptions options;
-  options.station_file = rig.WriteStation();
+  options.station_file = station_file;
   options.sequence_file = testing::WriteSequence(dir.path(), "imu", kShortImuSteps);
   options.run_dir = dir.path() / "run";
-  // The disturbance: after every mount in 32, imu2 is turned back to 31 (the wrong way up).
-  std::string reply;
   options.wrap_operator =
-      testing::DisturbingOperator::Wrapper(rig, 32, "orientation imu2 31", reply);
+      testing::DisturbingOperator::Wrapper(rig, 32, "orientation imu2 31", *reply);
   RecordingProgress progress;
   std::atomic<bool> stop{false};
   try {
     StartRun(options, progress, stop);
-    FAIL() << "the run should have stopped";
   } catch (const RunError& e) {
-    EXPECT_THAT(e.what(),
-                AllOf(HasSubstr("step 2 (accel"),
-                      HasSubstr("gravity interlock failed"),
-                      HasSubstr("imu2 (IMU-0002)")));
-    EXPECT_THAT(e.what(), ::testing::Not(HasSubstr("imu1")));
+    return e.what();
   }
+  ADD_FAILURE() << "the run should have stopped";
+  return "";
+}
+
+TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
+  adahrs::testing::RigProcess rig(kTimeScale);
+  TempDir dir("interlock");
+  std::string reply;
+  const std::string error = RunWithImu2TurnedBack(rig, dir, rig.WriteStation(), &reply);
+  EXPECT_THAT(error,
+              AllOf(HasSubstr("step 2 (accel"),
+                    HasSubstr("gravity interlock failed"),
+                    HasSubstr("imu2 (IMU-0002)")));
+  EXPECT_THAT(error, ::testing::Not(HasSubstr("imu1")));
   EXPECT_EQ(reply, "OK imu2 31");
-  const hil::Recording rec = hil::ReadRecording(options.run_dir);
+  const hil::Recording rec = hil::ReadRecording(dir.path() / "run");
   EXPECT_EQ(rec.meta.status.value_or(""), "aborted");
   ASSERT_EQ(rec.meta.rejected_intervals.size(), 3u);  // every attempt
   for (const auto& r : rec.meta.rejected_intervals) EXPECT_EQ(r.step, 2);
@@ -119,26 +129,14 @@ TEST(ExecutorRig, WrongOrientationStopsTheRunAndTagsNothing) {
 TEST(ExecutorRig, TheStationsInterlockAttemptsBoundTheRetries) {
   adahrs::testing::RigProcess rig(kTimeScale);
   TempDir dir("interlock_attempts");
-  NewRunOptions options;
-  options.station_file = rig.WriteStation("station.json", [](nlohmann::json& j) {
+  std::string reply;
+  const std::string station = rig.WriteStation("station.json", [](nlohmann::json& j) {
     j["interlocks"] = {{"attempts", 1}};
   });
-  options.sequence_file = testing::WriteSequence(dir.path(), "imu", kShortImuSteps);
-  options.run_dir = dir.path() / "run";
-  std::string reply;
-  options.wrap_operator =
-      testing::DisturbingOperator::Wrapper(rig, 32, "orientation imu2 31", reply);
-  RecordingProgress progress;
-  std::atomic<bool> stop{false};
-  try {
-    StartRun(options, progress, stop);
-    FAIL() << "the run should have stopped";
-  } catch (const RunError& e) {
-    EXPECT_THAT(e.what(),
-                AllOf(HasSubstr("gravity interlock failed (attempt 1 of 1)"),
-                      HasSubstr("imu2 (IMU-0002)")));
-  }
-  const hil::Recording rec = hil::ReadRecording(options.run_dir);
+  EXPECT_THAT(
+      RunWithImu2TurnedBack(rig, dir, station, &reply),
+      AllOf(HasSubstr("gravity interlock failed (attempt 1 of 1)"), HasSubstr("imu2 (IMU-0002)")));
+  const hil::Recording rec = hil::ReadRecording(dir.path() / "run");
   EXPECT_EQ(rec.meta.status.value_or(""), "aborted");
   EXPECT_EQ(rec.meta.rejected_intervals.size(), 1u);
   EXPECT_NEAR(testing::RigTableRateDps(rig), 0.0, 1e-9);
