@@ -6,8 +6,9 @@
 // frame equals the rig's sample index - the first row's, exactly, and |t_sample_s - t_s| stays
 // within the lockstep line's buffering: the rig runs at most 100 + 10 frames past what a reader has
 // read and 100 frames in a tick (docs/rig.md "Port counts file"), 1.1 s, and a packet leaves its
-// unit's line within a frame; 1.2 s. The reader finds no sample time defect, and meta.json states
-// that bound for every unit (the rig's counts were used).
+// unit's line within a frame; 1.2 s, on the run's time base, which starts on a whole counter turn
+// of the rig's frames (docs/rig.md "Clock file"). The reader finds no sample time defect, and
+// meta.json states that bound for every unit (the rig's counts were used).
 #include <algorithm>
 #include <atomic>
 #include <cmath>
