@@ -33,7 +33,8 @@ inline constexpr uint64_t kLockstepPacketBudget = 100;
 
 /// The most a packet's sample time and its arrival time on a lockstep rig's clock differ for a
 /// reader that publishes its count: behind, the budget and the frames between the rig's looks
-/// (1.1 s); ahead, the frames of one tick, which the rig caps at the budget (1.0 s); rounded up.
+/// (1.1 s); ahead, the frames of one tick, which the rig caps at those 10 (0.1 s). Either way, and
+/// also the most two packets' waits differ (1.2 s); rounded up to the 10 ms of a frame.
 inline constexpr double kLockstepLineBuffering_s = 1.2;
 
 /// The port counts file that belongs to the clock file `clock_file`.

@@ -347,9 +347,10 @@ void DeviceHost::OnTick() {
   const auto target = static_cast<uint64_t>(wall_s * pace / kWorldFrame_s);
   // Bound the work per tick so reads and control actions interleave with frames.
   bool held = false;
-  // With port counts, at most the packet budget per tick: a tick's bytes are written before its
-  // frames are published, so a reader may see a packet that many frames ahead of the clock.
-  const int max_frames = port_counts_ ? static_cast<int>(hil::kLockstepPacketBudget) : 200;
+  // With port counts, at most the frames between two looks per tick: a tick's bytes are written
+  // before its frames are published, so a reader may see a packet that many frames ahead of the
+  // clock (0.1 s; hil::kLockstepLineBuffering_s).
+  const int max_frames = port_counts_ ? kLockstepCheckFrames : 200;
   for (int i = 0; i < max_frames && frames_done_.load() < target; ++i) {
     if (lockstep_ && i % kLockstepCheckFrames == 0 && HeldByAReader()) {
       held = true;

@@ -5,7 +5,7 @@
 // rig_sim/unit_device.h), never the pipeline's count. For every unit and every row: frame - first
 // frame equals the rig's sample index - the first row's, exactly, and |t_sample_s - t_s| stays
 // within the lockstep line's buffering: the rig runs at most 100 + 10 frames past what a reader has
-// read and 100 frames in a tick (docs/rig.md "Port counts file"), 1.1 s, and a packet leaves its
+// read and 10 frames in a tick (docs/rig.md "Port counts file"), 1.1 s, and a packet leaves its
 // unit's line within a frame; 1.2 s, on the run's time base, which starts on a whole counter turn
 // of the rig's frames (docs/rig.md "Clock file"). The reader finds no sample time defect, and
 // meta.json states that bound for every unit (the rig's counts were used).
@@ -33,6 +33,8 @@ using testing::TempDir;
 
 constexpr double kTopSpeed = 900.0;  // the demo's default (apps/demo_command.cc)
 constexpr double kLineBuffering_s = 1.2;
+// A packet is read at most a tick's frames before the rig publishes them: 10 (docs/rig.md).
+constexpr double kAheadOfTheClock_s = 0.1;
 constexpr double kHighestScale = 100000.0;  // the rig's largest time_scale (docs/rig.md)
 
 struct RigPacket {
@@ -122,6 +124,7 @@ void ExpectTheRigsCount(const std::vector<Row>& all_rows,
   EXPECT_GT(rows, 1000);
   // t_s to 0.1 ms in the file.
   EXPECT_LE(std::max(std::abs(lo_s), std::abs(hi_s)), kLineBuffering_s + 1e-4);
+  EXPECT_LE(hi_s, kAheadOfTheClock_s + 1e-4);
   std::printf("%s: %lld rows, t_sample_s - t_s from %+.3f to %+.3f s\n",
               unit.c_str(),
               static_cast<long long>(rows),
