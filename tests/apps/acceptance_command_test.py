@@ -16,6 +16,8 @@ import subprocess
 import sys
 import tempfile
 
+from app_checks import expect
+
 IMU_HEADER = ("t_s,unit,seq,step,tag,orientation,chamber_c,table_rate_dps,"
               "az1_t1,az1_t2,ax1_t1,ax1_t2,ay1_t1,ay1_t2,az2_t1,az2_t2,ax2_t1,ax2_t2,ay2_t1,ay2_t2,"
               "gx,gy,gz,tx,ty,tz,mode,comp0,comp1,comp2,comp3,comp4,comp5,comp6,comp7,comp8,comp_flags")
@@ -69,53 +71,53 @@ def main(adahrs):
 
         write_run(tmp / "pass", 14.0)
         ok = run(adahrs, "acceptance", "--run", tmp / "pass", "--db", db)
-        assert ok.returncode == 0, (ok.returncode, ok.stdout, ok.stderr)
-        assert "ADS-0009: MARGINAL" in ok.stdout, ok.stdout
-        assert "acceptance: PASS" in ok.stdout, ok.stdout
+        expect(ok.returncode == 0, (ok.returncode, ok.stdout, ok.stderr))
+        expect("ADS-0009: MARGINAL" in ok.stdout, ok.stdout)
+        expect("acceptance: PASS" in ok.stdout, ok.stdout)
         doc = json.loads((tmp / "pass" / "acceptance" / "ADS-0009" / "acceptance.json").read_text())
-        assert doc["format"] == "adahrs-acceptance" and doc["verdict"] == "pass", doc
-        assert doc["outcome"] == "MARGINAL" and doc["points"][0]["outcome"] == "MARGINAL", doc
+        expect(doc["format"] == "adahrs-acceptance" and doc["verdict"] == "pass", doc)
+        expect(doc["outcome"] == "MARGINAL" and doc["points"][0]["outcome"] == "MARGINAL", doc)
         a_sha = sha256_of(SPEC_DIR / "ahr150a-a.json")
-        assert doc["specification"]["sha256"] == a_sha, (doc["specification"], a_sha)
-        assert doc["specification"]["name"] == "AHR150A-A", doc["specification"]
+        expect(doc["specification"]["sha256"] == a_sha, (doc["specification"], a_sha))
+        expect(doc["specification"]["name"] == "AHR150A-A", doc["specification"])
         (point,) = doc["points"]
-        assert point["quantity"] == "altitude" and point["tolerance"] == 15.0, point
-        assert abs(point["reference"] - 5000.0) < 0.01, point  # our ISA and the judge's agree
-        assert abs(point["error"] - 14.0) < 0.01, point
+        expect(point["quantity"] == "altitude" and point["tolerance"] == 15.0, point)
+        expect(abs(point["reference"] - 5000.0) < 0.01, point)  # our ISA and the judge's agree
+        expect(abs(point["error"] - 14.0) < 0.01, point)
 
         write_run(tmp / "fail", 16.0)
         bad = run(adahrs, "acceptance", "--run", tmp / "fail", "--out", tmp / "out", "--db", db)
-        assert bad.returncode == 1, (bad.returncode, bad.stdout, bad.stderr)
-        assert "FAIL" in bad.stdout and (tmp / "out" / "ADS-0009" / "acceptance.json").exists()
+        expect(bad.returncode == 1, (bad.returncode, bad.stdout, bad.stderr))
+        expect("FAIL" in bad.stdout and (tmp / "out" / "ADS-0009" / "acceptance.json").exists())
 
         b_sha = sha256_of(SPEC_DIR / "ahr150a-b.json")
         b_run = run(adahrs, "acceptance", "--run", tmp / "pass", "--out", tmp / "b",
                     "--specification", SPEC_DIR / "ahr150a-b.json", "--db", db)
-        assert b_run.returncode == 0, (b_run.returncode, b_run.stdout, b_run.stderr)
+        expect(b_run.returncode == 0, (b_run.returncode, b_run.stdout, b_run.stderr))
         b_doc = json.loads((tmp / "b" / "ADS-0009" / "acceptance.json").read_text())
-        assert b_doc["specification"]["sha256"] == b_sha != a_sha, b_doc["specification"]
-        assert b_doc["specification"]["rated_rate_dps"] == 300.0, b_doc["specification"]
+        expect(b_doc["specification"]["sha256"] == b_sha != a_sha, b_doc["specification"])
+        expect(b_doc["specification"]["rated_rate_dps"] == 300.0, b_doc["specification"])
 
         broken = json.loads((SPEC_DIR / "ahr150a-a.json").read_text())
         del broken["quantities"]["altitude"]["input_max_ft"]
         (tmp / "broken.json").write_text(json.dumps(broken))
         refused = run(adahrs, "acceptance", "--run", tmp / "pass", "--out", tmp / "c",
                       "--specification", tmp / "broken.json")
-        assert refused.returncode == 2, (refused.returncode, refused.stdout, refused.stderr)
+        expect(refused.returncode == 2, (refused.returncode, refused.stdout, refused.stderr))
         for text in (str(tmp / "broken.json"), "$.quantities.altitude.input_max_ft", "missing"):
-            assert text in refused.stderr, refused.stderr
-        assert not (tmp / "c").exists()
+            expect(text in refused.stderr, refused.stderr)
+        expect(not (tmp / "c").exists())
 
         write_run(tmp / "raw", 0.0, mode=0)
         raw = run(adahrs, "acceptance", "--run", tmp / "raw")
-        assert raw.returncode == 2, (raw.returncode, raw.stdout, raw.stderr)
+        expect(raw.returncode == 2, (raw.returncode, raw.stdout, raw.stderr))
         for text in (str(tmp / "raw"), "unit ADS-0009", "step 1 (log", "raw mode"):
-            assert text in raw.stderr, raw.stderr
+            expect(text in raw.stderr, raw.stderr)
 
         again = run(adahrs, "acceptance", "--run", tmp / "fail", "--out", tmp / "out2", "--db", db)
-        assert again.returncode == 1 and "already recorded" in again.stdout, again.stdout
-        assert (tmp / "out2" / "ADS-0009" / "acceptance.json").read_bytes() == \
-            (tmp / "out" / "ADS-0009" / "acceptance.json").read_bytes()
+        expect(again.returncode == 1 and "already recorded" in again.stdout, again.stdout)
+        expect((tmp / "out2" / "ADS-0009" / "acceptance.json").read_bytes() == \
+            (tmp / "out" / "ADS-0009" / "acceptance.json").read_bytes())
 
         with sqlite3.connect(db) as connection:
             rows = connection.execute(
@@ -123,13 +125,13 @@ def main(adahrs):
                 "outcome, specification_sha256 FROM acceptance_results ORDER BY id").fetchall()
         # The pass run, the fail run, the pass run judged against -B; the fail run's second
         # judgement recorded once.
-        assert [r[1] for r in rows] == ["acc-14.0-1", "acc-16.0-1", "acc-14.0-1"], rows
-        assert [r[8] for r in rows] == ["MARGINAL", "FAIL", "MARGINAL"], rows
-        assert [r[9] for r in rows] == [a_sha, a_sha, b_sha], rows
-        assert rows[0][0] == "ADS-0009" and rows[0][2] == "altitude" and rows[0][7] == 1, rows
-        assert rows[0][3] == "step 1, 5000 ft, 25.0 degC", rows
-        assert abs(rows[1][4] - 16.0) < 0.01 and rows[1][5] == 15.0 and rows[1][6] == "ft", rows
-        assert rows[1][7] == 0, rows
+        expect([r[1] for r in rows] == ["acc-14.0-1", "acc-16.0-1", "acc-14.0-1"], rows)
+        expect([r[8] for r in rows] == ["MARGINAL", "FAIL", "MARGINAL"], rows)
+        expect([r[9] for r in rows] == [a_sha, a_sha, b_sha], rows)
+        expect(rows[0][0] == "ADS-0009" and rows[0][2] == "altitude" and rows[0][7] == 1, rows)
+        expect(rows[0][3] == "step 1, 5000 ft, 25.0 degC", rows)
+        expect(abs(rows[1][4] - 16.0) < 0.01 and rows[1][5] == 15.0 and rows[1][6] == "ft", rows)
+        expect(rows[1][7] == 0, rows)
     print("ok")
 
 

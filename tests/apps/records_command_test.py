@@ -10,6 +10,8 @@ import subprocess
 import sys
 import tempfile
 
+from app_checks import expect
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
@@ -47,22 +49,22 @@ def main(adahrs):
         db = tmp / "records.sqlite"
 
         first = run(adahrs, "records", "add-run", run_dir, "--db", db)
-        assert first.returncode == 0, first.stderr
-        assert f"recording sha256 {digest}): recorded" in first.stdout, first.stdout
+        expect(first.returncode == 0, first.stderr)
+        expect(f"recording sha256 {digest}): recorded" in first.stdout, first.stdout)
         again = run(adahrs, "records", "add-run", run_dir, "--db", db)
-        assert "already recorded" in again.stdout, again.stdout
+        expect("already recorded" in again.stdout, again.stdout)
 
         show = run(adahrs, "units", "show", "IMU-0007", "--db", db)
-        assert show.returncode == 0, show.stderr
-        assert show.stdout.startswith("IMU-0007 (imu)"), show.stdout
-        assert "runs: 1" in show.stdout and "imu_sensor_calibration" in show.stdout, show.stdout
-        assert "constants versions: 0" in show.stdout, show.stdout
+        expect(show.returncode == 0, show.stderr)
+        expect(show.stdout.startswith("IMU-0007 (imu)"), show.stdout)
+        expect("runs: 1" in show.stdout and "imu_sensor_calibration" in show.stdout, show.stdout)
+        expect("constants versions: 0" in show.stdout, show.stdout)
 
         unknown = run(adahrs, "units", "show", "IMU-0404", "--db", db)
-        assert unknown.returncode == 1 and str(db) in unknown.stderr, unknown.stderr
-        assert "no unit IMU-0404" in unknown.stderr, unknown.stderr
+        expect(unknown.returncode == 1 and str(db) in unknown.stderr, unknown.stderr)
+        expect("no unit IMU-0404" in unknown.stderr, unknown.stderr)
         missing = run(adahrs, "units", "show", "IMU-0007", "--db", tmp / "none.sqlite")
-        assert missing.returncode == 1 and "none.sqlite: no such file" in missing.stderr, missing
+        expect(missing.returncode == 1 and "none.sqlite: no such file" in missing.stderr, missing)
     print("ok")
 
 

@@ -92,6 +92,7 @@ TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
 // counts).
 TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
   int found[2] = {}, within[2] = {};
+  int pitot_span_beyond_8_pct = 0;
   for (int i = 0; i < 10; ++i) {
     AdsUnitParams unit = AdsUnitParams::Draw(
         "ADS-" + std::to_string(9400 + i), 6400 + i, sensor_sim::ModelProfile::kNominal);
@@ -120,6 +121,17 @@ TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
       ++found[k];
       if (std::abs(half.magnitude - truth) <= 3.0 * half.standard_error) ++within[k];
       EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
+      // The span (docs/diagnose.md): the static bridge's within 2 % of the truth's on every unit;
+      // the pitot's within 8 % on all but two. Its standard error is not leaned on: it leaves out
+      // the spans' correlation and understates (docs/calibration-strategies.md).
+      const FindingComponent& span = f.components[1];
+      const double span_truth = b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa;
+      const double span_error = std::abs(span.magnitude / span_truth - 1.0);
+      if (k == 0) {
+        EXPECT_LT(span_error, 0.02) << unit.serial;
+      } else {
+        pitot_span_beyond_8_pct += span_error > 0.08 ? 1 : 0;
+      }
     }
   }
   std::printf(
@@ -133,6 +145,7 @@ TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
   EXPECT_GE(within[0], 9);
   EXPECT_GE(found[1], 8);
   EXPECT_GE(within[1], 8);
+  EXPECT_LE(pitot_span_beyond_8_pct, 2);
 }
 
 // The shipped ads_calibration sequence cut to its first prompt and the steps at `target_c`: one

@@ -1,7 +1,8 @@
 // Replays the committed golden vectors bit for bit (outputs, flags, cycle counts), and checks that
 // regenerating them from the same fixtures gives the same document (a change indicator: a diff
-// means the fixed-point arithmetic changed; review it, then regenerate with
-// ADAHRS_WRITE_GOLDEN=1 build/bin/firmware_model_tests --gtest_filter=GoldenVectors.*).
+// means the fixed-point arithmetic changed; review it, then regenerate with ADAHRS_WRITE_GOLDEN=1
+// (docs/firmware-compensator.md gives the command), which writes the files and fails: a run with
+// the variable set never passes).
 // The truth tests for the same arithmetic are the envelope sweeps (compensator_sweep_test.cc).
 #include "firmware_model/golden_vectors.h"
 #include "adahrs_build_paths.h"
@@ -67,7 +68,11 @@ INSTANTIATE_TEST_SUITE_P(GoldenVectors,
 
 TEST_P(GoldenVectorsFormat, ReplayBitExact) {
   if (std::getenv("ADAHRS_WRITE_GOLDEN") != nullptr) {
+    // A writing run compares the code with itself: it writes and fails, so that no run with the
+    // variable set (a suite run that inherited it, say) can pass.
     std::ofstream(Path()) << Generate(GetParam()).dump(1) << "\n";
+    FAIL() << "ADAHRS_WRITE_GOLDEN is set: wrote " << Path()
+           << " and checked nothing; review its diff, then run again without the variable";
   }
   std::ifstream file(Path());
   ASSERT_TRUE(file.good()) << Path();

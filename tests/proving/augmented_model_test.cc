@@ -95,12 +95,20 @@ TEST(AugmentedModel, AdsPressureHysteresisReproducesTheRecording) {
       std::max(1.0, std::abs(recorded.back().ps_ref_pa - recorded.front().ps_ref_pa));
   const double before = RmsPa(recorded, Points(base, dir / "base", 600), codes_per_pa);
   const double after = RmsPa(recorded, Points(augmented, dir / "augmented", 600), codes_per_pa);
+  // The yardstick: the true unit itself, re-run with fresh noise, leaves this much.
+  const double fresh_noise = RmsPa(recorded, Points(truth, dir / "fresh", 601), codes_per_pa);
   std::printf(
       "static bridge points, re-simulated: RMS %.2f Pa with the base model, %.2f Pa with "
-      "model.json\n",
+      "model.json; the truth with fresh noise %.2f Pa\n",
       before,
-      after);
-  EXPECT_LT(after, 0.25 * before);
+      after,
+      fresh_noise);
+  // docs/diagnose.md: reproduced to 0.06 Pa RMS against 32.8 Pa. Asserted below 0.1 Pa and below
+  // half of what the true unit with fresh noise leaves: the augmented model is closer to the
+  // recording than the unit itself on another run. A loop 1 % high leaves 0.39 Pa.
+  EXPECT_GT(before, 30.0);
+  EXPECT_LT(after, 0.1);
+  EXPECT_LT(after, 0.5 * fresh_noise);
   fs::remove_all(dir);
 }
 

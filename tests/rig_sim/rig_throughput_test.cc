@@ -68,9 +68,16 @@ TEST(RigThroughput, FreeRunningStatesItsLossFreeTimeScale) {
   }
   RecordProperty("loss_free_time_scale", std::to_string(loss_free_scale));
   std::printf("free-running: loss-free at %gx on this machine now\n", loss_free_scale);
-  // 50x: a sixteenth of what an idle 2-core machine holds, so a loaded one or the sanitizers
-  // still find a loss-free scale; a rig that cannot hold even that is broken.
-  EXPECT_GE(loss_free_scale, 50.0);
+  // 200x: half the lowest loaded figure measured (400x at load average 8, five builds beside,
+  // docs/performance.md), a 24th of the idle machine's 4,800x; 800x held here beside two busy
+  // loops and another build (2026-12-07). A data path that delivers a quarter of what it does now
+  // loses packets at 200x and trips it. The figure itself is the benchmark's
+  // (bench/rig_throughput_benchmark.cc); this floor only has to hold on a loaded machine.
+#if defined(__SANITIZE_ADDRESS__)
+  EXPECT_GE(loss_free_scale, 50.0);  // the sanitizers check memory, not speed
+#else
+  EXPECT_GE(loss_free_scale, 200.0);
+#endif
 }
 
 }  // namespace
