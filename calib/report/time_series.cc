@@ -55,7 +55,7 @@ void DecimatedSeries::Envelope(std::vector<double>& t_s, std::vector<double>& va
 }
 
 TimeSeriesAccumulator::Figure& TimeSeriesAccumulator::FigureOf(const std::string& title,
-                                                              const std::string& y_label) {
+                                                               const std::string& y_label) {
   auto [it, added] = figures_.try_emplace(title);
   if (added) {
     order_.push_back(title);
@@ -73,7 +73,9 @@ void TimeSeriesAccumulator::Add(const hil::ImuRecordRow& r) {
   if (instrument_unit_.empty()) instrument_unit_ = r.unit;
   if (r.unit == instrument_unit_) {
     Step(r.t_s, r.step);
-    FigureOf(kInstruments, "reading (degC, deg/s)").series["chamber (degC)"].Add(r.t_s, r.chamber_c);
+    FigureOf(kInstruments, "reading (degC, deg/s)")
+        .series["chamber (degC)"]
+        .Add(r.t_s, r.chamber_c);
     FigureOf(kInstruments, "").series["rate table (deg/s)"].Add(r.t_s, r.table_rate_dps);
   }
   if (r.comp && r.mode == 3) {  // fully calibrated: A (m/s^2) 0..2, G (deg/s) 3..5
@@ -88,7 +90,8 @@ void TimeSeriesAccumulator::Add(const hil::ImuRecordRow& r) {
   if (r.comp && r.mode == 2) {  // sensor calibrated: g per channel 0..5, deg/s 6..8
     Figure& a = FigureOf(r.unit + ": accelerometer channels (mode 2)", "acceleration (g)");
     Figure& g = FigureOf(r.unit + ": gyro channels (mode 2)", "rate (deg/s)");
-    for (int ch = 0; ch < 6; ++ch) a.series[common::kAccelChannelNames[ch]].Add(r.t_s, (*r.comp)[ch]);
+    for (int ch = 0; ch < 6; ++ch)
+      a.series[common::kAccelChannelNames[ch]].Add(r.t_s, (*r.comp)[ch]);
     for (int axis = 0; axis < 3; ++axis) {
       g.series[common::kGyroChannelNames[axis]].Add(r.t_s, (*r.comp)[6 + axis]);
     }
@@ -102,7 +105,8 @@ void TimeSeriesAccumulator::Add(const hil::ImuRecordRow& r) {
   Figure& a = FigureOf(r.unit + ": accelerometer duty (raw)", "duty T1/T2 - 0.5 (dimensionless)");
   for (int ch = 0; ch < 6; ++ch) {
     const double t2 = r.accel_ticks[2 * ch + 1];
-    if (t2 > 0.0) a.series[common::kAccelChannelNames[ch]].Add(r.t_s, r.accel_ticks[2 * ch] / t2 - 0.5);
+    if (t2 > 0.0)
+      a.series[common::kAccelChannelNames[ch]].Add(r.t_s, r.accel_ticks[2 * ch] / t2 - 0.5);
   }
 }
 
@@ -116,8 +120,12 @@ void TimeSeriesAccumulator::Add(const hil::AdsRecordRow& r) {
     f.series["impact pressure (kPa)"].Add(r.t_s, r.qc_ref_pa / 1000.0);
   }
   if (r.alt_ft && r.cas_kt) {
-    FigureOf(r.unit + ": altitude (surface mode)", "altitude (ft)").series["altitude"].Add(r.t_s, *r.alt_ft);
-    FigureOf(r.unit + ": airspeed (surface mode)", "airspeed (kt)").series["airspeed"].Add(r.t_s, *r.cas_kt);
+    FigureOf(r.unit + ": altitude (surface mode)", "altitude (ft)")
+        .series["altitude"]
+        .Add(r.t_s, *r.alt_ft);
+    FigureOf(r.unit + ": airspeed (surface mode)", "airspeed (kt)")
+        .series["airspeed"]
+        .Add(r.t_s, *r.cas_kt);
     return;
   }
   Figure& f = FigureOf(r.unit + ": bridge codes (raw)", "bridge output (ADS1254 code)");
