@@ -99,9 +99,7 @@ RigClock::RigClock(const std::filesystem::path& path, double stall_limit_wall_s)
     throw std::runtime_error(fmt::format(
         "rig clock {}: not an ADAHRSCK version {} clock file", path.string(), kVersion));
   }
-  // The last whole counter turn of the rig's frames: a unit on the rig counts its packets on
-  // them from the rig's start, so a sample time taken from its counter keeps its phase here.
-  start_s_ = static_cast<double>(Frames() / kCounterTurnFrames * kCounterTurnFrames) * frame_s_;
+  start_s_ = RigTimeS();
 }
 
 RigClock::~RigClock() {
