@@ -53,7 +53,8 @@ std::optional<double> ChamberEta::RemainingS() const {
   const auto& [then_s, then_c] = window_.front();
   const double span_s = now_s - then_s;
   const auto distance = [&](double c) { return std::abs(target_c_ - c); };
-  if (span_s < kChamberMinWindowS || distance(then_c) - distance(pv_c) < kChamberMinApproachC) {
+  if (span_s < kChamberMinWindowS || window_.size() < kChamberMinReadings ||
+      distance(then_c) - distance(pv_c) < kChamberMinApproachC) {
     return std::nullopt;
   }
   const auto identity = [](double v) { return v; };
@@ -65,7 +66,9 @@ std::optional<double> ChamberEta::RemainingS() const {
   if (ramp.b >= 0.0) return std::nullopt;  // not approaching, by the fit
   const double e_now = ramp.a;             // the fitted distance now (t - t0 = 0)
   if (e_now <= band_c_) return soak_s_;
-  if (band_c_ > 0.0 && settle.b < 0.0 && settle.rss < ramp.rss) {
+  // The settling law must fit clearly better: over a ramp both fit a short or sparse window about
+  // as well, and the exponential then extrapolates a tail the ramp does not have.
+  if (band_c_ > 0.0 && settle.b < 0.0 && settle.rss < kChamberSettleRssRatio * ramp.rss) {
     return (settle.a - std::log(band_c_)) / -settle.b + soak_s_;
   }
   return (e_now - band_c_) / -ramp.b + soak_s_;

@@ -4,15 +4,16 @@
 // compressor allow, then settles onto the set point as its control loop closes. Two laws of the
 // distance e = |target - process value| are fitted to the last kChamberRateWindowS: a ramp at
 // the chamber's capacity (e falls at a constant rate: a line through e) and the closed loop's
-// settling (e falls exponentially: a line through ln e), both by least squares; the one with the
-// smaller residuals in e is extrapolated to the band's edge, plus the whole soak; inside the band,
-// what is left of the soak.
+// settling (e falls exponentially: a line through ln e), both by least squares; the settling law
+// is extrapolated to the band's edge when its residuals in e are under half the ramp's, the ramp
+// otherwise, plus the whole soak; inside the band, what is left of the soak.
 // Units: degC, pipeline clock seconds.
 // Left out: during a ramp, the settling still to come after it (it shows only once the approach
 // slows: the ETA is then short by it); a chamber moving away from its target (no estimate: the
 // plan's stands).
 #pragma once
 
+#include <cstddef>
 #include <deque>
 #include <optional>
 #include <utility>
@@ -24,6 +25,9 @@ inline constexpr double kChamberRateWindowS = 120.0;
 /// Less evidence than this (time or approach) gives no estimate.
 inline constexpr double kChamberMinWindowS = 30.0;
 inline constexpr double kChamberMinApproachC = 0.2;
+inline constexpr size_t kChamberMinReadings = 8;
+/// The settling law is taken only when its residuals are below this fraction of the ramp's.
+inline constexpr double kChamberSettleRssRatio = 0.5;
 
 class ChamberEta {
  public:

@@ -17,7 +17,7 @@ TEST(ChamberEta, AStraightRampGivesTheTimeLeft) {
   ChamberEta eta(25.0, 1.0, 300.0);
   for (double t_s = 0.0; t_s <= 600.0; t_s += 5.0) {
     eta.Observe(t_s, t_s * kRateCPerS, -1.0);
-    if (t_s < kChamberMinWindowS) {
+    if (t_s < kChamberMinWindowS || t_s / 5.0 + 1.0 < kChamberMinReadings) {
       EXPECT_FALSE(eta.RemainingS().has_value()) << t_s;  // too little evidence yet
     } else {
       ASSERT_TRUE(eta.RemainingS().has_value()) << t_s;
@@ -47,7 +47,7 @@ TEST(ChamberEta, ASettlingApproachGivesTheTimeLeft) {
   const double in_band_s = 150.0 * std::log(24.0);
   for (double t_s = 0.0; t_s <= 400.0; t_s += 5.0) {
     eta.Observe(t_s, 40.0 - 12.0 * std::exp(-t_s / 150.0), -1.0);
-    if (t_s >= kChamberMinWindowS) {
+    if (t_s >= kChamberMinWindowS && t_s / 5.0 + 1.0 >= kChamberMinReadings) {
       ASSERT_TRUE(eta.RemainingS().has_value()) << t_s;
       EXPECT_NEAR(*eta.RemainingS(), in_band_s + 60.0 - t_s, 1e-6) << t_s;
     }
