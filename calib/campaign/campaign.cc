@@ -231,7 +231,6 @@ struct LastAttempt {
 // The acceptance runs and their judgements.
 struct CampaignAcceptance {
   std::filesystem::path imu_run, ads_run;  // the first attempts (every unit)
-  AcceptanceRun imu_judged, ads_judged;    // the first attempts' judgements
   std::vector<std::pair<std::filesystem::path, bool>> retest_runs;  // (run, of the IMU bench)
   std::map<std::string, LastAttempt> last;                          // by serial
 };
@@ -294,13 +293,11 @@ std::pair<std::set<std::string>, std::set<std::string>> AcceptanceAttempt(
   AddRuns(runs, result);
   std::pair<std::set<std::string>, std::set<std::string>> failed;
   std::string verdicts;
-  for (const auto& [bench, run, judged_first, failed_roles] :
-       {std::tuple{"IMU", &imu, &a.imu_judged, &failed.first},
-        std::tuple{"ADS", &ads, &a.ads_judged, &failed.second}}) {
+  for (const auto& [bench, run, failed_roles] :
+       {std::tuple{"IMU", &imu, &failed.first}, std::tuple{"ADS", &ads, &failed.second}}) {
     if (run->station_file.empty()) continue;
     const std::filesystem::path dir = run->runs.front().run_dir;
     const AcceptanceRun judged = JudgeIntoRecords(c, dir, attempt, spec, role_of_serial);
-    if (attempt == 1) *judged_first = judged;
     if (attempt > 1) a.retest_runs.emplace_back(dir, run == &imu);
     for (const UnitAcceptance& u : judged.units) {
       LastAttempt& last = a.last[u.serial];

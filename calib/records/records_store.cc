@@ -49,6 +49,10 @@ void RecordsStore::EnsureUnit(const std::string& serial, const std::string& kind
       .Run();
 }
 
+void RecordsStore::EnsureUnit(const std::string& serial) {
+  EnsureUnit(serial, KindOfSerial(database_.file(), serial));
+}
+
 bool RecordsStore::AddRun(const RunRecord& run) {
   SqliteTransaction transaction(database_);
   SqliteStatement existing(database_,
@@ -173,7 +177,7 @@ bool RecordsStore::AddAcceptance(const std::string& source_sha256,
   if (existing.Step()) return false;
   const std::string now = UtcNowIso8601();
   for (const AcceptancePointRecord& point : points) {
-    EnsureUnit(point.serial, KindOfSerial(database_.file(), point.serial));
+    EnsureUnit(point.serial);
     SqliteStatement(database_,
                     "INSERT INTO acceptance_results (serial, source_sha256, run_id, quantity, "
                     "condition, error, tolerance, unit, pass, recorded_utc, outcome, "

@@ -169,6 +169,8 @@ class RecordsStore {
   struct ReadOnly {};
   RecordsStore(const std::filesystem::path& file, ReadOnly);
   void EnsureUnit(const std::string& serial, const std::string& kind);
+  /// EnsureUnit with the kind its serial names ("IMU-…", "ADS-…").
+  void EnsureUnit(const std::string& serial);
 
   SqliteDatabase database_;
 };

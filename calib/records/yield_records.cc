@@ -110,7 +110,7 @@ bool RecordsStore::AddAcceptanceAttempt(const AcceptanceAttemptRecord& a) {
         existing.Text(0),
         a.source_sha256));
   }
-  EnsureUnit(a.serial, a.serial.rfind("IMU-", 0) == 0 ? "imu" : "ads");
+  EnsureUnit(a.serial);
   SqliteStatement(database_,
                   "INSERT INTO acceptance_attempts (campaign, serial, role, attempt, run_id, "
                   "source_sha256, outcome, recorded_utc) VALUES (?, ?, ?, ?, ?, ?, ?, ?)")

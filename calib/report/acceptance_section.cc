@@ -52,11 +52,13 @@ HtmlTable SummaryTable(const AcceptanceFile& f) {
   return summary;
 }
 
-HtmlTable WorstTable(const AcceptanceFile& f) {
-  HtmlTable worst{fmt::format("{}: worst margin per quantity (tolerance - |error|)", f.unit.serial),
+}  // namespace
+
+HtmlTable WorstMarginTable(const UnitAcceptance& unit) {
+  HtmlTable worst{fmt::format("{}: worst margin per quantity (tolerance - |error|)", unit.serial),
                   {"quantity", "margin", "unit", "step", "point", "verdict"},
                   {}};
-  for (const WorstMargin& w : f.unit.WorstMargins()) {
+  for (const WorstMargin& w : unit.WorstMargins()) {
     worst.rows.push_back({w.quantity,
                           FormatNumber(w.margin, 4),
                           w.unit,
@@ -66,6 +68,8 @@ HtmlTable WorstTable(const AcceptanceFile& f) {
   }
   return worst;
 }
+
+namespace {
 
 HtmlTable PointsTable(const AcceptanceFile& f) {
   HtmlTable points{fmt::format("{}: acceptance points (mean over the step's packets; noise 1 "
@@ -111,7 +115,7 @@ std::string AcceptanceSectionBody(const std::vector<AcceptanceFile>& files) {
   std::string html;
   for (const AcceptanceFile& f : files) {
     html += RenderTable(SummaryTable(f));
-    html += RenderTable(WorstTable(f));
+    html += RenderTable(WorstMarginTable(f.unit));
     html += RenderTable(PointsTable(f));
   }
   return html;

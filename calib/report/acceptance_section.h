@@ -10,8 +10,12 @@
 #include <vector>
 
 #include "calib/acceptance/acceptance_file.h"
+#include "calib/report/html_builder.h"
 
 namespace adahrs::calib {
+
+/// The unit's worst margin per quantity: quantity, margin, unit, step, point, PASS/FAIL.
+HtmlTable WorstMarginTable(const UnitAcceptance& unit);
 
 /// The section body for the acceptance files of a run (one document per unit).
 std::string AcceptanceSectionBody(const std::vector<AcceptanceFile>& files);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "calib/report/acceptance_section.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/pdf_render.h"
 #include "common/atomic_file.h"
@@ -49,20 +50,6 @@ HtmlTable IdentityTable(const CertificateInputs& in) {
   const AcceptanceFileSpecification& s = in.acceptance.specification_id;
   t.rows.push_back({"specification", s.name + " version " + s.version});
   t.rows.push_back({"specification SHA-256", s.sha256.empty() ? "not recorded" : s.sha256});
-  return t;
-}
-
-HtmlTable VerdictTable(const UnitAcceptance& u) {
-  HtmlTable t{"Worst margin per quantity (tolerance - |error|; negative fails)",
-              {"quantity", "margin", "unit", "where", "verdict"},
-              {}};
-  for (const WorstMargin& w : u.WorstMargins()) {
-    t.rows.push_back({w.quantity,
-                      FormatNumber(w.margin, 4),
-                      w.unit,
-                      fmt::format("step {}: {}", w.step, w.point),
-                      w.margin >= 0.0 ? "PASS" : "FAIL"});
-  }
   return t;
 }
 
@@ -123,7 +110,7 @@ std::string CertificateHtml(const CertificateInputs& in) {
       u.points.size(),
       u.marginal());
   body += RenderTable(IdentityTable(in));
-  body += RenderTable(VerdictTable(u));
+  body += RenderTable(WorstMarginTable(u));
   body += fmt::format(
       "<p>Issued {} by {}; adahrs {}. This certificate states the acceptance of the unit above as "
       "recorded against the specification named; the acceptance.json it comes from holds every "

@@ -54,6 +54,17 @@ def check_report_page_one(run_dir, judged):
     text = "".join(root.itertext())
     if "is missing from step" in text:
         fail(f"{run_dir}/report.html still says a unit is missing from a step")
+    # A real browser loads the page: Chromium's DOM after load holds the verdict and every figure.
+    dom = subprocess.run(
+        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync",
+         f"--user-data-dir={run_dir.parent.parent / 'chromium-profile'}", "--dump-dom",
+         (run_dir / "report.html").as_uri()], capture_output=True, text=True, timeout=120).stdout
+    svgs = sum(1 for e in root.iter() if e.tag.split("}")[-1] == "svg")
+    has_verdict = 'id="verdict"' in dom
+    if not has_verdict or dom.count("<svg") != svgs or svgs < 3:
+        fail(f"Chromium's DOM of {run_dir}/report.html: verdict section {has_verdict}, "
+             f"{dom.count('<svg')} svg of {svgs} in the file")
 
 
 def pdf_text(pdf):
