@@ -27,8 +27,15 @@ void RegisterRecordsCommand(CLI::App& app) {
   auto run_dir = std::make_shared<std::string>();
   add_run->add_option("DIR", *run_dir, "Run directory")->required();
   add_run->add_option("--db", *db, "Records database file")->capture_default_str();
-  add_run->callback([run_dir, db] {
-    const calib::RunRecord run = calib::RunRecordFromDirectory(*run_dir);
+  auto accept = std::make_shared<bool>(false);
+  add_run->add_flag("--accept-sample-time-defects",
+                    *accept,
+                    "Record the run although rows' sample times left the bound of their line's "
+                    "buffering (docs/recording-format.md \"Sample time\")");
+  add_run->callback([run_dir, db, accept] {
+    calib::RunRecordOptions options;
+    options.accept_sample_time_defects = *accept;
+    const calib::RunRecord run = calib::RunRecordFromDirectory(*run_dir, options);
     calib::RecordsStore store(*db);
     const bool added = store.AddRun(run);
     std::cout << fmt::format("run {} ({} units, {} steps, recording sha256 {}): {}\n",

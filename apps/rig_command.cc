@@ -21,6 +21,7 @@ void RegisterRigCommand(CLI::App& app) {
     double time_scale = 0.0;
     bool print_default = false;
     bool lockstep = false;
+    bool packet_log = false;
   };
   auto options = std::make_shared<Options>();
   cmd->add_option("--config", options->config_path, "Rig configuration JSON (default: built in)");
@@ -34,6 +35,9 @@ void RegisterRigCommand(CLI::App& app) {
   cmd->add_flag("--lockstep",
                 options->lockstep,
                 "The clock waits for every reading client; --time-scale is its top speed");
+  cmd->add_flag("--packet-log",
+                options->packet_log,
+                "Log every unit packet's sample index in the run directory's packets/<role>.txt");
   cmd->add_option("--run-dir",
                   options->run_dir,
                   "Run directory for truth/ and ports/ (default: the manifest's directory)");
@@ -54,6 +58,7 @@ void RegisterRigCommand(CLI::App& app) {
             : rig_sim::RigConfig::Load(options->config_path);
     if (options->time_scale > 0.0) config.time_scale = options->time_scale;
     if (options->lockstep) config.lockstep = true;
+    if (options->packet_log) config.packet_log = true;
     const std::filesystem::path manifest = std::filesystem::absolute(options->manifest_path);
     const std::filesystem::path run_dir =
         options->run_dir.empty() ? manifest.parent_path() : std::filesystem::path(options->run_dir);

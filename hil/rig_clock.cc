@@ -99,7 +99,9 @@ RigClock::RigClock(const std::filesystem::path& path, double stall_limit_wall_s)
     throw std::runtime_error(fmt::format(
         "rig clock {}: not an ADAHRSCK version {} clock file", path.string(), kVersion));
   }
-  start_s_ = RigTimeS();
+  // The last whole counter turn of the rig's frames: a unit on the rig counts its packets on
+  // them from the rig's start, so a sample time taken from its counter keeps its phase here.
+  start_s_ = static_cast<double>(Frames() / kCounterTurnFrames * kCounterTurnFrames) * frame_s_;
 }
 
 RigClock::~RigClock() {

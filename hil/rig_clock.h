@@ -36,7 +36,14 @@ class RigClockWriter {
   void* map_ = nullptr;
 };
 
-/// A Clock on the rig's published frame count. NowS() is rig seconds since this clock was made;
+/// Frames in a turn of a unit's 8-bit packet counter (docs/unit-protocol.md).
+inline constexpr uint64_t kCounterTurnFrames = 256;
+
+/// A Clock on the rig's published frame count. NowS() is rig seconds since the last whole turn
+/// of kCounterTurnFrames frames before this clock was made (0…2.55 s when made): the rig's units
+/// sample on its frames and count their packets from its start (docs/rig.md "Clock file"), so the
+/// sample time a recording derives from a unit's counter (docs/recording-format.md "Sample time")
+/// keeps the rig's phase on this time base instead of a random part of a counter turn.
 /// SleepS() waits until the rig's clock has moved that far (it throws std::runtime_error naming
 /// the file if the rig's clock stands still for `stall_limit_wall_s` of wall time: a rig that
 /// stopped). time_scale() is the rig's nominal speed (a lockstep rig may run slower).

@@ -10,6 +10,7 @@ ByteFaultDevice::ByteFaultDevice(std::unique_ptr<SerialDevice> inner, uint64_t s
       to_device_rng_(common::Rng::Derive(seed, 1)),
       to_client_rng_(common::Rng::Derive(seed, 2)) {
   if (!inner_) throw std::invalid_argument("ByteFaultDevice around no device");
+  packet_count_ = inner_->DataPacketCount();
 }
 
 std::vector<std::string> ByteFaultDevice::FaultNames() {
@@ -79,6 +80,7 @@ void ByteFaultDevice::Advance(double now_s, double dt_s, RigEnvironment& env) {
 void ByteFaultDevice::TakeOutput(double now_s, std::vector<uint8_t>& out) {
   const size_t from = out.size();
   inner_->TakeOutput(now_s, out);
+  if (!state_.silent && !state_.garbage) packet_count_ = inner_->DataPacketCount();
   if (state_.silent) {
     counters_.bytes_silenced += out.size() - from;
     out.resize(from);

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,9 @@ class ByteFaultDevice : public SerialDevice {
   void TakeOutput(double now_s, std::vector<uint8_t>& out) override;
   std::vector<std::string> PhysicalFaults() const override { return inner_->PhysicalFaults(); }
   std::string LineReport() const override { return inner_->LineReport(); }
+  /// The wrapped unit's count as of the last output that reached the line whole in number of
+  /// bytes (not silent, not garbage): packets the client can never read are not counted for it.
+  std::optional<uint64_t> DataPacketCount() const override { return packet_count_; }
   void SetPhysicalFault(const std::string& fault, bool on) override {
     inner_->SetPhysicalFault(fault, on);
   }
@@ -81,6 +85,7 @@ class ByteFaultDevice : public SerialDevice {
   common::Rng to_device_rng_;
   common::Rng to_client_rng_;
   std::vector<uint8_t> in_;
+  std::optional<uint64_t> packet_count_;
 };
 
 }  // namespace adahrs::rig_sim

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <deque>
 #include <future>
+#include <optional>
 #include <stdexcept>
 
 #include <sys/inotify.h>
@@ -78,6 +79,12 @@ struct DeviceHost::Port {
   // Clients holding the slave path open (inotify watch `watch`; -1 without one).
   int watch = -1;
   int clients_open = 0;
+  // Lockstep with a clock file, a unit port: its slot in the port counts file, the reader's
+  // count at the last look and when it last changed.
+  std::optional<size_t> count_slot;
+  uint64_t reader_token = 0;  // the reader's token acknowledged last
+  uint64_t consumed = 0;
+  std::chrono::steady_clock::time_point consumed_changed;
 };
 
 DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
@@ -230,12 +237,47 @@ size_t DeviceHost::NoteReader(Port& port, std::chrono::steady_clock::time_point 
 
 bool DeviceHost::HeldByAReader() {
   const auto now = std::chrono::steady_clock::now();
+  if (port_counts_) NoteAttachments(now);
   bool held = false;
   for (auto& port : ports_) {
     const size_t unread = NoteReader(*port, now);
+    // An attached reader's lag holds the clock whatever the bytes rules make of the port: its
+    // count is exact, and it detaches when it stops reading (or stands still, ReaderLags).
+    if (port->count_slot && ReaderLags(*port, now)) held = true;
     if (ClientReads(*port, now) && port->out.size() + unread > kLockstepBudgetBytes) held = true;
   }
   return held;
+}
+
+void DeviceHost::NoteAttachments(std::chrono::steady_clock::time_point now) {
+  for (auto& port : ports_) {
+    if (!port->count_slot) continue;
+    const hil::RigPortCountsWriter::Reader reader = port_counts_->ReaderOf(*port->count_slot);
+    if (reader.token == 0 || reader.token == port->reader_token) continue;
+    // A reader restarted its stream: what waits in the backlog was counted before it, so it goes
+    // as a flush of the line would take it (the reader flushes the kernel's queue next).
+    bytes_lost_ += port->out.size();
+    port->bytes_unread += port->out.size();
+    port->out.clear();
+    port->reader_token = reader.token;
+    port->consumed = reader.consumed;
+    port->consumed_changed = now;
+    port_counts_->Acknowledge(*port->count_slot, reader.token);
+  }
+}
+
+bool DeviceHost::ReaderLags(Port& port, std::chrono::steady_clock::time_point now) {
+  const hil::RigPortCountsWriter::Reader reader = port_counts_->ReaderOf(*port.count_slot);
+  if (reader.token == 0 || reader.token != port.reader_token) return false;
+  if (reader.consumed != port.consumed) {
+    port.consumed = reader.consumed;
+    port.consumed_changed = now;
+  }
+  // A reader whose count stands still that long is not reading packets (a line that brings it
+  // none, a client that stopped polling): the bytes rules alone then decide.
+  if (now - port.consumed_changed > std::chrono::duration<double>(kLockstepStallLimit_s))
+    return false;
+  return port.device->DataPacketCount().value_or(0) > reader.consumed + hil::kLockstepPacketBudget;
 }
 
 void DeviceHost::WriteOutputs() {
@@ -305,7 +347,11 @@ void DeviceHost::OnTick() {
   const auto target = static_cast<uint64_t>(wall_s * pace / kWorldFrame_s);
   // Bound the work per tick so reads and control actions interleave with frames.
   bool held = false;
-  for (int i = 0; i < 200 && frames_done_.load() < target; ++i) {
+  // With port counts, at most the frames between two looks per tick: a tick's bytes are written
+  // before its frames are published, so a reader may see a packet that many frames ahead of the
+  // clock (0.1 s; hil::kLockstepLineBuffering_s).
+  const int max_frames = port_counts_ ? kLockstepCheckFrames : 200;
+  for (int i = 0; i < max_frames && frames_done_.load() < target; ++i) {
     if (lockstep_ && i % kLockstepCheckFrames == 0 && HeldByAReader()) {
       held = true;
       break;
@@ -322,6 +368,8 @@ void DeviceHost::OnTick() {
     std::lock_guard<std::mutex> lock(env_mutex_);
     env_snapshot_ = env_;
   }
+  // Also before the bytes are written: a reader that has read a packet finds it counted.
+  PublishPacketCounts();
   WriteOutputs();
   if (clock_file_) clock_file_->Publish(frames_done_.load());
   if (!held) NoteShortfall(target, 0);
@@ -353,9 +401,32 @@ void DeviceHost::SetClockFile(const std::filesystem::path& path) {
   clock_file_ = std::make_unique<hil::RigClockWriter>(path, kWorldFrame_s, time_scale_);
 }
 
+void DeviceHost::PublishPacketCounts() {
+  if (!port_counts_) return;
+  for (const auto& port : ports_) {
+    if (port->count_slot)
+      port_counts_->PublishProduced(*port->count_slot, port->device->DataPacketCount().value_or(0));
+  }
+}
+
 void DeviceHost::Start() {
   if (started_) return;
   started_ = true;
+  if (clock_file_) {
+    // Counts only in lockstep, where the hold bounds a reader's lag; a file left by an earlier
+    // lockstep rig would mislead this one's readers.
+    const std::filesystem::path path = hil::PortCountsPath(clock_file_->path());
+    std::filesystem::remove(path);
+    if (lockstep_) {
+      std::vector<std::string> counted;
+      for (auto& port : ports_) {
+        if (!port->device->DataPacketCount()) continue;
+        port->count_slot = counted.size();
+        counted.push_back(port->pty.slave_path());
+      }
+      port_counts_ = std::make_unique<hil::RigPortCountsWriter>(path, counted);
+    }
+  }
   for (auto& port : ports_) ArmRead(*port);
   asio::post(impl_->io, [this] {
     // The clock starts when the frame thread runs, not when it was asked to.

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "hil/rig_clock.h"
+#include "hil/rig_port_counts.h"
 #include "hil/transport/pty.h"
 #include "rig_sim/rig_environment.h"
 #include "rig_sim/serial_device.h"
@@ -40,6 +41,8 @@ inline constexpr double kClientStallLimit_s = 2.0;
 /// Longest wait between ticks when the host is on time, s.
 inline constexpr double kTickLimit_s = 0.002;
 /// Lockstep: unread bytes per reading port (host backlog + pty input queue) that hold the clock.
+/// A unit port's reader that publishes its packet count (hil/rig_port_counts.h) also holds it
+/// while it lags its unit by more than hil::kLockstepPacketBudget packets.
 inline constexpr size_t kLockstepBudgetBytes = 16 * 1024;
 /// Lockstep: wall time without reading after which a client counts as absent.
 inline constexpr double kLockstepStallLimit_s = 5.0;
@@ -113,6 +116,10 @@ class DeviceHost {
   void WriteOutputs();
   // Lockstep: true while a reading client has more than the budget unread.
   bool HeldByAReader();
+  // Lockstep: true while `port`'s attached reader lags its unit by more than the packet budget.
+  bool ReaderLags(Port& port, std::chrono::steady_clock::time_point now);
+  // Lockstep: drops the backlog of each port whose reader attached anew, and acknowledges it.
+  void NoteAttachments(std::chrono::steady_clock::time_point now);
   // Lockstep: the pty's unread bytes; a client that took bytes since the last look is progress.
   size_t NoteReader(Port& port, std::chrono::steady_clock::time_point now);
   bool ClientReads(const Port& port, std::chrono::steady_clock::time_point now) const;
@@ -139,6 +146,10 @@ class DeviceHost {
   bool lockstep_ = false;
   bool opens_known_ = true;
   std::unique_ptr<hil::RigClockWriter> clock_file_;
+  // Lockstep with a clock file: each counted port's packets and its reader's
+  // (hil/rig_port_counts.h).
+  std::unique_ptr<hil::RigPortCountsWriter> port_counts_;
+  void PublishPacketCounts();
   std::thread thread_;
   bool started_ = false;
 };

@@ -104,7 +104,9 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
                       {"serial_number", slot.serial_number},
                       {"baud", slot.baud},
                       {"truth", "truth/" + unit.params.serial + ".json"}});
-    AddDevice(std::make_unique<ImuUnitDevice>(unit), "imu", unit.slot, fault_stream++);
+    auto device = std::make_unique<ImuUnitDevice>(unit);
+    LogPackets(*device);
+    AddDevice(std::move(device), "imu", unit.slot, fault_stream++);
   }
   for (size_t i = 0; i < config.ads.size(); ++i) {
     const UnitSlotConfig& slot = config.ads[i];
@@ -129,7 +131,9 @@ Rig::Rig(const RigConfig& config, const std::filesystem::path& run_dir)
                       {"serial_number", slot.serial_number},
                       {"baud", slot.baud},
                       {"truth", "truth/" + unit.params.serial + ".json"}});
-    AddDevice(std::make_unique<AdsUnitDevice>(unit), "ads", -1, fault_stream++);
+    auto device = std::make_unique<AdsUnitDevice>(unit);
+    LogPackets(*device);
+    AddDevice(std::move(device), "ads", -1, fault_stream++);
   }
   control_ = std::make_unique<RigControl>(targets_, config.time_scale);
   host_->SetLockstep(config.lockstep);
@@ -211,7 +215,19 @@ void Rig::Start(const std::filesystem::path& manifest_path) {
 
 void Rig::Stop() {
   host_->Stop();
+  for (auto& log : packet_logs_) log->flush();
   RemoveManifestAndLinks();
+}
+
+void Rig::LogPackets(UnitDevice& device) {
+  if (!config_.packet_log) return;
+  const std::filesystem::path dir = run_dir_ / "packets";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / (device.role() + ".txt");
+  auto log = std::make_unique<std::ofstream>(path);
+  if (!*log) throw std::runtime_error(path.string() + ": cannot write the packet log");
+  device.SetPacketLog(log.get());
+  packet_logs_.push_back(std::move(log));
 }
 
 void Rig::RemoveManifestAndLinks() {

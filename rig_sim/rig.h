@@ -7,6 +7,8 @@
 // instrument's own role, "imu1"…"imu4", "ads1"…, "control".
 // Files in the run directory:
 //   truth/<serial>.json   every simulated unit's drawn parameters (written when the rig is built)
+//   packets/<role>.txt    with the config's packet_log: every packet each unit sent
+//                         (UnitDevice::SetPacketLog)
 //   ports/<role>          symlink to the role's slave device (stable names for station files)
 // and the manifest (role → slave path, links, units, instruments; docs/rig.md "Manifest"),
 // written atomically (temporary file + rename) once every port is open and the clock runs, and
@@ -14,6 +16,7 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -25,6 +28,7 @@
 #include "rig_sim/control_port.h"
 #include "rig_sim/device_host.h"
 #include "rig_sim/rig_config.h"
+#include "rig_sim/unit_device.h"
 
 namespace adahrs::rig_sim {
 
@@ -71,6 +75,8 @@ class Rig {
                  const std::string& kind,
                  int imu_slot,
                  uint64_t fault_seed);
+  // Opens packets/<role>.txt for a unit when the config asks for the packet log.
+  void LogPackets(UnitDevice& device);
   void WriteLinks() const;
   void RemoveManifestAndLinks();
 
@@ -79,6 +85,7 @@ class Rig {
   std::filesystem::path manifest_path_;  ///< written by Start, removed by Stop
   std::unique_ptr<DeviceHost> host_;
   std::unique_ptr<RigControl> control_;
+  std::vector<std::unique_ptr<std::ofstream>> packet_logs_;  ///< written on the frame thread
   std::vector<ControlTarget> targets_;
   std::map<std::string, std::string> ports_;
   nlohmann::json units_ = nlohmann::json::array();

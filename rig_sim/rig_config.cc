@@ -133,6 +133,7 @@ RigConfig RigConfig::FromJson(const nlohmann::json& json, const std::string& sou
   config.time_scale = root.Number("time_scale", 0.01, 100000.0, "simulated s per wall s");
   config.initial_air_c = root.Number("initial_air_c", -60.0, 100.0, "degC");
   if (root.Has("lockstep")) config.lockstep = root.Flag("lockstep");
+  if (root.Has("packet_log")) config.packet_log = root.Flag("packet_log");
 
   // A unit's "model" file is named relative to the config file's folder.
   const std::filesystem::path base_dir = std::filesystem::path(source).parent_path();

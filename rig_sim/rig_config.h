@@ -1,14 +1,15 @@
 // The rig's configuration file (JSON, docs/rig.md "Configuration"): the station (name,
 // latitude_deg, height_m → local gravity by WGS-84 normal gravity, common/gravity.h; supply_v), the
-// time scale and lockstep, initial_air_c, the units on their ports (model_profile, truth_variant,
-// imu and ads entries of 0…4 each: serial_number, seed, baud, an IMU's fixture orientation code),
-// one section per instrument kind present (InstrumentKinds(), read by that instrument's factory;
-// a kind left out is not on this rig), and the faults switched on at start.
-// Every value is read through common::ParamReader: unknown keys, wrong types and values out of
-// range are refused with the file and JSON path. Roles and fault names are checked when the rig is
-// built (rig.h), against the devices themselves.
-// Units in the key names (deg, m, V, degC); time_scale in simulated seconds per wall second.
-// Every key with its range: docs/rig.md ("Configuration").
+// time scale, lockstep and packet_log (every unit packet's sample index logged in the run
+// directory's packets/<role>.txt, UnitDevice::SetPacketLog), initial_air_c, the units on their
+// ports (model_profile, truth_variant, imu and ads entries of 0…4 each: serial_number, seed, baud,
+// an IMU's fixture orientation code), one section per instrument kind present (InstrumentKinds(),
+// read by that instrument's factory; a kind left out is not on this rig), and the faults switched
+// on at start. Every value is read through common::ParamReader: unknown keys, wrong types and
+// values out of range are refused with the file and JSON path. Roles and fault names are checked
+// when the rig is built (rig.h), against the devices themselves. Units in the key names (deg, m, V,
+// degC); time_scale in simulated seconds per wall second. Every key with its range: docs/rig.md
+// ("Configuration").
 #pragma once
 
 #include <cstdint>
@@ -69,6 +70,7 @@ struct RigConfig {
   StationConfig station;
   double time_scale = 1.0;
   bool lockstep = false;
+  bool packet_log = false;  ///< packets/<role>.txt: every unit packet's sample (unit_device.h)
   double initial_air_c = 25.0;
   sensor_sim::ModelProfile model_profile = sensor_sim::ModelProfile::kTruth;
   sensor_sim::TruthVariant truth_variant = sensor_sim::TruthVariant::kStandard;

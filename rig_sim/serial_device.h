@@ -49,6 +49,11 @@ class SerialDevice {
   /// when the device keeps no such counts.
   virtual std::string LineReport() const { return ""; }
 
+  /// A unit's data packets queued for its client, counted on the unit's 8-bit packet counter
+  /// unwrapped (the last packet's index + 1; hil/rig_port_counts.h); nullopt for a device that
+  /// sends no counted packets.
+  virtual std::optional<uint64_t> DataPacketCount() const { return std::nullopt; }
+
   /// The GPIB address a client must address behind this port (a GPIB adapter's instrument), for
   /// the manifest; nullopt for a device on the serial line itself.
   virtual std::optional<int> GpibAddress() const { return std::nullopt; }

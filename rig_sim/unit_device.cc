@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -18,6 +19,9 @@ bool IsResetAck(const uint8_t* frame, uint16_t length) {
          frame[fm::kFrameHeaderBytes] == static_cast<uint8_t>(fm::MaintenanceCommand::kReset) &&
          frame[fm::kFrameHeaderBytes + 1] == static_cast<uint8_t>(fm::ResultCode::kAck);
 }
+
+// Offset of a frame's sequence byte (docs/unit-protocol.md §2).
+constexpr size_t kSequenceOffset = 4;
 
 }  // namespace
 
@@ -57,12 +61,33 @@ void UnitDevice::Advance(double now_s, double, RigEnvironment& env) {
     const uint16_t length = Acquire(
         sample_s, env, powered_, handler_, frame_.data(), static_cast<uint16_t>(frame_.size()));
     if (length == 0) continue;
+    const uint8_t seq = frame_[kSequenceOffset];
+    last_index_ = last_index_ ? *last_index_ + ((seq - *last_index_) & 0xFFu) : uint64_t{seq};
     if (line_.Queue({frame_.data(), length}, sample_s)) {
       ++counters_.packets_sent;
+      if (!unplugged_) packet_count_ = *last_index_ + 1;
+      if (packet_log_ != nullptr) LogPacket(length);
     } else {
       ++counters_.packets_dropped;
     }
   }
+}
+
+void UnitDevice::LogPacket(uint16_t length) {
+  constexpr size_t kFingerprintBytes = 8;
+  char line[64];
+  int n = std::snprintf(line,
+                        sizeof line,
+                        "%llu %u ",
+                        static_cast<unsigned long long>(samples_done_),
+                        static_cast<unsigned>(frame_[kSequenceOffset]));
+  for (size_t i = 0; i < kFingerprintBytes && fm::kFrameHeaderBytes + i < length; ++i) {
+    n += std::snprintf(line + n,
+                       sizeof line - static_cast<size_t>(n),
+                       "%02x",
+                       static_cast<unsigned>(frame_[fm::kFrameHeaderBytes + i]));
+  }
+  *packet_log_ << line << '\n';
 }
 
 std::string UnitDevice::LineReport() const {

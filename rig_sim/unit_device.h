@@ -14,6 +14,8 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -58,6 +60,12 @@ class UnitDevice : public SerialDevice {
   bool unplugged() const { return unplugged_; }
   bool powered() const { return powered_; }
   int baud() const { return line_.baud(); }
+  std::optional<uint64_t> DataPacketCount() const override { return packet_count_; }
+  /// Writes a line per data packet queued from now on to `log` (nullptr: off): the sample index
+  /// since the rig started, the packet's sequence counter and its first 8 payload bytes in hex
+  /// (IMU: az1_t1 az1_t2 ax1_t1 ax1_t2; ADS: ps_cnt pt_cnt, little-endian), so a recording's rows
+  /// can be matched to the samples the unit took (simulator truth, docs/rig.md "Run directory").
+  void SetPacketLog(std::ostream* log) { packet_log_ = log; }
 
  protected:
   UnitDevice(std::string role, const firmware_model::UnitIdentity& identity, int baud);
@@ -77,6 +85,12 @@ class UnitDevice : public SerialDevice {
   firmware_model::MaintenanceHandler handler_;
   PacedLine line_;
   uint64_t samples_done_ = 0;
+  // The packet counter unwrapped: the last encoded packet's index (steps of the 8-bit counter,
+  // whatever became of the packets), and that + 1 of the last one queued for a plugged line.
+  std::optional<uint64_t> last_index_;
+  std::ostream* packet_log_ = nullptr;
+  void LogPacket(uint16_t length);
+  uint64_t packet_count_ = 0;
   double last_now_s_ = 0.0;
   bool unplugged_ = false;
   bool powered_ = true;

@@ -128,6 +128,10 @@ BatchUnits IdentifyUnits(const std::vector<hil::UnitLink*>& links, bool imu_batc
     u.slot = link->entry().slot;
     u.constants_version = id.constants_version;
     u.mode = id.mode;
+    if (const std::optional<hil::LineTiming> line = link->line_timing()) {
+      u.line_buffering_s = line->buffering_s;
+      u.clock_drift_ppm = line->drift_ppm;
+    }
     out.units.push_back(std::move(u));
   }
   return out;
@@ -200,6 +204,7 @@ hil::RecordingMeta NewRunMeta(const Session& s, const std::vector<hil::Recording
 // The run's meta as it starts: new, or the interrupted run's; either way running, with the
 // instruments of this session.
 hil::RecordingMeta StartingRunMeta(const Session& s,
+                                   const hil::Clock& clock,
                                    const std::optional<hil::RecordingMeta>& old_meta,
                                    const std::vector<hil::UnitLink*>& links,
                                    const BatchUnits& units,
@@ -208,6 +213,9 @@ hil::RecordingMeta StartingRunMeta(const Session& s,
       old_meta ? ResumedRunMeta(*old_meta, s, links, units.serials) : NewRunMeta(s, units.units);
   meta.instruments = std::move(identities);
   meta.status = kStatusRunning;
+  // The resumed clock continues from the last recorded time: the frames the units ran meanwhile
+  // shift the sample times from here (hil/recording/sample_time_check.h).
+  if (old_meta) meta.resumed_t_s.push_back(clock.NowS());
   return meta;
 }
 
@@ -265,7 +273,7 @@ RunSummary Execute(const Session& s,
   const BatchUnits units = IdentifyUnits(links, imu_batch);
   const BatchInstruments batch = BatchInstrumentsFor(instruments, imu_batch);
   hil::RecordingMeta meta =
-      StartingRunMeta(s, old_meta, links, units, IdentifyInstruments(batch, imu_batch));
+      StartingRunMeta(s, clock, old_meta, links, units, IdentifyInstruments(batch, imu_batch));
 
   hil::RecordingWriter writer(s.run_dir, options.storage);
   SharedRecording recording(writer);

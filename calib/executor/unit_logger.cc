@@ -37,7 +37,10 @@ void UnitLogger::Start() {
 
 void UnitLogger::Stop() {
   stop_ = true;
-  if (thread_.joinable()) thread_.join();
+  if (thread_.joinable()) {
+    thread_.join();
+    link_.EndStream();  // a lockstep rig no longer waits for a link nobody reads
+  }
   FailPendingRequests();
 }
 
@@ -171,6 +174,7 @@ void UnitLogger::Record(const std::vector<hil::ReceivedPacket>& packets) {
         row.t_s = p.t_s;
         row.unit = serial_;
         row.seq = p.seq;
+        row.packet_index = p.index;
         row.step = a.step;
         row.tag = tag;
         row.orientation = a.orientation;
@@ -183,6 +187,7 @@ void UnitLogger::Record(const std::vector<hil::ReceivedPacket>& packets) {
         row.t_s = p.t_s;
         row.unit = serial_;
         row.seq = p.seq;
+        row.packet_index = p.index;
         row.step = a.step;
         row.tag = tag;
         row.chamber_c = a.chamber_c;

@@ -29,10 +29,18 @@ constexpr int kOldestMetaFormatVersion = 2;  // the first with run id, status an
 // a unit meta.json does not list, a unit's time going back and a repeated row, and a torn last
 // line unless the run did not complete. A certified record must not stand on rows the pipeline
 // would not trust.
-void CheckRecordingRows(const std::filesystem::path& run_dir, bool complete) {
+void CheckRecordingRows(const std::filesystem::path& run_dir,
+                        bool complete,
+                        bool accept_sample_time_defects) {
   hil::ReadOptions options;
   options.allow_truncated_tail = !complete;
-  hil::StreamRecording(run_dir, {}, options);
+  const hil::Recording rec = hil::StreamRecording(run_dir, {}, options);
+  if (rec.sample_time_defects.empty() || accept_sample_time_defects) return;
+  std::string what =
+      "recording has sample time defects (docs/recording-format.md \"Sample time\"; "
+      "--accept-sample-time-defects records it anyway):";
+  for (const hil::SampleTimeDefect& d : rec.sample_time_defects) what += "\n  " + d.Describe();
+  throw RecordsError(what);
 }
 
 }  // namespace
@@ -68,7 +76,8 @@ RunUnitRecord UnitRecord(const hil::RecordingUnit& unit, const std::string& sour
 
 }  // namespace
 
-RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
+RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir,
+                                 const RunRecordOptions& options) {
   const std::filesystem::path meta_path = run_dir / hil::kMetaJsonName;
   const std::string source = meta_path.string();
   // The file as written is kept in the records beside the fields read from it.
@@ -126,7 +135,7 @@ RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir) {
     run.units.push_back(UnitRecord(meta.units[i], source, i));
   }
   run.meta_json = meta_json.dump();
-  CheckRecordingRows(run_dir, run.status == "complete");
+  CheckRecordingRows(run_dir, run.status == "complete", options.accept_sample_time_defects);
   run.recording_sha256 = RecordingSha256(run_dir);
   return run;
 }

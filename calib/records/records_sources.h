@@ -12,10 +12,18 @@
 
 namespace adahrs::calib {
 
+struct RunRecordOptions {
+  /// Record a run whose recording has sample time defects (hil/recording/sample_time_check.h)
+  /// instead of refusing it.
+  bool accept_sample_time_defects = false;
+};
+
 /// The run, its units and its steps (with each step's rejected time) from `run_dir`, after every
 /// row of its recording was read and checked (refused by file and line: a bad cell, a unit not in
-/// meta.json, a unit's time going backwards, a repeated row).
-RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir);
+/// meta.json, a unit's time going backwards, a repeated row, and unless `options` accept them,
+/// rows whose sample time left the bound of their line's buffering).
+RunRecord RunRecordFromDirectory(const std::filesystem::path& run_dir,
+                                 const RunRecordOptions& options = {});
 
 /// The constants file as the next version of its unit; the file checksum is SHA-256 of its bytes.
 /// Refused (std::runtime_error naming the file and the recording) when a recording it was fitted

@@ -36,7 +36,7 @@ StationInstruments OpenStation(const Station& station, const Clock& clock) {
     out.op = std::make_unique<ConsoleOperator>(std::cin, std::cout);
   }
   for (const UnitEntry& unit : station.units) {
-    out.units.push_back(std::make_unique<UnitLink>(unit, clock));
+    out.units.push_back(std::make_unique<UnitLink>(unit, clock, station.clock_file));
   }
   return out;
 }

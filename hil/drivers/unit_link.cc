@@ -35,8 +35,20 @@ std::string ResponseText(const hil::MaintenanceResponse& response) {
 
 }  // namespace
 
-UnitLink::UnitLink(const UnitEntry& entry, const Clock& clock)
-    : entry_(entry), clock_(clock), port_(OpenPort(entry)) {}
+UnitLink::UnitLink(const UnitEntry& entry,
+                   const Clock& clock,
+                   const std::filesystem::path& clock_file)
+    : entry_(entry), clock_(clock), port_(OpenPort(entry)) {
+  if (!clock_file.empty()) counter_ = RigPortCounter::Open(clock_file, entry.port.path);
+}
+
+std::optional<LineTiming> UnitLink::line_timing() const {
+  if (counter_) return LineTiming{kLockstepLineBuffering_s, 0.0};
+  if (clock_.may_pause() || clock_.time_scale() != 1.0) return std::nullopt;
+  constexpr double kBitsPerByte = 10.0;  // 8N1
+  return LineTiming{kSerialLineBufferBytes * kBitsPerByte / entry_.port.baud + 0.01,
+                    kSerialLineDrift_ppm};
+}
 
 std::chrono::milliseconds UnitLink::ReplyTimeout() const {
   return WallReplyTimeout(clock_, entry_.timeout_ms);
@@ -91,14 +103,30 @@ void UnitLink::Accept(const fm::Frame& frame,
     ++malformed_data_packets_;
     return;
   }
+  if (counter_ && counter_->attached()) {
+    if (const std::optional<uint64_t> index = PacketIndexBelow(packet.seq, produced_)) {
+      packet.index = static_cast<int64_t>(*index);
+      consumed_ = std::max(consumed_, *index + 1);
+    }
+  }
   tracker_.Observe(packet.seq);
   queue_.push_back(std::move(packet));
 }
 
 void UnitLink::RestartStream() {
+  if (counter_) {
+    // The rig drops its backlog for this link before it acknowledges, so what the line brings
+    // after the flush below was counted within the budget of this link's count.
+    consumed_ = counter_->Produced();
+    counter_->Attach(consumed_, kAttachWait_s);
+  }
   port_->DiscardInput();
   queue_.clear();
   tracker_ = hil::SequenceTracker{};
+}
+
+void UnitLink::EndStream() {
+  if (counter_) counter_->Detach();
 }
 
 size_t UnitLink::ReadInto(std::chrono::milliseconds timeout,
@@ -112,9 +140,13 @@ size_t UnitLink::ReadInto(std::chrono::milliseconds timeout,
   }
   if (n == 0) return 0;
   const double t_s = clock_.NowS();
+  // Loaded after the read: every packet read is counted in it, and the rig, held on this link's
+  // count, has run less than a counter turn past them.
+  if (counter_ && counter_->attached()) produced_ = counter_->Produced();
   for (const fm::Frame& frame : reader_.Push(std::span<const uint8_t>(chunk.data(), n))) {
     Accept(frame, t_s, responses);
   }
+  if (counter_ && counter_->attached()) counter_->Consume(consumed_);
   return n;
 }
 

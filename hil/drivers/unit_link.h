@@ -15,8 +15,10 @@
 
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <variant>
@@ -26,6 +28,7 @@
 #include "hil/codecs/unit_protocol_client.h"
 #include "hil/drivers/instrument_port.h"
 #include "hil/instruments/instrument_error.h"
+#include "hil/rig_port_counts.h"
 #include "hil/station.h"
 #include "hil/transport/serial_port.h"
 
@@ -35,23 +38,52 @@ namespace adahrs::hil {
 inline constexpr int kUnitRequestAttempts = 3;
 /// Longest wait of one attempt while data keeps arriving, in reply timeouts.
 inline constexpr int kUnitBacklogPatience = 3;
+/// Longest wall wait for a lockstep rig to take up a restarted stream; without it the link's
+/// packets carry no index.
+inline constexpr double kAttachWait_s = 2.0;
+
+/// How a link's packets reach the PC, as a recording states it (docs/recording-format.md "Sample
+/// time"): the longest a packet waits between its sample and its arrival, s, and how fast the
+/// unit's clock may run apart from the PC's, ppm.
+struct LineTiming {
+  double buffering_s = 0.0;
+  double drift_ppm = 0.0;
+};
+/// A serial line's buffers: the PC's receive buffer (Linux N_TTY_BUF_SIZE) and the unit's
+/// transmit buffer (as the simulated unit's, rig_sim/unit_device.h; the real size is not
+/// documented); the unit's crystal and the PC's clock within 50 ppm each.
+inline constexpr double kSerialLineBufferBytes = 4096.0 + 512.0;
+inline constexpr double kSerialLineDrift_ppm = 100.0;
 
 /// One data packet as received.
 struct ReceivedPacket {
   uint8_t seq = 0;   ///< the unit's 8-bit data sequence counter
   uint8_t tag = 0;   ///< the step TAG the unit held when it sent the packet
   double t_s = 0.0;  ///< clock time of arrival, s
+  /// The packet's index on the lockstep rig's count of the unit's packets (rig_port_counts.h),
+  /// exact; -1 when the rig publishes no count (a real line, a free-running rig).
+  int64_t index = -1;
   std::variant<firmware_model::ImuDataPayload, firmware_model::AdsDataPayload> data;
 };
 
 class UnitLink {
  public:
   /// Opens the unit's port; throws InstrumentError (kNoReply) naming role and port if it cannot.
-  UnitLink(const UnitEntry& entry, const Clock& clock);
+  /// With the station's `clock_file`, a lockstep rig's port counts for the port are read and
+  /// this link's published from RestartStream to EndStream (ReceivedPacket::index; the rig waits
+  /// for this link meanwhile).
+  UnitLink(const UnitEntry& entry,
+           const Clock& clock,
+           const std::filesystem::path& clock_file = {});
   UnitLink(const UnitLink&) = delete;
   UnitLink& operator=(const UnitLink&) = delete;
 
   const UnitEntry& entry() const { return entry_; }
+  /// On a lockstep rig that publishes its port counts: kLockstepLineBuffering_s, no drift. On
+  /// the wall clock unscaled (a serial line): its buffers at the line's rate plus a frame, 100
+  /// ppm. nullopt on a scaled clock without counts (a free-running virtual rig, whose backlog
+  /// has no bound the pipeline knows).
+  std::optional<LineTiming> line_timing() const;
 
   /// IDENTIFY; throws kWrongIdentity when the unit is of the other kind than the station says.
   hil::IdentifyInfo Identify();
@@ -74,6 +106,8 @@ class UnitLink {
   /// and counts loss from the next packet on (a recording that starts now misses nothing before
   /// it; a lockstep rig may have discarded what it sent while nobody read).
   void RestartStream();
+  /// Stops publishing this link's packet count: a lockstep rig no longer waits for it to read.
+  void EndStream();
 
   /// Data frames whose CRC held but whose payload no unit sends (wrong length for its mode, mode
   /// byte out of range), dropped since the link was opened; each also shows as a lost packet.
@@ -110,6 +144,9 @@ class UnitLink {
   hil::SequenceTracker tracker_;
   uint64_t malformed_data_packets_ = 0;
   std::vector<ReceivedPacket> queue_;
+  std::unique_ptr<RigPortCounter> counter_;  // nullptr: no lockstep rig's counts
+  uint64_t produced_ = 0;                    // the rig's count, loaded after the latest read
+  uint64_t consumed_ = 0;                    // the last indexed packet's index + 1
 };
 
 }  // namespace adahrs::hil

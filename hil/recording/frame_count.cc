@@ -13,9 +13,12 @@ int64_t FramesBetween(uint32_t previous_seq, uint32_t seq, double dt_s, double p
   return step + kPacketCounterModulo * std::max<int64_t>(0, std::llround(extra));
 }
 
-int64_t FrameCounter::Next(uint32_t seq, double t_s) {
+int64_t FrameCounter::Next(uint32_t seq, double t_s, std::optional<int64_t> index) {
   int64_t frame = 0;
-  if (last_) {
+  if (last_ && index && last_index_ && *index >= *last_index_) {
+    // Both on the rig's count of this unit's packets (a count that went back is a new rig).
+    frame = last_->frame + (*index - *last_index_);
+  } else if (last_) {
     frame = last_->frame + FramesBetween(last_->seq, seq, t_s - last_->t_s, kUnitFramePeriod_s);
   } else {
     // The frame nearest t_s / period with frame mod 256 = seq mod 256, never negative.
@@ -26,6 +29,7 @@ int64_t FrameCounter::Next(uint32_t seq, double t_s) {
     if (frame < 0) frame += kPacketCounterModulo;
   }
   last_ = FrameState{frame, seq, t_s};
+  last_index_ = index;
   return frame;
 }
 

@@ -42,12 +42,15 @@ class FrameCounter {
  public:
   FrameCounter() = default;
   explicit FrameCounter(FrameState last) : last_(last) {}
-  /// The frame of a packet with counter `seq` (0…255 used) that arrived at `t_s`.
-  int64_t Next(uint32_t seq, double t_s);
+  /// The frame of a packet with counter `seq` (0…255 used) that arrived at `t_s`. With the
+  /// packet's `index` on a lockstep rig's count (hil/rig_port_counts.h) and the previous
+  /// packet's, the step is the difference of the indices, exactly; otherwise FramesBetween.
+  int64_t Next(uint32_t seq, double t_s, std::optional<int64_t> index = std::nullopt);
   const std::optional<FrameState>& last() const { return last_; }
 
  private:
   std::optional<FrameState> last_;
+  std::optional<int64_t> last_index_;  // the last packet's index on a lockstep rig's count
 };
 
 /// The sample time of frame `frame` on the unit's clock, seconds.

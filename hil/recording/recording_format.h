@@ -73,6 +73,9 @@ struct ImuRecordRow {
   /// The unit's frame index (frame_count.h); sample time frame * 10 ms. -1: not known yet, the
   /// writer counts it from seq and t_s.
   int64_t frame = -1;
+  /// The packet's index on a lockstep rig's count of the unit's packets (hil::ReceivedPacket),
+  /// which the writer counts frames by; not written. -1: none.
+  int64_t packet_index = -1;
 };
 
 /// One received ADS packet with the instrument readings current when it arrived.
@@ -95,6 +98,7 @@ struct AdsRecordRow {
   std::optional<double> cas_kt;  ///< surface-mode calibrated airspeed; absent in raw mode
   uint32_t comp_flags = 0;       ///< compensation status flags, 0 when absent
   int64_t frame = -1;            ///< as ImuRecordRow::frame
+  int64_t packet_index = -1;     ///< as ImuRecordRow::packet_index
 };
 
 }  // namespace adahrs::hil

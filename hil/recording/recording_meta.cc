@@ -40,6 +40,8 @@ RecordingUnit UnitFromJson(const ParamReader& r) {
   u.slot = OptionalInteger(r, "slot", INT64_MAX);
   u.constants_version = OptionalInteger(r, "constants_version", INT64_MAX);
   u.mode = OptionalInteger(r, "mode", INT64_MAX);
+  u.line_buffering_s = OptionalNumber(r, "line_buffering_s", 1e6, "s");
+  u.clock_drift_ppm = OptionalNumber(r, "clock_drift_ppm", 1e6, "ppm");
   return u;
 }
 
@@ -53,6 +55,8 @@ json UnitToJson(const RecordingUnit& u) {
   if (u.slot) j["slot"] = *u.slot;
   if (u.constants_version) j["constants_version"] = *u.constants_version;
   if (u.mode) j["mode"] = *u.mode;
+  if (u.line_buffering_s) j["line_buffering_s"] = *u.line_buffering_s;
+  if (u.clock_drift_ppm) j["clock_drift_ppm"] = *u.clock_drift_ppm;
   return j;
 }
 
@@ -122,7 +126,8 @@ constexpr const char* kTyped[] = {"format_version",
                                   "local_gravity_mps2",
                                   "units",
                                   "instruments",
-                                  "rejected_intervals"};
+                                  "rejected_intervals",
+                                  "resumed_t_s"};
 
 void ReadTyped(const json& meta, const ParamReader& r, RecordingMeta* m) {
   m->run_id = OptionalString(r, "run_id");
@@ -158,6 +163,16 @@ void ReadTyped(const json& meta, const ParamReader& r, RecordingMeta* m) {
     const size_t n = r.ArrayLength("rejected_intervals", 0, 10000000);
     for (size_t i = 0; i < n; ++i) {
       m->rejected_intervals.push_back(IntervalFromJson(r.Element("rejected_intervals", i, n)));
+    }
+  }
+  if (r.Has("resumed_t_s")) {
+    m->resumed_t_s.resize(r.ArrayLength("resumed_t_s", 0, 100000));
+    r.NumberArray("resumed_t_s", 0.0, 1e12, "s", m->resumed_t_s);
+    for (size_t i = 1; i < m->resumed_t_s.size(); ++i) {
+      if (m->resumed_t_s[i] < m->resumed_t_s[i - 1]) {
+        r.Fail(r.path() + ".resumed_t_s[" + std::to_string(i) + "]",
+               "goes back from " + json(m->resumed_t_s[i - 1]).dump() + " s");
+      }
     }
   }
 }
@@ -213,6 +228,7 @@ json RecordingMeta::ToJson() const {
   if (has_rejected_intervals || !rejected_intervals.empty()) {
     j["rejected_intervals"] = RejectedIntervalsJson(rejected_intervals);
   }
+  if (!resumed_t_s.empty()) j["resumed_t_s"] = resumed_t_s;
   return j;
 }
 

@@ -5,7 +5,8 @@
 // The station and the sequence are kept as the JSON that was written: the station file's schema is
 // hil::Station's, the sequence language is calib's (SequenceFromJson); each reads its own.
 // Keys only some producers write (a simulation's model_profile, orientation, log_every and chamber
-// ramps; a replay's "replay") are kept in `extra`, as written.
+// ramps; a replay's "replay") are kept in `extra`, as written. The units' line timing and the
+// resume times bound the recording's sample times (hil/recording/sample_time_check.h).
 #pragma once
 
 #include <cstdint>
@@ -38,6 +39,11 @@ struct RecordingUnit {
   std::optional<int64_t> slot;
   std::optional<int64_t> constants_version;
   std::optional<int64_t> mode;
+  /// The unit's line as its frames were counted on (docs/recording-format.md "Sample time"): the
+  /// longest a packet waits between its sample and its arrival, s, and how fast the unit's clock
+  /// may run apart from the run's, ppm. Absent: the recording states no bound (not checked).
+  std::optional<double> line_buffering_s;
+  std::optional<double> clock_drift_ppm;
 };
 
 /// What an instrument of the batch said it is ($.instruments[i]).
@@ -63,6 +69,8 @@ struct RecordingMeta {
   std::optional<std::vector<RecordingInstrument>> instruments;
   std::vector<RejectedInterval> rejected_intervals;
   bool has_rejected_intervals = false;
+  /// The run's time at which each resume began, ascending ($.resumed_t_s; empty when none).
+  std::vector<double> resumed_t_s;
   nlohmann::json extra = nlohmann::json::object();  ///< other keys, as written
 
   /// The unit of `serial`, or nullptr.

@@ -290,7 +290,8 @@ namespace {
 // standard errors.
 class RowOrder {
  public:
-  RowOrder(const RecordingMeta& meta, std::filesystem::path file) : file_(std::move(file)) {
+  RowOrder(const RecordingMeta& meta, std::filesystem::path file)
+      : file_(std::move(file)), sample_times_(meta, file_) {
     for (const RecordingUnit& u : meta.units) {
       if (!u.serial.empty()) last_[u.serial];
     }
@@ -339,8 +340,11 @@ class RowOrder {
     l.t_s = t_s;
     l.seq = seq;
     l.raw = raw;
+    sample_times_.Row(unit, frame, t_s, line);
     return frame;
   }
+
+  std::vector<SampleTimeDefect> Defects() const { return sample_times_.Defects(); }
 
  private:
   struct Last {
@@ -362,6 +366,7 @@ class RowOrder {
   std::filesystem::path file_;
   std::map<std::string, Last> last_;
   bool listed_ = false;
+  SampleTimeCheck sample_times_;
 };
 
 // The raw readings of a row folded into one word: equal for a copied row, all but never for two
@@ -465,6 +470,9 @@ Recording StreamRecording(const std::filesystem::path& run_dir,
     r.frame = ads_order.Check(
         r.unit, r.step, r.t_s, r.seq, RawWord(r), v3 ? ads.Frame(17, 18) : -1, ads.line());
     if (sinks.ads) sinks.ads(std::move(r), ads.line());
+  }
+  for (const RowOrder* order : {&imu_order, &ads_order}) {
+    for (SampleTimeDefect& d : order->Defects()) rec.sample_time_defects.push_back(std::move(d));
   }
   return rec;
 }

@@ -22,6 +22,7 @@
 #include "hil/recording/recording_error.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_meta.h"
+#include "hil/recording/sample_time_check.h"
 
 namespace adahrs::hil {
 
@@ -37,6 +38,9 @@ struct Recording {
   /// What the reader passed over without refusing: columns the format does not know, named with
   /// their file and position.
   std::vector<std::string> notes;
+  /// Units whose rows' sample times left their line's bound (sample_time_check.h), by file; a
+  /// recording defect the reader reports and `records add-run` refuses.
+  std::vector<SampleTimeDefect> sample_time_defects;
 };
 
 /// Reads meta.json, imu.csv and ads.csv of `run_dir`.

@@ -1,5 +1,6 @@
 #include "hil/recording/recording_writer.h"
 
+#include <optional>
 #include <stdexcept>
 
 #include "common/atomic_file.h"
@@ -61,10 +62,14 @@ RecordingWriter::RecordingWriter(const std::filesystem::path& run_dir,
   }
 }
 
-int64_t RecordingWriter::Frame(const std::string& unit, uint32_t seq, double t_s, int64_t frame) {
+int64_t RecordingWriter::Frame(
+    const std::string& unit, uint32_t seq, double t_s, int64_t frame, int64_t packet_index) {
   auto it = frames_.find(unit);
   if (it == frames_.end()) it = frames_.emplace(unit, FrameCounter()).first;
-  if (frame < 0) return it->second.Next(seq, t_s);
+  if (frame < 0) {
+    return it->second.Next(
+        seq, t_s, packet_index >= 0 ? std::optional<int64_t>(packet_index) : std::nullopt);
+  }
   it->second = FrameCounter(FrameState{frame, seq, t_s});
   return frame;
 }
@@ -134,7 +139,7 @@ void RecordingWriter::Append(const ImuRecordRow& r) {
   } else {
     row.Text(",,,,,,,,,,");
   }
-  AppendSampleTime(Frame(r.unit, r.seq, r.t_s, r.frame), &row);
+  AppendSampleTime(Frame(r.unit, r.seq, r.t_s, r.frame, r.packet_index), &row);
   imu_->Append(std::string_view(row.data(), row.size()));
   ++imu_rows_;
 }
@@ -167,7 +172,7 @@ void RecordingWriter::Append(const AdsRecordRow& r) {
   } else {
     row.Text(",,,");
   }
-  AppendSampleTime(Frame(r.unit, r.seq, r.t_s, r.frame), &row);
+  AppendSampleTime(Frame(r.unit, r.seq, r.t_s, r.frame, r.packet_index), &row);
   ads_->Append(std::string_view(row.data(), row.size()));
   ++ads_rows_;
 }

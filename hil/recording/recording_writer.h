@@ -4,7 +4,8 @@
 // hands every row to the kernel (ending the gzip members) and fsyncs both files, which the
 // executor does at every step boundary so that a crash loses nothing that was logged before it.
 // Each row's frame index (the frame and t_sample_s columns) is the row's own when it carries one,
-// else counted per unit from seq and t_s (frame_count.h), continuing an existing file's count.
+// else counted per unit from seq and t_s, or from a lockstep rig's packet index when the row
+// carries one (frame_count.h), continuing an existing file's count.
 #pragma once
 
 #include <filesystem>
@@ -69,7 +70,8 @@ class RecordingWriter {
   std::vector<char> row_buffer_;  ///< the row being formatted (RowText), reused
   // Per unit serial, its frame count (units of both files: serials do not repeat across kinds).
   std::map<std::string, FrameCounter, std::less<>> frames_;
-  int64_t Frame(const std::string& unit, uint32_t seq, double t_s, int64_t frame);
+  int64_t Frame(
+      const std::string& unit, uint32_t seq, double t_s, int64_t frame, int64_t packet_index);
 };
 
 }  // namespace adahrs::hil

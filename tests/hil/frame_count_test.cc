@@ -62,4 +62,20 @@ TEST(FrameCounter, TheFirstFrameIsNearItsArrivalTime) {
 }
 
 }  // namespace
+// With a lockstep rig's packet index, the step is the index difference whatever the arrival
+// times say: a reader held 6 s (more than two counter turns, no new arrival time to tell) then
+// reading a burst still counts every frame; an index that went back (a new rig) falls back to
+// the counter and the time.
+TEST(FrameCounter, StepsByTheRigsPacketIndexWhenItHasOne) {
+  FrameCounter counter;
+  const int64_t first = counter.Next(10, 0.1, 10);
+  EXPECT_EQ(counter.Next(11, 0.11, 11) - first, 1);
+  // 700 packets later (700 mod 256 = 188), all read at one instant 0.2 s after the last.
+  EXPECT_EQ(counter.Next((11 + 700) % 256, 0.31, 711) - first, 701);
+  EXPECT_EQ(counter.Next((11 + 701) % 256, 0.31, 712) - first, 702);
+  // A new rig's index 3: the counter's step from 200 (712 mod 256) to 3 is 59, and 0.59 s
+  // passed, so no whole turn.
+  EXPECT_EQ(counter.Next(3, 0.90, 3) - first, 702 + 59);
+}
+
 }  // namespace adahrs::hil

@@ -26,15 +26,20 @@ class RigClockTest : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
-TEST_F(RigClockTest, ReadsWhatTheRigPublishesFromWhereItWasMade) {
+// From the last whole turn of a unit's 8-bit packet counter (256 frames) before it was made:
+// 1234 frames are 4 turns (1024) and 210 frames.
+TEST_F(RigClockTest, ReadsWhatTheRigPublishesFromTheLastCounterTurnBeforeItWasMade) {
   RigClockWriter writer(dir_ / "clock", 0.01, 250.0);
   writer.Publish(1234);
   const RigClock clock(dir_ / "clock");
   EXPECT_EQ(clock.time_scale(), 250.0);
   EXPECT_DOUBLE_EQ(clock.RigTimeS(), 12.34);
-  EXPECT_EQ(clock.NowS(), 0.0);
+  EXPECT_DOUBLE_EQ(clock.NowS(), 2.10);
   writer.Publish(1534);
-  EXPECT_DOUBLE_EQ(clock.NowS(), 3.0);
+  EXPECT_DOUBLE_EQ(clock.NowS(), 5.10);
+  writer.Publish(100);
+  const RigClock early(dir_ / "clock");
+  EXPECT_DOUBLE_EQ(early.NowS(), 1.0);
   const auto clock_of = MakeClock(250.0, (dir_ / "clock").string());
   EXPECT_NE(dynamic_cast<RigClock*>(clock_of.get()), nullptr);
 }

@@ -74,6 +74,26 @@ class RigProcess {
   }
 
   ~RigProcess() { Stop(); }
+
+  /// Sends SIGTERM and waits for the rig to exit (its exit report is in rig.log, its packet log
+  /// flushed); the directory stays until the destructor.
+  void Terminate() { EndProcess(); }
+
+  /// The rig's built-in configuration (`adahrs rig --print-default-config`).
+  static nlohmann::json BuiltInConfig() {
+    const char* bin_dir = std::getenv("ADAHRS_BIN_DIR");
+    if (bin_dir == nullptr) throw std::runtime_error("RigProcess: ADAHRS_BIN_DIR is not set");
+    const std::string command =
+        (std::filesystem::path(bin_dir) / "adahrs").string() + " rig --print-default-config";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (pipe == nullptr) throw std::runtime_error("RigProcess: cannot run " + command);
+    std::string text;
+    char buffer[4096];
+    size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) text.append(buffer, n);
+    if (::pclose(pipe) != 0) throw std::runtime_error("RigProcess: " + command + " failed");
+    return nlohmann::json::parse(text);
+  }
   RigProcess(const RigProcess&) = delete;
   RigProcess& operator=(const RigProcess&) = delete;
 
@@ -184,8 +204,15 @@ class RigProcess {
   }
 
  private:
-  // SIGTERM, then SIGKILL if the rig has not exited within 10 s; removes the directory.
+  // Ends the process (EndProcess) and removes the directory.
   void Stop() {
+    EndProcess();
+    std::error_code ignored;
+    std::filesystem::remove_all(dir_, ignored);
+  }
+
+  // SIGTERM, then SIGKILL if the rig has not exited within 10 s.
+  void EndProcess() {
     if (pid_ > 0) {
       ::kill(pid_, SIGTERM);
       int status = 0;
@@ -200,21 +227,9 @@ class RigProcess {
       }
     }
     pid_ = -1;
-    std::error_code ignored;
-    std::filesystem::remove_all(dir_, ignored);
   }
 
-  nlohmann::json DefaultConfig() const {
-    const std::string command = binary_.string() + " rig --print-default-config";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) throw std::runtime_error("RigProcess: cannot run " + command);
-    std::string text;
-    char buffer[4096];
-    size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) text.append(buffer, n);
-    if (::pclose(pipe) != 0) throw std::runtime_error("RigProcess: " + command + " failed");
-    return nlohmann::json::parse(text);
-  }
+  nlohmann::json DefaultConfig() const { return BuiltInConfig(); }
 
   void Spawn() {
     const std::string log = (dir_ / "rig.log").string();

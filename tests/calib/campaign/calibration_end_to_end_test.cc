@@ -11,11 +11,17 @@
 //   - every acquiring step complete: rows with the step's index and TAG outside rejected intervals
 //     number exactly the packets the sequence file asks for (the sum of its acquisitions, from the
 //     sequence expansion), for every unit (docs/recording-format.md: tagged rows are exactly the
-//     acquisitions).
+//     acquisitions);
+//   - the units' sample clock (docs/recording-format.md "Sample time"): with no packet lost, each
+//     row is the unit's next frame, so frame - first frame is the row's index, exactly (a phantom
+//     counter turn is a step of 257), and |t_sample_s - t_s| stays within the lockstep line's
+//     buffering: the rig runs at most 100 + 10 frames past what a reader has read and 100 frames
+//     in a tick (docs/rig.md "Port counts file"); 1.2 s.
 // Runs alone (SERIAL in tests/CMakeLists.txt): the run takes both cores for a minute or more.
 // Under ASan/UBSan the build checks memory and arithmetic, not speed: the same code paths run the
 // --quick variants of both sequences (calib/campaign/quick_sequences.h) at 200x with every loss
 // and completeness check.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -29,6 +35,7 @@
 #include "calib/campaign/quick_sequences.h"
 #include "calib/sequence/execution_plan.h"
 #include "calib/sequence/sequence_json.h"
+#include "hil/recording/frame_count.h"
 #include "hil/recording/recording_reader.h"
 #include "tests/support/rig_process.h"
 
@@ -92,6 +99,42 @@ std::map<int, uint8_t> TagPerStep(const std::string& sequence_file) {
     tags[static_cast<int>(a.step)] = a.tag;
   }
   return tags;
+}
+
+// Per unit: frame steps other than 1 between consecutive rows, and the largest |t_sample_s - t_s|.
+template <typename Row>
+void CheckSampleClock(const std::vector<Row>& rows) {
+  constexpr double kLineBuffering_s = 1.2;
+  struct Clock {
+    int64_t rows = 0;
+    int64_t last_frame = 0;
+    int64_t steps_off = 0;
+    double lo_s = 0.0;
+    double hi_s = 0.0;
+  };
+  std::map<std::string, Clock> clocks;
+  for (const Row& row : rows) {
+    const double offset_s = hil::SampleTimeS(row.frame) - row.t_s;
+    Clock& c = clocks[row.unit];
+    if (c.rows++ == 0) {
+      c.lo_s = c.hi_s = offset_s;
+    } else {
+      if (row.frame - c.last_frame != 1) ++c.steps_off;
+      c.lo_s = std::min(c.lo_s, offset_s);
+      c.hi_s = std::max(c.hi_s, offset_s);
+    }
+    c.last_frame = row.frame;
+  }
+  for (const auto& [serial, c] : clocks) {
+    std::printf("%s: %lld rows, t_sample_s - t_s from %+.3f to %+.3f s\n",
+                serial.c_str(),
+                static_cast<long long>(c.rows),
+                c.lo_s,
+                c.hi_s);
+    EXPECT_EQ(c.steps_off, 0) << serial << ": rows whose frame is not the previous row's + 1";
+    // t_s is written to 0.1 ms.
+    EXPECT_LE(std::max(-c.lo_s, c.hi_s), kLineBuffering_s + 1e-4) << serial;
+  }
 }
 
 // Checks seq continuity and per-step completeness for rows of one kind.
@@ -175,6 +218,8 @@ TEST(CalibrationEndToEndTest, FourImusAndOneAdsCalibratedConcurrentlyInLockstepW
   EXPECT_EQ(ads.meta.units.size(), 1u);
   CheckRows(imu, imu.imu, imu_sequence, "imu");
   CheckRows(ads, ads.ads, ads_sequence, "ads");
+  CheckSampleClock(imu.imu);
+  CheckSampleClock(ads.ads);
 }
 
 }  // namespace

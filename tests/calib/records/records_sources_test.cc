@@ -232,4 +232,20 @@ TEST_F(RecordsSourcesTest, ConstantsFilesBecomeVersionsAndTheHistoryShowsThem) {
 }
 
 }  // namespace
+// A recording whose line states its buffering: rows whose sample time left it (a phantom counter
+// turn planted in one unit's frames) are refused by unit and line, unless accepted explicitly.
+TEST_F(RecordsSourcesTest, SampleTimeDefectsAreRefusedUnlessAccepted) {
+  for (auto& unit : meta_["units"]) unit["line_buffering_s"] = 1.2;
+  WriteRun([](int n, hil::ImuRecordRow& r) { r.frame = n / 2; });
+  EXPECT_EQ(ErrorOf(), "accepted");
+  WriteRun([](int n, hil::ImuRecordRow& r) { r.frame = n / 2 + (n >= 7 && n % 2 == 1 ? 256 : 0); });
+  EXPECT_THAT(ErrorOf(),
+              AllOf(HasSubstr("sample time defects"),
+                    HasSubstr("imu.csv: unit IMU-0002: 2 row(s)"),
+                    HasSubstr("the first at line 9 (+2.560 s)")));
+  RunRecordOptions accept;
+  accept.accept_sample_time_defects = true;
+  EXPECT_EQ(RunRecordFromDirectory(dir_ / "run", accept).units.size(), 2u);
+}
+
 }  // namespace adahrs::calib
