@@ -42,8 +42,9 @@ void SampleTimeCheck::Row(const std::string& unit, int64_t frame, double t_s, in
   const double offset_s = SampleTimeS(frame) - t_s;
   if (!u.started || session != u.session) {
     u.session_t_s = t_s;
-    // The first session is held to zero; a resumed one to its first row.
-    u.reference_s = session == 0 ? 0.0 : offset_s;
+    // Every session is held to its first row's offset: on a real line the counter's turns start
+    // anywhere against the run's clock, so the first count is right only modulo a turn's phase.
+    u.reference_s = offset_s;
     u.session = session;
     u.started = true;
   }

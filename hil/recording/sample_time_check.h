@@ -1,12 +1,14 @@
 // The check of a recording's sample times (docs/recording-format.md "Sample time"): a row whose
 // sample time t_sample_s lies farther from its arrival time t_s than its unit's line can buffer
 // is a recording defect (its frame count slipped by whole counter turns, or it waited longer than
-// its line can hold). The bound is the unit's line_buffering_s from meta.json, widened by its
-// clock_drift_ppm over the time since the unit's first row of the session, plus the 10 ms of one
-// frame. A resumed run's clock continues from its last recorded time, so the count of the frames
-// the units ran meanwhile puts a session's offsets anywhere within one counter turn: from each
-// resume ($.resumed_t_s) on, a unit's rows are held to within the bound of that session's first
-// row's offset instead. Units whose line meta.json does not state are not checked.
+// its line can hold). Two rows' waits differ by at most the unit's line_buffering_s from
+// meta.json, widened by its clock_drift_ppm over the time since the unit's first row of the
+// session, plus the 10 ms of one frame: every session (the run's start, each resume
+// $.resumed_t_s) holds a unit's offsets to within that bound of the session's first row's offset.
+// The first count is right only modulo the phase of the unit's counter turn against the run's
+// clock (anywhere on a real line; after a resume, the frames the units ran unheard), so the
+// absolute offset is not judged here (on a lockstep rig the sample clock test holds it against
+// the rig's own packet log). Units whose line meta.json does not state are not checked.
 // SampleTimeCheck collects, per unit and file, the rows outside with the first and the worst.
 // Left out: which count would have been right (a defect says where, not how much).
 #pragma once
@@ -53,7 +55,7 @@ class SampleTimeCheck {
     size_t session = 0;        // resumes before the unit's last row
     bool started = false;      // a row of this session seen
     double session_t_s = 0.0;  // the session's first row: arrival
-    double reference_s = 0.0;  // and the offset the session's rows are held to (0 at first)
+    double reference_s = 0.0;  // and its offset, the one the session's rows are held to
     SampleTimeDefect defect;
   };
   std::vector<double> resumed_t_s_;

@@ -74,6 +74,21 @@ TEST_F(SampleTimeCheckTest, PlantedPhantomTurnsAreReportedByUnitAndLine) {
       << defects[0].Describe();
 }
 
+// A real line: the first row's count is right only modulo its counter turn's phase, here half a
+// turn (1.28 s) off, so the offsets run from +0.28 to +1.27 s, beyond the 1.2 s bound taken from
+// 0 but within it of the first row's; they pass, and a phantom turn after them is still found.
+TEST_F(SampleTimeCheckTest, ARealLinesFirstRowSetsTheOffsetItsRowsAreHeldTo) {
+  Write(Units(1.2), [](const std::string&, int64_t) { return 128; });
+  EXPECT_TRUE(ReadRecording(dir_).sample_time_defects.empty());
+  Write(Units(1.2), [](const std::string& serial, int64_t frame) {
+    return 128 + (serial == "IMU-0001" && frame >= 2000 ? 256 : 0);
+  });
+  const std::vector<SampleTimeDefect> defects = ReadRecording(dir_).sample_time_defects;
+  ASSERT_EQ(defects.size(), 1u);
+  EXPECT_EQ(defects[0].unit, "IMU-0001");
+  EXPECT_EQ(defects[0].first_line, 2 + 2 * 1000);
+}
+
 TEST_F(SampleTimeCheckTest, AResumedSessionIsHeldToItsFirstRow) {
   // From frame 2000 on, a resumed session: the clock continued from the last recorded time while
   // the units ran 7 s (700 frames) unheard, which the count of the first row after the resume
