@@ -105,6 +105,12 @@ void RigPortCountsWriter::Acknowledge(size_t slot, uint64_t token) {
   Word(Slot(map_, slot), kAckOffset).store(token, std::memory_order_release);
 }
 
+void RigPortCountsWriter::Release(size_t slot, uint64_t token) {
+  uint64_t expected = token;
+  Word(Slot(map_, slot), kReaderOffset)
+      .compare_exchange_strong(expected, 0, std::memory_order_acq_rel);
+}
+
 std::unique_ptr<RigPortCounter> RigPortCounter::Open(const std::filesystem::path& clock_file,
                                                      const std::string& port_path) {
   const std::filesystem::path path = PortCountsPath(clock_file);

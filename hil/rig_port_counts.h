@@ -9,7 +9,9 @@
 //
 // A reader attaches (RestartStream) by writing its token; the rig then drops the port's backlog
 // (bytes of packets counted before: the stream starts afresh, as a flush of the line) and
-// acknowledges the token, after which everything the reader reads is within the budget.
+// acknowledges the token, after which everything the reader reads is within the budget. A reader
+// that lags without reading for kLockstepReleaseAfter_s is released (its token cleared): it finds
+// itself detached when it reads again and refuses to index packets it can no longer place.
 //
 // Layout, host byte order (both ends on one machine): a 64-byte header ("ADAHRSPT", u32 version
 // 1, u32 slot count), then per port a 128-byte slot: char[96] slave path (NUL-terminated),
@@ -30,6 +32,10 @@ namespace adahrs::hil {
 /// Packets a reader may lag behind its unit before a lockstep rig holds its clock: with the
 /// frames the rig runs between two looks (10), well under a counter turn of 256.
 inline constexpr uint64_t kLockstepPacketBudget = 100;
+
+/// Wall time a reader may lag more than the budget without reading before the rig releases its
+/// slot (RigPortCountsWriter::Release): a reader that stopped must not hold the clock for good.
+inline constexpr double kLockstepReleaseAfter_s = 5.0;
 
 /// The most a packet's sample time and its arrival time on a lockstep rig's clock differ for a
 /// reader that publishes its count: behind, the budget and the frames between the rig's looks
@@ -63,6 +69,9 @@ class RigPortCountsWriter {
   Reader ReaderOf(size_t slot) const;
   /// Tells the reader holding `token` that its stream starts afresh from here.
   void Acknowledge(size_t slot, uint64_t token);
+  /// Releases the slot from the reader holding `token` (one that stopped reading): that reader
+  /// then finds itself detached, and its packets carry no index.
+  void Release(size_t slot, uint64_t token);
 
  private:
   std::filesystem::path path_;

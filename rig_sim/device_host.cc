@@ -85,6 +85,7 @@ struct DeviceHost::Port {
   uint64_t reader_token = 0;  // the reader's token acknowledged last
   uint64_t consumed = 0;
   std::chrono::steady_clock::time_point consumed_changed;
+  uint32_t count_looks_since_progress = 0;  // looks while it lagged and its count stood still
 };
 
 DeviceHost::DeviceHost(double time_scale, RigEnvironment initial)
@@ -262,6 +263,7 @@ void DeviceHost::NoteAttachments(std::chrono::steady_clock::time_point now) {
     port->reader_token = reader.token;
     port->consumed = reader.consumed;
     port->consumed_changed = now;
+    port->count_looks_since_progress = 0;
     port_counts_->Acknowledge(*port->count_slot, reader.token);
   }
 }
@@ -269,15 +271,27 @@ void DeviceHost::NoteAttachments(std::chrono::steady_clock::time_point now) {
 bool DeviceHost::ReaderLags(Port& port, std::chrono::steady_clock::time_point now) {
   const hil::RigPortCountsWriter::Reader reader = port_counts_->ReaderOf(*port.count_slot);
   if (reader.token == 0 || reader.token != port.reader_token) return false;
-  if (reader.consumed != port.consumed) {
+  const uint64_t produced = port.device->DataPacketCount().value_or(0);
+  const bool lags = produced > reader.consumed + hil::kLockstepPacketBudget;
+  // The stall limit runs only while the reader lags without reading: one that has read all it
+  // could is waiting, not stalled (another port may hold the clock, so its line brings nothing).
+  if (reader.consumed != port.consumed || !lags) {
     port.consumed = reader.consumed;
     port.consumed_changed = now;
+    port.count_looks_since_progress = 0;
+    return lags;
   }
-  // A reader whose count stands still that long is not reading packets (a line that brings it
-  // none, a client that stopped polling): the bytes rules alone then decide.
-  if (now - port.consumed_changed > std::chrono::duration<double>(kLockstepStallLimit_s))
+  if (port.count_looks_since_progress < kLockstepMinLooks) ++port.count_looks_since_progress;
+  // A reader that lags without reading for the stall limit, over enough looks that the host
+  // itself was not the one descheduled, has stopped: the rig releases its slot, so that the
+  // reader, should it come back, finds its packets no longer counted and says so.
+  if (now - port.consumed_changed > std::chrono::duration<double>(hil::kLockstepReleaseAfter_s) &&
+      port.count_looks_since_progress >= kLockstepMinLooks) {
+    port_counts_->Release(*port.count_slot, reader.token);
+    port.reader_token = 0;
     return false;
-  return port.device->DataPacketCount().value_or(0) > reader.consumed + hil::kLockstepPacketBudget;
+  }
+  return true;
 }
 
 void DeviceHost::WriteOutputs() {

@@ -118,7 +118,14 @@ void UnitLink::RestartStream() {
     // The rig drops its backlog for this link before it acknowledges, so what the line brings
     // after the flush below was counted within the budget of this link's count.
     consumed_ = counter_->Produced();
-    counter_->Attach(consumed_, kAttachWait_s);
+    counting_ = counter_->Attach(consumed_, kAttachWait_s);
+    if (!counting_) {
+      Fail(Kind::kNoReply,
+           "attach",
+           "",
+           fmt::format("the lockstep rig did not take up the restarted stream within {} s",
+                       kAttachWait_s));
+    }
   }
   port_->DiscardInput();
   queue_.clear();
@@ -126,6 +133,7 @@ void UnitLink::RestartStream() {
 }
 
 void UnitLink::EndStream() {
+  counting_ = false;
   if (counter_) counter_->Detach();
 }
 
@@ -140,6 +148,15 @@ size_t UnitLink::ReadInto(std::chrono::milliseconds timeout,
   }
   if (n == 0) return 0;
   const double t_s = clock_.NowS();
+  if (counting_ && !counter_->attached()) {
+    counting_ = false;
+    Fail(Kind::kNoReply,
+         "read",
+         "",
+         fmt::format("the lockstep rig released this link's packet count: it lagged its unit "
+                     "without reading for {} s, so sample times from here on are not exact",
+                     kLockstepReleaseAfter_s));
+  }
   // Loaded after the read: every packet read is counted in it, and the rig, held on this link's
   // count, has run less than a counter turn past them.
   if (counter_ && counter_->attached()) produced_ = counter_->Produced();

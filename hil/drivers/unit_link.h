@@ -104,7 +104,11 @@ class UnitLink {
   uint64_t lost_packets() const { return tracker_.lost_total(); }
   /// Starts the stream afresh: drops what the line holds and what was received but not polled,
   /// and counts loss from the next packet on (a recording that starts now misses nothing before
-  /// it; a lockstep rig may have discarded what it sent while nobody read).
+  /// it; a lockstep rig may have discarded what it sent while nobody read). With the rig's port
+  /// counts, attaches to them first; throws InstrumentError (kNoReply) if the rig does not take
+  /// the attachment up within kAttachWait_s. A read that finds the rig released this link's count
+  /// (it lagged without reading for hil::kLockstepReleaseAfter_s) throws the same: its packets can
+  /// no longer be placed.
   void RestartStream();
   /// Stops publishing this link's packet count: a lockstep rig no longer waits for it to read.
   void EndStream();
@@ -147,6 +151,7 @@ class UnitLink {
   std::unique_ptr<RigPortCounter> counter_;  // nullptr: no lockstep rig's counts
   uint64_t produced_ = 0;                    // the rig's count, loaded after the latest read
   uint64_t consumed_ = 0;                    // the last indexed packet's index + 1
+  bool counting_ = false;                    // attached to the rig's count since RestartStream
 };
 
 }  // namespace adahrs::hil

@@ -5,16 +5,20 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
 
 #include "hil/rig_clock.h"
+#include "hil/rig_port_counts.h"
 #include "rig_sim/device_host.h"
 
 namespace adahrs::rig_sim {
@@ -48,6 +52,21 @@ class FrameStream : public SerialDevice {
   std::string role_;
   uint32_t records_per_frame_;
   uint32_t record_ = 0;
+};
+
+// A FrameStream that counts its records as a unit counts its data packets (the rig's port counts:
+// rig_sim/serial_device.h DataPacketCount), one per world frame: record r is packet r - 1.
+class CountedStream : public FrameStream {
+ public:
+  explicit CountedStream(std::string role) : FrameStream(std::move(role), 1) {}
+  void TakeOutput(double t_s, std::vector<uint8_t>& out) override {
+    FrameStream::TakeOutput(t_s, out);
+    ++count_;
+  }
+  std::optional<uint64_t> DataPacketCount() const override { return count_; }
+
+ private:
+  uint64_t count_ = 0;
 };
 
 int OpenRaw(const std::string& path) {
@@ -272,6 +291,87 @@ TEST(DeviceHostLockstep, ReaderOfAnotherPortLosesNothingWhileAGoneClientHoldsThe
   EXPECT_EQ(kept.out_of_order, 0u);
   EXPECT_EQ(kept.skipped.load() - skipped_before, 0u) << "the kept port's reader lost records";
   EXPECT_GT(kept.read, 100u);
+}
+
+// A counted reader (hil/rig_port_counts.h) that has read all its port had is waiting, not stalled,
+// however long another port's gone client holds the clock: descheduled for 2 s just as the clock
+// runs again, it is still held to, never more than the packet budget and the frames between two
+// looks behind its unit when it reads again (the rig's count it loads after a read, against the
+// count it had published before). A rig that took the wait for a stall would run on to the bytes
+// rule's 16 KiB (500 records here): more than a counter turn, so its packets would be placed whole
+// turns late.
+TEST(DeviceHostLockstep, CountedReaderStaysHeldAfterAnotherPortHeldTheClock) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("adahrs-counts-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  DeviceHost host(1000.0);
+  host.SetLockstep(true);
+  host.SetClockFile(dir / "clock");
+  const std::string gone_path = host.Add(std::make_unique<FrameStream>("gone", 32));
+  const std::string kept_path = host.Add(std::make_unique<CountedStream>("kept"));
+  const int gone_fd = OpenRaw(gone_path);
+  const int kept_fd = OpenRaw(kept_path);
+  ASSERT_GE(gone_fd, 0);
+  ASSERT_GE(kept_fd, 0);
+  host.Start();
+  const std::unique_ptr<hil::RigPortCounter> counter =
+      hil::RigPortCounter::Open(dir / "clock", kept_path);
+  ASSERT_NE(counter, nullptr);
+  ASSERT_TRUE(counter->Attach(counter->Produced(), 5.0));
+  ::tcflush(kept_fd, TCIFLUSH);  // as the unit link flushes after attaching
+
+  SlowReader gone;
+  gone.nap = std::chrono::milliseconds(0);
+  std::thread gone_thread([&] { gone.Run(gone_fd); });
+  std::atomic<bool> stop{false};
+  std::atomic<int> pause_ms{0};
+  std::atomic<uint64_t> worst_lag{0}, reads{0};
+  std::thread kept_thread([&] {
+    std::vector<uint8_t> pending;
+    uint8_t buffer[512];
+    uint64_t consumed = 0;  // the last whole record read, published
+    while (!stop.load()) {
+      ssize_t n = 0;
+      bool got = false;
+      while ((n = ::read(kept_fd, buffer, sizeof buffer)) > 0) {
+        pending.insert(pending.end(), buffer, buffer + n);
+        got = true;
+      }
+      if (got) {
+        const uint64_t produced = counter->Produced();
+        if (consumed > 0 && produced > consumed)
+          worst_lag = std::max(worst_lag.load(), produced - consumed);
+        for (; pending.size() >= kFrameBytes;
+             pending.erase(pending.begin(), pending.begin() + kFrameBytes)) {
+          uint32_t record = 0;
+          std::memcpy(&record, pending.data(), sizeof record);
+          consumed = record;
+        }
+        counter->Consume(consumed);
+        ++reads;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      if (const int ms = pause_ms.exchange(0); ms > 0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  gone.stop = true;  // the gone client keeps its port open and reads no more
+  gone_thread.join();
+  std::this_thread::sleep_for(std::chrono::duration<double>(kLockstepStallLimit_s - 0.5));
+  pause_ms = 2000;
+  std::this_thread::sleep_for(std::chrono::milliseconds(3500));
+  stop = true;
+  kept_thread.join();
+  const bool still_attached = counter->attached();
+  host.Stop();
+  ::close(gone_fd);
+  ::close(kept_fd);
+  std::filesystem::remove_all(dir);
+  EXPECT_GT(host.held_wall_s(), 0.8 * kLockstepStallLimit_s) << "the gone client held nothing";
+  EXPECT_GT(reads.load(), 100u);
+  EXPECT_TRUE(still_attached) << "the rig released a reader that was only waiting";
+  EXPECT_LE(worst_lag.load(), hil::kLockstepPacketBudget + kLockstepCheckFrames);
 }
 
 TEST(DeviceHostLockstep, ClockFileFollowsTheHost) {
