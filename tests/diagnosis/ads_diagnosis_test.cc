@@ -63,9 +63,13 @@ double HalfLoopPa(const sensor_sim::PressureBridgeParams& b) {
   return b.pressure_hysteresis_pct_fso / 100.0 / 2.0 * b.full_scale_pa;
 }
 
-// Clean units (nominal profile: what the model expresses): a finding on at most 5 of 100, and no
-// unexplained structure (docs/diagnose.md gives what the measured false findings were).
+// Clean units (nominal profile: what the model expresses). The diagnoser's stated rate of clean
+// units with a finding is 2 % (docs/diagnose.md "Measured", over 700 units; the nominal level
+// 0.001 is Bonferroni's): the gate allows the binomial count at that rate over these 100 units at
+// the suite's false-failure rate, 7 (tests/support/statistical_gates.h). No unexplained
+// structure: the ADS diagnosis locates none (ads_diagnosis.h).
 TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
+  constexpr double kFindingRatePerUnit = 0.02;
   int with_findings = 0, with_unexplained = 0;
   for (int i = 0; i < 100; ++i) {
     const AdsUnitParams unit = AdsUnitParams::Draw(
@@ -81,7 +85,7 @@ TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
   std::printf("clean ADS: %d of 100 units with a finding, %d with unexplained structure\n",
               with_findings,
               with_unexplained);
-  EXPECT_LE(with_findings, 5);
+  EXPECT_LE(with_findings, adahrs::testing::AllowedCount(100, kFindingRatePerUnit));
   EXPECT_EQ(with_unexplained, 0);
 }
 
@@ -185,8 +189,7 @@ std::string OneTemperatureSequence(const fs::path& dir, double target_c) {
 // down and back) the loop is found on at least 9 of 10 units and its half loop within 3 standard
 // errors plus 1 % of the truth on at least 9 of those found (the 1 %: the diagnoser's loop law is
 // not the simulated unit's, and one temperature averages nothing; docs/diagnose.md gives the
-// measured offsets); clean units give a finding on at most 1 of 10 (the family level is 1 % per
-// unit).
+// measured offsets); clean units give a finding on at most 1 of 10.
 TEST(AdsDiagnosis, OneTemperatureStillTestsPressureHysteresis) {
   const std::string sequence =
       OneTemperatureSequence(fs::temp_directory_path() / "adahrs_ads_one_temperature", 25.0);

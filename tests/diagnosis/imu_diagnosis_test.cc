@@ -157,10 +157,15 @@ struct Tally {
   }
 };
 
-// Clean units (nominal profile, every effect the model expresses): no finding on at least 95 of
-// 100 seeds (the family level is 1 % per unit), and no unexplained structure on 95 either (under
-// the sanitizers 20 seeds, at most 1 of each: tests/support/sanitized_units.h).
+// Clean units (nominal profile, every effect the model expresses). The diagnoser's stated rates
+// per clean unit (docs/diagnose.md "Measured", over 1,100 units): a finding on 3 % (the nominal
+// level 0.001 is Bonferroni's over the unit's tests, and the jackknife over a few dozen segments
+// is anti-conservative), unexplained structure on 1.5 %. Each gate allows the binomial count at
+// its rate over these units at the suite's false-failure rate (tests/support/statistical_gates.h):
+// 9 and 6 of 100; under the sanitizers 20 seeds (tests/support/sanitized_units.h), 4 and 3.
 TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
+  constexpr double kFindingRatePerUnit = 0.03;
+  constexpr double kUnexplainedRatePerUnit = 0.015;
   Shape shape;
   shape.sensor_cal_c = {-20.0, 25.0, 70.0};
   const int units = adahrs::testing::Units(100, 20);
@@ -186,8 +191,8 @@ TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
               with_findings,
               units,
               with_unexplained);
-  EXPECT_LE(with_findings, units / 20);
-  EXPECT_LE(with_unexplained, units / 20);
+  EXPECT_LE(with_findings, adahrs::testing::AllowedCount(units, kFindingRatePerUnit));
+  EXPECT_LE(with_unexplained, adahrs::testing::AllowedCount(units, kUnexplainedRatePerUnit));
 }
 
 // Gyro g-sensitivity looks like an orientation-dependent bias: found on every gyro where the truth
