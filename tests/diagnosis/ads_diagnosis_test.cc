@@ -20,6 +20,7 @@
 #include "diagnosis/diagnosis_output.h"
 #include "hil/recording/recording_reader.h"
 #include "tests/support/ads_recording_sim.h"
+#include "tests/support/statistical_gates.h"
 
 namespace adahrs::diagnosis {
 namespace {
@@ -62,9 +63,13 @@ double HalfLoopPa(const sensor_sim::PressureBridgeParams& b) {
   return b.pressure_hysteresis_pct_fso / 100.0 / 2.0 * b.full_scale_pa;
 }
 
-// Clean units (nominal profile: what the model expresses): a finding on at most 5 of 100, and no
-// unexplained structure (docs/diagnose.md gives what the measured false findings were).
+// Clean units (nominal profile: what the model expresses). The diagnoser's stated rate of clean
+// units with a finding is 2 % (docs/diagnose.md "Measured", over 700 units; the nominal level
+// 0.001 is Bonferroni's): the gate allows the binomial count at that rate over these 100 units at
+// the suite's false-failure rate, 7 (tests/support/statistical_gates.h). No unexplained
+// structure: the ADS diagnosis locates none (ads_diagnosis.h).
 TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
+  constexpr double kFindingRatePerUnit = 0.02;
   int with_findings = 0, with_unexplained = 0;
   for (int i = 0; i < 100; ++i) {
     const AdsUnitParams unit = AdsUnitParams::Draw(
@@ -80,7 +85,7 @@ TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
   std::printf("clean ADS: %d of 100 units with a finding, %d with unexplained structure\n",
               with_findings,
               with_unexplained);
-  EXPECT_LE(with_findings, 5);
+  EXPECT_LE(with_findings, adahrs::testing::AllowedCount(100, kFindingRatePerUnit));
   EXPECT_EQ(with_unexplained, 0);
 }
 
@@ -92,6 +97,9 @@ TEST(AdsDiagnosis, CleanRecordingsGiveNoFindings) {
 // counts).
 TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
   int found[2] = {}, within[2] = {};
+  adahrs::testing::StandardErrorBound bound[2] = {
+      adahrs::testing::StandardErrorBound("static half loop"),
+      adahrs::testing::StandardErrorBound("pitot half loop")};
   int pitot_span_beyond_8_pct = 0;
   for (int i = 0; i < 10; ++i) {
     AdsUnitParams unit = AdsUnitParams::Draw(
@@ -120,6 +128,7 @@ TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
           b.pressure_hysteresis_span_pct_fs / 100.0 * b.full_scale_pa);
       ++found[k];
       if (std::abs(half.magnitude - truth) <= 3.0 * half.standard_error) ++within[k];
+      bound[k].Add(half.magnitude, half.standard_error, truth);
       EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
       // The span (docs/diagnose.md): the static bridge's within 2 % of the truth's on every unit;
       // the pitot's within 8 % on all but two. Its standard error is not leaned on: it leaves out
@@ -142,9 +151,11 @@ TEST(AdsDiagnosis, FindsPressureHysteresisFromUpAndDownSweeps) {
       found[1],
       within[1]);
   EXPECT_EQ(found[0], 10);
-  EXPECT_GE(within[0], 9);
   EXPECT_GE(found[1], 8);
-  EXPECT_GE(within[1], 8);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_GE(within[k], adahrs::testing::RequiredWithinThreeSe(found[k])) << k;
+    bound[k].Expect(k == 0 ? 10 : 8);
+  }
   EXPECT_LE(pitot_span_beyond_8_pct, 2);
 }
 
@@ -178,12 +189,12 @@ std::string OneTemperatureSequence(const fs::path& dir, double target_c) {
 // down and back) the loop is found on at least 9 of 10 units and its half loop within 3 standard
 // errors plus 1 % of the truth on at least 9 of those found (the 1 %: the diagnoser's loop law is
 // not the simulated unit's, and one temperature averages nothing; docs/diagnose.md gives the
-// measured offsets); clean units give a finding on at most 1 of 10 (the family level is 1 % per
-// unit).
+// measured offsets); clean units give a finding on at most 1 of 10.
 TEST(AdsDiagnosis, OneTemperatureStillTestsPressureHysteresis) {
   const std::string sequence =
       OneTemperatureSequence(fs::temp_directory_path() / "adahrs_ads_one_temperature", 25.0);
   int found = 0, within = 0, clean_with_findings = 0, pitot_not_testable = 0;
+  adahrs::testing::StandardErrorBound bound("static half loop, one temperature");
   for (int i = 0; i < 10; ++i) {
     AdsUnitParams unit = AdsUnitParams::Draw(
         "ADS-" + std::to_string(9600 + i), 6600 + i, sensor_sim::ModelProfile::kNominal);
@@ -220,6 +231,7 @@ TEST(AdsDiagnosis, OneTemperatureStillTestsPressureHysteresis) {
               unit.static_bridge.full_scale_pa);
       ++found;
       if (std::abs(half.magnitude - truth) <= 3.0 * half.standard_error + 0.01 * truth) ++within;
+      bound.Add(half.magnitude, half.standard_error, truth);
       EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
     }
     if (i == 0) {
@@ -244,7 +256,8 @@ TEST(AdsDiagnosis, OneTemperatureStillTestsPressureHysteresis) {
       clean_with_findings,
       pitot_not_testable);
   EXPECT_GE(found, 9);
-  EXPECT_GE(within, found - found / 10);
+  EXPECT_GE(within, adahrs::testing::RequiredWithinThreeSe(found));
+  bound.Expect(9);
   EXPECT_LE(clean_with_findings, 1);
 }
 

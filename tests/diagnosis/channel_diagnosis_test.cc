@@ -20,6 +20,7 @@
 #include "diagnosis/channel_recording.h"
 #include "diagnosis/diagnosis_output.h"
 #include "diagnosis/plausible_range.h"
+#include "tests/support/statistical_gates.h"
 
 namespace adahrs::diagnosis {
 namespace {
@@ -124,8 +125,11 @@ fs::path WriteLagging(const std::string& name, uint64_t seed, double tau_s, doub
   return d / "s.json";
 }
 
+// The lag found on every series, within 3 standard errors of the truth's 60 s on all but the
+// binomial share, those errors bounded by the estimates' scatter about 60 s.
 TEST(ChannelDiagnosis, FindsThermalLagConfoundedWithTheBiasPolynomial) {
   int found = 0, within = 0;
+  adahrs::testing::StandardErrorBound bound("thermal lag");
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     const fs::path s = WriteLagging("lag", seed, 60.0, 0.0);
     const UnitDiagnosis d = DiagnoseChannels(ReadChannelRecording(s));
@@ -135,12 +139,15 @@ TEST(ChannelDiagnosis, FindsThermalLagConfoundedWithTheBiasPolynomial) {
       ++found;
       if (std::abs(f.components[0].magnitude - 60.0) <= 3.0 * f.components[0].standard_error)
         ++within;
+      bound.Add(f.components[0].magnitude, f.components[0].standard_error, 60.0);
       EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before);
     }
     EXPECT_EQ(d.findings.size(), 1u);
   }
+  std::printf("thermal lag: found on %d of 10, %d within 3 SE\n", found, within);
   EXPECT_EQ(found, 10);
-  EXPECT_GE(within, 9);
+  EXPECT_GE(within, adahrs::testing::RequiredWithinThreeSe(found));
+  bound.Expect(10);
 }
 
 TEST(ChannelDiagnosis, FindsThermalHysteresisAndNothingOnCleanSeries) {
@@ -153,13 +160,22 @@ TEST(ChannelDiagnosis, FindsThermalHysteresisAndNothingOnCleanSeries) {
     if (!d.findings.empty() || !d.unexplained.empty()) ++clean_with_findings;
   }
   EXPECT_LE(clean_with_findings, 1);
-  const UnitDiagnosis d =
-      DiagnoseChannels(ReadChannelRecording(WriteLagging("hyst", 41, 0.0, 0.004)));
-  ASSERT_EQ(d.findings.size(), 1u);
-  EXPECT_EQ(d.findings[0].effect, "thermal_hysteresis");
-  EXPECT_NEAR(d.findings[0].components[0].magnitude,
-              0.004,
-              3.0 * d.findings[0].components[0].standard_error);
+  // The half loop of 0.004 on 10 series: found alone on each, within 3 standard errors on all but
+  // the binomial share, those errors bounded by the estimates' scatter about 0.004.
+  int within = 0;
+  adahrs::testing::StandardErrorBound bound("thermal hysteresis");
+  for (uint64_t seed = 41; seed <= 50; ++seed) {
+    const UnitDiagnosis d =
+        DiagnoseChannels(ReadChannelRecording(WriteLagging("hyst", seed, 0.0, 0.004)));
+    ASSERT_EQ(d.findings.size(), 1u) << "seed " << seed;
+    EXPECT_EQ(d.findings[0].effect, "thermal_hysteresis");
+    const FindingComponent& h = d.findings[0].components[0];
+    within += std::abs(h.magnitude - 0.004) <= 3.0 * h.standard_error ? 1 : 0;
+    bound.Add(h.magnitude, h.standard_error, 0.004);
+  }
+  std::printf("thermal hysteresis: %d of 10 within 3 SE\n", within);
+  EXPECT_GE(within, adahrs::testing::RequiredWithinThreeSe(10));
+  bound.Expect(10);
 }
 
 // A limit beyond what the effect can physically be is "not testable here", stated with the range

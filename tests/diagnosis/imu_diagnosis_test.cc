@@ -23,6 +23,7 @@
 #include "sensor_sim/imu_unit.h"
 #include "tests/diagnosis/imu_diagnosis_scenario.h"
 #include "tests/support/sanitized_units.h"
+#include "tests/support/statistical_gates.h"
 
 namespace adahrs::diagnosis {
 namespace {
@@ -131,21 +132,40 @@ const Finding* Find(const UnitDiagnosis& d, const std::string& effect, const std
   return nullptr;
 }
 
-// Counts components within 3 standard errors of the truth (plus a stated model allowance).
+// Counts components within 3 standard errors of the truth (plus a stated model allowance), and
+// bounds those standard errors from above by the same components' scatter about the truth
+// (tests/support/statistical_gates.h): a test leans on the diagnoser's errors only so bounded.
 struct Tally {
+  explicit Tally(const std::string& what = "sized", int components_per_finding = 1)
+      : bound(what), per_finding(components_per_finding) {}
   int within = 0;
   int total = 0;
+  adahrs::testing::StandardErrorBound bound;
+  int per_finding;
   void Check(double found, double se, double truth, double allowance = 0.0) {
     ++total;
     if (std::abs(found - truth) <= 3.0 * se + allowance) ++within;
+    bound.AddComponent(found, se, truth);
+    if (total % per_finding == 0) bound.EndFinding();
   }
-  double Fraction() const { return total == 0 ? 0.0 : static_cast<double>(within) / total; }
+  // At least `min_findings` sized; at most the binomial share of honest components beyond 3 SE
+  // outside (2.7e-3 each, at the suite's false-failure rate); the errors not inflated.
+  void Expect(int min_findings, double documented_inflation = 1.0) const {
+    EXPECT_GE(within, adahrs::testing::RequiredWithinThreeSe(total))
+        << within << " of " << total << " within";
+    bound.Expect(min_findings, documented_inflation);
+  }
 };
 
-// Clean units (nominal profile, every effect the model expresses): no finding on at least 95 of
-// 100 seeds (the family level is 1 % per unit), and no unexplained structure on 95 either (under
-// the sanitizers 20 seeds, at most 1 of each: tests/support/sanitized_units.h).
+// Clean units (nominal profile, every effect the model expresses). The diagnoser's stated rates
+// per clean unit (docs/diagnose.md "Measured", over 1,100 units): a finding on 3 % (the nominal
+// level 0.001 is Bonferroni's over the unit's tests, and the jackknife over a few dozen segments
+// is anti-conservative), unexplained structure on 1.5 %. Each gate allows the binomial count at
+// its rate over these units at the suite's false-failure rate (tests/support/statistical_gates.h):
+// 9 and 6 of 100; under the sanitizers 20 seeds (tests/support/sanitized_units.h), 4 and 3.
 TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
+  constexpr double kFindingRatePerUnit = 0.03;
+  constexpr double kUnexplainedRatePerUnit = 0.015;
   Shape shape;
   shape.sensor_cal_c = {-20.0, 25.0, 70.0};
   const int units = adahrs::testing::Units(100, 20);
@@ -171,8 +191,8 @@ TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
               with_findings,
               units,
               with_unexplained);
-  EXPECT_LE(with_findings, units / 20);
-  EXPECT_LE(with_unexplained, units / 20);
+  EXPECT_LE(with_findings, adahrs::testing::AllowedCount(units, kFindingRatePerUnit));
+  EXPECT_LE(with_unexplained, adahrs::testing::AllowedCount(units, kUnexplainedRatePerUnit));
 }
 
 // Gyro g-sensitivity looks like an orientation-dependent bias: found on every gyro where the truth
@@ -180,7 +200,7 @@ TEST(ImuDiagnosis, CleanRecordingsGiveNoFindingsOverAHundredSeeds) {
 // errors of the truth expressed in B (R_GB' g_G) on at least 90 % of components.
 TEST(ImuDiagnosis, FindsGyroGSensitivityConcealedAsOrientationBias) {
   Shape shape;
-  Tally tally;
+  Tally tally("g-sensitivity", 3);
   int detectable = 0, missed = 0, others = 0;
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     ImuUnitParams p = Nominal(100 + seed);
@@ -213,7 +233,7 @@ TEST(ImuDiagnosis, FindsGyroGSensitivityConcealedAsOrientationBias) {
               tally.total,
               missed,
               detectable);
-  EXPECT_GE(tally.Fraction(), 0.9);
+  tally.Expect(18);
   EXPECT_LE(missed, detectable / 5);
   EXPECT_GE(detectable, 18);  // of the 30 drawn gyros, at the family level over 57 tests
   // Measured 2026-11-26: 3 findings not in the truth over these 10 units (die lag, scale tempco
@@ -228,7 +248,7 @@ TEST(ImuDiagnosis, FindsGyroGSensitivityConcealedAsOrientationBias) {
 TEST(ImuDiagnosis, FindsScaleFactorTempcoVisibleOnlyAwayFromTheCalibrationTemperature) {
   Shape shape;
   shape.sensor_cal_c = {-20.0, 25.0, 70.0};
-  Tally tally;
+  Tally tally("scale tempco", 2);
   int missed = 0;
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     ImuUnitParams p = Nominal(200 + seed);
@@ -260,7 +280,7 @@ TEST(ImuDiagnosis, FindsScaleFactorTempcoVisibleOnlyAwayFromTheCalibrationTemper
               tally.within,
               tally.total,
               missed);
-  EXPECT_GE(tally.Fraction(), 0.9);
+  tally.Expect(85);
   EXPECT_LE(missed, 5);
 }
 
@@ -293,9 +313,10 @@ TEST(ImuDiagnosis, FindsDieLagConfoundedWithTheTemperaturePolynomial) {
   shape.profile_c = {0.0, 50.0, 0.0, 50.0, 25.0};
   shape.ramp_c_per_min = 4.0;
   shape.soak_s = 1500.0;
-  Tally tally;
+  Tally tally("die lag");
   int missed = 0, detectable = 0;
-  for (uint64_t seed = 1; seed <= static_cast<uint64_t>(adahrs::testing::Units(10, 3)); ++seed) {
+  const int units = adahrs::testing::Units(10, 3);
+  for (uint64_t seed = 1; seed <= static_cast<uint64_t>(units); ++seed) {
     ImuUnitParams p = Nominal(400 + seed);
     for (auto& t : p.accel_thermal) t.effects.lag = true;
     for (auto& t : p.gyro_thermal) t.effects.lag = true;
@@ -324,8 +345,12 @@ TEST(ImuDiagnosis, FindsDieLagConfoundedWithTheTemperaturePolynomial) {
               tally.total,
               missed,
               detectable);
-  EXPECT_GE(tally.Fraction(), 0.9);
-  EXPECT_LE(10 * missed, detectable);  // at least 90 % of the channels the limits call detectable
+  // docs/diagnose.md: 60 of 60 channels detectable and found. Every channel counts, not only
+  // those the diagnoser's own limits call detectable: limits that call a channel undetectable
+  // fail here rather than excuse its miss.
+  EXPECT_EQ(detectable, 6 * units);
+  EXPECT_EQ(missed, 0);
+  tally.Expect(6 * units);
 }
 
 // A bias step (an effect outside the library) is located and not forced into a term.
@@ -603,6 +628,7 @@ TEST(ImuDiagnosis, FindsTableRateRippleOnTheGyroAlongTheTableAxis) {
   shape.gyro_packets = 3000;
   constexpr double kRipple = 4e-4;
   int found = 0, within = 0, false_found = 0, others = 0;
+  adahrs::testing::StandardErrorBound bound("table rate ripple");
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     for (const double k : {kRipple, 0.0}) {
       ImuScenario s(Nominal(700 + seed), 7700 + seed, 25.0);
@@ -627,6 +653,7 @@ TEST(ImuDiagnosis, FindsTableRateRippleOnTheGyroAlongTheTableAxis) {
         ++found;
         const double ratio_ppm = f.components[0].magnitude;
         within += std::abs(ratio_ppm - kRipple * 1e6) <= 3.0 * f.components[0].standard_error;
+        bound.Add(ratio_ppm, f.components[0].standard_error, kRipple * 1e6);
         EXPECT_LT(f.held_out_rms_after, f.held_out_rms_before) << f.words;
       }
       if (k != 0.0) {
@@ -642,7 +669,8 @@ TEST(ImuDiagnosis, FindsTableRateRippleOnTheGyroAlongTheTableAxis) {
               within,
               false_found);
   EXPECT_GE(found, 27);
-  EXPECT_GE(within, 27);
+  EXPECT_GE(within, adahrs::testing::RequiredWithinThreeSe(found));
+  bound.Expect(27);
   EXPECT_LE(false_found, 1);
   EXPECT_LE(others, 4);
 }
@@ -692,6 +720,7 @@ TEST(ImuDiagnosis, LocatesPeriodicInterferenceInRowsThatArriveInBursts) {
 // test's shape: found on the channels whose stated detection limit the truth exceeds (at most
 // 20 % missed), sized within 3 standard errors (plus a stated model allowance), nothing else.
 struct EffectTally {
+  explicit EffectTally(const std::string& what) : size(what) {}
   Tally size;
   int found = 0, missed = 0, detectable = 0, others = 0;
   void Print(const char* what) const {
@@ -736,10 +765,10 @@ void CountOthers(const UnitDiagnosis& d, const std::string& effect, EffectTally*
   }
 }
 
-void ExpectFoundAndSized(const EffectTally& t, int min_found) {
+void ExpectFoundAndSized(const EffectTally& t, int min_found, double documented_inflation = 1.0) {
   EXPECT_GE(t.found, min_found);
   EXPECT_LE(5 * t.missed, t.detectable);
-  EXPECT_GE(t.size.Fraction(), 0.9);
+  t.size.Expect(min_found, documented_inflation);
   EXPECT_LE(t.others, 1);
 }
 
@@ -753,7 +782,7 @@ Shape CleanShape() {
 // only the accelerometer chips heat themselves (3 degC), so each accelerometer's die starts
 // 3 degC below its steady excess over its thermometer (a gyro die) and settles with tau 300 s.
 TEST(ImuDiagnosis, FindsAccelerometerSelfHeatingWarmUp) {
-  EffectTally t;
+  EffectTally t("accelerometer warm-up");
   for (uint64_t seed = 1; seed <= 5; ++seed) {
     ImuUnitParams p = Nominal(920 + seed);
     for (auto& th : p.accel_thermal) th.effects = {true, true};
@@ -775,7 +804,7 @@ TEST(ImuDiagnosis, FindsAccelerometerSelfHeatingWarmUp) {
 // Accelerometer nonlinearity from the simulator: D = D0 + S (a + k2 a^2) with the BFSL deviation
 // of 1 % of 10 g (k2 = 1.5 mg/g^2, five times the datasheet's typical 0.2 %).
 TEST(ImuDiagnosis, FindsAccelerometerNonlinearityBeyondTheCaptureQuantisation) {
-  EffectTally t;
+  EffectTally t("accelerometer nonlinearity");
   for (uint64_t seed = 1; seed <= 5; ++seed) {
     ImuUnitParams p = Nominal(940 + seed);
     for (auto& chip : p.accel_chips) {
@@ -788,7 +817,11 @@ TEST(ImuDiagnosis, FindsAccelerometerNonlinearityBeyondTheCaptureQuantisation) {
     CountOthers(d, "accel_nonlinearity", &t);
   }
   t.Print("accelerometer nonlinearity 1.5 mg/g^2");
-  ExpectFoundAndSized(t, 24);
+  // Its standard error carries the capture quantiser's worst-case bias per segment (an offset
+  // uniform over one output step), which these units' ticks average well below: 3.2 times the
+  // estimates' scatter about the truth (docs/diagnose.md), held there. Within 3 SE is therefore
+  // a loose check of its size, and its detection limit is conservative by as much.
+  ExpectFoundAndSized(t, 24, 3.2);
 }
 
 // Counts per deg/s of gyro g, measured on the recording's own 25 degC rate acquisitions about
@@ -813,7 +846,7 @@ double GyroCountsPerDps(const calib::ImuUnitData& d, int g) {
 // after heating and after cooling at the same temperature, which a single-valued temperature
 // polynomial splits between its branches.
 TEST(ImuDiagnosis, FindsGyroThermalHysteresisBetweenHeatingAndCooling) {
-  EffectTally t;
+  EffectTally t("gyro thermal hysteresis");
   double lo_dps = 1e9, hi_dps = 0.0;
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     const double half_loop_dps = 0.1;
@@ -843,7 +876,7 @@ TEST(ImuDiagnosis, FindsGyroThermalHysteresisBetweenHeatingAndCooling) {
 // onto the gyro counts: calibrated at one temperature it is a fixed misalignment, so it shows only
 // in rate acquisitions about the other axes at -20 and 70 degC.
 TEST(ImuDiagnosis, FindsResidualCrossAxisCouplingAwayFromTheCalibrationTemperature) {
-  Tally tally;
+  Tally tally("cross-axis tempco", 2);
   int detectable = 0, missed = 0, others = 0;
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     const double k_ppm_per_c = 30.0;
@@ -885,7 +918,7 @@ TEST(ImuDiagnosis, FindsResidualCrossAxisCouplingAwayFromTheCalibrationTemperatu
               detectable);
   EXPECT_GE(detectable, 24);
   EXPECT_LE(5 * missed, detectable);
-  EXPECT_GE(tally.Fraction(), 0.9);
+  tally.Expect(24);
   EXPECT_LE(others, 2);
 }
 
@@ -895,7 +928,7 @@ TEST(ImuDiagnosis, FindsResidualCrossAxisCouplingAwayFromTheCalibrationTemperatu
 // channel and g-sensitivity on most gyros, sized within 3 SE + 15 % (lag) or 3 SE; scale factor
 // vs temperature stays undetectable from one calibration temperature.
 TEST(ImuDiagnosis, TruthProfileUnitsOnTheDemosShape) {
-  Tally lag, gsens;
+  Tally lag("truth profile, die lag"), gsens("truth profile, g-sensitivity", 3);
   int gyros_found = 0;
   for (uint64_t seed : {1, 2}) {
     const ImuUnitParams p = ImuUnitParams::Draw("IMU-0001", seed, ModelProfile::kTruth);
@@ -938,9 +971,9 @@ TEST(ImuDiagnosis, TruthProfileUnitsOnTheDemosShape) {
       gyros_found,
       gsens.within,
       gsens.total);
-  EXPECT_GE(lag.Fraction(), 0.9);
+  lag.Expect(12);
   EXPECT_GE(gyros_found, 4);
-  EXPECT_GE(gsens.Fraction(), 0.8);
+  gsens.Expect(4);
 }
 
 // The campaign sets each finding beside the rig's truth file, and lists what the truth has that

@@ -108,31 +108,39 @@ int WithinSpecOrBound(const Column& c) {
          count("outside specification, within 1.5x the physical limit");
 }
 
-// Measured (2026-11-26): datasheet prior median 0.95, 20 of 20 within 1.5x the bound; estimated
-// median 1.09, 19 of 20, the white variances found 1.4 times the datasheet's and the time scale at
-// the search's fast end (the test's thermal profile is compressed 60x: the slow poles are one
-// offset over the run, which the null absorbs).
+// The figures docs/calibration-strategies.md ("Model-form mismatch") states, asserted as it
+// prints them: the units, their noise and the fits are seeded, so each run gives the same
+// figures. A median within 0.01 of the docs' two decimals (half a unit of the last for their
+// rounding, as much again for another compiler's libm), a count exactly: a figure further off is
+// a changed calibration that the docs must follow. The window "about 1" would not do: it admits
+// the 1.17 the docs call optimistic by a sixth.
+constexpr double kMedianTolerance = 0.01;
+
+// Matched: datasheet prior median 0.95, 20 of 20 within 1.5x the bound; estimated median 1.09,
+// 19 of 20, the white variances found 1.4 times the datasheet's and the time scale at the
+// search's fast end (the test's thermal profile is compressed 60x: the slow poles are one offset
+// over the run, which the null absorbs).
 TEST(ImuModelForm, MatchedWanderBothCovariancesGiveAnHonestBound) {
   const std::array<Column, 2> c = RunTwentyUnits(sensor_sim::TruthVariant::kStandard);
-  for (int k = 0; k < 2; ++k) {
-    EXPECT_GT(common::Median(c[k].error_over_crb), 0.5) << k;
-    EXPECT_LT(common::Median(c[k].error_over_crb), 1.5) << k;
-  }
+  EXPECT_NEAR(common::Median(c[0].error_over_crb), 0.95, kMedianTolerance);
+  EXPECT_NEAR(common::Median(c[1].error_over_crb), 1.09, kMedianTolerance);
   EXPECT_EQ(WithinSpecOrBound(c[0]), 20);
-  EXPECT_GE(WithinSpecOrBound(c[1]), 18);
+  EXPECT_EQ(WithinSpecOrBound(c[1]), 19);
+  EXPECT_NEAR(common::Median(c[1].white_scale), 1.4, 0.05 + kMedianTolerance);
 }
 
-// Measured (2026-11-26): datasheet prior median 1.17, 18 of 20 within 1.5x the bound; estimated
-// median 1.38, 15 of 20, its time scale 3 (the truth's 10). The recording's observation means do
-// not identify the slower wander well enough to tighten the bound, so the datasheet prior stays
-// the default; a bound optimistic by a sixth is what the mismatch costs it.
+// Slower wander than the prior: datasheet prior median 1.17, 18 of 20 within 1.5x the bound;
+// estimated median 1.38, 15 of 20, its time scale 3 (the truth's 10). The recording's
+// observation means do not identify the slower wander well enough to tighten the bound, so the
+// datasheet prior stays the default; a bound optimistic by a sixth is what the mismatch costs it.
 TEST(ImuModelForm, SlowerWanderThanThePrior) {
   const std::array<Column, 2> c = RunTwentyUnits(sensor_sim::TruthVariant::kSlowBiasWander);
-  EXPECT_GT(common::Median(c[0].error_over_crb), 1.0);
-  EXPECT_LT(common::Median(c[0].error_over_crb), 1.5);
-  EXPECT_GE(WithinSpecOrBound(c[0]), 17);
-  EXPECT_LT(common::Median(c[1].error_over_crb), 2.0);
-  EXPECT_GT(common::Median(c[1].time_scale), 1.0);  // it moves toward the truth's slower poles
+  EXPECT_NEAR(common::Median(c[0].error_over_crb), 1.17, kMedianTolerance);
+  EXPECT_EQ(WithinSpecOrBound(c[0]), 18);
+  EXPECT_NEAR(common::Median(c[1].error_over_crb), 1.38, kMedianTolerance);
+  EXPECT_EQ(WithinSpecOrBound(c[1]), 15);
+  // It moves toward the truth's slower poles, to 3 (the docs' one digit: within 0.5).
+  EXPECT_NEAR(common::Median(c[1].time_scale), 3.0, 0.5);
 }
 
 }  // namespace
