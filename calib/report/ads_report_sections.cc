@@ -1,5 +1,7 @@
 #include "calib/report/ads_report_sections.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <ranges>
@@ -49,6 +51,7 @@ std::string ErrorPlot(const std::string& serial,
             altitude ? "altitude error (ft)" : "airspeed error (kt)",
             {},
             {}};
+  plot.figure = "ads-error";
   PlotBand band{"specification tolerance (+-)", {}, {}, {}};
   const int samples = 60;
   for (int i = 0; i <= samples; ++i) {
@@ -91,6 +94,76 @@ std::string ErrorPlot(const std::string& serial,
   return RenderSvg(plot) + RenderTable(table);
 }
 
+// Each bridge's mean code against the test set's pressure, a series per chamber temperature.
+std::string RawDataPlots(const std::string& serial, const std::vector<Acquisition>& points) {
+  std::string html;
+  for (const bool pitot : {false, true}) {
+    Plot plot{fmt::format("{} {} bridge: raw code against the test set's {} pressure",
+                          serial,
+                          pitot ? "pitot" : "static",
+                          pitot ? "impact" : "static"),
+              pitot ? "impact pressure Qc from the test set (kPa)"
+                    : "static pressure Ps from the test set (kPa)",
+              fmt::format("{} bridge output (ADS1254 code)", pitot ? "pitot" : "static"),
+              {},
+              {}};
+    plot.figure = "ads-raw";
+    std::map<double, PlotSeries> by_temp;
+    for (const Acquisition& a : points) {
+      if (a.n_raw == 0) continue;
+      const double bin = std::round(a.raw_temp_c / kTemperatureBinC) * kTemperatureBinC;
+      PlotSeries& s = by_temp[bin];
+      s.label = fmt::format("{:g} degC", bin);
+      s.style = PlotSeries::Style::kPoints;
+      s.x.push_back((pitot ? a.qc_ref_pa : a.ps_ref_pa) / 1000.0);
+      s.y.push_back(pitot ? a.pt_cnt : a.ps_cnt);
+    }
+    if (by_temp.empty()) return "";
+    for (auto& [bin, s] : by_temp) plot.series.push_back(std::move(s));
+    html += RenderSvg(plot);
+  }
+  return html;
+}
+
+// Where the fitted surface misses: each acquisition at (chamber temperature, reference input),
+// coloured by |residual| / tolerance. The altitude map takes the acquisitions below the airspeed
+// range (the static sweeps), the airspeed map those inside it.
+std::string ResidualMap(const std::string& serial,
+                        const std::vector<Acquisition>& points,
+                        bool altitude) {
+  const Specification spec = Specification::Reference();
+  const ToleranceTable& tol = altitude ? spec.altitude_ft : spec.airspeed_kt;
+  const double cas_min_kt = spec.airspeed_kt.input_min();
+  Plot plot{fmt::format("{} {} surface residual map against the tolerance",
+                        serial,
+                        altitude ? "altitude" : "airspeed"),
+            "chamber temperature (degC, as the controller reports it)",
+            altitude ? "pressure altitude from the test set's Ps, ISA (ft)"
+                     : "calibrated airspeed from the test set's Qc (kt)",
+            {},
+            {}};
+  plot.figure = "ads-surface-residual";
+  std::array<PlotSeries, 3> classes = {
+      PlotSeries{"|residual| <= 1/2 tolerance", {}, {}, PlotSeries::Style::kPoints, "#2ca02c"},
+      PlotSeries{
+          "1/2 < |residual| / tolerance <= 1", {}, {}, PlotSeries::Style::kPoints, "#ff7f0e"},
+      PlotSeries{"|residual| > tolerance", {}, {}, PlotSeries::Style::kPoints, "#d62728"}};
+  for (const Acquisition& a : points) {
+    if (a.n == 0 || (a.cas_ref_kt >= cas_min_kt) == altitude) continue;
+    const double x = altitude ? a.alt_ref_ft : a.cas_ref_kt;
+    if (x < tol.input_min() || x > tol.input_max()) continue;
+    const double ratio =
+        std::abs(altitude ? a.alt_ft - a.alt_ref_ft : a.cas_kt - a.cas_ref_kt) / tol.At(x);
+    PlotSeries& s = classes[ratio <= 0.5 ? 0 : ratio <= 1.0 ? 1 : 2];
+    s.x.push_back(a.temp_c);
+    s.y.push_back(x);
+  }
+  for (PlotSeries& s : classes) {
+    if (!s.x.empty()) plot.series.push_back(std::move(s));
+  }
+  return plot.series.empty() ? "" : RenderSvg(plot);
+}
+
 }  // namespace
 
 AdsReportAccumulator::AdsReportAccumulator(std::string serial,
@@ -100,23 +173,28 @@ AdsReportAccumulator::AdsReportAccumulator(std::string serial,
 
 void AdsReportAccumulator::Add(const hil::AdsRecordRow& row) {
   if (row.unit != serial_ || row.tag == 0 || Rejected(meta_, row.step, row.t_s)) return;
+  Acquisition& a =
+      groups_[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
   double alt_ft = 0.0, cas_kt = 0.0;
   if (row.alt_ft && row.cas_kt) {
     alt_ft = *row.alt_ft;
     cas_kt = *row.cas_kt;
     unit_values_ = true;
-  } else if (constants_ != nullptr) {
+  } else {
+    a.ps_ref_pa += row.ps_ref_pa;
+    a.qc_ref_pa += row.qc_ref_pa;
+    a.ps_cnt += row.ps_cnt;
+    a.pt_cnt += row.pt_cnt;
+    a.raw_temp_c += row.chamber_c;
+    ++a.n_raw;
+    if (constants_ == nullptr) return;
     const fm::AdsRawFrame raw{
         row.ps_cnt, row.pt_cnt, row.ps_temp_cnt, row.pt_temp_cnt, row.oat_cnt};
     const auto v = fm::AdsReference(*constants_->ads, fm::AdsCompensationMode::kSurface, raw);
     alt_ft = v[0];
     cas_kt = v[1];
     reference_values_ = true;
-  } else {
-    return;
   }
-  Acquisition& a =
-      groups_[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
   a.alt_ref_ft += common::IsaPressureAltitudeFt(row.ps_ref_pa);
   a.cas_ref_kt += row.qc_ref_pa > 0.0 ? common::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
   a.temp_c += row.chamber_c;
@@ -135,13 +213,32 @@ std::string AdsReportAccumulator::Sections() const {
                                                    "no constants.json for " + serial_ +
                                                        " in the fit "
                                                        "directory"));
-  std::vector<Acquisition> points;
+  std::vector<Acquisition> points;  // means
   for (Acquisition a : groups_ | std::views::values) {
-    for (double* v : {&a.alt_ref_ft, &a.cas_ref_kt, &a.temp_c, &a.alt_ft, &a.cas_kt}) *v /= a.n;
+    if (a.n > 0) {
+      for (double* v : {&a.alt_ref_ft, &a.cas_ref_kt, &a.temp_c, &a.alt_ft, &a.cas_kt}) *v /= a.n;
+    }
+    if (a.n_raw > 0) {
+      for (double* v : {&a.ps_ref_pa, &a.qc_ref_pa, &a.ps_cnt, &a.pt_cnt, &a.raw_temp_c}) {
+        *v /= a.n_raw;
+      }
+    }
     points.push_back(a);
   }
+  const bool raw_rows =
+      std::any_of(points.begin(), points.end(), [](const Acquisition& a) { return a.n_raw > 0; });
+  if (raw_rows) {
+    html += Section(serial_ + "-raw",
+                    3,
+                    serial_ + " raw data: bridge codes against the test set's pressures",
+                    RawDataPlots(serial_, points));
+  }
+  std::vector<Acquisition> judged;
+  for (const Acquisition& a : points) {
+    if (a.n > 0) judged.push_back(a);
+  }
   std::string map;
-  if (points.empty()) {
+  if (judged.empty()) {
     map = NotAvailable("ADS error map",
                        constants_ == nullptr ? "raw rows only and no constants.json for " + serial_
                                              : "no tagged acquisition rows for " + serial_);
@@ -150,7 +247,11 @@ std::string AdsReportAccumulator::Sections() const {
                                    ? "unit output and reference compensator"
                                : unit_values_ ? "the unit's own surface output"
                                               : "reference compensator on raw codes";
-    map = ErrorPlot(serial_, points, true, source) + ErrorPlot(serial_, points, false, source);
+    if (reference_values_) {
+      map += "<div class=\"figures\">\n" + ResidualMap(serial_, judged, true) +
+             ResidualMap(serial_, judged, false) + "</div>\n";
+    }
+    map += ErrorPlot(serial_, judged, true, source) + ErrorPlot(serial_, judged, false, source);
   }
   return html +
          Section(

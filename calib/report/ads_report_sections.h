@@ -1,4 +1,8 @@
-// The ADS parts of report.html for one unit: its constants with standard errors, and the error map
+// The ADS parts of report.html for one unit: its constants with standard errors, the raw data
+// (each bridge's mean code per acquisition against the test set's pressure, one series per chamber
+// temperature: the reference method's Figs. 16 and 24), the fitted surfaces' residual map
+// (reference altitude or airspeed against chamber temperature, each acquisition marked by its
+// |residual| as a fraction of the tolerance there), and the error map
 // over altitude x temperature (and airspeed x temperature) against the specification's tolerance
 // envelope (calib/acceptance/specification.h). Each point is the mean over one acquisition (rows
 // of one step and TAG at one test-set aim); its reference is the test set's reported pressure
@@ -33,10 +37,14 @@ class AdsReportAccumulator {
   /// Every ADS section for the unit.
   std::string Sections() const;
 
+  /// Sums over one acquisition's rows (means once divided): raw codes and reference pressures of
+  /// every row recorded in raw mode (n_raw), compensated values of every row that has them (n).
   struct Acquisition {
-    double alt_ref_ft = 0.0, cas_ref_kt = 0.0, qc_pa = 0.0, temp_c = 0.0;
+    double alt_ref_ft = 0.0, cas_ref_kt = 0.0, temp_c = 0.0;
     double alt_ft = 0.0, cas_kt = 0.0;
     int n = 0;
+    double ps_ref_pa = 0.0, qc_ref_pa = 0.0, ps_cnt = 0.0, pt_cnt = 0.0, raw_temp_c = 0.0;
+    int n_raw = 0;
   };
 
  private:
