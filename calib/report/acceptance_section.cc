@@ -111,7 +111,7 @@ HtmlTable PointsTable(const AcceptanceFile& f) {
   return points;
 }
 
-constexpr int kFigureWidthPx = 370;
+constexpr int kFigureWidthPx = 400;
 constexpr int kFigureHeightPx = 260;
 constexpr const char* kLimitColour = "#1f77b4";
 
@@ -211,7 +211,7 @@ std::string ImuAcceptanceFigures(const UnitAcceptance& u) {
                                               u.serial,
                                               orientation,
                                               UpAxisText(orientation)),
-                                  "chamber temperature (degC, as the controller reports it)",
+                                  "chamber temperature (degC)",
                                   "acceptance-accel",
                                   points,
                                   ChamberOf));
@@ -240,14 +240,11 @@ std::string ImuAcceptanceFigures(const UnitAcceptance& u) {
                             OutcomeText(p->outcome()));
       limit = p->tolerance;
     }
-    const std::string title = fmt::format("{} thermal acceptance: {} error per 5 degC bin",
-                                          u.serial,
-                                          is_rate ? "body-rate" : "acceleration");
-    Plot plot = ErrorFigure(title,
-                            "chamber temperature (degC, as the controller reports it)",
-                            "acceptance-thermal",
-                            points,
-                            ChamberOf);
+    const std::string title =
+        fmt::format("{} thermal acceptance: {}", u.serial, is_rate ? "body rate" : "acceleration");
+    Plot plot =
+        ErrorFigure(title, "chamber temperature (degC)", "acceptance-thermal", points, ChamberOf);
+    plot.y_label = fmt::format("mean error per 5 degC bin ({})", points.front()->unit);
     for (PlotSeries& s : plot.series) s.style = PlotSeries::Style::kLine;
     html += RenderSvg(plot);
     if (!judged.empty()) {

@@ -48,11 +48,12 @@ std::string Unavailable(const std::string& what,
 }
 
 // Figures of one channel are small, three to a row of the page.
-constexpr int kSmallWidthPx = 370;
+constexpr int kSmallWidthPx = 400;
 constexpr int kSmallHeightPx = 250;
 constexpr int kFitCurvePoints = 80;
-// Chamber temperatures are grouped to this width for per-temperature series.
-constexpr double kTemperatureBinC = 5.0;
+// Acquisitions within this of a group's first temperature belong to its series (the soaks of one
+// calibration temperature, held in a +-0.5 degC band).
+constexpr double kTemperatureGroupC = 3.0;
 // A gyro acquisition at the table's 0 deg/s.
 constexpr double kAtRestDps = 0.5;
 
@@ -138,7 +139,7 @@ std::string ChannelThermalFigures(const ImuUnitData& d,
   raw.series = {std::move(points), std::move(curve)};
 
   Plot residual{fmt::format("{} {}: residual after the thermal fit", d.serial, name),
-                "chamber air temperature (degC, as the controller reports it)",
+                "chamber temperature (degC)",
                 fmt::format("T = U - xi(t), mean removed ({})", Units(gyro)),
                 {},
                 {}};
@@ -308,22 +309,30 @@ std::string GyroScaleCurves(const ImuUnitData& d, const fm::ImuCalibrationConsta
     Plot plot{fmt::format("{} {}: scale-factor curve (Eq. 23)",
                           d.serial,
                           common::kGyroChannelNames[static_cast<size_t>(axis)]),
-              "table rate about the gyro's axis (deg/s, as the table reports it)",
+              "table rate about the gyro's axis (deg/s)",
               "normalised mean (T - null) F(t) (gyro counts)",
               {},
               {}};
     plot.figure = "gyro-scale";
     plot.width_px = kSmallWidthPx;
     plot.height_px = kSmallHeightPx + 40;
-    std::map<double, PlotSeries> by_temp;
+    std::vector<PlotSeries> by_temp;  // one per temperature the acquisitions cluster at
+    std::vector<double> group_c;      // each series' first acquisition's temperature
     double lo = 1e300, hi = -1e300;
     for (const ImuAcquisition& acq : d.gyro) {
       const auto up = UpAxisOf(acq.orientation);
       if (UpAxisIndex(up) != axis || acq.samples.empty()) continue;
-      const double bin = std::round(MeanChamberC(acq) / kTemperatureBinC) * kTemperatureBinC;
-      PlotSeries& s = by_temp[bin];
-      s.label = fmt::format("means at {:g} degC", bin);
-      s.style = PlotSeries::Style::kPoints;
+      const double temp_c = MeanChamberC(acq);
+      size_t g = 0;
+      while (g < group_c.size() && std::abs(group_c[g] - temp_c) > kTemperatureGroupC) ++g;
+      if (g == group_c.size()) {
+        group_c.push_back(temp_c);
+        by_temp.push_back({fmt::format("means at {:.0f} degC", temp_c + 0.0),
+                           {},
+                           {},
+                           PlotSeries::Style::kPoints});
+      }
+      PlotSeries& s = by_temp[g];
       const double input = MeanCubicInput(c, axis, acq.samples);
       s.x.push_back(acq.rate_dps * up[static_cast<size_t>(axis)]);
       s.y.push_back(input);
@@ -331,7 +340,7 @@ std::string GyroScaleCurves(const ImuUnitData& d, const fm::ImuCalibrationConsta
       hi = std::max(hi, input);
     }
     if (by_temp.empty()) continue;
-    for (auto& [bin, s] : by_temp) plot.series.push_back(std::move(s));
+    for (PlotSeries& s : by_temp) plot.series.push_back(std::move(s));
     const auto& l = c.gyro[static_cast<size_t>(axis)].l;
     PlotSeries cubic{"fitted cubic l0 + l1 d + l2 d^2 + l3 d^3", {}, {}, PlotSeries::Style::kLine};
     for (int k = 0; k <= kFitCurvePoints; ++k) {

@@ -18,8 +18,16 @@ constexpr int kMarginTopPx = 30;
 constexpr int kMarginBottomPx = 48;
 constexpr int kLegendRowPx = 16;
 constexpr int kMaxTicks = 8;
-constexpr const char* kColours[] = {
-    "#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+constexpr const char* kColours[] = {"#1f77b4",
+                                    "#d62728",
+                                    "#2ca02c",
+                                    "#ff7f0e",
+                                    "#9467bd",
+                                    "#8c564b",
+                                    "#e377c2",
+                                    "#17becf",
+                                    "#7f7f7f",
+                                    "#bcbd22"};
 
 struct Range {
   double lo = std::numeric_limits<double>::infinity();
