@@ -23,7 +23,7 @@ using Mode = fm::ImuCompensationMode;
 
 constexpr const char* kAxes[3] = {"x", "y", "z"};
 constexpr size_t kMaxPlotPoints = 400;
-constexpr size_t kMaxSmallPlotPoints = 150;  // per series of a one-channel figure
+constexpr size_t kMaxSmallPlotPoints = 100;  // per series of a one-channel figure
 constexpr double kMpsPerMg = common::kMpsPerMilliG;
 
 std::array<double, 9> Mean(const fm::ImuCalibrationConstants& c,
