@@ -19,6 +19,8 @@ json PointJson(const AcceptancePoint& p) {
   if (p.alt_ft) j["alt_ft"] = *p.alt_ft;
   if (p.cas_kt) j["cas_kt"] = *p.cas_kt;
   j["chamber_c"] = p.chamber_c;
+  if (p.chamber_min_c) j["chamber_min_c"] = *p.chamber_min_c;
+  if (p.chamber_max_c) j["chamber_max_c"] = *p.chamber_max_c;
   j["condition"] = p.Condition();
   j["unit"] = p.unit;
   j["samples"] = p.samples;
@@ -71,7 +73,12 @@ json AcceptanceJson(const AcceptanceRun& run,
       {"airspeed", "calibrated airspeed of qc_ref_pa"}};
   if (unit.kind == "imu") reference["local_gravity_mps2"] = run.local_gravity_mps2;
   json verdicts = json::object();
-  for (const std::string family : {"acceleration", "body_rate", "altitude", "airspeed"}) {
+  for (const std::string family : {"acceleration",
+                                   "body_rate",
+                                   "altitude",
+                                   "airspeed",
+                                   "thermal_acceleration_std",
+                                   "thermal_body_rate_std"}) {
     json counts = json::object();
     for (PointVerdict v : {PointVerdict::kWithinSpecification,
                            PointVerdict::kWithinPhysicalLimit,

@@ -35,6 +35,8 @@ AcceptancePoint PointFrom(const ParamReader& r, int format_version) {
   p.alt_ft = OptionalNumber(r, "alt_ft");
   p.cas_kt = OptionalNumber(r, "cas_kt");
   p.chamber_c = Number(r, "chamber_c");
+  p.chamber_min_c = OptionalNumber(r, "chamber_min_c");
+  p.chamber_max_c = OptionalNumber(r, "chamber_max_c");
   p.samples = r.Has("samples") ? Int(r, "samples") : 0;
   p.measured = Number(r, "measured");
   p.reference = Number(r, "reference");

@@ -52,12 +52,12 @@ struct Moments {
     ++n;
   }
   double Mean() const { return sum / n; }
-  double StdError() const {
+  double Std() const {
     if (n < 2) return 0.0;
     const double mean = Mean();
-    const double var = std::max(0.0, (sum_sq - n * mean * mean) / (n - 1));
-    return std::sqrt(var / n);
+    return std::sqrt(std::max(0.0, (sum_sq - n * mean * mean) / (n - 1)));
   }
+  double StdError() const { return n < 2 ? 0.0 : Std() / std::sqrt(n); }
 };
 
 // Per-packet measured and reference values of one quantity over one point.
@@ -371,6 +371,86 @@ void JudgeImuGroup(const Where& where,
   }
 }
 
+// The thermal acceptance of one thermal_profile step: per body axis the standard deviation, over
+// the step, of the error averaged over consecutive kThermalStabilityMean_s blocks of packets (a
+// last, shorter block is left out). Its standard error is that of a normal sample's deviation,
+// s / sqrt(2 (n - 1)).
+void JudgeThermalStability(const Where& where,
+                           const std::vector<const ImuOutputRow*>& rows,
+                           const ThermalStability& limits,
+                           double g_local_g,
+                           const RunContext& ctx,
+                           UnitAcceptance* unit) {
+  const int orientation = rows.front()->orientation;
+  if (orientation == 0) Refuse(where, "rows carry no orientation (0: not mounted)");
+  const std::array<double, 3> up = UpAxis(where, orientation);
+  const auto block =
+      static_cast<size_t>(std::max(1L, std::lround(kThermalStabilityMean_s / ctx.packet_period_s)));
+  std::array<Moments, 3> accel_mg, rate_dps;
+  std::array<double, 3> accel_sum{}, rate_sum{};
+  size_t in_block = 0;
+  Moments chamber;
+  double chamber_min_c = rows.front()->chamber_c, chamber_max_c = chamber_min_c;
+  for (const ImuOutputRow* row : rows) {
+    if (row->orientation != orientation) {
+      Refuse(where,
+             fmt::format("t_s {}: orientation {} where the profile began in {}",
+                         row->t_s,
+                         row->orientation,
+                         orientation));
+    }
+    for (size_t i = 0; i < 3; ++i) {
+      accel_sum[i] += (row->body.f_B_g[i] - up[i] * g_local_g) * kMgPerG;
+      rate_sum[i] += row->body.w_B_dps[i] - up[i] * row->table_rate_dps;
+    }
+    chamber.Add(row->chamber_c);
+    chamber_min_c = std::min(chamber_min_c, row->chamber_c);
+    chamber_max_c = std::max(chamber_max_c, row->chamber_c);
+    if (++in_block < block) continue;
+    for (size_t i = 0; i < 3; ++i) {
+      accel_mg[i].Add(accel_sum[i] / static_cast<double>(block));
+      rate_dps[i].Add(rate_sum[i] / static_cast<double>(block));
+    }
+    accel_sum = {};
+    rate_sum = {};
+    in_block = 0;
+  }
+  if (accel_mg[0].n < 2) {
+    Refuse(where,
+           fmt::format("{} packets: fewer than two {:g} s means for the thermal acceptance's "
+                       "standard deviation",
+                       rows.size(),
+                       kThermalStabilityMean_s));
+  }
+  AcceptancePoint base;
+  base.step = where.step;
+  base.kind = where.kind;
+  base.orientation = orientation;
+  base.chamber_c = chamber.Mean();
+  base.chamber_min_c = chamber_min_c;
+  base.chamber_max_c = chamber_max_c;
+  base.samples = accel_mg[0].n * static_cast<int>(block);
+  base.duration_s = static_cast<double>(base.samples) * ctx.packet_period_s;
+  base.reference = 0.0;
+  base.marginal_band = limits.marginal_band;
+  for (const bool rate : {false, true}) {
+    for (size_t i = 0; i < 3; ++i) {
+      const Moments& m = rate ? rate_dps[i] : accel_mg[i];
+      AcceptancePoint p = base;
+      p.quantity = std::string(rate ? "thermal_rate_std_" : "thermal_accel_std_") + kAxisNames[i];
+      p.unit = rate ? "deg/s" : "mg";
+      p.measured = m.Std();
+      p.error = p.measured;
+      p.std_error = p.measured / std::sqrt(2.0 * (m.n - 1));
+      p.noise = p.std_error;
+      p.tolerance = rate ? limits.rate_std_dps : limits.accel_std_mg;
+      p.pass = p.error <= p.tolerance;
+      p.beyond_noise = std::abs(p.error - p.tolerance) > 2.0 * p.noise;
+      unit->points.push_back(p);
+    }
+  }
+}
+
 void JudgeImuUnit(
     const RunContext& ctx,
     const Specification& spec,
@@ -415,6 +495,10 @@ void JudgeImuUnit(
         continue;
       }
       JudgeImuGroup(where, group, spec, common::Mps2ToG(g_local_mps2), ctx, unit);
+    }
+    if (std::holds_alternative<ThermalProfileStep>(body) && spec.thermal_stability) {
+      JudgeThermalStability(
+          where, rows, *spec.thermal_stability, common::Mps2ToG(g_local_mps2), ctx, unit);
     }
   }
 }
@@ -515,6 +599,8 @@ const char* PointVerdictText(PointVerdict verdict) {
 std::string QuantityFamily(const std::string& quantity) {
   if (quantity.starts_with("accel_")) return "acceleration";
   if (quantity.starts_with("rate_")) return "body_rate";
+  if (quantity.starts_with("thermal_accel_std_")) return "thermal_acceleration_std";
+  if (quantity.starts_with("thermal_rate_std_")) return "thermal_body_rate_std";
   return quantity;
 }
 
@@ -538,6 +624,9 @@ std::string AcceptancePoint::Condition() const {
   if (rate_dps) text += fmt::format("{:g} deg/s, ", *rate_dps);
   if (alt_ft) text += fmt::format("{:g} ft, ", *alt_ft);
   if (cas_kt && *cas_kt > 0.0) text += fmt::format("{:g} kt, ", *cas_kt);
+  if (chamber_min_c && chamber_max_c) {
+    return text + fmt::format("{:.1f}...{:.1f} degC", *chamber_min_c, *chamber_max_c);
+  }
   return text + fmt::format("{:.1f} degC", chamber_c);
 }
 

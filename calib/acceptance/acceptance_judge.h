@@ -7,7 +7,10 @@
 // steps in ft and kt (ISA pressure altitude, calibrated airspeed). Statistic: mean of (measured -
 // reference) per packet with its standard error; pass when |mean error| <= tolerance, MARGINAL
 // when it passes inside the specification's marginal band; with a rest record, rate points carry
-// their physical limit (rest_stability.h).
+// their physical limit (rest_stability.h). Thermal acceptance: with the specification's
+// thermal_stability, a thermal_profile step also gives per body axis the standard deviation of the
+// error's 1 s means over the whole step (thermal_accel_std_x..z in mg, thermal_rate_std_x..z in
+// deg/s), which passes when it is at most the limit.
 // Frames: body axes B of the IMU; units in each point's `unit`.
 // Derivations, mode by mode quantities, Earth rate, refusals: docs/acceptance.md ("What is
 // compared with what", "Rate points", "Refused input").
@@ -38,6 +41,9 @@ inline constexpr double kRatingMarginC = 0.5;
 inline constexpr double kThermalBinWidthC = 5.0;
 /// A thermal bin with fewer packets is not judged (the chamber only touched it).
 inline constexpr size_t kMinThermalBinPackets = 10;
+/// The thermal acceptance's standard deviation is over means of this length: the ADXRS150's white
+/// noise (about 0.35 deg/s per 10 ms packet) would otherwise be most of it.
+inline constexpr double kThermalStabilityMean_s = 1.0;
 
 /// Bias wander is counted over this time between calibration and acceptance unless told otherwise:
 /// a production line accepts within a day of calibrating. The limit grows as ln(T), so a factor
@@ -80,6 +86,8 @@ struct AcceptancePoint {
   std::optional<double> alt_ft;    ///< ADS: aimed pressure altitude
   std::optional<double> cas_kt;    ///< ADS: aimed calibrated airspeed
   double chamber_c = 0.0;          ///< mean chamber temperature as the controller reported it
+  /// Thermal stability points: the lowest and highest chamber temperature of the step.
+  std::optional<double> chamber_min_c{}, chamber_max_c{};
   int samples = 0;
   double measured = 0.0;    ///< mean of the unit's output
   double reference = 0.0;   ///< mean of the instruments' reference
@@ -97,7 +105,8 @@ struct AcceptancePoint {
   /// FAIL unless pass; MARGINAL when |error| > (1 - marginal_band) x tolerance; else PASS.
   Outcome outcome() const;
   double margin() const;  ///< tolerance - |error| (negative when failing)
-  /// "orientation 11, 62.5 deg/s, 25.0 degC" / "5000 ft, 60 kt, -20.0 degC": where it was judged.
+  /// "orientation 11, 62.5 deg/s, 25.0 degC" / "5000 ft, 60 kt, -20.0 degC" / "orientation 31,
+  /// 25.0...85.0 degC" (a thermal stability point): where it was judged.
   std::string Condition() const;
 };
 
@@ -145,7 +154,8 @@ AcceptanceRun JudgeAcceptance(const std::filesystem::path& run_dir,
                               const Specification& spec,
                               const AcceptanceOptions& options = {});
 
-/// "acceleration" for accel_x..z, "body_rate" for rate_x..z, else the quantity itself.
+/// "acceleration" for accel_x..z, "body_rate" for rate_x..z, "thermal_acceleration_std" for
+/// thermal_accel_std_x..z, "thermal_body_rate_std" for thermal_rate_std_x..z, else the quantity.
 std::string QuantityFamily(const std::string& quantity);
 
 }  // namespace adahrs::calib

@@ -72,22 +72,28 @@ nlohmann::json TableJson(const ToleranceTable& t) {
 }  // namespace
 
 nlohmann::json Specification::ToJson() const {
-  return {{"name", name},
-          {"version", version},
-          {"sha256", sha256},
-          {"accel_mg", accel_mg},
-          {"body_rate_dps", body_rate_dps},
-          {"rated_rate_dps", rated_rate_dps},
-          {"rated_accel_g", rated_accel_g},
-          {"temp_min_c", temp_min_c},
-          {"temp_max_c", temp_max_c},
-          {"altitude_ft", TableJson(altitude_ft)},
-          {"airspeed_kt", TableJson(airspeed_kt)},
-          {"marginal_band_fraction",
-           {{"acceleration", marginal_band.acceleration},
-            {"body_rate", marginal_band.body_rate},
-            {"altitude", marginal_band.altitude},
-            {"airspeed", marginal_band.airspeed}}}};
+  nlohmann::json j = {{"name", name},
+                      {"version", version},
+                      {"sha256", sha256},
+                      {"accel_mg", accel_mg},
+                      {"body_rate_dps", body_rate_dps},
+                      {"rated_rate_dps", rated_rate_dps},
+                      {"rated_accel_g", rated_accel_g},
+                      {"temp_min_c", temp_min_c},
+                      {"temp_max_c", temp_max_c},
+                      {"altitude_ft", TableJson(altitude_ft)},
+                      {"airspeed_kt", TableJson(airspeed_kt)},
+                      {"marginal_band_fraction",
+                       {{"acceleration", marginal_band.acceleration},
+                        {"body_rate", marginal_band.body_rate},
+                        {"altitude", marginal_band.altitude},
+                        {"airspeed", marginal_band.airspeed}}}};
+  if (thermal_stability) {
+    j["thermal_stability"] = {{"accel_std_mg", thermal_stability->accel_std_mg},
+                              {"rate_std_dps", thermal_stability->rate_std_dps},
+                              {"marginal_band_fraction", thermal_stability->marginal_band}};
+  }
+  return j;
 }
 
 double Specification::MarginalBandOf(const std::string& family) const {
@@ -95,6 +101,10 @@ double Specification::MarginalBandOf(const std::string& family) const {
   if (family == "body_rate") return marginal_band.body_rate;
   if (family == "altitude") return marginal_band.altitude;
   if (family == "airspeed") return marginal_band.airspeed;
+  if (thermal_stability &&
+      (family == "thermal_acceleration_std" || family == "thermal_body_rate_std")) {
+    return thermal_stability->marginal_band;
+  }
   throw std::invalid_argument("no marginal band for the quantity family \"" + family + "\"");
 }
 
@@ -102,7 +112,8 @@ namespace {
 
 using common::ParamReader;
 
-constexpr const char* kQuantities[] = {"acceleration", "body_rate", "altitude", "airspeed"};
+constexpr const char* kQuantities[] = {
+    "acceleration", "body_rate", "altitude", "airspeed", "thermal_stability"};
 // Wide enough for any unit's figures, narrow enough to catch a value in the wrong unit.
 constexpr double kMaxBandFraction = 0.5;
 
@@ -166,7 +177,8 @@ void CheckQuantityNames(const ParamReader& r, const nlohmann::json& quantities) 
   for (const auto& [key, value] : quantities.items()) {
     if (std::find(std::begin(kQuantities), std::end(kQuantities), key) == std::end(kQuantities)) {
       r.Fail(r.path() + "." + key,
-             "unknown quantity (known: acceleration, body_rate, altitude, airspeed)");
+             "unknown quantity (known: acceleration, body_rate, altitude, airspeed, "
+             "thermal_stability)");
     }
   }
 }
@@ -230,6 +242,15 @@ Specification FromJson(const nlohmann::json& doc, const std::string& source) {
       TableFrom(airspeed, q_json.at("airspeed"), "airspeed", "kt", 0.0, 1500.0, 500.0);
   const double airspeed_band = Band(airspeed);
   airspeed.ExpectAllKeysUsed();
+  std::optional<ThermalStability> thermal_stability;
+  if (quantities.Has("thermal_stability")) {
+    const ParamReader thermal = quantities.Child("thermal_stability");
+    thermal_stability =
+        ThermalStability{.accel_std_mg = thermal.Number("accel_std_mg", 1e-6, 1000.0, "mg"),
+                         .rate_std_dps = thermal.Number("rate_std_dps", 1e-9, 100.0, "deg/s"),
+                         .marginal_band = Band(thermal)};
+    thermal.ExpectAllKeysUsed();
+  }
   quantities.ExpectAllKeysUsed();
   r.ExpectAllKeysUsed();
 
@@ -246,6 +267,7 @@ Specification FromJson(const nlohmann::json& doc, const std::string& source) {
       .altitude_ft = std::move(altitude_ft),
       .airspeed_kt = std::move(airspeed_kt),
       .marginal_band = {accel_band, rate_band, altitude_band, airspeed_band},
+      .thermal_stability = thermal_stability,
   };
 }
 

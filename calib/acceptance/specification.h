@@ -10,6 +10,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -70,6 +71,17 @@ struct MarginalBands {
   double airspeed = 0.0;
 };
 
+/// The thermal acceptance of the reference method (section 4.2.5: the output logged through a
+/// thermal ramp; its standard deviation stayed within 0.20 deg/s and 4 mg): per body axis the
+/// standard deviation of the error over a thermal_profile step (acceptance_judge.h), against these
+/// limits. Optional in a specification file: without it thermal_profile steps are judged per
+/// temperature bin only.
+struct ThermalStability {
+  double accel_std_mg = 4.0;
+  double rate_std_dps = 0.20;
+  double marginal_band = 0.0;
+};
+
 struct Specification {
   std::string name;               ///< "AHR150A-A"
   std::string version;            ///< the specification's own revision, as the file states it
@@ -83,10 +95,12 @@ struct Specification {
   ToleranceTable altitude_ft;  ///< tolerance in ft vs pressure altitude in ft
   ToleranceTable airspeed_kt;  ///< tolerance in kt vs calibrated airspeed in kt
   MarginalBands marginal_band;
+  std::optional<ThermalStability> thermal_stability;
 
   /// The AHR150A -A specification: calib/specifications/ahr150a-a.json as compiled in.
   static Specification Reference();
-  /// The band fraction of a family ("acceleration", "body_rate", "altitude", "airspeed").
+  /// The band fraction of a family ("acceleration", "body_rate", "altitude", "airspeed", and with
+  /// thermal_stability "thermal_acceleration_std", "thermal_body_rate_std").
   double MarginalBandOf(const std::string& family) const;
   /// The identity, tables, scalars and bands as JSON (for acceptance.json and evaluation.json).
   nlohmann::json ToJson() const;

@@ -101,6 +101,7 @@ std::string ImuNoiseSection(const ImuUnitData& d, const ConstantsFile* constants
               {},
               {}};
     plot.log_x = plot.log_y = true;
+    plot.figure = "allan";
     for (int i = 0; i < 3; ++i) {
       const AllanTerms& t = terms[gyro ? 3 + i : i];
       PlotSeries s{

@@ -1,12 +1,14 @@
 #include "calib/report/run_report.h"
 
 #include <map>
+#include <memory>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "calib/acceptance/acceptance_file.h"
 #include "calib/constants/constants_file.h"
+#include "calib/constants/recording_checksum.h"
 #include "calib/imu_calibration/imu_run_data.h"
 #include "calib/report/acceptance_section.h"
 #include "calib/report/ads_report_sections.h"
@@ -16,6 +18,7 @@
 #include "calib/report/svg_plot.h"
 #include "calib/report/time_series.h"
 #include "calib/report/verdict_section.h"
+#include "calib/sequence/sequence_json.h"
 #include "common/atomic_file.h"
 #include "common/html_page.h"
 #include "common/param_reader.h"
@@ -138,29 +141,86 @@ const ConstantsFile* ConstantsOf(const FitInputs& fit, const std::string& serial
 
 // What one streamed pass over the recording gives the report (every row is still read and
 // checked; only per-acquisition sums and decimated series are kept): the ADS sections of every
-// ADS unit by serial, and the time series of the run.
+// ADS unit by serial, the time series of the run, and the IMU calibration data of the units
+// recorded in raw mode (as LoadImuRuns collects it, from the same pass), or why there is none.
 struct StreamedSections {
   std::map<std::string, std::string> ads_html;
   std::string time_series_html;
+  std::optional<ImuRunData> imu;
+  std::string imu_why;
 };
+
+// The collector of the run's IMU calibration data, or nullptr (no IMU recorded in raw mode, or
+// the run cannot give calibration data: `why` says so).
+std::unique_ptr<ImuRunCollector> ImuCollector(const std::filesystem::path& run_dir,
+                                              const hil::RecordingMeta& meta,
+                                              ImuRunData* data,
+                                              std::string* why) {
+  std::vector<std::string> serials;
+  for (const hil::RecordingUnit& u : meta.units) {
+    if (u.kind == common::UnitKind::kImu && u.mode.value_or(0) == 0 && !u.serial.empty()) {
+      serials.push_back(u.serial);
+    }
+  }
+  if (serials.empty()) return nullptr;
+  const std::string run = run_dir.string();
+  try {
+    if (!meta.local_gravity_mps2) {
+      throw ImuInputError(
+          run +
+          ": meta.json: $.local_gravity_mps2 missing (the station's local gravity is needed)");
+    }
+    if (!meta.sequence) throw ImuInputError(run + ": meta.json: $.sequence missing");
+    return std::make_unique<ImuRunCollector>(
+        run,
+        RecordingSha256(run_dir),
+        SequenceFromJson(*meta.sequence, run + "/meta.json $.sequence"),
+        *meta.local_gravity_mps2,
+        serials,
+        meta.rejected_intervals,
+        data);
+  } catch (const std::exception& e) {
+    *why = e.what();
+    return nullptr;
+  }
+}
 
 StreamedSections StreamSections(const std::filesystem::path& run_dir,
                                 const hil::RecordingMeta& meta,
                                 const FitInputs& fit) {
+  StreamedSections streamed;
   std::vector<AdsReportAccumulator> units;
   for (const hil::RecordingUnit& u : meta.units) {
     if (u.kind == common::UnitKind::kImu) continue;
     units.emplace_back(u.serial, meta, ConstantsOf(fit, u.serial));
   }
+  ImuRunData imu;
+  std::unique_ptr<ImuRunCollector> collector = ImuCollector(run_dir, meta, &imu, &streamed.imu_why);
   TimeSeriesAccumulator time_series;
   hil::RowSinks sinks;
   sinks.ads = [&](hil::AdsRecordRow&& row, int) {
     for (AdsReportAccumulator& unit : units) unit.Add(row);
     time_series.Add(row);
   };
-  sinks.imu = [&](hil::ImuRecordRow&& row, int) { time_series.Add(row); };
+  sinks.imu = [&](hil::ImuRecordRow&& row, int line) {
+    time_series.Add(row);
+    if (collector == nullptr) return;
+    try {
+      collector->Take(row, line);
+    } catch (const std::exception& e) {  // the figures of time go on without calibration data
+      streamed.imu_why = e.what();
+      collector.reset();
+    }
+  };
   hil::StreamRecording(run_dir, sinks);
-  StreamedSections streamed;
+  if (collector != nullptr) {
+    try {
+      collector->Finish();
+      streamed.imu = std::move(imu);
+    } catch (const std::exception& e) {
+      streamed.imu_why = e.what();
+    }
+  }
   for (const AdsReportAccumulator& unit : units) streamed.ads_html[unit.serial()] = unit.Sections();
   streamed.time_series_html = time_series.Figures();
   return streamed;
@@ -176,20 +236,8 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
   const StreamedSections streamed = StreamSections(run_dir, meta, fit);
   const std::map<std::string, std::string>& ads_html = streamed.ads_html;
   const double g_local_mps2 = meta.local_gravity_mps2.value_or(0.0);
-
-  std::optional<ImuRunData> imu;
-  std::string imu_why;
-  bool has_imu = false;
-  for (const hil::RecordingUnit& u : meta.units) {
-    has_imu |= u.kind == common::UnitKind::kImu && u.mode.value_or(0) == 0;  // raw rows to show
-  }
-  if (has_imu) {
-    try {
-      imu = LoadImuRuns({run_dir});
-    } catch (const std::exception& e) {
-      imu_why = e.what();
-    }
-  }
+  const std::optional<ImuRunData>& imu = streamed.imu;
+  const std::string& imu_why = streamed.imu_why;
 
   const std::string title =
       fmt::format("Calibration report: run {}", meta.run_id.value_or(run_dir.filename().string()));

@@ -18,8 +18,16 @@ constexpr int kMarginTopPx = 30;
 constexpr int kMarginBottomPx = 48;
 constexpr int kLegendRowPx = 16;
 constexpr int kMaxTicks = 8;
-constexpr const char* kColours[] = {
-    "#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+constexpr const char* kColours[] = {"#1f77b4",
+                                    "#d62728",
+                                    "#2ca02c",
+                                    "#ff7f0e",
+                                    "#9467bd",
+                                    "#8c564b",
+                                    "#e377c2",
+                                    "#17becf",
+                                    "#7f7f7f",
+                                    "#bcbd22"};
 
 struct Range {
   double lo = std::numeric_limits<double>::infinity();
@@ -47,6 +55,11 @@ void CheckLengths(const Plot& plot, const std::string& what, size_t x, size_t y)
 }
 
 std::string Colour(size_t i) { return kColours[i % std::size(kColours)]; }
+
+// A series' own colour, else the palette's for its place.
+std::string SeriesColour(const Plot& plot, size_t i) {
+  return plot.series[i].colour.empty() ? Colour(i) : XmlEscape(plot.series[i].colour);
+}
 
 // The value as the axis maps it: log10 on a decade axis (NaN for values <= 0, not drawn).
 double OnAxis(double v, bool log) {
@@ -126,8 +139,9 @@ std::string SvgHeader(const Plot& plot) {
   const size_t legend_rows = plot.series.size() + plot.bands.size();
   const int height_px = plot.height_px + static_cast<int>(legend_rows) * kLegendRowPx;
   std::string svg = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{}\" height=\"{}\" "
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\"{} width=\"{}\" height=\"{}\" "
       "viewBox=\"0 0 {} {}\" font-family=\"sans-serif\" font-size=\"11\">\n",
+      plot.figure.empty() ? "" : fmt::format(" data-figure=\"{}\"", XmlEscape(plot.figure)),
       plot.width_px,
       height_px,
       plot.width_px,
@@ -153,10 +167,11 @@ std::string BandPolygons(const Plot& plot, const Frame& f) {
       points += fmt::format("{:.2f},{:.2f} ", f.Px(b.x[k]), f.Py(b.y_lo[k]));
     }
     svg += fmt::format(
-        "<polygon class=\"band\" data-label=\"{}\" points=\"{}\" fill=\"#2ca02c\" "
+        "<polygon class=\"band\" data-label=\"{}\" points=\"{}\" fill=\"{}\" "
         "fill-opacity=\"0.15\" stroke=\"none\"/>\n",
         XmlEscape(b.label),
-        points);
+        points,
+        XmlEscape(b.colour));
   }
   return svg;
 }
@@ -267,7 +282,7 @@ std::string Legend(const Plot& plot, const Frame& f) {
         "height=\"4\" fill=\"{}\"/><text x=\"{:.2f}\" y=\"{:.2f}\">{}</text></g>\n",
         f.left,
         legend_y + 4,
-        Colour(i),
+        SeriesColour(plot, i),
         f.left + 20,
         legend_y + 10,
         XmlEscape(plot.series[i].label));
@@ -275,10 +290,11 @@ std::string Legend(const Plot& plot, const Frame& f) {
   for (const PlotBand& b : plot.bands) {
     svg += fmt::format(
         "<g class=\"legend\"><rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"14\" "
-        "height=\"10\" fill=\"#2ca02c\" fill-opacity=\"0.15\"/><text x=\"{:.2f}\" "
+        "height=\"10\" fill=\"{}\" fill-opacity=\"0.15\"/><text x=\"{:.2f}\" "
         "y=\"{:.2f}\">{}</text></g>\n",
         f.left,
         legend_y + 1,
+        XmlEscape(b.colour),
         f.left + 20,
         legend_y + 10,
         XmlEscape(b.label));
@@ -298,8 +314,8 @@ std::string RenderSvg(const Plot& data_plot) {
   svg += AxisLabels(plot, f);
   for (size_t i = 0; i < plot.series.size(); ++i) {
     const PlotSeries& s = plot.series[i];
-    svg += s.style == PlotSeries::Style::kLine ? LineSeries(s, Colour(i), f)
-                                               : PointSeries(s, Colour(i), f);
+    svg += s.style == PlotSeries::Style::kLine ? LineSeries(s, SeriesColour(plot, i), f)
+                                               : PointSeries(s, SeriesColour(plot, i), f);
   }
   svg += Legend(plot, f);
   svg += "</svg>\n";

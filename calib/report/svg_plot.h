@@ -22,6 +22,7 @@ struct PlotSeries {
   std::vector<double> x;
   std::vector<double> y;
   Style style = Style::kLine;
+  std::string colour{};  ///< empty: the palette's colour for the series' place
 };
 
 /// A shaded region between y_lo(x) and y_hi(x) (e.g. the specification's tolerance envelope).
@@ -30,6 +31,7 @@ struct PlotBand {
   std::vector<double> x;
   std::vector<double> y_lo;
   std::vector<double> y_hi;
+  std::string colour = "#2ca02c";  ///< fill, drawn at 15 % opacity
 };
 
 struct Plot {
@@ -42,6 +44,9 @@ struct Plot {
   bool log_y = false;
   int width_px = 640;
   int height_px = 360;
+  /// What the figure shows, as the <svg>'s data-figure attribute ("time-series", "thermal-fit",
+  /// ...; docs/report.md "Figures"): how a reader of the page counts figures by kind. Empty: none.
+  std::string figure{};
 };
 
 /// The plot as an <svg> element. Non-finite points are skipped (a line breaks there). Throws

@@ -54,14 +54,71 @@ void DecimatedSeries::Envelope(std::vector<double>& t_s, std::vector<double>& va
   }
 }
 
-TimeSeriesAccumulator::Figure& TimeSeriesAccumulator::FigureOf(const std::string& title,
-                                                               const std::string& y_label) {
-  auto [it, added] = figures_.try_emplace(title);
-  if (added) {
-    order_.push_back(title);
-    it->second.y_label = y_label;
+namespace {
+
+// One figure of a layout: its title (after "<unit>: "; the instruments' figure has none), y axis
+// and series.
+struct FigureLayout {
+  const char* title;
+  const char* y_label;
+  std::vector<std::string> labels;
+};
+
+std::vector<FigureLayout> FiguresOf(TimeSeriesAccumulator::Layout layout) {
+  using L = TimeSeriesAccumulator::Layout;
+  const std::vector<std::string> accel(std::begin(common::kAccelChannelNames),
+                                       std::end(common::kAccelChannelNames));
+  const std::vector<std::string> gyro(std::begin(common::kGyroChannelNames),
+                                      std::end(common::kGyroChannelNames));
+  switch (layout) {
+    case L::kImuInstruments:
+      return {{kInstruments, "reading (degC, deg/s)", {"chamber (degC)", "rate table (deg/s)"}}};
+    case L::kAdsInstruments:
+      return {{kInstruments,
+               "reading (degC, kPa)",
+               {"chamber (degC)", "static pressure (kPa)", "impact pressure (kPa)"}}};
+    case L::kImuMode3:  // fully calibrated: A (m/s^2) 0..2, G (deg/s) 3..5
+      return {{"accelerations (mode 3)", "acceleration (m/s^2)", {"Ax", "Ay", "Az"}},
+              {"body rates (mode 3)", "rate (deg/s)", {"Gx", "Gy", "Gz"}}};
+    case L::kImuMode2:  // sensor calibrated: g per channel 0..5, deg/s 6..8
+      return {{"accelerometer channels (mode 2)", "acceleration (g)", accel},
+              {"gyro channels (mode 2)", "rate (deg/s)", gyro}};
+    case L::kImuRaw:
+      return {{"gyro counts (raw)", "gyro output (counts)", gyro},
+              {"accelerometer duty (raw)", "duty T1/T2 - 0.5 (dimensionless)", accel}};
+    case L::kAdsSurface:
+      return {{"altitude (surface mode)", "altitude (ft)", {"altitude"}},
+              {"airspeed (surface mode)", "airspeed (kt)", {"airspeed"}}};
+    case L::kAdsRaw:
+      return {{"bridge codes (raw)", "bridge output (ADS1254 code)", {"static", "pitot"}}};
   }
-  return it->second;
+  return {};
+}
+
+bool IsInstruments(TimeSeriesAccumulator::Layout layout) {
+  return layout == TimeSeriesAccumulator::Layout::kImuInstruments ||
+         layout == TimeSeriesAccumulator::Layout::kAdsInstruments;
+}
+
+}  // namespace
+
+TimeSeriesAccumulator::Feed& TimeSeriesAccumulator::FeedOf(const std::string& unit, Layout layout) {
+  for (Feed& f : feeds_) {
+    if (f.layout == layout && f.unit == unit) return f;
+  }
+  Feed feed{unit, layout, {}};
+  for (const FigureLayout& fl : FiguresOf(layout)) {
+    const std::string title =
+        IsInstruments(layout) ? std::string(fl.title) : unit + ": " + fl.title;
+    Figure& figure = figures_.emplace_back();
+    figure.title = title;
+    figure.y_label = fl.y_label;
+    figure.labels = fl.labels;
+    figure.series.resize(fl.labels.size());
+    for (DecimatedSeries& s : figure.series) feed.series.push_back(&s);
+  }
+  feeds_.push_back(std::move(feed));
+  return feeds_.back();
 }
 
 void TimeSeriesAccumulator::Step(double t_s, int step) {
@@ -73,40 +130,26 @@ void TimeSeriesAccumulator::Add(const hil::ImuRecordRow& r) {
   if (instrument_unit_.empty()) instrument_unit_ = r.unit;
   if (r.unit == instrument_unit_) {
     Step(r.t_s, r.step);
-    FigureOf(kInstruments, "reading (degC, deg/s)")
-        .series["chamber (degC)"]
-        .Add(r.t_s, r.chamber_c);
-    FigureOf(kInstruments, "").series["rate table (deg/s)"].Add(r.t_s, r.table_rate_dps);
+    const Feed& f = FeedOf(r.unit, Layout::kImuInstruments);
+    f.series[0]->Add(r.t_s, r.chamber_c);
+    f.series[1]->Add(r.t_s, r.table_rate_dps);
   }
-  if (r.comp && r.mode == 3) {  // fully calibrated: A (m/s^2) 0..2, G (deg/s) 3..5
-    Figure& a = FigureOf(r.unit + ": accelerations (mode 3)", "acceleration (m/s^2)");
-    Figure& g = FigureOf(r.unit + ": body rates (mode 3)", "rate (deg/s)");
-    for (int axis = 0; axis < 3; ++axis) {
-      a.series[fmt::format("A{}", "xyz"[axis])].Add(r.t_s, (*r.comp)[axis]);
-      g.series[fmt::format("G{}", "xyz"[axis])].Add(r.t_s, (*r.comp)[3 + axis]);
-    }
+  if (r.comp && r.mode == 3) {
+    const Feed& f = FeedOf(r.unit, Layout::kImuMode3);
+    for (size_t i = 0; i < 6; ++i) f.series[i]->Add(r.t_s, (*r.comp)[i]);
     return;
   }
-  if (r.comp && r.mode == 2) {  // sensor calibrated: g per channel 0..5, deg/s 6..8
-    Figure& a = FigureOf(r.unit + ": accelerometer channels (mode 2)", "acceleration (g)");
-    Figure& g = FigureOf(r.unit + ": gyro channels (mode 2)", "rate (deg/s)");
-    for (int ch = 0; ch < 6; ++ch)
-      a.series[common::kAccelChannelNames[ch]].Add(r.t_s, (*r.comp)[ch]);
-    for (int axis = 0; axis < 3; ++axis) {
-      g.series[common::kGyroChannelNames[axis]].Add(r.t_s, (*r.comp)[6 + axis]);
-    }
+  if (r.comp && r.mode == 2) {
+    const Feed& f = FeedOf(r.unit, Layout::kImuMode2);
+    for (size_t i = 0; i < 9; ++i) f.series[i]->Add(r.t_s, (*r.comp)[i]);
     return;
   }
   // Raw rows, and thermally compensated ones (mode 1: the same slots, drift removed) as raw.
-  Figure& g = FigureOf(r.unit + ": gyro counts (raw)", "gyro output (counts)");
-  for (int axis = 0; axis < 3; ++axis) {
-    g.series[common::kGyroChannelNames[axis]].Add(r.t_s, r.gyro_cnt[axis]);
-  }
-  Figure& a = FigureOf(r.unit + ": accelerometer duty (raw)", "duty T1/T2 - 0.5 (dimensionless)");
-  for (int ch = 0; ch < 6; ++ch) {
+  const Feed& f = FeedOf(r.unit, Layout::kImuRaw);
+  for (size_t axis = 0; axis < 3; ++axis) f.series[axis]->Add(r.t_s, r.gyro_cnt[axis]);
+  for (size_t ch = 0; ch < 6; ++ch) {
     const double t2 = r.accel_ticks[2 * ch + 1];
-    if (t2 > 0.0)
-      a.series[common::kAccelChannelNames[ch]].Add(r.t_s, r.accel_ticks[2 * ch] / t2 - 0.5);
+    if (t2 > 0.0) f.series[3 + ch]->Add(r.t_s, r.accel_ticks[2 * ch] / t2 - 0.5);
   }
 }
 
@@ -114,41 +157,40 @@ void TimeSeriesAccumulator::Add(const hil::AdsRecordRow& r) {
   if (instrument_unit_.empty()) instrument_unit_ = r.unit;
   if (r.unit == instrument_unit_) {
     Step(r.t_s, r.step);
-    Figure& f = FigureOf(kInstruments, "reading (degC, kPa)");
-    f.series["chamber (degC)"].Add(r.t_s, r.chamber_c);
-    f.series["static pressure (kPa)"].Add(r.t_s, r.ps_ref_pa / 1000.0);
-    f.series["impact pressure (kPa)"].Add(r.t_s, r.qc_ref_pa / 1000.0);
+    const Feed& f = FeedOf(r.unit, Layout::kAdsInstruments);
+    f.series[0]->Add(r.t_s, r.chamber_c);
+    f.series[1]->Add(r.t_s, r.ps_ref_pa / 1000.0);
+    f.series[2]->Add(r.t_s, r.qc_ref_pa / 1000.0);
   }
   if (r.alt_ft && r.cas_kt) {
-    FigureOf(r.unit + ": altitude (surface mode)", "altitude (ft)")
-        .series["altitude"]
-        .Add(r.t_s, *r.alt_ft);
-    FigureOf(r.unit + ": airspeed (surface mode)", "airspeed (kt)")
-        .series["airspeed"]
-        .Add(r.t_s, *r.cas_kt);
+    const Feed& f = FeedOf(r.unit, Layout::kAdsSurface);
+    f.series[0]->Add(r.t_s, *r.alt_ft);
+    f.series[1]->Add(r.t_s, *r.cas_kt);
     return;
   }
-  Figure& f = FigureOf(r.unit + ": bridge codes (raw)", "bridge output (ADS1254 code)");
-  f.series["static"].Add(r.t_s, r.ps_cnt);
-  f.series["pitot"].Add(r.t_s, r.pt_cnt);
+  const Feed& f = FeedOf(r.unit, Layout::kAdsRaw);
+  f.series[0]->Add(r.t_s, r.ps_cnt);
+  f.series[1]->Add(r.t_s, r.pt_cnt);
 }
 
 std::string TimeSeriesAccumulator::Figures() const {
   std::string html;
-  for (const std::string& title : order_) {
-    const Figure& f = figures_.at(title);
-    Plot plot{title, "time on the run's time base (s)", f.y_label, {}, {}};
+  for (const Figure& f : figures_) {
+    Plot plot{f.title, "time on the run's time base (s)", f.y_label, {}, {}};
+    plot.figure = "time-series";
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const auto& [label, s] : f.series) {
-      PlotSeries series{label, {}, {}};
-      s.Envelope(series.x, series.y);
+    for (size_t i = 0; i < f.series.size(); ++i) {
+      if (f.series[i].empty()) continue;
+      PlotSeries series{f.labels[i], {}, {}};
+      f.series[i].Envelope(series.x, series.y);
       for (double v : series.y) {
         lo = std::min(lo, v);
         hi = std::max(hi, v);
       }
       plot.series.push_back(std::move(series));
     }
-    if (title == kInstruments && std::isfinite(lo) && step_starts_s_.size() > 1) {
+    if (plot.series.empty()) continue;
+    if (f.title == kInstruments && std::isfinite(lo) && step_starts_s_.size() > 1) {
       // One series of vertical marks, broken between steps by non-finite points.
       PlotSeries marks{"step starts", {}, {}};
       for (double t_s : step_starts_s_) {

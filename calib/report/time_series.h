@@ -12,7 +12,7 @@
 // Left out: the rejected intervals (shown in the run summary), a time axis in wall-clock time.
 #pragma once
 
-#include <map>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -41,7 +41,8 @@ class DecimatedSeries {
   std::vector<Bin> bins_;
 };
 
-/// Every figure of the run's time series, from its rows.
+/// Every figure of the run's time series, from its rows. A row costs no allocation once its
+/// unit's figures exist: each (unit, layout) keeps the series its rows feed, in layout order.
 class TimeSeriesAccumulator {
  public:
   void Add(const hil::ImuRecordRow& row);
@@ -49,16 +50,35 @@ class TimeSeriesAccumulator {
   /// The section body: the figures as inline SVG.
   std::string Figures() const;
 
+  /// What a row feeds: its unit's outputs in one of the recording modes, or the instruments.
+  enum class Layout {
+    kImuInstruments,
+    kAdsInstruments,
+    kImuRaw,
+    kImuMode2,
+    kImuMode3,
+    kAdsRaw,
+    kAdsSurface
+  };
+
  private:
   struct Figure {
+    std::string title;
     std::string y_label;
-    std::map<std::string, DecimatedSeries> series;  // by label
+    std::vector<std::string> labels;
+    std::vector<DecimatedSeries> series;  // one per label; sized once
   };
+  // The series one unit's rows of one layout feed, in the order the layout names them.
+  struct Feed {
+    std::string unit;
+    Layout layout;
+    std::vector<DecimatedSeries*> series;
+  };
+  Feed& FeedOf(const std::string& unit, Layout layout);
   void Step(double t_s, int step);
-  Figure& FigureOf(const std::string& title, const std::string& y_label);
 
-  std::vector<std::string> order_;  // figure titles in first-seen order
-  std::map<std::string, Figure> figures_;
+  std::deque<Figure> figures_;  // first-seen order; a deque keeps the series' addresses
+  std::vector<Feed> feeds_;
   std::vector<double> step_starts_s_;
   int last_step_ = -1;
   std::string instrument_unit_;  // the unit whose rows carry the instrument readings

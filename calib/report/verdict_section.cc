@@ -38,6 +38,41 @@ std::string Specifications(const std::vector<AcceptanceFile>& files) {
   return text;
 }
 
+// The thermal acceptance on page one: per unit with thermal stability points, the largest standard
+// deviation of each family against its limit and the outcome of the pair; empty without any.
+std::string ThermalAcceptance(const std::vector<AcceptanceFile>& files) {
+  HtmlTable table{
+      "Thermal acceptance (reference section 4.2.5): the largest standard deviation of the error's "
+      "1 s means over the logged thermal profile, per body axis",
+      {"unit", "outcome", "body rate (deg/s)", "limit (deg/s)", "acceleration (mg)", "limit (mg)"},
+      {}};
+  for (const AcceptanceFile& f : files) {
+    const AcceptancePoint* largest[2] = {nullptr, nullptr};  // rate, acceleration
+    Outcome outcome = Outcome::kPass;
+    for (const AcceptancePoint& p : f.unit.points) {
+      const std::string family = QuantityFamily(p.quantity);
+      const int k = family == "thermal_body_rate_std"      ? 0
+                    : family == "thermal_acceleration_std" ? 1
+                                                           : -1;
+      if (k < 0) continue;
+      if (largest[k] == nullptr || p.measured > largest[k]->measured) largest[k] = &p;
+      if (p.outcome() == Outcome::kFail ||
+          (p.outcome() == Outcome::kMarginal && outcome == Outcome::kPass)) {
+        outcome = p.outcome();
+      }
+    }
+    if (largest[0] == nullptr && largest[1] == nullptr) continue;
+    std::vector<std::string> row = {f.unit.serial, OutcomeText(outcome)};
+    for (const AcceptancePoint* p : largest) {
+      row.push_back(p ? fmt::format("{} ({})", FormatNumber(p->measured, 3), p->quantity.back())
+                      : "not judged");
+      row.push_back(p ? FormatNumber(p->tolerance, 3) : "");
+    }
+    table.rows.push_back(row);
+  }
+  return table.rows.empty() ? "" : RenderTable(table);
+}
+
 }  // namespace
 
 std::string VerdictSectionBody(const std::vector<AcceptanceFile>& files,
@@ -73,7 +108,8 @@ std::string VerdictSectionBody(const std::vector<AcceptanceFile>& files,
   return fmt::format("<p class=\"verdict\">{} of {} unit(s) accepted (PASS or MARGINAL).</p>\n",
                      files.size() - static_cast<size_t>(failed_units),
                      files.size()) +
-         RenderTable(table) + "<p>Specification: " + XmlEscape(Specifications(files)) + "</p>\n";
+         RenderTable(table) + ThermalAcceptance(files) +
+         "<p>Specification: " + XmlEscape(Specifications(files)) + "</p>\n";
 }
 
 }  // namespace adahrs::calib

@@ -14,7 +14,9 @@ check`) is then 2.4 h instead of the --quick ADS calibration's 16 h, and a campa
 but a unit failed acceptance" in docs/campaign.md, is accepted beside 0).
 
 1. An uninterrupted campaign completes: every run complete, every unit downloaded once and judged,
-   records and reports present, and no truth file anywhere under its directory.
+   records and reports present, and no truth file anywhere under its directory. Every report.html
+   loads in headless Chromium without a console message and holds the figures of its run's kind
+   with unit-labelled axes (report_checks.py).
 2. A second campaign (a fresh rig) is stopped with SIGTERM once inside the calibration runs and
    once after the download (inside the acceptance runs), exits 143 each time saying how to
    resume, and `adahrs campaign --resume DIR` completes it. Every unit is downloaded exactly once
@@ -33,6 +35,9 @@ import subprocess
 import sys
 import tempfile
 import time
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import report_checks  # noqa: E402
 
 SOURCE = pathlib.Path(__file__).resolve().parents[2]
 SEQUENCES = SOURCE / "calib" / "sequences"
@@ -322,6 +327,8 @@ def main():
             check_complete(whole, process.returncode, "uninterrupted campaign")
         finally:
             rig.stop()
+        report_checks.check_reports(sorted(p.parent for p in (whole / "runs").glob("*/meta.json")),
+                                    tmp / "chromium-profile")
         again = subprocess.run([adahrs, "campaign", "--campaign", str(campaign), "--station-imu",
                                 str(rig.imu_station), "--out", str(whole)],
                                capture_output=True, text=True)

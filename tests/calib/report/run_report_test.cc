@@ -172,12 +172,25 @@ TEST_F(RunReportTest, SectionsFiguresAndConstantsMatchTheFiles) {
   }
   // Every figure: well-formed SVG (parsed above), both axes labelled with a unit in parentheses.
   const auto svgs = FindTag(html, "svg");
-  // Six-position residual, gyro residual, gyro and accelerometer Allan deviation, ADS altitude
-  // and airspeed error maps.
-  // 6 calibration figures, and the time series: the instruments, IMU-0001's gyro counts and
+  // Every figure says what it shows (data-figure): six-position residual, a scale-factor curve per
+  // gyro, gyro residual, gyro and accelerometer Allan deviation; ADS-0001's raw codes of both
+  // bridges and the codes less their straight line, the airspeed surface's residual map (every
+  // acquisition is at 150 kt, none in the static sweep the altitude map takes), altitude and
+  // airspeed error maps; and the time series: the instruments, IMU-0001's gyro counts and
   // accelerometer duty, ADS-0001's bridge codes.
-  EXPECT_EQ(svgs.size(), 6u + 4u);
+  std::map<std::string, int> kinds;
+  for (const auto& svg : svgs) ++kinds[svg["attrib"].value("data-figure", "")];
+  EXPECT_EQ(kinds,
+            (std::map<std::string, int>{{"six-position-residual", 1},
+                                        {"gyro-scale", 3},
+                                        {"gyro-residual", 1},
+                                        {"allan", 2},
+                                        {"ads-raw", 4},
+                                        {"ads-surface-residual", 1},
+                                        {"ads-error", 2},
+                                        {"time-series", 4}}));
   EXPECT_EQ(FindTag(SectionById(html, "time-series"), "svg").size(), 4u);
+  EXPECT_EQ(FindTag(SectionById(html, "ADS-0001-raw"), "svg").size(), 4u);
   for (const auto& svg : svgs) {
     EXPECT_THAT(FindTag(svg, "text", "xlabel").at(0)["text"].get<std::string>(), HasSubstr("("));
     EXPECT_THAT(FindTag(svg, "text", "ylabel").at(0)["text"].get<std::string>(), HasSubstr("("));
@@ -213,9 +226,25 @@ TEST_F(RunReportTest, SectionsFiguresAndConstantsMatchTheFiles) {
   // No thermal profile in this run: said, not faked.
   EXPECT_THAT(SectionById(html, "IMU-0001-thermal")["text"].get<std::string>(),
               HasSubstr("Thermal drift not available"));
-  // Six orientations in the six-position tables.
+  // Six orientations in the six-position tables, each row with its chamber temperature.
   const auto six = FindTag(SectionById(html, "IMU-0001-six-position"), "table");
-  EXPECT_EQ(FindTag(six.at(0), "tr").size(), 1u + 6u);
+  const auto six_rows = FindTag(six.at(0), "tr");
+  EXPECT_EQ(six_rows.size(), 1u + 6u);
+  EXPECT_EQ(FindTag(six_rows.at(0), "th").at(0)["text"], "chamber (degC)");
+  // The gyro table: per acquisition the chamber temperature, the mean raw counts and the counts
+  // normalised by the step's 0 deg/s mean, which is 0 at 0 deg/s.
+  const auto gyro_rows = FindTag(FindTag(SectionById(html, "IMU-0001-gyro"), "table").at(0), "tr");
+  ASSERT_GT(gyro_rows.size(), 1u);
+  int at_rest = 0;
+  for (size_t r = 1; r < gyro_rows.size(); ++r) {
+    const auto cells = FindTag(gyro_rows[r], "td");
+    ASSERT_EQ(cells.size(), 7u);
+    if (std::abs(std::stod(cells[2]["text"].get<std::string>())) < 0.5) {
+      EXPECT_EQ(std::stod(cells[5]["text"].get<std::string>()), 0.0);
+      ++at_rest;
+    }
+  }
+  EXPECT_EQ(at_rest, 3);  // one 0 deg/s acquisition per gyro step
   // ADS: one row per aim, the reference column equal to the aim (the ISA of the fixture and of
   // sensor_sim agree to well under 0.5 ft over this range).
   const auto ads_tables = FindTag(SectionById(html, "ADS-0001-error-map"), "table");

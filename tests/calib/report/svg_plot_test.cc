@@ -184,6 +184,32 @@ TEST_F(SvgPlotTest, BandIsAClosedPolygonAroundItsLimits) {
   EXPECT_EQ(bands[0]["attrib"]["data-label"], "tolerance");
 }
 
+// What the figure shows is its <svg>'s data-figure attribute; a series' or a band's own colour
+// replaces the palette's, in the plot and in the legend.
+TEST_F(SvgPlotTest, FigureKindAndOwnColoursAreWritten) {
+  Plot plot;
+  plot.title = "map";
+  plot.x_label = "x (degC)";
+  plot.y_label = "y (ft)";
+  plot.figure = "ads-surface-residual";
+  plot.bands.push_back({"limit", {0.0, 1.0}, {-1.0, -1.0}, {1.0, 1.0}, "#123456"});
+  plot.series.push_back({"ok", {0.0}, {0.5}, PlotSeries::Style::kPoints, "#abcdef"});
+  plot.series.push_back({"palette", {1.0}, {0.5}, PlotSeries::Style::kPoints});
+  const nlohmann::json svg = RenderAndParse(plot);
+  EXPECT_EQ(svg["attrib"]["data-figure"], "ads-surface-residual");
+  EXPECT_EQ(FindTag(svg, "polygon", "band").at(0)["attrib"]["fill"], "#123456");
+  const auto series = FindTag(svg, "g", "series");
+  ASSERT_EQ(series.size(), 2u);
+  EXPECT_EQ(series[0]["attrib"]["fill"], "#abcdef");
+  EXPECT_EQ(series[1]["attrib"]["fill"], "#d62728");  // the palette's second colour
+  std::vector<std::string> fills;
+  for (const auto& rect : FindTag(svg, "rect")) fills.push_back(rect["attrib"].value("fill", ""));
+  EXPECT_THAT(fills, ::testing::Contains("#abcdef"));
+  EXPECT_THAT(fills, ::testing::Contains("#123456"));
+  plot.figure.clear();
+  EXPECT_FALSE(RenderAndParse(plot)["attrib"].contains("data-figure"));
+}
+
 TEST_F(SvgPlotTest, MismatchedOrEmptySeriesAreRefusedByName) {
   Plot plot;
   plot.title = "bad";
