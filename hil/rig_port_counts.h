@@ -34,8 +34,10 @@ namespace adahrs::hil {
 inline constexpr uint64_t kLockstepPacketBudget = 100;
 
 /// Wall time a reader may lag more than the budget without reading before the rig releases its
-/// slot (RigPortCountsWriter::Release): a reader that stopped must not hold the clock for good.
-inline constexpr double kLockstepReleaseAfter_s = 5.0;
+/// slot (RigPortCountsWriter::Release): a reader that stopped must not hold the clock for good,
+/// but a live one blocked for seconds on a loaded machine must not lose its count (5 s did, once,
+/// for a campaign's IMU logger at load 5 on the 2-core VM).
+inline constexpr double kLockstepReleaseAfter_s = 30.0;
 
 /// The most a packet's sample time and its arrival time on a lockstep rig's clock differ for a
 /// reader that publishes its count: behind, the budget and the frames between the rig's looks
