@@ -101,8 +101,10 @@ RigPortCountsWriter::Reader RigPortCountsWriter::ReaderOf(size_t slot) const {
   return reader;
 }
 
-void RigPortCountsWriter::Acknowledge(size_t slot, uint64_t token) {
-  Word(Slot(map_, slot), kAckOffset).store(token, std::memory_order_release);
+void RigPortCountsWriter::Acknowledge(size_t slot, uint64_t token, uint64_t start) {
+  char* s = Slot(map_, slot);
+  Word(s, kConsumedOffset).store(start, std::memory_order_release);
+  Word(s, kAckOffset).store(token, std::memory_order_release);
 }
 
 void RigPortCountsWriter::Release(size_t slot, uint64_t token) {
@@ -158,13 +160,12 @@ uint64_t RigPortCounter::Produced() const {
   return Word(slot_, kProducedOffset).load(std::memory_order_acquire);
 }
 
-bool RigPortCounter::Attach(uint64_t consumed, double wall_s) {
+bool RigPortCounter::Attach(double wall_s) {
   Detach();
   // A token of this process and this attachment, so that a counter of the same port closed
   // later does not release the slot another one claimed since, and each attachment is new.
   static std::atomic<uint64_t> attachments{0};
   token_ = (static_cast<uint64_t>(::getpid()) << 24) | (++attachments & 0xFFFFFFu);
-  Word(slot_, kConsumedOffset).store(consumed, std::memory_order_release);
   Word(slot_, kReaderOffset).store(token_, std::memory_order_release);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(wall_s);
   while (Word(slot_, kAckOffset).load(std::memory_order_acquire) != token_) {
@@ -175,6 +176,10 @@ bool RigPortCounter::Attach(uint64_t consumed, double wall_s) {
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
   return true;
+}
+
+uint64_t RigPortCounter::Consumed() const {
+  return Word(slot_, kConsumedOffset).load(std::memory_order_acquire);
 }
 
 void RigPortCounter::Consume(uint64_t consumed) {

@@ -8,8 +8,11 @@
 // packet's index is the largest one with its counter value not above the count, exactly.
 //
 // A reader attaches (RestartStream) by writing its token; the rig then drops the port's backlog
-// (bytes of packets counted before: the stream starts afresh, as a flush of the line) and
-// acknowledges the token, after which everything the reader reads is within the budget. A reader
+// (bytes of packets counted before: the stream starts afresh, as a flush of the line), sets the
+// slot's consumed count to its own count at that moment (the stream's start: a count the reader
+// took before it asked would leave it lagging everything the rig ran while it waited, and held
+// with nothing to read) and acknowledges the token, after which everything the reader reads is
+// within the budget. A reader
 // that lags without reading for kLockstepReleaseAfter_s is released (its token cleared): it finds
 // itself detached when it reads again and refuses to index packets it can no longer place.
 //
@@ -69,8 +72,9 @@ class RigPortCountsWriter {
     uint64_t consumed = 0;
   };
   Reader ReaderOf(size_t slot) const;
-  /// Tells the reader holding `token` that its stream starts afresh from here.
-  void Acknowledge(size_t slot, uint64_t token);
+  /// Tells the reader holding `token` that its stream starts afresh from packet count `start`
+  /// (the rig's count as it dropped the backlog), which becomes the slot's consumed count.
+  void Acknowledge(size_t slot, uint64_t token, uint64_t start);
   /// Releases the slot from the reader holding `token` (one that stopped reading): that reader
   /// then finds itself detached, and its packets carry no index.
   void Release(size_t slot, uint64_t token);
@@ -96,9 +100,12 @@ class RigPortCounter {
 
   /// The rig's count for this port (acquire).
   uint64_t Produced() const;
-  /// Claims the slot with `consumed` read so far, and waits up to `wall_s` for the rig to
-  /// acknowledge: from then on the rig waits for this reader. False (and detached) if it did not.
-  bool Attach(uint64_t consumed, double wall_s);
+  /// Claims the slot and waits up to `wall_s` for the rig to acknowledge: from then on the rig
+  /// waits for this reader, and Consumed() is the count the stream starts from. False (and
+  /// detached) if it did not.
+  bool Attach(double wall_s);
+  /// The slot's consumed count: the stream's start after Attach, then what this reader published.
+  uint64_t Consumed() const;
   /// Publishes the count read so far (release); only while attached.
   void Consume(uint64_t consumed);
   /// Releases the slot: the rig no longer waits for this reader.

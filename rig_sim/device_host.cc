@@ -256,15 +256,17 @@ void DeviceHost::NoteAttachments(std::chrono::steady_clock::time_point now) {
     const hil::RigPortCountsWriter::Reader reader = port_counts_->ReaderOf(*port->count_slot);
     if (reader.token == 0 || reader.token == port->reader_token) continue;
     // A reader restarted its stream: what waits in the backlog was counted before it, so it goes
-    // as a flush of the line would take it (the reader flushes the kernel's queue next).
+    // as a flush of the line would take it (the reader flushes the kernel's queue next), and the
+    // stream starts from the count now.
     bytes_lost_ += port->out.size();
     port->bytes_unread += port->out.size();
     port->out.clear();
+    const uint64_t start = port->device->DataPacketCount().value_or(0);
     port->reader_token = reader.token;
-    port->consumed = reader.consumed;
+    port->consumed = start;
     port->consumed_changed = now;
     port->count_looks_since_progress = 0;
-    port_counts_->Acknowledge(*port->count_slot, reader.token);
+    port_counts_->Acknowledge(*port->count_slot, reader.token, start);
   }
 }
 

@@ -115,10 +115,10 @@ void UnitLink::Accept(const fm::Frame& frame,
 
 void UnitLink::RestartStream() {
   if (counter_) {
-    // The rig drops its backlog for this link before it acknowledges, so what the line brings
-    // after the flush below was counted within the budget of this link's count.
-    consumed_ = counter_->Produced();
-    counting_ = counter_->Attach(consumed_, kAttachWait_s);
+    // The rig drops its backlog for this link and starts its count at its own count before it
+    // acknowledges, so what the line brings after the flush below was counted within the budget
+    // of this link's count.
+    counting_ = counter_->Attach(kAttachWait_s);
     if (!counting_) {
       Fail(Kind::kNoReply,
            "attach",
@@ -126,6 +126,7 @@ void UnitLink::RestartStream() {
            fmt::format("the lockstep rig did not take up the restarted stream within {} s",
                        kAttachWait_s));
     }
+    consumed_ = counter_->Consumed();
   }
   port_->DiscardInput();
   queue_.clear();

@@ -44,23 +44,29 @@ TEST_F(PortCountsFile, AReaderFindsItsPortAndTheRigSeesItsCount) {
 
   // The rig acknowledges from its own thread, as the host does at its next look.
   std::atomic<bool> done{false};
+  uint64_t acknowledged = 0, start = 880;
   std::thread host([&] {
     while (!done) {
       const RigPortCountsWriter::Reader r = rig.ReaderOf(1);
-      if (r.token != 0) rig.Acknowledge(1, r.token);
+      if (r.token != 0 && r.token != acknowledged) {
+        acknowledged = r.token;
+        rig.Acknowledge(1, r.token, ++start);  // each stream starts from the rig's count then
+      }
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   });
-  EXPECT_TRUE(reader->Attach(880, 5.0));
+  EXPECT_TRUE(reader->Attach(5.0));
   EXPECT_TRUE(reader->attached());
-  EXPECT_EQ(rig.ReaderOf(1).consumed, 880u);
+  EXPECT_EQ(reader->Consumed(), 881u);  // where the rig started the stream, not the reader
+  EXPECT_EQ(rig.ReaderOf(1).consumed, 881u);
   reader->Consume(895);
   EXPECT_EQ(rig.ReaderOf(1).consumed, 895u);
 
   // A second counter of the port takes the slot; the first one closing does not release it.
   const std::unique_ptr<RigPortCounter> later = RigPortCounter::Open(clock_, "/dev/pts/12");
   ASSERT_NE(later, nullptr);
-  EXPECT_TRUE(later->Attach(896, 5.0));
+  EXPECT_TRUE(later->Attach(5.0));
+  EXPECT_EQ(later->Consumed(), 882u);
   EXPECT_FALSE(reader->attached());
   reader->Detach();
   EXPECT_NE(rig.ReaderOf(1).token, 0u);
@@ -74,7 +80,7 @@ TEST_F(PortCountsFile, WithoutTheRigsAcknowledgementTheReaderIsNotAttached) {
   RigPortCountsWriter rig(PortCountsPath(clock_), {"/dev/pts/7"});
   const std::unique_ptr<RigPortCounter> reader = RigPortCounter::Open(clock_, "/dev/pts/7");
   ASSERT_NE(reader, nullptr);
-  EXPECT_FALSE(reader->Attach(0, 0.05));
+  EXPECT_FALSE(reader->Attach(0.05));
   EXPECT_FALSE(reader->attached());
   EXPECT_EQ(rig.ReaderOf(0).token, 0u);
 }

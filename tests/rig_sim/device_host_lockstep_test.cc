@@ -298,54 +298,28 @@ TEST(DeviceHostLockstep, ReaderOfAnotherPortLosesNothingWhileAGoneClientHoldsThe
   EXPECT_GT(kept.read, 100u);
 }
 
-// A counted reader (hil/rig_port_counts.h) that has read all its port had is waiting, not stalled,
-// however long another port's gone client holds the clock: descheduled for 2 s just as the clock
-// runs again, it is still held to, never more than the packet budget and the frames between two
-// looks behind its unit when it reads again (the rig's count it loads after a read, against the
-// count it had published before). A rig that took the wait for a stall would run on to the bytes
-// rule's 16 KiB (500 records here): more than a counter turn, so its packets would be placed whole
-// turns late.
-TEST(DeviceHostLockstep, CountedReaderStaysHeldAfterAnotherPortHeldTheClock) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("adahrs-counts-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  DeviceHost host(1000.0);
-  host.SetLockstep(true);
-  host.SetClockFile(dir / "clock");
-  const std::string gone_path = host.Add(std::make_unique<FrameStream>("gone", 32));
-  const std::string kept_path = host.Add(std::make_unique<CountedStream>("kept"));
-  const int gone_fd = OpenRaw(gone_path);
-  const int kept_fd = OpenRaw(kept_path);
-  ASSERT_GE(gone_fd, 0);
-  ASSERT_GE(kept_fd, 0);
-  host.Start();
-  const std::unique_ptr<hil::RigPortCounter> counter =
-      hil::RigPortCounter::Open(dir / "clock", kept_path);
-  ASSERT_NE(counter, nullptr);
-  ASSERT_TRUE(counter->Attach(counter->Produced(), 5.0));
-  ::tcflush(kept_fd, TCIFLUSH);  // as the unit link flushes after attaching
-
-  SlowReader gone;
-  gone.nap = std::chrono::milliseconds(0);
-  std::thread gone_thread([&] { gone.Run(gone_fd); });
+// Reads a CountedStream's port as a unit link does: drains it, loads the rig's count after each
+// read (its lag behind the unit: that count less what it had published before), publishes the
+// last whole record read as its count.
+struct CountedReader {
+  hil::RigPortCounter* counter = nullptr;
   std::atomic<bool> stop{false};
-  std::atomic<int> pause_ms{0};
+  std::atomic<int> pause_ms{0};  // one long nap, as of a logger descheduled on a loaded machine
   std::atomic<uint64_t> worst_lag{0}, reads{0};
-  std::thread kept_thread([&] {
+  void Run(int fd) {
     std::vector<uint8_t> pending;
     uint8_t buffer[512];
-    uint64_t consumed = 0;  // the last whole record read, published
+    uint64_t consumed = counter->Consumed();  // where the rig started the stream
     while (!stop.load()) {
       ssize_t n = 0;
       bool got = false;
-      while ((n = ::read(kept_fd, buffer, sizeof buffer)) > 0) {
+      while ((n = ::read(fd, buffer, sizeof buffer)) > 0) {
         pending.insert(pending.end(), buffer, buffer + n);
         got = true;
       }
       if (got) {
         const uint64_t produced = counter->Produced();
-        if (consumed > 0 && produced > consumed)
-          worst_lag = std::max(worst_lag.load(), produced - consumed);
+        if (produced > consumed) worst_lag = std::max(worst_lag.load(), produced - consumed);
         for (; pending.size() >= kFrameBytes;
              pending.erase(pending.begin(), pending.begin() + kFrameBytes)) {
           uint32_t record = 0;
@@ -359,24 +333,102 @@ TEST(DeviceHostLockstep, CountedReaderStaysHeldAfterAnotherPortHeldTheClock) {
       if (const int ms = pause_ms.exchange(0); ms > 0)
         std::this_thread::sleep_for(std::chrono::milliseconds(ms));
     }
-  });
+  }
+};
+
+// A lockstep host with a clock file (so it publishes port counts) in a directory of its own.
+struct CountingHost {
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("adahrs-counts-" + std::to_string(::getpid()));
+  DeviceHost host;
+  explicit CountingHost(double time_scale) : host(time_scale) {
+    std::filesystem::create_directories(dir);
+    host.SetLockstep(true);
+    host.SetClockFile(dir / "clock");
+  }
+  ~CountingHost() { std::filesystem::remove_all(dir); }
+  std::unique_ptr<hil::RigPortCounter> Counter(const std::string& path) const {
+    return hil::RigPortCounter::Open(dir / "clock", path);
+  }
+};
+
+// A counted reader (hil/rig_port_counts.h) that has read all its port had is waiting, not stalled,
+// however long another port's gone client holds the clock: descheduled for 2 s just as the clock
+// runs again, it is still held to, never more than the packet budget and the frames between two
+// looks behind its unit when it reads again. A rig that took the wait for a stall would run on to
+// the bytes rule's 16 KiB (500 records here): more than a counter turn, so its packets would be
+// placed whole turns late.
+TEST(DeviceHostLockstep, CountedReaderStaysHeldAfterAnotherPortHeldTheClock) {
+  CountingHost rig(1000.0);
+  DeviceHost& host = rig.host;
+  const std::string gone_path = host.Add(std::make_unique<FrameStream>("gone", 32));
+  const std::string kept_path = host.Add(std::make_unique<CountedStream>("kept"));
+  const int gone_fd = OpenRaw(gone_path);
+  const int kept_fd = OpenRaw(kept_path);
+  ASSERT_GE(gone_fd, 0);
+  ASSERT_GE(kept_fd, 0);
+  host.Start();
+  const std::unique_ptr<hil::RigPortCounter> counter = rig.Counter(kept_path);
+  ASSERT_NE(counter, nullptr);
+  ASSERT_TRUE(counter->Attach(5.0));
+  ::tcflush(kept_fd, TCIFLUSH);  // as the unit link flushes after attaching
+
+  SlowReader gone;
+  gone.nap = std::chrono::milliseconds(0);
+  std::thread gone_thread([&] { gone.Run(gone_fd); });
+  CountedReader kept;
+  kept.counter = counter.get();
+  std::thread kept_thread([&] { kept.Run(kept_fd); });
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   gone.stop = true;  // the gone client keeps its port open and reads no more
   gone_thread.join();
   std::this_thread::sleep_for(std::chrono::duration<double>(kLockstepStallLimit_s - 0.5));
-  pause_ms = 2000;
+  kept.pause_ms = 2000;
   std::this_thread::sleep_for(std::chrono::milliseconds(3500));
-  stop = true;
+  kept.stop = true;
   kept_thread.join();
   const bool still_attached = counter->attached();
   host.Stop();
   ::close(gone_fd);
   ::close(kept_fd);
-  std::filesystem::remove_all(dir);
   EXPECT_GT(host.held_wall_s(), 0.8 * kLockstepStallLimit_s) << "the gone client held nothing";
-  EXPECT_GT(reads.load(), 100u);
+  EXPECT_GT(kept.reads.load(), 100u);
   EXPECT_TRUE(still_attached) << "the rig released a reader that was only waiting";
-  EXPECT_LE(worst_lag.load(), hil::kLockstepPacketBudget + kLockstepCheckFrames);
+  EXPECT_LE(kept.worst_lag.load(), hil::kLockstepPacketBudget + kLockstepCheckFrames);
+}
+
+// A reader that attaches while the rig runs (its unit has sent far more than the packet budget)
+// starts from the rig's count at the acknowledgement: a start taken before (the count when it
+// asked, or none) would leave it lagging by all the rig ran meanwhile, the clock held for that
+// lag and its flushed line bringing nothing, until the stall limit.
+TEST(DeviceHostLockstep, AReaderAttachingToARunningRigStartsFromTheRigsCount) {
+  CountingHost rig(100000.0);
+  DeviceHost& host = rig.host;
+  const std::string path = host.Add(std::make_unique<CountedStream>("late"));
+  const int fd = OpenRaw(path);
+  ASSERT_GE(fd, 0);
+  host.Start();
+  const std::unique_ptr<hil::RigPortCounter> counter = rig.Counter(path);
+  ASSERT_NE(counter, nullptr);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (counter->Produced() < 4 * hil::kLockstepPacketBudget &&
+         std::chrono::steady_clock::now() < deadline) {
+    ReadFor(fd, 10);  // an earlier client of the port, not counted
+  }
+  ASSERT_GE(counter->Produced(), 4 * hil::kLockstepPacketBudget);
+  ASSERT_TRUE(counter->Attach(5.0));
+  EXPECT_GE(counter->Consumed(), 4 * hil::kLockstepPacketBudget);
+  ::tcflush(fd, TCIFLUSH);
+  CountedReader reader;
+  reader.counter = counter.get();
+  std::thread reader_thread([&] { reader.Run(fd); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  reader.stop = true;
+  reader_thread.join();
+  host.Stop();
+  ::close(fd);
+  EXPECT_GT(reader.reads.load(), 50u) << "the attached reader got nothing to read";
+  EXPECT_LE(reader.worst_lag.load(), hil::kLockstepPacketBudget + kLockstepCheckFrames);
 }
 
 TEST(DeviceHostLockstep, ClockFileFollowsTheHost) {
