@@ -1,7 +1,5 @@
 #include "hil/rig_clock.h"
 
-#include <fcntl.h>
-#include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,9 +7,10 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
-#include <system_error>
 #include <thread>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -34,22 +33,8 @@ uint64_t& FramesWord(void* map) {
 }  // namespace
 
 RigClockWriter::RigClockWriter(const std::filesystem::path& path, double frame_s, double time_scale)
-    : path_(path) {
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::system_error(errno, std::generic_category(), "create " + path.string());
-  if (::ftruncate(fd, kFileBytes) != 0) {
-    const int err = errno;
-    ::close(fd);
-    throw std::system_error(err, std::generic_category(), "size " + path.string());
-  }
-  map_ = ::mmap(nullptr, kFileBytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-  const int err = errno;
-  ::close(fd);
-  if (map_ == MAP_FAILED) {
-    map_ = nullptr;
-    throw std::system_error(err, std::generic_category(), "map " + path.string());
-  }
-  char* bytes = static_cast<char*>(map_);
+    : path_(path), map_(SharedFileMap::Create(path, kFileBytes)) {
+  char* bytes = map_.data();
   const int64_t pid = ::getpid();
   std::memcpy(bytes + kVersionOffset, &kVersion, sizeof kVersion);
   std::memcpy(bytes + kFrameOffset, &frame_s, sizeof frame_s);
@@ -61,56 +46,40 @@ RigClockWriter::RigClockWriter(const std::filesystem::path& path, double frame_s
   std::memcpy(bytes, kMagic, sizeof kMagic);
 }
 
-RigClockWriter::~RigClockWriter() {
-  if (map_ != nullptr) ::munmap(map_, kFileBytes);
-}
-
 void RigClockWriter::Publish(uint64_t frames_done) {
-  std::atomic_ref<uint64_t>(FramesWord(map_)).store(frames_done, std::memory_order_release);
+  std::atomic_ref<uint64_t>(FramesWord(map_.data())).store(frames_done, std::memory_order_release);
 }
 
 RigClock::RigClock(const std::filesystem::path& path, double stall_limit_wall_s)
     : path_(path), stall_limit_wall_s_(stall_limit_wall_s) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
+  std::optional<SharedFileMap> map = SharedFileMap::Open(path, /*writable=*/false);
+  if (!map) {
     throw std::runtime_error(fmt::format("rig clock {}: {}", path.string(), std::strerror(errno)));
   }
-  const off_t size = ::lseek(fd, 0, SEEK_END);
-  void* map = size >= static_cast<off_t>(kFileBytes)
-                  ? ::mmap(nullptr, kFileBytes, PROT_READ, MAP_SHARED, fd, 0)
-                  : MAP_FAILED;
-  ::close(fd);
-  if (map == MAP_FAILED) {
+  if (map->size() < kFileBytes) {
     throw std::runtime_error(fmt::format("rig clock {}: {} bytes, not a {}-byte clock file",
                                          path.string(),
-                                         static_cast<long long>(size),
+                                         map->size(),
                                          kFileBytes));
   }
-  map_ = map;
-  const char* bytes = static_cast<const char*>(map_);
+  const char* bytes = map->data();
   uint32_t version = 0;
   std::memcpy(&version, bytes + kVersionOffset, sizeof version);
   std::memcpy(&frame_s_, bytes + kFrameOffset, sizeof frame_s_);
   std::memcpy(&time_scale_, bytes + kScaleOffset, sizeof time_scale_);
   if (std::memcmp(bytes, kMagic, sizeof kMagic) != 0 || version != kVersion ||
       !(frame_s_ > 0.0 && frame_s_ < 1.0) || !(time_scale_ >= 0.01)) {
-    ::munmap(map, kFileBytes);
-    map_ = nullptr;
     throw std::runtime_error(fmt::format(
         "rig clock {}: not an ADAHRSCK version {} clock file", path.string(), kVersion));
   }
+  map_ = std::move(*map);
   // The last whole counter turn of the rig's frames: a unit on the rig counts its packets on
   // them from the rig's start, so a sample time taken from its counter keeps its phase here.
   start_s_ = static_cast<double>(Frames() / kCounterTurnFrames * kCounterTurnFrames) * frame_s_;
 }
 
-RigClock::~RigClock() {
-  if (map_ != nullptr) ::munmap(const_cast<void*>(map_), kFileBytes);
-}
-
 uint64_t RigClock::Frames() const {
-  return std::atomic_ref<uint64_t>(FramesWord(const_cast<void*>(map_)))
-      .load(std::memory_order_acquire);
+  return std::atomic_ref<uint64_t>(FramesWord(map_.data())).load(std::memory_order_acquire);
 }
 
 double RigClock::RigTimeS() const { return static_cast<double>(Frames()) * frame_s_; }

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "hil/clock.h"
+#include "hil/shared_file_map.h"
 
 namespace adahrs::hil {
 
@@ -24,16 +25,13 @@ class RigClockWriter {
  public:
   /// Throws std::system_error naming the path if the file cannot be created or mapped.
   RigClockWriter(const std::filesystem::path& path, double frame_s, double time_scale);
-  ~RigClockWriter();
-  RigClockWriter(const RigClockWriter&) = delete;
-  RigClockWriter& operator=(const RigClockWriter&) = delete;
 
   void Publish(uint64_t frames_done);
   const std::filesystem::path& path() const { return path_; }
 
  private:
   std::filesystem::path path_;
-  void* map_ = nullptr;
+  SharedFileMap map_;
 };
 
 /// Frames in a turn of a unit's 8-bit packet counter (docs/unit-protocol.md).
@@ -51,9 +49,6 @@ class RigClock : public Clock {
  public:
   /// Throws std::runtime_error naming the path if it is missing, short or not a clock file.
   explicit RigClock(const std::filesystem::path& path, double stall_limit_wall_s = 60.0);
-  ~RigClock() override;
-  RigClock(const RigClock&) = delete;
-  RigClock& operator=(const RigClock&) = delete;
 
   double NowS() const override;
   void SleepS(double duration_s) const override;
@@ -66,7 +61,7 @@ class RigClock : public Clock {
   uint64_t Frames() const;
 
   std::filesystem::path path_;
-  const void* map_ = nullptr;
+  SharedFileMap map_;
   double frame_s_ = 0.01;
   double time_scale_ = 1.0;
   double start_s_ = 0.0;

@@ -1,7 +1,5 @@
 #include "hil/rig_port_counts.h"
 
-#include <fcntl.h>
-#include <sys/mman.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -52,49 +50,31 @@ std::optional<uint64_t> PacketIndexBelow(uint32_t seq, uint64_t produced) {
 }
 
 RigPortCountsWriter::RigPortCountsWriter(const std::filesystem::path& path,
-                                         const std::vector<std::string>& ports)
-    : path_(path), bytes_(kHeaderBytes + ports.size() * kSlotBytes) {
+                                         const std::vector<std::string>& ports) {
   for (const std::string& port : ports) {
     if (port.size() >= kPathBytes) {
       throw std::invalid_argument(fmt::format(
           "{}: port path {} is longer than {} bytes", path.string(), port, kPathBytes - 1));
     }
   }
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::system_error(errno, std::generic_category(), "create " + path.string());
-  if (::ftruncate(fd, static_cast<off_t>(bytes_)) != 0) {
-    const int err = errno;
-    ::close(fd);
-    throw std::system_error(err, std::generic_category(), "size " + path.string());
-  }
-  map_ = ::mmap(nullptr, bytes_, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-  const int err = errno;
-  ::close(fd);
-  if (map_ == MAP_FAILED) {
-    map_ = nullptr;
-    throw std::system_error(err, std::generic_category(), "map " + path.string());
-  }
-  char* bytes = static_cast<char*>(map_);
+  map_ = SharedFileMap::Create(path, kHeaderBytes + ports.size() * kSlotBytes);
+  char* bytes = map_.data();
   const auto slots = static_cast<uint32_t>(ports.size());
   std::memcpy(bytes + 8, &kVersion, sizeof kVersion);
   std::memcpy(bytes + 12, &slots, sizeof slots);
   for (size_t i = 0; i < ports.size(); ++i)
-    std::memcpy(Slot(map_, i), ports[i].data(), ports[i].size());
+    std::memcpy(Slot(bytes, i), ports[i].data(), ports[i].size());
   // The magic last: a reader never accepts a half-written file.
   std::atomic_thread_fence(std::memory_order_release);
   std::memcpy(bytes, kMagic, sizeof kMagic);
 }
 
-RigPortCountsWriter::~RigPortCountsWriter() {
-  if (map_ != nullptr) ::munmap(map_, bytes_);
-}
-
 void RigPortCountsWriter::PublishProduced(size_t slot, uint64_t produced) {
-  Word(Slot(map_, slot), kProducedOffset).store(produced, std::memory_order_release);
+  Word(Slot(map_.data(), slot), kProducedOffset).store(produced, std::memory_order_release);
 }
 
 RigPortCountsWriter::Reader RigPortCountsWriter::ReaderOf(size_t slot) const {
-  char* s = Slot(map_, slot);
+  char* s = Slot(map_.data(), slot);
   Reader reader;
   reader.token = Word(s, kReaderOffset).load(std::memory_order_acquire);
   reader.consumed = Word(s, kConsumedOffset).load(std::memory_order_acquire);
@@ -102,37 +82,29 @@ RigPortCountsWriter::Reader RigPortCountsWriter::ReaderOf(size_t slot) const {
 }
 
 void RigPortCountsWriter::Acknowledge(size_t slot, uint64_t token, uint64_t start) {
-  char* s = Slot(map_, slot);
+  char* s = Slot(map_.data(), slot);
   Word(s, kConsumedOffset).store(start, std::memory_order_release);
   Word(s, kAckOffset).store(token, std::memory_order_release);
 }
 
 void RigPortCountsWriter::Release(size_t slot, uint64_t token) {
   uint64_t expected = token;
-  Word(Slot(map_, slot), kReaderOffset)
+  Word(Slot(map_.data(), slot), kReaderOffset)
       .compare_exchange_strong(expected, 0, std::memory_order_acq_rel);
 }
 
 std::unique_ptr<RigPortCounter> RigPortCounter::Open(const std::filesystem::path& clock_file,
                                                      const std::string& port_path) {
   const std::filesystem::path path = PortCountsPath(clock_file);
-  const int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
-  if (fd < 0) return nullptr;
-  const off_t size = ::lseek(fd, 0, SEEK_END);
-  void* map =
-      size >= static_cast<off_t>(kHeaderBytes)
-          ? ::mmap(nullptr, static_cast<size_t>(size), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0)
-          : MAP_FAILED;
-  ::close(fd);
-  const auto bytes = static_cast<size_t>(size);
+  std::optional<SharedFileMap> map = SharedFileMap::Open(path, /*writable=*/true);
+  if (!map) return nullptr;
   uint32_t version = 0, slots = 0;
-  if (map != MAP_FAILED) {
-    std::memcpy(&version, static_cast<char*>(map) + 8, sizeof version);
-    std::memcpy(&slots, static_cast<char*>(map) + 12, sizeof slots);
+  if (map->size() >= kHeaderBytes) {
+    std::memcpy(&version, map->data() + 8, sizeof version);
+    std::memcpy(&slots, map->data() + 12, sizeof slots);
   }
-  if (map == MAP_FAILED || std::memcmp(map, kMagic, sizeof kMagic) != 0 || version != kVersion ||
-      kHeaderBytes + slots * kSlotBytes > bytes) {
-    if (map != MAP_FAILED) ::munmap(map, bytes);
+  if (map->size() < kHeaderBytes || std::memcmp(map->data(), kMagic, sizeof kMagic) != 0 ||
+      version != kVersion || kHeaderBytes + slots * kSlotBytes > map->size()) {
     throw std::runtime_error(fmt::format(
         "rig port counts {}: not an ADAHRSPT version {} file", path.string(), kVersion));
   }
@@ -141,20 +113,16 @@ std::unique_ptr<RigPortCounter> RigPortCounter::Open(const std::filesystem::path
   const std::filesystem::path resolved = std::filesystem::canonical(port_path, ec);
   const std::string wanted = ec ? port_path : resolved.string();
   for (uint32_t i = 0; i < slots; ++i) {
-    char* slot = Slot(map, i);
+    char* slot = Slot(map->data(), i);
     if (::strnlen(slot, kPathBytes) == wanted.size() &&
         std::memcmp(slot, wanted.data(), wanted.size()) == 0) {
-      return std::unique_ptr<RigPortCounter>(new RigPortCounter(map, bytes, slot));
+      return std::unique_ptr<RigPortCounter>(new RigPortCounter(std::move(*map), slot));
     }
   }
-  ::munmap(map, bytes);
   return nullptr;
 }
 
-RigPortCounter::~RigPortCounter() {
-  Detach();
-  ::munmap(map_, bytes_);
-}
+RigPortCounter::~RigPortCounter() { Detach(); }
 
 uint64_t RigPortCounter::Produced() const {
   return Word(slot_, kProducedOffset).load(std::memory_order_acquire);

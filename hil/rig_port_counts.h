@@ -28,7 +28,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "hil/shared_file_map.h"
 
 namespace adahrs::hil {
 
@@ -61,9 +64,6 @@ class RigPortCountsWriter {
   /// Throws std::system_error naming the path if the file cannot be created or mapped, and
   /// std::invalid_argument if a port path does not fit a slot.
   RigPortCountsWriter(const std::filesystem::path& path, const std::vector<std::string>& ports);
-  ~RigPortCountsWriter();
-  RigPortCountsWriter(const RigPortCountsWriter&) = delete;
-  RigPortCountsWriter& operator=(const RigPortCountsWriter&) = delete;
 
   void PublishProduced(size_t slot, uint64_t produced);
   /// The slot's reader token (0: none attached) and the count it has read up to.
@@ -80,18 +80,16 @@ class RigPortCountsWriter {
   void Release(size_t slot, uint64_t token);
 
  private:
-  std::filesystem::path path_;
-  void* map_ = nullptr;
-  size_t bytes_ = 0;
+  SharedFileMap map_;
 };
 
 /// A reader's side for one port.
 class RigPortCounter {
  public:
   /// The counter of `port_path` (or of the device a link there names) in the port counts file
-  /// of `clock_file`; nullptr if that file
-  /// does not exist or does not list the port (a rig that publishes no counts). Throws
-  /// std::runtime_error naming the file if it exists but is not a port counts file.
+  /// of `clock_file`; nullptr if that file does not exist or does not list the port (a rig that
+  /// publishes no counts). Throws std::runtime_error naming the file if it exists but is not a port
+  /// counts file.
   static std::unique_ptr<RigPortCounter> Open(const std::filesystem::path& clock_file,
                                               const std::string& port_path);
   ~RigPortCounter();
@@ -114,9 +112,8 @@ class RigPortCounter {
   bool attached() const;
 
  private:
-  RigPortCounter(void* map, size_t bytes, char* slot) : map_(map), bytes_(bytes), slot_(slot) {}
-  void* map_;
-  size_t bytes_;
+  RigPortCounter(SharedFileMap map, char* slot) : map_(std::move(map)), slot_(slot) {}
+  SharedFileMap map_;
   char* slot_;
   uint64_t token_ = 0;  // this counter's claim on the slot, 0 when none
 };
