@@ -23,6 +23,24 @@ double ScaleFactor(const ImuScaleTemperature& st,
 
 }  // namespace
 
+double ThermalDrift(const ThermalFit& f, double temp_cnt) {
+  return f.k[0] + temp_cnt * (f.k[1] + temp_cnt * (f.k[2] + temp_cnt * f.k[3]));
+}
+
+double ScaleTemperatureFactor(const ImuCalibrationConstants& c,
+                              int channel,
+                              const ImuRawFrame& raw) {
+  const ImuScaleTemperature& st = c.scale_temperature;
+  if (!st.active) return 1.0;
+  const int sensor = c.thermal[channel].temp_sensor;
+  return ScaleFactor(st, sensor, st.scale[channel], raw.temp_cnt[sensor]);
+}
+
+double GyroCubic(const ImuCalibrationConstants& c, int axis, double d) {
+  const auto& l = c.gyro[axis].l;
+  return l[0] + l[1] * d + l[2] * d * d + l[3] * d * d * d;
+}
+
 std::array<double, 9> ImuReference(const ImuCalibrationConstants& c,
                                    ImuCompensationMode mode,
                                    const ImuRawFrame& raw) {
@@ -35,9 +53,7 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& c,
 
   std::array<double, 9> t{};
   for (int i = 0; i < 9; ++i) {
-    const ThermalFit& f = c.thermal[i];
-    const double temp_cnt = raw.temp_cnt[f.temp_sensor];
-    t[i] = u[i] - (f.k[0] + temp_cnt * (f.k[1] + temp_cnt * (f.k[2] + temp_cnt * f.k[3])));
+    t[i] = u[i] - ThermalDrift(c.thermal[i], raw.temp_cnt[c.thermal[i].temp_sensor]);
   }
   if (mode == ImuCompensationMode::kThermal) return t;
 
@@ -45,18 +61,13 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& c,
   // and a gyro's count before its cubic (the cubic then inverts a temperature-free response).
   const ImuScaleTemperature& st = c.scale_temperature;
   std::array<double, 9> factor{};
-  for (int i = 0; i < 9; ++i) {
-    const int sensor = c.thermal[i].temp_sensor;
-    factor[i] = st.active ? ScaleFactor(st, sensor, st.scale[i], raw.temp_cnt[sensor]) : 1.0;
-  }
+  for (int i = 0; i < 9; ++i) factor[i] = ScaleTemperatureFactor(c, i, raw);
   std::array<double, 9> cal{};
   for (int i = 0; i < 6; ++i) {
     cal[i] = (t[i] - c.accel[i].offset_duty) / c.accel[i].scale_duty_per_g * factor[i];
   }
   for (int g = 0; g < 3; ++g) {
-    const double d = (t[6 + g] - c.gyro[g].null_cnt) * factor[6 + g];
-    const auto& l = c.gyro[g].l;
-    cal[6 + g] = l[0] + l[1] * d + l[2] * d * d + l[3] * d * d * d;
+    cal[6 + g] = GyroCubic(c, g, (t[6 + g] - c.gyro[g].null_cnt) * factor[6 + g]);
   }
   if (mode == ImuCompensationMode::kSensorCalibrated) return cal;
 

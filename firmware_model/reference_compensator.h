@@ -19,6 +19,16 @@ std::array<double, 9> ImuReference(const ImuCalibrationConstants& constants,
                                    ImuCompensationMode mode,
                                    const ImuRawFrame& raw);
 
+/// The compensation's laws one at a time, as ImuReference applies them (calibration_constants.h):
+/// xi(t), a channel's thermal drift at its temperature sensor's count `temp_cnt`;
+double ThermalDrift(const ThermalFit& fit, double temp_cnt);
+/// F(t), the format-3 scale factor of channel `channel` at `raw`'s temperature (1 when inactive);
+double ScaleTemperatureFactor(const ImuCalibrationConstants& constants,
+                              int channel,
+                              const ImuRawFrame& raw);
+/// the gyro cubic l0 + l1 d + l2 d^2 + l3 d^3 of gyro `axis` (0..2) at d = (T - null) F(t), deg/s.
+double GyroCubic(const ImuCalibrationConstants& constants, int axis, double d);
+
 /// The hysteresis states the reference is given (it runs no operator: the target's are checked
 /// against the simulator's law on their own, tests/firmware_model/preisach_q15_test.cc).
 struct AdsReferenceStates {

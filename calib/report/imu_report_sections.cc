@@ -59,12 +59,9 @@ constexpr double kAtRestDps = 0.5;
 
 std::string Units(bool gyro) { return gyro ? "gyro counts" : "duty"; }
 
-// The driving temperature count of channel `ch` in `raw` and xi(t) there.
+// The driving temperature count of channel `ch` in `raw`.
 double TempCount(const fm::ThermalFit& f, const fm::ImuRawFrame& raw) {
   return raw.temp_cnt[static_cast<size_t>(f.temp_sensor)];
-}
-double Xi(const fm::ThermalFit& f, double t) {
-  return f.k[0] + t * (f.k[1] + t * (f.k[2] + t * f.k[3]));
 }
 
 // Raw output against chamber temperature, every channel of a group (no fit to compare with).
@@ -109,7 +106,7 @@ std::string ChannelThermalFigures(const ImuUnitData& d,
     u[i] = fm::ImuReference(none, Mode::kRaw, d.thermal[i].raw)[static_cast<size_t>(ch)];
     t[i] = TempCount(fit, d.thermal[i].raw);
     u_mean += u[i];
-    xi_mean += Xi(fit, t[i]);
+    xi_mean += fm::ThermalDrift(fit, t[i]);
     t_lo = std::min(t_lo, t[i]);
     t_hi = std::max(t_hi, t[i]);
   }
@@ -134,7 +131,7 @@ std::string ChannelThermalFigures(const ImuUnitData& d,
   for (int k = 0; k <= kFitCurvePoints; ++k) {
     const double tc = t_lo + (t_hi - t_lo) * k / kFitCurvePoints;
     curve.x.push_back(tc);
-    curve.y.push_back(Xi(fit, tc) - xi_mean);
+    curve.y.push_back(fm::ThermalDrift(fit, tc) - xi_mean);
   }
   raw.series = {std::move(points), std::move(curve)};
 
@@ -147,7 +144,7 @@ std::string ChannelThermalFigures(const ImuUnitData& d,
   residual.width_px = kSmallWidthPx;
   residual.height_px = kSmallHeightPx;
   double r_mean = 0.0;
-  for (size_t i = 0; i < u.size(); ++i) r_mean += u[i] - Xi(fit, t[i]);
+  for (size_t i = 0; i < u.size(); ++i) r_mean += u[i] - fm::ThermalDrift(fit, t[i]);
   r_mean /= static_cast<double>(u.size());
   for (const ThermalSegment segment : {ThermalSegment::kUpRamp, ThermalSegment::kDownRamp}) {
     PlotSeries s{segment == ThermalSegment::kUpRamp ? "up-ramp" : "down-ramp",
@@ -157,7 +154,7 @@ std::string ChannelThermalFigures(const ImuUnitData& d,
     for (size_t i = 0; i < u.size(); i += stride) {
       if (d.thermal_segment[i] != segment) continue;
       s.x.push_back(d.thermal[i].chamber_c);
-      s.y.push_back(u[i] - Xi(fit, t[i]) - r_mean);
+      s.y.push_back(u[i] - fm::ThermalDrift(fit, t[i]) - r_mean);
     }
     if (!s.x.empty()) residual.series.push_back(std::move(s));
   }
@@ -276,20 +273,12 @@ int UpAxisIndex(const std::array<double, 3>& up) {
 double MeanCubicInput(const fm::ImuCalibrationConstants& c,
                       int axis,
                       const std::vector<ImuSample>& samples) {
-  const size_t ch = 6 + static_cast<size_t>(axis);
-  const fm::ImuScaleTemperature& st = c.scale_temperature;
-  const int sensor = c.thermal[ch].temp_sensor;
+  const int ch = 6 + axis;
   double sum = 0.0;
   for (const ImuSample& s : samples) {
-    const double t = fm::ImuReference(c, Mode::kThermal, s.raw)[ch];
-    double factor = 1.0;
-    if (st.active) {
-      const double dt = s.raw.temp_cnt[static_cast<size_t>(sensor)] -
-                        st.sensor[static_cast<size_t>(sensor)].origin_cnt;
-      const auto& f = st.scale[ch];
-      factor = f[0] + dt * (f[1] + dt * (f[2] + dt * f[3]));
-    }
-    sum += (t - c.gyro[static_cast<size_t>(axis)].null_cnt) * factor;
+    const double t = fm::ImuReference(c, Mode::kThermal, s.raw)[static_cast<size_t>(ch)];
+    sum +=
+        (t - c.gyro[static_cast<size_t>(axis)].null_cnt) * fm::ScaleTemperatureFactor(c, ch, s.raw);
   }
   return sum / static_cast<double>(samples.size());
 }
@@ -341,11 +330,10 @@ std::string GyroScaleCurves(const ImuUnitData& d, const fm::ImuCalibrationConsta
     }
     if (by_temp.empty()) continue;
     for (PlotSeries& s : by_temp) plot.series.push_back(std::move(s));
-    const auto& l = c.gyro[static_cast<size_t>(axis)].l;
     PlotSeries cubic{"fitted cubic l0 + l1 d + l2 d^2 + l3 d^3", {}, {}, PlotSeries::Style::kLine};
     for (int k = 0; k <= kFitCurvePoints; ++k) {
       const double v = lo + (hi - lo) * k / kFitCurvePoints;
-      cubic.x.push_back(l[0] + v * (l[1] + v * (l[2] + v * l[3])));
+      cubic.x.push_back(fm::GyroCubic(c, axis, v));
       cubic.y.push_back(v);
     }
     plot.series.push_back(std::move(cubic));
