@@ -679,7 +679,8 @@ TEST_F(AcceptanceJudgeTest, ThermalStabilityIsTheDeviationOfOneSecondMeans) {
   // Without thermal_stability in the specification, the step is judged per bin only.
   Specification without = spec;
   without.thermal_stability.reset();
-  for (const AcceptancePoint& p : JudgeAcceptance(dir_ / "run", without).units.at(0).points) {
+  const AcceptanceRun judged_without = JudgeAcceptance(dir_ / "run", without);
+  for (const AcceptancePoint& p : judged_without.units.at(0).points) {
     EXPECT_FALSE(p.quantity.starts_with("thermal_")) << p.quantity;
   }
 }
