@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "calib/acceptance/specification.h"
-#include "calib/ads_calibration/unit_hysteresis_operator.h"
+#include "calib/ads_calibration/bridge_history.h"
 #include "calib/report/constants_table.h"
 #include "calib/report/html_builder.h"
 #include "calib/report/svg_plot.h"
@@ -27,8 +27,6 @@ namespace fm = firmware_model;
 
 // Chamber temperatures are grouped to this width for the map's series.
 constexpr double kTemperatureBinC = 5.0;
-// Where the calibration's bridge history starts its thermal operators (bridge_history.cc).
-constexpr double kRoomTemperatureC = 25.0;
 
 // A chamber temperature's 5 degC bin (never "-0").
 double TemperatureBin(double temp_c) {
@@ -104,14 +102,13 @@ std::string ErrorPlot(const std::string& serial,
 // Each bridge's mean code against the test set's pressure, a series per chamber temperature; then
 // the same codes less the least-squares line through all of them, which shows what the full-scale
 // view hides: the shift with temperature and the span's curvature (the reference's Fig. 16).
-std::string RawDataPlots(const std::string& serial, const std::vector<Acquisition>& points) {
+std::string RawDataPlots(const std::string& serial,
+                         const std::vector<AdsCalibrationPoint>& points) {
   std::string html;
   for (const bool pitot : {false, true}) {
     std::vector<std::pair<double, double>> xy;  // kPa, code
-    for (const Acquisition& a : points) {
-      if (a.n_raw > 0)
-        xy.push_back({(pitot ? a.qc_ref_pa : a.ps_ref_pa) / 1000.0, pitot ? a.pt_cnt : a.ps_cnt});
-    }
+    for (const AdsCalibrationPoint& p : points)
+      xy.push_back({(pitot ? p.qc_ref_pa : p.ps_ref_pa) / 1000.0, pitot ? p.pt_cnt : p.ps_cnt});
     if (xy.size() < 2) return "";
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     for (const auto& [x, y] : xy) {
@@ -142,11 +139,10 @@ std::string RawDataPlots(const std::string& serial, const std::vector<Acquisitio
                    {}};
     plot.figure = deviation.figure = "ads-raw";
     std::map<double, PlotSeries> by_temp, dev_by_temp;
-    for (const Acquisition& a : points) {
-      if (a.n_raw == 0) continue;
-      const double bin = TemperatureBin(a.raw_temp_c);
-      const double x = (pitot ? a.qc_ref_pa : a.ps_ref_pa) / 1000.0;
-      const double code = pitot ? a.pt_cnt : a.ps_cnt;
+    for (const AdsCalibrationPoint& p : points) {
+      const double bin = TemperatureBin(p.chamber_c);
+      const double x = (pitot ? p.qc_ref_pa : p.ps_ref_pa) / 1000.0;
+      const double code = pitot ? p.pt_cnt : p.ps_cnt;
       for (auto* m : {&by_temp, &dev_by_temp}) {
         PlotSeries& s = (*m)[bin];
         s.label = fmt::format("{:g} degC", bin);
@@ -162,48 +158,45 @@ std::string RawDataPlots(const std::string& serial, const std::vector<Acquisitio
   return html;
 }
 
-// The pressure the unit's hysteresis operator of `surface` is driven by, at an acquisition: the
-// surface's z before its law (static or impact pressure in Pa under the ISA or CAS law, else the
-// altitude or airspeed itself), here the test set's, as the fit models it.
-double OperatorInput(const fm::SurfaceFit& surface, bool altitude, const Acquisition& a) {
-  switch (surface.law) {
-    case fm::SurfaceLaw::kIsaAltitude:
-      return a.ps_ref_pa;
-    case fm::SurfaceLaw::kCas:
-      return a.qc_ref_pa;
-    case fm::SurfaceLaw::kDirect:
-      break;
-  }
-  return altitude ? a.alt_ref_ft : a.cas_ref_kt;
+// The spans of the file's hysteresis operators, the static bridge's from the altitude surface and
+// the pitot's from the airspeed surface. A term without a span has no gain, so its state (driven
+// here through the nominal span) adds nothing. The states are pressure-driven (bridge_history.h),
+// the z of the ISA and CAS laws every strategy writes hysteresis terms under.
+HysteresisSpans SpansOf(const fm::AdsCalibrationConstants& c) {
+  const HysteresisSpans nominal = HysteresisSpans::Nominal();
+  auto or_nominal = [](double span, double fallback) { return span > 0.0 ? span : fallback; };
+  return {or_nominal(c.altitude_ft.hysteresis.pressure_span, nominal.static_pressure_pa),
+          or_nominal(c.airspeed_kt.hysteresis.pressure_span, nominal.impact_pressure_pa),
+          or_nominal(c.altitude_ft.hysteresis.thermal_span_c, nominal.static_temperature_c),
+          or_nominal(c.airspeed_kt.hysteresis.thermal_span_c, nominal.pitot_temperature_c)};
 }
 
-// One surface's pressure and thermal operators (off when their span is 0), virgin at sea level,
-// zero airspeed and 25 degC, as the calibration's bridge history starts (bridge_history.h).
-class SurfaceStates {
- public:
-  SurfaceStates(const fm::SurfaceFit& surface, bool altitude)
-      : surface_(surface), altitude_(altitude) {
-    const fm::HysteresisCompensation& h = surface.hysteresis;
-    if (h.pressure_span > 0.0) pressure_.emplace(h.pressure_span);
-    if (h.thermal_span_c > 0.0) thermal_.emplace(h.thermal_span_c);
-    Acquisition start;
-    start.ps_ref_pa = common::kIsaSeaLevelPressure_pa;
-    start.alt_ref_ft = common::IsaPressureAltitudeFt(start.ps_ref_pa);
-    if (pressure_) pressure_->Update(OperatorInput(surface_, altitude_, start));
-    if (thermal_) thermal_->Update(kRoomTemperatureC);
+// The calibration points as the constants give them: each at its mean codes, with the states the
+// fit regresses on.
+std::vector<Acquisition> Evaluated(const std::vector<AdsCalibrationPoint>& points,
+                                   const fm::AdsCalibrationConstants& c) {
+  const std::vector<PointHistory> history = BridgeHistoryOf(points, SpansOf(c));
+  std::vector<Acquisition> out;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const AdsCalibrationPoint& p = points[i];
+    const PointHistory& h = history[i];
+    out.push_back({p.alt_ft,
+                   p.cas_kt,
+                   p.chamber_c,
+                   fm::SurfaceOutput(c.altitude_ft,
+                                     p.ps_cnt,
+                                     p.ps_temp_cnt,
+                                     h.static_bridge.s_pressure,
+                                     h.static_bridge.s_thermal),
+                   fm::SurfaceOutput(c.airspeed_kt,
+                                     p.pt_cnt,
+                                     p.pt_temp_cnt,
+                                     h.pitot_bridge.s_pressure,
+                                     h.pitot_bridge.s_thermal),
+                   p.rows});
   }
-  /// The surface's output at the acquisition's mean codes, its operators advanced to it.
-  double Output(const Acquisition& a, double x_code, double y_code) {
-    const double s_p = pressure_ ? pressure_->Update(OperatorInput(surface_, altitude_, a)) : 0.0;
-    const double s_t = thermal_ ? thermal_->Update(a.raw_temp_c) : 0.0;
-    return fm::SurfaceOutput(surface_, x_code, y_code, s_p, s_t);
-  }
-
- private:
-  const fm::SurfaceFit& surface_;
-  bool altitude_;
-  std::optional<UnitHysteresisOperator> pressure_, thermal_;
-};
+  return out;
+}
 
 // Where the fitted surface misses: each acquisition at (chamber temperature, reference input),
 // coloured by |residual| / tolerance. The altitude map takes the acquisitions below the airspeed
@@ -250,31 +243,50 @@ std::string ResidualMap(const std::string& serial,
 
 AdsReportAccumulator::AdsReportAccumulator(std::string serial,
                                            hil::RecordingMeta meta,
-                                           const ConstantsFile* constants)
-    : serial_(std::move(serial)), meta_(std::move(meta)), constants_(constants) {}
+                                           const ConstantsFile* constants,
+                                           std::string source)
+    : serial_(std::move(serial)),
+      meta_(std::move(meta)),
+      constants_(constants),
+      raw_points_(meta_, serial_, std::move(source)) {}
 
-void AdsReportAccumulator::Add(const hil::AdsRecordRow& row) {
-  if (row.unit != serial_ || row.tag == 0 || Rejected(meta_, row.step, row.t_s)) return;
-  Acquisition& a =
-      groups_[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
-  if (row.alt_ft && row.cas_kt) {
-    a.alt_ref_ft += common::IsaPressureAltitudeFt(row.ps_ref_pa);
-    a.cas_ref_kt += row.qc_ref_pa > 0.0 ? common::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
-    a.temp_c += row.chamber_c;
-    a.alt_ft += *row.alt_ft;
-    a.cas_kt += *row.cas_kt;
-    ++a.n;
-    unit_values_ = true;
+void AdsReportAccumulator::Add(const hil::AdsRecordRow& row, int line) {
+  if (row.unit != serial_) return;
+  if (!row.alt_ft || !row.cas_kt) {
+    raw_rows_ = true;
+    if (raw_refused_.empty()) {
+      try {
+        raw_points_.Add(row, line);
+      } catch (const std::runtime_error& e) {
+        raw_refused_ = e.what();  // as the fit would refuse the run
+      }
+    }
     return;
   }
-  a.ps_ref_pa += row.ps_ref_pa;
-  a.qc_ref_pa += row.qc_ref_pa;
-  a.ps_cnt += row.ps_cnt;
-  a.pt_cnt += row.pt_cnt;
-  a.ps_bridge_cnt += row.ps_temp_cnt;
-  a.pt_bridge_cnt += row.pt_temp_cnt;
-  a.raw_temp_c += row.chamber_c;
-  ++a.n_raw;
+  if (row.tag == 0 || Rejected(meta_, row.step, row.t_s)) return;
+  Acquisition& a =
+      groups_[{row.step, row.tag, std::lround(row.ps_ref_pa), std::lround(row.qc_ref_pa)}];
+  a.alt_ref_ft += common::IsaPressureAltitudeFt(row.ps_ref_pa);
+  a.cas_ref_kt += row.qc_ref_pa > 0.0 ? common::CalibratedAirspeedKt(row.qc_ref_pa) : 0.0;
+  a.temp_c += row.chamber_c;
+  a.alt_ft += *row.alt_ft;
+  a.cas_kt += *row.cas_kt;
+  ++a.n;
+}
+
+// The raw rows' calibration points, or why there are none (the selection's refusal).
+std::vector<AdsCalibrationPoint> AdsReportAccumulator::RawPoints(std::string* why) const {
+  if (!raw_rows_) return {};
+  if (!raw_refused_.empty()) {
+    *why = raw_refused_;
+    return {};
+  }
+  try {
+    return raw_points_.Points();
+  } catch (const std::runtime_error& e) {
+    *why = e.what();
+    return {};
+  }
 }
 
 std::string AdsReportAccumulator::Sections() const {
@@ -287,64 +299,37 @@ std::string AdsReportAccumulator::Sections() const {
                                                    "no constants.json for " + serial_ +
                                                        " in the fit "
                                                        "directory"));
-  // Means, in step order (the groups' key begins with the step). Raw acquisitions are evaluated
-  // with the constants at their mean codes, the surfaces' hysteresis operators driven through
-  // them in that order, as the fit models the bridges' states.
-  std::vector<Acquisition> points;
-  std::optional<SurfaceStates> altitude_states, airspeed_states;
-  if (constants_ != nullptr) {
-    altitude_states.emplace(constants_->ads->altitude_ft, true);
-    airspeed_states.emplace(constants_->ads->airspeed_kt, false);
-  }
-  bool reference_values = false;
-  for (Acquisition a : groups_ | std::views::values) {
-    if (a.n > 0) {
-      for (double* v : {&a.alt_ref_ft, &a.cas_ref_kt, &a.temp_c, &a.alt_ft, &a.cas_kt}) *v /= a.n;
-    }
-    if (a.n_raw > 0) {
-      for (double* v : {&a.ps_ref_pa,
-                        &a.qc_ref_pa,
-                        &a.ps_cnt,
-                        &a.pt_cnt,
-                        &a.ps_bridge_cnt,
-                        &a.pt_bridge_cnt,
-                        &a.raw_temp_c}) {
-        *v /= a.n_raw;
-      }
-      if (a.n == 0 && constants_ != nullptr) {
-        a.alt_ref_ft = common::IsaPressureAltitudeFt(a.ps_ref_pa);
-        a.cas_ref_kt = a.qc_ref_pa > 0.0 ? common::CalibratedAirspeedKt(a.qc_ref_pa) : 0.0;
-        a.temp_c = a.raw_temp_c;
-        a.alt_ft = altitude_states->Output(a, a.ps_cnt, a.ps_bridge_cnt);
-        a.cas_kt = airspeed_states->Output(a, a.pt_cnt, a.pt_bridge_cnt);
-        a.n = a.n_raw;
-        reference_values = true;
-      }
-    }
-    points.push_back(a);
-  }
-  const bool raw_rows =
-      std::any_of(points.begin(), points.end(), [](const Acquisition& a) { return a.n_raw > 0; });
-  if (raw_rows) {
-    html += Section(serial_ + "-raw",
-                    3,
-                    serial_ + " raw data: bridge codes against the test set's pressures",
-                    RawDataPlots(serial_, points));
+  std::string raw_why;
+  const std::vector<AdsCalibrationPoint> raw = RawPoints(&raw_why);
+  if (raw_rows_) {
+    html +=
+        Section(serial_ + "-raw",
+                3,
+                serial_ + " raw data: bridge codes against the test set's pressures",
+                raw.empty() ? NotAvailable("ADS raw data", raw_why) : RawDataPlots(serial_, raw));
   }
   std::vector<Acquisition> judged;
-  for (const Acquisition& a : points) {
-    if (a.n > 0) judged.push_back(a);
+  for (Acquisition a : groups_ | std::views::values) {
+    for (double* v : {&a.alt_ref_ft, &a.cas_ref_kt, &a.temp_c, &a.alt_ft, &a.cas_kt}) *v /= a.n;
+    judged.push_back(a);
+  }
+  const bool unit_values = !judged.empty();
+  const bool reference_values = constants_ != nullptr && !raw.empty();
+  if (reference_values) {
+    const std::vector<Acquisition> evaluated = Evaluated(raw, *constants_->ads);
+    judged.insert(judged.end(), evaluated.begin(), evaluated.end());
   }
   std::string map;
   if (judged.empty()) {
     map = NotAvailable("ADS error map",
                        constants_ == nullptr ? "raw rows only and no constants.json for " + serial_
+                       : !raw_why.empty()    ? raw_why
                                              : "no tagged acquisition rows for " + serial_);
   } else {
-    const std::string source = unit_values_ && reference_values
+    const std::string source = unit_values && reference_values
                                    ? "unit output and reference compensator"
-                               : unit_values_ ? "the unit's own surface output"
-                                              : "reference compensator on mean raw codes";
+                               : unit_values ? "the unit's own surface output"
+                                             : "reference compensator on the calibration points";
     if (reference_values) {
       map += "<div class=\"figures\">\n" + ResidualMap(serial_, judged, true) +
              ResidualMap(serial_, judged, false) + "</div>\n";
@@ -354,15 +339,6 @@ std::string AdsReportAccumulator::Sections() const {
   return html +
          Section(
              serial_ + "-error-map", 3, serial_ + " error map against the tolerance envelope", map);
-}
-
-std::string AdsReportSections(const std::string& serial,
-                              const std::vector<hil::AdsRecordRow>& rows,
-                              const hil::RecordingMeta& meta,
-                              const ConstantsFile* constants) {
-  AdsReportAccumulator accumulator(serial, meta, constants);
-  for (const hil::AdsRecordRow& row : rows) accumulator.Add(row);
-  return accumulator.Sections();
 }
 
 }  // namespace adahrs::calib

@@ -1,19 +1,17 @@
 // The ADS parts of report.html for one unit: its constants with standard errors, the raw data
-// (each bridge's mean code per acquisition against the test set's pressure, one series per chamber
-// temperature, and the same less its straight line: the reference method's Figs. 16 and 24), the
-// fitted surfaces' residual map (reference altitude or airspeed against chamber temperature, each
-// acquisition marked by its |residual| as a fraction of the tolerance there), and the error map
-// over altitude x temperature (and airspeed x temperature) against the specification's tolerance
-// envelope (calib/acceptance/specification.h). Each point is the mean over one acquisition (rows
-// of one step and TAG at one test-set aim); its reference is the test set's reported pressure
-// converted by the ISA (pressure altitude, ft) and the calibrated-airspeed formula (kt). The
-// compensated value is the unit's own when the row was recorded in surface mode, otherwise the
-// double reference compensator with the file's constants at the acquisition's mean raw codes,
-// with the surfaces' hysteresis states as the fit models them (the unit's operators,
-// calib/ads_calibration/unit_hysteresis_operator.h, driven by the test set's pressure and the
-// chamber temperature from acquisition to acquisition in step order; no states without
-// hysteresis terms); the figure says which. Rows in rejected intervals and rows with TAG 0
-// (between acquisitions) are left out.
+// (each bridge's mean code per calibration point against the test set's pressure, one series per
+// chamber temperature, and the same less its straight line: the reference method's Figs. 16 and
+// 24), the fitted surfaces' residual map (reference altitude or airspeed against chamber
+// temperature, each point marked by its |residual| as a fraction of the tolerance there), and the
+// error map over altitude x temperature (and airspeed x temperature) against the specification's
+// tolerance envelope (calib/acceptance/specification.h). References are the test set's pressures
+// converted by the ISA (pressure altitude, ft) and the calibrated-airspeed formula (kt). Rows
+// recorded in surface mode carry the unit's own values, averaged per acquisition (rows of one step
+// and TAG at one test-set aim). Rows recorded raw are the fit's calibration points
+// (ads_calibration_points.h: the same selection and refusals), evaluated with the double reference
+// compensator and the file's constants at their mean codes, the hysteresis states those the fit
+// regresses on (bridge_history.h); the figure says which. Rows in rejected intervals and rows with
+// TAG 0 (between acquisitions) are left out.
 #pragma once
 
 #include <map>
@@ -21,8 +19,7 @@
 #include <tuple>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/constants/constants_file.h"
 #include "hil/recording/recording_format.h"
 #include "hil/recording/recording_meta.h"
@@ -33,38 +30,36 @@ namespace adahrs::calib {
 /// (other units' rows are passed over), then Sections(). Holds one sum per acquisition.
 class AdsReportAccumulator {
  public:
-  /// `meta` supplies rejected intervals; `constants` may be null and must outlive this.
-  AdsReportAccumulator(std::string serial, hil::RecordingMeta meta, const ConstantsFile* constants);
+  /// `meta` supplies rejected intervals; `constants` may be null and must outlive this; `source`
+  /// (the run directory) is named in refusals.
+  AdsReportAccumulator(std::string serial,
+                       hil::RecordingMeta meta,
+                       const ConstantsFile* constants,
+                       std::string source);
 
-  void Add(const hil::AdsRecordRow& row);
+  /// `line` is the row's ads.csv line (1 = the header), named in refusals.
+  void Add(const hil::AdsRecordRow& row, int line);
   const std::string& serial() const { return serial_; }
   /// Every ADS section for the unit.
   std::string Sections() const;
 
-  /// Sums over one acquisition's rows (means once divided): raw codes and reference pressures of
-  /// every row recorded in raw mode (n_raw), compensated values and references of every row that
-  /// has them (n); a raw acquisition's compensated values are computed from its means.
+  /// One acquisition's means: references, chamber temperature and compensated values.
   struct Acquisition {
     double alt_ref_ft = 0.0, cas_ref_kt = 0.0, temp_c = 0.0;
     double alt_ft = 0.0, cas_kt = 0.0;
     int n = 0;
-    double ps_ref_pa = 0.0, qc_ref_pa = 0.0, ps_cnt = 0.0, pt_cnt = 0.0, ps_bridge_cnt = 0.0,
-           pt_bridge_cnt = 0.0, raw_temp_c = 0.0;
-    int n_raw = 0;
   };
 
  private:
   std::string serial_;
   hil::RecordingMeta meta_;
   const ConstantsFile* constants_;
-  std::map<std::tuple<int, int, long, long>, Acquisition> groups_;
-  bool unit_values_ = false;
-};
+  std::map<std::tuple<int, int, long, long>, Acquisition> groups_;  // surface-mode rows
+  AdsPointSelector raw_points_;                                     // raw-mode rows
+  bool raw_rows_ = false;
+  std::string raw_refused_;  // why the raw rows give no points, when a row was refused
 
-/// Every ADS section for `serial`; `constants` may be null. `meta` supplies rejected intervals.
-std::string AdsReportSections(const std::string& serial,
-                              const std::vector<hil::AdsRecordRow>& rows,
-                              const hil::RecordingMeta& meta,
-                              const ConstantsFile* constants);
+  std::vector<AdsCalibrationPoint> RawPoints(std::string* why) const;
+};
 
 }  // namespace adahrs::calib

@@ -192,14 +192,14 @@ StreamedSections StreamSections(const std::filesystem::path& run_dir,
   std::vector<AdsReportAccumulator> units;
   for (const hil::RecordingUnit& u : meta.units) {
     if (u.kind == common::UnitKind::kImu) continue;
-    units.emplace_back(u.serial, meta, ConstantsOf(fit, u.serial));
+    units.emplace_back(u.serial, meta, ConstantsOf(fit, u.serial), run_dir.string());
   }
   ImuRunData imu;
   std::unique_ptr<ImuRunCollector> collector = ImuCollector(run_dir, meta, &imu, &streamed.imu_why);
   TimeSeriesAccumulator time_series;
   hil::RowSinks sinks;
-  sinks.ads = [&](hil::AdsRecordRow&& row, int) {
-    for (AdsReportAccumulator& unit : units) unit.Add(row);
+  sinks.ads = [&](hil::AdsRecordRow&& row, int line) {
+    for (AdsReportAccumulator& unit : units) unit.Add(row, line);
     time_series.Add(row);
   };
   sinks.imu = [&](hil::ImuRecordRow&& row, int line) {

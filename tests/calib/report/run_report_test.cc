@@ -6,10 +6,15 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
-
 #include <map>
+#include <ranges>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -70,7 +75,7 @@ class RunReportTest : public ::testing::Test {
         row.t_s = tag * 100.0 + i * 0.01;
         row.unit = "ADS-0001";
         row.seq = static_cast<uint32_t>(i);
-        row.step = 0;
+        row.step = tag;  // one acquisition per step, as the executor records them
         row.tag = static_cast<uint8_t>(tag);
         row.chamber_c = 25.0;
         row.ps_ref_pa = fm::testing::IsaPressure_pa(alt_ft);
@@ -307,6 +312,36 @@ TEST_F(RunReportTest, WithoutAFitDirectoryEverySectionSaysWhy) {
               HasSubstr("Noise not available"));
   EXPECT_THAT(SectionById(html, "evaluation")["text"].get<std::string>(),
               HasSubstr("no fit directory given"));
+}
+
+// A run the fit refuses (here every ADS row in one step, across four tags) draws no raw points
+// either: the raw section states the fit's refusal, naming ads.csv and the line.
+TEST_F(RunReportTest, RawRowsTheFitRefusesAreShownWithItsReason) {
+  const auto run = dir_ / "run_one_step";
+  std::filesystem::remove_all(run);
+  std::filesystem::copy(dir_ / "run", run, std::filesystem::copy_options::recursive);
+  std::ifstream in(dir_ / "run" / "ads.csv");
+  std::ofstream out(run / "ads.csv");
+  std::string line;
+  std::getline(in, line);
+  out << line << "\n";
+  const auto header = std::string_view(line);
+  const size_t step_column = std::ranges::count(header.substr(0, header.find("step,")), ',');
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    for (const auto cell : std::views::split(line, ','))
+      cells.emplace_back(cell.begin(), cell.end());
+    cells.at(step_column) = "1";
+    for (size_t i = 0; i < cells.size(); ++i) out << (i ? "," : "") << cells[i];
+    out << "\n";
+  }
+  out.close();
+  WriteRunReport(run, dir_ / "fit", dir_ / "report_one_step.html");
+  const nlohmann::json html = testing::ParseXmlTree(dir_ / "report_one_step.html");
+  const std::string raw = SectionById(html, "ADS-0001-raw")["text"].get<std::string>();
+  EXPECT_THAT(raw, HasSubstr("not available"));
+  EXPECT_THAT(raw, HasSubstr("ads.csv line 12 column tag: unit ADS-0001 step 1 carries tag 2"));
+  EXPECT_TRUE(FindTag(SectionById(html, "ADS-0001-raw"), "svg").empty());
 }
 
 // A calibration run has no acceptance files: page one says it was not judged, and where from.
