@@ -1,19 +1,22 @@
 // Crash and resume: `adahrs run` as a child process is killed with SIGKILL in the middle of a
 // step, then `adahrs run --resume` finishes the run. Expected: every complete gzip member of
-// imu.csv.gz at the kill is still there byte for byte (a torn one is set aside), the interrupted
-// step is repeated and its first attempt marked as a rejected interval, and the calibration rows
-// per unit per acquisition are complete (N each).
+// imu.csv.gz at the kill is still there byte for byte, a torn one is set aside and journaled
+// (planted when the kill falls between two members), the interrupted step is repeated and its
+// first attempt marked as a rejected interval, and the calibration rows per unit per acquisition
+// are complete (N each).
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include "calib/executor/journal.h"
 #include "hil/recording/gzip_reader.h"
@@ -69,6 +72,23 @@ std::pair<std::string, std::string> CompleteMembers(const std::filesystem::path&
   return {compressed, text};
 }
 
+// `text` as one gzip member, as the recording writer appends them.
+std::string GzipMember(const std::string& text) {
+  z_stream z{};
+  if (deflateInit2(&z, 1, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+    throw std::runtime_error("deflateInit2");
+  std::string out(deflateBound(&z, text.size()) + 32, '\0');
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(text.data()));
+  z.avail_in = static_cast<uInt>(text.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = static_cast<uInt>(out.size());
+  const int rc = deflate(&z, Z_FINISH);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  if (rc != Z_STREAM_END) throw std::runtime_error("deflate");
+  return out;
+}
+
 bool JournalHasStepCompleted(const std::filesystem::path& run_dir, int step) {
   if (!std::filesystem::exists(run_dir / kJournalName)) return false;
   for (const auto& e : ReadJournal(run_dir).events) {
@@ -102,11 +122,25 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   int status = 0;
   ::waitpid(first, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status)) << ReadAll(dir.path() / "first.log");
-  const std::string imu_at_kill = ReadAll(run_dir / "imu.csv.gz");
+  std::string imu_at_kill = ReadAll(run_dir / "imu.csv.gz");
   const auto [complete_at_kill, text_at_kill] =
       CompleteMembers(run_dir / "imu.csv.gz", dir.path() / "members.gz");
   ASSERT_FALSE(text_at_kill.empty());
   ASSERT_FALSE(JournalHasStepCompleted(run_dir, 2)) << "killed too late to test a partial step";
+  // The kill lands inside a member's write or between two. Between two it leaves no torn tail, so
+  // one is planted as a write cut short leaves it: the first half of a member of the last rows.
+  // Either way the resume below must set a torn member aside.
+  const bool torn_by_kill = complete_at_kill.size() != imu_at_kill.size();
+  if (!torn_by_kill) {
+    const size_t last_rows = text_at_kill.rfind('\n', text_at_kill.size() - 2);
+    const size_t from = text_at_kill.rfind('\n', last_rows - 1) + 1;
+    const std::string member = GzipMember(text_at_kill.substr(from));
+    const std::string torn = member.substr(0, member.size() / 2);
+    std::ofstream(run_dir / "imu.csv.gz", std::ios::binary | std::ios::app) << torn;
+    imu_at_kill += torn;
+  }
+  std::printf("the kill %s\n",
+              torn_by_kill ? "tore a gzip member" : "fell between members: a torn one planted");
 
   // A restart takes a moment; an instrument reply to the killed process's last request lands in
   // the pty meanwhile and the new process's port open discards it. (Without the pause the Watlow
@@ -142,9 +176,15 @@ TEST(ExecutorResume, KilledRunResumesWithEveryRowKeptAndTheRepeatedStepMarked) {
   // Nothing logged before the kill is lost: the file still starts with every complete member.
   const std::string imu_after = ReadAll(run_dir / "imu.csv.gz");
   EXPECT_EQ(imu_after.compare(0, complete_at_kill.size(), complete_at_kill), 0);
-  if (complete_at_kill.size() != imu_at_kill.size()) {
-    EXPECT_EQ(ReadAll(run_dir / "imu.csv.gz.torn-1"), imu_at_kill.substr(complete_at_kill.size()));
+  // The torn member was set aside byte for byte, and journaled.
+  ASSERT_GT(imu_at_kill.size(), complete_at_kill.size());
+  EXPECT_EQ(ReadAll(run_dir / "imu.csv.gz.torn-1"), imu_at_kill.substr(complete_at_kill.size()));
+  bool torn_journaled = false;
+  for (const auto& e : ReadJournal(run_dir).events) {
+    const auto* torn = std::get_if<TornTailSetAside>(&e);
+    torn_journaled |= torn != nullptr && torn->file == "imu.csv.gz";
   }
+  EXPECT_TRUE(torn_journaled);
 
   const hil::Recording rec = hil::ReadRecording(run_dir);
   EXPECT_EQ(rec.meta.status.value_or(""), "complete");
