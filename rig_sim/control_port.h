@@ -1,15 +1,17 @@
 // The rig's control port: a line protocol on its own pseudo-terminal (role "control") through
 // which a test or an operator switches faults, moves the virtual fixture and reads the clock.
-// One command per line (LF or CR LF), one reply line each: "OK …" or "ERR <reason>".
-//
-//   time                              OK <simulated seconds>
-//   status                            OK time_s=… time_scale=… roles=a,b,…
-//   faults=role:fault=value,… env                               OK the shared physical state
-//   (chamber air, table, pressures) faults <role>                     OK the fault names the role
-//   accepts fault <role> <fault> on|off       byte faults silent, garbage; the device's physical
-//   faults fault <role> drop_rate|corrupt_rate <0…1> orientation <imu role> [code]     set (11 12
-//   21 22 31 32) or read the unit's fixture code help                              OK the command
-//   list
+// One command per line (LF or CR LF), one reply line each: "OK ..." or "ERR <reason>":
+//   time                                   OK <simulated seconds>
+//   status                                 OK time_s=... time_scale=... roles=a,b,...
+//                                          faults=role:fault=value,...
+//   env                                    OK the shared physical state (chamber air, table,
+//                                          pressures)
+//   faults <role>                          OK the fault names the role accepts
+//   fault <role> <fault> on|off            byte faults silent, garbage; the device's physical
+//                                          faults
+//   fault <role> drop_rate|corrupt_rate <0...1>
+//   orientation <imu role> [code]          set (11 12 21 22 31 32) or read the unit's fixture code
+//   help                                   OK the command list
 // Commands run on the rig's frame thread between device frames, so they take effect at a frame
 // boundary of the simulated clock (the command's own frame, after the devices before it).
 #pragma once
