@@ -29,6 +29,7 @@ Usage: campaign_command_test.py ADAHRS_BINARY
 import json
 import pathlib
 import re
+import shutil
 import signal
 import sqlite3
 import subprocess
@@ -301,68 +302,77 @@ def records_shape(out):
 
 
 def main():
-    adahrs = sys.argv[1]
-    with tempfile.TemporaryDirectory(prefix="adahrs-campaign-cli-") as tmp:
-        tmp = pathlib.Path(tmp)
-        campaign = campaign_file(tmp)
-
-        bad = tmp / "bad.json"
-        document = json.loads(campaign.read_text())
-        document["fit"]["imu"] = "joint_format9"
-        bad.write_text(json.dumps(document))
-        refused = subprocess.run([adahrs, "campaign", "--campaign", str(bad), "--station-imu",
-                                  str(tmp / "none.json"), "--out", str(tmp / "bad-out")],
-                                 capture_output=True, text=True)
-        if refused.returncode == 0 or str(bad) not in refused.stderr \
-                or "$.fit.imu" not in refused.stderr:
-            fail(f"malformed campaign file not refused with its path: {refused.stderr}")
-
-        rig = Rig(adahrs, tmp / "rig-a")
-        try:
-            whole = tmp / "whole"
-            t0 = time.monotonic()
-            process = start(adahrs, rig, campaign, whole)
-            finish(process, "uninterrupted campaign")
-            print(f"uninterrupted quick campaign: {time.monotonic() - t0:.0f} s wall")
-            check_complete(whole, process.returncode, "uninterrupted campaign")
-        finally:
-            rig.stop()
-        report_checks.check_reports(sorted(p.parent for p in (whole / "runs").glob("*/meta.json")),
-                                    tmp / "chromium-profile")
-        again = subprocess.run([adahrs, "campaign", "--campaign", str(campaign), "--station-imu",
-                                str(rig.imu_station), "--out", str(whole)],
-                               capture_output=True, text=True)
-        if again.returncode == 0 or "--resume" not in again.stderr:
-            fail(f"a non-empty --out was not refused: {again.stderr}")
-
-        rig = Rig(adahrs, tmp / "rig-b")
-        try:
-            interrupted = tmp / "interrupted"
-            calibration_run = interrupted / "runs" / "imu_thermal_sensor_calibration_short_quick"
-            process = start(adahrs, rig, campaign, interrupted)
-            terminate_when(process,
-                           lambda: (calibration_run / "journal.jsonl").exists()
-                           and "step_completed" in (calibration_run / "journal.jsonl").read_text(),
-                           "inside the calibration runs")
-            if "calibration_runs" in stages_done(interrupted):
-                fail("the calibration stage is journaled as done after SIGTERM inside it")
-            process = resume(adahrs, interrupted)
-            terminate_when(process, lambda: "downloads" in stages_done(interrupted),
-                           "after the download")
-            if "acceptance_runs" in stages_done(interrupted):
-                fail("SIGTERM came too late: the acceptance runs had ended")
-            process = resume(adahrs, interrupted)
-            finish(process, "resumed campaign")
-            check_complete(interrupted, process.returncode, "resumed campaign")
-        finally:
-            rig.stop()
-
-        whole_shape, resumed_shape = records_shape(whole), records_shape(interrupted)
-        for table in whole_shape:
-            if whole_shape[table] != resumed_shape[table]:
-                fail(f"records differ in {table}:\n uninterrupted {whole_shape[table][:20]}\n"
-                     f" resumed       {resumed_shape[table][:20]}")
+    # The campaigns' directories and the rigs' logs are kept when the test fails (under the
+    # suite's scratch directory, which scripts/test keeps after a failure), removed when it passes.
+    tmp = pathlib.Path(tempfile.mkdtemp(prefix="adahrs-campaign-cli-"))
+    try:
+        campaigns(sys.argv[1], tmp)
+    except BaseException:
+        print(f"campaign test files kept in {tmp}")
+        raise
+    shutil.rmtree(tmp)
     print("PASS")
+
+
+def campaigns(adahrs, tmp):
+    campaign = campaign_file(tmp)
+
+    bad = tmp / "bad.json"
+    document = json.loads(campaign.read_text())
+    document["fit"]["imu"] = "joint_format9"
+    bad.write_text(json.dumps(document))
+    refused = subprocess.run([adahrs, "campaign", "--campaign", str(bad), "--station-imu",
+                              str(tmp / "none.json"), "--out", str(tmp / "bad-out")],
+                             capture_output=True, text=True)
+    if refused.returncode == 0 or str(bad) not in refused.stderr \
+            or "$.fit.imu" not in refused.stderr:
+        fail(f"malformed campaign file not refused with its path: {refused.stderr}")
+
+    rig = Rig(adahrs, tmp / "rig-a")
+    try:
+        whole = tmp / "whole"
+        t0 = time.monotonic()
+        process = start(adahrs, rig, campaign, whole)
+        finish(process, "uninterrupted campaign")
+        print(f"uninterrupted quick campaign: {time.monotonic() - t0:.0f} s wall")
+        check_complete(whole, process.returncode, "uninterrupted campaign")
+    finally:
+        rig.stop()
+    report_checks.check_reports(sorted(p.parent for p in (whole / "runs").glob("*/meta.json")),
+                                tmp / "chromium-profile")
+    again = subprocess.run([adahrs, "campaign", "--campaign", str(campaign), "--station-imu",
+                            str(rig.imu_station), "--out", str(whole)],
+                           capture_output=True, text=True)
+    if again.returncode == 0 or "--resume" not in again.stderr:
+        fail(f"a non-empty --out was not refused: {again.stderr}")
+
+    rig = Rig(adahrs, tmp / "rig-b")
+    try:
+        interrupted = tmp / "interrupted"
+        calibration_run = interrupted / "runs" / "imu_thermal_sensor_calibration_short_quick"
+        process = start(adahrs, rig, campaign, interrupted)
+        terminate_when(process,
+                       lambda: (calibration_run / "journal.jsonl").exists()
+                       and "step_completed" in (calibration_run / "journal.jsonl").read_text(),
+                       "inside the calibration runs")
+        if "calibration_runs" in stages_done(interrupted):
+            fail("the calibration stage is journaled as done after SIGTERM inside it")
+        process = resume(adahrs, interrupted)
+        terminate_when(process, lambda: "downloads" in stages_done(interrupted),
+                       "after the download")
+        if "acceptance_runs" in stages_done(interrupted):
+            fail("SIGTERM came too late: the acceptance runs had ended")
+        process = resume(adahrs, interrupted)
+        finish(process, "resumed campaign")
+        check_complete(interrupted, process.returncode, "resumed campaign")
+    finally:
+        rig.stop()
+
+    whole_shape, resumed_shape = records_shape(whole), records_shape(interrupted)
+    for table in whole_shape:
+        if whole_shape[table] != resumed_shape[table]:
+            fail(f"records differ in {table}:\n uninterrupted {whole_shape[table][:20]}\n"
+                 f" resumed       {resumed_shape[table][:20]}")
 
 
 if __name__ == "__main__":

@@ -25,6 +25,7 @@
 #include "common/gravity.h"
 #include "common/median.h"
 #include "proving/evaluation/imu_evaluation.h"
+#include "tests/support/sanitized_units.h"
 #include "tests/support/twenty_nominal_imus.h"
 
 namespace adahrs::calib {
@@ -38,6 +39,13 @@ struct Column {
   std::map<std::string, int> verdicts;
   std::vector<double> error_over_crb, rate_dps, limit_dps, floor_dph, time_scale, white_scale;
 };
+
+// The figures asserted below are those of the seeded 20 units and cannot be drawn on fewer; under
+// the sanitizers (about 2 min per test on the 2-core VM) the two tests are skipped, visibly: the
+// release pass holds the figures; under the sanitizers the joint fit and its evaluation run in
+// ImuJointFit, the wander's estimation in gyro_wander_fit_test.cc.
+constexpr const char* kSkippedUnderSanitizers =
+    "the 20 seeded units' figures are the release pass's (tests/support/sanitized_units.h)";
 
 // [0]: the datasheet prior; [1]: estimated from the recording.
 std::array<Column, 2> RunTwentyUnits(sensor_sim::TruthVariant variant) {
@@ -121,6 +129,7 @@ constexpr double kMedianTolerance = 0.01;
 // search's fast end (the test's thermal profile is compressed 60x: the slow poles are one offset
 // over the run, which the null absorbs).
 TEST(ImuModelForm, MatchedWanderBothCovariancesGiveAnHonestBound) {
+  if (adahrs::testing::kSanitized) GTEST_SKIP() << kSkippedUnderSanitizers;
   const std::array<Column, 2> c = RunTwentyUnits(sensor_sim::TruthVariant::kStandard);
   EXPECT_NEAR(common::Median(c[0].error_over_crb), 0.95, kMedianTolerance);
   EXPECT_NEAR(common::Median(c[1].error_over_crb), 1.09, kMedianTolerance);
@@ -134,6 +143,7 @@ TEST(ImuModelForm, MatchedWanderBothCovariancesGiveAnHonestBound) {
 // observation means do not identify the slower wander well enough to tighten the bound, so the
 // datasheet prior stays the default; a bound optimistic by a sixth is what the mismatch costs it.
 TEST(ImuModelForm, SlowerWanderThanThePrior) {
+  if (adahrs::testing::kSanitized) GTEST_SKIP() << kSkippedUnderSanitizers;
   const std::array<Column, 2> c = RunTwentyUnits(sensor_sim::TruthVariant::kSlowBiasWander);
   EXPECT_NEAR(common::Median(c[0].error_over_crb), 1.17, kMedianTolerance);
   EXPECT_EQ(WithinSpecOrBound(c[0]), 18);
