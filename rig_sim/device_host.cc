@@ -20,6 +20,8 @@
 #include <sys/inotify.h>
 #include <unistd.h>
 
+#include "rig_sim/pty_clients.h"
+
 namespace adahrs::rig_sim {
 
 // How long a write may take to reach the line discipline's queue (FIONREAD) on a loaded machine:
@@ -132,15 +134,25 @@ void DeviceHost::NoteOpens(size_t n) {
     }
     for (auto& port : ports_) {
       if (port->watch != event.wd) continue;
+      const int before = port->clients_open;
+      // Counting events alone miscounts when two identical ones merge, so the clients are read
+      // from /proc (pty_clients.h). An open's event comes before its descriptor is in the table,
+      // so an open counts at least one more than before; a close's event comes after its
+      // descriptor left the table, so /proc has the count.
+      const std::optional<int> clients =
+          CountPtyClients(port->pty.slave_path(), port->pty.slave_fd());
       if (event.mask & IN_OPEN) {
-        // A client that opens the port counts as reading from then on (it holds the clock for
-        // the stall limit if it never reads).
-        if (port->clients_open++ == 0) {
-          port->last_progress = now;
-          port->looks_since_progress = 0;
-        }
+        port->clients_open = std::max(port->clients_open + 1, clients.value_or(0));
+      } else if (clients) {
+        port->clients_open = *clients;
       } else if (port->clients_open > 0) {
         --port->clients_open;
+      }
+      // A client that opens the port counts as reading from then on (it holds the clock for the
+      // stall limit if it never reads).
+      if (before == 0 && port->clients_open > 0) {
+        port->last_progress = now;
+        port->looks_since_progress = 0;
       }
     }
   }

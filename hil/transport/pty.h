@@ -30,6 +30,8 @@ class PtyPair {
   int master_fd() const { return master_fd_; }
   /// Path of the slave device (the client side), e.g. /dev/pts/7.
   const std::string& slave_path() const { return slave_path_; }
+  /// The pair's own slave descriptor (kept open so the master never reads EIO): not a client.
+  int slave_fd() const { return slave_fd_; }
   /// Bytes written on the master that no client has read yet (FIONREAD on the pair's own slave
   /// descriptor: the slave's input queue, which every client of the path shares).
   size_t UnreadBytes() const;
