@@ -239,7 +239,13 @@ TEST(ExecutorRig, AFirstChamberStepFarFromThePlansStartIsWaitedFor) {
   // which the release pass holds.
   if (adahrs::testing::kSanitized) return;
   int ramp = 0, settling = 0;
+  // A report is due every 10 s of the wait; one that comes later (the executor descheduled on a
+  // loaded machine) may carry an estimate from a chamber reading as old as its gap to the one
+  // before, so the settling bound allows the gap beyond the interval on top.
+  double previous_s = started_s;
   for (const ProgressReport& r : progress.reports) {
+    const double late_s = std::max(0.0, r.t_s - previous_s - 10.0);
+    previous_s = r.t_s;
     const double done = (r.t_s - started_s) / (ended_s - started_s);
     const double left_s = ended_s - r.t_s;
     const double plan_left_s = std::max(0.0, 10.0 - (r.t_s - started_s));
@@ -249,7 +255,8 @@ TEST(ExecutorRig, AFirstChamberStepFarFromThePlansStartIsWaitedFor) {
       EXPECT_LT(std::abs(r.eta_s - left_s), std::abs(plan_left_s - left_s));
       ++ramp;
     } else if (done >= 0.6) {
-      EXPECT_NEAR(r.eta_s, left_s, std::max(0.3 * left_s, 30.0)) << "at " << r.t_s - started_s;
+      EXPECT_NEAR(r.eta_s, left_s, std::max(0.3 * left_s, 30.0) + late_s)
+          << "at " << r.t_s - started_s;
       ++settling;
     }
   }
