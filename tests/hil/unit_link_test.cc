@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <thread>
 
 #include <fcntl.h>
@@ -153,36 +154,15 @@ TEST(UnitLink, StreamsAtOneHundredHertzWithoutLossInLockstepForSimulatedMinutes)
     links.push_back(std::make_unique<UnitLink>(entry, clock));
   }
   const size_t n = links.size();
-  // Reads every link until none has brought a packet for `quiet` of wall time; returns the
-  // packets per link.
-  const auto drain = [&](std::chrono::milliseconds quiet) {
-    std::vector<std::vector<ReceivedPacket>> got(n);
-    auto last = std::chrono::steady_clock::now();
-    while (std::chrono::steady_clock::now() - last < quiet) {
-      for (size_t i = 0; i < n; ++i) {
-        std::vector<ReceivedPacket> p = links[i]->Poll(std::chrono::milliseconds(1));
-        if (!p.empty()) last = std::chrono::steady_clock::now();
-        got[i].insert(got[i].end(), p.begin(), p.end());
-      }
-    }
-    return got;
-  };
-  // Every line silent, and all that was sent before read: the window starts from empty lines.
-  for (const UnitEntry& u : station.units)
-    ControlAt(rig, "fault " + u.role + " silent on", "OK " + u.role + " silent on");
-  drain(std::chrono::milliseconds(300));  // 60 s of the rig's clock at 200x with nothing sent
-  std::vector<double> on_s(n), off_s(n);
-  for (size_t i = 0; i < n; ++i) {
-    const std::string& role = station.units[i].role;
-    on_s[i] = ControlAt(rig, "fault " + role + " silent off", "OK " + role + " silent off");
-  }
   std::vector<std::vector<ReceivedPacket>> packets(n);
   std::vector<uint64_t> lost_after_first(n), bad_crc_after_first(n);
-  const auto wall_limit = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (clock.RigTimeS() - on_s.back() < kStreamWindowS) {
-    ASSERT_LT(std::chrono::steady_clock::now(), wall_limit) << "the rig's clock hardly moves";
+  // Polls every link once, keeping the packets of the lines `keep` says are on.
+  const auto poll_all = [&](const std::vector<bool>& keep) {
+    bool any = false;
     for (size_t i = 0; i < n; ++i) {
       const std::vector<ReceivedPacket> p = links[i]->Poll(std::chrono::milliseconds(1));
+      any = any || !p.empty();
+      if (!keep[i]) continue;
       if (packets[i].empty() && !p.empty()) {
         // The first packets after the line came on: the counter's gap over the silent stretch
         // and any bytes cut at the switch are counted by now, and not again.
@@ -191,15 +171,49 @@ TEST(UnitLink, StreamsAtOneHundredHertzWithoutLossInLockstepForSimulatedMinutes)
       }
       packets[i].insert(packets[i].end(), p.begin(), p.end());
     }
+    return any;
+  };
+  // A control command acts at a frame, and in lockstep the frames wait for every attached reader
+  // that lags: the links are read while the command waits for its reply, or a line already on
+  // could hold the clock (and so the reply) until the rig gives its reader up.
+  const auto control =
+      [&](const std::string& line, const std::string& reply, const std::vector<bool>& keep) {
+        std::future<double> at =
+            std::async(std::launch::async, [&] { return ControlAt(rig, line, reply); });
+        while (at.wait_for(std::chrono::seconds(0)) != std::future_status::ready) poll_all(keep);
+        return at.get();
+      };
+  // Reads every link until none has brought a packet for `quiet` of wall time.
+  const auto drain = [&](std::chrono::milliseconds quiet, const std::vector<bool>& keep) {
+    auto last = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - last < quiet) {
+      if (poll_all(keep)) last = std::chrono::steady_clock::now();
+    }
+  };
+  // Every line silent, and all that was sent before read: the window starts from empty lines.
+  const std::vector<bool> none(n, false);
+  for (const UnitEntry& u : station.units)
+    control("fault " + u.role + " silent on", "OK " + u.role + " silent on", none);
+  drain(std::chrono::milliseconds(300), none);  // 60 s of the rig's clock at 200x, nothing sent
+  std::vector<double> on_s(n), off_s(n);
+  std::vector<bool> on(n, false);
+  for (size_t i = 0; i < n; ++i) {
+    const std::string& role = station.units[i].role;
+    on[i] = true;  // its first packets may come before the reply: the line was drained silent
+    on_s[i] = control("fault " + role + " silent off", "OK " + role + " silent off", on);
+  }
+  const auto wall_limit = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (clock.RigTimeS() - on_s.back() < kStreamWindowS) {
+    ASSERT_LT(std::chrono::steady_clock::now(), wall_limit) << "the rig's clock hardly moves";
+    poll_all(on);
   }
   for (size_t i = 0; i < n; ++i) {
     const std::string& role = station.units[i].role;
-    off_s[i] = ControlAt(rig, "fault " + role + " silent on", "OK " + role + " silent on");
+    off_s[i] = control("fault " + role + " silent on", "OK " + role + " silent on", on);
   }
-  const std::vector<std::vector<ReceivedPacket>> rest = drain(std::chrono::milliseconds(300));
+  drain(std::chrono::milliseconds(300), on);
   for (size_t i = 0; i < n; ++i) {
     SCOPED_TRACE(station.units[i].role);
-    packets[i].insert(packets[i].end(), rest[i].begin(), rest[i].end());
     ASSERT_FALSE(packets[i].empty());
     int gaps = 0;
     for (size_t k = 1; k < packets[i].size(); ++k) {
