@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <thread>
 
 #include <gmock/gmock.h>
@@ -93,20 +94,23 @@ TEST(Rig, WritesManifestLinksAndTruthAndStreamsUnitsOnPtys) {
   EXPECT_FALSE(std::filesystem::exists(dir / "manifest.json.tmp"));
 
   // Through the stable link, as a station file would name it: 100 Hz packets at 20x.
-  PtyClient imu4((dir / "ports" / "imu4").string());
-  imu4.Drain();
-  const double from_s = rig.host().now_s();
-  std::vector<uint8_t> bytes;
-  imu4.ReadFor(1.0, bytes);
-  const double to_s = rig.host().now_s();
-  const Stream s = Decode(bytes);
-  // 100 packets per simulated second (≈ 2,000 in 1 s wall at 20x on an idle machine), less what
-  // lockstep lets wait unread: the budget and the pty's queue (≈ 400 packets).
-  EXPECT_GT(to_s - from_s, 1.0);
-  EXPECT_GE(static_cast<double>(s.data.size()), 100.0 * (to_s - from_s) - 450.0);
-  EXPECT_EQ(s.lost, 0u);
-  EXPECT_EQ(s.counters.bad_crc, 0u);
-
+  // The line is closed before the control commands below: in lockstep an open line left unread
+  // would hold the frames those commands act at.
+  {
+    PtyClient imu4((dir / "ports" / "imu4").string());
+    imu4.Drain();
+    const double from_s = rig.host().now_s();
+    std::vector<uint8_t> bytes;
+    imu4.ReadFor(1.0, bytes);
+    const double to_s = rig.host().now_s();
+    const Stream s = Decode(bytes);
+    // 100 packets per simulated second (≈ 2,000 in 1 s wall at 20x on an idle machine), less what
+    // lockstep lets wait unread: the budget and the pty's queue (≈ 400 packets).
+    EXPECT_GT(to_s - from_s, 1.0);
+    EXPECT_GE(static_cast<double>(s.data.size()), 100.0 * (to_s - from_s) - 450.0);
+    EXPECT_EQ(s.lost, 0u);
+    EXPECT_EQ(s.counters.bad_crc, 0u);
+  }
   PtyClient control(manifest["ports"]["control"].get<std::string>());
   EXPECT_THAT(control.Command("time"), StartsWith("OK "));
   EXPECT_THAT(control.Command("status"), HasSubstr("imu1,imu2,imu3,imu4,ads1,control faults=none"));
@@ -220,10 +224,17 @@ TEST(Rig, ByteAndPhysicalFaultsAreSeenByTheClient) {
   // before it (the host's backlog for this client, which did not read in between) are read and
   // discarded first.
   auto observe = [&](const std::string& command) {
-    if (!command.empty()) {
-      EXPECT_THAT(control.Command(command), StartsWith("OK")) << command;
-    }
     std::vector<uint8_t> before;
+    if (!command.empty()) {
+      // The command acts at a frame, and in lockstep frames wait for this unread line once its
+      // backlog passes the budget: the line is read while the reply is awaited.
+      std::future<std::string> reply =
+          std::async(std::launch::async, [&] { return control.Command(command); });
+      while (reply.wait_for(std::chrono::milliseconds(0)) != std::future_status::ready) {
+        port.ReadFor(0.005, before);
+      }
+      EXPECT_THAT(reply.get(), StartsWith("OK")) << command;
+    }
     port.ReadFor(0.2, before);
     std::vector<uint8_t> bytes;
     port.ReadFor(0.3, bytes);
