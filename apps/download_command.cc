@@ -1,6 +1,7 @@
 // adahrs download --station FILE --unit ROLE --constants FILE [--db FILE]: writes a unit's
 // constants over its maintenance port, verifies the read-back bit for bit, commits and switches the
-// unit to its calibrated mode (calib/download/, docs/download.md). With --db, the constants file
+// unit to its calibrated mode (calib/download/, docs/download.md): a file of one stage of the
+// staged process (`fit --stage`) sets the mode after that stage. With --db, the constants file
 // is recorded as a version and the attempt (committed or refused) as a download of it.
 #include <iostream>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "calib/records/records_store.h"
 #include "hil/clock.h"
 #include "hil/drivers/unit_link.h"
+#include "hil/drivers/unit_mode.h"
 #include "hil/station.h"
 
 namespace adahrs::apps {
@@ -78,7 +80,7 @@ void Download(const DownloadOptions& options) {
                              result.before.constants_version,
                              result.after.constants_version,
                              result.after.constants_crc,
-                             file.kind == hil::UnitKind::kImu ? "fully calibrated" : "surface");
+                             hil::UnitModeName(file.kind, result.mode));
     record.verified = record.committed = true;
     record.unit_constants_version = result.after.constants_version;
     record.unit_constants_crc = result.after.constants_crc;

@@ -7,6 +7,8 @@
 // hysteresis_compensated) and writes
 // OUT/<serial>.json per unit, as the demo campaign does (docs/constants-file.md,
 // docs/calibration-strategies.md).
+// adahrs fit --run DIR --stage thermal|sensor|cross_axis [--base DIR] --out DIR: one stage of the
+// staged process with the reference strategy (docs/campaign.md "The staged process").
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -21,6 +23,23 @@
 #include "calib/imu_calibration/imu_strategy.h"
 
 namespace adahrs::apps {
+
+namespace {
+
+// What a staged fit holds and what it leaves for the later stages.
+std::string StageNote(calib::ImuStage stage) {
+  switch (stage) {
+    case calib::ImuStage::kThermal:
+      return ", thermal stage (sensor and cross-axis constants left at their defaults)";
+    case calib::ImuStage::kSensor:
+      return ", sensor stage on the base's thermal constants (cross-axis left the identity)";
+    case calib::ImuStage::kCrossAxis:
+      return ", cross-axis stage on the base's thermal and sensor constants";
+  }
+  return "";
+}
+
+}  // namespace
 
 void RegisterFitCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("fit", "Fit calibration constants from recordings");
@@ -39,7 +58,19 @@ void RegisterFitCommand(CLI::App& app) {
                   "tolerance_minimax, pressure_minimax or hysteresis_compensated")
       ->excludes(imu_option);
   cmd->add_option("--out", *out, "Output directory for the constants files")->required();
-  cmd->callback([runs, strategy_file, ads_strategy, out] {
+  auto stage = std::make_shared<std::string>();
+  auto base = std::make_shared<std::string>();
+  cmd->add_option("--stage",
+                  *stage,
+                  "Staged process: fit this stage alone with the reference strategy: thermal, "
+                  "sensor (on the base's thermal constants) or cross_axis (on its thermal and "
+                  "sensor constants)")
+      ->check(CLI::IsMember({"thermal", "sensor", "cross_axis"}))
+      ->excludes("--ads-strategy");
+  cmd->add_option("--base",
+                  *base,
+                  "Staged process: the previous stage's --out directory (<serial>.json per unit)");
+  cmd->callback([runs, strategy_file, ads_strategy, out, stage, base] {
     if (!ads_strategy->empty()) {
       if (runs->size() != 1) {
         throw CLI::ValidationError("--ads-strategy",
@@ -55,16 +86,34 @@ void RegisterFitCommand(CLI::App& app) {
       }
       return;
     }
-    const calib::ImuStrategy strategy = strategy_file->empty()
-                                            ? calib::ImuStrategy::JointFormat3()
-                                            : calib::ImuStrategy::Load(*strategy_file);
+    std::optional<calib::ImuStageRequest> staged;
+    if (!stage->empty()) {
+      staged = calib::ImuStageRequest{*calib::ParseImuStage(*stage), *base};
+      if ((staged->stage == calib::ImuStage::kThermal) != base->empty()) {
+        throw CLI::ValidationError("--base",
+                                   staged->stage == calib::ImuStage::kThermal
+                                       ? "the thermal stage is the first: it takes no base"
+                                       : "the " + *stage +
+                                             " stage needs the previous stage's "
+                                             "constants directory");
+      }
+    } else if (!base->empty()) {
+      throw CLI::ValidationError("--base", "only with --stage sensor or --stage cross_axis");
+    }
+    // The staged process is the reference method's; without a stage the default is the joint
+    // strategy's format 3, what the campaign downloads.
+    const calib::ImuStrategy strategy = !strategy_file->empty()
+                                            ? calib::ImuStrategy::Load(*strategy_file)
+                                        : staged ? calib::ImuStrategy::Reference()
+                                                 : calib::ImuStrategy::JointFormat3();
     const std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
     for (const calib::WrittenConstants& w :
-         calib::FitImuIntoDirectory(dirs, strategy, *out, ADAHRS_VERSION)) {
+         calib::FitImuIntoDirectory(dirs, strategy, *out, ADAHRS_VERSION, staged)) {
       std::cout << fmt::format(
-          "{}: strategy {}, {} excluded rows -> {}\n",
+          "{}: strategy {}{}, {} excluded rows -> {}\n",
           w.file.serial,
           w.file.strategy,
+          staged ? StageNote(staged->stage) : "",
           w.file.imu_diagnostics ? w.file.imu_diagnostics->excluded_rows.value_or(0) : 0,
           w.path.string());
     }

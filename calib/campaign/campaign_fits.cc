@@ -24,9 +24,10 @@ std::vector<WrittenConstants> FitImuIntoDirectory(
     const std::vector<std::filesystem::path>& run_dirs,
     const ImuStrategy& strategy,
     const std::filesystem::path& fit_dir,
-    const std::string& software_version) {
+    const std::string& software_version,
+    const std::optional<ImuStageRequest>& staged) {
   std::vector<WrittenConstants> written;
-  for (ConstantsFile& file : FitImuRuns(run_dirs, strategy, software_version)) {
+  for (ConstantsFile& file : FitImuRuns(run_dirs, strategy, software_version, staged)) {
     written.push_back(Write(fit_dir, std::move(file)));
   }
   return written;

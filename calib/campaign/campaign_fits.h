@@ -29,7 +29,8 @@ std::vector<WrittenConstants> FitImuIntoDirectory(
     const std::vector<std::filesystem::path>& run_dirs,
     const ImuStrategy& strategy,
     const std::filesystem::path& fit_dir,
-    const std::string& software_version);
+    const std::string& software_version,
+    const std::optional<ImuStageRequest>& staged = std::nullopt);
 
 /// Fits every ADS unit of `run_dir` with the ADS strategy named `strategy` (FitAdsStrategy:
 /// "reference", "tolerance_minimax", "pressure_minimax" or "hysteresis_compensated") and writes

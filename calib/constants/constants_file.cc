@@ -147,6 +147,25 @@ ConstantsFile Parse(const json& j, const std::string& source) {
     file.provenance.sequence_names.push_back(name.get<std::string>());
   }
   provenance.ExpectAllKeysUsed();
+  if (reader.Has("stages")) {
+    if (file.kind != hil::UnitKind::kImu)
+      reader.Fail("$.stages", "only an IMU is fitted in stages");
+    if (file.imu->scale_temperature.active) {
+      reader.Fail("$.stages", "a staged fit holds format-2 constants, this file format-3 terms");
+    }
+    const size_t count = reader.ArrayLength("stages", 1, std::size(kImuStages));
+    for (size_t i = 0; i < count; ++i) {
+      const json& name = j.at("stages").at(i);
+      const std::optional<ImuStage> stage =
+          name.is_string() ? ParseImuStage(name.get<std::string>()) : std::nullopt;
+      if (!stage || *stage != kImuStages[i]) {
+        reader.Fail("$.stages[" + std::to_string(i) + "]",
+                    "expected \"" + std::string(ImuStageName(kImuStages[i])) +
+                        "\" (the stages are held from the first, in order), got " + name.dump());
+      }
+      file.stages.push_back(*stage);
+    }
+  }
   reader.Child("diagnostics");
   const json& diagnostics = j.at("diagnostics");
   if (file.kind == hil::UnitKind::kImu) {
@@ -255,18 +274,29 @@ json ToJson(const ConstantsFile& file) {
     recordings.push_back({{"path", r.path}, {"sha256", r.sha256}});
   }
   const bool format3 = file.imu && file.imu->scale_temperature.active;
-  return json{{"format", kConstantsFormatName},
-              {"format_version", format3 ? kConstantsFormatVersion : kConstantsOldestFormatVersion},
-              {"serial", file.serial},
-              {"kind", common::UnitKindName(file.kind)},
-              {"strategy", file.strategy},
-              {"created_utc", file.created_utc},
-              {"software_version", file.software_version},
-              {"constants", constants},
-              {"standard_errors", file.standard_errors},
-              {"provenance",
-               {{"recordings", recordings}, {"sequence_names", file.provenance.sequence_names}}},
-              {"diagnostics", NullForNaN(DiagnosticsJson(file, source))}};
+  json j{{"format", kConstantsFormatName},
+         {"format_version", format3 ? kConstantsFormatVersion : kConstantsOldestFormatVersion},
+         {"serial", file.serial},
+         {"kind", common::UnitKindName(file.kind)},
+         {"strategy", file.strategy},
+         {"created_utc", file.created_utc},
+         {"software_version", file.software_version},
+         {"constants", constants},
+         {"standard_errors", file.standard_errors},
+         {"provenance",
+          {{"recordings", recordings}, {"sequence_names", file.provenance.sequence_names}}},
+         {"diagnostics", NullForNaN(DiagnosticsJson(file, source))}};
+  if (!file.stages.empty()) {
+    if (file.kind != hil::UnitKind::kImu || format3 ||
+        file.stages != StagesThrough(file.stages.back())) {
+      throw ConstantsFileError(source +
+                               ": $.stages: an IMU's format-2 stages from the first, in order");
+    }
+    json stages = json::array();
+    for (ImuStage stage : file.stages) stages.push_back(std::string(ImuStageName(stage)));
+    j["stages"] = stages;
+  }
+  return j;
 }
 
 ConstantsFile ConstantsFileFromJson(const json& j, const std::string& source) {

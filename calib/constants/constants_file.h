@@ -20,6 +20,7 @@
 
 #include "calib/constants/ads_fit_diagnostics.h"
 #include "calib/constants/imu_fit_diagnostics.h"
+#include "calib/constants/imu_stage.h"
 #include "firmware_model/calibration_constants.h"
 #include "hil/station.h"
 #include "hil/utc_time.h"
@@ -61,6 +62,10 @@ struct ConstantsFile {
   ConstantsProvenance provenance;
   std::optional<ImuFitDiagnostics> imu_diagnostics;  ///< kind kImu; absent: written as {}
   std::optional<AdsFitDiagnostics> ads_diagnostics;  ///< kind kAds; absent: written as {}
+  /// IMU, staged process (imu_stage.h): the stages whose constants this file holds, from the
+  /// first in order ("stages" in the JSON); the later ones hold their defaults (offset 0, scale
+  /// 0.04 duty/g, gyro polynomial 0, cross-axis the identity). Empty: the whole set.
+  std::vector<ImuStage> stages;
 };
 
 /// The standard-error JSON of an IMU set from a struct holding the standard errors in place of

@@ -37,6 +37,12 @@ class Context {
   std::string prefix_;
 };
 
+// The IMU mode step 6 sets: after the file's last stage (a whole file: fully calibrated).
+fm::ImuCompensationMode ImuModeAfter(const ConstantsFile& file) {
+  if (!file.stages.empty()) return ModeAfter(file.stages.back());
+  return fm::ImuCompensationMode::kFullyCalibrated;
+}
+
 }  // namespace
 
 DownloadResult DownloadConstants(hil::UnitLink& link,
@@ -95,9 +101,12 @@ DownloadResult DownloadConstants(hil::UnitLink& link,
   }
   context.Run("set calibrated mode", true, [&] {
     if (unit_kind == hil::UnitKind::kImu) {
-      link.SetImuMode(fm::ImuCompensationMode::kFullyCalibrated);
+      const fm::ImuCompensationMode mode = ImuModeAfter(file);
+      link.SetImuMode(mode);
+      result.mode = static_cast<uint8_t>(mode);
     } else {
       link.SetAdsMode(fm::AdsCompensationMode::kSurface);
+      result.mode = static_cast<uint8_t>(fm::AdsCompensationMode::kSurface);
     }
   });
   return result;

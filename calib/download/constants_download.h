@@ -5,7 +5,8 @@
 //   4. every block is read back with READ_BLOCK and compared bit for bit (readback_check.h);
 //   5. only if all are equal: COMMIT, then IDENTIFY must report the committed version and CRC,
 //      constants valid;
-//   6. the calibrated mode is set: IMU kFullyCalibrated, ADS kSurface.
+//   6. the calibrated mode is set: IMU kFullyCalibrated (a file of the staged process: the mode
+//      after its last stage, calib/constants/imu_stage.h), ADS kSurface.
 // Any failure before COMMIT throws DownloadError and nothing is committed: the unit's flash image
 // and constants_version are unchanged (its RAM may hold some new blocks until its next power-on,
 // and it is left in raw mode). Every message names the unit role, its port, the constants file
@@ -40,9 +41,14 @@ struct DownloadResult {
   hil::IdentifyInfo after{};
   hil::CommitInfo commit{};
   ConstantsBlocks blocks;
+  /// The mode set in step 6: an IMU file of the staged process (ConstantsFile::stages) sets the
+  /// mode after its last stage (imu_stage.h), a whole IMU file kFullyCalibrated.
+  uint8_t mode = 0;  ///< hil::UnitModeName names it
 };
 
-/// Runs steps 1-6 on `link` with `file` (read from `source`).
+/// Runs steps 1-6 on `link` with `file` (read from `source`). A file of the staged process is
+/// written whole like any other (the firmware commits only a complete set, and a fresh unit holds
+/// none): its earlier stages as the base held them, its later ones their defaults.
 DownloadResult DownloadConstants(hil::UnitLink& link,
                                  const ConstantsFile& file,
                                  const std::string& source);

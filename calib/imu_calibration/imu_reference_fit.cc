@@ -240,6 +240,32 @@ void ReportExclusions(const ImuUnitData& unit, ImuFitDiagnostics* diag) {
 
 }  // namespace
 
+namespace {
+
+// The staged process: `stage`'s predecessors from the base, the rest as Identity() left them.
+void TakeEarlierStages(const ImuReferenceOptions& options,
+                       const std::string& who,
+                       ImuFitResult* result) {
+  const ImuStage stage = *options.stage;
+  if (stage == ImuStage::kThermal) return;
+  if (!options.base || !options.base_standard_errors) {
+    throw ImuInputError(who + ": the " + std::string(ImuStageName(stage)) +
+                        " stage needs the earlier stages' constants (a base constants file)");
+  }
+  fm::ImuCalibrationConstants& c = result->constants;
+  fm::ImuCalibrationConstants& se = result->standard_errors;
+  c.thermal = options.base->thermal;
+  se.thermal = options.base_standard_errors->thermal;
+  if (stage == ImuStage::kCrossAxis) {
+    c.accel = options.base->accel;
+    c.gyro = options.base->gyro;
+    se.accel = options.base_standard_errors->accel;
+    se.gyro = options.base_standard_errors->gyro;
+  }
+}
+
+}  // namespace
+
 ImuFitResult FitImuReference(const ImuUnitData& unit,
                              double g_local_mps2,
                              const ImuReferenceOptions& options) {
@@ -248,11 +274,19 @@ ImuFitResult FitImuReference(const ImuUnitData& unit,
   result.standard_errors = NotEstimated();
   result.constants = Identity();
   ReferenceFitDiagnostics& diag = result.diagnostics.reference.emplace();
-  diag.strategy_steps = "thermal (order 2), six-position, gyro cubic, cross-axis";
-  FitThermalStage(unit, who, options, &diag, &result);
-  FitSixPositionStage(unit, who, g_local_mps2, &diag, &result);
-  FitGyroStage(unit, who, &diag, &result);
-  FitCrossAxisStage(unit, who, g_local_mps2, &diag, &result);
+  const auto runs = [&](ImuStage s) { return !options.stage || *options.stage == s; };
+  if (options.stage) TakeEarlierStages(options, who, &result);
+  if (runs(ImuStage::kThermal)) FitThermalStage(unit, who, options, &diag, &result);
+  if (runs(ImuStage::kSensor)) {
+    FitSixPositionStage(unit, who, g_local_mps2, &diag, &result);
+    FitGyroStage(unit, who, &diag, &result);
+  }
+  if (runs(ImuStage::kCrossAxis)) FitCrossAxisStage(unit, who, g_local_mps2, &diag, &result);
+  diag.strategy_steps = !options.stage ? "thermal (order 2), six-position, gyro cubic, cross-axis"
+                        : *options.stage == ImuStage::kThermal ? "thermal (order 2) stage alone"
+                        : *options.stage == ImuStage::kSensor
+                            ? "six-position and gyro cubic stage on the base's thermal constants"
+                            : "cross-axis stage on the base's thermal and sensor constants";
   ReportExclusions(unit, &result.diagnostics);
   return result;
 }

@@ -13,7 +13,9 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
+#include "calib/constants/imu_stage.h"
 #include "calib/imu_calibration/imu_fit_result.h"
 #include "calib/imu_calibration/imu_run_data.h"
 #include "calib/solvers/thermal_drift_fit.h"
@@ -22,9 +24,17 @@ namespace adahrs::calib {
 
 struct ImuReferenceOptions {
   ThermalFitOptions thermal;
+  /// The staged process (calib/constants/imu_stage.h): fit this stage alone. The earlier stages'
+  /// constants and standard errors are `base`'s and `base_standard_errors`' (required past the
+  /// thermal stage), the later stages' their defaults (calibration_constants.h; cross-axis the
+  /// identity). Empty: the four steps at once.
+  std::optional<ImuStage> stage;
+  std::optional<firmware_model::ImuCalibrationConstants> base;
+  std::optional<firmware_model::ImuCalibrationConstants> base_standard_errors;
 };
 
-/// Sequential reference fit of one unit.
+/// Sequential reference fit of one unit (or of one stage, options.stage). Throws ImuInputError
+/// when a stage past the thermal one has no base.
 ImuFitResult FitImuReference(const ImuUnitData& unit,
                              double local_gravity_mps2,
                              const ImuReferenceOptions& options = {});

@@ -34,11 +34,9 @@ constexpr const char* kGyroColumns[3] = {"gx", "gy", "gz"};
 constexpr const char* kTempColumns[3] = {"tx", "ty", "tz"};
 
 // The reason a row cannot be calibration data, with its column, or empty.
+// Every mode's packet carries the raw counts (docs/unit-protocol.md), so a row of a compensated
+// mode (the staged process records mode 1 and 2) is calibration data as a raw one is.
 std::string RowDefect(const hil::ImuRecordRow& row) {
-  if (row.mode != 0) {
-    return "column mode: " + std::to_string(row.mode) +
-           " (a compensated mode; calibration needs raw rows)";
-  }
   for (int ch = 0; ch < 6; ++ch) {
     const uint16_t t1 = row.accel_ticks[2 * ch];
     const uint16_t t2 = row.accel_ticks[2 * ch + 1];

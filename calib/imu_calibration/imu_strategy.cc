@@ -1,5 +1,7 @@
 #include "calib/imu_calibration/imu_strategy.h"
 
+#include <algorithm>
+
 #include "calib/imu_calibration/imu_joint_fit.h"
 #include "calib/imu_calibration/imu_observations.h"
 #include "calib/imu_calibration/imu_reference_fit.h"
@@ -66,26 +68,77 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
   return s;
 }
 
-ConstantsFile FitImuUnit(const ImuUnitData& unit,
-                         const ImuRunData& data,
-                         const ImuStrategy& strategy,
-                         const std::string& software_version) {
-  ImuFitResult fit;
+namespace {
+
+// The base file of a staged fit past the thermal stage: the unit's, holding every earlier stage.
+ConstantsFile StageBase(const std::string& serial, const ImuStageRequest& staged) {
+  const std::filesystem::path path = staged.base_dir / (serial + ".json");
+  const std::string stage(ImuStageName(staged.stage));
+  if (!std::filesystem::exists(path)) {
+    throw ImuInputError("unit " + serial + ": the " + stage + " stage needs " + path.string() +
+                        " (the previous stage's constants), which does not exist");
+  }
+  ConstantsFile base = ReadConstantsFile(path);
+  if (base.kind != hil::UnitKind::kImu || base.serial != serial) {
+    throw ImuInputError(path.string() + ": constants of " + base.serial + ", not of IMU " + serial);
+  }
+  const auto held = [&](ImuStage s) {
+    return base.stages.empty() ||
+           std::find(base.stages.begin(), base.stages.end(), s) != base.stages.end();
+  };
+  for (ImuStage earlier : StagesThrough(staged.stage)) {
+    if (earlier != staged.stage && !held(earlier)) {
+      throw ImuInputError(path.string() + ": holds no " + std::string(ImuStageName(earlier)) +
+                          " stage, which the " + stage + " stage builds on");
+    }
+  }
+  return base;
+}
+
+ImuFitResult FitWithStrategy(const ImuUnitData& unit,
+                             const ImuRunData& data,
+                             const ImuStrategy& strategy,
+                             const std::optional<ImuStageRequest>& staged,
+                             const std::optional<ConstantsFile>& base) {
   if (strategy.name == "reference") {
     ImuReferenceOptions options;
     options.thermal.band_width_cnt = strategy.band_width_cnt;
-    fit = FitImuReference(unit, data.local_gravity_mps2, options);
-  } else {
-    ImuJointOptions options;
-    options.thermal_order = strategy.thermal_order;
-    options.estimate_gyro_wander = strategy.estimate_gyro_wander;
-    options.format3 = strategy.format3;
-    fit = FitImuJoint(unit.serial,
-                      ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt),
-                      options);
-    fit.diagnostics.excluded_rows = static_cast<int64_t>(unit.exclusions.size());
-    fit.diagnostics.rejected_interval_rows = unit.rejected_interval_rows;
+    if (staged) options.stage = staged->stage;
+    if (base) {
+      options.base = base->imu;
+      options.base_standard_errors = ImuStandardErrors(*base);
+    }
+    return FitImuReference(unit, data.local_gravity_mps2, options);
   }
+  ImuJointOptions options;
+  options.thermal_order = strategy.thermal_order;
+  options.estimate_gyro_wander = strategy.estimate_gyro_wander;
+  options.format3 = strategy.format3;
+  ImuFitResult fit =
+      FitImuJoint(unit.serial,
+                  ImuObservations(unit, data.local_gravity_mps2, strategy.band_width_cnt),
+                  options);
+  fit.diagnostics.excluded_rows = static_cast<int64_t>(unit.exclusions.size());
+  fit.diagnostics.rejected_interval_rows = unit.rejected_interval_rows;
+  return fit;
+}
+
+}  // namespace
+
+ConstantsFile FitImuUnit(const ImuUnitData& unit,
+                         const ImuRunData& data,
+                         const ImuStrategy& strategy,
+                         const std::string& software_version,
+                         const std::optional<ImuStageRequest>& staged) {
+  if (staged && strategy.name != "reference") {
+    throw ImuInputError("unit " + unit.serial + ": a staged fit (" +
+                        std::string(ImuStageName(staged->stage)) +
+                        " stage) is the reference method's; the " + strategy.name +
+                        " strategy fits every stage at once");
+  }
+  std::optional<ConstantsFile> base;
+  if (staged && staged->stage != ImuStage::kThermal) base = StageBase(unit.serial, *staged);
+  ImuFitResult fit = FitWithStrategy(unit, data, strategy, staged, base);
   fit.diagnostics.local_gravity_mps2 = data.local_gravity_mps2;
   ConstantsFile f;
   f.serial = unit.serial;
@@ -95,18 +148,22 @@ ConstantsFile FitImuUnit(const ImuUnitData& unit,
   f.software_version = software_version;
   f.imu = fit.constants;
   f.standard_errors = ImuStandardErrorsJson(fit.standard_errors);
-  f.provenance = {data.recordings, data.sequence_names};
+  if (base) f.provenance = base->provenance;  // the earlier stages' recordings first
+  for (const RecordingReference& r : data.recordings) f.provenance.recordings.push_back(r);
+  for (const std::string& n : data.sequence_names) f.provenance.sequence_names.push_back(n);
   f.imu_diagnostics = fit.diagnostics;
+  if (staged) f.stages = StagesThrough(staged->stage);
   return f;
 }
 
 std::vector<ConstantsFile> FitImuRuns(const std::vector<std::filesystem::path>& run_dirs,
                                       const ImuStrategy& strategy,
-                                      const std::string& software_version) {
+                                      const std::string& software_version,
+                                      const std::optional<ImuStageRequest>& staged) {
   const ImuRunData data = LoadImuRuns(run_dirs);
   std::vector<ConstantsFile> files;
   for (const auto& [serial, unit] : data.units) {
-    files.push_back(FitImuUnit(unit, data, strategy, software_version));
+    files.push_back(FitImuUnit(unit, data, strategy, software_version, staged));
   }
   return files;
 }

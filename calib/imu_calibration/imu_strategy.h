@@ -40,17 +40,28 @@ struct ImuStrategy {
 struct ImuUnitData;
 struct ImuRunData;
 
-/// Fits one IMU of `data` (its gravity and provenance) with `strategy`. Throws
-/// DegenerateDesignError when the data cannot determine the constants.
+/// The staged process (docs/campaign.md "The staged process"): fit `stage` alone with the
+/// reference strategy; past the thermal stage the earlier stages come from the unit's file in
+/// `base_dir` (`<serial>.json`, the previous stage's output).
+struct ImuStageRequest {
+  ImuStage stage = ImuStage::kThermal;
+  std::filesystem::path base_dir;
+};
+
+/// Fits one IMU of `data` (its gravity and provenance) with `strategy`, or one stage of it.
+/// Throws DegenerateDesignError when the data cannot determine the constants, ImuInputError
+/// when a staged fit's strategy is not the reference or its base is missing or unfit.
 ConstantsFile FitImuUnit(const ImuUnitData& unit,
                          const ImuRunData& data,
                          const ImuStrategy& strategy,
-                         const std::string& software_version);
+                         const std::string& software_version,
+                         const std::optional<ImuStageRequest>& staged = std::nullopt);
 
 /// Fits every IMU of the runs with `strategy`; one constants file per unit, serial order.
 /// Throws ImuInputError, hil::RecordingError or DegenerateDesignError with the reason.
 std::vector<ConstantsFile> FitImuRuns(const std::vector<std::filesystem::path>& run_dirs,
                                       const ImuStrategy& strategy,
-                                      const std::string& software_version);
+                                      const std::string& software_version,
+                                      const std::optional<ImuStageRequest>& staged = std::nullopt);
 
 }  // namespace adahrs::calib

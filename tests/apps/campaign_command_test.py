@@ -104,17 +104,22 @@ def bench_station(manifest, config, kind):
 
 
 class Rig:
-    """`adahrs rig` in lockstep at 900x in its own directory, with a station file per bench."""
+    """`adahrs rig` in lockstep at 900x in its own directory, with a station file per bench;
+    its units drawn with `model_profile` (the built-in configuration's when None)."""
 
-    def __init__(self, adahrs, directory):
+    def __init__(self, adahrs, directory, model_profile=None):
         self.dir = directory
         self.dir.mkdir()
         config = json.loads(subprocess.check_output([adahrs, "rig", "--print-default-config"]))
         manifest_path = directory / "manifest.json"
+        args = [adahrs, "rig", "--manifest", str(manifest_path), "--time-scale", "900",
+                "--lockstep"]
+        if model_profile is not None:
+            config["units"]["model_profile"] = model_profile
+            (directory / "rig.json").write_text(json.dumps(config))
+            args += ["--config", str(directory / "rig.json")]
         self.log = open(directory / "rig.log", "w")
-        self.process = subprocess.Popen(
-            [adahrs, "rig", "--manifest", str(manifest_path), "--time-scale", "900",
-             "--lockstep"], stdout=self.log, stderr=subprocess.STDOUT)
+        self.process = subprocess.Popen(args, stdout=self.log, stderr=subprocess.STDOUT)
         deadline = time.monotonic() + 30
         while not manifest_path.exists():
             if time.monotonic() > deadline or self.process.poll() is not None:

@@ -341,6 +341,44 @@ TEST(ConstantsFile, ReadsTheHysteresisSlopesOldSpelling) {
                         "pressure_gain_per_c, which is present too"));
 }
 
+// A file of the staged process names its stages; the reader takes them only from the first, in
+// order, on an IMU's format-2 set, and the writer refuses to write anything else.
+TEST(ConstantsFile, StagesRoundTripAndAreRefusedOutOfOrder) {
+  ConstantsFile f = ImuFile();
+  f.stages = {ImuStage::kThermal, ImuStage::kSensor};
+  const json j = ToJson(f);
+  EXPECT_EQ(j["stages"], json({"thermal", "sensor"}));
+  EXPECT_EQ(ConstantsFileFromJson(j, "unit.json").stages, f.stages);
+  EXPECT_FALSE(ToJson(ImuFile()).contains("stages"));  // a whole set says nothing
+
+  json skipped = j;
+  skipped["stages"] = {"thermal", "cross_axis"};
+  EXPECT_THAT(MessageOf(skipped),
+              HasSubstr("unit.json: $.stages[1]: expected \"sensor\" (the stages are held from "
+                        "the first, in order), got \"cross_axis\""));
+  json unknown = j;
+  unknown["stages"] = {"thermal_drift"};
+  EXPECT_THAT(MessageOf(unknown), HasSubstr("$.stages[0]: expected \"thermal\""));
+  json empty = j;
+  empty["stages"] = json::array();
+  EXPECT_THAT(MessageOf(empty), HasSubstr("$.stages"));
+
+  ConstantsFile a = ImuFile();
+  a.serial = "ADS-0002";
+  a.kind = hil::UnitKind::kAds;
+  a.imu.reset();
+  a.imu_diagnostics.reset();
+  a.ads = AdsConstants();
+  a.standard_errors = AdsStandardErrorsJson(*a.ads);
+  json ads = ToJson(a);
+  ads["stages"] = {"thermal"};
+  EXPECT_THAT(MessageOf(ads), HasSubstr("$.stages: only an IMU is fitted in stages"));
+
+  ConstantsFile out_of_order = ImuFile();
+  out_of_order.stages = {ImuStage::kSensor};
+  EXPECT_THROW(ToJson(out_of_order), ConstantsFileError);
+}
+
 TEST(ConstantsFile, UtcTimestampIsIso8601) {
   const std::string t = UtcNowIso8601();
   ASSERT_EQ(t.size(), 20u);

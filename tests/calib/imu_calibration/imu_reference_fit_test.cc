@@ -149,5 +149,79 @@ TEST(ImuReferenceFit, DiagnosticsReadBackFromTheConstantsFiles) {
   std::filesystem::remove_all(dir);
 }
 
+// The staged process fits the reference method's steps one at a time, each on the constants file
+// of the one before: on the same rows it gives the one-shot fit's constants and standard errors to
+// the last bit (the base file's doubles round-trip through JSON), and each file says which stages
+// it holds, the later ones at their defaults.
+TEST(ImuReferenceFit, StagedFitsReproduceTheOneShotFitStageByStage) {
+  const Runs& runs = SharedRuns();
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("adahrs_imu_staged_fit_" + std::to_string(::getpid()));
+  const std::vector<std::filesystem::path> both = {runs.thermal, runs.sensor};
+  std::filesystem::path base;
+  std::vector<ConstantsFile> staged;
+  for (ImuStage stage : kImuStages) {
+    const auto out = dir / std::string(ImuStageName(stage));
+    std::filesystem::create_directories(out);
+    staged = FitImuRuns(both, ImuStrategy::Reference(), "test", ImuStageRequest{stage, base});
+    for (const ConstantsFile& f : staged) {
+      EXPECT_EQ(f.stages, StagesThrough(stage));
+      WriteConstantsFile(out / (f.serial + ".json"), f);
+    }
+    if (stage == ImuStage::kThermal) {  // the later stages hold their defaults
+      const firmware_model::ImuCalibrationConstants& c = *staged.front().imu;
+      EXPECT_EQ(c.accel[0].scale_duty_per_g, firmware_model::AccelScaleFit{}.scale_duty_per_g);
+      EXPECT_EQ(c.gyro[0].l[1], 0.0);
+      EXPECT_EQ(c.cg[0][0], 1.0);
+      EXPECT_EQ(c.cg[0][1], 0.0);
+    }
+    base = out;
+  }
+  const std::vector<ConstantsFile> one_shot = FitImuRuns(both, ImuStrategy::Reference(), "test");
+  ASSERT_EQ(staged.size(), one_shot.size());
+  for (size_t i = 0; i < staged.size(); ++i) {
+    SCOPED_TRACE(staged[i].serial);
+    const ConstantsFile read = ReadConstantsFile(base / (staged[i].serial + ".json"));
+    EXPECT_EQ(ToJson(read)["constants"], ToJson(one_shot[i])["constants"]);
+    EXPECT_EQ(ToJson(read)["standard_errors"], ToJson(one_shot[i])["standard_errors"]);
+    // Every stage's recordings, the earlier stages' first.
+    EXPECT_EQ(read.provenance.recordings.size(), 3 * one_shot[i].provenance.recordings.size());
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ImuReferenceFit, StagedFitRefusesAMissingOrShortBaseAndTheJointStrategy) {
+  const Runs& runs = SharedRuns();
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("adahrs_imu_staged_refusals_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::vector<std::filesystem::path> both = {runs.thermal, runs.sensor};
+  EXPECT_THAT(
+      [&] {
+        FitImuRuns(both, ImuStrategy::Reference(), "t", ImuStageRequest{ImuStage::kSensor, dir});
+      },
+      ::testing::ThrowsMessage<ImuInputError>(
+          ::testing::AllOf(::testing::HasSubstr((dir / "IMU-0001.json").string()),
+                           ::testing::HasSubstr("the sensor stage needs"),
+                           ::testing::HasSubstr("does not exist"))));
+  for (const ConstantsFile& f :
+       FitImuRuns(both, ImuStrategy::Reference(), "t", ImuStageRequest{ImuStage::kThermal, {}})) {
+    WriteConstantsFile(dir / (f.serial + ".json"), f);
+  }
+  EXPECT_THAT(
+      [&] {
+        FitImuRuns(both, ImuStrategy::Reference(), "t", ImuStageRequest{ImuStage::kCrossAxis, dir});
+      },
+      ::testing::ThrowsMessage<ImuInputError>(
+          ::testing::HasSubstr("holds no sensor stage, which the cross_axis stage builds on")));
+  EXPECT_THAT(
+      [&] {
+        FitImuRuns(both, ImuStrategy::JointFormat3(), "t", ImuStageRequest{ImuStage::kThermal, {}});
+      },
+      ::testing::ThrowsMessage<ImuInputError>(
+          ::testing::HasSubstr("the joint strategy fits every stage at once")));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace adahrs::calib

@@ -37,6 +37,7 @@ TEST(ShippedSequences, EveryFileLoadsValidatesAndExpands) {
                                    "ads_calibration",
                                    "imu_acceptance",
                                    "imu_burn_in",
+                                   "imu_cross_axis_calibration",
                                    "imu_sensor_calibration",
                                    "imu_thermal_calibration_full",
                                    "imu_thermal_sensor_calibration",
@@ -62,6 +63,26 @@ TEST(ShippedSequences, SensorCalibrationHasSixOrientationsSevenRatesPerAxisAndCr
   }
   EXPECT_THAT(accel_orientations, ElementsAre(11, 12, 21, 22, 31, 32));
   EXPECT_THAT(gyro_orientations, ElementsAre(11, 21, 31));
+  EXPECT_EQ(cross_axis_steps, 1);
+}
+
+// The staged process's last stage: the sensor calibration's cross-axis step alone, at 25 degC.
+TEST(ShippedSequences, CrossAxisCalibrationIsTheSensorRunsCrossAxisStepAt25C) {
+  const Sequence s = Load("imu_cross_axis_calibration");
+  std::vector<double> targets_c;
+  int cross_axis_steps = 0;
+  for (const Step& step : s.steps) {
+    if (const auto* t = std::get_if<TargetTemperatureStep>(&step.body))
+      targets_c.push_back(t->target_c);
+    if (const auto* c = std::get_if<CrossAxisStep>(&step.body)) {
+      ++cross_axis_steps;
+      EXPECT_EQ(c->rate_dps, 150.0);
+      EXPECT_EQ(c->packets, 1000);
+    }
+    EXPECT_FALSE(std::holds_alternative<AccelStep>(step.body));
+    EXPECT_FALSE(std::holds_alternative<GyroStep>(step.body));
+  }
+  EXPECT_THAT(targets_c, ElementsAre(25.0));
   EXPECT_EQ(cross_axis_steps, 1);
 }
 
