@@ -35,11 +35,20 @@ void RegisterReportCommand(CLI::App& app) {
                      *certificates,
                      "Also write a certificate (<serial>.html, .pdf) per judged unit here");
   report->add_option("--operator", *operator_name, "Operator's name, on the certificates");
-  report->callback([run, fit, out, acceptance, certificates, operator_name] {
+  auto specification = std::make_shared<std::string>();
+  report->add_option("--specification",
+                     *specification,
+                     "Specification file the ADS error maps are drawn against (default: the "
+                     "AHR150A -A, compiled in)");
+  report->callback([run, fit, out, acceptance, certificates, operator_name, specification] {
     const auto optional_path = [](const std::string& text) {
       return text.empty() ? std::nullopt : std::optional<std::filesystem::path>(text);
     };
-    calib::WriteRunReport(*run, optional_path(*fit), *out, optional_path(*acceptance));
+    const std::optional<calib::Specification> spec =
+        specification->empty()
+            ? std::nullopt
+            : std::optional<calib::Specification>(calib::ReadSpecificationFile(*specification));
+    calib::WriteRunReport(*run, optional_path(*fit), *out, optional_path(*acceptance), spec);
     std::cout << "wrote " << *out << "\n";
     if (certificates->empty()) return;
     const std::filesystem::path dir = acceptance->empty()

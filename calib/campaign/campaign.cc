@@ -347,6 +347,7 @@ CampaignAcceptance AcceptanceRuns(Context& c,
 void WriteReports(Context& c,
                   const CampaignArtifacts& f,
                   const CampaignAcceptance& acceptance,
+                  const Specification& spec,
                   CampaignResult& result) {
   c.observer.Stage("7/8 report.html per run");
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> reports;
@@ -365,11 +366,11 @@ void WriteReports(Context& c,
   for (size_t i = 0; i < reports.size(); ++i) {
     const auto& [run, fit] = reports[i];
     const bool judged = i >= first_judged;
-    WriteRunReport(
-        run,
-        fit,
-        run / "report.html",
-        judged ? std::optional<std::filesystem::path>(run / "acceptance") : std::nullopt);
+    WriteRunReport(run,
+                   fit,
+                   run / "report.html",
+                   judged ? std::optional<std::filesystem::path>(run / "acceptance") : std::nullopt,
+                   spec);
     result.run_dirs.push_back(run);
   }
   c.journal.MarkDone(kStageReports);
@@ -486,7 +487,7 @@ CampaignResult RunCampaign(const CampaignOptions& o,
   artifacts.imu_acceptance_run = acceptance.imu_run;
   artifacts.ads_acceptance_run = acceptance.ads_run;
   if (o.before_reports) o.before_reports(artifacts, result);
-  WriteReports(c, artifacts, acceptance, result);
+  WriteReports(c, artifacts, acceptance, spec, result);
 
   observer.Stage("8/8 production records: runs, constants versions, downloads -> " +
                  result.records_file.string());

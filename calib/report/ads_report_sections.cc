@@ -45,8 +45,8 @@ bool Rejected(const hil::RecordingMeta& meta, int step, double t_s) {
 std::string ErrorPlot(const std::string& serial,
                       const std::vector<Acquisition>& points,
                       bool altitude,
-                      const std::string& source) {
-  const Specification spec = Specification::Reference();
+                      const std::string& source,
+                      const Specification& spec) {
   const ToleranceTable& tol = altitude ? spec.altitude_ft : spec.airspeed_kt;
   Plot plot{
       fmt::format("{} {} error by chamber temperature", serial, altitude ? "altitude" : "airspeed"),
@@ -56,7 +56,7 @@ std::string ErrorPlot(const std::string& serial,
       {},
       {}};
   plot.figure = "ads-error";
-  PlotBand band{"specification tolerance (+-)", {}, {}, {}};
+  PlotBand band{spec.name + " tolerance (+-)", {}, {}, {}};
   const int samples = 60;
   for (int i = 0; i <= samples; ++i) {
     const double x = tol.input_min() + (tol.input_max() - tol.input_min()) * i / samples;
@@ -203,8 +203,8 @@ std::vector<Acquisition> Evaluated(const std::vector<AdsCalibrationPoint>& point
 // range (the static sweeps), the airspeed map those inside it.
 std::string ResidualMap(const std::string& serial,
                         const std::vector<Acquisition>& points,
-                        bool altitude) {
-  const Specification spec = Specification::Reference();
+                        bool altitude,
+                        const Specification& spec) {
   const ToleranceTable& tol = altitude ? spec.altitude_ft : spec.airspeed_kt;
   const double cas_min_kt = spec.airspeed_kt.input_min();
   Plot plot{fmt::format("{} {} surface residual map against the tolerance",
@@ -244,10 +244,12 @@ std::string ResidualMap(const std::string& serial,
 AdsReportAccumulator::AdsReportAccumulator(std::string serial,
                                            hil::RecordingMeta meta,
                                            const ConstantsFile* constants,
-                                           std::string source)
+                                           std::string source,
+                                           Specification spec)
     : serial_(std::move(serial)),
       meta_(std::move(meta)),
       constants_(constants),
+      spec_(std::move(spec)),
       raw_points_(meta_, serial_, std::move(source)) {}
 
 void AdsReportAccumulator::Add(const hil::AdsRecordRow& row, int line) {
@@ -331,10 +333,11 @@ std::string AdsReportAccumulator::Sections() const {
                                : unit_values ? "the unit's own surface output"
                                              : "reference compensator on the calibration points";
     if (reference_values) {
-      map += "<div class=\"figures\">\n" + ResidualMap(serial_, judged, true) +
-             ResidualMap(serial_, judged, false) + "</div>\n";
+      map += "<div class=\"figures\">\n" + ResidualMap(serial_, judged, true, spec_) +
+             ResidualMap(serial_, judged, false, spec_) + "</div>\n";
     }
-    map += ErrorPlot(serial_, judged, true, source) + ErrorPlot(serial_, judged, false, source);
+    map += ErrorPlot(serial_, judged, true, source, spec_) +
+           ErrorPlot(serial_, judged, false, source, spec_);
   }
   return html +
          Section(

@@ -4,14 +4,14 @@
 // 24), the fitted surfaces' residual map (reference altitude or airspeed against chamber
 // temperature, each point marked by its |residual| as a fraction of the tolerance there), and the
 // error map over altitude x temperature (and airspeed x temperature) against the specification's
-// tolerance envelope (calib/acceptance/specification.h). References are the test set's pressures
-// converted by the ISA (pressure altitude, ft) and the calibrated-airspeed formula (kt). Rows
-// recorded in surface mode carry the unit's own values, averaged per acquisition (rows of one step
-// and TAG at one test-set aim). Rows recorded raw are the fit's calibration points
-// (ads_calibration_points.h: the same selection and refusals), evaluated with the double reference
-// compensator and the file's constants at their mean codes, the hysteresis states those the fit
-// regresses on (bridge_history.h); the figure says which. Rows in rejected intervals and rows with
-// TAG 0 (between acquisitions) are left out.
+// tolerance envelope of the specification given (calib/acceptance/specification.h). References are
+// the test set's pressures converted by the ISA (pressure altitude, ft) and the calibrated-airspeed
+// formula (kt). Rows recorded in surface mode carry the unit's own values, averaged per acquisition
+// (rows of one step and TAG at one test-set aim). Rows recorded raw are the fit's calibration
+// points (ads_calibration_points.h: the same selection and refusals), evaluated with the double
+// reference compensator and the file's constants at their mean codes, the hysteresis states those
+// the fit regresses on (bridge_history.h); the figure says which. Rows in rejected intervals and
+// rows with TAG 0 (between acquisitions) are left out.
 #pragma once
 
 #include <map>
@@ -19,6 +19,7 @@
 #include <tuple>
 #include <vector>
 
+#include "calib/acceptance/specification.h"
 #include "calib/ads_calibration/ads_calibration_points.h"
 #include "calib/constants/constants_file.h"
 #include "hil/recording/recording_format.h"
@@ -31,11 +32,13 @@ namespace adahrs::calib {
 class AdsReportAccumulator {
  public:
   /// `meta` supplies rejected intervals; `constants` may be null and must outlive this; `source`
-  /// (the run directory) is named in refusals.
+  /// (the run directory) is named in refusals; `spec` holds the tolerances the maps are drawn
+  /// against.
   AdsReportAccumulator(std::string serial,
                        hil::RecordingMeta meta,
                        const ConstantsFile* constants,
-                       std::string source);
+                       std::string source,
+                       Specification spec);
 
   /// `line` is the row's ads.csv line (1 = the header), named in refusals.
   void Add(const hil::AdsRecordRow& row, int line);
@@ -54,6 +57,7 @@ class AdsReportAccumulator {
   std::string serial_;
   hil::RecordingMeta meta_;
   const ConstantsFile* constants_;
+  Specification spec_;
   std::map<std::tuple<int, int, long, long>, Acquisition> groups_;  // surface-mode rows
   AdsPointSelector raw_points_;                                     // raw-mode rows
   bool raw_rows_ = false;

@@ -187,12 +187,13 @@ std::unique_ptr<ImuRunCollector> ImuCollector(const std::filesystem::path& run_d
 
 StreamedSections StreamSections(const std::filesystem::path& run_dir,
                                 const hil::RecordingMeta& meta,
-                                const FitInputs& fit) {
+                                const FitInputs& fit,
+                                const Specification& spec) {
   StreamedSections streamed;
   std::vector<AdsReportAccumulator> units;
   for (const hil::RecordingUnit& u : meta.units) {
     if (u.kind == common::UnitKind::kImu) continue;
-    units.emplace_back(u.serial, meta, ConstantsOf(fit, u.serial), run_dir.string());
+    units.emplace_back(u.serial, meta, ConstantsOf(fit, u.serial), run_dir.string(), spec);
   }
   ImuRunData imu;
   std::unique_ptr<ImuRunCollector> collector = ImuCollector(run_dir, meta, &imu, &streamed.imu_why);
@@ -230,10 +231,12 @@ StreamedSections StreamSections(const std::filesystem::path& run_dir,
 
 std::string BuildRunReport(const std::filesystem::path& run_dir,
                            const std::optional<std::filesystem::path>& fit_dir,
-                           const std::optional<std::filesystem::path>& acceptance_dir) {
+                           const std::optional<std::filesystem::path>& acceptance_dir,
+                           const std::optional<Specification>& specification) {
   const hil::RecordingMeta meta = hil::ReadRecordingMeta(run_dir).meta;
   const FitInputs fit = LoadFit(fit_dir);
-  const StreamedSections streamed = StreamSections(run_dir, meta, fit);
+  const StreamedSections streamed =
+      StreamSections(run_dir, meta, fit, specification.value_or(Specification::Reference()));
   const std::map<std::string, std::string>& ads_html = streamed.ads_html;
   const double g_local_mps2 = meta.local_gravity_mps2.value_or(0.0);
   const std::optional<ImuRunData>& imu = streamed.imu;
@@ -302,8 +305,9 @@ std::string BuildRunReport(const std::filesystem::path& run_dir,
 void WriteRunReport(const std::filesystem::path& run_dir,
                     const std::optional<std::filesystem::path>& fit_dir,
                     const std::filesystem::path& out,
-                    const std::optional<std::filesystem::path>& acceptance_dir) {
-  common::WriteFileAtomically(out, BuildRunReport(run_dir, fit_dir, acceptance_dir));
+                    const std::optional<std::filesystem::path>& acceptance_dir,
+                    const std::optional<Specification>& specification) {
+  common::WriteFileAtomically(out, BuildRunReport(run_dir, fit_dir, acceptance_dir, specification));
 }
 
 }  // namespace adahrs::calib

@@ -17,18 +17,24 @@
 #include <optional>
 #include <string>
 
+#include "calib/acceptance/specification.h"
+
 namespace adahrs::calib {
 
-/// The report's HTML.
+/// The report's HTML. `specification` sets the tolerances the ADS error figures and maps are
+/// drawn against (Specification::Reference() when none is given); the acceptance tables show each
+/// file's own judgement.
 std::string BuildRunReport(
     const std::filesystem::path& run_dir,
     const std::optional<std::filesystem::path>& fit_dir,
-    const std::optional<std::filesystem::path>& acceptance_dir = std::nullopt);
+    const std::optional<std::filesystem::path>& acceptance_dir = std::nullopt,
+    const std::optional<Specification>& specification = std::nullopt);
 
 /// BuildRunReport written to `out`.
 void WriteRunReport(const std::filesystem::path& run_dir,
                     const std::optional<std::filesystem::path>& fit_dir,
                     const std::filesystem::path& out,
-                    const std::optional<std::filesystem::path>& acceptance_dir = std::nullopt);
+                    const std::optional<std::filesystem::path>& acceptance_dir = std::nullopt,
+                    const std::optional<Specification>& specification = std::nullopt);
 
 }  // namespace adahrs::calib

@@ -33,6 +33,7 @@ namespace fm = firmware_model;
 using testing::FindAll;
 using testing::FindTag;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 class RunReportTest : public ::testing::Test {
  protected:
@@ -342,6 +343,49 @@ TEST_F(RunReportTest, RawRowsTheFitRefusesAreShownWithItsReason) {
   EXPECT_THAT(raw, HasSubstr("not available"));
   EXPECT_THAT(raw, HasSubstr("ads.csv line 12 column tag: unit ADS-0001 step 1 carries tag 2"));
   EXPECT_TRUE(FindTag(SectionById(html, "ADS-0001-raw"), "svg").empty());
+}
+
+// The ADS error maps are drawn against the specification given (a campaign's file), not the -A
+// compiled in: a file whose altitude tolerances are ten times the -A's gives ten times each row's
+// tolerance, and the band names the file's specification.
+TEST_F(RunReportTest, AdsErrorMapsUseTheSpecificationGiven) {
+  nlohmann::json wide = nlohmann::json::parse(
+      std::ifstream(std::string(ADAHRS_SOURCE_DIR) + "/calib/specifications/ahr150a-a.json"));
+  wide["name"] = "WIDE-TEST";
+  for (auto& point : wide["quantities"]["altitude"]["points_ft"])
+    point[1] = 10.0 * point[1].get<double>();
+  const auto spec_path = dir_ / "wide.json";
+  std::ofstream(spec_path) << wide.dump();
+  WriteRunReport(dir_ / "run", dir_ / "fit", dir_ / "report_a.html");
+  WriteRunReport(dir_ / "run",
+                 dir_ / "fit",
+                 dir_ / "report_wide.html",
+                 std::nullopt,
+                 ReadSpecificationFile(spec_path));
+  // Each altitude row's tolerance column (the 4th), in order.
+  const auto tolerances = [&](const std::filesystem::path& file, std::string* band) {
+    const nlohmann::json html = testing::ParseXmlTree(file);
+    const nlohmann::json section = SectionById(html, "ADS-0001-error-map");
+    *band = section.dump();
+    std::vector<double> out;
+    for (const auto& table : FindTag(section, "table")) {
+      if (table.dump().find("reference (ft)") == std::string::npos) continue;
+      for (const auto& tr : FindTag(table, "tr")) {
+        const auto cells = FindTag(tr, "td");
+        if (cells.size() == 5) out.push_back(std::stod(cells[3]["text"].get<std::string>()));
+      }
+    }
+    return out;
+  };
+  std::string band_a, band_wide;
+  const std::vector<double> a = tolerances(dir_ / "report_a.html", &band_a);
+  const std::vector<double> w = tolerances(dir_ / "report_wide.html", &band_wide);
+  ASSERT_FALSE(a.empty());
+  ASSERT_EQ(a.size(), w.size());
+  for (size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(w[i], 10.0 * a[i], 1e-9 * w[i]) << i;
+  EXPECT_THAT(band_a, HasSubstr("AHR150A-A tolerance"));
+  EXPECT_THAT(band_wide, HasSubstr("WIDE-TEST tolerance"));
+  EXPECT_THAT(band_wide, Not(HasSubstr("AHR150A-A tolerance")));
 }
 
 // A calibration run has no acceptance files: page one says it was not judged, and where from.
