@@ -74,27 +74,43 @@ uint64_t SerialStream(const std::string& serial) {
   return h;
 }
 
-// Frames a unit ran between its rows (hil::FramesBetween); the first row counts from power-on at
-// t = 0.
+// Frames a unit ran between its rows: the difference of the rows' frame indices where the
+// recording has them (version 3: the recorder's exact count), else hil::FramesBetween from the
+// packet counter and the arrival times. The first row counts from power-on at t = 0.
 class FrameClock {
  public:
   FrameClock(double period_s, std::string where) : period_s_(period_s), where_(std::move(where)) {}
 
-  int64_t FramesFor(double t_s, uint32_t seq, int line) {
+  int64_t FramesFor(double t_s, uint32_t seq, int64_t frame, int line) {
     int64_t n = 1;
     if (!started_) {
       started_ = true;
-      if (t_s > 0.0 && t_s <= kMaxGap_s) n = std::max<int64_t>(1, std::llround(t_s / period_s_));
+      if (t_s > 0.0 && t_s <= kMaxGap_s) {
+        n = std::max<int64_t>(1, frame >= 0 ? frame : std::llround(t_s / period_s_));
+      }
     } else {
       const double dt_s = t_s - last_t_s_;
       if (dt_s < -kBackwardsTolerance_s || dt_s > kMaxGap_s) {
         throw std::runtime_error(fmt::format(
             "{} line {}: t_s {} after the unit's row at {} s", where_, line, t_s, last_t_s_));
       }
-      n = hil::FramesBetween(last_seq_, seq, dt_s, period_s_);  // 0: the same packet logged twice
+      if (frame >= 0 && last_frame_ >= 0) {
+        if (frame < last_frame_) {
+          throw std::runtime_error(
+              fmt::format("{} line {}: frame {} after the unit's row at frame {}",
+                          where_,
+                          line,
+                          frame,
+                          last_frame_));
+        }
+        n = frame - last_frame_;  // 0: the same packet logged twice
+      } else {
+        n = hil::FramesBetween(last_seq_, seq, dt_s, period_s_);  // 0: the same packet twice
+      }
     }
     last_t_s_ = t_s;
     last_seq_ = seq;
+    last_frame_ = frame;
     return n;
   }
 
@@ -104,6 +120,7 @@ class FrameClock {
   bool started_ = false;
   double last_t_s_ = 0.0;
   uint32_t last_seq_ = 0;
+  int64_t last_frame_ = -1;
 };
 
 struct ImuReplayer {
@@ -326,7 +343,7 @@ class RowReplayer {
     in.f_B_g = r.up_B * models_.g_ratio;
     in.w_B_dps = r.up_B * row.table_rate_dps;
     in.air_temp_c = air_c;
-    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, line); n > 0; --n) {
+    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, row.frame, line); n > 0; --n) {
       r.last = r.unit.Step(in);
     }
     const sensor_sim::ImuRawFrame& f = r.last;
@@ -361,7 +378,7 @@ class RowReplayer {
     in.air_temp_c = air_c;
     in.oat_c = air_c;
     AdsReplayer& r = it->second;
-    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, line); n > 0; --n) {
+    for (int64_t n = r.clock.FramesFor(row.t_s, row.seq, row.frame, line); n > 0; --n) {
       r.last = r.unit.Step(in);
     }
     const sensor_sim::AdsRawFrame& f = r.last;

@@ -3,8 +3,9 @@
 // the augmented model.json `adahrs diagnose --model` writes) with the recording's own reference
 // columns, and a run of the same rows is written with the model's raw outputs in place of the
 // recorded ones. Comparing the two says how well the model explains the recording. A row takes the
-// frames its packet counter (seq) moved since the unit's previous row, plus the 256-frame turns the
-// arrival times say passed; rows before an instrument's first report take that report's values.
+// frames since the unit's previous row from the recording's frame column (version 3), else those
+// its packet counter (seq) moved plus the 256-frame turns the arrival times say passed; rows
+// before an instrument's first report take that report's values.
 // Frames and units: IMU stimulus 1 local g (meta.json local_gravity_mps2) and the table rate along
 // the up axis of the row's fixture code, body frame; ADS the reference ps and qc in Pa; chamber
 // column in degC as the air around the unit.

@@ -231,6 +231,46 @@ TEST(RecordingReplay, RefusesUnitFilesItCannotUseByName) {
   fs::remove_all(dir);
 }
 
+// A burst of rows that arrived a whole counter turn (2.56 s) late: the counter and the arrival
+// times would count 256 frames too many there, but the recording's frame column (version 3) has
+// the recorder's exact count, so the replay stays on the unit's own frames and reproduces every
+// row to one count.
+TEST(RecordingReplay, FramesComeFromTheRecordingsFrameColumn) {
+  const fs::path dir = TempDir("frames");
+  const fs::path rec = RecordEveryFrame(dir);
+  hil::Recording recorded = hil::ReadRecording(rec);
+  ASSERT_GT(recorded.imu.size(), 10000u);
+  ASSERT_GE(recorded.imu.front().frame, 0);
+  const size_t late_from = recorded.imu.size() / 2;
+  {
+    hil::RecordingWriter writer(dir / "late");
+    writer.WriteMeta(recorded.meta);
+    for (size_t i = 0; i < recorded.imu.size(); ++i) {
+      hil::ImuRecordRow row = recorded.imu[i];
+      if (i >= late_from) row.t_s += 2.56;
+      writer.Append(row);
+    }
+    for (const hil::AdsRecordRow& row : recorded.ads) writer.Append(row);
+    writer.Flush(true);
+  }
+  const hil::Recording late = hil::ReadRecording(dir / "late");
+  ASSERT_EQ(late.imu[late_from].frame, recorded.imu[late_from].frame);
+  ReplayOptions same_noise;
+  same_noise.noise_from_unit_file = true;
+  ReplayRecording(dir / "late", {rec / "truth/IMU-0001.json"}, dir / "replay", same_noise);
+  const hil::Recording replayed = hil::ReadRecording(dir / "replay");
+  ASSERT_EQ(replayed.imu.size(), late.imu.size());
+  double max_gyro_cnt = 0.0;
+  for (size_t i = 0; i < late.imu.size(); ++i) {
+    for (size_t k = 0; k < 3; ++k) {
+      max_gyro_cnt = std::max(
+          max_gyro_cnt, std::abs(double(late.imu[i].gyro_cnt[k]) - replayed.imu[i].gyro_cnt[k]));
+    }
+  }
+  EXPECT_LE(max_gyro_cnt, 1.0);
+  fs::remove_all(dir);
+}
+
 // Before the chamber's first report the recording holds 0 °C and no fixture code, as the executor
 // writes it: those rows are replayed at the first reported temperature, so a unit soaked at 40 °C
 // does not start with a die at 0 °C.
