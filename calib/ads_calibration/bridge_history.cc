@@ -27,6 +27,15 @@ HysteresisSpans HysteresisSpans::Nominal() {
           kThermalSpanC};
 }
 
+HysteresisSpans HysteresisSpans::Of(const firmware_model::AdsCalibrationConstants& c) {
+  const HysteresisSpans nominal = Nominal();
+  auto or_nominal = [](double span, double fallback) { return span > 0.0 ? span : fallback; };
+  return {or_nominal(c.altitude_ft.hysteresis.pressure_span, nominal.static_pressure_pa),
+          or_nominal(c.airspeed_kt.hysteresis.pressure_span, nominal.impact_pressure_pa),
+          or_nominal(c.altitude_ft.hysteresis.thermal_span_c, nominal.static_temperature_c),
+          or_nominal(c.airspeed_kt.hysteresis.thermal_span_c, nominal.pitot_temperature_c)};
+}
+
 std::vector<PointHistory> BridgeHistoryOf(const std::vector<AdsCalibrationPoint>& points,
                                           const HysteresisSpans& spans) {
   UnitHysteresisOperator static_p(spans.static_pressure_pa);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "calib/ads_calibration/ads_calibration_points.h"
+#include "firmware_model/calibration_constants.h"
 
 namespace adahrs::calib {
 
@@ -28,6 +29,10 @@ struct HysteresisSpans {
 
   /// The model-1230 class's spans as estimated (bridge_history.cc: 20 % of 15 psi, 20 degC, E).
   static HysteresisSpans Nominal();
+  /// The spans of a constants set's hysteresis operators: the static bridge's from the altitude
+  /// surface, the pitot's from the airspeed surface; Nominal()'s where a surface has none (a term
+  /// without a span has no gain, so its state adds nothing).
+  static HysteresisSpans Of(const firmware_model::AdsCalibrationConstants& constants);
 };
 
 struct BridgeStates {

@@ -158,24 +158,12 @@ std::string RawDataPlots(const std::string& serial,
   return html;
 }
 
-// The spans of the file's hysteresis operators, the static bridge's from the altitude surface and
-// the pitot's from the airspeed surface. A term without a span has no gain, so its state (driven
-// here through the nominal span) adds nothing. The states are pressure-driven (bridge_history.h),
-// the z of the ISA and CAS laws every strategy writes hysteresis terms under.
-HysteresisSpans SpansOf(const fm::AdsCalibrationConstants& c) {
-  const HysteresisSpans nominal = HysteresisSpans::Nominal();
-  auto or_nominal = [](double span, double fallback) { return span > 0.0 ? span : fallback; };
-  return {or_nominal(c.altitude_ft.hysteresis.pressure_span, nominal.static_pressure_pa),
-          or_nominal(c.airspeed_kt.hysteresis.pressure_span, nominal.impact_pressure_pa),
-          or_nominal(c.altitude_ft.hysteresis.thermal_span_c, nominal.static_temperature_c),
-          or_nominal(c.airspeed_kt.hysteresis.thermal_span_c, nominal.pitot_temperature_c)};
-}
-
 // The calibration points as the constants give them: each at its mean codes, with the states the
-// fit regresses on.
+// fit regresses on (pressure-driven, bridge_history.h: the z of the ISA and CAS laws every strategy
+// writes hysteresis terms under).
 std::vector<Acquisition> Evaluated(const std::vector<AdsCalibrationPoint>& points,
                                    const fm::AdsCalibrationConstants& c) {
-  const std::vector<PointHistory> history = BridgeHistoryOf(points, SpansOf(c));
+  const std::vector<PointHistory> history = BridgeHistoryOf(points, HysteresisSpans::Of(c));
   std::vector<Acquisition> out;
   for (size_t i = 0; i < points.size(); ++i) {
     const AdsCalibrationPoint& p = points[i];

@@ -68,5 +68,19 @@ TEST(BridgeHistory, EnvelopeBandIsOneSidedAtTheEndsAndFullInTheMiddle) {
   EXPECT_DOUBLE_EQ(b.half_width, 0.5);
 }
 
+// A constants set's spans: each surface's own where it has one, the nominal one where it has none.
+TEST(BridgeHistory, SpansOfConstantsFallBackToTheNominalPerSurface) {
+  firmware_model::AdsCalibrationConstants c;
+  c.altitude_ft.hysteresis.pressure_span = 12000.0;
+  c.altitude_ft.hysteresis.thermal_span_c = 15.0;
+  const HysteresisSpans spans = HysteresisSpans::Of(c);
+  const HysteresisSpans nominal = HysteresisSpans::Nominal();
+  EXPECT_EQ(spans.static_pressure_pa, 12000.0);
+  EXPECT_EQ(spans.static_temperature_c, 15.0);
+  EXPECT_EQ(spans.impact_pressure_pa, nominal.impact_pressure_pa);
+  EXPECT_EQ(spans.pitot_temperature_c, nominal.pitot_temperature_c);
+  EXPECT_GT(nominal.impact_pressure_pa, 0.0);
+}
+
 }  // namespace
 }  // namespace adahrs::calib
