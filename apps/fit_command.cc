@@ -8,9 +8,14 @@
 // OUT/<serial>.json per unit, as the demo campaign does (docs/constants-file.md,
 // docs/calibration-strategies.md).
 // adahrs fit --run DIR --stage thermal|sensor|cross_axis [--base DIR] --out DIR: one stage of the
-// staged process with the reference strategy (docs/campaign.md "The staged process").
+// staged process with the reference strategy (docs/campaign.md "The staged process"); past the
+// thermal stage the units' own compensated rows are checked against the model of the base's
+// constants (OUT/mode_conformance.json).
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -21,6 +26,9 @@
 #include "calib/campaign/campaign_fits.h"
 #include "calib/constants/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
+#include "calib/imu_calibration/mode_conformance.h"
+#include "common/atomic_file.h"
+#include "common/param_reader.h"
 
 namespace adahrs::apps {
 
@@ -37,6 +45,88 @@ std::string StageNote(calib::ImuStage stage) {
       return ", cross-axis stage on the base's thermal and sensor constants";
   }
   return "";
+}
+
+// ADS: one calibration run fitted with the named strategy.
+void FitAds(const std::vector<std::string>& runs,
+            const std::string& strategy,
+            const std::string& out) {
+  if (runs.size() != 1) {
+    throw CLI::ValidationError("--ads-strategy",
+                               "takes exactly one --run (an ADS calibration run)");
+  }
+  const auto written = calib::FitAdsIntoDirectory(runs.front(), strategy, out, ADAHRS_VERSION);
+  if (written.empty())
+    throw std::runtime_error(runs.front() + "/meta.json: the run has no ADS unit");
+  for (const calib::WrittenConstants& w : written) {
+    std::cout << fmt::format(
+        "{}: strategy {} -> {}\n", w.file.serial, w.file.strategy, w.path.string());
+  }
+}
+
+// The units of comp0-2, comp3-5 and comp6-8 in each compensated mode (docs/recording-format.md).
+std::array<const char*, 3> ModeUnits(int mode) {
+  switch (mode) {
+    case 1:
+      return {"duty", "duty", "counts"};
+    case 2:
+      return {"g", "g", "deg/s"};
+    default:
+      return {"m/s^2", "deg/s", "g"};
+  }
+}
+
+// Staged process: the runs were made with the base's constants in the units, so the units' own
+// compensated output is checked against the pipeline's model of it; printed per unit and written
+// to OUT/mode_conformance.json.
+void CheckBaseConformance(const std::vector<std::filesystem::path>& runs,
+                          const std::filesystem::path& base_dir,
+                          const std::filesystem::path& out) {
+  std::map<std::string, firmware_model::ImuCalibrationConstants> held;
+  for (const auto& entry : std::filesystem::directory_iterator(base_dir)) {
+    // The constants files; the base stage's own mode_conformance.json is none.
+    if (entry.path().extension() != ".json") continue;
+    const nlohmann::json document = common::ParamReader::LoadFile(entry.path().string());
+    if (!document.is_object() || document.value("format", "") != calib::kConstantsFormatName)
+      continue;
+    const calib::ConstantsFile f = calib::ConstantsFileFromJson(document, entry.path().string());
+    if (f.imu) held[f.serial] = *f.imu;
+  }
+  nlohmann::json entries = nlohmann::json::array();
+  for (const std::filesystem::path& run : runs) {
+    for (const calib::ModeConformance& m : calib::CheckModeConformance(run, held)) {
+      const std::array<const char*, 3> units = ModeUnits(m.mode);
+      std::string worst;
+      for (size_t group = 0; group < 3; ++group) {
+        double max_abs = 0.0;
+        for (size_t i = 3 * group; i < 3 * group + 3; ++i)
+          max_abs = std::max(max_abs, m.channels[i].max_abs_diff);
+        worst += fmt::format("{}comp{}-{} {:.3g} {}",
+                             group == 0 ? "" : ", ",
+                             3 * group,
+                             3 * group + 2,
+                             max_abs,
+                             units[group]);
+      }
+      std::cout << fmt::format(
+          "{}: mode-{} output of {} rows against the model of the base's constants, largest "
+          "|unit - model|: {}{}\n",
+          m.serial,
+          m.mode,
+          m.rows,
+          worst,
+          m.flagged_rows ? fmt::format(" ({} flagged rows not compared)", m.flagged_rows) : "");
+      nlohmann::json j = m.ToJson();
+      j["run"] = run.string();
+      entries.push_back(j);
+    }
+  }
+  common::WriteFileAtomically(
+      out / "mode_conformance.json",
+      nlohmann::json{
+          {"format", "adahrs-mode-conformance"}, {"format_version", 1}, {"units", entries}}
+              .dump(2) +
+          "\n");
 }
 
 }  // namespace
@@ -72,18 +162,7 @@ void RegisterFitCommand(CLI::App& app) {
                   "Staged process: the previous stage's --out directory (<serial>.json per unit)");
   cmd->callback([runs, strategy_file, ads_strategy, out, stage, base] {
     if (!ads_strategy->empty()) {
-      if (runs->size() != 1) {
-        throw CLI::ValidationError("--ads-strategy",
-                                   "takes exactly one --run (an ADS calibration run)");
-      }
-      const auto written =
-          calib::FitAdsIntoDirectory(runs->front(), *ads_strategy, *out, ADAHRS_VERSION);
-      if (written.empty())
-        throw std::runtime_error(runs->front() + "/meta.json: the run has no ADS unit");
-      for (const calib::WrittenConstants& w : written) {
-        std::cout << fmt::format(
-            "{}: strategy {} -> {}\n", w.file.serial, w.file.strategy, w.path.string());
-      }
+      FitAds(*runs, *ads_strategy, *out);
       return;
     }
     std::optional<calib::ImuStageRequest> staged;
@@ -116,6 +195,9 @@ void RegisterFitCommand(CLI::App& app) {
           staged ? StageNote(staged->stage) : "",
           w.file.imu_diagnostics ? w.file.imu_diagnostics->excluded_rows.value_or(0) : 0,
           w.path.string());
+    }
+    if (staged && staged->stage != calib::ImuStage::kThermal) {
+      CheckBaseConformance(dirs, staged->base_dir, *out);
     }
   });
 }

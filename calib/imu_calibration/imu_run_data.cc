@@ -60,14 +60,7 @@ std::string RowDefect(const hil::ImuRecordRow& row) {
 
 ImuSample ToSample(const hil::ImuRecordRow& row) {
   ImuSample s;
-  for (int ch = 0; ch < 6; ++ch) {
-    s.raw.t1_cnt[ch] = row.accel_ticks[2 * ch];
-    s.raw.t2_cnt[ch] = row.accel_ticks[2 * ch + 1];
-  }
-  for (int g = 0; g < 3; ++g) {
-    s.raw.gyro_cnt[g] = row.gyro_cnt[g];
-    s.raw.temp_cnt[g] = row.temp_cnt[g];
-  }
+  s.raw = RawFrameOf(row);
   s.t_s = row.t_s;
   s.chamber_c = row.chamber_c;
   s.table_rate_dps = row.table_rate_dps;
@@ -308,6 +301,19 @@ ImuRunData LoadImuRuns(const std::vector<std::filesystem::path>& run_dirs) {
   ImuRunData data;
   for (const auto& dir : run_dirs) LoadRun(dir, &data);
   return data;
+}
+
+firmware_model::ImuRawFrame RawFrameOf(const hil::ImuRecordRow& row) {
+  firmware_model::ImuRawFrame raw{};
+  for (int ch = 0; ch < 6; ++ch) {
+    raw.t1_cnt[ch] = row.accel_ticks[2 * ch];
+    raw.t2_cnt[ch] = row.accel_ticks[2 * ch + 1];
+  }
+  for (int g = 0; g < 3; ++g) {
+    raw.gyro_cnt[g] = row.gyro_cnt[g];
+    raw.temp_cnt[g] = row.temp_cnt[g];
+  }
+  return raw;
 }
 
 }  // namespace adahrs::calib

@@ -72,6 +72,9 @@ struct ImuRunData {
   std::vector<std::string> notes;            ///< what the recording reader passed over
 };
 
+/// A row's raw counts as the firmware takes them (every mode's packet carries them).
+firmware_model::ImuRawFrame RawFrameOf(const hil::ImuRecordRow& row);
+
 /// Reads every run directory and collects each IMU's calibration data; throws ImuInputError or
 /// hil::RecordingError with the reason.
 ImuRunData LoadImuRuns(const std::vector<std::filesystem::path>& run_dirs);
