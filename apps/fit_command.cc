@@ -27,8 +27,6 @@
 #include "calib/constants/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "calib/imu_calibration/mode_conformance.h"
-#include "common/atomic_file.h"
-#include "common/param_reader.h"
 
 namespace adahrs::apps {
 
@@ -76,57 +74,50 @@ std::array<const char*, 3> ModeUnits(int mode) {
   }
 }
 
-// Staged process: the runs were made with the base's constants in the units, so the units' own
-// compensated output is checked against the pipeline's model of it; printed per unit and written
-// to OUT/mode_conformance.json.
+// The largest |unit - model| of each group of three outputs, with the mode's units.
+std::string WorstByGroup(const calib::ModeConformance& m) {
+  const std::array<const char*, 3> units = ModeUnits(m.mode);
+  std::string worst;
+  for (size_t group = 0; group < 3; ++group) {
+    double max_abs = 0.0;
+    for (size_t i = 3 * group; i < 3 * group + 3; ++i)
+      max_abs = std::max(max_abs, m.channels[i].max_abs_diff);
+    worst += fmt::format("{}comp{}-{} {:.3g} {}",
+                         group == 0 ? "" : ", ",
+                         3 * group,
+                         3 * group + 2,
+                         max_abs,
+                         units[group]);
+  }
+  return worst;
+}
+
+// Staged process: the runs were made with the base's constants in the units (those of the units
+// just fitted), so the units' own compensated output is checked against the pipeline's model of
+// it; printed per unit and written to OUT/mode_conformance.json.
 void CheckBaseConformance(const std::vector<std::filesystem::path>& runs,
-                          const std::filesystem::path& base_dir,
+                          const calib::ImuStageRequest& staged,
+                          const std::vector<calib::WrittenConstants>& fitted,
                           const std::filesystem::path& out) {
   std::map<std::string, firmware_model::ImuCalibrationConstants> held;
-  for (const auto& entry : std::filesystem::directory_iterator(base_dir)) {
-    // The constants files; the base stage's own mode_conformance.json is none.
-    if (entry.path().extension() != ".json") continue;
-    const nlohmann::json document = common::ParamReader::LoadFile(entry.path().string());
-    if (!document.is_object() || document.value("format", "") != calib::kConstantsFormatName)
-      continue;
-    const calib::ConstantsFile f = calib::ConstantsFileFromJson(document, entry.path().string());
-    if (f.imu) held[f.serial] = *f.imu;
+  for (const calib::WrittenConstants& w : fitted) {
+    held[w.file.serial] = *calib::ReadStageBase(w.file.serial, staged).imu;
   }
-  nlohmann::json entries = nlohmann::json::array();
+  std::vector<calib::RunConformance> results;
   for (const std::filesystem::path& run : runs) {
-    for (const calib::ModeConformance& m : calib::CheckModeConformance(run, held)) {
-      const std::array<const char*, 3> units = ModeUnits(m.mode);
-      std::string worst;
-      for (size_t group = 0; group < 3; ++group) {
-        double max_abs = 0.0;
-        for (size_t i = 3 * group; i < 3 * group + 3; ++i)
-          max_abs = std::max(max_abs, m.channels[i].max_abs_diff);
-        worst += fmt::format("{}comp{}-{} {:.3g} {}",
-                             group == 0 ? "" : ", ",
-                             3 * group,
-                             3 * group + 2,
-                             max_abs,
-                             units[group]);
-      }
+    results.push_back({run, calib::CheckModeConformance(run, held)});
+    for (const calib::ModeConformance& m : results.back().units) {
       std::cout << fmt::format(
           "{}: mode-{} output of {} rows against the model of the base's constants, largest "
           "|unit - model|: {}{}\n",
           m.serial,
           m.mode,
           m.rows,
-          worst,
+          WorstByGroup(m),
           m.flagged_rows ? fmt::format(" ({} flagged rows not compared)", m.flagged_rows) : "");
-      nlohmann::json j = m.ToJson();
-      j["run"] = run.string();
-      entries.push_back(j);
     }
   }
-  common::WriteFileAtomically(
-      out / "mode_conformance.json",
-      nlohmann::json{
-          {"format", "adahrs-mode-conformance"}, {"format_version", 1}, {"units", entries}}
-              .dump(2) +
-          "\n");
+  calib::WriteModeConformance(out / "mode_conformance.json", results);
 }
 
 }  // namespace
@@ -186,8 +177,9 @@ void RegisterFitCommand(CLI::App& app) {
                                         : staged ? calib::ImuStrategy::Reference()
                                                  : calib::ImuStrategy::JointFormat3();
     const std::vector<std::filesystem::path> dirs(runs->begin(), runs->end());
-    for (const calib::WrittenConstants& w :
-         calib::FitImuIntoDirectory(dirs, strategy, *out, ADAHRS_VERSION, staged)) {
+    const std::vector<calib::WrittenConstants> fitted =
+        calib::FitImuIntoDirectory(dirs, strategy, *out, ADAHRS_VERSION, staged);
+    for (const calib::WrittenConstants& w : fitted) {
       std::cout << fmt::format(
           "{}: strategy {}{}, {} excluded rows -> {}\n",
           w.file.serial,
@@ -197,7 +189,7 @@ void RegisterFitCommand(CLI::App& app) {
           w.path.string());
     }
     if (staged && staged->stage != calib::ImuStage::kThermal) {
-      CheckBaseConformance(dirs, staged->base_dir, *out);
+      CheckBaseConformance(dirs, *staged, fitted, *out);
     }
   });
 }

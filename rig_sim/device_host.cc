@@ -135,15 +135,15 @@ void DeviceHost::NoteOpens(size_t n) {
     for (auto& port : ports_) {
       if (port->watch != event.wd) continue;
       const int before = port->clients_open;
-      // Counting events alone miscounts when two identical ones merge, so the clients are read
-      // from /proc (pty_clients.h). An open's event comes before its descriptor is in the table,
-      // so an open counts at least one more than before; a close's event comes after its
-      // descriptor left the table, so /proc has the count.
-      const std::optional<int> clients =
-          CountPtyClients(port->pty.slave_path(), port->pty.slave_fd());
+      // Counting events alone miscounts when two identical ones merge: two opens read as one
+      // leave the count low, and the first close would then take it to 0 with a client still
+      // there. A close's event comes after its descriptor left the table, so at a close the
+      // clients are read from /proc (pty_clients.h); an open only adds one (its descriptor may
+      // not be in the table yet, and a low count above 0 changes nothing).
       if (event.mask & IN_OPEN) {
-        port->clients_open = std::max(port->clients_open + 1, clients.value_or(0));
-      } else if (clients) {
+        ++port->clients_open;
+      } else if (const std::optional<int> clients =
+                     CountPtyClients(port->pty.slave_path(), port->pty.slave_fd())) {
         port->clients_open = *clients;
       } else if (port->clients_open > 0) {
         --port->clients_open;

@@ -238,30 +238,39 @@ void ReportExclusions(const ImuUnitData& unit, ImuFitDiagnostics* diag) {
   diag->rejected_interval_rows = unit.rejected_interval_rows;
 }
 
-}  // namespace
-
-namespace {
-
 // The staged process: `stage`'s predecessors from the base, the rest as Identity() left them.
 void TakeEarlierStages(const ImuReferenceOptions& options,
                        const std::string& who,
                        ImuFitResult* result) {
   const ImuStage stage = *options.stage;
   if (stage == ImuStage::kThermal) return;
-  if (!options.base || !options.base_standard_errors) {
+  if (!options.base) {
     throw ImuInputError(who + ": the " + std::string(ImuStageName(stage)) +
                         " stage needs the earlier stages' constants (a base constants file)");
   }
-  fm::ImuCalibrationConstants& c = result->constants;
-  fm::ImuCalibrationConstants& se = result->standard_errors;
-  c.thermal = options.base->thermal;
-  se.thermal = options.base_standard_errors->thermal;
+  const ImuStageBase& base = *options.base;
+  result->constants.thermal = base.constants.thermal;
+  result->standard_errors.thermal = base.standard_errors.thermal;
   if (stage == ImuStage::kCrossAxis) {
-    c.accel = options.base->accel;
-    c.gyro = options.base->gyro;
-    se.accel = options.base_standard_errors->accel;
-    se.gyro = options.base_standard_errors->gyro;
+    result->constants.accel = base.constants.accel;
+    result->constants.gyro = base.constants.gyro;
+    result->standard_errors.accel = base.standard_errors.accel;
+    result->standard_errors.gyro = base.standard_errors.gyro;
   }
+}
+
+// What the fit ran, for the diagnostics.
+const char* StrategySteps(const std::optional<ImuStage>& stage) {
+  if (!stage) return "thermal (order 2), six-position, gyro cubic, cross-axis";
+  switch (*stage) {
+    case ImuStage::kThermal:
+      return "thermal (order 2) stage alone";
+    case ImuStage::kSensor:
+      return "six-position and gyro cubic stage on the base's thermal constants";
+    case ImuStage::kCrossAxis:
+      return "cross-axis stage on the base's thermal and sensor constants";
+  }
+  return "";
 }
 
 }  // namespace
@@ -282,11 +291,7 @@ ImuFitResult FitImuReference(const ImuUnitData& unit,
     FitGyroStage(unit, who, &diag, &result);
   }
   if (runs(ImuStage::kCrossAxis)) FitCrossAxisStage(unit, who, g_local_mps2, &diag, &result);
-  diag.strategy_steps = !options.stage ? "thermal (order 2), six-position, gyro cubic, cross-axis"
-                        : *options.stage == ImuStage::kThermal ? "thermal (order 2) stage alone"
-                        : *options.stage == ImuStage::kSensor
-                            ? "six-position and gyro cubic stage on the base's thermal constants"
-                            : "cross-axis stage on the base's thermal and sensor constants";
+  diag.strategy_steps = StrategySteps(options.stage);
   ReportExclusions(unit, &result.diagnostics);
   return result;
 }

@@ -22,15 +22,20 @@
 
 namespace adahrs::calib {
 
+/// The constants a unit holds from the earlier stages of the staged process, with their standard
+/// errors (the previous stage's constants file).
+struct ImuStageBase {
+  firmware_model::ImuCalibrationConstants constants;
+  firmware_model::ImuCalibrationConstants standard_errors;
+};
+
 struct ImuReferenceOptions {
   ThermalFitOptions thermal;
-  /// The staged process (calib/constants/imu_stage.h): fit this stage alone. The earlier stages'
-  /// constants and standard errors are `base`'s and `base_standard_errors`' (required past the
-  /// thermal stage), the later stages' their defaults (calibration_constants.h; cross-axis the
-  /// identity). Empty: the four steps at once.
+  /// The staged process (calib/constants/imu_stage.h): fit this stage alone. The earlier stages
+  /// come from `base` (required past the thermal stage), the later stages hold their defaults
+  /// (calibration_constants.h; cross-axis the identity). Empty: the four steps at once.
   std::optional<ImuStage> stage;
-  std::optional<firmware_model::ImuCalibrationConstants> base;
-  std::optional<firmware_model::ImuCalibrationConstants> base_standard_errors;
+  std::optional<ImuStageBase> base;
 };
 
 /// Sequential reference fit of one unit (or of one stage, options.stage). Throws ImuInputError

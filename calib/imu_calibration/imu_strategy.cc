@@ -68,10 +68,7 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
   return s;
 }
 
-namespace {
-
-// The base file of a staged fit past the thermal stage: the unit's, holding every earlier stage.
-ConstantsFile StageBase(const std::string& serial, const ImuStageRequest& staged) {
+ConstantsFile ReadStageBase(const std::string& serial, const ImuStageRequest& staged) {
   const std::filesystem::path path = staged.base_dir / (serial + ".json");
   const std::string stage(ImuStageName(staged.stage));
   if (!std::filesystem::exists(path)) {
@@ -95,6 +92,8 @@ ConstantsFile StageBase(const std::string& serial, const ImuStageRequest& staged
   return base;
 }
 
+namespace {
+
 ImuFitResult FitWithStrategy(const ImuUnitData& unit,
                              const ImuRunData& data,
                              const ImuStrategy& strategy,
@@ -104,10 +103,7 @@ ImuFitResult FitWithStrategy(const ImuUnitData& unit,
     ImuReferenceOptions options;
     options.thermal.band_width_cnt = strategy.band_width_cnt;
     if (staged) options.stage = staged->stage;
-    if (base) {
-      options.base = base->imu;
-      options.base_standard_errors = ImuStandardErrors(*base);
-    }
+    if (base) options.base = ImuStageBase{*base->imu, ImuStandardErrors(*base)};
     return FitImuReference(unit, data.local_gravity_mps2, options);
   }
   ImuJointOptions options;
@@ -137,7 +133,7 @@ ConstantsFile FitImuUnit(const ImuUnitData& unit,
                         " strategy fits every stage at once");
   }
   std::optional<ConstantsFile> base;
-  if (staged && staged->stage != ImuStage::kThermal) base = StageBase(unit.serial, *staged);
+  if (staged && staged->stage != ImuStage::kThermal) base = ReadStageBase(unit.serial, *staged);
   ImuFitResult fit = FitWithStrategy(unit, data, strategy, staged, base);
   fit.diagnostics.local_gravity_mps2 = data.local_gravity_mps2;
   ConstantsFile f;

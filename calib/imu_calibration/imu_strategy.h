@@ -48,6 +48,10 @@ struct ImuStageRequest {
   std::filesystem::path base_dir;
 };
 
+/// The unit's file in `staged.base_dir`, which must hold every stage before `staged.stage`;
+/// throws ImuInputError naming the file when it is missing, another unit's, or short of a stage.
+ConstantsFile ReadStageBase(const std::string& serial, const ImuStageRequest& staged);
+
 /// Fits one IMU of `data` (its gravity and provenance) with `strategy`, or one stage of it.
 /// Throws DegenerateDesignError when the data cannot determine the constants, ImuInputError
 /// when a staged fit's strategy is not the reference or its base is missing or unfit.

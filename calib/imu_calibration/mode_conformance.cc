@@ -4,6 +4,7 @@
 #include <tuple>
 
 #include "calib/imu_calibration/imu_run_data.h"
+#include "common/atomic_file.h"
 #include "firmware_model/reference_compensator.h"
 #include "hil/recording/recording_reader.h"
 
@@ -60,6 +61,21 @@ std::vector<ModeConformance> CheckModeConformance(
     out.push_back(m);
   }
   return out;
+}
+
+void WriteModeConformance(const std::filesystem::path& path,
+                          const std::vector<RunConformance>& runs) {
+  nlohmann::json entries = nlohmann::json::array();
+  for (const RunConformance& run : runs) {
+    for (const ModeConformance& m : run.units) {
+      nlohmann::json j = m.ToJson();
+      j["run"] = run.run_dir.string();
+      entries.push_back(j);
+    }
+  }
+  const nlohmann::json doc{
+      {"format", "adahrs-mode-conformance"}, {"format_version", 1}, {"units", entries}};
+  common::WriteFileAtomically(path, doc.dump(2) + "\n");
 }
 
 }  // namespace adahrs::calib

@@ -43,4 +43,15 @@ std::vector<ModeConformance> CheckModeConformance(
     const std::filesystem::path& run_dir,
     const std::map<std::string, firmware_model::ImuCalibrationConstants>& constants);
 
+/// One run's results, as mode_conformance.json lists them.
+struct RunConformance {
+  std::filesystem::path run_dir;
+  std::vector<ModeConformance> units;
+};
+
+/// mode_conformance.json (docs/campaign.md "The staged process"): format
+/// "adahrs-mode-conformance", version 1, one entry per run, unit and mode; written atomically.
+void WriteModeConformance(const std::filesystem::path& path,
+                          const std::vector<RunConformance>& runs);
+
 }  // namespace adahrs::calib

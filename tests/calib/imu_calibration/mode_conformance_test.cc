@@ -28,12 +28,12 @@ TEST(ModeConformance, FindsTheOneRowThatLeavesTheModelAndCountsFlaggedRowsApart)
   constexpr double kMovedG = 3e-6;
   {
     hil::RecordingWriter writer(dir);
-    writer.WriteMetaJson({{"run_id", "conformance"},
-                          {"status", "complete"},
-                          {"local_gravity_mps2", 9.80665},
-                          {"units",
-                           {{{"kind", "imu"}, {"serial", "IMU-0001"}},
-                            {{"kind", "imu"}, {"serial", "IMU-0002"}}}}});
+    writer.WriteMetaJson(
+        {{"run_id", "conformance"},
+         {"status", "complete"},
+         {"local_gravity_mps2", 9.80665},
+         {"units",
+          {{{"kind", "imu"}, {"serial", "IMU-0001"}}, {{"kind", "imu"}, {"serial", "IMU-0002"}}}}});
     for (int i = 1; i <= 300; ++i) {
       hil::ImuRecordRow row;
       row.unit = i % 3 == 0 ? "IMU-0002" : "IMU-0001";
