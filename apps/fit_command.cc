@@ -27,6 +27,7 @@
 #include "calib/constants/imu_fit_diagnostics.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "calib/imu_calibration/mode_conformance.h"
+#include "common/printable_text.h"
 
 namespace adahrs::apps {
 
@@ -187,6 +188,10 @@ void RegisterFitCommand(CLI::App& app) {
           staged ? StageNote(staged->stage) : "",
           w.file.imu_diagnostics ? w.file.imu_diagnostics->excluded_rows.value_or(0) : 0,
           w.path.string());
+      for (const std::string& line : w.log) {
+        std::cout << fmt::format(
+            "{}: {}: {}\n", w.file.serial, w.file.strategy, common::PrintableText(line));
+      }
     }
     if (staged && staged->stage != calib::ImuStage::kThermal) {
       CheckBaseConformance(dirs, *staged, fitted, *out);

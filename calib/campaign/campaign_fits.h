@@ -22,9 +22,12 @@ namespace adahrs::calib {
 struct WrittenConstants {
   std::filesystem::path path;
   ConstantsFile file;
+  std::vector<std::string> log;  ///< an external strategy program's log lines
 };
 
-/// Fits every IMU of `run_dirs` with `strategy` and writes the files into `fit_dir`.
+/// Fits every IMU of `run_dirs` with `strategy` and writes the files into `fit_dir`; nothing is
+/// written unless every unit's fit succeeds. An external strategy's request and reply are kept
+/// beside each file (`<serial>.request.json.gz`, `<serial>.reply.json.gz`).
 std::vector<WrittenConstants> FitImuIntoDirectory(
     const std::vector<std::filesystem::path>& run_dirs,
     const ImuStrategy& strategy,

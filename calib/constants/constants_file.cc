@@ -63,6 +63,19 @@ void CheckShape(const json& value,
   }
 }
 
+// A constants reader's message ("imu.gyro[1].l: missing") with the file's JSON path
+// ("$.constants.gyro[1].l: missing").
+std::string ConstantsPath(const std::string& message) {
+  for (const char* root : {"imu", "ads"}) {
+    const std::string r(root);
+    if (message.rfind(r + ".", 0) == 0 || message.rfind(r + "[", 0) == 0 ||
+        message.rfind(r + ":", 0) == 0) {
+      return "$.constants" + message.substr(r.size());
+    }
+  }
+  return "$.constants: " + message;
+}
+
 bool IsSha256Hex(const std::string& s) {
   if (s.size() != 64) return false;
   for (char c : s) {
@@ -80,6 +93,28 @@ json ConstantsJson(const ConstantsFile& file, const std::string& source) {
   if (!file.ads || file.imu)
     throw ConstantsFileError(source + ": kind ads needs ADS constants only");
   return firmware_model::ToJson(*file.ads);
+}
+
+ExternalFitRecord ParseExternalRecord(const ParamReader& provenance, const json& external) {
+  const ParamReader r = provenance.Child("external");
+  ExternalFitRecord e;
+  const size_t n = r.ArrayLength("program", 1, 256);
+  for (size_t i = 0; i < n; ++i) {
+    const json& arg = external.at("program").at(i);
+    if (!arg.is_string())
+      r.Fail(r.path() + ".program[" + std::to_string(i) + "]", "expected a string");
+    e.program.push_back(arg.get<std::string>());
+  }
+  for (auto [key, sha] : {std::pair{"strategy_sha256", &e.strategy_sha256},
+                          std::pair{"request_sha256", &e.request_sha256},
+                          std::pair{"reply_sha256", &e.reply_sha256}}) {
+    *sha = r.String(key);
+    if (!IsSha256Hex(*sha)) {
+      r.Fail(r.path() + "." + key, "expected 64 lowercase hex digits, got \"" + *sha + "\"");
+    }
+  }
+  r.ExpectAllKeysUsed();
+  return e;
 }
 
 ConstantsFile Parse(const json& j, const std::string& source) {
@@ -121,7 +156,7 @@ ConstantsFile Parse(const json& j, const std::string& source) {
       file.ads = firmware_model::AdsCalibrationConstantsFromJson(constants);
     }
   } catch (const std::runtime_error& e) {
-    throw ConstantsFileError(source + ": $.constants: " + e.what());
+    throw ConstantsFileError(source + ": " + ConstantsPath(e.what()));
   }
   reader.Child("standard_errors");
   file.standard_errors = j.at("standard_errors");
@@ -146,6 +181,8 @@ ConstantsFile Parse(const json& j, const std::string& source) {
     if (!name.is_string()) provenance.Fail("$.provenance.sequence_names", "expected strings");
     file.provenance.sequence_names.push_back(name.get<std::string>());
   }
+  if (provenance.Has("external"))
+    file.provenance.external = ParseExternalRecord(provenance, j.at("provenance").at("external"));
   provenance.ExpectAllKeysUsed();
   if (reader.Has("stages")) {
     if (file.kind != hil::UnitKind::kImu)
@@ -273,6 +310,18 @@ json ToJson(const ConstantsFile& file) {
     }
     recordings.push_back({{"path", r.path}, {"sha256", r.sha256}});
   }
+  json provenance{{"recordings", recordings}, {"sequence_names", file.provenance.sequence_names}};
+  if (const auto& e = file.provenance.external) {
+    for (const std::string* sha : {&e->strategy_sha256, &e->request_sha256, &e->reply_sha256}) {
+      if (!IsSha256Hex(*sha)) {
+        throw ConstantsFileError(source + ": $.provenance.external: not a SHA-256: " + *sha);
+      }
+    }
+    provenance["external"] = {{"program", e->program},
+                              {"strategy_sha256", e->strategy_sha256},
+                              {"request_sha256", e->request_sha256},
+                              {"reply_sha256", e->reply_sha256}};
+  }
   const bool format3 = file.imu && file.imu->scale_temperature.active;
   json j{{"format", kConstantsFormatName},
          {"format_version", format3 ? kConstantsFormatVersion : kConstantsOldestFormatVersion},
@@ -283,8 +332,7 @@ json ToJson(const ConstantsFile& file) {
          {"software_version", file.software_version},
          {"constants", constants},
          {"standard_errors", file.standard_errors},
-         {"provenance",
-          {{"recordings", recordings}, {"sequence_names", file.provenance.sequence_names}}},
+         {"provenance", provenance},
          {"diagnostics", NullForNaN(DiagnosticsJson(file, source))}};
   if (!file.stages.empty()) {
     if (file.kind != hil::UnitKind::kImu || format3 ||

@@ -44,9 +44,20 @@ struct RecordingReference {
   bool operator==(const RecordingReference&) const = default;
 };
 
+/// An external strategy's fit (docs/strategies-external.md "What is kept"): the program run and
+/// the SHA-256 of the strategy file and of the request and reply bytes kept beside the file.
+struct ExternalFitRecord {
+  std::vector<std::string> program;
+  std::string strategy_sha256;
+  std::string request_sha256;
+  std::string reply_sha256;
+  bool operator==(const ExternalFitRecord&) const = default;
+};
+
 struct ConstantsProvenance {
   std::vector<RecordingReference> recordings;
   std::vector<std::string> sequence_names;
+  std::optional<ExternalFitRecord> external;  ///< "external" in the JSON, an external fit's only
   bool operator==(const ConstantsProvenance&) const = default;
 };
 

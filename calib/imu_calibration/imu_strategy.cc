@@ -31,9 +31,16 @@ ImuStrategy ImuStrategy::Load(const std::filesystem::path& path) {
     r.Fail("$.format", "expected \"adahrs-imu-strategy\"");
   if (r.Integer("format_version", 1, 1) != 1) r.Fail("$.format_version", "expected 1");
   ImuStrategy s;
+  if (r.Has("program")) {
+    s.external = ReadExternalProgram(r, j, path);
+    s.name = s.external->name;
+    r.ExpectAllKeysUsed();
+    return s;
+  }
   s.name = r.String("strategy");
   if (s.name != "reference" && s.name != "joint") {
-    r.Fail("$.strategy", "expected \"reference\" or \"joint\", got \"" + s.name + "\"");
+    r.Fail("$.strategy",
+           "expected \"reference\" or \"joint\" (or a \"program\" to run), got \"" + s.name + "\"");
   }
   if (r.Has("thermal_order")) {
     if (s.name != "joint")
@@ -126,6 +133,16 @@ ConstantsFile FitImuUnit(const ImuUnitData& unit,
                          const ImuStrategy& strategy,
                          const std::string& software_version,
                          const std::optional<ImuStageRequest>& staged) {
+  if (strategy.external) {
+    if (staged) {
+      throw ImuInputError("unit " + unit.serial +
+                          ": a staged fit is the reference method's; the "
+                          "program of strategy \"" +
+                          strategy.name + "\" fits every stage at once");
+    }
+    ExternalExchange exchange;
+    return FitImuExternal(unit, data, *strategy.external, software_version, &exchange);
+  }
   if (staged && strategy.name != "reference") {
     throw ImuInputError("unit " + unit.serial + ": a staged fit (" +
                         std::string(ImuStageName(staged->stage)) +

@@ -5,6 +5,10 @@
 //    "thermal_order": "auto" | 0 | 1 | 2,     (joint only; "auto" = held-out choice, default)
 //    "thermal_band_width_cnt": 110,            (optional, both)
 //    "firmware_format": 2 | 3}                 (joint only; 3 fits the scale-temperature terms)
+// or an external program's strategy (docs/strategies-external.md):
+//   {"format": "adahrs-imu-strategy", "format_version": 1, "strategy": NAME,
+//    "program": ["python3", "my_fit.py"], "timeout_s": 600, "firmware_format": 2 | 3,
+//    "inputs": {...}, "options": {...}}
 //
 // "reference" is the reference method exactly (imu_reference_fit.h); "joint" is the improved
 // strategy (imu_joint_fit.h). The strict reader names the file and JSON path of a bad key.
@@ -16,6 +20,7 @@
 #include <vector>
 
 #include "calib/constants/constants_file.h"
+#include "calib/imu_calibration/external_strategy.h"
 
 namespace adahrs::calib {
 
@@ -25,6 +30,7 @@ struct ImuStrategy {
   double band_width_cnt = 110.0;
   bool estimate_gyro_wander = false;  ///< joint: the wander from the recording, else datasheet's
   bool format3 = false;               ///< joint: fit the firmware's format-3 terms too
+  std::optional<ExternalImuProgram> external;  ///< set: a program fits (name is its name)
 
   /// The reference method exactly.
   static ImuStrategy Reference();

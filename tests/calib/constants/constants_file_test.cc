@@ -160,8 +160,9 @@ TEST(ConstantsFile, Format3TermsMakeAVersion3FileAndRoundTrip) {
   json bad = j;
   bad["constants"]["scale_temperature"]["sensor"][2]["origin_cnt"] = 32768.5;
   bad["standard_errors"]["scale_temperature"]["sensor"][2]["origin_cnt"] = nullptr;
-  EXPECT_THAT(MessageOf(bad),
-              HasSubstr("imu.scale_temperature.sensor[2].origin_cnt: must be a whole count"));
+  EXPECT_THAT(
+      MessageOf(bad),
+      HasSubstr("$.constants.scale_temperature.sensor[2].origin_cnt: must be a whole count"));
 }
 
 TEST(ConstantsFile, RefusesMissingAndUnexpectedKeys) {
@@ -173,7 +174,7 @@ TEST(ConstantsFile, RefusesMissingAndUnexpectedKeys) {
   EXPECT_THAT(MessageOf(j), HasSubstr("strategy_name"));
   j = ToJson(ImuFile());
   j["constants"]["gyro"][1].erase("l");
-  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.constants: imu.gyro[1].l: missing"));
+  EXPECT_THAT(MessageOf(j), HasSubstr("unit.json: $.constants.gyro[1].l: missing"));
 }
 
 TEST(ConstantsFile, RefusesStandardErrorsOfAnotherShapeOrSign) {
@@ -195,7 +196,7 @@ TEST(ConstantsFile, RefusesABadChecksumAndKind) {
   EXPECT_THAT(MessageOf(j), HasSubstr("$.provenance.recordings[0].sha256: expected 64"));
   j = ToJson(ImuFile());
   j["kind"] = "ads";  // IMU constants under an ADS kind
-  EXPECT_THAT(MessageOf(j), HasSubstr("$.constants: ads"));
+  EXPECT_THAT(MessageOf(j), HasSubstr("$.constants.accel: unexpected key"));
   j["kind"] = "gps";
   EXPECT_THAT(MessageOf(j), HasSubstr("$.kind: expected \"imu\" or \"ads\""));
 }
