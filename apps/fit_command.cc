@@ -11,6 +11,8 @@
 // staged process with the reference strategy (docs/campaign.md "The staged process"); past the
 // thermal stage the units' own compensated rows are checked against the model of the base's
 // constants (OUT/mode_conformance.json).
+// adahrs fit --replay DIR [--strategy FILE]: runs each external strategy fit of DIR again on its
+// kept request and compares the constants (docs/strategies-external.md "Replaying a fit").
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -25,6 +27,7 @@
 #include "apps/commands.h"
 #include "calib/campaign/campaign_fits.h"
 #include "calib/constants/imu_fit_diagnostics.h"
+#include "calib/imu_calibration/external_replay.h"
 #include "calib/imu_calibration/imu_strategy.h"
 #include "calib/imu_calibration/mode_conformance.h"
 #include "common/printable_text.h"
@@ -121,6 +124,26 @@ void CheckBaseConformance(const std::vector<std::filesystem::path>& runs,
   calib::WriteModeConformance(out / "mode_conformance.json", results);
 }
 
+// Replays the external fits of `dir`; exits 1 when a unit's constants differ.
+void ReplayFits(const std::string& dir, const std::string& strategy_file) {
+  std::optional<std::filesystem::path> strategy;
+  if (!strategy_file.empty()) strategy = strategy_file;
+  bool all_identical = true;
+  for (const calib::ExternalReplayOutcome& o : calib::ReplayExternalFits(dir, strategy)) {
+    std::cout << fmt::format("{}: {} ({} s){}{}\n",
+                             o.serial,
+                             o.constants_identical ? "constants reproduced bit for bit"
+                                                   : "constants differ: " + o.difference,
+                             fmt::format("{:.1f}", o.elapsed_s),
+                             o.reply_identical ? ", reply byte-identical" : ", reply bytes differ",
+                             o.strategy_unchanged ? ""
+                                                  : "; the strategy file is not the one "
+                                                    "recorded (its SHA-256 differs)");
+    all_identical = all_identical && o.constants_identical;
+  }
+  if (!all_identical) throw CLI::RuntimeError(1);
+}
+
 }  // namespace
 
 void RegisterFitCommand(CLI::App& app) {
@@ -129,7 +152,7 @@ void RegisterFitCommand(CLI::App& app) {
   auto strategy_file = std::make_shared<std::string>();
   auto ads_strategy = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
-  cmd->add_option("--run", *runs, "Run directory (repeat for several)")->required();
+  cmd->add_option("--run", *runs, "Run directory (repeat for several)");
   CLI::Option* imu_option =
       cmd->add_option("--strategy",
                       *strategy_file,
@@ -139,7 +162,15 @@ void RegisterFitCommand(CLI::App& app) {
                   "Fit the ADS units of one ADS calibration run with this strategy: reference, "
                   "tolerance_minimax, pressure_minimax or hysteresis_compensated")
       ->excludes(imu_option);
-  cmd->add_option("--out", *out, "Output directory for the constants files")->required();
+  cmd->add_option("--out", *out, "Output directory for the constants files");
+  auto replay = std::make_shared<std::string>();
+  cmd->add_option("--replay",
+                  *replay,
+                  "Run the external strategy fits of this fit directory again on their kept "
+                  "requests and compare the constants (writes nothing)")
+      ->excludes("--run")
+      ->excludes("--out")
+      ->excludes("--ads-strategy");
   auto stage = std::make_shared<std::string>();
   auto base = std::make_shared<std::string>();
   cmd->add_option("--stage",
@@ -152,7 +183,13 @@ void RegisterFitCommand(CLI::App& app) {
   cmd->add_option("--base",
                   *base,
                   "Staged process: the previous stage's --out directory (<serial>.json per unit)");
-  cmd->callback([runs, strategy_file, ads_strategy, out, stage, base] {
+  cmd->callback([runs, strategy_file, ads_strategy, out, stage, base, replay] {
+    if (!replay->empty()) {
+      ReplayFits(*replay, *strategy_file);
+      return;
+    }
+    if (runs->empty()) throw CLI::RequiredError("--run");
+    if (out->empty()) throw CLI::RequiredError("--out");
     if (!ads_strategy->empty()) {
       FitAds(*runs, *ads_strategy, *out);
       return;

@@ -105,6 +105,7 @@ ExternalFitRecord ParseExternalRecord(const ParamReader& provenance, const json&
       r.Fail(r.path() + ".program[" + std::to_string(i) + "]", "expected a string");
     e.program.push_back(arg.get<std::string>());
   }
+  e.strategy_file = r.String("strategy_file");
   for (auto [key, sha] : {std::pair{"strategy_sha256", &e.strategy_sha256},
                           std::pair{"request_sha256", &e.request_sha256},
                           std::pair{"reply_sha256", &e.reply_sha256}}) {
@@ -318,6 +319,7 @@ json ToJson(const ConstantsFile& file) {
       }
     }
     provenance["external"] = {{"program", e->program},
+                              {"strategy_file", e->strategy_file},
                               {"strategy_sha256", e->strategy_sha256},
                               {"request_sha256", e->request_sha256},
                               {"reply_sha256", e->reply_sha256}};

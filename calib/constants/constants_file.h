@@ -48,6 +48,7 @@ struct RecordingReference {
 /// the SHA-256 of the strategy file and of the request and reply bytes kept beside the file.
 struct ExternalFitRecord {
   std::vector<std::string> program;
+  std::string strategy_file;  ///< absolute path of the strategy file the program came from
   std::string strategy_sha256;
   std::string request_sha256;
   std::string reply_sha256;

@@ -53,7 +53,7 @@ ExternalImuProgram ReadExternalProgram(const common::ParamReader& r,
                                        const nlohmann::json& j,
                                        const std::filesystem::path& path) {
   ExternalImuProgram p;
-  p.strategy_file = path.string();
+  p.strategy_file = std::filesystem::absolute(path).lexically_normal().string();
   p.name = r.String("strategy");
   for (const char* built_in : kBuiltInNames) {
     if (p.name == built_in) {
@@ -126,6 +126,7 @@ ConstantsFile FitImuExternal(const ImuUnitData& unit,
   f.provenance.recordings = data.recordings;
   f.provenance.sequence_names = data.sequence_names;
   f.provenance.external = ExternalFitRecord{program.argv,
+                                            program.strategy_file,
                                             program.strategy_sha256,
                                             common::Sha256Hex(exchange->request),
                                             common::Sha256Hex(exchange->reply)};

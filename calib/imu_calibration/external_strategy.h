@@ -25,7 +25,7 @@ struct ExternalImuProgram {
   int firmware_format = 2;
   ExternalRequestInputs inputs;
   nlohmann::json options = nlohmann::json::object();
-  std::string strategy_file;    ///< its path, for messages
+  std::string strategy_file;    ///< its absolute path
   std::string strategy_sha256;  ///< of its bytes
 };
 

@@ -12,7 +12,10 @@ accel acquisition, with raw counts from closed forms:
    directory left byte for byte as it was: one that hangs (killed at its timeout), exits 3, writes
    half a JSON object, writes NaN, writes a null constant, writes a constant the firmware cannot
    hold, never reads its request, is not there at all;
-3. strategy files that cannot run are refused with their JSON path before anything runs.
+3. `fit --replay` runs the program again on the kept request: the same program reproduces the
+   constants bit for bit; an edited program is caught at the first constant that differs (exit
+   1); a kept request that is not the one recorded is refused;
+4. strategy files that cannot run are refused with their JSON path before anything runs.
 
 Usage: external_strategy_test.py ADAHRS"""
 import gzip
@@ -205,7 +208,7 @@ def check_good(adahrs, tmp, run_dir, steps):
     request = gzip.decompress((out / "IMU-0001.request.json.gz").read_bytes())
     reply = gzip.decompress((out / "IMU-0001.reply.json.gz").read_bytes())
     external = constants["provenance"]["external"]
-    expected = {"program": ["python3", "good.py"],
+    expected = {"program": ["python3", "good.py"], "strategy_file": str(tmp / "good.json"),
                 "strategy_sha256": hashlib.sha256((tmp / "good.json").read_bytes()).hexdigest(),
                 "request_sha256": hashlib.sha256(request).hexdigest(),
                 "reply_sha256": hashlib.sha256(reply).hexdigest()}
@@ -222,6 +225,25 @@ def check_good(adahrs, tmp, run_dir, steps):
     rows = THERMAL_ROWS
     if f"IMU-0001: test-good: {rows} thermal rows" not in r.stdout or "test-good: done" not in r.stdout:
         fail(f"the program's log with {rows} thermal rows is not printed")
+    return out
+
+
+def check_replay(adahrs, tmp, fit_dir):
+    r = run(adahrs, "fit", "--replay", fit_dir)
+    if "IMU-0001: constants reproduced bit for bit" not in r.stdout or \
+            "reply byte-identical" not in r.stdout:
+        fail("the replay of an unchanged program did not reproduce the constants")
+    program = tmp / "good.py"
+    program.write_text(program.read_text().replace("0.001 * i", "0.002 * i"))
+    r = run(adahrs, "fit", "--replay", fit_dir, expect=1)
+    if "constants differ: $.constants.accel[1].offset_duty: kept 0.001, now 0.002" not in r.stdout:
+        fail("an edited program's different constants are not named")
+    request = fit_dir / "IMU-0001.request.json.gz"
+    text = gzip.decompress(request.read_bytes()).replace(b'"IMU-0001"', b'"IMU-0009"', 1)
+    request.write_bytes(gzip.compress(text))
+    r = run(adahrs, "fit", "--replay", fit_dir, expect=1)
+    if "not the request the constants of IMU-0001 were fitted from" not in r.stderr:
+        fail("a changed kept request is not refused")
 
 
 def main():
@@ -231,7 +253,7 @@ def main():
     try:
         run_dir = tmp / "run"
         steps = write_run(run_dir)
-        check_good(adahrs, tmp, run_dir, steps)
+        check_replay(adahrs, tmp, check_good(adahrs, tmp, run_dir, steps))
         out = tmp / "out"
         out.mkdir()
         (out / "IMU-0001.json").write_text('{"kept": "as it was"}\n')
