@@ -148,10 +148,15 @@ void FitStrategies(Context& c, CampaignArtifacts& f) {
   f.imu_joint_dir = o.out_dir / "fits" / "imu-joint";
   f.ads_reference_dir = o.out_dir / "fits" / "ads-reference";
   f.ads_improved_dir = o.out_dir / "fits" / "ads-hysteresis-compensated";
+  const bool file_strategy = IsImuStrategyFile(o.imu_strategy);
+  if (file_strategy) {
+    f.imu_file_strategy_dir = o.out_dir / "fits" / ("imu-" + ImuStrategyLabel(o.imu_strategy));
+  }
   if (c.journal.Done(kStageFits)) {
     c.observer.Stage("2/8 fits: done before, kept");
     f.imu_reference = ReadFitDirectory(f.imu_reference_dir);
     f.imu_joint = ReadFitDirectory(f.imu_joint_dir);
+    if (file_strategy) f.imu_file_strategy = ReadFitDirectory(f.imu_file_strategy_dir);
     f.ads_reference = ReadFitDirectory(f.ads_reference_dir);
     f.ads_improved = ReadFitDirectory(f.ads_improved_dir);
     return;
@@ -165,6 +170,16 @@ void FitStrategies(Context& c, CampaignArtifacts& f) {
         f.imu_calibration_runs, ImuStrategy::Reference(), f.imu_reference_dir, o.software_version);
     f.imu_joint = FitImuIntoDirectory(
         f.imu_calibration_runs, ImuStrategy::JointFormat3(), f.imu_joint_dir, o.software_version);
+    if (file_strategy) {
+      c.observer.Stage("  IMU strategy file " + o.imu_strategy);
+      f.imu_file_strategy = FitImuIntoDirectory(f.imu_calibration_runs,
+                                                ImuStrategy::Load(o.imu_strategy),
+                                                f.imu_file_strategy_dir,
+                                                o.software_version);
+      for (const WrittenConstants& w : f.imu_file_strategy) {
+        for (const std::string& line : w.log) c.observer.Stage("  " + w.file.serial + ": " + line);
+      }
+    }
   }
   if (c.ads_station) {
     f.ads_reference = FitAdsIntoDirectory(
@@ -172,7 +187,8 @@ void FitStrategies(Context& c, CampaignArtifacts& f) {
     f.ads_improved = FitAdsIntoDirectory(
         f.ads_calibration_run, kHysteresisAdsStrategyName, f.ads_improved_dir, o.software_version);
   }
-  for (const auto* fits : {&f.imu_reference, &f.imu_joint, &f.ads_reference, &f.ads_improved}) {
+  for (const auto* fits :
+       {&f.imu_reference, &f.imu_joint, &f.imu_file_strategy, &f.ads_reference, &f.ads_improved}) {
     for (const WrittenConstants& w : *fits) c.records.AddConstants(ConstantsRecordFromFile(w.path));
   }
   c.observer.Stage(fmt::format("fits written: {} IMU x 2 strategies, {} ADS x 2 strategies",
@@ -187,6 +203,7 @@ struct ImprovedDownloads {
 
 // The fit directory of the downloaded strategy of each kind.
 std::filesystem::path DownloadedImuDir(const CampaignOptions& o, const CampaignArtifacts& f) {
+  if (IsImuStrategyFile(o.imu_strategy)) return f.imu_file_strategy_dir;
   return o.imu_strategy == "reference" ? f.imu_reference_dir : f.imu_joint_dir;
 }
 std::filesystem::path DownloadedAdsDir(const CampaignOptions& o, const CampaignArtifacts& f) {
@@ -198,7 +215,7 @@ ImprovedDownloads DownloadConstantsStage(Context& c, const CampaignArtifacts& f)
   c.observer.Stage(fmt::format(
       "3/8 download: IMU {} and ADS {} constants into every unit, read back bit for bit, "
       "committed",
-      c.o.imu_strategy,
+      ImuStrategyLabel(c.o.imu_strategy),
       c.o.ads_strategy));
   DownloadLedger ledger;
   ledger.verified_before = [&c](const std::string& serial, const std::string& sha256) {
@@ -431,6 +448,15 @@ void PrepareBench(Context& c,
 
 }  // namespace
 
+bool IsImuStrategyFile(const std::string& imu_strategy) {
+  return imu_strategy.size() > 5 && imu_strategy.ends_with(".json");
+}
+
+std::string ImuStrategyLabel(const std::string& imu_strategy) {
+  return IsImuStrategyFile(imu_strategy) ? std::filesystem::path(imu_strategy).stem().string()
+                                         : imu_strategy;
+}
+
 CampaignResult RunCampaign(const CampaignOptions& o,
                            CampaignObserver& observer,
                            const std::atomic<bool>& stop) {
@@ -496,7 +522,7 @@ CampaignResult RunCampaign(const CampaignOptions& o,
   }
   c.journal.MarkDone(kStageRecords);
   observer.Stage("certificates: one per judged unit -> " + (o.out_dir / "certificates").string());
-  AddUnitOutcomes(o, downloads.imu, o.imu_strategy, acceptance, result);
+  AddUnitOutcomes(o, downloads.imu, ImuStrategyLabel(o.imu_strategy), acceptance, result);
   AddUnitOutcomes(o, downloads.ads, o.ads_strategy, acceptance, result);
   if (!acceptance.last.empty()) result.yield = c.records.Yields(c.journal.campaign_id()).front();
   return result;

@@ -52,19 +52,28 @@ struct CampaignArtifacts {
   std::filesystem::path imu_acceptance_run, ads_acceptance_run;
   std::filesystem::path imu_reference_dir, imu_joint_dir, ads_reference_dir, ads_improved_dir;
   std::vector<WrittenConstants> imu_reference, imu_joint, ads_reference, ads_improved;
+  /// The IMU strategy file's fits (CampaignOptions::imu_strategy a file): fits/imu-<its stem>.
+  std::filesystem::path imu_file_strategy_dir;
+  std::vector<WrittenConstants> imu_file_strategy;
   double imu_local_gravity_mps2 = 0.0;
   double ads_local_gravity_mps2 = 0.0;
 };
 
 struct CampaignResult;
 
+/// Whether a campaign's IMU strategy names a strategy file rather than a built-in.
+bool IsImuStrategyFile(const std::string& imu_strategy);
+/// The name a campaign's IMU strategy goes by: the built-in's, or the strategy file's stem.
+std::string ImuStrategyLabel(const std::string& imu_strategy);
+
 struct CampaignOptions {
   std::filesystem::path out_dir;
   std::string imu_station_file;  ///< empty: no IMU bench
   std::string ads_station_file;  ///< empty: no ADS bench
   CampaignSequences sequences;
-  /// The strategy whose constants are downloaded: IMU "joint" or "reference", ADS
-  /// "hysteresis_compensated" or "reference".
+  /// The strategy whose constants are downloaded: IMU "joint", "reference" or an IMU strategy
+  /// file (a path ending in .json, e.g. an external program's: fitted besides the two built-ins),
+  /// ADS "hysteresis_compensated" or "reference".
   std::string imu_strategy = "joint";
   std::string ads_strategy = "hysteresis_compensated";
   /// Expected serial per station unit role; a unit giving another serial is refused.

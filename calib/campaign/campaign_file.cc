@@ -1,5 +1,7 @@
 #include "calib/campaign/campaign_file.h"
 
+#include "calib/imu_calibration/imu_strategy.h"
+
 #include <set>
 
 #include "calib/ads_calibration/reference_ads_strategy.h"
@@ -38,6 +40,25 @@ std::string OneOf(const ParamReader& r, std::string_view key, const std::set<std
            "unknown strategy \"" + value + "\" (expected one of " + allowed + ")");
   }
   return value;
+}
+
+// "joint", "reference" or an IMU strategy file (resolved, read now so that a bad one is refused
+// before any run; its stem names its fit directory, which may not be a built-in's).
+std::string ImuStrategyOf(const ParamReader& fit, const std::filesystem::path& base_dir) {
+  const std::string value = fit.String("imu");
+  if (!IsImuStrategyFile(value)) return OneOf(fit, "imu", {"joint", "reference"});
+  const std::string file = Resolve(value, base_dir);
+  const std::string stem = ImuStrategyLabel(file);
+  if (stem == "joint" || stem == "reference") {
+    fit.Fail(fit.path() + ".imu",
+             "a strategy file may not be called " + stem +
+                 ".json (its fits would replace the built-in's)");
+  }
+  if (!std::filesystem::is_regular_file(file)) {
+    fit.Fail(fit.path() + ".imu", "no strategy file " + file);
+  }
+  ImuStrategy::Load(file);
+  return file;
 }
 
 CampaignSequences ReadSequences(const ParamReader& r,
@@ -88,7 +109,7 @@ CampaignFile CampaignFile::FromJson(const nlohmann::json& document,
   c.name = r.String("name");
   c.sequences = ReadSequences(r.Child("sequences"), document.at("sequences"), base_dir);
   const ParamReader fit = r.Child("fit");
-  c.imu_strategy = OneOf(fit, "imu", {"joint", "reference"});
+  c.imu_strategy = ImuStrategyOf(fit, base_dir);
   c.ads_strategy = OneOf(fit, "ads", {kHysteresisAdsStrategyName, kReferenceAdsStrategyName});
   fit.ExpectAllKeysUsed();
   if (r.Has("specification")) c.specification_file = FileName(r, "specification", base_dir);

@@ -1,7 +1,7 @@
 // The campaign file (docs/campaign.md): what `adahrs campaign` runs on a station, as a versioned
 // JSON document outside the code. It names the sequence of each stage (the IMU calibration runs,
 // fitted together; the ADS calibration run; the IMU and ADS acceptance runs), the strategy whose
-// constants are downloaded per unit kind (IMU "joint" or "reference"; ADS
+// constants are downloaded per unit kind (IMU "joint", "reference" or an IMU strategy file; ADS
 // "hysteresis_compensated" or "reference": the campaign fits both of each kind and downloads the
 // one named), the specification file acceptance judges against (default: the AHR150A -A
 // specification compiled in), the serial expected on each unit role of the stations (optional)
@@ -27,7 +27,7 @@ inline constexpr int kCampaignFileFormatVersion = 1;
 struct CampaignFile {
   std::string name;
   CampaignSequences sequences;
-  std::string imu_strategy = "joint";                   ///< "joint" or "reference"
+  std::string imu_strategy = "joint";  ///< "joint", "reference" or a strategy file (absolute)
   std::string ads_strategy = "hysteresis_compensated";  ///< or "reference"
   /// Specification file; empty: the AHR150A -A specification compiled in.
   std::string specification_file;

@@ -75,10 +75,10 @@ ExternalReplayOutcome Replay(const std::filesystem::path& fit_dir,
   o.elapsed_s = run.elapsed_s;
   const std::string who = "replay of " + file.serial + " with " + o.strategy_file;
   if (!run.Succeeded() || !run.stdin_fully_read) {
-    throw ExternalStrategyError(who + ": " +
-                                (run.Succeeded() ? "exited without reading its request"
-                                                 : run.Outcome(program.timeout_s)) +
-                                "; the end of its stderr:\n" + run.stderr_tail);
+    throw ExternalStrategyError(
+        who + ": " +
+        (run.Succeeded() ? "exited without reading its request" : run.Outcome(program.timeout_s)) +
+        "; the end of its stderr:\n" + run.stderr_tail);
   }
   CheckedReply reply;
   try {
@@ -129,7 +129,8 @@ std::vector<ExternalReplayOutcome> ReplayExternalFits(
     outcomes.push_back(Replay(fit_dir, file, strategy_file));
   }
   if (outcomes.empty()) {
-    throw ImuInputError(fit_dir.string() + ": no external fit to replay (no <serial>.request.json.gz)");
+    throw ImuInputError(fit_dir.string() +
+                        ": no external fit to replay (no <serial>.request.json.gz)");
   }
   return outcomes;
 }

@@ -17,7 +17,7 @@ namespace adahrs::calib {
 
 struct ExternalReplayOutcome {
   std::string serial;
-  std::string strategy_file;      ///< the file whose program ran
+  std::string strategy_file;        ///< the file whose program ran
   bool strategy_unchanged = false;  ///< its SHA-256 is the one recorded
   bool reply_identical = false;     ///< the new reply's bytes are the kept reply's
   bool constants_identical = false;
