@@ -23,6 +23,10 @@ but a unit failed acceptance" in docs/campaign.md, is accepted beside 0).
    (counted in the records' downloads table, which has a row per attempt), and its records equal
    the uninterrupted campaign's apart from times, checksums and measured values.
 3. Refusals: a malformed campaign file names the file and JSON path; a non-empty --out is refused.
+4. The IMU constants downloaded are the shipped Python reference strategy's (an external program,
+   docs/strategies-external.md), fitted beside the built-ins: its constants agree with the
+   built-in reference fit's of the same runs to 1e-9 of each output's span
+   (constants_agreement.py).
 
 Usage: campaign_command_test.py ADAHRS_BINARY
 """
@@ -39,6 +43,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import report_checks  # noqa: E402
+from constants_agreement import worst_agreement  # noqa: E402
 
 SOURCE = pathlib.Path(__file__).resolve().parents[2]
 SEQUENCES = SOURCE / "calib" / "sequences"
@@ -56,6 +61,10 @@ ALT_MAX_FT = 10000.0
 CAS_MAX_KT = 150.0
 ALT_RATE_FT_PER_MIN = 6000.0
 CAS_RATE_KT_PER_MIN = 200.0
+# The IMU constants downloaded: the shipped Python reference strategy, an external program
+# (docs/strategies-external.md), whose constants must equal the built-in reference fit's.
+PYTHON_STRATEGY = SOURCE / "strategies" / "python" / "python-reference.json"
+EXTERNAL_AGREEMENT = 1e-9
 SHIPPED = {"imu_calibration": "imu_thermal_sensor_calibration", "ads_calibration": "ads_calibration",
            "imu_acceptance": "imu_acceptance", "ads_acceptance": "ads_acceptance"}
 
@@ -197,7 +206,7 @@ def campaign_file(tmp):
             "ads_calibration": sequences["ads_calibration"],
             "imu_acceptance": sequences["imu_acceptance"],
             "ads_acceptance": sequences["ads_acceptance"]},
-        "fit": {"imu": "joint", "ads": "hysteresis_compensated"},
+        "fit": {"imu": str(PYTHON_STRATEGY), "ads": "hysteresis_compensated"},
         "retest": {"max_attempts": 1}}))
     return path
 
@@ -279,6 +288,28 @@ def check_complete(out, status, what):
                 fail(f"{what}: {run} holds {len(judgements)} acceptance.json")
 
 
+def check_external_fits(out, what):
+    """The Python strategy's constants (downloaded) against the built-in reference fit of the same
+    runs (constants_agreement.py: each difference's effect on the output over the fitted range,
+    relative to its span); its request and reply kept beside them."""
+    external, builtin = out / "fits" / "imu-python-reference", out / "fits" / "imu-reference"
+    files = sorted(builtin.glob("IMU-*.json"))
+    if len(files) != 4:
+        fail(f"{what}: {len(files)} built-in reference fits")
+    worst = (0.0, "")
+    for path in files:
+        mine = json.loads((external / path.name).read_text())
+        if mine["strategy"] != "python-reference" or "external" not in mine["provenance"] or \
+                not (external / f"{path.stem}.request.json.gz").exists():
+            fail(f"{what}: {external / path.name} is not the Python strategy's fit")
+        value, where = worst_agreement(mine["constants"], json.loads(path.read_text())["constants"])
+        worst = max(worst, (value, f"{path.stem} {where}"))
+    print(f"{what}: the Python reference strategy agrees with the built-in to {worst[0]:.2g} "
+          f"(worst: {worst[1]})")
+    if worst[0] > EXTERNAL_AGREEMENT:
+        fail(f"{what}: the Python reference strategy differs from the built-in: {worst}")
+
+
 def records_shape(out):
     """The records without times, checksums, run ids and measured values."""
     db = sqlite3.connect(out / "records.sqlite")
@@ -341,6 +372,7 @@ def campaigns(adahrs, tmp):
         finish(process, "uninterrupted campaign")
         print(f"uninterrupted quick campaign: {time.monotonic() - t0:.0f} s wall")
         check_complete(whole, process.returncode, "uninterrupted campaign")
+        check_external_fits(whole, "uninterrupted campaign")
     finally:
         rig.stop()
     report_checks.check_reports(sorted(p.parent for p in (whole / "runs").glob("*/meta.json")),
@@ -370,6 +402,7 @@ def campaigns(adahrs, tmp):
         process = resume(adahrs, interrupted)
         finish(process, "resumed campaign")
         check_complete(interrupted, process.returncode, "resumed campaign")
+        check_external_fits(interrupted, "resumed campaign")
     finally:
         rig.stop()
 

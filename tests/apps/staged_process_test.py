@@ -23,7 +23,9 @@ Checked:
    sensor runs (`adahrs evaluate`: worst acceleration within 0.25 mg; worst body rate within
    twice the gyro bias drift measured between the two runs' cross-axis steps + 0.03 deg/s;
    docs/campaign.md "The staged process" states the measured figures);
-4. refusals, each naming the cause, with nothing written: a staged fit without its base, with
+4. the shipped Python and Octave reference strategies (external programs) fit the thermal and
+   sensor runs to the built-in reference fit's constants within 1e-9 of each output's span;
+5. refusals, each naming the cause, with nothing written: a staged fit without its base, with
    the joint strategy, or on a base that lacks the earlier stage; a constants file whose stages
    skip one, refused by the download with its JSON path before anything is sent.
 
@@ -40,6 +42,7 @@ import tempfile
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from campaign_command_test import Rig  # noqa: E402
+from constants_agreement import worst_agreement  # noqa: E402
 
 SOURCE = pathlib.Path(__file__).resolve().parents[2]
 SEQUENCES = SOURCE / "calib" / "sequences"
@@ -242,6 +245,24 @@ def staged_process(adahrs, rig, tmp):
     return runs, fits
 
 
+def external_strategies(adahrs, runs, one_shot, tmp):
+    """The shipped Python and Octave reference strategies (external programs,
+    docs/strategies-external.md) on the thermal and sensor runs: constants that agree with the
+    built-in one-shot reference fit's to 1e-9 of each output's span (constants_agreement.py)."""
+    for language, name in (("python", "python-reference"), ("octave", "octave-reference")):
+        out = tmp / "fits" / name
+        run(adahrs, "fit", "--run", runs["thermal"], "--run", runs["sensor"], "--strategy",
+            SOURCE / "strategies" / language / f"{name}.json", "--out", out)
+        worst = (0.0, "")
+        for path in sorted(one_shot.glob("IMU-*.json")):
+            value, where = worst_agreement(json.loads((out / path.name).read_text())["constants"],
+                                           json.loads(path.read_text())["constants"])
+            worst = max(worst, (value, f"{path.stem} {where}"))
+        print(f"{name}: agrees with the built-in reference fit to {worst[0]:.2g} ({worst[1]})")
+        if worst[0] > 1e-9:
+            fail(f"{name} differs from the built-in reference fit: {worst}")
+
+
 def main():
     adahrs = sys.argv[1]
     tmp = pathlib.Path(tempfile.mkdtemp(prefix="adahrs-staged-"))
@@ -261,6 +282,7 @@ def main():
         one_shot = tmp / "fits" / "one-shot"
         run(adahrs, "fit", "--run", runs["thermal"], "--run", runs["sensor"], "--strategy",
             reference, "--out", one_shot)
+        external_strategies(adahrs, runs, one_shot, tmp)
         for path in sorted(fits["cross_axis"].glob("IMU-*.json")):
             staged = json.loads(path.read_text())
             if staged["stages"] != ["thermal", "sensor", "cross_axis"]:
