@@ -138,8 +138,8 @@ function out = compensate(c, mode, u, temp)
          0.5 * (cal(:, pair(:, 1)) - cal(:, pair(:, 2)))];
 end
 
-% The rows of an acquisition: u (n x 9) and temp (n x 3); reshape keeps a one-row acquisition a
-% row (jsondecode turns [[...]] of one row into a column).
+% The rows of an acquisition: u (n x 9) and temp (n x 3), whatever shape jsondecode gave an
+% acquisition of one row or none.
 function [u, temp] = rows_of(a)
   u = reshape(double(a.samples.u), [], 9);
   temp = reshape(double(a.samples.temp_cnt), [], 3);
@@ -515,7 +515,9 @@ function [matrix, matrix_se, condition] = fit_cross_axis(k, reference, context)
   end
 end
 
-% ---- JSON out (jsonencode prints numbers in fixed notation: 1e-20 becomes 0) ------------------
+% ---- JSON out -----------------------------------------------------------------------------------
+% Written by hand: Octave 7's jsonencode writes some small numbers as 0 (1.2345678901234567e-18,
+% 1e-20/3: a gyro's l3 is ~1e-20) and a 1-element array as a scalar.
 
 function s = json_number(x)
   if !isfinite(x)
@@ -598,11 +600,13 @@ end
 
 % ---- The program --------------------------------------------------------------------------------
 
-% Octave 7 writes the command history at exit and, with standard input at its end, prints
-% "error: ignoring const execution_exception& while preparing to exit" there: no history.
+% Octave 7 saves the command history at exit and, once standard input has reached its end, prints
+% "error: ignoring const execution_exception& while preparing to exit" there: save none.
 history_save(false);
 try
   text = fread(stdin, Inf, "*char")';  % the whole request, to its end
+  % jsondecode (RapidJSON's fast parse) reads a few percent of 17-digit numbers one unit in
+  % the last place off; the constants move by ~1e-15 of their size, far inside any tolerance.
   request = jsondecode(text);
   if !strcmp(request.protocol, "adahrs-strategy-request") || request.protocol_version != 1 ...
      || !strcmp(request.kind, "imu")
