@@ -7,7 +7,8 @@ accel acquisition, with raw counts from closed forms:
    saw are kept (gzip) beside them and their SHA-256 (computed here with hashlib) are those the
    constants file's provenance records, with the strategy file's; its log lines are printed; the
    request holds the recording's SHA-256, the acquisition's mean duty and counts as computed here
-   from the rows, and every thermal row (its band sums, recomputed here from the rows);
+   from the rows, and every thermal row (its band sums, recomputed here from the rows); the request
+   and the reply validate against docs/schemas/ (python3-jsonschema, Draft 2020-12);
 2. hostile programs are refused, each with the program and the cause named, and the output
    directory left byte for byte as it was: one that hangs (killed at its timeout), exits 3, writes
    half a JSON object, writes NaN, writes a null constant, writes a constant the firmware cannot
@@ -27,6 +28,10 @@ import subprocess
 import sys
 import tempfile
 import time
+
+import jsonschema
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 HEAD = """import json, sys
 request = json.load(sys.stdin)
@@ -218,6 +223,12 @@ def check_good(adahrs, tmp, run_dir, steps):
             constants["constants"] != json.loads(reply)["constants"]:
         fail("the constants file does not hold the reply's constants under the strategy's name")
     req = json.loads(request)
+    for document, schema in ((req, "strategy-request"), (json.loads(reply), "strategy-reply")):
+        schema_doc = json.loads((ROOT / "docs" / "schemas" / f"{schema}.schema.json").read_text())
+        try:
+            jsonschema.validate(document, schema_doc, cls=jsonschema.Draft202012Validator)
+        except jsonschema.ValidationError as e:
+            fail(f"the {schema} does not validate: {e.message} at {list(e.absolute_path)}")
     sha = constants["provenance"]["recordings"][0]["sha256"]
     if req["recordings"][0]["sha256"] != sha or req["serial"] != "IMU-0001":
         fail(f"the request's recordings {req['recordings']}")
