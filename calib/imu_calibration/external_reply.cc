@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "calib/imu_calibration/external_request.h"
+#include "calib/imu_calibration/external_protocol.h"
 #include "calib/imu_calibration/imu_fit_result.h"
 #include "common/imu_layout.h"
 #include "common/printable_text.h"
@@ -28,7 +28,7 @@ void ImuScaleTemperatureNaN(firmware_model::ImuScaleTemperature* s, double nan) 
 json Parse(const std::string& bytes) {
   try {
     return json::parse(bytes);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number beyond a double
     Refuse("its standard output is not one JSON object (" + std::string(e.what()) +
            "); it began: " + "\"" + common::PrintableText(std::string_view(bytes).substr(0, 200)) +
            "\"");

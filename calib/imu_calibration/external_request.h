@@ -14,13 +14,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calib/imu_calibration/external_protocol.h"
 #include "calib/imu_calibration/imu_run_data.h"
 
 namespace adahrs::calib {
-
-inline constexpr int kExternalProtocolVersion = 1;
-inline constexpr const char* kExternalRequestName = "adahrs-strategy-request";
-inline constexpr const char* kExternalReplyName = "adahrs-strategy-reply";
 
 /// What the strategy file asks the request to hold.
 struct ExternalRequestInputs {

@@ -66,6 +66,13 @@ TEST(ExternalReply, RefusesWhatIsNotOneJsonObject) {
   EXPECT_THAT(Refusal(std::string("[1, 2]")), HasSubstr("not an object"));
 }
 
+TEST(ExternalReply, RefusesANumberBeyondADouble) {
+  std::string bytes = Reply().dump();
+  const std::string nine_eight = "9.8";
+  bytes.replace(bytes.find(nine_eight), nine_eight.size(), "3.08e6486");
+  EXPECT_THAT(Refusal(bytes), HasSubstr("is not one JSON object"));
+}
+
 TEST(ExternalReply, RefusesNaNWrittenAsPythonWritesIt) {
   std::string bytes = Reply().dump();
   const std::string nine_eight = "9.8";
