@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 
 namespace adahrs::common {
@@ -21,7 +22,7 @@ ChildProgramResult Spawn(std::vector<std::string> argv,
 
 TEST(ChildProgram, PassesEightMegabytesThroughCatUnchanged) {
   std::string in;
-  for (int i = 0; in.size() < (8u << 20); ++i) in += std::to_string(i * 7919) + "\n";
+  for (int64_t i = 0; in.size() < (8u << 20); ++i) in += std::to_string(i * 7919) + "\n";
   const ChildProgramResult r = Spawn({"cat"}, in);
   EXPECT_TRUE(r.Succeeded()) << r.Outcome(60);
   EXPECT_TRUE(r.stdin_fully_read);
