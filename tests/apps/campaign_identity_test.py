@@ -166,6 +166,7 @@ def main():
             document["expected_serials"] = {"imu1": label["imu2"], "imu2": label["imu1"],
                                             "imu3": label["imu3"], "imu4": label["imu4"]}
             document["retest"] = {"max_attempts": 2}
+            document["fit"]["imu"] = "joint"  # the built-in downloaded: fits/imu-joint
             campaign.write_text(json.dumps(document))
             out = tmp / "out"
             result = subprocess.run(
