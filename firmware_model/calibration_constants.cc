@@ -268,12 +268,12 @@ json ToJson(const ImuCalibrationConstants& c) {
   return out;
 }
 
-ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j) {
-  ExpectKeys(j, "imu", {"thermal", "accel", "gyro", "ca_mps2_per_g", "cg"}, {"scale_temperature"});
+ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j, const std::string& root) {
+  ExpectKeys(j, root, {"thermal", "accel", "gyro", "ca_mps2_per_g", "cg"}, {"scale_temperature"});
   ImuCalibrationConstants c;
-  const json& thermal = Array(j["thermal"], "imu.thermal", 9);
+  const json& thermal = Array(j["thermal"], root + ".thermal", 9);
   for (size_t i = 0; i < 9; ++i) {
-    const std::string path = "imu.thermal[" + std::to_string(i) + "]";
+    const std::string path = root + ".thermal[" + std::to_string(i) + "]";
     ExpectKeys(thermal[i], path, {"temp_sensor", "k", "temp_min_cnt", "temp_max_cnt"});
     const double sensor = Number(thermal[i]["temp_sensor"], path + ".temp_sensor");
     if (sensor != 0.0 && sensor != 1.0 && sensor != 2.0) {
@@ -293,9 +293,9 @@ ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j) {
                                " must be an increasing span inside 0..65535");
     }
   }
-  const json& accel = Array(j["accel"], "imu.accel", 6);
+  const json& accel = Array(j["accel"], root + ".accel", 6);
   for (size_t i = 0; i < 6; ++i) {
-    const std::string path = "imu.accel[" + std::to_string(i) + "]";
+    const std::string path = root + ".accel[" + std::to_string(i) + "]";
     ExpectKeys(accel[i], path, {"offset_duty", "scale_duty_per_g"});
     c.accel[i].offset_duty = Number(accel[i]["offset_duty"], path + ".offset_duty");
     c.accel[i].scale_duty_per_g = Number(accel[i]["scale_duty_per_g"], path + ".scale_duty_per_g");
@@ -303,17 +303,18 @@ ImuCalibrationConstants ImuCalibrationConstantsFromJson(const json& j) {
       throw std::runtime_error(path + ".scale_duty_per_g: must not be zero");
     }
   }
-  const json& gyro = Array(j["gyro"], "imu.gyro", 3);
+  const json& gyro = Array(j["gyro"], root + ".gyro", 3);
   for (size_t i = 0; i < 3; ++i) {
-    const std::string path = "imu.gyro[" + std::to_string(i) + "]";
+    const std::string path = root + ".gyro[" + std::to_string(i) + "]";
     ExpectKeys(gyro[i], path, {"null_cnt", "l"});
     c.gyro[i].null_cnt = Number(gyro[i]["null_cnt"], path + ".null_cnt");
     c.gyro[i].l = Numbers<4>(gyro[i]["l"], path + ".l");
   }
-  c.ca_mps2_per_g = Matrix(j["ca_mps2_per_g"], "imu.ca_mps2_per_g");
-  c.cg = Matrix(j["cg"], "imu.cg");
+  c.ca_mps2_per_g = Matrix(j["ca_mps2_per_g"], root + ".ca_mps2_per_g");
+  c.cg = Matrix(j["cg"], root + ".cg");
   if (j.contains("scale_temperature")) {
-    c.scale_temperature = ScaleTemperatureFromJson(j["scale_temperature"], "imu.scale_temperature");
+    c.scale_temperature =
+        ScaleTemperatureFromJson(j["scale_temperature"], root + ".scale_temperature");
   }
   return c;
 }
@@ -323,7 +324,7 @@ json ToJson(const AdsCalibrationConstants& c) {
               {"airspeed_kt", SurfaceToJson(c.airspeed_kt)}};
 }
 
-json WithCurrentAdsKeys(json ads) {
+json WithCurrentAdsKeys(json ads, const std::string& root) {
   if (!ads.is_object()) return ads;
   for (const char* surface : {"altitude_ft", "airspeed_kt"}) {
     if (!ads.contains(surface) || !ads[surface].is_object() ||
@@ -335,7 +336,7 @@ json WithCurrentAdsKeys(json ads) {
                                        std::pair{"thermal_gain_per_degc", "thermal_gain_per_c"}}) {
       if (!h.contains(old_key)) continue;
       if (h.contains(key)) {
-        throw std::runtime_error(std::string("ads.") + surface + ".hysteresis." + old_key +
+        throw std::runtime_error(root + "." + surface + ".hysteresis." + old_key +
                                  ": the same as " + key + ", which is present too");
       }
       h[key] = std::move(h[old_key]);
@@ -345,12 +346,14 @@ json WithCurrentAdsKeys(json ads) {
   return ads;
 }
 
-AdsCalibrationConstants AdsCalibrationConstantsFromJson(const json& file_json) {
-  const json j = WithCurrentAdsKeys(file_json);
-  ExpectKeys(j, "ads", {"altitude_ft", "airspeed_kt"});
+AdsCalibrationConstants AdsCalibrationConstantsFromJson(const json& file_json,
+                                                        const std::string& root) {
+  const json j = WithCurrentAdsKeys(file_json, root);
+  ExpectKeys(j, root, {"altitude_ft", "airspeed_kt"});
   AdsCalibrationConstants c;
-  c.altitude_ft = SurfaceFromJson(j["altitude_ft"], "ads.altitude_ft", SurfaceLaw::kIsaAltitude);
-  c.airspeed_kt = SurfaceFromJson(j["airspeed_kt"], "ads.airspeed_kt", SurfaceLaw::kCas);
+  c.altitude_ft =
+      SurfaceFromJson(j["altitude_ft"], root + ".altitude_ft", SurfaceLaw::kIsaAltitude);
+  c.airspeed_kt = SurfaceFromJson(j["airspeed_kt"], root + ".airspeed_kt", SurfaceLaw::kCas);
   return c;
 }
 

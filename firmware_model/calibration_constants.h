@@ -136,11 +136,14 @@ struct AdsCalibrationConstants {
 };
 
 /// JSON forms; the readers throw std::runtime_error naming the JSON path of a missing, mistyped
-/// or unexpected key.
+/// or unexpected key, from `root` (the object's own path in the document read, e.g.
+/// "$.constants" in a constants file).
 nlohmann::json ToJson(const ImuCalibrationConstants& constants);
 nlohmann::json ToJson(const AdsCalibrationConstants& constants);
-ImuCalibrationConstants ImuCalibrationConstantsFromJson(const nlohmann::json& json);
-AdsCalibrationConstants AdsCalibrationConstantsFromJson(const nlohmann::json& json);
+ImuCalibrationConstants ImuCalibrationConstantsFromJson(const nlohmann::json& json,
+                                                        const std::string& root = "imu");
+AdsCalibrationConstants AdsCalibrationConstantsFromJson(const nlohmann::json& json,
+                                                        const std::string& root = "ads");
 
 /// `ads` (an ADS constants object, or its standard errors, which have its shape) with the keys that
 /// files of earlier software spell otherwise under today's names: a hysteresis object's
@@ -148,6 +151,6 @@ AdsCalibrationConstants AdsCalibrationConstantsFromJson(const nlohmann::json& js
 /// `thermal_gain_per_c`. A key present under both names is refused (std::runtime_error naming its
 /// JSON path); anything that is not such an object is returned unchanged for the reader to refuse.
 /// AdsCalibrationConstantsFromJson applies it.
-nlohmann::json WithCurrentAdsKeys(nlohmann::json ads);
+nlohmann::json WithCurrentAdsKeys(nlohmann::json ads, const std::string& root = "ads");
 
 }  // namespace adahrs::firmware_model

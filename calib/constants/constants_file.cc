@@ -63,19 +63,6 @@ void CheckShape(const json& value,
   }
 }
 
-// A constants reader's message ("imu.gyro[1].l: missing") with the file's JSON path
-// ("$.constants.gyro[1].l: missing").
-std::string ConstantsPath(const std::string& message) {
-  for (const char* root : {"imu", "ads"}) {
-    const std::string r(root);
-    if (message.rfind(r + ".", 0) == 0 || message.rfind(r + "[", 0) == 0 ||
-        message.rfind(r + ":", 0) == 0) {
-      return "$.constants" + message.substr(r.size());
-    }
-  }
-  return "$.constants: " + message;
-}
-
 bool IsSha256Hex(const std::string& s) {
   if (s.size() != 64) return false;
   for (char c : s) {
@@ -152,18 +139,19 @@ ConstantsFile Parse(const json& j, const std::string& source) {
   }
   try {
     if (file.kind == hil::UnitKind::kImu) {
-      file.imu = firmware_model::ImuCalibrationConstantsFromJson(constants);
+      file.imu = firmware_model::ImuCalibrationConstantsFromJson(constants, "$.constants");
     } else {
-      file.ads = firmware_model::AdsCalibrationConstantsFromJson(constants);
+      file.ads = firmware_model::AdsCalibrationConstantsFromJson(constants, "$.constants");
     }
   } catch (const std::runtime_error& e) {
-    throw ConstantsFileError(source + ": " + ConstantsPath(e.what()));
+    throw ConstantsFileError(source + ": " + e.what());
   }
   reader.Child("standard_errors");
   file.standard_errors = j.at("standard_errors");
   CheckShape(constants, file.standard_errors, "$.standard_errors", source);
   if (file.ads) {  // the constants were read under today's key names; so are their errors
-    file.standard_errors = firmware_model::WithCurrentAdsKeys(file.standard_errors);
+    file.standard_errors =
+        firmware_model::WithCurrentAdsKeys(file.standard_errors, "$.standard_errors");
   }
 
   const ParamReader provenance = reader.Child("provenance");

@@ -5,10 +5,8 @@
 #include <fmt/format.h>
 
 #include "calib/constants/constants_file.h"
-#include "calib/imu_calibration/external_reply.h"
 #include "calib/imu_calibration/imu_run_data.h"
 #include "calib/imu_calibration/imu_strategy.h"
-#include "common/child_program.h"
 #include "common/sha256.h"
 #include "hil/recording/gzip_reader.h"
 
@@ -70,25 +68,13 @@ ExternalReplayOutcome Replay(const std::filesystem::path& fit_dir,
   }
   const ExternalImuProgram& program = *strategy.external;
   o.strategy_unchanged = program.strategy_sha256 == record.strategy_sha256;
-  const common::ChildProgramResult run = common::RunChildProgram(
-      {program.argv, program.working_directory, request, program.timeout_s});
+  const ExternalRun run = RunExternalProgram(
+      program, request, file.serial, "replay of " + file.serial + " with " + o.strategy_file);
   o.elapsed_s = run.elapsed_s;
-  const std::string who = "replay of " + file.serial + " with " + o.strategy_file;
-  if (!run.Succeeded() || !run.stdin_fully_read) {
-    throw ExternalStrategyError(
-        who + ": " +
-        (run.Succeeded() ? "exited without reading its request" : run.Outcome(program.timeout_s)) +
-        "; the end of its stderr:\n" + run.stderr_tail);
-  }
-  CheckedReply reply;
-  try {
-    reply = CheckExternalReply(run.stdout_bytes, file.serial, program.firmware_format);
-  } catch (const std::runtime_error& e) {
-    throw ExternalStrategyError(who + ": reply refused: " + e.what());
-  }
-  o.reply_identical = common::Sha256Hex(run.stdout_bytes) == record.reply_sha256;
-  o.difference = FirstDifference(
-      firmware_model::ToJson(*file.imu), firmware_model::ToJson(reply.constants), "$.constants");
+  o.reply_identical = common::Sha256Hex(run.reply_bytes) == record.reply_sha256;
+  o.difference = FirstDifference(firmware_model::ToJson(*file.imu),
+                                 firmware_model::ToJson(run.reply.constants),
+                                 "$.constants");
   o.constants_identical = o.difference.empty();
   return o;
 }

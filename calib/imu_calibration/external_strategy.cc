@@ -1,9 +1,5 @@
 #include "calib/imu_calibration/external_strategy.h"
 
-#include <fstream>
-#include <sstream>
-
-#include "calib/imu_calibration/external_reply.h"
 #include "calib/imu_calibration/imu_run_data.h"
 #include "common/child_program.h"
 #include "common/printable_text.h"
@@ -14,13 +10,6 @@ namespace {
 
 constexpr size_t kStderrInMessage = 2000;
 constexpr const char* kBuiltInNames[] = {"reference", "joint"};
-
-std::string FileBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
 
 ExternalRequestInputs ReadInputs(const common::ParamReader& r) {
   ExternalRequestInputs inputs;
@@ -82,8 +71,31 @@ ExternalImuProgram ReadExternalProgram(const common::ParamReader& r,
     p.options = j.at("options");
   }
   p.working_directory = std::filesystem::absolute(path).parent_path();
-  p.strategy_sha256 = common::Sha256Hex(FileBytes(path));
+  p.strategy_sha256 = common::FileSha256(path);
   return p;
+}
+
+ExternalRun RunExternalProgram(const ExternalImuProgram& program,
+                               const std::string& request,
+                               const std::string& serial,
+                               const std::string& who) {
+  const common::ChildProgramResult run = common::RunChildProgram(
+      {program.argv, program.working_directory, request, program.timeout_s});
+  if (!run.Succeeded()) {
+    throw ExternalStrategyError(who + ": " + run.Outcome(program.timeout_s) +
+                                StderrTail(run.stderr_tail));
+  }
+  if (!run.stdin_fully_read) {
+    throw ExternalStrategyError(who + ": exited without reading its whole request from stdin" +
+                                StderrTail(run.stderr_tail));
+  }
+  try {
+    return {CheckExternalReply(run.stdout_bytes, serial, program.firmware_format),
+            run.stdout_bytes,
+            run.elapsed_s};
+  } catch (const std::runtime_error& e) {
+    throw ExternalStrategyError(who + ": reply refused: " + e.what() + StderrTail(run.stderr_tail));
+  }
 }
 
 ConstantsFile FitImuExternal(const ImuUnitData& unit,
@@ -96,24 +108,10 @@ ConstantsFile FitImuExternal(const ImuUnitData& unit,
   const ExternalRequestHeader header{
       program.name, program.options, program.firmware_format, program.inputs};
   exchange->request = ExternalImuRequest(unit, data, header).dump() + "\n";
-  const common::ChildProgramResult run = common::RunChildProgram(
-      {program.argv, program.working_directory, exchange->request, program.timeout_s});
-  exchange->reply = run.stdout_bytes;
+  const ExternalRun run = RunExternalProgram(program, exchange->request, unit.serial, who);
+  exchange->reply = run.reply_bytes;
   exchange->elapsed_s = run.elapsed_s;
-  if (!run.Succeeded()) {
-    throw ExternalStrategyError(who + ": " + run.Outcome(program.timeout_s) +
-                                StderrTail(run.stderr_tail));
-  }
-  if (!run.stdin_fully_read) {
-    throw ExternalStrategyError(who + ": exited without reading its whole request from stdin" +
-                                StderrTail(run.stderr_tail));
-  }
-  CheckedReply reply;
-  try {
-    reply = CheckExternalReply(run.stdout_bytes, unit.serial, program.firmware_format);
-  } catch (const std::runtime_error& e) {
-    throw ExternalStrategyError(who + ": reply refused: " + e.what() + StderrTail(run.stderr_tail));
-  }
+  const CheckedReply& reply = run.reply;
   exchange->log = reply.log;
   ConstantsFile f;
   f.serial = unit.serial;

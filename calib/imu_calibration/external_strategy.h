@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/constants/constants_file.h"
+#include "calib/imu_calibration/external_reply.h"
 #include "calib/imu_calibration/external_request.h"
 #include "common/param_reader.h"
 
@@ -47,6 +48,21 @@ struct ExternalExchange {
   std::vector<std::string> log;
   double elapsed_s = 0.0;
 };
+
+/// A program's run on one request: its reply as checked and as written.
+struct ExternalRun {
+  CheckedReply reply;
+  std::string reply_bytes;
+  double elapsed_s = 0.0;
+};
+
+/// Runs the program with `request` on stdin and checks its reply for unit `serial`; throws
+/// ExternalStrategyError led by `who` with the cause (start, timeout, exit status, an unread
+/// request, the reply's refusal) and the tail of the program's stderr.
+ExternalRun RunExternalProgram(const ExternalImuProgram& program,
+                               const std::string& request,
+                               const std::string& serial,
+                               const std::string& who);
 
 struct ImuUnitData;
 struct ImuRunData;
